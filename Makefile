@@ -1,0 +1,26 @@
+# The two commands of the README.  Everything else is CMake + ctest.
+#   make run   install deps, build, run the default sweep (results/latest/report.html)
+#   make test  install deps, build, run every test through ctest
+BUILD ?= build
+JOBS  ?= $(shell nproc)
+CTEST_ARGS ?=
+
+.PHONY: all deps build run test clean
+
+all: build
+
+deps:
+	@bash scripts/install-deps
+
+build: deps
+	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo > $(BUILD).cmake.log 2>&1 || (cat $(BUILD).cmake.log; exit 1)
+	@cmake --build $(BUILD) -j $(JOBS)
+
+run: build
+	@./$(BUILD)/harness/dmbench run
+
+test: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+
+clean:
+	rm -rf $(BUILD) $(BUILD).cmake.log

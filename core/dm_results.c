@@ -1,0 +1,113 @@
+#include "dm_results.h"
+#include "dm_util.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key)
+{
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(kv[i].key, key) == 0)
+            return kv[i].value;
+    return NULL;
+}
+
+const dm_counter_result *dm_config_counter(const dm_config_result *c, const char *name)
+{
+    for (size_t i = 0; i < c->n_counters; i++)
+        if (strcmp(c->counters[i].name, name) == 0)
+            return &c->counters[i];
+    return NULL;
+}
+
+void dm_kv_push(dm_kv **kv, size_t *n, const char *key, const char *value)
+{
+    *kv = dm_xrealloc(*kv, (*n + 1) * sizeof **kv);
+    (*kv)[*n].key = dm_xstrdup(key);
+    (*kv)[*n].value = dm_xstrdup(value ? value : "");
+    (*n)++;
+}
+
+void dm_kv_free(dm_kv *kv, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        free(kv[i].key);
+        free(kv[i].value);
+    }
+    free(kv);
+}
+
+void dm_counter_result_free(dm_counter_result *c)
+{
+    free(c->name);
+    free(c->unit);
+    free(c->unavailable_reason);
+    free(c->samples);
+    memset(c, 0, sizeof *c);
+}
+
+void dm_config_result_free(dm_config_result *c)
+{
+    free(c->key);
+    free(c->scene);
+    dm_kv_free(c->params, c->n_params);
+    free(c->reason);
+    free(c->log);
+    for (size_t i = 0; i < c->n_counters; i++)
+        dm_counter_result_free(&c->counters[i]);
+    free(c->counters);
+    free(c->quality.reference);
+    free(c->img_render);
+    free(c->img_heatmap);
+    free(c->img_reference);
+    memset(c, 0, sizeof *c);
+}
+
+static void dm__strv_free(char **v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(v[i]);
+    free(v);
+}
+
+void dm_fit_result_free(dm_fit_result *f)
+{
+    free(f->model);
+    free(f->formula);
+    free(f->response);
+    dm_kv_free(f->group, f->n_group);
+    for (size_t i = 0; i < f->n_params; i++)
+        free(f->params[i].name);
+    free(f->params);
+    free(f->termination);
+    dm__strv_free(f->warnings, f->n_warnings);
+    free(f->measured);
+    free(f->predicted);
+    if (f->point_labels)
+        dm__strv_free(f->point_labels, (size_t)f->n_points);
+    memset(f, 0, sizeof *f);
+}
+
+void dm_run_free(dm_run_result *run)
+{
+    free(run->id);
+    free(run->sweep);
+    free(run->started);
+    free(run->finished);
+    free(run->sweep_hash);
+    dm_kv_free(run->environment, run->n_environment);
+    free(run->timer_verdict);
+    for (size_t i = 0; i < run->n_configs; i++)
+        dm_config_result_free(&run->configs[i]);
+    free(run->configs);
+    for (size_t i = 0; i < run->n_left_out; i++) {
+        dm_kv_free(run->left_out[i].params, run->left_out[i].n_params);
+        free(run->left_out[i].reason);
+    }
+    free(run->left_out);
+    for (size_t i = 0; i < run->n_fits; i++)
+        dm_fit_result_free(&run->fits[i]);
+    free(run->fits);
+    dm__strv_free(run->warnings, run->n_warnings);
+    memset(run, 0, sizeof *run);
+}

@@ -1,0 +1,125 @@
+/* dm_results.h — the in-memory model of one run's results.
+ *
+ * The harness fills it (from the SQLite store, the single source of truth);
+ * models/ adds fits; reports/ renders it to HTML/JSON/CSV/Markdown.  It is
+ * plain data: every string and array is owned by the structure and released
+ * by dm_run_free().  Field names follow the results.json contract (SPEC §8).
+ */
+#ifndef DM_RESULTS_H
+#define DM_RESULTS_H
+
+#include <stddef.h>
+
+typedef struct dm_kv {
+    char *key;
+    char *value;
+} dm_kv;
+
+/* One counter of one configuration.  Timing counters carry samples and
+ * summary statistics (per frame, nanoseconds); deterministic counters carry
+ * a single value.  available == 0 means the driver cannot provide it: the
+ * reason is set and no value is meaningful (never read it as 0). */
+typedef struct dm_counter_result {
+    char *name;
+    char *unit;              /* "ns", "items", "bytes", "ratio", "percent" */
+    int available;
+    char *unavailable_reason;
+    int deterministic;
+    int partial;             /* GPUTime on a driver whose timer covers a fraction */
+    double value;            /* deterministic counters; median for timed ones */
+    int has_samples;
+    double *samples;         /* raw per-frame values, ns */
+    size_t n_samples;
+    double median, mean, min, max, stddev, mad, cv;
+    double ci_lo, ci_hi;     /* 95% CI of the median */
+    int n_outliers;          /* Tukey fences */
+    int n_nonfinite;         /* non-finite samples excluded from statistics */
+} dm_counter_result;
+
+typedef struct dm_quality {
+    int present;
+    double rmse, psnr, ssim, max_error, pct_over_threshold;
+    double silhouette_error, depth_rmse;
+    long crack_pixels, nonfinite_pixels;
+    char *reference;         /* description of what the reference was */
+} dm_quality;
+
+typedef struct dm_config_result {
+    char *key;               /* stable hash of relevant params (16 hex) */
+    char *scene;             /* scene id: mesh/camera/lights/material/resolution */
+    dm_kv *params;
+    size_t n_params;
+    int ok;                  /* status "ok" (1) or "failed" (0) */
+    char *reason;            /* failure reason, NULL when ok */
+    char *log;               /* shader info log / GL debug messages, may be NULL */
+    dm_counter_result *counters;
+    size_t n_counters;
+    dm_quality quality;
+    char *img_render;        /* paths relative to the run directory */
+    char *img_heatmap;
+    char *img_reference;
+} dm_config_result;
+
+typedef struct dm_left_out {
+    dm_kv *params;
+    size_t n_params;
+    char *reason;
+} dm_left_out;
+
+typedef struct dm_fit_param {
+    char *name;
+    double value, stderr_;
+} dm_fit_param;
+
+typedef struct dm_fit_result {
+    char *model;             /* model name or formula */
+    char *formula;
+    char *response;
+    dm_kv *group;
+    size_t n_group;
+    dm_fit_param *params;
+    size_t n_params;
+    double r2, rmse, mape, cv_mape;
+    int n_points, n_excluded;
+    char *termination;
+    char **warnings;
+    size_t n_warnings;
+    /* predicted vs measured, for plots: n_points pairs */
+    double *measured, *predicted;
+    char **point_labels;     /* config keys, may be NULL */
+} dm_fit_result;
+
+typedef struct dm_run_result {
+    char *id;
+    char *sweep;             /* sweep name */
+    char *started;           /* ISO-8601 */
+    char *finished;
+    char *sweep_hash;
+    dm_kv *environment;      /* renderer, gl_version, lp_num_threads, cpu, fingerprint, ... */
+    size_t n_environment;
+    double gpu_time_coverage;
+    char *timer_verdict;     /* "partial" | "full" | "unknown" */
+    dm_config_result *configs;
+    size_t n_configs;
+    dm_left_out *left_out;
+    size_t n_left_out;
+    dm_fit_result *fits;
+    size_t n_fits;
+    char **warnings;
+    size_t n_warnings;
+} dm_run_result;
+
+/* Lookup helpers; return NULL when absent. */
+const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key);
+const dm_counter_result *dm_config_counter(const dm_config_result *c, const char *name);
+/* Appends a copy of key/value to a kv array (realloc'd). */
+void dm_kv_push(dm_kv **kv, size_t *n, const char *key, const char *value);
+void dm_kv_free(dm_kv *kv, size_t n);
+
+void dm_counter_result_free(dm_counter_result *c);
+void dm_config_result_free(dm_config_result *c);
+void dm_fit_result_free(dm_fit_result *f);
+/* Frees everything the run owns and zeroes it. */
+void dm_run_free(dm_run_result *run);
+
+#endif

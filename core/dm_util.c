@@ -1,0 +1,256 @@
+#include "dm_util.h"
+#include "dm_error.h"
+
+#include <errno.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <time.h>
+#include <unistd.h>
+
+static enum dm_log_level g_log_level = DM_LOG_INFO;
+
+void dm_log_set_level(enum dm_log_level level) { g_log_level = level; }
+enum dm_log_level dm_log_get_level(void) { return g_log_level; }
+
+void dm_log(enum dm_log_level level, const char *fmt, ...)
+{
+    static const char *names[] = { "error", "warning", "info", "debug" };
+    if (level > g_log_level)
+        return;
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "dmbench: %s: ", names[level]);
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+}
+
+static void dm__oom(size_t n)
+{
+    fprintf(stderr, "dmbench: error: out of memory allocating %zu bytes\n", n);
+    abort();
+}
+
+void *dm_xmalloc(size_t n)
+{
+    void *p = malloc(n ? n : 1);
+    if (!p)
+        dm__oom(n);
+    return p;
+}
+
+void *dm_xcalloc(size_t count, size_t n)
+{
+    void *p = calloc(count ? count : 1, n ? n : 1);
+    if (!p)
+        dm__oom(count * n);
+    return p;
+}
+
+void *dm_xrealloc(void *p, size_t n)
+{
+    void *q = realloc(p, n ? n : 1);
+    if (!q)
+        dm__oom(n);
+    return q;
+}
+
+char *dm_xstrdup(const char *s)
+{
+    if (!s)
+        return NULL;
+    size_t n = strlen(s) + 1;
+    char *d = dm_xmalloc(n);
+    memcpy(d, s, n);
+    return d;
+}
+
+char *dm_xasprintf(const char *fmt, ...)
+{
+    dm_str s = {0};
+    va_list ap;
+    va_start(ap, fmt);
+    dm_str_vprintf(&s, fmt, ap);
+    va_end(ap);
+    return dm_str_take(&s);
+}
+
+static void dm__str_reserve(dm_str *s, size_t extra)
+{
+    if (s->len + extra + 1 <= s->cap)
+        return;
+    size_t cap = s->cap ? s->cap : 64;
+    while (cap < s->len + extra + 1)
+        cap *= 2;
+    s->buf = dm_xrealloc(s->buf, cap);
+    s->cap = cap;
+}
+
+void dm_str_catn(dm_str *s, const char *text, size_t n)
+{
+    dm__str_reserve(s, n);
+    memcpy(s->buf + s->len, text, n);
+    s->len += n;
+    s->buf[s->len] = '\0';
+}
+
+void dm_str_cat(dm_str *s, const char *text) { dm_str_catn(s, text, strlen(text)); }
+
+void dm_str_vprintf(dm_str *s, const char *fmt, va_list ap)
+{
+    va_list ap2;
+    va_copy(ap2, ap);
+    int n = vsnprintf(NULL, 0, fmt, ap2);
+    va_end(ap2);
+    if (n < 0)
+        return;
+    dm__str_reserve(s, (size_t)n);
+    vsnprintf(s->buf + s->len, (size_t)n + 1, fmt, ap);
+    s->len += (size_t)n;
+}
+
+void dm_str_printf(dm_str *s, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    dm_str_vprintf(s, fmt, ap);
+    va_end(ap);
+}
+
+void dm_str_cat_html(dm_str *s, const char *text)
+{
+    for (const char *p = text ? text : ""; *p; p++) {
+        switch (*p) {
+        case '&': dm_str_cat(s, "&amp;"); break;
+        case '<': dm_str_cat(s, "&lt;"); break;
+        case '>': dm_str_cat(s, "&gt;"); break;
+        case '"': dm_str_cat(s, "&quot;"); break;
+        case '\'': dm_str_cat(s, "&#39;"); break;
+        default: dm_str_catn(s, p, 1);
+        }
+    }
+}
+
+const char *dm_str_get(const dm_str *s) { return s->buf ? s->buf : ""; }
+
+char *dm_str_take(dm_str *s)
+{
+    char *b = s->buf ? s->buf : dm_xstrdup("");
+    s->buf = NULL;
+    s->len = s->cap = 0;
+    return b;
+}
+
+void dm_str_free(dm_str *s)
+{
+    free(s->buf);
+    s->buf = NULL;
+    s->len = s->cap = 0;
+}
+
+static int64_t dm__clock(clockid_t id)
+{
+    struct timespec ts;
+    clock_gettime(id, &ts);
+    return (int64_t)ts.tv_sec * 1000000000LL + ts.tv_nsec;
+}
+
+int64_t dm_now_ns(void) { return dm__clock(CLOCK_MONOTONIC); }
+int64_t dm_cpu_ns(void) { return dm__clock(CLOCK_PROCESS_CPUTIME_ID); }
+int64_t dm_thread_cpu_ns(void) { return dm__clock(CLOCK_THREAD_CPUTIME_ID); }
+
+void dm_iso8601_now(char buf[32])
+{
+    time_t t = time(NULL);
+    struct tm tm;
+    gmtime_r(&t, &tm);
+    strftime(buf, 32, "%Y-%m-%dT%H:%M:%SZ", &tm);
+}
+
+uint64_t dm_fnv1a64(const void *data, size_t n, uint64_t seed)
+{
+    const unsigned char *p = data;
+    uint64_t h = seed;
+    for (size_t i = 0; i < n; i++) {
+        h ^= p[i];
+        h *= 0x100000001b3ULL;
+    }
+    return h;
+}
+
+void dm_hex64(uint64_t h, char out[17])
+{
+    snprintf(out, 17, "%016llx", (unsigned long long)h);
+}
+
+int dm_read_file(const char *path, char **out, size_t *len)
+{
+    FILE *f = fopen(path, "rb");
+    if (!f)
+        return DM_ERR_IO;
+    dm_str s = {0};
+    char chunk[65536];
+    size_t n;
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0)
+        dm_str_catn(&s, chunk, n);
+    int bad = ferror(f);
+    fclose(f);
+    if (bad) {
+        dm_str_free(&s);
+        return DM_ERR_IO;
+    }
+    if (len)
+        *len = s.len;
+    *out = dm_str_take(&s);
+    return 0;
+}
+
+int dm_write_file(const char *path, const void *data, size_t len)
+{
+    char *tmp = dm_xasprintf("%s.tmp.%ld", path, (long)getpid());
+    FILE *f = fopen(tmp, "wb");
+    int rc = DM_ERR_IO;
+    if (!f)
+        goto err;
+    if (fwrite(data, 1, len, f) != len) {
+        fclose(f);
+        goto err_unlink;
+    }
+    if (fclose(f) != 0)
+        goto err_unlink;
+    if (rename(tmp, path) != 0)
+        goto err_unlink;
+    free(tmp);
+    return 0;
+err_unlink:
+    unlink(tmp);
+err:
+    free(tmp);
+    return rc;
+}
+
+int dm_mkdirs(const char *path)
+{
+    char *p = dm_xstrdup(path);
+    for (char *q = p + 1; *q; q++) {
+        if (*q != '/')
+            continue;
+        *q = '\0';
+        if (mkdir(p, 0777) != 0 && errno != EEXIST) {
+            free(p);
+            return DM_ERR_IO;
+        }
+        *q = '/';
+    }
+    int rc = (mkdir(p, 0777) == 0 || errno == EEXIST) ? 0 : DM_ERR_IO;
+    free(p);
+    return rc;
+}
+
+int dm_file_exists(const char *path)
+{
+    struct stat st;
+    return stat(path, &st) == 0;
+}

@@ -1,0 +1,68 @@
+/* dm_util.h — small shared utilities: logging, strings, clocks, hashing, files.
+ *
+ * Everything here is layer-neutral (no GL, no SQLite, no libraries) so that
+ * every folder may depend on core/ without breaking the one-way flow of
+ * SPEC §2.
+ */
+#ifndef DM_UTIL_H
+#define DM_UTIL_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdarg.h>
+
+/* ---- logging ---------------------------------------------------------- */
+enum dm_log_level { DM_LOG_ERROR = 0, DM_LOG_WARN, DM_LOG_INFO, DM_LOG_DEBUG };
+void dm_log_set_level(enum dm_log_level level);
+enum dm_log_level dm_log_get_level(void);
+/* Prints "dmbench: <level>: message\n" on stderr when level is enabled. */
+void dm_log(enum dm_log_level level, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+/* ---- growable string -------------------------------------------------- */
+typedef struct dm_str { char *buf; size_t len, cap; } dm_str;
+/* Appends; on allocation failure aborts (strings are small; see dm_xmalloc). */
+void dm_str_cat(dm_str *s, const char *text);
+void dm_str_catn(dm_str *s, const char *text, size_t n);
+void dm_str_printf(dm_str *s, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
+void dm_str_vprintf(dm_str *s, const char *fmt, va_list ap);
+/* Appends text with & < > " ' escaped for HTML. */
+void dm_str_cat_html(dm_str *s, const char *text);
+/* Returns the buffer ("" when empty); the dm_str keeps ownership. */
+const char *dm_str_get(const dm_str *s);
+/* Hands the buffer to the caller (never NULL) and resets s. */
+char *dm_str_take(dm_str *s);
+void dm_str_free(dm_str *s);
+
+/* ---- memory: abort with a message on failure (for small bookkeeping) --- */
+void *dm_xmalloc(size_t n);
+void *dm_xcalloc(size_t count, size_t n);
+void *dm_xrealloc(void *p, size_t n);
+char *dm_xstrdup(const char *s);          /* NULL in, NULL out */
+char *dm_xasprintf(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* ---- clocks ------------------------------------------------------------ */
+int64_t dm_now_ns(void);          /* CLOCK_MONOTONIC */
+int64_t dm_cpu_ns(void);          /* CLOCK_PROCESS_CPUTIME_ID */
+int64_t dm_thread_cpu_ns(void);   /* CLOCK_THREAD_CPUTIME_ID */
+/* ISO-8601 UTC timestamp of now, "2026-11-21T23:04:24Z", into buf[32]. */
+void dm_iso8601_now(char buf[32]);
+
+/* ---- hashing ----------------------------------------------------------- */
+uint64_t dm_fnv1a64(const void *data, size_t n, uint64_t seed);
+#define DM_FNV_SEED 0xcbf29ce484222325ULL
+/* 16 lowercase hex digits of h into out[17]. */
+void dm_hex64(uint64_t h, char out[17]);
+
+/* ---- files ------------------------------------------------------------- */
+/* Reads a whole file; returns 0 and a NUL-terminated malloc'd buffer, or a
+ * negative DM_ERR_* (DM_ERR_IO) and *out untouched. */
+int dm_read_file(const char *path, char **out, size_t *len);
+/* Writes atomically (temp file + rename); DM_ERR_IO on failure, the old file
+ * (if any) is left as it was. */
+int dm_write_file(const char *path, const void *data, size_t len);
+/* mkdir -p; 0 if it exists or was made. */
+int dm_mkdirs(const char *path);
+int dm_file_exists(const char *path);
+
+#endif

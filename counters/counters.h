@@ -1,0 +1,111 @@
+/* counters.h — a GPUPerfAPI-shaped counter library over GL queries and clocks.
+ *
+ * Usage (mirrors GPUPerfAPI's session/pass/sample workflow, SEEDS S4):
+ *
+ *   counters_context *ctx;  counters_context_create(&ctx);   // GL current; probes once
+ *   counters_session *s;    counters_session_create(ctx, &s);
+ *   counters_enable(s, "WallTime"); counters_enable(s, "VSInvocations");
+ *   int passes; counters_num_passes(s, &passes);             // 2 here: timing, statistics
+ *   for (int p = 0; p < passes; p++) {
+ *       counters_pass_begin(s, p);
+ *       counters_sample_begin(s, 0);  draw K frames;  counters_sample_end(s);
+ *       counters_pass_end(s);
+ *   }
+ *   counters_session_end(s);
+ *   double v; counters_result(s, 0, "VSInvocations", &v);   // DM_ERR_UNAVAILABLE if the driver lacks it
+ *
+ * Rules: samples are not nested and must use the same ids in every pass;
+ * passes run in order 0..n-1; results are read after counters_session_end.
+ * Misuse returns DM_ERR_MISUSE and counters_last_error() says what was wrong.
+ * Timing counters never share a pass with statistics queries.  Values are
+ * totals over the sample (the caller divides by frames per sample).
+ * A counter the driver cannot provide is unavailable with a reason, never 0.
+ */
+#ifndef COUNTERS_COUNTERS_H
+#define COUNTERS_COUNTERS_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+typedef enum counters_unit {
+    COUNTERS_UNIT_NS = 1, COUNTERS_UNIT_ITEMS, COUNTERS_UNIT_BYTES,
+    COUNTERS_UNIT_RATIO, COUNTERS_UNIT_PERCENT
+} counters_unit;
+
+typedef enum counters_type {
+    COUNTERS_TYPE_UINT64 = 1, COUNTERS_TYPE_FLOAT64
+} counters_type;
+
+typedef enum counters_backend {
+    COUNTERS_BACKEND_CLOCK = 1,    /* CPU clocks around glFinish */
+    COUNTERS_BACKEND_TIMER_QUERY,  /* GL_TIME_ELAPSED / GL_TIMESTAMP */
+    COUNTERS_BACKEND_PIPELINE_STATS,
+    COUNTERS_BACKEND_OCCLUSION,    /* GL_SAMPLES_PASSED */
+    COUNTERS_BACKEND_CPU_SIDE,     /* set by the caller (bytes, VT counters) */
+    COUNTERS_BACKEND_DERIVED       /* formula over other counters */
+} counters_backend;
+
+typedef struct counters_info {
+    const char *name;
+    const char *group;          /* "Timing", "Vertex", ... (SPEC §4) */
+    const char *description;    /* what it counts in general */
+    counters_unit unit;
+    counters_type type;
+    counters_backend backend;
+    int deterministic;          /* same scene + driver => same value */
+    const char *formula;        /* derived counters only */
+} counters_info;
+
+typedef struct counters_context counters_context;
+typedef struct counters_session counters_session;
+
+/* ---- registry (no GL needed) ------------------------------------------ */
+size_t counters_count(void);
+const counters_info *counters_info_at(size_t i);
+const counters_info *counters_find(const char *name);   /* NULL if unknown */
+const char *counters_unit_name(counters_unit u);        /* "ns", "items", ... */
+
+/* ---- context: probes the current GL context once ----------------------- */
+int counters_context_create(counters_context **out);
+void counters_context_destroy(counters_context *ctx);
+/* 1 if available; else 0 and *reason (static or owned by ctx). */
+int counters_available(const counters_context *ctx, const char *name, const char **reason);
+/* What the counter really counts on this driver (e.g. per-4x4-block
+ * FSInvocations on llvmpipe), or the generic description. */
+const char *counters_driver_note(const counters_context *ctx, const char *name);
+/* Test hook: pretend an extension is missing ("GL_ARB_pipeline_statistics_query"). */
+void counters_context_hide_extension(counters_context *ctx, const char *ext);
+
+/* ---- sessions ------------------------------------------------------------ */
+int counters_session_create(counters_context *ctx, counters_session **out);
+void counters_session_destroy(counters_session *s);
+int counters_enable(counters_session *s, const char *name);        /* DM_ERR_UNKNOWN */
+int counters_enable_group(counters_session *s, const char *group);
+int counters_num_passes(counters_session *s, int *passes);
+/* Describes pass p ("timing", "statistics", "geometry"), for plans. */
+const char *counters_pass_name(counters_session *s, int pass);
+int counters_pass_begin(counters_session *s, int pass);
+int counters_pass_end(counters_session *s);
+int counters_sample_begin(counters_session *s, uint32_t sample_id);
+int counters_sample_end(counters_session *s);
+/* Caller-fed values (CPU_SIDE counters: TextureBytes, MeshBytes, SetupTime...). */
+int counters_set_value(counters_session *s, uint32_t sample_id, const char *name, double value);
+int counters_session_end(counters_session *s);
+/* Reads a value after counters_session_end.  DM_ERR_UNAVAILABLE (reason via
+ * counters_last_error) for unavailable counters or zero denominators of
+ * derived counters; DM_ERR_NOTFOUND for unknown samples / not enabled. */
+int counters_result(counters_session *s, uint32_t sample_id, const char *name, double *value);
+const char *counters_last_error(const counters_session *s);
+
+/* ---- timer calibration (SPEC §4) -----------------------------------------
+ * Runs a heavy draw of its own (fragment-bound, into an internal FBO) and
+ * compares GL_TIME_ELAPSED with glFinish-fenced wall time.  coverage =
+ * GPUTime / WallTime; verdict "partial" below 0.5, else "full".  Decided by
+ * measurement, never by the renderer's name.  Returns DM_ERR_UNAVAILABLE
+ * (verdict "unavailable") without ARB_timer_query. */
+typedef struct counters_timer_calibration {
+    double gpu_ns, wall_ns, coverage;
+    const char *verdict;        /* "partial" | "full" | "unavailable" */
+} counters_timer_calibration;
+int counters_calibrate_timer(counters_context *ctx, counters_timer_calibration *out);
+#endif

@@ -1,0 +1,153 @@
+#include "gl_context.h"
+#include "core/dm_error.h"
+
+#include <epoxy/egl.h>
+#include <epoxy/gl.h>
+#include <GLFW/glfw3.h>
+#include <stdlib.h>
+#include <string.h>
+
+struct gl_context {
+    gl_backend backend;
+    EGLDisplay dpy;
+    EGLContext egl;
+    GLFWwindow *win;
+    dm_str messages;
+    int n_messages;
+};
+
+static void GLAPIENTRY gl__debug_cb(GLenum source, GLenum type, GLuint id, GLenum severity,
+                                    GLsizei length, const GLchar *msg, const void *user)
+{
+    (void)source;
+    (void)id;
+    (void)length;
+    gl_context *ctx = (gl_context *)user;
+    if (severity == GL_DEBUG_SEVERITY_NOTIFICATION)
+        return;
+    if (type != GL_DEBUG_TYPE_ERROR && severity == GL_DEBUG_SEVERITY_LOW)
+        return;
+    ctx->n_messages++;
+    if (ctx->messages.len < 16384)
+        dm_str_printf(&ctx->messages, "GL debug: %s\n", msg);
+}
+
+static int gl__create_egl(gl_context *ctx, dm_str *err)
+{
+    ctx->dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
+    EGLint major, minor;
+    if (ctx->dpy == EGL_NO_DISPLAY || !eglInitialize(ctx->dpy, &major, &minor)) {
+        dm_str_cat(err, "EGL: cannot initialise a surfaceless display "
+                        "(is Mesa's EGL installed? run scripts/install-deps)");
+        return DM_ERR_GL;
+    }
+    if (!eglBindAPI(EGL_OPENGL_API)) {
+        dm_str_cat(err, "EGL: desktop OpenGL API not available");
+        return DM_ERR_GL;
+    }
+    const EGLint attrs[] = {
+        EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+        EGL_NONE };
+    ctx->egl = eglCreateContext(ctx->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attrs);
+    if (ctx->egl == EGL_NO_CONTEXT ||
+        !eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->egl)) {
+        dm_str_printf(err, "EGL: cannot create an OpenGL 4.5 core context (EGL error 0x%x)",
+                      (unsigned)eglGetError());
+        return DM_ERR_GL;
+    }
+    return 0;
+}
+
+static int gl__create_glfw(gl_context *ctx, const gl_context_desc *d, dm_str *err)
+{
+    if (!getenv("DISPLAY") && !getenv("WAYLAND_DISPLAY")) {
+        dm_str_cat(err, "no display available for a window (DISPLAY is not set); "
+                        "run under xvfb-run, or use the headless commands (run, render)");
+        return DM_ERR_UNSUPPORTED;
+    }
+    if (!glfwInit()) {
+        dm_str_cat(err, "GLFW could not initialise (no usable display?); try xvfb-run");
+        return DM_ERR_UNSUPPORTED;
+    }
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MAJOR, 4);
+    glfwWindowHint(GLFW_CONTEXT_VERSION_MINOR, 5);
+    glfwWindowHint(GLFW_OPENGL_PROFILE, GLFW_OPENGL_CORE_PROFILE);
+    glfwWindowHint(GLFW_OPENGL_FORWARD_COMPAT, GLFW_TRUE);
+    glfwWindowHint(GLFW_VISIBLE, d->backend == GL_BACKEND_GLFW_WINDOW ? GLFW_TRUE : GLFW_FALSE);
+    int w = d->width ? d->width : 640, h = d->height ? d->height : 480;
+    ctx->win = glfwCreateWindow(w, h, d->title ? d->title : "dmbench", NULL, NULL);
+    if (!ctx->win) {
+        glfwTerminate();
+        dm_str_cat(err, "GLFW could not create an OpenGL 4.5 core window");
+        return DM_ERR_UNSUPPORTED;
+    }
+    glfwMakeContextCurrent(ctx->win);
+    glfwSwapInterval(0);
+    return 0;
+}
+
+int gl_context_create(const gl_context_desc *desc, gl_context **out, dm_str *err)
+{
+    gl_context_desc d = desc ? *desc : (gl_context_desc){0};
+    if (d.backend == GL_BACKEND_DEFAULT)
+        d.backend = GL_BACKEND_EGL;
+    gl_context *ctx = dm_xcalloc(1, sizeof *ctx);
+    ctx->backend = d.backend;
+    int rc = d.backend == GL_BACKEND_EGL ? gl__create_egl(ctx, err) : gl__create_glfw(ctx, &d, err);
+    if (rc != 0) {
+        free(ctx);
+        return rc;
+    }
+    if (epoxy_gl_version() < 45) {
+        dm_str_printf(err, "OpenGL 4.5 required, the driver gives %d.%d",
+                      epoxy_gl_version() / 10, epoxy_gl_version() % 10);
+        gl_context_destroy(ctx);
+        return DM_ERR_UNSUPPORTED;
+    }
+    if (d.debug == 0 && epoxy_has_gl_extension("GL_KHR_debug")) {
+        glEnable(GL_DEBUG_OUTPUT);
+        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+        glDebugMessageCallback(gl__debug_cb, ctx);
+    }
+    *out = ctx;
+    return 0;
+}
+
+void gl_context_destroy(gl_context *ctx)
+{
+    if (!ctx)
+        return;
+    if (ctx->backend == GL_BACKEND_EGL) {
+        eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        if (ctx->egl != EGL_NO_CONTEXT)
+            eglDestroyContext(ctx->dpy, ctx->egl);
+        eglTerminate(ctx->dpy);
+    } else if (ctx->win) {
+        glfwDestroyWindow(ctx->win);
+        glfwTerminate();
+    }
+    dm_str_free(&ctx->messages);
+    free(ctx);
+}
+
+void *gl_context_window(gl_context *ctx) { return ctx->win; }
+
+int gl_context_take_messages(gl_context *ctx, dm_str *out)
+{
+    int n = ctx->n_messages;
+    if (out && ctx->messages.len)
+        dm_str_cat(out, dm_str_get(&ctx->messages));
+    dm_str_free(&ctx->messages);
+    ctx->n_messages = 0;
+    return n;
+}
+
+int gl_context_check_errors(dm_str *out)
+{
+    int n = 0;
+    for (GLenum e; (e = glGetError()) != GL_NO_ERROR && n < 32; n++)
+        if (out)
+            dm_str_printf(out, "glGetError: 0x%04x\n", (unsigned)e);
+    return n;
+}

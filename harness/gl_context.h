@@ -1,0 +1,41 @@
+/* gl_context.h — creating an OpenGL 4.5 core context.
+ *
+ * Default backend: EGL surfaceless (EGL_PLATFORM_SURFACELESS_MESA, no X
+ * server; render into FBOs).  GLFW (hidden or visible window) when asked and
+ * a display exists.  KHR_debug messages are captured into a buffer the
+ * caller drains per configuration (gl_context_take_messages).
+ */
+#ifndef HARNESS_GL_CONTEXT_H
+#define HARNESS_GL_CONTEXT_H
+
+#include "core/dm_util.h"
+
+typedef enum gl_backend {
+    GL_BACKEND_DEFAULT = 0,     /* EGL surfaceless */
+    GL_BACKEND_EGL,
+    GL_BACKEND_GLFW_HIDDEN,
+    GL_BACKEND_GLFW_WINDOW
+} gl_backend;
+
+typedef struct gl_context_desc {
+    gl_backend backend;
+    int width, height;          /* GLFW window size; 0 = 640x480 */
+    const char *title;
+    int debug;                  /* 0 = on (KHR_debug capture), -1 = off */
+} gl_context_desc;
+
+typedef struct gl_context gl_context;
+
+/* Creates the context and makes it current.  Returns 0, or DM_ERR_GL /
+ * DM_ERR_UNSUPPORTED with a message in err (e.g. no display for GLFW). */
+int gl_context_create(const gl_context_desc *desc, gl_context **out, dm_str *err);
+void gl_context_destroy(gl_context *ctx);
+/* GLFW window handle (GLFWwindow*) or NULL for EGL. */
+void *gl_context_window(gl_context *ctx);
+/* Number of KHR_debug messages of severity high/medium or type error seen
+ * since the last take; moves their text into out (may be NULL). */
+int gl_context_take_messages(gl_context *ctx, dm_str *out);
+/* Drains glGetError; returns the number of errors and appends them to out. */
+int gl_context_check_errors(dm_str *out);
+
+#endif

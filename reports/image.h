@@ -1,0 +1,38 @@
+/* image.h — float RGBA images and the OpenImageIO bridge (C++ behind a C header).
+ *
+ * An img is RGBA32F, row-major, row 0 at the top (the harness flips GL's
+ * bottom-up rows when reading back).  PNG output is 8-bit with values
+ * clamped to [0,1]; EXR keeps floats.
+ */
+#ifndef REPORTS_IMAGE_H
+#define REPORTS_IMAGE_H
+
+#include <stddef.h>
+
+typedef struct img {
+    int w, h;
+    float *px;               /* w*h*4 floats, owned */
+} img;
+
+typedef struct img_metrics {
+    double rmse, psnr;       /* over RGB; psnr = INFINITY when identical */
+    double max_error;
+    double pct_over;         /* percent of pixels with any channel error > threshold */
+    long nonfinite;          /* NaN/Inf values in b (the test image) */
+} img_metrics;
+
+int img_alloc(img *im, int w, int h);        /* zero-filled; DM_ERR_NOMEM */
+void img_free(img *im);
+/* Saves by extension (.png, .exr, .tif).  DM_ERR_IO with the reason in err. */
+int img_save(const img *im, const char *path, char *err, size_t errlen);
+int img_load(const char *path, img *out, char *err, size_t errlen);
+/* Box-filter downsample by an integer factor (OpenImageIO resize). */
+int img_downsample(const img *src, int factor, img *out);
+/* RGB metrics of b against reference a (same size, else DM_ERR_ARG);
+ * threshold for pct_over (e.g. 0.05). */
+int img_compare(const img *a, const img *b, double threshold, img_metrics *out);
+/* Writes |a-b| (max over RGB, scaled so `scale` maps to 1) through the
+ * inferno colour map as PNG.  scale <= 0 = auto (max difference). */
+int img_heatmap(const img *a, const img *b, double scale, const char *path, char *err, size_t errlen);
+
+#endif

@@ -1,0 +1,41 @@
+/* axes.h — the catalog of sweep axes: names, kinds, valid values, defaults.
+ *
+ * A configuration is a set of (axis, value) strings.  This catalog is the one
+ * place that says which names and values exist, so the sweep parser can
+ * reject bad input with the valid choices and the planner can project a
+ * combination onto the axes a technique reads (technique.h).
+ */
+#ifndef TECHNIQUES_AXES_H
+#define TECHNIQUES_AXES_H
+
+#include <stddef.h>
+#include "core/dm_util.h"
+
+typedef enum axis_kind {
+    AXIS_ENUM = 1,     /* one of choices[] */
+    AXIS_INT,          /* integer in [min, max] */
+    AXIS_FLOAT,        /* real in [min, max] */
+    AXIS_SIZE2         /* "WxH" or a YAML pair [W, H] (resolution) */
+} axis_kind;
+
+typedef struct axis_info {
+    const char *name;
+    axis_kind kind;
+    const char *const *choices;   /* AXIS_ENUM: NULL-terminated */
+    double min, max;              /* AXIS_INT / AXIS_FLOAT */
+    const char *def;              /* default value as text */
+    int scene;                    /* 1: read by every technique (scene axis) */
+    const char *help;
+} axis_info;
+
+size_t axes_count(void);
+const axis_info *axes_at(size_t i);
+const axis_info *axes_find(const char *name);
+/* Checks a value against its axis.  Returns 0, or DM_ERR_UNKNOWN (unknown
+ * axis: err gets the valid names) / DM_ERR_ARG (bad value: err says what was
+ * expected and lists the valid choices).  The caller adds file:line. */
+int axes_check(const char *name, const char *value, dm_str *err);
+/* Canonical text for a value ("1280x720" for [1280,720], trimmed numbers). */
+char *axes_canonical(const char *name, const char *value);
+
+#endif

@@ -1,0 +1,43 @@
+/* render.h — turning a configuration into GL draws.
+ *
+ * The renderer owns every GL object of the techniques layer behind typed
+ * handles: a program cache keyed by (technique, defines, driver), mesh and
+ * map caches, so a sweep creates each resource once.  It draws into
+ * whatever framebuffer is bound; render targets, timing and counters belong
+ * to the caller (harness/, counters/).  Needs a current GL 4.5 context.
+ */
+#ifndef TECHNIQUES_RENDER_H
+#define TECHNIQUES_RENDER_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+
+typedef struct tech_renderer tech_renderer;
+typedef struct tech_item { uint32_t id; } tech_item;   /* 0 = invalid */
+
+typedef struct tech_item_info {
+    size_t mesh_vertices, mesh_triangles;
+    size_t mesh_bytes, texture_bytes;
+    int64_t setup_ns;            /* compile/link/upload time spent preparing it */
+    int program_cached;          /* 1 when the program came from the cache */
+} tech_item_info;
+
+/* Returns 0 and a renderer, or DM_ERR_GL when no usable context is current. */
+int tech_renderer_create(tech_renderer **out);
+void tech_renderer_destroy(tech_renderer *r);
+
+/* Prepares one configuration (params: axis → value; missing axes take their
+ * defaults).  Returns 0 and a handle; DM_ERR_ARG/DM_ERR_UNKNOWN for bad
+ * params (log says which); DM_ERR_SHADER with the driver's full info log
+ * appended to `log`; DM_ERR_UNSUPPORTED when the driver lacks a feature. */
+int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params,
+                 tech_item *out, dm_str *log);
+/* Draws one frame of the item into the bound framebuffer (viewport w×h,
+ * clears colour to 0 and depth to 1 first).  Does not glFinish. */
+int tech_draw(tech_renderer *r, tech_item item, int width, int height);
+int tech_item_get_info(tech_renderer *r, tech_item item, tech_item_info *out);
+void tech_release(tech_renderer *r, tech_item item);
+
+#endif

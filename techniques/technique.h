@@ -1,0 +1,36 @@
+/* technique.h — technique descriptors and their registry.
+ *
+ * A technique is data plus shaders: this descriptor names its GLSL stages
+ * (files under techniques/glsl/, embedded at build time), its defines, the
+ * textures it samples and the sweep axes it reads beyond the scene axes.
+ * Adding a technique = one descriptor in technique_list.c + its GLSL.
+ */
+#ifndef TECHNIQUES_TECHNIQUE_H
+#define TECHNIQUES_TECHNIQUE_H
+
+#include <stddef.h>
+
+enum technique_texture {
+    TECH_TEX_HEIGHT = 1u << 0,
+    TECH_TEX_NORMAL = 1u << 1,
+    TECH_TEX_ALBEDO = 1u << 2
+};
+
+typedef struct technique_desc {
+    const char *name;            /* sweep value, e.g. "normal" */
+    const char *summary;         /* one line for `dmbench list techniques` */
+    const char *vs, *tcs, *tes, *gs, *fs;   /* embedded GLSL names; NULL = stage absent */
+    const char *defines;         /* extra "#define ..." lines, may be NULL */
+    unsigned textures;           /* TECH_TEX_* bits */
+    const char *const *axes;     /* technique-specific axes it reads, NULL-terminated */
+    int version;                 /* bump when the technique's output changes (config keys) */
+    const char *requires_ext;    /* GL extension needed, NULL if none */
+} technique_desc;
+
+size_t technique_count(void);
+const technique_desc *technique_at(size_t i);
+const technique_desc *technique_find(const char *name);
+/* 1 when the technique reads axis `name` (its own list or a scene axis). */
+int technique_reads_axis(const technique_desc *t, const char *name);
+
+#endif

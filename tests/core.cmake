@@ -1,0 +1,1 @@
+dm_add_unit(test_core test_core.c)

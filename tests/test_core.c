@@ -1,0 +1,91 @@
+/* Unit tests of core/: error names, strings, HTML escaping, hashing, files. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/dm_error.h"
+#include "core/dm_util.h"
+#include "core/dm_results.h"
+
+static void test_error_names(void **state)
+{
+    (void)state;
+    assert_string_equal(dm_errname(DM_ERR_PARSE), "DM_ERR_PARSE");
+    assert_string_equal(dm_strerror(DM_ERR_NOMEM), "out of memory");
+    assert_string_equal(dm_errname(12345), "DM_ERR_?");
+    assert_int_equal(DM_ERR_OK, 0);
+}
+
+static void test_str_and_html(void **state)
+{
+    (void)state;
+    dm_str s = {0};
+    assert_string_equal(dm_str_get(&s), "");
+    dm_str_printf(&s, "%d-%s", 42, "x");
+    dm_str_cat_html(&s, "<script>alert('1')&\"</script>");
+    assert_string_equal(dm_str_get(&s),
+        "42-x&lt;script&gt;alert(&#39;1&#39;)&amp;&quot;&lt;/script&gt;");
+    char *t = dm_str_take(&s);
+    assert_null(s.buf);
+    free(t);
+}
+
+static void test_hash(void **state)
+{
+    (void)state;
+    /* FNV-1a 64 of "a" is a published test vector. */
+    assert_true(dm_fnv1a64("a", 1, DM_FNV_SEED) == 0xaf63dc4c8601ec8cULL);
+    char hex[17];
+    dm_hex64(0xaf63dc4c8601ec8cULL, hex);
+    assert_string_equal(hex, "af63dc4c8601ec8c");
+}
+
+static void test_files(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dmcoreXXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char *sub = dm_xasprintf("%s/a/b/c", dir);
+    assert_int_equal(dm_mkdirs(sub), 0);
+    char *f = dm_xasprintf("%s/x.txt", sub);
+    assert_int_equal(dm_write_file(f, "hello", 5), 0);
+    char *buf = NULL;
+    size_t len = 0;
+    assert_int_equal(dm_read_file(f, &buf, &len), 0);
+    assert_int_equal(len, 5);
+    assert_string_equal(buf, "hello");
+    assert_int_equal(dm_read_file("/nonexistent/x", &buf, &len), DM_ERR_IO);
+    assert_int_equal(dm_write_file("/nonexistent/dir/x", "a", 1), DM_ERR_IO);
+    free(buf);
+    free(f);
+    free(sub);
+}
+
+static void test_results_kv(void **state)
+{
+    (void)state;
+    dm_kv *kv = NULL;
+    size_t n = 0;
+    dm_kv_push(&kv, &n, "technique", "normal");
+    dm_kv_push(&kv, &n, "mesh", "plane");
+    assert_string_equal(dm_kv_get(kv, n, "mesh"), "plane");
+    assert_null(dm_kv_get(kv, n, "tess_level"));
+    dm_kv_free(kv, n);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_error_names),
+        cmocka_unit_test(test_str_and_html),
+        cmocka_unit_test(test_hash),
+        cmocka_unit_test(test_files),
+        cmocka_unit_test(test_results_kv),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
