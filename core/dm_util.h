@@ -34,6 +34,13 @@ const char *dm_str_get(const dm_str *s);
 char *dm_str_take(dm_str *s);
 void dm_str_free(dm_str *s);
 
+/* ---- suggestions ------------------------------------------------------ */
+/* The choice closest to word by edit distance, or NULL when none is within
+ * max(2, strlen(word)/3) edits (so "did you mean" is only said when likely). */
+const char *dm_closest(const char *word, const char *const *choices, size_t n);
+/* Appends "a, b, c" (n choices) to s. */
+void dm_str_cat_list(dm_str *s, const char *const *choices, size_t n);
+
 /* ---- memory: abort with a message on failure (for small bookkeeping) --- */
 void *dm_xmalloc(size_t n);
 void *dm_xcalloc(size_t count, size_t n);

@@ -1,0 +1,204 @@
+/* plan.c — cartesian product, projection, dedupe and keys (see plan.h). */
+#include "plan.h"
+#include "core/dm_error.h"
+#include "techniques/axes.h"
+#include "techniques/technique.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Axes that make up a scene: configurations of one scene share a reference
+ * image and are measured in the same rounds. */
+static const char *const plan__scene_axes[] = {
+    "mesh", "resolution", "camera.distance", "camera.azimuth", "camera.elevation",
+    "camera.fov", "maps", "lighting", "light_count", "height_scale" };
+
+static int plan__kv_cmp(const void *a, const void *b)
+{
+    return strcmp(((const dm_kv *)a)->key, ((const dm_kv *)b)->key);
+}
+
+/* Value of an axis in a combination: the sweep axis, else the scene
+ * default, else the catalog default. */
+static const char *plan__value(const sweep *s, const size_t *idx, const char *axis)
+{
+    for (size_t i = 0; i < s->n_axes; i++)
+        if (strcmp(s->axes[i].name, axis) == 0)
+            return s->axes[i].values[idx[i]];
+    const char *v = dm_kv_get(s->scene, s->n_scene, axis);
+    if (v)
+        return v;
+    const axis_info *a = axes_find(axis);
+    return a ? a->def : NULL;
+}
+
+static void plan__key(plan_config *c, const technique_desc *t)
+{
+    uint64_t h = DM_FNV_SEED;
+    char ver[32];
+    snprintf(ver, sizeof ver, "v%d;", t->version);
+    h = dm_fnv1a64(ver, strlen(ver), h);
+    for (size_t i = 0; i < c->n_params; i++) {
+        h = dm_fnv1a64(c->params[i].key, strlen(c->params[i].key) + 1, h);
+        h = dm_fnv1a64(c->params[i].value, strlen(c->params[i].value) + 1, h);
+    }
+    dm_hex64(h, c->key);
+}
+
+static char *plan__scene_id(const plan_config *c)
+{
+    dm_str s = {0};
+    dm_str_printf(&s, "%s@%s", dm_kv_get(c->params, c->n_params, "mesh"),
+                  dm_kv_get(c->params, c->n_params, "resolution"));
+    for (size_t i = 2; i < sizeof plan__scene_axes / sizeof *plan__scene_axes; i++) {
+        const char *v = dm_kv_get(c->params, c->n_params, plan__scene_axes[i]);
+        const axis_info *a = axes_find(plan__scene_axes[i]);
+        if (v && a && strcmp(v, a->def) != 0)
+            dm_str_printf(&s, ",%s=%s", plan__scene_axes[i], v);
+    }
+    return dm_str_take(&s);
+}
+
+/* Projects one combination onto its technique's axes. */
+static void plan__project(const sweep *s, const size_t *idx, plan_config *c)
+{
+    const technique_desc *t = technique_find(plan__value(s, idx, "technique"));
+    memset(c, 0, sizeof *c);
+    for (size_t i = 0; i < axes_count(); i++) {
+        const axis_info *a = axes_at(i);
+        if (strcmp(a->name, "technique") != 0 && !technique_reads_axis(t, a->name))
+            continue;
+        dm_kv_push(&c->params, &c->n_params, a->name, plan__value(s, idx, a->name));
+    }
+    qsort(c->params, c->n_params, sizeof *c->params, plan__kv_cmp);
+    plan__key(c, t);
+    c->scene = plan__scene_id(c);
+    c->folded = 1;
+    sscanf(dm_kv_get(c->params, c->n_params, "resolution"), "%dx%d", &c->width, &c->height);
+}
+
+static void plan__config_free(plan_config *c)
+{
+    free(c->scene);
+    dm_kv_free(c->params, c->n_params);
+}
+
+/* Adds c unless a configuration with the same key exists (then folds it). */
+static void plan__add(plan *p, plan_config *c)
+{
+    for (size_t i = 0; i < p->n_configs; i++) {
+        if (strcmp(p->configs[i].key, c->key) == 0) {
+            p->configs[i].folded++;
+            plan__config_free(c);
+            return;
+        }
+    }
+    p->configs = dm_xrealloc(p->configs, (p->n_configs + 1) * sizeof *p->configs);
+    p->configs[p->n_configs++] = *c;
+}
+
+int plan_build(const sweep *s, plan *out, dm_str *err)
+{
+    memset(out, 0, sizeof *out);
+    size_t total = 1;
+    for (size_t i = 0; i < s->n_axes; i++) {
+        total *= s->axes[i].n_values;
+        if (total > 1000000) {
+            dm_str_printf(err, "%s: the sweep's cartesian product exceeds 1e6 combinations; "
+                          "split it into several sweep files", s->path);
+            return DM_ERR_RANGE;
+        }
+    }
+    size_t *idx = dm_xcalloc(s->n_axes + 1, sizeof *idx);
+    for (size_t n = 0; n < total; n++) {
+        plan_config c;
+        plan__project(s, idx, &c);
+        plan__add(out, &c);
+        for (size_t i = 0; i < s->n_axes; i++) {      /* odometer over the axes */
+            if (++idx[i] < s->axes[i].n_values)
+                break;
+            idx[i] = 0;
+        }
+    }
+    free(idx);
+    out->n_combinations = total;
+    return 0;
+}
+
+void plan_leave_out(plan *p, size_t i, const char *reason)
+{
+    plan_config *c = &p->configs[i];
+    p->left_out = dm_xrealloc(p->left_out, (p->n_left_out + 1) * sizeof *p->left_out);
+    dm_left_out *l = &p->left_out[p->n_left_out++];
+    l->params = c->params;
+    l->n_params = c->n_params;
+    l->reason = dm_xstrdup(reason);
+    free(c->scene);
+    memmove(c, c + 1, (p->n_configs - i - 1) * sizeof *c);
+    p->n_configs--;
+}
+
+void plan_filter_capabilities(plan *p, int (*has_ext)(const char *ext, void *user), void *user)
+{
+    for (size_t i = 0; i < p->n_configs;) {
+        const char *tname = dm_kv_get(p->configs[i].params, p->configs[i].n_params, "technique");
+        const technique_desc *t = technique_find(tname);
+        if (t && t->requires_ext && !has_ext(t->requires_ext, user)) {
+            char *why = dm_xasprintf("the driver lacks %s, which %s needs", t->requires_ext, tname);
+            plan_leave_out(p, i, why);
+            free(why);
+            continue;
+        }
+        i++;
+    }
+}
+
+int plan_shard(plan *p, int k, int n)
+{
+    if (n < 1 || k < 1 || k > n)
+        return DM_ERR_ARG;
+    size_t kept = 0;
+    for (size_t i = 0; i < p->n_configs; i++) {
+        uint64_t h = strtoull(p->configs[i].key, NULL, 16);
+        if ((int)(h % (uint64_t)n) == k - 1)
+            p->configs[kept++] = p->configs[i];
+        else
+            plan__config_free(&p->configs[i]);
+    }
+    p->n_configs = kept;
+    return 0;
+}
+
+static uint64_t plan__splitmix(uint64_t *x)
+{
+    uint64_t z = (*x += 0x9e3779b97f4a7c15ULL);
+    z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ULL;
+    z = (z ^ (z >> 27)) * 0x94d049bb133111ebULL;
+    return z ^ (z >> 31);
+}
+
+void plan_shuffle(size_t *order, size_t n, uint64_t seed)
+{
+    for (size_t i = 0; i < n; i++)
+        order[i] = i;
+    for (size_t i = n; i > 1; i--) {
+        size_t j = (size_t)(plan__splitmix(&seed) % i);
+        size_t t = order[i - 1];
+        order[i - 1] = order[j];
+        order[j] = t;
+    }
+}
+
+void plan_free(plan *p)
+{
+    for (size_t i = 0; i < p->n_configs; i++)
+        plan__config_free(&p->configs[i]);
+    free(p->configs);
+    for (size_t i = 0; i < p->n_left_out; i++) {
+        dm_kv_free(p->left_out[i].params, p->left_out[i].n_params);
+        free(p->left_out[i].reason);
+    }
+    free(p->left_out);
+    memset(p, 0, sizeof *p);
+}

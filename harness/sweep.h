@@ -1,0 +1,69 @@
+/* sweep.h — sweep files (SPEC §3): parsing and validation.
+ *
+ * A sweep file says what to render (scene defaults and axes whose cartesian
+ * product is planned), how to measure it, what quality reference to use and
+ * which cost models to fit.  Everything is validated before any work: an
+ * unknown key, axis, value, technique or counter is DM_ERR_PARSE with
+ * "file:line:column: message" in err, listing the valid choices.
+ */
+#ifndef HARNESS_SWEEP_H
+#define HARNESS_SWEEP_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+
+typedef struct sweep_axis {
+    char *name;
+    char **values;           /* canonical text values */
+    size_t n_values;
+    int line;                /* 1-based line of the axis in the file */
+} sweep_axis;
+
+typedef struct sweep_model {
+    char *name;
+    char *formula;           /* NULL = built-in model named `name` */
+    char *response;          /* default "WallTime" */
+    char **group_by;
+    size_t n_group_by;
+    int line;
+} sweep_model;
+
+typedef struct sweep_measure {
+    int warmup_frames;       /* minimum warm-up frames (default 8) */
+    int frames_per_sample;   /* K (default 16) */
+    int samples_min;         /* default 5 */
+    int samples_max;         /* default 30 */
+    double target_ci;        /* relative half-width of the median's 95% CI (default 0.03) */
+    double timeout_s;        /* watchdog per configuration (default 120) */
+    double max_seconds;      /* time cap of sampling per configuration (default 10) */
+    char **counters;         /* counter names (default: WallTime + statistics set) */
+    size_t n_counters;
+} sweep_measure;
+
+typedef struct sweep {
+    char *path;              /* file name used in messages ("<default>" if embedded) */
+    char *name;
+    dm_kv *scene;            /* scene defaults, axis name -> canonical value */
+    size_t n_scene;
+    sweep_axis *axes;
+    size_t n_axes;
+    sweep_measure measure;
+    char *ref_technique;     /* quality reference technique; NULL = same config supersampled */
+    int supersample;         /* default 4 */
+    sweep_model *models;
+    size_t n_models;
+    uint64_t hash;           /* FNV-1a of the file text */
+} sweep;
+
+/* Parses and validates a sweep from text; `path` names it in messages.
+ * Returns 0, or DM_ERR_PARSE with "path:line:col: ..." in err (out zeroed). */
+int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err);
+/* Reads and parses a file; DM_ERR_IO with the path when unreadable. */
+int sweep_load(const char *path, sweep *out, dm_str *err);
+/* The embedded default sweep (SPEC §1); quick = the short version for tests. */
+const char *sweep_default_text(int quick);
+void sweep_free(sweep *s);
+
+#endif

@@ -1,0 +1,149 @@
+/* Planner: projection onto the axes a technique reads, dedupe counts,
+ * stable keys, shards that are disjoint and cover everything. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+#include "harness/plan.h"
+#include "harness/sweep.h"
+
+static void plan_text(const char *text, sweep *s, plan *p)
+{
+    dm_str err = {0};
+    int rc = sweep_parse(text, "t.yaml", s, &err);
+    if (rc)
+        fail_msg("%s", dm_str_get(&err));
+    assert_int_equal(plan_build(s, p, &err), 0);
+    dm_str_free(&err);
+}
+
+/* normal does not read tess_level: 3 combinations fold into 1. */
+static void test_fold_irrelevant_axis(void **state)
+{
+    (void)state;
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  technique: [normal]\n  tess_level: [1, 32, 64]\n", &s, &p);
+    assert_int_equal(p.n_combinations, 3);
+    assert_int_equal(p.n_configs, 1);
+    assert_int_equal(p.configs[0].folded, 3);
+    assert_null(dm_kv_get(p.configs[0].params, p.configs[0].n_params, "tess_level"));
+    assert_string_equal(dm_kv_get(p.configs[0].params, p.configs[0].n_params, "technique"), "normal");
+    plan_free(&p);
+    sweep_free(&s);
+}
+
+/* Scene axes are read by every technique: 2 meshes x 2 resolutions = 4. */
+static void test_scene_axes_kept(void **state)
+{
+    (void)state;
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  mesh: [plane, cube]\n  technique: [normal]\n"
+              "  resolution: [[64, 32], [128, 64]]\n", &s, &p);
+    assert_int_equal(p.n_combinations, 4);
+    assert_int_equal(p.n_configs, 4);
+    int found = 0;
+    for (size_t i = 0; i < p.n_configs; i++) {
+        if (strcmp(p.configs[i].scene, "cube@128x64") == 0) {
+            found = 1;
+            assert_int_equal(p.configs[i].width, 128);
+            assert_int_equal(p.configs[i].height, 64);
+        }
+    }
+    assert_true(found);
+    plan_free(&p);
+    sweep_free(&s);
+}
+
+/* Keys depend only on the projected parameters: the same configuration
+ * planned from two different sweeps has the same key. */
+static void test_keys_stable(void **state)
+{
+    (void)state;
+    sweep a, b;
+    plan pa, pb;
+    plan_text("name: a\nsweep:\n  technique: [normal]\n  mesh: [cube]\n", &a, &pa);
+    plan_text("name: b\nscene: { mesh: cube }\nsweep:\n  tess_level: [4, 8]\n"
+              "  technique: [normal]\n", &b, &pb);
+    assert_int_equal(pa.n_configs, 1);
+    assert_int_equal(pb.n_configs, 1);
+    assert_string_equal(pa.configs[0].key, pb.configs[0].key);
+    assert_int_equal(strlen(pa.configs[0].key), 16);
+    plan_free(&pa);
+    plan_free(&pb);
+    sweep_free(&a);
+    sweep_free(&b);
+}
+
+static void test_shards_partition(void **state)
+{
+    (void)state;
+    const char *text = "name: t\nsweep:\n  mesh: [plane, cube, triangle, fullscreen]\n"
+                       "  technique: [normal]\n"
+                       "  resolution: [[64, 32], [128, 64], [32, 32], [16, 16], [8, 8]]\n"
+                       "  camera.elevation: [10, 20, 30]\n";
+    sweep s;
+    plan whole;
+    plan_text(text, &s, &whole);
+    assert_int_equal(whole.n_configs, 60);
+    size_t total = 0;
+    int *seen = calloc(whole.n_configs, sizeof *seen);
+    for (int k = 1; k <= 3; k++) {
+        plan part;
+        dm_str err = {0};
+        assert_int_equal(plan_build(&s, &part, &err), 0);
+        assert_int_equal(plan_shard(&part, k, 3), 0);
+        total += part.n_configs;
+        for (size_t i = 0; i < part.n_configs; i++)
+            for (size_t j = 0; j < whole.n_configs; j++)
+                if (strcmp(part.configs[i].key, whole.configs[j].key) == 0)
+                    seen[j]++;
+        plan_free(&part);
+    }
+    assert_int_equal(total, whole.n_configs);
+    for (size_t j = 0; j < whole.n_configs; j++)
+        assert_int_equal(seen[j], 1);
+    plan part;
+    dm_str err = {0};
+    assert_int_equal(plan_build(&s, &part, &err), 0);
+    assert_int_equal(plan_shard(&part, 4, 3), DM_ERR_ARG);
+    plan_free(&part);
+    free(seen);
+    plan_free(&whole);
+    sweep_free(&s);
+}
+
+static void test_shuffle_is_seeded_permutation(void **state)
+{
+    (void)state;
+    size_t a[50], b[50], c[50];
+    plan_shuffle(a, 50, 7);
+    plan_shuffle(b, 50, 7);
+    plan_shuffle(c, 50, 8);
+    assert_memory_equal(a, b, sizeof a);
+    assert_true(memcmp(a, c, sizeof a) != 0);
+    int hit[50] = {0};
+    for (int i = 0; i < 50; i++)
+        hit[a[i]]++;
+    for (int i = 0; i < 50; i++)
+        assert_int_equal(hit[i], 1);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fold_irrelevant_axis),
+        cmocka_unit_test(test_scene_axes_kept),
+        cmocka_unit_test(test_keys_stable),
+        cmocka_unit_test(test_shards_partition),
+        cmocka_unit_test(test_shuffle_is_seeded_permutation),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
