@@ -510,7 +510,8 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
                       parser.problem_mark.line + 1, parser.problem_mark.column + 1,
                       parser.problem ? parser.problem : "unknown");
         if (parser.context)
-            dm_str_printf(err, " (%s)", parser.context);
+            dm_str_printf(err, " (%s that started at line %zu, column %zu)", parser.context,
+                          parser.context_mark.line + 1, parser.context_mark.column + 1);
         yaml_parser_delete(&parser);
         return DM_ERR_PARSE;
     }
