@@ -102,7 +102,8 @@ void dm_str_vprintf(dm_str *s, const char *fmt, va_list ap)
 {
     va_list ap2;
     va_copy(ap2, ap);
-    int n = vsnprintf(NULL, 0, fmt, ap2);
+    char probe[1];
+    int n = vsnprintf(probe, sizeof probe, fmt, ap2);   /* length only */
     va_end(ap2);
     if (n < 0)
         return;

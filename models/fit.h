@@ -4,8 +4,45 @@
  * parameters: "a + b*SamplesPassed", "a + b*tess_level^p".  Names that are
  * listed as variables are data; every other name is a parameter.  Functions:
  * + - * / ^, unary minus, parentheses, exp log sqrt min max.  Evaluated with
- * exact derivatives (ceres::Jet).  Features are scaled before solving and
- * parameters unscaled after.
+ * exact derivatives (forward-mode dual numbers in formula.c; the Ceres
+ * bridge is fit_ceres.h).  Grammar and errors: formula.h.
+ *
+ * How a fit is done (numerical stability, SPEC §7):
+ *  - Screening: a point is excluded (counted in n_excluded, one warning)
+ *    when its response is non-finite or <= 0 or a variable the formula uses
+ *    is non-finite.  Fewer usable points than parameters -> DM_ERR_ARG.
+ *  - Constant columns (max - min <= 1e-12 max|value| over usable points):
+ *    every top-level additive term using the variable is DROPPED with a
+ *    warning naming the variable, its value and the term ("c*x2"); if no
+ *    parameter is left the fit is refused (DM_ERR_ARG).
+ *  - Near-collinear used variables (|corr| > 0.9999): warning naming both.
+ *  - Scaling: residuals are r_i = (f(x_i) - y_i) / s_y with s_y = max y,
+ *    and Ceres solves for theta_j = p_j / s_j where s_j = 1/||dr/dp_j||
+ *    (Jacobian column norm, recomputed at the start of every solve pass).
+ *    This is feature scaling done in parameter space, so it works for any
+ *    formula: for a linear term b*x it is exactly dividing x by its norm,
+ *    and parameters are mapped back (p = s*theta) after each pass.
+ *    Magnitudes 1e-9..1e9 fit to ~1e-12 relative (tests: "stiff").
+ *  - Starting values: 1 for every parameter (clamped into its bounds).
+ *    Parameters in which the formula is affine (structural test) are first
+ *    solved with the nonlinear ones held (a linear least-squares pass,
+ *    exact in one Gauss-Newton step), then all parameters together.
+ *  - Robust loss: the scale is k * 1.4826 * MAD of the scaled residuals of
+ *    the previous pass (k = 1.345 Huber, 2.3849 Cauchy; the usual 95%
+ *    efficiency constants), floored at 1e-12; two reweighted passes.
+ *  - Covariance: Ceres DENSE_SVD with null_space_rank = 0 on the scaled
+ *    problem (so it is well conditioned unless the model truly is not); a
+ *    rank-deficient Jacobian gives a warning and stderr = NaN (never a
+ *    silently pseudo-inverted value).  stderr_j = sqrt(cov_jj) *
+ *    sqrt(RSS / (n - p)); with n == p stderr is NaN with a warning.
+ *  - Output: r2 = 1 - RSS/TSS, rmse = sqrt(RSS/n), mape and cv_mape in
+ *    PERCENT (mean |pred - y| / y * 100); cv_mape from k-fold CV (folds by
+ *    a seeded shuffle, fold = position mod k, each refit from the full-fit
+ *    parameters on the other folds, predicting the held-out points);
+ *    termination = "CONVERGENCE after N iterations" (Ceres' type and the
+ *    iterations summed over the passes); measured/predicted/point_labels
+ *    cover the n_points usable points in input order.  A Ceres FAILURE is
+ *    DM_ERR_NUMERIC; NO_CONVERGENCE is a usable fit with a warning.
  */
 #ifndef MODELS_FIT_H
 #define MODELS_FIT_H
@@ -42,7 +79,8 @@ typedef struct fit_desc {
  * mape, cv_mape, termination, warnings, measured/predicted); on refusal
  * (formula error, fewer usable points than parameters, ...) returns
  * DM_ERR_PARSE / DM_ERR_ARG / DM_ERR_NUMERIC with a message in err (parse
- * errors name the column) and leaves out zeroed. Non-finite or
+ * errors name the column; an unknown bound name is DM_ERR_UNKNOWN) and
+ * leaves out zeroed. Non-finite or
  * non-positive responses are excluded and counted in out->n_excluded. */
 int fit_run(const fit_desc *desc, dm_fit_result *out, dm_str *err);
 

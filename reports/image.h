@@ -9,6 +9,10 @@
 
 #include <stddef.h>
 
+#ifdef __cplusplus
+extern "C" {
+#endif
+
 typedef struct img {
     int w, h;
     float *px;               /* w*h*4 floats, owned */
@@ -34,5 +38,15 @@ int img_compare(const img *a, const img *b, double threshold, img_metrics *out);
 /* Writes |a-b| (max over RGB, scaled so `scale` maps to 1) through the
  * inferno colour map as PNG.  scale <= 0 = auto (max difference). */
 int img_heatmap(const img *a, const img *b, double scale, const char *path, char *err, size_t errlen);
+/* Reads the image at path, shrinks it to fit max_dim × max_dim (aspect kept,
+ * never enlarged; OIIO resize, default filter) and encodes it as an 8-bit
+ * PNG in memory: *png is malloc'd, *len its size.  DM_ERR_IO (reason and path
+ * in err) when the file cannot be read or encoded; DM_ERR_ARG on bad args. */
+int img_thumbnail_png(const char *path, int max_dim, unsigned char **png, size_t *len,
+                      char *err, size_t errlen);
+
+#ifdef __cplusplus
+}
+#endif
 
 #endif

@@ -4,19 +4,54 @@
  * GL or runs anything.  Every string from a sweep file or the environment
  * is HTML-escaped.  Image paths are relative to the run directory and are
  * refused if they would leave it.
+ *
+ * results.json encoding (SPEC §8 names; additions are marked +):
+ *  - PSNR of identical images is +infinity, which JSON cannot hold: it is
+ *    written "PSNR": null together with "PSNR_infinite": true (+, always
+ *    present, false otherwise).  Any other non-finite number is null and
+ *    reads back as NaN.  A NULL string is null.
+ *  - params/group values that are canonical numbers ("32", "0.5") are JSON
+ *    numbers, all others strings; reading turns numbers back into the same
+ *    text, so write → read → write is byte-identical.
+ *  - counters: timed {unit, deterministic+, partial+, median, ci95[lo,hi],
+ *    samples[], mean, min, max, stddev, mad, cv, outliers, nonfinite+};
+ *    single value {unit, deterministic+, partial+, value}; unavailable
+ *    {unit, deterministic+, unavailable: "reason"} (never a 0).
+ *  - added: run.finished, run.sweep_hash, quality.MaxError,
+ *    quality.PctOverThreshold, quality.reference, images.reference,
+ *    config.log, fit.formula/response/rmse/mape/n_points/n_excluded/
+ *    termination/measured/predicted/point_labels, top-level warnings[].
+ *
+ * results.csv: one row per configuration, RFC 4180 (CRLF, quoted fields);
+ * columns key, scene, status, reason, the union of params, per timing
+ * counter <name>_median_ms/_ci_lo_ms/_ci_hi_ms, each deterministic counter,
+ * then RMSE, PSNR ("inf" when infinite), SSIM, MaxError, SilhouetteError,
+ * DepthRMSE, CrackPixels, NonFinitePixels; unavailable = empty field.
+ *
+ * report.html embeds each gallery image as a PNG thumbnail (data: URI,
+ * at most 192 px) linking to the full file, and inlines PLplot SVG charts:
+ * time per technique, per scene error (1 − SSIM, or RMSE) vs time with the
+ * Pareto front listed, and time vs tess_level when it varies.
  */
 #ifndef REPORTS_REPORT_H
 #define REPORTS_REPORT_H
 
 #include "core/dm_results.h"
 
-/* Writes all four files into dir.  Returns 0 or DM_ERR_IO (err says which file). */
+/* Writes all four files into dir (which must exist).  Returns 0 or the
+ * writer's code (DM_ERR_IO: err names the file); stops at the first failure. */
 int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen);
 int report_write_json(const dm_run_result *run, const char *path);
 int report_write_csv(const dm_run_result *run, const char *path);
 int report_write_markdown(const dm_run_result *run, const char *path);
 int report_write_html(const dm_run_result *run, const char *dir, const char *path);
-/* Reads a results.json back (for compare/merge).  DM_ERR_PARSE with err. */
+/* report_write_html: dir is the run directory image paths are relative to
+ * (used to embed thumbnails and to mark missing files); NULL links images
+ * without checking them. */
+
+/* Reads a results.json back (for compare/merge) into *out (zeroed first;
+ * release with dm_run_free).  DM_ERR_IO when unreadable, DM_ERR_PARSE when
+ * malformed or without "run"/"configs"/config keys; err names the path. */
 int report_read_json(const char *path, dm_run_result *out, char *err, size_t errlen);
 
 #endif

@@ -1,0 +1,35 @@
+#include "catalog.h"
+
+#include <math.h>
+#include <string.h>
+
+static const fit_bound catalog__nonneg5[] = {
+    { "c0", 0, INFINITY }, { "c_vs", 0, INFINITY }, { "c_tes", 0, INFINITY },
+    { "c_prim", 0, INFINITY }, { "c_px", 0, INFINITY } };
+
+static const models_builtin catalog__models[] = {
+    { "pipeline-linear",
+      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_prim*ClippingOutputPrimitives + c_px*SamplesPassed",
+      "WallTime",
+      "frame time as a non-negative sum of per-stage costs (vertex, tessellation, primitive, pixel)",
+      catalog__nonneg5, 5 },
+    { "tess-power", "a + b*tess_level^p", "WallTime",
+      "frame time against the tessellation level L: a + b*L^p", NULL, 0 },
+    { "resolution-linear", "a + b*SamplesPassed", "WallTime",
+      "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0 },
+};
+
+size_t models_builtin_count(void) { return sizeof catalog__models / sizeof *catalog__models; }
+
+const models_builtin *models_builtin_at(size_t i)
+{
+    return i < models_builtin_count() ? &catalog__models[i] : NULL;
+}
+
+const models_builtin *models_builtin_find(const char *name)
+{
+    for (size_t i = 0; name && i < models_builtin_count(); i++)
+        if (strcmp(catalog__models[i].name, name) == 0)
+            return &catalog__models[i];
+    return NULL;
+}

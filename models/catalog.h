@@ -1,0 +1,27 @@
+/* catalog.h — built-in cost models (SPEC §7): a name, a formula and bounds.
+ *
+ * Built-in models are formulas like any user formula; the catalog only
+ * gives them names and non-negativity bounds where physics demands them
+ * (a cost per vertex cannot be negative).
+ */
+#ifndef MODELS_CATALOG_H
+#define MODELS_CATALOG_H
+
+#include <stddef.h>
+#include "models/fit.h"
+
+typedef struct models_builtin {
+    const char *name;
+    const char *formula;
+    const char *response;          /* default response */
+    const char *description;
+    const fit_bound *bounds;
+    size_t n_bounds;
+} models_builtin;
+
+size_t models_builtin_count(void);
+const models_builtin *models_builtin_at(size_t i);
+/* NULL when `name` is not a built-in model. */
+const models_builtin *models_builtin_find(const char *name);
+
+#endif

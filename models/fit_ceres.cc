@@ -1,0 +1,136 @@
+// fit_ceres.cc — the C++ bridge from fit_ceres.h to Ceres (see the header).
+#include "models/fit_ceres.h"
+
+#include <ceres/ceres.h>
+#include <Eigen/SVD>
+
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <vector>
+
+extern "C" {
+#include "core/dm_error.h"
+}
+
+namespace {
+
+// One residual of one point; Ceres owns it through the Problem.
+class PointCost final : public ceres::CostFunction {
+public:
+    PointCost(const fit_ceres_problem *pb, size_t i) : pb_(pb), i_(i)
+    {
+        set_num_residuals(1);
+        mutable_parameter_block_sizes()->push_back(static_cast<int>(pb->n_params));
+    }
+    bool Evaluate(double const *const *parameters, double *residuals,
+                  double **jacobians) const override
+    {
+        double *jac = jacobians ? jacobians[0] : nullptr;
+        return pb_->residual(pb_->user, i_, parameters[0], residuals, jac) == 0;
+    }
+
+private:
+    const fit_ceres_problem *pb_;
+    size_t i_;
+};
+
+std::unique_ptr<ceres::LossFunction> make_loss(const fit_ceres_problem *pb)
+{
+    switch (pb->loss) {
+    case FIT_CERES_LOSS_HUBER: return std::make_unique<ceres::HuberLoss>(pb->loss_scale);
+    case FIT_CERES_LOSS_CAUCHY: return std::make_unique<ceres::CauchyLoss>(pb->loss_scale);
+    default: return nullptr;
+    }
+}
+
+void set_bounds_and_fixed(const fit_ceres_problem *pb, ceres::Problem &problem, double *theta)
+{
+    int n = static_cast<int>(pb->n_params);
+    std::vector<int> fixed;
+    for (int j = 0; j < n; j++) {
+        if (pb->lo && std::isfinite(pb->lo[j]))
+            problem.SetParameterLowerBound(theta, j, pb->lo[j]);
+        if (pb->hi && std::isfinite(pb->hi[j]))
+            problem.SetParameterUpperBound(theta, j, pb->hi[j]);
+        if (pb->fixed && pb->fixed[j])
+            fixed.push_back(j);
+    }
+    if (!fixed.empty())
+        problem.SetManifold(theta, new ceres::SubsetManifold(n, fixed));
+}
+
+// Ceres' own criterion (lambda_min / lambda_max of J^T J below
+// min_reciprocal_condition_number), checked on the singular values of J
+// before Covariance::Compute, which would otherwise log an error on stderr.
+bool full_rank(ceres::Problem &problem, size_t n_params, double min_rcond)
+{
+    ceres::CRSMatrix crs;
+    if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs))
+        return false;
+    Eigen::MatrixXd j = Eigen::MatrixXd::Zero(crs.num_rows, static_cast<Eigen::Index>(n_params));
+    for (int r = 0; r < crs.num_rows; r++)
+        for (int k = crs.rows[r]; k < crs.rows[r + 1]; k++)
+            j(r, crs.cols[k]) = crs.values[k];
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(j);
+    const Eigen::VectorXd &sv = svd.singularValues();
+    double lo = sv(sv.size() - 1), hi = sv(0);
+    return hi > 0.0 && (lo / hi) * (lo / hi) >= min_rcond;
+}
+
+// Covariance of theta; false when the Jacobian is rank deficient.
+bool covariance(ceres::Problem &problem, double *theta, size_t n_params, double *cov)
+{
+    ceres::Covariance::Options opt;
+    opt.algorithm_type = ceres::DENSE_SVD;
+    opt.null_space_rank = 0;
+    if (!full_rank(problem, n_params, opt.min_reciprocal_condition_number))
+        return false;
+    ceres::Covariance c(opt);
+    std::vector<std::pair<const double *, const double *>> blocks{ { theta, theta } };
+    return c.Compute(blocks, &problem) && c.GetCovarianceBlock(theta, theta, cov);
+}
+
+}  // namespace
+
+extern "C" int fit_ceres_solve(const fit_ceres_problem *pb, double *theta,
+                               fit_ceres_summary *summary)
+{
+    std::memset(summary, 0, sizeof *summary);
+    size_t n_fixed = 0;
+    for (size_t j = 0; pb->fixed && j < pb->n_params; j++)
+        n_fixed += pb->fixed[j] != 0;
+    if (pb->n_params == 0 || n_fixed == pb->n_params || pb->n_residuals == 0)
+        return DM_ERR_ARG;
+    std::unique_ptr<ceres::LossFunction> loss = make_loss(pb);
+    ceres::Problem::Options popt;
+    popt.loss_function_ownership = ceres::DO_NOT_TAKE_OWNERSHIP;
+    ceres::Problem problem(popt);
+    for (size_t i = 0; i < pb->n_residuals; i++)
+        problem.AddResidualBlock(new PointCost(pb, i), loss.get(), theta);
+    set_bounds_and_fixed(pb, problem, theta);
+
+    ceres::Solver::Options opt;
+    opt.linear_solver_type = ceres::DENSE_QR;
+    opt.logging_type = ceres::SILENT;
+    opt.max_num_iterations = pb->max_iterations > 0 ? pb->max_iterations : 200;
+    opt.initial_trust_region_radius = 1e12;   // ~Gauss-Newton: exact in one step when linear
+    opt.function_tolerance = 1e-15;
+    opt.gradient_tolerance = 1e-20;
+    opt.parameter_tolerance = 1e-14;
+    ceres::Solver::Summary sum;
+    ceres::Solve(opt, &problem, &sum);
+
+    summary->iterations = sum.iterations.empty() ? 0 : static_cast<int>(sum.iterations.size()) - 1;
+    summary->final_cost = sum.final_cost;
+    summary->converged = sum.termination_type == ceres::CONVERGENCE;
+    summary->usable = (summary->converged || sum.termination_type == ceres::NO_CONVERGENCE)
+                      && std::isfinite(sum.final_cost);
+    std::snprintf(summary->termination, sizeof summary->termination, "%s",
+                  ceres::TerminationTypeToString(sum.termination_type));
+    std::snprintf(summary->message, sizeof summary->message, "%s", sum.message.c_str());
+    if (pb->cov && summary->usable && n_fixed == 0)
+        summary->cov_ok = covariance(problem, theta, pb->n_params, pb->cov);
+    return 0;
+}

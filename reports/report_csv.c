@@ -1,0 +1,126 @@
+/* report_csv.c — results.csv: one row per configuration (RFC 4180).
+ *
+ * Columns: key, scene, status, reason, every param (union over configs, in
+ * first-appearance order), for each timing counter <name>_median_ms,
+ * <name>_ci_lo_ms, <name>_ci_hi_ms, each deterministic counter by name, then
+ * the quality metrics.  An unavailable or absent value is an empty field,
+ * never 0.  Records end with CRLF; fields with , " CR or LF are quoted.
+ */
+#include "reports/report.h"
+#include "reports/report_internal.h"
+
+#include "core/dm_error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *quality_cols[] = {"RMSE", "PSNR", "SSIM", "MaxError", "SilhouetteError",
+                                     "DepthRMSE", "CrackPixels", "NonFinitePixels"};
+#define N_QUALITY (sizeof quality_cols / sizeof quality_cols[0])
+
+static void field(dm_str *s, const char *text, int first)
+{
+    if (!first)
+        dm_str_cat(s, ",");
+    if (!text)
+        return;
+    if (!strpbrk(text, ",\"\r\n")) {
+        dm_str_cat(s, text);
+        return;
+    }
+    dm_str_cat(s, "\"");
+    for (const char *p = text; *p; p++)
+        dm_str_catn(s, *p == '"' ? "\"\"" : p, *p == '"' ? 2 : 1);
+    dm_str_cat(s, "\"");
+}
+
+static void num_field(dm_str *s, double v, int present)
+{
+    char buf[32];
+    if (!present || isnan(v)) {
+        field(s, NULL, 0);
+        return;
+    }
+    if (isinf(v))
+        snprintf(buf, sizeof buf, "%s", v > 0 ? "inf" : "-inf");
+    else
+        snprintf(buf, sizeof buf, "%.9g", v);
+    field(s, buf, 0);
+}
+
+static void quality_fields(dm_str *s, const dm_quality *q)
+{
+    double v[N_QUALITY] = {q->rmse, q->psnr, q->ssim, q->max_error, q->silhouette_error,
+                           q->depth_rmse, (double)q->crack_pixels, (double)q->nonfinite_pixels};
+    for (size_t i = 0; i < N_QUALITY; i++)
+        num_field(s, v[i], q->present);
+}
+
+static void row(dm_str *s, const dm_config_result *c, const char **params, size_t np,
+                const char **timed, size_t nt, const char **det, size_t nd)
+{
+    field(s, c->key, 1);
+    field(s, c->scene, 0);
+    field(s, c->ok ? "ok" : "failed", 0);
+    field(s, c->reason, 0);
+    for (size_t i = 0; i < np; i++)
+        field(s, dm_kv_get(c->params, c->n_params, params[i]), 0);
+    for (size_t i = 0; i < nt; i++) {
+        const dm_counter_result *t = dm_config_counter(c, timed[i]);
+        int ok = t && t->available && t->has_samples;
+        num_field(s, ok ? t->median / 1e6 : 0, ok);
+        num_field(s, ok ? t->ci_lo / 1e6 : 0, ok);
+        num_field(s, ok ? t->ci_hi / 1e6 : 0, ok);
+    }
+    for (size_t i = 0; i < nd; i++) {
+        const dm_counter_result *d = dm_config_counter(c, det[i]);
+        num_field(s, d ? d->value : 0, d && d->available);
+    }
+    quality_fields(s, &c->quality);
+    dm_str_cat(s, "\r\n");
+}
+
+static void header(dm_str *s, const char **params, size_t np, const char **timed, size_t nt,
+                   const char **det, size_t nd)
+{
+    static const char *fixed[] = {"key", "scene", "status", "reason"};
+    for (int i = 0; i < 4; i++)
+        field(s, fixed[i], i == 0);
+    for (size_t i = 0; i < np; i++)
+        field(s, params[i], 0);
+    for (size_t i = 0; i < nt; i++) {
+        static const char *suffix[] = {"_median_ms", "_ci_lo_ms", "_ci_hi_ms"};
+        for (int k = 0; k < 3; k++) {
+            char *name = dm_xasprintf("%s%s", timed[i], suffix[k]);
+            field(s, name, 0);
+            free(name);
+        }
+    }
+    for (size_t i = 0; i < nd; i++)
+        field(s, det[i], 0);
+    for (size_t i = 0; i < N_QUALITY; i++)
+        field(s, quality_cols[i], 0);
+    dm_str_cat(s, "\r\n");
+}
+
+int report_write_csv(const dm_run_result *run, const char *path)
+{
+    if (!run || !path)
+        return DM_ERR_ARG;
+    const char **params, **timed, **det;
+    size_t np = report__param_names(run, NULL, &params);
+    size_t nt = report__counter_names(run, NULL, REPORT__TIMED, &timed);
+    size_t nd = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &det);
+    dm_str s = {0};
+    header(&s, params, np, timed, nt, det, nd);
+    for (size_t i = 0; i < run->n_configs; i++)
+        row(&s, &run->configs[i], params, np, timed, nt, det, nd);
+    int rc = report__save(&s, path);
+    dm_str_free(&s);
+    free(params);
+    free(timed);
+    free(det);
+    return rc;
+}

@@ -1,0 +1,328 @@
+/* report_html.c — report.html: one self-contained file that opens offline.
+ *
+ * Inline CSS, no external URL, no script needed to read it.  Every string
+ * that comes from the data (sweep, params, environment, reasons, logs) goes
+ * through dm_str_cat_html.  Image paths must be relative and free of "..";
+ * others are refused and shown as such, missing files are shown as missing.
+ */
+#include "reports/report.h"
+#include "reports/report_internal.h"
+
+#include "core/dm_error.h"
+#include "reports/image.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static const char *css =
+    "body{font:14px/1.4 system-ui,sans-serif;margin:1.5em;color:#222;background:#fff}"
+    "table{border-collapse:collapse;margin:.5em 0 1.5em}"
+    "th,td{border:1px solid #ccc;padding:3px 7px;text-align:left;vertical-align:top}"
+    "th{background:#f0f0f0}td.n{text-align:right;font-variant-numeric:tabular-nums}"
+    ".warn{background:#fff3cd;border:1px solid #e0b000;padding:.6em;margin:.6em 0}"
+    ".fail{color:#a00}.missing{color:#888;font-style:italic}"
+    "pre{background:#f6f6f6;padding:.5em;overflow:auto;max-height:20em}"
+    "figure{display:inline-block;margin:0 1em 1em 0}figure img{width:192px;image-rendering:pixelated;border:1px solid #ccc}"
+    ".gal{margin-bottom:1em}.chart svg{max-width:100%;height:auto}";
+
+static void esc(dm_str *s, const char *text)
+{
+    dm_str_cat_html(s, text ? text : "");
+}
+
+/* <tag>escaped text</tag> */
+static void tagged(dm_str *s, const char *tag, const char *text)
+{
+    dm_str_printf(s, "<%s>", tag);
+    esc(s, text);
+    dm_str_printf(s, "</%s>", tag);
+}
+
+static void params_inline(dm_str *s, const dm_kv *kv, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        dm_str_cat(s, i ? ", " : "");
+        esc(s, kv[i].key);
+        dm_str_cat(s, "=");
+        esc(s, kv[i].value);
+    }
+}
+
+static void header(dm_str *s, const dm_run_result *run)
+{
+    dm_str_cat(s, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
+                  "<meta name=\"viewport\" content=\"width=device-width\"><title>dmbench: ");
+    esc(s, run->sweep);
+    dm_str_printf(s, "</title><style>%s</style></head>\n<body>\n<h1>dmbench report: ", css);
+    esc(s, run->sweep);
+    dm_str_cat(s, "</h1>\n<p>Run ");
+    esc(s, run->id);
+    dm_str_cat(s, ", started ");
+    esc(s, run->started);
+    if (run->finished) {
+        dm_str_cat(s, ", finished ");
+        esc(s, run->finished);
+    }
+    dm_str_cat(s, ".</p>\n<h2>Environment</h2>\n<table>");
+    for (size_t i = 0; i < run->n_environment; i++) {
+        dm_str_cat(s, "<tr>");
+        tagged(s, "th", run->environment[i].key);
+        tagged(s, "td", run->environment[i].value);
+        dm_str_cat(s, "</tr>");
+    }
+    dm_str_cat(s, "</table>\n");
+}
+
+static void timer_and_warnings(dm_str *s, const dm_run_result *run)
+{
+    const char *v = run->timer_verdict ? run->timer_verdict : "unknown";
+    dm_str_cat(s, "<p>Timer verdict: <b>");
+    esc(s, v);
+    dm_str_printf(s, "</b> (GPUTime covers %.1f%% of fenced wall time).</p>\n",
+                  run->gpu_time_coverage * 100);
+    if (strcmp(v, "partial") == 0)
+        dm_str_printf(s, "<div class=\"warn\">GPUTime is partial on this driver: it covers %.1f%% "
+                         "of fenced wall time; it is recorded, never used to fit or gate.</div>\n",
+                      run->gpu_time_coverage * 100);
+    for (size_t i = 0; i < run->n_warnings; i++) {
+        dm_str_cat(s, "<div class=\"warn\">");
+        esc(s, run->warnings[i]);
+        dm_str_cat(s, "</div>\n");
+    }
+}
+
+static void num_cell(dm_str *s, const char *fmt, double v)
+{
+    if (isnan(v))
+        dm_str_cat(s, "<td class=\"n\">–</td>");
+    else if (isinf(v))
+        dm_str_cat(s, v > 0 ? "<td class=\"n\">∞</td>" : "<td class=\"n\">−∞</td>");
+    else {
+        dm_str_cat(s, "<td class=\"n\">");
+        dm_str_printf(s, fmt, v);
+        dm_str_cat(s, "</td>");
+    }
+}
+
+static void counter_cell(dm_str *s, const dm_counter_result *c)
+{
+    if (!c)
+        dm_str_cat(s, "<td></td>");
+    else if (!c->available) {
+        dm_str_cat(s, "<td class=\"missing\" title=\"");
+        esc(s, c->unavailable_reason);
+        dm_str_cat(s, "\">unavailable</td>");
+    } else
+        num_cell(s, "%.0f", c->value);
+}
+
+static void scene_row(dm_str *s, const dm_config_result *c, const char **params, size_t np,
+                      const char **det, size_t nd)
+{
+    dm_str_cat(s, "<tr>");
+    tagged(s, "td", c->key);
+    for (size_t i = 0; i < np; i++)
+        tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
+    const dm_counter_result *t = report__frame_time(c);
+    if (t)
+        dm_str_printf(s, "<td class=\"n\">%.4f ± %.4f</td>", t->median / 1e6,
+                      (t->ci_hi - t->ci_lo) / 2e6);
+    else
+        dm_str_cat(s, "<td class=\"missing\">unavailable</td>");
+    for (size_t i = 0; i < nd; i++)
+        counter_cell(s, dm_config_counter(c, det[i]));
+    const dm_quality *q = &c->quality;
+    num_cell(s, "%.2f", q->present ? q->psnr : NAN);
+    num_cell(s, "%.4f", q->present ? q->ssim : NAN);
+    num_cell(s, "%.5f", q->present ? q->rmse : NAN);
+    num_cell(s, "%.0f", q->present ? (double)q->crack_pixels : NAN);
+    dm_str_cat(s, "</tr>\n");
+}
+
+static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
+{
+    const char **params, **det;
+    size_t np = report__param_names(run, scene, &params);
+    size_t nd = report__counter_names(run, scene, REPORT__DETERMINISTIC, &det);
+    dm_str_cat(s, "<h2>Scene ");
+    esc(s, scene);
+    dm_str_cat(s, "</h2>\n<table><thead><tr><th>key</th>");
+    for (size_t i = 0; i < np; i++)
+        tagged(s, "th", params[i]);
+    dm_str_cat(s, "<th>median ms ± CI</th>");
+    for (size_t i = 0; i < nd; i++)
+        tagged(s, "th", det[i]);
+    dm_str_cat(s, "<th>PSNR dB</th><th>SSIM</th><th>RMSE</th><th>CrackPixels</th></tr></thead><tbody>\n");
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (c->ok && strcmp(c->scene ? c->scene : "", scene) == 0)
+            scene_row(s, c, params, np, det, nd);
+    }
+    dm_str_cat(s, "</tbody></table>\n");
+    report__html_charts_scene(s, run, scene);
+    free(params);
+    free(det);
+}
+
+#define THUMB_MAX_DIM 192
+
+static void base64(dm_str *s, const unsigned char *d, size_t n)
+{
+    static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
+    for (size_t i = 0; i < n; i += 3) {
+        unsigned v = (unsigned)d[i] << 16 | (i + 1 < n ? (unsigned)d[i + 1] << 8 : 0) |
+                     (i + 2 < n ? d[i + 2] : 0);
+        char q[4] = {tab[v >> 18 & 63], tab[v >> 12 & 63],
+                     i + 1 < n ? tab[v >> 6 & 63] : '=', i + 2 < n ? tab[v & 63] : '='};
+        dm_str_catn(s, q, 4);
+    }
+}
+
+/* The src of a gallery image: an embedded PNG thumbnail (so report.html
+ * alone shows it) when the file can be read, else the relative path. */
+static void image_src(dm_str *s, const char *full, const char *rel)
+{
+    unsigned char *png = NULL;
+    size_t len = 0;
+    char err[256];
+    if (full && img_thumbnail_png(full, THUMB_MAX_DIM, &png, &len, err, sizeof err) == 0) {
+        dm_str_cat(s, "data:image/png;base64,");
+        base64(s, png, len);
+        free(png);
+        return;
+    }
+    if (full)
+        dm_log(DM_LOG_WARN, "report.html: no thumbnail, linking the file: %s", err);
+    esc(s, rel);
+}
+
+/* One gallery image: refused when the path could leave the run directory,
+ * "missing" when dir is given and the file is not there. */
+static void gallery_image(dm_str *s, const char *dir, const char *rel, const char *label)
+{
+    dm_str_cat(s, "<figure>");
+    if (!rel) {
+        dm_str_printf(s, "<span class=\"missing\">no %s image</span>", label);
+    } else if (!report__safe_relpath(rel)) {
+        dm_str_printf(s, "<span class=\"missing\">%s path refused: ", label);
+        esc(s, rel);
+        dm_str_cat(s, "</span>");
+    } else {
+        char *full = dir ? dm_xasprintf("%s/%s", dir, rel) : NULL;
+        if (full && !dm_file_exists(full)) {
+            dm_str_printf(s, "<span class=\"missing\">%s image missing: ", label);
+            esc(s, rel);
+            dm_str_cat(s, "</span>");
+        } else {
+            dm_str_cat(s, "<a href=\"");
+            esc(s, rel);
+            dm_str_cat(s, "\"><img src=\"");
+            image_src(s, full, rel);
+            dm_str_printf(s, "\" alt=\"%s\"></a>", label);
+        }
+        free(full);
+    }
+    dm_str_printf(s, "<figcaption>%s</figcaption></figure>", label);
+}
+
+static void gallery(dm_str *s, const dm_run_result *run, const char *dir)
+{
+    dm_str_cat(s, "<h2>Gallery</h2>\n<p>reference | render | heatmap (|difference|, inferno)</p>\n");
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (!c->ok || (!c->img_render && !c->img_heatmap && !c->img_reference))
+            continue;
+        dm_str_cat(s, "<div class=\"gal\"><p><b>");
+        esc(s, c->key);
+        dm_str_cat(s, "</b> ");
+        params_inline(s, c->params, c->n_params);
+        dm_str_cat(s, "</p>");
+        gallery_image(s, dir, c->img_reference, "reference");
+        gallery_image(s, dir, c->img_render, "render");
+        gallery_image(s, dir, c->img_heatmap, "heatmap");
+        dm_str_cat(s, "</div>\n");
+    }
+}
+
+static void failed_and_left_out(dm_str *s, const dm_run_result *run)
+{
+    dm_str_cat(s, "<h2>Failed configurations</h2>\n");
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (c->ok)
+            continue;
+        dm_str_cat(s, "<div class=\"fail\"><p><b>");
+        esc(s, c->key);
+        dm_str_cat(s, "</b> ");
+        params_inline(s, c->params, c->n_params);
+        dm_str_cat(s, ": ");
+        esc(s, c->reason ? c->reason : "no reason recorded");
+        dm_str_cat(s, "</p>");
+        if (c->log)
+            tagged(s, "pre", c->log);
+        dm_str_cat(s, "</div>\n");
+    }
+    dm_str_cat(s, "<h2>Left out</h2>\n<table><tr><th>params</th><th>reason</th></tr>\n");
+    for (size_t i = 0; i < run->n_left_out; i++) {
+        dm_str_cat(s, "<tr><td>");
+        params_inline(s, run->left_out[i].params, run->left_out[i].n_params);
+        dm_str_cat(s, "</td>");
+        tagged(s, "td", run->left_out[i].reason);
+        dm_str_cat(s, "</tr>\n");
+    }
+    dm_str_cat(s, "</table>\n");
+}
+
+static void fits(dm_str *s, const dm_run_result *run)
+{
+    if (!run->n_fits)
+        return;
+    dm_str_cat(s, "<h2>Model fits</h2>\n<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
+                  "<th>R²</th><th>CV MAPE</th><th>points</th><th>warnings</th></tr>\n");
+    for (size_t i = 0; i < run->n_fits; i++) {
+        const dm_fit_result *f = &run->fits[i];
+        dm_str_cat(s, "<tr>");
+        tagged(s, "td", f->model);
+        dm_str_cat(s, "<td>");
+        params_inline(s, f->group, f->n_group);
+        dm_str_cat(s, "</td><td>");
+        for (size_t k = 0; k < f->n_params; k++) {
+            esc(s, f->params[k].name);
+            dm_str_printf(s, " = %.6g ± %.3g<br>", f->params[k].value, f->params[k].stderr_);
+        }
+        dm_str_cat(s, "</td>");
+        num_cell(s, "%.4f", f->r2);
+        num_cell(s, "%.4f", f->cv_mape);
+        dm_str_printf(s, "<td class=\"n\">%d</td><td>", f->n_points);
+        for (size_t k = 0; k < f->n_warnings; k++) {
+            esc(s, f->warnings[k]);
+            dm_str_cat(s, "<br>");
+        }
+        dm_str_cat(s, "</td></tr>\n");
+    }
+    dm_str_cat(s, "</table>\n");
+}
+
+int report_write_html(const dm_run_result *run, const char *dir, const char *path)
+{
+    if (!run || !path)
+        return DM_ERR_ARG;
+    dm_str s = {0};
+    header(&s, run);
+    timer_and_warnings(&s, run);
+    report__html_charts_run(&s, run);
+    const char **scenes;
+    size_t ns = report__scenes(run, &scenes);
+    for (size_t i = 0; i < ns; i++)
+        scene_table(&s, run, scenes[i]);
+    free(scenes);
+    gallery(&s, run, dir);
+    failed_and_left_out(&s, run);
+    fits(&s, run);
+    dm_str_cat(&s, "</body></html>\n");
+    int rc = report__save(&s, path);
+    dm_str_free(&s);
+    return rc;
+}

@@ -1,0 +1,55 @@
+/* report_internal.h — helpers shared by the report writers (not public).
+ *
+ * All names carry the report__ prefix; they read the results model only.
+ */
+#ifndef REPORTS_REPORT_INTERNAL_H
+#define REPORTS_REPORT_INTERNAL_H
+
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+
+/* 1 when p is a usable image path: non-empty, relative, without "..". */
+int report__safe_relpath(const char *p);
+
+/* Formats a double the way cJSON prints it (%1.15g, or %1.17g when needed to
+ * read back the same double) into buf[32]. */
+void report__fmt_num(double v, char buf[32]);
+
+/* 1 when s is exactly what report__fmt_num prints for the number it denotes,
+ * so writing it as a JSON number and reading it back gives s again. */
+int report__is_canonical_num(const char *s);
+
+/* The timing counter shown as "the" frame time: WallTime when it is available
+ * with samples, else NULL. */
+const dm_counter_result *report__frame_time(const dm_config_result *c);
+
+/* Distinct scene names in first-appearance order; *out is malloc'd and points
+ * into run (free only the array).  Returns the count. */
+size_t report__scenes(const dm_run_result *run, const char ***out);
+
+/* Distinct param names over configs
+ * in first-appearance order; same ownership as report__scenes.  When scene is
+ * non-NULL only that scene's configs are scanned. */
+size_t report__param_names(const dm_run_result *run, const char *scene, const char ***out);
+
+/* Distinct counter names over all configs selected by kind:
+ * REPORT__TIMED = available non-deterministic counters with samples,
+ * REPORT__DETERMINISTIC = deterministic counters (available or not). */
+enum report__counter_kind { REPORT__TIMED = 1, REPORT__DETERMINISTIC = 2 };
+size_t report__counter_names(const dm_run_result *run, const char *scene,
+                             enum report__counter_kind kind, const char ***out);
+
+/* "technique" param of a config or "?" */
+const char *report__technique(const dm_config_result *c);
+
+/* Charts (chart.c): inline SVG appended to an HTML document.  The run-level
+ * charts (time per technique) and the per-scene charts (error vs time with
+ * the Pareto front, time vs tess_level per mesh).  Nothing is appended when
+ * there is nothing to plot. */
+void report__html_charts_run(dm_str *s, const dm_run_result *run);
+void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *scene);
+
+/* Writes s to path (atomically); DM_ERR_IO. */
+int report__save(const dm_str *s, const char *path);
+
+#endif

@@ -1,0 +1,444 @@
+/* report_json.c — results.json (SPEC §8) written and read back with cJSON.
+ *
+ * Encoding choices (stable; scripts rely on them):
+ *  - a NULL string is JSON null; a non-finite double is null (cJSON's rule);
+ *  - PSNR of identical images (+infinity) is written as "PSNR": null with
+ *    "PSNR_infinite": true (always present, false otherwise);
+ *  - a param value that is a canonical number (what the writer would print
+ *    for it, e.g. "32", "0.5") is a JSON number, everything else a string;
+ *    reading prints numbers back the same way, so write → read → write gives
+ *    identical text;
+ *  - counters: {unit, deterministic, unavailable} when unavailable,
+ *    {unit, deterministic, partial, median, ci95, samples, mean, min, max,
+ *    stddev, mad, cv, outliers, nonfinite} with samples, else
+ *    {unit, deterministic, partial, value}.
+ */
+#include "reports/report.h"
+#include "reports/report_internal.h"
+
+#include "core/dm_error.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* ---- writing ------------------------------------------------------------ */
+
+static void add_str(cJSON *o, const char *name, const char *s)
+{
+    if (s)
+        cJSON_AddStringToObject(o, name, s);
+    else
+        cJSON_AddNullToObject(o, name);
+}
+
+static cJSON *kv_object(const dm_kv *kv, size_t n, int typed)
+{
+    cJSON *o = cJSON_CreateObject();
+    for (size_t i = 0; i < n; i++) {
+        if (typed && report__is_canonical_num(kv[i].value))
+            cJSON_AddNumberToObject(o, kv[i].key, strtod(kv[i].value, NULL));
+        else
+            add_str(o, kv[i].key, kv[i].value);
+    }
+    return o;
+}
+
+static cJSON *num_array(const double *v, size_t n)
+{
+    if (!v)
+        return cJSON_CreateNull();
+    cJSON *a = cJSON_CreateArray();
+    for (size_t i = 0; i < n; i++)
+        cJSON_AddItemToArray(a, cJSON_CreateNumber(v[i]));
+    return a;
+}
+
+static cJSON *str_array(char *const *v, size_t n)
+{
+    if (!v && n)
+        return cJSON_CreateNull();
+    cJSON *a = cJSON_CreateArray();
+    for (size_t i = 0; i < n; i++)
+        cJSON_AddItemToArray(a, v[i] ? cJSON_CreateString(v[i]) : cJSON_CreateNull());
+    return a;
+}
+
+static cJSON *counter_json(const dm_counter_result *c)
+{
+    cJSON *o = cJSON_CreateObject();
+    add_str(o, "unit", c->unit);
+    cJSON_AddBoolToObject(o, "deterministic", c->deterministic);
+    if (!c->available) {
+        add_str(o, "unavailable", c->unavailable_reason ? c->unavailable_reason : "unavailable");
+        return o;
+    }
+    cJSON_AddBoolToObject(o, "partial", c->partial);
+    if (!c->has_samples) {
+        cJSON_AddNumberToObject(o, "value", c->value);
+        return o;
+    }
+    double ci[2] = {c->ci_lo, c->ci_hi};
+    cJSON_AddNumberToObject(o, "median", c->median);
+    cJSON_AddItemToObject(o, "ci95", num_array(ci, 2));
+    cJSON_AddItemToObject(o, "samples", c->samples ? num_array(c->samples, c->n_samples)
+                                                   : cJSON_CreateArray());
+    cJSON_AddNumberToObject(o, "mean", c->mean);
+    cJSON_AddNumberToObject(o, "min", c->min);
+    cJSON_AddNumberToObject(o, "max", c->max);
+    cJSON_AddNumberToObject(o, "stddev", c->stddev);
+    cJSON_AddNumberToObject(o, "mad", c->mad);
+    cJSON_AddNumberToObject(o, "cv", c->cv);
+    cJSON_AddNumberToObject(o, "outliers", c->n_outliers);
+    cJSON_AddNumberToObject(o, "nonfinite", c->n_nonfinite);
+    return o;
+}
+
+static cJSON *quality_json(const dm_quality *q)
+{
+    if (!q->present)
+        return cJSON_CreateNull();
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "RMSE", q->rmse);
+    cJSON_AddNumberToObject(o, "PSNR", q->psnr);   /* non-finite → null */
+    cJSON_AddBoolToObject(o, "PSNR_infinite", isinf(q->psnr) && q->psnr > 0);
+    cJSON_AddNumberToObject(o, "SSIM", q->ssim);
+    cJSON_AddNumberToObject(o, "SilhouetteError", q->silhouette_error);
+    cJSON_AddNumberToObject(o, "DepthRMSE", q->depth_rmse);
+    cJSON_AddNumberToObject(o, "CrackPixels", (double)q->crack_pixels);
+    cJSON_AddNumberToObject(o, "NonFinitePixels", (double)q->nonfinite_pixels);
+    cJSON_AddNumberToObject(o, "MaxError", q->max_error);
+    cJSON_AddNumberToObject(o, "PctOverThreshold", q->pct_over_threshold);
+    add_str(o, "reference", q->reference);
+    return o;
+}
+
+static cJSON *config_json(const dm_config_result *c)
+{
+    cJSON *o = cJSON_CreateObject();
+    add_str(o, "key", c->key);
+    add_str(o, "scene", c->scene);
+    cJSON_AddItemToObject(o, "params", kv_object(c->params, c->n_params, 1));
+    cJSON_AddStringToObject(o, "status", c->ok ? "ok" : "failed");
+    add_str(o, "reason", c->reason);
+    cJSON *ctr = cJSON_AddObjectToObject(o, "counters");
+    for (size_t i = 0; i < c->n_counters; i++)
+        cJSON_AddItemToObject(ctr, c->counters[i].name, counter_json(&c->counters[i]));
+    cJSON_AddItemToObject(o, "quality", quality_json(&c->quality));
+    cJSON *im = cJSON_AddObjectToObject(o, "images");
+    add_str(im, "render", c->img_render);
+    add_str(im, "heatmap", c->img_heatmap);
+    add_str(im, "reference", c->img_reference);
+    add_str(o, "log", c->log);
+    return o;
+}
+
+static cJSON *fit_json(const dm_fit_result *f)
+{
+    cJSON *o = cJSON_CreateObject();
+    add_str(o, "model", f->model);
+    add_str(o, "formula", f->formula);
+    add_str(o, "response", f->response);
+    cJSON_AddItemToObject(o, "group", kv_object(f->group, f->n_group, 1));
+    cJSON *p = cJSON_AddObjectToObject(o, "params");
+    for (size_t i = 0; i < f->n_params; i++) {
+        cJSON *v = cJSON_AddObjectToObject(p, f->params[i].name);
+        cJSON_AddNumberToObject(v, "value", f->params[i].value);
+        cJSON_AddNumberToObject(v, "stderr", f->params[i].stderr_);
+    }
+    cJSON_AddNumberToObject(o, "r2", f->r2);
+    cJSON_AddNumberToObject(o, "rmse", f->rmse);
+    cJSON_AddNumberToObject(o, "mape", f->mape);
+    cJSON_AddNumberToObject(o, "cv_mape", f->cv_mape);
+    cJSON_AddNumberToObject(o, "n_points", f->n_points);
+    cJSON_AddNumberToObject(o, "n_excluded", f->n_excluded);
+    add_str(o, "termination", f->termination);
+    cJSON_AddItemToObject(o, "warnings", str_array(f->warnings, f->n_warnings));
+    size_t np = f->n_points > 0 ? (size_t)f->n_points : 0;
+    cJSON_AddItemToObject(o, "measured", num_array(f->measured, np));
+    cJSON_AddItemToObject(o, "predicted", num_array(f->predicted, np));
+    cJSON_AddItemToObject(o, "point_labels",
+                          f->point_labels ? str_array(f->point_labels, np) : cJSON_CreateNull());
+    return o;
+}
+
+static cJSON *run_json(const dm_run_result *r)
+{
+    cJSON *root = cJSON_CreateObject();
+    cJSON *run = cJSON_AddObjectToObject(root, "run");
+    add_str(run, "id", r->id);
+    add_str(run, "sweep", r->sweep);
+    add_str(run, "started", r->started);
+    add_str(run, "finished", r->finished);
+    add_str(run, "sweep_hash", r->sweep_hash);
+    cJSON_AddItemToObject(run, "environment", kv_object(r->environment, r->n_environment, 0));
+    cJSON *t = cJSON_AddObjectToObject(run, "timer");
+    cJSON_AddNumberToObject(t, "gpu_time_coverage", r->gpu_time_coverage);
+    add_str(t, "verdict", r->timer_verdict);
+    cJSON *a = cJSON_AddArrayToObject(root, "configs");
+    for (size_t i = 0; i < r->n_configs; i++)
+        cJSON_AddItemToArray(a, config_json(&r->configs[i]));
+    a = cJSON_AddArrayToObject(root, "left_out");
+    for (size_t i = 0; i < r->n_left_out; i++) {
+        cJSON *l = cJSON_CreateObject();
+        cJSON_AddItemToObject(l, "params", kv_object(r->left_out[i].params, r->left_out[i].n_params, 1));
+        add_str(l, "reason", r->left_out[i].reason);
+        cJSON_AddItemToArray(a, l);
+    }
+    a = cJSON_AddArrayToObject(root, "fits");
+    for (size_t i = 0; i < r->n_fits; i++)
+        cJSON_AddItemToArray(a, fit_json(&r->fits[i]));
+    cJSON_AddItemToObject(root, "warnings", str_array(r->warnings, r->n_warnings));
+    return root;
+}
+
+int report_write_json(const dm_run_result *run, const char *path)
+{
+    if (!run || !path)
+        return DM_ERR_ARG;
+    cJSON *root = run_json(run);
+    char *text = cJSON_Print(root);
+    cJSON_Delete(root);
+    if (!text)
+        return DM_ERR_NOMEM;
+    dm_str s = {0};
+    dm_str_cat(&s, text);
+    dm_str_cat(&s, "\n");
+    cJSON_free(text);
+    int rc = report__save(&s, path);
+    dm_str_free(&s);
+    return rc;
+}
+
+/* ---- reading ------------------------------------------------------------ */
+
+static char *get_str(const cJSON *o, const char *name)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, name);
+    return cJSON_IsString(v) ? dm_xstrdup(v->valuestring) : NULL;
+}
+
+/* Number, or NaN when null/missing (the writer's encoding of non-finite). */
+static double get_num(const cJSON *o, const char *name)
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, name);
+    return cJSON_IsNumber(v) ? v->valuedouble : NAN;
+}
+
+static int get_bool(const cJSON *o, const char *name)
+{
+    return cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(o, name));
+}
+
+static void read_kv(const cJSON *o, dm_kv **kv, size_t *n)
+{
+    const cJSON *it;
+    cJSON_ArrayForEach(it, o) {
+        char num[32];
+        const char *v = NULL;
+        if (cJSON_IsNumber(it)) {
+            report__fmt_num(it->valuedouble, num);
+            v = num;
+        } else if (cJSON_IsString(it)) {
+            v = it->valuestring;
+        } else if (cJSON_IsBool(it)) {
+            v = cJSON_IsTrue(it) ? "true" : "false";
+        }
+        dm_kv_push(kv, n, it->string, v);
+    }
+}
+
+static double *read_nums(const cJSON *a, size_t *n)
+{
+    *n = 0;
+    if (!cJSON_IsArray(a))
+        return NULL;
+    size_t cnt = (size_t)cJSON_GetArraySize(a);
+    double *v = dm_xcalloc(cnt ? cnt : 1, sizeof *v);
+    const cJSON *it;
+    cJSON_ArrayForEach(it, a) v[(*n)++] = cJSON_IsNumber(it) ? it->valuedouble : NAN;
+    return v;
+}
+
+static char **read_strs(const cJSON *a, size_t *n)
+{
+    *n = 0;
+    if (!cJSON_IsArray(a))
+        return NULL;
+    size_t cnt = (size_t)cJSON_GetArraySize(a);
+    char **v = dm_xcalloc(cnt ? cnt : 1, sizeof *v);
+    const cJSON *it;
+    cJSON_ArrayForEach(it, a) v[(*n)++] = cJSON_IsString(it) ? dm_xstrdup(it->valuestring) : NULL;
+    return v;
+}
+
+static void read_counter(const cJSON *o, dm_counter_result *c)
+{
+    c->name = dm_xstrdup(o->string);
+    c->unit = get_str(o, "unit");
+    c->deterministic = get_bool(o, "deterministic");
+    c->unavailable_reason = get_str(o, "unavailable");
+    c->available = c->unavailable_reason == NULL;
+    c->partial = get_bool(o, "partial");
+    const cJSON *samples = cJSON_GetObjectItemCaseSensitive(o, "samples");
+    if (!cJSON_IsArray(samples)) {
+        c->value = get_num(o, "value");
+        return;
+    }
+    size_t nci;
+    double *ci = read_nums(cJSON_GetObjectItemCaseSensitive(o, "ci95"), &nci);
+    c->ci_lo = nci > 0 ? ci[0] : NAN;
+    c->ci_hi = nci > 1 ? ci[1] : NAN;
+    free(ci);
+    c->has_samples = 1;
+    c->samples = read_nums(samples, &c->n_samples);
+    c->value = c->median = get_num(o, "median");
+    c->mean = get_num(o, "mean");
+    c->min = get_num(o, "min");
+    c->max = get_num(o, "max");
+    c->stddev = get_num(o, "stddev");
+    c->mad = get_num(o, "mad");
+    c->cv = get_num(o, "cv");
+    c->n_outliers = (int)get_num(o, "outliers");
+    c->n_nonfinite = (int)get_num(o, "nonfinite");
+}
+
+static void read_quality(const cJSON *o, dm_quality *q)
+{
+    if (!cJSON_IsObject(o))
+        return;
+    q->present = 1;
+    q->rmse = get_num(o, "RMSE");
+    q->psnr = get_bool(o, "PSNR_infinite") ? INFINITY : get_num(o, "PSNR");
+    q->ssim = get_num(o, "SSIM");
+    q->silhouette_error = get_num(o, "SilhouetteError");
+    q->depth_rmse = get_num(o, "DepthRMSE");
+    q->crack_pixels = (long)get_num(o, "CrackPixels");
+    q->nonfinite_pixels = (long)get_num(o, "NonFinitePixels");
+    q->max_error = get_num(o, "MaxError");
+    q->pct_over_threshold = get_num(o, "PctOverThreshold");
+    q->reference = get_str(o, "reference");
+}
+
+static void read_config(const cJSON *o, dm_config_result *c)
+{
+    c->key = get_str(o, "key");
+    c->scene = get_str(o, "scene");
+    read_kv(cJSON_GetObjectItemCaseSensitive(o, "params"), &c->params, &c->n_params);
+    const cJSON *st = cJSON_GetObjectItemCaseSensitive(o, "status");
+    c->ok = cJSON_IsString(st) && strcmp(st->valuestring, "ok") == 0;
+    c->reason = get_str(o, "reason");
+    c->log = get_str(o, "log");
+    const cJSON *ctr = cJSON_GetObjectItemCaseSensitive(o, "counters");
+    size_t n = (size_t)cJSON_GetArraySize(ctr);
+    c->counters = dm_xcalloc(n ? n : 1, sizeof *c->counters);
+    const cJSON *it;
+    cJSON_ArrayForEach(it, ctr) read_counter(it, &c->counters[c->n_counters++]);
+    read_quality(cJSON_GetObjectItemCaseSensitive(o, "quality"), &c->quality);
+    const cJSON *im = cJSON_GetObjectItemCaseSensitive(o, "images");
+    c->img_render = get_str(im, "render");
+    c->img_heatmap = get_str(im, "heatmap");
+    c->img_reference = get_str(im, "reference");
+}
+
+static void read_fit(const cJSON *o, dm_fit_result *f)
+{
+    f->model = get_str(o, "model");
+    f->formula = get_str(o, "formula");
+    f->response = get_str(o, "response");
+    read_kv(cJSON_GetObjectItemCaseSensitive(o, "group"), &f->group, &f->n_group);
+    const cJSON *p = cJSON_GetObjectItemCaseSensitive(o, "params"), *it;
+    size_t n = (size_t)cJSON_GetArraySize(p);
+    f->params = dm_xcalloc(n ? n : 1, sizeof *f->params);
+    cJSON_ArrayForEach(it, p) {
+        dm_fit_param *fp = &f->params[f->n_params++];
+        fp->name = dm_xstrdup(it->string);
+        fp->value = get_num(it, "value");
+        fp->stderr_ = get_num(it, "stderr");
+    }
+    f->r2 = get_num(o, "r2");
+    f->rmse = get_num(o, "rmse");
+    f->mape = get_num(o, "mape");
+    f->cv_mape = get_num(o, "cv_mape");
+    f->n_points = (int)get_num(o, "n_points");
+    f->n_excluded = (int)get_num(o, "n_excluded");
+    f->termination = get_str(o, "termination");
+    f->warnings = read_strs(cJSON_GetObjectItemCaseSensitive(o, "warnings"), &f->n_warnings);
+    size_t nm, np, nl;
+    f->measured = read_nums(cJSON_GetObjectItemCaseSensitive(o, "measured"), &nm);
+    f->predicted = read_nums(cJSON_GetObjectItemCaseSensitive(o, "predicted"), &np);
+    f->point_labels = read_strs(cJSON_GetObjectItemCaseSensitive(o, "point_labels"), &nl);
+}
+
+static void read_run(const cJSON *root, dm_run_result *r)
+{
+    const cJSON *run = cJSON_GetObjectItemCaseSensitive(root, "run"), *it;
+    r->id = get_str(run, "id");
+    r->sweep = get_str(run, "sweep");
+    r->started = get_str(run, "started");
+    r->finished = get_str(run, "finished");
+    r->sweep_hash = get_str(run, "sweep_hash");
+    read_kv(cJSON_GetObjectItemCaseSensitive(run, "environment"), &r->environment, &r->n_environment);
+    const cJSON *t = cJSON_GetObjectItemCaseSensitive(run, "timer");
+    r->gpu_time_coverage = get_num(t, "gpu_time_coverage");
+    r->timer_verdict = get_str(t, "verdict");
+    const cJSON *a = cJSON_GetObjectItemCaseSensitive(root, "configs");
+    r->configs = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->configs);
+    cJSON_ArrayForEach(it, a) read_config(it, &r->configs[r->n_configs++]);
+    a = cJSON_GetObjectItemCaseSensitive(root, "left_out");
+    r->left_out = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->left_out);
+    cJSON_ArrayForEach(it, a) {
+        dm_left_out *l = &r->left_out[r->n_left_out++];
+        read_kv(cJSON_GetObjectItemCaseSensitive(it, "params"), &l->params, &l->n_params);
+        l->reason = get_str(it, "reason");
+    }
+    a = cJSON_GetObjectItemCaseSensitive(root, "fits");
+    r->fits = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->fits);
+    cJSON_ArrayForEach(it, a) read_fit(it, &r->fits[r->n_fits++]);
+    r->warnings = read_strs(cJSON_GetObjectItemCaseSensitive(root, "warnings"), &r->n_warnings);
+}
+
+/* Checks the skeleton the reader relies on; names the first missing part. */
+static const char *shape_error(const cJSON *root)
+{
+    if (!cJSON_IsObject(root))
+        return "top level is not an object";
+    if (!cJSON_IsObject(cJSON_GetObjectItemCaseSensitive(root, "run")))
+        return "\"run\" object missing";
+    const cJSON *c = cJSON_GetObjectItemCaseSensitive(root, "configs"), *it;
+    if (!cJSON_IsArray(c))
+        return "\"configs\" array missing";
+    cJSON_ArrayForEach(it, c)
+        if (!cJSON_IsObject(it) || !cJSON_IsString(cJSON_GetObjectItemCaseSensitive(it, "key")))
+            return "a config without a \"key\" string";
+    return NULL;
+}
+
+int report_read_json(const char *path, dm_run_result *out, char *err, size_t errlen)
+{
+    char *text = NULL;
+    size_t len = 0;
+    if (!path || !out)
+        return DM_ERR_ARG;
+    if (dm_read_file(path, &text, &len)) {
+        snprintf(err, errlen, "%s: cannot read", path);
+        return DM_ERR_IO;
+    }
+    const char *end = NULL;
+    cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, 0);
+    const char *why = root ? shape_error(root) : "malformed JSON";
+    if (why) {
+        snprintf(err, errlen, "%s: %s (near byte %ld)", path, why,
+                 root ? 0L : (long)((end ? end : text) - text));
+        cJSON_Delete(root);
+        free(text);
+        return DM_ERR_PARSE;
+    }
+    memset(out, 0, sizeof *out);
+    read_run(root, out);
+    cJSON_Delete(root);
+    free(text);
+    return 0;
+}

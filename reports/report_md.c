@@ -1,0 +1,128 @@
+/* report_md.c — summary.md for CI logs: run header, a table per scene,
+ * failures and left-out configurations with their reasons. */
+#include "reports/report.h"
+#include "reports/report_internal.h"
+
+#include "core/dm_error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+/* Table-cell text: '|' escaped, line breaks flattened to spaces. */
+static void cell(dm_str *s, const char *text)
+{
+    for (const char *p = text ? text : ""; *p; p++) {
+        if (*p == '|')
+            dm_str_cat(s, "\\|");
+        else
+            dm_str_catn(s, (*p == '\n' || *p == '\r') ? " " : p, 1);
+    }
+}
+
+static void params_text(dm_str *s, const dm_kv *kv, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        if (i)
+            dm_str_cat(s, " ");
+        cell(s, kv[i].key);
+        dm_str_cat(s, "=");
+        cell(s, kv[i].value);
+    }
+}
+
+static void quality_cells(dm_str *s, const dm_quality *q)
+{
+    if (!q->present) {
+        dm_str_cat(s, " – | – |");
+        return;
+    }
+    if (isinf(q->psnr))
+        dm_str_cat(s, " ∞ |");
+    else
+        dm_str_printf(s, " %.2f dB |", q->psnr);
+    dm_str_printf(s, " %.4f |", q->ssim);
+}
+
+static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
+{
+    dm_str_cat(s, "\n## Scene `");
+    cell(s, scene);
+    dm_str_cat(s, "`\n\n| technique | key | median ms ± CI | PSNR | SSIM |\n|---|---|---|---|---|\n");
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (!c->ok || strcmp(c->scene ? c->scene : "", scene) != 0)
+            continue;
+        const dm_counter_result *t = report__frame_time(c);
+        dm_str_cat(s, "| ");
+        cell(s, report__technique(c));
+        dm_str_printf(s, " | %s |", c->key);
+        if (t)
+            dm_str_printf(s, " %.4f ± %.4f |", t->median / 1e6, (t->ci_hi - t->ci_lo) / 2e6);
+        else
+            dm_str_cat(s, " unavailable |");
+        quality_cells(s, &c->quality);
+        dm_str_cat(s, "\n");
+    }
+}
+
+static void failures(dm_str *s, const dm_run_result *run)
+{
+    dm_str_cat(s, "\n## Failed configurations\n\n");
+    size_t n = 0;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (c->ok)
+            continue;
+        dm_str_printf(s, "- `%s` ", c->key);
+        params_text(s, c->params, c->n_params);
+        dm_str_cat(s, ": ");
+        cell(s, c->reason ? c->reason : "no reason recorded");
+        dm_str_cat(s, "\n");
+        n++;
+    }
+    if (!n)
+        dm_str_cat(s, "None.\n");
+    dm_str_cat(s, "\n## Left out\n\n");
+    for (size_t i = 0; i < run->n_left_out; i++) {
+        dm_str_cat(s, "- ");
+        params_text(s, run->left_out[i].params, run->left_out[i].n_params);
+        dm_str_cat(s, ": ");
+        cell(s, run->left_out[i].reason);
+        dm_str_cat(s, "\n");
+    }
+    if (!run->n_left_out)
+        dm_str_cat(s, "None.\n");
+}
+
+int report_write_markdown(const dm_run_result *run, const char *path)
+{
+    if (!run || !path)
+        return DM_ERR_ARG;
+    dm_str s = {0};
+    dm_str_cat(&s, "# dmbench run ");
+    cell(&s, run->id);
+    dm_str_cat(&s, "\n\n- sweep: ");
+    cell(&s, run->sweep);
+    dm_str_cat(&s, "\n- started: ");
+    cell(&s, run->started);
+    dm_str_cat(&s, "\n- renderer: ");
+    cell(&s, dm_kv_get(run->environment, run->n_environment, "renderer"));
+    dm_str_printf(&s, "\n- timer: %s (GPUTime covers %.1f%% of fenced wall time)\n",
+                  run->timer_verdict ? run->timer_verdict : "unknown", run->gpu_time_coverage * 100);
+    for (size_t i = 0; i < run->n_warnings; i++) {
+        dm_str_cat(&s, "- warning: ");
+        cell(&s, run->warnings[i]);
+        dm_str_cat(&s, "\n");
+    }
+    const char **scenes;
+    size_t ns = report__scenes(run, &scenes);
+    for (size_t i = 0; i < ns; i++)
+        scene_table(&s, run, scenes[i]);
+    free(scenes);
+    failures(&s, run);
+    int rc = report__save(&s, path);
+    dm_str_free(&s);
+    return rc;
+}

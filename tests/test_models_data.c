@@ -1,0 +1,93 @@
+/* test_models_data.c — CSV tables for fits, with temporary files. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+#include "core/dm_error.h"
+#include "models/fit_data.h"
+
+/* Writes text to a new temporary file; returns its malloc'd path. */
+static char *temp_csv(const char *text)
+{
+    char *path = strdup("/tmp/test_models_data_XXXXXX");
+    int fd = mkstemp(path);
+    assert_true(fd >= 0);
+    assert_int_equal(write(fd, text, strlen(text)), (ssize_t)strlen(text));
+    close(fd);
+    return path;
+}
+
+static void load_and_fit(void **state)
+{
+    (void)state;
+    /* t = 5 + 2 L exactly; one missing cell excludes its row */
+    char *path = temp_csv("L, t ,other\r\n1,7,0\n2,9,0\n\n3, 11 ,1\n4,13,\n5,,2\n6,17,1e3\n");
+    fit_data d;
+    dm_str err = { 0 };
+    assert_int_equal(fit_data_load_csv(path, &d, &err), 0);
+    assert_int_equal(d.n_cols, 3);
+    assert_int_equal(d.n_rows, 6);
+    assert_string_equal(d.names[1], "t");
+    assert_true(d.values[2 * 3 + 1] == 11.0 && d.values[5 * 3 + 2] == 1000.0);
+    assert_true(isnan(d.values[3 * 3 + 2]));
+    fit_desc desc;
+    assert_int_equal(fit_data_desc(&d, "a + b*L", "t", &desc, &err), 0);
+    dm_fit_result r;
+    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    assert_int_equal(r.n_points, 5);
+    assert_int_equal(r.n_excluded, 1);
+    assert_true(fabs(r.params[0].value - 5.0) < 1e-9 && fabs(r.params[1].value - 2.0) < 1e-9);
+    dm_fit_result_free(&r);
+    assert_int_equal(fit_data_desc(&d, "a", "T", &desc, &err), DM_ERR_UNKNOWN);
+    assert_string_equal(dm_str_get(&err), "fit: response 'T' is not a column (columns: L t other)");
+    fit_data_free(&d);
+    dm_str_free(&err);
+    unlink(path);
+    free(path);
+}
+
+static void expect_parse_error(const char *text, const char *tail)
+{
+    char *path = temp_csv(text);
+    fit_data d;
+    dm_str err = { 0 }, want = { 0 };
+    assert_int_equal(fit_data_load_csv(path, &d, &err), DM_ERR_PARSE);
+    assert_null(d.names);
+    dm_str_printf(&want, "%s:%s", path, tail);
+    assert_string_equal(dm_str_get(&err), dm_str_get(&want));
+    dm_str_free(&err);
+    dm_str_free(&want);
+    unlink(path);
+    free(path);
+}
+
+static void bad_cells(void **state)
+{
+    (void)state;
+    expect_parse_error("L,t\n1,2\n3, 4x\n", "3:4: '4x' in column 't' is not a number");
+    expect_parse_error("L,t\n1,2,3\n", "2:5: 3 cells, the header has 2 columns");
+    expect_parse_error("L,t\n1\n", "2:2: 1 cells, the header has 2 columns");
+    expect_parse_error("L,,t\n", "1:3: empty column name ''");
+    expect_parse_error("L,t,L\n", "1:5: duplicate column name 'L'");
+    expect_parse_error("\n\n", "1:1: no header row");
+    fit_data d;
+    dm_str err = { 0 };
+    assert_int_equal(fit_data_load_csv("/nonexistent/x.csv", &d, &err), DM_ERR_IO);
+    dm_str_free(&err);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(load_and_fit),
+        cmocka_unit_test(bad_cells),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,121 @@
+/* test_models_stats.c — descriptive statistics against hand-computed values. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include "core/dm_error.h"
+#include "models/stats.h"
+
+static void quantile_type7(void **state)
+{
+    (void)state;
+    const double x[] = { 4, 1, 3, 2 };              /* sorted 1 2 3 4 */
+    /* h = (n-1) q: q=0.25 -> h=0.75 -> 1 + 0.75*(2-1) = 1.75 */
+    assert_true(stats_quantile(x, 4, 0.25) == 1.75);
+    assert_true(stats_quantile(x, 4, 0.5) == 2.5);
+    assert_true(stats_quantile(x, 4, 0.9) == 3.7);  /* h = 2.7 -> 3 + 0.7 */
+    assert_true(stats_quantile(x, 4, 0.0) == 1.0);
+    assert_true(stats_quantile(x, 4, 1.0) == 4.0);
+    assert_true(isnan(stats_quantile(x, 4, 1.5)));
+    assert_true(isnan(stats_quantile(x, 0, 0.5)));
+    const double y[] = { NAN, 5, INFINITY, 1, 3 };  /* finite: 1 3 5 */
+    assert_true(stats_median(y, 5) == 3.0);
+}
+
+static void ci_rank_rule(void **state)
+{
+    (void)state;
+    double cov;
+    /* n = 10: P(B<=1) = 11/1024, coverage(k=2) = 1 - 22/1024 = 0.978515625;
+     * k = 3 would give 1 - 2*56/1024 = 0.890625 < 0.95. */
+    assert_int_equal(stats_median_ci_rank(10, 0.95, &cov), 2);
+    assert_true(fabs(cov - 0.978515625) < 1e-12);
+    /* n = 6: k = 1 gives 1 - 2/64 = 0.96875 */
+    assert_int_equal(stats_median_ci_rank(6, 0.95, &cov), 1);
+    assert_true(fabs(cov - 0.96875) < 1e-12);
+    /* n = 5: k = 1 gives 1 - 2/32 = 0.9375 < 0.95: no interval */
+    assert_int_equal(stats_median_ci_rank(5, 0.95, NULL), 0);
+    /* n = 20: P(B<=5) = 21700/2^20 = 0.0206947; P(B<=6) = 60460/2^20 = 0.0576591
+     * -> k = 6 (coverage 0.958611) */
+    assert_int_equal(stats_median_ci_rank(20, 0.95, &cov), 6);
+    assert_true(fabs(cov - (1.0 - 2.0 * 21700.0 / 1048576.0)) < 1e-12);
+}
+
+static void summary_n10(void **state)
+{
+    (void)state;
+    const double x[] = { 10, 1, 9, 2, 8, 3, 7, 4, 6, 5, NAN, -INFINITY };
+    stats_summary s;
+    assert_int_equal(stats_summarize(x, 12, 1, &s), 0);
+    assert_int_equal(s.n, 10);
+    assert_int_equal(s.n_nonfinite, 2);
+    assert_true(s.median == 5.5);
+    assert_true(s.mean == 5.5);
+    assert_true(s.min == 1 && s.max == 10);
+    /* sum of squares about 5.5 = 82.5; /9 */
+    assert_true(fabs(s.stddev - sqrt(82.5 / 9.0)) < 1e-12);
+    assert_true(fabs(s.cv - sqrt(82.5 / 9.0) / 5.5) < 1e-12);
+    /* |x - 5.5| = .5 .5 1.5 1.5 2.5 2.5 3.5 3.5 4.5 4.5 -> median 2.5 */
+    assert_true(s.mad == 2.5);
+    /* 2nd and 9th order statistics */
+    assert_true(s.ci_lo == 2.0 && s.ci_hi == 9.0);
+    assert_true(fabs(s.ci_rel - 3.5 / 5.5) < 1e-12);
+    assert_int_equal(s.n_outliers, 0);
+}
+
+static void summary_outliers(void **state)
+{
+    (void)state;
+    /* 1..9 and 100: Q1 = 3.25, Q3 = 7.75 (type 7), IQR 4.5, fences
+     * -3.5 .. 14.5 -> only 100 is outside. */
+    const double x[] = { 1, 2, 3, 4, 5, 6, 7, 8, 9, 100 };
+    stats_summary s;
+    assert_int_equal(stats_summarize(x, 10, 1, &s), 0);
+    assert_int_equal(s.n_outliers, 1);
+    assert_true(s.median == 5.5);
+}
+
+static void summary_small_bootstrap(void **state)
+{
+    (void)state;
+    const double x[] = { 3, 1, 2 };
+    stats_summary a, b;
+    assert_int_equal(stats_summarize(x, 3, 42, &a), 0);
+    assert_int_equal(stats_summarize(x, 3, 42, &b), 0);
+    /* bootstrap medians of 3 values lie in [1, 3]; the 2.5% quantile of
+     * 2000 medians is 1 (P(median = 1) = 7/27 > 2.5%), likewise 3 above. */
+    assert_true(a.ci_lo == 1.0 && a.ci_hi == 3.0);
+    assert_true(a.ci_lo == b.ci_lo && a.ci_hi == b.ci_hi);
+    assert_true(isnan(a.stddev) == 0 && a.stddev == 1.0);
+    const double one[] = { 7 };
+    assert_int_equal(stats_summarize(one, 1, 42, &a), 0);
+    assert_true(a.ci_lo == 7.0 && a.ci_hi == 7.0);
+    assert_true(isnan(a.stddev));
+    assert_true(a.mad == 0.0);
+}
+
+static void summary_empty(void **state)
+{
+    (void)state;
+    const double x[] = { NAN, INFINITY };
+    stats_summary s;
+    assert_int_equal(stats_summarize(x, 2, 1, &s), DM_ERR_ARG);
+    assert_int_equal(s.n_nonfinite, 2);
+    assert_int_equal(s.n, 0);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(quantile_type7),
+        cmocka_unit_test(ci_rank_rule),
+        cmocka_unit_test(summary_n10),
+        cmocka_unit_test(summary_outliers),
+        cmocka_unit_test(summary_small_bootstrap),
+        cmocka_unit_test(summary_empty),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

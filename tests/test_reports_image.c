@@ -1,0 +1,165 @@
+/* test_reports_image.c — the OpenImageIO bridge (reports/image.h). */
+#include "reports/image.h"
+#include "core/dm_error.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+#include <cmocka.h>
+
+static void fill(img *im, float r, float g, float b, float a)
+{
+    for (int i = 0; i < im->w * im->h; i++) {
+        im->px[i * 4 + 0] = r;
+        im->px[i * 4 + 1] = g;
+        im->px[i * 4 + 2] = b;
+        im->px[i * 4 + 3] = a;
+    }
+}
+
+static void test_downsample_block_means(void **state)
+{
+    (void)state;
+    img src = {0}, dst = {0};
+    assert_int_equal(img_alloc(&src, 4, 4), 0);
+    for (int i = 0; i < 4 * 4 * 4; i++)
+        src.px[i] = (float)((i * 7919) % 101) / 16.0f;   /* arbitrary, exact in binary */
+    assert_int_equal(img_downsample(&src, 2, &dst), 0);
+    assert_int_equal(dst.w, 2);
+    assert_int_equal(dst.h, 2);
+    for (int by = 0; by < 2; by++)
+        for (int bx = 0; bx < 2; bx++)
+            for (int c = 0; c < 4; c++) {
+                float s = 0;
+                for (int j = 0; j < 2; j++)
+                    for (int i = 0; i < 2; i++)
+                        s += src.px[((by * 2 + j) * 4 + bx * 2 + i) * 4 + c];
+                assert_true(dst.px[(by * 2 + bx) * 4 + c] == s / 4.0f);
+            }
+    img bad = {0};
+    assert_int_equal(img_downsample(&src, 3, &bad), DM_ERR_ARG);   /* 4 not divisible by 3 */
+    img_free(&src);
+    img_free(&dst);
+}
+
+static void test_compare_identical_and_offset(void **state)
+{
+    (void)state;
+    img a = {0}, b = {0};
+    img_metrics m;
+    assert_int_equal(img_alloc(&a, 16, 8), 0);
+    assert_int_equal(img_alloc(&b, 16, 8), 0);
+    fill(&a, 0.5f, 0.25f, 0.125f, 1.0f);
+    fill(&b, 0.5f, 0.25f, 0.125f, 1.0f);
+    assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
+    assert_true(m.rmse == 0.0);
+    assert_true(isinf(m.psnr) && m.psnr > 0);
+    assert_true(m.max_error == 0.0);
+    assert_true(m.pct_over == 0.0);
+    assert_int_equal(m.nonfinite, 0);
+
+    /* +0.1 on every RGB channel: RMSE is the offset, PSNR = 20 log10(1/offset) = 20 dB
+     * (up to the float rounding of the stored values, computed here exactly). */
+    fill(&b, 0.6f, 0.35f, 0.225f, 1.0f);
+    double d = (double)(0.6f - 0.5f);
+    assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
+    assert_float_equal(m.rmse, 0.1, 1e-6);
+    assert_float_equal(m.rmse, d, 1e-7);
+    assert_float_equal(m.psnr, 20.0, 1e-5);
+    assert_float_equal(m.max_error, d, 1e-6);
+    assert_true(m.pct_over == 100.0);
+    assert_int_equal(img_compare(&a, &b, 0.2, &m), 0);   /* 0.1 is under a 0.2 threshold */
+    assert_true(m.pct_over == 0.0);
+    /* half the pixels get a NaN in green */
+    for (int i = 0; i < 16 * 4; i++)
+        b.px[i * 4 + 1] = NAN;
+    assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
+    assert_int_equal(m.nonfinite, 64);
+    img c = {0};
+    assert_int_equal(img_alloc(&c, 8, 8), 0);
+    assert_int_equal(img_compare(&a, &c, 0.05, &m), DM_ERR_ARG);
+    img_free(&a);
+    img_free(&b);
+    img_free(&c);
+}
+
+static void test_save_load_png_exr(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_img_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char png[256], exr[256], err[512];
+    snprintf(png, sizeof png, "%s/a.png", dir);
+    snprintf(exr, sizeof exr, "%s/a.exr", dir);
+    img a = {0}, l = {0};
+    assert_int_equal(img_alloc(&a, 5, 3), 0);
+    fill(&a, 2.0f, 0.5f, -1.0f, 1.0f);
+    a.px[0] = 0.123456789f;
+    assert_int_equal(img_save(&a, png, err, sizeof err), 0);
+    assert_int_equal(img_load(png, &l, err, sizeof err), 0);
+    assert_int_equal(l.w, 5);
+    assert_int_equal(l.h, 3);
+    assert_float_equal(l.px[4], 1.0, 0);        /* clamped */
+    assert_float_equal(l.px[5], 128.0 / 255.0, 1e-6); /* 0.5 → 128 */
+    assert_float_equal(l.px[6], 0.0, 0);        /* clamped */
+    img_free(&l);
+    assert_int_equal(img_save(&a, exr, err, sizeof err), 0);
+    assert_int_equal(img_load(exr, &l, err, sizeof err), 0);
+    assert_true(memcmp(l.px, a.px, 5 * 3 * 4 * sizeof(float)) == 0);
+    img_free(&l);
+    assert_int_equal(img_save(&a, "/nonexistent-dir/x.png", err, sizeof err), DM_ERR_IO);
+    assert_non_null(strstr(err, "/nonexistent-dir/x.png"));
+    assert_int_equal(img_load("/nonexistent-dir/y.exr", &l, err, sizeof err), DM_ERR_IO);
+    assert_non_null(strstr(err, "/nonexistent-dir/y.exr"));
+    unlink(png);
+    unlink(exr);
+    rmdir(dir);
+    img_free(&a);
+}
+
+static void test_heatmap_inferno(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_hm_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[256], err[512];
+    snprintf(path, sizeof path, "%s/h.png", dir);
+    img a = {0}, b = {0}, h = {0};
+    assert_int_equal(img_alloc(&a, 4, 1), 0);
+    assert_int_equal(img_alloc(&b, 4, 1), 0);
+    fill(&a, 0, 0, 0, 1);
+    fill(&b, 0, 0, 0, 1);
+    b.px[1 * 4 + 2] = 0.5f;   /* pixel 1: half of the scale */
+    b.px[2 * 4 + 0] = 1.0f;   /* pixel 2: full scale */
+    b.px[3 * 4 + 1] = 3.0f;   /* pixel 3: beyond the scale, clamps */
+    assert_int_equal(img_heatmap(&a, &b, 1.0, path, err, sizeof err), 0);
+    assert_int_equal(img_load(path, &h, err, sizeof err), 0);
+    /* inferno: 0 is near-black, 1 is pale yellow; both ends and monotone luminance */
+    const float *p0 = h.px, *p1 = h.px + 4, *p2 = h.px + 8, *p3 = h.px + 12;
+    assert_true(p0[0] < 0.05f && p0[1] < 0.05f && p0[2] < 0.1f);
+    assert_true(p2[0] > 0.9f && p2[1] > 0.9f && p2[2] < 0.75f);
+    assert_true(p1[0] + p1[1] > p0[0] + p0[1] && p1[0] + p1[1] < p2[0] + p2[1]);
+    assert_memory_equal(p2, p3, 3 * sizeof(float));
+    unlink(path);
+    rmdir(dir);
+    img_free(&a);
+    img_free(&b);
+    img_free(&h);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_downsample_block_means),
+        cmocka_unit_test(test_compare_identical_and_offset),
+        cmocka_unit_test(test_save_load_png_exr),
+        cmocka_unit_test(test_heatmap_inferno),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
