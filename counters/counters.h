@@ -27,6 +27,8 @@
 #include <stddef.h>
 #include <stdint.h>
 
+#include "core/dm_util.h"   /* dm_str */
+
 typedef enum counters_unit {
     COUNTERS_UNIT_NS = 1, COUNTERS_UNIT_ITEMS, COUNTERS_UNIT_BYTES,
     COUNTERS_UNIT_RATIO, COUNTERS_UNIT_PERCENT
@@ -84,6 +86,12 @@ int counters_enable_group(counters_session *s, const char *group);
 int counters_num_passes(counters_session *s, int *passes);
 /* Describes pass p ("timing", "statistics", "geometry"), for plans. */
 const char *counters_pass_name(counters_session *s, int pass);
+/* Appends the pass plan of the selection names[0..n) as text to out
+ * ("dmbench list counters --passes A,B"): the pass count, each pass with its
+ * counters, then caller-fed, derived (with formulas) and unavailable
+ * counters (with reasons).  DM_ERR_UNKNOWN (message in out) for an unknown
+ * name.  Needs a context (availability decides the plan). */
+int counters_plan_describe(counters_context *ctx, const char *const *names, size_t n, dm_str *out);
 int counters_pass_begin(counters_session *s, int pass);
 int counters_pass_end(counters_session *s);
 int counters_sample_begin(counters_session *s, uint32_t sample_id);

@@ -54,8 +54,10 @@ static char *plan__scene_id(const plan_config *c)
     for (size_t i = 2; i < sizeof plan__scene_axes / sizeof *plan__scene_axes; i++) {
         const char *v = dm_kv_get(c->params, c->n_params, plan__scene_axes[i]);
         const axis_info *a = axes_find(plan__scene_axes[i]);
-        if (v && a && strcmp(v, a->def) != 0)
+        char *def = a ? axes_canonical(a->name, a->def) : NULL;
+        if (v && def && strcmp(v, def) != 0)
             dm_str_printf(&s, ",%s=%s", plan__scene_axes[i], v);
+        free(def);
     }
     return dm_str_take(&s);
 }
@@ -69,7 +71,10 @@ static void plan__project(const sweep *s, const size_t *idx, plan_config *c)
         const axis_info *a = axes_at(i);
         if (strcmp(a->name, "technique") != 0 && !technique_reads_axis(t, a->name))
             continue;
-        dm_kv_push(&c->params, &c->n_params, a->name, plan__value(s, idx, a->name));
+        /* canonical text, so "3.0" and "3" are one configuration with one key */
+        char *v = axes_canonical(a->name, plan__value(s, idx, a->name));
+        dm_kv_push(&c->params, &c->n_params, a->name, v);
+        free(v);
     }
     qsort(c->params, c->n_params, sizeof *c->params, plan__kv_cmp);
     plan__key(c, t);

@@ -18,6 +18,10 @@ typedef enum axis_kind {
     AXIS_SIZE2         /* "WxH" or a YAML pair [W, H] (resolution) */
 } axis_kind;
 
+/* Scene axes (scene = 1) are read by every technique: mesh, mesh_density,
+ * resolution, camera.*, maps, texture_size, filter, albedo_format (and
+ * technique itself).  Every other axis is declared by the techniques that
+ * read it (technique_desc.axes). */
 typedef struct axis_info {
     const char *name;
     axis_kind kind;
@@ -35,7 +39,16 @@ const axis_info *axes_find(const char *name);
  * axis: err gets the valid names) / DM_ERR_ARG (bad value: err says what was
  * expected and lists the valid choices).  The caller adds file:line. */
 int axes_check(const char *name, const char *value, dm_str *err);
-/* Canonical text for a value ("1280x720" for [1280,720], trimmed numbers). */
+/* Canonical text for a value ("1280x720" for [1280,720], trimmed numbers:
+ * "064" -> "64", "3.0" -> "3").  Returns a malloc'd string, or NULL when the
+ * value does not pass axes_check. */
 char *axes_canonical(const char *name, const char *value);
+/* Parses "WxH", "W,H" or "[W, H]" with each side in [1, 8192]; 0 or
+ * DM_ERR_ARG (w, h untouched). */
+int axes_parse_size2(const char *s, int *w, int *h);
+/* The entry of names[0..n) (NULL-terminated or n long) closest to word by
+ * edit distance when it is close enough to be a likely typo
+ * (distance <= max(2, strlen(word)/3)), else NULL. */
+const char *axes_closest(const char *word, const char *const *names, size_t n);
 
 #endif

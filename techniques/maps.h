@@ -24,9 +24,22 @@ typedef struct maps_set {
     float *albedo;          /* size*size*4 */
 } maps_set;
 
+/* Texel counts per side accepted by maps_generate. */
+#define MAPS_MIN_SIZE 16
+#define MAPS_MAX_SIZE 16384
+/* Gradient scale at normal_strength 1: the default height_scale 0.06 spread
+ * over the 2 world units that the UV range 0..1 spans on the built-in plane,
+ * so the normal map matches the displaced surface of the default scene. */
+#define MAPS_NORMAL_SCALE 0.03f
+
 const char *const *maps_names(void);   /* NULL-terminated */
 /* Returns 0, DM_ERR_UNKNOWN for an unknown set, DM_ERR_RANGE for a bad size. */
 int maps_generate(const maps_desc *desc, maps_set *out);
 void maps_free(maps_set *m);
+/* Normal map from a size×size height map by central differences with
+ * wrap-around (maps tile):  g_u = (h[x+1] - h[x-1]) * size/2 is ∂h/∂u per
+ * unit of UV (likewise g_v along rows), s = strength * MAPS_NORMAL_SCALE and
+ * n = normalize(-s*g_u, -s*g_v, 1).  normal gets size*size*3 floats. */
+void maps_normal_from_height(const float *height, int size, float strength, float *normal);
 
 #endif

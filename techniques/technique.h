@@ -25,11 +25,17 @@ typedef struct technique_desc {
     const char *const *axes;     /* technique-specific axes it reads, NULL-terminated */
     int version;                 /* bump when the technique's output changes (config keys) */
     const char *requires_ext;    /* GL extension needed, NULL if none */
+    int test_only;               /* 1: hidden from the `technique` axis and listings (tests only) */
+    const char *uniforms;        /* documentation: the uniforms/params its shaders read */
 } technique_desc;
 
+/* All registered techniques, test-only ones included (check test_only). */
 size_t technique_count(void);
 const technique_desc *technique_at(size_t i);
 const technique_desc *technique_find(const char *name);
+/* Names of the techniques a user may choose (test_only == 0),
+ * NULL-terminated, in registry order. */
+const char *const *technique_names(void);
 /* 1 when the technique reads axis `name` (its own list or a scene axis). */
 int technique_reads_axis(const technique_desc *t, const char *name);
 

@@ -78,6 +78,19 @@ static void test_results_kv(void **state)
     dm_kv_free(kv, n);
 }
 
+static void test_closest(void **state)
+{
+    (void)state;
+    const char *const axes[] = { "tess_level", "tess_spacing", "technique", "mesh" };
+    assert_string_equal(dm_closest("tess_levle", axes, 4), "tess_level");
+    assert_string_equal(dm_closest("mesch", axes, 4), "mesh");
+    assert_null(dm_closest("zzzzzzzz", axes, 4));
+    dm_str s = {0};
+    dm_str_cat_list(&s, axes, 2);
+    assert_string_equal(dm_str_get(&s), "tess_level, tess_spacing");
+    dm_str_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -86,6 +99,7 @@ int main(void)
         cmocka_unit_test(test_hash),
         cmocka_unit_test(test_files),
         cmocka_unit_test(test_results_kv),
+        cmocka_unit_test(test_closest),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

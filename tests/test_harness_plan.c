@@ -70,8 +70,8 @@ static void test_keys_stable(void **state)
     sweep a, b;
     plan pa, pb;
     plan_text("name: a\nsweep:\n  technique: [normal]\n  mesh: [cube]\n", &a, &pa);
-    plan_text("name: b\nscene: { mesh: cube }\nsweep:\n  tess_level: [4, 8]\n"
-              "  technique: [normal]\n", &b, &pb);
+    plan_text("name: b\nscene: { mesh: cube, camera: { distance: 3.000 } }\nsweep:\n"
+              "  tess_level: [4, 8]\n  technique: [normal]\n", &b, &pb);
     assert_int_equal(pa.n_configs, 1);
     assert_int_equal(pb.n_configs, 1);
     assert_string_equal(pa.configs[0].key, pb.configs[0].key);

@@ -1,0 +1,151 @@
+/* counters_registry.c — the one table of counters (SPEC §4), as data.
+ *
+ * Each row: public metadata (name, group, description, unit, type, backend,
+ * deterministic, formula) + which pass measures it, its GL query target and
+ * what the driver must offer.  Derived counters are formulas over other rows
+ * (evaluated by counters_expr.c).  Adding a counter is adding a row.
+ */
+#include "counters_internal.h"
+
+#include <epoxy/gl.h>
+#include <string.h>
+
+#define NS    COUNTERS_UNIT_NS
+#define ITEMS COUNTERS_UNIT_ITEMS
+#define BYTES COUNTERS_UNIT_BYTES
+#define RATIO COUNTERS_UNIT_RATIO
+#define U64   COUNTERS_TYPE_UINT64
+#define F64   COUNTERS_TYPE_FLOAT64
+#define B_CLK COUNTERS_BACKEND_CLOCK
+#define B_TQ  COUNTERS_BACKEND_TIMER_QUERY
+#define B_PS  COUNTERS_BACKEND_PIPELINE_STATS
+#define B_OCC COUNTERS_BACKEND_OCCLUSION
+#define B_CPU COUNTERS_BACKEND_CPU_SIDE
+#define B_DER COUNTERS_BACKEND_DERIVED
+#define P_TIM COUNTERS__PASS_TIMING
+#define P_GEO COUNTERS__PASS_GEOMETRY
+#define P_ST  COUNTERS__PASS_STATS
+#define P_NO  COUNTERS__PASS_NONE
+#define R_PS  COUNTERS__REQ_PIPESTATS
+
+static const counters__def counters__table[] = {
+    /* ---- Timing ---- */
+    {{"WallTime", "Timing", "Wall-clock time of the sample, glFinish before and after",
+      NS, U64, B_CLK, 0, NULL}, P_TIM, 0, 0},
+    {{"GPUTime", "Timing", "GL_TIME_ELAPSED query around the sample (check the timer calibration)",
+      NS, U64, B_TQ, 0, NULL}, P_TIM, GL_TIME_ELAPSED, COUNTERS__REQ_TIMER},
+    {{"CPUTime", "Timing", "Process CPU time over the sample, all threads, including the final glFinish",
+      NS, U64, B_CLK, 0, NULL}, P_TIM, 0, 0},
+    {{"SubmitTime", "Timing", "Calling-thread CPU time from sample begin until the closing glFinish (inside draw calls)",
+      NS, U64, B_CLK, 0, NULL}, P_TIM, 0, 0},
+    {{"GeometryTime", "Timing", "Wall time of the same draws with GL_RASTERIZER_DISCARD (own pass)",
+      NS, U64, B_CLK, 0, NULL}, P_GEO, 0, 0},
+    {{"SetupTime", "Timing", "Compile, link and upload time, fed by the caller",
+      NS, U64, B_CPU, 0, NULL}, P_NO, 0, 0},
+    {{"WarmupTime", "Timing", "First-draw time (shader JIT), fed by the caller",
+      NS, U64, B_CPU, 0, NULL}, P_NO, 0, 0},
+    /* ---- Vertex ---- */
+    {{"VerticesSubmitted", "Vertex", "Vertices fetched by the vertex puller, repeats included",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_VERTICES_SUBMITTED_ARB, R_PS},
+    {{"PrimitivesSubmitted", "Vertex", "Primitives assembled from the submitted vertices",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_PRIMITIVES_SUBMITTED_ARB, R_PS},
+    {{"VSInvocations", "Vertex", "Vertex shader invocations (after post-transform vertex reuse)",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_VERTEX_SHADER_INVOCATIONS_ARB, R_PS},
+    /* ---- Tessellation ---- */
+    {{"TCSPatches", "Tessellation", "Patches processed by the tessellation control shader",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_TESS_CONTROL_SHADER_PATCHES_ARB, R_PS},
+    {{"TESInvocations", "Tessellation", "Tessellation evaluation shader invocations",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB, R_PS},
+    /* ---- Geometry ---- */
+    {{"GSInvocations", "Geometry", "Geometry shader invocations",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_GEOMETRY_SHADER_INVOCATIONS, R_PS},
+    {{"GSPrimitivesEmitted", "Geometry", "Primitives emitted by the geometry shader",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB, R_PS},
+    /* ---- PrimitiveAssembly ---- */
+    {{"ClippingInputPrimitives", "PrimitiveAssembly", "Primitives entering the clipper",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_CLIPPING_INPUT_PRIMITIVES_ARB, R_PS},
+    {{"ClippingOutputPrimitives", "PrimitiveAssembly", "Primitives leaving the clipper (to the rasterizer)",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_CLIPPING_OUTPUT_PRIMITIVES_ARB, R_PS},
+    {{"PrimitivesGenerated", "PrimitiveAssembly", "GL_PRIMITIVES_GENERATED: primitives out of the last vertex-processing stage",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_PRIMITIVES_GENERATED, 0},
+    /* ---- Fragment ---- */
+    {{"FSInvocations", "Fragment", "Fragment shader invocations",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_FRAGMENT_SHADER_INVOCATIONS_ARB, R_PS},
+    {{"SamplesPassed", "Fragment", "Samples that passed the depth and stencil tests (occlusion query)",
+      ITEMS, U64, B_OCC, 1, NULL}, P_ST, GL_SAMPLES_PASSED, 0},
+    /* ---- Compute ---- */
+    {{"ComputeInvocations", "Compute", "Compute shader invocations",
+      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_COMPUTE_SHADER_INVOCATIONS_ARB, COUNTERS__REQ_COMPUTE},
+    /* ---- Memory (caller-fed) ---- */
+    {{"TextureBytes", "Memory", "Bytes of texture storage (driver-reported sizes), fed by the caller",
+      BYTES, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+    {{"MeshBytes", "Memory", "Bytes of vertex and index buffers, fed by the caller",
+      BYTES, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+    {{"VTPagesResident", "Memory", "Virtual-texture pages resident at sample end, fed by the caller",
+      ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+    {{"VTPageMisses", "Memory", "Virtual-texture page requests not resident, fed by the caller",
+      ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+    {{"VTUploadBytes", "Memory", "Bytes uploaded to the virtual-texture cache, fed by the caller",
+      BYTES, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+    /* ---- Scene (caller-fed, needed by derived counters) ---- */
+    {{"ViewportPixels", "Scene", "Pixels of the viewport times frames in the sample, fed by the caller",
+      ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+    /* ---- Derived ---- */
+    {{"TessAmplification", "Derived", "TES invocations per tessellation patch",
+      RATIO, F64, B_DER, 1, "TESInvocations / TCSPatches"}, P_NO, 0, 0},
+    {{"VertexReuse", "Derived", "Submitted vertices per vertex shader invocation (post-transform reuse)",
+      RATIO, F64, B_DER, 1, "VerticesSubmitted / VSInvocations"}, P_NO, 0, 0},
+    {{"ClippedFraction", "Derived", "1 - clipper output / clipper input primitives (negative when clipping splits)",
+      RATIO, F64, B_DER, 1, "1 - ClippingOutputPrimitives / ClippingInputPrimitives"}, P_NO, 0, 0},
+    {{"PixelsPerTriangle", "Derived", "Samples passed per primitive reaching the rasterizer",
+      RATIO, F64, B_DER, 1, "SamplesPassed / ClippingOutputPrimitives"}, P_NO, 0, 0},
+    {{"Overdraw", "Derived", "Samples passed per viewport pixel (depth-tested overdraw; needs ViewportPixels)",
+      RATIO, F64, B_DER, 1, "SamplesPassed / ViewportPixels"}, P_NO, 0, 0},
+    {{"ShadingEfficiency", "Derived", "Samples passed per fragment shader invocation",
+      RATIO, F64, B_DER, 1, "SamplesPassed / FSInvocations"}, P_NO, 0, 0},
+    {{"RasterTime", "Derived", "Wall time minus geometry-only time (rasterization and shading)",
+      NS, F64, B_DER, 0, "WallTime - GeometryTime"}, P_NO, 0, 0},
+    {{"TimePerPixel", "Derived", "Wall time per sample passed",
+      NS, F64, B_DER, 0, "WallTime / SamplesPassed"}, P_NO, 0, 0},
+};
+
+#define COUNTERS__N (sizeof counters__table / sizeof counters__table[0])
+_Static_assert(COUNTERS__N <= COUNTERS__MAX, "raise COUNTERS__MAX");
+
+size_t counters_count(void) { return COUNTERS__N; }
+
+const counters__def *counters__def_at(size_t i)
+{
+    return i < COUNTERS__N ? &counters__table[i] : NULL;
+}
+
+const counters_info *counters_info_at(size_t i)
+{
+    return i < COUNTERS__N ? &counters__table[i].info : NULL;
+}
+
+int counters__index(const char *name)
+{
+    for (size_t i = 0; name && i < COUNTERS__N; i++)
+        if (strcmp(counters__table[i].info.name, name) == 0)
+            return (int)i;
+    return -1;
+}
+
+const counters_info *counters_find(const char *name)
+{
+    int i = counters__index(name);
+    return i < 0 ? NULL : &counters__table[i].info;
+}
+
+const char *counters_unit_name(counters_unit u)
+{
+    switch (u) {
+    case COUNTERS_UNIT_NS: return "ns";
+    case COUNTERS_UNIT_ITEMS: return "items";
+    case COUNTERS_UNIT_BYTES: return "bytes";
+    case COUNTERS_UNIT_RATIO: return "ratio";
+    case COUNTERS_UNIT_PERCENT: return "percent";
+    }
+    return "?";
+}

@@ -1,0 +1,141 @@
+/* cli_list.c — `dmbench list techniques|axes|counters|meshes|textures|models`. */
+#include "cli.h"
+#include "core/dm_util.h"
+#include "counters/counters.h"
+#include "harness/gl_context.h"
+#include "techniques/axes.h"
+#include "techniques/maps.h"
+#include "techniques/mesh.h"
+#include "techniques/technique.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+static int list__techniques(void)
+{
+    for (size_t i = 0; i < technique_count(); i++) {
+        const technique_desc *t = technique_at(i);
+        if (t->test_only)
+            continue;
+        printf("%-20s %s\n", t->name, t->summary ? t->summary : "");
+        dm_str axes = {0};
+        for (const char *const *a = t->axes; a && *a; a++)
+            dm_str_printf(&axes, "%s%s", a == t->axes ? "" : ", ", *a);
+        printf("%-20s reads: scene axes%s%s%s\n", "", axes.len ? ", " : "", dm_str_get(&axes),
+               t->requires_ext ? "" : "");
+        if (t->requires_ext)
+            printf("%-20s needs: %s\n", "", t->requires_ext);
+        dm_str_free(&axes);
+    }
+    return 0;
+}
+
+static int list__axes(void)
+{
+    for (size_t i = 0; i < axes_count(); i++) {
+        const axis_info *a = axes_at(i);
+        dm_str v = {0};
+        if (a->kind == AXIS_ENUM) {
+            for (const char *const *c = a->choices; c && *c; c++)
+                dm_str_printf(&v, "%s%s", c == a->choices ? "" : "|", *c);
+        } else if (a->kind == AXIS_SIZE2) {
+            dm_str_cat(&v, "WxH");
+        } else {
+            dm_str_printf(&v, "%s %g..%g", a->kind == AXIS_INT ? "int" : "real", a->min, a->max);
+        }
+        printf("%-18s %-6s default %-10s %s\n", a->name, a->scene ? "scene" : "", a->def,
+               dm_str_get(&v));
+        dm_str_free(&v);
+    }
+    return 0;
+}
+
+/* Lists counters with their availability on the current driver. */
+static int list__counters(const char *passes)
+{
+    gl_context *gl = NULL;
+    counters_context *cc = NULL;
+    dm_str err = {0};
+    if (gl_context_create(NULL, &gl, &err) == 0)
+        counters_context_create(&cc);
+    if (passes) {
+        char *copy = dm_xstrdup(passes);
+        const char *names[64];
+        size_t n = 0;
+        for (char *t = strtok(copy, ","); t && n < 64; t = strtok(NULL, ","))
+            names[n++] = t;
+        dm_str out = {0};
+        int rc = cc ? counters_plan_describe(cc, names, n, &out) : -1;
+        if (rc == 0)
+            fputs(dm_str_get(&out), stdout);
+        else
+            fprintf(stderr, "dmbench: error: %s\n", out.len ? dm_str_get(&out) : "no GL context");
+        dm_str_free(&out);
+        free(copy);
+        counters_context_destroy(cc);
+        gl_context_destroy(gl);
+        return rc == 0 ? 0 : 2;
+    }
+    printf("%-26s %-17s %-7s %-5s %-11s %s\n", "counter", "group", "unit", "det", "available", "description");
+    for (size_t i = 0; i < counters_count(); i++) {
+        const counters_info *c = counters_info_at(i);
+        const char *why = NULL;
+        int avail = cc ? counters_available(cc, c->name, &why) : 0;
+        printf("%-26s %-17s %-7s %-5s %-11s %s\n", c->name, c->group, counters_unit_name(c->unit),
+               c->deterministic ? "yes" : "no", avail ? "yes" : "no",
+               cc ? counters_driver_note(cc, c->name) : c->description);
+        if (!avail && why)
+            printf("%-26s   unavailable: %s\n", "", why);
+    }
+    dm_str_free(&err);
+    counters_context_destroy(cc);
+    gl_context_destroy(gl);
+    return 0;
+}
+
+static int list__names(const char *const *names)
+{
+    for (const char *const *n = names; *n; n++)
+        printf("%s\n", *n);
+    return 0;
+}
+
+int cli_list(int argc, char **argv)
+{
+    static const char *const what[] = { "techniques", "axes", "counters", "meshes", "textures", "models" };
+    static const char *const models[] = {
+        "pipeline-linear   WallTime = c0 + sum c_k*counter_k (VS, TES, clipped primitives, samples), c_k >= 0",
+        "tess-power        a + b*tess_level^p",
+        "resolution-linear a + b*SamplesPassed",
+        "(or any formula: --formula \"a + b*tess_level^p\")", NULL };
+    const char *passes = NULL;
+    if (argc < 2)
+        return cli__usage_error("usage: dmbench list techniques|axes|counters|meshes|textures|models");
+    for (int i = 2; i < argc; i++) {
+        if (strcmp(argv[i], "--passes") == 0 && strcmp(argv[1], "counters") == 0) {
+            if (!(passes = cli__value(argc, argv, &i)))
+                return 2;
+        } else {
+            static const char *const valid[] = { "--passes" };
+            return cli__unknown_option("list", argv[i], valid, 1);
+        }
+    }
+    const char *w = argv[1];
+    if (strcmp(w, "techniques") == 0)
+        return list__techniques();
+    if (strcmp(w, "axes") == 0)
+        return list__axes();
+    if (strcmp(w, "counters") == 0)
+        return list__counters(passes);
+    if (strcmp(w, "meshes") == 0)
+        return list__names(mesh_names());
+    if (strcmp(w, "textures") == 0)
+        return list__names(maps_names());
+    if (strcmp(w, "models") == 0)
+        return list__names(models);
+    const char *close = dm_closest(w, what, 6);
+    return cli__usage_error("list: unknown list '%s'%s%s%s; valid: techniques, axes, counters, meshes, "
+                            "textures, models", w, close ? "; did you mean '" : "", close ? close : "",
+                            close ? "'?" : "");
+}

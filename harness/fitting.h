@@ -1,0 +1,33 @@
+/* fitting.h — cost models over a run's results (used by `run` and `fit`).
+ *
+ * Variables a formula may use: every counter of the run (its median for
+ * timed counters, its value otherwise), every numeric axis, and
+ * `resolution` as the pixel count W×H.  A configuration missing a variable
+ * or the response gets NaN there, which the fitter excludes and counts.
+ * GPUTime is never used when the timer is partial (SPEC §4).  Failed
+ * configurations are not used.
+ */
+#ifndef HARNESS_FITTING_H
+#define HARNESS_FITTING_H
+
+#include <stddef.h>
+#include "core/dm_results.h"
+#include "models/fit.h"
+
+typedef struct fitting_spec {
+    const char *name;            /* built-in model name or a label */
+    const char *formula;         /* NULL: the built-in model's formula */
+    const char *response;        /* NULL: the model's default, else WallTime */
+    const char *const *group_by; /* one fit per distinct value of these axes */
+    size_t n_group_by;
+    fit_loss loss;
+} fitting_spec;
+
+/* Fits the spec to the run; appends one dm_fit_result per group to
+ * fits/n.  A group that cannot be fitted adds a line to warnings.
+ * Returns 0, or DM_ERR_UNKNOWN when the model is neither built in nor
+ * given a formula (err lists the built-in models). */
+int fitting_run(const fitting_spec *spec, const dm_run_result *run, dm_fit_result **fits,
+                size_t *n, dm_str *warnings, dm_str *err);
+
+#endif

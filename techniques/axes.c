@@ -1,0 +1,285 @@
+/* axes.c — the catalog of sweep axes (see axes.h). */
+#include "techniques/axes.h"
+
+#include <ctype.h>
+#include <errno.h>
+#include <math.h>
+#include <pthread.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+#include "techniques/maps.h"
+#include "techniques/mesh.h"
+#include "techniques/technique.h"
+
+static const char *const axes__on_off[] = {"on", "off", NULL};
+static const char *const axes__spacing[] = {"equal", "fractional_even", "fractional_odd", NULL};
+static const char *const axes__lod[] = {"uniform", "distance", "screen-edge", "flatness", NULL};
+static const char *const axes__shadow[] = {"none", "raytrace", "soft", NULL};
+static const char *const axes__lighting[] = {"lambert", "phong", "blinn-phong", "cook-torrance", NULL};
+static const char *const axes__filter[] = {"nearest", "bilinear", "trilinear", "aniso2",
+                                           "aniso4", "aniso8", "aniso16", NULL};
+static const char *const axes__vfilter[] = {"nearest", "bilinear-hw", "bilinear-manual",
+                                            "mip", "mip-lerp", NULL};
+static const char *const axes__hfmt[] = {"r8", "r16", "r16f", "r32f", "rgba32f", NULL};
+static const char *const axes__nfmt[] = {"rgb8", "rgba8", "rg8", "rgb16f", "rgba32f",
+                                         "bc1", "bc3", "bc5", "bc7", NULL};
+static const char *const axes__afmt[] = {"rgba8", "srgb8_a8", "rgba16f", "rgba32f",
+                                         "bc1", "bc3", "bc7", NULL};
+static const char *const axes__vt[] = {"off", "software", "sparse", NULL};
+
+#define E AXIS_ENUM
+#define I AXIS_INT
+#define F AXIS_FLOAT
+/* choices of technique, mesh and maps come from their registries (axes__init). */
+static axis_info axes__table[] = {
+    {"technique", E, NULL, 0, 0, "normal", 1, "surface-detail technique to render"},
+    {"mesh", E, NULL, 0, 0, "plane", 1, "built-in mesh"},
+    {"mesh_density", I, NULL, 0, 1024, "0", 1,
+     "mesh resolution (plane: vertices per side, sphere: subdivision level, cylinder: segments); 0 = mesh default"},
+    {"resolution", AXIS_SIZE2, NULL, 1, 8192, "640x360", 1, "render target size WxH"},
+    {"tess_level", I, NULL, 1, 64, "1", 0, "tessellation level (inner = outer)"},
+    {"tess_spacing", E, axes__spacing, 0, 0, "equal", 0, "tessellation spacing"},
+    {"lod", E, axes__lod, 0, 0, "uniform", 0, "how the tessellation level is chosen per patch"},
+    {"patch_cull", E, axes__on_off, 0, 0, "off", 0, "cull back-facing/off-screen patches in the control stage"},
+    {"crack_free", E, axes__on_off, 0, 0, "off", 0, "per-edge levels from edge midpoints so neighbours agree"},
+    {"height_scale", F, NULL, -1, 1, "0.06", 0, "displacement / parallax depth in world units per height unit"},
+    {"offset_limit", E, axes__on_off, 0, 0, "off", 0, "parallax offset limiting (Welsh): drop the division by V.z"},
+    {"steps", I, NULL, 1, 512, "32", 0, "parallax search steps, or 'auto' (min_steps..max_steps by view angle)"},
+    {"min_steps", I, NULL, 1, 512, "8", 0, "fewest steps of steps=auto (view along the normal)"},
+    {"max_steps", I, NULL, 1, 512, "64", 0, "most steps of steps=auto (grazing view)"},
+    {"shadow", E, axes__shadow, 0, 0, "none", 0, "self-shadowing from the height map"},
+    {"lighting", E, axes__lighting, 0, 0, "blinn-phong", 0, "lighting model"},
+    {"light_count", I, NULL, 1, 8, "1", 0, "number of point lights"},
+    {"filter", E, axes__filter, 0, 0, "trilinear", 1, "texture filtering of the material maps"},
+    {"vertex_filter", E, axes__vfilter, 0, 0, "nearest", 0, "height-map filtering in the vertex stage"},
+    {"visibility_test", E, axes__on_off, 0, 0, "off", 0, "skip displacement of vertices outside the widened view volume"},
+    {"height_format", E, axes__hfmt, 0, 0, "r32f", 0, "internal format of the height map"},
+    {"normal_format", E, axes__nfmt, 0, 0, "rgb8", 0, "internal format of the normal map"},
+    {"albedo_format", E, axes__afmt, 0, 0, "rgba8", 1, "internal format of the albedo map"},
+    {"texture_size", I, NULL, 16, 16384, "512", 1, "texels per side of the material maps"},
+    {"virtual_texture", E, axes__vt, 0, 0, "off", 0, "virtual texturing of the material maps"},
+    {"vt_page_size", I, NULL, 16, 1024, "128", 0, "virtual texture page size in texels"},
+    {"vt_cache_pages", I, NULL, 1, 65536, "256", 0, "pages in the physical page cache"},
+    {"toksvig", E, axes__on_off, 0, 0, "off", 0, "Toksvig specular anti-aliasing from the filtered normal length"},
+    {"camera.distance", F, NULL, 0.1, 100, "3.0", 1, "orbit camera distance from the origin"},
+    {"camera.azimuth", F, NULL, -360, 360, "30", 1, "orbit azimuth in degrees (0 = camera on +Z)"},
+    {"camera.elevation", F, NULL, -89.9, 89.9, "20", 1, "orbit elevation in degrees toward +Y"},
+    {"camera.fov", F, NULL, 1, 179, "45", 1, "vertical field of view in degrees"},
+    {"maps", E, NULL, 0, 0, "bricks", 1, "procedural material maps"},
+};
+#undef E
+#undef I
+#undef F
+
+#define AXES__N (sizeof axes__table / sizeof axes__table[0])
+
+static pthread_once_t axes__once = PTHREAD_ONCE_INIT;
+
+static void axes__init(void)
+{
+    axes__table[0].choices = technique_names();
+    axes__table[1].choices = mesh_names();
+    axes__table[AXES__N - 1].choices = maps_names();
+}
+
+size_t axes_count(void) { return AXES__N; }
+
+const axis_info *axes_at(size_t i)
+{
+    pthread_once(&axes__once, axes__init);
+    return i < AXES__N ? &axes__table[i] : NULL;
+}
+
+const axis_info *axes_find(const char *name)
+{
+    for (size_t i = 0; name && i < AXES__N; i++)
+        if (strcmp(axes_at(i)->name, name) == 0)
+            return axes_at(i);
+    return NULL;
+}
+
+/* Levenshtein distance (names are short; bounded to 63 characters). */
+static size_t axes__distance(const char *a, const char *b)
+{
+    size_t la = strnlen(a, 63), lb = strnlen(b, 63), row[64];
+    for (size_t j = 0; j <= lb; j++)
+        row[j] = j;
+    for (size_t i = 1; i <= la; i++) {
+        size_t diag = row[0];
+        row[0] = i;
+        for (size_t j = 1; j <= lb; j++) {
+            size_t up = row[j], best = diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
+            if (up + 1 < best)
+                best = up + 1;
+            if (row[j - 1] + 1 < best)
+                best = row[j - 1] + 1;
+            diag = up;
+            row[j] = best;
+        }
+    }
+    return row[lb];
+}
+
+const char *axes_closest(const char *word, const char *const *names, size_t n)
+{
+    const char *best = NULL;
+    size_t best_d = (size_t)-1, len = strlen(word);
+    for (size_t i = 0; i < n && names[i]; i++) {
+        size_t d = axes__distance(word, names[i]);
+        if (d < best_d) {
+            best_d = d;
+            best = names[i];
+        }
+    }
+    size_t limit = len / 3 > 2 ? len / 3 : 2;
+    return best_d <= limit ? best : NULL;
+}
+
+static void axes__list(dm_str *err, const char *const *names, size_t n)
+{
+    for (size_t i = 0; i < n && names[i]; i++)
+        dm_str_printf(err, "%s%s", i ? ", " : "", names[i]);
+}
+
+static int axes__unknown(const char *name, dm_str *err)
+{
+    const char *names[AXES__N];
+    for (size_t i = 0; i < AXES__N; i++)
+        names[i] = axes_at(i)->name;
+    const char *near = axes_closest(name, names, AXES__N);
+    dm_str_printf(err, "unknown axis '%s'; ", name);
+    if (near)
+        dm_str_printf(err, "did you mean '%s'? ", near);
+    dm_str_cat(err, "valid axes: ");
+    axes__list(err, names, AXES__N);
+    return DM_ERR_UNKNOWN;
+}
+
+/* Parses a whole string as an integer / a finite real. */
+static int axes__int(const char *s, long *out)
+{
+    char *end;
+    errno = 0;
+    long v = strtol(s, &end, 10);
+    while (*end && isspace((unsigned char)*end))
+        end++;
+    if (errno || end == s || *end)
+        return 0;
+    *out = v;
+    return 1;
+}
+
+static int axes__real(const char *s, double *out)
+{
+    char *end;
+    errno = 0;
+    double v = strtod(s, &end);
+    while (*end && isspace((unsigned char)*end))
+        end++;
+    if (errno || end == s || *end || !isfinite(v))
+        return 0;
+    *out = v;
+    return 1;
+}
+
+int axes_parse_size2(const char *s, int *w, int *h)
+{
+    long a, b;
+    char *end;
+    while (*s == '[' || isspace((unsigned char)*s))
+        s++;
+    errno = 0;
+    a = strtol(s, &end, 10);
+    if (errno || end == s)
+        return DM_ERR_ARG;
+    s = end;
+    while (isspace((unsigned char)*s))
+        s++;
+    if (*s != 'x' && *s != 'X' && *s != ',')
+        return DM_ERR_ARG;
+    s++;
+    b = strtol(s, &end, 10);
+    if (errno || end == s)
+        return DM_ERR_ARG;
+    while (*end == ']' || isspace((unsigned char)*end))
+        end++;
+    if (*end || a < 1 || a > 8192 || b < 1 || b > 8192)
+        return DM_ERR_ARG;
+    *w = (int)a;
+    *h = (int)b;
+    return 0;
+}
+
+/* Checks an enum value; appends "expected one of: ..." on failure. */
+static int axes__check_enum(const axis_info *a, const char *value, dm_str *err)
+{
+    size_t n = 0;
+    for (; a->choices && a->choices[n]; n++)
+        if (strcmp(a->choices[n], value) == 0)
+            return 0;
+    dm_str_printf(err, "invalid value '%s' for %s; expected one of: ", value, a->name);
+    axes__list(err, a->choices, n);
+    const char *near = a->choices ? axes_closest(value, a->choices, n) : NULL;
+    if (near)
+        dm_str_printf(err, " (did you mean '%s'?)", near);
+    return DM_ERR_ARG;
+}
+
+int axes_check(const char *name, const char *value, dm_str *err)
+{
+    const axis_info *a = axes_find(name);
+    if (!a)
+        return axes__unknown(name ? name : "", err);
+    value = value ? value : "";
+    long iv;
+    double fv;
+    int w, h;
+    switch (a->kind) {
+    case AXIS_ENUM:
+        return axes__check_enum(a, value, err);
+    case AXIS_INT:
+        if (strcmp(a->name, "steps") == 0 && strcmp(value, "auto") == 0)
+            return 0;
+        if (axes__int(value, &iv) && iv >= a->min && iv <= a->max)
+            return 0;
+        dm_str_printf(err, "invalid value '%s' for %s; expected an integer in [%g, %g]%s", value,
+                      a->name, a->min, a->max, strcmp(a->name, "steps") == 0 ? " or 'auto'" : "");
+        return DM_ERR_ARG;
+    case AXIS_FLOAT:
+        if (axes__real(value, &fv) && fv >= a->min && fv <= a->max)
+            return 0;
+        dm_str_printf(err, "invalid value '%s' for %s; expected a number in [%g, %g]", value,
+                      a->name, a->min, a->max);
+        return DM_ERR_ARG;
+    case AXIS_SIZE2:
+        if (axes_parse_size2(value, &w, &h) == 0)
+            return 0;
+        dm_str_printf(err, "invalid value '%s' for %s; expected WxH with each side in [%g, %g]",
+                      value, a->name, a->min, a->max);
+        return DM_ERR_ARG;
+    }
+    return DM_ERR_ARG;
+}
+
+char *axes_canonical(const char *name, const char *value)
+{
+    dm_str scratch = {0};
+    int rc = axes_check(name, value, &scratch);
+    dm_str_free(&scratch);
+    if (rc)
+        return NULL;
+    const axis_info *a = axes_find(name);
+    long iv;
+    double fv;
+    int w, h;
+    if (a->kind == AXIS_INT && axes__int(value, &iv))
+        return dm_xasprintf("%ld", iv);
+    if (a->kind == AXIS_FLOAT && axes__real(value, &fv))
+        return dm_xasprintf("%.9g", fv);
+    if (a->kind == AXIS_SIZE2 && axes_parse_size2(value, &w, &h) == 0)
+        return dm_xasprintf("%dx%d", w, h);
+    return dm_xstrdup(value);
+}

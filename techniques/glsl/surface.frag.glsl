@@ -1,0 +1,157 @@
+// surface.frag.glsl — every fragment-stage technique, chosen by #define
+// (see technique_list.c): SURF_UNLIT, SURF_NORMAL_MAP, SURF_BUMP,
+// SURF_PARALLAX 1|2|3, OFFSET_LIMIT_ON, SHADOW_RAYTRACE|SHADOW_SOFT,
+// NORMAL_FORMAT_RG8|NORMAL_FORMAT_BC5 (two channels, z reconstructed).
+#include "lighting.glsl"
+
+#ifndef SURF_PARALLAX
+#define SURF_PARALLAX 0
+#endif
+
+layout(binding = 0) uniform sampler2D t_height;
+layout(binding = 1) uniform sampler2D t_normal;
+layout(binding = 2) uniform sampler2D t_albedo;
+uniform float u_height_scale;
+uniform int u_steps;         // 0 = auto: min_steps at normal view .. max_steps at grazing
+uniform int u_min_steps;
+uniform int u_max_steps;
+
+in SurfaceData {
+    vec2 uv;
+    vec3 view_ts;
+    vec3 light_ts[MAX_LIGHTS];
+} vi;
+
+layout(location = 0) out vec4 o_color;
+
+// V.z is clamped to at least this before dividing by it (Kaneko parallax and
+// the searches), so grazing views give a long but finite offset.
+const float PARALLAX_MIN_VZ = 0.05;
+
+vec2 g_dx, g_dy;   // UV derivatives taken once in uniform control flow
+
+float height_at(vec2 uv) { return textureGrad(t_height, uv, g_dx, g_dy).r; }
+
+#if SURF_PARALLAX >= 2
+int search_steps(vec3 v)
+{
+    int n = u_steps > 0 ? u_steps : int(mix(float(u_max_steps), float(u_min_steps), abs(v.z)));
+    return clamp(n, 1, 512);
+}
+
+// Steep search (and POM refinement) from the top of the height field,
+// layers of depth 1/n along -V.xy/V.z; returns the UV where the ray meets it.
+vec2 parallax_search(vec2 uv, vec3 v)
+{
+    int n = search_steps(v);
+    float layer = 1.0 / float(n);
+    vec2 delta = -v.xy / max(v.z, PARALLAX_MIN_VZ) * u_height_scale * UV_PER_WORLD * layer;
+    float cur = 0.0, map = 1.0 - height_at(uv);
+    vec2 prev_uv = uv;
+    float prev = 0.0, prev_map = map;
+    for (int i = 0; i < n && cur < map; i++) {
+        prev_uv = uv; prev = cur; prev_map = map;
+        uv += delta;
+        cur += layer;
+        map = 1.0 - height_at(uv);
+    }
+#if SURF_PARALLAX == 3
+    float after = map - cur, before = prev_map - prev, den = after - before;
+    float w = abs(den) > 1e-6 ? clamp(after / den, 0.0, 1.0) : 0.0;
+    uv = mix(uv, prev_uv, w);
+#endif
+    return uv;
+}
+#endif
+
+vec2 parallax_uv(vec2 uv, vec3 v)
+{
+#if SURF_PARALLAX == 1
+    float scale = u_height_scale * UV_PER_WORLD, bias = scale * 0.5;
+    float hp = height_at(uv) * scale - bias;
+#ifdef OFFSET_LIMIT_ON
+    return uv + hp * v.xy;                                  // Welsh
+#else
+    return uv + hp * v.xy / max(v.z, PARALLAX_MIN_VZ);      // Kaneko
+#endif
+#elif SURF_PARALLAX >= 2
+    return parallax_search(uv, v);
+#else
+    return uv;
+#endif
+}
+
+// Tangent-space normal at uv; nlen gets the filtered length (Toksvig).
+vec3 surface_normal(vec2 uv, out float nlen)
+{
+    nlen = 1.0;
+#if defined(SURF_NORMAL_MAP)
+    vec3 n = textureGrad(t_normal, uv, g_dx, g_dy).xyz * 2.0 - 1.0;
+#if defined(NORMAL_FORMAT_RG8) || defined(NORMAL_FORMAT_BC5)
+    n.z = sqrt(max(0.0, 1.0 - dot(n.xy, n.xy)));
+#endif
+    nlen = length(n);
+    return nlen > 1e-6 ? n / nlen : vec3(0.0, 0.0, 1.0);
+#elif defined(SURF_BUMP)
+    vec2 ts = vec2(textureSize(t_height, 0));
+    vec2 du = vec2(1.0 / ts.x, 0.0), dv = vec2(0.0, 1.0 / ts.y);
+    float k = u_height_scale * UV_PER_WORLD;
+    float gu = (height_at(uv + du) - height_at(uv - du)) * ts.x * 0.5;
+    float gv = (height_at(uv + dv) - height_at(uv - dv)) * ts.y * 0.5;
+    return normalize(vec3(-k * gu, -k * gv, 1.0));
+#else
+    return vec3(0.0, 0.0, 1.0);
+#endif
+}
+
+// Self-shadowing toward light direction l (tangent space, unit) from uv.
+float self_shadow(vec2 uv, vec3 l)
+{
+#if SURF_PARALLAX == 3 && (defined(SHADOW_RAYTRACE) || defined(SHADOW_SOFT))
+    if (l.z <= 0.0)
+        return 1.0;
+    float h0 = height_at(uv);
+    vec2 span = l.xy / max(l.z, PARALLAX_MIN_VZ) * u_height_scale * UV_PER_WORLD * (1.0 - h0);
+#ifdef SHADOW_RAYTRACE
+    // March toward the light in 30 steps; shadowed where the field is above the ray.
+    for (int i = 1; i <= 30; i++) {
+        float t = float(i) / 30.0;
+        if (height_at(uv + span * t) > h0 + (1.0 - h0) * t + 1e-3)
+            return 0.0;
+    }
+    return 1.0;
+#else
+    // Soft (Tatarchuk 2006): 7 samples at 0.88 .. 0.22 of the ray, the
+    // deepest penetration weighted toward the surface darkens most.
+    float occ = 0.0;
+    for (int i = 0; i < 7; i++) {
+        float t = 0.88 - 0.11 * float(i);
+        float above = height_at(uv + span * t) - (h0 + (1.0 - h0) * t);
+        occ = max(occ, above * 8.0 * (1.0 - t));
+    }
+    return 1.0 - clamp(occ, 0.0, 1.0);
+#endif
+#else
+    return 1.0;
+#endif
+}
+
+void main()
+{
+    g_dx = dFdx(vi.uv);
+    g_dy = dFdy(vi.uv);
+    vec3 v = normalize(vi.view_ts);
+    vec2 uv = parallax_uv(vi.uv, v);
+    vec3 albedo = textureGrad(t_albedo, uv, g_dx, g_dy).rgb;
+#ifdef SURF_UNLIT
+    o_color = vec4(albedo, 1.0);
+#else
+    float nlen;
+    vec3 n = surface_normal(uv, nlen);
+    vec3 c = u_ambient * albedo;
+    for (int i = 0; i < u_light_count && i < MAX_LIGHTS; i++)
+        c += self_shadow(uv, normalize(vi.light_ts[i]))
+           * lighting_light(n, v, vi.light_ts[i], u_light_color[i], albedo, nlen);
+    o_color = vec4(c, 1.0);
+#endif
+}

@@ -1,0 +1,739 @@
+/* render.c — configurations to GL draws, with program/mesh/maps caches.
+ *
+ * Scene conventions (shared by every technique):
+ *  - camera: orbit around the origin; azimuth 0 / elevation 0 puts it on +Z
+ *    looking at the origin, elevation turns it up toward +Y; perspective with
+ *    the vertical fov in degrees, aspect from the viewport, near 0.05, far 100;
+ *  - meshes are drawn in object space = world space (model = identity);
+ *    clip_space meshes (`fullscreen`) are drawn with identity matrices;
+ *  - light i (of light_count) is a point light at azimuth + 45° + i·45°,
+ *    elevation min(elevation + 35° − 10°·(i mod 3), 80°), distance 1.2 × the
+ *    camera distance; colour 1.6/(1 + 0.25·(count − 1)); attenuation
+ *    1/(1 + 0.1 d + 0.05 d²); ambient 0.08; shininess 48; Cook-Torrance
+ *    f0 0.04, roughness 0.35;
+ *  - textures: unit 0 height (R, value in [0,1]), unit 1 normal (n·0.5+0.5),
+ *    unit 2 albedo; CPU box-filtered mip chain, GL_REPEAT; the `filter` axis
+ *    picks a sampler: nearest = NEAREST_MIPMAP_NEAREST, bilinear =
+ *    LINEAR_MIPMAP_NEAREST, trilinear = LINEAR_MIPMAP_LINEAR, anisoN =
+ *    trilinear + anisotropy min(N, GL_MAX_TEXTURE_MAX_ANISOTROPY).
+ */
+#include "techniques/render.h"
+
+#include <epoxy/gl.h>
+#include <cglm/cglm.h>
+#include <ctype.h>
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+#include "techniques/axes.h"
+#include "techniques/maps.h"
+#include "techniques/mesh.h"
+#include "techniques/shaders.h"
+#include "techniques/technique.h"
+
+#define RENDER__MAX_LIGHTS 8
+
+enum render__uniform {
+    RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
+    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_ROUGHNESS, RU_COUNT
+};
+static const char *const render__uniform_names[RU_COUNT] = {
+    "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
+    "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_roughness"
+};
+
+typedef struct render__program {
+    char *key;
+    GLuint id;
+    GLint loc[RU_COUNT];
+    GLint *axis_loc;             /* per axis index: location of u_<axis>, or -1 */
+} render__program;
+
+typedef struct render__mesh {
+    char *key;
+    GLuint vao, vbo, ibo;
+    size_t n_vertices, n_indices, bytes;
+    int clip_space;
+} render__mesh;
+
+typedef struct render__maps {
+    char *key;
+    GLuint tex[3];               /* height, normal, albedo */
+    size_t bytes[3];
+} render__maps;
+
+typedef struct render__sampler {
+    char *key;
+    GLuint id;
+} render__sampler;
+
+typedef struct render__item {
+    int used;
+    const technique_desc *tech;
+    size_t prog, mesh, maps, sampler;
+    float cam[4];                /* distance, azimuth, elevation, fov */
+    double *axis_val;            /* per axis index: numeric value (steps auto = 0) */
+    int light_count;
+    tech_item_info info;
+} render__item;
+
+struct tech_renderer {
+    char *driver;                /* GL_RENDERER + GL_VERSION, part of program keys */
+    float max_aniso;             /* 0 when anisotropic filtering is absent */
+    render__program *progs;
+    size_t n_progs;
+    render__mesh *meshes;
+    size_t n_meshes;
+    render__maps *maps;
+    size_t n_maps;
+    render__sampler *samplers;
+    size_t n_samplers;
+    render__item *items;
+    size_t n_items;
+};
+
+/* Grows a cache array by one zeroed element; returns its index. */
+#define RENDER__PUSH(arr, n) \
+    ((arr) = dm_xrealloc((arr), ((n) + 1) * sizeof *(arr)), \
+     memset(&(arr)[(n)], 0, sizeof *(arr)), (n)++)
+
+int tech_renderer_create(tech_renderer **out)
+{
+    /* glGetString returns NULL when no context is current. */
+    const char *ren = (const char *)glGetString(GL_RENDERER);
+    const char *ver = ren ? (const char *)glGetString(GL_VERSION) : NULL;
+    if (!ren || !ver || epoxy_gl_version() < 45)
+        return DM_ERR_GL;
+    tech_renderer *r = dm_xcalloc(1, sizeof *r);
+    r->driver = dm_xasprintf("%s | %s", ren, ver);
+    if (epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
+        epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic"))
+        glGetFloatv(GL_MAX_TEXTURE_MAX_ANISOTROPY_EXT, &r->max_aniso);
+    *out = r;
+    return 0;
+}
+
+void tech_renderer_destroy(tech_renderer *r)
+{
+    if (!r)
+        return;
+    for (size_t i = 0; i < r->n_progs; i++) {
+        glDeleteProgram(r->progs[i].id);
+        free(r->progs[i].key);
+        free(r->progs[i].axis_loc);
+    }
+    for (size_t i = 0; i < r->n_meshes; i++) {
+        glDeleteVertexArrays(1, &r->meshes[i].vao);
+        glDeleteBuffers(1, &r->meshes[i].vbo);
+        glDeleteBuffers(1, &r->meshes[i].ibo);
+        free(r->meshes[i].key);
+    }
+    for (size_t i = 0; i < r->n_maps; i++) {
+        glDeleteTextures(3, r->maps[i].tex);
+        free(r->maps[i].key);
+    }
+    for (size_t i = 0; i < r->n_samplers; i++) {
+        glDeleteSamplers(1, &r->samplers[i].id);
+        free(r->samplers[i].key);
+    }
+    for (size_t i = 0; i < r->n_items; i++)
+        free(r->items[i].axis_val);
+    free(r->progs);
+    free(r->meshes);
+    free(r->maps);
+    free(r->samplers);
+    free(r->items);
+    free(r->driver);
+    free(r);
+}
+
+/* ---- parameters --------------------------------------------------------- */
+
+typedef struct render__cfg {
+    const dm_kv *kv;
+    size_t n;
+} render__cfg;
+
+/* Value of axis `name`: the given parameter, else the axis default. */
+static const char *render__get(const render__cfg *c, const char *name)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (c->kv[i].key && strcmp(c->kv[i].key, name) == 0)
+            return c->kv[i].value;
+    const axis_info *a = axes_find(name);
+    return a ? a->def : NULL;
+}
+
+/* Validates every parameter; the technique may be a test-only one. */
+static int render__validate(const render__cfg *c, const technique_desc **tech, dm_str *log)
+{
+    const char *tname = render__get(c, "technique");
+    *tech = technique_find(tname);
+    if (!*tech) {
+        dm_str err = {0};
+        int rc = axes_check("technique", tname, &err);
+        dm_str_printf(log, "%s\n", dm_str_get(&err));
+        dm_str_free(&err);
+        return rc ? rc : DM_ERR_UNKNOWN;
+    }
+    for (size_t i = 0; i < c->n; i++) {
+        if (!c->kv[i].key || strcmp(c->kv[i].key, "technique") == 0)
+            continue;
+        dm_str err = {0};
+        int rc = axes_check(c->kv[i].key, c->kv[i].value, &err);
+        if (rc)
+            dm_str_printf(log, "%s\n", dm_str_get(&err));
+        dm_str_free(&err);
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+/* "#define AXIS_VALUE" for every ENUM axis the technique declares. */
+static void render__defines(const technique_desc *t, const render__cfg *c, dm_str *out)
+{
+    if (t->defines)
+        dm_str_cat(out, t->defines);
+    for (size_t i = 0; t->axes && t->axes[i]; i++) {
+        const axis_info *a = axes_find(t->axes[i]);
+        if (!a || a->kind != AXIS_ENUM)
+            continue;
+        char buf[128];
+        snprintf(buf, sizeof buf, "%s_%s", a->name, render__get(c, a->name));
+        for (char *p = buf; *p; p++)
+            *p = *p == '-' || *p == '.' ? '_' : (char)toupper((unsigned char)*p);
+        dm_str_printf(out, "#define %s\n", buf);
+    }
+}
+
+/* ---- programs ----------------------------------------------------------- */
+
+static GLuint render__compile(GLenum stage, const char *file, const char *defines,
+                              const char *tname, dm_str *log)
+{
+    dm_str src = {0}, err = {0};
+    if (shaders_compose(file, defines, &src, &err)) {
+        dm_str_printf(log, "technique '%s': %s", tname, dm_str_get(&err));
+        dm_str_free(&src);
+        dm_str_free(&err);
+        return 0;
+    }
+    GLuint sh = glCreateShader(stage);
+    const char *text = dm_str_get(&src);
+    glShaderSource(sh, 1, &text, NULL);
+    glCompileShader(sh);
+    dm_str_free(&src);
+    GLint ok = 0, len = 0;
+    glGetShaderiv(sh, GL_COMPILE_STATUS, &ok);
+    if (ok)
+        return sh;
+    glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
+    char *info = dm_xcalloc(1, (size_t)len + 1);
+    glGetShaderInfoLog(sh, len, NULL, info);
+    dm_str_printf(log, "technique '%s': shader '%s' failed to compile:\n%s\n", tname, file, info);
+    free(info);
+    glDeleteShader(sh);
+    return 0;
+}
+
+/* Compiles and links the technique's stages; 0 and the log on failure. */
+static GLuint render__link(const technique_desc *t, const char *defines, dm_str *log)
+{
+    const char *files[5] = {t->vs, t->tcs, t->tes, t->gs, t->fs};
+    static const GLenum stages[5] = {GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER,
+                                     GL_TESS_EVALUATION_SHADER, GL_GEOMETRY_SHADER,
+                                     GL_FRAGMENT_SHADER};
+    GLuint prog = glCreateProgram(), sh[5] = {0};
+    int failed = 0;
+    for (int i = 0; i < 5; i++) {
+        if (!files[i])
+            continue;
+        sh[i] = render__compile(stages[i], files[i], defines, t->name, log);
+        if (!sh[i])
+            failed = 1;
+        else
+            glAttachShader(prog, sh[i]);
+    }
+    GLint ok = 0;
+    if (!failed) {
+        glLinkProgram(prog);
+        glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    }
+    if (!failed && !ok) {
+        GLint len = 0;
+        glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
+        char *info = dm_xcalloc(1, (size_t)len + 1);
+        glGetProgramInfoLog(prog, len, NULL, info);
+        dm_str_printf(log, "technique '%s': program failed to link:\n%s\n", t->name, info);
+        free(info);
+    }
+    for (int i = 0; i < 5; i++)
+        if (sh[i])
+            glDeleteShader(sh[i]);
+    if (failed || !ok) {
+        glDeleteProgram(prog);
+        return 0;
+    }
+    return prog;
+}
+
+/* Finds or builds the program of (technique, defines, driver); *cached = 1
+ * when it came from the cache.  DM_ERR_SHADER with the info log on failure. */
+static int render__program_get(tech_renderer *r, const technique_desc *t, const char *defines,
+                               size_t *idx, int *cached, dm_str *log)
+{
+    char *key = dm_xasprintf("%s\n%s\n%s", t->name, defines, r->driver);
+    for (size_t i = 0; i < r->n_progs; i++)
+        if (strcmp(r->progs[i].key, key) == 0) {
+            free(key);
+            *idx = i;
+            *cached = 1;
+            return 0;
+        }
+    GLuint id = render__link(t, defines, log);
+    if (!id) {
+        free(key);
+        return DM_ERR_SHADER;
+    }
+    size_t n = RENDER__PUSH(r->progs, r->n_progs);
+    render__program *p = &r->progs[n];
+    p->key = key;
+    p->id = id;
+    for (int u = 0; u < RU_COUNT; u++)
+        p->loc[u] = glGetUniformLocation(id, render__uniform_names[u]);
+    p->axis_loc = dm_xmalloc(axes_count() * sizeof(GLint));
+    for (size_t a = 0; a < axes_count(); a++) {
+        char name[80];
+        snprintf(name, sizeof name, "u_%s", axes_at(a)->name);
+        for (char *c = name; *c; c++)
+            *c = *c == '.' ? '_' : *c;
+        p->axis_loc[a] = glGetUniformLocation(id, name);
+    }
+    *idx = n;
+    *cached = 0;
+    return 0;
+}
+
+/* ---- meshes -------------------------------------------------------------- */
+
+static int render__mesh_get(tech_renderer *r, const char *name, int density, size_t *idx,
+                            dm_str *log)
+{
+    char *key = dm_xasprintf("%s/%d", name, density);
+    for (size_t i = 0; i < r->n_meshes; i++)
+        if (strcmp(r->meshes[i].key, key) == 0) {
+            free(key);
+            *idx = i;
+            return 0;
+        }
+    mesh_data md;
+    mesh_desc d = {.name = name, .density = density};
+    int rc = mesh_build(&d, &md);
+    if (rc) {
+        dm_str_printf(log, "mesh '%s' with density %d: %s\n", name, density, dm_strerror(rc));
+        free(key);
+        return rc;
+    }
+    size_t n = RENDER__PUSH(r->meshes, r->n_meshes);
+    render__mesh *m = &r->meshes[n];
+    m->key = key;
+    m->n_vertices = md.n_vertices;
+    m->n_indices = md.n_indices;
+    m->bytes = mesh_bytes(&md);
+    m->clip_space = md.clip_space;
+    glCreateVertexArrays(1, &m->vao);
+    glCreateBuffers(1, &m->vbo);
+    glCreateBuffers(1, &m->ibo);
+    glNamedBufferStorage(m->vbo, (GLsizeiptr)(md.n_vertices * sizeof(mesh_vertex)), md.vertices, 0);
+    glNamedBufferStorage(m->ibo, (GLsizeiptr)(md.n_indices * sizeof(uint32_t)), md.indices, 0);
+    glVertexArrayVertexBuffer(m->vao, 0, m->vbo, 0, sizeof(mesh_vertex));
+    glVertexArrayElementBuffer(m->vao, m->ibo);
+    static const GLuint comps[4] = {3, 3, 2, 4};
+    static const size_t offs[4] = {offsetof(mesh_vertex, pos), offsetof(mesh_vertex, nrm),
+                                   offsetof(mesh_vertex, uv), offsetof(mesh_vertex, tan)};
+    for (GLuint a = 0; a < 4; a++) {
+        glEnableVertexArrayAttrib(m->vao, a);
+        glVertexArrayAttribFormat(m->vao, a, (GLint)comps[a], GL_FLOAT, GL_FALSE, (GLuint)offs[a]);
+        glVertexArrayAttribBinding(m->vao, a, 0);
+    }
+    mesh_free(&md);
+    *idx = n;
+    return 0;
+}
+
+/* ---- textures ------------------------------------------------------------ */
+
+static const struct { const char *name; GLenum internal; } render__formats[] = {
+    {"r8", GL_R8}, {"r16", GL_R16}, {"r16f", GL_R16F}, {"r32f", GL_R32F},
+    {"rgba32f", GL_RGBA32F}, {"rgb8", GL_RGB8}, {"rgba8", GL_RGBA8}, {"rg8", GL_RG8},
+    {"rgb16f", GL_RGB16F}, {"rgba16f", GL_RGBA16F}, {"srgb8_a8", GL_SRGB8_ALPHA8},
+    {"bc1", GL_COMPRESSED_RGB_S3TC_DXT1_EXT}, {"bc3", GL_COMPRESSED_RGBA_S3TC_DXT5_EXT},
+    {"bc5", GL_COMPRESSED_RG_RGTC2}, {"bc7", GL_COMPRESSED_RGBA_BPTC_UNORM},
+};
+
+static GLenum render__format(const char *name)
+{
+    for (size_t i = 0; i < sizeof render__formats / sizeof render__formats[0]; i++)
+        if (strcmp(render__formats[i].name, name) == 0)
+            return render__formats[i].internal;
+    return 0;
+}
+
+/* 2×2 box filter of a size² image of ch channels into (size/2)². */
+static void render__downsample(const float *src, int size, int ch, float *dst)
+{
+    int h = size / 2;
+    for (int y = 0; y < h; y++)
+        for (int x = 0; x < h; x++)
+            for (int c = 0; c < ch; c++) {
+                size_t a = ((size_t)(2 * y) * (size_t)size + (size_t)(2 * x)) * (size_t)ch + (size_t)c;
+                size_t row = (size_t)size * (size_t)ch;
+                dst[((size_t)y * (size_t)h + (size_t)x) * (size_t)ch + (size_t)c] =
+                    0.25f * (src[a] + src[a + (size_t)ch] + src[a + row] + src[a + row + (size_t)ch]);
+            }
+}
+
+/* Bytes of one texture, summed over its levels as the driver reports them. */
+static size_t render__texture_bytes(GLuint tex, int levels)
+{
+    size_t total = 0;
+    for (int l = 0; l < levels; l++) {
+        GLint comp = 0, w = 0, h = 0, bits = 0, v;
+        glGetTextureLevelParameteriv(tex, l, GL_TEXTURE_COMPRESSED, &comp);
+        glGetTextureLevelParameteriv(tex, l, GL_TEXTURE_WIDTH, &w);
+        glGetTextureLevelParameteriv(tex, l, GL_TEXTURE_HEIGHT, &h);
+        if (comp) {
+            glGetTextureLevelParameteriv(tex, l, GL_TEXTURE_COMPRESSED_IMAGE_SIZE, &v);
+            total += (size_t)v;
+            continue;
+        }
+        static const GLenum q[4] = {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE,
+                                    GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE};
+        for (int i = 0; i < 4; i++) {
+            glGetTextureLevelParameteriv(tex, l, q[i], &v);
+            bits += v;
+        }
+        total += (size_t)w * (size_t)h * (size_t)bits / 8;
+    }
+    return total;
+}
+
+/* Uploads one map (ch channels of float data) with a full CPU mip chain. */
+static int render__upload(GLenum internal, const float *data, int size, int ch, GLuint *tex,
+                          size_t *bytes)
+{
+    static const GLenum fmt[5] = {0, GL_RED, GL_RG, GL_RGB, GL_RGBA};
+    int levels = 1;
+    while ((size >> levels) >= 1)
+        levels++;
+    glCreateTextures(GL_TEXTURE_2D, 1, tex);
+    glBindTexture(GL_TEXTURE_2D, *tex);
+    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
+    float *buf = dm_xmalloc((size_t)size * (size_t)size * (size_t)ch * sizeof(float));
+    memcpy(buf, data, (size_t)size * (size_t)size * (size_t)ch * sizeof(float));
+    for (int l = 0, s = size; l < levels; l++, s /= 2) {
+        glTexImage2D(GL_TEXTURE_2D, l, (GLint)internal, s, s, 0, fmt[ch], GL_FLOAT, buf);
+        if (s > 1)
+            render__downsample(buf, s, ch, buf);
+    }
+    free(buf);
+    glTextureParameteri(*tex, GL_TEXTURE_MAX_LEVEL, levels - 1);
+    glBindTexture(GL_TEXTURE_2D, 0);
+    if (glGetError() != GL_NO_ERROR)
+        return DM_ERR_UNSUPPORTED;
+    *bytes = render__texture_bytes(*tex, levels);
+    return 0;
+}
+
+/* sRGB transfer function: linear [0,1] -> encoded. */
+static float render__srgb_encode(float c)
+{
+    c = c < 0 ? 0 : c > 1 ? 1 : c;
+    return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1 / 2.4f) - 0.055f;
+}
+
+/* Uploads the three maps: the normal map encoded n*0.5+0.5; the linear
+ * albedo sRGB-encoded first when its format is an sRGB one, so sampling
+ * returns the same linear values for every format. */
+static int render__maps_upload(render__maps *m, const maps_set *s, const GLenum fmt[3])
+{
+    size_t texels = (size_t)s->size * (size_t)s->size;
+    float *enc = dm_xmalloc(texels * 4 * sizeof(float));
+    for (size_t i = 0; i < texels * 3; i++)
+        enc[i] = s->normal[i] * 0.5f + 0.5f;
+    int rc = render__upload(fmt[0], s->height, s->size, 1, &m->tex[0], &m->bytes[0]);
+    if (!rc)
+        rc = render__upload(fmt[1], enc, s->size, 3, &m->tex[1], &m->bytes[1]);
+    const float *albedo = s->albedo;
+    if (fmt[2] == GL_SRGB8_ALPHA8) {
+        for (size_t i = 0; i < texels * 4; i++)
+            enc[i] = i % 4 == 3 ? s->albedo[i] : render__srgb_encode(s->albedo[i]);
+        albedo = enc;
+    }
+    if (!rc)
+        rc = render__upload(fmt[2], albedo, s->size, 4, &m->tex[2], &m->bytes[2]);
+    free(enc);
+    return rc;
+}
+
+/* Finds or creates the textures of (maps, size, formats). */
+static int render__maps_get(tech_renderer *r, const render__cfg *c, size_t *idx, dm_str *log)
+{
+    const char *name = render__get(c, "maps");
+    int size = atoi(render__get(c, "texture_size"));
+    const char *f[3] = {render__get(c, "height_format"), render__get(c, "normal_format"),
+                        render__get(c, "albedo_format")};
+    char *key = dm_xasprintf("%s/%d/%s/%s/%s", name, size, f[0], f[1], f[2]);
+    for (size_t i = 0; i < r->n_maps; i++)
+        if (strcmp(r->maps[i].key, key) == 0) {
+            free(key);
+            *idx = i;
+            return 0;
+        }
+    GLenum fmt[3] = {render__format(f[0]), render__format(f[1]), render__format(f[2])};
+    maps_set s;
+    maps_desc d = {.name = name, .size = size};
+    int rc = maps_generate(&d, &s);
+    if (rc) {
+        dm_str_printf(log, "maps '%s' at %d texels: %s\n", name, size, dm_strerror(rc));
+        free(key);
+        return rc;
+    }
+    render__maps m = {.key = key};
+    rc = render__maps_upload(&m, &s, fmt);
+    maps_free(&s);
+    if (rc) {
+        dm_str_printf(log, "maps '%s': the driver cannot upload formats %s/%s/%s\n", name, f[0], f[1], f[2]);
+        glDeleteTextures(3, m.tex);
+        free(key);
+        return rc;
+    }
+    *idx = RENDER__PUSH(r->maps, r->n_maps);
+    r->maps[*idx] = m;
+    return 0;
+}
+
+static size_t render__sampler_get(tech_renderer *r, const char *filter)
+{
+    for (size_t i = 0; i < r->n_samplers; i++)
+        if (strcmp(r->samplers[i].key, filter) == 0)
+            return i;
+    size_t n = RENDER__PUSH(r->samplers, r->n_samplers);
+    GLuint s;
+    glCreateSamplers(1, &s);
+    GLint min = GL_LINEAR_MIPMAP_LINEAR, mag = GL_LINEAR;
+    if (strcmp(filter, "nearest") == 0) {
+        min = GL_NEAREST_MIPMAP_NEAREST;
+        mag = GL_NEAREST;
+    } else if (strcmp(filter, "bilinear") == 0) {
+        min = GL_LINEAR_MIPMAP_NEAREST;
+    }
+    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, min);
+    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, mag);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_REPEAT);
+    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_REPEAT);
+    if (strncmp(filter, "aniso", 5) == 0 && r->max_aniso > 0) {
+        float a = (float)atoi(filter + 5);
+        glSamplerParameterf(s, GL_TEXTURE_MAX_ANISOTROPY_EXT, a < r->max_aniso ? a : r->max_aniso);
+    }
+    r->samplers[n].key = dm_xstrdup(filter);
+    r->samplers[n].id = s;
+    return n;
+}
+
+/* ---- items ---------------------------------------------------------------- */
+
+/* Fills the item's numeric uniforms and camera from the configuration. */
+static void render__item_values(render__item *it, const render__cfg *c)
+{
+    static const char *const cam[4] = {"camera.distance", "camera.azimuth", "camera.elevation",
+                                       "camera.fov"};
+    for (int i = 0; i < 4; i++)
+        it->cam[i] = (float)atof(render__get(c, cam[i]));
+    it->axis_val = dm_xcalloc(axes_count(), sizeof(double));
+    for (size_t a = 0; a < axes_count(); a++) {
+        const axis_info *ax = axes_at(a);
+        if (ax->kind != AXIS_INT && ax->kind != AXIS_FLOAT)
+            continue;
+        const char *v = render__get(c, ax->name);
+        it->axis_val[a] = strcmp(v, "auto") == 0 ? 0.0 : atof(v);
+    }
+    it->light_count = technique_reads_axis(it->tech, "light_count")
+                          ? atoi(render__get(c, "light_count")) : 1;
+}
+
+static int render__prepare_resources(tech_renderer *r, render__item *it, const render__cfg *c,
+                                     dm_str *log)
+{
+    int cached = 0, rc;
+    dm_str defs = {0};
+    if (it->tech->requires_ext && !epoxy_has_gl_extension(it->tech->requires_ext)) {
+        dm_str_printf(log, "technique '%s' needs %s, which this driver lacks\n", it->tech->name,
+                      it->tech->requires_ext);
+        return DM_ERR_UNSUPPORTED;
+    }
+    render__defines(it->tech, c, &defs);
+    rc = render__program_get(r, it->tech, dm_str_get(&defs), &it->prog, &cached, log);
+    dm_str_free(&defs);
+    if (!rc)
+        rc = render__mesh_get(r, render__get(c, "mesh"), atoi(render__get(c, "mesh_density")),
+                              &it->mesh, log);
+    if (!rc)
+        rc = render__maps_get(r, c, &it->maps, log);
+    if (rc)
+        return rc;
+    it->sampler = render__sampler_get(r, render__get(c, "filter"));
+    it->info.program_cached = cached;
+    return 0;
+}
+
+static void render__item_info(tech_renderer *r, render__item *it)
+{
+    const render__mesh *m = &r->meshes[it->mesh];
+    it->info.mesh_vertices = m->n_vertices;
+    it->info.mesh_triangles = m->n_indices / 3;
+    it->info.mesh_bytes = m->bytes;
+    it->info.texture_bytes = 0;
+    for (int i = 0; i < 3; i++)
+        if (it->tech->textures & (1u << i))
+            it->info.texture_bytes += r->maps[it->maps].bytes[i];
+}
+
+int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_item *out,
+                 dm_str *log)
+{
+    int64_t t0 = dm_now_ns();
+    render__cfg c = {params, n_params};
+    render__item it = {0};
+    dm_str scratch = {0};
+    dm_str *l = log ? log : &scratch;
+    int rc = r ? render__validate(&c, &it.tech, l) : DM_ERR_ARG;
+    if (!rc)
+        rc = render__prepare_resources(r, &it, &c, l);
+    dm_str_free(&scratch);
+    if (rc)
+        return rc;
+    render__item_values(&it, &c);
+    render__item_info(r, &it);
+    it.used = 1;
+    it.info.setup_ns = dm_now_ns() - t0;
+    size_t n = RENDER__PUSH(r->items, r->n_items);
+    r->items[n] = it;
+    out->id = (uint32_t)(n + 1);
+    return 0;
+}
+
+static render__item *render__item_of(tech_renderer *r, tech_item item)
+{
+    if (!r || item.id == 0 || item.id > r->n_items || !r->items[item.id - 1].used)
+        return NULL;
+    return &r->items[item.id - 1];
+}
+
+/* Light i of n, placed from the camera (see the top comment). */
+static void render__light(const render__item *it, int i, float pos[3], float col[3])
+{
+    float az = glm_rad(it->cam[1] + 45.0f + 45.0f * (float)i);
+    float el = glm_rad(fminf(it->cam[2] + 35.0f - 10.0f * (float)(i % 3), 80.0f));
+    float d = 1.2f * it->cam[0];
+    pos[0] = d * cosf(el) * sinf(az);
+    pos[1] = d * sinf(el);
+    pos[2] = d * cosf(el) * cosf(az);
+    float k = 1.6f / (1.0f + 0.25f * (float)(it->light_count - 1));
+    col[0] = col[1] = col[2] = k;
+}
+
+/* Sets every uniform the program has (locations of -1 are ignored by GL). */
+static void render__uniforms(tech_renderer *r, const render__item *it, float aspect)
+{
+    const render__program *p = &r->progs[it->prog];
+    const GLint *L = p->loc;
+    float az = glm_rad(it->cam[1]), el = glm_rad(it->cam[2]), d = it->cam[0];
+    vec3 eye = {d * cosf(el) * sinf(az), d * sinf(el), d * cosf(el) * cosf(az)};
+    mat4 model = GLM_MAT4_IDENTITY_INIT, view, proj, vp = GLM_MAT4_IDENTITY_INIT;
+    mat3 nmat = GLM_MAT3_IDENTITY_INIT;
+    if (!r->meshes[it->mesh].clip_space) {
+        glm_lookat(eye, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
+        glm_perspective(glm_rad(it->cam[3]), aspect, 0.05f, 100.0f, proj);
+        glm_mat4_mul(proj, view, vp);
+    }
+    float lp[RENDER__MAX_LIGHTS][3] = {{0}}, lc[RENDER__MAX_LIGHTS][3] = {{0}};
+    for (int i = 0; i < it->light_count && i < RENDER__MAX_LIGHTS; i++)
+        render__light(it, i, lp[i], lc[i]);
+    glUniformMatrix4fv(L[RU_MODEL], 1, GL_FALSE, (const float *)model);
+    glUniformMatrix4fv(L[RU_VIEW_PROJ], 1, GL_FALSE, (const float *)vp);
+    glUniformMatrix3fv(L[RU_NORMAL_MAT], 1, GL_FALSE, (const float *)nmat);
+    glUniform3fv(L[RU_CAMERA_POS], 1, eye);
+    glUniform3fv(L[RU_LIGHT_POS], RENDER__MAX_LIGHTS, &lp[0][0]);
+    glUniform3fv(L[RU_LIGHT_COLOR], RENDER__MAX_LIGHTS, &lc[0][0]);
+    glUniform1i(L[RU_LIGHT_COUNT], it->light_count);
+    glUniform3f(L[RU_ATTEN], 1.0f, 0.1f, 0.05f);
+    glUniform3f(L[RU_AMBIENT], 0.08f, 0.08f, 0.08f);
+    glUniform1f(L[RU_SHININESS], 48.0f);
+    glUniform1f(L[RU_F0], 0.04f);
+    glUniform1f(L[RU_ROUGHNESS], 0.35f);
+    for (size_t a = 0; a < axes_count(); a++) {
+        if (p->axis_loc[a] < 0)
+            continue;
+        if (axes_at(a)->kind == AXIS_INT)
+            glUniform1i(p->axis_loc[a], (GLint)it->axis_val[a]);
+        else
+            glUniform1f(p->axis_loc[a], (GLfloat)it->axis_val[a]);
+    }
+}
+
+int tech_draw(tech_renderer *r, tech_item item, int width, int height)
+{
+    render__item *it = render__item_of(r, item);
+    if (!it || width < 1 || height < 1)
+        return DM_ERR_ARG;
+    const render__mesh *m = &r->meshes[it->mesh];
+    glViewport(0, 0, width, height);
+    glEnable(GL_DEPTH_TEST);
+    glDepthFunc(GL_LESS);
+    glDepthMask(GL_TRUE);
+    glEnable(GL_CULL_FACE);
+    glCullFace(GL_BACK);
+    glFrontFace(GL_CCW);
+    glDisable(GL_BLEND);
+    glClearColor(0, 0, 0, 0);
+    glClearDepth(1.0);
+    glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
+    glUseProgram(r->progs[it->prog].id);
+    render__uniforms(r, it, (float)width / (float)height);
+    for (GLuint u = 0; u < 3; u++) {
+        glBindTextureUnit(u, r->maps[it->maps].tex[u]);
+        glBindSampler(u, r->samplers[it->sampler].id);
+    }
+    glBindVertexArray(m->vao);
+    GLenum mode = GL_TRIANGLES;
+    if (it->tech->tcs || it->tech->tes) {
+        glPatchParameteri(GL_PATCH_VERTICES, 3);
+        mode = GL_PATCHES;
+    }
+    glDrawElements(mode, (GLsizei)m->n_indices, GL_UNSIGNED_INT, NULL);
+    glBindVertexArray(0);
+    return 0;
+}
+
+int tech_item_get_info(tech_renderer *r, tech_item item, tech_item_info *out)
+{
+    render__item *it = render__item_of(r, item);
+    if (!it)
+        return DM_ERR_ARG;
+    *out = it->info;
+    return 0;
+}
+
+void tech_release(tech_renderer *r, tech_item item)
+{
+    render__item *it = render__item_of(r, item);
+    if (!it)
+        return;
+    free(it->axis_val);
+    it->axis_val = NULL;
+    it->used = 0;
+}

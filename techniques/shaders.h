@@ -1,0 +1,20 @@
+/* shaders.h — GLSL sources embedded at build time (cmake/embed_glsl.cmake).
+ *
+ * Every .glsl file under techniques/glsl/ is compiled into the binary under its
+ * file name.  A stage's text is composed as:
+ *   "#version 450 core" + the given defines + the file, where each line
+ *   `#include "other.glsl"` is replaced by that embedded file (recursively,
+ *   at most 8 levels; each file is included once per stage).
+ */
+#ifndef TECHNIQUES_SHADERS_H
+#define TECHNIQUES_SHADERS_H
+
+#include "core/dm_util.h"
+
+/* Embedded source of `name` ("lighting.glsl"), or NULL when absent. */
+const char *shaders_source(const char *name);
+/* Composes the full text of one stage into out.  Returns 0, or
+ * DM_ERR_NOTFOUND with the missing file named in err. */
+int shaders_compose(const char *name, const char *defines, dm_str *out, dm_str *err);
+
+#endif

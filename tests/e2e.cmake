@@ -1,0 +1,7 @@
+# End-to-end CLI tests: the real binary on llvmpipe, a tiny sweep, bad input.
+function(dm_add_e2e name script)
+  add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${script})
+  set_tests_properties(${name} PROPERTIES TIMEOUT 600 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e")
+endfunction()
+dm_add_e2e(test_e2e_run_tiny run_tiny.sh)
+dm_add_e2e(test_e2e_bad_input bad_input.sh)

@@ -1,0 +1,32 @@
+#!/usr/bin/env bash
+# Bad input (SPEC §11): exit 2, a message naming file:line and the valid
+# choices, and nothing written.
+set -uo pipefail
+BIN=${DMBENCH_BINARY:?}
+SRC=${DMBENCH_SOURCE_DIR:?}
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+pass=0; fail=0
+expect() {  # expect CODE PATTERN -- command...
+  local code=$1 pat=$2; shift 3
+  local err; err=$("$@" 2>&1 >/dev/null); local rc=$?
+  if [ "$rc" -eq "$code" ] && grep -q -- "$pat" <<<"$err"; then pass=$((pass+1))
+  else fail=$((fail+1)); echo "FAIL: $* -> rc $rc (want $code), stderr: $err (want /$pat/)"; fi
+}
+BAD="$SRC/tests/data/bad-sweeps"
+expect 2 "03-unknown-axis.yaml:4:.*did you mean 'tess_level'" -- "$BIN" run "$BAD/03-unknown-axis.yaml" --out "$OUT/r"
+expect 2 "04-unknown-technique.yaml:4:.*expected one of" -- "$BIN" run "$BAD/04-unknown-technique.yaml" --out "$OUT/r"
+expect 2 "YAML syntax error" -- "$BIN" run "$BAD/01-yaml-syntax.yaml" --out "$OUT/r"
+expect 2 "cannot read the sweep file" -- "$BIN" run "$OUT/missing.yaml" --out "$OUT/r"
+expect 2 "unknown option '--shrad'; did you mean '--shard'" -- "$BIN" run --shrad 1/2
+expect 2 "expected K/N" -- "$BIN" run --shard 3/2
+expect 2 "unknown command 'rnu'; did you mean 'run'" -- "$BIN" rnu
+expect 2 "invalid value 'cubee' for mesh" -- "$BIN" render mesh=cubee --png "$OUT/x.png"
+expect 2 "no such run directory" -- "$BIN" report "$OUT/nope"
+# nothing may have been written by the failing runs
+if [ -e "$OUT/r" ]; then fail=$((fail+1)); echo "FAIL: a bad sweep wrote $OUT/r"; else pass=$((pass+1)); fi
+# an unwritable output directory is a clean exit 2
+touch "$OUT/file"
+expect 2 "cannot create or write the output directory" -- "$BIN" run "$SRC/tests/e2e/tiny.yaml" --out "$OUT/file/sub"
+echo "$pass passed, $fail failed"
+[ "$fail" -eq 0 ]

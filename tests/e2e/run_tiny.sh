@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# End to end: `dmbench run` of a tiny sweep writes results.json with the
+# contract's keys, report.html, results.csv, summary.md and the images; the
+# store holds the run; `dmbench report` rebuilds the files.
+set -euo pipefail
+BIN=${DMBENCH_BINARY:?}
+SRC=${DMBENCH_SOURCE_DIR:?}
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+
+"$BIN" run "$SRC/tests/e2e/tiny.yaml" --out "$OUT" --quiet
+RUN="$OUT/latest"
+for f in report.html results.json results.csv summary.md; do
+  test -s "$RUN/$f" || { echo "missing $f"; exit 1; }
+done
+test -s "$OUT/dmbench.sqlite"
+
+python3 - "$RUN" <<'PY'
+import json, os, sys
+run = sys.argv[1]
+j = json.load(open(os.path.join(run, "results.json")))
+for k in ("id", "sweep", "started", "environment", "timer"):
+    assert k in j["run"], k
+for k in ("renderer", "gl_version", "lp_num_threads", "cpu", "fingerprint"):
+    assert k in j["run"]["environment"], k
+assert j["run"]["sweep"] == "e2e-tiny"
+assert j["run"]["timer"]["verdict"] in ("partial", "full", "unavailable")
+# 2 meshes x 2 resolutions; tess_level is folded (normal does not read it)
+assert len(j["configs"]) == 4, len(j["configs"])
+for c in j["configs"]:
+    assert c["status"] == "ok", (c["key"], c.get("reason"), c.get("log"))
+    assert len(c["key"]) == 16
+    assert "tess_level" not in c["params"]
+    wt = c["counters"]["WallTime"]
+    assert wt["unit"] == "ns" and wt["median"] > 0 and len(wt["samples"]) >= 3
+    assert wt["ci95"][0] <= wt["median"] <= wt["ci95"][1]
+    sp = c["counters"]["SamplesPassed"]
+    w, h = map(int, c["params"]["resolution"].split("x"))
+    assert 0 < sp["value"] <= w * h, sp
+    q = c["quality"]
+    for k in ("RMSE", "PSNR", "SSIM", "SilhouetteError", "DepthRMSE", "CrackPixels", "NonFinitePixels"):
+        assert k in q, k
+    assert q["NonFinitePixels"] == 0
+    for k in ("render", "heatmap"):
+        p = os.path.join(run, c["images"][k])
+        assert os.path.isfile(p) and os.path.getsize(p) > 0, p
+assert any(f["model"] == "resolution-cost" for f in j["fits"]), j["fits"]
+html = open(os.path.join(run, "report.html")).read()
+for c in j["configs"]:
+    assert c["key"] in html
+rows = open(os.path.join(run, "results.csv")).read().strip().splitlines()
+assert len(rows) == 1 + len(j["configs"]), len(rows)
+print("e2e ok:", len(j["configs"]), "configs")
+PY
+
+# The report can be rebuilt from the store alone.
+rm "$RUN/report.html" "$RUN/results.json"
+"$BIN" report "$RUN" > /dev/null
+test -s "$RUN/report.html" && test -s "$RUN/results.json"
+echo "1 passed, 0 failed"

@@ -1,0 +1,152 @@
+/* Unit tests of techniques/axes and the technique registry: catalog, value
+ * checks, error messages, closest-match suggestions, canonical values. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+#include "core/dm_util.h"
+#include "techniques/axes.h"
+#include "techniques/technique.h"
+
+static void test_catalog(void **state)
+{
+    (void)state;
+    static const char *const spec[] = {
+        "technique", "mesh", "mesh_density", "resolution", "tess_level", "tess_spacing", "lod",
+        "patch_cull", "crack_free", "height_scale", "offset_limit", "steps", "min_steps",
+        "max_steps", "shadow", "lighting", "light_count", "filter", "vertex_filter",
+        "visibility_test", "height_format", "normal_format", "albedo_format", "texture_size",
+        "virtual_texture", "vt_page_size", "vt_cache_pages", "toksvig", "camera.distance",
+        "camera.azimuth", "camera.elevation", "camera.fov", "maps", NULL};
+    for (size_t i = 0; spec[i]; i++)
+        assert_non_null(axes_find(spec[i]));
+    assert_int_equal(axes_count(), 33);
+    static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
+        "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
+        "albedo_format", NULL};
+    size_t n_scene = 0;
+    for (size_t i = 0; i < axes_count(); i++)
+        n_scene += axes_at(i)->scene;
+    for (size_t i = 0; scene[i]; i++)
+        assert_int_equal(axes_find(scene[i])->scene, 1);
+    assert_int_equal(n_scene, 12);   /* the 11 above + technique */
+    assert_string_equal(axes_find("resolution")->def, "640x360");
+    assert_string_equal(axes_find("lighting")->def, "blinn-phong");
+    assert_string_equal(axes_find("filter")->def, "trilinear");
+    assert_null(axes_at(axes_count()));
+    /* Every default passes its own check. */
+    for (size_t i = 0; i < axes_count(); i++) {
+        dm_str e = {0};
+        assert_int_equal(axes_check(axes_at(i)->name, axes_at(i)->def, &e), 0);
+        dm_str_free(&e);
+    }
+}
+
+static void test_technique_choices(void **state)
+{
+    (void)state;
+    const char *const *c = axes_find("technique")->choices;
+    int has_normal = 0;
+    for (size_t i = 0; c[i]; i++) {
+        assert_string_not_equal(c[i], "debug-broken-shader");
+        has_normal |= strcmp(c[i], "normal") == 0;
+    }
+    assert_true(has_normal);
+    assert_non_null(technique_find("debug-broken-shader"));
+    assert_int_equal(technique_find("debug-broken-shader")->test_only, 1);
+    const technique_desc *n = technique_find("normal");
+    assert_true(technique_reads_axis(n, "lighting"));
+    assert_true(technique_reads_axis(n, "mesh"));
+    assert_false(technique_reads_axis(n, "tess_level"));
+    assert_false(technique_reads_axis(n, "no_such_axis"));
+    /* Every declared axis exists in the catalog. */
+    for (size_t i = 0; i < technique_count(); i++)
+        for (size_t k = 0; technique_at(i)->axes && technique_at(i)->axes[k]; k++)
+            assert_non_null(axes_find(technique_at(i)->axes[k]));
+}
+
+static void expect(const char *axis, const char *value, int code, const char *text)
+{
+    dm_str e = {0};
+    assert_int_equal(axes_check(axis, value, &e), code);
+    if (text)
+        assert_non_null(strstr(dm_str_get(&e), text));
+    else
+        assert_int_equal(e.len, 0);
+    dm_str_free(&e);
+}
+
+static void test_messages(void **state)
+{
+    (void)state;
+    expect("tess_levle", "4", DM_ERR_UNKNOWN,
+           "unknown axis 'tess_levle'; did you mean 'tess_level'? valid axes: technique, mesh, ");
+    expect("zzzzzzzzzzzz", "4", DM_ERR_UNKNOWN, "unknown axis 'zzzzzzzzzzzz'; valid axes: technique");
+    expect("mesh", "cubee", DM_ERR_ARG,
+           "invalid value 'cubee' for mesh; expected one of: plane, cube, triangle, fullscreen, "
+           "cylinder, sphere (did you mean 'cube'?)");
+    expect("tess_level", "65", DM_ERR_ARG, "invalid value '65' for tess_level; expected an integer in [1, 64]");
+    expect("tess_level", "3.5", DM_ERR_ARG, "expected an integer in [1, 64]");
+    expect("tess_level", "64", 0, NULL);
+    expect("tess_level", "1", 0, NULL);
+    expect("tess_level", "0", DM_ERR_ARG, "[1, 64]");
+    expect("height_scale", "-1", 0, NULL);
+    expect("height_scale", "1.5", DM_ERR_ARG, "expected a number in [-1, 1]");
+    expect("height_scale", "nan", DM_ERR_ARG, "expected a number");
+    expect("steps", "auto", 0, NULL);
+    expect("steps", "autox", DM_ERR_ARG, "expected an integer in [1, 512] or 'auto'");
+    expect("resolution", "8192x1", 0, NULL);
+    expect("resolution", "[1280, 720]", 0, NULL);
+    expect("resolution", "8193x2", DM_ERR_ARG, "expected WxH with each side in [1, 8192]");
+    expect("resolution", "0x10", DM_ERR_ARG, "WxH");
+    expect("lighting", "cook-torrance", 0, NULL);
+    expect("technique", "normall", DM_ERR_ARG, "(did you mean 'normal'?)");
+    expect("technique", "debug-broken-shader", DM_ERR_ARG, "expected one of");
+}
+
+static void test_closest(void **state)
+{
+    (void)state;
+    static const char *const names[] = {"plane", "cube", "sphere", NULL};
+    assert_string_equal(axes_closest("cubee", names, 3), "cube");
+    assert_string_equal(axes_closest("SPHERE", names, 3), "sphere");
+    assert_string_equal(axes_closest("plan", names, 3), "plane");
+    assert_null(axes_closest("torus-knot", names, 3));
+}
+
+static void test_canonical(void **state)
+{
+    (void)state;
+    static const char *const cases[][3] = {
+        {"resolution", "[1280, 720]", "1280x720"}, {"resolution", "1280 x 720", "1280x720"},
+        {"tess_level", "064", "64"},               {"camera.distance", "3.0", "3"},
+        {"height_scale", "0.060", "0.06"},          {"steps", "auto", "auto"},
+        {"mesh", "cube", "cube"},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        char *c = axes_canonical(cases[i][0], cases[i][1]);
+        assert_non_null(c);
+        assert_string_equal(c, cases[i][2]);
+        free(c);
+    }
+    assert_null(axes_canonical("mesh", "cubee"));
+    assert_null(axes_canonical("nope", "1"));
+    int w = 0, h = 0;
+    assert_int_equal(axes_parse_size2("[640, 360]", &w, &h), 0);
+    assert_int_equal(w * 10000 + h, 6400360);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_catalog), cmocka_unit_test(test_technique_choices),
+        cmocka_unit_test(test_messages), cmocka_unit_test(test_closest),
+        cmocka_unit_test(test_canonical),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

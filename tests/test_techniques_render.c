@@ -1,0 +1,354 @@
+/* GL integration tests of techniques/render on llvmpipe: images, caches,
+ * shader failures, item info, and invariants between techniques. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+#include "core/dm_util.h"
+#include "harness/gl_context.h"
+#include "techniques/render.h"
+#include "techniques/technique.h"
+
+typedef struct fixture {
+    gl_context *ctx;
+    tech_renderer *r;
+    GLuint fbo, color, depth;
+    int w, h;
+} fixture;
+
+static fixture F;
+
+static void target(int w, int h)
+{
+    if (F.fbo) {
+        glDeleteFramebuffers(1, &F.fbo);
+        glDeleteRenderbuffers(1, &F.color);
+        glDeleteRenderbuffers(1, &F.depth);
+    }
+    glCreateFramebuffers(1, &F.fbo);
+    glCreateRenderbuffers(1, &F.color);
+    glCreateRenderbuffers(1, &F.depth);
+    glNamedRenderbufferStorage(F.color, GL_RGBA32F, w, h);
+    glNamedRenderbufferStorage(F.depth, GL_DEPTH_COMPONENT24, w, h);
+    glNamedFramebufferRenderbuffer(F.fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, F.color);
+    glNamedFramebufferRenderbuffer(F.fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, F.depth);
+    assert_int_equal(glCheckNamedFramebufferStatus(F.fbo, GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
+    glBindFramebuffer(GL_FRAMEBUFFER, F.fbo);
+    F.w = w;
+    F.h = h;
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    dm_str e = {0};
+    if (gl_context_create(NULL, &F.ctx, &e) != 0) {
+        fprintf(stderr, "no GL context: %s\n", dm_str_get(&e));
+        return -1;
+    }
+    dm_str_free(&e);
+    if (tech_renderer_create(&F.r) != 0)
+        return -1;
+    target(256, 144);
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &F.fbo);
+    glDeleteRenderbuffers(1, &F.color);
+    glDeleteRenderbuffers(1, &F.depth);
+    tech_renderer_destroy(F.r);
+    gl_context_destroy(F.ctx);
+    return 0;
+}
+
+/* Parses "k=v k=v ..." into params (at most 16). */
+static size_t parse(const char *spec, dm_kv kv[16], char *buf, size_t cap)
+{
+    snprintf(buf, cap, "%s", spec);
+    size_t n = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok && n < 16;
+         tok = strtok_r(NULL, " ", &save)) {
+        char *eq = strchr(tok, '=');
+        assert_non_null(eq);
+        *eq = 0;
+        kv[n].key = tok;
+        kv[n++].value = eq + 1;
+    }
+    return n;
+}
+
+/* Renders spec at the current target into a malloc'd RGBA float image. */
+static float *render(const char *spec)
+{
+    dm_kv kv[16];
+    char buf[512];
+    size_t n = parse(spec, kv, buf, sizeof buf);
+    tech_item it;
+    dm_str log = {0};
+    int rc = tech_prepare(F.r, kv, n, &it, &log);
+    if (rc)
+        fprintf(stderr, "%s: %s\n", spec, dm_str_get(&log));
+    assert_int_equal(rc, 0);
+    dm_str_free(&log);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    float *px = malloc((size_t)F.w * (size_t)F.h * 4 * sizeof(float));
+    glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, px);
+    assert_int_equal(glGetError(), GL_NO_ERROR);
+    tech_release(F.r, it);
+    return px;
+}
+
+static size_t non_finite(const float *px, size_t n)
+{
+    size_t bad = 0;
+    for (size_t i = 0; i < 4 * n; i++)
+        bad += !isfinite(px[i]);
+    return bad;
+}
+
+static double luma_stddev(const float *px, size_t n)
+{
+    double s = 0, s2 = 0;
+    for (size_t i = 0; i < n; i++) {
+        double y = 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
+        s += y;
+        s2 += y * y;
+    }
+    double m = s / (double)n;
+    return sqrt(fmax(0, s2 / (double)n - m * m));
+}
+
+/* PSNR over RGB with peak 1; INFINITY when identical. */
+static double psnr(const float *a, const float *b, size_t n)
+{
+    double se = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            double d = (double)a[4 * i + (size_t)c] - (double)b[4 * i + (size_t)c];
+            se += d * d;
+        }
+    double mse = se / (double)(3 * n);
+    return mse == 0 ? INFINITY : 10 * log10(1 / mse);
+}
+
+static size_t npix(void) { return (size_t)F.w * (size_t)F.h; }
+
+static void test_normal_plane(void **state)
+{
+    (void)state;
+    float *px = render("technique=normal mesh=plane");
+    assert_int_equal(non_finite(px, npix()), 0);
+    assert_true(luma_stddev(px, npix()) > 0.01);
+    free(px);
+}
+
+static void test_fullscreen_coverage(void **state)
+{
+    (void)state;
+    float *px = render("technique=normal mesh=fullscreen");
+    for (size_t i = 0; i < npix(); i++)
+        assert_true(px[4 * i + 3] == 1.0f);
+    free(px);
+    /* Sanity of the check: the plane at the default camera leaves background. */
+    px = render("technique=normal mesh=plane camera.distance=8");
+    size_t empty = 0;
+    for (size_t i = 0; i < npix(); i++)
+        empty += px[4 * i + 3] == 0.0f;
+    assert_true(empty > 0);
+    free(px);
+}
+
+static void test_program_cache(void **state)
+{
+    (void)state;
+    tech_renderer *r;
+    assert_int_equal(tech_renderer_create(&r), 0);
+    dm_kv kv[2] = {{"technique", "normal"}, {"lighting", "lambert"}};
+    tech_item a, b;
+    tech_item_info ia, ib;
+    assert_int_equal(tech_prepare(r, kv, 2, &a, NULL), 0);
+    assert_int_equal(tech_prepare(r, kv, 2, &b, NULL), 0);
+    assert_int_equal(tech_item_get_info(r, a, &ia), 0);
+    assert_int_equal(tech_item_get_info(r, b, &ib), 0);
+    assert_int_equal(ia.program_cached, 0);
+    assert_int_equal(ib.program_cached, 1);
+    assert_true(ia.setup_ns > 0);
+    /* A different lighting define is a different program. */
+    dm_kv kv2[2] = {{"technique", "normal"}, {"lighting", "phong"}};
+    assert_int_equal(tech_prepare(r, kv2, 2, &b, NULL), 0);
+    assert_int_equal(tech_item_get_info(r, b, &ib), 0);
+    assert_int_equal(ib.program_cached, 0);
+    tech_release(r, a);
+    assert_int_equal(tech_item_get_info(r, a, &ia), DM_ERR_ARG);
+    tech_renderer_destroy(r);
+}
+
+static void test_broken_shader(void **state)
+{
+    (void)state;
+    dm_kv kv[1] = {{"technique", "debug-broken-shader"}};
+    tech_item it = {0};
+    dm_str log = {0};
+    assert_int_equal(tech_prepare(F.r, kv, 1, &it, &log), DM_ERR_SHADER);
+    assert_int_equal(it.id, 0);
+    assert_non_null(strstr(dm_str_get(&log), "error"));
+    assert_non_null(strstr(dm_str_get(&log), "broken.frag.glsl"));
+    dm_str_free(&log);
+}
+
+static void test_bad_params(void **state)
+{
+    (void)state;
+    tech_item it;
+    dm_str log = {0};
+    dm_kv a[1] = {{"tess_levle", "4"}};
+    assert_int_equal(tech_prepare(F.r, a, 1, &it, &log), DM_ERR_UNKNOWN);
+    assert_non_null(strstr(dm_str_get(&log), "did you mean 'tess_level'?"));
+    dm_str_free(&log);
+    dm_kv b[1] = {{"technique", "nromal"}};
+    assert_int_equal(tech_prepare(F.r, b, 1, &it, &log), DM_ERR_ARG);
+    assert_non_null(strstr(dm_str_get(&log), "expected one of"));
+    dm_str_free(&log);
+}
+
+/* Sum over the mip chain of size² texels × bytes per texel. */
+static size_t chain_bytes(size_t size, size_t bpp)
+{
+    size_t t = 0;
+    for (; size >= 1; size /= 2)
+        t += size * size * bpp;
+    return t;
+}
+
+static void test_item_info(void **state)
+{
+    (void)state;
+    dm_kv kv[3] = {{"technique", "normal"}, {"mesh", "cylinder"}, {"texture_size", "64"}};
+    tech_item it;
+    tech_item_info info;
+    assert_int_equal(tech_prepare(F.r, kv, 3, &it, NULL), 0);
+    assert_int_equal(tech_item_get_info(F.r, it, &info), 0);
+    assert_int_equal(info.mesh_triangles, 1508);
+    assert_int_equal(info.mesh_vertices, 59 * 13 + 2 * 59);
+    assert_int_equal(info.mesh_bytes, info.mesh_vertices * 48 + 1508 * 3 * 4);
+    /* normal map RGB8 (3 bytes) + albedo RGBA8 (4 bytes); height not sampled. */
+    assert_int_equal(info.texture_bytes, chain_bytes(64, 3) + chain_bytes(64, 4));
+    tech_release(F.r, it);
+}
+
+/* Every user-visible technique renders a non-trivial, finite image. */
+static void test_every_technique(void **state)
+{
+    (void)state;
+    const char *const *names = technique_names();
+    for (size_t i = 0; names[i]; i++) {
+        char spec[128];
+        snprintf(spec, sizeof spec, "technique=%s mesh=plane", names[i]);
+        float *px = render(spec);
+        assert_int_equal(non_finite(px, npix()), 0);
+        if (luma_stddev(px, npix()) <= 0.01)
+            fail_msg("%s renders a flat image", names[i]);
+        free(px);
+    }
+}
+
+/* With height_scale 0 the parallax family must equal normal mapping. */
+static void test_parallax_scale_zero(void **state)
+{
+    (void)state;
+    static const char *const variants[] = {
+        "technique=parallax", "technique=parallax offset_limit=on",
+        "technique=steep-parallax", "technique=steep-parallax steps=auto",
+        "technique=pom", "technique=pom shadow=raytrace", "technique=pom shadow=soft", NULL};
+    float *ref = render("technique=normal mesh=plane");
+    for (size_t i = 0; variants[i]; i++) {
+        char spec[160];
+        snprintf(spec, sizeof spec, "%s mesh=plane height_scale=0", variants[i]);
+        float *px = render(spec);
+        double p = psnr(ref, px, npix());
+        if (!(p >= 60.0))
+            fail_msg("%s: PSNR %.2f dB against normal", variants[i], p);
+        free(px);
+    }
+    free(ref);
+    /* The check can fail: a real depth changes the image. */
+    float *a = render("technique=normal mesh=plane");
+    float *b = render("technique=pom mesh=plane height_scale=0.1");
+    assert_true(psnr(a, b, npix()) < 40.0);
+    free(a);
+    free(b);
+}
+
+/* No NaN/Inf at grazing (1°) and top-down (89°) views, for every technique. */
+static void test_extreme_elevations(void **state)
+{
+    (void)state;
+    static const char *const extra[] = {"", "shadow=raytrace", "shadow=soft", "offset_limit=on"};
+    for (size_t i = 0; i < technique_count(); i++) {
+        const technique_desc *t = technique_at(i);
+        if (t->test_only)
+            continue;
+        for (int e = 0; e < 2; e++)
+            for (size_t x = 0; x < 4; x++) {
+                if (x && !technique_reads_axis(t, x == 3 ? "offset_limit" : "shadow"))
+                    continue;
+                char spec[200];
+                snprintf(spec, sizeof spec, "technique=%s mesh=plane camera.elevation=%d %s",
+                         t->name, e ? 89 : 1, extra[x]);
+                float *px = render(spec);
+                if (non_finite(px, npix()))
+                    fail_msg("%s: %zu non-finite values", spec, non_finite(px, npix()));
+                free(px);
+            }
+    }
+}
+
+/* Each lighting model and 8 lights render finite, distinct images. */
+static void test_lighting_models(void **state)
+{
+    (void)state;
+    static const char *const models[] = {"lambert", "phong", "blinn-phong", "cook-torrance"};
+    float *img[4];
+    for (int i = 0; i < 4; i++) {
+        char spec[128];
+        snprintf(spec, sizeof spec, "technique=normal mesh=sphere light_count=8 lighting=%s", models[i]);
+        img[i] = render(spec);
+        assert_int_equal(non_finite(img[i], npix()), 0);
+        assert_true(luma_stddev(img[i], npix()) > 0.01);
+    }
+    for (int i = 0; i < 4; i++)
+        for (int k = i + 1; k < 4; k++)
+            if (psnr(img[i], img[k], npix()) > 60)
+                fail_msg("%s and %s render the same image", models[i], models[k]);
+    for (int i = 0; i < 4; i++)
+        free(img[i]);
+    float *one = render("technique=normal mesh=sphere light_count=1");
+    float *eight = render("technique=normal mesh=sphere light_count=8");
+    assert_true(psnr(one, eight, npix()) < 50);
+    free(one);
+    free(eight);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_normal_plane),   cmocka_unit_test(test_fullscreen_coverage),
+        cmocka_unit_test(test_program_cache),  cmocka_unit_test(test_broken_shader),
+        cmocka_unit_test(test_bad_params),     cmocka_unit_test(test_item_info),
+        cmocka_unit_test(test_every_technique), cmocka_unit_test(test_parallax_scale_zero),
+        cmocka_unit_test(test_extreme_elevations), cmocka_unit_test(test_lighting_models),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
