@@ -15,6 +15,7 @@ int cli_render(int argc, char **argv);
 int cli_compare(int argc, char **argv);   /* cli_compare.c */
 int cli_baseline(int argc, char **argv);  /* cli_compare.c */
 int cli_merge(int argc, char **argv);
+int cli_view(int argc, char **argv);      /* viewer.c */
 
 /* Shared helpers (cli.c). */
 /* Prints "dmbench: error: <msg>" and returns 2. */

@@ -30,6 +30,7 @@ static const command commands[] = {
     { "list", cli_list, "list techniques|axes|counters|meshes|textures|models [--passes A,B,...] [--json]" },
     { "info", cli_info, "info [--json]         context, extensions, limits, timer validity" },
     { "render", cli_render, "render KEY=VALUE... --png out.png [--supersample N]" },
+    { "view", cli_view, "view [KEY=VALUE...] [--config KEY --results DIR] [--frames N] [--keys SCRIPT] [--screenshot F]" },
     { "help", cmd_help, "help                  this text" },
 };
 
