@@ -23,9 +23,11 @@ static const command commands[] = {
     { "run", cli_run, "run [SWEEP.yaml] [--out DIR] [--resume] [--shard K/N] [--seed N] [--tag NAME] [--quick] [--quiet|--verbose]" },
     { "report", cli_report, "report DIR            rebuild report.html, results.json, results.csv, summary.md" },
     { "fit", cli_fit, "fit DIR | --data FILE.csv  --formula F | --model NAME  [--response NAME] [--group-by A,B] [--loss huber|cauchy|none] [--json]" },
-    { "compare", cli_compare, "compare BASE NEW [--time-threshold 5%] [--alpha 0.01] [--junit F] [--markdown F] [--json F] [--counters-only] [--allow-env-mismatch]\n"
-      "                        compare --paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]" },
-    { "baseline", cli_baseline, "baseline accept RUN --reason TEXT   accept an intended change as the new baseline" },
+    { "compare", cli_compare, "compare BASE NEW [--time-threshold 5%] [--alpha 0.01] [--tolerance C=REL] [--psnr-drop DB] [--ssim-drop X]\n"
+      "                        [--counters-only] [--allow-env-mismatch] [--junit F] [--markdown F] [--json F]\n"
+      "                        [--store FILE] [--base-tag T|--base-run ID|--baseline] [--new-tag T|--new-run ID]\n"
+      "  dmbench compare --paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]" },
+    { "baseline", cli_baseline, "baseline accept RUN --reason TEXT [--store FILE] | baseline show [--store FILE]" },
     { "merge", cli_merge, "merge OUT DIR...      union of shard results into one run" },
     { "list", cli_list, "list techniques|axes|counters|meshes|textures|models [--passes A,B,...] [--json]" },
     { "info", cli_info, "info [--json]         context, extensions, limits, timer validity" },

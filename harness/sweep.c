@@ -25,6 +25,10 @@ typedef struct pctx {
     sweep *s;
 } pctx;
 
+#define P__FOREACH_PAIR(c, map, pair)                                           \
+    for (yaml_node_pair_t *pair = (map)->data.mapping.pairs.start;               \
+         pair < (map)->data.mapping.pairs.top; pair++)
+
 static int p__fail(pctx *c, const yaml_node_t *n, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
@@ -147,14 +151,22 @@ static int p__set_scene(pctx *c, const char *axis, yaml_node_t *key, yaml_node_t
     return 0;
 }
 
-#define P__FOREACH_PAIR(c, map, pair)                                           \
-    for (yaml_node_pair_t *pair = (map)->data.mapping.pairs.start;               \
-         pair < (map)->data.mapping.pairs.top; pair++)
 
+/* Mappings must be mappings, and YAML keys are unique: a repeated key would
+ * silently win over the first, so it is an error naming both lines. */
 static int p__expect_map(pctx *c, yaml_node_t *n, const char *what)
 {
     if (!n || n->type != YAML_MAPPING_NODE)
         return p__fail(c, n, "%s: expected a mapping (key: value lines)", what);
+    P__FOREACH_PAIR(c, n, a) {
+        const char *ka = p__scalar(p__node(c, a->key));
+        for (yaml_node_pair_t *b = n->data.mapping.pairs.start; ka && b < a; b++) {
+            const char *kb = p__scalar(p__node(c, b->key));
+            if (kb && strcmp(ka, kb) == 0)
+                return p__fail(c, p__node(c, a->key), "%s: key '%s' is given twice (first on line %zu)",
+                               what, ka, p__node(c, b->key)->start_mark.line + 1);
+        }
+    }
     return 0;
 }
 

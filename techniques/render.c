@@ -23,6 +23,7 @@
 #include <cglm/cglm.h>
 #include <ctype.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -81,6 +82,7 @@ typedef struct render__item {
 
 struct tech_renderer {
     char *driver;                /* GL_RENDERER + GL_VERSION, part of program keys */
+    char *cache_dir;             /* on-disk program binaries, NULL = off */
     float max_aniso;             /* 0 when anisotropic filtering is absent */
     render__program *progs;
     size_t n_progs;
@@ -146,7 +148,22 @@ void tech_renderer_destroy(tech_renderer *r)
     free(r->samplers);
     free(r->items);
     free(r->driver);
+    free(r->cache_dir);
     free(r);
+}
+
+int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir)
+{
+    GLint formats = 0;
+    glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
+    free(r->cache_dir);
+    r->cache_dir = NULL;
+    if (!dir)
+        return 0;
+    if (formats < 1)
+        return DM_ERR_UNSUPPORTED;
+    r->cache_dir = dm_xstrdup(dir);
+    return 0;
 }
 
 /* ---- parameters --------------------------------------------------------- */
@@ -239,8 +256,10 @@ static GLuint render__compile(GLenum stage, const char *file, const char *define
     return 0;
 }
 
-/* Compiles and links the technique's stages; 0 and the log on failure. */
-static GLuint render__link(const technique_desc *t, const char *defines, dm_str *log)
+/* Compiles and links the technique's stages (retrievable: ask the driver to
+ * keep a binary for the disk cache); returns 0 and fills log on failure. */
+static GLuint render__link(const technique_desc *t, const char *defines, int retrievable,
+                           dm_str *log)
 {
     const char *files[5] = {t->vs, t->tcs, t->tes, t->gs, t->fs};
     static const GLenum stages[5] = {GL_VERTEX_SHADER, GL_TESS_CONTROL_SHADER,
@@ -259,6 +278,8 @@ static GLuint render__link(const technique_desc *t, const char *defines, dm_str 
     }
     GLint ok = 0;
     if (!failed) {
+        if (retrievable)
+            glProgramParameteri(prog, GL_PROGRAM_BINARY_RETRIEVABLE_HINT, GL_TRUE);
         glLinkProgram(prog);
         glGetProgramiv(prog, GL_LINK_STATUS, &ok);
     }
@@ -280,6 +301,76 @@ static GLuint render__link(const technique_desc *t, const char *defines, dm_str 
     return prog;
 }
 
+/* File of a program key in the binary cache: "<dir>/<fnv64 of key>.glbin"
+ * holding key, NUL, the GLenum binary format, then the binary. */
+static char *render__binary_path(const tech_renderer *r, const char *key)
+{
+    char hex[17];
+    dm_hex64(dm_fnv1a64(key, strlen(key), DM_FNV_SEED), hex);
+    return dm_xasprintf("%s/%s.glbin", r->cache_dir, hex);
+}
+
+/* Program from the on-disk cache, or 0 when absent, foreign or rejected. */
+static GLuint render__binary_load(const tech_renderer *r, const char *key)
+{
+    char *path = render__binary_path(r, key), *buf = NULL;
+    size_t len = 0, klen = strlen(key) + 1;
+    GLuint prog = 0;
+    if (dm_read_file(path, &buf, &len) == 0 && len > klen + sizeof(GLenum) &&
+        memcmp(buf, key, klen) == 0) {
+        GLenum fmt;
+        memcpy(&fmt, buf + klen, sizeof fmt);
+        prog = glCreateProgram();
+        glProgramBinary(prog, fmt, buf + klen + sizeof fmt, (GLsizei)(len - klen - sizeof fmt));
+        GLint ok = 0;
+        glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+        if (!ok) {
+            glDeleteProgram(prog);
+            prog = 0;
+        }
+    }
+    while (glGetError() != GL_NO_ERROR)
+        ;   /* a rejected binary may raise INVALID_ENUM; it is recompiled */
+    free(buf);
+    free(path);
+    return prog;
+}
+
+/* Stores a linked program's binary; failures only cost the next compile. */
+static void render__binary_save(const tech_renderer *r, const char *key, GLuint prog)
+{
+    GLint blen = 0;
+    glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &blen);
+    if (blen <= 0 || dm_mkdirs(r->cache_dir) != 0)
+        return;
+    size_t klen = strlen(key) + 1;
+    char *buf = dm_xmalloc(klen + sizeof(GLenum) + (size_t)blen);
+    GLenum fmt = 0;
+    GLsizei got = 0;
+    memcpy(buf, key, klen);
+    glGetProgramBinary(prog, blen, &got, &fmt, buf + klen + sizeof fmt);
+    memcpy(buf + klen, &fmt, sizeof fmt);
+    char *path = render__binary_path(r, key);
+    if (got > 0 && dm_write_file(path, buf, klen + sizeof fmt + (size_t)got) != 0)
+        dm_log(DM_LOG_WARN, "cannot write program cache file %s", path);
+    free(path);
+    free(buf);
+}
+
+/* Program of key from disk or compiled (and then stored); *from_disk set. */
+static GLuint render__program_make(tech_renderer *r, const technique_desc *t, const char *defines,
+                                   const char *key, int *from_disk, dm_str *log)
+{
+    GLuint id = r->cache_dir ? render__binary_load(r, key) : 0;
+    *from_disk = id != 0;
+    if (id)
+        return id;
+    id = render__link(t, defines, r->cache_dir != NULL, log);
+    if (id && r->cache_dir)
+        render__binary_save(r, key, id);
+    return id;
+}
+
 /* Finds or builds the program of (technique, defines, driver); *cached = 1
  * when it came from the cache.  DM_ERR_SHADER with the info log on failure. */
 static int render__program_get(tech_renderer *r, const technique_desc *t, const char *defines,
@@ -293,7 +384,8 @@ static int render__program_get(tech_renderer *r, const technique_desc *t, const 
             *cached = 1;
             return 0;
         }
-    GLuint id = render__link(t, defines, log);
+    int from_disk = 0;
+    GLuint id = render__program_make(r, t, defines, key, &from_disk, log);
     if (!id) {
         free(key);
         return DM_ERR_SHADER;
@@ -313,7 +405,7 @@ static int render__program_get(tech_renderer *r, const technique_desc *t, const 
         p->axis_loc[a] = glGetUniformLocation(id, name);
     }
     *idx = n;
-    *cached = 0;
+    *cached = from_disk ? 2 : 0;
     return 0;
 }
 

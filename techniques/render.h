@@ -21,12 +21,21 @@ typedef struct tech_item_info {
     size_t mesh_vertices, mesh_triangles;
     size_t mesh_bytes, texture_bytes;
     int64_t setup_ns;            /* compile/link/upload time spent preparing it */
-    int program_cached;          /* 1 when the program came from the cache */
+    int program_cached;          /* 0 compiled now, 1 from the in-memory program cache,
+                                    2 from the on-disk program-binary cache */
 } tech_item_info;
 
 /* Returns 0 and a renderer, or DM_ERR_GL when no usable context is current. */
 int tech_renderer_create(tech_renderer **out);
 void tech_renderer_destroy(tech_renderer *r);
+/* Enables the on-disk program-binary cache (ARB_get_program_binary) in
+ * directory `dir` (created when first written; NULL disables).  Each program
+ * is stored under a hash of its key (technique, defines, GL_RENDERER +
+ * GL_VERSION) with the full key inside, so a changed driver or source never
+ * loads a stale binary; a binary the driver rejects is recompiled and
+ * rewritten.  Returns 0, or DM_ERR_UNSUPPORTED when the driver offers no
+ * binary format (the cache then stays off). */
+int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir);
 
 /* Prepares one configuration (params: axis → value; missing axes take their
  * defaults).  Returns 0 and a handle; DM_ERR_ARG/DM_ERR_UNKNOWN for bad

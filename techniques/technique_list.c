@@ -9,6 +9,13 @@
  *                     or SURF_BUMP: from the height map by central differences)
  *   SURF_PARALLAX     1 = parallax (Kaneko / Welsh with offset_limit),
  *                     2 = steep parallax, 3 = parallax occlusion mapping
+ * Parallax depth: height_scale world units = height_scale·0.5 UV units (the
+ * plane spans 2 world units per UV unit); plain parallax uses
+ * h' = h·scale − scale/2; V.z is clamped to ≥ 0.05 before any division so
+ * grazing views give long but finite offsets.  steps = auto picks
+ * mix(max_steps, min_steps, |V.z|).  Shadows (pom only): raytrace = 30
+ * steps toward the light, hard; soft = 7 samples at 0.88..0.22 of the ray,
+ * shadow = 1 − clamp(max(32·(h_i − ray_i)·(1 − t_i))).
  * Every technique-declared ENUM axis also becomes "#define AXIS_VALUE"
  * (e.g. LIGHTING_COOK_TORRANCE, SHADOW_SOFT, TOKSVIG_ON); every INT/FLOAT
  * axis is set as uniform u_<axis> (render.c), so one program serves all

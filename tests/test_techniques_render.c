@@ -248,6 +248,56 @@ static void test_item_info(void **state)
     tech_release(F.r, it);
 }
 
+/* Second renderer on the same cache dir loads the binary from disk; a
+ * corrupted file is recompiled, never trusted. */
+static void test_disk_cache(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_tech_cacheXXXXXX";
+    assert_non_null(mkdtemp(dir));
+    dm_kv kv[2] = {{"technique", "normal"}, {"lighting", "cook-torrance"}};
+    tech_item it;
+    tech_item_info info;
+    for (int round = 0; round < 3; round++) {
+        tech_renderer *r;
+        assert_int_equal(tech_renderer_create(&r), 0);
+        int rc = tech_renderer_set_cache_dir(r, dir);
+        if (rc == DM_ERR_UNSUPPORTED) {      /* driver without binary formats */
+            tech_renderer_destroy(r);
+            skip();
+        }
+        assert_int_equal(rc, 0);
+        assert_int_equal(tech_prepare(r, kv, 2, &it, NULL), 0);
+        assert_int_equal(tech_item_get_info(r, it, &info), 0);
+        assert_int_equal(info.program_cached, round == 1 ? 2 : 0);
+        assert_int_equal(tech_draw(r, it, F.w, F.h), 0);
+        assert_int_equal(glGetError(), GL_NO_ERROR);
+        tech_renderer_destroy(r);
+        if (round == 1) {                    /* corrupt every cached file */
+            char cmd[128];
+            snprintf(cmd, sizeof cmd, "for f in %s/*.glbin; do printf garbage > $f; done", dir);
+            assert_int_equal(system(cmd), 0);
+        }
+    }
+    char cmd[128];
+    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
+    assert_int_equal(system(cmd), 0);
+}
+
+/* TextureBytes of a compressed map: 64² BC1 albedo, 8 bytes per 4×4 block,
+ * levels 64..1 = 256+64+16+4+1+1+1 blocks. */
+static void test_compressed_bytes(void **state)
+{
+    (void)state;
+    dm_kv kv[3] = {{"technique", "texture"}, {"albedo_format", "bc1"}, {"texture_size", "64"}};
+    tech_item it;
+    tech_item_info info;
+    assert_int_equal(tech_prepare(F.r, kv, 3, &it, NULL), 0);
+    assert_int_equal(tech_item_get_info(F.r, it, &info), 0);
+    assert_int_equal(info.texture_bytes, (256 + 64 + 16 + 4 + 1 + 1 + 1) * 8);
+    tech_release(F.r, it);
+}
+
 /* Every user-visible technique renders a non-trivial, finite image. */
 static void test_every_technique(void **state)
 {
@@ -341,14 +391,55 @@ static void test_lighting_models(void **state)
     free(eight);
 }
 
+/* Axes that must change the image do: shadows, filters, Toksvig; and a
+ * two-channel BC5 normal map stays close to RGB8. */
+static void test_axes_take_effect(void **state)
+{
+    (void)state;
+    static const char *const pairs[][2] = {
+        {"technique=pom height_scale=0.15 camera.distance=1.2",
+         "technique=pom height_scale=0.15 camera.distance=1.2 shadow=raytrace"},
+        {"technique=pom height_scale=0.15 camera.distance=1.2",
+         "technique=pom height_scale=0.15 camera.distance=1.2 shadow=soft"},
+        {"technique=steep-parallax steps=4", "technique=steep-parallax steps=64"},
+        {"technique=parallax", "technique=parallax offset_limit=on"},
+        {"technique=texture camera.elevation=3", "technique=texture camera.elevation=3 filter=aniso16"},
+        {"technique=texture filter=nearest", "technique=texture filter=trilinear"},
+        {"technique=normal mesh=sphere camera.distance=10",
+         "technique=normal mesh=sphere camera.distance=10 toksvig=on"},
+    };
+    for (size_t i = 0; i < sizeof pairs / sizeof pairs[0]; i++) {
+        char a[200], b[200];
+        snprintf(a, sizeof a, "%s mesh=plane", pairs[i][0]);
+        snprintf(b, sizeof b, "%s mesh=plane", pairs[i][1]);
+        float *pa = render(a), *pb = render(b);
+        double p = psnr(pa, pb, npix());
+        if (getenv("DM_TEST_VERBOSE"))
+            fprintf(stderr, "%s | %s: %.1f dB\n", a, b, p);
+        if (!(p < 60.0))   /* the invariants call >= 60 dB "equal" */
+            fail_msg("'%s' and '%s' render the same (%.1f dB)", a, b, p);
+        free(pa);
+        free(pb);
+    }
+    float *rgb = render("technique=normal mesh=plane");
+    float *bc5 = render("technique=normal mesh=plane normal_format=bc5");
+    double p = psnr(rgb, bc5, npix());
+    if (!(p > 30.0 && p < INFINITY))
+        fail_msg("bc5 vs rgb8 normal map: %.1f dB", p);
+    free(rgb);
+    free(bc5);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_normal_plane),   cmocka_unit_test(test_fullscreen_coverage),
         cmocka_unit_test(test_program_cache),  cmocka_unit_test(test_broken_shader),
         cmocka_unit_test(test_bad_params),     cmocka_unit_test(test_item_info),
+        cmocka_unit_test(test_disk_cache),     cmocka_unit_test(test_compressed_bytes),
         cmocka_unit_test(test_every_technique), cmocka_unit_test(test_parallax_scale_zero),
         cmocka_unit_test(test_extreme_elevations), cmocka_unit_test(test_lighting_models),
+        cmocka_unit_test(test_axes_take_effect),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -122,12 +122,14 @@ float self_shadow(vec2 uv, vec3 l)
     return 1.0;
 #else
     // Soft (Tatarchuk 2006): 7 samples at 0.88 .. 0.22 of the ray, the
-    // deepest penetration weighted toward the surface darkens most.
+    // deepest penetration weighted toward the surface darkens most;
+    // SOFT_SHADOW_SHARPNESS turns height units of penetration into shadow.
+    const float SOFT_SHADOW_SHARPNESS = 32.0;
     float occ = 0.0;
     for (int i = 0; i < 7; i++) {
         float t = 0.88 - 0.11 * float(i);
         float above = height_at(uv + span * t) - (h0 + (1.0 - h0) * t);
-        occ = max(occ, above * 8.0 * (1.0 - t));
+        occ = max(occ, above * SOFT_SHADOW_SHARPNESS * (1.0 - t));
     }
     return 1.0 - clamp(occ, 0.0, 1.0);
 #endif

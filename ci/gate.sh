@@ -1,0 +1,20 @@
+#!/usr/bin/env bash
+# The project's CI gate: runs ci/gate.yaml with the given dmbench binary and
+# compares its deterministic counters with ci/baseline.json (exit 0 pass,
+# 1 a counter changed, 2 bad input).  Timing is not gated here, so no noise
+# can fail CI.  Usage: ci/gate.sh [DMBENCH_BINARY] [OUT_DIR]
+# To accept an intended change of the counts: ci/gate.sh --update
+set -euo pipefail
+HERE=$(cd "$(dirname "$0")" && pwd)
+if [ "${1:-}" = "--update" ]; then UPDATE=1; shift; else UPDATE=0; fi
+BIN=${1:-$HERE/../build/harness/dmbench}
+OUT=${2:-$(mktemp -d)}
+export LP_NUM_THREADS=${LP_NUM_THREADS:-1}
+"$BIN" run "$HERE/gate.yaml" --out "$OUT" --seed 1 --quiet
+if [ "$UPDATE" = 1 ]; then
+  cp "$OUT/latest/results.json" "$HERE/baseline.json"
+  echo "ci/baseline.json updated from $OUT/latest; commit it with the reason for the change"
+  exit 0
+fi
+"$BIN" compare --counters-only "$HERE/baseline.json" "$OUT/latest" \
+  --markdown "$OUT/gate.md" --junit "$OUT/gate.xml"

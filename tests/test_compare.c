@@ -1,0 +1,569 @@
+/* Unit tests of the regression gate (harness/compare): verdicts on
+ * synthetic runs with known differences, fingerprint checks, failed and
+ * added/removed configurations, quality limits, outputs, loading from
+ * results.json / run directories / the store, and accepted baselines. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "core/dm_error.h"
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+#include "harness/compare.h"
+#include "harness/store.h"
+#include "models/rng.h"
+#include "reports/report.h"
+
+/* ---- synthetic runs ----------------------------------------------------- */
+
+/* Standard normal deviate (Box-Muller) from a seeded generator. */
+static double gauss(rng_state *r)
+{
+    double u = rng_uniform(r), v = rng_uniform(r);
+    return sqrt(-2.0 * log(1.0 - u)) * cos(2.0 * M_PI * v);
+}
+
+static void set_env(dm_run_result *r, const char *cpu)
+{
+    dm_kv_push(&r->environment, &r->n_environment, "renderer", "llvmpipe (LLVM 15.0.6, 256 bits)");
+    dm_kv_push(&r->environment, &r->n_environment, "gl_version", "4.5 (Core Profile) Mesa 22.3.6");
+    dm_kv_push(&r->environment, &r->n_environment, "lp_num_threads", "1");
+    dm_kv_push(&r->environment, &r->n_environment, "cpu", cpu);
+    dm_kv_push(&r->environment, &r->n_environment, "cpu_count", "2");
+}
+
+/* WallTime with n samples around median_ns with relative noise cv. */
+static void timed(dm_counter_result *c, size_t n, double median_ns, double cv, uint64_t seed)
+{
+    rng_state r = rng_seed(seed);
+    c->name = dm_xstrdup("WallTime");
+    c->unit = dm_xstrdup("ns");
+    c->available = c->has_samples = 1;
+    c->n_samples = n;
+    c->samples = dm_xcalloc(n, sizeof(double));
+    for (size_t i = 0; i < n; i++)
+        c->samples[i] = median_ns * (1.0 + cv * gauss(&r));
+    c->value = c->median = median_ns;
+}
+
+static void det(dm_counter_result *c, const char *name, double v)
+{
+    c->name = dm_xstrdup(name);
+    c->unit = dm_xstrdup("items");
+    c->available = c->deterministic = 1;
+    c->value = v;
+}
+
+/* A run of n_cfg configurations (mesh=m<i>), each with WallTime (n samples,
+ * median 1e6*(i+1)*scale, noise cv; samples seeded by seed+i),
+ * TESInvocations 3169 and SamplesPassed 1000*(i+1), and quality PSNR 40,
+ * SSIM 0.98. */
+static void make_run(dm_run_result *r, const char *id, size_t n_cfg, size_t n, double scale,
+                     double cv, uint64_t seed)
+{
+    memset(r, 0, sizeof *r);
+    r->id = dm_xstrdup(id);
+    r->sweep = dm_xstrdup("synthetic");
+    r->started = dm_xstrdup("2026-01-01T00:00:00Z");
+    r->timer_verdict = dm_xstrdup("partial");
+    set_env(r, "Test CPU @ 3GHz");
+    r->n_configs = n_cfg;
+    r->configs = dm_xcalloc(n_cfg, sizeof *r->configs);
+    for (size_t i = 0; i < n_cfg; i++) {
+        dm_config_result *c = &r->configs[i];
+        char key[32], mesh[32];
+        snprintf(key, sizeof key, "%016zx", i + 1);
+        snprintf(mesh, sizeof mesh, "m%zu", i);
+        c->key = dm_xstrdup(key);
+        c->scene = dm_xstrdup(mesh);
+        dm_kv_push(&c->params, &c->n_params, "mesh", mesh);
+        dm_kv_push(&c->params, &c->n_params, "technique", "normal");
+        c->ok = 1;
+        c->n_counters = 3;
+        c->counters = dm_xcalloc(3, sizeof *c->counters);
+        timed(&c->counters[0], n, 1e6 * (double)(i + 1) * scale, cv, seed + i);
+        det(&c->counters[1], "TESInvocations", 3169);
+        det(&c->counters[2], "SamplesPassed", 1000.0 * (double)(i + 1));
+        c->quality.present = 1;
+        c->quality.psnr = 40;
+        c->quality.ssim = 0.98;
+    }
+}
+
+static dm_counter_result *counter(dm_run_result *r, size_t cfg, const char *name)
+{
+    return (dm_counter_result *)dm_config_counter(&r->configs[cfg], name);
+}
+
+static int run_compare(const dm_run_result *b, const dm_run_result *n, const compare_desc *d,
+                       compare_result *out)
+{
+    dm_str err = {0};
+    int rc = compare_runs(b, n, d, out, &err);
+    dm_str_free(&err);
+    return rc;
+}
+
+static const compare_item *item(const compare_result *r, const char *key)
+{
+    for (size_t i = 0; i < r->n_items; i++)
+        if (strcmp(r->items[i].key, key) == 0)
+            return &r->items[i];
+    fail_msg("no item %s", key);
+    return NULL;
+}
+
+/* ---- verdicts ----------------------------------------------------------- */
+
+static void test_self_all_pass(void **state)
+{
+    (void)state;
+    dm_run_result a;
+    make_run(&a, "A", 3, 30, 1.0, 0.02, 100);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &a, &d, &r), 0);
+    assert_int_equal(r.n_items, 3);
+    assert_int_equal(r.count[COMPARE_PASS], 3);
+    for (size_t i = 0; i < 3; i++) {
+        assert_true(r.items[i].timed);
+        assert_true(r.items[i].ratio == 1.0);   /* same samples: same medians */
+        assert_true(r.items[i].lo >= 0.95 && r.items[i].hi <= 1.05);
+        assert_null(r.items[i].note);
+    }
+    assert_true(fabs(r.geomean - 1.0) < 1e-15);
+    assert_int_equal(r.n_geomean, 3);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    dm_run_free(&a);
+}
+
+static void test_deterministic_change(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 2, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 2, 30, 1.0, 0.02, 100);
+    counter(&b, 1, "TESInvocations")->value = 3170;
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    const compare_item *it = item(&r, "0000000000000002");
+    assert_int_equal(it->verdict, COMPARE_REGRESSION);
+    assert_int_equal(it->n_changes, 1);
+    assert_string_equal(it->changes[0].counter, "TESInvocations");
+    assert_true(it->changes[0].base == 3169 && it->changes[0].new_ == 3170);
+    assert_string_equal(it->note, "TESInvocations changed 3169 -> 3170");
+    assert_int_equal(r.items[0].verdict, COMPARE_REGRESSION);   /* worst first */
+    assert_int_equal(item(&r, "0000000000000001")->verdict, COMPARE_PASS);
+    assert_int_equal(compare_exit_code(&r), 1);
+    compare_result_free(&r);
+    /* a tolerance of 1e-3 admits 1/3169 = 3.2e-4; 1e-4 does not */
+    compare_tolerance tol = { "TESInvocations", 1e-3 };
+    d.tolerances = &tol;
+    d.n_tolerances = 1;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    tol.rel = 1e-4;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(compare_exit_code(&r), 1);
+    compare_result_free(&r);
+    /* a counter unavailable on NEW is a change too */
+    counter(&b, 1, "TESInvocations")->value = 3169;
+    counter(&b, 0, "SamplesPassed")->available = 0;
+    d.n_tolerances = 0;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_string_equal(item(&r, "0000000000000001")->note, "SamplesPassed unavailable on NEW");
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+static void test_slowdown_20_percent_regression(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 4, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 4, 30, 1.2, 0.02, 200);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 4);
+    for (size_t i = 0; i < 4; i++) {
+        const compare_item *it = &r.items[i];
+        assert_true(it->lo > 1.05);
+        assert_true(it->ratio > 1.15 && it->ratio < 1.25);
+        assert_true(it->q < 0.01);
+        assert_non_null(strstr(it->note, "slower"));
+    }
+    assert_true(r.geomean > 1.15 && r.geomean < 1.25);
+    assert_int_equal(compare_exit_code(&r), 1);
+    compare_result_free(&r);
+    /* the other way round it is an improvement, which passes */
+    assert_int_equal(run_compare(&b, &a, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_IMPROVEMENT], 4);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+static void test_slowdown_1_percent_pass(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 4, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 4, 30, 1.01, 0.02, 200);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_PASS], 4);
+    for (size_t i = 0; i < 4; i++)
+        assert_true(r.items[i].lo >= 0.95 && r.items[i].hi <= 1.05);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+static void test_huge_noise_inconclusive(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 3, 10, 1.0, 0.4, 100);
+    make_run(&b, "B", 3, 10, 1.0, 0.4, 200);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_INCONCLUSIVE], 3);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 0);
+    for (size_t i = 0; i < 3; i++) {
+        const compare_item *it = &r.items[i];
+        assert_true(it->lo < 0.95 || it->hi > 1.05);
+        /* the estimate follows its formula: n f - n, f the larger squared
+         * ratio of (CI side length) / (distance to the threshold it crosses) */
+        double rr = it->ratio, f = 0;
+        if (it->lo < 0.95 && rr >= 0.95)
+            f = pow((rr - it->lo) / (rr - 0.95), 2);
+        if (it->hi > 1.05 && rr <= 1.05)
+            f = fmax(f, pow((it->hi - rr) / (1.05 - rr), 2));
+        if (rr > 1.05)
+            f = pow((rr - it->lo) / (rr - 1.05), 2);
+        if (rr < 0.95)
+            f = pow((it->hi - rr) / (0.95 - rr), 2);
+        double need = ceil(10 * f - 10);
+        assert_int_equal(it->extra_samples, need < 1 ? 1 : (long)need);
+        assert_true(it->extra_samples > 0);
+    }
+    assert_int_equal(compare_exit_code(&r), 3);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+static void test_env_mismatch(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 2, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 2, 30, 1.0, 0.02, 100);
+    free(b.environment[3].value);
+    b.environment[3].value = dm_xstrdup("Other CPU");
+    compare_desc d = {0};
+    compare_result r;
+    dm_str err = {0};
+    assert_int_equal(compare_runs(&a, &b, &d, &r, &err), DM_ERR_ARG);
+    assert_int_equal(r.n_env_diffs, 1);
+    assert_string_equal(r.env_diffs[0], "cpu: 'Test CPU @ 3GHz' (BASE) vs 'Other CPU' (NEW)");
+    assert_non_null(strstr(dm_str_get(&err), "--allow-env-mismatch"));
+    dm_str_free(&err);
+    compare_result_free(&r);
+    d.allow_env_mismatch = 1;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.n_warnings, 1);
+    assert_non_null(strstr(r.warnings[0], "differ"));
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    /* counters only: a CPU change does not matter, a driver change does */
+    d.allow_env_mismatch = 0;
+    d.counters_only = 1;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.n_warnings, 0);
+    assert_int_equal(r.count[COMPARE_PASS], 2);
+    assert_int_equal(r.n_geomean, 0);
+    assert_false(r.items[0].timed);
+    compare_result_free(&r);
+    free(b.environment[1].value);
+    b.environment[1].value = dm_xstrdup("4.5 (Core Profile) Mesa 23.0.0");
+    assert_int_equal(run_compare(&a, &b, &d, &r), DM_ERR_ARG);
+    assert_int_equal(r.n_env_diffs, 1);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+static void test_counters_only_ignores_time(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 2, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 2, 30, 2.0, 0.02, 200);
+    compare_desc d = { .counters_only = 1 };
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    counter(&b, 0, "SamplesPassed")->value = 999;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(compare_exit_code(&r), 1);
+    assert_string_equal(r.items[0].note, "SamplesPassed changed 1000 -> 999");
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+static void test_failed_added_removed(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 3, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 3, 30, 1.0, 0.02, 100);
+    b.configs[0].ok = 0;
+    b.configs[0].reason = dm_xstrdup("shader link failed");
+    free(b.configs[2].key);
+    b.configs[2].key = dm_xstrdup("00000000000000ff");
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.n_items, 2);
+    assert_int_equal(item(&r, "0000000000000001")->verdict, COMPARE_REGRESSION);
+    assert_string_equal(item(&r, "0000000000000001")->note, "failed on NEW: shader link failed");
+    assert_int_equal(r.n_removed, 1);
+    assert_string_equal(r.removed[0], "mesh=m2 [0000000000000003]");
+    assert_int_equal(r.n_added, 1);
+    assert_string_equal(r.added[0], "mesh=m2 [00000000000000ff]");
+    compare_result_free(&r);
+    /* failed on both sides: skipped, not a regression */
+    a.configs[0].ok = 0;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(item(&r, "0000000000000001")->verdict, COMPARE_SKIPPED);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+static void test_quality_drop(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 3, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 3, 30, 1.0, 0.02, 100);
+    b.configs[0].quality.psnr = 38.5;     /* 1.5 dB drop > 1 dB */
+    b.configs[1].quality.psnr = 39.5;     /* 0.5 dB: within the limit */
+    b.configs[2].quality.ssim = 0.965;    /* 0.015 > 0.01 */
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(item(&r, "0000000000000001")->verdict, COMPARE_REGRESSION);
+    assert_non_null(strstr(item(&r, "0000000000000001")->note, "PSNR dropped 1.50 dB"));
+    assert_int_equal(item(&r, "0000000000000002")->verdict, COMPARE_PASS);
+    assert_int_equal(item(&r, "0000000000000003")->verdict, COMPARE_REGRESSION);
+    assert_non_null(strstr(item(&r, "0000000000000003")->note, "SSIM dropped 0.0150"));
+    compare_result_free(&r);
+    /* identical images (infinite PSNR) on both sides: no drop */
+    a.configs[1].quality.psnr = b.configs[1].quality.psnr = INFINITY;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(item(&r, "0000000000000002")->verdict, COMPARE_PASS);
+    compare_result_free(&r);
+    d.psnr_drop = 2.0;
+    d.ssim_drop = 0.02;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+static void test_partial_gputime_refused(void **state)
+{
+    (void)state;
+    dm_run_result a;
+    make_run(&a, "A", 1, 30, 1.0, 0.02, 100);
+    free(a.configs[0].counters[0].name);
+    a.configs[0].counters[0].name = dm_xstrdup("GPUTime");
+    a.configs[0].counters[0].partial = 1;
+    compare_desc d = { .time_counter = "GPUTime" };
+    compare_result r;
+    assert_int_equal(run_compare(&a, &a, &d, &r), DM_ERR_ARG);
+    compare_result_free(&r);
+    dm_run_free(&a);
+}
+
+/* ---- files, outputs, store, baselines ---------------------------------- */
+
+typedef struct tmp { char dir[32]; } tmp;
+
+static int tmp_setup(void **state)
+{
+    tmp *t = dm_xcalloc(1, sizeof *t);
+    strcpy(t->dir, "/tmp/dmcompareXXXXXX");
+    assert_non_null(mkdtemp(t->dir));
+    *state = t;
+    return 0;
+}
+
+static int tmp_teardown(void **state)
+{
+    tmp *t = *state;
+    char *cmd = dm_xasprintf("rm -rf '%s'", t->dir);
+    assert_int_equal(system(cmd), 0);
+    free(cmd);
+    free(t);
+    return 0;
+}
+
+static char *slurp(const char *path)
+{
+    char *text = NULL;
+    assert_int_equal(dm_read_file(path, &text, NULL), 0);
+    return text;
+}
+
+static void test_json_roundtrip_and_outputs(void **state)
+{
+    tmp *t = *state;
+    dm_run_result a, b, la, lb;
+    make_run(&a, "A", 3, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 3, 30, 1.0, 0.02, 100);
+    counter(&b, 2, "TESInvocations")->value = 6144;
+    char *dir = dm_xasprintf("%s/run-b", t->dir), *fa = dm_xasprintf("%s/a.json", t->dir);
+    char *fb = dm_xasprintf("%s/results.json", dir);
+    assert_int_equal(dm_mkdirs(dir), 0);
+    assert_int_equal(report_write_json(&a, fa), 0);
+    assert_int_equal(report_write_json(&b, fb), 0);
+    dm_str err = {0};
+    assert_int_equal(compare_load_path(fa, &la, &err), 0);
+    assert_int_equal(compare_load_path(dir, &lb, &err), 0);   /* a run directory */
+    dm_run_result none;
+    assert_int_equal(compare_load_path("/nonexistent/x.json", &none, &err), DM_ERR_NOTFOUND);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(compare_runs(&la, &lb, &d, &r, &err), 0);
+    assert_int_equal(compare_exit_code(&r), 1);
+    assert_string_equal(r.items[0].note, "TESInvocations changed 3169 -> 6144");
+    char *md = dm_xasprintf("%s/c.md", t->dir), *ju = dm_xasprintf("%s/c.xml", t->dir);
+    char *js = dm_xasprintf("%s/c.json", t->dir);
+    assert_int_equal(compare_write_markdown(&r, md), 0);
+    assert_int_equal(compare_write_junit(&r, ju), 0);
+    assert_int_equal(compare_write_json(&r, js), 0);
+    char *text = slurp(md);
+    assert_non_null(strstr(text, "| Verdict | Configuration | Key |"));
+    assert_non_null(strstr(text, "| REGRESSION | mesh=m2 | `0000000000000003` |"));
+    free(text);
+    text = slurp(ju);
+    assert_non_null(strstr(text, "tests=\"3\" failures=\"1\""));
+    assert_non_null(strstr(text, "<failure message=\"REGRESSION: TESInvocations changed 3169 -&gt; 6144\"/>"));
+    free(text);
+    text = slurp(js);
+    assert_non_null(strstr(text, "\"REGRESSION\":\t1"));
+    assert_non_null(strstr(text, "\"exit_code\":\t1"));
+    free(text);
+    free(md);
+    free(ju);
+    free(js);
+    compare_result_free(&r);
+    dm_str_free(&err);
+    dm_run_free(&a);
+    dm_run_free(&b);
+    dm_run_free(&la);
+    dm_run_free(&lb);
+    free(dir);
+    free(fa);
+    free(fb);
+}
+
+/* A store with runs r1 (tag "main") and r2 (tag "pr"). */
+static char *make_store(const char *dir)
+{
+    char *path = dm_xasprintf("%s/dmbench.sqlite", dir);
+    store *s = NULL;
+    dm_str err = {0};
+    assert_int_equal(store_open(path, &s, &err), 0);
+    const char *ids[] = { "r1", "r2" }, *tags[] = { "main", "pr" };
+    for (int k = 0; k < 2; k++) {
+        dm_run_result run;
+        make_run(&run, ids[k], 2, 10, 1.0 + k, 0.02, 100);
+        free(run.started);
+        run.started = dm_xasprintf("2026-01-0%dT00:00:00Z", k + 1);
+        assert_int_equal(store_run_begin(s, &run, tags[k]), 0);
+        for (size_t i = 0; i < run.n_configs; i++)
+            assert_int_equal(store_config_put(s, ids[k], &run.configs[i]), 0);
+        dm_run_free(&run);
+    }
+    store_close(s);
+    dm_str_free(&err);
+    return path;
+}
+
+static void test_store_and_baselines(void **state)
+{
+    tmp *t = *state;
+    char *path = make_store(t->dir);
+    dm_run_result a, b;
+    dm_str err = {0};
+    assert_int_equal(compare_load_store(path, NULL, "main", &a, &err), 0);
+    assert_string_equal(a.id, "r1");
+    assert_int_equal(compare_load_store(path, "r2", NULL, &b, &err), 0);
+    assert_int_equal(b.n_configs, 2);
+    dm_run_free(&a);
+    dm_run_free(&b);
+    assert_int_equal(compare_load_store(path, NULL, "nope", &a, &err), DM_ERR_NOTFOUND);
+    /* baselines */
+    char *id = NULL, *why = NULL;
+    assert_int_equal(compare_baseline_latest(path, NULL, &id, NULL, &err), DM_ERR_NOTFOUND);
+    assert_int_equal(compare_baseline_accept(path, "r1", "", &err), DM_ERR_ARG);
+    assert_int_equal(compare_baseline_accept(path, "r9", "x", &err), DM_ERR_NOTFOUND);
+    assert_int_equal(compare_baseline_accept(path, "r1", "first", &err), 0);
+    assert_int_equal(compare_baseline_accept(path, "r2", "2x slower on purpose", &err), 0);
+    assert_int_equal(compare_baseline_latest(path, "synthetic", &id, &why, &err), 0);
+    assert_string_equal(id, "r2");
+    assert_string_equal(why, "2x slower on purpose");
+    free(id);
+    free(why);
+    assert_int_equal(compare_baseline_latest(path, "other-sweep", &id, NULL, &err), DM_ERR_NOTFOUND);
+    char *bl = compare_baselines_path(path), *text = slurp(bl);
+    assert_non_null(strstr(text, "\"reason\":\t\"first\""));
+    free(text);
+    free(bl);
+    dm_str_free(&err);
+    free(path);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_self_all_pass),
+        cmocka_unit_test(test_deterministic_change),
+        cmocka_unit_test(test_slowdown_20_percent_regression),
+        cmocka_unit_test(test_slowdown_1_percent_pass),
+        cmocka_unit_test(test_huge_noise_inconclusive),
+        cmocka_unit_test(test_env_mismatch),
+        cmocka_unit_test(test_counters_only_ignores_time),
+        cmocka_unit_test(test_failed_added_removed),
+        cmocka_unit_test(test_quality_drop),
+        cmocka_unit_test(test_partial_gputime_refused),
+        cmocka_unit_test_setup_teardown(test_json_roundtrip_and_outputs, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,255 @@
+/* test_viewer_state.c — the viewer's input handling, key scripts and font,
+ * without GL (the GL side is covered by test_viewer.sh under xvfb-run). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "core/dm_error.h"
+#include "harness/viewer_overlay.h"
+#include "harness/viewer_script.h"
+#include "harness/viewer_state.h"
+#include "techniques/technique.h"
+
+static void state_with(viewer_state *st, const char *k1, const char *v1, const char *k2, const char *v2)
+{
+    dm_kv *kv = NULL;
+    size_t n = 0;
+    if (k1)
+        dm_kv_push(&kv, &n, k1, v1);
+    if (k2)
+        dm_kv_push(&kv, &n, k2, v2);
+    viewer_state_init(st, kv, n);
+    dm_kv_free(kv, n);
+    st->dirty = 0;
+}
+
+static void type(viewer_state *st, const char *keys)
+{
+    for (const char *p = keys; *p; p++)
+        viewer_state_char(st, (unsigned char)*p);
+}
+
+static void test_level_doubles_and_halves_steps(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, "technique", "steep-parallax", NULL, NULL);
+    type(&st, "]");                       /* default 32 → 64 */
+    assert_string_equal(viewer_state_get(&st, "steps"), "64");
+    assert_int_equal(st.dirty, 1);
+    type(&st, "[[[");                     /* 64 → 32 → 16 → 8 */
+    assert_string_equal(viewer_state_get(&st, "steps"), "8");
+    type(&st, "[[[[");                    /* 8 → 4 → 2 → 1 → 1 (axis minimum) */
+    assert_string_equal(viewer_state_get(&st, "steps"), "1");
+    viewer_state_free(&st);
+}
+
+static void test_level_on_technique_without_levels_says_why(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, "technique", "normal", NULL, NULL);
+    type(&st, "]");
+    assert_int_equal(st.dirty, 0);
+    assert_non_null(strstr(dm_str_get(&st.msg), "reads neither tess_level nor steps"));
+    assert_string_equal(viewer_state_get(&st, "tess_level"), "1");
+    viewer_state_free(&st);
+}
+
+static void test_digits_pick_techniques_in_registry_order(void **s)
+{
+    (void)s;
+    const char *const *names = technique_names();
+    size_t count = 0;
+    while (names[count])
+        count++;
+    viewer_state st;
+    state_with(&st, "technique", "pom", NULL, NULL);
+    type(&st, "2");
+    assert_string_equal(viewer_state_get(&st, "technique"), names[1]);
+    type(&st, "1");
+    assert_string_equal(viewer_state_get(&st, "technique"), names[0]);
+    type(&st, "0");                       /* the tenth, when there is one */
+    assert_string_equal(viewer_state_get(&st, "technique"), count >= 10 ? names[9] : names[0]);
+    viewer_state_free(&st);
+}
+
+static void test_filter_cycles_and_wraps(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, NULL, NULL, NULL, NULL);
+    type(&st, "f");                       /* trilinear (default) → aniso2 */
+    assert_string_equal(viewer_state_get(&st, "filter"), "aniso2");
+    type(&st, "FFF");                     /* aniso4, aniso8, aniso16 */
+    assert_string_equal(viewer_state_get(&st, "filter"), "aniso16");
+    type(&st, "f");
+    assert_string_equal(viewer_state_get(&st, "filter"), "nearest");
+    viewer_state_free(&st);
+}
+
+static void test_height_scale_steps_only_where_read(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, "technique", "bump", NULL, NULL);
+    type(&st, "h");
+    assert_string_equal(viewer_state_get(&st, "height_scale"), "0.07");
+    type(&st, "HH");
+    assert_string_equal(viewer_state_get(&st, "height_scale"), "0.05");
+    viewer_state_free(&st);
+    state_with(&st, "technique", "texture", NULL, NULL);
+    type(&st, "h");
+    assert_string_equal(viewer_state_get(&st, "height_scale"), "0.06");
+    assert_non_null(strstr(dm_str_get(&st.msg), "does not read height_scale"));
+    assert_int_equal(st.dirty, 0);
+    viewer_state_free(&st);
+}
+
+static void test_mouse_orbit_zoom_and_reset(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, "camera.distance", "5", NULL, NULL);
+    viewer_state_orbit(&st, 40, -20);     /* 0.25°/px: azimuth 30 − 10, elevation 20 − 5 */
+    assert_string_equal(viewer_state_get(&st, "camera.azimuth"), "20");
+    assert_string_equal(viewer_state_get(&st, "camera.elevation"), "15");
+    viewer_state_orbit(&st, 0, 1000);     /* clamped below the pole */
+    assert_string_equal(viewer_state_get(&st, "camera.elevation"), "89");
+    viewer_state_orbit(&st, -800, 0);     /* 20 + 200 = 220 → wraps to −140 */
+    assert_string_equal(viewer_state_get(&st, "camera.azimuth"), "-140");
+    viewer_state_zoom(&st, 2);            /* 5 · 0.9² */
+    assert_string_equal(viewer_state_get(&st, "camera.distance"), "4.05");
+    type(&st, "r");
+    assert_string_equal(viewer_state_get(&st, "camera.distance"), "5");
+    assert_string_equal(viewer_state_get(&st, "camera.azimuth"), "30");
+    assert_string_equal(viewer_state_get(&st, "camera.elevation"), "20");
+    viewer_state_free(&st);
+}
+
+static void test_toggles_and_requests(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, NULL, NULL, NULL, NULL);
+    type(&st, "wcts?");
+    assert_int_equal(st.wireframe, 1);
+    assert_int_equal(st.overlay, 1);
+    assert_int_equal(st.want_timed, 1);
+    assert_int_equal(st.want_screenshot, 1);
+    assert_int_equal(st.want_help, 1);
+    assert_int_equal(st.dirty, 0);        /* none of them changes the configuration */
+    assert_int_equal(st.want_quit, 0);
+    viewer_state_special(&st, VIEWER_KEY_ESC);
+    assert_int_equal(st.want_quit, 1);
+    assert_int_equal(viewer_state_set(&st, "filter", "bogus"), DM_ERR_ARG);
+    assert_int_equal(viewer_state_set(&st, "nosuchaxis", "1"), DM_ERR_UNKNOWN);
+    viewer_state_free(&st);
+}
+
+static void test_restore_undoes_without_dirty(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, "technique", "bump", NULL, NULL);
+    dm_kv good = {"technique", "phong"};
+    type(&st, "m");
+    viewer_state_restore(&st, &good, 1);
+    assert_int_equal(st.dirty, 0);
+    assert_int_equal(st.n_params, 1);
+    assert_string_equal(viewer_state_get(&st, "technique"), "phong");
+    assert_string_equal(viewer_state_get(&st, "mesh"), "plane");   /* back to the default */
+    viewer_state_free(&st);
+}
+
+static void test_script_events(void **s)
+{
+    (void)s;
+    viewer_event *ev = NULL;
+    size_t n = 0;
+    dm_str err = {0};
+    assert_int_equal(viewer_script_parse("a H. {wait:2}{ESC}{drag:3,-4}{wheel:-1}{space}{dot}",
+                                         &ev, &n, &err), 0);
+    assert_int_equal(n, 10);
+    assert_int_equal(ev[0].kind, VIEWER_EV_CHAR);
+    assert_int_equal(ev[0].ch, 'a');
+    assert_int_equal(ev[1].ch, 'H');
+    for (int i = 2; i < 5; i++)
+        assert_int_equal(ev[i].kind, VIEWER_EV_WAIT);
+    assert_int_equal(ev[5].kind, VIEWER_EV_ESC);
+    assert_int_equal(ev[6].kind, VIEWER_EV_DRAG);
+    assert_true(ev[6].dx == 3.0 && ev[6].dy == -4.0);
+    assert_int_equal(ev[7].kind, VIEWER_EV_WHEEL);
+    assert_true(ev[7].dy == -1.0);
+    assert_int_equal(ev[8].ch, ' ');
+    assert_int_equal(ev[9].ch, '.');
+    free(ev);
+}
+
+static void test_script_errors_name_the_offset(void **s)
+{
+    (void)s;
+    static const char *const bad[] = {"ab{bogus}", "ab{wait:3", "ab{wait:-1}", "ab{drag:1}"};
+    for (size_t i = 0; i < 4; i++) {
+        viewer_event *ev = NULL;
+        size_t n = 99;
+        dm_str err = {0};
+        assert_int_equal(viewer_script_parse(bad[i], &ev, &n, &err), DM_ERR_PARSE);
+        assert_null(ev);
+        assert_int_equal(n, 99);
+        assert_non_null(strstr(dm_str_get(&err), "offset 2"));
+        dm_str_free(&err);
+    }
+}
+
+static size_t lit(const uint8_t *px, int w, int h)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < (size_t)w * (size_t)h; i++)
+        n += px[4 * i] == 255;
+    return n;
+}
+
+static void test_font_raster_sizes_and_pixels(void **s)
+{
+    (void)s;
+    int w = 0, h = 0;
+    uint8_t *px = viewer_font_raster("1", 1, &w, &h);
+    assert_int_equal(w, 4 + 1);            /* cell 3+1, margin 1 */
+    assert_int_equal(h, 6 + 1);
+    assert_int_equal(lit(px, w, h), 8);    /* the '1' glyph has 8 lit pixels */
+    assert_int_equal(px[3], 255);          /* opaque box */
+    free(px);
+    px = viewer_font_raster("A\nb", 2, &w, &h);   /* 'b' drawn as 'B'; 10 + 10 pixels, 2×2 each */
+    assert_int_equal(w, 8 + 2);
+    assert_int_equal(h, 24 + 2);
+    assert_int_equal(lit(px, w, h), 80);
+    free(px);
+    uint8_t *q = viewer_font_raster("~", 1, &w, &h), *r = viewer_font_raster("?", 1, &w, &h);
+    assert_memory_equal(q, r, (size_t)w * (size_t)h * 4);   /* unknown shown as '?' */
+    free(q);
+    free(r);
+    assert_null(viewer_font_raster("", 1, &w, &h));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_level_doubles_and_halves_steps),
+        cmocka_unit_test(test_level_on_technique_without_levels_says_why),
+        cmocka_unit_test(test_digits_pick_techniques_in_registry_order),
+        cmocka_unit_test(test_filter_cycles_and_wraps),
+        cmocka_unit_test(test_height_scale_steps_only_where_read),
+        cmocka_unit_test(test_mouse_orbit_zoom_and_reset),
+        cmocka_unit_test(test_toggles_and_requests),
+        cmocka_unit_test(test_restore_undoes_without_dirty),
+        cmocka_unit_test(test_script_events),
+        cmocka_unit_test(test_script_errors_name_the_offset),
+        cmocka_unit_test(test_font_raster_sizes_and_pixels),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}

@@ -1,0 +1,10 @@
+# The interactive viewer (harness/viewer*.c): input, scripts and font without
+# GL; the real binary in a virtual X server (tests/test_viewer.sh).
+dm_add_unit(test_viewer_state test_viewer_state.c LIBS dm_harness LABELS viewer)
+add_executable(test_viewer_imgcmp test_viewer_imgcmp.c)
+target_link_libraries(test_viewer_imgcmp PRIVATE dm_reports dm_core m)
+foreach(mode batch-equal key-script timed no-display)
+  add_test(NAME test_viewer_${mode} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test_viewer.sh ${mode})
+  set_tests_properties(test_viewer_${mode} PROPERTIES TIMEOUT 300 LABELS viewer
+    ENVIRONMENT "${DM_TEST_ENV};VIEWER_IMGCMP=$<TARGET_FILE:test_viewer_imgcmp>")
+endforeach()
