@@ -1,4 +1,5 @@
-/* image.h — float RGBA images and the OpenImageIO bridge (C++ behind a C header).
+/* image.h — image comparison, heatmaps and thumbnails (OpenImageIO bridge).
+ * Buffers and files: core/dm_image.h, included here.
  *
  * An img is RGBA32F, row-major, row 0 at the top (the harness flips GL's
  * bottom-up rows when reading back).  PNG output is 8-bit with values
@@ -8,15 +9,11 @@
 #define REPORTS_IMAGE_H
 
 #include <stddef.h>
+#include "core/dm_image.h"
 
 #ifdef __cplusplus
 extern "C" {
 #endif
-
-typedef struct img {
-    int w, h;
-    float *px;               /* w*h*4 floats, owned */
-} img;
 
 typedef struct img_metrics {
     double rmse, psnr;       /* over RGB; psnr = INFINITY when identical */
@@ -25,13 +22,6 @@ typedef struct img_metrics {
     long nonfinite;          /* NaN/Inf values in b (the test image) */
 } img_metrics;
 
-int img_alloc(img *im, int w, int h);        /* zero-filled; DM_ERR_NOMEM */
-void img_free(img *im);
-/* Saves by extension (.png, .exr, .tif).  DM_ERR_IO with the reason in err. */
-int img_save(const img *im, const char *path, char *err, size_t errlen);
-int img_load(const char *path, img *out, char *err, size_t errlen);
-/* Box-filter downsample by an integer factor (OpenImageIO resize). */
-int img_downsample(const img *src, int factor, img *out);
 /* RGB metrics of b against reference a (same size, else DM_ERR_ARG);
  * threshold for pct_over (e.g. 0.05). */
 int img_compare(const img *a, const img *b, double threshold, img_metrics *out);
