@@ -33,73 +33,13 @@
 #include "techniques/mesh.h"
 #include "techniques/shaders.h"
 #include "techniques/technique.h"
+#include "techniques/render_internal.h"
 
-#define RENDER__MAX_LIGHTS 8
 
-enum render__uniform {
-    RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
-    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_ROUGHNESS, RU_COUNT
-};
 static const char *const render__uniform_names[RU_COUNT] = {
     "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
     "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_roughness"
 };
-
-typedef struct render__program {
-    char *key;
-    GLuint id;
-    GLint loc[RU_COUNT];
-    GLint *axis_loc;             /* per axis index: location of u_<axis>, or -1 */
-} render__program;
-
-typedef struct render__mesh {
-    char *key;
-    GLuint vao, vbo, ibo;
-    size_t n_vertices, n_indices, bytes;
-    int clip_space;
-} render__mesh;
-
-typedef struct render__maps {
-    char *key;
-    GLuint tex[3];               /* height, normal, albedo */
-    size_t bytes[3];
-} render__maps;
-
-typedef struct render__sampler {
-    char *key;
-    GLuint id;
-} render__sampler;
-
-typedef struct render__item {
-    int used;
-    const technique_desc *tech;
-    size_t prog, mesh, maps, sampler;
-    float cam[4];                /* distance, azimuth, elevation, fov */
-    double *axis_val;            /* per axis index: numeric value (steps auto = 0) */
-    int light_count;
-    tech_item_info info;
-} render__item;
-
-struct tech_renderer {
-    char *driver;                /* GL_RENDERER + GL_VERSION, part of program keys */
-    char *cache_dir;             /* on-disk program binaries, NULL = off */
-    float max_aniso;             /* 0 when anisotropic filtering is absent */
-    render__program *progs;
-    size_t n_progs;
-    render__mesh *meshes;
-    size_t n_meshes;
-    render__maps *maps;
-    size_t n_maps;
-    render__sampler *samplers;
-    size_t n_samplers;
-    render__item *items;
-    size_t n_items;
-};
-
-/* Grows a cache array by one zeroed element; returns its index. */
-#define RENDER__PUSH(arr, n) \
-    ((arr) = dm_xrealloc((arr), ((n) + 1) * sizeof *(arr)), \
-     memset(&(arr)[(n)], 0, sizeof *(arr)), (n)++)
 
 int tech_renderer_create(tech_renderer **out)
 {
@@ -132,20 +72,11 @@ void tech_renderer_destroy(tech_renderer *r)
         glDeleteBuffers(1, &r->meshes[i].ibo);
         free(r->meshes[i].key);
     }
-    for (size_t i = 0; i < r->n_maps; i++) {
-        glDeleteTextures(3, r->maps[i].tex);
-        free(r->maps[i].key);
-    }
-    for (size_t i = 0; i < r->n_samplers; i++) {
-        glDeleteSamplers(1, &r->samplers[i].id);
-        free(r->samplers[i].key);
-    }
+    render__maps_destroy(r);
     for (size_t i = 0; i < r->n_items; i++)
         free(r->items[i].axis_val);
     free(r->progs);
     free(r->meshes);
-    free(r->maps);
-    free(r->samplers);
     free(r->items);
     free(r->driver);
     free(r->cache_dir);
@@ -168,13 +99,8 @@ int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir)
 
 /* ---- parameters --------------------------------------------------------- */
 
-typedef struct render__cfg {
-    const dm_kv *kv;
-    size_t n;
-} render__cfg;
-
 /* Value of axis `name`: the given parameter, else the axis default. */
-static const char *render__get(const render__cfg *c, const char *name)
+const char *render__get(const render__cfg *c, const char *name)
 {
     for (size_t i = 0; i < c->n; i++)
         if (c->kv[i].key && strcmp(c->kv[i].key, name) == 0)
@@ -456,186 +382,6 @@ static int render__mesh_get(tech_renderer *r, const char *name, int density, siz
     return 0;
 }
 
-/* ---- textures ------------------------------------------------------------ */
-
-static const struct { const char *name; GLenum internal; } render__formats[] = {
-    {"r8", GL_R8}, {"r16", GL_R16}, {"r16f", GL_R16F}, {"r32f", GL_R32F},
-    {"rgba32f", GL_RGBA32F}, {"rgb8", GL_RGB8}, {"rgba8", GL_RGBA8}, {"rg8", GL_RG8},
-    {"rgb16f", GL_RGB16F}, {"rgba16f", GL_RGBA16F}, {"srgb8_a8", GL_SRGB8_ALPHA8},
-    {"bc1", GL_COMPRESSED_RGB_S3TC_DXT1_EXT}, {"bc3", GL_COMPRESSED_RGBA_S3TC_DXT5_EXT},
-    {"bc5", GL_COMPRESSED_RG_RGTC2}, {"bc7", GL_COMPRESSED_RGBA_BPTC_UNORM},
-};
-
-static GLenum render__format(const char *name)
-{
-    for (size_t i = 0; i < sizeof render__formats / sizeof render__formats[0]; i++)
-        if (strcmp(render__formats[i].name, name) == 0)
-            return render__formats[i].internal;
-    return 0;
-}
-
-/* 2×2 box filter of a size² image of ch channels into (size/2)². */
-static void render__downsample(const float *src, int size, int ch, float *dst)
-{
-    int h = size / 2;
-    for (int y = 0; y < h; y++)
-        for (int x = 0; x < h; x++)
-            for (int c = 0; c < ch; c++) {
-                size_t a = ((size_t)(2 * y) * (size_t)size + (size_t)(2 * x)) * (size_t)ch + (size_t)c;
-                size_t row = (size_t)size * (size_t)ch;
-                dst[((size_t)y * (size_t)h + (size_t)x) * (size_t)ch + (size_t)c] =
-                    0.25f * (src[a] + src[a + (size_t)ch] + src[a + row] + src[a + row + (size_t)ch]);
-            }
-}
-
-/* Bytes of one texture, summed over its levels as the driver reports them. */
-static size_t render__texture_bytes(GLuint tex, int levels)
-{
-    size_t total = 0;
-    for (int l = 0; l < levels; l++) {
-        GLint comp = 0, w = 0, h = 0, bits = 0, v;
-        glGetTextureLevelParameteriv(tex, l, GL_TEXTURE_COMPRESSED, &comp);
-        glGetTextureLevelParameteriv(tex, l, GL_TEXTURE_WIDTH, &w);
-        glGetTextureLevelParameteriv(tex, l, GL_TEXTURE_HEIGHT, &h);
-        if (comp) {
-            glGetTextureLevelParameteriv(tex, l, GL_TEXTURE_COMPRESSED_IMAGE_SIZE, &v);
-            total += (size_t)v;
-            continue;
-        }
-        static const GLenum q[4] = {GL_TEXTURE_RED_SIZE, GL_TEXTURE_GREEN_SIZE,
-                                    GL_TEXTURE_BLUE_SIZE, GL_TEXTURE_ALPHA_SIZE};
-        for (int i = 0; i < 4; i++) {
-            glGetTextureLevelParameteriv(tex, l, q[i], &v);
-            bits += v;
-        }
-        total += (size_t)w * (size_t)h * (size_t)bits / 8;
-    }
-    return total;
-}
-
-/* Uploads one map (ch channels of float data) with a full CPU mip chain. */
-static int render__upload(GLenum internal, const float *data, int size, int ch, GLuint *tex,
-                          size_t *bytes)
-{
-    static const GLenum fmt[5] = {0, GL_RED, GL_RG, GL_RGB, GL_RGBA};
-    int levels = 1;
-    while ((size >> levels) >= 1)
-        levels++;
-    glCreateTextures(GL_TEXTURE_2D, 1, tex);
-    glBindTexture(GL_TEXTURE_2D, *tex);
-    glPixelStorei(GL_UNPACK_ALIGNMENT, 1);
-    float *buf = dm_xmalloc((size_t)size * (size_t)size * (size_t)ch * sizeof(float));
-    memcpy(buf, data, (size_t)size * (size_t)size * (size_t)ch * sizeof(float));
-    for (int l = 0, s = size; l < levels; l++, s /= 2) {
-        glTexImage2D(GL_TEXTURE_2D, l, (GLint)internal, s, s, 0, fmt[ch], GL_FLOAT, buf);
-        if (s > 1)
-            render__downsample(buf, s, ch, buf);
-    }
-    free(buf);
-    glTextureParameteri(*tex, GL_TEXTURE_MAX_LEVEL, levels - 1);
-    glBindTexture(GL_TEXTURE_2D, 0);
-    if (glGetError() != GL_NO_ERROR)
-        return DM_ERR_UNSUPPORTED;
-    *bytes = render__texture_bytes(*tex, levels);
-    return 0;
-}
-
-/* sRGB transfer function: linear [0,1] -> encoded. */
-static float render__srgb_encode(float c)
-{
-    c = c < 0 ? 0 : c > 1 ? 1 : c;
-    return c <= 0.0031308f ? 12.92f * c : 1.055f * powf(c, 1 / 2.4f) - 0.055f;
-}
-
-/* Uploads the three maps: the normal map encoded n*0.5+0.5; the linear
- * albedo sRGB-encoded first when its format is an sRGB one, so sampling
- * returns the same linear values for every format. */
-static int render__maps_upload(render__maps *m, const maps_set *s, const GLenum fmt[3])
-{
-    size_t texels = (size_t)s->size * (size_t)s->size;
-    float *enc = dm_xmalloc(texels * 4 * sizeof(float));
-    for (size_t i = 0; i < texels * 3; i++)
-        enc[i] = s->normal[i] * 0.5f + 0.5f;
-    int rc = render__upload(fmt[0], s->height, s->size, 1, &m->tex[0], &m->bytes[0]);
-    if (!rc)
-        rc = render__upload(fmt[1], enc, s->size, 3, &m->tex[1], &m->bytes[1]);
-    const float *albedo = s->albedo;
-    if (fmt[2] == GL_SRGB8_ALPHA8) {
-        for (size_t i = 0; i < texels * 4; i++)
-            enc[i] = i % 4 == 3 ? s->albedo[i] : render__srgb_encode(s->albedo[i]);
-        albedo = enc;
-    }
-    if (!rc)
-        rc = render__upload(fmt[2], albedo, s->size, 4, &m->tex[2], &m->bytes[2]);
-    free(enc);
-    return rc;
-}
-
-/* Finds or creates the textures of (maps, size, formats). */
-static int render__maps_get(tech_renderer *r, const render__cfg *c, size_t *idx, dm_str *log)
-{
-    const char *name = render__get(c, "maps");
-    int size = atoi(render__get(c, "texture_size"));
-    const char *f[3] = {render__get(c, "height_format"), render__get(c, "normal_format"),
-                        render__get(c, "albedo_format")};
-    char *key = dm_xasprintf("%s/%d/%s/%s/%s", name, size, f[0], f[1], f[2]);
-    for (size_t i = 0; i < r->n_maps; i++)
-        if (strcmp(r->maps[i].key, key) == 0) {
-            free(key);
-            *idx = i;
-            return 0;
-        }
-    GLenum fmt[3] = {render__format(f[0]), render__format(f[1]), render__format(f[2])};
-    maps_set s;
-    maps_desc d = {.name = name, .size = size};
-    int rc = maps_generate(&d, &s);
-    if (rc) {
-        dm_str_printf(log, "maps '%s' at %d texels: %s\n", name, size, dm_strerror(rc));
-        free(key);
-        return rc;
-    }
-    render__maps m = {.key = key};
-    rc = render__maps_upload(&m, &s, fmt);
-    maps_free(&s);
-    if (rc) {
-        dm_str_printf(log, "maps '%s': the driver cannot upload formats %s/%s/%s\n", name, f[0], f[1], f[2]);
-        glDeleteTextures(3, m.tex);
-        free(key);
-        return rc;
-    }
-    *idx = RENDER__PUSH(r->maps, r->n_maps);
-    r->maps[*idx] = m;
-    return 0;
-}
-
-static size_t render__sampler_get(tech_renderer *r, const char *filter)
-{
-    for (size_t i = 0; i < r->n_samplers; i++)
-        if (strcmp(r->samplers[i].key, filter) == 0)
-            return i;
-    size_t n = RENDER__PUSH(r->samplers, r->n_samplers);
-    GLuint s;
-    glCreateSamplers(1, &s);
-    GLint min = GL_LINEAR_MIPMAP_LINEAR, mag = GL_LINEAR;
-    if (strcmp(filter, "nearest") == 0) {
-        min = GL_NEAREST_MIPMAP_NEAREST;
-        mag = GL_NEAREST;
-    } else if (strcmp(filter, "bilinear") == 0) {
-        min = GL_LINEAR_MIPMAP_NEAREST;
-    }
-    glSamplerParameteri(s, GL_TEXTURE_MIN_FILTER, min);
-    glSamplerParameteri(s, GL_TEXTURE_MAG_FILTER, mag);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_S, GL_REPEAT);
-    glSamplerParameteri(s, GL_TEXTURE_WRAP_T, GL_REPEAT);
-    if (strncmp(filter, "aniso", 5) == 0 && r->max_aniso > 0) {
-        float a = (float)atoi(filter + 5);
-        glSamplerParameterf(s, GL_TEXTURE_MAX_ANISOTROPY_EXT, a < r->max_aniso ? a : r->max_aniso);
-    }
-    r->samplers[n].key = dm_xstrdup(filter);
-    r->samplers[n].id = s;
-    return n;
-}
-
 /* ---- items ---------------------------------------------------------------- */
 
 /* Fills the item's numeric uniforms and camera from the configuration. */
@@ -688,10 +434,7 @@ static void render__item_info(tech_renderer *r, render__item *it)
     it->info.mesh_vertices = m->n_vertices;
     it->info.mesh_triangles = m->n_indices / 3;
     it->info.mesh_bytes = m->bytes;
-    it->info.texture_bytes = 0;
-    for (int i = 0; i < 3; i++)
-        if (it->tech->textures & (1u << i))
-            it->info.texture_bytes += r->maps[it->maps].bytes[i];
+    it->info.texture_bytes = render__maps_bytes(r, it);
 }
 
 int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_item *out,
@@ -796,10 +539,7 @@ int tech_draw(tech_renderer *r, tech_item item, int width, int height)
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glUseProgram(r->progs[it->prog].id);
     render__uniforms(r, it, (float)width / (float)height);
-    for (GLuint u = 0; u < 3; u++) {
-        glBindTextureUnit(u, r->maps[it->maps].tex[u]);
-        glBindSampler(u, r->samplers[it->sampler].id);
-    }
+    render__maps_bind(r, it);
     glBindVertexArray(m->vao);
     GLenum mode = GL_TRIANGLES;
     if (it->tech->tcs || it->tech->tes) {

@@ -1,0 +1,78 @@
+/* render_internal.h — the renderer's shared internals (techniques/ only).
+ *
+ * render.c owns programs, meshes, items and drawing; render_textures.c owns
+ * the maps and samplers (render_textures.h).  Both see the renderer struct.
+ */
+#ifndef TECHNIQUES_RENDER_INTERNAL_H
+#define TECHNIQUES_RENDER_INTERNAL_H
+
+#include <epoxy/gl.h>
+#include <stddef.h>
+#include <string.h>
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+#include "techniques/render.h"
+#include "techniques/render_textures.h"
+#include "techniques/technique.h"
+
+#define RENDER__MAX_LIGHTS 8
+
+enum render__uniform {
+    RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
+    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_ROUGHNESS, RU_COUNT
+};
+
+typedef struct render__program {
+    char *key;
+    GLuint id;
+    GLint loc[RU_COUNT];
+    GLint *axis_loc;             /* per axis index: location of u_<axis>, or -1 */
+} render__program;
+
+typedef struct render__mesh {
+    char *key;
+    GLuint vao, vbo, ibo;
+    size_t n_vertices, n_indices, bytes;
+    int clip_space;
+} render__mesh;
+
+typedef struct render__item {
+    int used;
+    const technique_desc *tech;
+    size_t prog, mesh, maps, sampler;
+    float cam[4];                /* distance, azimuth, elevation, fov */
+    double *axis_val;            /* per axis index: numeric value (steps auto = 0) */
+    int light_count;
+    tech_item_info info;
+} render__item;
+
+struct tech_renderer {
+    char *driver;                /* GL_RENDERER + GL_VERSION, part of program keys */
+    char *cache_dir;             /* on-disk program binaries, NULL = off */
+    float max_aniso;             /* 0 when anisotropic filtering is absent */
+    render__program *progs;
+    size_t n_progs;
+    render__mesh *meshes;
+    size_t n_meshes;
+    render__maps *maps;
+    size_t n_maps;
+    render__sampler *samplers;
+    size_t n_samplers;
+    render__item *items;
+    size_t n_items;
+};
+
+typedef struct render__cfg {
+    const dm_kv *kv;
+    size_t n;
+} render__cfg;
+
+/* Grows a cache array by one zeroed element; returns its index. */
+#define RENDER__PUSH(arr, n) \
+    ((arr) = dm_xrealloc((arr), ((n) + 1) * sizeof *(arr)), \
+     memset(&(arr)[(n)], 0, sizeof *(arr)), (n)++)
+
+/* Value of axis `name`: the given parameter, else the axis default. */
+const char *render__get(const render__cfg *c, const char *name);
+
+#endif

@@ -1,0 +1,41 @@
+/* render_textures.h — the material maps of the renderer (internal to techniques/).
+ *
+ * Owned by render_textures.c: generating or loading maps, uploading them in
+ * the requested formats with their mip chains, samplers for the `filter`
+ * axis, and binding them for a draw.  render.c calls only these functions.
+ */
+#ifndef TECHNIQUES_RENDER_TEXTURES_H
+#define TECHNIQUES_RENDER_TEXTURES_H
+
+#include <epoxy/gl.h>
+#include <stddef.h>
+#include "core/dm_util.h"
+
+struct tech_renderer;
+struct render__item;
+struct render__cfg;
+
+typedef struct render__maps {
+    char *key;
+    GLuint tex[3];               /* height, normal, albedo */
+    size_t bytes[3];
+} render__maps;
+
+typedef struct render__sampler {
+    char *key;
+    GLuint id;
+} render__sampler;
+
+/* Finds or creates the textures of the configuration's (maps, size,
+ * formats); *idx indexes r->maps.  DM_ERR_* with a message in log. */
+int render__maps_get(struct tech_renderer *r, const struct render__cfg *c, size_t *idx, dm_str *log);
+/* Finds or creates the sampler of a `filter` value; returns its index. */
+size_t render__sampler_get(struct tech_renderer *r, const char *filter);
+/* Binds the item's maps and sampler to units 0 (height), 1 (normal), 2 (albedo). */
+void render__maps_bind(struct tech_renderer *r, const struct render__item *it);
+/* Bytes of the maps the item's technique samples. */
+size_t render__maps_bytes(struct tech_renderer *r, const struct render__item *it);
+/* Releases every map and sampler of the renderer. */
+void render__maps_destroy(struct tech_renderer *r);
+
+#endif
