@@ -49,4 +49,16 @@ int tech_draw(tech_renderer *r, tech_item item, int width, int height);
 int tech_item_get_info(tech_renderer *r, tech_item item, tech_item_info *out);
 void tech_release(tech_renderer *r, tech_item item);
 
+/* Virtual-texture statistics of an item, cumulative since it was prepared
+ * (render_textures.c).  DM_ERR_UNAVAILABLE when the item does not use a
+ * virtual texture. */
+typedef struct tech_vt_stats {
+    uint64_t frames;
+    uint64_t pages_resident;     /* now */
+    uint64_t page_misses;        /* requested pages that were not resident */
+    uint64_t upload_bytes;       /* bytes uploaded into the page cache */
+    int64_t feedback_ns;         /* time spent in feedback passes and readback */
+} tech_vt_stats;
+int tech_item_vt_stats(tech_renderer *r, tech_item item, tech_vt_stats *out);
+
 #endif

@@ -227,3 +227,11 @@ void render__maps_destroy(tech_renderer *r)
     r->samplers = NULL;
     r->n_maps = r->n_samplers = 0;
 }
+
+int tech_item_vt_stats(tech_renderer *r, tech_item item, tech_vt_stats *out)
+{
+    (void)r;
+    (void)item;
+    (void)out;
+    return DM_ERR_UNAVAILABLE;   /* no technique uses a virtual texture yet */
+}
