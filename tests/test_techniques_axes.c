@@ -28,13 +28,13 @@ static void test_catalog(void **state)
     assert_int_equal(axes_count(), 33);
     static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
-        "albedo_format", NULL};
+        "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", NULL};
     size_t n_scene = 0;
     for (size_t i = 0; i < axes_count(); i++)
         n_scene += axes_at(i)->scene;
     for (size_t i = 0; scene[i]; i++)
         assert_int_equal(axes_find(scene[i])->scene, 1);
-    assert_int_equal(n_scene, 12);   /* the 11 above + technique */
+    assert_int_equal(n_scene, 15);   /* the 14 above + technique */
     assert_string_equal(axes_find("resolution")->def, "640x360");
     assert_string_equal(axes_find("lighting")->def, "blinn-phong");
     assert_string_equal(axes_find("filter")->def, "trilinear");
