@@ -105,6 +105,17 @@ int counters_session_end(counters_session *s);
 int counters_result(counters_session *s, uint32_t sample_id, const char *name, double *value);
 const char *counters_last_error(const counters_session *s);
 
+/* ---- derived counters over caller-supplied values -------------------------
+ * Evaluates the formula of derived counter `name` with the values that
+ * `value` supplies for its inputs (e.g. medians of a finished measurement).
+ * Returns 0 and *out; DM_ERR_UNKNOWN (not a derived counter);
+ * DM_ERR_UNAVAILABLE with the reason in why when an input is unavailable or
+ * a denominator is zero (never an infinity). */
+typedef int (*counters_value_fn)(const char *name, void *user, double *value);
+int counters_derive(const char *name, counters_value_fn value, void *user, double *out, dm_str *why);
+/* 1 when every input of derived counter `name` satisfies has(input, user). */
+int counters_derive_inputs(const char *name, int (*has)(const char *input, void *user), void *user);
+
 /* ---- timer calibration (SPEC §4) -----------------------------------------
  * Runs a heavy draw of its own (fragment-bound, into an internal FBO) and
  * compares GL_TIME_ELAPSED with glFinish-fenced wall time.  coverage =

@@ -81,6 +81,8 @@ static const counters__def counters__table[] = {
       BYTES, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
     {{"MeshBytes", "Memory", "Bytes of vertex and index buffers, fed by the caller",
       BYTES, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+    {{"MeshTriangles", "Memory", "Triangles of the mesh as submitted (before tessellation), fed by the caller",
+      ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
     {{"VTPagesResident", "Memory", "Virtual-texture pages resident at sample end, fed by the caller",
       ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
     {{"VTPageMisses", "Memory", "Virtual-texture page requests not resident, fed by the caller",

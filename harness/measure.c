@@ -262,6 +262,52 @@ static dm_counter_result *measure__push(dm_config_result *out, const char *name)
     return r;
 }
 
+/* Value of a collected counter for derived formulas: the median of timed
+ * counters, the value of the others; ViewportPixels is the target size. */
+typedef struct derive_env { const dm_config_result *out; double viewport; } derive_env;
+
+static int measure__derive_value(const char *name, void *user, double *value)
+{
+    const derive_env *e = user;
+    if (strcmp(name, "ViewportPixels") == 0) {
+        *value = e->viewport;
+        return 0;
+    }
+    const dm_counter_result *r = dm_config_counter(e->out, name);
+    if (!r || !r->available || r->partial)
+        return DM_ERR_UNAVAILABLE;
+    *value = r->value;
+    return 0;
+}
+
+static int measure__derive_has(const char *name, void *user)
+{
+    const derive_env *e = user;
+    return strcmp(name, "ViewportPixels") == 0 || dm_config_counter(e->out, name) != NULL;
+}
+
+/* Adds every derived counter whose inputs were all collected (SPEC §4:
+ * formulas over the above); a zero denominator is unavailable, not infinite. */
+static void measure__derived(const plan_config *pc, dm_config_result *out)
+{
+    derive_env e = { out, (double)pc->width * pc->height };
+    for (size_t i = 0; i < counters_count(); i++) {
+        const counters_info *ci = counters_info_at(i);
+        if (ci->backend != COUNTERS_BACKEND_DERIVED || !counters_derive_inputs(ci->name, measure__derive_has, &e))
+            continue;
+        double v = NAN;
+        dm_str why = {0};
+        int rc = counters_derive(ci->name, measure__derive_value, &e, &v, &why);
+        dm_counter_result *r = measure__push(out, ci->name);
+        r->value = v;
+        if (rc != 0) {
+            r->available = 0;
+            r->unavailable_reason = dm_xstrdup(why.len ? dm_str_get(&why) : "unavailable");
+        }
+        dm_str_free(&why);
+    }
+}
+
 /* Fills the counters of a finished configuration into out. */
 static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
 {
@@ -293,6 +339,8 @@ static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
             v = (double)c->info.texture_bytes;
         else if (strcmp(n, "MeshBytes") == 0)
             v = (double)c->info.mesh_bytes;
+        else if (strcmp(n, "MeshTriangles") == 0)
+            v = (double)c->info.mesh_triangles;
         else if (strcmp(n, "SetupTime") == 0)
             v = (double)c->info.setup_ns;
         else if (strcmp(n, "WarmupTime") == 0)
@@ -301,6 +349,7 @@ static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
             continue;
         measure__push(out, n)->value = v;
     }
+    measure__derived(c->pc, out);
 }
 
 static char *measure__img_path(const measure_job *job, const char *name)
@@ -460,6 +509,15 @@ static int measure__setup(mscene *m, dm_str *err)
     int rc = gl_context_create(NULL, &m->gl, err);
     rc = rc ? rc : tech_renderer_create(&m->r);
     rc = rc ? rc : counters_context_create(&m->cc);
+    /* DMBENCH_HIDE_EXTENSIONS=GL_A,GL_B makes the counters behave as on a
+     * driver without them, so "unavailable" can be tested end to end. */
+    const char *hide = getenv("DMBENCH_HIDE_EXTENSIONS");
+    if (rc == 0 && hide) {
+        char *copy = dm_xstrdup(hide), *save = NULL;
+        for (char *t = strtok_r(copy, ",", &save); t; t = strtok_r(NULL, ",", &save))
+            counters_context_hide_extension(m->cc, t);
+        free(copy);
+    }
     rc = rc ? rc : store_open(m->job->store_path, &m->st, err);
     if (rc == 0)
         measure__classify(m);

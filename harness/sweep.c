@@ -481,7 +481,7 @@ static void sweep__defaults(sweep *s)
         "WallTime", "CPUTime", "SubmitTime", "GPUTime", "VerticesSubmitted",
         "PrimitivesSubmitted", "VSInvocations", "TCSPatches", "TESInvocations",
         "ClippingInputPrimitives", "ClippingOutputPrimitives", "FSInvocations",
-        "SamplesPassed", "TextureBytes", "MeshBytes" };
+        "SamplesPassed", "TextureBytes", "MeshBytes", "MeshTriangles" };
     sweep_measure *m = &s->measure;
     if (!s->name)
         s->name = dm_xstrdup("unnamed");
