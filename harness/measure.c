@@ -27,7 +27,8 @@ typedef struct mconf {
     char *reason;
     dm_str log;
     int64_t warmup_ns;
-    int64_t started_ns;         /* first timing sample */
+    int64_t sampling_ns;        /* time spent in its own timing samples */
+    int frames;                 /* frames per timing sample (>= K, see min_sample_ms) */
     double **timing;            /* per timing counter: per-frame samples */
     size_t n_samples;
     double *stats;              /* per statistics counter: per-frame value (NAN = unavailable) */
@@ -178,6 +179,13 @@ static void measure__prepare(mscene *m, mconf *c)
             break;
         prev = cur;
     }
+    /* Short samples measure the scheduler more than the frame: take enough
+     * frames per sample to last min_sample_ms (as Google Benchmark grows its
+     * iteration count), never fewer than K. */
+    double want = sm->min_sample_ms * 1e6 / (prev > 1 ? prev : 1);
+    c->frames = want > sm->frames_per_sample ? (int)ceil(want) : sm->frames_per_sample;
+    if (c->frames > 100000)
+        c->frames = 100000;
     c->warmup_ns = dm_now_ns() - t0;
     c->stats = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats);
     c->stats_reason = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats_reason);
@@ -203,9 +211,8 @@ static void measure__timing_sample(mscene *m, mconf *c)
     const sweep_measure *sm = &m->job->sweep->measure;
     double *vals = dm_xcalloc(m->n_timing + 1, sizeof *vals);
     measure__say(m->job, "B %s", c->pc->key);
-    if (!c->started_ns)
-        c->started_ns = dm_now_ns();
-    if (measure__session(m, c, m->timing, m->n_timing, sm->frames_per_sample, vals, NULL) != 0) {
+    int64_t t0 = dm_now_ns();
+    if (measure__session(m, c, m->timing, m->n_timing, c->frames, vals, NULL) != 0) {
         measure__fail(c, "counter session failed (see log)");
         free(vals);
         return;
@@ -213,10 +220,11 @@ static void measure__timing_sample(mscene *m, mconf *c)
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i][c->n_samples] = vals[i];
     c->n_samples++;
+    c->sampling_ns += dm_now_ns() - t0;
     free(vals);
     int wi = measure__wall_index(m);
     stats_summary su;
-    double elapsed = (double)(dm_now_ns() - c->started_ns) / 1e9;
+    double elapsed = (double)c->sampling_ns / 1e9;   /* its own samples only, not the round's */
     int precise = wi >= 0 && stats_summarize(c->timing[wi], c->n_samples, m->job->seed, &su) == 0 &&
                   su.ci_rel <= sm->target_ci;
     if ((c->n_samples >= (size_t)sm->samples_min && (precise || elapsed > sm->max_seconds)) ||
@@ -508,6 +516,9 @@ static int measure__setup(mscene *m, dm_str *err)
 {
     int rc = gl_context_create(NULL, &m->gl, err);
     rc = rc ? rc : tech_renderer_create(&m->r);
+    if (rc == 0 && m->job->cache_dir && dm_mkdirs(m->job->cache_dir) == 0 &&
+        tech_renderer_set_cache_dir(m->r, m->job->cache_dir) != 0)
+        dm_log(DM_LOG_DEBUG, "program binaries cannot be cached on this driver");
     rc = rc ? rc : counters_context_create(&m->cc);
     /* DMBENCH_HIDE_EXTENSIONS=GL_A,GL_B makes the counters behave as on a
      * driver without them, so "unavailable" can be tested end to end. */

@@ -26,6 +26,7 @@ typedef struct measure_job {
     const char *run_id;
     const char *run_dir;          /* images go to run_dir/img/ */
     const char *store_path;
+    const char *cache_dir;        /* program-binary cache, NULL = off */
     uint64_t seed;
     int timer_partial;            /* GPUTime covers only part of the work */
     int report_fd;                /* -1: no progress lines */

@@ -29,7 +29,7 @@ typedef struct runner {
     const runner_opts *o;
     plan p;
     store *st;
-    char *root, *run_id, *run_dir, *store_path;
+    char *root, *run_id, *run_dir, *store_path, *cache_dir;
     dm_run_result env;         /* environment + timer of the run */
     char **exts;               /* extensions the driver has (of those techniques need) */
     size_t n_exts;
@@ -227,6 +227,7 @@ static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd)
         close(fds[0]);
         measure_job job = { .sweep = r->s, .configs = cs, .n_configs = n, .run_id = r->run_id,
                             .run_dir = r->run_dir, .store_path = r->store_path,
+                            .cache_dir = r->cache_dir,
                             .seed = r->o->seed ? r->o->seed : 1,
                             .timer_partial = strcmp(r->env.timer_verdict, "full") != 0,
                             .report_fd = fds[1] };
@@ -343,6 +344,7 @@ static int runner__open(runner *r, dm_str *err)
         return DM_ERR_IO;
     }
     r->store_path = dm_xasprintf("%s/dmbench.sqlite", r->root);
+    r->cache_dir = dm_xasprintf("%s/cache/programs", r->root);
     int rc = store_open(r->store_path, &r->st, err);
     if (rc != 0)
         return rc;
@@ -475,6 +477,7 @@ static void runner__free(runner *r)
     free(r->root);
     free(r->run_id);
     free(r->store_path);
+    free(r->cache_dir);
     for (size_t i = 0; i < r->n_exts; i++)
         free(r->exts[i]);
     free(r->exts);
@@ -506,6 +509,11 @@ static void runner__scenes(runner *r)
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err)
 {
     runner r = { .s = s, .o = o, .tty = isatty(2) };
+    /* llvmpipe rasterizes on one thread per core; on shared machines that
+     * makes fenced timings several times noisier (LLVMPIPE.md), so measuring
+     * processes use one rasterizer thread unless the user chose otherwise.
+     * The value is recorded in the environment and the fingerprint. */
+    setenv("LP_NUM_THREADS", "1", 0);
     int rc = plan_build(s, &r.p, err);
     if (rc == 0 && o->shard_n && (rc = plan_shard(&r.p, o->shard_k, o->shard_n)) != 0)
         dm_str_printf(err, "--shard %d/%d: expected K/N with 1 <= K <= N", o->shard_k, o->shard_n);

@@ -15,8 +15,7 @@
 #include <string.h>
 #include <yaml.h>
 
-/* Techniques of the default sweep (every technique that exists). */
-#define DM_DEFAULT_TECHNIQUES "normal"
+#include "techniques/technique.h"
 
 typedef struct pctx {
     yaml_document_t *doc;
@@ -327,7 +326,7 @@ static int p__samples(pctx *c, yaml_node_t *map)
 static int p__measure(pctx *c, yaml_node_t *map)
 {
     static const char *const keys[] = { "warmup_frames", "frames_per_sample", "samples",
-                                        "counters", "timeout_s", "max_seconds" };
+                                        "counters", "timeout_s", "max_seconds", "min_sample_ms" };
     sweep_measure *m = &c->s->measure;
     int rc = p__expect_map(c, map, "measure");
     P__FOREACH_PAIR(c, map, pr) {
@@ -347,8 +346,11 @@ static int p__measure(pctx *c, yaml_node_t *map)
             rc = p__real(c, v, "measure.timeout_s", 1, 86400, &m->timeout_s);
         else if (strcmp(name, "max_seconds") == 0)
             rc = p__real(c, v, "measure.max_seconds", 0.01, 86400, &m->max_seconds);
+        else if (strcmp(name, "min_sample_ms") == 0)
+            rc = p__real(c, v, "measure.min_sample_ms", 0, 10000, &m->min_sample_ms),
+            m->min_sample_set = 1;
         else
-            rc = p__unknown_key(c, k, "measure", keys, 6);
+            rc = p__unknown_key(c, k, "measure", keys, 7);
     }
     return rc;
 }
@@ -499,6 +501,8 @@ static void sweep__defaults(sweep *s)
         m->timeout_s = 120;
     if (m->max_seconds <= 0)
         m->max_seconds = 10;
+    if (!m->min_sample_set)
+        m->min_sample_ms = 20;
     if (!m->n_counters) {
         size_t n = sizeof counters / sizeof counters[0];
         m->counters = dm_xmalloc(n * sizeof *m->counters);
@@ -554,40 +558,55 @@ int sweep_load(const char *path, sweep *out, dm_str *err)
     return rc;
 }
 
-/* The embedded default sweep: every technique on a small grid of axes, the
- * built-in procedural scene and maps; no files, no network, no display. */
+/* The embedded default sweep: every technique that exists (registry order)
+ * on a small grid of axes, the built-in procedural scene and maps; no files,
+ * no network, no display.  %s is replaced by the technique list. */
 static const char sweep__default_yaml[] =
     "name: default\n"
     "resolution: [480, 270]\n"
     "measure:\n"
     "  warmup_frames: 4\n"
     "  frames_per_sample: 8\n"
-    "  samples: { min: 5, max: 20, target_ci: 0.03 }\n"
-    "  max_seconds: 4\n"
+    "  samples: { min: 5, max: 30, target_ci: 0.03 }\n"
+    "  max_seconds: 6\n"
     "scene:\n"
     "  camera: { distance: 3.0, azimuth: 30, elevation: 35, fov: 45 }\n"
     "  material: { maps: bricks, height_scale: 0.06 }\n"
     "sweep:\n"
     "  mesh: [plane, cube]\n"
-    "  technique: [" DM_DEFAULT_TECHNIQUES "]\n"
+    "  technique: [%s]\n"
+    "  tess_level: [1, 16]\n"
+    "  steps: [8, 32]\n"
     "  resolution: [[240, 135], [480, 270]]\n"
     "models:\n"
-    "  - { name: resolution-cost, formula: \"a + b*SamplesPassed\", response: WallTime }\n";
+    "  - { name: pixel-cost, formula: \"a + b*SamplesPassed\", response: WallTime, group_by: [technique] }\n"
+    "  - { name: pipeline-linear }\n";
 
 static const char sweep__quick_yaml[] =
     "name: quick\n"
     "resolution: [160, 90]\n"
     "measure:\n"
     "  warmup_frames: 2\n"
-    "  frames_per_sample: 2\n"
-    "  samples: { min: 3, max: 5, target_ci: 0.05 }\n"
+    "  frames_per_sample: 4\n"
+    "  samples: { min: 5, max: 8, target_ci: 0.05 }\n"
     "  max_seconds: 1\n"
     "sweep:\n"
     "  mesh: [plane]\n"
-    "  technique: [" DM_DEFAULT_TECHNIQUES "]\n"
+    "  technique: [%s]\n"
     "  resolution: [[80, 45], [160, 90]]\n";
 
-const char *sweep_default_text(int quick) { return quick ? sweep__quick_yaml : sweep__default_yaml; }
+const char *sweep_default_text(int quick)
+{
+    static char *text[2];
+    if (!text[quick]) {
+        dm_str list = {0};
+        for (const char *const *t = technique_names(); *t; t++)
+            dm_str_printf(&list, "%s%s", list.len ? ", " : "", *t);
+        text[quick] = dm_xasprintf(quick ? sweep__quick_yaml : sweep__default_yaml, dm_str_get(&list));
+        dm_str_free(&list);
+    }
+    return text[quick];
+}
 
 void sweep_free(sweep *s)
 {

@@ -32,7 +32,9 @@ typedef struct sweep_model {
 
 typedef struct sweep_measure {
     int warmup_frames;       /* minimum warm-up frames (default 8) */
-    int frames_per_sample;   /* K (default 16) */
+    int frames_per_sample;   /* K (default 16); raised per configuration so that */
+    double min_sample_ms;    /* a sample lasts at least this long (default 20; 0 = K exactly) */
+    int min_sample_set;
     int samples_min;         /* default 5 */
     int samples_max;         /* default 30 */
     double target_ci;        /* relative half-width of the median's 95% CI (default 0.03) */
