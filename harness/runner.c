@@ -405,13 +405,6 @@ static int runner__begin(runner *r)
     int rc = store_run_begin(r->st, e, r->o->tag);
     for (size_t i = 0; rc == 0 && i < r->p.n_left_out; i++)
         rc = store_left_out_put(r->st, r->run_id, &r->p.left_out[i]);
-    if (rc == 0 && strcmp(e->timer_verdict, "full") != 0) {
-        char *w = dm_xasprintf("GPUTime is %s on this driver: GL_TIME_ELAPSED covered %.1f%% of "
-                               "fenced wall time in calibration; it is recorded, never used to fit or gate",
-                               e->timer_verdict, e->gpu_time_coverage * 100);
-        rc = store_run_warning_put(r->st, r->run_id, w);
-        free(w);
-    }
     return rc;
 }
 

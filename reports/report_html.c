@@ -25,7 +25,20 @@ static const char *css =
     ".fail{color:#a00}.missing{color:#888;font-style:italic}"
     "pre{background:#f6f6f6;padding:.5em;overflow:auto;max-height:20em}"
     "figure{display:inline-block;margin:0 1em 1em 0}figure img{width:192px;image-rendering:pixelated;border:1px solid #ccc}"
-    ".gal{margin-bottom:1em}.chart svg{max-width:100%;height:auto}";
+    ".gal{margin-bottom:1em}.chart svg{max-width:100%;height:auto}"
+    ".const{color:#555}td.key{font:11px monospace;color:#777}"
+    "table.sortable th{cursor:pointer}table.sortable th:hover{background:#e4e4e4}";
+
+/* Click a column header to sort by it (numbers numerically); the content is
+ * complete without it. */
+static const char *sort_js =
+    "document.querySelectorAll('table.sortable th').forEach(function(th,i){"
+    "th.title='click to sort';th.onclick=function(){var tb=th.closest('table').tBodies[0];"
+    "var rows=Array.from(tb.rows),up=th.dataset.up!=='1';th.dataset.up=up?'1':'0';"
+    "rows.sort(function(a,b){var x=a.cells[i].textContent,y=b.cells[i].textContent,"
+    "p=parseFloat(x.replace(/[^0-9.eE+-]/g,'')),q=parseFloat(y.replace(/[^0-9.eE+-]/g,''));"
+    "var r=(!isNaN(p)&&!isNaN(q))?p-q:x.localeCompare(y);return up?r:-r;});"
+    "rows.forEach(function(r){tb.appendChild(r);});};});";
 
 static void esc(dm_str *s, const char *text)
 {
@@ -118,52 +131,120 @@ static void counter_cell(dm_str *s, const dm_counter_result *c)
         num_cell(s, "%.0f", c->value);
 }
 
+/* Counters worth a column in the scene tables (the rest are in the CSV/JSON). */
+static const char *const key_counters[] = {
+    "VSInvocations", "TESInvocations", "ClippingOutputPrimitives", "SamplesPassed",
+    "FSInvocations", "TextureBytes", "MeshTriangles" };
+
 static void scene_row(dm_str *s, const dm_config_result *c, const char **params, size_t np,
                       const char **det, size_t nd)
 {
     dm_str_cat(s, "<tr>");
-    tagged(s, "td", c->key);
+    tagged(s, "td", dm_kv_get(c->params, c->n_params, "technique"));
     for (size_t i = 0; i < np; i++)
         tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
     const dm_counter_result *t = report__frame_time(c);
     if (t)
-        dm_str_printf(s, "<td class=\"n\">%.4f ± %.4f</td>", t->median / 1e6,
-                      (t->ci_hi - t->ci_lo) / 2e6);
+        dm_str_printf(s, "<td class=\"n\">%.3f</td><td class=\"n\">±%.1f%%</td>", t->median / 1e6,
+                      t->median > 0 ? (t->ci_hi - t->ci_lo) / 2 / t->median * 100 : NAN);
     else
-        dm_str_cat(s, "<td class=\"missing\">unavailable</td>");
+        dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
     for (size_t i = 0; i < nd; i++)
         counter_cell(s, dm_config_counter(c, det[i]));
     const dm_quality *q = &c->quality;
     num_cell(s, "%.2f", q->present ? q->psnr : NAN);
     num_cell(s, "%.4f", q->present ? q->ssim : NAN);
-    num_cell(s, "%.5f", q->present ? q->rmse : NAN);
     num_cell(s, "%.0f", q->present ? (double)q->crack_pixels : NAN);
-    dm_str_cat(s, "</tr>\n");
+    dm_str_cat(s, "<td class=\"key\">");
+    esc(s, c->key);
+    dm_str_cat(s, "</td></tr>\n");
+}
+
+/* 1 when param `name` takes two or more distinct values over the scene's
+ * configurations (techniques that do not read it have no value and do not
+ * count: a blank cell is not a variation). */
+static int param_varies(const dm_run_result *run, const char *scene, const char *name)
+{
+    const char *first = NULL;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (!c->ok || strcmp(c->scene ? c->scene : "", scene) != 0)
+            continue;
+        const char *v = dm_kv_get(c->params, c->n_params, name);
+        if (v && first && strcmp(v, first) != 0)
+            return 1;
+        if (v)
+            first = v;
+    }
+    return 0;
+}
+
+static const dm_run_result *sort_run;
+
+static int by_time(const void *a, const void *b)
+{
+    const dm_counter_result *x = report__frame_time(&sort_run->configs[*(const size_t *)a]);
+    const dm_counter_result *y = report__frame_time(&sort_run->configs[*(const size_t *)b]);
+    double tx = x ? x->median : INFINITY, ty = y ? y->median : INFINITY;
+    return (tx > ty) - (tx < ty);
 }
 
 static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
 {
-    const char **params, **det;
-    size_t np = report__param_names(run, scene, &params);
-    size_t nd = report__counter_names(run, scene, REPORT__DETERMINISTIC, &det);
+    const char **params;
+    size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
+    const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
     dm_str_cat(s, "<h2>Scene ");
     esc(s, scene);
-    dm_str_cat(s, "</h2>\n<table><thead><tr><th>key</th>");
-    for (size_t i = 0; i < np; i++)
-        tagged(s, "th", params[i]);
-    dm_str_cat(s, "<th>median ms ± CI</th>");
+    dm_str_cat(s, "</h2>\n<p class=\"const\">Same for every row: ");
+    for (size_t i = 0; i < np; i++) {
+        if (strcmp(params[i], "technique") == 0)
+            continue;
+        if (param_varies(run, scene, params[i])) {
+            varying[nv++] = params[i];
+            continue;
+        }
+        const char *v = NULL;
+        for (size_t k = 0; k < run->n_configs && !v; k++)
+            if (run->configs[k].ok && strcmp(run->configs[k].scene ? run->configs[k].scene : "", scene) == 0)
+                v = dm_kv_get(run->configs[k].params, run->configs[k].n_params, params[i]);
+        if (!v)
+            continue;
+        esc(s, params[i]);
+        dm_str_cat(s, "=");
+        esc(s, v);
+        dm_str_cat(s, " ");
+    }
+    dm_str_cat(s, "(where the technique reads it; a blank cell below: the technique does not read that axis)</p>\n");
+    for (size_t k = 0; k < sizeof key_counters / sizeof *key_counters; k++)
+        for (size_t i = 0; i < run->n_configs; i++)
+            if (strcmp(run->configs[i].scene ? run->configs[i].scene : "", scene) == 0 &&
+                dm_config_counter(&run->configs[i], key_counters[k])) {
+                det[nd++] = key_counters[k];
+                break;
+            }
+    dm_str_cat(s, "<table class=\"sortable\"><thead><tr><th>technique</th>");
+    for (size_t i = 0; i < nv; i++)
+        tagged(s, "th", varying[i]);
+    dm_str_cat(s, "<th>median ms</th><th>95% CI</th>");
     for (size_t i = 0; i < nd; i++)
         tagged(s, "th", det[i]);
-    dm_str_cat(s, "<th>PSNR dB</th><th>SSIM</th><th>RMSE</th><th>CrackPixels</th></tr></thead><tbody>\n");
+    dm_str_cat(s, "<th>PSNR dB</th><th>SSIM</th><th>CrackPixels</th><th>key</th></tr></thead><tbody>\n");
+    size_t *rows = dm_xcalloc(run->n_configs + 1, sizeof *rows), nr = 0;
     for (size_t i = 0; i < run->n_configs; i++) {
         const dm_config_result *c = &run->configs[i];
         if (c->ok && strcmp(c->scene ? c->scene : "", scene) == 0)
-            scene_row(s, c, params, np, det, nd);
+            rows[nr++] = i;
     }
+    sort_run = run;
+    qsort(rows, nr, sizeof *rows, by_time);
+    for (size_t i = 0; i < nr; i++)
+        scene_row(s, &run->configs[rows[i]], varying, nv, det, nd);
     dm_str_cat(s, "</tbody></table>\n");
     report__html_charts_scene(s, run, scene);
+    free(rows);
+    free(varying);
     free(params);
-    free(det);
 }
 
 #define THUMB_MAX_DIM 192
@@ -321,7 +402,7 @@ int report_write_html(const dm_run_result *run, const char *dir, const char *pat
     gallery(&s, run, dir);
     failed_and_left_out(&s, run);
     fits(&s, run);
-    dm_str_cat(&s, "</body></html>\n");
+    dm_str_printf(&s, "<script>%s</script>\n</body></html>\n", sort_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     return rc;
