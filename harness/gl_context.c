@@ -23,13 +23,14 @@ static void GLAPIENTRY gl__debug_cb(GLenum source, GLenum type, GLuint id, GLenu
     (void)id;
     (void)length;
     gl_context *ctx = (gl_context *)user;
-    if (severity == GL_DEBUG_SEVERITY_NOTIFICATION)
+    int error = type == GL_DEBUG_TYPE_ERROR || type == GL_DEBUG_TYPE_UNDEFINED_BEHAVIOR;
+    if (!error && (severity == GL_DEBUG_SEVERITY_NOTIFICATION || severity == GL_DEBUG_SEVERITY_LOW))
         return;
-    if (type != GL_DEBUG_TYPE_ERROR && severity == GL_DEBUG_SEVERITY_LOW)
-        return;
-    ctx->n_messages++;
+    /* Errors fail the configuration; other messages (shader compiler
+     * warnings, performance notes) are kept in its log only. */
+    ctx->n_messages += error;
     if (ctx->messages.len < 16384)
-        dm_str_printf(&ctx->messages, "GL debug: %s\n", msg);
+        dm_str_printf(&ctx->messages, "GL debug %s: %s\n", error ? "error" : "message", msg);
 }
 
 static int gl__create_egl(gl_context *ctx, dm_str *err)

@@ -32,8 +32,9 @@ int gl_context_create(const gl_context_desc *desc, gl_context **out, dm_str *err
 void gl_context_destroy(gl_context *ctx);
 /* GLFW window handle (GLFWwindow*) or NULL for EGL. */
 void *gl_context_window(gl_context *ctx);
-/* Number of KHR_debug messages of severity high/medium or type error seen
- * since the last take; moves their text into out (may be NULL). */
+/* Number of KHR_debug errors (type error or undefined behaviour) seen since
+ * the last take; moves the text of those and of other medium/high-severity
+ * messages (e.g. shader compiler warnings) into out (may be NULL). */
 int gl_context_take_messages(gl_context *ctx, dm_str *out);
 /* Drains glGetError; returns the number of errors and appends them to out. */
 int gl_context_check_errors(dm_str *out);

@@ -163,6 +163,11 @@ static void measure__prepare(mscene *m, mconf *c)
     const sweep_measure *sm = &m->job->sweep->measure;
     measure__say(m->job, "B %s", c->pc->key);
     int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
+    /* compiler warnings and errors of this configuration's programs go to its own log */
+    if (gl_context_take_messages(m->gl, &c->log) > 0 && rc == 0) {
+        measure__fail(c, "GL error while preparing the configuration (see log)");
+        return;
+    }
     if (rc != 0) {
         measure__fail(c, rc == DM_ERR_SHADER ? "shader compile or link failed (see log)"
                          : rc == DM_ERR_UNSUPPORTED ? "not supported by this driver (see log)"
@@ -493,10 +498,9 @@ static void measure__commit(mscene *m, mconf *c)
         measure__quality(m, c, &out);
     }
     dm_str glmsg = {0};
-    if (!c->failed && gl_context_take_messages(m->gl, &glmsg) + gl_context_check_errors(&glmsg) > 0) {
+    if (gl_context_take_messages(m->gl, &glmsg) + gl_context_check_errors(&glmsg) > 0)
         measure__fail(c, "GL error during the configuration (see log)");
-        dm_str_cat(&c->log, dm_str_get(&glmsg));
-    }
+    dm_str_cat(&c->log, dm_str_get(&glmsg));
     dm_str_free(&glmsg);
     out.ok = !c->failed;
     out.reason = dm_xstrdup(c->reason);
