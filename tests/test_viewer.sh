@@ -6,16 +6,24 @@
 #   key-script   a script cycling techniques, levels, filters, meshes, spacing,
 #                height, wireframe and overlay runs with no GL error (exit 0)
 #   timed        T with --timed-seconds 1 prints a WallTime median in ns/frame
+#   config       --config KEY --results DIR renders that configuration
 #   no-display   without DISPLAY: exit 2 and a message naming xvfb-run
 # Needs DMBENCH_BINARY; VIEWER_IMGCMP is the helper test_viewer_imgcmp.
 set -u
 BIN=${DMBENCH_BINARY:?DMBENCH_BINARY must point at dmbench}
 MODE=${1:?mode}
+XVFB=(xvfb-run -a -s "-screen 0 1024x768x24")
+# batch-equal: one X server for the whole loop (each start costs ~0.5 s)
+if [ "$MODE" = batch-equal ] && [ -z "${VIEWER_IN_XVFB:-}" ]; then
+    exec "${XVFB[@]}" env VIEWER_IN_XVFB=1 bash "$0" "$MODE"
+fi
 TMP=$(mktemp -d)
 trap 'rm -rf "$TMP"' EXIT
 cd "$TMP" || exit 1
 fail() { echo "FAIL: $*"; exit 1; }
-view() { xvfb-run -a -s "-screen 0 1024x768x24" "$BIN" view "$@"; }
+view() {
+    if [ -n "${VIEWER_IN_XVFB:-}" ]; then "$BIN" view "$@"; else "${XVFB[@]}" "$BIN" view "$@"; fi
+}
 
 case "$MODE" in
 batch-equal)
@@ -33,21 +41,28 @@ batch-equal)
     echo "ok: $n techniques match the batch render"
     ;;
 key-script)
-    # techniques 1..7, levels on steep-parallax/pom, filters, meshes, spacing,
-    # height, wireframe, overlay, orbit/zoom, reset, help, quit.
-    script='1.2.3.4hH.5]]..6]][[.7ff.fm.mp.w.c{drag:30,-10}{wheel:2}.r?..{esc}'
+    # every technique (digits 1..9, 0) with levels ] [ , spacing P and filter F
+    # on each, then meshes, height, wireframe, overlay, orbit/zoom, reset,
+    # help and Esc.
+    count=$("$BIN" list techniques | grep -c '^[a-z]')
+    [ "$count" -gt 10 ] && count=10
+    script=''
+    for i in $(seq 1 "$count"); do script+="$((i % 10))]].[pf."; done
+    script+='m.mhH.w.c{drag:30,-10}{wheel:2}.r?..{esc}'
     out=$(view resolution=320x180 --keys "$script" 2>&1)
     rc=$?
     echo "$out"
     [ $rc -eq 0 ] || fail "key script exited $rc"
     echo "$out" | grep -q "GL error" && fail "GL errors reported"
-    echo "$out" | grep -q "technique = pom" || fail "the script did not reach technique 7"
-    echo "$out" | grep -q "steps = 64" || fail "] did not double the steps"
+    last=$("$BIN" list techniques | awk '/^[a-z]/ {print $1}' | sed -n "${count}p")
+    echo "$out" | grep -q "technique = $last" || fail "the script did not reach technique $count ($last)"
+    echo "$out" | grep -q "steps = 64" || fail "] did not double the parallax steps"
     echo "$out" | grep -q "filter = aniso2" || fail "F did not change the filter"
+    echo "$out" | grep -q "counters overlay on" || fail "C did not turn the overlay on"
     # a bad script is a usage error, before any window opens
     view --keys '{nope}' >/dev/null 2>&1
     [ $? -eq 2 ] || fail "a bad --keys script must exit 2"
-    echo "ok: key script ran without GL errors"
+    echo "ok: key script over $count techniques ran without GL errors"
     ;;
 timed)
     out=$(view technique=normal resolution=256x144 --keys 'T.' --timed-seconds 1 2>&1)
@@ -60,6 +75,27 @@ timed)
     [[ "$ns" =~ ^[0-9]+$ ]] && [ "$ns" -gt 0 ] || fail "median is not a positive ns/frame: $line"
     echo "$out" | grep -q '^timed: per frame: WallTime .* VSInvocations [0-9]' || fail "no counters line"
     echo "ok: timed median $ns ns/frame"
+    ;;
+config)
+    # --config KEY --results DIR takes the params of that configuration;
+    # KEY=VALUE arguments override them.  A unique key prefix is enough.
+    mkdir run
+    cat > run/results.json <<'JSON'
+{"run": {"id": "viewer-test"}, "configs": [
+ {"key": "00aa11bb22cc33dd", "status": "ok", "params": {"technique": "bump", "mesh": "sphere",
+  "resolution": "128x72", "camera.azimuth": 75, "height_scale": 0.1}},
+ {"key": "00aa99bb22cc33dd", "status": "ok", "params": {"technique": "texture"}}]}
+JSON
+    view --config 00aa11 --results run camera.elevation=40 --frames 2 --screenshot a.png >/dev/null ||
+        fail "view --config exited $?"
+    "$BIN" render technique=bump mesh=sphere resolution=128x72 camera.azimuth=75 height_scale=0.1 \
+        camera.elevation=40 --png b.png >/dev/null || fail "render exited $?"
+    "${VIEWER_IMGCMP:?}" a.png b.png 50 || fail "--config did not reproduce the configuration"
+    "$BIN" view --config 00aa --results run >/dev/null 2>&1
+    [ $? -eq 2 ] || fail "an ambiguous --config must exit 2"
+    "$BIN" view --config 00aa11 >/dev/null 2>&1
+    [ $? -eq 2 ] || fail "--config without --results must exit 2"
+    echo "ok: --config reproduces a measured configuration"
     ;;
 no-display)
     out=$(env -u DISPLAY -u WAYLAND_DISPLAY "$BIN" view --frames 1 2>&1)

@@ -25,7 +25,7 @@ int main(int argc, char **argv)
     }
     img a = {0}, b = {0};
     img_metrics m;
-    char err[512];
+    char err[512] = "different sizes";
     if (img_load(argv[1], &a, err, sizeof err) != 0 || img_load(argv[2], &b, err, sizeof err) != 0 ||
         img_compare(&b, &a, 0.05, &m) != 0) {
         fprintf(stderr, "%s: cannot compare %s and %s: %s\n", argv[0], argv[1], argv[2], err);
