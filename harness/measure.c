@@ -509,8 +509,8 @@ static void measure__commit(mscene *m, mconf *c)
     const dm_counter_result *wt = dm_config_counter(&out, "WallTime");
     double ci = wt && wt->median > 0 ? (wt->ci_hi - wt->ci_lo) / 2 / wt->median : NAN;
     if (rc == 0)
-        measure__say(m->job, "D %s %s %.0f %.4f", c->pc->key, out.ok ? "ok" : "failed",
-                     wt ? wt->median : NAN, ci);
+        measure__say(m->job, "D %s %s %.0f %.4f %lld", c->pc->key, out.ok ? "ok" : "failed",
+                     wt ? wt->median : NAN, ci, (long long)c->sampling_ns);
     else
         dm_log(DM_LOG_ERROR, "store: %s", store_last_error(m->st));
     dm_config_result_free(&out);

@@ -8,8 +8,8 @@
  * shuffled order, until the 95% CI of the median is within the target or the
  * limits are reached.  Then the image, its quality against the scene's
  * reference, and one store transaction.  Progress lines go to report_fd:
- * "B <key>" before work on a key, "D <key> <status> <median_ns> <ci_rel>"
- * after it is committed.
+ * "B <key>" before work on a key, "D <key> <status> <median_ns> <ci_rel>
+ * <sampling_ns>" after it is committed (sampling_ns: time in its timed samples).
  */
 #ifndef HARNESS_MEASURE_H
 #define HARNESS_MEASURE_H

@@ -33,8 +33,9 @@ typedef struct runner {
     dm_run_result env;         /* environment + timer of the run */
     char **exts;               /* extensions the driver has (of those techniques need) */
     size_t n_exts;
-    size_t done, total;
+    size_t done, total, failed;
     int64_t t_start;
+    int64_t measured_ns;       /* time inside timed samples, all configurations */
     int tty;
 } runner;
 
@@ -149,6 +150,7 @@ static void runner__progress(runner *r, const plan_config *c, const char *status
                              double median_ns, double ci_rel)
 {
     r->done++;
+    r->failed += strcmp(status, "ok") != 0;
     if (r->o->quiet)
         return;
     double el = (double)(dm_now_ns() - r->t_start) / 1e9;
@@ -204,10 +206,12 @@ static void runner__child_line(runner *r, child_watch *w, const plan_config *cs,
 {
     char key[17] = "", status[16] = "";
     double med = NAN, ci = NAN;
+    long long sampled = 0;
     if (line[0] == 'B' && sscanf(line, "B %16s", key) == 1) {
         snprintf(w->current, sizeof w->current, "%s", key);
-    } else if (line[0] == 'D' && sscanf(line, "D %16s %15s %lf %lf", key, status, &med, &ci) >= 2) {
+    } else if (line[0] == 'D' && sscanf(line, "D %16s %15s %lf %lf %lld", key, status, &med, &ci, &sampled) >= 2) {
         const plan_config *c = runner__find(cs, n, key);
+        r->measured_ns += sampled;
         if (c) {
             done_flags[c - cs] = 1;
             runner__progress(r, c, status, med, ci);
@@ -501,7 +505,7 @@ static void runner__scenes(runner *r)
 
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err)
 {
-    runner r = { .s = s, .o = o, .tty = isatty(2) };
+    runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns() };
     /* llvmpipe rasterizes on one thread per core; on shared machines that
      * makes fenced timings several times noisier (LLVMPIPE.md), so measuring
      * processes use one rasterizer thread unless the user chose otherwise.
@@ -517,7 +521,6 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
     rc = rc ? rc : runner__begin(&r);
     if (rc == 0) {
         r.total = r.p.n_configs;
-        r.t_start = dm_now_ns();
         if (!o->quiet)
             fprintf(stderr, "dmbench: %s: %zu combinations -> %zu configurations "
                     "(%zu folded: axes the technique does not read), %zu left out; run %s\n",
@@ -525,6 +528,11 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
                     r.p.n_combinations - r.p.n_configs - r.p.n_left_out, r.p.n_left_out, r.run_dir);
         runner__scenes(&r);
         rc = runner__finish(&r, err);
+        double wall = (double)(dm_now_ns() - r.t_start) / 1e9, meas = (double)r.measured_ns / 1e9;
+        if (!o->quiet)
+            fprintf(stderr, "dmbench: %zu configurations (%zu failed) in %.1f s; %.1f s in measured "
+                    "frames, %.0f%% of the time outside them (setup, warm-up, statistics, images)\n",
+                    r.done, r.failed, wall, meas, wall > 0 ? 100 * (1 - meas / wall) : 0);
     }
     if (rc == 0 && run_dir)
         *run_dir = dm_xstrdup(r.run_dir);
