@@ -53,7 +53,7 @@ const char *cli__value(int argc, char **argv, int *i)
 static int cli__run_options(int argc, char **argv, runner_opts *o, const char **file, int *quick)
 {
     static const char *const valid[] = { "--out", "--resume", "--shard", "--seed", "--tag",
-                                         "--quick", "--quiet", "--verbose" };
+                                         "--quick", "--quiet", "--verbose", "--budget" };
     for (int i = 1; i < argc; i++) {
         const char *a = argv[i], *v = NULL;
         if (a[0] != '-') {
@@ -78,6 +78,13 @@ static int cli__run_options(int argc, char **argv, runner_opts *o, const char **
             o->seed = strtoull(v, &end, 10);
             if (!*v || *end)
                 return cli__usage_error("run: --seed '%s': expected a non-negative integer", v);
+        } else if (strcmp(a, "--budget") == 0) {
+            if (!(v = cli__value(argc, argv, &i)))
+                return 2;
+            char *end = NULL;
+            o->budget_s = strtod(v, &end);
+            if (!*v || *end || !(o->budget_s > 0))
+                return cli__usage_error("run: --budget '%s': expected seconds per configuration, > 0", v);
         } else if (strcmp(a, "--tag") == 0) {
             if (!(o->tag = cli__value(argc, argv, &i)))
                 return 2;

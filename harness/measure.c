@@ -568,6 +568,27 @@ static void measure__teardown(mscene *m, mconf *cs, size_t n)
     gl_context_destroy(m->gl);
 }
 
+int measure_pilot(const measure_job *job, dm_str *err)
+{
+    mscene m = { .job = job };
+    int rc = measure__setup(&m, err);
+    mconf *cs = dm_xcalloc(job->n_configs + 1, sizeof *cs);
+    for (size_t i = 0; rc == 0 && i < job->n_configs; i++) {
+        mconf *c = &cs[i];
+        c->pc = &job->configs[i];
+        measure__say(job, "B %s", c->pc->key);
+        double ns = NAN;
+        if (tech_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log) == 0) {
+            measure__frames(&m, c, 2);             /* JIT and first-use costs */
+            ns = measure__plain_sample(&m, c, 1);
+        }
+        gl_context_take_messages(m.gl, NULL);
+        measure__say(job, "P %s %.0f", c->pc->key, ns);
+    }
+    measure__teardown(&m, cs, rc == 0 ? job->n_configs : 0);
+    return rc;
+}
+
 int measure_scene(const measure_job *job, dm_str *err)
 {
     mscene m = { .job = job };

@@ -38,6 +38,11 @@ typedef struct measure_job {
  * not be set up (DM_ERR_*, message in err). */
 int measure_scene(const measure_job *job, dm_str *err);
 
+/* Pilot for --budget: prepares each configuration of the job and times one
+ * warm frame (glFinish-fenced), reporting "P <key> <frame_ns>" lines (NaN
+ * when it cannot be prepared).  Returns 0 or DM_ERR_* (err) on setup failure. */
+int measure_pilot(const measure_job *job, dm_str *err);
+
 /* Renders one configuration into a float image (w*h*4, row 0 top);
  * supersample >= 1 renders at that multiple and box-filters down.
  * Used for quality references and `dmbench render`. */

@@ -220,7 +220,7 @@ static void runner__child_line(runner *r, child_watch *w, const plan_config *cs,
     }
 }
 
-static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd)
+static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd, int pilot)
 {
     int fds[2];
     if (pipe(fds) != 0)
@@ -236,7 +236,7 @@ static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd)
                             .timer_partial = strcmp(r->env.timer_verdict, "full") != 0,
                             .report_fd = fds[1] };
         dm_str err = {0};
-        int rc = measure_scene(&job, &err);
+        int rc = pilot ? measure_pilot(&job, &err) : measure_scene(&job, &err);
         if (rc != 0)
             dprintf(fds[1], "F %s\n", dm_str_get(&err));
         _exit(rc ? 3 : 0);
@@ -301,7 +301,7 @@ static void runner__scene(runner *r, const plan_config *cs, size_t n)
             break;
         }
         child_watch w = { .current = "" };
-        w.pid = runner__spawn(r, todo, nt, &w.fd);
+        w.pid = runner__spawn(r, todo, nt, &w.fd, 0);
         char *fatal = NULL;
         int *tdone = dm_xcalloc(nt + 1, sizeof *tdone);
         int status = runner__watch(r, &w, todo, nt, tdone, &fatal);
@@ -336,6 +336,50 @@ static void runner__scene(runner *r, const plan_config *cs, size_t n)
         free(todo);
     }
     free(done);
+}
+
+/* ---- --budget: a pilot frame per configuration ------------------------------ */
+
+/* Predicted seconds to measure a configuration from one pilot frame:
+ * warm-up plus samples_max samples, each at least K frames and min_sample_ms
+ * long, capped by max_seconds, plus the image renders. */
+static double runner__predict(const sweep_measure *m, double frame_ns)
+{
+    double sample = frame_ns * m->frames_per_sample;
+    if (sample < m->min_sample_ms * 1e6)
+        sample = m->min_sample_ms * 1e6;
+    double sampling = sample * m->samples_max / 1e9;
+    if (sampling > m->max_seconds)
+        sampling = m->max_seconds;
+    return sampling + frame_ns * (m->warmup_frames + 12.0 * m->frames_per_sample + 20) / 1e9;
+}
+
+/* Runs the pilot child and leaves out what would blow the budget. */
+static void runner__budget(runner *r)
+{
+    int fd = -1;
+    pid_t pid = runner__spawn(r, r->p.configs, r->p.n_configs, &fd, 1);
+    char *text = runner__read_all(fd, (int)(r->s->measure.timeout_s * 1000));
+    close(fd);
+    kill(pid, SIGKILL);
+    waitpid(pid, NULL, 0);
+    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+        char key[17];
+        double ns = NAN;
+        if (sscanf(line, "P %16s %lf", key, &ns) != 2 || !isfinite(ns))
+            continue;
+        double t = runner__predict(&r->s->measure, ns);
+        for (size_t i = 0; i < r->p.n_configs; i++) {
+            if (strcmp(r->p.configs[i].key, key) != 0 || t <= r->o->budget_s)
+                continue;
+            char *why = dm_xasprintf("over --budget %.0f s: a pilot frame took %.1f ms, so measuring "
+                                     "would take about %.0f s", r->o->budget_s, ns / 1e6, t);
+            plan_leave_out(&r->p, i, why);
+            free(why);
+            break;
+        }
+    }
+    free(text);
 }
 
 /* ---- run directory, store, report ---------------------------------------------- */
@@ -518,6 +562,8 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
     if (rc == 0)
         plan_filter_capabilities(&r.p, runner__has_ext, &r);
     rc = rc ? rc : runner__open(&r, err);
+    if (rc == 0 && o->budget_s > 0 && !o->resume)
+        runner__budget(&r);
     rc = rc ? rc : runner__begin(&r);
     if (rc == 0) {
         r.total = r.p.n_configs;

@@ -20,6 +20,7 @@ typedef struct runner_opts {
     int resume;                /* continue the newest run of the store */
     int shard_k, shard_n;      /* 0/0 = everything */
     uint64_t seed;             /* round order; 0 = 1 */
+    double budget_s;           /* > 0: leave out configurations predicted to take longer */
     const char *tag;           /* stored with the run */
     int quiet, verbose;
 } runner_opts;

@@ -62,4 +62,14 @@ PY
 rm "$RUN/report.html" "$RUN/results.json"
 "$BIN" report "$RUN" > /dev/null
 test -s "$RUN/report.html" && test -s "$RUN/results.json"
+# --budget: a pilot frame per configuration predicts its measuring time; a
+# budget no configuration can meet leaves every one out, with the reason.
+"$BIN" run "$SRC/tests/e2e/tiny.yaml" --out "$OUT/b" --budget 0.000001 --quiet
+python3 - "$OUT/b/latest/results.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert len(j["configs"]) == 0 and len(j["left_out"]) == 4, (len(j["configs"]), len(j["left_out"]))
+for l in j["left_out"]:
+    assert l["reason"].startswith("over --budget"), l["reason"]
+PY
 echo "1 passed, 0 failed"
