@@ -106,7 +106,8 @@ static int runner__probe(runner *r, dm_str *err)
     waitpid(pid, &status, 0);
     int rc = 0;
     r->env.timer_verdict = dm_xstrdup("unavailable");
-    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+    char *save = NULL;
+    for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
         char *f1 = strchr(line, '\t'), *f2 = f1 ? strchr(f1 + 1, '\t') : NULL;
         if (f1)
             *f1++ = '\0';
@@ -363,7 +364,8 @@ static void runner__budget(runner *r)
     close(fd);
     kill(pid, SIGKILL);
     waitpid(pid, NULL, 0);
-    for (char *line = strtok(text, "\n"); line; line = strtok(NULL, "\n")) {
+    char *save = NULL;
+    for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
         char key[17];
         double ns = NAN;
         if (sscanf(line, "P %16s %lf", key, &ns) != 2 || !isfinite(ns))
@@ -372,8 +374,8 @@ static void runner__budget(runner *r)
         for (size_t i = 0; i < r->p.n_configs; i++) {
             if (strcmp(r->p.configs[i].key, key) != 0 || t <= r->o->budget_s)
                 continue;
-            char *why = dm_xasprintf("over --budget %.0f s: a pilot frame took %.1f ms, so measuring "
-                                     "would take about %.0f s", r->o->budget_s, ns / 1e6, t);
+            char *why = dm_xasprintf("over --budget %g s: a pilot frame took %.3g ms, so measuring "
+                                     "would take about %.2g s", r->o->budget_s, ns / 1e6, t);
             plan_leave_out(&r->p, i, why);
             free(why);
             break;
@@ -479,7 +481,9 @@ static void runner__fit(runner *r, dm_run_result *run)
             dm_str_cat(&warn, dm_str_get(&err));
         for (size_t k = first; k < run->n_fits; k++)
             store_fit_put(r->st, r->run_id, &run->fits[k]);
-        for (char *line = strtok(warn.buf, "\n"); line; line = strtok(NULL, "\n")) {
+        char *save = NULL;
+        for (char *line = warn.buf ? strtok_r(warn.buf, "\n", &save) : NULL; line;
+             line = strtok_r(NULL, "\n", &save)) {
             dm_log(DM_LOG_WARN, "%s", line);
             store_run_warning_put(r->st, r->run_id, line);
             run->warnings = dm_xrealloc(run->warnings, (run->n_warnings + 1) * sizeof *run->warnings);
