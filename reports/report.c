@@ -8,6 +8,105 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <math.h>
+#include "reports/pareto.h"
+
+/* 1 when param `name` takes two or more distinct values over the scene's
+ * configurations (techniques that do not read it have no value and do not
+ * count: a blank cell is not a variation). */
+int report__param_varies(const dm_run_result *run, const char *scene, const char *name)
+{
+    const char *first = NULL;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (!c->ok || strcmp(c->scene ? c->scene : "", scene) != 0)
+            continue;
+        const char *v = dm_kv_get(c->params, c->n_params, name);
+        if (v && first && strcmp(v, first) != 0)
+            return 1;
+        if (v)
+            first = v;
+    }
+    return 0;
+}
+
+static const dm_run_result *report__sort_run;   /* qsort has no user pointer */
+
+static int report__by_time(const void *a, const void *b)
+{
+    const dm_counter_result *x = report__frame_time(&report__sort_run->configs[*(const size_t *)a]);
+    const dm_counter_result *y = report__frame_time(&report__sort_run->configs[*(const size_t *)b]);
+    double tx = x ? x->median : INFINITY, ty = y ? y->median : INFINITY;
+    return (tx > ty) - (tx < ty);
+}
+
+size_t report__scene_rows(const dm_run_result *run, const char *scene, size_t **out)
+{
+    size_t *rows = dm_xcalloc(run->n_configs + 1, sizeof *rows), n = 0;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (c->ok && strcmp(c->scene ? c->scene : "", scene) == 0)
+            rows[n++] = i;
+    }
+    report__sort_run = run;
+    qsort(rows, n, sizeof *rows, report__by_time);
+    *out = rows;
+    return n;
+}
+
+void report__config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)
+{
+    dm_str_cat(out, report__technique(c));
+    for (size_t i = 0; i < c->n_params; i++) {
+        if (strcmp(c->params[i].key, "technique") == 0 ||
+            !report__param_varies(run, c->scene ? c->scene : "", c->params[i].key))
+            continue;
+        dm_str_printf(out, " %s=%s", c->params[i].key, c->params[i].value);
+    }
+}
+
+size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out)
+{
+    size_t *rows, nr = report__scene_rows(run, scene, &rows), n = 0;
+    double *x = dm_xcalloc(nr + 1, sizeof *x), *y = dm_xcalloc(nr + 1, sizeof *y);
+    size_t *idx = dm_xcalloc(nr + 1, sizeof *idx), *front = dm_xcalloc(nr + 1, sizeof *front);
+    for (size_t i = 0; i < nr; i++) {
+        const dm_config_result *c = &run->configs[rows[i]];
+        const dm_counter_result *t = report__frame_time(c);
+        if (!t || !c->quality.present || !isfinite(c->quality.ssim))
+            continue;
+        x[n] = t->median;
+        y[n] = 1.0 - c->quality.ssim;
+        idx[n++] = rows[i];
+    }
+    size_t nf = pareto_front(x, y, n, front);
+    for (size_t i = 0; i < nf; i++)
+        front[i] = idx[front[i]];
+    free(rows);
+    free(x);
+    free(y);
+    free(idx);
+    *out = front;
+    return nf;
+}
+
+void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *out)
+{
+    size_t *front, nf = report__pareto(run, scene, &front);
+    if (nf == 0) {
+        dm_str_cat(out, "no configuration has both a time and a quality measurement");
+        free(front);
+        return;
+    }
+    for (size_t i = 0; i < nf; i++) {
+        const dm_config_result *c = &run->configs[front[i]];
+        dm_str_cat(out, i ? "; then " : "");
+        report__config_label(run, c, out);
+        dm_str_printf(out, " (%.3g ms, SSIM %.3f)", report__frame_time(c)->median / 1e6, c->quality.ssim);
+    }
+    free(front);
+}
+
 
 int report__safe_relpath(const char *p)
 {

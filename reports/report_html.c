@@ -160,35 +160,6 @@ static void scene_row(dm_str *s, const dm_config_result *c, const char **params,
     dm_str_cat(s, "</td></tr>\n");
 }
 
-/* 1 when param `name` takes two or more distinct values over the scene's
- * configurations (techniques that do not read it have no value and do not
- * count: a blank cell is not a variation). */
-static int param_varies(const dm_run_result *run, const char *scene, const char *name)
-{
-    const char *first = NULL;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        if (!c->ok || strcmp(c->scene ? c->scene : "", scene) != 0)
-            continue;
-        const char *v = dm_kv_get(c->params, c->n_params, name);
-        if (v && first && strcmp(v, first) != 0)
-            return 1;
-        if (v)
-            first = v;
-    }
-    return 0;
-}
-
-static const dm_run_result *sort_run;
-
-static int by_time(const void *a, const void *b)
-{
-    const dm_counter_result *x = report__frame_time(&sort_run->configs[*(const size_t *)a]);
-    const dm_counter_result *y = report__frame_time(&sort_run->configs[*(const size_t *)b]);
-    double tx = x ? x->median : INFINITY, ty = y ? y->median : INFINITY;
-    return (tx > ty) - (tx < ty);
-}
-
 static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
 {
     const char **params;
@@ -200,7 +171,7 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
     for (size_t i = 0; i < np; i++) {
         if (strcmp(params[i], "technique") == 0)
             continue;
-        if (param_varies(run, scene, params[i])) {
+        if (report__param_varies(run, scene, params[i])) {
             varying[nv++] = params[i];
             continue;
         }
@@ -230,14 +201,7 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
     for (size_t i = 0; i < nd; i++)
         tagged(s, "th", det[i]);
     dm_str_cat(s, "<th>PSNR dB</th><th>SSIM</th><th>CrackPixels</th><th>key</th></tr></thead><tbody>\n");
-    size_t *rows = dm_xcalloc(run->n_configs + 1, sizeof *rows), nr = 0;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        if (c->ok && strcmp(c->scene ? c->scene : "", scene) == 0)
-            rows[nr++] = i;
-    }
-    sort_run = run;
-    qsort(rows, nr, sizeof *rows, by_time);
+    size_t *rows, nr = report__scene_rows(run, scene, &rows);
     for (size_t i = 0; i < nr; i++)
         scene_row(s, &run->configs[rows[i]], varying, nv, det, nd);
     dm_str_cat(s, "</tbody></table>\n");
@@ -386,6 +350,29 @@ static void fits(dm_str *s, const dm_run_result *run)
     dm_str_cat(s, "</table>\n");
 }
 
+/* The answer first: per scene, which configurations give the best quality
+ * for their cost (the Pareto front of 1 - SSIM against median time). */
+static void findings(dm_str *s, const dm_run_result *run)
+{
+    const char **scenes;
+    size_t ns = report__scenes(run, &scenes);
+    dm_str_cat(s, "<h2>Findings</h2>\n<p>Best quality for its cost in each scene: the Pareto front "
+                  "of error (1 − SSIM against the reference) and median frame time, fastest first. "
+                  "Every other configuration is slower than one of these and not better.</p>\n<ul>\n");
+    for (size_t i = 0; i < ns; i++) {
+        dm_str front = {0};
+        report__pareto_text(run, scenes[i], &front);
+        dm_str_cat(s, "<li><b>");
+        esc(s, scenes[i]);
+        dm_str_cat(s, "</b>: ");
+        esc(s, dm_str_get(&front));
+        dm_str_cat(s, "</li>\n");
+        dm_str_free(&front);
+    }
+    dm_str_cat(s, "</ul>\n");
+    free(scenes);
+}
+
 int report_write_html(const dm_run_result *run, const char *dir, const char *path)
 {
     if (!run || !path)
@@ -393,6 +380,7 @@ int report_write_html(const dm_run_result *run, const char *dir, const char *pat
     dm_str s = {0};
     header(&s, run);
     timer_and_warnings(&s, run);
+    findings(&s, run);
     report__html_charts_run(&s, run);
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);

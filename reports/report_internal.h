@@ -42,6 +42,19 @@ size_t report__counter_names(const dm_run_result *run, const char *scene,
 /* "technique" param of a config or "?" */
 const char *report__technique(const dm_config_result *c);
 
+/* 1 when param `name` takes two or more distinct values in the scene (a
+ * technique that does not read it has no value, which does not count). */
+int report__param_varies(const dm_run_result *run, const char *scene, const char *name);
+/* Indexes of the scene's ok configurations sorted by median frame time;
+ * *out is malloc'd (caller frees). */
+size_t report__scene_rows(const dm_run_result *run, const char *scene, size_t **out);
+/* "technique axis=value..." with only the axes that vary in its scene. */
+void report__config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out);
+/* Configurations on the Pareto front of (median time, 1 - SSIM), fastest
+ * first; *out malloc'd.  And the same as one sentence. */
+size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out);
+void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *out);
+
 /* Charts (chart.c): inline SVG appended to an HTML document.  The run-level
  * charts (time per technique) and the per-scene charts (error vs time with
  * the Pareto front, time vs tess_level per mesh).  Nothing is appended when

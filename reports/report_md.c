@@ -49,22 +49,31 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
 {
     dm_str_cat(s, "\n## Scene `");
     cell(s, scene);
-    dm_str_cat(s, "`\n\n| technique | key | median ms ± CI | PSNR | SSIM |\n|---|---|---|---|---|\n");
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        if (!c->ok || strcmp(c->scene ? c->scene : "", scene) != 0)
-            continue;
+    dm_str_cat(s, "`\n\nBest quality for its cost (Pareto front of 1 − SSIM against median time, "
+                  "fastest first): ");
+    dm_str front = {0};
+    report__pareto_text(run, scene, &front);
+    cell(s, dm_str_get(&front));
+    dm_str_free(&front);
+    dm_str_cat(s, ".\n\n| configuration | median ms | 95% CI | PSNR | SSIM | key |\n|---|---|---|---|---|---|\n");
+    size_t *rows, nr = report__scene_rows(run, scene, &rows);
+    for (size_t i = 0; i < nr; i++) {
+        const dm_config_result *c = &run->configs[rows[i]];
         const dm_counter_result *t = report__frame_time(c);
+        dm_str label = {0};
+        report__config_label(run, c, &label);
         dm_str_cat(s, "| ");
-        cell(s, report__technique(c));
-        dm_str_printf(s, " | %s |", c->key);
+        cell(s, dm_str_get(&label));
+        dm_str_free(&label);
         if (t)
-            dm_str_printf(s, " %.4f ± %.4f |", t->median / 1e6, (t->ci_hi - t->ci_lo) / 2e6);
+            dm_str_printf(s, " | %.3f | ±%.1f%% |", t->median / 1e6,
+                          t->median > 0 ? (t->ci_hi - t->ci_lo) / 2 / t->median * 100 : NAN);
         else
-            dm_str_cat(s, " unavailable |");
+            dm_str_cat(s, " | unavailable | |");
         quality_cells(s, &c->quality);
-        dm_str_cat(s, "\n");
+        dm_str_printf(s, " `%s` |\n", c->key);
     }
+    free(rows);
 }
 
 static void failures(dm_str *s, const dm_run_result *run)

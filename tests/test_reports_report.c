@@ -171,8 +171,12 @@ static void test_markdown(void **state)
     assert_int_equal(report_write_markdown(&run, p), 0);
     char *t = slurp(p);
     assert_non_null(strstr(t, "## Scene `" FIXTURE_SCENE "`"));
-    assert_non_null(strstr(t, "| pom | " FIXTURE_KEY0 " | 1.1000 ± 0.1000 | ∞ | 1.0000 |"));
-    assert_non_null(strstr(t, "| normal | " FIXTURE_KEY1 " | 2.0000 ± 0.0500 | 38.25 dB | 0.9500 |"));
+    /* rows sorted by time; CI as a relative half-width: 0.1/1.1 = 9.1 %, 0.05/2 = 2.5 % */
+    assert_non_null(strstr(t, "| pom | 1.100 | ±9.1% | ∞ | 1.0000 | `" FIXTURE_KEY0 "` |"));
+    assert_non_null(strstr(t, "| normal | 2.000 | ±2.5% | 38.25 dB | 0.9500 | `" FIXTURE_KEY1 "` |"));
+    assert_true(strstr(t, "| pom |") < strstr(t, "| normal |"));
+    /* pom is faster and exact (SSIM 1): it alone is the Pareto front */
+    assert_non_null(strstr(t, "fastest first): pom (1.1 ms, SSIM 1.000)."));
     assert_non_null(strstr(t, FIXTURE_REASON));
     assert_non_null(strstr(t, FIXTURE_LEFT_REASON));
     free(t);

@@ -182,7 +182,7 @@ static void add_counters(dm_config_result *c, size_t n, size_t n_samples)
     for (size_t i = 0; i < n; i++) {
         dm_counter_result *k = &c->counters[c->n_counters++];
         memset(k, 0, sizeof *k);
-        char name[16];
+        char name[32];
         snprintf(name, sizeof name, "C%zu", i);
         counter_fill(k, name, "ns", (double)i);
         k->has_samples = 1;
