@@ -162,6 +162,13 @@ static void measure__prepare(mscene *m, mconf *c)
 {
     const sweep_measure *sm = &m->job->sweep->measure;
     measure__say(m->job, "B %s", c->pc->key);
+    /* Test hook for the watchdog: DMBENCH_TEST_HANG=<technique> blocks this
+     * process when it reaches that technique.  (A shader cannot hang
+     * llvmpipe: its JIT caps shader loops, so tests hang the process.) */
+    const char *hang = getenv("DMBENCH_TEST_HANG");
+    if (hang && strcmp(hang, dm_kv_get(c->pc->params, c->pc->n_params, "technique")) == 0)
+        for (;;)
+            pause();
     int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
     /* compiler warnings and errors of this configuration's programs go to its own log */
     if (gl_context_take_messages(m->gl, &c->log) > 0 && rc == 0) {
@@ -408,22 +415,40 @@ int measure_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_
 /* Renders the scene reference once (per process) for configuration c. */
 static int measure__reference(mscene *m, mconf *c)
 {
-    if (m->ref_rgba)
-        return 0;
     const sweep *s = m->job->sweep;
+    int per_config = !s->ref_technique || strcmp(s->ref_technique, "same") == 0;
+    if (m->ref_rgba && !per_config)
+        return 0;                      /* one reference technique: one image per scene */
+    free(m->ref_rgba);
+    free(m->ref_depth);
+    free(m->ref_path);
+    m->ref_rgba = m->ref_depth = NULL;
+    m->ref_path = NULL;
+    /* The reference technique renders the scene as the sweep defines it
+     * (all scene axes, whether this configuration's technique reads them or
+     * not); "same" renders the configuration itself. */
     dm_kv *p = NULL;
     size_t n = 0;
-    for (size_t i = 0; i < c->pc->n_params; i++)
-        dm_kv_push(&p, &n, c->pc->params[i].key,
-                   s->ref_technique && strcmp(c->pc->params[i].key, "technique") == 0
-                       ? s->ref_technique : c->pc->params[i].value);
+    if (per_config) {
+        for (size_t i = 0; i < c->pc->n_params; i++)
+            dm_kv_push(&p, &n, c->pc->params[i].key, c->pc->params[i].value);
+    } else {
+        for (size_t i = 0; i < c->pc->n_params; i++)
+            if (!dm_kv_get(c->pc->scene_params, c->pc->n_scene_params, c->pc->params[i].key) &&
+                strcmp(c->pc->params[i].key, "technique") != 0)
+                dm_kv_push(&p, &n, c->pc->params[i].key, c->pc->params[i].value);
+        for (size_t i = 0; i < c->pc->n_scene_params; i++)
+            dm_kv_push(&p, &n, c->pc->scene_params[i].key, c->pc->scene_params[i].value);
+        dm_kv_push(&p, &n, "technique", s->ref_technique);
+    }
     int rc = measure_render_image(m->r, p, n, c->pc->width, c->pc->height, s->supersample,
                                   &m->ref_rgba, &m->ref_depth, &c->log);
     dm_kv_free(p, n);
     if (rc == 0) {
         char name[64];
+        const char *id = per_config ? c->pc->key : c->pc->scene;
         snprintf(name, sizeof name, "ref-%08llx.png",
-                 (unsigned long long)(dm_fnv1a64(c->pc->scene, strlen(c->pc->scene), DM_FNV_SEED) & 0xffffffffULL));
+                 (unsigned long long)(dm_fnv1a64(id, strlen(id), DM_FNV_SEED) & 0xffffffffULL));
         m->ref_path = dm_xstrdup(name);
         char *path = measure__img_path(m->job, name);
         img im = { c->pc->width, c->pc->height, m->ref_rgba };
@@ -468,9 +493,9 @@ static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
         quality_depth_rmse(m->ref_depth, depth, ma, mb, np, &q->depth_rmse);
         q->crack_pixels = quality_crack_pixels(mb, w, h);
         q->nonfinite_pixels = quality_nonfinite_pixels(&test);
+        const char *rt = m->job->sweep->ref_technique;
         q->reference = dm_xasprintf("%s, %dx supersampled",
-                                    m->job->sweep->ref_technique ? m->job->sweep->ref_technique
-                                                                 : "same configuration",
+                                    !rt || strcmp(rt, "same") == 0 ? "same configuration" : rt,
                                     m->job->sweep->supersample);
         free(ma);
         free(mb);

@@ -49,10 +49,10 @@ static void plan__key(plan_config *c, const technique_desc *t)
 static char *plan__scene_id(const plan_config *c)
 {
     dm_str s = {0};
-    dm_str_printf(&s, "%s@%s", dm_kv_get(c->params, c->n_params, "mesh"),
-                  dm_kv_get(c->params, c->n_params, "resolution"));
+    dm_str_printf(&s, "%s@%s", dm_kv_get(c->scene_params, c->n_scene_params, "mesh"),
+                  dm_kv_get(c->scene_params, c->n_scene_params, "resolution"));
     for (size_t i = 2; i < sizeof plan__scene_axes / sizeof *plan__scene_axes; i++) {
-        const char *v = dm_kv_get(c->params, c->n_params, plan__scene_axes[i]);
+        const char *v = dm_kv_get(c->scene_params, c->n_scene_params, plan__scene_axes[i]);
         const axis_info *a = axes_find(plan__scene_axes[i]);
         char *def = a ? axes_canonical(a->name, a->def) : NULL;
         if (v && def && strcmp(v, def) != 0)
@@ -77,6 +77,11 @@ static void plan__project(const sweep *s, const size_t *idx, plan_config *c)
         free(v);
     }
     qsort(c->params, c->n_params, sizeof *c->params, plan__kv_cmp);
+    for (size_t i = 0; i < sizeof plan__scene_axes / sizeof *plan__scene_axes; i++) {
+        char *v = axes_canonical(plan__scene_axes[i], plan__value(s, idx, plan__scene_axes[i]));
+        dm_kv_push(&c->scene_params, &c->n_scene_params, plan__scene_axes[i], v);
+        free(v);
+    }
     plan__key(c, t);
     c->scene = plan__scene_id(c);
     c->folded = 1;
@@ -86,6 +91,7 @@ static void plan__project(const sweep *s, const size_t *idx, plan_config *c)
 static void plan__config_free(plan_config *c)
 {
     free(c->scene);
+    dm_kv_free(c->scene_params, c->n_scene_params);
     dm_kv_free(c->params, c->n_params);
 }
 
@@ -140,6 +146,7 @@ void plan_leave_out(plan *p, size_t i, const char *reason)
     l->n_params = c->n_params;
     l->reason = dm_xstrdup(reason);
     free(c->scene);
+    dm_kv_free(c->scene_params, c->n_scene_params);
     memmove(c, c + 1, (p->n_configs - i - 1) * sizeof *c);
     p->n_configs--;
 }

@@ -20,6 +20,8 @@ typedef struct plan_config {
     char *scene;             /* readable scene id: mesh@WxH[,param=value...] */
     dm_kv *params;           /* projected parameters, sorted by axis name */
     size_t n_params;
+    dm_kv *scene_params;     /* every scene axis's value (read or not): the reference's scene */
+    size_t n_scene_params;
     size_t folded;           /* combinations this configuration stands for */
     int width, height;       /* resolution */
 } plan_config;

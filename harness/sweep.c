@@ -126,18 +126,9 @@ static char *p__axis_value(pctx *c, const char *axis, yaml_node_t *n)
     return canon;
 }
 
-static int p__set_scene(pctx *c, const char *axis, yaml_node_t *key, yaml_node_t *val)
+/* Sets scene default axis=v (canonical text, owned by the callee). */
+static int p__put_scene(pctx *c, const char *axis, char *v)
 {
-    if (!axes_find(axis)) {
-        dm_str msg = {0};
-        axes_check(axis, "", &msg);
-        p__fail(c, key, "%s", dm_str_get(&msg));
-        dm_str_free(&msg);
-        return DM_ERR_PARSE;
-    }
-    char *v = p__axis_value(c, axis, val);
-    if (!v)
-        return DM_ERR_PARSE;
     for (size_t i = 0; i < c->s->n_scene; i++) {
         if (strcmp(c->s->scene[i].key, axis) == 0) {
             free(c->s->scene[i].value);
@@ -148,6 +139,64 @@ static int p__set_scene(pctx *c, const char *axis, yaml_node_t *key, yaml_node_t
     dm_kv_push(&c->s->scene, &c->s->n_scene, axis, v);
     free(v);
     return 0;
+}
+
+static int p__set_scene(pctx *c, const char *axis, yaml_node_t *key, yaml_node_t *val)
+{
+    if (!axes_find(axis)) {
+        dm_str msg = {0};
+        axes_check(axis, "", &msg);
+        p__fail(c, key, "%s", dm_str_get(&msg));
+        dm_str_free(&msg);
+        return DM_ERR_PARSE;
+    }
+    char *v = p__axis_value(c, axis, val);
+    return v ? p__put_scene(c, axis, v) : DM_ERR_PARSE;
+}
+
+/* A user map path, made relative to the sweep file's directory. */
+static char *p__map_path(pctx *c, const char *path)
+{
+    const char *slash = strrchr(c->path, '/');
+    if (path[0] == '/' || !slash)
+        return dm_xstrdup(path);
+    return dm_xasprintf("%.*s/%s", (int)(slash - c->path), c->path, path);
+}
+
+/* material: { height: P, normal: P, albedo: P } -> the maps axis value
+ * "height=P;normal=P;albedo=P", validated (file exists, decodes, square
+ * power of two, same sizes, finite) by the axis check at plan time. */
+static int p__user_maps(pctx *c, yaml_node_t *map)
+{
+    static const char *const kinds[] = { "height", "normal", "albedo" };
+    dm_str v = {0};
+    yaml_node_t *first = NULL;
+    for (int k = 0; k < 3; k++) {
+        P__FOREACH_PAIR(c, map, pr) {
+            yaml_node_t *key = p__node(c, pr->key), *val = p__node(c, pr->value);
+            if (!p__scalar(key) || strcmp(p__scalar(key), kinds[k]) != 0)
+                continue;
+            if (!p__scalar(val) || !*p__scalar(val)) {
+                dm_str_free(&v);
+                return p__fail(c, val, "scene.material.%s: expected a file path", kinds[k]);
+            }
+            char *path = p__map_path(c, p__scalar(val));
+            dm_str_printf(&v, "%s%s=%s", v.len ? ";" : "", kinds[k], path);
+            free(path);
+            first = first ? first : val;
+        }
+    }
+    if (!first)
+        return 0;
+    dm_str msg = {0};
+    int rc = axes_check("maps", dm_str_get(&v), &msg);
+    if (rc)
+        p__fail(c, first, "%s", dm_str_get(&msg));
+    else
+        rc = p__put_scene(c, "maps", dm_str_take(&v));
+    dm_str_free(&msg);
+    dm_str_free(&v);
+    return rc;
 }
 
 
@@ -184,7 +233,7 @@ static int p__scene_group(pctx *c, yaml_node_t *map, const char *group,
             i++;
         if (i == n)
             return p__unknown_key(c, k, group, keys, n);
-        if ((rc = p__set_scene(c, axes[i], k, v)))
+        if (axes[i] && (rc = p__set_scene(c, axes[i], k, v)))
             return rc;
     }
     return 0;
@@ -197,7 +246,8 @@ static int p__scene(pctx *c, yaml_node_t *map)
                                             "camera.elevation", "camera.fov" };
     static const char *const light_keys[] = { "model", "count" };
     static const char *const light_axes[] = { "lighting", "light_count" };
-    static const char *const mat_keys[] = { "maps", "height_scale" };
+    static const char *const mat_keys[] = { "maps", "height_scale", "height", "normal", "albedo" };
+    static const char *const mat_axes[] = { "maps", "height_scale", NULL, NULL, NULL };
     int rc = p__expect_map(c, map, "scene");
     if (rc)
         return rc;
@@ -209,7 +259,8 @@ static int p__scene(pctx *c, yaml_node_t *map)
         else if (strcmp(name, "lights") == 0)
             rc = p__scene_group(c, v, "scene.lights", light_keys, light_axes, 2);
         else if (strcmp(name, "material") == 0)
-            rc = p__scene_group(c, v, "scene.material", mat_keys, mat_keys, 2);
+            rc = p__scene_group(c, v, "scene.material", mat_keys, mat_axes, 5) ||
+                 p__user_maps(c, v) ? DM_ERR_PARSE : 0;
         else
             rc = p__set_scene(c, name, k, v);
         if (rc)
@@ -369,7 +420,10 @@ static int p__quality(pctx *c, yaml_node_t *map)
         P__FOREACH_PAIR(c, v, rp) {
             yaml_node_t *rk = p__node(c, rp->key), *rv = p__node(c, rp->value);
             const char *name = p__scalar(rk) ? p__scalar(rk) : "";
-            if (strcmp(name, "technique") == 0) {
+            if (strcmp(name, "technique") == 0 && p__scalar(rv) && strcmp(p__scalar(rv), "same") == 0) {
+                free(c->s->ref_technique);          /* each configuration, supersampled */
+                c->s->ref_technique = dm_xstrdup("same");
+            } else if (strcmp(name, "technique") == 0) {
                 char *t = p__axis_value(c, "technique", rv);
                 if (!t)
                     return DM_ERR_PARSE;
@@ -512,6 +566,8 @@ static void sweep__defaults(sweep *s)
     }
     if (!s->supersample)
         s->supersample = 4;
+    if (!s->ref_technique)          /* ground truth: the CPU-displaced fine mesh (SPEC §6) */
+        s->ref_technique = dm_xstrdup("reference-mesh");
 }
 
 int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
@@ -600,8 +656,9 @@ const char *sweep_default_text(int quick)
     static char *text[2];
     if (!text[quick]) {
         dm_str list = {0};
-        for (const char *const *t = technique_names(); *t; t++)
-            dm_str_printf(&list, "%s%s", list.len ? ", " : "", *t);
+        for (const char *const *t = technique_names(); *t; t++)   /* the reference is not measured */
+            if (strcmp(*t, "reference-mesh") != 0)
+                dm_str_printf(&list, "%s%s", list.len ? ", " : "", *t);
         text[quick] = dm_xasprintf(quick ? sweep__quick_yaml : sweep__default_yaml, dm_str_get(&list));
         dm_str_free(&list);
     }

@@ -1,5 +1,6 @@
 /* axes.c — the catalog of sweep axes (see axes.h). */
 #include "techniques/axes.h"
+#include "techniques/user_mesh.h"
 
 #include <ctype.h>
 #include <errno.h>
@@ -23,9 +24,9 @@ static const char *const axes__filter[] = {"nearest", "bilinear", "trilinear", "
                                            "aniso4", "aniso8", "aniso16", NULL};
 static const char *const axes__vfilter[] = {"nearest", "bilinear-hw", "bilinear-manual",
                                             "mip", "mip-lerp", NULL};
-static const char *const axes__hfmt[] = {"r8", "r16", "r16f", "r32f", "rgba32f", NULL};
-static const char *const axes__nfmt[] = {"rgb8", "rgba8", "rg8", "rgb16f", "rgba32f",
-                                         "bc1", "bc3", "bc5", "bc7", NULL};
+static const char *const axes__hfmt[] = {"r8", "r16", "r16f", "r32f", "rgba8", "rgba32f", NULL};
+static const char *const axes__nfmt[] = {"rgb8", "rgba8", "rg8", "rgb16f", "rgba16f", "rgba32f",
+                                         "bc1", "bc3", "bc3nm", "bc5", "bc7", NULL};
 static const char *const axes__afmt[] = {"rgba8", "srgb8_a8", "rgba16f", "rgba32f",
                                          "bc1", "bc3", "bc7", NULL};
 static const char *const axes__vt[] = {"off", "software", "sparse", NULL};
@@ -59,7 +60,8 @@ static axis_info axes__table[] = {
     {"height_format", E, axes__hfmt, 0, 0, "r32f", 0, "internal format of the height map"},
     {"normal_format", E, axes__nfmt, 0, 0, "rgb8", 0, "internal format of the normal map"},
     {"albedo_format", E, axes__afmt, 0, 0, "rgba8", 1, "internal format of the albedo map"},
-    {"texture_size", I, NULL, 16, 16384, "512", 1, "texels per side of the material maps"},
+    {"texture_size", I, NULL, 16, 65536, "512", 1,
+     "texels per side of the material maps (above 16384 only with virtual_texture=software)"},
     {"virtual_texture", E, axes__vt, 0, 0, "off", 1, "virtual texturing of the material maps"},
     {"vt_page_size", I, NULL, 16, 1024, "128", 1, "virtual texture page size in texels"},
     {"vt_cache_pages", I, NULL, 1, 65536, "256", 1, "pages in the physical page cache"},
@@ -68,7 +70,8 @@ static axis_info axes__table[] = {
     {"camera.azimuth", F, NULL, -360, 360, "30", 1, "orbit azimuth in degrees (0 = camera on +Z)"},
     {"camera.elevation", F, NULL, -89.9, 89.9, "20", 1, "orbit elevation in degrees toward +Y"},
     {"camera.fov", F, NULL, 1, 179, "45", 1, "vertical field of view in degrees"},
-    {"maps", E, NULL, 0, 0, "bricks", 1, "procedural material maps"},
+    {"maps", E, NULL, 0, 0, "bricks", 1,
+     "procedural material maps, or user maps: height=PATH;normal=PATH;albedo=PATH"},
 };
 #undef E
 #undef I
@@ -213,6 +216,22 @@ int axes_parse_size2(const char *s, int *w, int *h)
     return 0;
 }
 
+/* A user mesh (mesh: "file:PATH"): validated at plan time by loading it
+ * through Assimp, so a missing or corrupt file stops the run before any work. */
+static int axes__check_user_mesh(const char *path, dm_str *err)
+{
+    mesh_data md;
+    int had_tangents = 0;
+    dm_str why = {0};
+    int rc = user_mesh_load(path, &md, &had_tangents, &why);
+    if (rc == 0)
+        mesh_free(&md);
+    else
+        dm_str_printf(err, "mesh file '%s' cannot be used: %s", path, dm_str_get(&why));
+    dm_str_free(&why);
+    return rc ? DM_ERR_ARG : 0;
+}
+
 /* Checks an enum value; appends "expected one of: ..." on failure. */
 static int axes__check_enum(const axis_info *a, const char *value, dm_str *err)
 {
@@ -239,6 +258,10 @@ int axes_check(const char *name, const char *value, dm_str *err)
     int w, h;
     switch (a->kind) {
     case AXIS_ENUM:
+        if (strcmp(a->name, "maps") == 0 && maps_is_material(value))
+            return maps_material_check(value, err) ? DM_ERR_ARG : 0;   /* user maps (maps.h) */
+        if (strcmp(a->name, "mesh") == 0 && strncmp(value, USER_MESH_PREFIX, strlen(USER_MESH_PREFIX)) == 0)
+            return axes__check_user_mesh(value + strlen(USER_MESH_PREFIX), err);
         return axes__check_enum(a, value, err);
     case AXIS_INT:
         if (strcmp(a->name, "steps") == 0 && strcmp(value, "auto") == 0)

@@ -12,7 +12,8 @@
 #define MESH__CYL_STACKS 12
 
 static const char *const mesh__names[] = {
-    "plane", "cube", "triangle", "fullscreen", "cylinder", "sphere", NULL
+    "plane", "cube", "triangle", "fullscreen", "cylinder", "sphere", "terrain", "asteroid",
+    "seam", "halfflat", NULL
 };
 
 const char *const *mesh_names(void) { return mesh__names; }
@@ -259,6 +260,94 @@ void mesh_generate_tangents(mesh_data *m)
 
 static void mesh__sphere(mesh__builder *b, int level);
 
+/* Terrain height y(x, z) and its gradient: two octaves of rolling hills. */
+static float mesh__terrain_y(float x, float z, float *dx, float *dz)
+{
+    float a = 2.1f * x + 0.3f, c = 1.7f * z, e = 5.3f * x + 2.0f * z;
+    *dx = 0.12f * 2.1f * cosf(a) * cosf(c) + 0.05f * 5.3f * cosf(e);
+    *dz = -0.12f * 1.7f * sinf(a) * sinf(c) + 0.05f * 2.0f * cosf(e);
+    return 0.12f * sinf(a) * cosf(c) + 0.05f * sinf(e);
+}
+
+/* Terrain over [-1,1]² (XZ) of t×t square tiles, each tile two triangle
+ * patches; corners are shared between tiles so the edge midpoints that
+ * neighbouring patches compute their levels from coincide. */
+static void mesh__terrain(mesh__builder *b, int t)
+{
+    int n = t + 1;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            float u = (float)i / (float)t, v = (float)j / (float)t, dx, dz;
+            float p[3] = {2 * u - 1, 0, 1 - 2 * v};
+            p[1] = mesh__terrain_y(p[0], p[2], &dx, &dz);
+            float nr[3] = {-dx, 1, -dz};
+            mesh__normalize(nr);
+            mesh__vert(b, p, nr, u, v);
+        }
+    for (int j = 0; j < t; j++)
+        for (int i = 0; i < t; i++) {
+            uint32_t a = (uint32_t)(j * n + i);
+            mesh__quad(b, a, a + 1, a + 1 + (uint32_t)n, a + (uint32_t)n);
+        }
+}
+
+/* Asteroid radius along the unit direction p: 1 + three octaves of lumps. */
+float mesh_asteroid_radius(const float p[3])
+{
+    float s1 = sinf(2.3f * p[0] + 1.0f) * sinf(2.9f * p[1] + 0.4f) * sinf(2.6f * p[2] + 2.0f);
+    float s2 = sinf(5.1f * p[0] + 3.7f * p[1] + 0.5f) * cosf(4.7f * p[2] - 2.3f * p[0]);
+    float s3 = sinf(11.0f * p[1] + 9.0f * p[2]) * sinf(10.0f * p[0] - 7.0f * p[2] + 1.0f);
+    return 0.82f + 0.25f * s1 + 0.07f * s2 + 0.025f * s3;
+}
+
+/* Icosphere at `level` displaced radially by mesh_asteroid_radius on the
+ * CPU; normals are left zero so mesh_generate_tangents rebuilds them from
+ * the displaced faces. */
+static void mesh__asteroid(mesh__builder *b, int level)
+{
+    mesh__sphere(b, level);
+    for (size_t i = 0; i < b->m->n_vertices; i++) {
+        mesh_vertex *v = &b->m->vertices[i];
+        float r = mesh_asteroid_radius(v->pos);
+        for (int k = 0; k < 3; k++) {
+            v->pos[k] *= r;
+            v->nrm[k] = 0;
+        }
+    }
+}
+
+/* Plane y = 0 over [-1,1]² made of two halves of q×2q quads each (x < 0 and
+ * x > 0).  The column x = 0 is duplicated: the right half's UVs are shifted
+ * by (0.37, 0.21), so heights sampled on the two sides of the seam disagree
+ * (a UV seam, SEEDS S4 cracks).  When `flat_left` is set instead, every left
+ * vertex except the shared column gets the one UV (0.5, 0.5): the height
+ * map is constant there (the `halfflat` mesh of the flatness test). */
+static void mesh__halves(mesh__builder *b, int q, int flat_left)
+{
+    static const float up[3] = {0, 1, 0};
+    int cols = q + 1, rows = 2 * q + 1;
+    for (int half = 0; half < 2; half++) {
+        uint32_t base = (uint32_t)b->m->n_vertices;
+        for (int j = 0; j < rows; j++)
+            for (int i = 0; i < cols; i++) {
+                float x = (float)(half * q + i) / (float)q - 1.0f, z = 1.0f - 2.0f * (float)j / (float)(rows - 1);
+                float p[3] = {x, 0, z}, u = (x + 1) * 0.5f, v = (1 - z) * 0.5f;
+                if (half == 1 && !flat_left) {
+                    u += 0.37f;
+                    v += 0.21f;
+                }
+                if (half == 0 && flat_left && i < q)
+                    u = v = 0.5f;
+                mesh__vert(b, p, up, u, v);
+            }
+        for (int j = 0; j + 1 < rows; j++)
+            for (int i = 0; i < q; i++) {
+                uint32_t a = base + (uint32_t)(j * cols + i);
+                mesh__quad(b, a, a + 1, a + 1 + (uint32_t)cols, a + (uint32_t)cols);
+            }
+    }
+}
+
 int mesh_build(const mesh_desc *desc, mesh_data *out)
 {
     const char *name = desc && desc->name ? desc->name : "plane";
@@ -269,8 +358,9 @@ int mesh_build(const mesh_desc *desc, mesh_data *out)
             kind = i;
     if (kind < 0)
         return DM_ERR_UNKNOWN;
-    static const int def[] = {2, 0, 0, 0, 58, 4}, lo[] = {2, 0, 0, 0, 3, 0},
-                     hi[] = {1024, 1024, 1024, 1024, 1024, 7};
+    static const int def[] = {2, 0, 0, 0, 58, 4, 16, 6, 4, 4},
+                     lo[] = {2, 0, 0, 0, 3, 0, 1, 0, 1, 1},
+                     hi[] = {1024, 1024, 1024, 1024, 1024, 7, 512, 7, 256, 256};
     if (d == 0)
         d = def[kind];
     if (d < lo[kind] || d > hi[kind])
@@ -283,7 +373,10 @@ int mesh_build(const mesh_desc *desc, mesh_data *out)
     case 2: mesh__triangle(&b); break;
     case 3: mesh__fullscreen(&b); break;
     case 4: mesh__cylinder(&b, d); break;
-    default: mesh__sphere(&b, d); break;
+    case 5: mesh__sphere(&b, d); break;
+    case 6: mesh__terrain(&b, d); break;
+    case 7: mesh__asteroid(&b, d); break;
+    default: mesh__halves(&b, d, kind == 9); break;
     }
     mesh_generate_tangents(out);
     return 0;
@@ -418,4 +511,85 @@ void mesh_free(mesh_data *m)
     free(m->vertices);
     free(m->indices);
     memset(m, 0, sizeof *m);
+}
+
+/* ---- CPU subdivision and displacement (reference-mesh) ------------------- */
+
+/* Bilinear sample of a size×size height map with wrap-around, texel centres
+ * at (i + 0.5)/size as GL's REPEAT sampling. */
+float mesh_height_bilinear(const float *height, int size, float u, float v)
+{
+    float s = u * (float)size - 0.5f, t = v * (float)size - 0.5f;
+    float fs = floorf(s), ft = floorf(t);
+    long x0 = (long)fs, y0 = (long)ft, n = size;
+    float fx = s - fs, fy = t - ft;
+    long xa = ((x0 % n) + n) % n, ya = ((y0 % n) + n) % n, xb = (xa + 1) % n, yb = (ya + 1) % n;
+    float h00 = height[ya * n + xa], h10 = height[ya * n + xb];
+    float h01 = height[yb * n + xa], h11 = height[yb * n + xb];
+    float top = h00 + (h10 - h00) * fx, bot = h01 + (h11 - h01) * fx;
+    return top + (bot - top) * fy;
+}
+
+/* Vertex at integer barycentric weights w[3]/k of triangle t: each field is
+ * summed over the corners in increasing vertex-index order, so a point on
+ * an edge shared by two triangles comes out bit-identical in both. */
+static void mesh__blend(const mesh_data *m, const uint32_t *t, const int w[3], int k,
+                        mesh_vertex *out)
+{
+    int o[3] = {0, 1, 2};
+    for (int a = 0; a < 2; a++)
+        for (int b = a + 1; b < 3; b++)
+            if (t[o[b]] < t[o[a]]) {
+                int x = o[a];
+                o[a] = o[b];
+                o[b] = x;
+            }
+    float *dst = (float *)out;
+    const size_t nf = sizeof(mesh_vertex) / sizeof(float);
+    memset(out, 0, sizeof *out);
+    for (int c = 0; c < 3; c++) {
+        const float *src = (const float *)&m->vertices[t[o[c]]];
+        float wc = (float)w[o[c]] / (float)k;
+        for (size_t f = 0; f < nf; f++)
+            dst[f] += wc * src[f];
+    }
+    out->tan[3] = m->vertices[t[0]].tan[3];
+}
+
+int mesh_subdivide_displace(const mesh_data *in, int k, const float *height, int size,
+                            float scale, mesh_data *out)
+{
+    if (!in || !out || k < 1 || (height && size < 1))
+        return DM_ERR_ARG;
+    mesh_data m = {0};
+    mesh__builder b = {&m, 0, 0};
+    for (size_t ti = 0; ti + 2 < in->n_indices; ti += 3) {
+        const uint32_t *t = &in->indices[ti];
+        uint32_t first = (uint32_t)m.n_vertices;
+        for (int j = 0; j <= k; j++)
+            for (int i = 0; i + j <= k; i++) {
+                int w[3] = {k - i - j, i, j};
+                mesh_vertex v;
+                mesh__blend(in, t, w, k, &v);
+                mesh__normalize(v.nrm);
+                float d = height ? (mesh_height_bilinear(height, size, v.uv[0], v.uv[1]) - 0.5f) * scale : 0;
+                uint32_t id = mesh__vert(&b, v.pos, v.nrm, v.uv[0], v.uv[1]);
+                for (int c = 0; c < 3; c++)
+                    m.vertices[id].pos[c] += v.nrm[c] * d;
+                memcpy(m.vertices[id].tan, v.tan, sizeof v.tan);
+            }
+        /* Row j starts at first + j(k+1) - j(j-1)/2 and holds k+1-j points. */
+        for (int j = 0; j < k; j++) {
+            uint32_t r0 = first + (uint32_t)(j * (k + 1) - j * (j - 1) / 2);
+            uint32_t r1 = r0 + (uint32_t)(k + 1 - j);
+            for (int i = 0; i + j < k; i++) {
+                mesh__tri(&b, r0 + (uint32_t)i, r0 + (uint32_t)i + 1, r1 + (uint32_t)i);
+                if (i + j + 1 < k)
+                    mesh__tri(&b, r0 + (uint32_t)i + 1, r1 + (uint32_t)i + 1, r1 + (uint32_t)i);
+            }
+        }
+    }
+    m.clip_space = in->clip_space;
+    *out = m;
+    return 0;
 }

@@ -42,6 +42,20 @@ typedef struct mesh_data {
  *   sphere      icosphere of radius 1; density = subdivision level 0..7,
  *               default 4: 20·4^level triangles (5 120), seam vertices
  *               duplicated so u runs past 1 instead of wrapping back
+ *   terrain     rolling hills over [-1,1]² (XZ), y in about ±0.17; density
+ *               = tiles per side, 1..512, default 16: (d+1)² shared
+ *               vertices, 2d² triangles (two triangle patches per tile,
+ *               neighbouring tiles share their edge vertices)
+ *   asteroid    icosphere of level density (0..7, default 6: 81 920
+ *               triangles) displaced radially on the CPU by
+ *               mesh_asteroid_radius, normals rebuilt from the faces
+ *   seam        test mesh: plane y = 0 over [-1,1]² of two halves x<0, x>0,
+ *               each density × 2·density quads (1..256, default 4), the
+ *               column x = 0 duplicated with the right half's UVs shifted by
+ *               (0.37, 0.21): a UV seam whose sampled heights disagree
+ *   halfflat    test mesh: as seam without the shift, but every left-half
+ *               vertex off the shared column has UV (0.5, 0.5), so any height
+ *               map is constant (flat) over most of the left half
  * cube, triangle and fullscreen accept and ignore densities up to 1024. */
 typedef struct mesh_desc {
     const char *name;       /* "plane", "cube", "triangle", "fullscreen", ... */
@@ -64,6 +78,22 @@ int mesh_build(const mesh_desc *desc, mesh_data *out);
  * The sign w = +1 when cross(N, T) points along the accumulated bitangent,
  * else -1.  Never produces NaN. */
 void mesh_generate_tangents(mesh_data *m);
+/* Radius of the `asteroid` body along the unit direction p (about
+ * 0.5..1.15): the one height function both the CPU-displaced mesh and any
+ * baked map sample. */
+float mesh_asteroid_radius(const float p[3]);
+/* Bilinear sample at (u, v) of a size×size height map (row 0 = v 0) with
+ * wrap-around and texel centres at (i + 0.5)/size, as GL REPEAT sampling. */
+float mesh_height_bilinear(const float *height, int size, float u, float v);
+/* Splits every triangle of `in` into k² triangles (a barycentric grid, k ≥ 1;
+ * points on shared edges are bit-identical in both triangles) and, when
+ * height is given, moves every new vertex along its interpolated unit normal
+ * by (h − 0.5)·scale, h = mesh_height_bilinear at its interpolated UV.
+ * Normals and tangents stay those of the undisplaced surface (per-pixel
+ * normals come from the height field).  Returns 0 and out owns its arrays,
+ * or DM_ERR_ARG. */
+int mesh_subdivide_displace(const mesh_data *in, int k, const float *height, int size,
+                            float scale, mesh_data *out);
 /* Bytes the mesh occupies on the GPU (vertex + index buffers). */
 size_t mesh_bytes(const mesh_data *m);
 void mesh_free(mesh_data *m);

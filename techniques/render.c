@@ -34,11 +34,12 @@
 #include "techniques/shaders.h"
 #include "techniques/technique.h"
 #include "techniques/render_internal.h"
+#include "techniques/user_mesh.h"
 
 
 static const char *const render__uniform_names[RU_COUNT] = {
     "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
-    "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_roughness"
+    "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_roughness", "u_viewport"
 };
 
 int tech_renderer_create(tech_renderer **out)
@@ -299,10 +300,30 @@ static GLuint render__program_make(tech_renderer *r, const technique_desc *t, co
 
 /* Finds or builds the program of (technique, defines, driver); *cached = 1
  * when it came from the cache.  DM_ERR_SHADER with the info log on failure. */
+/* Hash of the technique's composed GLSL (every stage, with its includes and
+ * defines), so the on-disk binary cache never loads a program built from an
+ * older version of the shaders. */
+static uint64_t render__source_hash(const technique_desc *t, const char *defines)
+{
+    const char *stages[5] = {t->vs, t->tcs, t->tes, t->gs, t->fs};
+    uint64_t h = DM_FNV_SEED;
+    for (int i = 0; i < 5; i++) {
+        dm_str src = {0}, err = {0};
+        if (stages[i] && shaders_compose(stages[i], defines, &src, &err) == 0)
+            h = dm_fnv1a64(src.buf, src.len, h);
+        h = dm_fnv1a64(&i, sizeof i, h);
+        dm_str_free(&src);
+        dm_str_free(&err);
+    }
+    return h;
+}
+
 static int render__program_get(tech_renderer *r, const technique_desc *t, const char *defines,
                                size_t *idx, int *cached, dm_str *log)
 {
-    char *key = dm_xasprintf("%s\n%s\n%s", t->name, defines, r->driver);
+    char hash[17];
+    dm_hex64(render__source_hash(t, defines), hash);
+    char *key = dm_xasprintf("%s\n%s\n%s\n%s", t->name, defines, r->driver, hash);
     for (size_t i = 0; i < r->n_progs; i++)
         if (strcmp(r->progs[i].key, key) == 0) {
             free(key);
@@ -337,10 +358,45 @@ static int render__program_get(tech_renderer *r, const technique_desc *t, const 
 
 /* ---- meshes -------------------------------------------------------------- */
 
-static int render__mesh_get(tech_renderer *r, const char *name, int density, size_t *idx,
-                            dm_str *log)
+/* Cache key of the item's mesh: name/density, plus the height field and
+ * scale it was displaced with for cpu_displace techniques. */
+static char *render__mesh_key(const technique_desc *t, const render__cfg *c)
 {
-    char *key = dm_xasprintf("%s/%d", name, density);
+    const char *name = render__get(c, "mesh"), *dens = render__get(c, "mesh_density");
+    if (!t->cpu_displace)
+        return dm_xasprintf("%s/%d", name, atoi(dens));
+    return dm_xasprintf("%s/%d/displaced:%s/%d/%.9g", name, atoi(dens), render__get(c, "maps"),
+                        atoi(render__get(c, "texture_size")), atof(render__get(c, "height_scale")));
+}
+
+/* The reference mesh: `base` split k² per triangle (about
+ * RENDER__REFERENCE_TRIANGLES in all) and displaced by the CPU height map
+ * of the configuration's maps; replaces *base. */
+static int render__mesh_displace(const render__cfg *c, mesh_data *base)
+{
+    maps_set ms;
+    maps_desc md = {.name = render__get(c, "maps"), .size = atoi(render__get(c, "texture_size"))};
+    int rc = maps_generate(&md, &ms);
+    if (rc)
+        return rc;
+    size_t tris = base->n_indices / 3 ? base->n_indices / 3 : 1;
+    int k = (int)floor(sqrt((double)RENDER__REFERENCE_TRIANGLES / (double)tris));
+    k = k < 1 ? 1 : k > 512 ? 512 : k;
+    mesh_data out;
+    rc = mesh_subdivide_displace(base, k, ms.height, ms.size,
+                                 (float)atof(render__get(c, "height_scale")), &out);
+    maps_free(&ms);
+    if (!rc) {
+        mesh_free(base);
+        *base = out;
+    }
+    return rc;
+}
+
+static int render__mesh_get(tech_renderer *r, const technique_desc *t, const render__cfg *c,
+                            size_t *idx, dm_str *log)
+{
+    char *key = render__mesh_key(t, c);
     for (size_t i = 0; i < r->n_meshes; i++)
         if (strcmp(r->meshes[i].key, key) == 0) {
             free(key);
@@ -348,10 +404,19 @@ static int render__mesh_get(tech_renderer *r, const char *name, int density, siz
             return 0;
         }
     mesh_data md;
-    mesh_desc d = {.name = name, .density = density};
-    int rc = mesh_build(&d, &md);
+    mesh_desc d = {.name = render__get(c, "mesh"), .density = atoi(render__get(c, "mesh_density"))};
+    int rc, had_tangents = 0;
+    if (strncmp(d.name, USER_MESH_PREFIX, strlen(USER_MESH_PREFIX)) == 0)
+        rc = user_mesh_load(d.name + strlen(USER_MESH_PREFIX), &md, &had_tangents, log);
+    else
+        rc = mesh_build(&d, &md);
+    if (!rc && t->cpu_displace) {
+        rc = render__mesh_displace(c, &md);
+        if (rc)
+            mesh_free(&md);
+    }
     if (rc) {
-        dm_str_printf(log, "mesh '%s' with density %d: %s\n", name, density, dm_strerror(rc));
+        dm_str_printf(log, "mesh '%s' with density %d: %s\n", d.name, d.density, dm_strerror(rc));
         free(key);
         return rc;
     }
@@ -417,8 +482,7 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
     rc = render__program_get(r, it->tech, dm_str_get(&defs), &it->prog, &cached, log);
     dm_str_free(&defs);
     if (!rc)
-        rc = render__mesh_get(r, render__get(c, "mesh"), atoi(render__get(c, "mesh_density")),
-                              &it->mesh, log);
+        rc = render__mesh_get(r, it->tech, c, &it->mesh, log);
     if (!rc)
         rc = render__maps_get(r, c, &it->maps, log);
     if (rc)
@@ -426,6 +490,23 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
     it->sampler = render__sampler_get(r, render__get(c, "filter"));
     it->info.program_cached = cached;
     return 0;
+}
+
+/* Patches per draw call of a tessellating item.  llvmpipe (Mesa 22.3)
+ * loses primitives when the tessellated vertices of one internal batch of
+ * patches exceed 16-bit indices (a 320-patch draw at level 16 drops about a
+ * tenth of its triangles; the counters still count them), so a draw is
+ * split into calls of at most 65 535 / V patches, V = the most vertices one
+ * triangle patch can produce at the item's highest level (lod distance can
+ * reach 64; fractional spacing rounds up to the next even level + 2). */
+static size_t render__patch_chunk(const render__cfg *c)
+{
+    int L = atoi(render__get(c, "tess_level"));
+    if (strcmp(render__get(c, "lod"), "distance") == 0)
+        L = 64;
+    int half = (L + 3) / 2 + 1;
+    size_t v = 3 * (size_t)half * (size_t)(half + 1) + 1;
+    return 65535 / v;
 }
 
 static void render__item_info(tech_renderer *r, render__item *it)
@@ -452,6 +533,8 @@ int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_it
     if (rc)
         return rc;
     render__item_values(&it, &c);
+    if (it.tech->tcs || it.tech->tes)
+        it.patch_chunk = render__patch_chunk(&c);
     render__item_info(r, &it);
     it.used = 1;
     it.info.setup_ns = dm_now_ns() - t0;
@@ -482,8 +565,9 @@ static void render__light(const render__item *it, int i, float pos[3], float col
 }
 
 /* Sets every uniform the program has (locations of -1 are ignored by GL). */
-static void render__uniforms(tech_renderer *r, const render__item *it, float aspect)
+static void render__uniforms(tech_renderer *r, const render__item *it, const float viewport[2])
 {
+    float aspect = viewport[0] / viewport[1];
     const render__program *p = &r->progs[it->prog];
     const GLint *L = p->loc;
     float az = glm_rad(it->cam[1]), el = glm_rad(it->cam[2]), d = it->cam[0];
@@ -510,6 +594,7 @@ static void render__uniforms(tech_renderer *r, const render__item *it, float asp
     glUniform1f(L[RU_SHININESS], 48.0f);
     glUniform1f(L[RU_F0], 0.04f);
     glUniform1f(L[RU_ROUGHNESS], 0.35f);
+    glUniform2f(L[RU_VIEWPORT], viewport[0], viewport[1]);
     for (size_t a = 0; a < axes_count(); a++) {
         if (p->axis_loc[a] < 0)
             continue;
@@ -538,15 +623,20 @@ int tech_draw(tech_renderer *r, tech_item item, int width, int height)
     glClearDepth(1.0);
     glClear(GL_COLOR_BUFFER_BIT | GL_DEPTH_BUFFER_BIT);
     glUseProgram(r->progs[it->prog].id);
-    render__uniforms(r, it, (float)width / (float)height);
+    render__uniforms(r, it, (float[2]){(float)width, (float)height});
     render__maps_bind(r, it);
     glBindVertexArray(m->vao);
-    GLenum mode = GL_TRIANGLES;
-    if (it->tech->tcs || it->tech->tes) {
+    if (it->patch_chunk) {
         glPatchParameteri(GL_PATCH_VERTICES, 3);
-        mode = GL_PATCHES;
+        size_t step = 3 * it->patch_chunk;
+        for (size_t first = 0; first < m->n_indices; first += step) {
+            size_t n = m->n_indices - first < step ? m->n_indices - first : step;
+            glDrawElements(GL_PATCHES, (GLsizei)n, GL_UNSIGNED_INT,
+                           (const void *)(first * sizeof(uint32_t)));
+        }
+    } else {
+        glDrawElements(GL_TRIANGLES, (GLsizei)m->n_indices, GL_UNSIGNED_INT, NULL);
     }
-    glDrawElements(mode, (GLsizei)m->n_indices, GL_UNSIGNED_INT, NULL);
     glBindVertexArray(0);
     return 0;
 }

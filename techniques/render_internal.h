@@ -16,10 +16,13 @@
 #include "techniques/technique.h"
 
 #define RENDER__MAX_LIGHTS 8
+/* Triangle budget of cpu_displace meshes: k = floor(sqrt(budget / triangles))
+ * clamped to 1..512 splits of every edge. */
+#define RENDER__REFERENCE_TRIANGLES (1u << 20)
 
 enum render__uniform {
     RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
-    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_ROUGHNESS, RU_COUNT
+    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_ROUGHNESS, RU_VIEWPORT, RU_COUNT
 };
 
 typedef struct render__program {
@@ -43,6 +46,7 @@ typedef struct render__item {
     float cam[4];                /* distance, azimuth, elevation, fov */
     double *axis_val;            /* per axis index: numeric value (steps auto = 0) */
     int light_count;
+    size_t patch_chunk;          /* patches per draw call (0 = one call), see render.c */
     tech_item_info info;
 } render__item;
 

@@ -15,10 +15,13 @@ struct tech_renderer;
 struct render__item;
 struct render__cfg;
 
+struct vt;
+
 typedef struct render__maps {
     char *key;
-    GLuint tex[3];               /* height, normal, albedo */
+    GLuint tex[3];               /* height, normal, albedo (0 with a virtual texture) */
     size_t bytes[3];
+    struct vt *vt;               /* virtual_texture=software, else NULL */
 } render__maps;
 
 typedef struct render__sampler {

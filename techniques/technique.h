@@ -27,6 +27,9 @@ typedef struct technique_desc {
     const char *requires_ext;    /* GL extension needed, NULL if none */
     int test_only;               /* 1: hidden from the `technique` axis and listings (tests only) */
     const char *uniforms;        /* documentation: the uniforms/params its shaders read */
+    int cpu_displace;            /* 1: the renderer subdivides the mesh to about 2^20
+                                    triangles and displaces it on the CPU from the
+                                    height map (reference-mesh; render.c) */
 } technique_desc;
 
 /* All registered techniques, test-only ones included (check test_only). */

@@ -41,6 +41,13 @@ static const char *const tech__axes_parallax[] = {"lighting", "light_count", "no
 static const char *const tech__axes_steep[] = {"lighting", "light_count", "normal_format",
                                                "toksvig", "height_scale", "height_format",
                                                "steps", "min_steps", "max_steps", NULL};
+static const char *const tech__axes_tess[] = {"lighting", "light_count", "normal_format",
+                                              "toksvig", "height_scale", "tess_level",
+                                              "tess_spacing", "lod", "patch_cull", "crack_free",
+                                              NULL};
+static const char *const tech__axes_vdisp[] = {"lighting", "light_count", "normal_format",
+                                               "toksvig", "height_scale", "vertex_filter",
+                                               "visibility_test", NULL};
 static const char *const tech__axes_pom[] = {"lighting", "light_count", "normal_format",
                                              "toksvig", "height_scale", "height_format",
                                              "steps", "min_steps", "max_steps", "shadow", NULL};
@@ -82,6 +89,26 @@ const technique_desc technique__list[] = {
      .axes = tech__axes_pom, .version = 1,
      .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_steps (0 = auto), u_min_steps, "
                  "u_max_steps; t_height, t_normal, t_albedo"},
+    {.name = "vertex-displacement",
+     .summary = "height fetched and applied in the vertex stage of a dense mesh (S1 methods 5-9)",
+     .vs = "displace.vert.glsl", .fs = "surface.frag.glsl", .defines = "#define SURF_NORMAL_MAP\n",
+     .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
+     .axes = tech__axes_vdisp, .version = 1,
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale; t_height, t_normal, t_albedo"},
+    {.name = "tess-displacement",
+     .summary = "hardware tessellation, height applied in the evaluation stage (S3, S4)",
+     .vs = "tess.vert.glsl", .tcs = "tess.tcs.glsl", .tes = "tess.tes.glsl",
+     .fs = "surface.frag.glsl", .defines = "#define SURF_NORMAL_MAP\n",
+     .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
+     .axes = tech__axes_tess, .version = 1,
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_tess_level, u_viewport; "
+                 "t_height, t_normal, t_albedo"},
+    {.name = "reference-mesh",
+     .summary = "ground truth: mesh subdivided and displaced on the CPU, per-pixel normals from the height field",
+     .vs = "displace.vert.glsl", .fs = "surface.frag.glsl",
+     .defines = "#define DISPLACE_REFERENCE\n#define SURF_BUMP\n",
+     .textures = TECH_TEX_HEIGHT | TECH_TEX_ALBEDO, .axes = tech__axes_bump, .version = 1,
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale; t_height, t_albedo", .cpu_displace = 1},
     {.name = "debug-broken-shader", .summary = "test only: a fragment shader that fails to compile",
      .vs = "surface.vert.glsl", .fs = "broken.frag.glsl", .axes = tech__axes_none, .version = 1,
      .test_only = 1, .uniforms = "none"},

@@ -89,7 +89,7 @@ static void test_messages(void **state)
     expect("zzzzzzzzzzzz", "4", DM_ERR_UNKNOWN, "unknown axis 'zzzzzzzzzzzz'; valid axes: technique");
     expect("mesh", "cubee", DM_ERR_ARG,
            "invalid value 'cubee' for mesh; expected one of: plane, cube, triangle, fullscreen, "
-           "cylinder, sphere (did you mean 'cube'?)");
+           "cylinder, sphere, terrain, asteroid, seam, halfflat (did you mean 'cube'?)");
     expect("tess_level", "65", DM_ERR_ARG, "invalid value '65' for tess_level; expected an integer in [1, 64]");
     expect("tess_level", "3.5", DM_ERR_ARG, "expected an integer in [1, 64]");
     expect("tess_level", "64", 0, NULL);

@@ -1,8 +1,12 @@
 // surface.frag.glsl — every fragment-stage technique, chosen by #define
 // (see technique_list.c): SURF_UNLIT, SURF_NORMAL_MAP, SURF_BUMP,
 // SURF_PARALLAX 1|2|3, OFFSET_LIMIT_ON, SHADOW_RAYTRACE|SHADOW_SOFT,
-// NORMAL_FORMAT_RG8|NORMAL_FORMAT_BC5 (two channels, z reconstructed).
+// NORMAL_FORMAT_RG8|NORMAL_FORMAT_BC5 (two channels, z reconstructed),
+// NORMAL_FORMAT_BC3NM (DXT5 with x in alpha: x,y = .a,.g, z reconstructed).
+// A reconstructed z makes the normal unit length again, so Toksvig sees no
+// shortening with the two-channel formats (nlen = 1).
 #include "lighting.glsl"
+#include "vt.glsl"
 
 #ifndef SURF_PARALLAX
 #define SURF_PARALLAX 0
@@ -30,7 +34,7 @@ const float PARALLAX_MIN_VZ = 0.05;
 
 vec2 g_dx, g_dy;   // UV derivatives taken once in uniform control flow
 
-float height_at(vec2 uv) { return textureGrad(t_height, uv, g_dx, g_dy).r; }
+float height_at(vec2 uv) { return map_sample(t_height, uv, g_dx, g_dy).r; }
 
 #if SURF_PARALLAX >= 2
 int search_steps(vec3 v)
@@ -86,14 +90,19 @@ vec3 surface_normal(vec2 uv, out float nlen)
 {
     nlen = 1.0;
 #if defined(SURF_NORMAL_MAP)
-    vec3 n = textureGrad(t_normal, uv, g_dx, g_dy).xyz * 2.0 - 1.0;
-#if defined(NORMAL_FORMAT_RG8) || defined(NORMAL_FORMAT_BC5)
+    vec4 t = map_sample(t_normal, uv, g_dx, g_dy);
+#ifdef NORMAL_FORMAT_BC3NM
+    vec3 n = vec3(t.a, t.g, 0.0) * 2.0 - 1.0;
+#else
+    vec3 n = t.xyz * 2.0 - 1.0;
+#endif
+#if defined(NORMAL_FORMAT_RG8) || defined(NORMAL_FORMAT_BC5) || defined(NORMAL_FORMAT_BC3NM)
     n.z = sqrt(max(0.0, 1.0 - dot(n.xy, n.xy)));
 #endif
     nlen = length(n);
     return nlen > 1e-6 ? n / nlen : vec3(0.0, 0.0, 1.0);
 #elif defined(SURF_BUMP)
-    vec2 ts = vec2(textureSize(t_height, 0));
+    vec2 ts = map_size(t_height);
     vec2 du = vec2(1.0 / ts.x, 0.0), dv = vec2(0.0, 1.0 / ts.y);
     float k = u_height_scale * UV_PER_WORLD;
     float gu = (height_at(uv + du) - height_at(uv - du)) * ts.x * 0.5;
@@ -144,7 +153,8 @@ void main()
     g_dy = dFdy(vi.uv);
     vec3 v = normalize(vi.view_ts);
     vec2 uv = parallax_uv(vi.uv, v);
-    vec3 albedo = textureGrad(t_albedo, uv, g_dx, g_dy).rgb;
+    vt_feedback(vi.uv, uv, g_dx, g_dy);
+    vec3 albedo = map_sample(t_albedo, uv, g_dx, g_dy).rgb;
 #ifdef SURF_UNLIT
     o_color = vec4(albedo, 1.0);
 #else

@@ -1,0 +1,20 @@
+// tess.vert.glsl — pass-through vertex stage of tess-displacement (S3).
+layout(location = 0) in vec3 a_pos;
+layout(location = 1) in vec3 a_nrm;
+layout(location = 2) in vec2 a_uv;
+layout(location = 3) in vec4 a_tan;
+
+out GeomData {
+    vec3 pos;
+    vec3 nrm;
+    vec2 uv;
+    vec4 tan;
+} go;
+
+void main()
+{
+    go.pos = a_pos;
+    go.nrm = a_nrm;
+    go.uv = a_uv;
+    go.tan = a_tan;
+}

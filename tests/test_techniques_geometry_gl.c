@@ -1,0 +1,433 @@
+/* GL tests of the geometry techniques on llvmpipe (tess-displacement,
+ * vertex-displacement, reference-mesh): exact tessellation counts against
+ * the tessellation rules, culling, LOD, cracks and image equivalences. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <time.h>
+
+#include "core/dm_util.h"
+#include "harness/gl_context.h"
+#include "reports/image.h"
+#include "reports/quality.h"
+#include "techniques/render.h"
+
+typedef struct fixture {
+    gl_context *ctx;
+    tech_renderer *r;
+    GLuint fbo, color, depth;
+    int w, h;
+} fixture;
+
+static fixture F;
+
+static void target(int w, int h)
+{
+    if (F.fbo) {
+        glDeleteFramebuffers(1, &F.fbo);
+        glDeleteRenderbuffers(1, &F.color);
+        glDeleteRenderbuffers(1, &F.depth);
+    }
+    glCreateFramebuffers(1, &F.fbo);
+    glCreateRenderbuffers(1, &F.color);
+    glCreateRenderbuffers(1, &F.depth);
+    glNamedRenderbufferStorage(F.color, GL_RGBA32F, w, h);
+    glNamedRenderbufferStorage(F.depth, GL_DEPTH_COMPONENT24, w, h);
+    glNamedFramebufferRenderbuffer(F.fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, F.color);
+    glNamedFramebufferRenderbuffer(F.fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, F.depth);
+    assert_int_equal(glCheckNamedFramebufferStatus(F.fbo, GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
+    glBindFramebuffer(GL_FRAMEBUFFER, F.fbo);
+    F.w = w;
+    F.h = h;
+}
+
+static int setup(void **state)
+{
+    (void)state;
+    dm_str e = {0};
+    if (gl_context_create(NULL, &F.ctx, &e) != 0) {
+        fprintf(stderr, "no GL context: %s\n", dm_str_get(&e));
+        return -1;
+    }
+    dm_str_free(&e);
+    if (tech_renderer_create(&F.r) != 0)
+        return -1;
+    target(256, 192);
+    return 0;
+}
+
+static int teardown(void **state)
+{
+    (void)state;
+    glBindFramebuffer(GL_FRAMEBUFFER, 0);
+    glDeleteFramebuffers(1, &F.fbo);
+    glDeleteRenderbuffers(1, &F.color);
+    glDeleteRenderbuffers(1, &F.depth);
+    tech_renderer_destroy(F.r);
+    gl_context_destroy(F.ctx);
+    return 0;
+}
+
+/* Prepares "k=v k=v ..." (at most 24 pairs). */
+static tech_item prepare(const char *spec)
+{
+    char buf[1024];
+    dm_kv kv[24];
+    size_t n = 0;
+    snprintf(buf, sizeof buf, "%s", spec);
+    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok && n < 24;
+         tok = strtok_r(NULL, " ", &save)) {
+        char *eq = strchr(tok, '=');
+        assert_non_null(eq);
+        *eq = 0;
+        kv[n].key = tok;
+        kv[n++].value = eq + 1;
+    }
+    tech_item it;
+    dm_str log = {0};
+    int rc = tech_prepare(F.r, kv, n, &it, &log);
+    if (rc)
+        fprintf(stderr, "%s: %s\n", spec, dm_str_get(&log));
+    assert_int_equal(rc, 0);
+    dm_str_free(&log);
+    return it;
+}
+
+/* Pipeline statistics of one draw of spec. */
+typedef struct stats { GLuint64 tes, clip_out, patches; } stats;
+
+static stats count(const char *spec)
+{
+    tech_item it = prepare(spec);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);   /* warm-up / JIT */
+    GLuint q[3];
+    static const GLenum tgt[3] = {GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB,
+                                  GL_CLIPPING_OUTPUT_PRIMITIVES_ARB, GL_TESS_CONTROL_SHADER_PATCHES_ARB};
+    glGenQueries(3, q);
+    for (int i = 0; i < 3; i++)
+        glBeginQuery(tgt[i], q[i]);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    for (int i = 0; i < 3; i++)
+        glEndQuery(tgt[i]);
+    stats s;
+    glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &s.tes);
+    glGetQueryObjectui64v(q[1], GL_QUERY_RESULT, &s.clip_out);
+    glGetQueryObjectui64v(q[2], GL_QUERY_RESULT, &s.patches);
+    glDeleteQueries(3, q);
+    tech_release(F.r, it);
+    return s;
+}
+
+/* Renders spec into im (allocated, row 0 = GL's bottom row). */
+static void render(const char *spec, img *im)
+{
+    tech_item it = prepare(spec);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    assert_int_equal(img_alloc(im, F.w, F.h), 0);
+    glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, im->px);
+    assert_int_equal(glGetError(), GL_NO_ERROR);
+    tech_release(F.r, it);
+}
+
+static double psnr_of(const char *ref, const char *test)
+{
+    img a, b;
+    img_metrics m;
+    render(ref, &a);
+    render(test, &b);
+    assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
+    assert_int_equal(m.nonfinite, 0);
+    img_free(&a);
+    img_free(&b);
+    return m.psnr;
+}
+
+/* The tessellation rule for one triangle patch with inner = outer = L and
+ * equal spacing, L even: concentric rings of 3m vertices for m = L, L-2,
+ * ..., 2 plus the centre vertex; the strip between ring m and ring m-2 holds
+ * 3(2m-2) triangles. */
+static void triangle_rule(int L, GLuint64 *vertices, GLuint64 *triangles)
+{
+    GLuint64 v = 1, t = 0;
+    for (int m = L; m >= 2; m -= 2) {
+        v += 3 * (GLuint64)m;
+        t += 3 * (GLuint64)(2 * m - 2);
+    }
+    *vertices = v;
+    *triangles = t;
+}
+
+static void test_rule_matches_known_counts(void **state)
+{
+    (void)state;
+    GLuint64 v, t;
+    triangle_rule(16, &v, &t);
+    assert_int_equal(v, 217);
+    triangle_rule(64, &v, &t);
+    assert_int_equal(v, 3169);
+    assert_int_equal(t, 6144);
+}
+
+static void test_exact_counts_every_even_level(void **state)
+{
+    (void)state;
+    stats one = count("technique=tess-displacement mesh=triangle tess_level=1 camera.azimuth=0 "
+                      "camera.elevation=0 height_scale=0");
+    assert_int_equal(one.tes, 3);
+    assert_int_equal(one.clip_out, 1);
+    for (int L = 2; L <= 64; L += 2) {
+        char spec[256];
+        snprintf(spec, sizeof spec, "technique=tess-displacement mesh=triangle tess_level=%d "
+                 "tess_spacing=equal camera.azimuth=0 camera.elevation=0 height_scale=0", L);
+        stats s = count(spec);
+        GLuint64 v, t;
+        triangle_rule(L, &v, &t);
+        assert_int_equal(s.patches, 1);
+        assert_int_equal(s.tes, v);
+        assert_int_equal(s.clip_out, t);
+    }
+}
+
+static void test_patch_cull_back_facing(void **state)
+{
+    (void)state;
+    const char *base = "technique=tess-displacement mesh=triangle tess_level=16 camera.azimuth=180 "
+                       "camera.elevation=0";
+    char spec[256];
+    snprintf(spec, sizeof spec, "%s patch_cull=off", base);
+    assert_int_equal(count(spec).tes, 217);
+    snprintf(spec, sizeof spec, "%s patch_cull=on", base);
+    assert_int_equal(count(spec).tes, 0);
+    /* Facing the camera: nothing is culled. */
+    assert_int_equal(count("technique=tess-displacement mesh=triangle tess_level=16 patch_cull=on "
+                           "camera.azimuth=0 camera.elevation=0").tes, 217);
+}
+
+static long covered(const img *im)
+{
+    long n = 0;
+    for (long i = 0; i < (long)im->w * im->h; i++)
+        n += im->px[4 * i + 3] > 0.5f;
+    return n;
+}
+
+/* Every patch of a many-patch mesh is tessellated (320 × 217 vertices) and
+ * rasterised: the silhouette equals normal mapping's (llvmpipe dropped
+ * primitives of large patch batches before render.c split the draw). */
+static void test_every_patch_tessellated(void **state)
+{
+    (void)state;
+    stats s = count("technique=tess-displacement mesh=sphere mesh_density=2 tess_level=16");
+    assert_int_equal(s.patches, 320);
+    assert_int_equal(s.tes, 320 * 217);
+    img a, b;
+    render("technique=normal mesh=sphere mesh_density=2", &a);
+    render("technique=tess-displacement mesh=sphere mesh_density=2 tess_level=16 height_scale=0", &b);
+    long ca = covered(&a), cb = covered(&b);
+    assert_true(ca > 10000);
+    assert_true(labs(ca - cb) <= 4);
+    img_free(&a);
+    img_free(&b);
+}
+
+/* lod distance: TES invocations fall strictly as the camera recedes. */
+static void test_lod_distance_monotonic(void **state)
+{
+    (void)state;
+    static const char *const cf[] = {"off", "on"};
+    for (int k = 0; k < 2; k++) {
+        GLuint64 prev = UINT64_MAX;
+        for (double d = 1.5; d <= 12.0; d *= 2) {
+            char spec[256];
+            snprintf(spec, sizeof spec, "technique=tess-displacement mesh=plane mesh_density=5 "
+                     "tess_level=64 lod=distance crack_free=%s camera.distance=%g", cf[k], d);
+            stats st = count(spec);
+            printf("lod distance crack_free=%s d=%g: TESInvocations %llu\n", cf[k], d,
+                   (unsigned long long)st.tes);
+            assert_true(st.tes < prev);
+            prev = st.tes;
+        }
+        assert_true(prev > 0);
+    }
+}
+
+/* Crack pixels of spec with back faces culled (tech_draw culls them). */
+static long cracks(const char *spec)
+{
+    img im;
+    render(spec, &im);
+    unsigned char *mask = malloc((size_t)im.w * (size_t)im.h);
+    quality_coverage(&im, mask);
+    long c = quality_crack_pixels(mask, im.w, im.h);
+    free(mask);
+    img_free(&im);
+    return c;
+}
+
+/* The seam mesh tears along its UV seam unless crack_free is on. */
+static void test_cracks_at_uv_seam(void **state)
+{
+    (void)state;
+    const char *base = "technique=tess-displacement mesh=seam tess_level=8 height_scale=0.3 "
+                       "camera.azimuth=90 camera.elevation=25 camera.distance=2.6";
+    char spec[256];
+    snprintf(spec, sizeof spec, "%s crack_free=off", base);
+    long off = cracks(spec);
+    snprintf(spec, sizeof spec, "%s crack_free=on", base);
+    long on = cracks(spec);
+    printf("CrackPixels seam mesh: crack_free off %ld, on %ld\n", off, on);
+    assert_true(off > 0);
+    assert_int_equal(on, 0);
+}
+
+/* lod flatness on a half-flat height field: clearly fewer TES invocations
+ * than uniform at the same level, at the same error against the reference. */
+static void test_lod_flatness(void **state)
+{
+    (void)state;
+    const char *base = "technique=tess-displacement mesh=halfflat tess_level=32 height_scale=0.1";
+    char u[256], f[256], ref[256];
+    snprintf(u, sizeof u, "%s lod=uniform", base);
+    snprintf(f, sizeof f, "%s lod=flatness", base);
+    snprintf(ref, sizeof ref, "technique=reference-mesh mesh=halfflat height_scale=0.1");
+    stats su = count(u), sf = count(f);
+    double pu = psnr_of(ref, u), pf = psnr_of(ref, f);
+    printf("halfflat: TESInvocations uniform %llu, flatness %llu; PSNR vs reference %.2f / %.2f dB\n",
+           (unsigned long long)su.tes, (unsigned long long)sf.tes, pu, pf);
+    assert_true((double)sf.tes <= 0.7 * (double)su.tes);
+    assert_true(pf >= pu - 0.5);
+}
+
+/* Manual bilinear (4 fetches + 2 lerps) matches the hardware filter. */
+static void test_bilinear_manual_matches_hw(void **state)
+{
+    (void)state;
+    double p = psnr_of("technique=vertex-displacement mesh=plane mesh_density=200 height_scale=0.1 "
+                       "vertex_filter=bilinear-hw filter=bilinear",
+                       "technique=vertex-displacement mesh=plane mesh_density=200 height_scale=0.1 "
+                       "vertex_filter=bilinear-manual filter=bilinear");
+    printf("bilinear-manual vs bilinear-hw: PSNR %.2f dB\n", p);
+    assert_true(p >= 45.0);
+}
+
+static int64_t thread_ns(void)
+{
+    struct timespec ts;
+    clock_gettime(CLOCK_THREAD_CPUTIME_ID, &ts);
+    return (int64_t)ts.tv_sec * 1000000000 + ts.tv_nsec;
+}
+
+/* Median calling-thread CPU time of 5 draws (+ glFinish) of spec. */
+static double draw_ms(const char *spec)
+{
+    tech_item it = prepare(spec);
+    double t[5];
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    glFinish();
+    for (int i = 0; i < 5; i++) {
+        int64_t t0 = thread_ns();
+        assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+        glFinish();
+        t[i] = (double)(thread_ns() - t0) / 1e6;
+    }
+    for (int i = 1; i < 5; i++)
+        for (int j = i; j > 0 && t[j] < t[j - 1]; j--) {
+            double x = t[j];
+            t[j] = t[j - 1];
+            t[j - 1] = x;
+        }
+    tech_release(F.r, it);
+    return t[2];
+}
+
+/* visibility_test: the visible part of the image is unchanged (vertices in
+ * the widened volume are displaced as before), and a mesh entirely inside
+ * the view renders identically.  The vertex time of both is printed: on
+ * llvmpipe it does not drop (masked SIMD execution runs the skipped fetches
+ * too), so it is reported, not asserted. */
+static void test_visibility_test(void **state)
+{
+    (void)state;
+    static const char *const view[] = {"camera.azimuth=0 camera.elevation=89 camera.fov=20",
+                                       "camera.distance=4"};
+    for (int i = 0; i < 2; i++) {
+        char a[320], b[320];
+        snprintf(a, sizeof a, "technique=vertex-displacement mesh=plane mesh_density=400 "
+                 "height_scale=0.1 vertex_filter=mip-lerp %s visibility_test=off", view[i]);
+        snprintf(b, sizeof b, "technique=vertex-displacement mesh=plane mesh_density=400 "
+                 "height_scale=0.1 vertex_filter=mip-lerp %s visibility_test=on", view[i]);
+        double p = psnr_of(a, b);
+        glEnable(GL_RASTERIZER_DISCARD);
+        double off = draw_ms(a), on = draw_ms(b);
+        glDisable(GL_RASTERIZER_DISCARD);
+        printf("visibility test (%s): PSNR on vs off %.2f dB; vertex time off %.2f ms, on %.2f ms\n",
+               view[i], p, off, on);
+        assert_true(p >= 60.0);
+    }
+}
+
+/* The reference renders a lit, finite image, and level 64 is closer to it
+ * than level 1. */
+static void test_reference_mesh(void **state)
+{
+    (void)state;
+    const char *ref = "technique=reference-mesh mesh=plane height_scale=0.1";
+    img im;
+    render(ref, &im);
+    assert_int_equal(quality_nonfinite_pixels(&im), 0);
+    double s = 0, s2 = 0, n = 0;
+    for (long i = 0; i < (long)im.w * im.h; i++)
+        if (im.px[4 * i + 3] > 0.5f) {
+            double y = 0.2126 * im.px[4 * i] + 0.7152 * im.px[4 * i + 1] + 0.0722 * im.px[4 * i + 2];
+            s += y;
+            s2 += y * y;
+            n++;
+        }
+    assert_true(n > 5000);
+    assert_true(sqrt(s2 / n - (s / n) * (s / n)) > 0.02);
+    img_free(&im);
+    double p1 = psnr_of(ref, "technique=tess-displacement mesh=plane height_scale=0.1 tess_level=1");
+    double p64 = psnr_of(ref, "technique=tess-displacement mesh=plane height_scale=0.1 tess_level=64");
+    printf("vs reference-mesh: tess level 1 %.2f dB, level 64 %.2f dB\n", p1, p64);
+    assert_true(p64 > p1 + 1.0);
+}
+
+/* height_scale 0 moves nothing: the image equals normal mapping's. */
+static void test_scale_zero_equals_normal(void **state)
+{
+    (void)state;
+    static const char *const meshes[] = {"plane", "cube", "sphere"};
+    for (int i = 0; i < 3; i++) {
+        char a[256], b[256];
+        snprintf(a, sizeof a, "technique=normal mesh=%s", meshes[i]);
+        snprintf(b, sizeof b, "technique=tess-displacement mesh=%s tess_level=16 height_scale=0", meshes[i]);
+        double p = psnr_of(a, b);
+        printf("scale 0 vs normal on %s: PSNR %.2f dB\n", meshes[i], p);
+        assert_true(p >= 50.0);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_rule_matches_known_counts),
+        cmocka_unit_test(test_exact_counts_every_even_level),
+        cmocka_unit_test(test_patch_cull_back_facing),
+        cmocka_unit_test(test_every_patch_tessellated),
+        cmocka_unit_test(test_scale_zero_equals_normal),
+        cmocka_unit_test(test_lod_distance_monotonic),
+        cmocka_unit_test(test_cracks_at_uv_seam),
+        cmocka_unit_test(test_lod_flatness),
+        cmocka_unit_test(test_bilinear_manual_matches_hw),
+        cmocka_unit_test(test_visibility_test),
+        cmocka_unit_test(test_reference_mesh),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
