@@ -10,6 +10,7 @@ extern "C" {
 #include "core/dm_error.h"
 }
 
+#include "core/dm_image_oiio.hh"
 #include <OpenImageIO/imagebuf.h>
 #include <OpenImageIO/imagebufalgo.h>
 #include <OpenImageIO/imageio.h>
@@ -24,26 +25,15 @@ extern "C" {
 #include <vector>
 
 using namespace OIIO;
+using dm_oiio::set_err;
+using dm_oiio::wrap;
 
 namespace {
-
-void set_err(char *err, size_t errlen, const char *path, const std::string &why)
-{
-    if (err && errlen)
-        std::snprintf(err, errlen, "%s: %s", path ? path : "(null)", why.c_str());
-}
 
 bool ends_with_ci(const char *s, const char *suffix)
 {
     size_t n = std::strlen(s), m = std::strlen(suffix);
     return n >= m && strcasecmp(s + n - m, suffix) == 0;
-}
-
-// Wraps the img's float buffer (no copy) as a 4-channel ImageBuf.
-ImageBuf wrap(const img *im)
-{
-    ImageSpec spec(im->w, im->h, 4, TypeDesc::FLOAT);
-    return ImageBuf(spec, const_cast<float *>(im->px));
 }
 
 

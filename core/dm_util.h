@@ -35,7 +35,7 @@ char *dm_str_take(dm_str *s);
 void dm_str_free(dm_str *s);
 
 /* ---- suggestions ------------------------------------------------------ */
-/* The choice closest to word by edit distance, or NULL when none is within
+/* The choice closest to word by case-insensitive edit distance, or NULL when none is within
  * max(2, strlen(word)/3) edits (so "did you mean" is only said when likely). */
 const char *dm_closest(const char *word, const char *const *choices, size_t n);
 /* Appends "a, b, c" (n choices) to s. */

@@ -5,6 +5,7 @@
 #include "harness/store.h"
 #include "models/catalog.h"
 #include "models/fit_data.h"
+#include "reports/report.h"
 
 #include <cjson/cJSON.h>
 #include <libgen.h>
@@ -86,37 +87,6 @@ static void fit__print(const dm_fit_result *f)
         printf("  warning: %s\n", f->warnings[i]);
 }
 
-static cJSON *fit__json(const dm_fit_result *f)
-{
-    cJSON *o = cJSON_CreateObject();
-    cJSON_AddStringToObject(o, "model", f->model ? f->model : "");
-    cJSON_AddStringToObject(o, "formula", f->formula ? f->formula : "");
-    cJSON_AddStringToObject(o, "response", f->response ? f->response : "");
-    cJSON *g = cJSON_AddObjectToObject(o, "group");
-    for (size_t i = 0; i < f->n_group; i++)
-        cJSON_AddStringToObject(g, f->group[i].key, f->group[i].value);
-    cJSON *p = cJSON_AddObjectToObject(o, "params");
-    for (size_t i = 0; i < f->n_params; i++) {
-        cJSON *v = cJSON_AddObjectToObject(p, f->params[i].name);
-        cJSON_AddNumberToObject(v, "value", f->params[i].value);
-        if (isfinite(f->params[i].stderr_))
-            cJSON_AddNumberToObject(v, "stderr", f->params[i].stderr_);
-        else
-            cJSON_AddNullToObject(v, "stderr");
-    }
-    cJSON_AddNumberToObject(o, "r2", f->r2);
-    cJSON_AddNumberToObject(o, "rmse", f->rmse);
-    cJSON_AddNumberToObject(o, "mape", f->mape);
-    cJSON_AddNumberToObject(o, "cv_mape", f->cv_mape);
-    cJSON_AddNumberToObject(o, "n_points", f->n_points);
-    cJSON_AddNumberToObject(o, "n_excluded", f->n_excluded);
-    cJSON_AddStringToObject(o, "termination", f->termination ? f->termination : "");
-    cJSON *w = cJSON_AddArrayToObject(o, "warnings");
-    for (size_t i = 0; i < f->n_warnings; i++)
-        cJSON_AddItemToArray(w, cJSON_CreateString(f->warnings[i]));
-    return o;
-}
-
 static int fit__from_csv(const fit_args *a, dm_fit_result **fits, size_t *n, dm_str *err)
 {
     fit_data d = {0};
@@ -189,7 +159,7 @@ int cli_fit(int argc, char **argv)
     } else if (a.json) {
         cJSON *arr = cJSON_CreateArray();
         for (size_t i = 0; i < n; i++)
-            cJSON_AddItemToArray(arr, fit__json(&fits[i]));
+            cJSON_AddItemToArray(arr, report_fit_to_json(&fits[i]));
         char *s = cJSON_Print(arr);
         puts(s);
         free(s);

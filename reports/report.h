@@ -49,6 +49,9 @@ int report_write_html(const dm_run_result *run, const char *dir, const char *pat
  * (used to embed thumbnails and to mark missing files); NULL links images
  * without checking them. */
 
+/* One fit as its results.json "fits" entry (cJSON; the caller deletes it). */
+struct cJSON;
+struct cJSON *report_fit_to_json(const dm_fit_result *f);
 /* Reads a results.json back (for compare/merge) into *out (zeroed first;
  * release with dm_run_free).  DM_ERR_IO when unreadable, DM_ERR_PARSE when
  * malformed or without "run"/"configs"/config keys; err names the path. */

@@ -135,7 +135,7 @@ static cJSON *config_json(const dm_config_result *c)
     return o;
 }
 
-static cJSON *fit_json(const dm_fit_result *f)
+cJSON *report_fit_to_json(const dm_fit_result *f)
 {
     cJSON *o = cJSON_CreateObject();
     add_str(o, "model", f->model);
@@ -189,7 +189,7 @@ static cJSON *run_json(const dm_run_result *r)
     }
     a = cJSON_AddArrayToObject(root, "fits");
     for (size_t i = 0; i < r->n_fits; i++)
-        cJSON_AddItemToArray(a, fit_json(&r->fits[i]));
+        cJSON_AddItemToArray(a, report_fit_to_json(&r->fits[i]));
     cJSON_AddItemToObject(root, "warnings", str_array(r->warnings, r->n_warnings));
     return root;
 }

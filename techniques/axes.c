@@ -104,43 +104,6 @@ const axis_info *axes_find(const char *name)
     return NULL;
 }
 
-/* Levenshtein distance (names are short; bounded to 63 characters). */
-static size_t axes__distance(const char *a, const char *b)
-{
-    size_t la = strnlen(a, 63), lb = strnlen(b, 63), row[64];
-    for (size_t j = 0; j <= lb; j++)
-        row[j] = j;
-    for (size_t i = 1; i <= la; i++) {
-        size_t diag = row[0];
-        row[0] = i;
-        for (size_t j = 1; j <= lb; j++) {
-            size_t up = row[j], best = diag + (tolower((unsigned char)a[i - 1]) != tolower((unsigned char)b[j - 1]));
-            if (up + 1 < best)
-                best = up + 1;
-            if (row[j - 1] + 1 < best)
-                best = row[j - 1] + 1;
-            diag = up;
-            row[j] = best;
-        }
-    }
-    return row[lb];
-}
-
-const char *axes_closest(const char *word, const char *const *names, size_t n)
-{
-    const char *best = NULL;
-    size_t best_d = (size_t)-1, len = strlen(word);
-    for (size_t i = 0; i < n && names[i]; i++) {
-        size_t d = axes__distance(word, names[i]);
-        if (d < best_d) {
-            best_d = d;
-            best = names[i];
-        }
-    }
-    size_t limit = len / 3 > 2 ? len / 3 : 2;
-    return best_d <= limit ? best : NULL;
-}
-
 static void axes__list(dm_str *err, const char *const *names, size_t n)
 {
     for (size_t i = 0; i < n && names[i]; i++)
@@ -152,7 +115,7 @@ static int axes__unknown(const char *name, dm_str *err)
     const char *names[AXES__N];
     for (size_t i = 0; i < AXES__N; i++)
         names[i] = axes_at(i)->name;
-    const char *near = axes_closest(name, names, AXES__N);
+    const char *near = dm_closest(name, names, AXES__N);
     dm_str_printf(err, "unknown axis '%s'; ", name);
     if (near)
         dm_str_printf(err, "did you mean '%s'? ", near);
@@ -241,7 +204,7 @@ static int axes__check_enum(const axis_info *a, const char *value, dm_str *err)
             return 0;
     dm_str_printf(err, "invalid value '%s' for %s; expected one of: ", value, a->name);
     axes__list(err, a->choices, n);
-    const char *near = a->choices ? axes_closest(value, a->choices, n) : NULL;
+    const char *near = a->choices ? dm_closest(value, a->choices, n) : NULL;
     if (near)
         dm_str_printf(err, " (did you mean '%s'?)", near);
     return DM_ERR_ARG;

@@ -46,9 +46,5 @@ char *axes_canonical(const char *name, const char *value);
 /* Parses "WxH", "W,H" or "[W, H]" with each side in [1, 8192]; 0 or
  * DM_ERR_ARG (w, h untouched). */
 int axes_parse_size2(const char *s, int *w, int *h);
-/* The entry of names[0..n) (NULL-terminated or n long) closest to word by
- * edit distance when it is close enough to be a likely typo
- * (distance <= max(2, strlen(word)/3)), else NULL. */
-const char *axes_closest(const char *word, const char *const *names, size_t n);
 
 #endif

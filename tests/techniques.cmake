@@ -2,4 +2,4 @@
 dm_add_unit(test_techniques_mesh test_techniques_mesh.c LIBS dm_techniques)
 dm_add_unit(test_techniques_maps test_techniques_maps.c LIBS dm_techniques)
 dm_add_unit(test_techniques_axes test_techniques_axes.c LIBS dm_techniques)
-dm_add_gl(test_techniques_render test_techniques_render.c LIBS dm_techniques)
+dm_add_gl(test_techniques_render test_techniques_render.c tech_fixture.c LIBS dm_techniques)

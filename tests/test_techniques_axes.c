@@ -113,10 +113,10 @@ static void test_closest(void **state)
 {
     (void)state;
     static const char *const names[] = {"plane", "cube", "sphere", NULL};
-    assert_string_equal(axes_closest("cubee", names, 3), "cube");
-    assert_string_equal(axes_closest("SPHERE", names, 3), "sphere");
-    assert_string_equal(axes_closest("plan", names, 3), "plane");
-    assert_null(axes_closest("torus-knot", names, 3));
+    assert_string_equal(dm_closest("cubee", names, 3), "cube");
+    assert_string_equal(dm_closest("SPHERE", names, 3), "sphere");
+    assert_string_equal(dm_closest("plan", names, 3), "plane");
+    assert_null(dm_closest("torus-knot", names, 3));
 }
 
 static void test_canonical(void **state)

@@ -14,64 +14,11 @@
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 #include "harness/gl_context.h"
+#include "tests/tech_fixture.h"
 #include "techniques/render.h"
 #include "techniques/technique.h"
 
-typedef struct fixture {
-    gl_context *ctx;
-    tech_renderer *r;
-    GLuint fbo, color, depth;
-    int w, h;
-} fixture;
-
-static fixture F;
-
-static void target(int w, int h)
-{
-    if (F.fbo) {
-        glDeleteFramebuffers(1, &F.fbo);
-        glDeleteRenderbuffers(1, &F.color);
-        glDeleteRenderbuffers(1, &F.depth);
-    }
-    glCreateFramebuffers(1, &F.fbo);
-    glCreateRenderbuffers(1, &F.color);
-    glCreateRenderbuffers(1, &F.depth);
-    glNamedRenderbufferStorage(F.color, GL_RGBA32F, w, h);
-    glNamedRenderbufferStorage(F.depth, GL_DEPTH_COMPONENT24, w, h);
-    glNamedFramebufferRenderbuffer(F.fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, F.color);
-    glNamedFramebufferRenderbuffer(F.fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, F.depth);
-    assert_int_equal(glCheckNamedFramebufferStatus(F.fbo, GL_FRAMEBUFFER), GL_FRAMEBUFFER_COMPLETE);
-    glBindFramebuffer(GL_FRAMEBUFFER, F.fbo);
-    F.w = w;
-    F.h = h;
-}
-
-static int setup(void **state)
-{
-    (void)state;
-    dm_str e = {0};
-    if (gl_context_create(NULL, &F.ctx, &e) != 0) {
-        fprintf(stderr, "no GL context: %s\n", dm_str_get(&e));
-        return -1;
-    }
-    dm_str_free(&e);
-    if (tech_renderer_create(&F.r) != 0)
-        return -1;
-    target(256, 144);
-    return 0;
-}
-
-static int teardown(void **state)
-{
-    (void)state;
-    glBindFramebuffer(GL_FRAMEBUFFER, 0);
-    glDeleteFramebuffers(1, &F.fbo);
-    glDeleteRenderbuffers(1, &F.color);
-    glDeleteRenderbuffers(1, &F.depth);
-    tech_renderer_destroy(F.r);
-    gl_context_destroy(F.ctx);
-    return 0;
-}
+static int setup(void **state) { return techfix_setup(state, 256, 144); }
 
 /* Parses "k=v k=v ..." into params (at most 16). */
 static size_t parse(const char *spec, dm_kv kv[16], char *buf, size_t cap)
