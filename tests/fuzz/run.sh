@@ -7,7 +7,7 @@ set -euo pipefail
 SRC=${DMBENCH_SOURCE_DIR:?}
 SECS=${FUZZ_SECONDS:-60}
 WORK=${FUZZ_WORK:-$(mktemp -d)}
-cmake -S "$SRC/tests/fuzz" -B "$WORK/build" -DCMAKE_C_COMPILER=clang > "$WORK/cmake.log" 2>&1 || { cat "$WORK/cmake.log"; exit 1; }
+cmake -S "$SRC/tests/fuzz" -B "$WORK/build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ > "$WORK/cmake.log" 2>&1 || { cat "$WORK/cmake.log"; exit 1; }
 cmake --build "$WORK/build" -j 2 > "$WORK/build.log" 2>&1 || { tail -30 "$WORK/build.log"; exit 1; }
 pids=()
 for t in sweep formula; do
