@@ -6,6 +6,7 @@
 set -euo pipefail
 BIN=${1:?usage: setup_reuse.sh path/to/dmbench [OUT]}
 OUT=${2:-$(mktemp -d)}
+mkdir -p "$OUT"
 for i in 1 2; do
   "$BIN" run --out "$OUT" 2> "$OUT/run$i.log" > /dev/null
   echo "run $i: $(grep 'in measured frames' "$OUT/run$i.log")"

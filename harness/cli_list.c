@@ -8,6 +8,7 @@
 #include "techniques/mesh.h"
 #include "techniques/technique.h"
 
+#include <cjson/cJSON.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -51,8 +52,35 @@ static int list__axes(void)
     return 0;
 }
 
+/* Counters as JSON: metadata, availability and what they count here. */
+static void list__counters_json(counters_context *cc)
+{
+    cJSON *arr = cJSON_CreateArray();
+    for (size_t i = 0; i < counters_count(); i++) {
+        const counters_info *c = counters_info_at(i);
+        const char *why = NULL;
+        int avail = cc ? counters_available(cc, c->name, &why) : 0;
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "name", c->name);
+        cJSON_AddStringToObject(o, "group", c->group);
+        cJSON_AddStringToObject(o, "unit", counters_unit_name(c->unit));
+        cJSON_AddBoolToObject(o, "deterministic", c->deterministic);
+        cJSON_AddBoolToObject(o, "available", avail);
+        if (!avail)
+            cJSON_AddStringToObject(o, "unavailable", why ? why : "no GL context");
+        cJSON_AddStringToObject(o, "description", cc ? counters_driver_note(cc, c->name) : c->description);
+        if (c->formula)
+            cJSON_AddStringToObject(o, "formula", c->formula);
+        cJSON_AddItemToArray(arr, o);
+    }
+    char *text = cJSON_Print(arr);
+    puts(text);
+    free(text);
+    cJSON_Delete(arr);
+}
+
 /* Lists counters with their availability on the current driver. */
-static int list__counters(const char *passes)
+static int list__counters(const char *passes, int json)
 {
     gl_context *gl = NULL;
     counters_context *cc = NULL;
@@ -76,6 +104,13 @@ static int list__counters(const char *passes)
         counters_context_destroy(cc);
         gl_context_destroy(gl);
         return rc == 0 ? 0 : 2;
+    }
+    if (json) {
+        list__counters_json(cc);
+        dm_str_free(&err);
+        counters_context_destroy(cc);
+        gl_context_destroy(gl);
+        return 0;
     }
     printf("%-26s %-17s %-7s %-5s %-11s %s\n", "counter", "group", "unit", "det", "available", "description");
     for (size_t i = 0; i < counters_count(); i++) {
@@ -110,15 +145,18 @@ int cli_list(int argc, char **argv)
         "resolution-linear a + b*SamplesPassed",
         "(or any formula: --formula \"a + b*tess_level^p\")", NULL };
     const char *passes = NULL;
+    int json = 0;
     if (argc < 2)
         return cli__usage_error("usage: dmbench list techniques|axes|counters|meshes|textures|models");
     for (int i = 2; i < argc; i++) {
         if (strcmp(argv[i], "--passes") == 0 && strcmp(argv[1], "counters") == 0) {
             if (!(passes = cli__value(argc, argv, &i)))
                 return 2;
+        } else if (strcmp(argv[i], "--json") == 0 && strcmp(argv[1], "counters") == 0) {
+            json = 1;
         } else {
-            static const char *const valid[] = { "--passes" };
-            return cli__unknown_option("list", argv[i], valid, 1);
+            static const char *const valid[] = { "--passes", "--json" };
+            return cli__unknown_option("list", argv[i], valid, 2);
         }
     }
     const char *w = argv[1];
@@ -127,7 +165,7 @@ int cli_list(int argc, char **argv)
     if (strcmp(w, "axes") == 0)
         return list__axes();
     if (strcmp(w, "counters") == 0)
-        return list__counters(passes);
+        return list__counters(passes, json);
     if (strcmp(w, "meshes") == 0)
         return list__names(mesh_names());
     if (strcmp(w, "textures") == 0)

@@ -29,7 +29,7 @@ static const command commands[] = {
       "  dmbench compare --paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]" },
     { "baseline", cli_baseline, "baseline accept RUN --reason TEXT [--store FILE] | baseline show [--store FILE]" },
     { "merge", cli_merge, "merge OUT DIR...      union of shard results into one run" },
-    { "list", cli_list, "list techniques|axes|counters|meshes|textures|models [--passes A,B,...] [--json]" },
+    { "list", cli_list, "list techniques|axes|counters|meshes|textures|models  (counters: [--passes A,B,...] [--json])" },
     { "info", cli_info, "info [--json]         context, extensions, limits, timer validity" },
     { "render", cli_render, "render KEY=VALUE... --png out.png [--supersample N]" },
     { "view", cli_view, "view [KEY=VALUE...] [--config KEY --results DIR] [--frames N] [--keys SCRIPT] [--screenshot F]" },

@@ -6,7 +6,12 @@
 #include <stdint.h>
 #include <cmocka.h>
 #include <epoxy/gl.h>
+#include <math.h>
 #include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_util.h"
 
 #include "tests/tech_fixture.h"
 
@@ -58,3 +63,75 @@ int teardown(void **state)
     gl_context_destroy(F.ctx);
     return 0;
 }
+
+/* Parses "k=v k=v ..." into params (at most 16). */
+size_t parse(const char *spec, dm_kv kv[16], char *buf, size_t cap)
+{
+    snprintf(buf, cap, "%s", spec);
+    size_t n = 0;
+    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok && n < 16;
+         tok = strtok_r(NULL, " ", &save)) {
+        char *eq = strchr(tok, '=');
+        assert_non_null(eq);
+        *eq = 0;
+        kv[n].key = tok;
+        kv[n++].value = eq + 1;
+    }
+    return n;
+}
+
+/* Renders spec at the current target into a malloc'd RGBA float image. */
+float *render(const char *spec)
+{
+    dm_kv kv[16];
+    char buf[512];
+    size_t n = parse(spec, kv, buf, sizeof buf);
+    tech_item it;
+    dm_str log = {0};
+    int rc = tech_prepare(F.r, kv, n, &it, &log);
+    if (rc)
+        fprintf(stderr, "%s: %s\n", spec, dm_str_get(&log));
+    assert_int_equal(rc, 0);
+    dm_str_free(&log);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    float *px = malloc((size_t)F.w * (size_t)F.h * 4 * sizeof(float));
+    glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, px);
+    assert_int_equal(glGetError(), GL_NO_ERROR);
+    tech_release(F.r, it);
+    return px;
+}
+
+size_t non_finite(const float *px, size_t n)
+{
+    size_t bad = 0;
+    for (size_t i = 0; i < 4 * n; i++)
+        bad += !isfinite(px[i]);
+    return bad;
+}
+
+double luma_stddev(const float *px, size_t n)
+{
+    double s = 0, s2 = 0;
+    for (size_t i = 0; i < n; i++) {
+        double y = 0.2126 * px[4 * i] + 0.7152 * px[4 * i + 1] + 0.0722 * px[4 * i + 2];
+        s += y;
+        s2 += y * y;
+    }
+    double m = s / (double)n;
+    return sqrt(fmax(0, s2 / (double)n - m * m));
+}
+
+/* PSNR over RGB with peak 1; INFINITY when identical. */
+double psnr(const float *a, const float *b, size_t n)
+{
+    double se = 0;
+    for (size_t i = 0; i < n; i++)
+        for (int c = 0; c < 3; c++) {
+            double d = (double)a[4 * i + (size_t)c] - (double)b[4 * i + (size_t)c];
+            se += d * d;
+        }
+    double mse = se / (double)(3 * n);
+    return mse == 0 ? INFINITY : 10 * log10(1 / mse);
+}
+
+size_t npix(void) { return (size_t)F.w * (size_t)F.h; }

@@ -21,4 +21,14 @@ void target(int w, int h);
 int techfix_setup(void **state, int w, int h);
 int teardown(void **state);
 
+/* "k=v k=v ..." (at most 16 pairs) into kv, using buf as storage. */
+size_t parse(const char *spec, dm_kv kv[16], char *buf, size_t cap);
+/* Prepares and draws spec into the target; returns w*h RGBA floats (caller frees). */
+float *render(const char *spec);
+size_t non_finite(const float *px, size_t n);
+double luma_stddev(const float *px, size_t n);
+/* PSNR over RGB with peak 1 (INFINITY when identical). */
+double psnr(const float *a, const float *b, size_t n);
+size_t npix(void);
+
 #endif

@@ -73,7 +73,7 @@ static stats count(const char *spec)
 }
 
 /* Renders spec into im (allocated, row 0 = GL's bottom row). */
-static void render(const char *spec, img *im)
+static void render_img(const char *spec, img *im)
 {
     tech_item it = prepare(spec);
     assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
@@ -87,8 +87,8 @@ static double psnr_of(const char *ref, const char *test)
 {
     img a, b;
     img_metrics m;
-    render(ref, &a);
-    render(test, &b);
+    render_img(ref, &a);
+    render_img(test, &b);
     assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
     assert_int_equal(m.nonfinite, 0);
     img_free(&a);
@@ -175,8 +175,8 @@ static void test_every_patch_tessellated(void **state)
     assert_int_equal(s.patches, 320);
     assert_int_equal(s.tes, 320 * 217);
     img a, b;
-    render("technique=normal mesh=sphere mesh_density=2", &a);
-    render("technique=tess-displacement mesh=sphere mesh_density=2 tess_level=16 height_scale=0", &b);
+    render_img("technique=normal mesh=sphere mesh_density=2", &a);
+    render_img("technique=tess-displacement mesh=sphere mesh_density=2 tess_level=16 height_scale=0", &b);
     long ca = covered(&a), cb = covered(&b);
     assert_true(ca > 10000);
     assert_true(labs(ca - cb) <= 4);
@@ -209,7 +209,7 @@ static void test_lod_distance_monotonic(void **state)
 static long cracks(const char *spec)
 {
     img im;
-    render(spec, &im);
+    render_img(spec, &im);
     unsigned char *mask = malloc((size_t)im.w * (size_t)im.h);
     quality_coverage(&im, mask);
     long c = quality_crack_pixels(mask, im.w, im.h);
@@ -327,7 +327,7 @@ static void test_reference_mesh(void **state)
     (void)state;
     const char *ref = "technique=reference-mesh mesh=plane height_scale=0.1";
     img im;
-    render(ref, &im);
+    render_img(ref, &im);
     assert_int_equal(quality_nonfinite_pixels(&im), 0);
     double s = 0, s2 = 0, n = 0;
     for (long i = 0; i < (long)im.w * im.h; i++)

@@ -8,6 +8,22 @@ SRC=${DMBENCH_SOURCE_DIR:?}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
 
+# dmbench info finds a GL 4.5 context and decides the timer by measurement.
+"$BIN" info --json > "$OUT/info.json"
+"$BIN" list counters --json > "$OUT/counters.json"
+python3 - "$OUT/info.json" "$OUT/counters.json" <<'PY'
+import json, sys
+i = json.load(open(sys.argv[1]))
+assert i["environment"]["gl_version"].startswith("4.5"), i["environment"]["gl_version"]
+assert i["timer"]["verdict"] in ("partial", "full"), i["timer"]
+assert 0 <= i["timer"]["gpu_time_coverage"] and i["timer"]["wall_ns"] > 0
+assert i["extensions"]["GL_ARB_pipeline_statistics_query"] is True
+c = {x["name"]: x for x in json.load(open(sys.argv[2]))}
+assert c["VSInvocations"]["deterministic"] and c["VSInvocations"]["available"]
+assert c["ShadingEfficiency"]["formula"] == "SamplesPassed / FSInvocations"
+print("info:", i["timer"]["verdict"], "coverage %.4f" % i["timer"]["gpu_time_coverage"])
+PY
+
 "$BIN" run "$SRC/tests/e2e/tiny.yaml" --out "$OUT" --quiet
 RUN="$OUT/latest"
 for f in report.html results.json results.csv summary.md; do
