@@ -163,12 +163,14 @@ int compare_baseline_latest(const char *store_path, const char *sweep, char **ru
 /* ---- paired mode (compare_paired.c) ----------------------------------- */
 typedef struct compare_paired_desc {
     const char *base_binary, *new_binary, *sweep_path;
-    int rounds;              /* 0 -> 4; round r runs A,B when r is even, B,A when odd (ABBA) */
+    int rounds;              /* 0 -> 6; round r runs A,B when r is even, B,A when odd (ABBA) */
     int quiet;
 } compare_paired_desc;
 /* Runs the sweep `rounds` times with each binary, each run a fresh process
  * writing to its own temporary output directory (removed afterwards), and
- * pools each side's samples per key across rounds into *base / *new_
+ * pools each side's per-run medians per key across rounds into *base / *new_
+ * (the run is the unit of replication: samples within one process are not
+ * independent)
  * (deterministic counters, quality and status from the first round; a
  * configuration failed in any round is failed; a deterministic counter that
  * differs between rounds of one side is a warning in run->warnings).

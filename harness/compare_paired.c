@@ -2,6 +2,7 @@
  * the same sweep in alternating rounds (ABBA), fresh processes, and each
  * side's samples are pooled per key (see compare.h). */
 #include "harness/compare.h"
+#include "models/stats.h"
 
 #include <ftw.h>
 #include <stdio.h>
@@ -70,10 +71,30 @@ static void compare__pool_config(dm_config_result *into, const dm_config_result 
     }
 }
 
+/* Reduces every sampled counter of a run to one value, its median.  In
+ * paired mode the unit of replication is the run: samples of one process
+ * share its slow or fast periods, so pooling raw samples across runs
+ * overstates the evidence (same-binary comparisons came out REGRESSION
+ * twice in nine); the runs' medians are independent. */
+static void compare__run_medians(dm_run_result *r)
+{
+    for (size_t i = 0; i < r->n_configs; i++)
+        for (size_t k = 0; k < r->configs[i].n_counters; k++) {
+            dm_counter_result *c = &r->configs[i].counters[k];
+            if (!c->has_samples || c->n_samples == 0)
+                continue;
+            double m = stats_median(c->samples, c->n_samples);
+            c->samples[0] = m;
+            c->n_samples = 1;
+            c->value = c->median = m;
+        }
+}
+
 /* Pools round r's run into the side's pooled run (the first round is taken
- * as it is). */
+ * as it is), one median per run and key. */
 static void compare__pool(dm_run_result *pooled, dm_run_result *r, int round)
 {
+    compare__run_medians(r);
     if (round == 0) {
         *pooled = *r;
         memset(r, 0, sizeof *r);
@@ -111,7 +132,7 @@ int compare_paired_run(const compare_paired_desc *desc, dm_run_result *base, dm_
                        dm_str *err)
 {
     compare_paired_desc d = *desc;
-    d.rounds = d.rounds > 0 ? d.rounds : 4;
+    d.rounds = d.rounds > 0 ? d.rounds : 6;   /* 6 runs a side: the fewest for which Mann-Whitney can reach p < 0.01 */
     memset(base, 0, sizeof *base);
     memset(new_, 0, sizeof *new_);
     const char *tmpdir = getenv("TMPDIR");
