@@ -12,3 +12,4 @@ dm_add_e2e(test_e2e_watchdog watchdog.sh)
 # ci/gate.yaml must equal ci/baseline.json (no timing, so no noise).
 add_test(NAME test_ci_gate COMMAND bash ${CMAKE_SOURCE_DIR}/ci/gate.sh $<TARGET_FILE:dmbench>)
 set_tests_properties(test_ci_gate PROPERTIES TIMEOUT 300 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")
+dm_add_e2e(test_e2e_quick quick.sh)
