@@ -1,6 +1,7 @@
 /* compare_write.c — the regression gate's outputs: terminal table, Markdown,
  * JUnit XML and JSON (see compare.h). */
 #include "harness/compare.h"
+#include "reports/report.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -228,13 +229,7 @@ int compare_write_json(const compare_result *r, const char *path)
     cJSON_AddItemToObject(root, "removed", compare__json_list(r->removed, r->n_removed));
     cJSON_AddItemToObject(root, "environment_differences", compare__json_list(r->env_diffs, r->n_env_diffs));
     cJSON_AddItemToObject(root, "warnings", compare__json_list(r->warnings, r->n_warnings));
-    char *text = cJSON_Print(root);
+    int rc = report_write_cjson(root, path);
     cJSON_Delete(root);
-    if (!text)
-        return DM_ERR_NOMEM;
-    dm_str s = {0};
-    dm_str_cat(&s, text);
-    dm_str_cat(&s, "\n");
-    free(text);
-    return compare__write(&s, path);
+    return rc;
 }

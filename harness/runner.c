@@ -292,25 +292,25 @@ static void runner__scene(runner *r, const plan_config *cs, size_t n)
     for (size_t i = 0; i < n; i++)
         done[i] = store_config_done(r->st, r->run_id, cs[i].key) == 1;
     for (;;) {
-        plan_config *todo = dm_xcalloc(n + 1, sizeof *todo);
+        plan_config *remaining = dm_xcalloc(n + 1, sizeof *remaining);
         size_t nt = 0;
         for (size_t i = 0; i < n; i++)
             if (!done[i])
-                todo[nt++] = cs[i];
+                remaining[nt++] = cs[i];
         if (nt == 0) {
-            free(todo);
+            free(remaining);
             break;
         }
         child_watch w = { .current = "" };
-        w.pid = runner__spawn(r, todo, nt, &w.fd, 0);
+        w.pid = runner__spawn(r, remaining, nt, &w.fd, 0);
         char *fatal = NULL;
         int *tdone = dm_xcalloc(nt + 1, sizeof *tdone);
-        int status = runner__watch(r, &w, todo, nt, tdone, &fatal);
+        int status = runner__watch(r, &w, remaining, nt, tdone, &fatal);
         close(w.fd);
         dm_str_free(&w.line);
         for (size_t i = 0; i < nt; i++)
             if (tdone[i])
-                done[runner__find(cs, n, todo[i].key) - cs] = 1;
+                done[runner__find(cs, n, remaining[i].key) - cs] = 1;
         const plan_config *cur = w.current[0] ? runner__find(cs, n, w.current) : NULL;
         char *why = NULL;
         if (status == -1)
@@ -334,7 +334,7 @@ static void runner__scene(runner *r, const plan_config *cs, size_t n)
         free(why);
         free(fatal);
         free(tdone);
-        free(todo);
+        free(remaining);
     }
     free(done);
 }

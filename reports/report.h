@@ -49,8 +49,11 @@ int report_write_html(const dm_run_result *run, const char *dir, const char *pat
  * (used to embed thumbnails and to mark missing files); NULL links images
  * without checking them. */
 
-/* One fit as its results.json "fits" entry (cJSON; the caller deletes it). */
+/* Writes a cJSON document, pretty-printed with a final newline, atomically
+ * to path (root stays the caller's).  0, DM_ERR_NOMEM or DM_ERR_IO. */
 struct cJSON;
+int report_write_cjson(const struct cJSON *root, const char *path);
+/* One fit as its results.json "fits" entry (cJSON; the caller deletes it). */
 struct cJSON *report_fit_to_json(const dm_fit_result *f);
 /* Reads a results.json back (for compare/merge) into *out (zeroed first;
  * release with dm_run_free).  DM_ERR_IO when unreadable, DM_ERR_PARSE when

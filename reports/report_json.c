@@ -194,13 +194,9 @@ static cJSON *run_json(const dm_run_result *r)
     return root;
 }
 
-int report_write_json(const dm_run_result *run, const char *path)
+int report_write_cjson(const cJSON *root, const char *path)
 {
-    if (!run || !path)
-        return DM_ERR_ARG;
-    cJSON *root = run_json(run);
     char *text = cJSON_Print(root);
-    cJSON_Delete(root);
     if (!text)
         return DM_ERR_NOMEM;
     dm_str s = {0};
@@ -209,6 +205,16 @@ int report_write_json(const dm_run_result *run, const char *path)
     cJSON_free(text);
     int rc = report__save(&s, path);
     dm_str_free(&s);
+    return rc;
+}
+
+int report_write_json(const dm_run_result *run, const char *path)
+{
+    if (!run || !path)
+        return DM_ERR_ARG;
+    cJSON *root = run_json(run);
+    int rc = report_write_cjson(root, path);
+    cJSON_Delete(root);
     return rc;
 }
 

@@ -64,12 +64,12 @@ int teardown(void **state)
     return 0;
 }
 
-/* Parses "k=v k=v ..." into params (at most 16). */
-size_t parse(const char *spec, dm_kv kv[16], char *buf, size_t cap)
+/* Parses "k=v k=v ..." into params (at most TECHFIX_MAX_PARAMS). */
+size_t parse(const char *spec, dm_kv kv[TECHFIX_MAX_PARAMS], char *buf, size_t cap)
 {
     snprintf(buf, cap, "%s", spec);
     size_t n = 0;
-    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok && n < 16;
+    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok && n < TECHFIX_MAX_PARAMS;
          tok = strtok_r(NULL, " ", &save)) {
         char *eq = strchr(tok, '=');
         assert_non_null(eq);
@@ -83,7 +83,7 @@ size_t parse(const char *spec, dm_kv kv[16], char *buf, size_t cap)
 /* Renders spec at the current target into a malloc'd RGBA float image. */
 float *render(const char *spec)
 {
-    dm_kv kv[16];
+    dm_kv kv[TECHFIX_MAX_PARAMS];
     char buf[512];
     size_t n = parse(spec, kv, buf, sizeof buf);
     tech_item it;

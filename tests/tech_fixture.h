@@ -21,8 +21,9 @@ void target(int w, int h);
 int techfix_setup(void **state, int w, int h);
 int teardown(void **state);
 
-/* "k=v k=v ..." (at most 16 pairs) into kv, using buf as storage. */
-size_t parse(const char *spec, dm_kv kv[16], char *buf, size_t cap);
+#define TECHFIX_MAX_PARAMS 24
+/* "k=v k=v ..." (at most TECHFIX_MAX_PARAMS pairs) into kv, using buf as storage. */
+size_t parse(const char *spec, dm_kv kv[TECHFIX_MAX_PARAMS], char *buf, size_t cap);
 /* Prepares and draws spec into the target; returns w*h RGBA floats (caller frees). */
 float *render(const char *spec);
 size_t non_finite(const float *px, size_t n);

@@ -26,17 +26,8 @@ static int setup(void **state) { return techfix_setup(state, 256, 192); }
 static tech_item prepare(const char *spec)
 {
     char buf[1024];
-    dm_kv kv[24];
-    size_t n = 0;
-    snprintf(buf, sizeof buf, "%s", spec);
-    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok && n < 24;
-         tok = strtok_r(NULL, " ", &save)) {
-        char *eq = strchr(tok, '=');
-        assert_non_null(eq);
-        *eq = 0;
-        kv[n].key = tok;
-        kv[n++].value = eq + 1;
-    }
+    dm_kv kv[TECHFIX_MAX_PARAMS];
+    size_t n = parse(spec, kv, buf, sizeof buf);
     tech_item it;
     dm_str log = {0};
     int rc = tech_prepare(F.r, kv, n, &it, &log);
