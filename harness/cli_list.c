@@ -91,8 +91,29 @@ static int list__counters(const char *passes, int json)
         char *copy = dm_xstrdup(passes);
         const char *names[64];
         size_t n = 0;
-        for (char *t = strtok(copy, ","); t && n < 64; t = strtok(NULL, ","))
+        char *save = NULL;
+        for (char *t = strtok_r(copy, ",", &save); t && n < 64; t = strtok_r(NULL, ",", &save)) {
             names[n++] = t;
+            if (counters_find(t))
+                continue;
+            const char **all = dm_xmalloc(counters_count() * sizeof *all);
+            for (size_t i = 0; i < counters_count(); i++)
+                all[i] = counters_info_at(i)->name;
+            const char *close = dm_closest(t, all, counters_count());
+            dm_str msg = {0};
+            dm_str_printf(&msg, "list: --passes: unknown counter '%s'", t);
+            if (close)
+                dm_str_printf(&msg, "; did you mean '%s'?", close);
+            dm_str_cat(&msg, " valid counters: ");
+            dm_str_cat_list(&msg, all, counters_count());
+            int rc = cli__usage_error("%s", dm_str_get(&msg));
+            dm_str_free(&msg);
+            free(all);
+            free(copy);
+            counters_context_destroy(cc);
+            gl_context_destroy(gl);
+            return rc;
+        }
         dm_str out = {0};
         int rc = cc ? counters_plan_describe(cc, names, n, &out) : -1;
         if (rc == 0)

@@ -23,6 +23,11 @@ expect 2 "expected K/N" -- "$BIN" run --shard 3/2
 expect 2 "unknown command 'rnu'; did you mean 'run'" -- "$BIN" rnu
 expect 2 "invalid value 'cubee' for mesh" -- "$BIN" render mesh=cubee --png "$OUT/x.png"
 expect 2 "no such run directory" -- "$BIN" report "$OUT/nope"
+expect 2 "run: --budget '0': expected seconds per configuration" -- "$BIN" run --budget 0
+expect 2 "mesh file '/nonexistent/x.obj' cannot be used" -- "$BIN" render mesh=file:/nonexistent/x.obj --png "$OUT/x.png"
+expect 2 "fit: --loss 'l2': expected one of: huber, cauchy, none" -- "$BIN" fit "$OUT" --loss l2
+expect 2 "unknown counter 'VSInvocatons'; did you mean 'VSInvocations'" -- "$BIN" list counters --passes WallTime,VSInvocatons
+expect 2 "merge: .*no such run directory" -- "$BIN" merge "$OUT/m" "$OUT/nope"
 # nothing may have been written by the failing runs
 if [ -e "$OUT/r" ]; then fail=$((fail+1)); echo "FAIL: a bad sweep wrote $OUT/r"; else pass=$((pass+1)); fi
 # an unwritable output directory is a clean exit 2
