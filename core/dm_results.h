@@ -80,6 +80,7 @@ typedef struct dm_fit_result {
     dm_fit_param *params;
     size_t n_params;
     double r2, rmse, mape, cv_mape;
+    double condition;        /* 2-norm condition number of the scaled Jacobian (>= 1); 0 = not computed, INFINITY = rank deficient */
     int n_points, n_excluded;
     char *termination;
     char **warnings;
