@@ -16,5 +16,16 @@ if [ "$UPDATE" = 1 ]; then
   echo "ci/baseline.json updated from $OUT/latest; commit it with the reason for the change"
   exit 0
 fi
+rc=0
 "$BIN" compare --counters-only "$HERE/baseline.json" "$OUT/latest" \
-  --markdown "$OUT/gate.md" --junit "$OUT/gate.xml"
+  --markdown "$OUT/gate.md" --junit "$OUT/gate.xml" || rc=$?
+# A gate that compares nothing cannot fail: every baseline configuration
+# must be in the new run (keys change when a technique's version or the
+# scene axes change; then the counts must be checked and the baseline
+# regenerated with --update).
+if [ "$rc" = 0 ] && grep -q '^- removed:' "$OUT/gate.md"; then
+  echo "ci/gate.sh: $(grep -c '^- removed:' "$OUT/gate.md") baseline configuration(s) missing from this run" \
+       "(configuration keys changed?); check the counts and run ci/gate.sh --update" >&2
+  rc=1
+fi
+exit "$rc"

@@ -6,6 +6,7 @@
 #include "harness/runner.h"
 #include "harness/store.h"
 #include "harness/sweep.h"
+#include "reports/metric.h"
 #include "reports/report.h"
 
 #include <libgen.h>
@@ -150,24 +151,61 @@ static int cli__locate_run(const char *dir, char **store_path, char **run_id)
     return -1;
 }
 
+/* Parses report's arguments: DIR [--metric NAME].  Returns -1 to go on or
+ * an exit code (2 for a usage error, naming the valid metrics). */
+static int cli__report_options(int argc, char **argv, const char **dir, const char **metric)
+{
+    static const char *const valid[] = { "--metric" };
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--metric") == 0) {
+            report_metric m;
+            if (!(*metric = cli__value(argc, argv, &i)))
+                return 2;
+            if (report_metric_parse(*metric, &m) != 0) {
+                dm_str e = {0};
+                report_metric_unknown(*metric, &e);
+                int rc = cli__usage_error("report: --metric: %s", dm_str_get(&e));
+                dm_str_free(&e);
+                return rc;
+            }
+        } else if (argv[i][0] == '-') {
+            return cli__unknown_option("report", argv[i], valid, 1);
+        } else if (*dir) {
+            return cli__usage_error("report: only one run directory may be given ('%s' and '%s')",
+                                    *dir, argv[i]);
+        } else {
+            *dir = argv[i];
+        }
+    }
+    if (!*dir)
+        return cli__usage_error("usage: dmbench report DIR [--metric NAME]   (a run directory, "
+                                "e.g. results/latest)");
+    return -1;
+}
+
+/* Rebuilds a run's report files from the store; --metric overrides the
+ * Pareto metric the run recorded (for these files only; the store keeps it). */
 int cli_report(int argc, char **argv)
 {
-    if (argc != 2)
-        return cli__usage_error("usage: dmbench report DIR   (a run directory, e.g. results/latest)");
+    const char *dir = NULL, *metric = NULL;
+    int rc = cli__report_options(argc, argv, &dir, &metric);
     char *store_path = NULL, *run_id = NULL;
-    int rc = cli__locate_run(argv[1], &store_path, &run_id);
+    if (rc < 0)
+        rc = cli__locate_run(dir, &store_path, &run_id);
     store *st = NULL;
     dm_str err = {0};
     dm_run_result run = {0};
     if (rc < 0 && store_open(store_path, &st, &err) != 0)
         rc = cli__usage_error("%s", dm_str_get(&err));
     if (rc < 0 && store_run_load(st, run_id, &run) != 0)
-        rc = cli__usage_error("%s: run %s is not in %s", argv[1], run_id, store_path);
+        rc = cli__usage_error("%s: run %s is not in %s", dir, run_id, store_path);
+    if (rc < 0 && metric)
+        report_metric_set(&run, metric);   /* validated above */
     char e[512] = "";
-    if (rc < 0 && report_write_all(&run, argv[1], e, sizeof e) != 0)
+    if (rc < 0 && report_write_all(&run, dir, e, sizeof e) != 0)
         rc = cli__usage_error("report: %s", e);
     if (rc < 0) {
-        printf("report: %s/report.html\n", argv[1]);
+        printf("report: %s/report.html\n", dir);
         rc = 0;
     }
     dm_run_free(&run);

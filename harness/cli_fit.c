@@ -83,6 +83,11 @@ static void fit__print(const dm_fit_result *f)
     printf("  R² %.5f  RMSE %.4g  MAPE %.2f%%  CV-MAPE %.2f%%  points %d (excluded %d)  %s\n",
            f->r2, f->rmse, f->mape, f->cv_mape, f->n_points, f->n_excluded,
            f->termination ? f->termination : "");
+    if (isinf(f->condition))
+        printf("  condition: infinite (rank deficient)\n");
+    else if (f->condition > 0.0)
+        printf("  condition %.3g%s\n", f->condition,
+               f->condition > FIT_ILL_CONDITIONED ? " (ill-conditioned)" : "");
     for (size_t i = 0; i < f->n_warnings; i++)
         printf("  warning: %s\n", f->warnings[i]);
 }

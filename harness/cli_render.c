@@ -1,4 +1,5 @@
-/* cli_render.c — `dmbench render KEY=VALUE... --png out.png`: one image. */
+/* cli_render.c — `dmbench render KEY=VALUE... --png out.png`: one image.
+ * `--debug normals` renders the normals view (render.h, tech_debug_view). */
 #include "cli.h"
 #include "core/dm_error.h"
 #include "harness/gl_context.h"
@@ -12,9 +13,10 @@
 #include <string.h>
 
 /* Parses KEY=VALUE arguments into params (validated); -1 to go on. */
-static int render__args(int argc, char **argv, dm_kv **kv, size_t *n, const char **out, int *ss)
+static int render__args(int argc, char **argv, dm_kv **kv, size_t *n, const char **out, int *ss,
+                        tech_debug_view *dbg)
 {
-    static const char *const valid[] = { "--png", "--exr", "--supersample" };
+    static const char *const valid[] = { "--png", "--exr", "--supersample", "--debug" };
     for (int i = 1; i < argc; i++) {
         char *eq = strchr(argv[i], '=');
         if (strcmp(argv[i], "--png") == 0 || strcmp(argv[i], "--exr") == 0) {
@@ -24,6 +26,11 @@ static int render__args(int argc, char **argv, dm_kv **kv, size_t *n, const char
             const char *v = cli__value(argc, argv, &i);
             if (!v || (*ss = atoi(v)) < 1 || *ss > 8)
                 return cli__usage_error("render: --supersample expects 1..8");
+        } else if (strcmp(argv[i], "--debug") == 0) {
+            const char *v = cli__value(argc, argv, &i);
+            if (!v || strcmp(v, "normals") != 0)
+                return cli__usage_error("render: --debug expects 'normals'");
+            *dbg = TECH_DEBUG_NORMALS;
         } else if (eq && argv[i][0] != '-') {
             *eq = '\0';
             dm_str err = {0};
@@ -36,7 +43,7 @@ static int render__args(int argc, char **argv, dm_kv **kv, size_t *n, const char
             dm_kv_push(kv, n, argv[i], canon);
             free(canon);
         } else {
-            return cli__unknown_option("render", argv[i], valid, 3);
+            return cli__unknown_option("render", argv[i], valid, 4);
         }
     }
     if (!*out)
@@ -50,7 +57,8 @@ int cli_render(int argc, char **argv)
     size_t n = 0;
     const char *out = NULL;
     int ss = 1, w = 0, h = 0;
-    int rc = render__args(argc, argv, &kv, &n, &out, &ss);
+    tech_debug_view dbg = TECH_DEBUG_NONE;
+    int rc = render__args(argc, argv, &kv, &n, &out, &ss, &dbg);
     const char *res = dm_kv_get(kv, n, "resolution");
     if (sscanf(res ? res : axes_find("resolution")->def, "%dx%d", &w, &h) != 2)
         rc = cli__usage_error("render: bad resolution");
@@ -61,6 +69,8 @@ int cli_render(int argc, char **argv)
         fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
         rc = 1;
     }
+    if (rc < 0)
+        tech_renderer_set_debug_view(r, dbg);
     float *rgba = NULL;
     if (rc < 0 && measure_render_image(r, kv, n, w, h, ss, &rgba, NULL, &err) != 0) {
         fprintf(stderr, "dmbench: error: render failed:\n%s\n", dm_str_get(&err));

@@ -30,4 +30,21 @@ typedef struct fitting_spec {
 int fitting_run(const fitting_spec *spec, const dm_run_result *run, dm_fit_result **fits,
                 size_t *n, dm_str *warnings, dm_str *err);
 
+/* Predicts the response of a stored fit for a configuration that has not
+ * been measured (the planner's --budget).  The configuration is given by
+ * its axes (params, as planned: `resolution` is W×H) and its key.  Names of
+ * the fit's formula that are not its fitted parameters are variables; each
+ * takes the configuration's numeric axis value (resolution = pixel count)
+ * or, failing that, the counter stored for the same key in the first of
+ * runs (n_runs, newest first) that has it, with the rules of fitting_run
+ * (failed configurations, unavailable counters and a partial GPUTime never).
+ * Returns 0 and *value (> 0, finite); DM_ERR_NOTFOUND when the fit's group
+ * does not contain the configuration or a variable has no value,
+ * DM_ERR_PARSE for a fit without a valid formula, DM_ERR_NUMERIC when the
+ * prediction is not a positive finite number; `why` then says why and
+ * *value is NaN. */
+int fitting_predict(const dm_fit_result *fit, const dm_kv *params, size_t n_params,
+                    const char *key, const dm_run_result *runs, size_t n_runs, double *value,
+                    dm_str *why);
+
 #endif

@@ -12,7 +12,9 @@
  * image and are measured in the same rounds. */
 static const char *const plan__scene_axes[] = {
     "mesh", "resolution", "camera.distance", "camera.azimuth", "camera.elevation",
-    "camera.fov", "maps", "lighting", "light_count", "height_scale" };
+    "camera.fov", "camera.target_x", "camera.target_y", "camera.target_z", "maps", "lighting",
+    "light_count", "light.azimuth", "light.elevation", "light.distance", "roughness",
+    "height_scale" };
 
 static int plan__kv_cmp(const void *a, const void *b)
 {
@@ -62,14 +64,29 @@ static char *plan__scene_id(const plan_config *c)
     return dm_str_take(&s);
 }
 
-/* Projects one combination onto its technique's axes. */
+/* A combination, for axes_condition_holds' value callback. */
+typedef struct plan__combo {
+    const sweep *s;
+    const size_t *idx;
+} plan__combo;
+
+static const char *plan__combo_value(const char *axis, void *ctx)
+{
+    const plan__combo *c = ctx;
+    return plan__value(c->s, c->idx, axis);
+}
+
+/* Projects one combination onto its technique's axes: those it reads whose
+ * condition holds (roughness only under cook-torrance). */
 static void plan__project(const sweep *s, const size_t *idx, plan_config *c)
 {
     const technique_desc *t = technique_find(plan__value(s, idx, "technique"));
+    plan__combo combo = {s, idx};
     memset(c, 0, sizeof *c);
     for (size_t i = 0; i < axes_count(); i++) {
         const axis_info *a = axes_at(i);
-        if (strcmp(a->name, "technique") != 0 && !technique_reads_axis(t, a->name))
+        if (strcmp(a->name, "technique") != 0 &&
+            (!technique_reads_axis(t, a->name) || !axes_condition_holds(a->name, plan__combo_value, &combo)))
             continue;
         /* canonical text, so "3.0" and "3" are one configuration with one key */
         char *v = axes_canonical(a->name, plan__value(s, idx, a->name));
@@ -109,6 +126,26 @@ static void plan__add(plan *p, plan_config *c)
     p->configs[p->n_configs++] = *c;
 }
 
+/* 1 when the combination idx matches an `exclude` entry: for every axis of
+ * the entry, the combination's value is one of the entry's values. */
+static int plan__excluded(const sweep *s, const size_t *idx)
+{
+    for (size_t e = 0; e < s->n_excludes; e++) {
+        int all = 1;
+        for (size_t j = 0; all && j < s->excludes[e].n_axes; j++) {
+            const sweep_axis *ea = &s->excludes[e].axes[j];
+            const char *v = plan__value(s, idx, ea->name);
+            int any = 0;
+            for (size_t k = 0; v && k < ea->n_values; k++)
+                any |= strcmp(v, ea->values[k]) == 0;
+            all = any;
+        }
+        if (all)
+            return 1;
+    }
+    return 0;
+}
+
 int plan_build(const sweep *s, plan *out, dm_str *err)
 {
     memset(out, 0, sizeof *out);
@@ -124,8 +161,12 @@ int plan_build(const sweep *s, plan *out, dm_str *err)
     size_t *idx = dm_xcalloc(s->n_axes + 1, sizeof *idx);
     for (size_t n = 0; n < total; n++) {
         plan_config c;
-        plan__project(s, idx, &c);
-        plan__add(out, &c);
+        if (plan__excluded(s, idx)) {
+            out->n_excluded++;
+        } else {
+            plan__project(s, idx, &c);
+            plan__add(out, &c);
+        }
         for (size_t i = 0; i < s->n_axes; i++) {      /* odometer over the axes */
             if (++idx[i] < s->axes[i].n_values)
                 break;

@@ -30,6 +30,7 @@ typedef struct plan {
     plan_config *configs;
     size_t n_configs;
     size_t n_combinations;   /* size of the cartesian product */
+    size_t n_excluded;       /* combinations dropped by the sweep's `exclude` entries */
     dm_left_out *left_out;
     size_t n_left_out;
 } plan;

@@ -8,6 +8,7 @@
 #include "harness/measure.h"
 #include "harness/plan.h"
 #include "harness/store.h"
+#include "reports/metric.h"
 #include "reports/report.h"
 #include "techniques/technique.h"
 
@@ -339,7 +340,10 @@ static void runner__scene(runner *r, const plan_config *cs, size_t n)
     free(done);
 }
 
-/* ---- --budget: a pilot frame per configuration ------------------------------ */
+/* ---- --budget: a stored cost model, else a pilot frame ------------------------ */
+
+/* Earlier runs searched for a cost model and counters (newest first). */
+#define RUNNER__BUDGET_RUNS 16
 
 /* Predicted seconds to measure a configuration from one pilot frame:
  * warm-up plus samples_max samples, each at least K frames and min_sample_ms
@@ -355,15 +359,157 @@ static double runner__predict(const sweep_measure *m, double frame_ns)
     return sampling + frame_ns * (m->warmup_frames + 12.0 * m->frames_per_sample + 20) / 1e9;
 }
 
-/* Runs the pilot child and leaves out what would blow the budget. */
-static void runner__budget(runner *r)
+/* What --budget knows from the store: earlier runs (newest first) and the
+ * frame-time fits usable for predictions, sweep's own models first. */
+typedef struct runner_budget {
+    dm_run_result *runs;
+    size_t n_runs;
+    const dm_fit_result **fits;
+    size_t n_fits;
+    const char *fits_run;      /* run the fits come from */
+    size_t by_model, by_pilot;
+} runner_budget;
+
+static int runner__fit_usable(const dm_fit_result *f)
+{
+    return f->response && strcmp(f->response, "WallTime") == 0 && f->formula;
+}
+
+/* Position of the fit's model among the sweep's models, n_models if absent. */
+static size_t runner__fit_rank(const runner *r, const dm_fit_result *f)
+{
+    size_t j = 0;
+    while (j < r->s->n_models && strcmp(r->s->models[j].name, f->model) != 0)
+        j++;
+    return j;
+}
+
+/* Takes the usable fits of the newest run that has any: first those named
+ * like the sweep's models (in the sweep's order), then the others. */
+static void runner__budget_fits(runner *r, runner_budget *b)
+{
+    for (size_t k = 0; k < b->n_runs && b->n_fits == 0; k++) {
+        const dm_run_result *run = &b->runs[k];
+        b->fits = dm_xrealloc(b->fits, (run->n_fits + 1) * sizeof *b->fits);
+        for (size_t rank = 0; rank <= r->s->n_models; rank++)
+            for (size_t i = 0; i < run->n_fits; i++)
+                if (runner__fit_rank(r, &run->fits[i]) == rank && runner__fit_usable(&run->fits[i]))
+                    b->fits[b->n_fits++] = &run->fits[i];
+        b->fits_run = b->n_fits ? run->id : NULL;
+    }
+}
+
+/* 1 when a stored run was measured in this run's environment (same
+ * fingerprint: renderer, GL version, LP_NUM_THREADS, CPU), so its frame
+ * times and counters apply here. */
+static int runner__same_machine(const runner *r, const dm_run_result *run)
+{
+    const char *a = dm_kv_get(run->environment, run->n_environment, "fingerprint");
+    const char *b = dm_kv_get(r->env.environment, r->env.n_environment, "fingerprint");
+    return a && b && strcmp(a, b) == 0;
+}
+
+/* Loads up to RUNNER__BUDGET_RUNS earlier runs of the store made on this
+ * machine (newest first). */
+static void runner__budget_load(runner *r, runner_budget *b)
+{
+    char **ids = NULL;
+    size_t n = 0;
+    if (store_list_runs(r->st, &ids, &n) != 0)
+        n = 0;
+    b->runs = dm_xcalloc(n + 1, sizeof *b->runs);
+    for (size_t i = 0; i < n; i++) {
+        dm_run_result *run = &b->runs[b->n_runs];
+        if (b->n_runs < RUNNER__BUDGET_RUNS && store_run_load(r->st, ids[i], run) == 0) {
+            if (runner__same_machine(r, run))
+                b->n_runs++;
+            else
+                dm_run_free(run);
+        }
+        free(ids[i]);
+    }
+    free(ids);
+    runner__budget_fits(r, b);
+}
+
+static void runner__budget_free(runner_budget *b)
+{
+    for (size_t i = 0; i < b->n_runs; i++)
+        dm_run_free(&b->runs[i]);
+    free(b->runs);
+    free(b->fits);
+}
+
+/* Leaves out the configuration with that key, if it is still planned. */
+static void runner__leave_out_key(runner *r, const char *key, const char *why)
+{
+    for (size_t i = 0; i < r->p.n_configs; i++)
+        if (strcmp(r->p.configs[i].key, key) == 0) {
+            plan_leave_out(&r->p, i, why);
+            return;
+        }
+}
+
+/* Frame time (ns) of a planned configuration from the first stored fit that
+ * can evaluate it; the fit in *used, or NULL (then NaN). */
+static double runner__model_frame(const runner_budget *b, const plan_config *c,
+                                  const dm_fit_result **used)
+{
+    *used = NULL;
+    for (size_t i = 0; i < b->n_fits; i++) {
+        double ns;
+        dm_str why = {0};
+        int rc = fitting_predict(b->fits[i], c->params, c->n_params, c->key, b->runs,
+                                 b->n_runs, &ns, &why);
+        dm_str_free(&why);
+        if (rc == 0) {
+            *used = b->fits[i];
+            return ns;
+        }
+    }
+    return NAN;
+}
+
+/* The configurations with a model prediction are decided now; the others
+ * are copied to pilot[] (returned count) for a pilot frame. */
+static size_t runner__budget_by_model(runner *r, runner_budget *b, plan_config *pilot,
+                                      char (*over)[17], char **why)
+{
+    size_t n_pilot = 0, n_over = 0;
+    for (size_t i = 0; i < r->p.n_configs; i++) {
+        const plan_config *c = &r->p.configs[i];
+        const dm_fit_result *fit;
+        double ns = runner__model_frame(b, c, &fit), t = runner__predict(&r->s->measure, ns);
+        if (!fit) {
+            pilot[n_pilot++] = *c;
+            continue;
+        }
+        b->by_model++;
+        if (t <= r->o->budget_s)
+            continue;
+        memcpy(over[n_over], c->key, sizeof over[n_over]);
+        why[n_over++] = dm_xasprintf("over --budget %g s: model %s (run %s, cross-validated error "
+                                     "%.0f%%) predicts %.3g ms/frame, so measuring would take "
+                                     "about %.2g s", r->o->budget_s, fit->model, b->fits_run,
+                                     fit->cv_mape, ns / 1e6, t);
+    }
+    for (size_t k = 0; k < n_over; k++) {
+        runner__leave_out_key(r, over[k], why[k]);
+        free(why[k]);
+    }
+    return n_pilot;
+}
+
+/* Runs the pilot child on configs and leaves out what would blow the budget. */
+static void runner__budget_pilot(runner *r, runner_budget *b, const plan_config *cs, size_t n)
 {
     int fd = -1;
-    pid_t pid = runner__spawn(r, r->p.configs, r->p.n_configs, &fd, 1);
+    pid_t pid = runner__spawn(r, cs, n, &fd, 1);
     char *text = runner__read_all(fd, (int)(r->s->measure.timeout_s * 1000));
     close(fd);
     kill(pid, SIGKILL);
     waitpid(pid, NULL, 0);
+    b->by_pilot = n;
     char *save = NULL;
     for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
         char key[17];
@@ -371,17 +517,39 @@ static void runner__budget(runner *r)
         if (sscanf(line, "P %16s %lf", key, &ns) != 2 || !isfinite(ns))
             continue;
         double t = runner__predict(&r->s->measure, ns);
-        for (size_t i = 0; i < r->p.n_configs; i++) {
-            if (strcmp(r->p.configs[i].key, key) != 0 || t <= r->o->budget_s)
-                continue;
-            char *why = dm_xasprintf("over --budget %g s: a pilot frame took %.3g ms, so measuring "
-                                     "would take about %.2g s", r->o->budget_s, ns / 1e6, t);
-            plan_leave_out(&r->p, i, why);
-            free(why);
-            break;
-        }
+        if (t <= r->o->budget_s)
+            continue;
+        char *why = dm_xasprintf("over --budget %g s: a pilot frame took %.3g ms, so measuring "
+                                 "would take about %.2g s", r->o->budget_s, ns / 1e6, t);
+        runner__leave_out_key(r, key, why);
+        free(why);
     }
     free(text);
+}
+
+/* --budget: predicts each configuration's measuring time from a stored
+ * cost model when one can be evaluated for it before measuring, else from a
+ * pilot frame, and leaves out what would exceed the budget. */
+static void runner__budget(runner *r)
+{
+    runner_budget b = {0};
+    size_t n = r->p.n_configs, before = r->p.n_left_out;
+    plan_config *pilot = dm_xcalloc(n + 1, sizeof *pilot);
+    char (*over)[17] = dm_xcalloc(n + 1, sizeof *over);
+    char **why = dm_xcalloc(n + 1, sizeof *why);
+    runner__budget_load(r, &b);
+    size_t n_pilot = runner__budget_by_model(r, &b, pilot, over, why);
+    if (n_pilot)
+        runner__budget_pilot(r, &b, pilot, n_pilot);
+    if (!r->o->quiet)
+        fprintf(stderr, "dmbench: --budget %g s: %zu configurations predicted by a cost model%s%s%s, "
+                "%zu by a pilot frame; %zu left out\n", r->o->budget_s, b.by_model,
+                b.fits_run ? " (run " : "", b.fits_run ? b.fits_run : "", b.fits_run ? ")" : "",
+                b.by_pilot, r->p.n_left_out - before);
+    free(pilot);
+    free(over);
+    free(why);
+    runner__budget_free(&b);
 }
 
 /* ---- run directory, store, report ---------------------------------------------- */
@@ -452,6 +620,7 @@ static int runner__begin(runner *r)
     e->started = dm_xstrdup(now);
     dm_hex64(r->s->hash, hash);
     e->sweep_hash = dm_xstrdup(hash);
+    report_metric_set(e, r->s->pareto_metric);   /* so dmbench report redraws the same front */
     int rc = store_run_begin(r->st, e, r->o->tag);
     for (size_t i = 0; rc == 0 && i < r->p.n_left_out; i++)
         rc = store_left_out_put(r->st, r->run_id, &r->p.left_out[i]);
@@ -573,9 +742,11 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
         r.total = r.p.n_configs;
         if (!o->quiet)
             fprintf(stderr, "dmbench: %s: %zu combinations -> %zu configurations "
-                    "(%zu folded: axes the technique does not read), %zu left out; run %s\n",
-                    s->name, r.p.n_combinations, r.p.n_configs + r.p.n_left_out,
-                    r.p.n_combinations - r.p.n_configs - r.p.n_left_out, r.p.n_left_out, r.run_dir);
+                    "(%zu excluded by the sweep, %zu folded: axes the technique does not read), "
+                    "%zu left out; run %s\n",
+                    s->name, r.p.n_combinations, r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
+                    r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
+                    r.p.n_left_out, r.run_dir);
         runner__scenes(&r);
         rc = runner__finish(&r, err);
         double wall = (double)(dm_now_ns() - r.t_start) / 1e9, meas = (double)r.measured_ns / 1e9;

@@ -1,6 +1,6 @@
 /* store.c — the results store on SQLite.
  *
- * Schema (version 1, kept in PRAGMA user_version; store__migrations[i] takes a
+ * Schema (version 2, kept in PRAGMA user_version; store__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -23,7 +23,9 @@
  *   left_out(run, seq, reason), left_out_params(run, seq, name, value)
  *   fits(run, seq, model, group_key, formula, response, r2, rmse, mape,
  *        cv_mape, n_points, n_excluded, termination, measured BLOB,
- *        predicted BLOB)  PK (run, seq), UNIQUE (run, model, group_key)
+ *        predicted BLOB, condition)  PK (run, seq), UNIQUE (run, model,
+ *        group_key); condition came with version 2 (a version-1 store gets
+ *        the column with 0, "not computed", for its fits)
  *   fit_group(run, seq, key, value), fit_params(run, seq, name, value,
  *        stderr), fit_warnings(run, seq, text), fit_labels(run, seq, idx,
  *        label)
@@ -59,7 +61,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STORE_SCHEMA_VERSION 1
+#define STORE_SCHEMA_VERSION 2
 #define STORE__XSTR(x) #x
 #define STORE__STR(x) STORE__XSTR(x)
 
@@ -121,6 +123,8 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
     "CREATE TABLE fit_labels(run TEXT NOT NULL, seq INTEGER NOT NULL,"
     " idx INTEGER NOT NULL, label TEXT, PRIMARY KEY(run, seq, idx),"
     " FOREIGN KEY(run, seq) REFERENCES fits(run, seq) ON DELETE CASCADE);",
+    /* 1 -> 2: a fit's condition number (0 = not computed) */
+    "ALTER TABLE fits ADD COLUMN condition REAL DEFAULT 0;",
 };
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
@@ -130,7 +134,7 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
     "partial,value,has_samples,median,mean,min,max,stddev,mad,cv,ci_lo," \
     "ci_hi,n_outliers,n_nonfinite"
 #define STORE__FIT_COLS "formula,response,r2,rmse,mape,cv_mape,n_points," \
-    "n_excluded,termination,measured,predicted"
+    "n_excluded,termination,measured,predicted,condition"
 
 /* Owner parameters: ?1 run, ?2 config key, ?3 seq; payload from ?4. */
 #define STORE_SQL(X)                                                          \
@@ -184,7 +188,7 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
       "(SELECT IFNULL(MAX(seq),0)+1 FROM fits WHERE run=?1))")                \
     X(FIT_DEL, "DELETE FROM fits WHERE run=?1 AND seq=?3")                    \
     X(FIT_INS, "INSERT INTO fits(run,seq,model,group_key," STORE__FIT_COLS    \
-      ") VALUES(?1,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16)")        \
+      ") VALUES(?1,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17)")    \
     X(FIT_SEL, "SELECT seq,model," STORE__FIT_COLS " FROM fits WHERE run=?1"  \
       " ORDER BY seq")                                                        \
     X(FGRP_INS, "INSERT INTO fit_group(run,seq,key,value) VALUES(?1,?3,?4,?5)")\
@@ -609,10 +613,10 @@ static int store__fit_write(store *s, const char *run, const dm_fit_result *f)
     if (rc == 0)
         rc = store__exec(s, STORE_SQL_FIT_DEL, &o, "");
     if (rc == 0)
-        rc = store__exec(s, STORE_SQL_FIT_INS, &o, "ttttddddiitbb", f->model,
+        rc = store__exec(s, STORE_SQL_FIT_INS, &o, "ttttddddiitbbd", f->model,
             gk, f->formula, f->response, f->r2, f->rmse, f->mape, f->cv_mape,
             f->n_points, f->n_excluded, f->termination, f->measured, np,
-            f->predicted, np);
+            f->predicted, np, f->condition);
     free(gk);
     if (rc == 0)
         rc = store__fit_children(s, &o, f);
@@ -831,6 +835,7 @@ static int store__fit_cols(store *s, sqlite3_stmt *st, dm_fit_result *f)
     f->termination = store__col_str(st, 10);
     f->measured = store__col_doubles(st, 11, &nm);
     f->predicted = store__col_doubles(st, 12, &np);
+    f->condition = store__col_double(st, 13);
     if (f->n_points < 0 || (f->measured && nm != (size_t)f->n_points) ||
         (f->predicted && np != (size_t)f->n_points)) {
         f->n_points = 0;

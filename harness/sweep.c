@@ -9,6 +9,7 @@
 #include "core/dm_error.h"
 #include "counters/counters.h"
 #include "techniques/axes.h"
+#include "reports/metric.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -270,9 +271,11 @@ static int p__scene(pctx *c, yaml_node_t *map)
 }
 
 /* sweep: { axis: [v1, v2, ...] | v } */
-static int p__axes(pctx *c, yaml_node_t *map)
+/* A mapping axis -> value | [values] into (*axes, *n): the `sweep` block
+ * and each `exclude` entry (`what` names it in messages). */
+static int p__axis_block(pctx *c, yaml_node_t *map, const char *what, sweep_axis **axes, size_t *n_axes)
 {
-    int rc = p__expect_map(c, map, "sweep");
+    int rc = p__expect_map(c, map, what);
     if (rc)
         return rc;
     P__FOREACH_PAIR(c, map, pr) {
@@ -280,10 +283,10 @@ static int p__axes(pctx *c, yaml_node_t *map)
         const char *name = p__scalar(k) ? p__scalar(k) : "";
         if (!axes_find(name))
             return p__set_scene(c, name, k, v);   /* reports the unknown axis */
-        for (size_t i = 0; i < c->s->n_axes; i++)
-            if (strcmp(c->s->axes[i].name, name) == 0)
+        for (size_t i = 0; i < *n_axes; i++)
+            if (strcmp((*axes)[i].name, name) == 0)
                 return p__fail(c, k, "axis '%s' is given twice (first on line %d)", name,
-                               c->s->axes[i].line);
+                               (*axes)[i].line);
         sweep_axis ax = { .name = dm_xstrdup(name), .line = (int)k->start_mark.line + 1 };
         /* resolution: [1280, 720] is one value; [[640, 360], "1280x720"] is a list. */
         int is_pair = 0;
@@ -313,12 +316,80 @@ static int p__axes(pctx *c, yaml_node_t *map)
         }
         if (rc == 0 && ax.n_values == 0)
             rc = p__fail(c, v, "axis '%s' has no values (an empty list would plan nothing)", name);
-        c->s->axes = dm_xrealloc(c->s->axes, (c->s->n_axes + 1) * sizeof *c->s->axes);
-        c->s->axes[c->s->n_axes++] = ax;
+        *axes = dm_xrealloc(*axes, (*n_axes + 1) * sizeof **axes);
+        (*axes)[(*n_axes)++] = ax;
         if (rc)
             return rc;
     }
     return 0;
+}
+
+static int p__axes(pctx *c, yaml_node_t *map)
+{
+    return p__axis_block(c, map, "sweep", &c->s->axes, &c->s->n_axes);
+}
+
+/* exclude: a list of {axis: value | [values], ...} entries. */
+static int p__excludes(pctx *c, yaml_node_t *seq)
+{
+    if (seq->type != YAML_SEQUENCE_NODE)
+        return p__fail(c, seq, "exclude: expected a list of {axis: value or [values], ...} entries");
+    for (yaml_node_item_t *it = seq->data.sequence.items.start; it < seq->data.sequence.items.top; it++) {
+        yaml_node_t *e = p__node(c, *it);
+        sweep_exclude ex = {.line = (int)e->start_mark.line + 1};
+        int rc = p__axis_block(c, e, "exclude[]", &ex.axes, &ex.n_axes);
+        if (rc == 0 && ex.n_axes == 0)
+            rc = p__fail(c, e, "exclude[]: an empty entry would exclude everything");
+        c->s->excludes = dm_xrealloc(c->s->excludes, (c->s->n_excludes + 1) * sizeof *c->s->excludes);
+        c->s->excludes[c->s->n_excludes++] = ex;
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+/* Every excluded axis must be a sweep axis and every value one of its
+ * values (a typo would otherwise exclude nothing, silently). */
+static int sweep__check_excludes(const sweep *s, dm_str *err)
+{
+    for (size_t i = 0; i < s->n_excludes; i++)
+        for (size_t j = 0; j < s->excludes[i].n_axes; j++) {
+            const sweep_axis *ea = &s->excludes[i].axes[j];
+            const sweep_axis *sa = NULL;
+            for (size_t k = 0; k < s->n_axes; k++)
+                if (strcmp(s->axes[k].name, ea->name) == 0)
+                    sa = &s->axes[k];
+            if (!sa) {
+                dm_str_printf(err, "%s:%d: exclude names axis '%s', which the sweep block does not vary; "
+                              "excluded axes must be listed under sweep:", s->path, ea->line, ea->name);
+                return DM_ERR_PARSE;
+            }
+            for (size_t v = 0; v < ea->n_values; v++) {
+                int found = 0;
+                for (size_t k = 0; k < sa->n_values; k++)
+                    found |= strcmp(sa->values[k], ea->values[v]) == 0;
+                if (found)
+                    continue;
+                dm_str_printf(err, "%s:%d: exclude value '%s' of %s is not one of the sweep's values (",
+                              s->path, ea->line, ea->values[v], ea->name);
+                for (size_t k = 0; k < sa->n_values; k++)
+                    dm_str_printf(err, "%s%s", k ? ", " : "", sa->values[k]);
+                dm_str_cat(err, ")");
+                return DM_ERR_PARSE;
+            }
+        }
+    return 0;
+}
+
+static void sweep__axes_free(sweep_axis *axes, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        free(axes[i].name);
+        for (size_t j = 0; j < axes[i].n_values; j++)
+            free(axes[i].values[j]);
+        free(axes[i].values);
+    }
+    free(axes);
 }
 
 static int p__counter_list(pctx *c, yaml_node_t *seq)
@@ -406,39 +477,80 @@ static int p__measure(pctx *c, yaml_node_t *map)
     return rc;
 }
 
+static int p__quality_reference(pctx *c, yaml_node_t *v)
+{
+    static const char *const ref_keys[] = { "technique", "supersample" };
+    int rc = p__expect_map(c, v, "quality.reference");
+    if (rc)
+        return rc;
+    P__FOREACH_PAIR(c, v, rp) {
+        yaml_node_t *rk = p__node(c, rp->key), *rv = p__node(c, rp->value);
+        const char *name = p__scalar(rk) ? p__scalar(rk) : "";
+        if (strcmp(name, "technique") == 0 && p__scalar(rv) && strcmp(p__scalar(rv), "same") == 0) {
+            free(c->s->ref_technique);          /* each configuration, supersampled */
+            c->s->ref_technique = dm_xstrdup("same");
+        } else if (strcmp(name, "technique") == 0) {
+            char *t = p__axis_value(c, "technique", rv);
+            if (!t)
+                return DM_ERR_PARSE;
+            free(c->s->ref_technique);
+            c->s->ref_technique = t;
+        } else if (strcmp(name, "supersample") == 0) {
+            rc = p__int(c, rv, "quality.reference.supersample", 1, 8, &c->s->supersample);
+        } else {
+            return p__unknown_key(c, rk, "quality.reference", ref_keys, 2);
+        }
+        if (rc)
+            return rc;
+    }
+    return 0;
+}
+
+/* quality.pareto_metric: one of reports/metric.h's names (the list is an
+ * X-macro, so no link to reports/ is needed). */
+static int p__pareto_metric(pctx *c, yaml_node_t *v)
+{
+    static const char *const names[] = {
+#define P__METRIC_NAME(id, name) name,
+        REPORT_METRICS(P__METRIC_NAME)
+#undef P__METRIC_NAME
+    };
+    const size_t n = sizeof names / sizeof *names;
+    const char *m = p__scalar(v);
+    for (size_t i = 0; m && i < n; i++)
+        if (strcmp(m, names[i]) == 0) {
+            free(c->s->pareto_metric);
+            c->s->pareto_metric = dm_xstrdup(m);
+            return 0;
+        }
+    const char *close = m ? dm_closest(m, names, n) : NULL;
+    p__fail(c, v, "quality.pareto_metric: unknown metric '%s'", m ? m : "(not a scalar)");
+    if (close)
+        dm_str_printf(c->err, "; did you mean '%s'?", close);
+    dm_str_cat(c->err, " valid metrics: ");
+    dm_str_cat_list(c->err, names, n);
+    return DM_ERR_PARSE;
+}
+
 static int p__quality(pctx *c, yaml_node_t *map)
 {
-    static const char *const keys[] = { "reference" };
-    static const char *const ref_keys[] = { "technique", "supersample" };
+    static const char *const keys[] = { "reference", "pareto_metric" };
     int rc = p__expect_map(c, map, "quality");
+    if (rc)
+        return rc;
     P__FOREACH_PAIR(c, map, pr) {
         yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        if (rc || strcmp(p__scalar(k) ? p__scalar(k) : "", "reference") != 0)
-            return rc ? rc : p__unknown_key(c, k, "quality", keys, 1);
-        if ((rc = p__expect_map(c, v, "quality.reference")))
+        const char *name = p__scalar(k) ? p__scalar(k) : "";
+        if (strcmp(name, "reference") == 0)
+            rc = p__quality_reference(c, v);
+        else if (strcmp(name, "pareto_metric") == 0)
+            rc = p__pareto_metric(c, v);
+        else
+            return p__unknown_key(c, k, "quality", keys, 2);
+        if (rc)
             return rc;
-        P__FOREACH_PAIR(c, v, rp) {
-            yaml_node_t *rk = p__node(c, rp->key), *rv = p__node(c, rp->value);
-            const char *name = p__scalar(rk) ? p__scalar(rk) : "";
-            if (strcmp(name, "technique") == 0 && p__scalar(rv) && strcmp(p__scalar(rv), "same") == 0) {
-                free(c->s->ref_technique);          /* each configuration, supersampled */
-                c->s->ref_technique = dm_xstrdup("same");
-            } else if (strcmp(name, "technique") == 0) {
-                char *t = p__axis_value(c, "technique", rv);
-                if (!t)
-                    return DM_ERR_PARSE;
-                free(c->s->ref_technique);
-                c->s->ref_technique = t;
-            } else if (strcmp(name, "supersample") == 0) {
-                rc = p__int(c, rv, "quality.reference.supersample", 1, 8, &c->s->supersample);
-            } else {
-                return p__unknown_key(c, rk, "quality.reference", ref_keys, 2);
-            }
-            if (rc)
-                return rc;
-        }
     }
-    return rc;
+    return 0;
 }
 
 static int p__model(pctx *c, yaml_node_t *map)
@@ -498,7 +610,7 @@ static int p__models(pctx *c, yaml_node_t *seq)
 static int p__top(pctx *c, yaml_node_t *root)
 {
     static const char *const keys[] = { "name", "resolution", "measure", "scene", "sweep",
-                                        "quality", "models" };
+                                        "exclude", "quality", "models" };
     if (!root)
         return p__fail(c, NULL, "empty sweep file (expected keys: name, sweep, ...)");
     int rc = p__expect_map(c, root, "sweep file");
@@ -524,8 +636,10 @@ static int p__top(pctx *c, yaml_node_t *root)
             rc = p__quality(c, v);
         } else if (strcmp(name, "models") == 0) {
             rc = p__models(c, v);
+        } else if (strcmp(name, "exclude") == 0) {
+            rc = p__excludes(c, v);
         } else {
-            rc = p__unknown_key(c, k, "the sweep file", keys, 7);
+            rc = p__unknown_key(c, k, "the sweep file", keys, 8);
         }
     }
     return rc;
@@ -568,6 +682,8 @@ static void sweep__defaults(sweep *s)
         s->supersample = 4;
     if (!s->ref_technique)          /* ground truth: the CPU-displaced fine mesh (SPEC §6) */
         s->ref_technique = dm_xstrdup("reference-mesh");
+    if (!s->pareto_metric)
+        s->pareto_metric = dm_xstrdup("ssim");
 }
 
 int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
@@ -592,6 +708,8 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
     int rc = p__top(&c, yaml_document_get_root_node(&doc));
     yaml_document_delete(&doc);
     yaml_parser_delete(&parser);
+    if (rc == 0)
+        rc = sweep__check_excludes(out, err);
     if (rc) {
         sweep_free(out);
         return rc;
@@ -670,17 +788,15 @@ void sweep_free(sweep *s)
     free(s->path);
     free(s->name);
     dm_kv_free(s->scene, s->n_scene);
-    for (size_t i = 0; i < s->n_axes; i++) {
-        free(s->axes[i].name);
-        for (size_t j = 0; j < s->axes[i].n_values; j++)
-            free(s->axes[i].values[j]);
-        free(s->axes[i].values);
-    }
-    free(s->axes);
+    sweep__axes_free(s->axes, s->n_axes);
+    for (size_t i = 0; i < s->n_excludes; i++)
+        sweep__axes_free(s->excludes[i].axes, s->excludes[i].n_axes);
+    free(s->excludes);
     for (size_t i = 0; i < s->measure.n_counters; i++)
         free(s->measure.counters[i]);
     free(s->measure.counters);
     free(s->ref_technique);
+    free(s->pareto_metric);
     for (size_t i = 0; i < s->n_models; i++) {
         sweep_model *m = &s->models[i];
         free(m->name);

@@ -21,6 +21,14 @@ typedef struct sweep_axis {
     int line;                /* 1-based line of the axis in the file */
 } sweep_axis;
 
+/* One `exclude:` entry: the combinations whose value of every listed axis
+ * is one of its values are not planned. */
+typedef struct sweep_exclude {
+    sweep_axis *axes;
+    size_t n_axes;
+    int line;
+} sweep_exclude;
+
 typedef struct sweep_model {
     char *name;
     char *formula;           /* NULL = built-in model named `name` */
@@ -54,8 +62,11 @@ typedef struct sweep {
     sweep_measure measure;
     char *ref_technique;     /* quality reference technique; NULL = same config supersampled */
     int supersample;         /* default 4 */
+    char *pareto_metric;     /* quality.pareto_metric: a reports/metric.h name (default "ssim") */
     sweep_model *models;
     size_t n_models;
+    sweep_exclude *excludes;
+    size_t n_excludes;
     uint64_t hash;           /* FNV-1a of the file text */
 } sweep;
 

@@ -49,7 +49,7 @@ typedef struct viewer {
     int n_shots;
     viewer_event *ev;
     size_t n_ev;
-    int dragging;
+    int dragging, panning;       /* left / right button held */
     double mx, my;
     viewer_overlay *ov;          /* C: counters drawn as text */
 } viewer;
@@ -154,6 +154,8 @@ static void viewer__on_button(GLFWwindow *w, int button, int action, int mods)
     viewer *v = glfwGetWindowUserPointer(w);
     if (button == GLFW_MOUSE_BUTTON_LEFT)
         v->dragging = action == GLFW_PRESS;
+    if (button == GLFW_MOUSE_BUTTON_RIGHT)
+        v->panning = action == GLFW_PRESS;
     glfwGetCursorPos(w, &v->mx, &v->my);
 }
 
@@ -162,6 +164,8 @@ static void viewer__on_cursor(GLFWwindow *w, double x, double y)
     viewer *v = glfwGetWindowUserPointer(w);
     if (v->dragging)
         viewer_state_orbit(&v->st, x - v->mx, y - v->my);
+    else if (v->panning)
+        viewer_state_pan(&v->st, x - v->mx, y - v->my);
     v->mx = x;
     v->my = y;
 }
@@ -178,6 +182,7 @@ static void viewer__apply_event(viewer *v, const viewer_event *e)
     case VIEWER_EV_CHAR: viewer_state_char(&v->st, e->ch); break;
     case VIEWER_EV_ESC: viewer_state_special(&v->st, VIEWER_KEY_ESC); break;
     case VIEWER_EV_DRAG: viewer_state_orbit(&v->st, e->dx, e->dy); break;
+    case VIEWER_EV_PAN: viewer_state_pan(&v->st, e->dx, e->dy); break;
     case VIEWER_EV_WHEEL: viewer_state_zoom(&v->st, e->dy); break;
     case VIEWER_EV_WAIT: break;
     }
@@ -194,6 +199,7 @@ static int viewer__prepare(viewer *v)
     v->st.dirty = 0;
     tech_item item;
     dm_str log = {0};
+    tech_renderer_set_debug_view(v->r, v->st.normals ? TECH_DEBUG_NORMALS : TECH_DEBUG_NONE);
     int rc = tech_prepare(v->r, v->st.params, v->st.n_params, &item, &log);
     if (rc != 0) {
         fprintf(stderr, "dmbench: view: cannot prepare this configuration (%s):\n%s",
@@ -239,14 +245,15 @@ static void viewer__title(viewer *v, const viewer_frame *f)
 static void viewer__overlay(viewer *v, const viewer_frame *f)
 {
     static const char *const shown[] = {"technique", "mesh", "filter", "tess_level", "steps",
-                                        "height_scale"};
+                                        "height_scale", "light.azimuth"};
     const technique_desc *t = technique_find(viewer_state_get(&v->st, "technique"));
     dm_str text = {0};
     for (size_t i = 0; i < sizeof shown / sizeof *shown; i++)
         if (t && technique_reads_axis(t, shown[i]))
             dm_str_printf(&text, "%s %s\n", shown[i], viewer_state_get(&v->st, shown[i]));
     viewer_counters_format(&v->live, "\n", &text);
-    dm_str_printf(&text, "\n%dx%d%s", f->w, f->h, v->st.wireframe ? "  wireframe" : "");
+    dm_str_printf(&text, "\n%dx%d%s%s%s", f->w, f->h, v->st.wireframe ? "  wireframe" : "",
+                  v->st.normals ? "  normals" : "", v->st.light_orbit ? "  light orbit" : "");
     viewer_overlay_draw(&v->ov, dm_str_get(&text), f->w, f->h);
     dm_str_free(&text);
 }
@@ -293,7 +300,9 @@ static void viewer__check_gl(viewer *v, int frame)
     dm_str_free(&msgs);
 }
 
-/* One frame: input, prepare, counters, requests, draw, screenshot, swap. */
+/* One frame: input, light orbit, prepare, counters, requests, draw,
+ * screenshot, swap.  The light orbit alone does not postpone the live
+ * counters (they would never run while it is on). */
 static int viewer__frame_step(viewer *v, int frame)
 {
     glfwPollEvents();
@@ -301,7 +310,9 @@ static int viewer__frame_step(viewer *v, int frame)
         viewer__apply_event(v, &v->ev[frame]);
     fputs(dm_str_get(&v->st.msg), stdout);
     dm_str_free(&v->st.msg);
-    int changed = v->st.dirty, rc = viewer__prepare(v);
+    int changed = v->st.dirty;
+    viewer_state_tick(&v->st);
+    int rc = viewer__prepare(v);
     if (rc != 0)
         return rc;
     viewer_frame f = viewer__frame(v);

@@ -42,6 +42,10 @@ static int viewer__named(const char *tok, viewer_event **ev, size_t *n)
         viewer__push(ev, n, (viewer_event){.kind = VIEWER_EV_DRAG, .dx = a, .dy = b});
         return 0;
     }
+    if (sscanf(tok, "pan:%lf,%lf%n", &a, &b, &end) == 2 && tok[end] == '\0') {
+        viewer__push(ev, n, (viewer_event){.kind = VIEWER_EV_PAN, .dx = a, .dy = b});
+        return 0;
+    }
     if (sscanf(tok, "wheel:%lf%n", &a, &end) == 1 && tok[end] == '\0') {
         viewer__push(ev, n, (viewer_event){.kind = VIEWER_EV_WHEEL, .dy = a});
         return 0;
@@ -72,7 +76,8 @@ int viewer_script_parse(const char *script, viewer_event **out, size_t *n, dm_st
         tok[len < sizeof tok ? len : 0] = '\0';
         if (!close || len >= sizeof tok || viewer__named(tok, &ev, &count) != 0) {
             dm_str_printf(err, "--keys: bad event at offset %zu ('%.20s'); valid: a character, '.', "
-                          "{wait:N}, {esc}, {drag:DX,DY}, {wheel:N}, {space}, {dot}, {lbrace}",
+                          "{wait:N}, {esc}, {drag:DX,DY}, {pan:DX,DY}, {wheel:N}, {space}, {dot}, "
+                          "{lbrace}",
                           (size_t)(p - script), p);
             free(ev);
             return DM_ERR_PARSE;

@@ -7,6 +7,7 @@
  *   {wait:N}                  wait N frames
  *   {esc}                     the Escape key (quit)
  *   {drag:DX,DY}              left-button drag by DX, DY pixels (orbit)
+ *   {pan:DX,DY}               right-button drag by DX, DY pixels (pan)
  *   {wheel:N}                 mouse wheel by N notches (zoom; may be negative)
  *   {space}, {dot}, {lbrace}  the characters ' ', '.', '{'
  * Whitespace between events is ignored; names are case-insensitive.
@@ -22,13 +23,14 @@ typedef enum viewer_event_kind {
     VIEWER_EV_CHAR,
     VIEWER_EV_ESC,
     VIEWER_EV_DRAG,
-    VIEWER_EV_WHEEL
+    VIEWER_EV_WHEEL,
+    VIEWER_EV_PAN
 } viewer_event_kind;
 
 typedef struct viewer_event {
     viewer_event_kind kind;
     unsigned ch;                 /* VIEWER_EV_CHAR */
-    double dx, dy;               /* VIEWER_EV_DRAG: pixels; VIEWER_EV_WHEEL: dy notches */
+    double dx, dy;               /* VIEWER_EV_DRAG / _PAN: pixels; VIEWER_EV_WHEEL: dy notches */
 } viewer_event;
 
 /* Parses a script into *out (malloc'd, one event per frame; waits expanded)

@@ -15,7 +15,10 @@
 #define VIEWER__HEIGHT_STEP 0.01
 
 static const char *const viewer__camera_axes[] = {"camera.distance", "camera.azimuth",
-                                                  "camera.elevation", "camera.fov"};
+                                                  "camera.elevation", "camera.fov",
+                                                  "camera.target_x", "camera.target_y",
+                                                  "camera.target_z"};
+#define VIEWER__N_CAMERA_AXES (sizeof viewer__camera_axes / sizeof viewer__camera_axes[0])
 
 void viewer_state_init(viewer_state *st, const dm_kv *kv, size_t n)
 {
@@ -161,10 +164,11 @@ static void viewer__height(viewer_state *st, double step)
     dm_str_printf(&st->msg, "height_scale = %s\n", viewer_state_get(st, "height_scale"));
 }
 
-/* R: the camera axes as given on the command line (or their defaults). */
+/* R: the camera axes, target included, as given on the command line (or
+ * their defaults). */
 static void viewer__reset_camera(viewer_state *st)
 {
-    for (size_t i = 0; i < 4; i++) {
+    for (size_t i = 0; i < VIEWER__N_CAMERA_AXES; i++) {
         const char *v = dm_kv_get(st->initial, st->n_initial, viewer__camera_axes[i]);
         viewer_state_set(st, viewer__camera_axes[i], v ? v : axes_find(viewer__camera_axes[i])->def);
     }
@@ -197,11 +201,10 @@ void viewer_state_char(viewer_state *st, unsigned c)
     case 'H': viewer__height(st, -VIEWER__HEIGHT_STEP); break;
     case 'w': case 'W': viewer__toggle(st, &st->wireframe, "wireframe"); break;
     case 'c': case 'C': viewer__toggle(st, &st->overlay, "counters overlay"); break;
-    case 'l': case 'L':
-        dm_str_cat(&st->msg, "L: not available: the renderer places the lights relative to the camera\n");
-        break;
+    case 'l': case 'L': viewer__toggle(st, &st->light_orbit, "light orbit"); break;
     case 'n': case 'N':
-        dm_str_cat(&st->msg, "N: not available: the techniques have no normals output mode\n");
+        viewer__toggle(st, &st->normals, "normals view");
+        st->dirty = 1;                  /* a different program variant */
         break;
     case 't': case 'T': st->want_timed = 1; break;
     case 's': case 'S': st->want_screenshot = 1; break;
@@ -232,6 +235,39 @@ void viewer_state_zoom(viewer_state *st, double wheel)
     viewer__set_number(st, "camera.distance", fmin(fmax(d, 0.2), 50.0));
 }
 
+/* Writes a target coordinate rounded to 1e-6 world units (so cos 90° is
+ * 0, not 6e-17) with more digits than viewer__set_number, so small pans
+ * accumulate. */
+static void viewer__set_precise(viewer_state *st, const char *axis, double v)
+{
+    char buf[32];
+    snprintf(buf, sizeof buf, "%.9g", round(v * 1e6) / 1e6 + 0.0);
+    viewer_state_set(st, axis, buf);
+}
+
+void viewer_state_pan(viewer_state *st, double dx, double dy)
+{
+    static const char *const t[3] = {"camera.target_x", "camera.target_y", "camera.target_z"};
+    double az = atof(viewer_state_get(st, "camera.azimuth")) * M_PI / 180.0;
+    double el = atof(viewer_state_get(st, "camera.elevation")) * M_PI / 180.0;
+    double k = atof(viewer_state_get(st, "camera.distance")) * VIEWER_PAN_PER_PX;
+    double right[3] = {cos(az), 0.0, -sin(az)};
+    double up[3] = {-sin(el) * sin(az), cos(el), -sin(el) * cos(az)};
+    for (int i = 0; i < 3; i++) {
+        const axis_info *a = axes_find(t[i]);
+        double v = atof(viewer_state_get(st, t[i])) + k * (-dx * right[i] + dy * up[i]);
+        viewer__set_precise(st, t[i], fmin(fmax(v, a->min), a->max));
+    }
+}
+
+void viewer_state_tick(viewer_state *st)
+{
+    if (!st->light_orbit)
+        return;
+    double az = atof(viewer_state_get(st, "light.azimuth")) + VIEWER_LIGHT_ORBIT_DEG;
+    viewer__set_number(st, "light.azimuth", fmod(az + 540.0, 360.0) - 180.0);
+}
+
 const char *viewer_state_help(void)
 {
     return "keys:\n"
@@ -241,8 +277,8 @@ const char *viewer_state_help(void)
            "  P        next tessellation spacing  H / Shift+H  height scale +/- 0.01\n"
            "  W        wireframe                  C  counters overlay\n"
            "  T        timed test (median ns per frame + counters)\n"
-           "  S        screenshot PNG             R  reset camera\n"
+           "  L        light orbit on/off         N  normals view on/off\n"
+           "  S        screenshot PNG             R  reset camera (and pan)\n"
            "  ?        this help                  Esc  quit\n"
-           "  L, N     not available (lights follow the camera; no normals mode)\n"
-           "mouse: left drag orbits, wheel zooms\n";
+           "mouse: left drag orbits, right drag pans, wheel zooms\n";
 }

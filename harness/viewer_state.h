@@ -5,8 +5,11 @@
  * carries out (screenshot, timed test, quit).  Keyboard characters, special
  * keys and mouse motion from GLFW callbacks and from `--keys` scripts go
  * through the same functions, so a script exercises exactly what a user does.
- * Camera = the camera.* axes: orbit and zoom change those values and the loop
- * re-prepares the item (the renderer caches programs, meshes and maps).
+ * Camera = the camera.* axes: orbit, pan (camera.target_*) and zoom change
+ * those values and the loop re-prepares the item (the renderer caches
+ * programs, meshes and maps).  The light orbit (L) advances light.azimuth by
+ * VIEWER_LIGHT_ORBIT_DEG once per frame (viewer_state_tick), so a --frames /
+ * --keys run is deterministic.
  */
 #ifndef HARNESS_VIEWER_STATE_H
 #define HARNESS_VIEWER_STATE_H
@@ -14,6 +17,12 @@
 #include <stddef.h>
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+
+/* L: degrees light.azimuth advances per frame while the light orbit is on. */
+#define VIEWER_LIGHT_ORBIT_DEG 2.0
+/* Right-drag pan: world units the target moves per pixel per unit of
+ * camera.distance (viewer_state_pan). */
+#define VIEWER_PAN_PER_PX 0.002
 
 typedef enum viewer_special {
     VIEWER_KEY_ESC = 1
@@ -26,6 +35,7 @@ typedef struct viewer_state {
     size_t n_initial;
     int dirty;                   /* params changed: re-prepare before the next frame */
     int wireframe, overlay;      /* W, C */
+    int light_orbit, normals;    /* L, N (normals: the renderer's normals view) */
     int want_screenshot, want_timed, want_help, want_quit;
     dm_str msg;                  /* feedback for the user, drained by the loop */
 } viewer_state;
@@ -50,6 +60,16 @@ void viewer_state_special(viewer_state *st, viewer_special key);
  * (positive = closer). */
 void viewer_state_orbit(viewer_state *st, double dx, double dy);
 void viewer_state_zoom(viewer_state *st, double wheel);
+/* Right-button drag by (dx, dy) pixels (x right, y down) pans: the target
+ * camera.target_* moves by distance·VIEWER_PAN_PER_PX·(−dx·right + dy·up),
+ * right = (cos az, 0, −sin az) and up = (−sin el sin az, cos el, −sin el cos az)
+ * the camera's screen axes, so the scene follows the cursor; each
+ * coordinate is rounded to 1e-6 world units and kept in the axis range. */
+void viewer_state_pan(viewer_state *st, double dx, double dy);
+/* Once per frame, after input: advances light.azimuth by
+ * VIEWER_LIGHT_ORBIT_DEG while the light orbit is on (wrapped to
+ * [-180, 180)). */
+void viewer_state_tick(viewer_state *st);
 /* The key and mouse reference printed by `?`. */
 const char *viewer_state_help(void);
 

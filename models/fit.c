@@ -23,6 +23,7 @@ typedef struct fit__ctx {
     double s_y;                     /* response scale: max y over the rows */
     double *scale;                  /* P: parameter p_j = theta_j * scale_j */
     double *p, *grad;               /* P scratch */
+    double *weak;                   /* P: weakest direction of the covariance pass */
     const double *lo, *hi;          /* P bounds on p */
 } fit__ctx;
 
@@ -106,7 +107,8 @@ static int fit__pass(fit__ctx *c, double *p, const unsigned char *fixed, fit_cer
     }
     fit_ceres_problem pb = { .n_params = P, .n_residuals = c->m, .residual = fit__residual,
                              .user = c, .lo = lo, .hi = hi, .fixed = fixed, .loss = loss,
-                             .loss_scale = loss_scale, .cov = cov };
+                             .loss_scale = loss_scale, .cov = cov,
+                             .weak_dir = cov ? c->weak : NULL };
     int iters = sum->iterations;
     int ok = fit_ceres_solve(&pb, theta, sum) == 0 && sum->usable;
     sum->iterations += iters;
@@ -407,6 +409,37 @@ static double fit__cv_mape(fit__ctx *c, const size_t *rows, size_t m, const doub
     return n_pred ? 100.0 * ape / (double)n_pred : NAN;
 }
 
+/* Index of the largest |w[j]| over j != skip (skip >= n: none skipped). */
+static size_t fit__argmax_abs(const double *w, size_t n, size_t skip)
+{
+    size_t best = skip == 0 ? 1 : 0;
+    for (size_t j = 0; j < n; j++)
+        if (j != skip && fabs(w[j]) > fabs(w[best]))
+            best = j;
+    return best;
+}
+
+/* Records the condition number; above FIT_ILL_CONDITIONED (finite: an
+ * infinite one already has the rank-deficiency warning) warns naming the
+ * two parameters that dominate the weakest direction (largest |components|
+ * of the right singular vector of sigma_min, in the scaled space). */
+static void fit__condition(const fit__ctx *c, double condition, dm_fit_result *r)
+{
+    r->condition = condition;
+    if (!isfinite(condition) || condition <= FIT_ILL_CONDITIONED || c->P < 2)
+        return;
+    size_t a = fit__argmax_abs(c->weak, c->P, c->P), b = fit__argmax_abs(c->weak, c->P, a);
+    if (b < a) {                      /* named in formula order */
+        size_t t = a;
+        a = b;
+        b = t;
+    }
+    fit__warn(r, "ill-conditioned (condition %.3g > %g): parameters '%s' and '%s' are not "
+              "separately determined by these data; only a combination of them is",
+              condition, FIT_ILL_CONDITIONED, formula_param_name(c->f, a),
+              formula_param_name(c->f, b));
+}
+
 /* Solves on rows and fills r; DM_ERR_NUMERIC when Ceres fails. */
 static int fit__fit(fit__ctx *c, size_t *rows, size_t m, dm_fit_result *r, dm_str *err)
 {
@@ -434,6 +467,7 @@ static int fit__fit(fit__ctx *c, size_t *rows, size_t m, dm_fit_result *r, dm_st
     else if (!sum.cov_ok)
         fit__warn(r, "the Jacobian is rank deficient at the solution: the parameters are not "
                   "identifiable from these data (standard errors set to NaN)");
+    fit__condition(c, sum.condition, r);
     fit__fill(c, p, cov, sum.cov_ok, r);
     r->cv_mape = fit__cv_mape(c, rows, m, p, r);
 out:
@@ -465,9 +499,10 @@ int fit_run(const fit_desc *desc, dm_fit_result *out, dm_str *err)
     }
     fit__warn_collinear(desc, f, rows, m, &r);
     fit__ctx c = { .d = desc, .f = f, .P = P };
-    c.scale = dm_xmalloc(3 * P * sizeof *c.scale);
+    c.scale = dm_xmalloc(4 * P * sizeof *c.scale);
     c.p = c.scale + P;
     c.grad = c.p + P;
+    c.weak = c.grad + P;
     rc = fit__fit(&c, rows, m, &r, err);
     free(c.scale);
     if (rc)

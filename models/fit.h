@@ -35,6 +35,16 @@
  *    rank-deficient Jacobian gives a warning and stderr = NaN (never a
  *    silently pseudo-inverted value).  stderr_j = sqrt(cov_jj) *
  *    sqrt(RSS / (n - p)); with n == p stderr is NaN with a warning.
+ *  - Condition: out->condition = sigma_max / sigma_min of the Jacobian of
+ *    that covariance pass (unit-norm columns, robust weights included), i.e.
+ *    Belsley's scaled condition number; INFINITY when rank deficient (Ceres'
+ *    test (sigma_min/sigma_max)^2 < 1e-14, so finite values are < 1e7).
+ *    Above FIT_ILL_CONDITIONED (1e3) a warning names, in formula order, the
+ *    two parameters with the largest components of the weakest direction
+ *    (right singular vector of sigma_min): the least-squares perturbation
+ *    bound makes a relative change e of the data move the parameters by up
+ *    to about condition * e relative, so at 1e3 a 0.1 % timing change (below
+ *    the noise here) can move that parameter combination by 100 %.
  *  - Output: r2 = 1 - RSS/TSS, rmse = sqrt(RSS/n), mape and cv_mape in
  *    PERCENT (mean |pred - y| / y * 100); cv_mape from k-fold CV (folds by
  *    a seeded shuffle, fold = position mod k, each refit from the full-fit
@@ -50,6 +60,9 @@
 #include <stddef.h>
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+
+/* Condition number above which a fit is reported ill-conditioned. */
+#define FIT_ILL_CONDITIONED 1e3
 
 typedef enum fit_loss { FIT_LOSS_DEFAULT = 0, FIT_LOSS_NONE, FIT_LOSS_HUBER, FIT_LOSS_CAUCHY } fit_loss;
 

@@ -61,35 +61,56 @@ void set_bounds_and_fixed(const fit_ceres_problem *pb, ceres::Problem &problem, 
         problem.SetManifold(theta, new ceres::SubsetManifold(n, fixed));
 }
 
-// Ceres' own criterion (lambda_min / lambda_max of J^T J below
-// min_reciprocal_condition_number), checked on the singular values of J
-// before Covariance::Compute, which would otherwise log an error on stderr.
-bool full_rank(ceres::Problem &problem, size_t n_params, double min_rcond)
+// The dense Jacobian the solver sees at theta; false when it cannot be evaluated.
+bool dense_jacobian(ceres::Problem &problem, size_t n_params, Eigen::MatrixXd *j)
 {
     ceres::CRSMatrix crs;
     if (!problem.Evaluate(ceres::Problem::EvaluateOptions(), nullptr, nullptr, nullptr, &crs))
         return false;
-    Eigen::MatrixXd j = Eigen::MatrixXd::Zero(crs.num_rows, static_cast<Eigen::Index>(n_params));
+    *j = Eigen::MatrixXd::Zero(crs.num_rows, static_cast<Eigen::Index>(n_params));
     for (int r = 0; r < crs.num_rows; r++)
         for (int k = crs.rows[r]; k < crs.rows[r + 1]; k++)
-            j(r, crs.cols[k]) = crs.values[k];
-    Eigen::JacobiSVD<Eigen::MatrixXd> svd(j);
-    const Eigen::VectorXd &sv = svd.singularValues();
-    double lo = sv(sv.size() - 1), hi = sv(0);
-    return hi > 0.0 && (lo / hi) * (lo / hi) >= min_rcond;
+            (*j)(r, crs.cols[k]) = crs.values[k];
+    return true;
 }
 
-// Covariance of theta; false when the Jacobian is rank deficient.
-bool covariance(ceres::Problem &problem, double *theta, size_t n_params, double *cov)
+// Condition number sigma_max / sigma_min of the Jacobian, with Ceres' own
+// rank criterion (sigma_min/sigma_max)^2 < min_rcond giving INFINITY (checked
+// before Covariance::Compute, which would otherwise log an error on stderr).
+// weak_dir (n_params, may be NULL) receives the right singular vector of
+// sigma_min.  Returns 0 when the Jacobian cannot be evaluated.
+double condition(ceres::Problem &problem, size_t n_params, double min_rcond, double *weak_dir)
+{
+    Eigen::MatrixXd j;
+    if (!dense_jacobian(problem, n_params, &j))
+        return 0.0;
+    Eigen::JacobiSVD<Eigen::MatrixXd> svd(j, Eigen::ComputeThinV);
+    const Eigen::VectorXd &sv = svd.singularValues();
+    Eigen::Index last = sv.size() - 1;
+    for (size_t k = 0; weak_dir && k < n_params; k++)
+        weak_dir[k] = svd.matrixV()(static_cast<Eigen::Index>(k), last);
+    double lo = sv(last), hi = sv(0);
+    if (!(hi > 0.0) || sv.size() < static_cast<Eigen::Index>(n_params)
+        || (lo / hi) * (lo / hi) < min_rcond)
+        return INFINITY;
+    return hi / lo;
+}
+
+// Covariance of theta and the condition number (summary); cov_ok = 0 when
+// the Jacobian is rank deficient.
+void covariance(ceres::Problem &problem, const fit_ceres_problem *pb, double *theta,
+                fit_ceres_summary *summary)
 {
     ceres::Covariance::Options opt;
     opt.algorithm_type = ceres::DENSE_SVD;
     opt.null_space_rank = 0;
-    if (!full_rank(problem, n_params, opt.min_reciprocal_condition_number))
-        return false;
+    summary->condition = condition(problem, pb->n_params, opt.min_reciprocal_condition_number,
+                                   pb->weak_dir);
+    if (!(summary->condition > 0.0) || std::isinf(summary->condition))
+        return;
     ceres::Covariance c(opt);
     std::vector<std::pair<const double *, const double *>> blocks{ { theta, theta } };
-    return c.Compute(blocks, &problem) && c.GetCovarianceBlock(theta, theta, cov);
+    summary->cov_ok = c.Compute(blocks, &problem) && c.GetCovarianceBlock(theta, theta, pb->cov);
 }
 
 }  // namespace
@@ -131,6 +152,6 @@ extern "C" int fit_ceres_solve(const fit_ceres_problem *pb, double *theta,
                   ceres::TerminationTypeToString(sum.termination_type));
     std::snprintf(summary->message, sizeof summary->message, "%s", sum.message.c_str());
     if (pb->cov && summary->usable && n_fixed == 0)
-        summary->cov_ok = covariance(problem, theta, pb->n_params, pb->cov);
+        covariance(problem, pb, theta, summary);
     return 0;
 }

@@ -7,7 +7,9 @@
  * the bridge only configures Ceres (Levenberg-Marquardt, DENSE_QR, optional
  * robust loss, bounds, parameters held constant) and the covariance
  * (DENSE_SVD, null_space_rank = 0 so a rank-deficient Jacobian is reported
- * as cov_ok = 0 instead of being silently pseudo-inverted).
+ * as cov_ok = 0 instead of being silently pseudo-inverted).  With the
+ * covariance it also reports the 2-norm condition number of the Jacobian
+ * the solver saw (from its singular values, Eigen's JacobiSVD).
  */
 #ifndef MODELS_FIT_CERES_H
 #define MODELS_FIT_CERES_H
@@ -37,6 +39,8 @@ typedef struct fit_ceres_problem {
     double loss_scale;              /* residual magnitude where the loss turns robust */
     int max_iterations;             /* 0 = 200 */
     double *cov;                    /* n_params^2 row-major, filled when not NULL */
+    double *weak_dir;               /* n_params: with cov, the right singular vector of
+                                     * the smallest singular value of J (unit norm) */
 } fit_ceres_problem;
 
 typedef struct fit_ceres_summary {
@@ -45,6 +49,10 @@ typedef struct fit_ceres_summary {
     int iterations;
     double final_cost;              /* 1/2 sum rho(r_i^2) */
     int cov_ok;                     /* covariance computed (Jacobian of full rank) */
+    double condition;               /* with cov: sigma_max / sigma_min of the Jacobian at
+                                     * the solution (>= 1); INFINITY when rank deficient
+                                     * (Ceres' test: (sigma_min/sigma_max)^2 < 1e-14);
+                                     * 0 when not computed */
     char termination[32];           /* "CONVERGENCE", "NO_CONVERGENCE", "FAILURE", ... */
     char message[160];              /* Ceres' reason */
 } fit_ceres_summary;

@@ -10,7 +10,6 @@
  * decoration: if PLplot cannot write one, a note replaces it.
  */
 #include "reports/report_internal.h"
-#include "reports/pareto.h"
 
 #include <math.h>
 #include <plplot/plplot.h>
@@ -19,7 +18,13 @@
 #include <string.h>
 #include <unistd.h>
 
-#define CHART_MAX_LABEL 48
+#define CHART_MAX_LABEL 64
+
+/* Colours of stacked / grouped series (cmap0 indexes from CHART_SERIES_COL0). */
+#define CHART_SERIES 6
+#define CHART_SERIES_COL0 4
+static const PLINT chart_series_rgb[CHART_SERIES][3] = {
+    {150, 150, 150}, {40, 90, 200}, {230, 140, 20}, {60, 160, 80}, {200, 30, 30}, {120, 60, 170} };
 
 typedef struct chart_frame {
     const char *title, *xlabel, *ylabel;
@@ -69,6 +74,9 @@ static void chart_open(const char *file, const chart_frame *f)
     plscol0(1, 0, 0, 0);
     plscol0(2, 200, 30, 30);
     plscol0(3, 40, 90, 200);
+    for (PLINT k = 0; k < CHART_SERIES; k++)
+        plscol0(CHART_SERIES_COL0 + k, chart_series_rgb[k][0], chart_series_rgb[k][1],
+                chart_series_rgb[k][2]);
     plcol0(1);
     pladv(0);
     plvpor(0.1, 0.95, f->bottom > 0 ? f->bottom : 0.15, 0.9);
@@ -79,8 +87,9 @@ static void chart_open(const char *file, const chart_frame *f)
     pllab(f->xlabel, f->ylabel, t);
 }
 
-/* Ends the stream and appends its SVG (without prolog/namespaces) to s. */
-static void chart_close(dm_str *s, const char *file)
+/* Ends the stream and appends its SVG (without prolog/namespaces) to s,
+ * in a <div> whose aria-label is the chart's title as drawn. */
+static void chart_close(dm_str *s, const char *file, const char *title)
 {
     plend1();
     char *svg = NULL;
@@ -101,7 +110,9 @@ static void chart_close(dm_str *s, const char *file)
         if (e)
             memset(a, ' ', (size_t)(e + 1 - a));
     }
-    dm_str_cat(s, "<div class=\"chart\">");
+    char t[CHART_MAX_LABEL];
+    safe_label(title, t);
+    dm_str_printf(s, "<div class=\"chart\" role=\"img\" aria-label=\"%s\">", t);
     dm_str_cat(s, start);
     dm_str_cat(s, "</div>\n");
     free(svg);
@@ -176,7 +187,7 @@ void report__html_charts_run(dm_str *s, const dm_run_result *run)
             safe_label(techs[k], lab);
             plmtex("bv", 0.5, (k + 0.5) / (double)nt, 1.0, lab);
         }
-        chart_close(s, file);
+        chart_close(s, file, f.title);
         free(h);
         free(file);
     }
@@ -185,37 +196,15 @@ void report__html_charts_run(dm_str *s, const dm_run_result *run)
 
 /* ---- per scene: error vs time with the Pareto front ---------------------- */
 
-/* Collects the scene's ok configs with a frame time: x = median ms,
- * y = 1 − SSIM (or RMSE when no config has SSIM).  Returns the count. */
-static size_t scene_points(const dm_run_result *run, const char *scene, double **x, double **y,
-                           const dm_config_result ***cfg, int *use_rmse)
+/* One bullet per front member: key, params and the metric's value. */
+static void front_list(dm_str *s, const dm_run_result *run, report_metric m,
+                       const size_t *front, size_t nf)
 {
-    size_t n = 0;
-    *x = dm_xcalloc(run->n_configs + 1, sizeof **x);
-    *y = dm_xcalloc(run->n_configs + 1, sizeof **y);
-    *cfg = dm_xcalloc(run->n_configs + 1, sizeof **cfg);
-    *use_rmse = 1;
-    for (size_t i = 0; i < run->n_configs; i++)
-        if (run->configs[i].quality.present && isfinite(run->configs[i].quality.ssim))
-            *use_rmse = 0;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        const dm_counter_result *t = report__frame_time(c);
-        if (!c->ok || !t || !c->quality.present || strcmp(c->scene ? c->scene : "", scene) != 0)
-            continue;
-        (*x)[n] = t->median / 1e6;
-        (*y)[n] = *use_rmse ? c->quality.rmse : 1.0 - c->quality.ssim;
-        (*cfg)[n++] = c;
-    }
-    return n;
-}
-
-static void front_list(dm_str *s, const dm_config_result **cfg, const size_t *front, size_t m,
-                       const double *x, const double *y)
-{
-    dm_str_cat(s, "<p>Pareto front (fastest first):</p><ol>");
-    for (size_t k = 0; k < m; k++) {
-        const dm_config_result *c = cfg[front[k]];
+    dm_str_printf(s, "<p>Pareto front of %s against median frame time (fastest first):</p><ol>",
+                  report_metric_label(m));
+    for (size_t k = 0; k < nf; k++) {
+        const dm_config_result *c = &run->configs[front[k]];
+        dm_str text = {0};
         dm_str_cat(s, "<li><code>");
         dm_str_cat_html(s, c->key);
         dm_str_cat(s, "</code> ");
@@ -225,44 +214,63 @@ static void front_list(dm_str *s, const dm_config_result **cfg, const size_t *fr
             dm_str_cat(s, "=");
             dm_str_cat_html(s, c->params[p].value);
         }
-        dm_str_printf(s, ": %.4f ms, error %.4g</li>", x[front[k]], y[front[k]]);
+        report_metric_text(&c->quality, m, &text);
+        dm_str_printf(s, ": %.4f ms, ", report__frame_time(c)->median / 1e6);
+        dm_str_cat_html(s, dm_str_get(&text));
+        dm_str_cat(s, "</li>");
+        dm_str_free(&text);
     }
     dm_str_cat(s, "</ol>\n");
 }
 
+/* Plotted value of a point: the metric's shown value; an infinite PSNR
+ * (identical image) is drawn at the top edge of the frame. */
+static double shown_clipped(const dm_quality *q, report_metric m, const chart_frame *f)
+{
+    double v = report_metric_shown(q, m);
+    return isinf(v) ? f->y1 - (f->y1 - f->y0) * 0.02 : v;
+}
+
+/* Error (shown value) vs median time: every point, the front as a line. */
 static void chart_pareto(dm_str *s, const dm_run_result *run, const char *scene)
 {
-    double *x, *y;
-    const dm_config_result **cfg;
-    int use_rmse;
-    size_t n = scene_points(run, scene, &x, &y, &cfg, &use_rmse);
+    report_metric m = report_metric_of_run(run);
+    size_t cap = run->n_configs + 1, *idx = dm_xcalloc(cap, sizeof *idx), *front;
+    double *x = dm_xcalloc(cap, sizeof *x), *y = dm_xcalloc(cap, sizeof *y);
+    size_t n = report__pareto_points(run, scene, m, idx, x, y);
+    size_t nf = report__pareto(run, scene, &front);
     char *file = n ? chart_tmpname() : NULL;
     if (file) {
-        size_t *front = dm_xcalloc(n, sizeof *front);
-        size_t m = pareto_front(x, y, n, front);
-        chart_frame f = {"Error vs time", "median frame time (ms)", use_rmse ? "RMSE" : "1 - SSIM",
+        chart_frame f = {"Error vs time", "median frame time (ms)", report_metric_label(m),
                          0, 0, 0, 0, 0.15, 0};
+        for (size_t i = 0; i < n; i++)
+            x[i] /= 1e6, y[i] = report_metric_shown(&run->configs[idx[i]].quality, m);
         padded_range(x, n, &f.x0, &f.x1, 0);
         padded_range(y, n, &f.y0, &f.y1, 0);
+        for (size_t i = 0; i < n; i++)
+            y[i] = shown_clipped(&run->configs[idx[i]].quality, m, &f);
         chart_open(file, &f);
         plcol0(3);
         plpoin((PLINT)n, x, y, 4);
-        PLFLT *fx = dm_xcalloc(m, sizeof *fx), *fy = dm_xcalloc(m, sizeof *fy);
-        for (size_t k = 0; k < m; k++)
-            fx[k] = x[front[k]], fy[k] = y[front[k]];
+        PLFLT *fx = dm_xcalloc(nf + 1, sizeof *fx), *fy = dm_xcalloc(nf + 1, sizeof *fy);
+        for (size_t k = 0; k < nf; k++) {
+            const dm_config_result *c = &run->configs[front[k]];
+            fx[k] = report__frame_time(c)->median / 1e6;
+            fy[k] = shown_clipped(&c->quality, m, &f);
+        }
         plcol0(2);
-        plline((PLINT)m, fx, fy);
-        plpoin((PLINT)m, fx, fy, 17);
-        chart_close(s, file);
-        front_list(s, cfg, front, m, x, y);
+        plline((PLINT)nf, fx, fy);
+        plpoin((PLINT)nf, fx, fy, 17);
+        chart_close(s, file, f.title);
+        front_list(s, run, m, front, nf);
         free(fx);
         free(fy);
-        free(front);
         free(file);
     }
+    free(front);
+    free(idx);
     free(x);
     free(y);
-    free(cfg);
 }
 
 /* ---- per scene: time vs tess_level, one line per mesh/technique ---------- */
@@ -345,7 +353,7 @@ static void chart_tess(dm_str *s, const dm_run_result *run, const char *scene)
             plpoin((PLINT)m, x, y, 4);
             plptex(x[m - 1], y[m - 1], 1, 0, 1.05, lab);
         }
-        chart_close(s, file);
+        chart_close(s, file, f.title);
         free(file);
     }
     free(ax);
@@ -354,9 +362,286 @@ static void chart_tess(dm_str *s, const dm_run_result *run, const char *scene)
     free(y);
 }
 
+/* ---- per scene: counter breakdown per configuration ----------------------- */
+
+/* At most this many configurations get a bar group; the fastest are left out. */
+#define CHART_MAX_BARS 24
+
+/* The stages of the pipeline-linear model: parameter, counter it multiplies
+ * (NULL: the fixed cost c0), legend name. */
+static const struct { const char *param, *counter, *name; } chart_stages[] = {
+    {"c0", NULL, "fixed"}, {"c_vs", "VSInvocations", "vertex"},
+    {"c_tes", "TESInvocations", "tessellation"}, {"c_prim", "ClippingOutputPrimitives", "primitives"},
+    {"c_px", "SamplesPassed", "pixels"} };
+#define CHART_N_STAGES (sizeof chart_stages / sizeof *chart_stages)
+
+static void bar(double x0, double x1, double y0, double y1, PLINT col)
+{
+    PLFLT bx[4] = {x0, x0, x1, x1}, by[4] = {y0, y1, y1, y0};
+    plcol0(col);
+    plfill(4, bx, by);
+}
+
+/* Value of an available deterministic counter, else 0 (absent work). */
+static double det_value(const dm_config_result *c, const char *name)
+{
+    const dm_counter_result *k = name ? dm_config_counter(c, name) : NULL;
+    return k && k->available && k->deterministic && isfinite(k->value) ? k->value : 0;
+}
+
+static double fit_param(const dm_fit_result *f, const char *name)
+{
+    for (size_t i = 0; i < f->n_params; i++)
+        if (strcmp(f->params[i].name, name) == 0)
+            return f->params[i].value;
+    return NAN;
+}
+
+/* The pipeline-linear fit whose group matches c's params, or NULL. */
+static const dm_fit_result *pipeline_fit(const dm_run_result *run, const dm_config_result *c)
+{
+    for (size_t i = 0; i < run->n_fits; i++) {
+        const dm_fit_result *f = &run->fits[i];
+        int match = f->model && strcmp(f->model, "pipeline-linear") == 0 &&
+                    isfinite(fit_param(f, "c0"));
+        for (size_t g = 0; match && g < f->n_group; g++) {
+            const char *v = dm_kv_get(c->params, c->n_params, f->group[g].key);
+            match = v && strcmp(v, f->group[g].value) == 0;
+        }
+        if (match)
+            return f;
+    }
+    return NULL;
+}
+
+/* Estimated ms of stage k of c under fit f (c_k · counter_k; the response is ns). */
+static double stage_ms(const dm_fit_result *f, const dm_config_result *c, size_t k)
+{
+    double v = fit_param(f, chart_stages[k].param);
+    double n = chart_stages[k].counter ? det_value(c, chart_stages[k].counter) : 1;
+    return isfinite(v) ? v * n / 1e6 : 0;
+}
+
+/* Labels the bar groups (vertical, small) and draws a colour legend on top. */
+static void bar_labels_and_legend(const dm_run_result *run, const size_t *rows, size_t n,
+                                  const char *const *names, size_t nn, PLINT col0)
+{
+    plschr(0, 0.65);
+    for (size_t k = 0; k < n; k++) {
+        dm_str label = {0};
+        char lab[CHART_MAX_LABEL];
+        report__config_label(run, &run->configs[rows[k]], &label);
+        safe_label(dm_str_get(&label), lab);
+        plcol0(1);
+        plmtex("bv", 0.5, (k + 0.5) / (double)n, 1.0, lab);
+        dm_str_free(&label);
+    }
+    for (size_t i = 0; i < nn; i++) {
+        plcol0(col0 + (PLINT)i);
+        plmtex("t", 0.6, (i + 0.5) / (double)nn, 0.5, names[i]);
+    }
+    plschr(0, 1.0);
+}
+
+/* Stacked estimated stage times (left) beside the measured median (right). */
+static void draw_stages(const dm_run_result *run, const size_t *rows, size_t n)
+{
+    const char *names[CHART_N_STAGES + 1];
+    for (size_t k = 0; k < CHART_N_STAGES; k++)
+        names[k] = chart_stages[k].name;
+    names[CHART_N_STAGES] = "measured";
+    for (size_t i = 0; i < n; i++) {
+        const dm_config_result *c = &run->configs[rows[i]];
+        const dm_fit_result *fit = pipeline_fit(run, c);
+        double y = 0;
+        for (size_t k = 0; fit && k < CHART_N_STAGES; k++) {
+            double h = stage_ms(fit, c, k);
+            bar(i + 0.08, i + 0.5, y, y + h, CHART_SERIES_COL0 + (PLINT)k);
+            y += h;
+        }
+        bar(i + 0.5, i + 0.92, 0, report__frame_time(c)->median / 1e6, CHART_SERIES_COL0 + CHART_N_STAGES);
+    }
+    bar_labels_and_legend(run, rows, n, names, CHART_N_STAGES + 1, CHART_SERIES_COL0);
+}
+
+/* The key counters shown relative to each one's maximum over the bars. */
+static size_t key_counters(const dm_run_result *run, const size_t *rows, size_t n, const char *out[4])
+{
+    static const char *const want[] = {"VSInvocations", "TESInvocations", "ClippingOutputPrimitives",
+                                       "FSInvocations", "SamplesPassed"};
+    size_t m = 0;
+    for (size_t k = 0; k < 5; k++) {
+        int have = 0;
+        for (size_t i = 0; i < n && !have; i++)
+            have = det_value(&run->configs[rows[i]], want[k]) > 0;
+        if (have && !(k == 4 && m && strcmp(out[m - 1], "FSInvocations") == 0))
+            out[m++] = want[k];   /* SamplesPassed only when FSInvocations is missing */
+    }
+    return m;
+}
+
+static void draw_counters(const dm_run_result *run, const size_t *rows, size_t n,
+                          const char *const *names, size_t nk)
+{
+    for (size_t k = 0; k < nk; k++) {
+        double max = 0;
+        for (size_t i = 0; i < n; i++)
+            max = fmax(max, det_value(&run->configs[rows[i]], names[k]));
+        double w = 0.84 / (double)nk;
+        for (size_t i = 0; i < n; i++)
+            bar(i + 0.08 + k * w, i + 0.08 + (k + 1) * w, 0,
+                det_value(&run->configs[rows[i]], names[k]) / max, CHART_SERIES_COL0 + 1 + (PLINT)k);
+    }
+    bar_labels_and_legend(run, rows, n, names, nk, CHART_SERIES_COL0 + 1);
+}
+
+/* Per configuration: the pipeline-linear estimate per stage next to the
+ * measured median when that fit exists, else the key counters normalised
+ * to their maxima.  At most CHART_MAX_BARS configurations, the slowest;
+ * a note says how many were left out. */
+static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *scene)
+{
+    size_t *rows, nr = 0, nall = report__scene_rows(run, scene, &rows);
+    for (size_t i = 0; i < nall; i++)   /* keep the timed ones, still fastest first */
+        if (report__frame_time(&run->configs[rows[i]]))
+            rows[nr++] = rows[i];
+    size_t skip = nr > CHART_MAX_BARS ? nr - CHART_MAX_BARS : 0, n = nr - skip, nk = 0;
+    const size_t *shown = rows + skip;
+    const char *names[4];
+    int fitted = 0;
+    double hi = 0;
+    for (size_t i = 0; i < n; i++) {
+        const dm_config_result *c = &run->configs[shown[i]];
+        const dm_fit_result *f = pipeline_fit(run, c);
+        double sum = 0;
+        for (size_t k = 0; f && k < CHART_N_STAGES; k++)
+            sum += stage_ms(f, c, k);
+        fitted |= f != NULL;
+        hi = fmax(hi, fmax(sum, report__frame_time(c)->median / 1e6));
+    }
+    if (!fitted)
+        nk = key_counters(run, shown, n, names);
+    char *file = (fitted || nk) && n ? chart_tmpname() : NULL;
+    if (file) {
+        chart_frame f = {fitted ? "Estimated time per stage (pipeline-linear fit)"
+                                : "Key counters per configuration (relative to each maximum)",
+                         "", fitted ? "ms" : "fraction of the maximum", 0, (double)n, 0,
+                         fitted ? hi * 1.08 : 1.08, 0.32, 1};
+        chart_open(file, &f);
+        if (fitted)
+            draw_stages(run, shown, n);
+        else
+            draw_counters(run, shown, n, names, nk);
+        chart_close(s, file, f.title);
+        if (skip)
+            dm_str_printf(s, "<p class=\"const\">The %zu fastest configurations are left out of this "
+                             "chart (it shows the %d slowest); all are in the table.</p>\n",
+                          skip, CHART_MAX_BARS);
+        free(file);
+    }
+    free(rows);
+}
+
 void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *scene)
 {
     chart_pareto(s, run, scene);
     if (tess_varies(run, scene))
         chart_tess(s, run, scene);
+    chart_breakdown(s, run, scene);
+}
+
+/* ---- model fits: predicted vs measured, residuals ------------------------- */
+
+/* Scale and unit of a fit's response: ms for a nanosecond counter. */
+static double response_scale(const dm_run_result *run, const dm_fit_result *f, const char **unit)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_counter_result *k = f->response ? dm_config_counter(&run->configs[i], f->response) : NULL;
+        if (k && k->unit) {
+            *unit = strcmp(k->unit, "ns") == 0 ? "ms" : k->unit;
+            return strcmp(k->unit, "ns") == 0 ? 1e-6 : 1;
+        }
+    }
+    *unit = "ms";   /* the built-in models all fit WallTime */
+    return 1e-6;
+}
+
+/* Title "<what>: <model> <group>" reduced to the chart's character set. */
+static void fit_title(const dm_fit_result *f, const char *what, char out[CHART_MAX_LABEL])
+{
+    dm_str t = {0};
+    dm_str_printf(&t, "%s: %s", what, f->model ? f->model : "?");
+    for (size_t g = 0; g < f->n_group; g++)
+        dm_str_printf(&t, " %s=%s", f->group[g].key, f->group[g].value);
+    safe_label(dm_str_get(&t), out);
+    dm_str_free(&t);
+}
+
+/* Points (x, y) over the straight line from (x0, ly0) to (x1, ly1). */
+static void chart_scatter(dm_str *s, const chart_frame *fr, const double *x, const double *y,
+                          size_t n, double ly0, double ly1)
+{
+    char *file = chart_tmpname();
+    if (!file)
+        return;
+    chart_open(file, fr);
+    PLFLT lx[2] = {fr->x0, fr->x1}, ly[2] = {ly0, ly1};
+    plcol0(2);
+    plline(2, lx, ly);
+    plcol0(3);
+    plpoin((PLINT)n, x, y, 4);
+    chart_close(s, file, fr->title);
+    free(file);
+}
+
+/* Predicted (x) against measured (y), both scaled, over the line y = x. */
+static void chart_fit_scatter(dm_str *s, const dm_fit_result *f, const double *p, const double *m,
+                              size_t n, const char *unit)
+{
+    char title[CHART_MAX_LABEL], xl[32], yl[32];
+    double *both = dm_xcalloc(2 * n, sizeof *both);
+    memcpy(both, p, n * sizeof *p);
+    memcpy(both + n, m, n * sizeof *m);
+    fit_title(f, "Predicted vs measured", title);
+    snprintf(xl, sizeof xl, "predicted (%s)", unit);
+    snprintf(yl, sizeof yl, "measured (%s)", unit);
+    chart_frame fr = {title, xl, yl, 0, 0, 0, 0, 0.15, 0};
+    padded_range(both, 2 * n, &fr.x0, &fr.x1, 0);
+    fr.y0 = fr.x0, fr.y1 = fr.x1;
+    chart_scatter(s, &fr, p, m, n, fr.x0, fr.x1);
+    free(both);
+}
+
+/* Residual in percent of the measured value against the prediction, over y = 0. */
+static void chart_fit_residuals(dm_str *s, const dm_fit_result *f, const double *p, const double *m,
+                                size_t n, const char *unit)
+{
+    char title[CHART_MAX_LABEL], xl[32];
+    double *r = dm_xcalloc(n + 1, sizeof *r);
+    for (size_t i = 0; i < n; i++)
+        r[i] = m[i] != 0 ? (m[i] - p[i]) / m[i] * 100 : NAN;
+    fit_title(f, "Residuals", title);
+    snprintf(xl, sizeof xl, "predicted (%s)", unit);
+    chart_frame fr = {title, xl, "(measured - predicted) / measured, %", 0, 0, 0, 0, 0.15, 0};
+    padded_range(p, n, &fr.x0, &fr.x1, 0);
+    padded_range(r, n, &fr.y0, &fr.y1, 0);
+    fr.y0 = fmin(fr.y0, -1), fr.y1 = fmax(fr.y1, 1);   /* keep 0 inside */
+    chart_scatter(s, &fr, p, r, n, 0, 0);
+    free(r);
+}
+
+void report__html_charts_fit(dm_str *s, const dm_run_result *run, const dm_fit_result *f)
+{
+    size_t n = f->n_points > 0 && f->measured && f->predicted ? (size_t)f->n_points : 0;
+    if (!n)
+        return;
+    const char *unit;
+    double k = response_scale(run, f, &unit);
+    double *p = dm_xcalloc(n, sizeof *p), *m = dm_xcalloc(n, sizeof *m);
+    for (size_t i = 0; i < n; i++)
+        p[i] = f->predicted[i] * k, m[i] = f->measured[i] * k;
+    chart_fit_scatter(s, f, p, m, n, unit);
+    chart_fit_residuals(s, f, p, m, n, unit);
+    free(p);
+    free(m);
 }

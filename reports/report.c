@@ -8,7 +8,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <math.h>
+
 #include "reports/pareto.h"
 
 /* 1 when param `name` takes two or more distinct values over the scene's
@@ -65,24 +65,33 @@ void report__config_label(const dm_run_result *run, const dm_config_result *c, d
     }
 }
 
-size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out)
+size_t report__pareto_points(const dm_run_result *run, const char *scene, report_metric m,
+                             size_t *idx, double *x, double *y)
 {
     size_t *rows, nr = report__scene_rows(run, scene, &rows), n = 0;
-    double *x = dm_xcalloc(nr + 1, sizeof *x), *y = dm_xcalloc(nr + 1, sizeof *y);
-    size_t *idx = dm_xcalloc(nr + 1, sizeof *idx), *front = dm_xcalloc(nr + 1, sizeof *front);
     for (size_t i = 0; i < nr; i++) {
         const dm_config_result *c = &run->configs[rows[i]];
         const dm_counter_result *t = report__frame_time(c);
-        if (!t || !c->quality.present || !isfinite(c->quality.ssim))
+        double e = report_metric_error(&c->quality, m);
+        if (!t || !isfinite(e))
             continue;
         x[n] = t->median;
-        y[n] = 1.0 - c->quality.ssim;
+        y[n] = e;
         idx[n++] = rows[i];
     }
+    free(rows);
+    return n;
+}
+
+size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out)
+{
+    size_t cap = run->n_configs + 1;
+    double *x = dm_xcalloc(cap, sizeof *x), *y = dm_xcalloc(cap, sizeof *y);
+    size_t *idx = dm_xcalloc(cap, sizeof *idx), *front = dm_xcalloc(cap, sizeof *front);
+    size_t n = report__pareto_points(run, scene, report_metric_of_run(run), idx, x, y);
     size_t nf = pareto_front(x, y, n, front);
     for (size_t i = 0; i < nf; i++)
         front[i] = idx[front[i]];
-    free(rows);
     free(x);
     free(y);
     free(idx);
@@ -93,16 +102,17 @@ size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out)
 void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *out)
 {
     size_t *front, nf = report__pareto(run, scene, &front);
-    if (nf == 0) {
-        dm_str_cat(out, "no configuration has both a time and a quality measurement");
-        free(front);
-        return;
-    }
+    report_metric m = report_metric_of_run(run);
+    if (nf == 0)
+        dm_str_printf(out, "no configuration has both a time and a %s measurement",
+                      report_metric_label(m));
     for (size_t i = 0; i < nf; i++) {
         const dm_config_result *c = &run->configs[front[i]];
         dm_str_cat(out, i ? "; then " : "");
         report__config_label(run, c, out);
-        dm_str_printf(out, " (%.3g ms, SSIM %.3f)", report__frame_time(c)->median / 1e6, c->quality.ssim);
+        dm_str_printf(out, " (%.3g ms, ", report__frame_time(c)->median / 1e6);
+        report_metric_text(&c->quality, m, out);
+        dm_str_cat(out, ")");
     }
     free(front);
 }
@@ -136,6 +146,36 @@ const dm_counter_result *report__frame_time(const dm_config_result *c)
 {
     const dm_counter_result *t = dm_config_counter(c, "WallTime");
     return t && t->available && t->has_samples ? t : NULL;
+}
+
+double report__ci_rel(const dm_counter_result *t)
+{
+    return t->median > 0 ? (t->ci_hi - t->ci_lo) / 2 / t->median : NAN;
+}
+
+void report__ci_text(const dm_counter_result *t, dm_str *out)
+{
+    double r = report__ci_rel(t);
+    if (isfinite(r))
+        dm_str_printf(out, "±%.1f%%", r * 100);
+    else
+        dm_str_cat(out, "CI unknown");
+}
+
+int report__noisy(const dm_config_result *c)
+{
+    const dm_counter_result *t = report__frame_time(c);
+    return c->ok && t && !(report__ci_rel(t) <= REPORT__NOISY_CI_REL);
+}
+
+size_t report__noisy_configs(const dm_run_result *run, size_t **out)
+{
+    size_t n = 0;
+    *out = dm_xcalloc(run->n_configs + 1, sizeof **out);
+    for (size_t i = 0; i < run->n_configs; i++)
+        if (report__noisy(&run->configs[i]))
+            (*out)[n++] = i;
+    return n;
 }
 
 /* Appends name to the set (array of borrowed pointers) unless present. */

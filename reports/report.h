@@ -29,9 +29,19 @@
  * DepthRMSE, CrackPixels, NonFinitePixels; unavailable = empty field.
  *
  * report.html embeds each gallery image as a PNG thumbnail (data: URI,
- * at most 192 px) linking to the full file, and inlines PLplot SVG charts:
- * time per technique, per scene error (1 − SSIM, or RMSE) vs time with the
- * Pareto front listed, and time vs tess_level when it varies.
+ * at most 192 px) linking to the full file, and inlines PLplot SVG charts
+ * (each in <div class="chart" aria-label="its title">): time per technique;
+ * per scene error vs time with the Pareto front listed, time vs tess_level
+ * when it varies, and the counter breakdown per configuration (stage times
+ * of a pipeline-linear fit beside the measured median, else the key
+ * counters relative to their maxima; the 24 slowest); per fit, predicted vs
+ * measured and residuals.
+ *
+ * Pareto metric (reports/metric.h): the run's environment entry
+ * "pareto_metric" (default ssim) picks the error of every front; it is
+ * named in the findings, the chart axis, the scene tables and summary.md.
+ * Noisy configurations (95 % CI of the median wider than ±5 %, or unknown;
+ * docs/measurement.md) are listed in a warning box and in summary.md.
  */
 #ifndef REPORTS_REPORT_H
 #define REPORTS_REPORT_H

@@ -88,6 +88,38 @@ static void header(dm_str *s, const dm_run_result *run)
     dm_str_cat(s, "</table>\n");
 }
 
+/* Lists more than this many noisy configurations inside a collapsed <details>. */
+#define NOISY_OPEN_MAX 8
+
+/* The warning box naming every configuration whose timing is too noisy to
+ * trust (report__noisy); nothing when there is none. */
+static void noisy_warning(dm_str *s, const dm_run_result *run)
+{
+    size_t *idx, n = report__noisy_configs(run, &idx);
+    if (n) {
+        dm_str_printf(s, "<div class=\"warn noisy\">%s<b>%zu noisy configuration%s</b>: the 95%% CI "
+                         "of the median frame time is wider than ±%.0f%% of the median (or unknown); "
+                         "compare their times with care.%s<ul>",
+                      n > NOISY_OPEN_MAX ? "<details><summary>" : "", n, n == 1 ? "" : "s",
+                      REPORT__NOISY_CI_REL * 100, n > NOISY_OPEN_MAX ? "</summary>" : "");
+        for (size_t i = 0; i < n; i++) {
+            const dm_config_result *c = &run->configs[idx[i]];
+            dm_str label = {0};
+            report__config_label(run, c, &label);
+            dm_str_cat(s, "<li>");
+            esc(s, dm_str_get(&label));
+            dm_str_cat(s, " <code>");
+            esc(s, c->key);
+            dm_str_cat(s, "</code> ");
+            report__ci_text(report__frame_time(c), s);
+            dm_str_cat(s, "</li>");
+            dm_str_free(&label);
+        }
+        dm_str_printf(s, "</ul>%s</div>\n", n > NOISY_OPEN_MAX ? "</details>" : "");
+    }
+    free(idx);
+}
+
 static void timer_and_warnings(dm_str *s, const dm_run_result *run)
 {
     const char *v = run->timer_verdict ? run->timer_verdict : "unknown";
@@ -99,6 +131,7 @@ static void timer_and_warnings(dm_str *s, const dm_run_result *run)
         dm_str_printf(s, "<div class=\"warn\">GPUTime is partial on this driver: it covers %.1f%% "
                          "of fenced wall time; it is recorded, never used to fit or gate.</div>\n",
                       run->gpu_time_coverage * 100);
+    noisy_warning(s, run);
     for (size_t i = 0; i < run->n_warnings; i++) {
         dm_str_cat(s, "<div class=\"warn\">");
         esc(s, run->warnings[i]);
@@ -136,9 +169,19 @@ static const char *const key_counters[] = {
     "VSInvocations", "TESInvocations", "ClippingOutputPrimitives", "SamplesPassed",
     "FSInvocations", "TextureBytes", "MeshTriangles" };
 
-static void scene_row(dm_str *s, const dm_config_result *c, const char **params, size_t np,
-                      const char **det, size_t nd)
+/* 1 when config index i is one of the nf front members. */
+static int on_front(const size_t *front, size_t nf, size_t i)
 {
+    for (size_t k = 0; k < nf; k++)
+        if (front[k] == i)
+            return 1;
+    return 0;
+}
+
+static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char **params,
+                      size_t np, const char **det, size_t nd, int front)
+{
+    const dm_config_result *c = &run->configs[ci];
     dm_str_cat(s, "<tr>");
     tagged(s, "td", dm_kv_get(c->params, c->n_params, "technique"));
     for (size_t i = 0; i < np; i++)
@@ -146,7 +189,7 @@ static void scene_row(dm_str *s, const dm_config_result *c, const char **params,
     const dm_counter_result *t = report__frame_time(c);
     if (t)
         dm_str_printf(s, "<td class=\"n\">%.3f</td><td class=\"n\">±%.1f%%</td>", t->median / 1e6,
-                      t->median > 0 ? (t->ci_hi - t->ci_lo) / 2 / t->median * 100 : NAN);
+                      report__ci_rel(t) * 100);
     else
         dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
     for (size_t i = 0; i < nd; i++)
@@ -155,6 +198,8 @@ static void scene_row(dm_str *s, const dm_config_result *c, const char **params,
     num_cell(s, "%.2f", q->present ? q->psnr : NAN);
     num_cell(s, "%.4f", q->present ? q->ssim : NAN);
     num_cell(s, "%.0f", q->present ? (double)q->crack_pixels : NAN);
+    num_cell(s, "%.4g", report_metric_shown(q, report_metric_of_run(run)));
+    dm_str_cat(s, front ? "<td>front</td>" : "<td></td>");
     dm_str_cat(s, "<td class=\"key\">");
     esc(s, c->key);
     dm_str_cat(s, "</td></tr>\n");
@@ -200,12 +245,16 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
     dm_str_cat(s, "<th>median ms</th><th>95% CI</th>");
     for (size_t i = 0; i < nd; i++)
         tagged(s, "th", det[i]);
-    dm_str_cat(s, "<th>PSNR dB</th><th>SSIM</th><th>CrackPixels</th><th>key</th></tr></thead><tbody>\n");
-    size_t *rows, nr = report__scene_rows(run, scene, &rows);
+    dm_str_printf(s, "<th>PSNR dB</th><th>SSIM</th><th>CrackPixels</th><th>%s</th><th>Pareto</th>"
+                     "<th>key</th></tr></thead><tbody>\n",
+                  report_metric_label(report_metric_of_run(run)));
+    size_t *rows, nr = report__scene_rows(run, scene, &rows), *front;
+    size_t nf = report__pareto(run, scene, &front);
     for (size_t i = 0; i < nr; i++)
-        scene_row(s, &run->configs[rows[i]], varying, nv, det, nd);
+        scene_row(s, run, rows[i], varying, nv, det, nd, on_front(front, nf, rows[i]));
     dm_str_cat(s, "</tbody></table>\n");
     report__html_charts_scene(s, run, scene);
+    free(front);
     free(rows);
     free(varying);
     free(params);
@@ -320,12 +369,25 @@ static void failed_and_left_out(dm_str *s, const dm_run_result *run)
     dm_str_cat(s, "</table>\n");
 }
 
+/* Condition number: 0 = not computed (blank), ∞ = rank deficient. */
+static void condition_cell(dm_str *s, double v)
+{
+    if (v == 0 || isnan(v))
+        dm_str_cat(s, "<td class=\"missing\">not computed</td>");
+    else if (isinf(v))
+        dm_str_cat(s, "<td class=\"n fail\">∞ (rank deficient)</td>");
+    else
+        num_cell(s, "%.3g", v);
+}
+
 static void fits(dm_str *s, const dm_run_result *run)
 {
     if (!run->n_fits)
         return;
     dm_str_cat(s, "<h2>Model fits</h2>\n<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
-                  "<th>R²</th><th>CV MAPE</th><th>points</th><th>warnings</th></tr>\n");
+                  "<th>R²</th><th>CV MAPE</th><th title=\"2-norm condition number of the scaled "
+                  "Jacobian; large means the parameters are poorly determined\">condition</th>"
+                  "<th>points</th><th>warnings</th></tr>\n");
     for (size_t i = 0; i < run->n_fits; i++) {
         const dm_fit_result *f = &run->fits[i];
         dm_str_cat(s, "<tr>");
@@ -340,6 +402,7 @@ static void fits(dm_str *s, const dm_run_result *run)
         dm_str_cat(s, "</td>");
         num_cell(s, "%.4f", f->r2);
         num_cell(s, "%.4f", f->cv_mape);
+        condition_cell(s, f->condition);
         dm_str_printf(s, "<td class=\"n\">%d</td><td>", f->n_points);
         for (size_t k = 0; k < f->n_warnings; k++) {
             esc(s, f->warnings[k]);
@@ -348,17 +411,21 @@ static void fits(dm_str *s, const dm_run_result *run)
         dm_str_cat(s, "</td></tr>\n");
     }
     dm_str_cat(s, "</table>\n");
+    for (size_t i = 0; i < run->n_fits; i++)
+        report__html_charts_fit(s, run, &run->fits[i]);
 }
 
 /* The answer first: per scene, which configurations give the best quality
- * for their cost (the Pareto front of 1 - SSIM against median time). */
+ * for their cost (the Pareto front of the run's metric against median time). */
 static void findings(dm_str *s, const dm_run_result *run)
 {
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);
-    dm_str_cat(s, "<h2>Findings</h2>\n<p>Best quality for its cost in each scene: the Pareto front "
-                  "of error (1 − SSIM against the reference) and median frame time, fastest first. "
-                  "Every other configuration is slower than one of these and not better.</p>\n<ul>\n");
+    report_metric m = report_metric_of_run(run);
+    dm_str_printf(s, "<h2>Findings</h2>\n<p>Best quality for its cost in each scene: the Pareto front "
+                     "of error (metric <b>%s</b>: %s against the reference) and median frame time, "
+                     "fastest first. Every other configuration is slower than one of these and not "
+                     "better.</p>\n<ul>\n", report_metric_name(m), report_metric_label(m));
     for (size_t i = 0; i < ns; i++) {
         dm_str front = {0};
         report__pareto_text(run, scenes[i], &front);

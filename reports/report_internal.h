@@ -7,6 +7,7 @@
 
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+#include "reports/metric.h"
 
 /* 1 when p is a usable image path: non-empty, relative, without "..". */
 int report__safe_relpath(const char *p);
@@ -22,6 +23,21 @@ int report__is_canonical_num(const char *s);
 /* The timing counter shown as "the" frame time: WallTime when it is available
  * with samples, else NULL. */
 const dm_counter_result *report__frame_time(const dm_config_result *c);
+
+/* Relative half-width of the 95 % CI of t's median ((hi − lo) / 2 / median);
+ * NaN when the median is not positive. */
+double report__ci_rel(const dm_counter_result *t);
+/* Appends "±9.1%" (the same as a percentage) or "CI unknown". */
+void report__ci_text(const dm_counter_result *t, dm_str *out);
+
+/* A configuration's timing is "noisy" (too noisy to trust) when it is ok
+ * and the 95 % CI of its median frame time is wider than ± this fraction of
+ * the median, or unknown (docs/measurement.md). */
+#define REPORT__NOISY_CI_REL 0.05
+int report__noisy(const dm_config_result *c);
+/* Indexes of the noisy configurations in run order; *out malloc'd (caller
+ * frees).  Returns the count. */
+size_t report__noisy_configs(const dm_run_result *run, size_t **out);
 
 /* Distinct scene names in first-appearance order; *out is malloc'd and points
  * into run (free only the array).  Returns the count. */
@@ -50,17 +66,27 @@ int report__param_varies(const dm_run_result *run, const char *scene, const char
 size_t report__scene_rows(const dm_run_result *run, const char *scene, size_t **out);
 /* "technique axis=value..." with only the axes that vary in its scene. */
 void report__config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out);
-/* Configurations on the Pareto front of (median time, 1 - SSIM), fastest
- * first; *out malloc'd.  And the same as one sentence. */
+/* The scene's ok configurations with a frame time and a finite error under
+ * m, fastest first: config indexes into idx, x = median ns, y = error (each
+ * array has room for run->n_configs).  Returns the count. */
+size_t report__pareto_points(const dm_run_result *run, const char *scene, report_metric m,
+                             size_t *idx, double *x, double *y);
+/* Configurations on the Pareto front of (median time, error under the run's
+ * metric), fastest first; *out malloc'd (config indexes).  And the same as
+ * one sentence. */
 size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out);
 void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *out);
 
-/* Charts (chart.c): inline SVG appended to an HTML document.  The run-level
- * charts (time per technique) and the per-scene charts (error vs time with
- * the Pareto front, time vs tess_level per mesh).  Nothing is appended when
- * there is nothing to plot. */
+/* Charts (chart.c): inline SVG appended to an HTML document, each in a
+ * <div class="chart" aria-label="title">.  The run-level charts (time per
+ * technique), the per-scene charts (error vs time with the Pareto front,
+ * time vs tess_level per mesh, counter breakdown per configuration) and the
+ * fit plots.  Nothing is appended when there is nothing to plot. */
 void report__html_charts_run(dm_str *s, const dm_run_result *run);
 void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *scene);
+/* The two plots of one fit (predicted vs measured with y = x; residuals in
+ * percent of the measured value vs predicted), nothing without points. */
+void report__html_charts_fit(dm_str *s, const dm_run_result *run, const dm_fit_result *f);
 
 /* Writes s to path (atomically); DM_ERR_IO. */
 int report__save(const dm_str *s, const char *path);

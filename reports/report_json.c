@@ -155,6 +155,8 @@ cJSON *report_fit_to_json(const dm_fit_result *f)
     cJSON_AddNumberToObject(o, "n_points", f->n_points);
     cJSON_AddNumberToObject(o, "n_excluded", f->n_excluded);
     add_str(o, "termination", f->termination);
+    cJSON_AddNumberToObject(o, "condition", f->condition);   /* null when infinite */
+    cJSON_AddBoolToObject(o, "condition_infinite", isinf(f->condition));
     cJSON_AddItemToObject(o, "warnings", str_array(f->warnings, f->n_warnings));
     size_t np = f->n_points > 0 ? (size_t)f->n_points : 0;
     cJSON_AddItemToObject(o, "measured", num_array(f->measured, np));
@@ -371,6 +373,8 @@ static void read_fit(const cJSON *o, dm_fit_result *f)
     f->n_points = (int)get_num(o, "n_points");
     f->n_excluded = (int)get_num(o, "n_excluded");
     f->termination = get_str(o, "termination");
+    f->condition = get_bool(o, "condition_infinite") ? INFINITY
+                 : cJSON_HasObjectItem(o, "condition") ? get_num(o, "condition") : 0.0;
     f->warnings = read_strs(cJSON_GetObjectItemCaseSensitive(o, "warnings"), &f->n_warnings);
     size_t nm, np, nl;
     f->measured = read_nums(cJSON_GetObjectItemCaseSensitive(o, "measured"), &nm);

@@ -32,10 +32,11 @@ static void params_text(dm_str *s, const dm_kv *kv, size_t n)
     }
 }
 
-static void quality_cells(dm_str *s, const dm_quality *q)
+/* PSNR, SSIM and the Pareto metric's shown value. */
+static void quality_cells(dm_str *s, const dm_quality *q, report_metric m)
 {
     if (!q->present) {
-        dm_str_cat(s, " – | – |");
+        dm_str_cat(s, " – | – | – |");
         return;
     }
     if (isinf(q->psnr))
@@ -43,19 +44,26 @@ static void quality_cells(dm_str *s, const dm_quality *q)
     else
         dm_str_printf(s, " %.2f dB |", q->psnr);
     dm_str_printf(s, " %.4f |", q->ssim);
+    double v = report_metric_shown(q, m);
+    if (isinf(v))
+        dm_str_cat(s, " ∞ |");
+    else
+        dm_str_printf(s, " %.4g |", v);
 }
 
 static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
 {
     dm_str_cat(s, "\n## Scene `");
     cell(s, scene);
-    dm_str_cat(s, "`\n\nBest quality for its cost (Pareto front of 1 − SSIM against median time, "
-                  "fastest first): ");
+    dm_str_printf(s, "`\n\nBest quality for its cost (Pareto front of %s against median time, "
+                     "fastest first): ", report_metric_label(report_metric_of_run(run)));
     dm_str front = {0};
     report__pareto_text(run, scene, &front);
     cell(s, dm_str_get(&front));
     dm_str_free(&front);
-    dm_str_cat(s, ".\n\n| configuration | median ms | 95% CI | PSNR | SSIM | key |\n|---|---|---|---|---|---|\n");
+    report_metric m = report_metric_of_run(run);
+    dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI | PSNR | SSIM | %s | key |\n"
+                     "|---|---|---|---|---|---|---|\n", report_metric_label(m));
     size_t *rows, nr = report__scene_rows(run, scene, &rows);
     for (size_t i = 0; i < nr; i++) {
         const dm_config_result *c = &run->configs[rows[i]];
@@ -67,13 +75,36 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
         dm_str_free(&label);
         if (t)
             dm_str_printf(s, " | %.3f | ±%.1f%% |", t->median / 1e6,
-                          t->median > 0 ? (t->ci_hi - t->ci_lo) / 2 / t->median * 100 : NAN);
+                          report__ci_rel(t) * 100);
         else
             dm_str_cat(s, " | unavailable | |");
-        quality_cells(s, &c->quality);
+        quality_cells(s, &c->quality, m);
         dm_str_printf(s, " `%s` |\n", c->key);
     }
     free(rows);
+}
+
+/* "- warning: N noisy configurations ...: label `key` (±x%), ..." or nothing. */
+static void noisy_warning(dm_str *s, const dm_run_result *run)
+{
+    size_t *idx, n = report__noisy_configs(run, &idx);
+    if (n)
+        dm_str_printf(s, "- warning: %zu noisy configuration%s (95%% CI of the median wider than "
+                         "±%.0f%% of the median, or unknown): ",
+                      n, n == 1 ? "" : "s", REPORT__NOISY_CI_REL * 100);
+    for (size_t i = 0; i < n; i++) {
+        const dm_config_result *c = &run->configs[idx[i]];
+        dm_str label = {0};
+        report__config_label(run, c, &label);
+        dm_str_cat(s, i ? ", " : "");
+        cell(s, dm_str_get(&label));
+        dm_str_printf(s, " `%s` (", c->key);
+        report__ci_text(report__frame_time(c), s);
+        dm_str_cat(s, ")");
+        dm_str_free(&label);
+    }
+    dm_str_cat(s, n ? "\n" : "");
+    free(idx);
 }
 
 static void failures(dm_str *s, const dm_run_result *run)
@@ -118,6 +149,8 @@ int report_write_markdown(const dm_run_result *run, const char *path)
     cell(&s, run->started);
     dm_str_cat(&s, "\n- renderer: ");
     cell(&s, dm_kv_get(run->environment, run->n_environment, "renderer"));
+    dm_str_printf(&s, "\n- Pareto metric: %s (%s)", report_metric_name(report_metric_of_run(run)),
+                  report_metric_label(report_metric_of_run(run)));
     dm_str_printf(&s, "\n- timer: %s (GPUTime covers %.1f%% of fenced wall time)\n",
                   run->timer_verdict ? run->timer_verdict : "unknown", run->gpu_time_coverage * 100);
     for (size_t i = 0; i < run->n_warnings; i++) {
@@ -125,6 +158,7 @@ int report_write_markdown(const dm_run_result *run, const char *path)
         cell(&s, run->warnings[i]);
         dm_str_cat(&s, "\n");
     }
+    noisy_warning(&s, run);
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);
     for (size_t i = 0; i < ns; i++)

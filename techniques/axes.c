@@ -34,7 +34,8 @@ static const char *const axes__vt[] = {"off", "software", "sparse", NULL};
 #define E AXIS_ENUM
 #define I AXIS_INT
 #define F AXIS_FLOAT
-/* choices of technique, mesh and maps come from their registries (axes__init). */
+/* choices of technique, mesh and maps come from their registries (axes__init);
+ * technique and mesh stay first and maps last. */
 static axis_info axes__table[] = {
     {"technique", E, NULL, 0, 0, "normal", 1, "surface-detail technique to render"},
     {"mesh", E, NULL, 0, 0, "plane", 1, "built-in mesh"},
@@ -54,6 +55,8 @@ static axis_info axes__table[] = {
     {"shadow", E, axes__shadow, 0, 0, "none", 0, "self-shadowing from the height map"},
     {"lighting", E, axes__lighting, 0, 0, "blinn-phong", 0, "lighting model"},
     {"light_count", I, NULL, 1, 8, "1", 0, "number of point lights"},
+    {"roughness", F, NULL, 0.01, 1, "0.35", 0,
+     "Cook-Torrance Beckmann roughness m (read with lighting=cook-torrance only)"},
     {"filter", E, axes__filter, 0, 0, "trilinear", 1, "texture filtering of the material maps"},
     {"vertex_filter", E, axes__vfilter, 0, 0, "nearest", 0, "height-map filtering in the vertex stage"},
     {"visibility_test", E, axes__on_off, 0, 0, "off", 0, "skip displacement of vertices outside the widened view volume"},
@@ -66,10 +69,19 @@ static axis_info axes__table[] = {
     {"vt_page_size", I, NULL, 16, 1024, "128", 1, "virtual texture page size in texels"},
     {"vt_cache_pages", I, NULL, 1, 65536, "256", 1, "pages in the physical page cache"},
     {"toksvig", E, axes__on_off, 0, 0, "off", 0, "Toksvig specular anti-aliasing from the filtered normal length"},
-    {"camera.distance", F, NULL, 0.1, 100, "3.0", 1, "orbit camera distance from the origin"},
+    {"camera.distance", F, NULL, 0.1, 100, "3.0", 1, "orbit camera distance from its target (camera.target_*)"},
     {"camera.azimuth", F, NULL, -360, 360, "30", 1, "orbit azimuth in degrees (0 = camera on +Z)"},
     {"camera.elevation", F, NULL, -89.9, 89.9, "20", 1, "orbit elevation in degrees toward +Y"},
     {"camera.fov", F, NULL, 1, 179, "45", 1, "vertical field of view in degrees"},
+    {"camera.target_x", F, NULL, -100, 100, "0", 1, "x of the point the camera orbits and looks at"},
+    {"camera.target_y", F, NULL, -100, 100, "0", 1, "y of the point the camera orbits and looks at"},
+    {"camera.target_z", F, NULL, -100, 100, "0", 1, "z of the point the camera orbits and looks at"},
+    {"light.azimuth", F, NULL, -360, 360, "45", 1,
+     "degrees added to the camera azimuth for light 0 (light i adds i*45 more)"},
+    {"light.elevation", F, NULL, -180, 180, "35", 1,
+     "degrees added to the camera elevation (light i: min(cam + this - 10*(i mod 3), 80))"},
+    {"light.distance", F, NULL, 0, 100, "1.2", 1,
+     "light distance from the camera target as a multiple of camera.distance (0 = at the target)"},
     {"maps", E, NULL, 0, 0, "bricks", 1,
      "procedural material maps, or user maps: height=PATH;normal=PATH;albedo=PATH"},
 };
@@ -268,4 +280,26 @@ char *axes_canonical(const char *name, const char *value)
     if (a->kind == AXIS_SIZE2 && axes_parse_size2(value, &w, &h) == 0)
         return dm_xasprintf("%dx%d", w, h);
     return dm_xstrdup(value);
+}
+
+/* Axes that matter only when another axis has one value (axes.h). */
+static const struct {
+    const char *axis, *when_axis, *when_value;
+} axes__conditions[] = {
+    {"roughness", "lighting", "cook-torrance"},
+};
+
+int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),
+                         void *ctx)
+{
+    if (!axes_find(name))
+        return 0;
+    for (size_t i = 0; i < sizeof axes__conditions / sizeof axes__conditions[0]; i++) {
+        if (strcmp(axes__conditions[i].axis, name) != 0)
+            continue;
+        const char *v = value ? value(axes__conditions[i].when_axis, ctx) : NULL;
+        v = v ? v : axes_find(axes__conditions[i].when_axis)->def;
+        return strcmp(v, axes__conditions[i].when_value) == 0;
+    }
+    return 1;
 }

@@ -19,7 +19,8 @@ typedef enum axis_kind {
 } axis_kind;
 
 /* Scene axes (scene = 1) are read by every technique: mesh, mesh_density,
- * resolution, camera.*, maps, texture_size, filter, albedo_format (and
+ * resolution, camera.* (with the orbit target camera.target_*), light.*
+ * (light placement), maps, texture_size, filter, albedo_format (and
  * technique itself).  Every other axis is declared by the techniques that
  * read it (technique_desc.axes). */
 typedef struct axis_info {
@@ -43,6 +44,14 @@ int axes_check(const char *name, const char *value, dm_str *err);
  * "064" -> "64", "3.0" -> "3").  Returns a malloc'd string, or NULL when the
  * value does not pass axes_check. */
 char *axes_canonical(const char *name, const char *value);
+/* 1 when the condition of axis `name` holds or it has none; 0 when it fails
+ * or the axis is unknown.  Conditions (axes.c): roughness needs
+ * lighting=cook-torrance.  value(axis, ctx) gives the
+ * configuration's value of an axis (NULL: the axis default).  The planner
+ * drops an axis whose condition fails, as it drops axes a technique does not
+ * read, so e.g. roughness folds unless lighting=cook-torrance. */
+int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),
+                         void *ctx);
 /* Parses "WxH", "W,H" or "[W, H]" with each side in [1, 8192]; 0 or
  * DM_ERR_ARG (w, h untouched). */
 int axes_parse_size2(const char *s, int *w, int *h);

@@ -13,6 +13,7 @@
 #include "core/dm_error.h"
 #include "core/dm_image.h"
 #include "core/dm_util.h"
+#include "techniques/mesh.h"
 
 #define MAPS__ROWS 8          /* brick rows per tile */
 #define MAPS__COLS 4          /* bricks per row */
@@ -149,10 +150,77 @@ static void maps__flat(float u, float v, float *h, float rgb[3], float *spec)
     *spec = 0.5f;
 }
 
+/* Asteroid: the body of mesh_asteroid_radius baked over the sphere's UVs
+ * (SEEDS S4's reduced mesh): h = (r − RMIN) / (RMAX − RMIN) along the
+ * direction of (u, v); grey rock, darker in the hollows. */
+static void maps__asteroid(float u, float v, float *h, float rgb[3], float *spec)
+{
+    float d[3];
+    mesh_sphere_dir(u, v, d);
+    *h = (mesh_asteroid_radius(d) - MESH_ASTEROID_RMIN) / (MESH_ASTEROID_RMAX - MESH_ASTEROID_RMIN);
+    float grain = maps__noise(u, v, 64, 23);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = (0.30f + 0.03f * (float)(2 - c)) * (0.6f + 0.6f * *h) * (0.85f + 0.3f * grain);
+    *spec = 0.08f;
+}
+
+#define MAPS__ASTEROID 6
 static const char *const maps__names[] = {"bricks", "stones", "terrain", "checker", "sine",
-                                          "flat", NULL};
+                                          "flat", "asteroid", NULL};
 static const maps__texel_fn maps__fns[] = {maps__bricks, maps__stones, maps__terrain,
-                                           maps__checker, maps__sine, maps__flat};
+                                           maps__checker, maps__sine, maps__flat, maps__asteroid};
+
+/* The asteroid's normal map is not derived from its height texture: it is
+ * the true normal of the body r(d)·d at each texel centre, in the sphere's
+ * tangent frame T = ∂d/∂u, B = ∂d/∂v (unit), N = d, which is the frame the
+ * sphere meshes get from mesh_generate_tangents.  For a radial surface
+ * n ∝ d − ∇r / r with ∇r the gradient of r on the unit sphere, so in
+ * tangent space n = normalize(−r_T / r, −r_B / r, 1), r_T and r_B central
+ * differences of r along T and B (step 1e-3 rad) — defined at the poles. */
+static void maps__asteroid_normal(float u, float v, float n[3])
+{
+    const float eps = 1e-3f;
+    float lon = (u - 0.5f) * 6.28318531f, lat = (v - 0.5f) * 3.14159265f, d[3];
+    mesh_sphere_dir(u, v, d);
+    float t[3] = {cosf(lon), 0, -sinf(lon)};
+    float b[3] = {-sinf(lat) * sinf(lon), cosf(lat), -sinf(lat) * cosf(lon)};
+    float g[2];
+    for (int k = 0; k < 2; k++) {
+        const float *axis = k ? b : t;
+        float p[3], m[3], lp = 0, lm = 0;
+        for (int c = 0; c < 3; c++) {
+            p[c] = d[c] + eps * axis[c];
+            m[c] = d[c] - eps * axis[c];
+            lp += p[c] * p[c];
+            lm += m[c] * m[c];
+        }
+        for (int c = 0; c < 3; c++) {
+            p[c] /= sqrtf(lp);
+            m[c] /= sqrtf(lm);
+        }
+        g[k] = (mesh_asteroid_radius(p) - mesh_asteroid_radius(m)) / (2 * eps);
+    }
+    float r = mesh_asteroid_radius(d);
+    float x = -g[0] / r, y = -g[1] / r, l = sqrtf(x * x + y * y + 1);
+    n[0] = x / l;
+    n[1] = y / l;
+    n[2] = 1 / l;
+}
+
+/* Fills m->normal (allocating it) with the baked normals of the asteroid
+ * set; other sets keep theirs (or none, in the compact layout). */
+static void maps__bake_normals(maps_set *m, int kind)
+{
+    if (kind != MAPS__ASTEROID)
+        return;
+    size_t n = (size_t)m->size;
+    if (!m->normal)
+        m->normal = dm_xmalloc(n * n * 3 * sizeof(float));
+    for (size_t y = 0; y < n; y++)
+        for (size_t x = 0; x < n; x++)
+            maps__asteroid_normal(((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n,
+                                  &m->normal[3 * (y * n + x)]);
+}
 
 const char *const *maps_names(void) { return maps__names; }
 
@@ -298,6 +366,7 @@ int maps_generate(const maps_desc *desc, maps_set *out)
     maps__fill(out, maps__fns[kind], compact);
     if (!compact)
         maps_normal_from_height(out->height, size, strength, out->normal);
+    maps__bake_normals(out, kind);
     out->gen_ns = dm_now_ns() - t0;
     return 0;
 }
@@ -368,6 +437,7 @@ int maps_get_cached(const maps_desc *desc, const char *dir, maps_set *out)
     int64_t t0 = dm_now_ns();
     int rc = maps__cache_read(path, d.size, out);
     if (rc == 0) {
+        maps__bake_normals(out, maps_kind(d.name));
         out->load_ns = dm_now_ns() - t0;
         out->from_cache = 1;
     } else {

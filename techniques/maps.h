@@ -23,7 +23,9 @@
 #include "core/dm_util.h"
 
 typedef struct maps_desc {
-    const char *name;       /* "bricks" (default), "stones", "terrain", "checker", "sine", "flat" */
+    const char *name;       /* "bricks" (default), "stones", "terrain", "checker", "sine", "flat",
+                             * "asteroid" (baked from mesh_asteroid_radius over the sphere UVs;
+                             * its normal map is the body's true normal, filled in both layouts) */
     int size;               /* texels per side; 0 = 512 */
     float normal_strength;  /* 0 = 1.0: scale of height gradients into the normal */
     int compact;            /* 1: compact layout (see the top comment) */

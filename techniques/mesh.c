@@ -13,7 +13,7 @@
 
 static const char *const mesh__names[] = {
     "plane", "cube", "triangle", "fullscreen", "cylinder", "sphere", "terrain", "asteroid",
-    "seam", "halfflat", NULL
+    "seam", "halfflat", "asteroid-reduced", NULL
 };
 
 const char *const *mesh_names(void) { return mesh__names; }
@@ -289,6 +289,26 @@ static void mesh__terrain(mesh__builder *b, int t)
             uint32_t a = (uint32_t)(j * n + i);
             mesh__quad(b, a, a + 1, a + 1 + (uint32_t)n, a + (uint32_t)n);
         }
+    /* The same tiles as quad patches, after the triangles: corner (0,0) of
+     * the patch domain at the tile's lowest (u,v), counter-clockwise. */
+    size_t nt = b->m->n_indices;
+    b->m->indices = dm_xrealloc(b->m->indices, (nt + 4 * (size_t)t * (size_t)t) * sizeof(uint32_t));
+    uint32_t *q = b->m->indices + nt;
+    for (int j = 0; j < t; j++)
+        for (int i = 0; i < t; i++, q += 4) {
+            uint32_t a = (uint32_t)(j * n + i);
+            q[0] = a;
+            q[1] = a + 1;
+            q[2] = a + 1 + (uint32_t)n;
+            q[3] = a + (uint32_t)n;
+        }
+    b->m->n_quad_indices = 4 * (size_t)t * (size_t)t;
+    b->cap_i = nt + b->m->n_quad_indices;
+}
+
+int mesh_patch_vertices(const char *name)
+{
+    return name && strcmp(name, "terrain") == 0 ? 4 : 3;
 }
 
 /* Asteroid radius along the unit direction p: 1 + three octaves of lumps. */
@@ -314,6 +334,24 @@ static void mesh__asteroid(mesh__builder *b, int level)
             v->nrm[k] = 0;
         }
     }
+}
+
+void mesh_sphere_dir(float u, float v, float p[3])
+{
+    float lon = (u - 0.5f) * 2 * MESH__PI, lat = (v - 0.5f) * MESH__PI;
+    p[0] = cosf(lat) * sinf(lon);
+    p[1] = sinf(lat);
+    p[2] = cosf(lat) * cosf(lon);
+}
+
+/* The reduced asteroid: the sphere scaled to MESH_ASTEROID_RMID, its unit
+ * normals and UVs kept. */
+static void mesh__asteroid_reduced(mesh__builder *b, int level)
+{
+    mesh__sphere(b, level);
+    for (size_t i = 0; i < b->m->n_vertices; i++)
+        for (int k = 0; k < 3; k++)
+            b->m->vertices[i].pos[k] *= MESH_ASTEROID_RMID;
 }
 
 /* Plane y = 0 over [-1,1]² made of two halves of q×2q quads each (x < 0 and
@@ -358,9 +396,9 @@ int mesh_build(const mesh_desc *desc, mesh_data *out)
             kind = i;
     if (kind < 0)
         return DM_ERR_UNKNOWN;
-    static const int def[] = {2, 0, 0, 0, 58, 4, 16, 6, 4, 4},
-                     lo[] = {2, 0, 0, 0, 3, 0, 1, 0, 1, 1},
-                     hi[] = {1024, 1024, 1024, 1024, 1024, 7, 512, 7, 256, 256};
+    static const int def[] = {2, 0, 0, 0, 58, 4, 16, 6, 4, 4, 2},
+                     lo[] = {2, 0, 0, 0, 3, 0, 1, 0, 1, 1, 0},
+                     hi[] = {1024, 1024, 1024, 1024, 1024, 7, 512, 7, 256, 256, 7};
     if (d == 0)
         d = def[kind];
     if (d < lo[kind] || d > hi[kind])
@@ -376,6 +414,7 @@ int mesh_build(const mesh_desc *desc, mesh_data *out)
     case 5: mesh__sphere(&b, d); break;
     case 6: mesh__terrain(&b, d); break;
     case 7: mesh__asteroid(&b, d); break;
+    case 10: mesh__asteroid_reduced(&b, d); break;
     default: mesh__halves(&b, d, kind == 9); break;
     }
     mesh_generate_tangents(out);
@@ -501,7 +540,7 @@ static void mesh__sphere(mesh__builder *b, int level)
 
 size_t mesh_bytes(const mesh_data *m)
 {
-    return m->n_vertices * sizeof(mesh_vertex) + m->n_indices * sizeof(uint32_t);
+    return m->n_vertices * sizeof(mesh_vertex) + (m->n_indices + m->n_quad_indices) * sizeof(uint32_t);
 }
 
 void mesh_free(mesh_data *m)

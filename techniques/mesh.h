@@ -26,6 +26,12 @@ typedef struct mesh_data {
     size_t n_vertices;
     uint32_t *indices;
     size_t n_indices;       /* multiple of 3 */
+    /* Quad patches (terrain only, else 0): n_quad_indices more indices stored
+     * right after the triangle list in `indices`, 4 per quad in the order of
+     * the tessellator's quad domain (u,v) = (0,0), (1,0), (1,1), (0,1),
+     * counter-clockwise seen from the front.  Tessellating techniques draw
+     * these as 4-vertex patches; everything else draws the triangles. */
+    size_t n_quad_indices;
     int clip_space;         /* 1: positions are clip-space, draw with identity MVP */
 } mesh_data;
 
@@ -44,11 +50,19 @@ typedef struct mesh_data {
  *               duplicated so u runs past 1 instead of wrapping back
  *   terrain     rolling hills over [-1,1]² (XZ), y in about ±0.17; density
  *               = tiles per side, 1..512, default 16: (d+1)² shared
- *               vertices, 2d² triangles (two triangle patches per tile,
- *               neighbouring tiles share their edge vertices)
- *   asteroid    icosphere of level density (0..7, default 6: 81 920
- *               triangles) displaced radially on the CPU by
- *               mesh_asteroid_radius, normals rebuilt from the faces
+ *               vertices, 2d² triangles; each tile is also one quad patch
+ *               (n_quad_indices), neighbouring tiles share their edge
+ *               vertices (SEEDS S4)
+ *   asteroid    the original body of SEEDS S4: icosphere of level density
+ *               (0..7, default 6: 81 920 triangles) displaced radially on
+ *               the CPU by mesh_asteroid_radius, normals rebuilt from the
+ *               faces
+ *   asteroid-reduced  the reduced body: an undisplaced icosphere of radius
+ *               MESH_ASTEROID_RMID, level density (0..7, default 2: 320
+ *               triangles), with the sphere's UVs; drawn with `maps:
+ *               asteroid` (height and normal baked from the same
+ *               mesh_asteroid_radius) and height_scale MESH_ASTEROID_SCALE a
+ *               displacing technique rebuilds the original's shape
  *   seam        test mesh: plane y = 0 over [-1,1]² of two halves x<0, x>0,
  *               each density × 2·density quads (1..256, default 4), the
  *               column x = 0 duplicated with the right half's UVs shifted by
@@ -78,10 +92,25 @@ int mesh_build(const mesh_desc *desc, mesh_data *out);
  * The sign w = +1 when cross(N, T) points along the accumulated bitangent,
  * else -1.  Never produces NaN. */
 void mesh_generate_tangents(mesh_data *m);
-/* Radius of the `asteroid` body along the unit direction p (about
- * 0.5..1.15): the one height function both the CPU-displaced mesh and any
- * baked map sample. */
+/* Radius of the `asteroid` body along the unit direction p, within
+ * [MESH_ASTEROID_RMIN, MESH_ASTEROID_RMAX]: the one height function both the
+ * CPU-displaced mesh and the baked `asteroid` maps sample. */
 float mesh_asteroid_radius(const float p[3]);
+/* Bounds of mesh_asteroid_radius (0.82 ± the sum of its amplitudes) and the
+ * reduced mesh's radius and height_scale: with the displacement rule
+ * P' = P + N (h − 0.5) scale, a point at radius RMID with the baked height
+ * h = (r − RMIN) / (RMAX − RMIN) lands at radius r exactly when
+ * scale = RMAX − RMIN. */
+#define MESH_ASTEROID_RMIN 0.475f
+#define MESH_ASTEROID_RMAX 1.165f
+#define MESH_ASTEROID_RMID 0.82f
+#define MESH_ASTEROID_SCALE 0.69f
+/* Unit direction of the sphere UV (u, v) (u = 0.5 + atan2(x, z)/2π,
+ * v = 0.5 + asin(y)/π, as the sphere and asteroid meshes assign them). */
+void mesh_sphere_dir(float u, float v, float p[3]);
+/* Number of vertices per tessellation patch of a built-in mesh: 4 when it
+ * has quad patches (terrain), else 3. */
+int mesh_patch_vertices(const char *name);
 /* Bilinear sample at (u, v) of a size×size height map (row 0 = v 0) with
  * wrap-around and texel centres at (i + 0.5)/size, as GL REPEAT sampling. */
 float mesh_height_bilinear(const float *height, int size, float u, float v);

@@ -1,16 +1,23 @@
 /* render.c — configurations to GL draws, with program/mesh/maps caches.
  *
  * Scene conventions (shared by every technique):
- *  - camera: orbit around the origin; azimuth 0 / elevation 0 puts it on +Z
- *    looking at the origin, elevation turns it up toward +Y; perspective with
- *    the vertical fov in degrees, aspect from the viewport, near 0.05, far 100;
+ *  - camera: orbit around the target T = camera.target_x/y/z (default the
+ *    origin); azimuth 0 / elevation 0 puts it on +Z of T looking at T,
+ *    elevation turns it up toward +Y; perspective with the vertical fov in
+ *    degrees, aspect from the viewport, near 0.05, far 100;
  *  - meshes are drawn in object space = world space (model = identity);
  *    clip_space meshes (`fullscreen`) are drawn with identity matrices;
- *  - light i (of light_count) is a point light at azimuth + 45° + i·45°,
- *    elevation min(elevation + 35° − 10°·(i mod 3), 80°), distance 1.2 × the
- *    camera distance; colour 1.6/(1 + 0.25·(count − 1)); attenuation
- *    1/(1 + 0.1 d + 0.05 d²); ambient 0.08; shininess 48; Cook-Torrance
- *    f0 0.04, roughness 0.35;
+ *  - light i (of light_count) is a point light around T at azimuth +
+ *    light.azimuth + i·45°, elevation min(elevation + light.elevation −
+ *    10°·(i mod 3), 80°), distance light.distance × the camera distance
+ *    (defaults 45°, 35°, 1.2; distance 0 puts every light at T); colour
+ *    1.6/(1 + 0.25·(count − 1)); attenuation 1/(1 + 0.1 d + 0.05 d²);
+ *    ambient 0.08; shininess 48; Cook-Torrance f0 0.04, roughness = the
+ *    roughness axis (u_roughness, default 0.35);
+ *  - debug view normals (tech_renderer_set_debug_view): light slots 0..3
+ *    carry the origin and the world unit vectors, so the fragment stage
+ *    recovers its tangent frame from their tangent-space images
+ *    (surface.frag.glsl, DEBUG_NORMALS);
  *  - textures: unit 0 height (R, value in [0,1]), unit 1 normal (n·0.5+0.5),
  *    unit 2 albedo; CPU box-filtered mip chain, GL_REPEAT; the `filter` axis
  *    picks a sampler: nearest = NEAREST_MIPMAP_NEAREST, bilinear =
@@ -39,7 +46,7 @@
 
 static const char *const render__uniform_names[RU_COUNT] = {
     "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
-    "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_roughness", "u_viewport"
+    "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_viewport"
 };
 
 int tech_renderer_create(tech_renderer **out)
@@ -71,6 +78,7 @@ void tech_renderer_destroy(tech_renderer *r)
         glDeleteVertexArrays(1, &r->meshes[i].vao);
         glDeleteBuffers(1, &r->meshes[i].vbo);
         glDeleteBuffers(1, &r->meshes[i].ibo);
+        cull_free(&r->meshes[i].cull);
         free(r->meshes[i].key);
     }
     render__maps_destroy(r);
@@ -95,6 +103,14 @@ int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir)
     if (formats < 1)
         return DM_ERR_UNSUPPORTED;
     r->cache_dir = dm_xstrdup(dir);
+    return 0;
+}
+
+int tech_renderer_set_debug_view(tech_renderer *r, tech_debug_view view)
+{
+    if (!r || (view != TECH_DEBUG_NONE && view != TECH_DEBUG_NORMALS))
+        return DM_ERR_ARG;
+    r->debug_view = view;
     return 0;
 }
 
@@ -141,6 +157,8 @@ static void render__defines(const technique_desc *t, const render__cfg *c, dm_st
 {
     if (t->defines)
         dm_str_cat(out, t->defines);
+    if (t->tcs && mesh_patch_vertices(render__get(c, "mesh")) == 4)
+        dm_str_cat(out, "#define TESS_QUADS\n");
     for (size_t i = 0; t->axes && t->axes[i]; i++) {
         const axis_info *a = axes_find(t->axes[i]);
         if (!a || a->kind != AXIS_ENUM)
@@ -425,13 +443,18 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
     m->key = key;
     m->n_vertices = md.n_vertices;
     m->n_indices = md.n_indices;
+    m->n_quad_indices = md.n_quad_indices;
+    m->cull = (cull_set){0};
+    if (!md.clip_space && md.n_indices)
+        cull_build(&md, RENDER__CULL_CHUNK, &m->cull);
     m->bytes = mesh_bytes(&md);
     m->clip_space = md.clip_space;
     glCreateVertexArrays(1, &m->vao);
     glCreateBuffers(1, &m->vbo);
     glCreateBuffers(1, &m->ibo);
     glNamedBufferStorage(m->vbo, (GLsizeiptr)(md.n_vertices * sizeof(mesh_vertex)), md.vertices, 0);
-    glNamedBufferStorage(m->ibo, (GLsizeiptr)(md.n_indices * sizeof(uint32_t)), md.indices, 0);
+    glNamedBufferStorage(m->ibo, (GLsizeiptr)((md.n_indices + md.n_quad_indices) * sizeof(uint32_t)),
+                         md.indices, 0);
     glVertexArrayVertexBuffer(m->vao, 0, m->vbo, 0, sizeof(mesh_vertex));
     glVertexArrayElementBuffer(m->vao, m->ibo);
     static const GLuint comps[4] = {3, 3, 2, 4};
@@ -452,10 +475,14 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
 /* Fills the item's numeric uniforms and camera from the configuration. */
 static void render__item_values(render__item *it, const render__cfg *c)
 {
-    static const char *const cam[4] = {"camera.distance", "camera.azimuth", "camera.elevation",
-                                       "camera.fov"};
-    for (int i = 0; i < 4; i++)
-        it->cam[i] = (float)atof(render__get(c, cam[i]));
+    static const char *const cam[10] = {"camera.distance", "camera.azimuth", "camera.elevation",
+                                        "camera.fov", "camera.target_x", "camera.target_y",
+                                        "camera.target_z", "light.azimuth", "light.elevation",
+                                        "light.distance"};
+    float *dst[10] = {&it->cam[0], &it->cam[1], &it->cam[2], &it->cam[3], &it->target[0],
+                      &it->target[1], &it->target[2], &it->light[0], &it->light[1], &it->light[2]};
+    for (int i = 0; i < 10; i++)
+        *dst[i] = (float)atof(render__get(c, cam[i]));
     it->axis_val = dm_xcalloc(axes_count(), sizeof(double));
     for (size_t a = 0; a < axes_count(); a++) {
         const axis_info *ax = axes_at(a);
@@ -479,6 +506,8 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
         return DM_ERR_UNSUPPORTED;
     }
     render__defines(it->tech, c, &defs);
+    if (it->debug_view == TECH_DEBUG_NORMALS)
+        dm_str_cat(&defs, "#define DEBUG_NORMALS\n");
     rc = render__program_get(r, it->tech, dm_str_get(&defs), &it->prog, &cached, log);
     dm_str_free(&defs);
     if (!rc)
@@ -499,14 +528,29 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
  * split into calls of at most 65 535 / V patches, V = the most vertices one
  * triangle patch can produce at the item's highest level (lod distance can
  * reach 64; fractional spacing rounds up to the next even level + 2). */
-static size_t render__patch_chunk(const render__cfg *c)
+static size_t render__patch_chunk(const render__cfg *c, int quads)
 {
     int L = atoi(render__get(c, "tess_level"));
     if (strcmp(render__get(c, "lod"), "distance") == 0)
         L = 64;
     int half = (L + 3) / 2 + 1;
-    size_t v = 3 * (size_t)half * (size_t)(half + 1) + 1;
+    size_t v = quads ? (size_t)(L + 3) * (size_t)(L + 3)
+                     : 3 * (size_t)half * (size_t)(half + 1) + 1;
     return 65535 / v;
+}
+
+/* visibility_test on: the item draws only the chunks of its triangle list
+ * that can be seen (cull.h), each box padded by the largest displacement
+ * |height_scale| · max(|h − 0.5|) of its height map. */
+static void render__cull_setup(const tech_renderer *r, render__item *it, const render__cfg *c)
+{
+    if (!technique_reads_axis(it->tech, "visibility_test") ||
+        strcmp(render__get(c, "visibility_test"), "on") != 0 || !r->meshes[it->mesh].cull.n)
+        return;
+    const render__maps *mp = &r->maps[it->maps];
+    float reach = fmaxf(fabsf(mp->h_hi - 0.5f), fabsf(mp->h_lo - 0.5f));
+    it->cull = 1;
+    it->cull_pad = fabsf((float)atof(render__get(c, "height_scale"))) * reach;
 }
 
 static void render__item_info(tech_renderer *r, render__item *it)
@@ -523,7 +567,7 @@ int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_it
 {
     int64_t t0 = dm_now_ns();
     render__cfg c = {params, n_params};
-    render__item it = {0};
+    render__item it = {.debug_view = r ? r->debug_view : 0};
     dm_str scratch = {0};
     dm_str *l = log ? log : &scratch;
     int rc = r ? render__validate(&c, &it.tech, l) : DM_ERR_ARG;
@@ -533,8 +577,11 @@ int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_it
     if (rc)
         return rc;
     render__item_values(&it, &c);
-    if (it.tech->tcs || it.tech->tes)
-        it.patch_chunk = render__patch_chunk(&c);
+    render__cull_setup(r, &it, &c);
+    if (it.tech->tcs || it.tech->tes) {
+        it.patch_vertices = r->meshes[it.mesh].n_quad_indices && it.tech->tcs ? 4 : 3;
+        it.patch_chunk = render__patch_chunk(&c, it.patch_vertices == 4);
+    }
     render__item_info(r, &it);
     it.used = 1;
     it.info.setup_ns = dm_now_ns() - t0;
@@ -551,37 +598,62 @@ static render__item *render__item_of(tech_renderer *r, tech_item item)
     return &r->items[item.id - 1];
 }
 
-/* Light i of n, placed from the camera (see the top comment). */
+/* Light i of n, placed from the camera and the light.* axes around the
+ * camera target (see the top comment). */
 static void render__light(const render__item *it, int i, float pos[3], float col[3])
 {
-    float az = glm_rad(it->cam[1] + 45.0f + 45.0f * (float)i);
-    float el = glm_rad(fminf(it->cam[2] + 35.0f - 10.0f * (float)(i % 3), 80.0f));
-    float d = 1.2f * it->cam[0];
-    pos[0] = d * cosf(el) * sinf(az);
-    pos[1] = d * sinf(el);
-    pos[2] = d * cosf(el) * cosf(az);
+    float az = glm_rad(it->cam[1] + it->light[0] + 45.0f * (float)i);
+    float el = glm_rad(fminf(it->cam[2] + it->light[1] - 10.0f * (float)(i % 3), 80.0f));
+    float d = it->light[2] * it->cam[0];
+    pos[0] = it->target[0] + d * cosf(el) * sinf(az);
+    pos[1] = it->target[1] + d * sinf(el);
+    pos[2] = it->target[2] + d * cosf(el) * cosf(az);
     float k = 1.6f / (1.0f + 0.25f * (float)(it->light_count - 1));
     col[0] = col[1] = col[2] = k;
 }
 
-/* Sets every uniform the program has (locations of -1 are ignored by GL). */
-static void render__uniforms(tech_renderer *r, const render__item *it, const float viewport[2])
+/* The light slots of the normals view: the origin and the world unit
+ * vectors, whose tangent-space images give the fragment its frame. */
+static void render__debug_lights(float lp[][3])
 {
-    float aspect = viewport[0] / viewport[1];
-    const render__program *p = &r->progs[it->prog];
-    const GLint *L = p->loc;
+    for (int i = 0; i < 4; i++)
+        for (int k = 0; k < 3; k++)
+            lp[i][k] = i == k + 1 ? 1.0f : 0.0f;
+}
+
+/* Sets every uniform the program has (locations of -1 are ignored by GL). */
+/* The orbit camera of the item: eye position and view-projection matrix
+ * (identity for clip-space meshes).  The model matrix is the identity. */
+static void render__camera(const tech_renderer *r, const render__item *it, const float viewport[2],
+                           vec3 eye, mat4 vp)
+{
     float az = glm_rad(it->cam[1]), el = glm_rad(it->cam[2]), d = it->cam[0];
-    vec3 eye = {d * cosf(el) * sinf(az), d * sinf(el), d * cosf(el) * cosf(az)};
-    mat4 model = GLM_MAT4_IDENTITY_INIT, view, proj, vp = GLM_MAT4_IDENTITY_INIT;
-    mat3 nmat = GLM_MAT3_IDENTITY_INIT;
+    eye[0] = it->target[0] + d * cosf(el) * sinf(az);
+    eye[1] = it->target[1] + d * sinf(el);
+    eye[2] = it->target[2] + d * cosf(el) * cosf(az);
+    vec3 centre = {it->target[0], it->target[1], it->target[2]};
+    mat4 view, proj;
+    glm_mat4_identity(vp);
     if (!r->meshes[it->mesh].clip_space) {
-        glm_lookat(eye, (vec3){0, 0, 0}, (vec3){0, 1, 0}, view);
-        glm_perspective(glm_rad(it->cam[3]), aspect, 0.05f, 100.0f, proj);
+        glm_lookat(eye, centre, (vec3){0, 1, 0}, view);
+        glm_perspective(glm_rad(it->cam[3]), viewport[0] / viewport[1], 0.05f, 100.0f, proj);
         glm_mat4_mul(proj, view, vp);
     }
+}
+
+static void render__uniforms(tech_renderer *r, const render__item *it, const float viewport[2])
+{
+    const render__program *p = &r->progs[it->prog];
+    const GLint *L = p->loc;
+    vec3 eye;
+    mat4 model = GLM_MAT4_IDENTITY_INIT, vp;
+    mat3 nmat = GLM_MAT3_IDENTITY_INIT;
+    render__camera(r, it, viewport, eye, vp);
     float lp[RENDER__MAX_LIGHTS][3] = {{0}}, lc[RENDER__MAX_LIGHTS][3] = {{0}};
     for (int i = 0; i < it->light_count && i < RENDER__MAX_LIGHTS; i++)
         render__light(it, i, lp[i], lc[i]);
+    if (it->debug_view == TECH_DEBUG_NORMALS)
+        render__debug_lights(lp);
     glUniformMatrix4fv(L[RU_MODEL], 1, GL_FALSE, (const float *)model);
     glUniformMatrix4fv(L[RU_VIEW_PROJ], 1, GL_FALSE, (const float *)vp);
     glUniformMatrix3fv(L[RU_NORMAL_MAT], 1, GL_FALSE, (const float *)nmat);
@@ -593,7 +665,6 @@ static void render__uniforms(tech_renderer *r, const render__item *it, const flo
     glUniform3f(L[RU_AMBIENT], 0.08f, 0.08f, 0.08f);
     glUniform1f(L[RU_SHININESS], 48.0f);
     glUniform1f(L[RU_F0], 0.04f);
-    glUniform1f(L[RU_ROUGHNESS], 0.35f);
     glUniform2f(L[RU_VIEWPORT], viewport[0], viewport[1]);
     for (size_t a = 0; a < axes_count(); a++) {
         if (p->axis_loc[a] < 0)
@@ -603,6 +674,27 @@ static void render__uniforms(tech_renderer *r, const render__item *it, const flo
         else
             glUniform1f(p->axis_loc[a], (GLfloat)it->axis_val[a]);
     }
+}
+
+/* The triangle list, or with it->cull only the chunks not culled under the
+ * item's camera (the margin is the vertex stage's VISIBILITY_MARGIN). */
+static void render__draw_triangles(tech_renderer *r, const render__item *it, int width, int height)
+{
+    const render__mesh *m = &r->meshes[it->mesh];
+    if (!it->cull) {
+        glDrawElements(GL_TRIANGLES, (GLsizei)m->n_indices, GL_UNSIGNED_INT, NULL);
+        return;
+    }
+    vec3 eye;
+    mat4 vp;
+    render__camera(r, it, (float[2]){(float)width, (float)height}, eye, vp);
+    size_t *first = dm_xmalloc(2 * m->cull.n * sizeof(size_t)), *count = first + m->cull.n;
+    size_t n = cull_visible(&m->cull, (const float *)vp, it->cull_pad, RENDER__VISIBILITY_MARGIN,
+                            first, count);
+    for (size_t i = 0; i < n; i++)
+        glDrawElements(GL_TRIANGLES, (GLsizei)count[i], GL_UNSIGNED_INT,
+                       (const void *)(first[i] * sizeof(uint32_t)));
+    free(first);
 }
 
 int tech_draw(tech_renderer *r, tech_item item, int width, int height)
@@ -627,15 +719,17 @@ int tech_draw(tech_renderer *r, tech_item item, int width, int height)
     render__maps_bind(r, it);
     glBindVertexArray(m->vao);
     if (it->patch_chunk) {
-        glPatchParameteri(GL_PATCH_VERTICES, 3);
-        size_t step = 3 * it->patch_chunk;
-        for (size_t first = 0; first < m->n_indices; first += step) {
-            size_t n = m->n_indices - first < step ? m->n_indices - first : step;
+        /* quad patches are stored after the triangles (mesh.h) */
+        size_t pv = (size_t)it->patch_vertices, step = pv * it->patch_chunk;
+        size_t base = pv == 4 ? m->n_indices : 0, total = pv == 4 ? m->n_quad_indices : m->n_indices;
+        glPatchParameteri(GL_PATCH_VERTICES, (GLint)pv);
+        for (size_t first = 0; first < total; first += step) {
+            size_t n = total - first < step ? total - first : step;
             glDrawElements(GL_PATCHES, (GLsizei)n, GL_UNSIGNED_INT,
-                           (const void *)(first * sizeof(uint32_t)));
+                           (const void *)((base + first) * sizeof(uint32_t)));
         }
     } else {
-        glDrawElements(GL_TRIANGLES, (GLsizei)m->n_indices, GL_UNSIGNED_INT, NULL);
+        render__draw_triangles(r, it, width, height);
     }
     glBindVertexArray(0);
     return 0;

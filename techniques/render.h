@@ -37,6 +37,17 @@ void tech_renderer_destroy(tech_renderer *r);
  * binary format (the cache then stays off). */
 int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir);
 
+/* Debug views: every technique's fragment output replaced by a diagnostic. */
+typedef enum tech_debug_view {
+    TECH_DEBUG_NONE = 0,         /* the technique's own output */
+    TECH_DEBUG_NORMALS           /* world-space shading normal (after bump, normal or
+                                    parallax perturbation) as n*0.5+0.5, alpha 1 */
+} tech_debug_view;
+/* Sets the debug view of the items prepared from now on (prepared items
+ * keep theirs; it selects a program variant, #define DEBUG_NORMALS, part of
+ * the program key).  Returns 0, or DM_ERR_ARG for an unknown view. */
+int tech_renderer_set_debug_view(tech_renderer *r, tech_debug_view view);
+
 /* Prepares one configuration (params: axis → value; missing axes take their
  * defaults).  Returns 0 and a handle; DM_ERR_ARG/DM_ERR_UNKNOWN for bad
  * params (log says which); DM_ERR_SHADER with the driver's full info log

@@ -11,6 +11,7 @@
 #include <string.h>
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+#include "techniques/cull.h"
 #include "techniques/render.h"
 #include "techniques/render_textures.h"
 #include "techniques/technique.h"
@@ -19,10 +20,16 @@
 /* Triangle budget of cpu_displace meshes: k = floor(sqrt(budget / triangles))
  * clamped to 1..512 splits of every edge. */
 #define RENDER__REFERENCE_TRIANGLES (1u << 20)
+/* visibility_test: triangles per culling chunk (a 400² grid has 156 chunks)
+ * and the widening of the clip volume, relative to w — the vertex stage's
+ * VISIBILITY_MARGIN (displace.vert.glsl) */
+#define RENDER__CULL_CHUNK 2048
+#define RENDER__VISIBILITY_MARGIN 0.1f
 
+/* u_roughness is the roughness axis's uniform (set with every numeric axis). */
 enum render__uniform {
     RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
-    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_ROUGHNESS, RU_VIEWPORT, RU_COUNT
+    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_VIEWPORT, RU_COUNT
 };
 
 typedef struct render__program {
@@ -36,6 +43,8 @@ typedef struct render__mesh {
     char *key;
     GLuint vao, vbo, ibo;
     size_t n_vertices, n_indices, bytes;
+    size_t n_quad_indices;       /* quad patches after the triangles (mesh.h), 0 = none */
+    cull_set cull;               /* triangle chunks with bounds (visibility_test), n = 0: none */
     int clip_space;
 } render__mesh;
 
@@ -44,9 +53,15 @@ typedef struct render__item {
     const technique_desc *tech;
     size_t prog, mesh, maps, sampler;
     float cam[4];                /* distance, azimuth, elevation, fov */
+    float target[3];             /* camera.target_x/y/z: orbit centre */
+    float light[3];              /* light.azimuth, light.elevation, light.distance */
+    int debug_view;              /* tech_debug_view it was prepared with */
     double *axis_val;            /* per axis index: numeric value (steps auto = 0) */
     int light_count;
     size_t patch_chunk;          /* patches per draw call (0 = one call), see render.c */
+    int patch_vertices;          /* 3 (triangle patches) or 4 (quad patches, TESS_QUADS) */
+    int cull;                    /* visibility_test on: draw only the chunks that can be seen */
+    float cull_pad;              /* largest displacement, object units */
     tech_item_info info;
 } render__item;
 
@@ -54,6 +69,7 @@ struct tech_renderer {
     char *driver;                /* GL_RENDERER + GL_VERSION, part of program keys */
     char *cache_dir;             /* on-disk program binaries, NULL = off */
     float max_aniso;             /* 0 when anisotropic filtering is absent */
+    int debug_view;              /* tech_debug_view of the next prepared items */
     render__program *progs;
     size_t n_progs;
     render__mesh *meshes;

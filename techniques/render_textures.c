@@ -230,6 +230,12 @@ static int render__upload(const render__src *m, GLuint *tex, size_t *bytes)
 /* Uploads height, normal and albedo of the set in formats fmt[0..2]. */
 static int render__maps_upload(render__maps *m, const maps_set *s, const render__format *fmt[3])
 {
+    size_t texels = (size_t)s->size * (size_t)s->size;
+    m->h_lo = m->h_hi = s->height[0];
+    for (size_t i = 1; i < texels; i++) {
+        m->h_lo = fminf(m->h_lo, s->height[i]);
+        m->h_hi = fmaxf(m->h_hi, s->height[i]);
+    }
     static const int ch[3] = {1, 3, 4};
     int rc = 0;
     for (int i = 0; i < 3 && !rc; i++) {
@@ -291,6 +297,8 @@ static int render__vt_make(render__maps *m, const render__cfg *c, dm_str *log)
                  .cache_pages = atoi(render__get(c, "vt_cache_pages"))};
     int64_t t0 = dm_now_ns();
     int rc = vt_create(&d, &m->vt, log);
+    m->h_lo = 0;    /* procedural sets: heights in [0, 1] */
+    m->h_hi = 1;
     if (!rc)
         dm_str_printf(log, "virtual texture %s %d² (pages %d, cache %d): created in %.1f ms\n", d.maps,
                       d.size, d.page, d.cache_pages, (double)(dm_now_ns() - t0) / 1e6);

@@ -22,6 +22,7 @@ typedef struct render__maps {
     GLuint tex[3];               /* height, normal, albedo (0 with a virtual texture) */
     size_t bytes[3];
     struct vt *vt;               /* virtual_texture=software, else NULL */
+    float h_lo, h_hi;            /* range of the height map (0, 1 with a virtual texture) */
 } render__maps;
 
 typedef struct render__sampler {

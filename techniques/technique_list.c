@@ -16,6 +16,8 @@
  * mix(max_steps, min_steps, |V.z|).  Shadows (pom only): raytrace = 30
  * steps toward the light, hard; soft = 7 samples at 0.88..0.22 of the ray,
  * shadow = 1 − clamp(max(32·(h_i − ray_i)·(1 − t_i))).
+ * Every lit technique declares roughness (Cook-Torrance only: its only_if
+ * condition in axes.c lets the planner fold it under the other models).
  * Every technique-declared ENUM axis also becomes "#define AXIS_VALUE"
  * (e.g. LIGHTING_COOK_TORRANCE, SHADOW_SOFT, TOKSVIG_ON); every INT/FLOAT
  * axis is set as uniform u_<axis> (render.c), so one program serves all
@@ -27,30 +29,32 @@
 
 #define TECH__LIGHT_UNIFORMS \
     "u_model, u_view_proj, u_normal_mat, u_camera_pos, u_light_pos[8], u_light_color[8], " \
-    "u_light_count, u_atten (c,l,q), u_ambient, u_shininess, u_f0, u_roughness"
+    "u_light_count, u_atten (c,l,q), u_ambient, u_shininess, u_f0, u_roughness (axis)"
 
 static const char *const tech__axes_none[] = {NULL};
-static const char *const tech__axes_phong[] = {"lighting", "light_count", NULL};
-static const char *const tech__axes_normal[] = {"lighting", "light_count", "normal_format",
-                                                "toksvig", NULL};
-static const char *const tech__axes_bump[] = {"lighting", "light_count", "height_scale",
-                                              "height_format", NULL};
-static const char *const tech__axes_parallax[] = {"lighting", "light_count", "normal_format",
-                                                  "toksvig", "height_scale", "height_format",
-                                                  "offset_limit", NULL};
-static const char *const tech__axes_steep[] = {"lighting", "light_count", "normal_format",
-                                               "toksvig", "height_scale", "height_format",
-                                               "steps", "min_steps", "max_steps", NULL};
-static const char *const tech__axes_tess[] = {"lighting", "light_count", "normal_format",
-                                              "toksvig", "height_scale", "tess_level",
-                                              "tess_spacing", "lod", "patch_cull", "crack_free",
-                                              NULL};
-static const char *const tech__axes_vdisp[] = {"lighting", "light_count", "normal_format",
-                                               "toksvig", "height_scale", "vertex_filter",
-                                               "visibility_test", NULL};
-static const char *const tech__axes_pom[] = {"lighting", "light_count", "normal_format",
-                                             "toksvig", "height_scale", "height_format",
-                                             "steps", "min_steps", "max_steps", "shadow", NULL};
+static const char *const tech__axes_phong[] = {"lighting", "light_count", "roughness", NULL};
+static const char *const tech__axes_normal[] = {"lighting", "light_count", "roughness",
+                                                "normal_format", "toksvig", NULL};
+static const char *const tech__axes_bump[] = {"lighting", "light_count", "roughness",
+                                              "height_scale", "height_format", NULL};
+static const char *const tech__axes_parallax[] = {"lighting", "light_count", "roughness",
+                                                  "normal_format", "toksvig", "height_scale",
+                                                  "height_format", "offset_limit", NULL};
+static const char *const tech__axes_steep[] = {"lighting", "light_count", "roughness",
+                                               "normal_format", "toksvig", "height_scale",
+                                               "height_format", "steps", "min_steps", "max_steps",
+                                               NULL};
+static const char *const tech__axes_tess[] = {"lighting", "light_count", "roughness",
+                                              "normal_format", "toksvig", "height_scale",
+                                              "tess_level", "tess_spacing", "lod", "patch_cull",
+                                              "crack_free", NULL};
+static const char *const tech__axes_vdisp[] = {"lighting", "light_count", "roughness",
+                                               "normal_format", "toksvig", "height_scale",
+                                               "vertex_filter", "visibility_test", NULL};
+static const char *const tech__axes_pom[] = {"lighting", "light_count", "roughness",
+                                             "normal_format", "toksvig", "height_scale",
+                                             "height_format", "steps", "min_steps", "max_steps",
+                                             "shadow", NULL};
 
 const technique_desc technique__list[] = {
     {.name = "texture", .summary = "albedo texture only, unlit (S1 method 1)",

@@ -136,11 +136,82 @@ static void test_shuffle_is_seeded_permutation(void **state)
         assert_int_equal(hit[i], 1);
 }
 
+/* roughness is read only under cook-torrance: 2 lighting models × 2
+ * roughness values plan 1 + 2 configurations. */
+static void test_conditional_axis_folds(void **state)
+{
+    (void)state;
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  technique: [phong]\n  lighting: [blinn-phong, cook-torrance]\n"
+              "  roughness: [0.1, 0.5]\n", &s, &p);
+    assert_int_equal(p.n_combinations, 4);
+    assert_int_equal(p.n_configs, 3);
+    for (size_t i = 0; i < p.n_configs; i++) {
+        const char *l = dm_kv_get(p.configs[i].params, p.configs[i].n_params, "lighting");
+        const char *r = dm_kv_get(p.configs[i].params, p.configs[i].n_params, "roughness");
+        assert_true((strcmp(l, "cook-torrance") == 0) == (r != NULL));
+    }
+    plan_free(&p);
+    sweep_free(&s);
+}
+
+/* exclude: technique × mesh = 4 combinations, two entries drop 2 of them
+ * (one by a list of values); the rest is planned as usual. */
+static void test_exclude(void **state)
+{
+    (void)state;
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  technique: [phong, tess-displacement]\n  mesh: [asteroid, asteroid-reduced]\n"
+              "  tess_level: [1, 4]\n"
+              "exclude:\n  - { technique: tess-displacement, mesh: asteroid }\n"
+              "  - { technique: [phong], mesh: [asteroid-reduced] }\n", &s, &p);
+    assert_int_equal(p.n_combinations, 8);
+    assert_int_equal(p.n_excluded, 4);
+    assert_int_equal(p.n_configs, 3);   /* phong@asteroid (tess_level folded), tess@reduced × 2 */
+    for (size_t i = 0; i < p.n_configs; i++) {
+        const char *t = dm_kv_get(p.configs[i].params, p.configs[i].n_params, "technique");
+        const char *m = dm_kv_get(p.configs[i].params, p.configs[i].n_params, "mesh");
+        assert_true((strcmp(t, "phong") == 0) == (strcmp(m, "asteroid") == 0));
+    }
+    plan_free(&p);
+    sweep_free(&s);
+}
+
+/* Bad exclude entries name the file and line and the valid choices. */
+static void test_exclude_errors(void **state)
+{
+    (void)state;
+    static const struct { const char *text, *msg; } bad[] = {
+        {"name: t\nsweep:\n  technique: [phong, pom]\nexclude:\n  - { mesh: cube }\n",
+         "t.yaml:5: exclude names axis 'mesh', which the sweep block does not vary"},
+        {"name: t\nsweep:\n  technique: [phong, pom]\nexclude:\n  - { technique: normal }\n",
+         "t.yaml:5: exclude value 'normal' of technique is not one of the sweep's values (phong, pom)"},
+        {"name: t\nsweep:\n  technique: [phong]\nexclude: { technique: phong }\n",
+         "t.yaml:4:10: exclude: expected a list"},
+        {"name: t\nsweep:\n  technique: [phong]\nexclude:\n  - { tecnique: phong }\n",
+         "did you mean 'technique'?"},
+        {"name: t\nsweep:\n  technique: [phong]\nexclude:\n  - {}\n", "an empty entry would exclude everything"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        sweep s;
+        dm_str err = {0};
+        assert_int_equal(sweep_parse(bad[i].text, "t.yaml", &s, &err), DM_ERR_PARSE);
+        if (!strstr(dm_str_get(&err), bad[i].msg))
+            fail_msg("case %zu: '%s' lacks '%s'", i, dm_str_get(&err), bad[i].msg);
+        dm_str_free(&err);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_fold_irrelevant_axis),
         cmocka_unit_test(test_scene_axes_kept),
+        cmocka_unit_test(test_exclude),
+        cmocka_unit_test(test_conditional_axis_folds),
+        cmocka_unit_test(test_exclude_errors),
         cmocka_unit_test(test_keys_stable),
         cmocka_unit_test(test_shards_partition),
         cmocka_unit_test(test_shuffle_is_seeded_permutation),

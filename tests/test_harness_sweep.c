@@ -55,7 +55,30 @@ static void test_defaults_and_scene(void **state)
     assert_int_equal(s.measure.samples_max, 30);
     assert_true(s.measure.target_ci == 0.03);
     assert_int_equal(s.supersample, 4);
+    assert_string_equal(s.pareto_metric, "ssim");
     assert_true(s.measure.n_counters > 0);
+    sweep_free(&s);
+    dm_str_free(&err);
+}
+
+static void test_quality_section(void **state)
+{
+    (void)state;
+    const char *text =
+        "name: q\n"
+        "quality:\n"
+        "  pareto_metric: depth-rmse\n"
+        "  reference: { technique: same, supersample: 2 }\n"
+        "sweep:\n"
+        "  technique: [normal]\n";
+    sweep s;
+    dm_str err = {0};
+    int rc = sweep_parse(text, "q.yaml", &s, &err);
+    if (rc)
+        fail_msg("%s", dm_str_get(&err));
+    assert_string_equal(s.pareto_metric, "depth-rmse");
+    assert_string_equal(s.ref_technique, "same");
+    assert_int_equal(s.supersample, 2);
     sweep_free(&s);
     dm_str_free(&err);
 }
@@ -130,6 +153,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_defaults_and_scene),
         cmocka_unit_test(test_default_sweeps_parse),
+        cmocka_unit_test(test_quality_section),
         cmocka_unit_test(test_missing_file),
         cmocka_unit_test(test_bad_corpus),
     };

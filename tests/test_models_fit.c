@@ -158,6 +158,9 @@ static void near_collinear(void **state)
     assert_false(has_warning(&good, "collinear", NULL));
     assert_true(s_bad > 10.0 * s_good);
     assert_true(bad.params[2].stderr_ > 10.0 * good.params[2].stderr_);
+    assert_true(bad.condition > FIT_ILL_CONDITIONED && good.condition < 10.0);
+    assert_true(has_warning(&bad, "ill-conditioned", "parameters 'b' and 'c' are not separately"));
+    assert_false(has_warning(&good, "ill-conditioned", NULL));
     dm_fit_result_free(&good);
     dm_fit_result_free(&bad);
 }
@@ -175,6 +178,8 @@ static void exact_collinear_rank_deficient(void **state)
     dm_fit_result r = run_ok(&d);
     assert_true(has_warning(&r, "rank deficient", NULL));
     assert_true(isnan(r.params[1].stderr_));
+    assert_true(isinf(r.condition));
+    assert_false(has_warning(&r, "ill-conditioned", NULL));
     /* the prediction is still right: b + 2c = 4 */
     assert_true(fabs(r.params[1].value + 2.0 * r.params[2].value - 4.0) < 1e-8);
     dm_fit_result_free(&r);
@@ -324,6 +329,65 @@ static void bounds_and_errors(void **state)
     dm_str_free(&err);
 }
 
+/* Condition of J = [u/|u|, v/|v|] (linear model, unit-norm columns): the
+ * eigenvalues of J^T J = [[1, c], [c, 1]] are 1 +- c with c = u.v/(|u||v|),
+ * so the 2-norm condition of J is sqrt((1 + |c|) / (1 - |c|)). */
+static double condition_2col(const double *u, const double *v, size_t n)
+{
+    double uv = 0.0, uu = 0.0, vv = 0.0;
+    for (size_t i = 0; i < n; i++) {
+        uv += u[i] * v[i];
+        uu += u[i] * u[i];
+        vv += v[i] * v[i];
+    }
+    double c = fabs(uv) / sqrt(uu * vv);
+    return sqrt((1.0 + c) / (1.0 - c));
+}
+
+/* a + b*x1 over x1 = 1..10: columns 1 and x1, c = 55 / sqrt(10 * 385). */
+static void condition_well_conditioned(void **state)
+{
+    (void)state;
+    double x[2 * 10], y[10], ones[10], x1[10];
+    for (size_t i = 0; i < 10; i++) {
+        x[2 * i] = x1[i] = (double)(i + 1);
+        x[2 * i + 1] = 0.0;
+        ones[i] = 1.0;
+        y[i] = 4.0 + 0.5 * x1[i];
+    }
+    fit_desc d = desc2("a + b*x1", x, y, 10);
+    dm_fit_result r = run_ok(&d);
+    double want = condition_2col(ones, x1, 10);
+    assert_true(fabs(want - sqrt((1 + 55 / sqrt(3850.0)) / (1 - 55 / sqrt(3850.0)))) < 1e-12);
+    printf("condition a + b*x1: %.12g (closed form %.12g)\n", r.condition, want);
+    assert_true(rel(r.condition, want) < 1e-9);
+    assert_true(r.condition > 1.0 && r.condition < 10.0);
+    assert_false(has_warning(&r, "ill-conditioned", NULL));
+    dm_fit_result_free(&r);
+}
+
+/* a*x1 + b*x2 with x2 = x1 +- 0.01: nearly parallel columns. */
+static void condition_near_collinear(void **state)
+{
+    (void)state;
+    double x[2 * 10], y[10], x1[10], x2[10];
+    for (size_t i = 0; i < 10; i++) {
+        x[2 * i] = x1[i] = (double)(i + 1);
+        x[2 * i + 1] = x2[i] = x1[i] + (i % 2 ? 0.01 : -0.01);
+        y[i] = 2.0 * x1[i] + 3.0 * x2[i];
+    }
+    fit_desc d = desc2("a*x1 + b*x2", x, y, 10);
+    dm_fit_result r = run_ok(&d);
+    double want = condition_2col(x1, x2, 10);
+    printf("condition a*x1 + b*x2 (x2 = x1 +- 0.01): %.12g (closed form %.12g)\n  %s\n",
+           r.condition, want, r.n_warnings ? r.warnings[r.n_warnings - 1] : "(no warning)");
+    assert_true(want > FIT_ILL_CONDITIONED);
+    assert_true(rel(r.condition, want) < 1e-6);
+    assert_true(has_warning(&r, "ill-conditioned (condition", "parameters 'a' and 'b' are not "
+                            "separately determined"));
+    dm_fit_result_free(&r);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -338,6 +402,8 @@ int main(void)
         cmocka_unit_test(bad_values_excluded),
         cmocka_unit_test(power_law),
         cmocka_unit_test(bounds_and_errors),
+        cmocka_unit_test(condition_well_conditioned),
+        cmocka_unit_test(condition_near_collinear),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,9 +1,12 @@
 /* test_reports_report.c — results.json / results.csv / summary.md / report.html. */
 #include "reports/report.h"
+#include "reports/report_internal.h"
+#include "reports/metric.h"
 #include "reports/image.h"
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 
+#include <float.h>
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -172,11 +175,15 @@ static void test_markdown(void **state)
     char *t = slurp(p);
     assert_non_null(strstr(t, "## Scene `" FIXTURE_SCENE "`"));
     /* rows sorted by time; CI as a relative half-width: 0.1/1.1 = 9.1 %, 0.05/2 = 2.5 % */
-    assert_non_null(strstr(t, "| pom | 1.100 | ±9.1% | ∞ | 1.0000 | `" FIXTURE_KEY0 "` |"));
-    assert_non_null(strstr(t, "| normal | 2.000 | ±2.5% | 38.25 dB | 0.9500 | `" FIXTURE_KEY1 "` |"));
+    /* last quality column: the default Pareto metric, 1 − SSIM */
+    assert_non_null(strstr(t, "- Pareto metric: ssim (1 - SSIM)\n"));
+    assert_non_null(strstr(t, "| PSNR | SSIM | 1 - SSIM | key |"));
+    assert_non_null(strstr(t, "| pom | 1.100 | ±9.1% | ∞ | 1.0000 | 0 | `" FIXTURE_KEY0 "` |"));
+    assert_non_null(strstr(t, "| normal | 2.000 | ±2.5% | 38.25 dB | 0.9500 | 0.05 | `" FIXTURE_KEY1 "` |"));
     assert_true(strstr(t, "| pom |") < strstr(t, "| normal |"));
     /* pom is faster and exact (SSIM 1): it alone is the Pareto front */
-    assert_non_null(strstr(t, "fastest first): pom (1.1 ms, SSIM 1.000)."));
+    assert_non_null(strstr(t, "(Pareto front of 1 - SSIM against median time, fastest first): "
+                              "pom (1.1 ms, SSIM 1.000)."));
     assert_non_null(strstr(t, FIXTURE_REASON));
     assert_non_null(strstr(t, FIXTURE_LEFT_REASON));
     free(t);
@@ -323,7 +330,7 @@ static void test_html_charts_and_front(void **state)
     assert_int_equal(svgs, 3);   /* time per technique, error vs time, time vs tess_level */
     assert_null(strstr(t, "http://"));
     assert_null(strstr(t, "<b>x"));
-    const char *ol = strstr(t, "Pareto front (fastest first):</p><ol>");
+    const char *ol = strstr(t, "Pareto front of 1 - SSIM against median frame time (fastest first):</p><ol>");
     assert_non_null(ol);
     const char *end = strstr(ol, "</ol>");
     const char *k0 = strstr(ol, "00000000000000c0"), *k1 = strstr(ol, "00000000000000c1");
@@ -332,6 +339,371 @@ static void test_html_charts_and_front(void **state)
     assert_true(k0 && k1 && k2 && k0 < k1 && k1 < k2 && k2 < end);
     assert_true(!k3 || k3 > end);
     assert_true(!k4 || k4 > end);
+    free(t);
+    dm_run_free(&run);
+    unlink(p);
+    free(p);
+    rmdir(dir);
+}
+
+/* Four configurations at 1, 2, 3, 4 ms whose fronts differ by metric:
+ *   c0: SSIM 0.80, RMSE 0.05, PSNR 30, depth NaN
+ *   c1: SSIM 0.90, RMSE 0.06, PSNR 35, depth 0.3
+ *   c2: SSIM 0.95, RMSE 0.02, PSNR ∞,  depth 0.1
+ *   c3: SSIM 0.85, RMSE 0.01, PSNR 40, depth 0.2
+ * ssim (1 − SSIM .20 .10 .05 .15): c0 c1 c2 (c3 dominated by c2)
+ * rmse: c0 c2 c3 (c1 slower and worse than c0)
+ * psnr (higher is better; ∞ is best): c0 c1 c2 (c3 dominated by c2)
+ * depth-rmse (c0 has none): c1 c2 (c3 dominated by c2) */
+static void metric_run(dm_run_result *r)
+{
+    static const double ssim[] = {0.80, 0.90, 0.95, 0.85}, rmse[] = {0.05, 0.06, 0.02, 0.01};
+    static const double psnr[] = {30, 35, INFINITY, 40}, depth[] = {NAN, 0.3, 0.1, 0.2};
+    memset(r, 0, sizeof *r);
+    r->sweep = dm_xstrdup("metrics");
+    r->n_configs = 4;
+    r->configs = dm_xcalloc(4, sizeof *r->configs);
+    for (int i = 0; i < 4; i++) {
+        dm_config_result *c = &r->configs[i];
+        c->key = dm_xasprintf("00000000000000d%d", i);
+        c->scene = dm_xstrdup("s");
+        c->ok = 1;
+        dm_kv_push(&c->params, &c->n_params, "technique", "pom");
+        char steps[8];
+        snprintf(steps, sizeof steps, "%d", 8 << i);
+        dm_kv_push(&c->params, &c->n_params, "steps", steps);
+        c->n_counters = 1;
+        c->counters = dm_xcalloc(1, sizeof *c->counters);
+        fixture_timed(&c->counters[0], "WallTime", (i + 1) * 0.99e6, (i + 1) * 1e6, (i + 1) * 1.01e6);
+        fixture_quality(&c->quality, psnr[i], ssim[i], rmse[i]);
+        c->quality.depth_rmse = depth[i];
+    }
+}
+
+static void assert_front(const dm_run_result *run, const char *metric, const size_t *want, size_t n)
+{
+    size_t *front, nf = report__pareto(run, "s", &front);
+    if (nf != n)
+        fail_msg("%s: %zu front members, want %zu", metric, nf, n);
+    for (size_t i = 0; i < n; i++)
+        if (front[i] != want[i])
+            fail_msg("%s: front[%zu] = c%zu, want c%zu", metric, i, front[i], want[i]);
+    free(front);
+}
+
+static void test_metric_fronts(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    metric_run(&run);
+    static const size_t by_ssim[] = {0, 1, 2}, by_rmse[] = {0, 2, 3}, by_depth[] = {1, 2};
+    assert_front(&run, "default", by_ssim, 3);
+    assert_int_equal(report_metric_set(&run, "rmse"), 0);
+    assert_front(&run, "rmse", by_rmse, 3);
+    assert_int_equal(report_metric_set(&run, "max-error"), 0);   /* fixture: 4 × RMSE */
+    assert_front(&run, "max-error", by_rmse, 3);
+    assert_int_equal(report_metric_set(&run, "psnr"), 0);
+    assert_front(&run, "psnr", by_ssim, 3);
+    assert_int_equal(report_metric_set(&run, "depth-rmse"), 0);
+    assert_front(&run, "depth-rmse", by_depth, 2);
+    assert_int_equal(report_metric_set(&run, "ssim"), 0);
+    assert_front(&run, "ssim", by_ssim, 3);
+    /* set replaces, never duplicates; a bad name leaves the run as it was */
+    assert_int_equal(report_metric_set(&run, "1-ssim"), DM_ERR_ARG);
+    size_t seen = 0;
+    for (size_t i = 0; i < run.n_environment; i++)
+        seen += strcmp(run.environment[i].key, REPORT_METRIC_KEY) == 0;
+    assert_int_equal(seen, 1);
+    assert_string_equal(dm_kv_get(run.environment, run.n_environment, REPORT_METRIC_KEY), "ssim");
+    dm_run_free(&run);
+}
+
+static void test_metric_names(void **state)
+{
+    (void)state;
+    report_metric m = REPORT_METRIC_COUNT;
+    assert_int_equal(report_metric_parse("silhouette", &m), 0);
+    assert_int_equal(m, REPORT_METRIC_SILHOUETTE);
+    assert_int_equal(report_metric_parse("SSIM", &m), DM_ERR_ARG);
+    assert_int_equal(report_metric_parse(NULL, &m), DM_ERR_ARG);
+    assert_int_equal(m, REPORT_METRIC_SILHOUETTE);
+    dm_str e = {0};
+    report_metric_unknown("dpeth-rmse", &e);
+    assert_string_equal(dm_str_get(&e), "unknown metric 'dpeth-rmse'; did you mean 'depth-rmse'? "
+                                         "valid metrics: ssim, psnr, rmse, max-error, silhouette, depth-rmse");
+    dm_str_free(&e);
+    dm_quality q = {.present = 1, .psnr = INFINITY, .ssim = 0.25};
+    assert_true(report_metric_error(&q, REPORT_METRIC_PSNR) == -DBL_MAX);
+    assert_true(report_metric_error(&q, REPORT_METRIC_SSIM) == 0.75);
+    q.psnr = 20;
+    assert_true(report_metric_error(&q, REPORT_METRIC_PSNR) == -20);
+    assert_true(report_metric_shown(&q, REPORT_METRIC_PSNR) == 20);
+    q.present = 0;
+    assert_true(isnan(report_metric_error(&q, REPORT_METRIC_SSIM)));
+}
+
+/* The chosen metric is named in summary.md, the HTML table, chart and front. */
+static void test_metric_in_files(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_metric_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char *md = dm_xasprintf("%s/summary.md", dir), *html = dm_xasprintf("%s/report.html", dir);
+    dm_run_result run;
+    metric_run(&run);
+    assert_int_equal(report_metric_set(&run, "rmse"), 0);
+    assert_int_equal(report_write_markdown(&run, md), 0);
+    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    char *t = slurp(md);
+    assert_non_null(strstr(t, "- Pareto metric: rmse (RMSE)\n"));
+    assert_non_null(strstr(t, "(Pareto front of RMSE against median time, fastest first): "
+                              "pom steps=8 (1 ms, RMSE 0.05); then pom steps=32 (3 ms, RMSE 0.02); "
+                              "then pom steps=64 (4 ms, RMSE 0.01)."));
+    assert_non_null(strstr(t, "| PSNR | SSIM | RMSE | key |"));
+    free(t);
+    t = slurp(html);
+    assert_non_null(strstr(t, "<th>CrackPixels</th><th>RMSE</th><th>Pareto</th>"));
+    int marks = 0;   /* c0, c2, c3 marked in the table; c1 not */
+    for (const char *q = strstr(t, "<td>front</td>"); q; q = strstr(q + 1, "<td>front</td>"))
+        marks++;
+    assert_int_equal(marks, 3);
+    assert_non_null(strstr(t, "<td class=\"n\">0.06</td><td></td><td class=\"key\">00000000000000d1"));
+    assert_non_null(strstr(t, "(metric <b>rmse</b>: RMSE against the reference)"));
+    assert_non_null(strstr(t, "Pareto front of RMSE against median frame time (fastest first):"));
+    free(t);
+    dm_run_free(&run);
+    unlink(md);
+    unlink(html);
+    free(md);
+    free(html);
+    rmdir(dir);
+}
+
+/* n configurations "pom steps=i", key 00000000000000eI (I in hex), whose
+ * WallTime CI half-width is rel[i] of a 1 ms median (NaN: CI unknown). */
+static void noisy_run(dm_run_result *r, const double *rel, size_t n)
+{
+    memset(r, 0, sizeof *r);
+    r->sweep = dm_xstrdup("noise");
+    r->n_configs = n;
+    r->configs = dm_xcalloc(n, sizeof *r->configs);
+    for (size_t i = 0; i < n; i++) {
+        dm_config_result *c = &r->configs[i];
+        c->key = dm_xasprintf("00000000000000e%zx", i);
+        c->scene = dm_xstrdup("s");
+        c->ok = 1;
+        char steps[24];
+        snprintf(steps, sizeof steps, "%zu", i);
+        dm_kv_push(&c->params, &c->n_params, "technique", "pom");
+        dm_kv_push(&c->params, &c->n_params, "steps", steps);
+        c->n_counters = 1;
+        c->counters = dm_xcalloc(1, sizeof *c->counters);
+        fixture_timed(&c->counters[0], "WallTime", 1e6 * (1 - rel[i]), 1e6, 1e6 * (1 + rel[i]));
+    }
+}
+
+/* The text of the first element starting with `open` up to `close`. */
+__attribute__((noinline)) static char *between(const char *t, const char *open, const char *close)
+{
+    const char *a = strstr(t, open), *b = a ? strstr(a, close) : NULL;
+    assert_non_null(b);
+    return dm_xasprintf("%.*s", (int)(b - a), a);
+}
+
+/* Noisy = ok with a CI half-width over 5 % of the median, or unknown:
+ * e0 1 %, e1 4.9 %, e2 5.1 %, e3 20 %, e4 failed (50 %), e5 unknown, e6 no
+ * WallTime at all.  Exactly e2, e3 and e5 are named. */
+static void test_noisy_warning(void **state)
+{
+    (void)state;
+    static const double rel[] = {0.01, 0.049, 0.051, 0.20, 0.5, 0.0, 0.0};
+    char dir[] = "/tmp/dm_reports_noisy_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char *md = dm_xasprintf("%s/summary.md", dir), *html = dm_xasprintf("%s/report.html", dir);
+    dm_run_result run;
+    noisy_run(&run, rel, 7);
+    run.configs[4].ok = 0;
+    run.configs[4].reason = dm_xstrdup("crashed");
+    run.configs[5].counters[0].ci_lo = run.configs[5].counters[0].ci_hi = NAN;
+    free(run.configs[6].counters[0].name);
+    run.configs[6].counters[0].name = dm_xstrdup("CPUTime");
+    assert_int_equal(report_write_markdown(&run, md), 0);
+    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    char *t = slurp(md);
+    char *line = between(t, "- warning: ", "\n");
+    assert_string_equal(line, "- warning: 3 noisy configurations (95% CI of the median wider than ±5% "
+                              "of the median, or unknown): pom steps=2 `00000000000000e2` (±5.1%), "
+                              "pom steps=3 `00000000000000e3` (±20.0%), pom steps=5 `00000000000000e5` "
+                              "(CI unknown)");
+    free(line);
+    free(t);
+    t = slurp(html);
+    char *box = between(t, "<div class=\"warn noisy\">", "</div>");
+    assert_non_null(strstr(box, "<b>3 noisy configurations</b>"));
+    assert_null(strstr(box, "<details>"));
+    static const char *named[] = {"e2</code> ±5.1%", "e3</code> ±20.0%", "e5</code> CI unknown"};
+    for (int i = 0; i < 3; i++)
+        assert_non_null(strstr(box, named[i]));
+    for (int i = 0; i < 7; i++) {
+        char key[20];
+        snprintf(key, sizeof key, "00000000000000e%d", i);
+        assert_int_equal(strstr(box, key) != NULL, i == 2 || i == 3 || i == 5);
+    }
+    free(box);
+    free(t);
+    dm_run_free(&run);
+    /* many noisy ones: the list is collapsed; none: no box, no warning line */
+    double many[12];
+    for (int i = 0; i < 12; i++)
+        many[i] = 0.1;
+    noisy_run(&run, many, 12);
+    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    t = slurp(html);
+    assert_non_null(strstr(t, "<div class=\"warn noisy\"><details><summary><b>12 noisy configurations</b>"));
+    free(t);
+    dm_run_free(&run);
+    noisy_run(&run, many, 1);
+    run.configs[0].counters[0].ci_lo = 0.99e6;
+    run.configs[0].counters[0].ci_hi = 1.01e6;
+    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    assert_int_equal(report_write_markdown(&run, md), 0);
+    t = slurp(html);
+    assert_null(strstr(t, "noisy"));
+    free(t);
+    t = slurp(md);
+    assert_null(strstr(t, "noisy"));
+    free(t);
+    dm_run_free(&run);
+    unlink(md);
+    unlink(html);
+    free(md);
+    free(html);
+    rmdir(dir);
+}
+
+/* The chart titles of an HTML page in order: every chart is one
+ * <div class="chart" ... aria-label="T"> holding exactly one <svg> whose
+ * text (PLplot writes characters as &#xNN; references) includes T. */
+static size_t chart_titles(const char *html, char titles[][96], size_t max)
+{
+    static const char open[] = "<div class=\"chart\" role=\"img\" aria-label=\"";
+    size_t n = 0;
+    for (const char *p = strstr(html, open); p && n < max; p = strstr(p + 1, open)) {
+        const char *t = p + strlen(open), *q = strchr(t, '"');
+        snprintf(titles[n], 96, "%.*s", (int)(q - t), t);
+        const char *svg = strstr(q, "<svg"), *end = strstr(q, "</svg>");
+        assert_true(svg && end && svg == q + 2);         /* '">' then the svg */
+        const char *next = strstr(svg + 1, "<svg");
+        assert_true(!next || next > end);
+        dm_str enc = {0};
+        for (const char *c = titles[n]; *c; c++)
+            dm_str_printf(&enc, "&#x%x;", (unsigned)(unsigned char)*c);
+        char *body = dm_xasprintf("%.*s", (int)(end - svg), svg);
+        if (!strstr(body, dm_str_get(&enc)))
+            fail_msg("chart '%s': title not drawn in its SVG", titles[n]);
+        free(body);
+        dm_str_free(&enc);
+        n++;
+    }
+    size_t svgs = 0;
+    for (const char *q = strstr(html, "<svg"); q; q = strstr(q + 1, "<svg"))
+        svgs++;
+    assert_int_equal(svgs, n);
+    return n;
+}
+
+static char *html_of(const dm_run_result *run, const char *path)
+{
+    assert_int_equal(report_write_html(run, NULL, path), 0);
+    return slurp(path);
+}
+
+/* The fixture: one fit (tess-power, 2 points), key counters, no pipeline
+ * fit, one tess_level value: time per technique, error vs time, the key
+ * counter bars, and the fit's two plots.  Without its fit: no fit plot. */
+static void test_html_chart_set(void **state)
+{
+    (void)state;
+    static const char *want[] = {
+        "Median frame time per technique", "Error vs time",
+        "Key counters per configuration (relative to each maximum)",
+        "Predicted vs measured: tess-power mesh=plane", "Residuals: tess-power mesh=plane" };
+    char dir[] = "/tmp/dm_reports_charts_XXXXXX", titles[8][96];
+    assert_non_null(mkdtemp(dir));
+    char *p = dm_xasprintf("%s/report.html", dir);
+    dm_run_result run;
+    fixture_run(&run);
+    char *t = html_of(&run, p);
+    assert_int_equal(chart_titles(t, titles, 8), 5);
+    for (size_t i = 0; i < 5; i++)
+        assert_string_equal(titles[i], want[i]);
+    assert_non_null(strstr(t, "<th>points</th>"));
+    assert_non_null(strstr(t, "<td class=\"missing\">not computed</td>"));   /* condition 0 */
+    free(t);
+    run.fits[0].condition = 1234.5;
+    t = html_of(&run, p);
+    assert_non_null(strstr(t, "<td class=\"n\">0.0400</td><td class=\"n\">1.23e+03</td>"));
+    free(t);
+    run.fits[0].condition = INFINITY;
+    t = html_of(&run, p);
+    assert_non_null(strstr(t, "∞ (rank deficient)"));
+    free(t);
+    dm_fit_result_free(&run.fits[0]);
+    run.n_fits = 0;
+    t = html_of(&run, p);
+    assert_int_equal(chart_titles(t, titles, 8), 3);
+    assert_null(strstr(t, "Predicted vs measured"));
+    assert_null(strstr(t, "Residuals"));
+    free(t);
+    dm_run_free(&run);
+    unlink(p);
+    free(p);
+    rmdir(dir);
+}
+
+/* 30 configurations with a pipeline-linear fit: the breakdown shows the
+ * stage estimate, caps at the 24 slowest and says the 6 fastest are left out. */
+static void test_html_breakdown_fit_and_cap(void **state)
+{
+    (void)state;
+    double rel[30];
+    for (int i = 0; i < 30; i++)
+        rel[i] = 0.01;
+    dm_run_result run;
+    noisy_run(&run, rel, 30);
+    for (size_t i = 0; i < 30; i++) {
+        dm_config_result *c = &run.configs[i];
+        c->counters = dm_xrealloc(c->counters, 2 * sizeof *c->counters);
+        fixture_det(&c->counters[1], "SamplesPassed", 1000.0 * (double)(i + 1));
+        c->n_counters = 2;
+    }
+    run.n_fits = 1;
+    run.fits = dm_xcalloc(1, sizeof *run.fits);
+    dm_fit_result *f = run.fits;
+    f->model = dm_xstrdup("pipeline-linear");
+    f->response = dm_xstrdup("WallTime");
+    f->n_params = 2;
+    f->params = dm_xcalloc(2, sizeof *f->params);
+    f->params[0].name = dm_xstrdup("c0");
+    f->params[0].value = 2e5;
+    f->params[1].name = dm_xstrdup("c_px");
+    f->params[1].value = 30;
+    char dir[] = "/tmp/dm_reports_bd_XXXXXX", titles[8][96];
+    assert_non_null(mkdtemp(dir));
+    char *p = dm_xasprintf("%s/report.html", dir);
+    char *t = html_of(&run, p);
+    size_t n = chart_titles(t, titles, 8);
+    assert_int_equal(n, 2);   /* per technique and breakdown (no quality: no error chart; no points: no fit plots) */
+    assert_string_equal(titles[1], "Estimated time per stage (pipeline-linear fit)");
+    assert_non_null(strstr(t, "The 6 fastest configurations are left out of this chart (it shows "
+                              "the 24 slowest); all are in the table."));
+    free(t);
+    /* without the fit: the key counter bars, same cap */
+    dm_fit_result_free(&run.fits[0]);
+    run.n_fits = 0;
+    t = html_of(&run, p);
+    assert_int_equal(chart_titles(t, titles, 8), 2);
+    assert_string_equal(titles[1], "Key counters per configuration (relative to each maximum)");
     free(t);
     dm_run_free(&run);
     unlink(p);
@@ -349,6 +721,12 @@ int main(void)
         cmocka_unit_test(test_html_escaping_and_images),
         cmocka_unit_test(test_write_all),
         cmocka_unit_test(test_html_charts_and_front),
+        cmocka_unit_test(test_metric_fronts),
+        cmocka_unit_test(test_metric_names),
+        cmocka_unit_test(test_metric_in_files),
+        cmocka_unit_test(test_noisy_warning),
+        cmocka_unit_test(test_html_chart_set),
+        cmocka_unit_test(test_html_breakdown_fit_and_cap),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

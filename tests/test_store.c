@@ -209,6 +209,7 @@ static void fit_fill(dm_fit_result *f, double r2)
     f->n_points = 3;
     f->n_excluded = 1;
     f->termination = dm_xstrdup("CONVERGENCE");
+    f->condition = 1234.5;
     f->n_warnings = 2;
     f->warnings = strv(2, "near-collinear: b, p", "1 point excluded");
     f->measured = dv(3, 1.0, 2.0);
@@ -375,9 +376,9 @@ static void eq_fit(const dm_fit_result *a, const dm_fit_result *b)
         eq_dbl(a->params[i].value, b->params[i].value, "fit value");
         eq_dbl(a->params[i].stderr_, b->params[i].stderr_, "fit stderr");
     }
-    const double fa[] = { a->r2, a->rmse, a->mape, a->cv_mape };
-    const double fb[] = { b->r2, b->rmse, b->mape, b->cv_mape };
-    eq_doubles(fa, fb, 4, "fit metric");
+    const double fa[] = { a->r2, a->rmse, a->mape, a->cv_mape, a->condition };
+    const double fb[] = { b->r2, b->rmse, b->mape, b->cv_mape, b->condition };
+    eq_doubles(fa, fb, 5, "fit metric");
     assert_int_equal(a->n_points, b->n_points);
     assert_int_equal(a->n_excluded, b->n_excluded);
     EQ_STR(a->termination, b->termination, "termination");
@@ -430,7 +431,7 @@ static void test_round_trip(void **state)
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
     assert_int_equal(sql_long(s, "SELECT length(data) FROM samples"), 400);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 1);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
     dm_run_free(&got);
     store_close(s);
     /* ...and again from a fresh connection. */
@@ -624,6 +625,41 @@ static void test_misuse_and_bad_files(void **state)
     dm_str_free(&err);
     free(below);
     free(file);
+}
+
+/* A version-1 store (before fits had a condition column) opens: it is
+ * migrated to version 2, its fits read back with condition 0 ("not
+ * computed") and everything else intact; new fits keep their condition,
+ * infinity included. */
+static void test_fit_condition_migration(void **state)
+{
+    tmp *t = *state;
+    dm_run_result run, got;
+    run_full(&run, "old");
+    store *s = open_ok(t->db);
+    store_put_all(s, &run, NULL);
+    store_close(s);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "ALTER TABLE fits DROP COLUMN condition;"
+                                  "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    s = open_ok(t->db);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    assert_true(got.fits[0].condition == 0.0);
+    run.fits[0].condition = 0.0;
+    eq_run(&run, &got);
+    dm_run_free(&got);
+    run.fits[0].condition = INFINITY;
+    assert_int_equal(store_fit_put(s, "old", &run.fits[0]), 0);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    assert_int_equal(got.n_fits, 1);
+    assert_true(isinf(got.fits[0].condition) && got.fits[0].condition > 0);
+    assert_integrity_ok(s);
+    dm_run_free(&got);
+    dm_run_free(&run);
+    store_close(s);
 }
 
 /* A full disk (max_page_count) makes a put fail: nothing of it is stored,
@@ -832,7 +868,7 @@ static void test_open_alloc_faults(void **state)
         dm_str_free(&err);
         s = open_ok(t->db);
         assert_integrity_ok(s);
-        assert_int_equal(sql_long(s, "PRAGMA user_version"), 1);
+        assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
         store_close(s);
         if (!reached)
             break;
@@ -895,6 +931,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_round_trip, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_done_and_replace, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_fit_replace, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_fit_condition_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_copy_run, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_latest_and_list, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_misuse_and_bad_files, tmp_setup, tmp_teardown),

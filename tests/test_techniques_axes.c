@@ -19,22 +19,28 @@ static void test_catalog(void **state)
     static const char *const spec[] = {
         "technique", "mesh", "mesh_density", "resolution", "tess_level", "tess_spacing", "lod",
         "patch_cull", "crack_free", "height_scale", "offset_limit", "steps", "min_steps",
-        "max_steps", "shadow", "lighting", "light_count", "filter", "vertex_filter",
+        "max_steps", "shadow", "lighting", "light_count", "roughness", "filter", "vertex_filter",
         "visibility_test", "height_format", "normal_format", "albedo_format", "texture_size",
         "virtual_texture", "vt_page_size", "vt_cache_pages", "toksvig", "camera.distance",
-        "camera.azimuth", "camera.elevation", "camera.fov", "maps", NULL};
+        "camera.azimuth", "camera.elevation", "camera.fov", "camera.target_x", "camera.target_y",
+        "camera.target_z", "light.azimuth", "light.elevation", "light.distance", "maps", NULL};
     for (size_t i = 0; spec[i]; i++)
         assert_non_null(axes_find(spec[i]));
-    assert_int_equal(axes_count(), 33);
+    assert_int_equal(axes_count(), 40);
     static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
-        "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", NULL};
+        "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", "camera.target_x",
+        "camera.target_y", "camera.target_z", "light.azimuth", "light.elevation",
+        "light.distance", NULL};
     size_t n_scene = 0;
     for (size_t i = 0; i < axes_count(); i++)
         n_scene += axes_at(i)->scene;
     for (size_t i = 0; scene[i]; i++)
         assert_int_equal(axes_find(scene[i])->scene, 1);
-    assert_int_equal(n_scene, 15);   /* the 14 above + technique */
+    assert_int_equal(n_scene, 21);   /* the 20 above + technique */
+    assert_string_equal(axes_find("roughness")->def, "0.35");
+    assert_int_equal(axes_find("roughness")->scene, 0);
+    assert_string_equal(axes_find("light.distance")->def, "1.2");
     assert_string_equal(axes_find("resolution")->def, "640x360");
     assert_string_equal(axes_find("lighting")->def, "blinn-phong");
     assert_string_equal(axes_find("filter")->def, "trilinear");
@@ -87,9 +93,11 @@ static void test_messages(void **state)
     expect("tess_levle", "4", DM_ERR_UNKNOWN,
            "unknown axis 'tess_levle'; did you mean 'tess_level'? valid axes: technique, mesh, ");
     expect("zzzzzzzzzzzz", "4", DM_ERR_UNKNOWN, "unknown axis 'zzzzzzzzzzzz'; valid axes: technique");
+    /* the mesh list grows with the mesh registry: its start and the suggestion */
     expect("mesh", "cubee", DM_ERR_ARG,
            "invalid value 'cubee' for mesh; expected one of: plane, cube, triangle, fullscreen, "
-           "cylinder, sphere, terrain, asteroid, seam, halfflat (did you mean 'cube'?)");
+           "cylinder, sphere, terrain, asteroid, seam, halfflat");
+    expect("mesh", "cubee", DM_ERR_ARG, " (did you mean 'cube'?)");
     expect("tess_level", "65", DM_ERR_ARG, "invalid value '65' for tess_level; expected an integer in [1, 64]");
     expect("tess_level", "3.5", DM_ERR_ARG, "expected an integer in [1, 64]");
     expect("tess_level", "64", 0, NULL);
@@ -107,6 +115,31 @@ static void test_messages(void **state)
     expect("lighting", "cook-torrance", 0, NULL);
     expect("technique", "normall", DM_ERR_ARG, "(did you mean 'normal'?)");
     expect("technique", "debug-broken-shader", DM_ERR_ARG, "expected one of");
+}
+
+static const char *cond_value(const char *axis, void *ctx)
+{
+    return strcmp(axis, "lighting") == 0 ? (const char *)ctx : NULL;
+}
+
+/* roughness matters only with lighting=cook-torrance (its only_if); axes
+ * without a condition always hold; unknown axes never do. */
+static void test_conditions(void **state)
+{
+    (void)state;
+    assert_true(axes_condition_holds("roughness", cond_value, "cook-torrance"));
+    assert_false(axes_condition_holds("roughness", cond_value, "blinn-phong"));
+    assert_false(axes_condition_holds("roughness", NULL, NULL));   /* default blinn-phong */
+    assert_false(axes_condition_holds("roughness", cond_value, NULL));
+    assert_true(axes_condition_holds("light.azimuth", cond_value, "lambert"));
+    assert_false(axes_condition_holds("no_such_axis", NULL, NULL));
+    for (size_t i = 0; i < technique_count(); i++) {
+        const technique_desc *t = technique_at(i);
+        assert_int_equal(technique_reads_axis(t, "roughness"), technique_reads_axis(t, "lighting"));
+    }
+    expect("roughness", "0.005", DM_ERR_ARG, "expected a number in [0.01, 1]");
+    expect("light.distance", "0", 0, NULL);
+    expect("light.distance", "-1", DM_ERR_ARG, "expected a number in [0, 100]");
 }
 
 static void test_closest(void **state)
@@ -146,7 +179,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_catalog), cmocka_unit_test(test_technique_choices),
         cmocka_unit_test(test_messages), cmocka_unit_test(test_closest),
-        cmocka_unit_test(test_canonical),
+        cmocka_unit_test(test_canonical), cmocka_unit_test(test_conditions),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

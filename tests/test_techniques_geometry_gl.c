@@ -18,6 +18,7 @@
 #include "tests/tech_fixture.h"
 #include "reports/image.h"
 #include "reports/quality.h"
+#include "techniques/mesh.h"
 #include "techniques/render.h"
 
 static int setup(void **state) { return techfix_setup(state, 256, 192); }
@@ -243,6 +244,95 @@ static void test_lod_flatness(void **state)
     assert_true(pf >= pu - 0.5);
 }
 
+/* Terrain tiles are quad patches: one tile at level L (equal spacing) gives
+ * the quad domain's (L+1)² vertices and 2L² triangles; a tile seen from
+ * below is culled by patch_cull. */
+static void test_terrain_quad_counts(void **state)
+{
+    (void)state;
+    for (int L = 1; L <= 64; L = L < 4 ? L + 1 : L * 2) {
+        char spec[256];
+        snprintf(spec, sizeof spec, "technique=tess-displacement mesh=terrain mesh_density=1 "
+                 "tess_level=%d tess_spacing=equal camera.elevation=60 camera.distance=6 height_scale=0", L);
+        stats st = count(spec);
+        assert_int_equal(st.patches, 1);
+        assert_int_equal(st.tes, (GLuint64)(L + 1) * (GLuint64)(L + 1));
+        assert_int_equal(st.clip_out, 2 * (GLuint64)L * (GLuint64)L);
+    }
+    const char *below = "technique=tess-displacement mesh=terrain mesh_density=1 tess_level=8 "
+                        "camera.elevation=-60";
+    char spec[256];
+    snprintf(spec, sizeof spec, "%s patch_cull=off", below);
+    assert_int_equal(count(spec).tes, 81);
+    snprintf(spec, sizeof spec, "%s patch_cull=on", below);
+    assert_int_equal(count(spec).tes, 0);
+    /* 16 × 16 tiles, all drawn: 256 patches. */
+    assert_int_equal(count("technique=tess-displacement mesh=terrain tess_level=4 camera.distance=6 "
+                           "camera.elevation=70").patches, 256);
+}
+
+/* S4's terrain: with lod distance, neighbouring tiles get different levels;
+ * per-patch levels tear the displaced surface, edge levels from shared
+ * edges (crack_free on) do not. */
+static void test_terrain_cracks(void **state)
+{
+    (void)state;
+    const char *base = "technique=tess-displacement mesh=terrain mesh_density=8 tess_level=24 "
+                       "lod=distance height_scale=0.4 camera.distance=2.2 camera.elevation=35 maps=stones";
+    char spec[320];
+    snprintf(spec, sizeof spec, "%s crack_free=off", base);
+    long off = cracks(spec);
+    snprintf(spec, sizeof spec, "%s crack_free=on", base);
+    long on = cracks(spec);
+    printf("CrackPixels terrain (quad patches, lod distance): crack_free off %ld, on %ld\n", off, on);
+    assert_true(off > 0);
+    assert_int_equal(on, 0);
+}
+
+/* S4's experiment: the reduced asteroid (320 triangles) displaced by the
+ * baked maps approaches the original (81 920 CPU-displaced triangles) as the
+ * tessellation level grows, and is far closer than the undisplaced sphere:
+ * silhouette error (1 − IoU of coverage) and PSNR of the lit images. */
+static void test_asteroid_reduced_vs_original(void **state)
+{
+    (void)state;
+    const char *cam = "camera.distance=3.2 lighting=lambert maps=asteroid texture_size=1024";
+    char orig[256], spec[256];
+    snprintf(orig, sizeof orig, "technique=phong mesh=asteroid %s", cam);
+    img a;
+    render_img(orig, &a);
+    unsigned char *ma = malloc((size_t)a.w * a.h), *mb = malloc((size_t)a.w * a.h);
+    quality_coverage(&a, ma);
+    static const int levels[] = {0, 1, 4, 16};
+    double sil[4], psnr[4];
+    for (int i = 0; i < 4; i++) {
+        if (levels[i] == 0)
+            snprintf(spec, sizeof spec, "technique=normal mesh=asteroid-reduced %s", cam);
+        else
+            snprintf(spec, sizeof spec, "technique=tess-displacement mesh=asteroid-reduced "
+                     "height_scale=%.2f tess_level=%d %s", MESH_ASTEROID_SCALE, levels[i], cam);
+        img b;
+        img_metrics m;
+        render_img(spec, &b);
+        quality_coverage(&b, mb);
+        sil[i] = quality_silhouette_error(ma, mb, (size_t)a.w * a.h);
+        assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
+        assert_int_equal(m.nonfinite, 0);
+        psnr[i] = m.psnr;
+        printf("asteroid-reduced %s level %d vs original: silhouette error %.4f, PSNR %.2f dB\n",
+               levels[i] ? "tess-displacement" : "normal (no displacement)", levels[i], sil[i], psnr[i]);
+        img_free(&b);
+    }
+    assert_true(sil[3] < 0.03);
+    assert_true(sil[3] < 0.25 * sil[0]);
+    assert_true(sil[3] < sil[1]);
+    assert_true(psnr[3] > psnr[1] + 1.0);
+    assert_true(psnr[3] > psnr[0] + 3.0);
+    free(ma);
+    free(mb);
+    img_free(&a);
+}
+
 /* Manual bilinear (4 fetches + 2 lerps) matches the hardware filter. */
 static void test_bilinear_manual_matches_hw(void **state)
 {
@@ -285,11 +375,27 @@ static double draw_ms(const char *spec)
     return t[2];
 }
 
-/* visibility_test: the visible part of the image is unchanged (vertices in
- * the widened volume are displaced as before), and a mesh entirely inside
- * the view renders identically.  The vertex time of both is printed: on
- * llvmpipe it does not drop (masked SIMD execution runs the skipped fetches
- * too), so it is reported, not asserted. */
+/* Vertex-shader invocations of one draw of spec. */
+static GLuint64 vs_invocations(const char *spec)
+{
+    tech_item it = prepare(spec);
+    GLuint q;
+    glGenQueries(1, &q);
+    glBeginQuery(GL_VERTEX_SHADER_INVOCATIONS_ARB, q);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    glEndQuery(GL_VERTEX_SHADER_INVOCATIONS_ARB);
+    GLuint64 n;
+    glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
+    glDeleteQueries(1, &q);
+    tech_release(F.r, it);
+    return n;
+}
+
+/* visibility_test: the image is unchanged, and with about half the grid
+ * off-screen (top view, fov 20°: rows with |z| > ~0.6 are out) the vertex
+ * stage runs clearly less (chunk culling; the per-vertex skip alone saves
+ * nothing on llvmpipe).  With the whole grid in view nothing is culled.
+ * The vertex time of both is printed (with rasterizer discard). */
 static void test_visibility_test(void **state)
 {
     (void)state;
@@ -302,12 +408,18 @@ static void test_visibility_test(void **state)
         snprintf(b, sizeof b, "technique=vertex-displacement mesh=plane mesh_density=400 "
                  "height_scale=0.1 vertex_filter=mip-lerp %s visibility_test=on", view[i]);
         double p = psnr_of(a, b);
+        GLuint64 vs_off = vs_invocations(a), vs_on = vs_invocations(b);
         glEnable(GL_RASTERIZER_DISCARD);
         double off = draw_ms(a), on = draw_ms(b);
         glDisable(GL_RASTERIZER_DISCARD);
-        printf("visibility test (%s): PSNR on vs off %.2f dB; vertex time off %.2f ms, on %.2f ms\n",
-               view[i], p, off, on);
+        printf("visibility test (%s): PSNR on vs off %.2f dB; VSInvocations off %llu, on %llu; "
+               "vertex time off %.2f ms, on %.2f ms\n", view[i], p, (unsigned long long)vs_off,
+               (unsigned long long)vs_on, off, on);
         assert_true(p >= 60.0);
+        if (i == 0)
+            assert_true((double)vs_on <= 0.85 * (double)vs_off);
+        else
+            assert_int_equal(vs_on, vs_off);
     }
 }
 
@@ -363,6 +475,9 @@ int main(void)
         cmocka_unit_test(test_lod_distance_monotonic),
         cmocka_unit_test(test_cracks_at_uv_seam),
         cmocka_unit_test(test_lod_flatness),
+        cmocka_unit_test(test_terrain_quad_counts),
+        cmocka_unit_test(test_terrain_cracks),
+        cmocka_unit_test(test_asteroid_reduced_vs_original),
         cmocka_unit_test(test_bilinear_manual_matches_hw),
         cmocka_unit_test(test_visibility_test),
         cmocka_unit_test(test_reference_mesh),

@@ -13,6 +13,8 @@
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
+#include "techniques/cull.h"
+#include "techniques/maps.h"
 #include "techniques/mesh.h"
 #include "techniques/user_mesh.h"
 
@@ -39,6 +41,168 @@ static void test_terrain(void **state)
         uses += m.indices[i] == 12;
     assert_int_equal(uses, 6);
     assert_int_equal(mesh_build(&(mesh_desc){.name = "terrain", .density = 513}, &m), DM_ERR_RANGE);
+    mesh_free(&m);
+}
+
+/* The terrain's tiles as quad patches: 4 indices per tile after the
+ * triangles, corners in the quad domain's order (u,v) = (0,0), (1,0),
+ * (1,1), (0,1), i.e. UV steps of +1/t along u then v; MeshBytes counts them. */
+static void test_terrain_quads(void **state)
+{
+    (void)state;
+    const int t = 4;
+    mesh_data m = build("terrain", t);
+    assert_int_equal(m.n_quad_indices, 4 * t * t);
+    assert_int_equal(mesh_patch_vertices("terrain"), 4);
+    assert_int_equal(mesh_patch_vertices("plane"), 3);
+    static const float du[4] = {0, 1, 1, 0}, dv[4] = {0, 0, 1, 1};
+    for (size_t q = 0; q < (size_t)(t * t); q++) {
+        const uint32_t *c = &m.indices[m.n_indices + 4 * q];
+        const float *uv0 = m.vertices[c[0]].uv;
+        for (int k = 0; k < 4; k++) {
+            assert_float_equal(m.vertices[c[k]].uv[0], uv0[0] + du[k] / t, 1e-6);
+            assert_float_equal(m.vertices[c[k]].uv[1], uv0[1] + dv[k] / t, 1e-6);
+        }
+        /* the two triangles of the same tile use these corners */
+        const uint32_t *tri = &m.indices[6 * q];
+        assert_int_equal(tri[0], c[0]);
+        assert_int_equal(tri[1], c[1]);
+        assert_int_equal(tri[2], c[2]);
+        assert_int_equal(tri[5], c[3]);
+    }
+    assert_int_equal(mesh_bytes(&m), 25 * sizeof(mesh_vertex) + (96 + 64) * sizeof(uint32_t));
+    mesh_free(&m);
+}
+
+/* The reduced asteroid is the sphere at radius RMID with the sphere's UVs:
+ * mesh_sphere_dir(uv) gives back each vertex's direction. */
+static void test_asteroid_reduced(void **state)
+{
+    (void)state;
+    mesh_data m = build("asteroid-reduced", 0);
+    assert_int_equal(m.n_indices, 3 * 320);
+    assert_int_equal(m.n_quad_indices, 0);
+    for (size_t i = 0; i < m.n_vertices; i++) {
+        const float *p = m.vertices[i].pos, *n = m.vertices[i].nrm;
+        float r = sqrtf(p[0] * p[0] + p[1] * p[1] + p[2] * p[2]), d[3];
+        assert_float_equal(r, MESH_ASTEROID_RMID, 1e-5);
+        mesh_sphere_dir(m.vertices[i].uv[0], m.vertices[i].uv[1], d);
+        for (int k = 0; k < 3; k++) {
+            assert_float_equal(n[k], p[k] / r, 1e-5);
+            assert_float_equal(d[k], p[k] / r, 2e-5);
+        }
+    }
+    mesh_free(&m);
+    mesh_desc bad = {.name = "asteroid-reduced", .density = 8};
+    assert_int_equal(mesh_build(&bad, &m), DM_ERR_RANGE);
+}
+
+/* Surface point of the asteroid at sphere UV (u, v), in double. */
+static void asteroid_point(double u, double v, double s[3])
+{
+    double lon = (u - 0.5) * 2 * M_PI, lat = (v - 0.5) * M_PI;
+    float d[3] = {(float)(cos(lat) * sin(lon)), (float)sin(lat), (float)(cos(lat) * cos(lon))};
+    double r = mesh_asteroid_radius(d);
+    for (int k = 0; k < 3; k++)
+        s[k] = r * d[k];
+}
+
+/* The `asteroid` maps are baked from the same function as the original
+ * mesh: at every texel centre the height rebuilds the radius through the
+ * displacement rule (RMID + (h − 0.5)·SCALE = r), and the normal equals
+ * the normal of the parametric surface S(u,v) = r·d (cross product of
+ * finite-difference partials, computed here independently) in the sphere's
+ * tangent frame, within 0.5°.  Both layouts carry the baked normals. */
+static void test_asteroid_maps_baked(void **state)
+{
+    (void)state;
+    const int n = 64;
+    maps_set full, compact;
+    assert_int_equal(maps_generate(&(maps_desc){.name = "asteroid", .size = n}, &full), 0);
+    assert_int_equal(maps_generate(&(maps_desc){.name = "asteroid", .size = n, .compact = 1}, &compact), 0);
+    assert_non_null(compact.normal);
+    double worst = 0;
+    for (int y = 0; y < n; y++)
+        for (int x = 0; x < n; x++) {
+            size_t i = (size_t)y * n + (size_t)x;
+            double u = (x + 0.5) / n, v = (y + 0.5) / n, s[3], su[3], sv[3], a[3], b[3];
+            asteroid_point(u, v, s);
+            double r = sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+            assert_float_equal(MESH_ASTEROID_RMID + (full.height[i] - 0.5) * MESH_ASTEROID_SCALE, r, 1e-5);
+            assert_float_equal(compact.height[i], full.height[i], 0);
+            for (int k = 0; k < 3; k++)
+                assert_float_equal(compact.normal[3 * i + k], full.normal[3 * i + k], 0);
+            if (y < 4 || y >= n - 4)
+                continue;   /* the parametrisation degenerates near the poles */
+            const double e = 1e-4;
+            asteroid_point(u + e, v, a);
+            asteroid_point(u - e, v, b);
+            for (int k = 0; k < 3; k++)
+                su[k] = a[k] - b[k];
+            asteroid_point(u, v + e, a);
+            asteroid_point(u, v - e, b);
+            for (int k = 0; k < 3; k++)
+                sv[k] = a[k] - b[k];
+            double c[3] = {su[1] * sv[2] - su[2] * sv[1], su[2] * sv[0] - su[0] * sv[2],
+                           su[0] * sv[1] - su[1] * sv[0]};
+            double cl = sqrt(c[0] * c[0] + c[1] * c[1] + c[2] * c[2]);
+            double lon = (u - 0.5) * 2 * M_PI, lat = (v - 0.5) * M_PI;
+            double T[3] = {cos(lon), 0, -sin(lon)};
+            double B[3] = {-sin(lat) * sin(lon), cos(lat), -sin(lat) * cos(lon)};
+            double N[3] = {cos(lat) * sin(lon), sin(lat), cos(lat) * cos(lon)};
+            double ts[3] = {0, 0, 0};
+            for (int k = 0; k < 3; k++) {
+                ts[0] += c[k] * T[k] / cl;
+                ts[1] += c[k] * B[k] / cl;
+                ts[2] += c[k] * N[k] / cl;
+            }
+            const float *m = &full.normal[3 * i];
+            double dot = ts[0] * m[0] + ts[1] * m[1] + ts[2] * m[2];
+            double ang = acos(fmin(1.0, dot)) * 180 / M_PI;
+            worst = fmax(worst, ang);
+        }
+    printf("asteroid maps: worst baked-normal angle vs the parametric normal %.4f deg\n", worst);
+    assert_true(worst < 0.5);
+    maps_free(&full);
+    maps_free(&compact);
+}
+
+/* Chunked culling on a 10 × 10-quad plane (20 triangles per row = one
+ * chunk per row; row j spans z in [0.8 − 0.2j, 1 − 0.2j]).  With clip
+ * z = z + 1.5 (w = 1) a row is beyond the far plane z > w(1 + margin) when
+ * its nearest z, less the pad, exceeds w(1 + margin) − 1.5: rows 0..6 go
+ * with neither pad nor margin, 0..5 with pad 0.1, 0..3 with margin 0.5; the
+ * rest is one merged range. */
+static void test_cull_chunks(void **state)
+{
+    (void)state;
+    mesh_data m = build("plane", 11);
+    cull_set s;
+    assert_int_equal(cull_build(&m, 20, &s), 0);
+    assert_int_equal(s.n, 10);
+    assert_float_equal(s.chunks[3].lo[2], 0.2f, 1e-6);
+    assert_float_equal(s.chunks[3].hi[2], 0.4f, 1e-6);
+    float mvp[16] = {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 0, 0, 1.5f, 1};
+    size_t first[10], count[10];
+    static const struct { float pad, margin; size_t culled_rows; } cases[] = {
+        {0, 0, 7}, {0.1f, 0, 6}, {0, 0.5f, 4}};
+    for (int c = 0; c < 3; c++) {
+        assert_int_equal(cull_visible(&s, mvp, cases[c].pad, cases[c].margin, first, count), 1);
+        assert_int_equal(first[0], 60 * cases[c].culled_rows);
+        assert_int_equal(count[0], 60 * (10 - cases[c].culled_rows));
+    }
+    /* Everything inside: one range covering the whole list. */
+    mvp[14] = 0;
+    assert_int_equal(cull_visible(&s, mvp, 0, 0, first, count), 1);
+    assert_int_equal(first[0], 0);
+    assert_int_equal(count[0], m.n_indices);
+    /* A last, shorter chunk; a bad chunk size. */
+    cull_free(&s);
+    assert_int_equal(cull_build(&m, 64, &s), 0);
+    assert_int_equal(s.n, 4);
+    assert_int_equal(s.chunks[3].count, 3 * (200 - 3 * 64));
+    cull_free(&s);
+    assert_int_equal(cull_build(&m, 0, &s), DM_ERR_ARG);
     mesh_free(&m);
 }
 
@@ -214,6 +378,10 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_terrain),
         cmocka_unit_test(test_asteroid),
+        cmocka_unit_test(test_terrain_quads),
+        cmocka_unit_test(test_cull_chunks),
+        cmocka_unit_test(test_asteroid_reduced),
+        cmocka_unit_test(test_asteroid_maps_baked),
         cmocka_unit_test(test_seam_and_halfflat),
         cmocka_unit_test(test_height_bilinear),
         cmocka_unit_test(test_subdivide_displace),

@@ -40,7 +40,7 @@ static void test_all_sets(void **state)
         }
         maps_free(&m);
     }
-    assert_int_equal(count, 6);
+    assert_int_equal(count, 7);   /* bricks stones terrain checker sine flat asteroid */
 }
 
 /* sine: h = 0.5 + 0.25 (sin kx + sin ky) at texel centres, and its normal

@@ -8,6 +8,9 @@
 #   timed        T with --timed-seconds 1 prints a WallTime median in ns/frame
 #   config       --config KEY --results DIR renders that configuration
 #   no-display   without DISPLAY: exit 2 and a message naming xvfb-run
+#   light-normals  L, N and right-drag pan run with no GL error; an N
+#                screenshot equals `dmbench render --debug normals`, and L for
+#                5 frames equals a batch render at light.azimuth 45 + 5*2
 # Needs DMBENCH_BINARY; VIEWER_IMGCMP is the helper test_viewer_imgcmp.
 set -u
 BIN=${DMBENCH_BINARY:?DMBENCH_BINARY must point at dmbench}
@@ -104,6 +107,29 @@ no-display)
     [ $rc -eq 2 ] || fail "expected exit 2 without a display, got $rc"
     echo "$out" | grep -q "xvfb-run" || fail "the message must suggest xvfb-run"
     echo "ok: no display -> exit 2"
+    ;;
+light-normals)
+    out=$(view technique=pom resolution=256x144 --keys 'L..N..{pan:20,-10}.l.n.r..{esc}' 2>&1)
+    rc=$?
+    echo "$out"
+    [ $rc -eq 0 ] || fail "L/N/pan script exited $rc"
+    echo "$out" | grep -q "GL error" && fail "GL errors reported"
+    echo "$out" | grep -q "light orbit on" || fail "L did not turn the light orbit on"
+    echo "$out" | grep -q "normals view on" || fail "N did not turn the normals view on"
+    view technique=pom resolution=256x144 --keys 'N' --frames 3 --screenshot n-a.png >/dev/null ||
+        fail "view with N exited $?"
+    "$BIN" render technique=pom resolution=256x144 --debug normals --png n-b.png >/dev/null ||
+        fail "render --debug normals exited $?"
+    "${VIEWER_IMGCMP:?}" n-a.png n-b.png 50 || fail "N screenshot != render --debug normals"
+    # the orbit advances once per frame from the frame L is typed: 5 frames -> 45 + 10
+    view technique=normal resolution=256x144 --keys 'L' --frames 5 --screenshot l-a.png >/dev/null ||
+        fail "view with L exited $?"
+    "$BIN" render technique=normal resolution=256x144 light.azimuth=55 --png l-b.png >/dev/null ||
+        fail "render light.azimuth=55 exited $?"
+    "${VIEWER_IMGCMP:?}" l-a.png l-b.png 50 || fail "L for 5 frames != light.azimuth=55"
+    "$BIN" render technique=normal resolution=256x144 --png l-c.png >/dev/null
+    "${VIEWER_IMGCMP:?}" l-a.png l-c.png 50 >/dev/null 2>&1 && fail "L did not move the light"
+    echo "ok: L, N and pan; N equals the batch normals view; L is deterministic"
     ;;
 *) fail "unknown mode $MODE" ;;
 esac

@@ -151,6 +151,66 @@ static void test_toggles_and_requests(void **s)
     viewer_state_free(&st);
 }
 
+/* L: light.azimuth advances exactly VIEWER_LIGHT_ORBIT_DEG per tick while on
+ * (wrapping at 180); N toggles the normals view and asks for a re-prepare. */
+static void test_light_orbit_and_normals(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, "light.azimuth", "170", NULL, NULL);
+    viewer_state_tick(&st);                   /* orbit off: nothing moves */
+    assert_string_equal(viewer_state_get(&st, "light.azimuth"), "170");
+    assert_int_equal(st.dirty, 0);
+    type(&st, "L");
+    assert_int_equal(st.light_orbit, 1);
+    assert_non_null(strstr(dm_str_get(&st.msg), "light orbit on"));
+    for (int k = 0; k < 4; k++)
+        viewer_state_tick(&st);               /* 170 + 4·2 = 178 */
+    assert_string_equal(viewer_state_get(&st, "light.azimuth"), "178");
+    assert_int_equal(st.dirty, 1);
+    viewer_state_tick(&st);                   /* 180 wraps to −180 */
+    viewer_state_tick(&st);
+    assert_string_equal(viewer_state_get(&st, "light.azimuth"), "-178");
+    type(&st, "l");
+    viewer_state_tick(&st);
+    assert_string_equal(viewer_state_get(&st, "light.azimuth"), "-178");
+    st.dirty = 0;
+    type(&st, "N");
+    assert_int_equal(st.normals, 1);
+    assert_int_equal(st.dirty, 1);
+    type(&st, "n");
+    assert_int_equal(st.normals, 0);
+    assert_non_null(strstr(viewer_state_help(), "N  normals view"));
+    assert_non_null(strstr(viewer_state_help(), "right drag pans"));
+    viewer_state_free(&st);
+}
+
+/* Right-drag pan: target += distance·0.002·(−dx·right + dy·up).  At azimuth
+ * 90, elevation 0, distance 5: right = (0, 0, −1), up = (0, 1, 0), so a pan
+ * of (100, −50) px moves the target by 0.01·(0, −50, 100) = (0, −0.5, 1);
+ * R brings it back to the command line's target. */
+static void test_pan_and_reset(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, "camera.azimuth", "90", "camera.elevation", "0");
+    viewer_state_set(&st, "camera.distance", "5");
+    viewer_state_pan(&st, 100, -50);
+    assert_string_equal(viewer_state_get(&st, "camera.target_x"), "0");
+    assert_string_equal(viewer_state_get(&st, "camera.target_y"), "-0.5");
+    assert_string_equal(viewer_state_get(&st, "camera.target_z"), "1");
+    viewer_state_set(&st, "camera.azimuth", "0");   /* right = +X: dx 10 → x −0.1 */
+    viewer_state_pan(&st, 10, 0);
+    assert_string_equal(viewer_state_get(&st, "camera.target_x"), "-0.1");
+    assert_string_equal(viewer_state_get(&st, "camera.target_z"), "1");
+    type(&st, "R");
+    assert_string_equal(viewer_state_get(&st, "camera.target_x"), "0");
+    assert_string_equal(viewer_state_get(&st, "camera.target_y"), "0");
+    assert_string_equal(viewer_state_get(&st, "camera.target_z"), "0");
+    assert_string_equal(viewer_state_get(&st, "camera.azimuth"), "90");
+    viewer_state_free(&st);
+}
+
 static void test_restore_undoes_without_dirty(void **s)
 {
     (void)s;
@@ -172,9 +232,11 @@ static void test_script_events(void **s)
     viewer_event *ev = NULL;
     size_t n = 0;
     dm_str err = {0};
-    assert_int_equal(viewer_script_parse("a H. {wait:2}{ESC}{drag:3,-4}{wheel:-1}{space}{dot}",
-                                         &ev, &n, &err), 0);
-    assert_int_equal(n, 10);
+    assert_int_equal(viewer_script_parse("a H. {wait:2}{ESC}{drag:3,-4}{wheel:-1}{space}{dot}"
+                                         "{pan:-5,7}", &ev, &n, &err), 0);
+    assert_int_equal(n, 11);
+    assert_int_equal(ev[10].kind, VIEWER_EV_PAN);
+    assert_true(ev[10].dx == -5.0 && ev[10].dy == 7.0);
     assert_int_equal(ev[0].kind, VIEWER_EV_CHAR);
     assert_int_equal(ev[0].ch, 'a');
     assert_int_equal(ev[1].ch, 'H');
@@ -246,6 +308,8 @@ int main(void)
         cmocka_unit_test(test_height_scale_steps_only_where_read),
         cmocka_unit_test(test_mouse_orbit_zoom_and_reset),
         cmocka_unit_test(test_toggles_and_requests),
+        cmocka_unit_test(test_light_orbit_and_normals),
+        cmocka_unit_test(test_pan_and_reset),
         cmocka_unit_test(test_restore_undoes_without_dirty),
         cmocka_unit_test(test_script_events),
         cmocka_unit_test(test_script_errors_name_the_offset),

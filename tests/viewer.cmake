@@ -8,7 +8,7 @@ if(DM_SANITIZE)
   # llvmpipe's first-draw JIT leak (see dm_add_gl): leak checks off for GL runs.
   list(APPEND viewer_env "ASAN_OPTIONS=detect_leaks=0")
 endif()
-foreach(mode batch-equal key-script timed config no-display)
+foreach(mode batch-equal key-script timed config no-display light-normals)
   add_test(NAME test_viewer_${mode} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/test_viewer.sh ${mode})
   set_tests_properties(test_viewer_${mode} PROPERTIES TIMEOUT 300 LABELS viewer
     ENVIRONMENT "${viewer_env}")

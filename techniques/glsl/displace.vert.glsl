@@ -15,7 +15,9 @@
 // reference-mesh technique): no fetch, positions are used as they are.
 // VISIBILITY_TEST_ON: a vertex whose undisplaced clip position lies outside
 // the view volume widened by VISIBILITY_MARGIN (relative to w) skips the
-// fetch and the displacement (S1 §6.2.5).
+// fetch and the displacement (S1 §6.2.5).  The renderer also draws only the
+// chunks of the triangle list whose padded bounds can be seen (cull.h,
+// RENDER__VISIBILITY_MARGIN must equal VISIBILITY_MARGIN).
 #include "displace.glsl"
 
 layout(location = 0) in vec3 a_pos;

@@ -5,6 +5,11 @@
 // NORMAL_FORMAT_BC3NM (DXT5 with x in alpha: x,y = .a,.g, z reconstructed).
 // A reconstructed z makes the normal unit length again, so Toksvig sees no
 // shortening with the two-channel formats (nlen = 1).
+// DEBUG_NORMALS (the renderer's normals view): the output is the world-space
+// shading normal n*0.5+0.5.  The renderer then puts light slots 0..3 at the
+// origin and the world unit vectors X, Y, Z, so light_ts[k] - light_ts[0] is
+// the tangent-space image of world axis k: a row of the tangent-to-world
+// frame of every vertex stage, with no change to SurfaceData.
 #include "lighting.glsl"
 #include "vt.glsl"
 
@@ -147,6 +152,17 @@ float self_shadow(vec2 uv, vec3 l)
 #endif
 }
 
+#ifdef DEBUG_NORMALS
+// World-space normal of tangent-space n (see the top comment).
+vec3 debug_world_normal(vec3 n)
+{
+    vec3 w = vec3(dot(vi.light_ts[1] - vi.light_ts[0], n), dot(vi.light_ts[2] - vi.light_ts[0], n),
+                  dot(vi.light_ts[3] - vi.light_ts[0], n));
+    float len = length(w);
+    return len > 1e-6 ? w / len : vec3(0.0, 0.0, 1.0);
+}
+#endif
+
 void main()
 {
     g_dx = dFdx(vi.uv);
@@ -155,7 +171,10 @@ void main()
     vec2 uv = parallax_uv(vi.uv, v);
     vt_feedback(vi.uv, uv, g_dx, g_dy);
     vec3 albedo = map_sample(t_albedo, uv, g_dx, g_dy).rgb;
-#ifdef SURF_UNLIT
+#if defined(DEBUG_NORMALS)
+    float nlen;
+    o_color = vec4(debug_world_normal(surface_normal(uv, nlen)) * 0.5 + 0.5, 1.0);
+#elif defined(SURF_UNLIT)
     o_color = vec4(albedo, 1.0);
 #else
     float nlen;

@@ -11,9 +11,20 @@
 // PATCH_CULL_ON: levels 0 (patch discarded) when the patch faces away from
 // the camera or all its vertices lie outside one clip plane widened by
 // CULL_MARGIN (relative to w) — displacement can move it back into view.
+// TESS_QUADS: 4-vertex quad patches (the terrain tiles, SEEDS S4), corners
+// in domain order (0,0), (1,0), (1,1), (0,1); outer level i belongs to
+// edge u=0, v=0, u=1, v=1 as GL defines them, inner 0 / 1 to the u / v
+// direction.  Otherwise triangle patches: outer level i belongs to the edge
+// opposite vertex i.
 #include "common.glsl"
 
-layout(vertices = 3) out;
+#ifdef TESS_QUADS
+#define PATCH_N 4
+#else
+#define PATCH_N 3
+#endif
+
+layout(vertices = PATCH_N) out;
 
 layout(binding = 0) uniform sampler2D t_height;
 uniform int u_tess_level;
@@ -60,34 +71,63 @@ float edge_level(int a, int b)
 #endif
 }
 
+// Corners of outer edge i: for triangles the edge opposite vertex i, for
+// quads the GL order u=0 (0-3), v=0 (0-1), u=1 (1-2), v=1 (3-2).
+ivec2 outer_edge(int i)
+{
+#ifdef TESS_QUADS
+    const ivec2 e[4] = ivec2[4](ivec2(0, 3), ivec2(0, 1), ivec2(1, 2), ivec2(3, 2));
+#else
+    const ivec2 e[3] = ivec2[3](ivec2(1, 2), ivec2(2, 0), ivec2(0, 1));
+#endif
+    return e[i];
+}
+
+vec3 patch_centre()
+{
+    vec3 c = vec3(0.0);
+    for (int i = 0; i < PATCH_N; i++)
+        c += wpos(i);
+    return c / float(PATCH_N);
+}
+
 float patch_level()
 {
 #if defined(LOD_DISTANCE)
-    return float(u_tess_level) / max(distance(u_camera_pos, (wpos(0) + wpos(1) + wpos(2)) / 3.0), 1e-3);
+    return float(u_tess_level) / max(distance(u_camera_pos, patch_centre()), 1e-3);
 #elif defined(LOD_FLATNESS)
-    // Three edges and three medians: 6 × 9 samples over the patch.
-    vec2 c = (gi[0].uv + gi[1].uv + gi[2].uv) / 3.0;
+    // Every edge and every corner-to-centre line: 2 × PATCH_N × 9 samples.
+    vec2 c = vec2(0.0);
+    for (int i = 0; i < PATCH_N; i++)
+        c += gi[i].uv / float(PATCH_N);
     float r = 0.0;
-    for (int i = 0; i < 3; i++)
-        r = max(r, max(range_along(gi[i].uv, gi[(i + 1) % 3].uv, 8), range_along(gi[i].uv, c, 8)));
+    for (int i = 0; i < PATCH_N; i++)
+        r = max(r, max(range_along(gi[i].uv, gi[(i + 1) % PATCH_N].uv, 8), range_along(gi[i].uv, c, 8)));
     return r > FLAT_EPS ? float(u_tess_level) : 1.0;
 #else
-    return max(edge_level(0, 1), max(edge_level(1, 2), edge_level(2, 0)));
+    float l = 0.0;
+    for (int i = 0; i < PATCH_N; i++)
+        l = max(l, edge_level(i, (i + 1) % PATCH_N));
+    return l;
 #endif
 }
 
 bool culled()
 {
 #ifdef PATCH_CULL_ON
-    vec3 p0 = wpos(0), p1 = wpos(1), p2 = wpos(2);
-    if (dot(cross(p1 - p0, p2 - p0), u_camera_pos - p0) < 0.0)
+#ifdef TESS_QUADS
+    vec3 face = cross(wpos(2) - wpos(0), wpos(3) - wpos(1));   // diagonals
+#else
+    vec3 face = cross(wpos(1) - wpos(0), wpos(2) - wpos(0));
+#endif
+    if (dot(face, u_camera_pos - patch_centre()) < 0.0)
         return true;
-    vec4 c[3];
-    for (int i = 0; i < 3; i++)
+    vec4 c[PATCH_N];
+    for (int i = 0; i < PATCH_N; i++)
         c[i] = u_view_proj * vec4(wpos(i), 1.0);
     for (int ax = 0; ax < 3; ax++) {
         bool lo = true, hi = true;
-        for (int i = 0; i < 3; i++) {
+        for (int i = 0; i < PATCH_N; i++) {
             float w = c[i].w * (1.0 + CULL_MARGIN);
             lo = lo && c[i][ax] < -w;
             hi = hi && c[i][ax] > w;
@@ -108,21 +148,28 @@ void main()
     // Every invocation computes the same levels (no early return: llvmpipe
     // drops patches when only invocation 0 writes them).
     if (culled()) {
-        gl_TessLevelOuter[0] = gl_TessLevelOuter[1] = gl_TessLevelOuter[2] = 0.0;
-        gl_TessLevelInner[0] = 0.0;
+        for (int i = 0; i < 4; i++)
+            gl_TessLevelOuter[i] = 0.0;
+        gl_TessLevelInner[0] = gl_TessLevelInner[1] = 0.0;
         return;
     }
 #ifdef CRACK_FREE_ON
-    float e0 = clamp(edge_level(1, 2), 1.0, 64.0);
-    float e1 = clamp(edge_level(2, 0), 1.0, 64.0);
-    float e2 = clamp(edge_level(0, 1), 1.0, 64.0);
-    gl_TessLevelOuter[0] = e0;
-    gl_TessLevelOuter[1] = e1;
-    gl_TessLevelOuter[2] = e2;
-    gl_TessLevelInner[0] = max(e0, max(e1, e2));
+    float e[PATCH_N];
+    for (int i = 0; i < PATCH_N; i++) {
+        ivec2 ab = outer_edge(i);
+        e[i] = clamp(edge_level(ab.x, ab.y), 1.0, 64.0);
+        gl_TessLevelOuter[i] = e[i];
+    }
+#ifdef TESS_QUADS
+    gl_TessLevelInner[0] = max(e[1], e[3]);   // along u: the edges v=0 and v=1
+    gl_TessLevelInner[1] = max(e[0], e[2]);
+#else
+    gl_TessLevelInner[0] = max(e[0], max(e[1], e[2]));
+#endif
 #else
     float l = clamp(patch_level(), 1.0, 64.0);
-    gl_TessLevelOuter[0] = gl_TessLevelOuter[1] = gl_TessLevelOuter[2] = l;
-    gl_TessLevelInner[0] = l;
+    for (int i = 0; i < PATCH_N; i++)
+        gl_TessLevelOuter[i] = l;
+    gl_TessLevelInner[0] = gl_TessLevelInner[1] = l;
 #endif
 }

@@ -9,27 +9,51 @@
 // patch edges stay on the base surface.
 #include "displace.glsl"
 
-#if defined(TESS_SPACING_FRACTIONAL_EVEN)
-layout(triangles, fractional_even_spacing, ccw) in;
-#elif defined(TESS_SPACING_FRACTIONAL_ODD)
-layout(triangles, fractional_odd_spacing, ccw) in;
+// TESS_QUADS: quad patches, bilinear interpolation of the four corners
+// (domain order (0,0), (1,0), (1,1), (0,1)); an edge vertex has u or v
+// exactly 0 or 1.
+#ifdef TESS_QUADS
+#define TESS_DOMAIN quads
+#define PATCH_N 4
 #else
-layout(triangles, equal_spacing, ccw) in;
+#define TESS_DOMAIN triangles
+#define PATCH_N 3
+#endif
+#if defined(TESS_SPACING_FRACTIONAL_EVEN)
+layout(TESS_DOMAIN, fractional_even_spacing, ccw) in;
+#elif defined(TESS_SPACING_FRACTIONAL_ODD)
+layout(TESS_DOMAIN, fractional_odd_spacing, ccw) in;
+#else
+layout(TESS_DOMAIN, equal_spacing, ccw) in;
 #endif
 
 in GeomData { vec3 pos; vec3 nrm; vec2 uv; vec4 tan; } gi[];
 
 void main()
 {
+#ifdef TESS_QUADS
+    vec2 f = gl_TessCoord.xy;
+    float w[PATCH_N] = float[PATCH_N]((1.0 - f.x) * (1.0 - f.y), f.x * (1.0 - f.y), f.x * f.y,
+                                      (1.0 - f.x) * f.y);
+    bool on_edge = min(min(f.x, f.y), min(1.0 - f.x, 1.0 - f.y)) == 0.0;
+#else
     vec3 b = gl_TessCoord;
-    vec3 p = b.x * gi[0].pos + b.y * gi[1].pos + b.z * gi[2].pos;
-    vec3 n = b.x * gi[0].nrm + b.y * gi[1].nrm + b.z * gi[2].nrm;
-    vec2 uv = b.x * gi[0].uv + b.y * gi[1].uv + b.z * gi[2].uv;
-    vec4 t = b.x * gi[0].tan + b.y * gi[1].tan + b.z * gi[2].tan;
+    float w[PATCH_N] = float[PATCH_N](b.x, b.y, b.z);
+    bool on_edge = min(b.x, min(b.y, b.z)) == 0.0;
+#endif
+    vec3 p = vec3(0.0), n = vec3(0.0);
+    vec2 uv = vec2(0.0);
+    vec4 t = vec4(0.0);
+    for (int i = 0; i < PATCH_N; i++) {
+        p += w[i] * gi[i].pos;
+        n += w[i] * gi[i].nrm;
+        uv += w[i] * gi[i].uv;
+        t += w[i] * gi[i].tan;
+    }
     t.w = gi[0].tan.w;
     float h = textureLod(t_height, uv, 0.0).r;
 #ifdef CRACK_FREE_ON
-    if (min(b.x, min(b.y, b.z)) == 0.0)
+    if (on_edge)
         h = DISPLACE_H0;
 #endif
     displace_emit(displace_point(p, n, h), uv, n, t);

@@ -28,6 +28,9 @@ expect 2 "mesh file '/nonexistent/x.obj' cannot be used" -- "$BIN" render mesh=f
 expect 2 "fit: --loss 'l2': expected one of: huber, cauchy, none" -- "$BIN" fit "$OUT" --loss l2
 expect 2 "unknown counter 'VSInvocatons'; did you mean 'VSInvocations'" -- "$BIN" list counters --passes WallTime,VSInvocatons
 expect 2 "merge: .*no such run directory" -- "$BIN" merge "$OUT/m" "$OUT/nope"
+expect 2 "report: --metric: unknown metric 'rsme'; did you mean 'rmse'" -- "$BIN" report "$OUT" --metric rsme
+printf 'name: x\nsweep:\n  technique: [phong, pom]\nexclude:\n  - { technique: normal }\n' > "$OUT/ex.yaml"
+expect 2 "ex.yaml:5: exclude value 'normal' of technique is not one of the sweep's values (phong, pom)" -- "$BIN" run "$OUT/ex.yaml" --out "$OUT/r"
 # nothing may have been written by the failing runs
 if [ -e "$OUT/r" ]; then fail=$((fail+1)); echo "FAIL: a bad sweep wrote $OUT/r"; else pass=$((pass+1)); fi
 # an unwritable output directory is a clean exit 2

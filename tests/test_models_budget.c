@@ -1,0 +1,86 @@
+/* test_models_budget.c — end to end: `dmbench run --budget` predicts from the
+ * cost model a previous run of the same store fitted, and falls back to a
+ * pilot frame in a store without one (tests/e2e/tiny.yaml: 4 configurations,
+ * model resolution-cost = a + b*SamplesPassed, SamplesPassed stored per key). */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+
+#include "core/dm_util.h"
+
+/* Runs dmbench with args and returns its stderr (stdout discarded). */
+static char *dmbench(const char *args)
+{
+    const char *bin = getenv("DMBENCH_BINARY");
+    assert_non_null(bin);
+    char *cmd = dm_xasprintf("'%s' %s 2>&1 >/dev/null", bin, args);
+    FILE *p = popen(cmd, "r");
+    assert_non_null(p);
+    dm_str out = {0};
+    char buf[4096];
+    size_t n;
+    while ((n = fread(buf, 1, sizeof buf, p)) > 0)
+        dm_str_catn(&out, buf, n);
+    assert_int_equal(pclose(p), 0);
+    free(cmd);
+    return dm_str_take(&out);
+}
+
+static char *read_text(const char *path)
+{
+    char *text = NULL;
+    size_t len = 0;
+    assert_int_equal(dm_read_file(path, &text, &len), 0);
+    return text;
+}
+
+static void budget_from_stored_model(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_budget_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    const char *src = getenv("DMBENCH_SOURCE_DIR");
+    assert_non_null(src);
+    char *yaml = dm_xasprintf("%s/tests/e2e/tiny.yaml", src);
+    /* A store without fits: every configuration gets a pilot frame. */
+    char *args = dm_xasprintf("run '%s' --out '%s/fresh' --budget 0.000001", yaml, dir);
+    char *err = dmbench(args);
+    assert_non_null(strstr(err, "--budget 1e-06 s: 0 configurations predicted by a cost model, "
+                           "4 by a pilot frame; 4 left out"));
+    free(args);
+    free(err);
+    /* A measured run stores its fit; the next run predicts from it. */
+    args = dm_xasprintf("run '%s' --out '%s/s' --quiet", yaml, dir);
+    free(dmbench(args));
+    free(args);
+    args = dm_xasprintf("run '%s' --out '%s/s' --budget 0.000001", yaml, dir);
+    err = dmbench(args);
+    printf("%s", err);
+    assert_non_null(strstr(err, "4 configurations predicted by a cost model (run "));
+    assert_non_null(strstr(err, "0 by a pilot frame; 4 left out"));
+    free(args);
+    char *json_path = dm_xasprintf("%s/s/latest/results.json", dir);
+    char *json = read_text(json_path);
+    assert_non_null(strstr(json, "over --budget 1e-06 s: model resolution-cost (run "));
+    assert_null(strstr(json, "a pilot frame took"));
+    free(json);
+    free(json_path);
+    free(err);
+    char *rm = dm_xasprintf("rm -rf '%s'", dir);
+    assert_int_equal(system(rm), 0);
+    free(rm);
+    free(yaml);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(budget_from_stored_model),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
