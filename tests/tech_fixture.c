@@ -135,3 +135,20 @@ double psnr(const float *a, const float *b, size_t n)
 }
 
 size_t npix(void) { return (size_t)F.w * (size_t)F.h; }
+
+size_t out_of_range(const float *px, size_t n)
+{
+    size_t bad = 0;
+    for (size_t i = 0; i < n * 4; i++)
+        bad += !isfinite(px[i]) || px[i] < 0.0f || px[i] > 1e4f;
+    return bad;
+}
+
+void render_expect_in_range(const char *spec)
+{
+    float *px = render(spec);
+    size_t bad = out_of_range(px, npix());
+    if (bad)
+        fail_msg("%s: %zu values non-finite or outside [0, 1e4]", spec, bad);
+    free(px);
+}

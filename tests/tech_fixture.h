@@ -31,5 +31,9 @@ double luma_stddev(const float *px, size_t n);
 /* PSNR over RGB with peak 1 (INFINITY when identical). */
 double psnr(const float *a, const float *b, size_t n);
 size_t npix(void);
+/* Values of w*h RGBA that are non-finite or outside [0, 1e4]. */
+size_t out_of_range(const float *px, size_t n);
+/* Renders spec and fails the test when a value is out of range. */
+void render_expect_in_range(const char *spec);
 
 #endif
