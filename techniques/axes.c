@@ -18,6 +18,7 @@
 static const char *const axes__on_off[] = {"on", "off", NULL};
 static const char *const axes__spacing[] = {"equal", "fractional_even", "fractional_odd", NULL};
 static const char *const axes__lod[] = {"uniform", "distance", "screen-edge", "flatness", NULL};
+static const char *const axes__smooth[] = {"off", "phong", NULL};
 static const char *const axes__shadow[] = {"none", "raytrace", "soft", NULL};
 static const char *const axes__lighting[] = {"lambert", "phong", "blinn-phong", "cook-torrance", NULL};
 static const char *const axes__filter[] = {"nearest", "bilinear", "trilinear", "aniso2",
@@ -47,6 +48,8 @@ static axis_info axes__table[] = {
     {"lod", E, axes__lod, 0, 0, "uniform", 0, "how the tessellation level is chosen per patch"},
     {"patch_cull", E, axes__on_off, 0, 0, "off", 0, "cull back-facing/off-screen patches in the control stage"},
     {"crack_free", E, axes__on_off, 0, 0, "off", 0, "per-edge levels from edge midpoints so neighbours agree"},
+    {"tess_smooth", E, axes__smooth, 0, 0, "off", 0,
+     "smooth base surface of tess-displacement: phong = Phong tessellation (alpha 0.75)"},
     {"height_scale", F, NULL, -1, 1, "0.06", 0, "displacement / parallax depth in world units per height unit"},
     {"offset_limit", E, axes__on_off, 0, 0, "off", 0, "parallax offset limiting (Welsh): drop the division by V.z"},
     {"steps", I, NULL, 1, 512, "32", 0, "parallax search steps, or 'auto' (min_steps..max_steps by view angle)"},

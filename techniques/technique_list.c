@@ -47,7 +47,7 @@ static const char *const tech__axes_steep[] = {"lighting", "light_count", "rough
 static const char *const tech__axes_tess[] = {"lighting", "light_count", "roughness",
                                               "normal_format", "toksvig", "height_scale",
                                               "tess_level", "tess_spacing", "lod", "patch_cull",
-                                              "crack_free", NULL};
+                                              "crack_free", "tess_smooth", NULL};
 static const char *const tech__axes_vdisp[] = {"lighting", "light_count", "roughness",
                                                "normal_format", "toksvig", "height_scale",
                                                "vertex_filter", "visibility_test", NULL};

@@ -18,7 +18,7 @@ static void test_catalog(void **state)
     (void)state;
     static const char *const spec[] = {
         "technique", "mesh", "mesh_density", "resolution", "tess_level", "tess_spacing", "lod",
-        "patch_cull", "crack_free", "height_scale", "offset_limit", "steps", "min_steps",
+        "patch_cull", "crack_free", "tess_smooth", "height_scale", "offset_limit", "steps", "min_steps",
         "max_steps", "shadow", "lighting", "light_count", "roughness", "filter", "vertex_filter",
         "visibility_test", "height_format", "normal_format", "albedo_format", "texture_size",
         "virtual_texture", "vt_page_size", "vt_cache_pages", "toksvig", "camera.distance",
@@ -26,7 +26,7 @@ static void test_catalog(void **state)
         "camera.target_z", "light.azimuth", "light.elevation", "light.distance", "maps", NULL};
     for (size_t i = 0; spec[i]; i++)
         assert_non_null(axes_find(spec[i]));
-    assert_int_equal(axes_count(), 40);
+    assert_int_equal(axes_count(), 41);
     static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
         "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", "camera.target_x",

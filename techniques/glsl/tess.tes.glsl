@@ -9,6 +9,11 @@
 // patch edges stay on the base surface.
 #include "displace.glsl"
 
+// TESS_SMOOTH_PHONG: Phong tessellation (Boubekeur & Alexa 2008) of the base
+// surface before displacement: the interpolated point is projected onto the
+// tangent plane of each corner, the projections are interpolated with the
+// same weights and blended with the flat point by PHONG_ALPHA.  A point on a
+// patch edge depends only on that edge's two corners, so shared edges agree.
 // TESS_QUADS: quad patches, bilinear interpolation of the four corners
 // (domain order (0,0), (1,0), (1,1), (0,1)); an edge vertex has u or v
 // exactly 0 or 1.
@@ -51,6 +56,15 @@ void main()
         t += w[i] * gi[i].tan;
     }
     t.w = gi[0].tan.w;
+#ifdef TESS_SMOOTH_PHONG
+    const float PHONG_ALPHA = 0.75;
+    vec3 q = vec3(0.0);
+    for (int i = 0; i < PATCH_N; i++) {
+        vec3 ni = normalize(gi[i].nrm);
+        q += w[i] * (p - dot(p - gi[i].pos, ni) * ni);
+    }
+    p = mix(p, q, PHONG_ALPHA);
+#endif
     float h = textureLod(t_height, uv, 0.0).r;
 #ifdef CRACK_FREE_ON
     if (on_edge)
