@@ -3,6 +3,7 @@
 #include "core/dm_error.h"
 #include "counters/counters.h"
 #include "harness/gl_context.h"
+#include "harness/refcache.h"
 #include "harness/store.h"
 #include "harness/target.h"
 #include "models/stats.h"
@@ -28,6 +29,8 @@ typedef struct mconf {
     dm_str log;
     int64_t warmup_ns;
     int64_t sampling_ns;        /* time spent in its own timing samples */
+    int64_t stats_ns, quality_ns;   /* statistics pass; images and quality (--verbose log) */
+    const char *ref_source;     /* "cache", "rendered", NULL: the scene's, made before */
     int frames;                 /* frames per timing sample (>= K, see min_sample_ms) */
     double **timing;            /* per timing counter: per-frame samples */
     size_t n_samples;
@@ -157,6 +160,60 @@ static int measure__session(mscene *m, mconf *c, const char **names, size_t n, i
     return rc;
 }
 
+/* Frames per warm-up sample: K, or fewer when K frames of frame_ns would
+ * last longer than min_sample_ms (the length the harness deems enough for
+ * a sample, see the timing samples), never fewer than 1.  The agreement
+ * check then costs 2 frames, not 2K, on configurations whose frame alone
+ * lasts min_sample_ms.  min_sample_ms = 0 keeps K exactly. */
+static int measure__warmup_sample_frames(const sweep_measure *sm, double frame_ns)
+{
+    int k = sm->frames_per_sample > 0 ? sm->frames_per_sample : 1;
+    if (sm->min_sample_ms <= 0 || !(frame_ns > 0))
+        return k;
+    double want = ceil(sm->min_sample_ms * 1e6 / frame_ns);
+    return want < 1 ? 1 : want > k ? k : (int)want;
+}
+
+/* Warm-up of a prepared configuration: warmup_frames frames, then samples
+ * until two consecutive ones agree within 10 %; sets c->frames (frames per
+ * timing sample) and c->warmup_ns.  llvmpipe JIT-compiles a program's
+ * variant at its first draw, also when the program came from the binary
+ * cache: on a warm second run of the default sweep the first frame took a
+ * median 2.5 ms (up to 23 ms) more than the steady frame, and the frames
+ * after it were steady.  So the first frame is timed alone and the frames
+ * after it give the frame time that sizes the warm-up samples. */
+static void measure__warmup(mscene *m, mconf *c)
+{
+    const sweep_measure *sm = &m->job->sweep->measure;
+    int64_t t0 = dm_now_ns();
+    double first = measure__plain_sample(m, c, 1);
+    double rest = sm->warmup_frames > 1 ? measure__plain_sample(m, c, sm->warmup_frames - 1) : first;
+    int wf = measure__warmup_sample_frames(sm, rest);
+    double prev = measure__plain_sample(m, c, wf);
+    dm_str seq = {0};
+    dm_str_printf(&seq, "%.2f", prev / 1e6);
+    for (int tries = 0; tries < 10; tries++) {   /* until two samples agree within 10 % */
+        double cur = measure__plain_sample(m, c, wf);
+        dm_str_printf(&seq, " %.2f", cur / 1e6);
+        if (fabs(cur - prev) <= 0.10 * prev)
+            break;
+        prev = cur;
+    }
+    dm_log(DM_LOG_DEBUG, "warm-up %s: program %s, first frame %.2f ms, then %.2f ms/frame; "
+           "samples of %d frames: %s ms/frame", c->pc->key,
+           c->info.program_cached == 2 ? "from the binary cache" : c->info.program_cached ? "in memory" : "compiled",
+           first / 1e6, rest / 1e6, wf, dm_str_get(&seq));
+    dm_str_free(&seq);
+    /* Short samples measure the scheduler more than the frame: take enough
+     * frames per sample to last min_sample_ms (as Google Benchmark grows its
+     * iteration count), never fewer than K. */
+    double want = sm->min_sample_ms * 1e6 / (prev > 1 ? prev : 1);
+    c->frames = want > sm->frames_per_sample ? (int)ceil(want) : sm->frames_per_sample;
+    if (c->frames > 100000)
+        c->frames = 100000;
+    c->warmup_ns = dm_now_ns() - t0;
+}
+
 /* Prepare + warm-up + statistics pass for one configuration. */
 static void measure__prepare(mscene *m, mconf *c)
 {
@@ -182,27 +239,13 @@ static void measure__prepare(mscene *m, mconf *c)
         return;
     }
     tech_item_get_info(m->r, c->item, &c->info);
-    int64_t t0 = dm_now_ns();
-    measure__frames(m, c, sm->warmup_frames > 0 ? sm->warmup_frames : 1);
-    double prev = measure__plain_sample(m, c, sm->frames_per_sample);
-    for (int tries = 0; tries < 10; tries++) {   /* until two samples agree within 10 % */
-        double cur = measure__plain_sample(m, c, sm->frames_per_sample);
-        if (fabs(cur - prev) <= 0.10 * prev)
-            break;
-        prev = cur;
-    }
-    /* Short samples measure the scheduler more than the frame: take enough
-     * frames per sample to last min_sample_ms (as Google Benchmark grows its
-     * iteration count), never fewer than K. */
-    double want = sm->min_sample_ms * 1e6 / (prev > 1 ? prev : 1);
-    c->frames = want > sm->frames_per_sample ? (int)ceil(want) : sm->frames_per_sample;
-    if (c->frames > 100000)
-        c->frames = 100000;
-    c->warmup_ns = dm_now_ns() - t0;
+    measure__warmup(m, c);
     c->stats = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats);
     c->stats_reason = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats_reason);
+    int64_t t0 = dm_now_ns();
     if (m->n_statistic)
         measure__session(m, c, m->statistic, m->n_statistic, 1, c->stats, c->stats_reason);
+    c->stats_ns = dm_now_ns() - t0;
     c->timing = dm_xcalloc(m->n_timing + 1, sizeof *c->timing);
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i] = dm_xcalloc((size_t)sm->samples_max, sizeof **c->timing);
@@ -412,6 +455,34 @@ int measure_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_
     return 0;
 }
 
+/* The reference image of parameters p at c's resolution into m->ref_*:
+ * loaded from the reference cache (refcache.h) when an entry for exactly
+ * these inputs exists, else rendered and stored there.  The cache is off
+ * with the program cache (job->cache_dir NULL). */
+static int measure__reference_image(mscene *m, const dm_kv *p, size_t n, mconf *c)
+{
+    const sweep *s = m->job->sweep;
+    int w = c->pc->width, h = c->pc->height;
+    const char *renderer = (const char *)glGetString(GL_RENDERER), *version = (const char *)glGetString(GL_VERSION);
+    char *driver = dm_xasprintf("%s | %s", renderer ? renderer : "?", version ? version : "?");
+    refcache_desc d = {.params = p, .n_params = n, .width = w, .height = h,
+                       .supersample = s->supersample, .driver = driver};
+    char *dir = m->job->cache_dir ? refcache_dir() : NULL;
+    dm_str key = {0};
+    int keyed = dir && refcache_key(&d, &key) == 0, rc = 0;
+    c->ref_source = "cache";
+    if (!keyed || refcache_load(dir, dm_str_get(&key), w, h, &m->ref_rgba, &m->ref_depth) != 0) {
+        c->ref_source = "rendered";
+        rc = measure_render_image(m->r, p, n, w, h, s->supersample, &m->ref_rgba, &m->ref_depth, &c->log);
+        if (rc == 0 && keyed && refcache_store(dir, dm_str_get(&key), w, h, m->ref_rgba, m->ref_depth) != 0)
+            dm_log(DM_LOG_WARN, "cannot write the reference cache in %s", dir);
+    }
+    dm_str_free(&key);
+    free(dir);
+    free(driver);
+    return rc;
+}
+
 /* Renders the scene reference once (per process) for configuration c. */
 static int measure__reference(mscene *m, mconf *c)
 {
@@ -441,8 +512,7 @@ static int measure__reference(mscene *m, mconf *c)
             dm_kv_push(&p, &n, c->pc->scene_params[i].key, c->pc->scene_params[i].value);
         dm_kv_push(&p, &n, "technique", s->ref_technique);
     }
-    int rc = measure_render_image(m->r, p, n, c->pc->width, c->pc->height, s->supersample,
-                                  &m->ref_rgba, &m->ref_depth, &c->log);
+    int rc = measure__reference_image(m, p, n, c);
     dm_kv_free(p, n);
     if (rc == 0) {
         char name[64];
@@ -519,9 +589,14 @@ static void measure__commit(mscene *m, mconf *c)
     for (size_t i = 0; i < c->pc->n_params; i++)
         dm_kv_push(&out.params, &out.n_params, c->pc->params[i].key, c->pc->params[i].value);
     if (!c->failed) {
+        int64_t t0 = dm_now_ns();
         measure__collect(m, c, &out);
         measure__quality(m, c, &out);
+        c->quality_ns = dm_now_ns() - t0;
     }
+    dm_log(DM_LOG_DEBUG, "measure %s: setup %.1f ms, warm-up %.1f ms, statistics %.1f ms, sampling %.1f ms, "
+           "images+quality %.1f ms (reference %s)", c->pc->key, c->info.setup_ns / 1e6, c->warmup_ns / 1e6,
+           c->stats_ns / 1e6, c->sampling_ns / 1e6, c->quality_ns / 1e6, c->ref_source ? c->ref_source : "reused");
     dm_str glmsg = {0};
     if (gl_context_take_messages(m->gl, &glmsg) + gl_context_check_errors(&glmsg) > 0)
         measure__fail(c, "GL error during the configuration (see log)");

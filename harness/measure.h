@@ -2,12 +2,15 @@
  * process that owns the GL context (a child of the runner).
  *
  * Per configuration: prepare (SetupTime), warm up until the JIT is done and
- * two consecutive samples agree (WarmupTime), one statistics pass of one
+ * two consecutive samples agree (WarmupTime; warm-up samples are K frames, or
+ * fewer when K frames would outlast min_sample_ms), one statistics pass of one
  * frame (deterministic counters), then timing samples of K frames fenced by
  * glFinish taken in rounds over the scene's configurations in a seeded
  * shuffled order, until the 95% CI of the median is within the target or the
  * limits are reached.  Then the image, its quality against the scene's
- * reference, and one store transaction.  Progress lines go to report_fd:
+ * reference (loaded from the reference cache, harness/refcache.h, when the
+ * job has a cache_dir), and one store transaction.  With --verbose each
+ * configuration logs its warm-up and where its time went.  Progress lines go to report_fd:
  * "B <key>" before work on a key, "D <key> <status> <median_ns> <ci_rel>
  * <sampling_ns>" after it is committed (sampling_ns: time in its timed samples).
  */
