@@ -538,6 +538,31 @@ static void mesh__sphere(mesh__builder *b, int level)
     free(s.t);
 }
 
+/* Orders vertex indices by position bytes, then by index (qsort_r). */
+static int mesh__pos_cmp(const void *a, const void *b, void *ctx)
+{
+    const mesh_data *m = ctx;
+    uint32_t i = *(const uint32_t *)a, j = *(const uint32_t *)b;
+    int c = memcmp(m->vertices[i].pos, m->vertices[j].pos, sizeof m->vertices[i].pos);
+    return c ? c : (i > j) - (i < j);
+}
+
+void mesh_canonical(const mesh_data *m, float *uv, float *nrm)
+{
+    uint32_t *order = dm_xmalloc((m->n_vertices + 1) * sizeof *order);
+    for (size_t i = 0; i < m->n_vertices; i++)
+        order[i] = (uint32_t)i;
+    qsort_r(order, m->n_vertices, sizeof *order, mesh__pos_cmp, (void *)m);
+    for (size_t k = 0, first = 0; k < m->n_vertices; k++) {
+        if (memcmp(m->vertices[order[k]].pos, m->vertices[order[first]].pos, sizeof m->vertices[0].pos))
+            first = k;   /* a new position: the run's lowest index comes first */
+        const mesh_vertex *c = &m->vertices[order[first]];
+        memcpy(&uv[2 * order[k]], c->uv, 2 * sizeof(float));
+        memcpy(&nrm[3 * order[k]], c->nrm, 3 * sizeof(float));
+    }
+    free(order);
+}
+
 size_t mesh_bytes(const mesh_data *m)
 {
     return m->n_vertices * sizeof(mesh_vertex) + (m->n_indices + m->n_quad_indices) * sizeof(uint32_t);

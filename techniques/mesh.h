@@ -123,6 +123,12 @@ float mesh_height_bilinear(const float *height, int size, float u, float v);
  * or DM_ERR_ARG. */
 int mesh_subdivide_displace(const mesh_data *in, int k, const float *height, int size,
                             float scale, mesh_data *out);
+/* Seam data for crack-free tessellation: vertices at the same position
+ * (bit-identical) are one surface point; each gets the UV and normal of the
+ * lowest-index vertex at its position (uv: 2, nrm: 3 floats per vertex), so
+ * patches on both sides of a UV seam can sample and displace their shared
+ * edge alike. */
+void mesh_canonical(const mesh_data *m, float *uv, float *nrm);
 /* Bytes the mesh occupies on the GPU (vertex + index buffers). */
 size_t mesh_bytes(const mesh_data *m);
 void mesh_free(mesh_data *m);

@@ -78,6 +78,7 @@ void tech_renderer_destroy(tech_renderer *r)
         glDeleteVertexArrays(1, &r->meshes[i].vao);
         glDeleteBuffers(1, &r->meshes[i].vbo);
         glDeleteBuffers(1, &r->meshes[i].ibo);
+        glDeleteBuffers(1, &r->meshes[i].seam_vbo);
         cull_free(&r->meshes[i].cull);
         free(r->meshes[i].key);
     }
@@ -381,6 +382,8 @@ static int render__program_get(tech_renderer *r, const technique_desc *t, const 
 static char *render__mesh_key(const technique_desc *t, const render__cfg *c)
 {
     const char *name = render__get(c, "mesh"), *dens = render__get(c, "mesh_density");
+    if (t->tcs)   /* patch meshes carry the seam buffer (render__mesh_seams) */
+        return dm_xasprintf("%s/%d/patches", name, atoi(dens));
     if (!t->cpu_displace)
         return dm_xasprintf("%s/%d", name, atoi(dens));
     return dm_xasprintf("%s/%d/displaced:%s/%d/%.9g", name, atoi(dens), render__get(c, "maps"),
@@ -409,6 +412,28 @@ static int render__mesh_displace(const render__cfg *c, mesh_data *base)
         *base = out;
     }
     return rc;
+}
+
+/* Patch meshes: a second vertex buffer (binding 1) with each vertex's
+ * canonical UV (attribute 4) and normal (attribute 5) — those of the first
+ * vertex at its position (mesh_canonical) — which crack-free tessellation
+ * uses on patch edges; counted in MeshBytes. */
+static void render__mesh_seams(render__mesh *m, const mesh_data *md)
+{
+    size_t nv = md->n_vertices;
+    float *buf = dm_xmalloc((nv + 1) * 5 * sizeof(float)), *uv = buf, *nrm = buf + 2 * nv;
+    mesh_canonical(md, uv, nrm);
+    glCreateBuffers(1, &m->seam_vbo);
+    glNamedBufferStorage(m->seam_vbo, (GLsizeiptr)(nv * 5 * sizeof(float)), buf, 0);
+    glVertexArrayVertexBuffer(m->vao, 1, m->seam_vbo, 0, 2 * sizeof(float));
+    glVertexArrayVertexBuffer(m->vao, 2, m->seam_vbo, (GLintptr)(2 * nv * sizeof(float)), 3 * sizeof(float));
+    for (GLuint a = 4; a < 6; a++) {
+        glEnableVertexArrayAttrib(m->vao, a);
+        glVertexArrayAttribFormat(m->vao, a, (GLint)(a == 4 ? 2 : 3), GL_FLOAT, GL_FALSE, 0);
+        glVertexArrayAttribBinding(m->vao, a, a - 3);
+    }
+    m->bytes += nv * 5 * sizeof(float);
+    free(buf);
 }
 
 static int render__mesh_get(tech_renderer *r, const technique_desc *t, const render__cfg *c,
@@ -465,6 +490,8 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
         glVertexArrayAttribFormat(m->vao, a, (GLint)comps[a], GL_FLOAT, GL_FALSE, (GLuint)offs[a]);
         glVertexArrayAttribBinding(m->vao, a, 0);
     }
+    if (t->tcs)
+        render__mesh_seams(m, &md);
     mesh_free(&md);
     *idx = n;
     return 0;

@@ -45,6 +45,7 @@ typedef struct render__mesh {
     size_t n_vertices, n_indices, bytes;
     size_t n_quad_indices;       /* quad patches after the triangles (mesh.h), 0 = none */
     cull_set cull;               /* triangle chunks with bounds (visibility_test), n = 0: none */
+    GLuint seam_vbo;             /* patch meshes: canonical UV + normal per vertex, else 0 */
     int clip_space;
 } render__mesh;
 

@@ -104,7 +104,7 @@ const technique_desc technique__list[] = {
      .vs = "tess.vert.glsl", .tcs = "tess.tcs.glsl", .tes = "tess.tes.glsl",
      .fs = "surface.frag.glsl", .defines = "#define SURF_NORMAL_MAP\n",
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
-     .axes = tech__axes_tess, .version = 1,
+     .axes = tech__axes_tess, .version = 2,
      .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_tess_level, u_viewport; "
                  "t_height, t_normal, t_albedo"},
     {.name = "reference-mesh",

@@ -26,7 +26,10 @@ static char *dmbench(const char *args)
     size_t n;
     while ((n = fread(buf, 1, sizeof buf, p)) > 0)
         dm_str_catn(&out, buf, n);
-    assert_int_equal(pclose(p), 0);
+    int status = pclose(p);
+    if (status != 0)
+        printf("dmbench %s exited with %d:\n%s\n", args, status, dm_str_get(&out));
+    assert_int_equal(status, 0);
     free(cmd);
     return dm_str_take(&out);
 }
@@ -50,13 +53,16 @@ static void budget_from_stored_model(void **state)
     /* A store without fits: every configuration gets a pilot frame. */
     char *args = dm_xasprintf("run '%s' --out '%s/fresh' --budget 0.000001", yaml, dir);
     char *err = dmbench(args);
+    printf("%s", err);   /* in the test log when an assertion fails */
     assert_non_null(strstr(err, "--budget 1e-06 s: 0 configurations predicted by a cost model, "
                            "4 by a pilot frame; 4 left out"));
     free(args);
     free(err);
     /* A measured run stores its fit; the next run predicts from it. */
     args = dm_xasprintf("run '%s' --out '%s/s' --quiet", yaml, dir);
-    free(dmbench(args));
+    err = dmbench(args);
+    printf("%s", err);
+    free(err);
     free(args);
     args = dm_xasprintf("run '%s' --out '%s/s' --budget 0.000001", yaml, dir);
     err = dmbench(args);

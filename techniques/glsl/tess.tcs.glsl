@@ -35,8 +35,8 @@ const float TESS_TARGET_PX = 8.0;
 const float FLAT_EPS = 1e-3;     // world units of displacement range
 const float CULL_MARGIN = 0.1;
 
-in GeomData { vec3 pos; vec3 nrm; vec2 uv; vec4 tan; } gi[];
-out GeomData { vec3 pos; vec3 nrm; vec2 uv; vec4 tan; } go[];
+in GeomData { vec3 pos; vec3 nrm; vec2 uv; vec4 tan; vec2 seam_uv; vec3 seam_nrm; } gi[];
+out GeomData { vec3 pos; vec3 nrm; vec2 uv; vec4 tan; vec2 seam_uv; vec3 seam_nrm; } go[];
 
 vec3 wpos(int i) { return (u_model * vec4(gi[i].pos, 1.0)).xyz; }
 
@@ -145,6 +145,8 @@ void main()
     go[gl_InvocationID].nrm = gi[gl_InvocationID].nrm;
     go[gl_InvocationID].uv = gi[gl_InvocationID].uv;
     go[gl_InvocationID].tan = gi[gl_InvocationID].tan;
+    go[gl_InvocationID].seam_uv = gi[gl_InvocationID].seam_uv;
+    go[gl_InvocationID].seam_nrm = gi[gl_InvocationID].seam_nrm;
     // Every invocation computes the same levels (no early return: llvmpipe
     // drops patches when only invocation 0 writes them).
     if (culled()) {

@@ -2,11 +2,14 @@
 // interpolation of position, normal, tangent and UV, the height read here
 // and P' = P + N (h - h0) scale (displace.glsl).  Spacing by define
 // (TESS_SPACING_EQUAL | TESS_SPACING_FRACTIONAL_EVEN | _ODD), ccw.
-// CRACK_FREE_ON: vertices on a patch edge (one barycentric coordinate
-// exactly 0) are displaced by h0, i.e. they depend only on the positions and
-// normals the two patches share — seam-consistent by construction even where
-// the UVs (and so the sampled heights) of a seam disagree; the price is that
-// patch edges stay on the base surface.
+// CRACK_FREE_ON: a vertex on a patch edge (one barycentric coordinate, or u
+// or v of a quad, exactly 0 or 1) reads its height at the interpolated
+// *seam* UVs of the edge's corners and moves along their interpolated seam
+// normals: the UV and normal of the first mesh vertex at each corner's
+// position (render.c, mesh_canonical), which both patches of an edge share
+// even where a UV seam gives them different UVs.  The seam UVs are unwrapped
+// by whole tiles (the maps tile) toward the edge's smallest seam UV, so the
+// two patches interpolate the same values in either corner order.
 #include "displace.glsl"
 
 // TESS_SMOOTH_PHONG: Phong tessellation (Boubekeur & Alexa 2008) of the base
@@ -32,7 +35,39 @@ layout(TESS_DOMAIN, fractional_odd_spacing, ccw) in;
 layout(TESS_DOMAIN, equal_spacing, ccw) in;
 #endif
 
-in GeomData { vec3 pos; vec3 nrm; vec2 uv; vec4 tan; } gi[];
+in GeomData { vec3 pos; vec3 nrm; vec2 uv; vec4 tan; vec2 seam_uv; vec3 seam_nrm; } gi[];
+
+// Corner normal of the smooth base: the seam normal under CRACK_FREE_ON so
+// that Phong tessellation of a shared edge agrees too.
+vec3 corner_nrm(int i)
+{
+#ifdef CRACK_FREE_ON
+    return normalize(gi[i].seam_nrm);
+#else
+    return normalize(gi[i].nrm);
+#endif
+}
+
+#ifdef CRACK_FREE_ON
+// Height UV and displacement normal of an edge point with weights w (the
+// corners off the edge have weight 0), from the corners' seam data.
+void seam_edge(float w[PATCH_N], out vec2 uv, out vec3 n)
+{
+    vec2 ref = vec2(1e30);
+    for (int i = 0; i < PATCH_N; i++) {
+        vec2 c = gi[i].seam_uv;
+        if (w[i] > 0.0 && (c.x < ref.x || (c.x == ref.x && c.y < ref.y)))
+            ref = c;
+    }
+    uv = vec2(0.0);
+    n = vec3(0.0);
+    for (int i = 0; i < PATCH_N; i++)
+        if (w[i] > 0.0) {
+            uv += w[i] * (gi[i].seam_uv + round(ref - gi[i].seam_uv));
+            n += w[i] * gi[i].seam_nrm;
+        }
+}
+#endif
 
 void main()
 {
@@ -60,15 +95,19 @@ void main()
     const float PHONG_ALPHA = 0.75;
     vec3 q = vec3(0.0);
     for (int i = 0; i < PATCH_N; i++) {
-        vec3 ni = normalize(gi[i].nrm);
+        vec3 ni = corner_nrm(i);
         q += w[i] * (p - dot(p - gi[i].pos, ni) * ni);
     }
     p = mix(p, q, PHONG_ALPHA);
 #endif
     float h = textureLod(t_height, uv, 0.0).r;
+    vec3 dn = n;
 #ifdef CRACK_FREE_ON
-    if (on_edge)
-        h = DISPLACE_H0;
+    if (on_edge) {
+        vec2 su;
+        seam_edge(w, su, dn);
+        h = textureLod(t_height, su, 0.0).r;
+    }
 #endif
-    displace_emit(displace_point(p, n, h), uv, n, t);
+    displace_emit(displace_point(p, dn, h), uv, n, t);
 }
