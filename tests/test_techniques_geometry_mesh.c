@@ -206,6 +206,33 @@ static void test_cull_chunks(void **state)
     mesh_free(&m);
 }
 
+/* Seam data: on the seam mesh the duplicated middle column gets the left
+ * half's UVs (the first vertex at each position); every vertex with a
+ * unique position keeps its own UV and normal. */
+static void test_canonical_seam(void **state)
+{
+    (void)state;
+    mesh_data m = build("seam", 2);
+    float *uv = malloc(m.n_vertices * 2 * sizeof(float)), *nrm = malloc(m.n_vertices * 3 * sizeof(float));
+    mesh_canonical(&m, uv, nrm);
+    size_t shifted = 0;
+    for (size_t i = 0; i < m.n_vertices; i++) {
+        size_t first = i;
+        for (size_t j = 0; j < i; j++)
+            if (memcmp(m.vertices[j].pos, m.vertices[i].pos, sizeof m.vertices[i].pos) == 0) {
+                first = j;
+                break;
+            }
+        assert_memory_equal(&uv[2 * i], m.vertices[first].uv, 2 * sizeof(float));
+        assert_memory_equal(&nrm[3 * i], m.vertices[first].nrm, 3 * sizeof(float));
+        shifted += first != i;
+    }
+    assert_int_equal(shifted, 5);   /* the column x = 0 of the right half: 2·2 + 1 vertices */
+    free(uv);
+    free(nrm);
+    mesh_free(&m);
+}
+
 static void test_asteroid(void **state)
 {
     (void)state;
@@ -380,6 +407,7 @@ int main(void)
         cmocka_unit_test(test_asteroid),
         cmocka_unit_test(test_terrain_quads),
         cmocka_unit_test(test_cull_chunks),
+        cmocka_unit_test(test_canonical_seam),
         cmocka_unit_test(test_asteroid_reduced),
         cmocka_unit_test(test_asteroid_maps_baked),
         cmocka_unit_test(test_seam_and_halfflat),
