@@ -178,6 +178,41 @@ size_t report__noisy_configs(const dm_run_result *run, size_t **out)
     return n;
 }
 
+/* One warning line listing the configurations whose value (by which) is
+ * positive. */
+static void report__count_warning(const dm_run_result *run, int which, dm_str *out)
+{
+    static const char *const what[2] = {"non-finite pixels", "crack pixels (background enclosed by the surface)"};
+    dm_str list = {0};
+    size_t n = 0;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        long v = which ? c->quality.crack_pixels : c->quality.nonfinite_pixels;
+        if (!c->ok || !c->quality.present || v <= 0)
+            continue;
+        dm_str label = {0};
+        report__config_label(run, c, &label);
+        dm_str_printf(&list, "%s%s [%s] (%ld)", n++ ? ", " : "", dm_str_get(&label), c->key, v);
+        dm_str_free(&label);
+    }
+    if (n)
+        dm_str_printf(out, "%zu configuration%s with %s: %s\n", n, n == 1 ? "" : "s", what[which],
+                      dm_str_get(&list));
+    dm_str_free(&list);
+}
+
+void report__quality_warnings(const dm_run_result *run, dm_str *out)
+{
+    size_t failed = 0;
+    for (size_t i = 0; i < run->n_configs; i++)
+        failed += !run->configs[i].ok;
+    if (failed)
+        dm_str_printf(out, "%zu configuration%s failed (see Failed configurations, with the reasons)\n",
+                      failed, failed == 1 ? "" : "s");
+    report__count_warning(run, 0, out);
+    report__count_warning(run, 1, out);
+}
+
 /* Appends name to the set (array of borrowed pointers) unless present. */
 static void add_unique(const char ***set, size_t *n, const char *name)
 {

@@ -132,6 +132,15 @@ static void timer_and_warnings(dm_str *s, const dm_run_result *run)
                          "of fenced wall time; it is recorded, never used to fit or gate.</div>\n",
                       run->gpu_time_coverage * 100);
     noisy_warning(s, run);
+    dm_str q = {0};
+    report__quality_warnings(run, &q);
+    char *save = NULL;
+    for (char *line = q.buf ? strtok_r(q.buf, "\n", &save) : NULL; line; line = strtok_r(NULL, "\n", &save)) {
+        dm_str_cat(s, "<div class=\"warn\">");
+        esc(s, line);
+        dm_str_cat(s, "</div>\n");
+    }
+    dm_str_free(&q);
     for (size_t i = 0; i < run->n_warnings; i++) {
         dm_str_cat(s, "<div class=\"warn\">");
         esc(s, run->warnings[i]);

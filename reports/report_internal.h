@@ -38,6 +38,11 @@ int report__noisy(const dm_config_result *c);
 /* Indexes of the noisy configurations in run order; *out malloc'd (caller
  * frees).  Returns the count. */
 size_t report__noisy_configs(const dm_run_result *run, size_t **out);
+/* Plain-text header warnings about the images and failures, one per line:
+ * "N configurations failed (see Failed configurations)", "N configurations
+ * with non-finite pixels: label (count), ...", "N configurations with crack
+ * pixels: label (count), ...".  Appends nothing when all is well. */
+void report__quality_warnings(const dm_run_result *run, dm_str *out);
 
 /* Distinct scene names in first-appearance order; *out is malloc'd and points
  * into run (free only the array).  Returns the count. */

@@ -159,6 +159,15 @@ int report_write_markdown(const dm_run_result *run, const char *path)
         dm_str_cat(&s, "\n");
     }
     noisy_warning(&s, run);
+    dm_str q = {0};
+    report__quality_warnings(run, &q);
+    char *save = NULL;
+    for (char *line = q.buf ? strtok_r(q.buf, "\n", &save) : NULL; line; line = strtok_r(NULL, "\n", &save)) {
+        dm_str_cat(&s, "- warning: ");
+        cell(&s, line);
+        dm_str_cat(&s, "\n");
+    }
+    dm_str_free(&q);
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);
     for (size_t i = 0; i < ns; i++)

@@ -581,6 +581,52 @@ static void test_noisy_warning(void **state)
     rmdir(dir);
 }
 
+/* Header warnings about images and failures: exactly the failed one, the
+ * one with non-finite pixels and the one with crack pixels are named, in
+ * summary.md and report.html; a clean run has none. */
+static void test_quality_warnings(void **state)
+{
+    (void)state;
+    static const double rel[] = {0.01, 0.01, 0.01, 0.01};
+    char dir[] = "/tmp/dm_reports_qwarn_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char *md = dm_xasprintf("%s/summary.md", dir), *html = dm_xasprintf("%s/report.html", dir);
+    dm_run_result run;
+    noisy_run(&run, rel, 4);
+    run.configs[1].ok = 0;
+    run.configs[1].reason = dm_xstrdup("shader failed");
+    run.configs[2].quality.present = run.configs[3].quality.present = run.configs[0].quality.present = 1;
+    run.configs[2].quality.nonfinite_pixels = 3;
+    run.configs[3].quality.crack_pixels = 5;
+    assert_int_equal(report_write_markdown(&run, md), 0);
+    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    char *t = slurp(md);
+    assert_non_null(strstr(t, "- warning: 1 configuration failed (see Failed configurations, with the reasons)\n"));
+    assert_non_null(strstr(t, "- warning: 1 configuration with non-finite pixels: pom steps=2 "
+                              "[00000000000000e2] (3)\n"));
+    assert_non_null(strstr(t, "- warning: 1 configuration with crack pixels (background enclosed by the "
+                              "surface): pom steps=3 [00000000000000e3] (5)\n"));
+    assert_null(strstr(t, "e0] ("));
+    free(t);
+    t = slurp(html);
+    assert_non_null(strstr(t, "<div class=\"warn\">1 configuration with crack pixels (background enclosed "
+                              "by the surface): pom steps=3 [00000000000000e3] (5)</div>"));
+    assert_non_null(strstr(t, "<div class=\"warn\">1 configuration failed"));
+    free(t);
+    dm_run_free(&run);
+    noisy_run(&run, rel, 2);
+    assert_int_equal(report_write_markdown(&run, md), 0);
+    t = slurp(md);
+    assert_null(strstr(t, "- warning:"));
+    free(t);
+    dm_run_free(&run);
+    unlink(md);
+    unlink(html);
+    free(md);
+    free(html);
+    rmdir(dir);
+}
+
 /* The chart titles of an HTML page in order: every chart is one
  * <div class="chart" ... aria-label="T"> holding exactly one <svg> whose
  * text (PLplot writes characters as &#xNN; references) includes T. */
@@ -725,6 +771,7 @@ int main(void)
         cmocka_unit_test(test_metric_names),
         cmocka_unit_test(test_metric_in_files),
         cmocka_unit_test(test_noisy_warning),
+        cmocka_unit_test(test_quality_warnings),
         cmocka_unit_test(test_html_chart_set),
         cmocka_unit_test(test_html_breakdown_fit_and_cap),
     };
