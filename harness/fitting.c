@@ -2,6 +2,7 @@
 #include "fitting.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
+#include "models/bounds.h"
 #include "models/catalog.h"
 #include "models/formula.h"
 
@@ -261,7 +262,12 @@ static double fitting__stored_counter(const dm_run_result *runs, size_t n_runs, 
 static int fitting__parse_fit(const dm_fit_result *fit, formula **f, formula **names_owner,
                               const char ***vars, size_t *nv, dm_str *why)
 {
-    int rc = formula_parse(fit->formula, NULL, 0, names_owner, why);
+    char *expr = NULL;   /* the expression without its bound clauses */
+    fit_bound *bounds = NULL;
+    size_t n_bounds = 0;
+    int rc = bounds_split(fit->formula, &expr, &bounds, &n_bounds, why);
+    bounds_free(bounds, n_bounds);
+    rc = rc ? rc : formula_parse(expr, NULL, 0, names_owner, why);
     for (size_t j = 0; rc == 0 && j < formula_n_params(*names_owner); j++) {
         const char *nm = formula_param_name(*names_owner, j);
         size_t k = 0;
@@ -272,7 +278,9 @@ static int fitting__parse_fit(const dm_fit_result *fit, formula **f, formula **n
             (*vars)[(*nv)++] = nm;
         }
     }
-    return rc ? rc : formula_parse(fit->formula, *vars, *nv, f, why);
+    rc = rc ? rc : formula_parse(expr, *vars, *nv, f, why);
+    free(expr);
+    return rc;
 }
 
 /* Values of the variables for the configuration: its axes, else counters

@@ -1,5 +1,6 @@
 /* fit.c — least-squares cost models: data screening, scaling, solving via
  * the Ceres bridge, statistics and cross-validation (see fit.h). */
+#include "models/bounds.h"
 #include "models/fit.h"
 
 #include <math.h>
@@ -475,7 +476,10 @@ out:
     return rc;
 }
 
-int fit_run(const fit_desc *desc, dm_fit_result *out, dm_str *err)
+/* fit_run on a formula whose bound clauses are already split off: desc has
+ * the expression and every bound; full is the text as the user wrote it
+ * (recorded in the result). */
+static int fit__run(const fit_desc *desc, const char *full, dm_fit_result *out, dm_str *err)
 {
     formula *f = NULL;
     dm_fit_result r = { 0 };
@@ -507,8 +511,8 @@ int fit_run(const fit_desc *desc, dm_fit_result *out, dm_str *err)
     free(c.scale);
     if (rc)
         goto out;
-    r.model = dm_xstrdup(desc->model ? desc->model : desc->formula);
-    r.formula = dm_xstrdup(desc->formula);
+    r.model = dm_xstrdup(desc->model ? desc->model : full);
+    r.formula = dm_xstrdup(full);
     r.response = dm_xstrdup(desc->response);
     *out = r;
     memset(&r, 0, sizeof r);
@@ -516,5 +520,30 @@ out:
     dm_fit_result_free(&r);
     free(rows);
     formula_free(f);
+    return rc;
+}
+
+int fit_run(const fit_desc *desc, dm_fit_result *out, dm_str *err)
+{
+    if (!desc->formula)
+        return fit__run(desc, NULL, out, err);   /* fit__validate reports it */
+    char *expr = NULL;
+    fit_bound *extra = NULL;
+    size_t n_extra = 0;
+    memset(out, 0, sizeof *out);
+    int rc = bounds_split(desc->formula, &expr, &extra, &n_extra, err);
+    if (rc)
+        return rc;
+    fit_desc d = *desc;
+    fit_bound *all = dm_xcalloc(desc->n_bounds + n_extra + 1, sizeof *all);
+    memcpy(all, desc->bounds, desc->n_bounds * sizeof *all);
+    memcpy(all + desc->n_bounds, extra, n_extra * sizeof *all);
+    d.formula = expr;
+    d.bounds = all;
+    d.n_bounds = desc->n_bounds + n_extra;
+    rc = fit__run(&d, desc->formula, out, err);
+    free(all);
+    bounds_free(extra, n_extra);
+    free(expr);
     return rc;
 }

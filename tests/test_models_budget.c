@@ -1,7 +1,10 @@
 /* test_models_budget.c — end to end: `dmbench run --budget` predicts from the
  * cost model a previous run of the same store fitted, and falls back to a
  * pilot frame in a store without one (tests/e2e/tiny.yaml: 4 configurations,
- * model resolution-cost = a + b*SamplesPassed, SamplesPassed stored per key). */
+ * model resolution-cost = a + b*SamplesPassed with a, b >= 0, SamplesPassed
+ * stored per key: the bounds keep every prediction positive — unbounded, a
+ * noisy run could fit a < 0 and predict a non-positive time for the smallest
+ * configuration, which --budget rightly refuses and measures instead). */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>

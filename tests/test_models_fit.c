@@ -329,6 +329,41 @@ static void bounds_and_errors(void **state)
     dm_str_free(&err);
 }
 
+/* Bounds written after the formula: the same fit as a fit_bound (b capped
+ * at 1.5 on y = 3 + 2 x1 + 0.5 x2), both forms of clause, the formula
+ * recorded as written, and the errors. */
+static void bounds_in_formula(void **state)
+{
+    (void)state;
+    double x[2 * 20], y[20];
+    make_linear(x, y, 20, 0.0, 1);
+    fit_desc d = desc2("a + b*x1 + c*x2; b <= 1.5 ; 0 <= c <= 0.25", x, y, 20);
+    dm_fit_result r = run_ok(&d);
+    assert_true(fabs(r.params[1].value - 1.5) < 1e-9);
+    assert_true(fabs(r.params[2].value - 0.25) < 1e-9);
+    assert_string_equal(r.formula, "a + b*x1 + c*x2; b <= 1.5 ; 0 <= c <= 0.25");
+    dm_fit_result_free(&r);
+    d.formula = "a + b*x1 + c*x2; a >= 0";
+    r = run_ok(&d);
+    assert_true(fabs(r.params[0].value - 3.0) < 1e-6);   /* inactive bound */
+    dm_fit_result_free(&r);
+    static const struct { const char *f; int rc; const char *msg; } bad[] = {
+        {"a + b*x1; b => 0", DM_ERR_PARSE,
+         "formula: bound 1 ' b => 0': expected NAME >= NUMBER, NAME <= NUMBER or NUMBER <= NAME <= NUMBER"},
+        {"a + b*x1; b >= 0; 2 <= a <= 1", DM_ERR_PARSE, "formula: bound 2 ' 2 <= a <= 1'"},
+        {"a + b*x1; b >= 0;", DM_ERR_PARSE, "formula: bound 2 ''"},
+        {"a + b*x1; q >= 0", DM_ERR_UNKNOWN, "fit: bound on 'q', which is not a parameter of 'a + b*x1'"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        dm_str err = { 0 };
+        d.formula = bad[i].f;
+        assert_int_equal(fit_run(&d, &r, &err), bad[i].rc);
+        if (!strstr(dm_str_get(&err), bad[i].msg))
+            fail_msg("'%s': got '%s'", bad[i].f, dm_str_get(&err));
+        dm_str_free(&err);
+    }
+}
+
 /* Condition of J = [u/|u|, v/|v|] (linear model, unit-norm columns): the
  * eigenvalues of J^T J = [[1, c], [c, 1]] are 1 +- c with c = u.v/(|u||v|),
  * so the 2-norm condition of J is sqrt((1 + |c|) / (1 - |c|)). */
@@ -402,6 +437,7 @@ int main(void)
         cmocka_unit_test(bad_values_excluded),
         cmocka_unit_test(power_law),
         cmocka_unit_test(bounds_and_errors),
+        cmocka_unit_test(bounds_in_formula),
         cmocka_unit_test(condition_well_conditioned),
         cmocka_unit_test(condition_near_collinear),
     };
