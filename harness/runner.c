@@ -461,6 +461,9 @@ static double runner__model_frame(const runner_budget *b, const plan_config *c,
         dm_str why = {0};
         int rc = fitting_predict(b->fits[i], c->params, c->n_params, c->key, b->runs,
                                  b->n_runs, &ns, &why);
+        if (rc != 0)   /* --verbose says why a pilot frame decides instead */
+            dm_log(DM_LOG_DEBUG, "--budget %s: model %s cannot predict it: %s", c->key,
+                   b->fits[i]->model, dm_str_get(&why));
         dm_str_free(&why);
         if (rc == 0) {
             *used = b->fits[i];
