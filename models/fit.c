@@ -536,8 +536,10 @@ int fit_run(const fit_desc *desc, dm_fit_result *out, dm_str *err)
         return rc;
     fit_desc d = *desc;
     fit_bound *all = dm_xcalloc(desc->n_bounds + n_extra + 1, sizeof *all);
-    memcpy(all, desc->bounds, desc->n_bounds * sizeof *all);
-    memcpy(all + desc->n_bounds, extra, n_extra * sizeof *all);
+    if (desc->n_bounds)
+        memcpy(all, desc->bounds, desc->n_bounds * sizeof *all);
+    if (n_extra)
+        memcpy(all + desc->n_bounds, extra, n_extra * sizeof *all);
     d.formula = expr;
     d.bounds = all;
     d.n_bounds = desc->n_bounds + n_extra;
