@@ -64,35 +64,11 @@ int teardown(void **state)
     return 0;
 }
 
-/* Parses "k=v k=v ..." into params (at most TECHFIX_MAX_PARAMS). */
-size_t parse(const char *spec, dm_kv kv[TECHFIX_MAX_PARAMS], char *buf, size_t cap)
-{
-    snprintf(buf, cap, "%s", spec);
-    size_t n = 0;
-    for (char *save = NULL, *tok = strtok_r(buf, " ", &save); tok && n < TECHFIX_MAX_PARAMS;
-         tok = strtok_r(NULL, " ", &save)) {
-        char *eq = strchr(tok, '=');
-        assert_non_null(eq);
-        *eq = 0;
-        kv[n].key = tok;
-        kv[n++].value = eq + 1;
-    }
-    return n;
-}
 
 /* Renders spec at the current target into a malloc'd RGBA float image. */
 float *render(const char *spec)
 {
-    dm_kv kv[TECHFIX_MAX_PARAMS];
-    char buf[512];
-    size_t n = parse(spec, kv, buf, sizeof buf);
-    tech_item it;
-    dm_str log = {0};
-    int rc = tech_prepare(F.r, kv, n, &it, &log);
-    if (rc)
-        fprintf(stderr, "%s: %s\n", spec, dm_str_get(&log));
-    assert_int_equal(rc, 0);
-    dm_str_free(&log);
+    tech_item it = spec_prepare(F.r, spec, 0, NULL);
     assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
     float *px = malloc((size_t)F.w * (size_t)F.h * 4 * sizeof(float));
     glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, px);

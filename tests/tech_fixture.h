@@ -3,6 +3,7 @@
 #define TESTS_TECH_FIXTURE_H
 
 #include <epoxy/gl.h>
+#include "tests/tech_spec.h"
 #include "harness/gl_context.h"
 #include "techniques/render.h"
 
@@ -21,9 +22,6 @@ void target(int w, int h);
 int techfix_setup(void **state, int w, int h);
 int teardown(void **state);
 
-#define TECHFIX_MAX_PARAMS 24
-/* "k=v k=v ..." (at most TECHFIX_MAX_PARAMS pairs) into kv, using buf as storage. */
-size_t parse(const char *spec, dm_kv kv[TECHFIX_MAX_PARAMS], char *buf, size_t cap);
 /* Prepares and draws spec into the target; returns w*h RGBA floats (caller frees). */
 float *render(const char *spec);
 size_t non_finite(const float *px, size_t n);

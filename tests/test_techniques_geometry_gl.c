@@ -23,21 +23,7 @@
 
 static int setup(void **state) { return techfix_setup(state, 256, 192); }
 
-/* Prepares "k=v k=v ..." (at most 24 pairs). */
-static tech_item prepare(const char *spec)
-{
-    char buf[1024];
-    dm_kv kv[TECHFIX_MAX_PARAMS];
-    size_t n = parse(spec, kv, buf, sizeof buf);
-    tech_item it;
-    dm_str log = {0};
-    int rc = tech_prepare(F.r, kv, n, &it, &log);
-    if (rc)
-        fprintf(stderr, "%s: %s\n", spec, dm_str_get(&log));
-    assert_int_equal(rc, 0);
-    dm_str_free(&log);
-    return it;
-}
+static tech_item prepare(const char *spec) { return spec_prepare(F.r, spec, 0, NULL); }
 
 /* Pipeline statistics of one draw of spec. */
 typedef struct stats { GLuint64 tes, clip_out, patches; } stats;

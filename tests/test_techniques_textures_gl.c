@@ -19,7 +19,8 @@
 #include "harness/gl_context.h"
 #include "techniques/maps.h"
 #include "techniques/render.h"
-#include "techniques/render_internal.h"   /* white-box: the item's texture names */
+#include "techniques/render_internal.h"
+#include "tests/tech_spec.h"   /* white-box: the item's texture names */
 
 static gl_context *ctx;
 static tech_renderer *R;
@@ -41,28 +42,8 @@ static int teardown(void **state)
     return 0;
 }
 
-/* Prepares "k=v k=v ..." (at most 16 pairs); asserts the return code. */
-static tech_item prepare(const char *spec, int want, dm_str *log)
-{
-    char buf[512], *save = NULL;
-    dm_kv kv[16];
-    size_t n = 0;
-    snprintf(buf, sizeof buf, "%s", spec);
-    for (char *t = strtok_r(buf, " ", &save); t && n < 16; t = strtok_r(NULL, " ", &save)) {
-        char *eq = strchr(t, '=');
-        *eq = 0;
-        kv[n].key = t;
-        kv[n++].value = eq + 1;
-    }
-    tech_item it = {0};
-    dm_str scratch = {0};
-    int rc = tech_prepare(R, kv, n, &it, log ? log : &scratch);
-    if (rc != want)
-        fprintf(stderr, "%s: %s\n", spec, dm_str_get(log ? log : &scratch));
-    dm_str_free(&scratch);
-    assert_int_equal(rc, want);
-    return it;
-}
+/* Prepares "k=v ..." on R and asserts the return code (tech_spec.h). */
+static tech_item prepare(const char *spec, int want, dm_str *log) { return spec_prepare(R, spec, want, log); }
 
 /* Level-0 texels of map `which` (0 height, 1 normal, 2 albedo) as RGBA floats. */
 static float *read_map(tech_item it, int which, int size)

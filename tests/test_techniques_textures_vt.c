@@ -18,6 +18,7 @@
 #include "core/dm_image.h"
 #include "core/dm_util.h"
 #include "harness/gl_context.h"
+#include "tests/tech_spec.h"
 #include "techniques/render.h"
 
 enum { W = 192, H = 108 };
@@ -54,28 +55,8 @@ static int teardown(void **state)
     return 0;
 }
 
-/* Prepares "k=v ..." (at most 16 pairs) and asserts the return code. */
-static tech_item prepare(const char *spec, int want, dm_str *log)
-{
-    char buf[512], *save = NULL;
-    dm_kv kv[16];
-    size_t n = 0;
-    snprintf(buf, sizeof buf, "%s", spec);
-    for (char *t = strtok_r(buf, " ", &save); t && n < 16; t = strtok_r(NULL, " ", &save)) {
-        char *eq = strchr(t, '=');
-        *eq = 0;
-        kv[n].key = t;
-        kv[n++].value = eq + 1;
-    }
-    tech_item it = {0};
-    dm_str scratch = {0};
-    int rc = tech_prepare(R, kv, n, &it, log ? log : &scratch);
-    if (rc != want)
-        fprintf(stderr, "%s: %s\n", spec, dm_str_get(log ? log : &scratch));
-    dm_str_free(&scratch);
-    assert_int_equal(rc, want);
-    return it;
-}
+/* Prepares "k=v ..." on R and asserts the return code (tech_spec.h). */
+static tech_item prepare(const char *spec, int want, dm_str *log) { return spec_prepare(R, spec, want, log); }
 
 /* Draws one frame of it and reads it back into im (allocated by the caller). */
 static void frame(tech_item it, img *im)
