@@ -11,7 +11,7 @@
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 #include "counters/counters.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 
 #define SIZE 512
 #define GRID 64

@@ -17,7 +17,7 @@
  *
  * Raw and harness measurements alternate in rounds (ABBA order), so drift
  * of a shared machine hits both; per round the ratio harness/raw is taken.
- * LP_NUM_THREADS is set to 1 unless set, as harness/runner.c does.
+ * LP_NUM_THREADS is set to 1 unless set, as run/runner.c does.
  *
  * Usage: bench_overhead [ROUNDS]   (default 9; dmbench: DMBENCH_BIN or the
  * one built beside this benchmark).  Exit 0 when every configuration was
@@ -34,7 +34,7 @@
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 #include "models/stats.h"
 #include "techniques/mesh.h"
 #include "techniques/render.h"
@@ -284,7 +284,7 @@ static double raw_measure(tech_renderer *r, const ov_conf *c)
     return median(s, RAW_SAMPLES);
 }
 
-/* The FBO of the raw loop: RGBA32F colour + 32F depth, as harness/target.c. */
+/* The FBO of the raw loop: RGBA32F colour + 32F depth, as run/target.c. */
 static void raw_target(void)
 {
     GLuint tex[2], fbo;
@@ -333,7 +333,7 @@ int main(int argc, char **argv)
         return 2;
     }
     const char *bin = getenv("DMBENCH_BIN") ? getenv("DMBENCH_BIN") : DM_DMBENCH_PATH;
-    setenv("LP_NUM_THREADS", "1", 0);   /* as harness/runner.c */
+    setenv("LP_NUM_THREADS", "1", 0);   /* as run/runner.c */
     char dir[] = "/tmp/dmbench-overhead-XXXXXX";
     gl_context *gl = NULL;
     tech_renderer *r = NULL;

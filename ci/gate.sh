@@ -7,7 +7,7 @@
 set -euo pipefail
 HERE=$(cd "$(dirname "$0")" && pwd)
 if [ "${1:-}" = "--update" ]; then UPDATE=1; shift; else UPDATE=0; fi
-BIN=${1:-$HERE/../build/harness/dmbench}
+BIN=${1:-$HERE/../build/dmbench}
 OUT=${2:-$(mktemp -d)}
 export LP_NUM_THREADS=${LP_NUM_THREADS:-1}
 "$BIN" run "$HERE/gate.yaml" --out "$OUT" --seed 1 --quiet

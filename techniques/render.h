@@ -4,7 +4,7 @@
  * handles: a program cache keyed by (technique, defines, driver), mesh and
  * map caches, so a sweep creates each resource once.  It draws into
  * whatever framebuffer is bound; render targets, timing and counters belong
- * to the caller (harness/, counters/).  Needs a current GL 4.5 context.
+ * to the caller (run/, viewer/, counters/).  Needs a current GL 4.5 context.
  */
 #ifndef TECHNIQUES_RENDER_H
 #define TECHNIQUES_RENDER_H

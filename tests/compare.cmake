@@ -1,4 +1,4 @@
-# The regression gate (harness/compare*): unit tests on synthetic runs and
+# The regression gate (gate/): unit tests on synthetic runs and
 # CLI tests with the real binary.
 dm_add_unit(test_compare test_compare.c LIBS dm_compare)
 add_test(NAME test_compare_cli COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/compare/cli.sh)

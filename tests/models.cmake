@@ -4,8 +4,8 @@ dm_add_unit(test_models_formula test_models_formula.c LIBS dm_models)
 dm_add_unit(test_models_fit test_models_fit.c LIBS dm_models)
 dm_add_unit(test_models_compare test_models_compare.c LIBS dm_models)
 dm_add_unit(test_models_data test_models_data.c LIBS dm_models)
-# Predictions of stored fits for --budget (harness/fitting.c).
-dm_add_unit(test_models_predict test_models_predict.c LIBS dm_harness)
+# Predictions of stored fits for --budget (run/fitting.c).
+dm_add_unit(test_models_predict test_models_predict.c LIBS dm_run)
 # --budget end to end: the real binary predicts from a stored fit (~10 s).
 dm_add_gl(test_models_budget test_models_budget.c LIBS dm_core LABELS e2e)
 add_dependencies(test_models_budget dmbench)

@@ -4,7 +4,7 @@
 
 #include <epoxy/gl.h>
 #include "tests/tech_spec.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 #include "techniques/render.h"
 
 typedef struct fixture {

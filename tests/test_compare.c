@@ -1,4 +1,4 @@
-/* Unit tests of the regression gate (harness/compare): verdicts on
+/* Unit tests of the regression gate (gate/): verdicts on
  * synthetic runs with known differences, fingerprint checks, failed and
  * added/removed configurations, quality limits, outputs, loading from
  * results.json / run directories / the store, and accepted baselines. */
@@ -17,8 +17,8 @@
 #include "core/dm_error.h"
 #include "core/dm_results.h"
 #include "core/dm_util.h"
-#include "harness/compare.h"
-#include "harness/store.h"
+#include "gate/compare.h"
+#include "store/store.h"
 #include "models/rng.h"
 #include "reports/report.h"
 

@@ -19,7 +19,7 @@
 
 #include "core/dm_error.h"
 #include "counters/counters.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 
 #define W 64
 #define H 48

@@ -1,5 +1,5 @@
 /* test_models_predict.c — predictions of stored fits for configurations not
- * measured yet (harness/fitting.h fitting_predict, used by --budget). */
+ * measured yet (run/fitting.h fitting_predict, used by --budget). */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -11,7 +11,7 @@
 #include <cmocka.h>
 
 #include "core/dm_error.h"
-#include "harness/fitting.h"
+#include "run/fitting.h"
 
 /* A fit as the store gives it back: formula, named parameters, a group. */
 static dm_fit_result make_fit(const char *formula, const char *const *names, const double *values,

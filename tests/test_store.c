@@ -1,4 +1,4 @@
-/* Unit tests of harness/store: round trip of the whole results model (NaN
+/* Unit tests of store/: round trip of the whole results model (NaN
  * and ±Inf included), resume queries, replacement, copy between stores, run
  * listing, and the failures that could lose data: a process killed in the
  * middle of a transaction, a full disk, failing allocations, unopenable
@@ -23,7 +23,7 @@
 #include "core/dm_error.h"
 #include "core/dm_results.h"
 #include "core/dm_util.h"
-#include "harness/store.h"
+#include "store/store.h"
 
 /* ---- fixtures ---------------------------------------------------------- */
 

@@ -14,7 +14,7 @@
 #include <time.h>
 
 #include "core/dm_util.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 #include "tests/tech_fixture.h"
 #include "reports/image.h"
 #include "reports/quality.h"

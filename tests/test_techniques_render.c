@@ -13,7 +13,7 @@
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 #include "tests/tech_fixture.h"
 #include "techniques/render.h"
 #include "techniques/technique.h"

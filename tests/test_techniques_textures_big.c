@@ -15,7 +15,7 @@
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 #include "techniques/render.h"
 
 static void test_16k(void **state)

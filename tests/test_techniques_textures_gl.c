@@ -16,7 +16,7 @@
 #include "core/dm_error.h"
 #include "core/dm_image.h"
 #include "core/dm_util.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 #include "techniques/maps.h"
 #include "techniques/render.h"
 #include "techniques/render_internal.h"

@@ -17,7 +17,7 @@
 #include "core/dm_error.h"
 #include "core/dm_image.h"
 #include "core/dm_util.h"
-#include "harness/gl_context.h"
+#include "run/gl_context.h"
 #include "tests/tech_spec.h"
 #include "techniques/render.h"
 

@@ -9,9 +9,9 @@
 #include <cmocka.h>
 
 #include "core/dm_error.h"
-#include "harness/viewer_overlay.h"
-#include "harness/viewer_script.h"
-#include "harness/viewer_state.h"
+#include "viewer/viewer_overlay.h"
+#include "viewer/viewer_script.h"
+#include "viewer/viewer_state.h"
 #include "techniques/technique.h"
 
 static void state_with(viewer_state *st, const char *k1, const char *v1, const char *k2, const char *v2)

@@ -6,7 +6,7 @@
 #include <string.h>
 
 #include "core/dm_error.h"
-#include "harness/sweep.h"
+#include "sweep/sweep.h"
 
 int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
 {

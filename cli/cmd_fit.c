@@ -1,0 +1,186 @@
+/* cli_fit.c — `dmbench fit DIR | --data FILE.csv [--model NAME | --formula F] ...`. */
+#include "cli.h"
+#include "core/dm_error.h"
+#include "run/fitting.h"
+#include "store/store.h"
+#include "models/catalog.h"
+#include "models/fit_data.h"
+#include "reports/report.h"
+
+#include <cjson/cJSON.h>
+#include <libgen.h>
+#include <limits.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct fit_args {
+    const char *dir, *data, *model, *formula, *response, *group_by;
+    fit_loss loss;
+    int json;
+} fit_args;
+
+static int fit__args(int argc, char **argv, fit_args *a)
+{
+    static const char *const valid[] = { "--data", "--model", "--formula", "--response",
+                                         "--group-by", "--loss", "--json" };
+    for (int i = 1; i < argc; i++) {
+        const char *o = argv[i], **dst = NULL;
+        if (o[0] != '-') {
+            if (a->dir)
+                return cli__usage_error("fit: only one results directory may be given");
+            a->dir = o;
+            continue;
+        }
+        if (strcmp(o, "--json") == 0) {
+            a->json = 1;
+            continue;
+        }
+        if (strcmp(o, "--data") == 0) dst = &a->data;
+        else if (strcmp(o, "--model") == 0) dst = &a->model;
+        else if (strcmp(o, "--formula") == 0) dst = &a->formula;
+        else if (strcmp(o, "--response") == 0) dst = &a->response;
+        else if (strcmp(o, "--group-by") == 0) dst = &a->group_by;
+        else if (strcmp(o, "--loss") != 0)
+            return cli__unknown_option("fit", o, valid, sizeof valid / sizeof *valid);
+        const char *v = cli__value(argc, argv, &i);
+        if (!v)
+            return 2;
+        if (dst) {
+            *dst = v;
+        } else if (strcmp(v, "huber") == 0 || strcmp(v, "cauchy") == 0 || strcmp(v, "none") == 0) {
+            a->loss = v[0] == 'h' ? FIT_LOSS_HUBER : v[0] == 'c' ? FIT_LOSS_CAUCHY : FIT_LOSS_NONE;
+        } else {
+            return cli__usage_error("fit: --loss '%s': expected one of: huber, cauchy, none", v);
+        }
+    }
+    if (!a->dir == !a->data)
+        return cli__usage_error("fit: give a results directory or --data FILE.csv (one of them)");
+    if (a->model && a->formula)
+        return cli__usage_error("fit: give --model or --formula, not both");
+    if (a->model && !models_builtin_find(a->model)) {
+        dm_str s = {0};
+        for (size_t i = 0; i < models_builtin_count(); i++)
+            dm_str_printf(&s, "%s%s", i ? ", " : "", models_builtin_at(i)->name);
+        int rc = cli__usage_error("fit: unknown model '%s'; built-in models: %s", a->model, dm_str_get(&s));
+        dm_str_free(&s);
+        return rc;
+    }
+    if (a->data && a->group_by)
+        return cli__usage_error("fit: --group-by needs a results directory (a CSV has no axes)");
+    return -1;
+}
+
+static void fit__print(const dm_fit_result *f)
+{
+    printf("model %s: %s = %s", f->model, f->response ? f->response : "?", f->formula ? f->formula : "");
+    for (size_t i = 0; i < f->n_group; i++)
+        printf("%s%s=%s", i ? ", " : "  [", f->group[i].key, f->group[i].value);
+    printf("%s\n", f->n_group ? "]" : "");
+    for (size_t i = 0; i < f->n_params; i++)
+        printf("  %-10s = %14.6g  ± %.3g\n", f->params[i].name, f->params[i].value, f->params[i].stderr_);
+    printf("  R² %.5f  RMSE %.4g  MAPE %.2f%%  CV-MAPE %.2f%%  points %d (excluded %d)  %s\n",
+           f->r2, f->rmse, f->mape, f->cv_mape, f->n_points, f->n_excluded,
+           f->termination ? f->termination : "");
+    if (isinf(f->condition))
+        printf("  condition: infinite (rank deficient)\n");
+    else if (f->condition > 0.0)
+        printf("  condition %.3g%s\n", f->condition,
+               f->condition > FIT_ILL_CONDITIONED ? " (ill-conditioned)" : "");
+    for (size_t i = 0; i < f->n_warnings; i++)
+        printf("  warning: %s\n", f->warnings[i]);
+}
+
+static int fit__from_csv(const fit_args *a, dm_fit_result **fits, size_t *n, dm_str *err)
+{
+    fit_data d = {0};
+    const models_builtin *b = models_builtin_find(a->model ? a->model : "pipeline-linear");
+    const char *formula = a->formula ? a->formula : b->formula;
+    const char *response = a->response ? a->response : (a->formula ? "WallTime" : b->response);
+    fit_desc desc;
+    int rc = fit_data_load_csv(a->data, &d, err);
+    rc = rc ? rc : fit_data_desc(&d, formula, response, &desc, err);
+    if (rc == 0) {
+        desc.model = a->model ? a->model : a->formula ? "formula" : b->name;
+        desc.loss = a->loss;
+        if (!a->formula) {
+            desc.bounds = b->bounds;
+            desc.n_bounds = b->n_bounds;
+        }
+        *fits = dm_xcalloc(1, sizeof **fits);
+        rc = fit_run(&desc, *fits, err);
+        *n = rc == 0;
+    }
+    fit_data_free(&d);
+    return rc;
+}
+
+static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_str *warn, dm_str *err)
+{
+    char real[PATH_MAX];
+    if (!realpath(a->dir, real)) {
+        dm_str_printf(err, "%s: no such run directory", a->dir);
+        return DM_ERR_ARG;
+    }
+    char *c1 = dm_xstrdup(real), *c2 = dm_xstrdup(real);
+    char *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(c1));
+    store *st = NULL;
+    dm_run_result run = {0};
+    int rc = store_open(store_path, &st, err);
+    if (rc == 0 && (rc = store_run_load(st, basename(c2), &run)) != 0)
+        dm_str_printf(err, "%s: run %s is not in %s", a->dir, basename(c2), store_path);
+    char *groups[16];
+    size_t ng = 0;
+    char *gb = a->group_by ? dm_xstrdup(a->group_by) : NULL;
+    for (char *t = gb ? strtok(gb, ",") : NULL; t && ng < 16; t = strtok(NULL, ","))
+        groups[ng++] = t;
+    fitting_spec spec = { .name = a->model ? a->model : a->formula ? "formula" : "pipeline-linear",
+                          .formula = a->formula, .response = a->response,
+                          .group_by = (const char *const *)groups, .n_group_by = ng, .loss = a->loss };
+    if (rc == 0)
+        rc = fitting_run(&spec, &run, fits, n, warn, err);
+    free(gb);
+    dm_run_free(&run);
+    store_close(st);
+    free(store_path);
+    free(c1);
+    free(c2);
+    return rc;
+}
+
+int cli_fit(int argc, char **argv)
+{
+    fit_args a = {0};
+    int rc = fit__args(argc, argv, &a);
+    if (rc >= 0)
+        return rc;
+    dm_fit_result *fits = NULL;
+    size_t n = 0;
+    dm_str warn = {0}, err = {0};
+    rc = a.data ? fit__from_csv(&a, &fits, &n, &err) : fit__from_dir(&a, &fits, &n, &warn, &err);
+    if (rc != 0) {
+        fprintf(stderr, "dmbench: error: fit: %s\n", dm_str_get(&err));
+    } else if (a.json) {
+        cJSON *arr = cJSON_CreateArray();
+        for (size_t i = 0; i < n; i++)
+            cJSON_AddItemToArray(arr, report_fit_to_json(&fits[i]));
+        char *s = cJSON_Print(arr);
+        puts(s);
+        free(s);
+        cJSON_Delete(arr);
+    } else {
+        for (size_t i = 0; i < n; i++)
+            fit__print(&fits[i]);
+    }
+    if (warn.len)
+        fprintf(stderr, "%s", dm_str_get(&warn));
+    for (size_t i = 0; i < n; i++)
+        dm_fit_result_free(&fits[i]);
+    free(fits);
+    dm_str_free(&warn);
+    dm_str_free(&err);
+    if (rc == 0 && n == 0)
+        return 1;     /* nothing could be fitted: a failed check */
+    return rc == 0 ? 0 : (rc == DM_ERR_NUMERIC ? 1 : 2);
+}

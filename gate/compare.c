@@ -1,0 +1,441 @@
+/* compare.c — the regression gate's engine: matching, checks, verdicts
+ * (see compare.h for the rules). */
+#include "gate/compare.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+#include "run/env.h"
+#include "models/compare_stats.h"
+
+static const char *const compare__verdict_names[] = { "PASS", "SKIPPED", "IMPROVEMENT",
+                                                      "INCONCLUSIVE", "REGRESSION" };
+
+const char *compare_verdict_name(compare_verdict v)
+{
+    return (unsigned)v <= COMPARE_REGRESSION ? compare__verdict_names[v] : "?";
+}
+
+compare_desc compare_defaults(const compare_desc *d)
+{
+    compare_desc o = *d;
+    o.time_threshold = o.time_threshold > 0 ? o.time_threshold : 0.05;
+    o.alpha = o.alpha > 0 ? o.alpha : 0.01;
+    o.level = o.level > 0 ? o.level : 0.95;
+    o.psnr_drop = o.psnr_drop > 0 ? o.psnr_drop : 1.0;
+    o.ssim_drop = o.ssim_drop > 0 ? o.ssim_drop : 0.01;
+    o.time_counter = o.time_counter ? o.time_counter : "WallTime";
+    return o;
+}
+
+static void compare__push(char ***list, size_t *n, char *text)
+{
+    *list = dm_xrealloc(*list, (*n + 1) * sizeof **list);
+    (*list)[(*n)++] = text;
+}
+
+/* 1 when param k has another value (or none) in some configuration of r. */
+static int compare__varies(const dm_run_result *r, const dm_kv *k)
+{
+    for (size_t i = 0; i < r->n_configs; i++) {
+        const char *v = dm_kv_get(r->configs[i].params, r->configs[i].n_params, k->key);
+        if (!v || !k->value || strcmp(v, k->value) != 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* "k=v k=v" of the params that tell c apart within run r (all of them when
+ * none do; its key when it has none). */
+static char *compare__label(const dm_config_result *c, const dm_run_result *r)
+{
+    dm_str s = {0};
+    for (int all = 0; all < 2 && !s.len; all++)
+        for (size_t i = 0; i < c->n_params; i++)
+            if (all || compare__varies(r, &c->params[i]))
+                dm_str_printf(&s, "%s%s=%s", s.len ? " " : "", c->params[i].key,
+                              c->params[i].value ? c->params[i].value : "");
+    if (!s.len)
+        dm_str_cat(&s, c->key);
+    return dm_str_take(&s);
+}
+
+static const dm_config_result *compare__find(const dm_run_result *r, const char *key)
+{
+    for (size_t i = 0; i < r->n_configs; i++)
+        if (r->configs[i].key && strcmp(r->configs[i].key, key) == 0)
+            return &r->configs[i];
+    return NULL;
+}
+
+/* Lists fingerprint differences; returns their number. */
+static size_t compare__env(const dm_run_result *a, const dm_run_result *b, int driver_only,
+                           compare_result *out)
+{
+    static const char *const driver_keys[] = { "renderer", "gl_version", NULL };
+    const char *const *keys = driver_only ? driver_keys : env_fingerprint_keys();
+    for (; *keys; keys++) {
+        const char *va = dm_kv_get(a->environment, a->n_environment, *keys);
+        const char *vb = dm_kv_get(b->environment, b->n_environment, *keys);
+        if ((va || vb) && (!va || !vb || strcmp(va, vb) != 0))
+            compare__push(&out->env_diffs, &out->n_env_diffs,
+                          dm_xasprintf("%s: '%s' (BASE) vs '%s' (NEW)", *keys, va ? va : "(absent)",
+                                       vb ? vb : "(absent)"));
+    }
+    return out->n_env_diffs;
+}
+
+static double compare__tolerance(const compare_desc *d, const char *counter)
+{
+    for (size_t i = 0; i < d->n_tolerances; i++)
+        if (strcmp(d->tolerances[i].counter, counter) == 0)
+            return d->tolerances[i].rel;
+    return 0.0;
+}
+
+static void compare__change(compare_item *it, const char *counter, double b, double n, const char *note)
+{
+    it->changes = dm_xrealloc(it->changes, (it->n_changes + 1) * sizeof *it->changes);
+    compare_change *c = &it->changes[it->n_changes++];
+    c->counter = dm_xstrdup(counter);
+    c->base = b;
+    c->new_ = n;
+    c->note = dm_xstrdup(note);
+}
+
+/* Deterministic counters of BASE against NEW: a value outside the tolerance,
+ * or a counter available on one side only, is a change. */
+static void compare__deterministic(const compare_desc *d, const dm_config_result *b,
+                                   const dm_config_result *n, compare_item *it)
+{
+    for (size_t i = 0; i < b->n_counters; i++) {
+        const dm_counter_result *cb = &b->counters[i];
+        const dm_counter_result *cn = dm_config_counter(n, cb->name);
+        if (!cb->deterministic || !cn)
+            continue;
+        if (cb->available != cn->available) {
+            compare__change(it, cb->name, cb->value, cn->value,
+                            cb->available ? "unavailable on NEW" : "unavailable on BASE");
+            continue;
+        }
+        double tol = compare__tolerance(d, cb->name);
+        if (cb->available && !(fabs(cn->value - cb->value) <= tol * fabs(cb->value)))
+            compare__change(it, cb->name, cb->value, cn->value, NULL);
+    }
+}
+
+/* Quality drop over the limits; returns a note or NULL. */
+static char *compare__quality(const compare_desc *d, const dm_config_result *b,
+                              const dm_config_result *n, compare_item *it)
+{
+    if (!b->quality.present || !n->quality.present)
+        return NULL;
+    it->quality = 1;
+    it->psnr_base = b->quality.psnr;
+    it->psnr_new = n->quality.psnr;
+    it->ssim_base = b->quality.ssim;
+    it->ssim_new = n->quality.ssim;
+    /* inf - inf is NaN (no drop); inf - finite is an infinite drop */
+    double dp = it->psnr_base == it->psnr_new ? 0.0 : it->psnr_base - it->psnr_new;
+    if (dp > d->psnr_drop)
+        return dm_xasprintf("PSNR dropped %.2f dB (%.2f -> %.2f; limit %.2f dB)", dp, it->psnr_base,
+                            it->psnr_new, d->psnr_drop);
+    double ds = it->ssim_base - it->ssim_new;
+    if (ds > d->ssim_drop)
+        return dm_xasprintf("SSIM dropped %.4f (%.4f -> %.4f; limit %.4f)", ds, it->ssim_base,
+                            it->ssim_new, d->ssim_drop);
+    return NULL;
+}
+
+static char *compare__changes_note(const compare_item *it)
+{
+    dm_str s = {0};
+    for (size_t i = 0; i < it->n_changes; i++) {
+        const compare_change *c = &it->changes[i];
+        if (c->note)
+            dm_str_printf(&s, "%s%s %s", i ? "; " : "", c->counter, c->note);
+        else
+            dm_str_printf(&s, "%s%s changed %.17g -> %.17g", i ? "; " : "", c->counter, c->base,
+                          c->new_);
+    }
+    return dm_str_take(&s);
+}
+
+/* Runs the non-timing checks of one matched pair; returns 1 when decided. */
+static int compare__checks(const compare_desc *d, const dm_config_result *b,
+                           const dm_config_result *n, compare_item *it)
+{
+    if (!b->ok && !n->ok) {
+        it->verdict = COMPARE_SKIPPED;
+        it->note = dm_xasprintf("failed on both sides (NEW: %s)", n->reason ? n->reason : "?");
+        return 1;
+    }
+    if (!n->ok) {
+        it->verdict = COMPARE_REGRESSION;
+        it->note = dm_xasprintf("failed on NEW: %s", n->reason ? n->reason : "no reason");
+        return 1;
+    }
+    if (!b->ok) {
+        it->note = dm_xasprintf("failed on BASE, ok on NEW: not compared");
+        return 1;
+    }
+    compare__deterministic(d, b, n, it);
+    if (it->n_changes) {
+        it->verdict = COMPARE_REGRESSION;
+        it->note = compare__changes_note(it);
+        return 1;
+    }
+    if (d->counters_only)
+        return 1;
+    if ((it->note = compare__quality(d, b, n, it))) {
+        it->verdict = COMPARE_REGRESSION;
+        return 1;
+    }
+    return 0;
+}
+
+/* Bootstrap CI and Mann-Whitney p of the time counter; 0 when timed. */
+static int compare__time_stats(const compare_desc *d, const dm_config_result *b,
+                               const dm_config_result *n, compare_item *it)
+{
+    const dm_counter_result *tb = dm_config_counter(b, d->time_counter);
+    const dm_counter_result *tn = dm_config_counter(n, d->time_counter);
+    if (!tb || !tn || !tb->available || !tn->available || !tb->n_samples || !tn->n_samples) {
+        it->verdict = COMPARE_INCONCLUSIVE;
+        it->extra_samples = -1;
+        it->note = dm_xasprintf("no %s samples on %s", d->time_counter,
+                                !tb || !tb->available || !tb->n_samples ? "BASE" : "NEW");
+        return -1;
+    }
+    compare_ratio cr;
+    uint64_t seed = dm_fnv1a64(it->key, strlen(it->key), d->seed ^ DM_FNV_SEED);
+    if (compare_stats_ratio_ci(tb->samples, tb->n_samples, tn->samples, tn->n_samples, d->level,
+                               seed, &cr) != 0) {
+        it->verdict = COMPARE_INCONCLUSIVE;
+        it->extra_samples = -1;
+        it->note = dm_xasprintf("%s: no finite samples or a zero median", d->time_counter);
+        return -1;
+    }
+    it->timed = 1;
+    it->ratio = cr.ratio;
+    it->lo = cr.lo;
+    it->hi = cr.hi;
+    it->n_base = tb->n_samples;
+    it->n_new = tn->n_samples;
+    it->p = compare_stats_mann_whitney(tn->samples, tn->n_samples, tb->samples, tb->n_samples, NULL);
+    return 0;
+}
+
+/* (distance of a CI bound from the ratio / distance of the threshold it
+ * must clear from the ratio)^2: how much that side of the CI must shrink. */
+static double compare__shrink(double r, double bound, double thr)
+{
+    double d = fabs(r - thr);
+    return d > 1e-9 ? ((r - bound) / d) * ((r - bound) / d) : INFINITY;
+}
+
+/* Extra samples per side likely needed for the CI to clear the threshold(s)
+ * it straddles, each side of the (possibly skewed) CI scaled on its own;
+ * -1 when the ratio sits on a threshold. */
+static long compare__extra_samples(double t, const compare_item *it)
+{
+    double r = it->ratio, f = 0;
+    if (r > 1.0 + t)
+        f = compare__shrink(r, it->lo, 1.0 + t);
+    else if (r < 1.0 - t)
+        f = compare__shrink(r, it->hi, 1.0 - t);
+    else {
+        if (it->lo < 1.0 - t)
+            f = compare__shrink(r, it->lo, 1.0 - t);
+        if (it->hi > 1.0 + t)
+            f = fmax(f, compare__shrink(r, it->hi, 1.0 + t));
+    }
+    double n = (double)(it->n_base < it->n_new ? it->n_base : it->n_new);
+    double need = ceil(n * f - n);
+    return !isfinite(need) || need > 1e9 ? -1 : need < 1 ? 1 : (long)need;
+}
+
+/* The three-way time verdict of a timed item, with q already set. */
+static void compare__time_verdict(const compare_desc *d, compare_item *it)
+{
+    double t = d->time_threshold;
+    int sig = it->q < d->alpha;
+    if (it->lo > 1.0 + t && sig) {
+        it->verdict = COMPARE_REGRESSION;
+        it->note = dm_xasprintf("%s %.1f%% slower (CI %.3f..%.3f, q=%.2g)", d->time_counter,
+                                (it->ratio - 1) * 100, it->lo, it->hi, it->q);
+    } else if (it->hi < 1.0 - t && sig) {
+        it->verdict = COMPARE_IMPROVEMENT;
+        it->note = dm_xasprintf("%s %.1f%% faster", d->time_counter, (1 - it->ratio) * 100);
+    } else if (it->lo >= 1.0 - t && it->hi <= 1.0 + t) {
+        it->verdict = COMPARE_PASS;
+    } else {
+        it->verdict = COMPARE_INCONCLUSIVE;
+        if (it->lo > 1.0 + t || it->hi < 1.0 - t) {
+            it->extra_samples = -1;
+            it->note = dm_xasprintf("CI outside the tolerance but not significant (q=%.2g >= %.2g)",
+                                    it->q, d->alpha);
+        } else {
+            it->extra_samples = compare__extra_samples(t, it);
+            it->note = it->extra_samples < 0
+                           ? dm_xasprintf("CI %.3f..%.3f straddles %.3f; more samples will not "
+                                          "decide it", it->lo, it->hi,
+                                          it->ratio > 1 ? 1 + t : 1 - t)
+                           : dm_xasprintf("CI %.3f..%.3f too wide: about %ld more samples per side",
+                                          it->lo, it->hi, it->extra_samples);
+        }
+    }
+}
+
+/* BH over the timed items, their verdicts, and the suite geometric mean. */
+static void compare__timing(const compare_desc *d, compare_result *out, const int *pending)
+{
+    double *p = dm_xcalloc(out->n_items + 1, sizeof *p);
+    size_t m = 0;
+    for (size_t i = 0; i < out->n_items; i++)
+        if (pending[i])
+            p[m++] = isnan(out->items[i].p) ? 1.0 : out->items[i].p;
+    compare_stats_bh(p, m, p);
+    double logsum = 0;
+    for (size_t i = 0, k = 0; i < out->n_items; i++) {
+        if (!pending[i])
+            continue;
+        compare_item *it = &out->items[i];
+        it->q = p[k++];
+        compare__time_verdict(d, it);
+        logsum += log(it->ratio);
+        out->n_geomean++;
+    }
+    out->geomean = out->n_geomean ? exp(logsum / (double)out->n_geomean) : NAN;
+    free(p);
+}
+
+static int compare__item_cmp(const void *a, const void *b)
+{
+    const compare_item *x = a, *y = b;
+    if (x->verdict != y->verdict)
+        return x->verdict > y->verdict ? -1 : 1;
+    double rx = x->timed ? x->ratio : 0, ry = y->timed ? y->ratio : 0;
+    if (rx != ry)
+        return rx > ry ? -1 : 1;
+    return strcmp(x->label, y->label);
+}
+
+/* Matches configurations by key, lists added and removed ones. */
+static int *compare__match(const compare_desc *d, const dm_run_result *base,
+                           const dm_run_result *new_, compare_result *out)
+{
+    out->items = dm_xcalloc(base->n_configs + 1, sizeof *out->items);
+    int *pending = dm_xcalloc(base->n_configs + 1, sizeof *pending);
+    for (size_t i = 0; i < base->n_configs; i++) {
+        const dm_config_result *b = &base->configs[i], *n = compare__find(new_, b->key);
+        char *label = compare__label(b, base);
+        if (!n) {
+            compare__push(&out->removed, &out->n_removed, dm_xasprintf("%s [%s]", label, b->key));
+            free(label);
+            continue;
+        }
+        compare_item *it = &out->items[out->n_items];
+        it->key = dm_xstrdup(b->key);
+        it->label = label;
+        it->p = it->q = NAN;
+        if (!compare__checks(d, b, n, it))
+            pending[out->n_items] = compare__time_stats(d, b, n, it) == 0;
+        out->n_items++;
+    }
+    for (size_t i = 0; i < new_->n_configs; i++)
+        if (!compare__find(base, new_->configs[i].key)) {
+            char *label = compare__label(&new_->configs[i], new_);
+            compare__push(&out->added, &out->n_added,
+                          dm_xasprintf("%s [%s]", label, new_->configs[i].key));
+            free(label);
+        }
+    return pending;
+}
+
+/* GPUTime marked partial in either run may not gate (SPEC §4). */
+static int compare__time_counter_ok(const compare_desc *d, const dm_run_result *r)
+{
+    for (size_t i = 0; i < r->n_configs; i++) {
+        const dm_counter_result *c = dm_config_counter(&r->configs[i], d->time_counter);
+        if (c && c->partial)
+            return 0;
+    }
+    return 1;
+}
+
+int compare_runs(const dm_run_result *base, const dm_run_result *new_, const compare_desc *d,
+                 compare_result *out, dm_str *err)
+{
+    memset(out, 0, sizeof *out);
+    out->desc = compare_defaults(d);
+    out->geomean = NAN;
+    out->base_id = dm_xstrdup(base->id);
+    out->new_id = dm_xstrdup(new_->id);
+    out->sweep = dm_xstrdup(new_->sweep);
+    const compare_desc *o = &out->desc;
+    if (compare__env(base, new_, o->counters_only, out)) {
+        if (!o->allow_env_mismatch) {
+            dm_str_printf(err, "environment fingerprints differ (%zu key%s); pass "
+                          "--allow-env-mismatch to compare anyway", out->n_env_diffs,
+                          out->n_env_diffs == 1 ? "" : "s");
+            return DM_ERR_ARG;
+        }
+        compare__push(&out->warnings, &out->n_warnings,
+                      dm_xasprintf("environment fingerprints differ (%zu key%s); compared anyway "
+                                   "because of --allow-env-mismatch", out->n_env_diffs,
+                                   out->n_env_diffs == 1 ? "" : "s"));
+    }
+    if (!o->counters_only && (!compare__time_counter_ok(o, base) || !compare__time_counter_ok(o, new_))) {
+        dm_str_printf(err, "%s is marked partial on this driver (the timer covers a fraction of "
+                      "the work); it is never used to gate — use WallTime", o->time_counter);
+        return DM_ERR_ARG;
+    }
+    int *pending = compare__match(o, base, new_, out);
+    compare__timing(o, out, pending);
+    free(pending);
+    qsort(out->items, out->n_items, sizeof *out->items, compare__item_cmp);
+    for (size_t i = 0; i < out->n_items; i++)
+        out->count[out->items[i].verdict]++;
+    return 0;
+}
+
+int compare_exit_code(const compare_result *r)
+{
+    if (r->count[COMPARE_REGRESSION])
+        return 1;
+    return r->count[COMPARE_INCONCLUSIVE] ? 3 : 0;
+}
+
+static void compare__free_list(char **list, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(list[i]);
+    free(list);
+}
+
+void compare_result_free(compare_result *r)
+{
+    for (size_t i = 0; i < r->n_items; i++) {
+        compare_item *it = &r->items[i];
+        for (size_t k = 0; k < it->n_changes; k++) {
+            free(it->changes[k].counter);
+            free(it->changes[k].note);
+        }
+        free(it->changes);
+        free(it->key);
+        free(it->label);
+        free(it->note);
+    }
+    free(r->items);
+    compare__free_list(r->added, r->n_added);
+    compare__free_list(r->removed, r->n_removed);
+    compare__free_list(r->env_diffs, r->n_env_diffs);
+    compare__free_list(r->warnings, r->n_warnings);
+    free(r->base_id);
+    free(r->new_id);
+    free(r->sweep);
+    memset(r, 0, sizeof *r);
+}

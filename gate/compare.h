@@ -1,0 +1,181 @@
+/* compare.h — the regression gate (SPEC §9): compare two runs configuration
+ * by configuration and give each a verdict.
+ *
+ * Matching: configurations are matched by key; keys on one side only are
+ * listed as added / removed and never fail the gate.
+ * Environment: the fingerprint keys of run/env.h must be equal (with
+ * counters_only only the driver part: renderer, gl_version, because a CPU
+ * never changes a pipeline-statistics count); a difference is DM_ERR_ARG
+ * unless allow_env_mismatch, which turns it into a warning.
+ * Per matched configuration, in this order, the first failing check wins:
+ *  - NEW failed where BASE was ok                          -> REGRESSION
+ *  - a deterministic counter available on both sides differs by more than
+ *    its relative tolerance (default 0: exact)               -> REGRESSION
+ *  - quality: PSNR dropped by more than psnr_drop dB or SSIM by more than
+ *    ssim_drop (not in counters_only mode)                   -> REGRESSION
+ *  - time (not in counters_only mode): the percentile bootstrap CI (level,
+ *    seeded per key) of median(new)/median(base) of the time counter and a
+ *    Mann-Whitney U p-value, Benjamini-Hochberg adjusted over all timed
+ *    configurations (q):
+ *      lo > 1 + t and q < alpha                              -> REGRESSION
+ *      hi < 1 - t and q < alpha                              -> IMPROVEMENT
+ *      1 - t <= lo and hi <= 1 + t                           -> PASS
+ *      otherwise                                             -> INCONCLUSIVE
+ *    INCONCLUSIVE carries the extra samples per side likely needed:
+ *    n * f - n, n the smaller side's sample count, f the largest
+ *    ((ratio - CI bound) / (ratio - threshold that bound must clear))^2
+ *    over the CI sides that cross a threshold (a CI shrinks ~ 1/sqrt(n)).
+ * Configurations failed on both sides are SKIPPED.  The suite geometric mean
+ * of the timed ratios is reported.
+ * Exit code of a comparison: 1 if any REGRESSION, else 3 if any
+ * INCONCLUSIVE, else 0 (improvements pass).
+ */
+#ifndef HARNESS_COMPARE_H
+#define HARNESS_COMPARE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+
+/* Worst first: the table is sorted by descending verdict. */
+typedef enum compare_verdict {
+    COMPARE_PASS = 0,
+    COMPARE_SKIPPED,
+    COMPARE_IMPROVEMENT,
+    COMPARE_INCONCLUSIVE,
+    COMPARE_REGRESSION,
+} compare_verdict;
+
+typedef struct compare_tolerance {
+    const char *counter;
+    double rel;              /* |new - base| <= rel * |base| passes */
+} compare_tolerance;
+
+/* Zero means default everywhere (see compare_defaults). */
+typedef struct compare_desc {
+    double time_threshold;   /* 0 -> 0.05 */
+    double alpha;            /* 0 -> 0.01 */
+    double level;            /* 0 -> 0.95 */
+    double psnr_drop;        /* 0 -> 1.0 dB */
+    double ssim_drop;        /* 0 -> 0.01 */
+    const char *time_counter;/* NULL -> "WallTime" */
+    uint64_t seed;           /* bootstrap seed (0 is a valid seed) */
+    int counters_only;
+    int allow_env_mismatch;
+    const compare_tolerance *tolerances;
+    size_t n_tolerances;
+} compare_desc;
+
+typedef struct compare_change {
+    char *counter;
+    double base, new_;
+    char *note;              /* e.g. "unavailable on NEW"; NULL for a value change */
+} compare_change;
+
+typedef struct compare_item {
+    char *key;
+    char *label;             /* "mesh=plane technique=normal resolution=96x54" */
+    compare_verdict verdict;
+    char *note;              /* why (first failing check), NULL for a plain PASS */
+    int timed;               /* the time statistics below are set */
+    double ratio, lo, hi;    /* median(new)/median(base) and its CI */
+    double p, q;             /* Mann-Whitney p, BH-adjusted q */
+    size_t n_base, n_new;
+    long extra_samples;      /* INCONCLUSIVE: per side; -1 unknown */
+    compare_change *changes; /* deterministic counters that changed */
+    size_t n_changes;
+    int quality;             /* both sides have quality */
+    double psnr_base, psnr_new, ssim_base, ssim_new;
+} compare_item;
+
+typedef struct compare_result {
+    compare_desc desc;       /* filled-in settings used */
+    char *base_id, *new_id, *sweep;
+    compare_item *items;     /* sorted worst first */
+    size_t n_items;
+    char **added, **removed; /* "label [key]" */
+    size_t n_added, n_removed;
+    char **env_diffs;        /* "cpu: 'A' vs 'B'" */
+    size_t n_env_diffs;
+    char **warnings;
+    size_t n_warnings;
+    size_t count[COMPARE_REGRESSION + 1];
+    double geomean;          /* NaN when no configuration was timed */
+    size_t n_geomean;
+} compare_result;
+
+/* Fills the defaults of a zero desc field by field. */
+compare_desc compare_defaults(const compare_desc *d);
+/* Name of a verdict ("PASS", "REGRESSION", ...). */
+const char *compare_verdict_name(compare_verdict v);
+
+/* Compares NEW against BASE (both only read) into *out (zeroed first;
+ * release with compare_result_free, also after a failure).  Returns 0 when
+ * compared; DM_ERR_ARG with out->env_diffs listed when the fingerprints
+ * differ and allow_env_mismatch is off; DM_ERR_ARG when the time counter is
+ * GPUTime marked partial (never gated) — err says why. */
+int compare_runs(const dm_run_result *base, const dm_run_result *new_, const compare_desc *d,
+                 compare_result *out, dm_str *err);
+/* 0 pass, 1 regression, 3 inconclusive (see top). */
+int compare_exit_code(const compare_result *r);
+void compare_result_free(compare_result *r);
+
+/* ---- outputs (compare_write.c) ---------------------------------------- */
+/* Terminal table, worst first, then added/removed, warnings and a summary. */
+void compare_write_text(const compare_result *r, FILE *f);
+/* Markdown summary + table; JUnit XML (one testcase per configuration:
+ * <failure> for REGRESSION, <skipped> for INCONCLUSIVE and SKIPPED, the
+ * verdict in system-out); JSON (everything in compare_result).  Each returns
+ * 0 or DM_ERR_IO and writes atomically. */
+int compare_write_markdown(const compare_result *r, const char *path);
+int compare_write_junit(const compare_result *r, const char *path);
+int compare_write_json(const compare_result *r, const char *path);
+
+/* ---- inputs (compare_input.c) ----------------------------------------- */
+/* Loads one side: a results.json, a run directory (its results.json, or
+ * the store beside it), or an output root holding `latest`.  Returns 0, or
+ * DM_ERR_IO / DM_ERR_PARSE / DM_ERR_NOTFOUND with err naming the path. */
+int compare_load_path(const char *path, dm_run_result *out, dm_str *err);
+/* Loads run_id, or the newest run tagged tag, from the store at
+ * store_path.  Same codes as above. */
+int compare_load_store(const char *store_path, const char *run_id, const char *tag,
+                       dm_run_result *out, dm_str *err);
+
+/* ---- baselines (compare_input.c) --------------------------------------
+ * Accepted baselines live in baselines.json beside the store:
+ *   { "baselines": [ { "run": ID, "sweep": NAME, "reason": TEXT,
+ *                      "accepted": ISO-8601 }, ... ] }  (append order). */
+/* Path of baselines.json beside store_path (caller frees). */
+char *compare_baselines_path(const char *store_path);
+/* Appends an acceptance of run_id (which must exist in the store).
+ * DM_ERR_NOTFOUND when absent, DM_ERR_ARG for an empty reason, DM_ERR_IO. */
+int compare_baseline_accept(const char *store_path, const char *run_id, const char *reason,
+                            dm_str *err);
+/* Newest accepted baseline run id of that sweep (any sweep when NULL) into
+ * *run_id (caller frees), with its reason into *reason (optional).
+ * DM_ERR_NOTFOUND when none. */
+int compare_baseline_latest(const char *store_path, const char *sweep, char **run_id,
+                            char **reason, dm_str *err);
+
+/* ---- paired mode (compare_paired.c) ----------------------------------- */
+typedef struct compare_paired_desc {
+    const char *base_binary, *new_binary, *sweep_path;
+    int rounds;              /* 0 -> 6; round r runs A,B when r is even, B,A when odd (ABBA) */
+    int quiet;
+} compare_paired_desc;
+/* Runs the sweep `rounds` times with each binary, each run a fresh process
+ * writing to its own temporary output directory (removed afterwards), and
+ * pools each side's per-run medians per key across rounds into *base / *new_
+ * (the run is the unit of replication: samples within one process are not
+ * independent)
+ * (deterministic counters, quality and status from the first round; a
+ * configuration failed in any round is failed; a deterministic counter that
+ * differs between rounds of one side is a warning in run->warnings).
+ * Returns 0 or DM_ERR_CHILD (a run exited non-zero) / DM_ERR_IO. */
+int compare_paired_run(const compare_paired_desc *d, dm_run_result *base, dm_run_result *new_,
+                       dm_str *err);
+
+#endif

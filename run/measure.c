@@ -1,0 +1,721 @@
+/* measure.c — the measurement protocol for one scene (see measure.h). */
+#include "measure.h"
+#include "core/dm_error.h"
+#include "counters/counters.h"
+#include "run/gl_context.h"
+#include "run/refcache.h"
+#include "store/store.h"
+#include "run/target.h"
+#include "models/stats.h"
+#include "reports/image.h"
+#include "reports/quality.h"
+#include "techniques/render.h"
+
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+/* State of one configuration while its scene is measured. */
+typedef struct mconf {
+    const plan_config *pc;
+    tech_item item;
+    tech_item_info info;
+    int active;                 /* still sampling */
+    int failed;
+    char *reason;
+    dm_str log;
+    int64_t warmup_ns;
+    int64_t sampling_ns;        /* time spent in its own timing samples */
+    int64_t stats_ns, quality_ns;   /* statistics pass; images and quality (--verbose log) */
+    const char *ref_source;     /* "cache", "rendered", NULL: the scene's, made before */
+    int frames;                 /* frames per timing sample (>= K, see min_sample_ms) */
+    double **timing;            /* per timing counter: per-frame samples */
+    size_t n_samples;
+    double *stats;              /* per statistics counter: per-frame value (NAN = unavailable) */
+    char **stats_reason;
+} mconf;
+
+typedef struct mscene {
+    const measure_job *job;
+    gl_context *gl;
+    tech_renderer *r;
+    counters_context *cc;
+    store *st;
+    const char **timing;        /* enabled counters by kind */
+    size_t n_timing;
+    const char **statistic;
+    size_t n_statistic;
+    target rt;                  /* the scene's render target (one resolution per scene) */
+    float *ref_rgba, *ref_depth;   /* scene reference, rendered on first use */
+    char *ref_path;
+} mscene;
+
+static void measure__say(const measure_job *job, const char *fmt, ...)
+    __attribute__((format(printf, 2, 3)));
+
+static void measure__say(const measure_job *job, const char *fmt, ...)
+{
+    if (job->report_fd < 0)
+        return;
+    dm_str s = {0};
+    va_list ap;
+    va_start(ap, fmt);
+    dm_str_vprintf(&s, fmt, ap);
+    va_end(ap);
+    dm_str_cat(&s, "\n");
+    ssize_t w = write(job->report_fd, s.buf, s.len);
+    (void)w;
+    dm_str_free(&s);
+}
+
+/* Sorts the sweep's counters into those read in timed passes and those read
+ * in the one-frame statistics pass; CPU-side and setup counters are filled
+ * from the renderer. */
+static void measure__classify(mscene *m)
+{
+    const sweep_measure *sm = &m->job->sweep->measure;
+    m->timing = dm_xcalloc(sm->n_counters, sizeof *m->timing);
+    m->statistic = dm_xcalloc(sm->n_counters, sizeof *m->statistic);
+    for (size_t i = 0; i < sm->n_counters; i++) {
+        const counters_info *ci = counters_find(sm->counters[i]);
+        if (!ci)
+            continue;
+        if (ci->backend == COUNTERS_BACKEND_PIPELINE_STATS || ci->backend == COUNTERS_BACKEND_OCCLUSION)
+            m->statistic[m->n_statistic++] = ci->name;
+        else if ((ci->backend == COUNTERS_BACKEND_CLOCK || ci->backend == COUNTERS_BACKEND_TIMER_QUERY) &&
+                 strcmp(ci->name, "SetupTime") != 0 && strcmp(ci->name, "WarmupTime") != 0)
+            m->timing[m->n_timing++] = ci->name;
+    }
+}
+
+static void measure__fail(mconf *c, const char *reason)
+{
+    if (c->failed)
+        return;
+    c->failed = 1;
+    c->active = 0;
+    c->reason = dm_xstrdup(reason);
+}
+
+/* Draws `frames` frames of one item into the scene's target (made or
+ * resized on first use; rebound because image renders use their own). */
+static void measure__frames(mscene *m, mconf *c, int frames)
+{
+    if (m->rt.w != c->pc->width || m->rt.h != c->pc->height) {
+        target_destroy(&m->rt);
+        if (target_create(&m->rt, c->pc->width, c->pc->height) != 0) {
+            dm_str_printf(&c->log, "cannot create a %dx%d render target\n", c->pc->width, c->pc->height);
+            return;
+        }
+    }
+    target_bind(&m->rt);
+    for (int f = 0; f < frames; f++)
+        tech_draw(m->r, c->item, c->pc->width, c->pc->height);
+}
+
+/* One fenced sample of K frames without a counter session: wall ns/frame. */
+static double measure__plain_sample(mscene *m, mconf *c, int frames)
+{
+    glFinish();
+    int64_t t0 = dm_now_ns();
+    measure__frames(m, c, frames);
+    glFinish();
+    return (double)(dm_now_ns() - t0) / frames;
+}
+
+/* Runs one session over the given counters, K frames per pass; fills
+ * values[i] (per frame) or NAN with reasons[i] set when unavailable. */
+static int measure__session(mscene *m, mconf *c, const char **names, size_t n, int frames,
+                            double *values, char **reasons)
+{
+    counters_session *s = NULL;
+    int rc = counters_session_create(m->cc, &s);
+    for (size_t i = 0; rc == 0 && i < n; i++)
+        rc = counters_enable(s, names[i]);
+    int passes = 0;
+    if (rc == 0)
+        rc = counters_num_passes(s, &passes);
+    for (int p = 0; rc == 0 && p < passes; p++) {
+        rc = counters_pass_begin(s, p);
+        rc = rc ? rc : counters_sample_begin(s, 0);
+        if (rc == 0)
+            measure__frames(m, c, frames);
+        rc = rc ? rc : counters_sample_end(s);
+        rc = rc ? rc : counters_pass_end(s);
+    }
+    rc = rc ? rc : counters_session_end(s);
+    for (size_t i = 0; rc == 0 && i < n; i++) {
+        double v = NAN;
+        int r = counters_result(s, 0, names[i], &v);
+        values[i] = r == 0 ? v / frames : NAN;
+        if (r != 0 && reasons && !reasons[i])
+            reasons[i] = dm_xstrdup(counters_last_error(s));
+    }
+    if (rc != 0)
+        dm_str_printf(&c->log, "counters: %s\n", s ? counters_last_error(s) : dm_strerror(rc));
+    counters_session_destroy(s);
+    return rc;
+}
+
+/* Frames per warm-up sample: K, or fewer when K frames of frame_ns would
+ * last longer than min_sample_ms (the length the harness deems enough for
+ * a sample, see the timing samples), never fewer than 1.  The agreement
+ * check then costs 2 frames, not 2K, on configurations whose frame alone
+ * lasts min_sample_ms.  min_sample_ms = 0 keeps K exactly. */
+static int measure__warmup_sample_frames(const sweep_measure *sm, double frame_ns)
+{
+    int k = sm->frames_per_sample > 0 ? sm->frames_per_sample : 1;
+    if (sm->min_sample_ms <= 0 || !(frame_ns > 0))
+        return k;
+    double want = ceil(sm->min_sample_ms * 1e6 / frame_ns);
+    return want < 1 ? 1 : want > k ? k : (int)want;
+}
+
+/* Warm-up of a prepared configuration: warmup_frames frames, then samples
+ * until two consecutive ones agree within 10 %; sets c->frames (frames per
+ * timing sample) and c->warmup_ns.  llvmpipe JIT-compiles a program's
+ * variant at its first draw, also when the program came from the binary
+ * cache: on a warm second run of the default sweep the first frame took a
+ * median 2.5 ms (up to 23 ms) more than the steady frame, and the frames
+ * after it were steady.  So the first frame is timed alone and the frames
+ * after it give the frame time that sizes the warm-up samples. */
+static void measure__warmup(mscene *m, mconf *c)
+{
+    const sweep_measure *sm = &m->job->sweep->measure;
+    int64_t t0 = dm_now_ns();
+    double first = measure__plain_sample(m, c, 1);
+    double rest = sm->warmup_frames > 1 ? measure__plain_sample(m, c, sm->warmup_frames - 1) : first;
+    int wf = measure__warmup_sample_frames(sm, rest);
+    double prev = measure__plain_sample(m, c, wf);
+    dm_str seq = {0};
+    dm_str_printf(&seq, "%.2f", prev / 1e6);
+    for (int tries = 0; tries < 10; tries++) {   /* until two samples agree within 10 % */
+        double cur = measure__plain_sample(m, c, wf);
+        dm_str_printf(&seq, " %.2f", cur / 1e6);
+        if (fabs(cur - prev) <= 0.10 * prev)
+            break;
+        prev = cur;
+    }
+    dm_log(DM_LOG_DEBUG, "warm-up %s: program %s, first frame %.2f ms, then %.2f ms/frame; "
+           "samples of %d frames: %s ms/frame", c->pc->key,
+           c->info.program_cached == 2 ? "from the binary cache" : c->info.program_cached ? "in memory" : "compiled",
+           first / 1e6, rest / 1e6, wf, dm_str_get(&seq));
+    dm_str_free(&seq);
+    /* Short samples measure the scheduler more than the frame: take enough
+     * frames per sample to last min_sample_ms (as Google Benchmark grows its
+     * iteration count), never fewer than K. */
+    double want = sm->min_sample_ms * 1e6 / (prev > 1 ? prev : 1);
+    c->frames = want > sm->frames_per_sample ? (int)ceil(want) : sm->frames_per_sample;
+    if (c->frames > 100000)
+        c->frames = 100000;
+    c->warmup_ns = dm_now_ns() - t0;
+}
+
+/* Prepare + warm-up + statistics pass for one configuration. */
+static void measure__prepare(mscene *m, mconf *c)
+{
+    const sweep_measure *sm = &m->job->sweep->measure;
+    measure__say(m->job, "B %s", c->pc->key);
+    /* Test hook for the watchdog: DMBENCH_TEST_HANG=<technique> blocks this
+     * process when it reaches that technique.  (A shader cannot hang
+     * llvmpipe: its JIT caps shader loops, so tests hang the process.) */
+    const char *hang = getenv("DMBENCH_TEST_HANG");
+    if (hang && strcmp(hang, dm_kv_get(c->pc->params, c->pc->n_params, "technique")) == 0)
+        for (;;)
+            pause();
+    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
+    /* compiler warnings and errors of this configuration's programs go to its own log */
+    if (gl_context_take_messages(m->gl, &c->log) > 0 && rc == 0) {
+        measure__fail(c, "GL error while preparing the configuration (see log)");
+        return;
+    }
+    if (rc != 0) {
+        measure__fail(c, rc == DM_ERR_SHADER ? "shader compile or link failed (see log)"
+                         : rc == DM_ERR_UNSUPPORTED ? "not supported by this driver (see log)"
+                                                    : "could not prepare the configuration (see log)");
+        return;
+    }
+    tech_item_get_info(m->r, c->item, &c->info);
+    measure__warmup(m, c);
+    c->stats = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats);
+    c->stats_reason = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats_reason);
+    int64_t t0 = dm_now_ns();
+    if (m->n_statistic)
+        measure__session(m, c, m->statistic, m->n_statistic, 1, c->stats, c->stats_reason);
+    c->stats_ns = dm_now_ns() - t0;
+    c->timing = dm_xcalloc(m->n_timing + 1, sizeof *c->timing);
+    for (size_t i = 0; i < m->n_timing; i++)
+        c->timing[i] = dm_xcalloc((size_t)sm->samples_max, sizeof **c->timing);
+    c->active = 1;
+}
+
+static int measure__wall_index(const mscene *m)
+{
+    for (size_t i = 0; i < m->n_timing; i++)
+        if (strcmp(m->timing[i], "WallTime") == 0)
+            return (int)i;
+    return -1;
+}
+
+/* Takes one timing sample of a configuration and decides whether it stops. */
+static void measure__timing_sample(mscene *m, mconf *c)
+{
+    const sweep_measure *sm = &m->job->sweep->measure;
+    double *vals = dm_xcalloc(m->n_timing + 1, sizeof *vals);
+    measure__say(m->job, "B %s", c->pc->key);
+    int64_t t0 = dm_now_ns();
+    if (measure__session(m, c, m->timing, m->n_timing, c->frames, vals, NULL) != 0) {
+        measure__fail(c, "counter session failed (see log)");
+        free(vals);
+        return;
+    }
+    for (size_t i = 0; i < m->n_timing; i++)
+        c->timing[i][c->n_samples] = vals[i];
+    c->n_samples++;
+    c->sampling_ns += dm_now_ns() - t0;
+    free(vals);
+    int wi = measure__wall_index(m);
+    stats_summary su;
+    double elapsed = (double)c->sampling_ns / 1e9;   /* its own samples only, not the round's */
+    int precise = wi >= 0 && stats_summarize(c->timing[wi], c->n_samples, m->job->seed, &su) == 0 &&
+                  su.ci_rel <= sm->target_ci;
+    if ((c->n_samples >= (size_t)sm->samples_min && (precise || elapsed > sm->max_seconds)) ||
+        c->n_samples >= (size_t)sm->samples_max || wi < 0)
+        c->active = 0;
+}
+
+static void measure__counter_timed(dm_counter_result *r, const double *x, size_t n, uint64_t seed)
+{
+    stats_summary su;
+    r->has_samples = 1;
+    r->samples = dm_xmalloc((n ? n : 1) * sizeof *r->samples);
+    memcpy(r->samples, x, n * sizeof *x);
+    r->n_samples = n;
+    if (stats_summarize(x, n, seed, &su) != 0) {
+        r->available = 0;
+        r->unavailable_reason = dm_xstrdup("no finite sample");
+        return;
+    }
+    r->value = r->median = su.median;
+    r->mean = su.mean;
+    r->min = su.min;
+    r->max = su.max;
+    r->stddev = su.stddev;
+    r->mad = su.mad;
+    r->cv = su.cv;
+    r->ci_lo = su.ci_lo;
+    r->ci_hi = su.ci_hi;
+    r->n_outliers = su.n_outliers;
+    r->n_nonfinite = (int)su.n_nonfinite;
+}
+
+static dm_counter_result *measure__push(dm_config_result *out, const char *name)
+{
+    const counters_info *ci = counters_find(name);
+    out->counters = dm_xrealloc(out->counters, (out->n_counters + 1) * sizeof *out->counters);
+    dm_counter_result *r = &out->counters[out->n_counters++];
+    memset(r, 0, sizeof *r);
+    r->name = dm_xstrdup(name);
+    r->unit = dm_xstrdup(ci ? counters_unit_name(ci->unit) : "items");
+    r->deterministic = ci ? ci->deterministic : 0;
+    r->available = 1;
+    return r;
+}
+
+/* Value of a collected counter for derived formulas: the median of timed
+ * counters, the value of the others; ViewportPixels is the target size. */
+typedef struct derive_env { const dm_config_result *out; double viewport; } derive_env;
+
+static int measure__derive_value(const char *name, void *user, double *value)
+{
+    const derive_env *e = user;
+    if (strcmp(name, "ViewportPixels") == 0) {
+        *value = e->viewport;
+        return 0;
+    }
+    const dm_counter_result *r = dm_config_counter(e->out, name);
+    if (!r || !r->available || r->partial)
+        return DM_ERR_UNAVAILABLE;
+    *value = r->value;
+    return 0;
+}
+
+static int measure__derive_has(const char *name, void *user)
+{
+    const derive_env *e = user;
+    return strcmp(name, "ViewportPixels") == 0 || dm_config_counter(e->out, name) != NULL;
+}
+
+/* Adds every derived counter whose inputs were all collected (SPEC §4:
+ * formulas over the above); a zero denominator is unavailable, not infinite. */
+static void measure__derived(const plan_config *pc, dm_config_result *out)
+{
+    derive_env e = { out, (double)pc->width * pc->height };
+    for (size_t i = 0; i < counters_count(); i++) {
+        const counters_info *ci = counters_info_at(i);
+        if (ci->backend != COUNTERS_BACKEND_DERIVED || !counters_derive_inputs(ci->name, measure__derive_has, &e))
+            continue;
+        double v = NAN;
+        dm_str why = {0};
+        int rc = counters_derive(ci->name, measure__derive_value, &e, &v, &why);
+        dm_counter_result *r = measure__push(out, ci->name);
+        r->value = v;
+        if (rc != 0) {
+            r->available = 0;
+            r->unavailable_reason = dm_xstrdup(why.len ? dm_str_get(&why) : "unavailable");
+        }
+        dm_str_free(&why);
+    }
+}
+
+/* Fills the counters of a finished configuration into out. */
+static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
+{
+    const sweep_measure *sm = &m->job->sweep->measure;
+    for (size_t i = 0; i < m->n_timing; i++) {
+        dm_counter_result *r = measure__push(out, m->timing[i]);
+        const char *why = NULL;
+        if (!counters_available(m->cc, m->timing[i], &why)) {
+            r->available = 0;
+            r->unavailable_reason = dm_xstrdup(why ? why : "unavailable on this driver");
+            continue;
+        }
+        measure__counter_timed(r, c->timing[i], c->n_samples, m->job->seed);
+        r->partial = strcmp(m->timing[i], "GPUTime") == 0 && m->job->timer_partial;
+    }
+    for (size_t i = 0; i < m->n_statistic; i++) {
+        dm_counter_result *r = measure__push(out, m->statistic[i]);
+        r->value = c->stats[i];
+        if (!isfinite(c->stats[i])) {
+            r->available = 0;
+            r->unavailable_reason = dm_xstrdup(c->stats_reason[i] ? c->stats_reason[i]
+                                                                  : "unavailable on this driver");
+        }
+    }
+    for (size_t i = 0; i < sm->n_counters; i++) {
+        const char *n = sm->counters[i];
+        double v = NAN;
+        if (strcmp(n, "TextureBytes") == 0)
+            v = (double)c->info.texture_bytes;
+        else if (strcmp(n, "MeshBytes") == 0)
+            v = (double)c->info.mesh_bytes;
+        else if (strcmp(n, "MeshTriangles") == 0)
+            v = (double)c->info.mesh_triangles;
+        else if (strcmp(n, "SetupTime") == 0)
+            v = (double)c->info.setup_ns;
+        else if (strcmp(n, "WarmupTime") == 0)
+            v = (double)c->warmup_ns;
+        else
+            continue;
+        measure__push(out, n)->value = v;
+    }
+    measure__derived(c->pc, out);
+}
+
+static char *measure__img_path(const measure_job *job, const char *name)
+{
+    return dm_xasprintf("%s/img/%s", job->run_dir, name);
+}
+
+int measure_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_params,
+                         int w, int h, int supersample, float **rgba, float **depth, dm_str *log)
+{
+    tech_item item;
+    int rc = tech_prepare(r, params, n_params, &item, log);
+    if (rc != 0)
+        return rc;
+    int ss = supersample > 1 ? supersample : 1;
+    target t;
+    if ((rc = target_create(&t, w * ss, h * ss)) != 0) {
+        dm_str_printf(log, "cannot create a %dx%d render target\n", w * ss, h * ss);
+        return rc;
+    }
+    tech_draw(r, item, w * ss, h * ss);
+    img big = {0}, small = {0};
+    img_alloc(&big, w * ss, h * ss);
+    float *d = depth ? dm_xmalloc((size_t)w * (size_t)h * ss * ss * sizeof *d) : NULL;
+    target_read(&t, big.px, d);
+    target_destroy(&t);
+    if (ss > 1) {
+        img_downsample(&big, ss, &small);
+        img_free(&big);
+        big = small;
+        if (d) {   /* depth: nearest sample of each block's first texel */
+            for (int y = 0; y < h; y++)
+                for (int x = 0; x < w; x++)
+                    d[(size_t)y * (size_t)w + (size_t)x] = d[(size_t)(y * ss) * (size_t)(w * ss) + (size_t)(x * ss)];
+        }
+    }
+    *rgba = big.px;
+    if (depth)
+        *depth = d;
+    return 0;
+}
+
+/* The reference image of parameters p at c's resolution into m->ref_*:
+ * loaded from the reference cache (refcache.h) when an entry for exactly
+ * these inputs exists, else rendered and stored there.  The cache is off
+ * with the program cache (job->cache_dir NULL). */
+static int measure__reference_image(mscene *m, const dm_kv *p, size_t n, mconf *c)
+{
+    const sweep *s = m->job->sweep;
+    int w = c->pc->width, h = c->pc->height;
+    const char *renderer = (const char *)glGetString(GL_RENDERER), *version = (const char *)glGetString(GL_VERSION);
+    char *driver = dm_xasprintf("%s | %s", renderer ? renderer : "?", version ? version : "?");
+    refcache_desc d = {.params = p, .n_params = n, .width = w, .height = h,
+                       .supersample = s->supersample, .driver = driver};
+    char *dir = m->job->cache_dir ? refcache_dir() : NULL;
+    dm_str key = {0};
+    int keyed = dir && refcache_key(&d, &key) == 0, rc = 0;
+    c->ref_source = "cache";
+    if (!keyed || refcache_load(dir, dm_str_get(&key), w, h, &m->ref_rgba, &m->ref_depth) != 0) {
+        c->ref_source = "rendered";
+        rc = measure_render_image(m->r, p, n, w, h, s->supersample, &m->ref_rgba, &m->ref_depth, &c->log);
+        if (rc == 0 && keyed && refcache_store(dir, dm_str_get(&key), w, h, m->ref_rgba, m->ref_depth) != 0)
+            dm_log(DM_LOG_WARN, "cannot write the reference cache in %s", dir);
+    }
+    dm_str_free(&key);
+    free(dir);
+    free(driver);
+    return rc;
+}
+
+/* Renders the scene reference once (per process) for configuration c. */
+static int measure__reference(mscene *m, mconf *c)
+{
+    const sweep *s = m->job->sweep;
+    int per_config = !s->ref_technique || strcmp(s->ref_technique, "same") == 0;
+    if (m->ref_rgba && !per_config)
+        return 0;                      /* one reference technique: one image per scene */
+    free(m->ref_rgba);
+    free(m->ref_depth);
+    free(m->ref_path);
+    m->ref_rgba = m->ref_depth = NULL;
+    m->ref_path = NULL;
+    /* The reference technique renders the scene as the sweep defines it
+     * (all scene axes, whether this configuration's technique reads them or
+     * not); "same" renders the configuration itself. */
+    dm_kv *p = NULL;
+    size_t n = 0;
+    if (per_config) {
+        for (size_t i = 0; i < c->pc->n_params; i++)
+            dm_kv_push(&p, &n, c->pc->params[i].key, c->pc->params[i].value);
+    } else {
+        for (size_t i = 0; i < c->pc->n_params; i++)
+            if (!dm_kv_get(c->pc->scene_params, c->pc->n_scene_params, c->pc->params[i].key) &&
+                strcmp(c->pc->params[i].key, "technique") != 0)
+                dm_kv_push(&p, &n, c->pc->params[i].key, c->pc->params[i].value);
+        for (size_t i = 0; i < c->pc->n_scene_params; i++)
+            dm_kv_push(&p, &n, c->pc->scene_params[i].key, c->pc->scene_params[i].value);
+        dm_kv_push(&p, &n, "technique", s->ref_technique);
+    }
+    int rc = measure__reference_image(m, p, n, c);
+    dm_kv_free(p, n);
+    if (rc == 0) {
+        char name[64];
+        const char *id = per_config ? c->pc->key : c->pc->scene;
+        snprintf(name, sizeof name, "ref-%08llx.png",
+                 (unsigned long long)(dm_fnv1a64(id, strlen(id), DM_FNV_SEED) & 0xffffffffULL));
+        m->ref_path = dm_xstrdup(name);
+        char *path = measure__img_path(m->job, name);
+        img im = { c->pc->width, c->pc->height, m->ref_rgba };
+        char e[256];
+        img_save(&im, path, e, sizeof e);
+        free(path);
+    }
+    return rc;
+}
+
+/* Image, quality and heatmap of a configuration against the scene reference. */
+static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
+{
+    int w = c->pc->width, h = c->pc->height;
+    float *rgba = NULL, *depth = NULL;
+    if (measure_render_image(m->r, c->pc->params, c->pc->n_params, w, h, 1, &rgba, &depth, &c->log) != 0)
+        return;
+    img test = { w, h, rgba };
+    char e[256], name[64];
+    snprintf(name, sizeof name, "%s.png", c->pc->key);
+    char *path = measure__img_path(m->job, name);
+    if (img_save(&test, path, e, sizeof e) == 0)
+        out->img_render = dm_xasprintf("img/%s", name);
+    free(path);
+    if (measure__reference(m, c) == 0) {
+        img ref = { w, h, m->ref_rgba };
+        img_metrics mt;
+        dm_quality *q = &out->quality;
+        if (img_compare(&ref, &test, 0.05, &mt) == 0) {
+            q->present = 1;
+            q->rmse = mt.rmse;
+            q->psnr = mt.psnr;
+            q->max_error = mt.max_error;
+            q->pct_over_threshold = mt.pct_over;
+        }
+        quality_ssim(&ref, &test, &q->ssim);
+        size_t np = (size_t)w * (size_t)h;
+        unsigned char *ma = dm_xmalloc(np), *mb = dm_xmalloc(np);
+        quality_coverage(&ref, ma);
+        quality_coverage(&test, mb);
+        q->silhouette_error = quality_silhouette_error(ma, mb, np);
+        quality_depth_rmse(m->ref_depth, depth, ma, mb, np, &q->depth_rmse);
+        q->crack_pixels = quality_crack_pixels(mb, w, h);
+        q->nonfinite_pixels = quality_nonfinite_pixels(&test);
+        const char *rt = m->job->sweep->ref_technique;
+        q->reference = dm_xasprintf("%s, %dx supersampled",
+                                    !rt || strcmp(rt, "same") == 0 ? "same configuration" : rt,
+                                    m->job->sweep->supersample);
+        free(ma);
+        free(mb);
+        snprintf(name, sizeof name, "%s-diff.png", c->pc->key);
+        path = measure__img_path(m->job, name);
+        if (img_heatmap(&ref, &test, 0, path, e, sizeof e) == 0)
+            out->img_heatmap = dm_xasprintf("img/%s", name);
+        free(path);
+        out->img_reference = dm_xasprintf("img/%s", m->ref_path);
+    }
+    free(rgba);
+    free(depth);
+}
+
+/* Builds the result of a configuration and commits it in one transaction. */
+static void measure__commit(mscene *m, mconf *c)
+{
+    dm_config_result out = {0};
+    out.key = dm_xstrdup(c->pc->key);
+    out.scene = dm_xstrdup(c->pc->scene);
+    for (size_t i = 0; i < c->pc->n_params; i++)
+        dm_kv_push(&out.params, &out.n_params, c->pc->params[i].key, c->pc->params[i].value);
+    if (!c->failed) {
+        int64_t t0 = dm_now_ns();
+        measure__collect(m, c, &out);
+        measure__quality(m, c, &out);
+        c->quality_ns = dm_now_ns() - t0;
+    }
+    dm_log(DM_LOG_DEBUG, "measure %s: setup %.1f ms, warm-up %.1f ms, statistics %.1f ms, sampling %.1f ms, "
+           "images+quality %.1f ms (reference %s)", c->pc->key, c->info.setup_ns / 1e6, c->warmup_ns / 1e6,
+           c->stats_ns / 1e6, c->sampling_ns / 1e6, c->quality_ns / 1e6, c->ref_source ? c->ref_source : "reused");
+    dm_str glmsg = {0};
+    if (gl_context_take_messages(m->gl, &glmsg) + gl_context_check_errors(&glmsg) > 0)
+        measure__fail(c, "GL error during the configuration (see log)");
+    dm_str_cat(&c->log, dm_str_get(&glmsg));
+    dm_str_free(&glmsg);
+    out.ok = !c->failed;
+    out.reason = dm_xstrdup(c->reason);
+    out.log = c->log.len ? dm_xstrdup(dm_str_get(&c->log)) : NULL;
+    int rc = store_config_put(m->st, m->job->run_id, &out);
+    const dm_counter_result *wt = dm_config_counter(&out, "WallTime");
+    double ci = wt && wt->median > 0 ? (wt->ci_hi - wt->ci_lo) / 2 / wt->median : NAN;
+    if (rc == 0)
+        measure__say(m->job, "D %s %s %.0f %.4f %lld", c->pc->key, out.ok ? "ok" : "failed",
+                     wt ? wt->median : NAN, ci, (long long)c->sampling_ns);
+    else
+        dm_log(DM_LOG_ERROR, "store: %s", store_last_error(m->st));
+    dm_config_result_free(&out);
+}
+
+static int measure__setup(mscene *m, dm_str *err)
+{
+    int rc = gl_context_create(NULL, &m->gl, err);
+    rc = rc ? rc : tech_renderer_create(&m->r);
+    if (rc == 0 && m->job->cache_dir && dm_mkdirs(m->job->cache_dir) == 0 &&
+        tech_renderer_set_cache_dir(m->r, m->job->cache_dir) != 0)
+        dm_log(DM_LOG_DEBUG, "program binaries cannot be cached on this driver");
+    rc = rc ? rc : counters_context_create(&m->cc);
+    /* DMBENCH_HIDE_EXTENSIONS=GL_A,GL_B makes the counters behave as on a
+     * driver without them, so "unavailable" can be tested end to end. */
+    const char *hide = getenv("DMBENCH_HIDE_EXTENSIONS");
+    if (rc == 0 && hide) {
+        char *copy = dm_xstrdup(hide), *save = NULL;
+        for (char *t = strtok_r(copy, ",", &save); t; t = strtok_r(NULL, ",", &save))
+            counters_context_hide_extension(m->cc, t);
+        free(copy);
+    }
+    rc = rc ? rc : store_open(m->job->store_path, &m->st, err);
+    if (rc == 0)
+        measure__classify(m);
+    else if (!err->len)
+        dm_str_printf(err, "cannot set up the measuring process: %s", dm_strerror(rc));
+    return rc;
+}
+
+static void measure__teardown(mscene *m, mconf *cs, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        free(cs[i].reason);
+        dm_str_free(&cs[i].log);
+        for (size_t k = 0; cs[i].timing && k < m->n_timing; k++)
+            free(cs[i].timing[k]);
+        free(cs[i].timing);
+        free(cs[i].stats);
+        for (size_t k = 0; cs[i].stats_reason && k < m->n_statistic; k++)
+            free(cs[i].stats_reason[k]);
+        free(cs[i].stats_reason);
+    }
+    free(cs);
+    free(m->timing);
+    free(m->statistic);
+    free(m->ref_rgba);
+    free(m->ref_depth);
+    free(m->ref_path);
+    if (m->gl)
+        target_destroy(&m->rt);
+    store_close(m->st);
+    counters_context_destroy(m->cc);
+    tech_renderer_destroy(m->r);
+    gl_context_destroy(m->gl);
+}
+
+int measure_pilot(const measure_job *job, dm_str *err)
+{
+    mscene m = { .job = job };
+    int rc = measure__setup(&m, err);
+    mconf *cs = dm_xcalloc(job->n_configs + 1, sizeof *cs);
+    for (size_t i = 0; rc == 0 && i < job->n_configs; i++) {
+        mconf *c = &cs[i];
+        c->pc = &job->configs[i];
+        measure__say(job, "B %s", c->pc->key);
+        double ns = NAN;
+        if (tech_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log) == 0) {
+            measure__frames(&m, c, 2);             /* JIT and first-use costs */
+            ns = measure__plain_sample(&m, c, 1);
+        }
+        gl_context_take_messages(m.gl, NULL);
+        measure__say(job, "P %s %.0f", c->pc->key, ns);
+    }
+    measure__teardown(&m, cs, rc == 0 ? job->n_configs : 0);
+    return rc;
+}
+
+int measure_scene(const measure_job *job, dm_str *err)
+{
+    mscene m = { .job = job };
+    int rc = measure__setup(&m, err);
+    mconf *cs = dm_xcalloc(job->n_configs + 1, sizeof *cs);
+    for (size_t i = 0; rc == 0 && i < job->n_configs; i++) {
+        cs[i].pc = &job->configs[i];
+        measure__prepare(&m, &cs[i]);
+        if (cs[i].failed)
+            measure__commit(&m, &cs[i]);
+    }
+    size_t *order = dm_xcalloc(job->n_configs + 1, sizeof *order);
+    for (uint64_t round = 0, active = 1; rc == 0 && active; round++) {
+        active = 0;
+        plan_shuffle(order, job->n_configs, job->seed + round);
+        for (size_t k = 0; k < job->n_configs; k++) {
+            mconf *c = &cs[order[k]];
+            if (!c->active)
+                continue;
+            measure__timing_sample(&m, c);
+            if (!c->active)
+                measure__commit(&m, c);
+            else
+                active = 1;
+        }
+    }
+    free(order);
+    measure__teardown(&m, cs, rc == 0 ? job->n_configs : 0);
+    return rc;
+}

@@ -1,0 +1,57 @@
+/* measure.h — measuring the configurations of one scene (SPEC §5), in the
+ * process that owns the GL context (a child of the runner).
+ *
+ * Per configuration: prepare (SetupTime), warm up until the JIT is done and
+ * two consecutive samples agree (WarmupTime; warm-up samples are K frames, or
+ * fewer when K frames would outlast min_sample_ms), one statistics pass of one
+ * frame (deterministic counters), then timing samples of K frames fenced by
+ * glFinish taken in rounds over the scene's configurations in a seeded
+ * shuffled order, until the 95% CI of the median is within the target or the
+ * limits are reached.  Then the image, its quality against the scene's
+ * reference (loaded from the reference cache, run/refcache.h, when the
+ * job has a cache_dir), and one store transaction.  With --verbose each
+ * configuration logs its warm-up and where its time went.  Progress lines go to report_fd:
+ * "B <key>" before work on a key, "D <key> <status> <median_ns> <ci_rel>
+ * <sampling_ns>" after it is committed (sampling_ns: time in its timed samples).
+ */
+#ifndef HARNESS_MEASURE_H
+#define HARNESS_MEASURE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include "sweep/plan.h"
+#include "sweep/sweep.h"
+
+typedef struct measure_job {
+    const sweep *sweep;
+    const plan_config *configs;   /* configurations of one scene still to do */
+    size_t n_configs;
+    const char *run_id;
+    const char *run_dir;          /* images go to run_dir/img/ */
+    const char *store_path;
+    const char *cache_dir;        /* program-binary cache, NULL = off */
+    uint64_t seed;
+    int timer_partial;            /* GPUTime covers only part of the work */
+    int report_fd;                /* -1: no progress lines */
+} measure_job;
+
+/* Measures and commits every configuration of the job.  A configuration
+ * that fails (shader, GL error, unsupported) is committed as failed with its
+ * reason; the function returns 0 unless the context, store or target could
+ * not be set up (DM_ERR_*, message in err). */
+int measure_scene(const measure_job *job, dm_str *err);
+
+/* Pilot for --budget: prepares each configuration of the job and times one
+ * warm frame (glFinish-fenced), reporting "P <key> <frame_ns>" lines (NaN
+ * when it cannot be prepared).  Returns 0 or DM_ERR_* (err) on setup failure. */
+int measure_pilot(const measure_job *job, dm_str *err);
+
+/* Renders one configuration into a float image (w*h*4, row 0 top);
+ * supersample >= 1 renders at that multiple and box-filters down.
+ * Used for quality references and `dmbench render`. */
+struct tech_renderer;
+int measure_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_params,
+                         int w, int h, int supersample, float **rgba, float **depth,
+                         dm_str *log);
+
+#endif

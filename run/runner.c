@@ -1,0 +1,766 @@
+/* runner.c — orchestration of a run in the parent process (see runner.h). */
+#include "runner.h"
+#include "core/dm_error.h"
+#include "counters/counters.h"
+#include "run/env.h"
+#include "run/fitting.h"
+#include "run/gl_context.h"
+#include "run/measure.h"
+#include "sweep/plan.h"
+#include "store/store.h"
+#include "reports/metric.h"
+#include "reports/report.h"
+#include "techniques/technique.h"
+
+#include <epoxy/gl.h>
+#include <errno.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <time.h>
+#include <unistd.h>
+
+typedef struct runner {
+    const sweep *s;
+    const runner_opts *o;
+    plan p;
+    store *st;
+    char *root, *run_id, *run_dir, *store_path, *cache_dir;
+    dm_run_result env;         /* environment + timer of the run */
+    char **exts;               /* extensions the driver has (of those techniques need) */
+    size_t n_exts;
+    size_t done, total, failed;
+    int64_t t_start;
+    int64_t measured_ns;       /* time inside timed samples, all configurations */
+    int tty;
+} runner;
+
+/* ---- the probe child: environment, timer calibration, extensions ------- */
+
+static void runner__probe_child(int fd)
+{
+    gl_context *gl = NULL;
+    dm_str err = {0}, out = {0};
+    if (gl_context_create(NULL, &gl, &err) != 0) {
+        dm_str_printf(&out, "F\t%s\n", dm_str_get(&err));
+    } else {
+        dm_kv *kv = NULL;
+        size_t n = 0;
+        env_collect(&kv, &n, 1);
+        for (size_t i = 0; i < n; i++)
+            dm_str_printf(&out, "E\t%s\t%s\n", kv[i].key, kv[i].value);
+        counters_context *cc = NULL;
+        counters_timer_calibration cal = { .verdict = "unavailable" };
+        if (counters_context_create(&cc) == 0)
+            counters_calibrate_timer(cc, &cal);
+        dm_str_printf(&out, "T\t%.6f\t%s\n", cal.coverage, cal.verdict);
+        for (size_t i = 0; i < technique_count(); i++) {
+            const char *ext = technique_at(i)->requires_ext;
+            if (ext && epoxy_has_gl_extension(ext))
+                dm_str_printf(&out, "X\t%s\n", ext);
+        }
+        counters_context_destroy(cc);
+        dm_kv_free(kv, n);
+        gl_context_destroy(gl);
+    }
+    ssize_t w = write(fd, out.buf, out.len);
+    (void)w;
+    _exit(0);
+}
+
+/* Reads everything a child writes until EOF or timeout; returns the text. */
+static char *runner__read_all(int fd, int timeout_ms)
+{
+    dm_str s = {0};
+    char buf[4096];
+    struct pollfd pfd = { fd, POLLIN, 0 };
+    while (poll(&pfd, 1, timeout_ms) > 0) {
+        ssize_t n = read(fd, buf, sizeof buf);
+        if (n <= 0)
+            break;
+        dm_str_catn(&s, buf, (size_t)n);
+    }
+    return dm_str_take(&s);
+}
+
+static int runner__probe(runner *r, dm_str *err)
+{
+    int fds[2];
+    if (pipe(fds) != 0)
+        return DM_ERR_IO;
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[0]);
+        runner__probe_child(fds[1]);
+    }
+    close(fds[1]);
+    char *text = runner__read_all(fds[0], 120000);
+    close(fds[0]);
+    int status = 0;
+    kill(pid, SIGKILL);
+    waitpid(pid, &status, 0);
+    int rc = 0;
+    r->env.timer_verdict = dm_xstrdup("unavailable");
+    char *save = NULL;
+    for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+        char *f1 = strchr(line, '\t'), *f2 = f1 ? strchr(f1 + 1, '\t') : NULL;
+        if (f1)
+            *f1++ = '\0';
+        if (f2)
+            *f2++ = '\0';
+        if (line[0] == 'F' && f1) {
+            dm_str_cat(err, f1);
+            rc = DM_ERR_GL;
+        } else if (line[0] == 'E' && f2) {
+            dm_kv_push(&r->env.environment, &r->env.n_environment, f1, f2);
+        } else if (line[0] == 'T' && f2) {
+            r->env.gpu_time_coverage = strtod(f1, NULL);
+            free(r->env.timer_verdict);
+            r->env.timer_verdict = dm_xstrdup(f2);
+        } else if (line[0] == 'X' && f1) {
+            r->exts = dm_xrealloc(r->exts, (r->n_exts + 1) * sizeof *r->exts);
+            r->exts[r->n_exts++] = dm_xstrdup(f1);
+        }
+    }
+    free(text);
+    if (rc == 0 && !dm_kv_get(r->env.environment, r->env.n_environment, "renderer")) {
+        dm_str_cat(err, "the driver probe produced no result (it crashed or hung)");
+        rc = DM_ERR_GL;
+    }
+    env_fingerprint(&r->env.environment, &r->env.n_environment);
+    return rc;
+}
+
+static int runner__has_ext(const char *ext, void *user)
+{
+    runner *r = user;
+    for (size_t i = 0; i < r->n_exts; i++)
+        if (strcmp(r->exts[i], ext) == 0)
+            return 1;
+    return 0;
+}
+
+/* ---- progress ------------------------------------------------------------ */
+
+static void runner__progress(runner *r, const plan_config *c, const char *status,
+                             double median_ns, double ci_rel)
+{
+    r->done++;
+    r->failed += strcmp(status, "ok") != 0;
+    if (r->o->quiet)
+        return;
+    double el = (double)(dm_now_ns() - r->t_start) / 1e9;
+    double eta = r->done ? el / (double)r->done * (double)(r->total - r->done) : 0;
+    const char *tech = dm_kv_get(c->params, c->n_params, "technique");
+    char line[256];
+    if (strcmp(status, "ok") == 0)
+        snprintf(line, sizeof line, "[%zu/%zu] %-18s %-28s %9.3f ms ±%4.1f%%  ETA %3.0fs",
+                 r->done, r->total, tech, c->scene, median_ns / 1e6, ci_rel * 100, eta);
+    else
+        snprintf(line, sizeof line, "[%zu/%zu] %-18s %-28s FAILED (%s)  ETA %3.0fs",
+                 r->done, r->total, tech, c->scene, status, eta);
+    if (r->tty)
+        fprintf(stderr, "\r\033[K%s%s", line, r->done == r->total ? "\n" : "");
+    else
+        fprintf(stderr, "%s\n", line);
+}
+
+/* ---- scene children -------------------------------------------------------- */
+
+static const plan_config *runner__find(const plan_config *cs, size_t n, const char *key)
+{
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(cs[i].key, key) == 0)
+            return &cs[i];
+    return NULL;
+}
+
+/* Records a configuration the child could not finish (crash, hang). */
+static void runner__fail_config(runner *r, const plan_config *c, const char *reason)
+{
+    dm_config_result out = { .key = dm_xstrdup(c->key), .scene = dm_xstrdup(c->scene),
+                             .ok = 0, .reason = dm_xstrdup(reason) };
+    for (size_t i = 0; i < c->n_params; i++)
+        dm_kv_push(&out.params, &out.n_params, c->params[i].key, c->params[i].value);
+    if (store_config_put(r->st, r->run_id, &out) != 0)
+        dm_log(DM_LOG_ERROR, "store: %s", store_last_error(r->st));
+    dm_config_result_free(&out);
+    runner__progress(r, c, reason, NAN, NAN);
+}
+
+typedef struct child_watch {
+    pid_t pid;
+    int fd;
+    char current[17];
+    int64_t last_ns;
+    dm_str line;
+} child_watch;
+
+/* Handles one line of child output; returns 1 when a config was finished. */
+static void runner__child_line(runner *r, child_watch *w, const plan_config *cs, size_t n,
+                               char *line, int *done_flags)
+{
+    char key[17] = "", status[16] = "";
+    double med = NAN, ci = NAN;
+    long long sampled = 0;
+    if (line[0] == 'B' && sscanf(line, "B %16s", key) == 1) {
+        snprintf(w->current, sizeof w->current, "%s", key);
+    } else if (line[0] == 'D' && sscanf(line, "D %16s %15s %lf %lf %lld", key, status, &med, &ci, &sampled) >= 2) {
+        const plan_config *c = runner__find(cs, n, key);
+        r->measured_ns += sampled;
+        if (c) {
+            done_flags[c - cs] = 1;
+            runner__progress(r, c, status, med, ci);
+        }
+        w->current[0] = '\0';
+    }
+}
+
+static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd, int pilot)
+{
+    int fds[2];
+    if (pipe(fds) != 0)
+        return -1;
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        close(fds[0]);
+        measure_job job = { .sweep = r->s, .configs = cs, .n_configs = n, .run_id = r->run_id,
+                            .run_dir = r->run_dir, .store_path = r->store_path,
+                            .cache_dir = r->cache_dir,
+                            .seed = r->o->seed ? r->o->seed : 1,
+                            .timer_partial = strcmp(r->env.timer_verdict, "full") != 0,
+                            .report_fd = fds[1] };
+        dm_str err = {0};
+        int rc = pilot ? measure_pilot(&job, &err) : measure_scene(&job, &err);
+        if (rc != 0)
+            dprintf(fds[1], "F %s\n", dm_str_get(&err));
+        _exit(rc ? 3 : 0);
+    }
+    close(fds[1]);
+    *fd = fds[0];
+    return pid;
+}
+
+/* Watches one child until it exits or the watchdog kills it.  Returns the
+ * wait status (or -1 for a watchdog kill). */
+static int runner__watch(runner *r, child_watch *w, const plan_config *cs, size_t n, int *done_flags,
+                         char **fatal)
+{
+    double timeout_s = r->s->measure.timeout_s;
+    w->last_ns = dm_now_ns();
+    for (;;) {
+        struct pollfd pfd = { w->fd, POLLIN, 0 };
+        int pr = poll(&pfd, 1, 250);
+        if (pr > 0) {
+            char buf[4096];
+            ssize_t got = read(w->fd, buf, sizeof buf);
+            if (got <= 0)
+                break;
+            w->last_ns = dm_now_ns();
+            for (ssize_t i = 0; i < got; i++) {
+                if (buf[i] != '\n') {
+                    dm_str_catn(&w->line, &buf[i], 1);
+                    continue;
+                }
+                char *line = dm_str_take(&w->line);
+                if (line[0] == 'F' && !*fatal)
+                    *fatal = dm_xstrdup(line + 2);
+                runner__child_line(r, w, cs, n, line, done_flags);
+                free(line);
+            }
+        } else if ((double)(dm_now_ns() - w->last_ns) / 1e9 > timeout_s) {
+            kill(w->pid, SIGKILL);
+            waitpid(w->pid, NULL, 0);
+            return -1;
+        }
+    }
+    int status = 0;
+    waitpid(w->pid, &status, 0);
+    return status;
+}
+
+/* Measures one scene, restarting a child after each crash or hang. */
+static void runner__scene(runner *r, const plan_config *cs, size_t n)
+{
+    int *done = dm_xcalloc(n + 1, sizeof *done);
+    for (size_t i = 0; i < n; i++)
+        done[i] = store_config_done(r->st, r->run_id, cs[i].key) == 1;
+    for (;;) {
+        plan_config *remaining = dm_xcalloc(n + 1, sizeof *remaining);
+        size_t nt = 0;
+        for (size_t i = 0; i < n; i++)
+            if (!done[i])
+                remaining[nt++] = cs[i];
+        if (nt == 0) {
+            free(remaining);
+            break;
+        }
+        child_watch w = { .current = "" };
+        w.pid = runner__spawn(r, remaining, nt, &w.fd, 0);
+        char *fatal = NULL;
+        int *tdone = dm_xcalloc(nt + 1, sizeof *tdone);
+        int status = runner__watch(r, &w, remaining, nt, tdone, &fatal);
+        close(w.fd);
+        dm_str_free(&w.line);
+        for (size_t i = 0; i < nt; i++)
+            if (tdone[i])
+                done[runner__find(cs, n, remaining[i].key) - cs] = 1;
+        const plan_config *cur = w.current[0] ? runner__find(cs, n, w.current) : NULL;
+        char *why = NULL;
+        if (status == -1)
+            why = dm_xasprintf("killed by the watchdog: no progress for %.0f s (measure.timeout_s)",
+                               r->s->measure.timeout_s);
+        else if (WIFSIGNALED(status))
+            why = dm_xasprintf("the measuring process crashed (signal %d, %s)", WTERMSIG(status),
+                               strsignal(WTERMSIG(status)));
+        else if (fatal)
+            why = dm_xasprintf("could not set up: %s", fatal);
+        if (why && cur) {
+            runner__fail_config(r, cur, why);
+            done[cur - cs] = 1;
+        } else if (why || (WIFEXITED(status) && WEXITSTATUS(status) != 0)) {
+            for (size_t i = 0; i < n; i++)      /* no culprit: fail what is left */
+                if (!done[i]) {
+                    runner__fail_config(r, &cs[i], why ? why : "the measuring process failed");
+                    done[i] = 1;
+                }
+        }
+        free(why);
+        free(fatal);
+        free(tdone);
+        free(remaining);
+    }
+    free(done);
+}
+
+/* ---- --budget: a stored cost model, else a pilot frame ------------------------ */
+
+/* Earlier runs searched for a cost model and counters (newest first). */
+#define RUNNER__BUDGET_RUNS 16
+
+/* Predicted seconds to measure a configuration from one pilot frame:
+ * warm-up plus samples_max samples, each at least K frames and min_sample_ms
+ * long, capped by max_seconds, plus the image renders. */
+static double runner__predict(const sweep_measure *m, double frame_ns)
+{
+    double sample = frame_ns * m->frames_per_sample;
+    if (sample < m->min_sample_ms * 1e6)
+        sample = m->min_sample_ms * 1e6;
+    double sampling = sample * m->samples_max / 1e9;
+    if (sampling > m->max_seconds)
+        sampling = m->max_seconds;
+    return sampling + frame_ns * (m->warmup_frames + 12.0 * m->frames_per_sample + 20) / 1e9;
+}
+
+/* What --budget knows from the store: earlier runs (newest first) and the
+ * frame-time fits usable for predictions, sweep's own models first. */
+typedef struct runner_budget {
+    dm_run_result *runs;
+    size_t n_runs;
+    const dm_fit_result **fits;
+    size_t n_fits;
+    const char *fits_run;      /* run the fits come from */
+    size_t by_model, by_pilot;
+} runner_budget;
+
+static int runner__fit_usable(const dm_fit_result *f)
+{
+    return f->response && strcmp(f->response, "WallTime") == 0 && f->formula;
+}
+
+/* Position of the fit's model among the sweep's models, n_models if absent. */
+static size_t runner__fit_rank(const runner *r, const dm_fit_result *f)
+{
+    size_t j = 0;
+    while (j < r->s->n_models && strcmp(r->s->models[j].name, f->model) != 0)
+        j++;
+    return j;
+}
+
+/* Takes the usable fits of the newest run that has any: first those named
+ * like the sweep's models (in the sweep's order), then the others. */
+static void runner__budget_fits(runner *r, runner_budget *b)
+{
+    for (size_t k = 0; k < b->n_runs && b->n_fits == 0; k++) {
+        const dm_run_result *run = &b->runs[k];
+        b->fits = dm_xrealloc(b->fits, (run->n_fits + 1) * sizeof *b->fits);
+        for (size_t rank = 0; rank <= r->s->n_models; rank++)
+            for (size_t i = 0; i < run->n_fits; i++)
+                if (runner__fit_rank(r, &run->fits[i]) == rank && runner__fit_usable(&run->fits[i]))
+                    b->fits[b->n_fits++] = &run->fits[i];
+        b->fits_run = b->n_fits ? run->id : NULL;
+    }
+}
+
+/* 1 when a stored run was measured in this run's environment (same
+ * fingerprint: renderer, GL version, LP_NUM_THREADS, CPU), so its frame
+ * times and counters apply here. */
+static int runner__same_machine(const runner *r, const dm_run_result *run)
+{
+    const char *a = dm_kv_get(run->environment, run->n_environment, "fingerprint");
+    const char *b = dm_kv_get(r->env.environment, r->env.n_environment, "fingerprint");
+    return a && b && strcmp(a, b) == 0;
+}
+
+/* Loads up to RUNNER__BUDGET_RUNS earlier runs of the store made on this
+ * machine (newest first). */
+static void runner__budget_load(runner *r, runner_budget *b)
+{
+    char **ids = NULL;
+    size_t n = 0;
+    if (store_list_runs(r->st, &ids, &n) != 0)
+        n = 0;
+    b->runs = dm_xcalloc(n + 1, sizeof *b->runs);
+    for (size_t i = 0; i < n; i++) {
+        dm_run_result *run = &b->runs[b->n_runs];
+        if (b->n_runs < RUNNER__BUDGET_RUNS && store_run_load(r->st, ids[i], run) == 0) {
+            if (runner__same_machine(r, run))
+                b->n_runs++;
+            else
+                dm_run_free(run);
+        }
+        free(ids[i]);
+    }
+    free(ids);
+    runner__budget_fits(r, b);
+}
+
+static void runner__budget_free(runner_budget *b)
+{
+    for (size_t i = 0; i < b->n_runs; i++)
+        dm_run_free(&b->runs[i]);
+    free(b->runs);
+    free(b->fits);
+}
+
+/* Leaves out the configuration with that key, if it is still planned. */
+static void runner__leave_out_key(runner *r, const char *key, const char *why)
+{
+    for (size_t i = 0; i < r->p.n_configs; i++)
+        if (strcmp(r->p.configs[i].key, key) == 0) {
+            plan_leave_out(&r->p, i, why);
+            return;
+        }
+}
+
+/* Frame time (ns) of a planned configuration from the first stored fit that
+ * can evaluate it; the fit in *used, or NULL (then NaN). */
+static double runner__model_frame(const runner_budget *b, const plan_config *c,
+                                  const dm_fit_result **used)
+{
+    *used = NULL;
+    for (size_t i = 0; i < b->n_fits; i++) {
+        double ns;
+        dm_str why = {0};
+        int rc = fitting_predict(b->fits[i], c->params, c->n_params, c->key, b->runs,
+                                 b->n_runs, &ns, &why);
+        if (rc != 0)   /* --verbose says why a pilot frame decides instead */
+            dm_log(DM_LOG_DEBUG, "--budget %s: model %s cannot predict it: %s", c->key,
+                   b->fits[i]->model, dm_str_get(&why));
+        dm_str_free(&why);
+        if (rc == 0) {
+            *used = b->fits[i];
+            return ns;
+        }
+    }
+    return NAN;
+}
+
+/* The configurations with a model prediction are decided now; the others
+ * are copied to pilot[] (returned count) for a pilot frame. */
+static size_t runner__budget_by_model(runner *r, runner_budget *b, plan_config *pilot,
+                                      char (*over)[17], char **why)
+{
+    size_t n_pilot = 0, n_over = 0;
+    for (size_t i = 0; i < r->p.n_configs; i++) {
+        const plan_config *c = &r->p.configs[i];
+        const dm_fit_result *fit;
+        double ns = runner__model_frame(b, c, &fit), t = runner__predict(&r->s->measure, ns);
+        if (!fit) {
+            pilot[n_pilot++] = *c;
+            continue;
+        }
+        b->by_model++;
+        if (t <= r->o->budget_s)
+            continue;
+        memcpy(over[n_over], c->key, sizeof over[n_over]);
+        why[n_over++] = dm_xasprintf("over --budget %g s: model %s (run %s, cross-validated error "
+                                     "%.0f%%) predicts %.3g ms/frame, so measuring would take "
+                                     "about %.2g s", r->o->budget_s, fit->model, b->fits_run,
+                                     fit->cv_mape, ns / 1e6, t);
+    }
+    for (size_t k = 0; k < n_over; k++) {
+        runner__leave_out_key(r, over[k], why[k]);
+        free(why[k]);
+    }
+    return n_pilot;
+}
+
+/* Runs the pilot child on configs and leaves out what would blow the budget. */
+static void runner__budget_pilot(runner *r, runner_budget *b, const plan_config *cs, size_t n)
+{
+    int fd = -1;
+    pid_t pid = runner__spawn(r, cs, n, &fd, 1);
+    char *text = runner__read_all(fd, (int)(r->s->measure.timeout_s * 1000));
+    close(fd);
+    kill(pid, SIGKILL);
+    waitpid(pid, NULL, 0);
+    b->by_pilot = n;
+    char *save = NULL;
+    for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
+        char key[17];
+        double ns = NAN;
+        if (sscanf(line, "P %16s %lf", key, &ns) != 2 || !isfinite(ns))
+            continue;
+        double t = runner__predict(&r->s->measure, ns);
+        if (t <= r->o->budget_s)
+            continue;
+        char *why = dm_xasprintf("over --budget %g s: a pilot frame took %.3g ms, so measuring "
+                                 "would take about %.2g s", r->o->budget_s, ns / 1e6, t);
+        runner__leave_out_key(r, key, why);
+        free(why);
+    }
+    free(text);
+}
+
+/* --budget: predicts each configuration's measuring time from a stored
+ * cost model when one can be evaluated for it before measuring, else from a
+ * pilot frame, and leaves out what would exceed the budget. */
+static void runner__budget(runner *r)
+{
+    runner_budget b = {0};
+    size_t n = r->p.n_configs, before = r->p.n_left_out;
+    plan_config *pilot = dm_xcalloc(n + 1, sizeof *pilot);
+    char (*over)[17] = dm_xcalloc(n + 1, sizeof *over);
+    char **why = dm_xcalloc(n + 1, sizeof *why);
+    runner__budget_load(r, &b);
+    size_t n_pilot = runner__budget_by_model(r, &b, pilot, over, why);
+    if (n_pilot)
+        runner__budget_pilot(r, &b, pilot, n_pilot);
+    if (!r->o->quiet)
+        fprintf(stderr, "dmbench: --budget %g s: %zu configurations predicted by a cost model%s%s%s, "
+                "%zu by a pilot frame; %zu left out\n", r->o->budget_s, b.by_model,
+                b.fits_run ? " (run " : "", b.fits_run ? b.fits_run : "", b.fits_run ? ")" : "",
+                b.by_pilot, r->p.n_left_out - before);
+    free(pilot);
+    free(over);
+    free(why);
+    runner__budget_free(&b);
+}
+
+/* ---- run directory, store, report ---------------------------------------------- */
+
+static int runner__open(runner *r, dm_str *err)
+{
+    r->root = dm_xstrdup(r->o->out_root ? r->o->out_root : "results");
+    if (dm_mkdirs(r->root) != 0 || access(r->root, W_OK) != 0) {
+        dm_str_printf(err, "%s: cannot create or write the output directory", r->root);
+        return DM_ERR_IO;
+    }
+    r->store_path = dm_xasprintf("%s/dmbench.sqlite", r->root);
+    r->cache_dir = dm_xasprintf("%s/cache/programs", r->root);
+    int rc = store_open(r->store_path, &r->st, err);
+    if (rc != 0)
+        return rc;
+    if (r->o->resume) {
+        if (store_latest_run(r->st, r->o->tag, &r->run_id) != 0) {
+            dm_str_printf(err, "%s: --resume: no run to resume in this store", r->store_path);
+            return DM_ERR_ARG;
+        }
+        dm_run_result old = {0};
+        store_run_load(r->st, r->run_id, &old);
+        char hash[17];
+        dm_hex64(r->s->hash, hash);
+        int same = old.sweep_hash && strcmp(old.sweep_hash, hash) == 0;
+        dm_run_free(&old);
+        if (!same) {
+            dm_str_printf(err, "--resume: run %s was made from a different sweep file; "
+                          "run without --resume to start a new run", r->run_id);
+            return DM_ERR_ARG;
+        }
+    } else {
+        char stamp[32];
+        time_t t = time(NULL);
+        struct tm tm;
+        gmtime_r(&t, &tm);
+        strftime(stamp, sizeof stamp, "%Y%m%d-%H%M%S", &tm);
+        r->run_id = dm_xstrdup(stamp);
+        for (int k = 2; ; k++) {
+            char *dir = dm_xasprintf("%s/%s", r->root, r->run_id);
+            int exists = dm_file_exists(dir);
+            free(dir);
+            if (!exists)
+                break;
+            free(r->run_id);
+            r->run_id = dm_xasprintf("%s-%d", stamp, k);
+        }
+    }
+    r->run_dir = dm_xasprintf("%s/%s", r->root, r->run_id);
+    char *img = dm_xasprintf("%s/img", r->run_dir);
+    rc = dm_mkdirs(img) == 0 ? 0 : DM_ERR_IO;
+    if (rc)
+        dm_str_printf(err, "%s: cannot create the run directory", r->run_dir);
+    free(img);
+    return rc;
+}
+
+static int runner__begin(runner *r)
+{
+    if (r->o->resume)
+        return 0;
+    dm_run_result *e = &r->env;
+    e->id = dm_xstrdup(r->run_id);
+    e->sweep = dm_xstrdup(r->s->name);
+    char now[32], hash[17];
+    dm_iso8601_now(now);
+    e->started = dm_xstrdup(now);
+    dm_hex64(r->s->hash, hash);
+    e->sweep_hash = dm_xstrdup(hash);
+    report_metric_set(e, r->s->pareto_metric);   /* so dmbench report redraws the same front */
+    int rc = store_run_begin(r->st, e, r->o->tag);
+    for (size_t i = 0; rc == 0 && i < r->p.n_left_out; i++)
+        rc = store_left_out_put(r->st, r->run_id, &r->p.left_out[i]);
+    return rc;
+}
+
+static void runner__latest_link(runner *r)
+{
+    char *link = dm_xasprintf("%s/latest", r->root);
+    unlink(link);
+    if (symlink(r->run_id, link) != 0)
+        dm_log(DM_LOG_WARN, "%s: cannot create the 'latest' link", link);
+    free(link);
+}
+
+/* Fits the sweep's models to the finished run and stores them. */
+static void runner__fit(runner *r, dm_run_result *run)
+{
+    for (size_t i = 0; i < r->s->n_models; i++) {
+        const sweep_model *m = &r->s->models[i];
+        fitting_spec spec = { .name = m->name, .formula = m->formula, .response = m->response,
+                              .group_by = (const char *const *)m->group_by,
+                              .n_group_by = m->n_group_by };
+        size_t first = run->n_fits;
+        dm_str warn = {0}, err = {0};
+        if (fitting_run(&spec, run, &run->fits, &run->n_fits, &warn, &err) != 0)
+            dm_str_cat(&warn, dm_str_get(&err));
+        for (size_t k = first; k < run->n_fits; k++)
+            store_fit_put(r->st, r->run_id, &run->fits[k]);
+        char *save = NULL;
+        for (char *line = warn.buf ? strtok_r(warn.buf, "\n", &save) : NULL; line;
+             line = strtok_r(NULL, "\n", &save)) {
+            dm_log(DM_LOG_WARN, "%s", line);
+            store_run_warning_put(r->st, r->run_id, line);
+            run->warnings = dm_xrealloc(run->warnings, (run->n_warnings + 1) * sizeof *run->warnings);
+            run->warnings[run->n_warnings++] = dm_xstrdup(line);
+        }
+        dm_str_free(&warn);
+        dm_str_free(&err);
+    }
+}
+
+static int runner__finish(runner *r, dm_str *err)
+{
+    char now[32];
+    dm_iso8601_now(now);
+    store_run_finish(r->st, r->run_id, now);
+    dm_run_result run = {0};
+    int rc = store_run_load(r->st, r->run_id, &run);
+    if (rc == 0) {
+        runner__fit(r, &run);
+        char e[512] = "";
+        rc = report_write_all(&run, r->run_dir, e, sizeof e);
+        if (rc)
+            dm_str_printf(err, "report: %s", e);
+    } else {
+        dm_str_printf(err, "store: cannot reload run %s: %s", r->run_id, store_last_error(r->st));
+    }
+    dm_run_free(&run);
+    runner__latest_link(r);
+    return rc;
+}
+
+static void runner__free(runner *r)
+{
+    plan_free(&r->p);
+    store_close(r->st);
+    free(r->root);
+    free(r->run_id);
+    free(r->store_path);
+    free(r->cache_dir);
+    for (size_t i = 0; i < r->n_exts; i++)
+        free(r->exts[i]);
+    free(r->exts);
+    dm_run_free(&r->env);
+}
+
+/* Runs every scene: configurations grouped by scene, in plan order. */
+static void runner__scenes(runner *r)
+{
+    plan_config *cs = r->p.configs;
+    size_t n = r->p.n_configs;
+    int *taken = dm_xcalloc(n + 1, sizeof *taken);
+    plan_config *group = dm_xcalloc(n + 1, sizeof *group);
+    for (size_t i = 0; i < n; i++) {
+        if (taken[i])
+            continue;
+        size_t ng = 0;
+        for (size_t j = i; j < n; j++)
+            if (!taken[j] && strcmp(cs[j].scene, cs[i].scene) == 0) {
+                taken[j] = 1;
+                group[ng++] = cs[j];
+            }
+        runner__scene(r, group, ng);
+    }
+    free(group);
+    free(taken);
+}
+
+int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err)
+{
+    runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns() };
+    /* llvmpipe rasterizes on one thread per core; on shared machines that
+     * makes fenced timings several times noisier (LLVMPIPE.md), so measuring
+     * processes use one rasterizer thread unless the user chose otherwise.
+     * The value is recorded in the environment and the fingerprint. */
+    setenv("LP_NUM_THREADS", "1", 0);
+    int rc = plan_build(s, &r.p, err);
+    if (rc == 0 && o->shard_n && (rc = plan_shard(&r.p, o->shard_k, o->shard_n)) != 0)
+        dm_str_printf(err, "--shard %d/%d: expected K/N with 1 <= K <= N", o->shard_k, o->shard_n);
+    rc = rc ? rc : runner__probe(&r, err);
+    if (rc == 0)
+        plan_filter_capabilities(&r.p, runner__has_ext, &r);
+    rc = rc ? rc : runner__open(&r, err);
+    if (rc == 0 && o->budget_s > 0 && !o->resume)
+        runner__budget(&r);
+    rc = rc ? rc : runner__begin(&r);
+    if (rc == 0) {
+        r.total = r.p.n_configs;
+        if (!o->quiet)
+            fprintf(stderr, "dmbench: %s: %zu combinations -> %zu configurations "
+                    "(%zu excluded by the sweep, %zu folded: axes the technique does not read), "
+                    "%zu left out; run %s\n",
+                    s->name, r.p.n_combinations, r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
+                    r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
+                    r.p.n_left_out, r.run_dir);
+        runner__scenes(&r);
+        rc = runner__finish(&r, err);
+        double wall = (double)(dm_now_ns() - r.t_start) / 1e9, meas = (double)r.measured_ns / 1e9;
+        if (!o->quiet)
+            fprintf(stderr, "dmbench: %zu configurations (%zu failed) in %.1f s; %.1f s in measured "
+                    "frames, %.0f%% of the time outside them (setup, warm-up, statistics, images)\n",
+                    r.done, r.failed, wall, meas, wall > 0 ? 100 * (1 - meas / wall) : 0);
+    }
+    if (rc == 0 && run_dir)
+        *run_dir = dm_xstrdup(r.run_dir);
+    free(r.run_dir);
+    runner__free(&r);
+    return rc;
+}

@@ -1,0 +1,4 @@
+# The runner (run/).  Reference cache: keys and files, then two dmbench runs
+# (needs GL via dmbench).
+dm_add_gl(test_run_refcache test_run_refcache.c LIBS dm_run)
+add_dependencies(test_run_refcache dmbench)

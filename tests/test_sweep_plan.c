@@ -1,0 +1,220 @@
+/* Planner: projection onto the axes a technique reads, dedupe counts,
+ * stable keys, shards that are disjoint and cover everything. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+#include "sweep/plan.h"
+#include "sweep/sweep.h"
+
+static void plan_text(const char *text, sweep *s, plan *p)
+{
+    dm_str err = {0};
+    int rc = sweep_parse(text, "t.yaml", s, &err);
+    if (rc)
+        fail_msg("%s", dm_str_get(&err));
+    assert_int_equal(plan_build(s, p, &err), 0);
+    dm_str_free(&err);
+}
+
+/* normal does not read tess_level: 3 combinations fold into 1. */
+static void test_fold_irrelevant_axis(void **state)
+{
+    (void)state;
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  technique: [normal]\n  tess_level: [1, 32, 64]\n", &s, &p);
+    assert_int_equal(p.n_combinations, 3);
+    assert_int_equal(p.n_configs, 1);
+    assert_int_equal(p.configs[0].folded, 3);
+    assert_null(dm_kv_get(p.configs[0].params, p.configs[0].n_params, "tess_level"));
+    assert_string_equal(dm_kv_get(p.configs[0].params, p.configs[0].n_params, "technique"), "normal");
+    plan_free(&p);
+    sweep_free(&s);
+}
+
+/* Scene axes are read by every technique: 2 meshes x 2 resolutions = 4. */
+static void test_scene_axes_kept(void **state)
+{
+    (void)state;
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  mesh: [plane, cube]\n  technique: [normal]\n"
+              "  resolution: [[64, 32], [128, 64]]\n", &s, &p);
+    assert_int_equal(p.n_combinations, 4);
+    assert_int_equal(p.n_configs, 4);
+    int found = 0;
+    for (size_t i = 0; i < p.n_configs; i++) {
+        if (strcmp(p.configs[i].scene, "cube@128x64") == 0) {
+            found = 1;
+            assert_int_equal(p.configs[i].width, 128);
+            assert_int_equal(p.configs[i].height, 64);
+        }
+    }
+    assert_true(found);
+    plan_free(&p);
+    sweep_free(&s);
+}
+
+/* Keys depend only on the projected parameters: the same configuration
+ * planned from two different sweeps has the same key. */
+static void test_keys_stable(void **state)
+{
+    (void)state;
+    sweep a, b;
+    plan pa, pb;
+    plan_text("name: a\nsweep:\n  technique: [normal]\n  mesh: [cube]\n", &a, &pa);
+    plan_text("name: b\nscene: { mesh: cube, camera: { distance: 3.000 } }\nsweep:\n"
+              "  tess_level: [4, 8]\n  technique: [normal]\n", &b, &pb);
+    assert_int_equal(pa.n_configs, 1);
+    assert_int_equal(pb.n_configs, 1);
+    assert_string_equal(pa.configs[0].key, pb.configs[0].key);
+    assert_int_equal(strlen(pa.configs[0].key), 16);
+    plan_free(&pa);
+    plan_free(&pb);
+    sweep_free(&a);
+    sweep_free(&b);
+}
+
+static void test_shards_partition(void **state)
+{
+    (void)state;
+    const char *text = "name: t\nsweep:\n  mesh: [plane, cube, triangle, fullscreen]\n"
+                       "  technique: [normal]\n"
+                       "  resolution: [[64, 32], [128, 64], [32, 32], [16, 16], [8, 8]]\n"
+                       "  camera.elevation: [10, 20, 30]\n";
+    sweep s;
+    plan whole;
+    plan_text(text, &s, &whole);
+    assert_int_equal(whole.n_configs, 60);
+    size_t total = 0;
+    int *seen = calloc(whole.n_configs, sizeof *seen);
+    for (int k = 1; k <= 3; k++) {
+        plan part;
+        dm_str err = {0};
+        assert_int_equal(plan_build(&s, &part, &err), 0);
+        assert_int_equal(plan_shard(&part, k, 3), 0);
+        total += part.n_configs;
+        for (size_t i = 0; i < part.n_configs; i++)
+            for (size_t j = 0; j < whole.n_configs; j++)
+                if (strcmp(part.configs[i].key, whole.configs[j].key) == 0)
+                    seen[j]++;
+        plan_free(&part);
+    }
+    assert_int_equal(total, whole.n_configs);
+    for (size_t j = 0; j < whole.n_configs; j++)
+        assert_int_equal(seen[j], 1);
+    plan part;
+    dm_str err = {0};
+    assert_int_equal(plan_build(&s, &part, &err), 0);
+    assert_int_equal(plan_shard(&part, 4, 3), DM_ERR_ARG);
+    plan_free(&part);
+    free(seen);
+    plan_free(&whole);
+    sweep_free(&s);
+}
+
+static void test_shuffle_is_seeded_permutation(void **state)
+{
+    (void)state;
+    size_t a[50], b[50], c[50];
+    plan_shuffle(a, 50, 7);
+    plan_shuffle(b, 50, 7);
+    plan_shuffle(c, 50, 8);
+    assert_memory_equal(a, b, sizeof a);
+    assert_true(memcmp(a, c, sizeof a) != 0);
+    int hit[50] = {0};
+    for (int i = 0; i < 50; i++)
+        hit[a[i]]++;
+    for (int i = 0; i < 50; i++)
+        assert_int_equal(hit[i], 1);
+}
+
+/* roughness is read only under cook-torrance: 2 lighting models × 2
+ * roughness values plan 1 + 2 configurations. */
+static void test_conditional_axis_folds(void **state)
+{
+    (void)state;
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  technique: [phong]\n  lighting: [blinn-phong, cook-torrance]\n"
+              "  roughness: [0.1, 0.5]\n", &s, &p);
+    assert_int_equal(p.n_combinations, 4);
+    assert_int_equal(p.n_configs, 3);
+    for (size_t i = 0; i < p.n_configs; i++) {
+        const char *l = dm_kv_get(p.configs[i].params, p.configs[i].n_params, "lighting");
+        const char *r = dm_kv_get(p.configs[i].params, p.configs[i].n_params, "roughness");
+        assert_true((strcmp(l, "cook-torrance") == 0) == (r != NULL));
+    }
+    plan_free(&p);
+    sweep_free(&s);
+}
+
+/* exclude: technique × mesh = 4 combinations, two entries drop 2 of them
+ * (one by a list of values); the rest is planned as usual. */
+static void test_exclude(void **state)
+{
+    (void)state;
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  technique: [phong, tess-displacement]\n  mesh: [asteroid, asteroid-reduced]\n"
+              "  tess_level: [1, 4]\n"
+              "exclude:\n  - { technique: tess-displacement, mesh: asteroid }\n"
+              "  - { technique: [phong], mesh: [asteroid-reduced] }\n", &s, &p);
+    assert_int_equal(p.n_combinations, 8);
+    assert_int_equal(p.n_excluded, 4);
+    assert_int_equal(p.n_configs, 3);   /* phong@asteroid (tess_level folded), tess@reduced × 2 */
+    for (size_t i = 0; i < p.n_configs; i++) {
+        const char *t = dm_kv_get(p.configs[i].params, p.configs[i].n_params, "technique");
+        const char *m = dm_kv_get(p.configs[i].params, p.configs[i].n_params, "mesh");
+        assert_true((strcmp(t, "phong") == 0) == (strcmp(m, "asteroid") == 0));
+    }
+    plan_free(&p);
+    sweep_free(&s);
+}
+
+/* Bad exclude entries name the file and line and the valid choices. */
+static void test_exclude_errors(void **state)
+{
+    (void)state;
+    static const struct { const char *text, *msg; } bad[] = {
+        {"name: t\nsweep:\n  technique: [phong, pom]\nexclude:\n  - { mesh: cube }\n",
+         "t.yaml:5: exclude names axis 'mesh', which the sweep block does not vary"},
+        {"name: t\nsweep:\n  technique: [phong, pom]\nexclude:\n  - { technique: normal }\n",
+         "t.yaml:5: exclude value 'normal' of technique is not one of the sweep's values (phong, pom)"},
+        {"name: t\nsweep:\n  technique: [phong]\nexclude: { technique: phong }\n",
+         "t.yaml:4:10: exclude: expected a list"},
+        {"name: t\nsweep:\n  technique: [phong]\nexclude:\n  - { tecnique: phong }\n",
+         "did you mean 'technique'?"},
+        {"name: t\nsweep:\n  technique: [phong]\nexclude:\n  - {}\n", "an empty entry would exclude everything"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        sweep s;
+        dm_str err = {0};
+        assert_int_equal(sweep_parse(bad[i].text, "t.yaml", &s, &err), DM_ERR_PARSE);
+        if (!strstr(dm_str_get(&err), bad[i].msg))
+            fail_msg("case %zu: '%s' lacks '%s'", i, dm_str_get(&err), bad[i].msg);
+        dm_str_free(&err);
+    }
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_fold_irrelevant_axis),
+        cmocka_unit_test(test_scene_axes_kept),
+        cmocka_unit_test(test_exclude),
+        cmocka_unit_test(test_conditional_axis_folds),
+        cmocka_unit_test(test_exclude_errors),
+        cmocka_unit_test(test_keys_stable),
+        cmocka_unit_test(test_shards_partition),
+        cmocka_unit_test(test_shuffle_is_seeded_permutation),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
