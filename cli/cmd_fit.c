@@ -127,7 +127,13 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
     char *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(c1));
     store *st = NULL;
     dm_run_result run = {0};
-    int rc = store_open(store_path, &st, err);
+    int rc = 0;
+    if (!dm_file_exists(store_path)) {   /* store_open would create one */
+        dm_str_printf(err, "%s is not a run directory: no results store beside it (%s); give "
+                      "e.g. results/latest", a->dir, store_path);
+        rc = DM_ERR_ARG;
+    }
+    rc = rc ? rc : store_open(store_path, &st, err);
     if (rc == 0 && (rc = store_run_load(st, basename(c2), &run)) != 0)
         dm_str_printf(err, "%s: run %s is not in %s", a->dir, basename(c2), store_path);
     char *groups[16];

@@ -1,12 +1,15 @@
-/* cli_merge.c — `dmbench merge OUT DIR...`: the union of shard runs.
+/* cmd_merge.c — `dmbench merge OUT DIR... [--allow-missing]`: the union of
+ * shard runs.
  *
- * Every DIR is a run directory (its store is the dmbench.sqlite beside it).
- * The runs must come from the same sweep file and the same environment
- * fingerprint; their configurations are united by key into a new run in
- * OUT (OUT/dmbench.sqlite, OUT/<run-id>/ with images and report, OUT/latest).
+ * Every DIR is a run directory (its store is the dmbench.sqlite beside it;
+ * nothing is created when it is missing).  The rules (same sweep, each shard
+ * once, each key once, missing shards reported, machines kept apart) are
+ * store/merge.h's; the merged run goes into OUT (OUT/dmbench.sqlite,
+ * OUT/<run-id>/ with images and report, OUT/latest).
  */
 #include "cli.h"
 #include "core/dm_error.h"
+#include "store/merge.h"
 #include "store/store.h"
 #include "reports/report.h"
 
@@ -19,7 +22,8 @@
 #include <time.h>
 #include <unistd.h>
 
-/* Loads the run of a run directory; returns -1 on success or an exit code. */
+/* Loads the run of a run directory without creating anything; returns -1
+ * on success or an exit code. */
 static int merge__load(const char *dir, dm_run_result *out)
 {
     char real[PATH_MAX];
@@ -30,7 +34,10 @@ static int merge__load(const char *dir, dm_run_result *out)
     store *st = NULL;
     dm_str err = {0};
     int rc = -1;
-    if (store_open(store_path, &st, &err) != 0)
+    if (!dm_file_exists(store_path))
+        rc = cli__usage_error("merge: %s is not a run directory: no results store beside it (%s); "
+                              "give e.g. results/s1/latest", dir, store_path);
+    else if (store_open(store_path, &st, &err) != 0)
         rc = cli__usage_error("merge: %s", dm_str_get(&err));
     else if (store_run_load(st, basename(b), out) != 0)
         rc = cli__usage_error("merge: %s: run %s is not in %s", dir, basename(b), store_path);
@@ -63,41 +70,6 @@ static void merge__copy_images(const char *src_run, const char *dst_run)
     if (d)
         closedir(d);
     free(sdir);
-}
-
-/* Refuses runs that are not shards of one sweep in one environment. */
-static int merge__compatible(const dm_run_result *a, const dm_run_result *b, const char *dir)
-{
-    const char *fa = dm_kv_get(a->environment, a->n_environment, "fingerprint");
-    const char *fb = dm_kv_get(b->environment, b->n_environment, "fingerprint");
-    if (!a->sweep_hash || !b->sweep_hash || strcmp(a->sweep_hash, b->sweep_hash) != 0)
-        return cli__usage_error("merge: %s was made from a different sweep file (hash %s vs %s)", dir,
-                                b->sweep_hash ? b->sweep_hash : "?", a->sweep_hash ? a->sweep_hash : "?");
-    if (!fa || !fb || strcmp(fa, fb) != 0)
-        return cli__usage_error("merge: %s was measured in a different environment "
-                                "(fingerprint %s vs %s)", dir, fb ? fb : "?", fa ? fa : "?");
-    return -1;
-}
-
-/* Moves the configurations and left-outs of src into dst (by key, first wins). */
-static void merge__unite(dm_run_result *dst, dm_run_result *src)
-{
-    for (size_t i = 0; i < src->n_configs; i++) {
-        int dup = 0;
-        for (size_t j = 0; j < dst->n_configs && !dup; j++)
-            dup = strcmp(dst->configs[j].key, src->configs[i].key) == 0;
-        if (dup) {
-            dm_config_result_free(&src->configs[i]);
-            continue;
-        }
-        dst->configs = dm_xrealloc(dst->configs, (dst->n_configs + 1) * sizeof *dst->configs);
-        dst->configs[dst->n_configs++] = src->configs[i];
-    }
-    src->n_configs = 0;
-    dst->left_out = dm_xrealloc(dst->left_out, (dst->n_left_out + src->n_left_out + 1) * sizeof *dst->left_out);
-    memcpy(dst->left_out + dst->n_left_out, src->left_out, src->n_left_out * sizeof *src->left_out);
-    dst->n_left_out += src->n_left_out;
-    src->n_left_out = 0;
 }
 
 /* Writes the merged run into OUT: store, images, report, latest link. */
@@ -146,23 +118,75 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
     return rc;
 }
 
+/* Parses merge's arguments: OUT DIR... [--allow-missing].  Collects the
+ * directories into dirs (argv order); returns -1 to go on or an exit code. */
+static int merge__args(int argc, char **argv, const char **out, char **dirs, int *n, int *allow_missing)
+{
+    static const char *const valid[] = { "--allow-missing" };
+    for (int i = 1; i < argc; i++) {
+        if (strcmp(argv[i], "--allow-missing") == 0)
+            *allow_missing = 1;
+        else if (argv[i][0] == '-')
+            return cli__unknown_option("merge", argv[i], valid, 1);
+        else if (!*out)
+            *out = argv[i];
+        else
+            dirs[(*n)++] = argv[i];
+    }
+    if (!*out || *n == 0)
+        return cli__usage_error("usage: dmbench merge OUT DIR... [--allow-missing]   (DIR: run "
+                                "directories of shards, e.g. results/s1/latest)");
+    return -1;
+}
+
+/* Refuses (exit 2) or, with --allow-missing, records missing and incomplete
+ * shards as a run warning; returns -1 to go on or an exit code. */
+static int merge__check_missing(merge_state *m, int allow_missing)
+{
+    dm_str lines = {0};
+    size_t n = merge_missing(m, &lines);
+    int rc = -1;
+    if (n && !allow_missing) {
+        rc = cli__usage_error("merge: %zu shard%s missing or incomplete:\n%s"
+                              "(resume a shard with dmbench run ... --shard K/N --resume, or merge "
+                              "anyway with --allow-missing)", n, n == 1 ? "" : "s", dm_str_get(&lines));
+    } else if (n) {
+        fprintf(stderr, "dmbench: warning: merging without %zu missing or incomplete shard%s:\n%s",
+                n, n == 1 ? "" : "s", dm_str_get(&lines));
+        dm_run_result *r = &m->out;
+        r->warnings = dm_xrealloc(r->warnings, (r->n_warnings + 1) * sizeof *r->warnings);
+        r->warnings[r->n_warnings++] = dm_xasprintf("merged with --allow-missing; missing or "
+                                                    "incomplete: %s", dm_str_get(&lines));
+    }
+    dm_str_free(&lines);
+    return rc;
+}
+
 int cli_merge(int argc, char **argv)
 {
-    if (argc < 3)
-        return cli__usage_error("usage: dmbench merge OUT DIR...   (DIR: run directories of shards)");
-    dm_run_result merged = {0};
-    int rc = merge__load(argv[2], &merged);
-    for (int i = 3; rc < 0 && i < argc; i++) {
+    const char *out = NULL;
+    char **dirs = dm_xcalloc((size_t)argc + 1, sizeof *dirs);
+    int n = 0, allow_missing = 0;
+    int rc = merge__args(argc, argv, &out, dirs, &n, &allow_missing);
+    merge_state m = {0};
+    for (int i = 0; rc < 0 && i < n; i++) {
         dm_run_result r = {0};
-        rc = merge__load(argv[i], &r);
-        if (rc < 0)
-            rc = merge__compatible(&merged, &r, argv[i]);
-        if (rc < 0)
-            merge__unite(&merged, &r);
+        dm_str err = {0};
+        rc = merge__load(dirs[i], &r);
+        if (rc < 0 && merge_add(&m, &r, dirs[i], &err) != 0)
+            rc = cli__usage_error("merge: %s", dm_str_get(&err));
         dm_run_free(&r);
+        dm_str_free(&err);
     }
-    if (rc < 0)
-        rc = merge__write(&merged, argv[1], argv + 2, argc - 2);
-    dm_run_free(&merged);
+    rc = rc < 0 ? merge__check_missing(&m, allow_missing) : rc;
+    if (rc < 0) {
+        merge_finish(&m);
+        if (merge_machines(&m) > 1)
+            fprintf(stderr, "dmbench: merge: %zu machines (environment fingerprints differ): "
+                    "configurations are kept apart by machine, never pooled\n", merge_machines(&m));
+        rc = merge__write(&m.out, out, dirs, n);
+    }
+    merge_free(&m);
+    free(dirs);
     return rc;
 }

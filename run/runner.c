@@ -557,6 +557,44 @@ static void runner__budget(runner *r)
 
 /* ---- run directory, store, report ---------------------------------------------- */
 
+/* The shard a run measures, as recorded in its environment ("K/N"), or
+ * "none" for an unsharded run; into buf. */
+static void runner__shard_text(int k, int n, char buf[32])
+{
+    if (n > 0)
+        snprintf(buf, 32, "%d/%d", k, n);
+    else
+        snprintf(buf, 32, "none");
+}
+
+/* --resume may only continue a run of the same sweep file and the same
+ * shard: another shard's keys would be mixed into it silently.  Returns 0,
+ * or DM_ERR_ARG with both shards (or the sweep mismatch) in err. */
+static int runner__resume_check(const runner *r, const dm_run_result *old, dm_str *err)
+{
+    char hash[17], want[32];
+    dm_hex64(r->s->hash, hash);
+    if (!old->sweep_hash || strcmp(old->sweep_hash, hash) != 0) {
+        dm_str_printf(err, "--resume: run %s was made from a different sweep file; "
+                      "run without --resume to start a new run", r->run_id);
+        return DM_ERR_ARG;
+    }
+    const char *had = dm_kv_get(old->environment, old->n_environment, "shard");
+    runner__shard_text(r->o->shard_k, r->o->shard_n, want);
+    if (strcmp(had ? had : "none", want) != 0) {
+        char *was = had ? dm_xasprintf("shard %s", had) : dm_xstrdup("the whole sweep");
+        char *now = r->o->shard_n ? dm_xasprintf("shard %s", want) : dm_xstrdup("the whole sweep");
+        char *how = had ? dm_xasprintf("with --shard %s", had) : dm_xstrdup("without --shard");
+        dm_str_printf(err, "--resume: run %s measures %s, not %s; resume it %s, or give another "
+                      "--out for %s", r->run_id, was, now, how, now);
+        free(was);
+        free(now);
+        free(how);
+        return DM_ERR_ARG;
+    }
+    return 0;
+}
+
 static int runner__open(runner *r, dm_str *err)
 {
     r->root = dm_xstrdup(r->o->out_root ? r->o->out_root : "results");
@@ -576,15 +614,10 @@ static int runner__open(runner *r, dm_str *err)
         }
         dm_run_result old = {0};
         store_run_load(r->st, r->run_id, &old);
-        char hash[17];
-        dm_hex64(r->s->hash, hash);
-        int same = old.sweep_hash && strcmp(old.sweep_hash, hash) == 0;
+        rc = runner__resume_check(r, &old, err);
         dm_run_free(&old);
-        if (!same) {
-            dm_str_printf(err, "--resume: run %s was made from a different sweep file; "
-                          "run without --resume to start a new run", r->run_id);
-            return DM_ERR_ARG;
-        }
+        if (rc != 0)
+            return rc;
     } else {
         char stamp[32];
         time_t t = time(NULL);
@@ -624,6 +657,15 @@ static int runner__begin(runner *r)
     dm_hex64(r->s->hash, hash);
     e->sweep_hash = dm_xstrdup(hash);
     report_metric_set(e, r->s->pareto_metric);   /* so dmbench report redraws the same front */
+    if (r->o->shard_n > 0) {
+        /* merge checks duplicate and missing shards, and whether each one is
+         * complete, from these two entries. */
+        char buf[32];
+        runner__shard_text(r->o->shard_k, r->o->shard_n, buf);
+        dm_kv_push(&e->environment, &e->n_environment, "shard", buf);
+        snprintf(buf, sizeof buf, "%zu", r->p.n_configs);
+        dm_kv_push(&e->environment, &e->n_environment, "shard_configs", buf);
+    }
     int rc = store_run_begin(r->st, e, r->o->tag);
     for (size_t i = 0; rc == 0 && i < r->p.n_left_out; i++)
         rc = store_left_out_put(r->st, r->run_id, &r->p.left_out[i]);
