@@ -16,6 +16,7 @@ int cli_compare(int argc, char **argv);   /* cmd_compare.c */
 int cli_baseline(int argc, char **argv);  /* cmd_compare.c */
 int cli_merge(int argc, char **argv);
 int cli_view(int argc, char **argv);      /* cmd_view.c */
+int cli_slurm(int argc, char **argv);     /* cmd_slurm.c */
 
 /* Shared helpers (cli.c). */
 /* Prints "dmbench: error: <msg>" and returns 2. */

@@ -28,7 +28,9 @@ static const command commands[] = {
       "                        [--store FILE] [--base-tag T|--base-run ID|--baseline] [--new-tag T|--new-run ID]\n"
       "  dmbench compare --paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]" },
     { "baseline", cli_baseline, "baseline accept RUN --reason TEXT [--store FILE] | baseline show [--store FILE]" },
-    { "merge", cli_merge, "merge OUT DIR...      union of shard results into one run" },
+    { "merge", cli_merge, "merge OUT DIR... [--allow-missing]   union of shard results into one run" },
+    { "slurm", cli_slurm, "slurm [SWEEP] --shards N [--out DIR] [--partition P] [--time T] [--print] [--resume] [-- SBATCH_ARG...]\n"
+      "                        a Slurm job array, one task per shard, and a job that merges them" },
     { "list", cli_list, "list techniques|axes|counters|meshes|textures|models  (counters: [--passes A,B,...] [--json])" },
     { "info", cli_info, "info [--json]         context, extensions, limits, timer validity" },
     { "render", cli_render, "render KEY=VALUE... --png out.png [--supersample N] [--debug normals]" },
