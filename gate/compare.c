@@ -323,6 +323,42 @@ static int compare__item_cmp(const void *a, const void *b)
     return strcmp(x->label, y->label);
 }
 
+/* The machine a configuration was measured on: its "machine" parameter in
+ * a run merged from several machines (store/merge.h), else the run's
+ * environment fingerprint. */
+static const char *compare__machine(const dm_run_result *r, const dm_config_result *c)
+{
+    const char *m = dm_kv_get(c->params, c->n_params, "machine");
+    return m ? m : dm_kv_get(r->environment, r->n_environment, "fingerprint");
+}
+
+/* 1 when any configuration of r carries a machine (a multi-machine merge). */
+static int compare__multi_machine(const dm_run_result *r)
+{
+    for (size_t i = 0; i < r->n_configs; i++)
+        if (dm_kv_get(r->configs[i].params, r->configs[i].n_params, "machine"))
+            return 1;
+    return 0;
+}
+
+/* Times of one configuration measured on two machines are never compared
+ * (unless allow_env_mismatch; deterministic counters, counters_only, do not
+ * depend on the machine): the item is inconclusive and says why.
+ * Returns 1 when it was decided here. */
+static int compare__other_machine(const compare_desc *d, const dm_run_result *base,
+                                  const dm_config_result *b, const dm_run_result *new_,
+                                  const dm_config_result *n, compare_item *it)
+{
+    const char *mb = compare__machine(base, b), *mn = compare__machine(new_, n);
+    if (d->allow_env_mismatch || d->counters_only || (!mb && !mn) || (mb && mn && strcmp(mb, mn) == 0))
+        return 0;
+    it->verdict = COMPARE_INCONCLUSIVE;
+    it->note = dm_xasprintf("measured on machine %s in BASE and %s in NEW: not compared "
+                            "(timings of different machines are never pooled; "
+                            "--allow-env-mismatch compares anyway)", mb ? mb : "?", mn ? mn : "?");
+    return 1;
+}
+
 /* Matches configurations by key, lists added and removed ones. */
 static int *compare__match(const compare_desc *d, const dm_run_result *base,
                            const dm_run_result *new_, compare_result *out)
@@ -341,7 +377,7 @@ static int *compare__match(const compare_desc *d, const dm_run_result *base,
         it->key = dm_xstrdup(b->key);
         it->label = label;
         it->p = it->q = NAN;
-        if (!compare__checks(d, b, n, it))
+        if (!compare__other_machine(d, base, b, new_, n, it) && !compare__checks(d, b, n, it))
             pending[out->n_items] = compare__time_stats(d, b, n, it) == 0;
         out->n_items++;
     }
@@ -376,7 +412,10 @@ int compare_runs(const dm_run_result *base, const dm_run_result *new_, const com
     out->new_id = dm_xstrdup(new_->id);
     out->sweep = dm_xstrdup(new_->sweep);
     const compare_desc *o = &out->desc;
-    if (compare__env(base, new_, o->counters_only, out)) {
+    /* A run merged from several machines is checked per configuration
+     * (compare__other_machine); its run-level environment is one shard's. */
+    int per_config = compare__multi_machine(base) || compare__multi_machine(new_);
+    if ((!per_config || o->counters_only) && compare__env(base, new_, o->counters_only, out)) {
         if (!o->allow_env_mismatch) {
             dm_str_printf(err, "environment fingerprints differ (%zu key%s); pass "
                           "--allow-env-mismatch to compare anyway", out->n_env_diffs,

@@ -139,15 +139,25 @@ static int cmp_double(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
-/* Median of the config medians (ms) of one technique; NaN when none. */
-static double technique_median_ms(const dm_run_result *run, const char *tech)
+/* The bar a configuration belongs to: its technique, and its machine when
+ * the run was merged from several (merge.h), so no bar pools machines. */
+static char *technique_bar(const dm_config_result *c)
+{
+    const char *m = dm_kv_get(c->params, c->n_params, "machine");
+    return m ? dm_xasprintf("%s (%.8s)", report__technique(c), m) : dm_xstrdup(report__technique(c));
+}
+
+/* Median of the config medians (ms) of one bar; NaN when none. */
+static double technique_median_ms(const dm_run_result *run, const char *bar)
 {
     double *v = dm_xcalloc(run->n_configs + 1, sizeof *v);
     size_t n = 0;
     for (size_t i = 0; i < run->n_configs; i++) {
         const dm_counter_result *t = report__frame_time(&run->configs[i]);
-        if (t && run->configs[i].ok && strcmp(report__technique(&run->configs[i]), tech) == 0)
+        char *b = technique_bar(&run->configs[i]);
+        if (t && run->configs[i].ok && strcmp(b, bar) == 0)
             v[n++] = t->median / 1e6;
+        free(b);
     }
     qsort(v, n, sizeof *v, cmp_double);
     double m = n ? (n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2) : NAN;
@@ -157,16 +167,18 @@ static double technique_median_ms(const dm_run_result *run, const char *tech)
 
 void report__html_charts_run(dm_str *s, const dm_run_result *run)
 {
-    const char **techs = NULL;
+    char **techs = NULL;
     size_t nt = 0;
     for (size_t i = 0; i < run->n_configs; i++) {
-        const char *t = report__technique(&run->configs[i]);
+        char *t = technique_bar(&run->configs[i]);
         size_t k = 0;
         while (k < nt && strcmp(techs[k], t) != 0)
             k++;
         if (k == nt && report__frame_time(&run->configs[i]) && run->configs[i].ok) {
             techs = dm_xrealloc(techs, (nt + 1) * sizeof *techs);
             techs[nt++] = t;
+        } else {
+            free(t);
         }
     }
     char *file = nt ? chart_tmpname() : NULL;
@@ -191,6 +203,8 @@ void report__html_charts_run(dm_str *s, const dm_run_result *run)
         free(h);
         free(file);
     }
+    for (size_t k = 0; k < nt; k++)
+        free(techs[k]);
     free(techs);
 }
 

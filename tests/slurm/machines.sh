@@ -1,0 +1,77 @@
+#!/usr/bin/env bash
+# merge and shards, without a scheduler:
+#  - shards measured in two environments (LP_NUM_THREADS 1 and 2: two
+#    fingerprints, as two machines would give) merge into one run that keeps
+#    them apart: every configuration carries its machine, scenes are per
+#    machine, the report says so; compare against a one-machine run compares
+#    the configurations of that machine and not the others;
+#  - merge refuses a shard given twice and reports a missing one, creating
+#    nothing; merge/fit of a directory that is not a run create nothing;
+#  - --resume of a shard's store with another --shard is refused with both.
+set -euo pipefail
+BIN=${DMBENCH_BINARY:?}
+SRC=${DMBENCH_SOURCE_DIR:?}
+SWEEP=$SRC/tests/e2e/resume.yaml
+T=$(mktemp -d)
+trap 'rm -rf "$T"' EXIT
+q() { sqlite3 "$1" "$2"; }
+fail() { echo "FAIL: $*"; exit 1; }
+expect2() {   # expect2 NAME REGEX CMD...: exit 2 and stderr matching REGEX
+  local name=$1 re=$2 rc=0; shift 2
+  "$@" > "$T/o" 2> "$T/e" || rc=$?
+  [ "$rc" -eq 2 ] || fail "$name: exit $rc, expected 2 ($(cat "$T/e"))"
+  grep -Eq "$re" "$T/e" || fail "$name: message '$(cat "$T/e")' lacks /$re/"
+}
+
+LP_NUM_THREADS=1 "$BIN" run "$SWEEP" --out "$T/full" --quiet
+LP_NUM_THREADS=1 "$BIN" run "$SWEEP" --out "$T/s1" --shard 1/2 --quiet
+LP_NUM_THREADS=2 "$BIN" run "$SWEEP" --out "$T/s2" --shard 2/2 --quiet
+fp1=$(q "$T/s1/dmbench.sqlite" "select value from run_env where key='fingerprint'")
+fp2=$(q "$T/s2/dmbench.sqlite" "select value from run_env where key='fingerprint'")
+[ "$fp1" != "$fp2" ] || fail "LP_NUM_THREADS did not change the fingerprint"
+
+# Refusals first: nothing may be created.
+expect2 "shard twice" "shard 1/2 given twice" "$BIN" merge "$T/m" "$T/s1/latest" "$T/s1/latest"
+expect2 "missing shard" "shard 2/2: not given" "$BIN" merge "$T/m" "$T/s1/latest"
+[ ! -e "$T/m" ] || fail "a refused merge created $T/m"
+mkdir -p "$T/plain/sub"
+expect2 "merge non-run" "not a run directory" "$BIN" merge "$T/m" "$T/plain/sub"
+expect2 "fit non-run" "not a run directory" "$BIN" fit "$T/plain/sub"
+[ -z "$(find "$T/plain" -type f)" ] && [ ! -e "$T/m" ] || fail "merge/fit of a non-run created files"
+expect2 "resume other shard" "measures shard 1/2, not shard 2/2" \
+  "$BIN" run "$SWEEP" --out "$T/s1" --shard 2/2 --resume --quiet
+expect2 "resume unsharded" "measures shard 1/2, not the whole sweep" \
+  "$BIN" run "$SWEEP" --out "$T/s1" --resume --quiet
+
+# Two machines, merged.
+"$BIN" merge "$T/m" "$T/s1/latest" "$T/s2/latest" > "$T/merge.out" 2> "$T/merge.err"
+grep -q "2 machines" "$T/merge.err" || fail "merge did not say it saw 2 machines"
+db=$T/m/dmbench.sqlite
+[ "$(q "$db" "select count(*) from configs")" -eq 12 ] || fail "merged run does not have 12 configurations"
+n1=$(q "$T/s1/dmbench.sqlite" "select count(*) from configs")
+[ "$(q "$db" "select count(*) from config_params where name='machine' and value='$fp1'")" -eq "$n1" ] \
+  || fail "shard 1's configurations are not all on machine $fp1"
+[ "$(q "$db" "select count(*) from config_params where name='machine' and value='$fp2'")" -eq $((12 - n1)) ] \
+  || fail "shard 2's configurations are not all on machine $fp2"
+[ "$(q "$db" "select count(*) from configs where scene not like '% @ $fp1' and scene not like '% @ $fp2'")" -eq 0 ] \
+  || fail "a scene without its machine"
+[ "$(q "$db" "select count(*) from run_env where key in ('machine $fp1', 'machine $fp2')")" -eq 2 ] \
+  || fail "the machines are not described in the environment"
+grep -q "merged from 2 machines" "$T/m/latest/report.html" || fail "report.html does not say 2 machines"
+grep -q "merged from 2 machines" "$T/m/latest/summary.md" || fail "summary.md does not say 2 machines"
+# chart text is written as character references: decode them first
+perl -CS -pe 's/&#x([0-9a-f]+);/chr(hex($1))/ge' "$T/m/latest/report.html" > "$T/report.txt"
+grep -q "normal (${fp1:0:8})" "$T/report.txt" && grep -q "normal (${fp2:0:8})" "$T/report.txt" \
+  || fail "the technique chart pools machines (no bar per machine)"
+
+# compare: the one-machine run against the merge compares machine 1's
+# configurations and marks machine 2's as not compared.
+rc=0
+"$BIN" compare "$T/full/latest" "$T/m/latest" --json "$T/cmp.json" > "$T/cmp.out" 2>&1 || rc=$?
+[ "$rc" -eq 3 ] || fail "compare exit $rc, expected 3 (inconclusive): $(cat "$T/cmp.out")"
+other=$(grep -c "measured on machine $fp1 in BASE and $fp2 in NEW: not compared" "$T/cmp.out" || true)
+[ "$other" -eq $((12 - n1)) ] || fail "$other configurations marked as other-machine, expected $((12 - n1))"
+items=$(grep -Ec "^[A-Z]+ +.* [0-9a-f]{16}  " "$T/cmp.out" || true)
+[ "$((items - other))" -eq "$n1" ] || fail "$((items - other)) configurations of machine 1 compared, expected $n1"
+echo "machines: $n1 + $((12 - n1)) configurations on $fp1 and $fp2 kept apart"
+echo "1 passed, 0 failed"
