@@ -35,6 +35,6 @@ t1=$(date +%s.%N)
 state=$(scontrol show job -o "$job" | grep -o 'JobState=[A-Z]*')
 echo "$N-shard array + merge job ($state): $(echo "$t1 - $t0" | bc) s, $(sqlite3 "$OUT/array/merged/dmbench.sqlite" 'select count(*) from configs') configurations merged; load after: $(load)"
 for k in $(seq 1 "$N"); do
-  echo "  shard $k: $(sqlite3 "$OUT/array/shards/s$k/dmbench.sqlite" "select count(*) || ' configurations, ' || (julianday(finished) - julianday(started)) * 86400 || ' s' from runs join configs on configs.run = runs.id")"
+  echo "  shard $k: $(sqlite3 "$OUT/array/shards/s$k/dmbench.sqlite" "select (select count(*) from configs) || ' configurations, ' || round((julianday(finished) - julianday(started)) * 86400) || ' s' from runs")"
 done
 one 2 warm
