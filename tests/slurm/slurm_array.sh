@@ -8,7 +8,8 @@
 #  3. a task that fails (its shard directory holds another shard's store):
 #     the merge job names the shard with Slurm's state and reason, merges
 #     the other shards and fails;
-#  4. --resume submits only the missing shard; the merge is complete again.
+#  4. --resume submits only the missing shard; the merge is complete again;
+#  5. --resume with every shard complete submits only the merge job.
 # Exit 77 (skipped) only when Slurm or MUNGE is not installed or we are not
 # root (slurmd needs root).
 set -euo pipefail
@@ -91,6 +92,13 @@ rm -rf "$OUT/shards/s3"
 grep -q "^array job: [0-9]* (shards 3 of 4)" "$T/sub3.out" || fail "resume did not submit shard 3 only"
 state=$(wait_job "$(merge_job "$T/sub3.out")" 90)
 [ "$state" = COMPLETED ] || fail "merge job after --resume $state"
+check_merged
+
+# 5. --resume with every shard complete: only the merge job runs
+"$BIN" slurm "$SWEEP" --shards 4 --out "$OUT" --resume > "$T/sub4.out"
+grep -q "^every shard is complete: only the merge job was submitted" "$T/sub4.out" || fail "$(cat "$T/sub4.out")"
+state=$(wait_job "$(merge_job "$T/sub4.out")" 60)
+[ "$state" = COMPLETED ] || fail "merge-only job $state"
 check_merged
 
 echo "slurm: 4-shard array + merge in ${t_array} s (cluster start included); whole test $(( $(date +%s) - t0 )) s"
