@@ -77,7 +77,8 @@ static void merge__take(merge_state *m, dm_run_result *run, size_t src)
     }
     run->n_configs = 0;
     d->left_out = dm_xrealloc(d->left_out, (d->n_left_out + run->n_left_out + 1) * sizeof *d->left_out);
-    memcpy(d->left_out + d->n_left_out, run->left_out, run->n_left_out * sizeof *run->left_out);
+    if (run->n_left_out)   /* left_out is NULL when empty: no memcpy from NULL */
+        memcpy(d->left_out + d->n_left_out, run->left_out, run->n_left_out * sizeof *run->left_out);
     d->n_left_out += run->n_left_out;
     run->n_left_out = 0;
     d->warnings = dm_xrealloc(d->warnings, (d->n_warnings + run->n_warnings + 1) * sizeof *d->warnings);
