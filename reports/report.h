@@ -47,6 +47,7 @@
 #define REPORTS_REPORT_H
 
 #include "core/dm_results.h"
+#include "core/dm_util.h"
 
 /* Writes all four files into dir (which must exist).  Returns 0 or the
  * writer's code (DM_ERR_IO: err names the file); stops at the first failure. */
@@ -58,6 +59,19 @@ int report_write_html(const dm_run_result *run, const char *dir, const char *pat
 /* report_write_html: dir is the run directory image paths are relative to
  * (used to embed thumbnails and to mark missing files); NULL links images
  * without checking them. */
+
+/* The configuration's stable readable name, "scene/technique axis=value ..."
+ * with the axes that take two or more values in its scene (failed
+ * configurations included), e.g. "plane@480x270/pom steps=32"; " [key]" is
+ * appended only when two configurations would otherwise share a name.  Used
+ * as results.json "label" and as the benchmark name of every export. */
+void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_str *out);
+/* Per configuration (run order): 1 when it is on its scene's Pareto front
+ * under the run's metric.  malloc'd, n_configs bytes (caller frees). */
+unsigned char *report_pareto_flags(const dm_run_result *run);
+/* results.json "schema_version": the major version of docs/results.schema.json;
+ * raised only when a field changes meaning or goes away (additions keep it). */
+#define REPORT_SCHEMA_VERSION 1
 
 /* Writes a cJSON document, pretty-printed with a final newline, atomically
  * to path (root stays the caller's).  0, DM_ERR_NOMEM or DM_ERR_IO. */

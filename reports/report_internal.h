@@ -82,6 +82,10 @@ size_t report__pareto_points(const dm_run_result *run, const char *scene, report
 size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out);
 void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *out);
 
+/* 1 when the 95 % CIs of the two timings' medians overlap (statistically
+ * tied); 0 when either CI is unknown. */
+int report__tied(const dm_counter_result *a, const dm_counter_result *b);
+
 /* Charts (chart.c): inline SVG appended to an HTML document, each in a
  * <div class="chart" aria-label="title">.  The run-level charts (time per
  * technique), the per-scene charts (error vs time with the Pareto front,
