@@ -29,6 +29,8 @@ static const command commands[] = {
       "  dmbench compare --paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]" },
     { "baseline", cli_baseline, "baseline accept RUN --reason TEXT [--store FILE] | baseline show [--store FILE]" },
     { "merge", cli_merge, "merge OUT DIR...      union of shard results into one run" },
+    { "export", cli_export, "export RUN --format gbench|bmf|gab-smaller|gab-bigger [-o FILE] [--store DB]  results other benchmark tools read" },
+    { "history", cli_history, "history [--store DB] [KEY...|--technique T|--scene S]  a configuration's median across runs, with change points" },
     { "list", cli_list, "list techniques|axes|counters|meshes|textures|models  (counters: [--passes A,B,...] [--json])" },
     { "info", cli_info, "info [--json]         context, extensions, limits, timer validity" },
     { "render", cli_render, "render KEY=VALUE... --png out.png [--supersample N] [--debug normals]" },
