@@ -4,6 +4,7 @@
 
 #include "core/dm_error.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -283,27 +284,35 @@ int report__save(const dm_str *s, const char *path)
 }
 
 /* Writes the four files; stops at the first failure and names that file. */
-int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen)
+int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
+                        size_t errlen)
 {
     static const char *names[] = {"results.json", "results.csv", "summary.md", "report.html"};
-    if (!run || !dir) {
+    if (!run || !dir || !out) {
         snprintf(err, errlen, "report_write_all: no run or no directory");
         return DM_ERR_ARG;
     }
-    for (int i = 0; i < 4; i++) {
-        char *path = dm_xasprintf("%s/%s", dir, names[i]);
-        int rc = i == 0 ? report_write_json(run, path)
-               : i == 1 ? report_write_csv(run, path)
-               : i == 2 ? report_write_markdown(run, path)
-                        : report_write_html(run, dir, path);
-        if (rc) {
+    char real[PATH_MAX];   /* links from elsewhere: the run directory's absolute path */
+    char *href = strcmp(dir, out) == 0 ? dm_xstrdup("")
+                 : dm_xasprintf("%s/", realpath(dir, real) ? real : dir);
+    int rc = 0;
+    for (int i = 0; i < 4 && !rc; i++) {
+        char *path = dm_xasprintf("%s/%s", out, names[i]);
+        rc = i == 0 ? report_write_json(run, path)
+           : i == 1 ? report_write_csv(run, path)
+           : i == 2 ? report_write_markdown(run, path)
+                    : report_write_html_to(run, dir, path, href);
+        if (rc)
             snprintf(err, errlen, "%s: cannot write (%s)", path, dm_strerror(rc));
-            free(path);
-            return rc;
-        }
         free(path);
     }
-    return 0;
+    free(href);
+    return rc;
+}
+
+int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen)
+{
+    return report_write_all_to(run, dir, dir, err, errlen);
 }
 
 /* 1 when param `name` takes two or more distinct values over all the scene's

@@ -25,21 +25,26 @@
  * results.csv: one row per configuration, RFC 4180 (CRLF, quoted fields);
  * columns key, scene, status, reason, the union of params, per timing
  * counter <name>_median_ms/_ci_lo_ms/_ci_hi_ms, each deterministic counter,
- * then RMSE, PSNR ("inf" when infinite), SSIM, MaxError, SilhouetteError,
- * DepthRMSE, CrackPixels, NonFinitePixels; unavailable = empty field.
+ * then RMSE, PSNR_dB ("inf" when infinite), SSIM, MaxError, SilhouetteError,
+ * DepthRMSE, CrackPixels, NonFinitePixels, label, pareto (0/1); unavailable
+ * = empty field.
  *
- * report.html embeds each gallery image as a PNG thumbnail (data: URI,
- * at most 192 px) linking to the full file, and inlines PLplot SVG charts
- * (each in <div class="chart" aria-label="its title">): time per technique;
- * per scene error vs time with the Pareto front listed, time vs tess_level
- * when it varies, and the counter breakdown per configuration (stage times
- * of a pipeline-linear fit beside the measured median, else the key
- * counters relative to their maxima; the 24 slowest); per fit, predicted vs
- * measured and residuals.
+ * report.html opens with the answer: per scene the Pareto front as a
+ * compact table (technique, varying axes, ms ± CI, the error metric, cost
+ * relative to the fastest, statistically tied members marked), then a table
+ * of contents, warnings and the environment folded in a <details>.  Scene
+ * tables show the key columns first (the rest behind a toggle), sort, filter
+ * and scroll in their own box.  Per scene: error vs time with CI whiskers and
+ * numbered points, time per configuration of that scene (svg_chart.c), time
+ * vs tess_level when it varies and the counter breakdown (chart.c).  The
+ * gallery embeds each reference once (PNG thumbnail, data: URI, at most
+ * 192 px) and links renders and heatmaps from img/ (a render flips to its
+ * reference on click; the heatmap has its colour scale); per fit, predicted
+ * vs measured and residuals.
  *
  * Pareto metric (reports/metric.h): the run's environment entry
  * "pareto_metric" (default ssim) picks the error of every front; it is
- * named in the findings, the chart axis, the scene tables and summary.md.
+ * named in the answer, the chart axis, the scene tables and summary.md.
  * Noisy configurations (95 % CI of the median wider than ±5 %, or unknown;
  * docs/measurement.md) are listed in a warning box and in summary.md.
  */
@@ -56,6 +61,14 @@ int report_write_json(const dm_run_result *run, const char *path);
 int report_write_csv(const dm_run_result *run, const char *path);
 int report_write_markdown(const dm_run_result *run, const char *path);
 int report_write_html(const dm_run_result *run, const char *dir, const char *path);
+/* As report_write_html, with href prefixed to every image link (so a report
+ * written outside the run directory still finds its images); NULL = "". */
+int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
+                         const char *href);
+/* As report_write_all, the files going into out (which must exist) while
+ * images stay in the run directory dir (`dmbench report DIR --out OUT`). */
+int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
+                        size_t errlen);
 /* report_write_html: dir is the run directory image paths are relative to
  * (used to embed thumbnails and to mark missing files); NULL links images
  * without checking them. */

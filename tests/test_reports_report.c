@@ -148,13 +148,15 @@ static void test_csv_shape(void **state)
     memset(cell, 0, sizeof cell);
     assert_int_equal(csv_shape(t, &cols, cell, 64), 4);   /* header + 3 configs */
     /* key scene status reason | technique mesh steps scale note tess_level |
-     * WallTime ×3 | TESInvocations | 8 quality */
-    assert_int_equal(cols, 4 + 6 + 3 + 1 + 8);
+     * WallTime ×3 | TESInvocations | 8 quality | label pareto */
+    assert_int_equal(cols, 4 + 6 + 3 + 1 + 8 + 2);
     assert_string_equal(cell[0], FIXTURE_KEY0);
     assert_string_equal(cell[8], "a,b \"quoted\"");   /* note param round-trips through quoting */
     assert_string_equal(cell[10], "1.1");              /* WallTime median, ms */
     assert_string_equal(cell[14], "0");                /* RMSE */
-    assert_string_equal(cell[15], "inf");              /* PSNR */
+    assert_string_equal(cell[15], "inf");              /* PSNR_dB */
+    assert_non_null(strstr(t, ",PSNR_dB,"));
+    assert_non_null(strstr(t, ",label,pareto\r\n"));
     assert_non_null(strstr(t, "WallTime_median_ms"));
     free(t);
     dm_run_free(&run);
