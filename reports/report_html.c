@@ -462,6 +462,8 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
             ref = (long)gallery_ref_index(refs, nrefs, c->img_reference, &fresh);
             if (fresh)
                 gallery_reference(s, im, c->img_reference, (size_t)ref, scene);
+        } else if (c->img_reference) {
+            gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
         }
         dm_str label = {0};
         report__config_label(run, c, &label);

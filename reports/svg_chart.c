@@ -21,13 +21,27 @@
 #define SVG_H 340.0
 #define SVG_L 64.0         /* plot area margins */
 #define SVG_R 24.0
-#define SVG_T 18.0
+#define SVG_T 24.0
 #define SVG_B 44.0
 
 typedef struct svg_axis { double lo, hi; } svg_axis;
 
 static double svg_x(svg_axis a, double v) { return SVG_L + (v - a.lo) / (a.hi - a.lo) * (SVG_W - SVG_L - SVG_R); }
 static double svg_y(svg_axis a, double v) { return SVG_H - SVG_B - (v - a.lo) / (a.hi - a.lo) * (SVG_H - SVG_T - SVG_B); }
+
+/* Opens <div class="chart" role="img" aria-label="title"><svg> of w × h
+ * with the title drawn at the top (characters as &#xNN; references, the
+ * way the PLplot charts write text). */
+static void svg_open(dm_str *s, const char *title, double w, double h)
+{
+    dm_str_cat(s, "<div class=\"chart\" role=\"img\" aria-label=\"");
+    dm_str_cat_html(s, title);
+    dm_str_printf(s, "\"><svg viewBox=\"0 0 %.0f %.0f\" width=\"%.0f\" font-family=\"sans-serif\" "
+                     "font-size=\"11\"><text x=\"4\" y=\"12\" font-weight=\"bold\">", w, h, w);
+    for (const unsigned char *c = (const unsigned char *)title; *c; c++)
+        dm_str_printf(s, "&#x%x;", (unsigned)*c);
+    dm_str_cat(s, "</text>");
+}
 
 /* Five ticks of each axis with their numbers, and the axis titles. */
 static void svg_axes(dm_str *s, svg_axis ax, svg_axis ay, const char *xt, const char *yt)
@@ -85,10 +99,7 @@ static void svg_scatter(dm_str *s, const dm_run_result *run, const char *scene)
     if (n) {
         dm_str title = {0};
         dm_str_printf(&title, "Error vs time: %s", scene);
-        dm_str_cat(s, "<div class=\"chart\" aria-label=\"");
-        dm_str_cat_html(s, dm_str_get(&title));
-        dm_str_printf(s, "\"><svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 %.0f %.0f\" width=\"%.0f\" "
-                         "font-family=\"sans-serif\" font-size=\"11\" role=\"img\">", SVG_W, SVG_H, SVG_W);
+        svg_open(s, dm_str_get(&title), SVG_W, SVG_H);
         dm_str_free(&title);
         dm_str cap_x = {0}, cap_y = {0};
         dm_str_printf(&cap_x, "median frame time, ms (whisker: 95%% CI)");
@@ -161,18 +172,18 @@ static void svg_bars(dm_str *s, const dm_run_result *run, const char *scene)
         free(rows);
         return;
     }
-    double lw = longest * SVG_CHAR_W + 12, bw = 420, rowh = 18, w = lw + bw + 70, h = n * rowh + 34;
+    double lw = longest * SVG_CHAR_W + 12, bw = 420, rowh = 18, w = lw + bw + 70, h = n * rowh + 48;
     hi = hi / 1e6 * 1.04;
-    dm_str_cat(s, "<div class=\"chart\" aria-label=\"Time per configuration: ");
-    dm_str_cat_html(s, scene);
-    dm_str_printf(s, "\"><svg xmlns=\"http://www.w3.org/2000/svg\" viewBox=\"0 0 %.0f %.0f\" width=\"%.0f\" "
-                     "font-family=\"sans-serif\" font-size=\"11\" role=\"img\">", w, h, w);
-    dm_str_printf(s, "<text x=\"%.1f\" y=\"12\" font-weight=\"bold\">median frame time, ms, this scene only "
+    dm_str title = {0};
+    dm_str_printf(&title, "Time per configuration: %s", scene);
+    svg_open(s, dm_str_get(&title), fmax(w, (double)title.len * SVG_CHAR_W * 1.2 + 8), h);
+    dm_str_free(&title);
+    dm_str_printf(s, "<text x=\"%.1f\" y=\"28\">median frame time, ms, this scene only "
                      "(whisker: 95%% CI)</text>", lw);
     for (size_t i = 0; i < n; i++) {
         const dm_config_result *c = &run->configs[rows[i]];
         const dm_counter_result *t = report__frame_time(c);
-        double y = 22 + i * rowh, x1 = lw + t->median / 1e6 / hi * bw;
+        double y = 36 + i * rowh, x1 = lw + t->median / 1e6 / hi * bw;
         dm_str label = {0};
         report__config_label(run, c, &label);
         dm_str_printf(s, "<g><title>%.3f ms [%.3f, %.3f]</title><text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">",
