@@ -1,5 +1,6 @@
 /* cli.c — `dmbench run`, `dmbench report`, `dmbench info` and shared helpers. */
 #include "cli.h"
+#include "run/trends.h"
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 #include "run/info.h"
@@ -209,8 +210,12 @@ int cli_report(int argc, char **argv)
     char e[512] = "";
     if (rc < 0 && out && dm_mkdirs(out) != 0)
         rc = cli__usage_error("report: --out %s: cannot create the directory", out);
-    if (rc < 0 && report_write_all_to(&run, dir, out ? out : dir, e, sizeof e) != 0)
+    report_trends tr = {0};
+    if (rc < 0)
+        run_trends(st, &run, &tr);   /* none on a store failure: the report goes on */
+    if (rc < 0 && report_write_all_trends(&run, dir, out ? out : dir, &tr, e, sizeof e) != 0)
         rc = cli__usage_error("report: %s", e);
+    report_trends_free(&tr);
     if (rc < 0) {
         printf("report: %s/report.html\n", out ? out : dir);
         rc = 0;

@@ -287,6 +287,22 @@ int report__save(const dm_str *s, const char *path)
 int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
                         size_t errlen)
 {
+    return report_write_all_trends(run, dir, out, NULL, err, errlen);
+}
+
+void report_trends_free(report_trends *t)
+{
+    for (size_t i = 0; t && i < t->n; i++) {
+        free(t->items[i].key);
+        free(t->items[i].median_ns);
+    }
+    if (t)
+        free(t->items);
+}
+
+int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
+                            const report_trends *t, char *err, size_t errlen)
+{
     static const char *names[] = {"results.json", "results.csv", "summary.md", "report.html"};
     if (!run || !dir || !out) {
         snprintf(err, errlen, "report_write_all: no run or no directory");
@@ -301,7 +317,7 @@ int report_write_all_to(const dm_run_result *run, const char *dir, const char *o
         rc = i == 0 ? report_write_json(run, path)
            : i == 1 ? report_write_csv(run, path)
            : i == 2 ? report_write_markdown(run, path)
-                    : report_write_html_to(run, dir, path, href);
+                    : report_write_html_trends(run, dir, path, href, t);
         if (rc)
             snprintf(err, errlen, "%s: cannot write (%s)", path, dm_strerror(rc));
         free(path);

@@ -69,6 +69,26 @@ int report_write_html_to(const dm_run_result *run, const char *dir, const char *
  * images stay in the run directory dir (`dmbench report DIR --out OUT`). */
 int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
                         size_t errlen);
+
+/* A configuration's median WallTime (ns) in the runs of the store on the
+ * same machine fingerprint, oldest first, this run last (run/trends.h
+ * builds them from the store).  report.html draws a small trend line per
+ * configuration that has two or more. */
+typedef struct report_trend {
+    char *key;
+    double *median_ns;
+    size_t n;
+} report_trend;
+typedef struct report_trends {
+    report_trend *items;
+    size_t n;
+} report_trends;
+void report_trends_free(report_trends *t);
+/* report_write_all_to with trend lines (t may be NULL: none). */
+int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
+                            const report_trends *t, char *err, size_t errlen);
+int report_write_html_trends(const dm_run_result *run, const char *dir, const char *path,
+                             const char *href, const report_trends *t);
 /* report_write_html: dir is the run directory image paths are relative to
  * (used to embed thumbnails and to mark missing files); NULL links images
  * without checking them. */

@@ -224,6 +224,53 @@ static int on_front(const size_t *front, size_t nf, size_t i)
     return 0;
 }
 
+/* The trend of configuration key (NULL when it has fewer than two runs). */
+static const report_trend *trend_of(const report_trends *t, const char *key)
+{
+    for (size_t i = 0; t && key && i < t->n; i++)
+        if (t->items[i].key && strcmp(t->items[i].key, key) == 0 && t->items[i].n >= 2)
+            return &t->items[i];
+    return NULL;
+}
+
+/* 1 when a configuration of the scene has a trend (the column is shown). */
+static int scene_has_trends(const dm_run_result *run, const char *scene, const report_trends *t)
+{
+    for (size_t i = 0; t && i < run->n_configs; i++)
+        if (run->configs[i].ok && strcmp(run->configs[i].scene ? run->configs[i].scene : "", scene) == 0 &&
+            trend_of(t, run->configs[i].key))
+            return 1;
+    return 0;
+}
+
+/* A sparkline of the medians (80 × 18 px, y from the series' min to max,
+ * this run as a dot; the values in its hover title). */
+static void trend_cell(dm_str *s, const report_trend *tr)
+{
+    if (!tr) {
+        dm_str_cat(s, "<td></td>");
+        return;
+    }
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < tr->n; i++)
+        if (isfinite(tr->median_ns[i]))
+            lo = fmin(lo, tr->median_ns[i]), hi = fmax(hi, tr->median_ns[i]);
+    double span = hi > lo ? hi - lo : 1, x = 0, y = 0;
+    dm_str_printf(s, "<td class=\"trend\"><svg class=\"spark\" width=\"80\" height=\"18\" "
+                     "viewBox=\"0 0 80 18\"><title>median ms, oldest first:");
+    for (size_t i = 0; i < tr->n; i++)
+        dm_str_printf(s, " %.3f", tr->median_ns[i] / 1e6);
+    dm_str_cat(s, "</title><polyline fill=\"none\" stroke=\"#36c\" points=\"");
+    for (size_t i = 0; i < tr->n; i++) {
+        if (!isfinite(tr->median_ns[i]))
+            continue;
+        x = 3 + 74.0 * (double)i / (double)(tr->n - 1);
+        y = 15 - 12 * (tr->median_ns[i] - lo) / span;
+        dm_str_printf(s, "%.1f,%.1f ", x, y);
+    }
+    dm_str_printf(s, "\"/><circle cx=\"%.1f\" cy=\"%.1f\" r=\"2\" fill=\"#c33\"/></svg></td>", x, y);
+}
+
 /* A counter cell behind the "show all columns" toggle (class "more"). */
 static void more_cell(dm_str *s, const dm_counter_result *c)
 {
@@ -241,7 +288,7 @@ static void more_cell(dm_str *s, const dm_counter_result *c)
 /* Key columns first (technique, varying axes, time, CI, errors, front),
  * then the counters, crack pixels and key (class "more"). */
 static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char **params,
-                      size_t np, const char **det, size_t nd, int front)
+                      size_t np, const char **det, size_t nd, int front, const report_trends *tr)
 {
     const dm_config_result *c = &run->configs[ci];
     dm_str_printf(s, "<tr%s>", front ? " class=\"front\"" : "");
@@ -254,6 +301,8 @@ static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char
                       report__ci_rel(t) * 100);
     else
         dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
+    if (tr)
+        trend_cell(s, trend_of(tr, c->key));
     const dm_quality *q = &c->quality;
     num_cell(s, "%.4g", report_metric_shown(q, report_metric_of_run(run)));
     num_cell(s, "%.4f", q->present ? q->ssim : NAN);
@@ -279,8 +328,10 @@ static void table_tools(dm_str *s, size_t si)
                      "<span class=\"const\">click a header to sort</span></div>\n", si, si);
 }
 
-static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si)
+static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si,
+                        const report_trends *t)
 {
+    int trends = scene_has_trends(run, scene, t);
     const char **params;
     size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
     const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
@@ -318,8 +369,10 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
                      "<tr><th>technique</th>", si);
     for (size_t i = 0; i < nv; i++)
         tagged(s, "th", varying[i]);
-    dm_str_printf(s, "<th>median ms</th><th>95%% CI</th><th>%s</th><th>SSIM</th><th>PSNR dB</th>"
-                     "<th>Pareto</th>", report_metric_label(report_metric_of_run(run)));
+    dm_str_printf(s, "<th>median ms</th><th>95%% CI</th>%s<th>%s</th><th>SSIM</th><th>PSNR dB</th>"
+                     "<th>Pareto</th>", trends ? "<th title=\"median ms in the earlier runs of this "
+                     "configuration on this machine, this run last\">trend</th>" : "",
+                  report_metric_label(report_metric_of_run(run)));
     for (size_t i = 0; i < nd; i++) {
         dm_str_cat(s, "<th class=\"more\">");
         esc(s, det[i]);
@@ -329,7 +382,8 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
     size_t *rows, nr = report__scene_rows(run, scene, &rows), *front;
     size_t nf = report__pareto(run, scene, &front);
     for (size_t i = 0; i < nr; i++)
-        scene_row(s, run, rows[i], varying, nv, det, nd, on_front(front, nf, rows[i]));
+        scene_row(s, run, rows[i], varying, nv, det, nd, on_front(front, nf, rows[i]),
+                  trends ? t : NULL);
     dm_str_cat(s, "</tbody></table></div>\n");
     report__svg_scene(s, run, scene);
     report__html_charts_scene(s, run, scene);
@@ -634,6 +688,12 @@ static void answer(dm_str *s, const dm_run_result *run, const char **scenes, siz
 int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
                          const char *href)
 {
+    return report_write_html_trends(run, dir, path, href, NULL);
+}
+
+int report_write_html_trends(const dm_run_result *run, const char *dir, const char *path,
+                             const char *href, const report_trends *t)
+{
     if (!run || !path)
         return DM_ERR_ARG;
     html_images im = { dir, href ? href : "" };
@@ -646,7 +706,7 @@ int report_write_html_to(const dm_run_result *run, const char *dir, const char *
     timer_and_warnings(&s, run);
     environment(&s, run);
     for (size_t i = 0; i < ns; i++)
-        scene_table(&s, run, scenes[i], i);
+        scene_table(&s, run, scenes[i], i, t);
     free(scenes);
     gallery(&s, run, &im);
     failed_and_left_out(&s, run);

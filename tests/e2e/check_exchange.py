@@ -97,5 +97,17 @@ for b in blocks:
     got = [float(l.split()[2]) for l in b.splitlines()[2:] if l.strip()]
     exp = [next(c for c in d["configs"] if c["key"] == key)["counters"]["WallTime"]["median"] / 1e6 for d in docs]
     assert len(got) == 3 and all(abs(g - e) <= 5e-5 * max(1, e) for g, e in zip(got, exp)), (got, exp)
+# report.html trend lines: none in the first run; in the last, one per
+# configuration with the three runs' medians (oldest first) in its title
+assert 'class="spark"' not in open(runs[0] + "/report.html").read()
+html = open(runs[-1] + "/report.html").read()
+titles = re.findall(r'<svg class="spark"[^>]*><title>median ms, oldest first:([^<]*)</title>', html)
+assert len(titles) == len(timed(docs[-1])), (len(titles), len(timed(docs[-1])))
+medians = sorted(tuple(round(d_c["counters"]["WallTime"]["median"] / 1e6, 3) for d_c in
+                       [next(c for c in d["configs"] if c["key"] == k) for d in docs])
+                 for k in [c["key"] for c in timed(docs[-1]).values()])
+assert sorted(tuple(float(v) for v in t.split()) for t in titles) == medians, (titles, medians)
+
 print("schema: %d runs valid, 3 breakages caught; exports: 4 formats x %d runs; compare.py: %d rows; "
-      "history: %d configurations x 3 runs" % (len(runs), len(runs), len(found), len(blocks)))
+      "history: %d configurations x 3 runs; %d trend lines" % (len(runs), len(runs), len(found), len(blocks),
+                                                            len(titles)))
