@@ -87,6 +87,43 @@ static void rfc4180_and_text_columns(void **state)
     free(path);
 }
 
+/* 1 when one of r's warnings starts with prefix. */
+static int has_warning(const dm_fit_result *r, const char *prefix)
+{
+    for (size_t i = 0; i < r->n_warnings; i++)
+        if (strncmp(r->warnings[i], prefix, strlen(prefix)) == 0)
+            return 1;
+    return 0;
+}
+
+/* y unrelated to x: R² far below 0.8 and CV-MAPE above 20 % are warned
+ * about; the exact line of load_and_fit is not. */
+static void poor_fit_warns(void **state)
+{
+    (void)state;
+    char *path = temp_csv("x,y\n1,10\n2,30\n3,12\n4,28\n5,11\n6,31\n7,10\n8,29\n9,12\n10,30\n");
+    fit_data d;
+    dm_str err = { 0 };
+    assert_int_equal(fit_data_load_csv(path, &d, &err), 0);
+    fit_desc desc;
+    assert_int_equal(fit_data_desc(&d, "a + b*x", "y", &desc, &err), 0);
+    dm_fit_result r;
+    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    assert_true(r.r2 < 0.1);
+    assert_true(has_warning(&r, "poor fit: R² "));
+    assert_true(r.cv_mape > FIT_POOR_CV_MAPE);
+    assert_true(has_warning(&r, "poor prediction: CV-MAPE "));
+    dm_fit_result_free(&r);
+    assert_int_equal(fit_data_desc(&d, "a + b*x", "x", &desc, &err), 0);   /* x = a + b x: exact */
+    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    assert_false(has_warning(&r, "poor "));
+    dm_fit_result_free(&r);
+    fit_data_free(&d);
+    dm_str_free(&err);
+    unlink(path);
+    free(path);
+}
+
 static void expect_parse_error(const char *text, const char *tail)
 {
     char *path = temp_csv(text);
@@ -124,6 +161,7 @@ int main(void)
         cmocka_unit_test(load_and_fit),
         cmocka_unit_test(bad_cells),
         cmocka_unit_test(rfc4180_and_text_columns),
+        cmocka_unit_test(poor_fit_warns),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
