@@ -102,12 +102,15 @@ static cJSON *export__gbench(const dm_run_result *run)
 
 /* ---- Bencher Metric Format --------------------------------------------- */
 
-/* "SamplesPassed" -> "samples-passed" (Bencher measure slugs). */
+/* "SamplesPassed" -> "samples-passed", "VSInvocations" -> "vs-invocations"
+ * (Bencher measure slugs: a word starts at a capital after a small letter or
+ * digit, or at the last capital of a run followed by a small letter). */
 static char *export__kebab(const char *name)
 {
     dm_str s = {0};
     for (const char *p = name; *p; p++) {
-        if (isupper((unsigned char)*p) && p != name && !isupper((unsigned char)p[-1]))
+        int up = isupper((unsigned char)*p), prev_up = p != name && isupper((unsigned char)p[-1]);
+        if (up && p != name && (!prev_up || islower((unsigned char)p[1])))
             dm_str_cat(&s, "-");
         char ch = (char)tolower((unsigned char)*p);
         dm_str_catn(&s, &ch, 1);
