@@ -37,7 +37,7 @@ static const char *css =
     ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:192px;cursor:pointer}"
     ".scale{display:inline-block;width:160px;height:10px;vertical-align:middle;border:1px solid #999;"
     "background:linear-gradient(90deg,#000004,#420a68,#932667,#dd513a,#fca50a,#fcffa4)}"
-    "details.env{margin:.5em 0}";
+    "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}";
 
 /* Click a column header to sort by it (numbers numerically); the content is
  * complete without it. */
@@ -639,11 +639,18 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
     size_t nr = report__scene_rows(run, scene, &rows);
     report_metric m = report_metric_of_run(run);
     const dm_counter_result *fastest = nr ? report__frame_time(&run->configs[rows[0]]) : NULL;
+    int with_settings = 0;
+    for (size_t i = 0; i < nf && !with_settings; i++) {
+        dm_str set = {0};
+        settings_text(run, &run->configs[front[i]], &set);
+        with_settings = *dm_str_get(&set) != 0;
+        dm_str_free(&set);
+    }
     dm_str_printf(s, "<table class=\"answer front\" id=\"front-%zu\"><caption>", si);
     esc(s, scene);
-    dm_str_printf(s, "</caption><thead><tr><th>technique</th><th>settings</th><th>median ms</th>"
+    dm_str_printf(s, "</caption><thead><tr><th>technique</th>%s<th>median ms</th>"
                      "<th>95%% CI</th><th>%s</th><th>cost vs fastest</th></tr></thead><tbody>\n",
-                  report_metric_label(m));
+                  with_settings ? "<th>settings</th>" : "", report_metric_label(m));
     if (!nf)
         dm_str_printf(s, "<tr><td colspan=\"6\" class=\"missing\">no configuration has both a time "
                          "and a %s measurement</td></tr>\n", report_metric_label(m));
@@ -654,7 +661,8 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
         settings_text(run, c, &set);
         dm_str_cat(s, "<tr>");
         tagged(s, "td", report__technique(c));
-        tagged(s, "td", dm_str_get(&set));
+        if (with_settings)
+            tagged(s, "td", dm_str_get(&set));
         dm_str_printf(s, "<td class=\"n\">%.3f</td><td class=\"n\">", t->median / 1e6);
         report__ci_text(t, s);
         dm_str_cat(s, "</td>");
@@ -681,8 +689,10 @@ static void answer(dm_str *s, const dm_run_result *run, const char **scenes, siz
                      "time, fastest first; every other configuration is slower than one of these "
                      "and not better. \"≈ tied\": the time is not distinguishable from the row "
                      "above (overlapping 95%% CIs).</p>\n", report_metric_name(m), report_metric_label(m));
+    dm_str_cat(s, "<div class=\"answers\">\n");
     for (size_t i = 0; i < ns; i++)
         answer_table(s, run, scenes[i], i);
+    dm_str_cat(s, "</div>\n");
 }
 
 int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
