@@ -393,12 +393,20 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
     }
     if (!fitted)
         nk = key_counters(run, shown, n, names);
+    size_t longest = 0;   /* the vertical bar labels need room below the frame */
+    for (size_t i = 0; i < n; i++) {
+        dm_str label = {0};
+        report__config_label(run, &run->configs[shown[i]], &label);
+        longest = label.len > longest ? label.len : longest;
+        dm_str_free(&label);
+    }
+    double bottom = fmax(0.32, fmin(0.6, ((double)longest * 5.4 + 16) / 420.0));
     char *file = (fitted || nk) && n ? chart_tmpname() : NULL;
     if (file) {
         chart_frame f = {fitted ? "Estimated time per stage (pipeline-linear fit)"
                                 : "Key counters per configuration (relative to each maximum)",
                          "", fitted ? "ms" : "fraction of the maximum", 0, (double)n, 0,
-                         fitted ? hi * 1.08 : 1.08, 0.32, 1};
+                         fitted ? hi * 1.08 : 1.08, bottom, 1};
         chart_open(file, &f);
         if (fitted)
             draw_stages(run, shown, n);
