@@ -20,7 +20,9 @@
  *  - added: run.finished, run.sweep_hash, quality.MaxError,
  *    quality.PctOverThreshold, quality.reference, images.reference,
  *    config.log, fit.formula/response/rmse/mape/n_points/n_excluded/
- *    termination/measured/predicted/point_labels, top-level warnings[].
+ *    termination/measured/predicted/point_labels, top-level warnings[],
+ *    top-level schema_version, per config label and pareto (derived, not
+ *    read back); the shape is docs/results.schema.json.
  *
  * results.csv: one row per configuration, RFC 4180 (CRLF, quoted fields);
  * columns key, scene, status, reason, the union of params, per timing

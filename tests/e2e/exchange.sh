@@ -33,7 +33,7 @@ set -e
 [ $rc -eq 2 ] || fail "export --format nope: exit $rc, want 2"
 grep -q "valid choices: gbench, bmf, gab-smaller, gab-bigger" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
 
-$PY "$COMPARE" benchmarks "${RUNS[0]}/export-gbench.json" "${RUNS[1]}/export-gbench.json" \
+$PY "$COMPARE" --no-color benchmarks "${RUNS[0]}/export-gbench.json" "${RUNS[1]}/export-gbench.json" \
   > "$OUT/compare.txt" || fail "compare.py exited $?"
 "$BIN" history --store "$OUT/res/dmbench.sqlite" > "$OUT/history.txt"
 "$BIN" fit --data "${RUNS[0]}/results.csv" --formula "a + b*SamplesPassed" \
