@@ -131,13 +131,14 @@ int cli_history(int argc, char **argv)
     char *fp = NULL;
     if (rc < 0)
         rc = history__open(&o, &st, &run, &fp);
-    size_t shown = 0;
-    if (rc < 0) {
-        printf("history of the configurations of run %s on machine fingerprint %s (%s)\n", run.id,
-               fp ? fp : "(none: every run)", o.store);
-        for (size_t i = 0; i < run.n_configs; i++)
-            if (run.configs[i].ok && history__wanted(&o, &run.configs[i]))
-                shown += history__print(st, &run, &run.configs[i], fp) > 0;
+    size_t shown = 0, header = 0;
+    for (size_t i = 0; rc < 0 && i < run.n_configs; i++) {
+        if (!run.configs[i].ok || !history__wanted(&o, &run.configs[i]))
+            continue;
+        if (!header++)
+            printf("history of the configurations of run %s on machine fingerprint %s (%s)\n",
+                   run.id, fp ? fp : "(none: every run)", o.store);
+        shown += history__print(st, &run, &run.configs[i], fp) > 0;
     }
     if (rc < 0 && !shown)
         rc = cli__usage_error("history: no timed configuration of run %s matches%s%s%s%s", run.id,

@@ -32,6 +32,15 @@ set +e
 set -e
 [ $rc -eq 2 ] || fail "export --format nope: exit $rc, want 2"
 grep -q "valid choices: gbench, bmf, gab-smaller, gab-bigger" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
+set +e
+"$BIN" history --store "$OUT/res/dmbench.sqlite" --technique nope 2> "$OUT/bad.txt"; rc1=$?
+"$BIN" history --store "$OUT/nothere.sqlite" 2>> "$OUT/bad.txt"; rc2=$?
+"$BIN" history --stor x 2>> "$OUT/bad.txt"; rc3=$?
+set -e
+[ "$rc1$rc2$rc3" = 222 ] || fail "history bad input: exits $rc1 $rc2 $rc3, want 2 2 2: $(cat "$OUT/bad.txt")"
+grep -q "no timed configuration of run .* matches --technique nope" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
+grep -q "nothere.sqlite: no such store" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
+grep -q -- "--store" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
 
 $PY "$COMPARE" --no-color benchmarks "${RUNS[0]}/export-gbench.json" "${RUNS[1]}/export-gbench.json" \
   > "$OUT/compare.txt" || fail "compare.py exited $?"
