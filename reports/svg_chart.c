@@ -2,8 +2,9 @@
  * is placed and sized by us and none is clipped:
  *  - error vs time: one point per configuration at (median ms, error) with
  *    a horizontal whisker for the 95 % CI of the median; each point carries
- *    a printed number (its row in the legend below the chart) and a hover
- *    title; front members are filled and joined by the front line;
+ *    a printed number (its row in the legend below the chart; points drawn
+ *    on top of each other share one label, "3,4") and a hover title; front
+ *    members are filled and joined by the front line;
  *  - time per configuration: one horizontal bar per configuration of the
  *    scene (never pooled across scenes), fastest first, with its CI whisker
  *    and its full label left of the bar (the SVG is as wide as the longest
@@ -77,80 +78,134 @@ static void svg_title(dm_str *s, const dm_run_result *run, const dm_config_resul
     dm_str_free(&label);
 }
 
+/* The points of one scene's scatter: config indexes, median ms, shown
+ * error (an infinite PSNR at the top edge), the front and both axes. */
+typedef struct svg_points {
+    size_t n, nf, *idx, *front;
+    double *x, *y;
+    svg_axis ax, ay;
+    report_metric m;
+} svg_points;
+
+static void svg_points_load(svg_points *p, const dm_run_result *run, const char *scene)
+{
+    size_t cap = run->n_configs + 1;
+    p->idx = dm_xcalloc(cap, sizeof *p->idx);
+    p->x = dm_xcalloc(cap, sizeof *p->x);
+    p->y = dm_xcalloc(cap, sizeof *p->y);
+    p->m = report_metric_of_run(run);
+    p->n = report__pareto_points(run, scene, p->m, p->idx, p->x, p->y);
+    p->nf = report__pareto(run, scene, &p->front);
+    p->ax = (svg_axis){0, 0};
+    p->ay = (svg_axis){INFINITY, -INFINITY};
+    for (size_t i = 0; i < p->n; i++) {
+        const dm_counter_result *t = report__frame_time(&run->configs[p->idx[i]]);
+        p->x[i] /= 1e6;
+        p->ax.hi = fmax(p->ax.hi, isfinite(t->ci_hi) ? t->ci_hi / 1e6 : p->x[i]);
+        p->y[i] = report_metric_shown(&run->configs[p->idx[i]].quality, p->m);
+        p->ay.lo = isfinite(p->y[i]) ? fmin(p->ay.lo, p->y[i]) : p->ay.lo;
+        p->ay.hi = isfinite(p->y[i]) ? fmax(p->ay.hi, p->y[i]) : p->ay.hi;
+    }
+    p->ax.hi = p->ax.hi > 0 ? p->ax.hi * 1.06 : 1;
+    p->ay.lo = p->m == REPORT_METRIC_PSNR && isfinite(p->ay.lo) ? p->ay.lo - 1 : 0;   /* dB not from 0 */
+    p->ay.hi = isfinite(p->ay.hi) && p->ay.hi > p->ay.lo ? p->ay.hi + (p->ay.hi - p->ay.lo) * 0.12
+                                                         : p->ay.lo + 1;
+    for (size_t i = 0; i < p->n; i++)
+        p->y[i] = isfinite(p->y[i]) ? p->y[i] : p->ay.hi;
+}
+
+static void svg_points_free(svg_points *p)
+{
+    free(p->idx);
+    free(p->x);
+    free(p->y);
+    free(p->front);
+}
+
+/* 1 when points i and j are drawn within 7 px of each other. */
+static int svg_near(const svg_points *p, size_t i, size_t j)
+{
+    return fabs(svg_x(p->ax, p->x[i]) - svg_x(p->ax, p->x[j])) < 7 &&
+           fabs(svg_y(p->ay, p->y[i]) - svg_y(p->ay, p->y[j])) < 7;
+}
+
+/* The printed number of point i: "3" or, for points drawn on top of each
+ * other, "3,4" at the first of them and nothing at the others. */
+static void svg_number(const svg_points *p, size_t i, dm_str *out)
+{
+    for (size_t j = 0; j < i; j++)
+        if (svg_near(p, i, j))
+            return;
+    dm_str_printf(out, "%zu", i + 1);
+    for (size_t j = i + 1; j < p->n; j++)
+        if (svg_near(p, i, j))
+            dm_str_printf(out, ",%zu", j + 1);
+}
+
+/* Point i: hover title, CI whisker, circle (filled on the front), number. */
+static void svg_point(dm_str *s, const dm_run_result *run, const svg_points *p, size_t i)
+{
+    const dm_config_result *c = &run->configs[p->idx[i]];
+    const dm_counter_result *t = report__frame_time(c);
+    int on = 0;
+    for (size_t k = 0; k < p->nf; k++)
+        on |= p->front[k] == p->idx[i];
+    double px = svg_x(p->ax, p->x[i]), py = svg_y(p->ay, p->y[i]);
+    int right = px > SVG_W - SVG_R - 30;
+    dm_str_cat(s, "<g>");
+    svg_title(s, run, c, p->y[i], p->m);
+    if (isfinite(t->ci_lo) && isfinite(t->ci_hi))
+        dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#777\"/>",
+                      svg_x(p->ax, t->ci_lo / 1e6), svg_x(p->ax, t->ci_hi / 1e6), py, py);
+    dm_str_printf(s, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\" stroke=\"#164\"/>", px, py,
+                  on ? "#2a7" : "#fff");
+    dm_str num = {0};
+    svg_number(p, i, &num);
+    if (num.len)
+        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\">%s</text>",
+                      px + (right ? -6 : 6), py - 5 < SVG_T + 10 ? py + 14 : py - 5,
+                      right ? "end" : "start", dm_str_get(&num));
+    dm_str_cat(s, "</g>");
+    dm_str_free(&num);
+}
+
+/* The numbered legend under the chart: point i + 1 is configuration i. */
+static void svg_legend(dm_str *s, const dm_run_result *run, const svg_points *p)
+{
+    dm_str_cat(s, "<ol class=\"const legend\">");
+    for (size_t i = 0; i < p->n; i++) {
+        dm_str label = {0};
+        report__config_label(run, &run->configs[p->idx[i]], &label);
+        dm_str_cat(s, "<li>");
+        dm_str_cat_html(s, dm_str_get(&label));
+        dm_str_cat(s, "</li>");
+        dm_str_free(&label);
+    }
+    dm_str_cat(s, "</ol>\n");
+}
+
 static void svg_scatter(dm_str *s, const dm_run_result *run, const char *scene)
 {
-    size_t cap = run->n_configs + 1, *idx = dm_xcalloc(cap, sizeof *idx), *front;
-    double *x = dm_xcalloc(cap, sizeof *x), *y = dm_xcalloc(cap, sizeof *y);
-    report_metric m = report_metric_of_run(run);
-    size_t n = report__pareto_points(run, scene, m, idx, x, y), nf = report__pareto(run, scene, &front);
-    svg_axis ax = {0, 0}, ay = {INFINITY, -INFINITY};
-    for (size_t i = 0; i < n; i++) {
-        const dm_counter_result *t = report__frame_time(&run->configs[idx[i]]);
-        ax.hi = fmax(ax.hi, isfinite(t->ci_hi) ? t->ci_hi / 1e6 : x[i] / 1e6);
-        y[i] = report_metric_shown(&run->configs[idx[i]].quality, m);
-        ay.lo = isfinite(y[i]) ? fmin(ay.lo, y[i]) : ay.lo;
-        ay.hi = isfinite(y[i]) ? fmax(ay.hi, y[i]) : ay.hi;
-    }
-    ax.hi = ax.hi > 0 ? ax.hi * 1.06 : 1;
-    ay.lo = m == REPORT_METRIC_PSNR && isfinite(ay.lo) ? ay.lo - 1 : 0;   /* errors from 0, dB not */
-    ay.hi = isfinite(ay.hi) && ay.hi > ay.lo ? ay.hi + (ay.hi - ay.lo) * 0.12 : ay.lo + 1;
-    for (size_t i = 0; i < n; i++)   /* identical image (PSNR +inf): at the top edge */
-        y[i] = isfinite(y[i]) ? y[i] : ay.hi;
-    if (n) {
+    svg_points p;
+    svg_points_load(&p, run, scene);
+    if (p.n) {
         dm_str title = {0};
         dm_str_printf(&title, "Error vs time: %s", scene);
         svg_open(s, dm_str_get(&title), SVG_W, SVG_H);
         dm_str_free(&title);
-        dm_str cap_x = {0}, cap_y = {0};
-        dm_str_printf(&cap_x, "median frame time, ms (whisker: 95%% CI)");
-        dm_str_printf(&cap_y, "%s", report_metric_label(m));
-        svg_axes(s, ax, ay, dm_str_get(&cap_x), dm_str_get(&cap_y));
-        dm_str_free(&cap_x);
-        dm_str_free(&cap_y);
+        svg_axes(s, p.ax, p.ay, "median frame time, ms (whisker: 95% CI)", report_metric_label(p.m));
         dm_str_cat(s, "<polyline fill=\"none\" stroke=\"#2a7\" stroke-width=\"1.5\" points=\"");
-        for (size_t k = 0; k < nf; k++) {
-            const dm_config_result *c = &run->configs[front[k]];
-            double v = report_metric_shown(&c->quality, m);
-            dm_str_printf(s, "%.1f,%.1f ", svg_x(ax, report__frame_time(c)->median / 1e6),
-                          svg_y(ay, isfinite(v) ? v : ay.hi));
-        }
+        for (size_t k = 0; k < p.nf; k++)
+            for (size_t i = 0; i < p.n; i++)
+                if (p.idx[i] == p.front[k])
+                    dm_str_printf(s, "%.1f,%.1f ", svg_x(p.ax, p.x[i]), svg_y(p.ay, p.y[i]));
         dm_str_cat(s, "\"/>");
+        for (size_t i = 0; i < p.n; i++)
+            svg_point(s, run, &p, i);
+        dm_str_cat(s, "</svg></div>\n");
+        svg_legend(s, run, &p);
     }
-    for (size_t i = 0; i < n; i++) {
-        const dm_config_result *c = &run->configs[idx[i]];
-        const dm_counter_result *t = report__frame_time(c);
-        int on = 0;
-        for (size_t k = 0; k < nf; k++)
-            on |= front[k] == idx[i];
-        double px = svg_x(ax, x[i] / 1e6), py = svg_y(ay, y[i]);
-        dm_str_cat(s, "<g>");
-        svg_title(s, run, c, y[i], m);
-        if (isfinite(t->ci_lo) && isfinite(t->ci_hi))
-            dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#777\"/>",
-                          svg_x(ax, t->ci_lo / 1e6), svg_x(ax, t->ci_hi / 1e6), py, py);
-        dm_str_printf(s, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\" stroke=\"#164\"/>", px, py,
-                      on ? "#2a7" : "#fff");
-        int right = px > SVG_W - SVG_R - 30;
-        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\">%zu</text></g>",
-                      px + (right ? -6 : 6), py - 5 < SVG_T + 10 ? py + 14 : py - 5,
-                      right ? "end" : "start", i + 1);
-    }
-    if (n) {
-        dm_str_cat(s, "</svg></div>\n<ol class=\"const legend\">");
-        for (size_t i = 0; i < n; i++) {
-            dm_str label = {0};
-            report__config_label(run, &run->configs[idx[i]], &label);
-            dm_str_cat(s, "<li>");
-            dm_str_cat_html(s, dm_str_get(&label));
-            dm_str_cat(s, "</li>");
-            dm_str_free(&label);
-        }
-        dm_str_cat(s, "</ol>\n");
-    }
-    free(idx);
-    free(x);
-    free(y);
-    free(front);
+    svg_points_free(&p);
 }
 
 static void svg_bars(dm_str *s, const dm_run_result *run, const char *scene)
