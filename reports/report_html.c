@@ -435,15 +435,14 @@ static void image_src(dm_str *s, const html_images *im, const char *full, const 
 /* 1 when rel can be shown; else a "missing"/"refused" figure is written. */
 static int gallery_usable(dm_str *s, const html_images *im, const char *rel, const char *label)
 {
-    const char *why = !rel ? "no %s image" : !report__safe_relpath(rel) ? "%s path refused: " : NULL;
+    const char *why = !rel ? " image: none" : !report__safe_relpath(rel) ? " path refused: " : NULL;
     char *full = !why && im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
     if (full && !dm_file_exists(full))
-        why = "%s image missing: ";
+        why = " image missing: ";
     free(full);
     if (!why)
         return 1;
-    dm_str_cat(s, "<figure><span class=\"missing\">");
-    dm_str_printf(s, why, label);
+    dm_str_printf(s, "<figure><span class=\"missing\">%s%s", label, why);
     esc(s, rel ? rel : "");
     dm_str_printf(s, "</span><figcaption>%s</figcaption></figure>", label);
     return 0;
