@@ -1,5 +1,6 @@
 /* cli.c — `dmbench run`, `dmbench report`, `dmbench info` and shared helpers. */
 #include "cli.h"
+#include "run/trends.h"
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 #include "run/info.h"
@@ -153,11 +154,15 @@ static int cli__locate_run(const char *dir, char **store_path, char **run_id)
 
 /* Parses report's arguments: DIR [--metric NAME].  Returns -1 to go on or
  * an exit code (2 for a usage error, naming the valid metrics). */
-static int cli__report_options(int argc, char **argv, const char **dir, const char **metric)
+static int cli__report_options(int argc, char **argv, const char **dir, const char **metric,
+                               const char **out)
 {
-    static const char *const valid[] = { "--metric" };
+    static const char *const valid[] = { "--metric", "--out" };
     for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--metric") == 0) {
+        if (strcmp(argv[i], "--out") == 0) {
+            if (!(*out = cli__value(argc, argv, &i)))
+                return 2;
+        } else if (strcmp(argv[i], "--metric") == 0) {
             report_metric m;
             if (!(*metric = cli__value(argc, argv, &i)))
                 return 2;
@@ -169,7 +174,7 @@ static int cli__report_options(int argc, char **argv, const char **dir, const ch
                 return rc;
             }
         } else if (argv[i][0] == '-') {
-            return cli__unknown_option("report", argv[i], valid, 1);
+            return cli__unknown_option("report", argv[i], valid, 2);
         } else if (*dir) {
             return cli__usage_error("report: only one run directory may be given ('%s' and '%s')",
                                     *dir, argv[i]);
@@ -178,17 +183,18 @@ static int cli__report_options(int argc, char **argv, const char **dir, const ch
         }
     }
     if (!*dir)
-        return cli__usage_error("usage: dmbench report DIR [--metric NAME]   (a run directory, "
-                                "e.g. results/latest)");
+        return cli__usage_error("usage: dmbench report DIR [--metric NAME] [--out DIR2]   (a run "
+                                "directory, e.g. results/latest)");
     return -1;
 }
 
 /* Rebuilds a run's report files from the store; --metric overrides the
- * Pareto metric the run recorded (for these files only; the store keeps it). */
+ * Pareto metric the run recorded (for these files only; the store keeps it);
+ * --out writes them into another directory (created) instead of the run's. */
 int cli_report(int argc, char **argv)
 {
-    const char *dir = NULL, *metric = NULL;
-    int rc = cli__report_options(argc, argv, &dir, &metric);
+    const char *dir = NULL, *metric = NULL, *out = NULL;
+    int rc = cli__report_options(argc, argv, &dir, &metric, &out);
     char *store_path = NULL, *run_id = NULL;
     if (rc < 0)
         rc = cli__locate_run(dir, &store_path, &run_id);
@@ -202,10 +208,16 @@ int cli_report(int argc, char **argv)
     if (rc < 0 && metric)
         report_metric_set(&run, metric);   /* validated above */
     char e[512] = "";
-    if (rc < 0 && report_write_all(&run, dir, e, sizeof e) != 0)
+    if (rc < 0 && out && dm_mkdirs(out) != 0)
+        rc = cli__usage_error("report: --out %s: cannot create the directory", out);
+    report_trends tr = {0};
+    if (rc < 0)
+        run_trends(st, &run, &tr);   /* none on a store failure: the report goes on */
+    if (rc < 0 && report_write_all_trends(&run, dir, out ? out : dir, &tr, e, sizeof e) != 0)
         rc = cli__usage_error("report: %s", e);
+    report_trends_free(&tr);
     if (rc < 0) {
-        printf("report: %s/report.html\n", dir);
+        printf("report: %s/report.html\n", out ? out : dir);
         rc = 0;
     }
     dm_run_free(&run);

@@ -17,6 +17,8 @@ int cli_baseline(int argc, char **argv);  /* cmd_compare.c */
 int cli_merge(int argc, char **argv);
 int cli_view(int argc, char **argv);      /* cmd_view.c */
 int cli_slurm(int argc, char **argv);     /* cmd_slurm.c */
+int cli_export(int argc, char **argv);    /* cmd_export.c */
+int cli_history(int argc, char **argv);   /* cmd_history.c */
 
 /* Shared helpers (cli.c). */
 /* Prints "dmbench: error: <msg>" and returns 2. */

@@ -21,7 +21,7 @@ static int cmd_help(int argc, char **argv);
 
 static const command commands[] = {
     { "run", cli_run, "run [SWEEP.yaml] [--out DIR] [--resume] [--shard K/N] [--budget SEC] [--seed N] [--tag NAME] [--quick] [--quiet|--verbose]" },
-    { "report", cli_report, "report DIR [--metric NAME]  rebuild report.html, results.json, results.csv, summary.md" },
+    { "report", cli_report, "report DIR [--metric NAME] [--out DIR2]  rebuild report.html, results.json, results.csv, summary.md" },
     { "fit", cli_fit, "fit DIR | --data FILE.csv  --formula F | --model NAME  [--response NAME] [--group-by A,B] [--loss huber|cauchy|none] [--json]" },
     { "compare", cli_compare, "compare BASE NEW [--time-threshold 5%] [--alpha 0.01] [--tolerance C=REL] [--psnr-drop DB] [--ssim-drop X]\n"
       "                        [--counters-only] [--allow-env-mismatch] [--junit F] [--markdown F] [--json F]\n"
@@ -31,6 +31,8 @@ static const command commands[] = {
     { "merge", cli_merge, "merge OUT DIR... [--allow-missing]   union of shard results into one run" },
     { "slurm", cli_slurm, "slurm [SWEEP] --shards N [--out DIR] [--partition P] [--time T] [--print] [--resume] [-- SBATCH_ARG...]\n"
       "                        a Slurm job array, one task per shard, and a job that merges them" },
+    { "export", cli_export, "export RUN --format gbench|bmf|gab-smaller|gab-bigger [-o FILE] [--store DB]  results other benchmark tools read" },
+    { "history", cli_history, "history [--store DB] [KEY...|--technique T|--scene S]  a configuration's median across runs, with change points" },
     { "list", cli_list, "list techniques|axes|counters|meshes|textures|models  (counters: [--passes A,B,...] [--json])" },
     { "info", cli_info, "info [--json]         context, extensions, limits, timer validity" },
     { "render", cli_render, "render KEY=VALUE... --png out.png [--supersample N] [--debug normals]" },

@@ -377,6 +377,9 @@ static int *compare__match(const compare_desc *d, const dm_run_result *base,
         it->key = dm_xstrdup(b->key);
         it->label = label;
         it->p = it->q = NAN;
+        const dm_counter_result *tn = dm_config_counter(n, d->time_counter);
+        if (tn && tn->available && tn->has_samples && isfinite(tn->median))
+            it->median_new = tn->median;   /* the JUnit time of every verdict */
         if (!compare__other_machine(d, base, b, new_, n, it) && !compare__checks(d, b, n, it))
             pending[out->n_items] = compare__time_stats(d, b, n, it) == 0;
         out->n_items++;

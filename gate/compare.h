@@ -84,6 +84,7 @@ typedef struct compare_item {
     double ratio, lo, hi;    /* median(new)/median(base) and its CI */
     double p, q;             /* Mann-Whitney p, BH-adjusted q */
     size_t n_base, n_new;
+    double median_new;       /* NEW's median of the time counter, ns per frame; 0 when none (JUnit time) */
     long extra_samples;      /* INCONCLUSIVE: per side; -1 unknown */
     compare_change *changes; /* deterministic counters that changed */
     size_t n_changes;

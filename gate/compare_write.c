@@ -125,7 +125,7 @@ int compare_write_junit(const compare_result *r, const char *path)
         compare__ratio_text(it, ratio, sizeof ratio);
         dm_str_cat(&s, "  <testcase classname=\"dmbench.compare\" name=\"");
         dm_str_cat_html(&s, it->label);
-        dm_str_printf(&s, " [%s]\" time=\"0\">\n", it->key);
+        dm_str_printf(&s, " [%s]\" time=\"%.9f\">\n", it->key, it->median_new / 1e9);
         const char *tag = it->verdict == COMPARE_REGRESSION ? "failure"
                           : it->verdict == COMPARE_INCONCLUSIVE || it->verdict == COMPARE_SKIPPED
                               ? "skipped" : NULL;
@@ -135,6 +135,8 @@ int compare_write_junit(const compare_result *r, const char *path)
             dm_str_printf(&s, "\"/>\n");
         }
         dm_str_printf(&s, "    <system-out>verdict=%s ratio=%s", compare_verdict_name(it->verdict), ratio);
+        if (it->median_new > 0)
+            dm_str_printf(&s, " median_ms=%.6g", it->median_new / 1e6);
         if (it->note) {
             dm_str_cat(&s, " note=");
             dm_str_cat_html(&s, it->note);

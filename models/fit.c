@@ -441,6 +441,18 @@ static void fit__condition(const fit__ctx *c, double condition, dm_fit_result *r
               formula_param_name(c->f, b));
 }
 
+/* Warns when the fit explains too little (R² < FIT_POOR_R2) or predicts
+ * held-out points badly (CV-MAPE > FIT_POOR_CV_MAPE %). */
+static void fit__warn_poor(dm_fit_result *r)
+{
+    if (isfinite(r->r2) && r->r2 < FIT_POOR_R2)
+        fit__warn(r, "poor fit: R² %.3f is below %.1f; the model explains little of the variation, "
+                  "so its parameters are not the costs they stand for", r->r2, FIT_POOR_R2);
+    if (isfinite(r->cv_mape) && r->cv_mape > FIT_POOR_CV_MAPE)
+        fit__warn(r, "poor prediction: CV-MAPE %.1f%% is above %.0f%%; held-out configurations "
+                  "are predicted badly", r->cv_mape, FIT_POOR_CV_MAPE);
+}
+
 /* Solves on rows and fills r; DM_ERR_NUMERIC when Ceres fails. */
 static int fit__fit(fit__ctx *c, size_t *rows, size_t m, dm_fit_result *r, dm_str *err)
 {
@@ -471,6 +483,7 @@ static int fit__fit(fit__ctx *c, size_t *rows, size_t m, dm_fit_result *r, dm_st
     fit__condition(c, sum.condition, r);
     fit__fill(c, p, cov, sum.cov_ok, r);
     r->cv_mape = fit__cv_mape(c, rows, m, p, r);
+    fit__warn_poor(r);
 out:
     free(p);
     return rc;

@@ -63,6 +63,13 @@
 
 /* Condition number above which a fit is reported ill-conditioned. */
 #define FIT_ILL_CONDITIONED 1e3
+/* A fit is reported poor (a warning; docs/models.md) when R² is below
+ * FIT_POOR_R2 — it explains less than 80 % of the variation, so its terms
+ * are not the costs they claim to be (the report then draws no per-stage
+ * breakdown from it) — or when CV-MAPE, the error predicting held-out
+ * configurations, is above FIT_POOR_CV_MAPE percent. */
+#define FIT_POOR_R2 0.8
+#define FIT_POOR_CV_MAPE 20.0
 
 typedef enum fit_loss { FIT_LOSS_DEFAULT = 0, FIT_LOSS_NONE, FIT_LOSS_HUBER, FIT_LOSS_CAUCHY } fit_loss;
 

@@ -8,111 +8,156 @@
 
 #include "core/dm_error.h"
 
-/* Cursor over one line: cell [start, end) and the 1-based column. */
-typedef struct fit_data__cell { const char *start; size_t len, col; } fit_data__cell;
+/* One cell of a record: its text (unquoted, "" unescaped, trimmed when it
+ * was not quoted) and where it starts (1-based line and column). */
+typedef struct fit_data__cell { char *text; size_t line, col; } fit_data__cell;
 
-/* Splits line (len bytes) into cells, trimmed; returns the count (cells may
- * be NULL to count only). */
-static size_t fit_data__split(const char *line, size_t len, fit_data__cell *cells)
+/* Reads one RFC 4180 record starting at *pos (a quoted field may hold ',',
+ * '""' and line breaks; CRLF or LF ends a record).  Fills *cells (malloc'd,
+ * *n of them, also on failure) and advances *pos and *line past the record.
+ * Returns 0 or DM_ERR_PARSE for an unterminated quote (err names where it
+ * opened). */
+static int fit_data__record(const char *t, size_t len, size_t *pos, size_t *line,
+                            fit_data__cell **cells, size_t *n, const char *path, dm_str *err)
 {
-    size_t n = 0, i = 0;
+    size_t i = *pos, bol = *pos, cap = 8;
+    *cells = dm_xmalloc(cap * sizeof **cells);
+    *n = 0;
     for (;;) {
-        size_t s = i;
-        while (i < len && line[i] != ',')
+        dm_str v = {0};
+        while (i < len && (t[i] == ' ' || t[i] == '\t'))
             i++;
-        size_t a = s, b = i;
-        while (a < b && isspace((unsigned char)line[a]))
-            a++;
-        while (b > a && isspace((unsigned char)line[b - 1]))
-            b--;
-        if (cells)
-            cells[n] = (fit_data__cell){ line + a, b - a, a + 1 };
-        n++;
-        if (i >= len)
-            return n;
+        fit_data__cell c = { NULL, *line, i - bol + 1 };
+        if (i < len && t[i] == '"') {
+            for (i++; i < len && !(t[i] == '"' && (i + 1 >= len || t[i + 1] != '"')); i++) {
+                *line += t[i] == '\n';
+                dm_str_catn(&v, &t[i], 1);
+                i += t[i] == '"';
+            }
+            if (i >= len) {
+                dm_str_printf(err, "%s:%zu:%zu: unterminated quoted field", path, c.line, c.col);
+                dm_str_free(&v);
+                return DM_ERR_PARSE;
+            }
+            for (i++; i < len && t[i] != ',' && t[i] != '\n'; i++)
+                ;
+        } else {
+            size_t a = i;
+            while (i < len && t[i] != ',' && t[i] != '\n')
+                i++;
+            size_t b = i;
+            while (b > a && isspace((unsigned char)t[b - 1]))
+                b--;
+            dm_str_catn(&v, t + a, b - a);
+        }
+        c.text = dm_xstrdup(dm_str_get(&v));
+        dm_str_free(&v);
+        if (*n == cap)
+            *cells = dm_xrealloc(*cells, (cap *= 2) * sizeof **cells);
+        (*cells)[(*n)++] = c;
+        if (i >= len || t[i] == '\n') {
+            *line += i < len;
+            *pos = i + (i < len);
+            return 0;
+        }
         i++;
     }
 }
 
-static int fit_data__header(fit_data *d, const char *line, size_t len, const char *path,
+static void fit_data__cells_free(fit_data__cell *c, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(c[i].text);
+    free(c);
+}
+
+static int fit_data__header(fit_data *d, fit_data__cell *c, size_t n, const char *path,
                             dm_str *err)
 {
-    d->n_cols = fit_data__split(line, len, NULL);
-    fit_data__cell *c = dm_xmalloc(d->n_cols * sizeof *c);
-    fit_data__split(line, len, c);
-    d->names = dm_xcalloc(d->n_cols, sizeof *d->names);
+    d->n_cols = n;
+    d->names = dm_xcalloc(n, sizeof *d->names);
+    d->text = dm_xcalloc(n, sizeof *d->text);
     int rc = 0;
-    for (size_t i = 0; i < d->n_cols && !rc; i++) {
-        d->names[i] = strndup(c[i].start, c[i].len);
+    for (size_t i = 0; i < n && !rc; i++) {
+        d->names[i] = dm_xstrdup(c[i].text);
         for (size_t j = 0; j < i && !rc; j++)
             rc = !strcmp(d->names[i], d->names[j]);
-        if (rc || !c[i].len) {
-            dm_str_printf(err, "%s:1:%zu: %s column name '%s'", path, c[i].col,
-                          c[i].len ? "duplicate" : "empty", d->names[i]);
+        if (rc || !*c[i].text) {
+            dm_str_printf(err, "%s:%zu:%zu: %s column name '%s'", path, c[i].line, c[i].col,
+                          *c[i].text ? "duplicate" : "empty", d->names[i]);
             rc = DM_ERR_PARSE;
         }
     }
-    free(c);
     return rc;
 }
 
-/* Parses one data row into d->values (already sized); lineno for messages. */
-static int fit_data__row(fit_data *d, const char *line, size_t len, size_t lineno,
-                         const char *path, dm_str *err)
+/* 1 when text is a whole number as strtod reads it, stored in *v. */
+static int fit_data__number(const char *text, double *v)
 {
-    size_t n = fit_data__split(line, len, NULL);
-    fit_data__cell *c = dm_xmalloc(n * sizeof *c);
-    fit_data__split(line, len, c);
-    double *row = d->values + d->n_rows * d->n_cols;
-    int rc = 0;
+    char *end = NULL;
+    *v = strtod(text, &end);
+    return *text && !*end;
+}
+
+/* Parses one data record into d->values; a column whose first non-empty
+ * cell is not a number is a text column (NaN everywhere, not a variable). */
+static int fit_data__row(fit_data *d, fit_data__cell *c, size_t n, size_t lineno,
+                         size_t len, const char *path, dm_str *err)
+{
     if (n != d->n_cols) {
         dm_str_printf(err, "%s:%zu:%zu: %zu cells, the header has %zu columns", path, lineno,
                       n > d->n_cols ? c[d->n_cols].col : len + 1, n, d->n_cols);
-        rc = DM_ERR_PARSE;
+        return DM_ERR_PARSE;
     }
-    for (size_t i = 0; i < n && !rc; i++) {
-        char *cell = strndup(c[i].start, c[i].len), *end = NULL;
-        row[i] = c[i].len ? strtod(cell, &end) : NAN;
-        if (c[i].len && *end) {
-            dm_str_printf(err, "%s:%zu:%zu: '%s' in column '%s' is not a number", path, lineno,
-                          c[i].col, cell, d->names[i]);
-            rc = DM_ERR_PARSE;
+    if (d->n_rows == d->cap)
+        d->values = dm_xrealloc(d->values, (d->cap = d->cap * 2 + 16) * d->n_cols * sizeof *d->values);
+    double *row = d->values + d->n_rows * d->n_cols;
+    for (size_t i = 0; i < n; i++) {
+        row[i] = NAN;
+        if (!*c[i].text || d->text[i] == 1)
+            continue;
+        int num = fit_data__number(c[i].text, &row[i]);
+        if (!num && d->text[i] == 2) {
+            dm_str_printf(err, "%s:%zu:%zu: '%s' in column '%s' is not a number", path, c[i].line,
+                          c[i].col, c[i].text, d->names[i]);
+            return DM_ERR_PARSE;
         }
-        free(cell);
+        d->text[i] = num ? 2 : 1;
+        row[i] = num ? row[i] : NAN;
     }
-    free(c);
-    d->n_rows += !rc;
-    return rc;
+    d->n_rows++;
+    return 0;
+}
+
+/* 1 when the record is blank (one empty unquoted cell). */
+static int fit_data__blank(const char *t, size_t from, size_t to)
+{
+    for (size_t i = from; i < to; i++)
+        if (!isspace((unsigned char)t[i]))
+            return 0;
+    return 1;
 }
 
 int fit_data_load_csv(const char *path, fit_data *out, dm_str *err)
 {
     char *text = NULL;
-    size_t len = 0, lineno = 0;
+    size_t len = 0, pos = 0, line = 1;
     int rc = 0;
     memset(out, 0, sizeof *out);
     if (dm_read_file(path, &text, &len) != 0) {
         dm_str_printf(err, "%s: cannot read the file", path);
         return DM_ERR_IO;
     }
-    size_t n_lines = 1;
-    for (size_t i = 0; i < len; i++)
-        n_lines += text[i] == '\n';
-    for (char *line = text, *next; line && !rc; line = next) {
-        next = strchr(line, '\n');
-        size_t l = next ? (size_t)(next - line) : strlen(line);
-        next = next ? next + 1 : NULL;
-        lineno++;
-        if (l && line[l - 1] == '\r')
-            l--;
-        if (l == 0 || strspn(line, " \t") == l)
-            continue;
-        if (!out->names) {
-            rc = fit_data__header(out, line, l, path, err);
-            out->values = dm_xmalloc((n_lines * out->n_cols + 1) * sizeof *out->values);
-        } else {
-            rc = fit_data__row(out, line, l, lineno, path, err);
-        }
+    while (pos < len && !rc) {
+        size_t from = pos, lineno = line, n;
+        fit_data__cell *c;
+        rc = fit_data__record(text, len, &pos, &line, &c, &n, path, err);
+        size_t l = pos - from - (pos > from && text[pos - 1] == '\n');
+        l -= l && text[from + l - 1] == '\r';
+        if (!rc && !fit_data__blank(text, from, from + l))
+            rc = !out->names ? fit_data__header(out, c, n, path, err)
+                             : fit_data__row(out, c, n, lineno, l, path, err);
+        fit_data__cells_free(c, n);
     }
     if (!rc && !out->names) {
         dm_str_printf(err, "%s:1:1: no header row", path);
@@ -129,6 +174,7 @@ void fit_data_free(fit_data *d)
     for (size_t i = 0; d->names && i < d->n_cols; i++)
         free(d->names[i]);
     free(d->names);
+    free(d->text);
     free(d->values);
     free(d->y);
     memset(d, 0, sizeof *d);
@@ -141,6 +187,10 @@ int fit_data_desc(fit_data *d, const char *formula, const char *response, fit_de
     size_t col = 0;
     while (col < d->n_cols && strcmp(d->names[col], response))
         col++;
+    if (col < d->n_cols && d->text[col] == 1) {
+        dm_str_printf(err, "fit: response '%s' is a text column, not numbers", response);
+        return DM_ERR_UNKNOWN;
+    }
     if (col == d->n_cols) {
         dm_str_printf(err, "fit: response '%s' is not a column (columns:", response);
         for (size_t i = 0; i < d->n_cols; i++)

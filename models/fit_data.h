@@ -1,9 +1,13 @@
 /* fit_data.h — numeric tables for `dmbench fit --data FILE.csv`.
  *
- * CSV format: a header row of column names, then rows of numbers separated
- * by commas.  Cells are trimmed; an empty cell is a missing value (NaN, the
- * fit excludes its row); "nan"/"inf" are accepted as strtod reads them.  No
- * quoting; blank lines are skipped; "\r\n" line ends are accepted.
+ * CSV format (RFC 4180, so dmbench's own results.csv reads as it is): a
+ * header row of column names, then records separated by commas; a field in
+ * double quotes may hold commas, line breaks and "" for a quote.  Unquoted
+ * cells are trimmed; an empty cell is a missing value (NaN, the fit excludes
+ * its row); "nan"/"inf" are accepted as strtod reads them.  A column whose
+ * first non-empty cell is not a number is a text column (key, scene,
+ * technique, ...): all NaN, so a formula cannot use it; a later non-number in
+ * a numeric column is an error.  Blank lines are skipped; CRLF or LF.
  */
 #ifndef MODELS_FIT_DATA_H
 #define MODELS_FIT_DATA_H
@@ -16,7 +20,8 @@ typedef struct fit_data {
     char **names;            /* n_cols column names */
     size_t n_cols;
     double *values;          /* n_rows x n_cols, row-major */
-    size_t n_rows;
+    size_t n_rows, cap;      /* rows read, rows allocated */
+    unsigned char *text;     /* per column: 0 no value yet, 1 text, 2 numbers */
     double *y;               /* response column, filled by fit_data_desc */
 } fit_data;
 

@@ -131,162 +131,6 @@ static char *chart_tmpname(void)
     return name;
 }
 
-/* ---- time per technique (bars) ------------------------------------------ */
-
-static int cmp_double(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The bar a configuration belongs to: its technique, and its machine when
- * the run was merged from several (merge.h), so no bar pools machines. */
-static char *technique_bar(const dm_config_result *c)
-{
-    const char *m = dm_kv_get(c->params, c->n_params, "machine");
-    return m ? dm_xasprintf("%s (%.8s)", report__technique(c), m) : dm_xstrdup(report__technique(c));
-}
-
-/* Median of the config medians (ms) of one bar; NaN when none. */
-static double technique_median_ms(const dm_run_result *run, const char *bar)
-{
-    double *v = dm_xcalloc(run->n_configs + 1, sizeof *v);
-    size_t n = 0;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_counter_result *t = report__frame_time(&run->configs[i]);
-        char *b = technique_bar(&run->configs[i]);
-        if (t && run->configs[i].ok && strcmp(b, bar) == 0)
-            v[n++] = t->median / 1e6;
-        free(b);
-    }
-    qsort(v, n, sizeof *v, cmp_double);
-    double m = n ? (n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2) : NAN;
-    free(v);
-    return m;
-}
-
-void report__html_charts_run(dm_str *s, const dm_run_result *run)
-{
-    char **techs = NULL;
-    size_t nt = 0;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        char *t = technique_bar(&run->configs[i]);
-        size_t k = 0;
-        while (k < nt && strcmp(techs[k], t) != 0)
-            k++;
-        if (k == nt && report__frame_time(&run->configs[i]) && run->configs[i].ok) {
-            techs = dm_xrealloc(techs, (nt + 1) * sizeof *techs);
-            techs[nt++] = t;
-        } else {
-            free(t);
-        }
-    }
-    char *file = nt ? chart_tmpname() : NULL;
-    if (file) {
-        double *h = dm_xcalloc(nt, sizeof *h), lo, hi;
-        for (size_t k = 0; k < nt; k++)
-            h[k] = technique_median_ms(run, techs[k]);
-        padded_range(h, nt, &lo, &hi, 1);
-        chart_frame f = {"Median frame time per technique", "", "ms", 0, (double)nt, 0, hi, 0.3, 1};
-        dm_str_cat(s, "<h2>Time per technique</h2>\n");
-        chart_open(file, &f);
-        for (size_t k = 0; k < nt; k++) {
-            PLFLT bx[4] = {k + 0.15, k + 0.15, k + 0.85, k + 0.85}, by[4] = {0, h[k], h[k], 0};
-            char lab[CHART_MAX_LABEL];
-            plcol0(3);
-            plfill(4, bx, by);
-            plcol0(1);
-            safe_label(techs[k], lab);
-            plmtex("bv", 0.5, (k + 0.5) / (double)nt, 1.0, lab);
-        }
-        chart_close(s, file, f.title);
-        free(h);
-        free(file);
-    }
-    for (size_t k = 0; k < nt; k++)
-        free(techs[k]);
-    free(techs);
-}
-
-/* ---- per scene: error vs time with the Pareto front ---------------------- */
-
-/* One bullet per front member: key, params and the metric's value. */
-static void front_list(dm_str *s, const dm_run_result *run, report_metric m,
-                       const size_t *front, size_t nf)
-{
-    dm_str_printf(s, "<p>Pareto front of %s against median frame time (fastest first):</p><ol>",
-                  report_metric_label(m));
-    for (size_t k = 0; k < nf; k++) {
-        const dm_config_result *c = &run->configs[front[k]];
-        dm_str text = {0};
-        dm_str_cat(s, "<li><code>");
-        dm_str_cat_html(s, c->key);
-        dm_str_cat(s, "</code> ");
-        for (size_t p = 0; p < c->n_params; p++) {
-            dm_str_cat(s, p ? ", " : "");
-            dm_str_cat_html(s, c->params[p].key);
-            dm_str_cat(s, "=");
-            dm_str_cat_html(s, c->params[p].value);
-        }
-        report_metric_text(&c->quality, m, &text);
-        dm_str_printf(s, ": %.4f ms, ", report__frame_time(c)->median / 1e6);
-        dm_str_cat_html(s, dm_str_get(&text));
-        dm_str_cat(s, "</li>");
-        dm_str_free(&text);
-    }
-    dm_str_cat(s, "</ol>\n");
-}
-
-/* Plotted value of a point: the metric's shown value; an infinite PSNR
- * (identical image) is drawn at the top edge of the frame. */
-static double shown_clipped(const dm_quality *q, report_metric m, const chart_frame *f)
-{
-    double v = report_metric_shown(q, m);
-    return isinf(v) ? f->y1 - (f->y1 - f->y0) * 0.02 : v;
-}
-
-/* Error (shown value) vs median time: every point, the front as a line. */
-static void chart_pareto(dm_str *s, const dm_run_result *run, const char *scene)
-{
-    report_metric m = report_metric_of_run(run);
-    size_t cap = run->n_configs + 1, *idx = dm_xcalloc(cap, sizeof *idx), *front;
-    double *x = dm_xcalloc(cap, sizeof *x), *y = dm_xcalloc(cap, sizeof *y);
-    size_t n = report__pareto_points(run, scene, m, idx, x, y);
-    size_t nf = report__pareto(run, scene, &front);
-    char *file = n ? chart_tmpname() : NULL;
-    if (file) {
-        chart_frame f = {"Error vs time", "median frame time (ms)", report_metric_label(m),
-                         0, 0, 0, 0, 0.15, 0};
-        for (size_t i = 0; i < n; i++)
-            x[i] /= 1e6, y[i] = report_metric_shown(&run->configs[idx[i]].quality, m);
-        padded_range(x, n, &f.x0, &f.x1, 0);
-        padded_range(y, n, &f.y0, &f.y1, 0);
-        for (size_t i = 0; i < n; i++)
-            y[i] = shown_clipped(&run->configs[idx[i]].quality, m, &f);
-        chart_open(file, &f);
-        plcol0(3);
-        plpoin((PLINT)n, x, y, 4);
-        PLFLT *fx = dm_xcalloc(nf + 1, sizeof *fx), *fy = dm_xcalloc(nf + 1, sizeof *fy);
-        for (size_t k = 0; k < nf; k++) {
-            const dm_config_result *c = &run->configs[front[k]];
-            fx[k] = report__frame_time(c)->median / 1e6;
-            fy[k] = shown_clipped(&c->quality, m, &f);
-        }
-        plcol0(2);
-        plline((PLINT)nf, fx, fy);
-        plpoin((PLINT)nf, fx, fy, 17);
-        chart_close(s, file, f.title);
-        front_list(s, run, m, front, nf);
-        free(fx);
-        free(fy);
-        free(file);
-    }
-    free(front);
-    free(idx);
-    free(x);
-    free(y);
-}
-
 /* ---- per scene: time vs tess_level, one line per mesh/technique ---------- */
 
 /* Points of one (mesh, technique) series sorted by tess_level. */
@@ -412,7 +256,12 @@ static double fit_param(const dm_fit_result *f, const char *name)
 }
 
 /* The pipeline-linear fit whose group matches c's params, or NULL. */
-static const dm_fit_result *pipeline_fit(const dm_run_result *run, const dm_config_result *c)
+/* A per-stage breakdown is drawn only from a fit at least this good (R²);
+ * a poorer one would show invented stage times (docs/models.md). */
+#define CHART_MIN_STAGE_R2 0.8
+
+/* The pipeline-linear fit of c's group, any quality (NULL when none). */
+static const dm_fit_result *pipeline_fit_any(const dm_run_result *run, const dm_config_result *c)
 {
     for (size_t i = 0; i < run->n_fits; i++) {
         const dm_fit_result *f = &run->fits[i];
@@ -426,6 +275,13 @@ static const dm_fit_result *pipeline_fit(const dm_run_result *run, const dm_conf
             return f;
     }
     return NULL;
+}
+
+/* The pipeline-linear fit of c's group when it is good enough to draw. */
+static const dm_fit_result *pipeline_fit(const dm_run_result *run, const dm_config_result *c)
+{
+    const dm_fit_result *f = pipeline_fit_any(run, c);
+    return f && isfinite(f->r2) && f->r2 >= CHART_MIN_STAGE_R2 ? f : NULL;
 }
 
 /* Estimated ms of stage k of c under fit f (c_k · counter_k; the response is ns). */
@@ -523,10 +379,12 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
     const size_t *shown = rows + skip;
     const char *names[4];
     int fitted = 0;
-    double hi = 0;
+    double hi = 0, poor_r2 = NAN;
     for (size_t i = 0; i < n; i++) {
         const dm_config_result *c = &run->configs[shown[i]];
-        const dm_fit_result *f = pipeline_fit(run, c);
+        const dm_fit_result *f = pipeline_fit(run, c), *any = pipeline_fit_any(run, c);
+        if (any && !f)
+            poor_r2 = any->r2;
         double sum = 0;
         for (size_t k = 0; f && k < CHART_N_STAGES; k++)
             sum += stage_ms(f, c, k);
@@ -535,18 +393,31 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
     }
     if (!fitted)
         nk = key_counters(run, shown, n, names);
+    size_t longest = 0;   /* the vertical bar labels need room below the frame */
+    for (size_t i = 0; i < n; i++) {
+        dm_str label = {0};
+        report__config_label(run, &run->configs[shown[i]], &label);
+        longest = label.len > longest ? label.len : longest;
+        dm_str_free(&label);
+    }
+    double bottom = fmax(0.32, fmin(0.6, ((double)longest * 5.4 + 16) / 420.0));
     char *file = (fitted || nk) && n ? chart_tmpname() : NULL;
     if (file) {
         chart_frame f = {fitted ? "Estimated time per stage (pipeline-linear fit)"
                                 : "Key counters per configuration (relative to each maximum)",
                          "", fitted ? "ms" : "fraction of the maximum", 0, (double)n, 0,
-                         fitted ? hi * 1.08 : 1.08, 0.32, 1};
+                         fitted ? hi * 1.08 : 1.08, bottom, 1};
         chart_open(file, &f);
         if (fitted)
             draw_stages(run, shown, n);
         else
             draw_counters(run, shown, n, names, nk);
         chart_close(s, file, f.title);
+        if (!fitted && !isnan(poor_r2))
+            dm_str_printf(s, "<p class=\"const\">No per-stage breakdown: the pipeline-linear fit "
+                             "explains too little of the time (R² %.2f, below %.1f), so its stage "
+                             "times would be invented; the key counters are shown instead.</p>\n",
+                          poor_r2, CHART_MIN_STAGE_R2);
         if (skip)
             dm_str_printf(s, "<p class=\"const\">The %zu fastest configurations are left out of this "
                              "chart (it shows the %d slowest); all are in the table.</p>\n",
@@ -558,7 +429,6 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
 
 void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *scene)
 {
-    chart_pareto(s, run, scene);
     if (tess_varies(run, scene))
         chart_tess(s, run, scene);
     chart_breakdown(s, run, scene);

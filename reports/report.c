@@ -4,6 +4,7 @@
 
 #include "core/dm_error.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -283,25 +284,119 @@ int report__save(const dm_str *s, const char *path)
 }
 
 /* Writes the four files; stops at the first failure and names that file. */
-int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen)
+int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
+                        size_t errlen)
+{
+    return report_write_all_trends(run, dir, out, NULL, err, errlen);
+}
+
+void report_trends_free(report_trends *t)
+{
+    for (size_t i = 0; t && i < t->n; i++) {
+        free(t->items[i].key);
+        free(t->items[i].median_ns);
+    }
+    if (t)
+        free(t->items);
+}
+
+int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
+                            const report_trends *t, char *err, size_t errlen)
 {
     static const char *names[] = {"results.json", "results.csv", "summary.md", "report.html"};
-    if (!run || !dir) {
+    if (!run || !dir || !out) {
         snprintf(err, errlen, "report_write_all: no run or no directory");
         return DM_ERR_ARG;
     }
-    for (int i = 0; i < 4; i++) {
-        char *path = dm_xasprintf("%s/%s", dir, names[i]);
-        int rc = i == 0 ? report_write_json(run, path)
-               : i == 1 ? report_write_csv(run, path)
-               : i == 2 ? report_write_markdown(run, path)
-                        : report_write_html(run, dir, path);
-        if (rc) {
+    char real[PATH_MAX];   /* links from elsewhere: the run directory's absolute path */
+    char *href = strcmp(dir, out) == 0 ? dm_xstrdup("")
+                 : dm_xasprintf("%s/", realpath(dir, real) ? real : dir);
+    int rc = 0;
+    for (int i = 0; i < 4 && !rc; i++) {
+        char *path = dm_xasprintf("%s/%s", out, names[i]);
+        rc = i == 0 ? report_write_json(run, path)
+           : i == 1 ? report_write_csv(run, path)
+           : i == 2 ? report_write_markdown(run, path)
+                    : report_write_html_trends(run, dir, path, href, t);
+        if (rc)
             snprintf(err, errlen, "%s: cannot write (%s)", path, dm_strerror(rc));
-            free(path);
-            return rc;
-        }
         free(path);
     }
+    free(href);
+    return rc;
+}
+
+int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen)
+{
+    return report_write_all_to(run, dir, dir, err, errlen);
+}
+
+/* 1 when param `name` takes two or more distinct values over all the scene's
+ * configurations, failed ones included (so a name does not change when a
+ * configuration fails). */
+static int report__param_varies_all(const dm_run_result *run, const char *scene, const char *name)
+{
+    const char *first = NULL;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (strcmp(c->scene ? c->scene : "", scene) != 0)
+            continue;
+        const char *v = dm_kv_get(c->params, c->n_params, name);
+        if (v && first && strcmp(v, first) != 0)
+            return 1;
+        first = v ? v : first;
+    }
     return 0;
+}
+
+/* The name without the uniqueness suffix. */
+static void report__base_name(const dm_run_result *run, const dm_config_result *c, dm_str *out)
+{
+    const char *scene = c->scene ? c->scene : "";
+    dm_str_printf(out, "%s/%s", scene, report__technique(c));
+    for (size_t i = 0; i < c->n_params; i++)
+        if (strcmp(c->params[i].key, "technique") != 0 &&
+            report__param_varies_all(run, scene, c->params[i].key))
+            dm_str_printf(out, " %s=%s", c->params[i].key, c->params[i].value);
+}
+
+void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_str *out)
+{
+    dm_str mine = {0};
+    report__base_name(run, c, &mine);
+    int clash = 0;
+    for (size_t i = 0; i < run->n_configs && !clash; i++) {
+        dm_str other = {0};
+        if (&run->configs[i] != c) {
+            report__base_name(run, &run->configs[i], &other);
+            clash = strcmp(dm_str_get(&other), dm_str_get(&mine)) == 0;
+        }
+        dm_str_free(&other);
+    }
+    dm_str_cat(out, dm_str_get(&mine));
+    if (clash)
+        dm_str_printf(out, " [%s]", c->key ? c->key : "?");
+    dm_str_free(&mine);
+}
+
+unsigned char *report_pareto_flags(const dm_run_result *run)
+{
+    unsigned char *flags = dm_xcalloc(run->n_configs + 1, 1);
+    const char **scenes;
+    size_t ns = report__scenes(run, &scenes);
+    for (size_t i = 0; i < ns; i++) {
+        size_t *front, nf = report__pareto(run, scenes[i], &front);
+        for (size_t k = 0; k < nf; k++)
+            flags[front[k]] = 1;
+        free(front);
+    }
+    free(scenes);
+    return flags;
+}
+
+int report__tied(const dm_counter_result *a, const dm_counter_result *b)
+{
+    if (!a || !b || isnan(a->ci_lo) || isnan(a->ci_hi) || isnan(b->ci_lo) || isnan(b->ci_hi))
+        return 0;
+    return a->ci_lo <= b->ci_hi && b->ci_lo <= a->ci_hi;
 }

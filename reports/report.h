@@ -20,26 +20,33 @@
  *  - added: run.finished, run.sweep_hash, quality.MaxError,
  *    quality.PctOverThreshold, quality.reference, images.reference,
  *    config.log, fit.formula/response/rmse/mape/n_points/n_excluded/
- *    termination/measured/predicted/point_labels, top-level warnings[].
+ *    termination/measured/predicted/point_labels, top-level warnings[],
+ *    top-level schema_version, per config label and pareto (derived, not
+ *    read back); the shape is docs/results.schema.json.
  *
  * results.csv: one row per configuration, RFC 4180 (CRLF, quoted fields);
  * columns key, scene, status, reason, the union of params, per timing
  * counter <name>_median_ms/_ci_lo_ms/_ci_hi_ms, each deterministic counter,
- * then RMSE, PSNR ("inf" when infinite), SSIM, MaxError, SilhouetteError,
- * DepthRMSE, CrackPixels, NonFinitePixels; unavailable = empty field.
+ * then RMSE, PSNR_dB ("inf" when infinite), SSIM, MaxError, SilhouetteError,
+ * DepthRMSE, CrackPixels, NonFinitePixels, label, pareto (0/1); unavailable
+ * = empty field.
  *
- * report.html embeds each gallery image as a PNG thumbnail (data: URI,
- * at most 192 px) linking to the full file, and inlines PLplot SVG charts
- * (each in <div class="chart" aria-label="its title">): time per technique;
- * per scene error vs time with the Pareto front listed, time vs tess_level
- * when it varies, and the counter breakdown per configuration (stage times
- * of a pipeline-linear fit beside the measured median, else the key
- * counters relative to their maxima; the 24 slowest); per fit, predicted vs
- * measured and residuals.
+ * report.html opens with the answer: per scene the Pareto front as a
+ * compact table (technique, varying axes, ms ± CI, the error metric, cost
+ * relative to the fastest, statistically tied members marked), then a table
+ * of contents, warnings and the environment folded in a <details>.  Scene
+ * tables show the key columns first (the rest behind a toggle), sort, filter
+ * and scroll in their own box.  Per scene: error vs time with CI whiskers and
+ * numbered points, time per configuration of that scene (svg_chart.c), time
+ * vs tess_level when it varies and the counter breakdown (chart.c).  The
+ * gallery embeds each reference once (PNG thumbnail, data: URI, at most
+ * 192 px) and links renders and heatmaps from img/ (a render flips to its
+ * reference on click; the heatmap has its colour scale); per fit, predicted
+ * vs measured and residuals.
  *
  * Pareto metric (reports/metric.h): the run's environment entry
  * "pareto_metric" (default ssim) picks the error of every front; it is
- * named in the findings, the chart axis, the scene tables and summary.md.
+ * named in the answer, the chart axis, the scene tables and summary.md.
  * Noisy configurations (95 % CI of the median wider than ±5 %, or unknown;
  * docs/measurement.md) are listed in a warning box and in summary.md.
  */
@@ -47,6 +54,7 @@
 #define REPORTS_REPORT_H
 
 #include "core/dm_results.h"
+#include "core/dm_util.h"
 
 /* Writes all four files into dir (which must exist).  Returns 0 or the
  * writer's code (DM_ERR_IO: err names the file); stops at the first failure. */
@@ -55,9 +63,50 @@ int report_write_json(const dm_run_result *run, const char *path);
 int report_write_csv(const dm_run_result *run, const char *path);
 int report_write_markdown(const dm_run_result *run, const char *path);
 int report_write_html(const dm_run_result *run, const char *dir, const char *path);
+/* As report_write_html, with href prefixed to every image link (so a report
+ * written outside the run directory still finds its images); NULL = "". */
+int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
+                         const char *href);
+/* As report_write_all, the files going into out (which must exist) while
+ * images stay in the run directory dir (`dmbench report DIR --out OUT`). */
+int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
+                        size_t errlen);
+
+/* A configuration's median WallTime (ns) in the runs of the store on the
+ * same machine fingerprint, oldest first, this run last (run/trends.h
+ * builds them from the store).  report.html draws a small trend line per
+ * configuration that has two or more. */
+typedef struct report_trend {
+    char *key;
+    double *median_ns;
+    size_t n;
+} report_trend;
+typedef struct report_trends {
+    report_trend *items;
+    size_t n;
+} report_trends;
+void report_trends_free(report_trends *t);
+/* report_write_all_to with trend lines (t may be NULL: none). */
+int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
+                            const report_trends *t, char *err, size_t errlen);
+int report_write_html_trends(const dm_run_result *run, const char *dir, const char *path,
+                             const char *href, const report_trends *t);
 /* report_write_html: dir is the run directory image paths are relative to
  * (used to embed thumbnails and to mark missing files); NULL links images
  * without checking them. */
+
+/* The configuration's stable readable name, "scene/technique axis=value ..."
+ * with the axes that take two or more values in its scene (failed
+ * configurations included), e.g. "plane@480x270/pom steps=32"; " [key]" is
+ * appended only when two configurations would otherwise share a name.  Used
+ * as results.json "label" and as the benchmark name of every export. */
+void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_str *out);
+/* Per configuration (run order): 1 when it is on its scene's Pareto front
+ * under the run's metric.  malloc'd, n_configs bytes (caller frees). */
+unsigned char *report_pareto_flags(const dm_run_result *run);
+/* results.json "schema_version": the major version of docs/results.schema.json;
+ * raised only when a field changes meaning or goes away (additions keep it). */
+#define REPORT_SCHEMA_VERSION 1
 
 /* Writes a cJSON document, pretty-printed with a final newline, atomically
  * to path (root stays the caller's).  0, DM_ERR_NOMEM or DM_ERR_IO. */

@@ -3,8 +3,12 @@
  * Columns: key, scene, status, reason, every param (union over configs, in
  * first-appearance order), for each timing counter <name>_median_ms,
  * <name>_ci_lo_ms, <name>_ci_hi_ms, each deterministic counter by name, then
- * the quality metrics.  An unavailable or absent value is an empty field,
- * never 0.  Records end with CRLF; fields with , " CR or LF are quoted.
+ * the quality metrics (PSNR_dB), then label (report_config_name) and pareto
+ * (1 on its scene's front, else 0).  Units are in the names: _ms for times,
+ * _dB; counters count items or bytes (their names say which; `dmbench list
+ * counters` gives every unit).  An unavailable or absent value is an empty
+ * field, never 0.  Records end with CRLF; fields with , " CR or LF are
+ * quoted (RFC 4180; `dmbench fit --data` reads it back).
  */
 #include "reports/report.h"
 #include "reports/report_internal.h"
@@ -16,7 +20,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *quality_cols[] = {"RMSE", "PSNR", "SSIM", "MaxError", "SilhouetteError",
+static const char *quality_cols[] = {"RMSE", "PSNR_dB", "SSIM", "MaxError", "SilhouetteError",
                                      "DepthRMSE", "CrackPixels", "NonFinitePixels"};
 #define N_QUALITY (sizeof quality_cols / sizeof quality_cols[0])
 
@@ -58,8 +62,9 @@ static void quality_fields(dm_str *s, const dm_quality *q)
         num_field(s, v[i], q->present);
 }
 
-static void row(dm_str *s, const dm_config_result *c, const char **params, size_t np,
-                const char **timed, size_t nt, const char **det, size_t nd)
+static void row(dm_str *s, const dm_run_result *run, const dm_config_result *c, int pareto,
+                const char **params, size_t np, const char **timed, size_t nt, const char **det,
+                size_t nd)
 {
     field(s, c->key, 1);
     field(s, c->scene, 0);
@@ -79,6 +84,11 @@ static void row(dm_str *s, const dm_config_result *c, const char **params, size_
         num_field(s, d ? d->value : 0, d && d->available);
     }
     quality_fields(s, &c->quality);
+    dm_str label = {0};
+    report_config_name(run, c, &label);
+    field(s, dm_str_get(&label), 0);
+    field(s, pareto ? "1" : "0", 0);
+    dm_str_free(&label);
     dm_str_cat(s, "\r\n");
 }
 
@@ -102,6 +112,8 @@ static void header(dm_str *s, const char **params, size_t np, const char **timed
         field(s, det[i], 0);
     for (size_t i = 0; i < N_QUALITY; i++)
         field(s, quality_cols[i], 0);
+    field(s, "label", 0);
+    field(s, "pareto", 0);
     dm_str_cat(s, "\r\n");
 }
 
@@ -115,8 +127,10 @@ int report_write_csv(const dm_run_result *run, const char *path)
     size_t nd = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &det);
     dm_str s = {0};
     header(&s, params, np, timed, nt, det, nd);
+    unsigned char *front = report_pareto_flags(run);
     for (size_t i = 0; i < run->n_configs; i++)
-        row(&s, &run->configs[i], params, np, timed, nt, det, nd);
+        row(&s, run, &run->configs[i], front[i], params, np, timed, nt, det, nd);
+    free(front);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     free(params);

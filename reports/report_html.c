@@ -27,7 +27,17 @@ static const char *css =
     "figure{display:inline-block;margin:0 1em 1em 0}figure img{width:192px;image-rendering:pixelated;border:1px solid #ccc}"
     ".gal{margin-bottom:1em}.chart svg{max-width:100%;height:auto}"
     ".const{color:#555}td.key{font:11px monospace;color:#777}"
-    "table.sortable th{cursor:pointer}table.sortable th:hover{background:#e4e4e4}";
+    "table.sortable th{cursor:pointer}table.sortable th:hover{background:#e4e4e4}"
+    ".scroll{overflow-x:auto;max-width:100%}.scroll table{margin-top:.3em}"
+    "table.hide-more .more{display:none}tr.front td{background:#eef7ee}"
+    "table.answer{margin:.2em 0 .8em}table.answer caption{text-align:left;font-weight:bold;padding:.2em 0}"
+    "nav.toc{font-size:13px;margin:.3em 0 .8em}nav.toc a{margin-right:.9em}"
+    ".tied{color:#946200;font-size:12px}.tools{margin:.3em 0}.tools input{width:16em}"
+    ".grid{display:flex;flex-wrap:wrap;gap:.6em}.grid figure{margin:0;width:196px}"
+    ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:192px;cursor:pointer}"
+    ".scale{display:inline-block;width:160px;height:10px;vertical-align:middle;border:1px solid #999;"
+    "background:linear-gradient(90deg,#000004,#420a68,#932667,#dd513a,#fca50a,#fcffa4)}"
+    "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}";
 
 /* Click a column header to sort by it (numbers numerically); the content is
  * complete without it. */
@@ -38,7 +48,18 @@ static const char *sort_js =
     "rows.sort(function(a,b){var x=a.cells[i].textContent,y=b.cells[i].textContent,"
     "p=parseFloat(x.replace(/[^0-9.eE+-]/g,'')),q=parseFloat(y.replace(/[^0-9.eE+-]/g,''));"
     "var r=(!isNaN(p)&&!isNaN(q))?p-q:x.localeCompare(y);return up?r:-r;});"
-    "rows.forEach(function(r){tb.appendChild(r);});};});";
+    "rows.forEach(function(r){tb.appendChild(r);});};});"
+    "document.querySelectorAll('input.filter').forEach(function(f){f.oninput=function(){"
+    "var t=document.getElementById(f.dataset.table),q=f.value.toLowerCase();"
+    "Array.from(t.tBodies[0].rows).forEach(function(r){"
+    "r.style.display=r.textContent.toLowerCase().indexOf(q)<0?'none':'';});};});"
+    "document.querySelectorAll('button.more').forEach(function(b){b.onclick=function(){"
+    "var t=document.getElementById(b.dataset.table);t.classList.toggle('hide-more');"
+    "b.textContent=t.classList.contains('hide-more')?'show all columns':'key columns only';};});"
+    "document.querySelectorAll('img.flip').forEach(function(im){im.title='click: flip to the reference';"
+    "im.onclick=function(){var r=document.getElementById(im.dataset.ref);if(!r)return;"
+    "if(!im.dataset.own){im.dataset.own=im.src;im.src=r.src;im.title='reference; click: back';}"
+    "else{im.src=im.dataset.own;delete im.dataset.own;im.title='click: flip to the reference';}};});";
 
 static void esc(dm_str *s, const char *text)
 {
@@ -78,14 +99,42 @@ static void header(dm_str *s, const dm_run_result *run)
         dm_str_cat(s, ", finished ");
         esc(s, run->finished);
     }
-    dm_str_cat(s, ".</p>\n<h2>Environment</h2>\n<table>");
+    dm_str_cat(s, ".</p>\n");
+}
+
+/* The environment, folded: the summary names the renderer and the load. */
+static void environment(dm_str *s, const dm_run_result *run)
+{
+    const char *r = dm_kv_get(run->environment, run->n_environment, "renderer");
+    const char *l = dm_kv_get(run->environment, run->n_environment, "load_average");
+    dm_str_cat(s, "<details class=\"env\" id=\"environment\"><summary><b>Environment</b>: ");
+    esc(s, r ? r : "renderer unknown");
+    dm_str_cat(s, ", load average ");
+    esc(s, l ? l : "unknown");
+    dm_str_cat(s, "</summary>\n<table>");
     for (size_t i = 0; i < run->n_environment; i++) {
         dm_str_cat(s, "<tr>");
         tagged(s, "th", run->environment[i].key);
         tagged(s, "td", run->environment[i].value);
         dm_str_cat(s, "</tr>");
     }
-    dm_str_cat(s, "</table>\n");
+    dm_str_cat(s, "</table></details>\n");
+}
+
+/* Table of contents: the answer, each scene, gallery, failures, fits. */
+static void toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
+{
+    dm_str_cat(s, "<nav class=\"toc\"><b>Contents:</b> <a href=\"#answer\">Answer</a>"
+                  "<a href=\"#warnings\">Warnings</a><a href=\"#environment\">Environment</a>");
+    for (size_t i = 0; i < ns; i++) {
+        dm_str_printf(s, "<a href=\"#scene-%zu\">", i);
+        esc(s, scenes[i]);
+        dm_str_cat(s, "</a>");
+    }
+    dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#failed\">Failed and left out</a>");
+    if (run->n_fits)
+        dm_str_cat(s, "<a href=\"#fits\">Model fits</a>");
+    dm_str_cat(s, "</nav>\n");
 }
 
 /* Lists more than this many noisy configurations inside a collapsed <details>. */
@@ -123,7 +172,7 @@ static void noisy_warning(dm_str *s, const dm_run_result *run)
 static void timer_and_warnings(dm_str *s, const dm_run_result *run)
 {
     const char *v = run->timer_verdict ? run->timer_verdict : "unknown";
-    dm_str_cat(s, "<p>Timer verdict: <b>");
+    dm_str_cat(s, "<h2 id=\"warnings\">Warnings</h2>\n<p>Timer verdict: <b>");
     esc(s, v);
     dm_str_printf(s, "</b> (GPUTime covers %.1f%% of fenced wall time).</p>\n",
                   run->gpu_time_coverage * 100);
@@ -161,18 +210,6 @@ static void num_cell(dm_str *s, const char *fmt, double v)
     }
 }
 
-static void counter_cell(dm_str *s, const dm_counter_result *c)
-{
-    if (!c)
-        dm_str_cat(s, "<td></td>");
-    else if (!c->available) {
-        dm_str_cat(s, "<td class=\"missing\" title=\"");
-        esc(s, c->unavailable_reason);
-        dm_str_cat(s, "\">unavailable</td>");
-    } else
-        num_cell(s, "%.0f", c->value);
-}
-
 /* Counters worth a column in the scene tables (the rest are in the CSV/JSON). */
 static const char *const key_counters[] = {
     "VSInvocations", "TESInvocations", "ClippingOutputPrimitives", "SamplesPassed",
@@ -187,11 +224,74 @@ static int on_front(const size_t *front, size_t nf, size_t i)
     return 0;
 }
 
+/* The trend of configuration key (NULL when it has fewer than two runs). */
+static const report_trend *trend_of(const report_trends *t, const char *key)
+{
+    for (size_t i = 0; t && key && i < t->n; i++)
+        if (t->items[i].key && strcmp(t->items[i].key, key) == 0 && t->items[i].n >= 2)
+            return &t->items[i];
+    return NULL;
+}
+
+/* 1 when a configuration of the scene has a trend (the column is shown). */
+static int scene_has_trends(const dm_run_result *run, const char *scene, const report_trends *t)
+{
+    for (size_t i = 0; t && i < run->n_configs; i++)
+        if (run->configs[i].ok && strcmp(run->configs[i].scene ? run->configs[i].scene : "", scene) == 0 &&
+            trend_of(t, run->configs[i].key))
+            return 1;
+    return 0;
+}
+
+/* A sparkline of the medians (80 × 18 px, y from the series' min to max,
+ * this run as a dot; the values in its hover title). */
+static void trend_cell(dm_str *s, const report_trend *tr)
+{
+    if (!tr) {
+        dm_str_cat(s, "<td></td>");
+        return;
+    }
+    double lo = INFINITY, hi = -INFINITY;
+    for (size_t i = 0; i < tr->n; i++)
+        if (isfinite(tr->median_ns[i]))
+            lo = fmin(lo, tr->median_ns[i]), hi = fmax(hi, tr->median_ns[i]);
+    double span = hi > lo ? hi - lo : 1, x = 0, y = 0;
+    dm_str_printf(s, "<td class=\"trend\"><svg class=\"spark\" width=\"80\" height=\"18\" "
+                     "viewBox=\"0 0 80 18\"><title>median ms, oldest first:");
+    for (size_t i = 0; i < tr->n; i++)
+        dm_str_printf(s, " %.3f", tr->median_ns[i] / 1e6);
+    dm_str_cat(s, "</title><polyline fill=\"none\" stroke=\"#36c\" points=\"");
+    for (size_t i = 0; i < tr->n; i++) {
+        if (!isfinite(tr->median_ns[i]))
+            continue;
+        x = 3 + 74.0 * (double)i / (double)(tr->n - 1);
+        y = 15 - 12 * (tr->median_ns[i] - lo) / span;
+        dm_str_printf(s, "%.1f,%.1f ", x, y);
+    }
+    dm_str_printf(s, "\"/><circle cx=\"%.1f\" cy=\"%.1f\" r=\"2\" fill=\"#c33\"/></svg></td>", x, y);
+}
+
+/* A counter cell behind the "show all columns" toggle (class "more"). */
+static void more_cell(dm_str *s, const dm_counter_result *c)
+{
+    if (!c) {
+        dm_str_cat(s, "<td class=\"more\"></td>");
+    } else if (!c->available) {
+        dm_str_cat(s, "<td class=\"more missing\" title=\"");
+        esc(s, c->unavailable_reason);
+        dm_str_cat(s, "\">unavailable</td>");
+    } else {
+        dm_str_printf(s, "<td class=\"n more\">%.0f</td>", c->value);
+    }
+}
+
+/* Key columns first (technique, varying axes, time, CI, errors, front),
+ * then the counters, crack pixels and key (class "more"). */
 static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char **params,
-                      size_t np, const char **det, size_t nd, int front)
+                      size_t np, const char **det, size_t nd, int front, const report_trends *tr)
 {
     const dm_config_result *c = &run->configs[ci];
-    dm_str_cat(s, "<tr>");
+    dm_str_printf(s, "<tr%s>", front ? " class=\"front\"" : "");
     tagged(s, "td", dm_kv_get(c->params, c->n_params, "technique"));
     for (size_t i = 0; i < np; i++)
         tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
@@ -201,25 +301,41 @@ static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char
                       report__ci_rel(t) * 100);
     else
         dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
-    for (size_t i = 0; i < nd; i++)
-        counter_cell(s, dm_config_counter(c, det[i]));
+    if (tr)
+        trend_cell(s, trend_of(tr, c->key));
     const dm_quality *q = &c->quality;
-    num_cell(s, "%.2f", q->present ? q->psnr : NAN);
-    num_cell(s, "%.4f", q->present ? q->ssim : NAN);
-    num_cell(s, "%.0f", q->present ? (double)q->crack_pixels : NAN);
     num_cell(s, "%.4g", report_metric_shown(q, report_metric_of_run(run)));
-    dm_str_cat(s, front ? "<td>front</td>" : "<td></td>");
-    dm_str_cat(s, "<td class=\"key\">");
+    num_cell(s, "%.4f", q->present ? q->ssim : NAN);
+    num_cell(s, "%.2f", q->present ? q->psnr : NAN);
+    dm_str_cat(s, front ? "<td>★ front</td>" : "<td></td>");
+    for (size_t i = 0; i < nd; i++)
+        more_cell(s, dm_config_counter(c, det[i]));
+    if (q->present)
+        dm_str_printf(s, "<td class=\"n more\">%ld</td>", q->crack_pixels);
+    else
+        dm_str_cat(s, "<td class=\"n more\">–</td>");
+    dm_str_cat(s, "<td class=\"key more\">");
     esc(s, c->key);
     dm_str_cat(s, "</td></tr>\n");
 }
 
-static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
+/* Filter box and column toggle above scene table si. */
+static void table_tools(dm_str *s, size_t si)
 {
+    dm_str_printf(s, "<div class=\"tools\"><input class=\"filter\" data-table=\"tbl-%zu\" "
+                     "placeholder=\"filter rows (e.g. pom)\" aria-label=\"filter rows\"> "
+                     "<button class=\"more\" data-table=\"tbl-%zu\">show all columns</button> "
+                     "<span class=\"const\">click a header to sort</span></div>\n", si, si);
+}
+
+static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si,
+                        const report_trends *t)
+{
+    int trends = scene_has_trends(run, scene, t);
     const char **params;
     size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
     const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
-    dm_str_cat(s, "<h2>Scene ");
+    dm_str_printf(s, "<h2 id=\"scene-%zu\">Scene ", si);
     esc(s, scene);
     dm_str_cat(s, "</h2>\n<p class=\"const\">Same for every row: ");
     for (size_t i = 0; i < np; i++) {
@@ -248,20 +364,28 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
                 det[nd++] = key_counters[k];
                 break;
             }
-    dm_str_cat(s, "<table class=\"sortable\"><thead><tr><th>technique</th>");
+    table_tools(s, si);
+    dm_str_printf(s, "<div class=\"scroll\"><table class=\"sortable hide-more\" id=\"tbl-%zu\"><thead>"
+                     "<tr><th>technique</th>", si);
     for (size_t i = 0; i < nv; i++)
         tagged(s, "th", varying[i]);
-    dm_str_cat(s, "<th>median ms</th><th>95% CI</th>");
-    for (size_t i = 0; i < nd; i++)
-        tagged(s, "th", det[i]);
-    dm_str_printf(s, "<th>PSNR dB</th><th>SSIM</th><th>CrackPixels</th><th>%s</th><th>Pareto</th>"
-                     "<th>key</th></tr></thead><tbody>\n",
+    dm_str_printf(s, "<th>median ms</th><th>95%% CI</th>%s<th>%s</th><th>SSIM</th><th>PSNR dB</th>"
+                     "<th>Pareto</th>", trends ? "<th title=\"median ms in the earlier runs of this "
+                     "configuration on this machine, this run last\">trend</th>" : "",
                   report_metric_label(report_metric_of_run(run)));
+    for (size_t i = 0; i < nd; i++) {
+        dm_str_cat(s, "<th class=\"more\">");
+        esc(s, det[i]);
+        dm_str_cat(s, "</th>");
+    }
+    dm_str_cat(s, "<th class=\"more\">CrackPixels</th><th class=\"more\">key</th></tr></thead><tbody>\n");
     size_t *rows, nr = report__scene_rows(run, scene, &rows), *front;
     size_t nf = report__pareto(run, scene, &front);
     for (size_t i = 0; i < nr; i++)
-        scene_row(s, run, rows[i], varying, nv, det, nd, on_front(front, nf, rows[i]));
-    dm_str_cat(s, "</tbody></table>\n");
+        scene_row(s, run, rows[i], varying, nv, det, nd, on_front(front, nf, rows[i]),
+                  trends ? t : NULL);
+    dm_str_cat(s, "</tbody></table></div>\n");
+    report__svg_scene(s, run, scene);
     report__html_charts_scene(s, run, scene);
     free(front);
     free(rows);
@@ -283,9 +407,15 @@ static void base64(dm_str *s, const unsigned char *d, size_t n)
     }
 }
 
-/* The src of a gallery image: an embedded PNG thumbnail (so report.html
- * alone shows it) when the file can be read, else the relative path. */
-static void image_src(dm_str *s, const char *full, const char *rel)
+/* Where report.html reads the run's images: dir (the run directory, to
+ * embed and check files) and href (prefix of links, "" beside the run). */
+typedef struct html_images {
+    const char *dir;
+    const char *href;
+} html_images;
+
+/* An embedded PNG thumbnail of a readable file, else the link. */
+static void image_src(dm_str *s, const html_images *im, const char *full, const char *rel)
 {
     unsigned char *png = NULL;
     size_t len = 0;
@@ -298,60 +428,127 @@ static void image_src(dm_str *s, const char *full, const char *rel)
     }
     if (full)
         dm_log(DM_LOG_WARN, "report.html: no thumbnail, linking the file: %s", err);
+    esc(s, im->href);
     esc(s, rel);
 }
 
-/* One gallery image: refused when the path could leave the run directory,
- * "missing" when dir is given and the file is not there. */
-static void gallery_image(dm_str *s, const char *dir, const char *rel, const char *label)
+/* 1 when rel can be shown; else a "missing"/"refused" figure is written. */
+static int gallery_usable(dm_str *s, const html_images *im, const char *rel, const char *label)
 {
-    dm_str_cat(s, "<figure>");
-    if (!rel) {
-        dm_str_printf(s, "<span class=\"missing\">no %s image</span>", label);
-    } else if (!report__safe_relpath(rel)) {
-        dm_str_printf(s, "<span class=\"missing\">%s path refused: ", label);
-        esc(s, rel);
-        dm_str_cat(s, "</span>");
-    } else {
-        char *full = dir ? dm_xasprintf("%s/%s", dir, rel) : NULL;
-        if (full && !dm_file_exists(full)) {
-            dm_str_printf(s, "<span class=\"missing\">%s image missing: ", label);
-            esc(s, rel);
-            dm_str_cat(s, "</span>");
-        } else {
-            dm_str_cat(s, "<a href=\"");
-            esc(s, rel);
-            dm_str_cat(s, "\"><img src=\"");
-            image_src(s, full, rel);
-            dm_str_printf(s, "\" alt=\"%s\"></a>", label);
-        }
-        free(full);
-    }
-    dm_str_printf(s, "<figcaption>%s</figcaption></figure>", label);
+    const char *why = !rel ? " image: none" : !report__safe_relpath(rel) ? " path refused: " : NULL;
+    char *full = !why && im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
+    if (full && !dm_file_exists(full))
+        why = " image missing: ";
+    free(full);
+    if (!why)
+        return 1;
+    dm_str_printf(s, "<figure><span class=\"missing\">%s%s", label, why);
+    esc(s, rel ? rel : "");
+    dm_str_printf(s, "</span><figcaption>%s</figcaption></figure>", label);
+    return 0;
 }
 
-static void gallery(dm_str *s, const dm_run_result *run, const char *dir)
+/* A scene's reference, embedded once (id refs[k] = "ref-K"). */
+static void gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k,
+                              const char *scene)
 {
-    dm_str_cat(s, "<h2>Gallery</h2>\n<p>reference | render | heatmap (|difference|, inferno)</p>\n");
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        if (!c->ok || (!c->img_render && !c->img_heatmap && !c->img_reference))
-            continue;
-        dm_str_cat(s, "<div class=\"gal\"><p><b>");
-        esc(s, c->key);
-        dm_str_cat(s, "</b> ");
-        params_inline(s, c->params, c->n_params);
-        dm_str_cat(s, "</p>");
-        gallery_image(s, dir, c->img_reference, "reference");
-        gallery_image(s, dir, c->img_render, "render");
-        gallery_image(s, dir, c->img_heatmap, "heatmap");
-        dm_str_cat(s, "</div>\n");
+    if (!gallery_usable(s, im, rel, "reference"))
+        return;
+    char *full = im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
+    dm_str_printf(s, "<figure><a href=\"");
+    esc(s, im->href);
+    esc(s, rel);
+    dm_str_printf(s, "\"><img id=\"ref-%zu\" src=\"", k);
+    image_src(s, im, full, rel);
+    dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b> ");
+    esc(s, scene);
+    dm_str_cat(s, "</figcaption></figure>");
+    free(full);
+}
+
+/* A render or heatmap, linked (loaded from img/ beside the report, lazily);
+ * a render flips to its reference on click. */
+static void gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
+                           const char *caption, long ref)
+{
+    if (!gallery_usable(s, im, rel, label))
+        return;
+    dm_str_cat(s, "<figure><img loading=\"lazy\" src=\"");
+    esc(s, im->href);
+    esc(s, rel);
+    if (ref >= 0)
+        dm_str_printf(s, "\" class=\"flip\" data-ref=\"ref-%ld", ref);
+    dm_str_printf(s, "\" alt=\"%s\" width=\"192\"><figcaption>%s: ", label, label);
+    esc(s, caption);
+    dm_str_cat(s, "</figcaption></figure>");
+}
+
+/* Index of rel in refs (appended when new); *fresh = 1 when appended. */
+static size_t gallery_ref_index(const char ***refs, size_t *n, const char *rel, int *fresh)
+{
+    for (size_t i = 0; i < *n; i++)
+        if (strcmp((*refs)[i], rel) == 0) {
+            *fresh = 0;
+            return i;
+        }
+    *refs = dm_xrealloc(*refs, (*n + 1) * sizeof **refs);
+    (*refs)[*n] = rel;
+    *fresh = 1;
+    return (*n)++;
+}
+
+/* One scene's grid: its reference(s) once, then render and heatmap of each
+ * configuration, fastest first. */
+static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images *im,
+                          const char *scene, const char ***refs, size_t *nrefs)
+{
+    size_t *rows, nr = report__scene_rows(run, scene, &rows);
+    double top = 0;
+    dm_str_cat(s, "<h3>");
+    esc(s, scene);
+    dm_str_cat(s, "</h3>\n<div class=\"grid\">");
+    for (size_t i = 0; i < nr; i++) {
+        const dm_config_result *c = &run->configs[rows[i]];
+        long ref = -1;
+        int fresh = 0;
+        if (c->img_reference && report__safe_relpath(c->img_reference)) {
+            ref = (long)gallery_ref_index(refs, nrefs, c->img_reference, &fresh);
+            if (fresh)
+                gallery_reference(s, im, c->img_reference, (size_t)ref, scene);
+        } else if (c->img_reference) {
+            gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
+        }
+        dm_str label = {0};
+        report__config_label(run, c, &label);
+        gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), ref);
+        gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
+        if (c->quality.present && isfinite(c->quality.max_error))
+            top = fmax(top, c->quality.max_error);
+        dm_str_free(&label);
     }
+    dm_str_printf(s, "</div>\n<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
+                     "channel), scaled to each image's own maximum (its MaxError, at most %.3g in "
+                     "this scene): 0 <span class=\"scale\"></span> MaxError. Click a render to flip "
+                     "it with the reference.</p>\n", top);
+    free(rows);
+}
+
+static void gallery(dm_str *s, const dm_run_result *run, const html_images *im)
+{
+    const char **scenes, **refs = NULL;
+    size_t ns = report__scenes(run, &scenes), nrefs = 0;
+    dm_str_cat(s, "<h2 id=\"gallery\">Gallery</h2>\n<p>Per scene: the reference once (embedded), "
+                  "then each configuration's render and heatmap (files in img/ beside this "
+                  "report; click an image's link for the full size).</p>\n");
+    for (size_t i = 0; i < ns; i++)
+        gallery_scene(s, run, im, scenes[i], &refs, &nrefs);
+    free(refs);
+    free(scenes);
 }
 
 static void failed_and_left_out(dm_str *s, const dm_run_result *run)
 {
-    dm_str_cat(s, "<h2>Failed configurations</h2>\n");
+    dm_str_cat(s, "<h2 id=\"failed\">Failed configurations</h2>\n");
     for (size_t i = 0; i < run->n_configs; i++) {
         const dm_config_result *c = &run->configs[i];
         if (c->ok)
@@ -393,7 +590,7 @@ static void fits(dm_str *s, const dm_run_result *run)
 {
     if (!run->n_fits)
         return;
-    dm_str_cat(s, "<h2>Model fits</h2>\n<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
+    dm_str_cat(s, "<h2 id=\"fits\">Model fits</h2>\n<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
                   "<th>R²</th><th>CV MAPE</th><th title=\"2-norm condition number of the scaled "
                   "Jacobian; large means the parameters are poorly determined\">condition</th>"
                   "<th>points</th><th>warnings</th></tr>\n");
@@ -424,50 +621,112 @@ static void fits(dm_str *s, const dm_run_result *run)
         report__html_charts_fit(s, run, &run->fits[i]);
 }
 
-/* The answer first: per scene, which configurations give the best quality
- * for their cost (the Pareto front of the run's metric against median time). */
-static void findings(dm_str *s, const dm_run_result *run)
+/* "steps=32 filter=aniso" — the axes that vary in the scene, without technique. */
+static void settings_text(const dm_run_result *run, const dm_config_result *c, dm_str *out)
 {
-    const char **scenes;
-    size_t ns = report__scenes(run, &scenes);
-    report_metric m = report_metric_of_run(run);
-    dm_str_printf(s, "<h2>Findings</h2>\n<p>Best quality for its cost in each scene: the Pareto front "
-                     "of error (metric <b>%s</b>: %s against the reference) and median frame time, "
-                     "fastest first. Every other configuration is slower than one of these and not "
-                     "better.</p>\n<ul>\n", report_metric_name(m), report_metric_label(m));
-    for (size_t i = 0; i < ns; i++) {
-        dm_str front = {0};
-        report__pareto_text(run, scenes[i], &front);
-        dm_str_cat(s, "<li><b>");
-        esc(s, scenes[i]);
-        dm_str_cat(s, "</b>: ");
-        esc(s, dm_str_get(&front));
-        dm_str_cat(s, "</li>\n");
-        dm_str_free(&front);
-    }
-    dm_str_cat(s, "</ul>\n");
-    free(scenes);
+    dm_str label = {0};
+    report__config_label(run, c, &label);
+    const char *sp = strchr(dm_str_get(&label), ' ');
+    dm_str_cat(out, sp ? sp + 1 : "");
+    dm_str_free(&label);
 }
 
-int report_write_html(const dm_run_result *run, const char *dir, const char *path)
+/* One scene's Pareto front as a compact table, fastest first. */
+static void answer_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si)
+{
+    size_t *front, nf = report__pareto(run, scene, &front), *rows;
+    size_t nr = report__scene_rows(run, scene, &rows);
+    report_metric m = report_metric_of_run(run);
+    const dm_counter_result *fastest = nr ? report__frame_time(&run->configs[rows[0]]) : NULL;
+    int with_settings = 0;
+    for (size_t i = 0; i < nf && !with_settings; i++) {
+        dm_str set = {0};
+        settings_text(run, &run->configs[front[i]], &set);
+        with_settings = *dm_str_get(&set) != 0;
+        dm_str_free(&set);
+    }
+    dm_str_printf(s, "<table class=\"answer front\" id=\"front-%zu\"><caption>", si);
+    esc(s, scene);
+    dm_str_printf(s, "</caption><thead><tr><th>technique</th>%s<th>median ms</th>"
+                     "<th>95%% CI</th><th>%s</th><th>cost vs fastest</th></tr></thead><tbody>\n",
+                  with_settings ? "<th>settings</th>" : "", report_metric_label(m));
+    if (!nf)
+        dm_str_printf(s, "<tr><td colspan=\"6\" class=\"missing\">no configuration has both a time "
+                         "and a %s measurement</td></tr>\n", report_metric_label(m));
+    for (size_t i = 0; i < nf; i++) {
+        const dm_config_result *c = &run->configs[front[i]];
+        const dm_counter_result *t = report__frame_time(c);
+        dm_str set = {0};
+        settings_text(run, c, &set);
+        dm_str_cat(s, "<tr>");
+        tagged(s, "td", report__technique(c));
+        if (with_settings)
+            tagged(s, "td", dm_str_get(&set));
+        dm_str_printf(s, "<td class=\"n\">%.3f</td><td class=\"n\">", t->median / 1e6);
+        report__ci_text(t, s);
+        dm_str_cat(s, "</td>");
+        num_cell(s, "%.4g", report_metric_shown(&c->quality, m));
+        dm_str_printf(s, "<td class=\"n\">×%.2f", fastest ? t->median / fastest->median : NAN);
+        if (i && report__tied(t, report__frame_time(&run->configs[front[i - 1]])))
+            dm_str_cat(s, " <span class=\"tied\" title=\"the 95% CIs of the two medians overlap\">"
+                          "≈ tied with the row above</span>");
+        dm_str_cat(s, "</td></tr>\n");
+        dm_str_free(&set);
+    }
+    dm_str_cat(s, "</tbody></table>\n");
+    free(front);
+    free(rows);
+}
+
+/* The answer first: per scene, which configurations give the best quality
+ * for their cost (the Pareto front of the run's metric against median time). */
+static void answer(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
+{
+    report_metric m = report_metric_of_run(run);
+    dm_str_printf(s, "<h2 id=\"answer\">Answer: best quality for its cost</h2>\n<p>Per scene, the "
+                     "Pareto front of error (<b>%s</b>: %s against the reference) and median frame "
+                     "time, fastest first; every other configuration is slower than one of these "
+                     "and not better. \"≈ tied\": the time is not distinguishable from the row "
+                     "above (overlapping 95%% CIs).</p>\n", report_metric_name(m), report_metric_label(m));
+    dm_str_cat(s, "<div class=\"answers\">\n");
+    for (size_t i = 0; i < ns; i++)
+        answer_table(s, run, scenes[i], i);
+    dm_str_cat(s, "</div>\n");
+}
+
+int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
+                         const char *href)
+{
+    return report_write_html_trends(run, dir, path, href, NULL);
+}
+
+int report_write_html_trends(const dm_run_result *run, const char *dir, const char *path,
+                             const char *href, const report_trends *t)
 {
     if (!run || !path)
         return DM_ERR_ARG;
+    html_images im = { dir, href ? href : "" };
     dm_str s = {0};
-    header(&s, run);
-    timer_and_warnings(&s, run);
-    findings(&s, run);
-    report__html_charts_run(&s, run);
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);
+    header(&s, run);
+    toc(&s, run, scenes, ns);
+    answer(&s, run, scenes, ns);
+    timer_and_warnings(&s, run);
+    environment(&s, run);
     for (size_t i = 0; i < ns; i++)
-        scene_table(&s, run, scenes[i]);
+        scene_table(&s, run, scenes[i], i, t);
     free(scenes);
-    gallery(&s, run, dir);
+    gallery(&s, run, &im);
     failed_and_left_out(&s, run);
     fits(&s, run);
     dm_str_printf(&s, "<script>%s</script>\n</body></html>\n", sort_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     return rc;
+}
+
+int report_write_html(const dm_run_result *run, const char *dir, const char *path)
+{
+    return report_write_html_to(run, dir, path, NULL);
 }

@@ -82,12 +82,20 @@ size_t report__pareto_points(const dm_run_result *run, const char *scene, report
 size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out);
 void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *out);
 
+/* 1 when the 95 % CIs of the two timings' medians overlap (statistically
+ * tied); 0 when either CI is unknown. */
+int report__tied(const dm_counter_result *a, const dm_counter_result *b);
+
+/* Hand-written SVG charts of one scene (svg_chart.c): error vs time with CI
+ * whiskers and numbered points (legend below), and time per configuration
+ * of this scene only.  Nothing when the scene has no timed configuration. */
+void report__svg_scene(dm_str *s, const dm_run_result *run, const char *scene);
+
 /* Charts (chart.c): inline SVG appended to an HTML document, each in a
- * <div class="chart" aria-label="title">.  The run-level charts (time per
- * technique), the per-scene charts (error vs time with the Pareto front,
- * time vs tess_level per mesh, counter breakdown per configuration) and the
- * fit plots.  Nothing is appended when there is nothing to plot. */
-void report__html_charts_run(dm_str *s, const dm_run_result *run);
+ * <div class="chart" aria-label="title">.  The per-scene PLplot charts (time
+ * vs tess_level per mesh, counter breakdown per configuration: per-stage
+ * times only from a pipeline-linear fit with R² >= 0.8, else the key
+ * counters with a note) and the fit plots.  Nothing is appended when there is nothing to plot. */
 void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *scene);
 /* The two plots of one fit (predicted vs measured with y = x; residuals in
  * percent of the measured value vs predicted), nothing without points. */

@@ -11,7 +11,11 @@
  *  - counters: {unit, deterministic, unavailable} when unavailable,
  *    {unit, deterministic, partial, median, ci95, samples, mean, min, max,
  *    stddev, mad, cv, outliers, nonfinite} with samples, else
- *    {unit, deterministic, partial, value}.
+ *    {unit, deterministic, partial, value};
+ *  - "schema_version" (REPORT_SCHEMA_VERSION) at the top; per configuration a
+ *    readable "label" (report_config_name) and "pareto" (on its scene's
+ *    front); both are derived, so reading ignores them.  The whole shape is
+ *    docs/results.schema.json.
  */
 #include "reports/report.h"
 #include "reports/report_internal.h"
@@ -115,10 +119,15 @@ static cJSON *quality_json(const dm_quality *q)
     return o;
 }
 
-static cJSON *config_json(const dm_config_result *c)
+static cJSON *config_json(const dm_run_result *r, const dm_config_result *c, int pareto)
 {
     cJSON *o = cJSON_CreateObject();
     add_str(o, "key", c->key);
+    dm_str label = {0};
+    report_config_name(r, c, &label);
+    add_str(o, "label", dm_str_get(&label));
+    dm_str_free(&label);
+    cJSON_AddBoolToObject(o, "pareto", pareto);
     add_str(o, "scene", c->scene);
     cJSON_AddItemToObject(o, "params", kv_object(c->params, c->n_params, 1));
     cJSON_AddStringToObject(o, "status", c->ok ? "ok" : "failed");
@@ -169,6 +178,7 @@ cJSON *report_fit_to_json(const dm_fit_result *f)
 static cJSON *run_json(const dm_run_result *r)
 {
     cJSON *root = cJSON_CreateObject();
+    cJSON_AddNumberToObject(root, "schema_version", REPORT_SCHEMA_VERSION);
     cJSON *run = cJSON_AddObjectToObject(root, "run");
     add_str(run, "id", r->id);
     add_str(run, "sweep", r->sweep);
@@ -180,8 +190,10 @@ static cJSON *run_json(const dm_run_result *r)
     cJSON_AddNumberToObject(t, "gpu_time_coverage", r->gpu_time_coverage);
     add_str(t, "verdict", r->timer_verdict);
     cJSON *a = cJSON_AddArrayToObject(root, "configs");
+    unsigned char *front = report_pareto_flags(r);
     for (size_t i = 0; i < r->n_configs; i++)
-        cJSON_AddItemToArray(a, config_json(&r->configs[i]));
+        cJSON_AddItemToArray(a, config_json(r, &r->configs[i], front[i]));
+    free(front);
     a = cJSON_AddArrayToObject(root, "left_out");
     for (size_t i = 0; i < r->n_left_out; i++) {
         cJSON *l = cJSON_CreateObject();

@@ -6,6 +6,7 @@
 #include "run/fitting.h"
 #include "run/gl_context.h"
 #include "run/measure.h"
+#include "run/trends.h"
 #include "sweep/plan.h"
 #include "store/store.h"
 #include "reports/metric.h"
@@ -718,7 +719,10 @@ static int runner__finish(runner *r, dm_str *err)
     if (rc == 0) {
         runner__fit(r, &run);
         char e[512] = "";
-        rc = report_write_all(&run, r->run_dir, e, sizeof e);
+        report_trends tr;
+        run_trends(r->st, &run, &tr);   /* none on a store failure: the report goes on */
+        rc = report_write_all_trends(&run, r->run_dir, r->run_dir, &tr, e, sizeof e);
+        report_trends_free(&tr);
         if (rc)
             dm_str_printf(err, "report: %s", e);
     } else {

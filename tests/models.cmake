@@ -4,6 +4,7 @@ dm_add_unit(test_models_formula test_models_formula.c LIBS dm_models)
 dm_add_unit(test_models_fit test_models_fit.c LIBS dm_models)
 dm_add_unit(test_models_compare test_models_compare.c LIBS dm_models)
 dm_add_unit(test_models_data test_models_data.c LIBS dm_models)
+dm_add_unit(test_models_changepoint test_models_changepoint.c LIBS dm_models)
 # Predictions of stored fits for --budget (run/fitting.c).
 dm_add_unit(test_models_predict test_models_predict.c LIBS dm_run)
 # --budget end to end: the real binary predicts from a stored fit (~10 s).

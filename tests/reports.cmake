@@ -10,3 +10,12 @@ target_link_libraries(test_reports_browser_gen PRIVATE dm_reports dm_core m)
 add_test(NAME test_reports_browser
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/browser/report_in_chromium.sh $<TARGET_FILE:test_reports_browser_gen>)
 set_tests_properties(test_reports_browser PROPERTIES TIMEOUT 60 LABELS "browser")
+
+# The default quick run's report in chromium: the front table in the first
+# screen at 1280x800 and 1920x1080, no clipped chart text, under 2 MB; the
+# screenshots stay in build/artifacts/report-screenshots (CI artefacts).
+add_test(NAME test_reports_quick_browser
+  COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/browser/quick_report.sh $<TARGET_FILE:dmbench>
+          ${CMAKE_BINARY_DIR}/artifacts/report-screenshots)
+set_tests_properties(test_reports_quick_browser PROPERTIES TIMEOUT 300 LABELS "browser;e2e"
+  ENVIRONMENT "${DM_TEST_ENV}")

@@ -473,6 +473,14 @@ static void test_json_roundtrip_and_outputs(void **state)
     text = slurp(ju);
     assert_non_null(strstr(text, "tests=\"3\" failures=\"1\""));
     assert_non_null(strstr(text, "<failure message=\"REGRESSION: TESInvocations changed 3169 -&gt; 6144\"/>"));
+    assert_null(strstr(text, "time=\"0\""));
+    for (size_t i = 0; i < lb.n_configs; i++) {   /* each test case's time: NEW's median, seconds */
+        const dm_counter_result *w = dm_config_counter(&lb.configs[i], "WallTime");
+        char *want = dm_xasprintf("[%s]\" time=\"%.9f\">", lb.configs[i].key, w->median / 1e9);
+        assert_true(w->median > 0);
+        assert_non_null(strstr(text, want));
+        free(want);
+    }
     free(text);
     text = slurp(js);
     assert_non_null(strstr(text, "\"REGRESSION\":\t1"));

@@ -53,6 +53,77 @@ static void load_and_fit(void **state)
     free(path);
 }
 
+/* dmbench's own results.csv shape: RFC 4180 quoting (a comma, a doubled
+ * quote and a line break inside quotes), text columns beside numbers. */
+static void rfc4180_and_text_columns(void **state)
+{
+    (void)state;
+    char *path = temp_csv("key,scene,reason,L,t_ms\r\n"
+                          "57b7ede18e7a9e86,plane@80x45,,1,7\r\n"
+                          "a1,\"cube, big\",\"said \"\"no\"\"\r\nthen, crashed\",2,9\r\n"
+                          "b2,plane@80x45,,3,11\r\n");
+    fit_data d;
+    dm_str err = { 0 };
+    assert_int_equal(fit_data_load_csv(path, &d, &err), 0);
+    assert_int_equal(d.n_cols, 5);
+    assert_int_equal(d.n_rows, 3);
+    assert_int_equal(d.text[0], 1);
+    assert_int_equal(d.text[1], 1);
+    assert_int_equal(d.text[2], 1);
+    assert_int_equal(d.text[3], 2);
+    assert_true(d.values[2 * 5 + 3] == 3.0 && d.values[1 * 5 + 4] == 9.0);
+    assert_true(isnan(d.values[1 * 5 + 1]));
+    fit_desc desc;
+    assert_int_equal(fit_data_desc(&d, "a + b*L", "t_ms", &desc, &err), 0);
+    dm_fit_result r;
+    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    assert_true(fabs(r.params[0].value - 5.0) < 1e-9 && fabs(r.params[1].value - 2.0) < 1e-9);
+    dm_fit_result_free(&r);
+    assert_int_equal(fit_data_desc(&d, "a", "scene", &desc, &err), DM_ERR_UNKNOWN);
+    assert_string_equal(dm_str_get(&err), "fit: response 'scene' is a text column, not numbers");
+    fit_data_free(&d);
+    dm_str_free(&err);
+    unlink(path);
+    free(path);
+}
+
+/* 1 when one of r's warnings starts with prefix. */
+static int has_warning(const dm_fit_result *r, const char *prefix)
+{
+    for (size_t i = 0; i < r->n_warnings; i++)
+        if (strncmp(r->warnings[i], prefix, strlen(prefix)) == 0)
+            return 1;
+    return 0;
+}
+
+/* y unrelated to x: R² far below 0.8 and CV-MAPE above 20 % are warned
+ * about; the exact line of load_and_fit is not. */
+static void poor_fit_warns(void **state)
+{
+    (void)state;
+    char *path = temp_csv("x,y\n1,10\n2,30\n3,12\n4,28\n5,11\n6,31\n7,10\n8,29\n9,12\n10,30\n");
+    fit_data d;
+    dm_str err = { 0 };
+    assert_int_equal(fit_data_load_csv(path, &d, &err), 0);
+    fit_desc desc;
+    assert_int_equal(fit_data_desc(&d, "a + b*x", "y", &desc, &err), 0);
+    dm_fit_result r;
+    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    assert_true(r.r2 < 0.1);
+    assert_true(has_warning(&r, "poor fit: R² "));
+    assert_true(r.cv_mape > FIT_POOR_CV_MAPE);
+    assert_true(has_warning(&r, "poor prediction: CV-MAPE "));
+    dm_fit_result_free(&r);
+    assert_int_equal(fit_data_desc(&d, "a + b*x", "x", &desc, &err), 0);   /* x = a + b x: exact */
+    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    assert_false(has_warning(&r, "poor "));
+    dm_fit_result_free(&r);
+    fit_data_free(&d);
+    dm_str_free(&err);
+    unlink(path);
+    free(path);
+}
+
 static void expect_parse_error(const char *text, const char *tail)
 {
     char *path = temp_csv(text);
@@ -77,6 +148,7 @@ static void bad_cells(void **state)
     expect_parse_error("L,,t\n", "1:3: empty column name ''");
     expect_parse_error("L,t,L\n", "1:5: duplicate column name 'L'");
     expect_parse_error("\n\n", "1:1: no header row");
+    expect_parse_error("L,t\n1,\"2\n", "2:3: unterminated quoted field");
     fit_data d;
     dm_str err = { 0 };
     assert_int_equal(fit_data_load_csv("/nonexistent/x.csv", &d, &err), DM_ERR_IO);
@@ -88,6 +160,8 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(load_and_fit),
         cmocka_unit_test(bad_cells),
+        cmocka_unit_test(rfc4180_and_text_columns),
+        cmocka_unit_test(poor_fit_warns),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

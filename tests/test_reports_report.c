@@ -148,13 +148,15 @@ static void test_csv_shape(void **state)
     memset(cell, 0, sizeof cell);
     assert_int_equal(csv_shape(t, &cols, cell, 64), 4);   /* header + 3 configs */
     /* key scene status reason | technique mesh steps scale note tess_level |
-     * WallTime ×3 | TESInvocations | 8 quality */
-    assert_int_equal(cols, 4 + 6 + 3 + 1 + 8);
+     * WallTime ×3 | TESInvocations | 8 quality | label pareto */
+    assert_int_equal(cols, 4 + 6 + 3 + 1 + 8 + 2);
     assert_string_equal(cell[0], FIXTURE_KEY0);
     assert_string_equal(cell[8], "a,b \"quoted\"");   /* note param round-trips through quoting */
     assert_string_equal(cell[10], "1.1");              /* WallTime median, ms */
     assert_string_equal(cell[14], "0");                /* RMSE */
-    assert_string_equal(cell[15], "inf");              /* PSNR */
+    assert_string_equal(cell[15], "inf");              /* PSNR_dB */
+    assert_non_null(strstr(t, ",PSNR_dB,"));
+    assert_non_null(strstr(t, ",label,pareto\r\n"));
     assert_non_null(strstr(t, "WallTime_median_ms"));
     free(t);
     dm_run_free(&run);
@@ -194,14 +196,17 @@ static void test_markdown(void **state)
 }
 
 /* Every src="..." and href="..." in the page is an embedded PNG
- * (data:image/png;base64, starting with the PNG signature, "iVBORw0KGgo")
- * or names a file that exists relative to dir.  Counts the img srcs. */
+ * (data:image/png;base64, starting with the PNG signature, "iVBORw0KGgo"),
+ * an anchor in the page ("#...", not counted) or names a file that exists
+ * relative to dir.  Counts the rest. */
 static int all_refs_exist(const char *html, const char *dir, const char *attr, int *count)
 {
     *count = 0;
     size_t al = strlen(attr);
     for (const char *p = strstr(html, attr); p; p = strstr(p + 1, attr)) {
         const char *b = p + al, *e = strchr(b, '"');
+        if (*b == '#')
+            continue;
         if (strncmp(b, "data:", 5) == 0) {
             if (strncmp(b, "data:image/png;base64,iVBORw0KGgo", 33) != 0)
                 return 0;
@@ -246,9 +251,23 @@ static void test_html_escaping_and_images(void **state)
     /* c0: 3 images, c1: render only (heatmap absolute, reference "..") */
     assert_true(all_refs_exist(t, dir, " src=\"", &n));
     assert_int_equal(n, 4);
+    /* the reference is embedded once and links its file; renders and
+     * heatmaps load from img/ beside the report */
     assert_true(all_refs_exist(t, dir, " href=\"", &n));
-    assert_int_equal(n, 4);
-    assert_non_null(strstr(t, "<a href=\"img/c0_heat.png\"><img src=\"data:image/png;base64,"));
+    assert_int_equal(n, 1);
+    assert_non_null(strstr(t, "<a href=\"img/c0_ref.png\"><img id=\"ref-0\" src=\"data:image/png;base64,"));
+    assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_render.png\" class=\"flip\" data-ref=\"ref-0\""));
+    assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_heat.png\" alt=\"heatmap\""));
+    assert_non_null(strstr(t, "<span class=\"scale\"></span>"));
+    /* written elsewhere (report --out): links go to the run directory */
+    char *other = dm_xasprintf("%s/other.html", dir);
+    assert_int_equal(report_write_html_to(&run, dir, other, "/abs/run/"), 0);
+    char *o = slurp(other);
+    assert_non_null(strstr(o, "<a href=\"/abs/run/img/c0_ref.png\">"));
+    assert_non_null(strstr(o, "src=\"/abs/run/img/c0_heat.png\""));
+    free(o);
+    unlink(other);
+    free(other);
     assert_non_null(strstr(t, "path refused: /etc/passwd"));
     assert_non_null(strstr(t, "path refused: ../outside.png"));
     free(t);
@@ -327,18 +346,34 @@ static void test_html_charts_and_front(void **state)
     int svgs = 0;
     for (const char *q = strstr(t, "<svg"); q; q = strstr(q + 1, "<svg"))
         svgs++;
-    assert_int_equal(svgs, 3);   /* time per technique, error vs time, time vs tess_level */
+    assert_int_equal(svgs, 3);   /* error vs time, time per configuration, time vs tess_level */
     assert_null(strstr(t, "http://"));
     assert_null(strstr(t, "<b>x"));
-    const char *ol = strstr(t, "Pareto front of 1 - SSIM against median frame time (fastest first):</p><ol>");
+    /* the answer table comes first, before any scene table or chart */
+    const char *ol = strstr(t, "<table class=\"answer front\" id=\"front-0\">");
     assert_non_null(ol);
-    const char *end = strstr(ol, "</ol>");
-    const char *k0 = strstr(ol, "00000000000000c0"), *k1 = strstr(ol, "00000000000000c1");
-    const char *k2 = strstr(ol, "00000000000000c2"), *k3 = strstr(ol, "00000000000000c3");
-    const char *k4 = strstr(ol, "00000000000000c4");
+    assert_true(ol < strstr(t, "<svg") && ol < strstr(t, "id=\"tbl-0\"") && ol < strstr(t, "id=\"environment\""));
+    const char *end = strstr(ol, "</table>");
+    /* ms ± CI and the cost relative to the fastest; L=2 and L=4 CIs (±10 %)
+     * do not overlap their predecessor's, so nothing is marked tied */
+    assert_non_null(strstr(ol, "<td>tessdisp</td><td>tess_level=4</td><td class=\"n\">4.000</td><td class=\"n\">±10.0%</td>"));
+    assert_non_null(strstr(ol, "×4.00</td>"));
+    assert_true(!strstr(ol, "tied with") || strstr(ol, "tied with") > end);
+    const char *k0 = strstr(ol, "tess_level=1<"), *k1 = strstr(ol, "tess_level=2<");
+    const char *k2 = strstr(ol, "tess_level=4<"), *k3 = strstr(ol, "tess_level=8<");
+    const char *k4 = strstr(ol, "x#y");
     assert_true(k0 && k1 && k2 && k0 < k1 && k1 < k2 && k2 < end);
     assert_true(!k3 || k3 > end);
     assert_true(!k4 || k4 > end);
+    free(t);
+    /* L=2's CI reaching down into L=1's: marked tied with the row above, once */
+    run.configs[1].counters[0].ci_lo = 1.0e6;
+    assert_int_equal(report_write_html(&run, NULL, p), 0);
+    t = slurp(p);
+    ol = strstr(t, "id=\"front-0\"");
+    const char *tie = strstr(ol, "≈ tied with the row above");
+    assert_true(tie && tie > strstr(ol, "tess_level=2<") && tie < strstr(ol, "tess_level=4<"));
+    assert_null(strstr(tie + 1, "≈ tied with the row above</span>"));
     free(t);
     dm_run_free(&run);
     unlink(p);
@@ -462,14 +497,14 @@ static void test_metric_in_files(void **state)
     assert_non_null(strstr(t, "| PSNR | SSIM | RMSE | key |"));
     free(t);
     t = slurp(html);
-    assert_non_null(strstr(t, "<th>CrackPixels</th><th>RMSE</th><th>Pareto</th>"));
+    assert_non_null(strstr(t, "<th>95% CI</th><th>RMSE</th><th>SSIM</th><th>PSNR dB</th><th>Pareto</th>"));
     int marks = 0;   /* c0, c2, c3 marked in the table; c1 not */
-    for (const char *q = strstr(t, "<td>front</td>"); q; q = strstr(q + 1, "<td>front</td>"))
+    for (const char *q = strstr(t, "<td>★ front</td>"); q; q = strstr(q + 1, "<td>★ front</td>"))
         marks++;
     assert_int_equal(marks, 3);
-    assert_non_null(strstr(t, "<td class=\"n\">0.06</td><td></td><td class=\"key\">00000000000000d1"));
-    assert_non_null(strstr(t, "(metric <b>rmse</b>: RMSE against the reference)"));
-    assert_non_null(strstr(t, "Pareto front of RMSE against median frame time (fastest first):"));
+    assert_non_null(strstr(t, "<td class=\"n\">0.06</td><td class=\"n\">0.9000</td><td class=\"n\">35.00</td><td></td>"));
+    assert_non_null(strstr(t, "(<b>rmse</b>: RMSE against the reference)"));
+    assert_non_null(strstr(t, "<th>RMSE</th><th>cost vs fastest</th>"));
     free(t);
     dm_run_free(&run);
     unlink(md);
@@ -665,13 +700,14 @@ static char *html_of(const dm_run_result *run, const char *path)
 }
 
 /* The fixture: one fit (tess-power, 2 points), key counters, no pipeline
- * fit, one tess_level value: time per technique, error vs time, the key
- * counter bars, and the fit's two plots.  Without its fit: no fit plot. */
+ * fit, one tess_level value: error vs time and time per configuration of
+ * its one scene (never a chart pooling scenes), the key counter bars, and
+ * the fit's two plots.  Without its fit: no fit plot. */
 static void test_html_chart_set(void **state)
 {
     (void)state;
     static const char *want[] = {
-        "Median frame time per technique", "Error vs time",
+        "Error vs time: plane/cam0/sun/stone/64x64", "Time per configuration: plane/cam0/sun/stone/64x64",
         "Key counters per configuration (relative to each maximum)",
         "Predicted vs measured: tess-power mesh=plane", "Residuals: tess-power mesh=plane" };
     char dir[] = "/tmp/dm_reports_charts_XXXXXX", titles[8][96];
@@ -734,15 +770,25 @@ static void test_html_breakdown_fit_and_cap(void **state)
     f->params[0].value = 2e5;
     f->params[1].name = dm_xstrdup("c_px");
     f->params[1].value = 30;
+    f->r2 = 0.95;
     char dir[] = "/tmp/dm_reports_bd_XXXXXX", titles[8][96];
     assert_non_null(mkdtemp(dir));
     char *p = dm_xasprintf("%s/report.html", dir);
     char *t = html_of(&run, p);
     size_t n = chart_titles(t, titles, 8);
-    assert_int_equal(n, 2);   /* per technique and breakdown (no quality: no error chart; no points: no fit plots) */
+    assert_int_equal(n, 2);   /* time per configuration and breakdown (no quality: no error chart; no points: no fit plots) */
     assert_string_equal(titles[1], "Estimated time per stage (pipeline-linear fit)");
     assert_non_null(strstr(t, "The 6 fastest configurations are left out of this chart (it shows "
                               "the 24 slowest); all are in the table."));
+    assert_null(strstr(t, "No per-stage breakdown"));
+    free(t);
+    /* a poor fit (R² 0.37 < 0.8) is not drawn as stage times: counters and a note */
+    f->r2 = 0.37;
+    t = html_of(&run, p);
+    assert_int_equal(chart_titles(t, titles, 8), 2);
+    assert_string_equal(titles[1], "Key counters per configuration (relative to each maximum)");
+    assert_non_null(strstr(t, "No per-stage breakdown: the pipeline-linear fit explains too little of "
+                              "the time (R² 0.37, below 0.8)"));
     free(t);
     /* without the fit: the key counter bars, same cap */
     dm_fit_result_free(&run.fits[0]);

@@ -1,0 +1,80 @@
+/* cmd_export.c — `dmbench export RUN --format F [-o FILE] [--store DB]`: one
+ * run in the JSON another benchmark tool reads (reports/export.h).
+ *
+ * RUN is a run directory, its results.json or an output root holding
+ * `latest`; with --store it is a run id in that store.  Output goes to FILE
+ * (written atomically) or stdout.  docs/exports.md has one example per format.
+ */
+#include "cli.h"
+#include "core/dm_error.h"
+#include "gate/compare.h"
+#include "reports/export.h"
+
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+typedef struct export__opts {
+    const char *run, *format, *out, *store;
+} export__opts;
+
+/* Every option of export in one place; returns -1 to go on or an exit code. */
+static int export__options(int argc, char **argv, export__opts *o)
+{
+    static const char *const valid[] = { "--format", "-o", "--store" };
+    for (int i = 1; i < argc; i++) {
+        const char *a = argv[i];
+        const char **dst = strcmp(a, "--format") == 0 ? &o->format
+                           : strcmp(a, "-o") == 0     ? &o->out
+                           : strcmp(a, "--store") == 0 ? &o->store : NULL;
+        if (dst && !(*dst = cli__value(argc, argv, &i)))
+            return 2;
+        if (!dst && a[0] == '-' && a[1])
+            return cli__unknown_option("export", a, valid, sizeof valid / sizeof *valid);
+        if (!dst && o->run)
+            return cli__usage_error("export: one RUN only ('%s' and '%s')", o->run, a);
+        if (!dst)
+            o->run = a;
+    }
+    if (!o->run || !o->format)
+        return cli__usage_error("export: usage: dmbench export RUN --format gbench|bmf|gab-smaller|gab-bigger "
+                                "[-o FILE] [--store DB]");
+    return -1;
+}
+
+/* "--format 'x' is not a format; valid: a, b, ..." */
+static int export__bad_format(const char *name)
+{
+    size_t n;
+    const export_format *f = export_formats(&n);
+    const char *names[8];
+    dm_str msg = {0};
+    for (size_t i = 0; i < n && i < 8; i++)
+        names[i] = f[i].name;
+    dm_str_printf(&msg, "export: --format '%s' is not a format; valid choices: ", name);
+    dm_str_cat_list(&msg, names, n < 8 ? n : 8);
+    int rc = cli__usage_error("%s", dm_str_get(&msg));
+    dm_str_free(&msg);
+    return rc;
+}
+
+int cli_export(int argc, char **argv)
+{
+    export__opts o = {0};
+    int rc = export__options(argc, argv, &o);
+    const export_format *f = rc < 0 ? export_find(o.format) : NULL;
+    if (rc < 0 && !f)
+        rc = export__bad_format(o.format);
+    dm_run_result run = {0};
+    dm_str err = {0};
+    if (rc < 0 && (o.store ? compare_load_store(o.store, o.run, NULL, &run, &err)
+                           : compare_load_path(o.run, &run, &err)) != 0)
+        rc = cli__usage_error("export: %s", dm_str_get(&err));
+    if (rc < 0 && export_write(&run, f, o.out) != 0)
+        rc = cli__usage_error("export: cannot write %s", o.out ? o.out : "stdout");
+    if (rc < 0 && o.out && strcmp(o.out, "-") != 0)
+        fprintf(stderr, "export: %s (%s) written to %s\n", f->name, f->what, o.out);
+    dm_run_free(&run);
+    dm_str_free(&err);
+    return rc < 0 ? 0 : rc;
+}

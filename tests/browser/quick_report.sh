@@ -1,0 +1,57 @@
+#!/bin/sh
+# quick_report.sh DMBENCH ARTIFACTS — the default quick run's report.html in
+# headless chromium, as a new user sees it: at 1280x800 and 1920x1080 the
+# first scene's Pareto front table lies entirely in the first screen (DOM
+# position), no SVG chart text is clipped (every text box inside its SVG's
+# box), and the file is under 2 MB.  The screenshots stay in ARTIFACTS (CI
+# keeps them).
+set -eu
+bin=$1
+art=$2
+work=$(mktemp -d /tmp/dm_quick_report_XXXXXX)
+trap 'rm -rf "$work"' EXIT INT TERM
+fail() { echo "FAIL: $*" >&2; exit 1; }
+mkdir -p "$art"
+
+"$bin" run --quick --out "$work/res" --quiet 2>"$work/run.log" || { cat "$work/run.log" >&2; fail "run --quick"; }
+html="$work/res/latest/report.html"
+size=$(wc -c < "$html")
+[ "$size" -lt 2000000 ] || fail "report.html is $size bytes, the limit is 2 MB"
+
+# A copy with a probe that writes what it measured into the DOM.
+probe='<script>window.addEventListener("load",function(){'
+probe="$probe"'var f=document.getElementById("front-0"),r=f?f.getBoundingClientRect():null,bad=[],n=0;'
+probe="$probe"'document.querySelectorAll("svg").forEach(function(s){var b=s.getBoundingClientRect();'
+probe="$probe"'s.querySelectorAll("text").forEach(function(t){var q=t.getBoundingClientRect();n++;'
+probe="$probe"'if(q.width>0\&\&(q.left<b.left-1||q.right>b.right+1||q.top<b.top-1||q.bottom>b.bottom+1))'
+probe="$probe"'bad.push(t.textContent.slice(0,40));});});'
+probe="$probe"'document.body.setAttribute("data-front",r?Math.round(r.top)+" "+Math.round(r.bottom)+" "+innerHeight:"none");'
+probe="$probe"'document.body.setAttribute("data-texts",n);'
+probe="$probe"'document.body.setAttribute("data-clipped",bad.length+(bad.length?": "+bad.slice(0,5).join(" | "):""));'
+probe="$probe"'});</script></body>'
+sed "s#</body>#$probe#" "$html" > "$work/res/latest/probe.html"
+
+chrome() {
+    timeout 40 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
+        --disable-background-networking --disable-component-update --disable-sync --hide-scrollbars \
+        --user-data-dir="$(mktemp -d "$work/profile_XXXXXX")" "$@"
+}
+
+for win in 1280,800 1920,1080; do
+    name=$(echo "$win" | tr , x)
+    chrome --window-size=$win --screenshot="$art/report-$name.png" "file://$html" >/dev/null 2>&1 \
+        || fail "screenshot at $name"
+    [ -s "$art/report-$name.png" ] || fail "no screenshot at $name"
+    chrome --window-size=$win --virtual-time-budget=5000 --dump-dom "file://$work/res/latest/probe.html" \
+        > "$work/dom.html" 2>/dev/null || fail "dump-dom at $name"
+    front=$(sed -n 's/.*data-front="\([^"]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+    clipped=$(sed -n 's/.*data-clipped="\([^"]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+    texts=$(sed -n 's/.*data-texts="\([0-9]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+    [ -n "$front" ] && [ "$front" != none ] || fail "$name: no front table (#front-0) in the DOM"
+    set -- $front
+    [ "$1" -ge 0 ] && [ "$2" -le "$3" ] || fail "$name: front table at y $1..$2, the first screen ends at $3"
+    [ "${texts:-0}" -gt 0 ] || fail "$name: no SVG text measured"
+    [ "$clipped" = 0 ] || fail "$name: clipped chart text: $clipped"
+    echo "$name: front table at y $1..$2 of $3; $texts chart texts, none clipped"
+done
+echo "report.html: $size bytes; screenshots in $art"
