@@ -1,4 +1,4 @@
-/* cli_merge.c — `dmbench merge OUT DIR...`: the union of shard runs.
+/* cmd_merge.c — `dmbench merge OUT DIR...`: the union of shard runs.
  *
  * Every DIR is a run directory (its store is the dmbench.sqlite beside it).
  * The runs must come from the same sweep file and the same environment
@@ -24,16 +24,16 @@ static int merge__load(const char *dir, dm_run_result *out)
 {
     char real[PATH_MAX];
     if (!realpath(dir, real))
-        return cli__usage_error("merge: %s: no such run directory", dir);
+        return cli_usage_error("merge: %s: no such run directory", dir);
     char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
     char *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(a));
     store *st = NULL;
     dm_str err = {0};
     int rc = -1;
     if (store_open(store_path, &st, &err) != 0)
-        rc = cli__usage_error("merge: %s", dm_str_get(&err));
+        rc = cli_usage_error("merge: %s", dm_str_get(&err));
     else if (store_run_load(st, basename(b), out) != 0)
-        rc = cli__usage_error("merge: %s: run %s is not in %s", dir, basename(b), store_path);
+        rc = cli_usage_error("merge: %s: run %s is not in %s", dir, basename(b), store_path);
     store_close(st);
     dm_str_free(&err);
     free(store_path);
@@ -71,10 +71,10 @@ static int merge__compatible(const dm_run_result *a, const dm_run_result *b, con
     const char *fa = dm_kv_get(a->environment, a->n_environment, "fingerprint");
     const char *fb = dm_kv_get(b->environment, b->n_environment, "fingerprint");
     if (!a->sweep_hash || !b->sweep_hash || strcmp(a->sweep_hash, b->sweep_hash) != 0)
-        return cli__usage_error("merge: %s was made from a different sweep file (hash %s vs %s)", dir,
+        return cli_usage_error("merge: %s was made from a different sweep file (hash %s vs %s)", dir,
                                 b->sweep_hash ? b->sweep_hash : "?", a->sweep_hash ? a->sweep_hash : "?");
     if (!fa || !fb || strcmp(fa, fb) != 0)
-        return cli__usage_error("merge: %s was measured in a different environment "
+        return cli_usage_error("merge: %s was measured in a different environment "
                                 "(fingerprint %s vs %s)", dir, fb ? fb : "?", fa ? fa : "?");
     return -1;
 }
@@ -114,21 +114,21 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
     char *store_path = dm_xasprintf("%s/dmbench.sqlite", out);
     store *st = NULL;
     dm_str err = {0};
-    int rc = dm_mkdirs(img) == 0 ? -1 : cli__usage_error("merge: %s: cannot create the run directory", run_dir);
+    int rc = dm_mkdirs(img) == 0 ? -1 : cli_usage_error("merge: %s: cannot create the run directory", run_dir);
     if (rc < 0 && store_open(store_path, &st, &err) != 0)
-        rc = cli__usage_error("merge: %s", dm_str_get(&err));
+        rc = cli_usage_error("merge: %s", dm_str_get(&err));
     if (rc < 0 && store_run_begin(st, m, "merged") != 0)
-        rc = cli__usage_error("merge: %s", store_last_error(st));
+        rc = cli_usage_error("merge: %s", store_last_error(st));
     for (size_t i = 0; rc < 0 && i < m->n_configs; i++)
         if (store_config_put(st, m->id, &m->configs[i]) != 0)
-            rc = cli__usage_error("merge: %s", store_last_error(st));
+            rc = cli_usage_error("merge: %s", store_last_error(st));
     for (size_t i = 0; rc < 0 && i < m->n_left_out; i++)
         store_left_out_put(st, m->id, &m->left_out[i]);
     for (int i = 0; rc < 0 && i < n; i++)
         merge__copy_images(dirs[i], run_dir);
     char e[512] = "";
     if (rc < 0 && report_write_all(m, run_dir, e, sizeof e) != 0)
-        rc = cli__usage_error("merge: report: %s", e);
+        rc = cli_usage_error("merge: report: %s", e);
     if (rc < 0) {
         char *link = dm_xasprintf("%s/latest", out);
         unlink(link);
@@ -146,13 +146,14 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
     return rc;
 }
 
-int cli_merge(int argc, char **argv)
+static int merge_main(void *args, int argc, char **argv)
 {
-    if (argc < 3)
-        return cli__usage_error("usage: dmbench merge OUT DIR...   (DIR: run directories of shards)");
+    (void)args;
+    if (argc < 2)
+        return cli_usage_error("usage: dmbench merge OUT DIR...   (DIR: run directories of shards)");
     dm_run_result merged = {0};
-    int rc = merge__load(argv[2], &merged);
-    for (int i = 3; rc < 0 && i < argc; i++) {
+    int rc = merge__load(argv[1], &merged);
+    for (int i = 2; rc < 0 && i < argc; i++) {
         dm_run_result r = {0};
         rc = merge__load(argv[i], &r);
         if (rc < 0)
@@ -162,7 +163,15 @@ int cli_merge(int argc, char **argv)
         dm_run_free(&r);
     }
     if (rc < 0)
-        rc = merge__write(&merged, argv[1], argv + 2, argc - 2);
+        rc = merge__write(&merged, argv[0], argv + 1, argc - 1);
     dm_run_free(&merged);
     return rc;
 }
+
+const cli_command cli_cmd_merge = {
+    .name = "merge", .fn = merge_main,
+    .summary = "unite the runs of shards (run --shard K/N) into one run in OUT",
+    .synopsis = "OUT DIR...",
+    .description = "Every DIR is a run directory of the same sweep file measured in the same\n"
+                   "environment; OUT gets dmbench.sqlite, the merged run directory and 'latest'.",
+};

@@ -40,6 +40,11 @@ void dm_str_free(dm_str *s);
 const char *dm_closest(const char *word, const char *const *choices, size_t n);
 /* Appends "a, b, c" (n choices) to s. */
 void dm_str_cat_list(dm_str *s, const char *const *choices, size_t n);
+/* The one "did you mean": after "unknown <thing> 'word'" appends
+ * "; did you mean 'X'? valid <what>: a, b, c" (X from dm_closest), or
+ * "; valid <what>: a, b, c" when no choice is close. */
+void dm_str_suggest(dm_str *s, const char *word, const char *const *choices, size_t n,
+                    const char *what);
 
 /* ---- memory: abort with a message on failure (for small bookkeeping) --- */
 void *dm_xmalloc(size_t n);

@@ -130,12 +130,8 @@ static int axes__unknown(const char *name, dm_str *err)
     const char *names[AXES__N];
     for (size_t i = 0; i < AXES__N; i++)
         names[i] = axes_at(i)->name;
-    const char *near = dm_closest(name, names, AXES__N);
-    dm_str_printf(err, "unknown axis '%s'; ", name);
-    if (near)
-        dm_str_printf(err, "did you mean '%s'? ", near);
-    dm_str_cat(err, "valid axes: ");
-    axes__list(err, names, AXES__N);
+    dm_str_printf(err, "unknown axis '%s'", name);
+    dm_str_suggest(err, name, names, AXES__N, "axes");
     return DM_ERR_UNKNOWN;
 }
 

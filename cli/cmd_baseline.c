@@ -1,0 +1,104 @@
+/* cmd_baseline.c — `dmbench baseline accept RUN --reason TEXT` and
+ * `dmbench baseline show`: the accepted baselines of a store, the BASE of
+ * `dmbench compare --baseline`. */
+#include "cli.h"
+#include "core/dm_error.h"
+#include "core/dm_exit.h"
+#include "core/dm_util.h"
+#include "gate/compare.h"
+
+#include <libgen.h>
+#include <limits.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+
+#define BASELINE__DEFAULT_STORE "results/dmbench.sqlite"
+
+typedef struct baseline_args {
+    const char *reason, *store;
+} baseline_args;
+
+static const char *const baseline__actions[] = { "accept", "show", NULL };
+
+static const cli_option baseline_options[] = {
+    { .name = "reason", .kind = CLI_OPT_STRING, .offset = offsetof(baseline_args, reason),
+      .value_name = "TEXT", .help = "accept: why this run is the new baseline (stored with it)" },
+    { .name = "store", .kind = CLI_OPT_STRING, .offset = offsetof(baseline_args, store),
+      .value_name = "FILE", .help = "the results store [default beside RUN, or " BASELINE__DEFAULT_STORE "]" },
+    CLI_OPT_END
+};
+
+/* RUN as a run directory (store beside it, id = its name) or, with
+ * --store, a run id. */
+static int baseline__target(const char *run, const char *store, char **store_path, char **id)
+{
+    struct stat st;
+    char real[PATH_MAX];
+    if (stat(run, &st) == 0 && S_ISDIR(st.st_mode) && realpath(run, real)) {
+        char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
+        *id = dm_xstrdup(basename(a));
+        *store_path = store ? dm_xstrdup(store) : dm_xasprintf("%s/dmbench.sqlite", dirname(b));
+        free(a);
+        free(b);
+        return -1;
+    }
+    if (!store)
+        return cli_usage_error("baseline: '%s' is not a run directory (give a run directory, or "
+                                "--store FILE and a run id)", run);
+    *store_path = dm_xstrdup(store);
+    *id = dm_xstrdup(run);
+    return -1;
+}
+
+/* show: the newest accepted baseline of the store. */
+static int baseline__show(const char *store, dm_str *err)
+{
+    char *id = NULL, *why = NULL;
+    int rc = compare_baseline_latest(store ? store : BASELINE__DEFAULT_STORE, NULL, &id, &why, err);
+    if (rc == 0)
+        printf("%s\t%s\n", id, why ? why : "");
+    free(why);
+    free(id);
+    return rc;
+}
+
+static int baseline_main(void *args, int argc, char **argv)
+{
+    const baseline_args *a = args;
+    if (argc < 1 || (strcmp(argv[0], "accept") != 0 && strcmp(argv[0], "show") != 0))
+        return cli_usage_error("usage: dmbench baseline accept RUN --reason TEXT [--store FILE] | "
+                               "baseline show [--store FILE]");
+    if (argc > 2)
+        return cli_usage_error("baseline: only one RUN may be given");
+    dm_str err = {0};
+    char *store_path = NULL, *id = NULL;
+    int rc = 0;
+    if (strcmp(argv[0], "show") == 0) {
+        rc = baseline__show(a->store, &err);
+    } else {
+        if (argc < 2)
+            return cli_usage_error("baseline accept: missing RUN (a run directory, e.g. results/latest)");
+        if ((rc = baseline__target(argv[1], a->store, &store_path, &id)) >= 0)
+            return rc;
+        rc = compare_baseline_accept(store_path, id, a->reason, &err);
+        if (rc == 0)
+            printf("accepted run %s as the baseline of %s\n", id, store_path);
+    }
+    if (rc)
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+    dm_str_free(&err);
+    free(store_path);
+    free(id);
+    return rc ? DM_EXIT_USAGE : DM_EXIT_OK;
+}
+
+const cli_command cli_cmd_baseline = {
+    .name = "baseline", .fn = baseline_main, .options = baseline_options,
+    .args_size = sizeof(baseline_args), .pos_choices = baseline__actions,
+    .summary = "accept a run as the baseline of its sweep, or show the current baseline",
+    .synopsis = "accept RUN --reason TEXT\nshow",
+    .description = "RUN is a run directory (its store beside it) or, with --store, a run id.",
+};
