@@ -10,20 +10,39 @@
 
 /* ---- man page ------------------------------------------------------------ */
 
-/* Text for roff: backslashes and dashes escaped, and a control character
- * ('.' or '\'') at the start of a line made literal. */
+/* A UTF-8 sequence at s as the roff escape \[uXXXX]; returns its length. */
+static size_t gen__roff_utf8(FILE *f, const unsigned char *s)
+{
+    size_t n = s[0] >= 0xF0 ? 4 : s[0] >= 0xE0 ? 3 : 2;
+    unsigned cp = s[0] & (0x7F >> n);
+    for (size_t k = 1; k < n; k++) {
+        if ((s[k] & 0xC0) != 0x80)
+            return 1;                  /* not UTF-8: dropped */
+        cp = cp << 6 | (s[k] & 0x3F);
+    }
+    fprintf(f, "\\[u%04X]", cp);
+    return n;
+}
+
+/* Text for roff: backslashes and dashes escaped, non-ASCII as \[uXXXX],
+ * and a control character ('.' or '\'') at the start of a line made
+ * literal. */
 static void gen__roff(FILE *f, const char *s)
 {
     for (int bol = 1; *s; s++) {
         if (bol && (*s == '.' || *s == '\''))
             fputs("\\&", f);
+        bol = *s == '\n';
+        if ((unsigned char)*s >= 0x80) {
+            s += gen__roff_utf8(f, (const unsigned char *)s) - 1;
+            continue;
+        }
         if (*s == '\\')
             fputs("\\e", f);
         else if (*s == '-')
             fputs("\\-", f);
         else
             fputc(*s, f);
-        bol = *s == '\n';
     }
 }
 
