@@ -99,11 +99,8 @@ int cli_option_choice(const cli_option *o, const char *v, int *dst, dm_str *err)
             *(int *)dst = (int)n;
             return 0;
         }
-    dm_str_printf(err, "--%s '%s': expected one of: ", o->name, v);
-    dm_str_cat_list(err, o->choices, n);
-    const char *close = dm_closest(v, o->choices, n);
-    if (close)
-        dm_str_printf(err, " (did you mean '%s'?)", close);
+    dm_str_printf(err, "--%s '%s': ", o->name, v);
+    dm_str_expected(err, v, o->choices, n);
     return DM_ERR_ARG;
 }
 

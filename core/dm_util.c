@@ -315,3 +315,12 @@ void dm_str_suggest(dm_str *s, const char *word, const char *const *choices, siz
     dm_str_printf(s, " valid %s: ", what);
     dm_str_cat_list(s, choices, n);
 }
+
+void dm_str_expected(dm_str *s, const char *value, const char *const *choices, size_t n)
+{
+    const char *close = value ? dm_closest(value, choices, n) : NULL;
+    dm_str_cat(s, "expected one of: ");
+    dm_str_cat_list(s, choices, n);
+    if (close)
+        dm_str_printf(s, " (did you mean '%s'?)", close);
+}
