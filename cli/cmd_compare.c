@@ -207,12 +207,12 @@ static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
     return 0;
 }
 
-/* Prints the error, frees everything, returns 2. */
+/* Prints the error, frees everything, returns DM_EXIT_USAGE. */
 static int cli__compare_fail(dm_str *err)
 {
     fprintf(stderr, "dmbench: error: %s\n", dm_str_get(err));
     dm_str_free(err);
-    return 2;
+    return DM_EXIT_USAGE;
 }
 
 static int compare_main(void *args, int argc, char **argv)
