@@ -11,14 +11,11 @@
  */
 #include "cli.h"
 
-#include <libgen.h>
-#include <limits.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "core/dm_error.h"
 #include "core/dm_exit.h"

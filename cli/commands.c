@@ -178,8 +178,8 @@ static int commands__run(const cli_command *c, int argc, char **argv)
 
 int cli_main(int argc, char **argv)
 {
-    if (argc < 2) {
-        commands__overview(stderr);
+    if (argc < 2) {                    /* the overview, but a usage error */
+        commands__overview(stdout);
         return DM_EXIT_USAGE;
     }
     if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0)

@@ -187,7 +187,10 @@ static int opt__one(const char *cmd, const cli_option *o, int argc, char **argv,
     dm_str err = {0};
     if (!cli_option_takes_value(o) && eq) {
         dm_str_printf(&err, "--%s takes no value ('%s')", o->name, argv[*i]);
-    } else if (cli_option_takes_value(o) && eq && nargs == 1) {
+    } else if (eq && nargs > 1) {
+        dm_str_printf(&err, "--%s takes %s as separate arguments, not after '='", o->name,
+                      o->value_name ? o->value_name : "its values");
+    } else if (eq) {
         vals[0] = eq + 1;
     } else if (cli_option_takes_value(o)) {
         if (*i + nargs >= argc || nargs > 8)

@@ -127,6 +127,8 @@ static void test_errors(void **state)
         { { "--name" }, "dmbench: error: t: --name needs a value\n" },
         { { "--three", "a", "b" }, "dmbench: error: t: --three needs A B C\n" },
         { { "--flag=1" }, "dmbench: error: t: --flag takes no value ('--flag=1')\n" },
+        { { "--three=a", "b", "c" }, "dmbench: error: t: --three takes A B C as separate arguments, "
+                                     "not after '='\n" },
     };
     for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
         t_args a;
