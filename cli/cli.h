@@ -1,26 +1,28 @@
 /* cli.h — the commands of the dmbench command line.
  *
- * Each command is one cli_command in its own cli/cmd_<name>.c: a name, a
- * one-line summary, the positional synopsis, an option table (options.h)
- * and a function.  cli/commands.c lists them in one table and main()
- * dispatches through it: it parses the options into a zeroed args struct of
- * args_size bytes, answers --help, and calls fn with the struct and the
- * positional arguments.  Help, `dmbench help CMD`, the man page and the
- * bash/zsh completions are generated from the same table.
+ * The command table of cli/commands.c lists every command: its name, its
+ * function, a one-line summary, the positional synopsis, a description and
+ * its option table (options.h).  main() dispatches through it, and help,
+ * `dmbench help CMD`, the man page and the bash/zsh completions are
+ * generated from it, so none of them can drift from what the parser takes.
+ * Each command lives in its own cli/cmd_<name>.c with its option table and
+ * begins by calling cli_parse, which fills its args struct from the table.
  *
  * Adding a command `dmbench foo`:
- *   1. cli/cmd_foo.c: a `typedef struct foo_args {...} foo_args;`, a
- *      `static const cli_option foo_options[] = { {.name = "out", .kind =
+ *   1. cli/cmd_foo.c: `typedef struct foo_args {...} foo_args;`, the table
+ *      `const cli_option cli_foo_options[] = { { .name = "out", .kind =
  *      CLI_OPT_STRING, .offset = offsetof(foo_args, out), .value_name =
- *      "DIR", .help = "..."}, ..., CLI_OPT_END };`, a
- *      `static int foo_main(void *args, int argc, char **argv)` (argv holds
- *      only the positional arguments) and
- *      `const cli_command cli_cmd_foo = { .name = "foo", .fn = foo_main,
- *      .summary = "...", .synopsis = "ARG...", .options = foo_options,
- *      .args_size = sizeof(foo_args) };`.
- *   2. `extern const cli_command cli_cmd_foo;` below and `&cli_cmd_foo` in
- *      the table of cli/commands.c; cmd_foo.c in cli/CMakeLists.txt.
- *   3. Add its options to the expected lists in tests/cli/options.sh.
+ *      "DIR", .help = "..." }, ..., CLI_OPT_END };` and
+ *          int cli_foo(int argc, char **argv)
+ *          {
+ *              foo_args a = {0};
+ *              int rc = cli_parse(argc, argv, &a, &argc);
+ *              if (rc >= 0)
+ *                  return rc;
+ *              ... argv[0..argc) are now the positional arguments ...
+ *   2. Its declarations below, a row in the table of cli/commands.c, and
+ *      cmd_foo.c in cli/CMakeLists.txt.
+ *   3. Its options in the expected lists of tests/cli/options.sh.
  * Value checks beyond the kinds go in a cli_opt_parse_fn beside the table.
  * A command returns a dm_exit code (core/dm_exit.h); errors are printed as
  * "dmbench: error: <command>: ..." (cli_usage_error).
@@ -31,27 +33,42 @@
 #include <stddef.h>
 #include "cli/options.h"
 
-/* fn: args is the parsed args struct, argv[0..argc) the positional
- * arguments.  Returns a dm_exit code. */
-typedef int (*cli_command_fn)(void *args, int argc, char **argv);
+/* argv[0] is the command name.  Returns a dm_exit code. */
+typedef int (*cli_command_fn)(int argc, char **argv);
 
 enum { CLI_CMD_HIDDEN = 1 };   /* not in help, man page or completion */
 
 typedef struct cli_command {
     const char *name;
     cli_command_fn fn;
+    const cli_option *options;    /* ends with CLI_OPT_END; NULL for none */
     const char *summary;          /* one line, lower case, no full stop */
     const char *synopsis;         /* positionals; '\n' between alternative forms */
     const char *description;      /* more text for help and the man page, or NULL */
-    const cli_option *options;    /* ends with CLI_OPT_END; NULL for none */
-    size_t args_size;             /* of the struct the options fill (0: none) */
-    void (*free_args)(void *args);/* frees what option parse functions allocated */
     const char *const *pos_choices;/* first positional's choices (completion), or NULL */
     unsigned flags;
 } cli_command;
 
-extern const cli_command cli_cmd_run, cli_cmd_report, cli_cmd_fit, cli_cmd_compare,
-    cli_cmd_baseline, cli_cmd_merge, cli_cmd_list, cli_cmd_info, cli_cmd_render, cli_cmd_view;
+int cli_run(int argc, char **argv);
+int cli_report(int argc, char **argv);
+int cli_fit(int argc, char **argv);
+int cli_compare(int argc, char **argv);
+int cli_baseline(int argc, char **argv);
+int cli_merge(int argc, char **argv);
+int cli_list(int argc, char **argv);
+int cli_info(int argc, char **argv);
+int cli_render(int argc, char **argv);
+int cli_view(int argc, char **argv);
+extern const cli_option cli_run_options[], cli_report_options[], cli_fit_options[],
+    cli_compare_options[], cli_baseline_options[], cli_list_options[], cli_info_options[],
+    cli_render_options[], cli_view_options[];
+extern const char *const cli_list_lists[], *const cli_baseline_actions[];
+
+/* Parses the options of command argv[0] (from its table) into args, which
+ * the caller zeroed.  Returns -1 to go on, with the positional arguments
+ * moved to argv[0..*n_pos); DM_EXIT_OK after printing --help; DM_EXIT_USAGE
+ * after printing an error. */
+int cli_parse(int argc, char **argv, void *args, int *n_pos);
 
 /* The command table (commands.c), in help order, hidden ones included. */
 size_t cli_commands_count(void);

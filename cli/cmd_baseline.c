@@ -21,9 +21,9 @@ typedef struct baseline_args {
     const char *reason, *store;
 } baseline_args;
 
-static const char *const baseline__actions[] = { "accept", "show", NULL };
+const char *const cli_baseline_actions[] = { "accept", "show", NULL };
 
-static const cli_option baseline_options[] = {
+const cli_option cli_baseline_options[] = {
     { .name = "reason", .kind = CLI_OPT_STRING, .offset = offsetof(baseline_args, reason),
       .value_name = "TEXT", .help = "accept: why this run is the new baseline (stored with it)" },
     { .name = "store", .kind = CLI_OPT_STRING, .offset = offsetof(baseline_args, store),
@@ -65,9 +65,12 @@ static int baseline__show(const char *store, dm_str *err)
     return rc;
 }
 
-static int baseline_main(void *args, int argc, char **argv)
+int cli_baseline(int argc, char **argv)
 {
-    const baseline_args *a = args;
+    baseline_args args = {0}, *a = &args;
+    int rc = cli_parse(argc, argv, a, &argc);
+    if (rc >= 0)
+        return rc;
     if (argc < 1 || (strcmp(argv[0], "accept") != 0 && strcmp(argv[0], "show") != 0))
         return cli_usage_error("usage: dmbench baseline accept RUN --reason TEXT [--store FILE] | "
                                "baseline show [--store FILE]");
@@ -75,7 +78,6 @@ static int baseline_main(void *args, int argc, char **argv)
         return cli_usage_error("baseline: only one RUN may be given");
     dm_str err = {0};
     char *store_path = NULL, *id = NULL;
-    int rc = 0;
     if (strcmp(argv[0], "show") == 0) {
         rc = baseline__show(a->store, &err);
     } else {
@@ -94,11 +96,3 @@ static int baseline_main(void *args, int argc, char **argv)
     free(id);
     return rc ? DM_EXIT_USAGE : DM_EXIT_OK;
 }
-
-const cli_command cli_cmd_baseline = {
-    .name = "baseline", .fn = baseline_main, .options = baseline_options,
-    .args_size = sizeof(baseline_args), .pos_choices = baseline__actions,
-    .summary = "accept a run as the baseline of its sweep, or show the current baseline",
-    .synopsis = "accept RUN --reason TEXT\nshow",
-    .description = "RUN is a run directory (its store beside it) or, with --store, a run id.",
-};

@@ -86,16 +86,15 @@ static int compare__tolerance(const cli_option *opt, const char *v, void *args, 
     return 0;
 }
 
-static void compare__free_args(void *args)
+static void compare__free_tolerances(cli_compare_opts *o)
 {
-    cli_compare_opts *o = args;
     for (size_t i = 0; i < o->d.n_tolerances; i++)
         free((char *)o->tol[i].counter);
     free(o->tol);
 }
 
 #define COMPARE__OFF(field) offsetof(cli_compare_opts, field)
-static const cli_option compare_options[] = {
+const cli_option cli_compare_options[] = {
     { .name = "time-threshold", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.time_threshold),
       .value_name = "REL", .parse = compare__number,
       .help = "smallest time change that counts, e.g. 5% or 0.05 [default 5%]" },
@@ -212,13 +211,13 @@ static int cli__compare_fail(dm_str *err)
     return DM_EXIT_USAGE;
 }
 
-static int compare_main(void *args, int argc, char **argv)
+int cli_compare(int argc, char **argv)
 {
-    cli_compare_opts o = *(cli_compare_opts *)args;   /* tolerances freed by compare__free_args */
+    cli_compare_opts o = {0};
+    int rc = cli_parse(argc, argv, &o, &argc);
     o.positional = argv;
     o.n_positional = argc;
-    int rc = -1;
-    if (argc > 2)
+    if (rc < 0 && argc > 2)
         rc = cli_usage_error("compare: too many arguments ('%s'): expected BASE NEW", argv[2]);
     dm_run_result base = {0}, new_ = {0};
     compare_result r = {0};
@@ -248,20 +247,8 @@ static int compare_main(void *args, int argc, char **argv)
     compare_result_free(&r);
     dm_run_free(&base);
     dm_run_free(&new_);
+    compare__free_tolerances(&o);
     dm_str_free(&err);
     return rc;
 }
-
-const cli_command cli_cmd_compare = {
-    .name = "compare", .fn = compare_main, .options = compare_options,
-    .args_size = sizeof(cli_compare_opts), .free_args = compare__free_args,
-    .summary = "regression gate: compare two runs (exit 0 pass, 1 regression, 3 inconclusive)",
-    .synopsis = "BASE NEW\n--paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]",
-    .description =
-        "A side is a PATH (a results.json, a run directory or an output root) or is\n"
-        "taken from a store: --base-run ID | --base-tag NAME | --baseline for BASE,\n"
-        "--new-run ID | --new-tag NAME for NEW.  The store is --base-store/--new-store,\n"
-        "else --store, else " CLI_DEFAULT_STORE ".  A side not taken from a store takes\n"
-        "the next PATH.  See docs/ci-gating.md.",
-};
 

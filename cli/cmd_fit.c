@@ -36,7 +36,7 @@ static int fit__loss(const cli_option *opt, const char *v, void *args, dm_str *e
     return 0;
 }
 
-static const cli_option fit_options[] = {
+const cli_option cli_fit_options[] = {
     { .name = "data", .kind = CLI_OPT_STRING, .offset = offsetof(fit_args, data),
       .value_name = "FILE.csv", .help = "fit a CSV (one column per variable) instead of a run" },
     { .name = "model", .kind = CLI_OPT_STRING, .offset = offsetof(fit_args, model),
@@ -158,10 +158,12 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
     return rc;
 }
 
-static int fit_main(void *args, int argc, char **argv)
+int cli_fit(int argc, char **argv)
 {
-    fit_args a = *(fit_args *)args;
-    int rc = fit__check(&a, argc, argv);
+    fit_args a = {0};
+    int rc = cli_parse(argc, argv, &a, &argc);
+    if (rc < 0)
+        rc = fit__check(&a, argc, argv);
     if (rc >= 0)
         return rc;
     dm_fit_result *fits = NULL;
@@ -193,10 +195,3 @@ static int fit_main(void *args, int argc, char **argv)
         return DM_EXIT_FAILED;     /* nothing could be fitted: a failed check */
     return dm_exit_from_error(rc);
 }
-
-const cli_command cli_cmd_fit = {
-    .name = "fit", .fn = fit_main, .options = fit_options, .args_size = sizeof(fit_args),
-    .summary = "fit a cost model to a run (or a CSV): parameters, standard errors, R², CV-MAPE",
-    .synopsis = "DIR\n--data FILE.csv",
-    .description = "Exit 1 when nothing could be fitted (or the fit failed numerically).",
-};

@@ -8,20 +8,17 @@ typedef struct info_args {
     int json;
 } info_args;
 
-static const cli_option info_options[] = {
+const cli_option cli_info_options[] = {
     { .name = "json", .kind = CLI_OPT_BOOL, .offset = offsetof(info_args, json),
       .help = "print JSON" },
     CLI_OPT_END
 };
 
-static int info_cmd(void *args, int argc, char **argv)
+int cli_info(int argc, char **argv)
 {
-    if (argc > 0)
-        return cli_usage_error("info: takes no arguments ('%s')", argv[0]);
-    return info_main(((info_args *)args)->json);
+    info_args a = {0};
+    int rc = cli_parse(argc, argv, &a, &argc);
+    if (rc < 0 && argc > 0)
+        rc = cli_usage_error("info: takes no arguments ('%s')", argv[0]);
+    return rc >= 0 ? rc : info_main(a.json);
 }
-
-const cli_command cli_cmd_info = {
-    .name = "info", .fn = info_cmd, .options = info_options, .args_size = sizeof(info_args),
-    .summary = "the GL context, extensions, limits and whether GPUTime can be trusted",
-};

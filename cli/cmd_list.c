@@ -239,7 +239,7 @@ static int list__models(int json)
     return DM_EXIT_OK;
 }
 
-static const char *const list__what[] = { "techniques", "axes", "counters", "meshes", "textures",
+const char *const cli_list_lists[] = { "techniques", "axes", "counters", "meshes", "textures",
                                           "models", NULL };
 
 typedef struct list_args {
@@ -268,7 +268,7 @@ static int list__passes(const cli_option *opt, const char *v, void *args, dm_str
     return rc;
 }
 
-static const cli_option list_options[] = {
+const cli_option cli_list_options[] = {
     { .name = "passes", .kind = CLI_OPT_STRING, .value_name = "A,B,...", .parse = list__passes,
       .help = "list counters: how many render passes this selection of counters needs" },
     { .name = "json", .kind = CLI_OPT_BOOL, .offset = offsetof(list_args, json),
@@ -276,9 +276,12 @@ static const cli_option list_options[] = {
     CLI_OPT_END
 };
 
-static int list_main(void *args, int argc, char **argv)
+int cli_list(int argc, char **argv)
 {
-    const list_args *a = args;
+    list_args args = {0}, *a = &args;
+    int rc = cli_parse(argc, argv, a, &argc);
+    if (rc >= 0)
+        return rc;
     if (argc == 0)
         return cli_usage_error("usage: dmbench list techniques|axes|counters|meshes|textures|models");
     if (argc > 1)
@@ -300,16 +303,8 @@ static int list_main(void *args, int argc, char **argv)
         return list__models(a->json);
     dm_str msg = {0};
     dm_str_printf(&msg, "list: unknown list '%s'", w);
-    dm_str_suggest(&msg, w, list__what, sizeof list__what / sizeof *list__what - 1, "lists");
-    int rc = cli_usage_error("%s", dm_str_get(&msg));
+    dm_str_suggest(&msg, w, cli_list_lists, sizeof cli_list_lists / sizeof *cli_list_lists - 1, "lists");
+    rc = cli_usage_error("%s", dm_str_get(&msg));
     dm_str_free(&msg);
     return rc;
 }
-
-const cli_command cli_cmd_list = {
-    .name = "list", .fn = list_main, .options = list_options, .args_size = sizeof(list_args),
-    .summary = "list the techniques, axes, counters, meshes, textures or built-in models",
-    .synopsis = "techniques|axes|counters|meshes|textures|models", .pos_choices = list__what,
-    .description = "Each list comes from its registry; --json prints it as a JSON array.\n"
-                   "Counters show their availability on this driver (with a GL context).",
-};

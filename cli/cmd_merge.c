@@ -146,13 +146,15 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
     return rc;
 }
 
-static int merge_main(void *args, int argc, char **argv)
+int cli_merge(int argc, char **argv)
 {
-    (void)args;
+    int rc = cli_parse(argc, argv, NULL, &argc);
+    if (rc >= 0)
+        return rc;
     if (argc < 2)
         return cli_usage_error("usage: dmbench merge OUT DIR...   (DIR: run directories of shards)");
     dm_run_result merged = {0};
-    int rc = merge__load(argv[1], &merged);
+    rc = merge__load(argv[1], &merged);
     for (int i = 2; rc < 0 && i < argc; i++) {
         dm_run_result r = {0};
         rc = merge__load(argv[i], &r);
@@ -167,11 +169,3 @@ static int merge_main(void *args, int argc, char **argv)
     dm_run_free(&merged);
     return rc;
 }
-
-const cli_command cli_cmd_merge = {
-    .name = "merge", .fn = merge_main,
-    .summary = "unite the runs of shards (run --shard K/N) into one run in OUT",
-    .synopsis = "OUT DIR...",
-    .description = "Every DIR is a run directory of the same sweep file measured in the same\n"
-                   "environment; OUT gets dmbench.sqlite, the merged run directory and 'latest'.",
-};

@@ -21,7 +21,7 @@ typedef struct render_args {
 
 static const char *const render__debug_views[] = { "none", "normals", NULL };
 
-static const cli_option render_options[] = {
+const cli_option cli_render_options[] = {
     { .name = "png", .kind = CLI_OPT_STRING, .offset = offsetof(render_args, out),
       .value_name = "FILE", .help = "write the image to FILE (PNG)" },
     { .name = "exr", .kind = CLI_OPT_STRING, .offset = offsetof(render_args, out),
@@ -56,15 +56,18 @@ static int render__params(int argc, char **argv, dm_kv **kv, size_t *n)
     return -1;
 }
 
-static int render_main(void *args, int argc, char **argv)
+int cli_render(int argc, char **argv)
 {
-    const render_args *a = args;
+    render_args args = {0}, *a = &args;
+    int rc = cli_parse(argc, argv, a, &argc);
+    if (rc >= 0)
+        return rc;
     dm_kv *kv = NULL;
     size_t n = 0;
     const char *out = a->out;
     int ss = a->supersample, w = 0, h = 0;
     tech_debug_view dbg = a->debug ? TECH_DEBUG_NORMALS : TECH_DEBUG_NONE;
-    int rc = render__params(argc, argv, &kv, &n);
+    rc = render__params(argc, argv, &kv, &n);
     if (rc < 0 && !out)
         rc = cli_usage_error("render: --png FILE (or --exr FILE) is required");
     const char *res = dm_kv_get(kv, n, "resolution");
@@ -98,11 +101,3 @@ static int render_main(void *args, int argc, char **argv)
     gl_context_destroy(gl);
     return rc;
 }
-
-const cli_command cli_cmd_render = {
-    .name = "render", .fn = render_main, .options = render_options, .args_size = sizeof(render_args),
-    .summary = "render one configuration to an image",
-    .synopsis = "[KEY=VALUE...] --png FILE",
-    .description = "KEY=VALUE sets any axis of `dmbench list axes`; the others keep their\n"
-                   "defaults.  The image equals what a run of the same configuration stores.",
-};

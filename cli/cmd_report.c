@@ -30,7 +30,7 @@ static int report__metric(const cli_option *opt, const char *v, void *args, dm_s
     return 0;
 }
 
-static const cli_option report_options[] = {
+const cli_option cli_report_options[] = {
     { .name = "metric", .kind = CLI_OPT_STRING, .value_name = "NAME", .parse = report__metric,
       .help = "Pareto error metric for these files (the store keeps the run's own)" },
     CLI_OPT_END
@@ -55,9 +55,13 @@ static int report__locate_run(const char *dir, char **store_path, char **run_id)
 
 /* Rebuilds a run's report files from the store; --metric overrides the
  * Pareto metric the run recorded (for these files only; the store keeps it). */
-static int report_main(void *args, int argc, char **argv)
+int cli_report(int argc, char **argv)
 {
-    const char *metric = ((report_args *)args)->metric;
+    report_args args = {0};
+    int rc = cli_parse(argc, argv, &args, &argc);
+    if (rc >= 0)
+        return rc;
+    const char *metric = args.metric;
     if (argc > 1)
         return cli_usage_error("report: only one run directory may be given ('%s' and '%s')",
                                argv[0], argv[1]);
@@ -66,7 +70,7 @@ static int report_main(void *args, int argc, char **argv)
                                "e.g. results/latest)");
     const char *dir = argv[0];
     char *store_path = NULL, *run_id = NULL;
-    int rc = report__locate_run(dir, &store_path, &run_id);
+    rc = report__locate_run(dir, &store_path, &run_id);
     store *st = NULL;
     dm_str err = {0};
     dm_run_result run = {0};
@@ -90,11 +94,3 @@ static int report_main(void *args, int argc, char **argv)
     free(run_id);
     return rc;
 }
-
-const cli_command cli_cmd_report = {
-    .name = "report", .fn = report_main, .options = report_options, .args_size = sizeof(report_args),
-    .summary = "rebuild report.html, results.json, results.csv and summary.md of a run",
-    .synopsis = "DIR",
-    .description = "DIR is a run directory (e.g. results/latest); its store is the\n"
-                   "dmbench.sqlite beside it.",
-};

@@ -40,7 +40,7 @@ static int run__budget(const cli_option *opt, const char *v, void *args, dm_str 
     return 0;
 }
 
-static const cli_option run_options[] = {
+const cli_option cli_run_options[] = {
     { .name = "out", .kind = CLI_OPT_STRING, .offset = offsetof(run_args, o.out_root),
       .value_name = "DIR", .help = "output root: DIR/dmbench.sqlite, DIR/<run-id>/, DIR/latest",
       .def = "results" },
@@ -63,9 +63,12 @@ static const cli_option run_options[] = {
     CLI_OPT_END
 };
 
-static int run_main(void *args, int argc, char **argv)
+int cli_run(int argc, char **argv)
 {
-    run_args *a = args;
+    run_args args = {0}, *a = &args;
+    int rc = cli_parse(argc, argv, a, &argc);
+    if (rc >= 0)
+        return rc;
     if (argc > 1)
         return cli_usage_error("run: only one sweep file may be given ('%s' and '%s')", argv[0], argv[1]);
     const char *file = argc ? argv[0] : NULL;
@@ -73,7 +76,7 @@ static int run_main(void *args, int argc, char **argv)
         dm_log_set_level(DM_LOG_DEBUG);
     sweep s;
     dm_str err = {0};
-    int rc = file ? sweep_load(file, &s, &err)
+    rc = file ? sweep_load(file, &s, &err)
                   : sweep_parse(sweep_default_text(a->quick), a->quick ? "<default --quick>" : "<default>",
                                 &s, &err);
     if (rc != 0) {
@@ -94,12 +97,3 @@ static int run_main(void *args, int argc, char **argv)
     free(dir);
     return DM_EXIT_OK;
 }
-
-const cli_command cli_cmd_run = {
-    .name = "run", .fn = run_main, .options = run_options, .args_size = sizeof(run_args),
-    .summary = "measure a sweep: every configuration, its counters, images and quality",
-    .synopsis = "[SWEEP.yaml]",
-    .description = "Without SWEEP.yaml the embedded default sweep runs (--quick: a one-minute\n"
-                   "version).  The report is written to DIR/<run-id>/report.html; see\n"
-                   "docs/sweep-files.md for the sweep file and docs/scale-out.md for shards.",
-};

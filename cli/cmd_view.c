@@ -37,7 +37,7 @@ static int view__timed(const cli_option *opt, const char *v, void *args, dm_str 
     return 0;
 }
 
-static const cli_option view_options[] = {
+const cli_option cli_view_options[] = {
     { .name = "config", .kind = CLI_OPT_STRING, .offset = offsetof(view_args, config),
       .value_name = "KEY", .help = "the configuration with this key (or a unique prefix) in --results" },
     { .name = "results", .kind = CLI_OPT_STRING, .offset = offsetof(view_args, results),
@@ -119,13 +119,16 @@ static int view__setup(view_args *a, int argc, char **argv, dm_kv **kv, size_t *
     return rc;
 }
 
-static int view_main(void *args, int argc, char **argv)
+int cli_view(int argc, char **argv)
 {
-    view_args *a = args;
+    view_args args = {0}, *a = &args;
+    int rc = cli_parse(argc, argv, a, &argc);
+    if (rc >= 0)
+        return rc;
     dm_kv *kv = NULL;
     size_t n = 0, n_ev = 0;
     viewer_event *ev = NULL;
-    int rc = view__setup(a, argc, argv, &kv, &n, &ev, &n_ev);
+    rc = view__setup(a, argc, argv, &kv, &n, &ev, &n_ev);
     if (rc < 0) {
         viewer_desc d = { .params = kv, .n_params = n, .events = ev, .n_events = n_ev,
                           .scripted = a->keys != NULL, .frames = a->frames,
@@ -137,13 +140,3 @@ static int view_main(void *args, int argc, char **argv)
     free(ev);
     return rc;
 }
-
-const cli_command cli_cmd_view = {
-    .name = "view", .fn = view_main, .options = view_options, .args_size = sizeof(view_args),
-    .summary = "look at a configuration live in a window (needs a display or xvfb-run)",
-    .synopsis = "[KEY=VALUE...]",
-    .description = "Keys: 1-9/0 technique, [ ] tessellation level or steps, F filter, M mesh,\n"
-                   "P spacing, H/Shift+H height scale, W wireframe, L light orbit, N normals,\n"
-                   "C counters overlay, T timed test, S screenshot, R reset camera, ? help,\n"
-                   "Esc quit; left drag orbits, right drag pans, wheel zooms (docs/viewer.md).",
-};

@@ -142,8 +142,7 @@ static void test_errors(void **state)
 }
 
 /* Every command of the table: a summary; options with help, unique names,
- * value names for values, no --help of their own; defaults that convert;
- * and an args struct for every offset. */
+ * value names for values, no --help of their own; defaults that convert. */
 static void test_command_table(void **state)
 {
     (void)state;
@@ -157,17 +156,14 @@ static void test_command_table(void **state)
             assert_non_null(o->help);
             assert_string_not_equal(o->name, "help");
             assert_true(!cli_option_takes_value(o) || o->value_name);
-            assert_true(o->parse || o->offset < c->args_size);
             for (size_t j = 0; j < k; j++)
                 assert_string_not_equal(o->name, c->options[j].name);
         }
-        void *args = calloc(1, c->args_size + 1);
+        static _Alignas(max_align_t) char args[4096];
+        memset(args, 0, sizeof args);
         char *argv[] = { (char *)c->name, NULL };
         int n = 0, help = 0;
         assert_int_equal(cli_options_parse(c->name, c->options, 1, argv, args, &n, &help), 0);
-        if (c->free_args)
-            c->free_args(args);
-        free(args);
     }
     assert_null(cli_commands_find("nosuch"));
 }
