@@ -65,15 +65,17 @@ static int baseline__show(const char *store, dm_str *err)
     return rc;
 }
 
+/* `dmbench baseline accept RUN --reason TEXT | show`.  Exit 2 when the
+ * store or the run cannot be used. */
 int cli_baseline(int argc, char **argv)
 {
     baseline_args args = {0}, *a = &args;
     int rc = cli_parse(argc, argv, a, &argc);
+    if (rc < 0 && (argc < 1 || (strcmp(argv[0], "accept") != 0 && strcmp(argv[0], "show") != 0)))
+        rc = cli_usage_error("usage: dmbench baseline accept RUN --reason TEXT [--store FILE] | "
+                             "baseline show [--store FILE]");
     if (rc >= 0)
         return rc;
-    if (argc < 1 || (strcmp(argv[0], "accept") != 0 && strcmp(argv[0], "show") != 0))
-        return cli_usage_error("usage: dmbench baseline accept RUN --reason TEXT [--store FILE] | "
-                               "baseline show [--store FILE]");
     if (argc > 2)
         return cli_usage_error("baseline: only one RUN may be given");
     dm_str err = {0};

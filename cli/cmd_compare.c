@@ -211,6 +211,8 @@ static int cli__compare_fail(dm_str *err)
     return DM_EXIT_USAGE;
 }
 
+/* `dmbench compare`: both sides, the comparison, its text and files;
+ * the exit code of the verdicts (compare_exit_code). */
 int cli_compare(int argc, char **argv)
 {
     cli_compare_opts o = {0};

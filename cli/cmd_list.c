@@ -276,16 +276,17 @@ const cli_option cli_list_options[] = {
     CLI_OPT_END
 };
 
+/* `dmbench list WHAT`: one registry's list as text or JSON. */
 int cli_list(int argc, char **argv)
 {
     list_args args = {0}, *a = &args;
     int rc = cli_parse(argc, argv, a, &argc);
+    if (rc < 0 && argc == 0)
+        rc = cli_usage_error("usage: dmbench list techniques|axes|counters|meshes|textures|models");
+    if (rc < 0 && argc > 1)
+        rc = cli_usage_error("list: one list at a time ('%s' and '%s')", argv[0], argv[1]);
     if (rc >= 0)
         return rc;
-    if (argc == 0)
-        return cli_usage_error("usage: dmbench list techniques|axes|counters|meshes|textures|models");
-    if (argc > 1)
-        return cli_usage_error("list: one list at a time ('%s' and '%s')", argv[0], argv[1]);
     const char *w = argv[0];
     if (a->passes && strcmp(w, "counters") != 0)
         return cli_usage_error("list: --passes applies to 'list counters' only");

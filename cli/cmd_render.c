@@ -1,6 +1,7 @@
 /* cmd_render.c — `dmbench render KEY=VALUE... --png out.png`: one image.
  * `--debug normals` renders the normals view (render.h, tech_debug_view). */
 #include "cli.h"
+#include "cli/params.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/gl_context.h"
@@ -35,43 +36,23 @@ const cli_option cli_render_options[] = {
     CLI_OPT_END
 };
 
-/* Parses KEY=VALUE arguments into params (validated); -1 to go on. */
-static int render__params(int argc, char **argv, dm_kv **kv, size_t *n)
-{
-    for (int i = 0; i < argc; i++) {
-        char *eq = strchr(argv[i], '=');
-        if (!eq)
-            return cli_usage_error("render: '%s': expected KEY=VALUE (axes: dmbench list axes)", argv[i]);
-        *eq = '\0';
-        dm_str err = {0};
-        if (axes_check(argv[i], eq + 1, &err) != 0) {
-            int rc = cli_usage_error("render: %s", dm_str_get(&err));
-            dm_str_free(&err);
-            return rc;
-        }
-        char *canon = axes_canonical(argv[i], eq + 1);
-        dm_kv_push(kv, n, argv[i], canon);
-        free(canon);
-    }
-    return -1;
-}
-
+/* `dmbench render KEY=VALUE... --png FILE`: one image of one
+ * configuration; exit 1 when it cannot be drawn, 2 for bad input. */
 int cli_render(int argc, char **argv)
 {
     render_args args = {0}, *a = &args;
     int rc = cli_parse(argc, argv, a, &argc);
-    if (rc >= 0)
-        return rc;
     dm_kv *kv = NULL;
     size_t n = 0;
     const char *out = a->out;
     int ss = a->supersample, w = 0, h = 0;
     tech_debug_view dbg = a->debug ? TECH_DEBUG_NORMALS : TECH_DEBUG_NONE;
-    rc = render__params(argc, argv, &kv, &n);
+    if (rc < 0)
+        rc = cli_params_parse("render", argc, argv, &kv, &n);
     if (rc < 0 && !out)
         rc = cli_usage_error("render: --png FILE (or --exr FILE) is required");
     const char *res = dm_kv_get(kv, n, "resolution");
-    if (sscanf(res ? res : axes_find("resolution")->def, "%dx%d", &w, &h) != 2)
+    if (rc < 0 && sscanf(res ? res : axes_find("resolution")->def, "%dx%d", &w, &h) != 2)
         rc = cli_usage_error("render: bad resolution");
     gl_context *gl = NULL;
     tech_renderer *r = NULL;

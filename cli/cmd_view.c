@@ -4,6 +4,7 @@
  * script); the window loop is viewer/viewer.c.  See docs/viewer.md.
  */
 #include "cli/cli.h"
+#include "cli/params.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "viewer/viewer.h"
@@ -53,27 +54,6 @@ const cli_option cli_view_options[] = {
     CLI_OPT_END
 };
 
-/* KEY=VALUE arguments into a->kv (validated); -1 to go on. */
-static int view__params(view_args *a, int argc, char **argv)
-{
-    for (int i = 0; i < argc; i++) {
-        char *eq = strchr(argv[i], '=');
-        if (!eq)
-            return cli_usage_error("view: '%s': expected KEY=VALUE (axes: dmbench list axes)", argv[i]);
-        *eq = '\0';
-        dm_str err = {0};
-        if (axes_check(argv[i], eq + 1, &err) != 0) {
-            int rc = cli_usage_error("view: %s", dm_str_get(&err));
-            dm_str_free(&err);
-            return rc;
-        }
-        char *canon = axes_canonical(argv[i], eq + 1);
-        dm_kv_push(&a->kv, &a->n, argv[i], canon);
-        free(canon);
-    }
-    return -1;
-}
-
 /* The params of configuration `key` (or a unique prefix of it) in
  * DIR/results.json, then the command-line ones over them. */
 static int view__from_results(const view_args *o, dm_kv **kv, size_t *n)
@@ -105,7 +85,7 @@ static int view__from_results(const view_args *o, dm_kv **kv, size_t *n)
 static int view__setup(view_args *a, int argc, char **argv, dm_kv **kv, size_t *n,
                        viewer_event **ev, size_t *n_ev)
 {
-    int rc = view__params(a, argc, argv);
+    int rc = cli_params_parse("view", argc, argv, &a->kv, &a->n);
     if (rc < 0 && !a->config != !a->results)
         rc = cli_usage_error("view: --config KEY and --results DIR go together");
     if (rc < 0 && a->config)
@@ -119,16 +99,17 @@ static int view__setup(view_args *a, int argc, char **argv, dm_kv **kv, size_t *
     return rc;
 }
 
+/* `dmbench view`: the options into a viewer_desc, then the window loop;
+ * the loop's DM_ERR_* mapped by dm_exit_from_error. */
 int cli_view(int argc, char **argv)
 {
     view_args args = {0}, *a = &args;
     int rc = cli_parse(argc, argv, a, &argc);
-    if (rc >= 0)
-        return rc;
     dm_kv *kv = NULL;
     size_t n = 0, n_ev = 0;
     viewer_event *ev = NULL;
-    rc = view__setup(a, argc, argv, &kv, &n, &ev, &n_ev);
+    if (rc < 0)
+        rc = view__setup(a, argc, argv, &kv, &n, &ev, &n_ev);
     if (rc < 0) {
         viewer_desc d = { .params = kv, .n_params = n, .events = ev, .n_events = n_ev,
                           .scripted = a->keys != NULL, .frames = a->frames,

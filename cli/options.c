@@ -42,23 +42,24 @@ void cli_option_label(const cli_option *opt, dm_str *s)
     dm_str_printf(s, " %s", opt->value_name ? opt->value_name : "VALUE");
 }
 
-/* Whole number in [min, max] when min < max; DM_ERR_ARG otherwise. */
-static int opt__int(const cli_option *o, const char *v, void *dst, dm_str *err)
+/* A number (a whole one for INT), within [min, max] when min < max.
+ * 0 and *out, or DM_ERR_ARG with "--name 'v': expected ..." in err. */
+static int opt__number(const cli_option *o, const char *v, double *out, dm_str *err)
 {
+    int whole = o->kind == CLI_OPT_INT, ranged = o->min < o->max;
     char *end = NULL;
     errno = 0;
-    long x = strtol(v, &end, 10);
-    int ok = *v && !*end && errno == 0 && x >= INT32_MIN && x <= INT32_MAX;
-    if (ok && o->min < o->max && (x < o->min || x > o->max))
+    double x = whole ? (double)strtol(v, &end, 10) : strtod(v, &end);
+    int ok = *v && !*end && errno == 0 && isfinite(x) && !(ranged && (x < o->min || x > o->max));
+    if (ok && whole && (x < INT32_MIN || x > INT32_MAX))
         ok = 0;
     if (!ok) {
-        if (o->min < o->max)
-            dm_str_printf(err, "--%s '%s': expected an integer in %g..%g", o->name, v, o->min, o->max);
-        else
-            dm_str_printf(err, "--%s '%s': expected an integer", o->name, v);
+        dm_str_printf(err, "--%s '%s': expected %s", o->name, v, whole ? "an integer" : "a number");
+        if (ranged)
+            dm_str_printf(err, whole ? " in %.0f..%.0f" : " in %g..%g", o->min, o->max);
         return DM_ERR_ARG;
     }
-    *(int *)dst = (int)x;
+    *out = x;
     return 0;
 }
 
@@ -72,22 +73,6 @@ static int opt__uint64(const cli_option *o, const char *v, void *dst, dm_str *er
         return DM_ERR_ARG;
     }
     *(uint64_t *)dst = (uint64_t)x;
-    return 0;
-}
-
-static int opt__double(const cli_option *o, const char *v, void *dst, dm_str *err)
-{
-    char *end = NULL;
-    double x = strtod(v, &end);
-    int ok = *v && !*end && isfinite(x) && !(o->min < o->max && (x < o->min || x > o->max));
-    if (!ok) {
-        if (o->min < o->max)
-            dm_str_printf(err, "--%s '%s': expected a number in %g..%g", o->name, v, o->min, o->max);
-        else
-            dm_str_printf(err, "--%s '%s': expected a number", o->name, v);
-        return DM_ERR_ARG;
-    }
-    *(double *)dst = x;
     return 0;
 }
 
@@ -118,9 +103,17 @@ static int opt__store(const cli_option *o, const char *const *v, void *args, dm_
         for (int k = 0; k < (o->nargs > 1 ? o->nargs : 1); k++)
             ((const char **)dst)[k] = v[k];
         return 0;
-    case CLI_OPT_INT: return opt__int(o, v[0], dst, err);
+    case CLI_OPT_INT:
+    case CLI_OPT_DOUBLE: {
+        double x = 0;
+        int rc = opt__number(o, v[0], &x, err);
+        if (rc == 0 && o->kind == CLI_OPT_INT)
+            *(int *)dst = (int)x;
+        else if (rc == 0)
+            *(double *)dst = x;
+        return rc;
+    }
     case CLI_OPT_UINT64: return opt__uint64(o, v[0], dst, err);
-    case CLI_OPT_DOUBLE: return opt__double(o, v[0], dst, err);
     case CLI_OPT_CHOICE: return cli_option_choice(o, v[0], dst, err);
     case CLI_OPT__END: break;
     }
