@@ -59,10 +59,8 @@ static int list__techniques_json(void)
     return list__print_json(arr);
 }
 
-static int list__techniques(int json)
+static int list__techniques(void)
 {
-    if (json)
-        return list__techniques_json();
     for (size_t i = 0; i < technique_count(); i++) {
         const technique_desc *t = technique_at(i);
         if (t->test_only)
@@ -105,10 +103,8 @@ static int list__axes_json(void)
     return list__print_json(arr);
 }
 
-static int list__axes(int json)
+static int list__axes(void)
 {
-    if (json)
-        return list__axes_json();
     for (size_t i = 0; i < axes_count(); i++) {
         const axis_info *a = axes_at(i);
         dm_str v = {0};
@@ -291,9 +287,9 @@ int cli_list(int argc, char **argv)
     if (a->passes && strcmp(w, "counters") != 0)
         return cli_usage_error("list: --passes applies to 'list counters' only");
     if (strcmp(w, "techniques") == 0)
-        return list__techniques(a->json);
+        return a->json ? list__techniques_json() : list__techniques();
     if (strcmp(w, "axes") == 0)
-        return list__axes(a->json);
+        return a->json ? list__axes_json() : list__axes();
     if (strcmp(w, "counters") == 0)
         return list__counters(a->passes, a->json);
     if (strcmp(w, "meshes") == 0)
