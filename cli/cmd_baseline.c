@@ -24,8 +24,8 @@ typedef struct baseline_args {
 const char *const cli_baseline_actions[] = { "accept", "show", NULL };
 
 const cli_option cli_baseline_options[] = {
-    { .name = "reason", .kind = CLI_OPT_STRING, .offset = offsetof(baseline_args, reason),
-      .value_name = "TEXT", .help = "accept: why this run is the new baseline (stored with it)" },
+    CLI_STRING("reason", baseline_args, reason, "TEXT",
+               "accept: why this run is the new baseline (stored with it)"),
     { .name = "store", .kind = CLI_OPT_STRING, .offset = offsetof(baseline_args, store),
       .value_name = "FILE", .help = "the results store [default beside RUN, or " BASELINE__DEFAULT_STORE "]" },
     CLI_OPT_END

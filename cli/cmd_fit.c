@@ -23,8 +23,6 @@ typedef struct fit_args {
     int json;
 } fit_args;
 
-static const char *const fit__losses[] = { "huber", "cauchy", "none", NULL };
-
 /* --loss huber|cauchy|none (unset: the fit's default). */
 static int fit__loss(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
@@ -36,21 +34,22 @@ static int fit__loss(const cli_option *opt, const char *v, void *args, dm_str *e
     return 0;
 }
 
+static const char *const fit__losses[] = { "huber", "cauchy", "none", NULL };
+
 const cli_option cli_fit_options[] = {
-    { .name = "data", .kind = CLI_OPT_STRING, .offset = offsetof(fit_args, data),
-      .value_name = "FILE.csv", .help = "fit a CSV (one column per variable) instead of a run" },
-    { .name = "model", .kind = CLI_OPT_STRING, .offset = offsetof(fit_args, model),
-      .value_name = "NAME", .help = "a built-in model (dmbench list models) [default pipeline-linear]" },
-    { .name = "formula", .kind = CLI_OPT_STRING, .offset = offsetof(fit_args, formula),
-      .value_name = "F", .help = "a formula such as \"a + b*tess_level^p; a >= 0\" (docs/models.md)" },
-    { .name = "response", .kind = CLI_OPT_STRING, .offset = offsetof(fit_args, response),
-      .value_name = "NAME", .help = "the measured quantity to fit [default the model's, or WallTime]" },
-    { .name = "group-by", .kind = CLI_OPT_STRING, .offset = offsetof(fit_args, group_by),
-      .value_name = "A,B", .help = "one fit per value of these axes (run directories only)" },
+    CLI_STRING("data", fit_args, data, "FILE.csv",
+               "fit a CSV (one column per variable) instead of a run"),
+    CLI_STRING("model", fit_args, model, "NAME",
+               "a built-in model (dmbench list models) [default pipeline-linear]"),
+    CLI_STRING("formula", fit_args, formula, "F",
+               "a formula such as \"a + b*tess_level^p; a >= 0\" (docs/models.md)"),
+    CLI_STRING("response", fit_args, response, "NAME",
+               "the measured quantity to fit [default the model's, or WallTime]"),
+    CLI_STRING("group-by", fit_args, group_by, "A,B",
+               "one fit per value of these axes (run directories only)"),
     { .name = "loss", .kind = CLI_OPT_CHOICE, .value_name = "LOSS", .choices = fit__losses,
       .parse = fit__loss, .help = "robust loss of the fit" },
-    { .name = "json", .kind = CLI_OPT_BOOL, .offset = offsetof(fit_args, json),
-      .help = "print the fits as JSON" },
+    CLI_BOOL("json", fit_args, json, "print the fits as JSON"),
     CLI_OPT_END
 };
 

@@ -9,8 +9,7 @@ typedef struct info_args {
 } info_args;
 
 const cli_option cli_info_options[] = {
-    { .name = "json", .kind = CLI_OPT_BOOL, .offset = offsetof(info_args, json),
-      .help = "print JSON" },
+    CLI_BOOL("json", info_args, json, "print JSON"),
     CLI_OPT_END
 };
 

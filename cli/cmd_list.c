@@ -41,22 +41,31 @@ static cJSON *list__strings(const char *const *s)
     return arr;
 }
 
-static int list__techniques_json(void)
+/* Prints the JSON array of item(0..n) (NULL items are left out). */
+static int list__json(size_t n, cJSON *(*item)(size_t i))
 {
     cJSON *arr = cJSON_CreateArray();
-    for (size_t i = 0; i < technique_count(); i++) {
-        const technique_desc *t = technique_at(i);
-        if (t->test_only)
-            continue;
-        cJSON *o = cJSON_CreateObject();
-        cJSON_AddStringToObject(o, "name", t->name);
-        cJSON_AddStringToObject(o, "summary", t->summary ? t->summary : "");
-        cJSON_AddItemToObject(o, "axes", list__strings(t->axes));
-        if (t->requires_ext)
-            cJSON_AddStringToObject(o, "requires", t->requires_ext);
-        cJSON_AddItemToArray(arr, o);
+    for (size_t i = 0; i < n; i++) {
+        cJSON *o = item(i);
+        if (o)
+            cJSON_AddItemToArray(arr, o);
     }
     return list__print_json(arr);
+}
+
+/* Technique i as JSON; NULL for a test-only technique. */
+static cJSON *list__technique_json(size_t i)
+{
+    const technique_desc *t = technique_at(i);
+    if (t->test_only)
+        return NULL;
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", t->name);
+    cJSON_AddStringToObject(o, "summary", t->summary ? t->summary : "");
+    cJSON_AddItemToObject(o, "axes", list__strings(t->axes));
+    if (t->requires_ext)
+        cJSON_AddStringToObject(o, "requires", t->requires_ext);
+    return o;
 }
 
 static int list__techniques(void)
@@ -82,25 +91,21 @@ static const char *list__axis_kind(const axis_info *a)
     return a->kind == AXIS_ENUM ? "enum" : a->kind == AXIS_SIZE2 ? "size" : a->kind == AXIS_INT ? "int" : "real";
 }
 
-static int list__axes_json(void)
+static cJSON *list__axis_json(size_t i)
 {
-    cJSON *arr = cJSON_CreateArray();
-    for (size_t i = 0; i < axes_count(); i++) {
-        const axis_info *a = axes_at(i);
-        cJSON *o = cJSON_CreateObject();
-        cJSON_AddStringToObject(o, "name", a->name);
-        cJSON_AddStringToObject(o, "kind", list__axis_kind(a));
-        cJSON_AddBoolToObject(o, "scene", a->scene);
-        cJSON_AddStringToObject(o, "default", a->def);
-        if (a->kind == AXIS_ENUM)
-            cJSON_AddItemToObject(o, "choices", list__strings(a->choices));
-        if (a->kind == AXIS_INT || a->kind == AXIS_FLOAT) {
-            cJSON_AddNumberToObject(o, "min", a->min);
-            cJSON_AddNumberToObject(o, "max", a->max);
-        }
-        cJSON_AddItemToArray(arr, o);
+    const axis_info *a = axes_at(i);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", a->name);
+    cJSON_AddStringToObject(o, "kind", list__axis_kind(a));
+    cJSON_AddBoolToObject(o, "scene", a->scene);
+    cJSON_AddStringToObject(o, "default", a->def);
+    if (a->kind == AXIS_ENUM)
+        cJSON_AddItemToObject(o, "choices", list__strings(a->choices));
+    if (a->kind == AXIS_INT || a->kind == AXIS_FLOAT) {
+        cJSON_AddNumberToObject(o, "min", a->min);
+        cJSON_AddNumberToObject(o, "max", a->max);
     }
-    return list__print_json(arr);
+    return o;
 }
 
 static int list__axes(void)
@@ -267,8 +272,7 @@ static int list__passes(const cli_option *opt, const char *v, void *args, dm_str
 const cli_option cli_list_options[] = {
     { .name = "passes", .kind = CLI_OPT_STRING, .value_name = "A,B,...", .parse = list__passes,
       .help = "list counters: how many render passes this selection of counters needs" },
-    { .name = "json", .kind = CLI_OPT_BOOL, .offset = offsetof(list_args, json),
-      .help = "print the list as a JSON array" },
+    CLI_BOOL("json", list_args, json, "print the list as a JSON array"),
     CLI_OPT_END
 };
 
@@ -287,9 +291,9 @@ int cli_list(int argc, char **argv)
     if (a->passes && strcmp(w, "counters") != 0)
         return cli_usage_error("list: --passes applies to 'list counters' only");
     if (strcmp(w, "techniques") == 0)
-        return a->json ? list__techniques_json() : list__techniques();
+        return a->json ? list__json(technique_count(), list__technique_json) : list__techniques();
     if (strcmp(w, "axes") == 0)
-        return a->json ? list__axes_json() : list__axes();
+        return a->json ? list__json(axes_count(), list__axis_json) : list__axes();
     if (strcmp(w, "counters") == 0)
         return list__counters(a->passes, a->json);
     if (strcmp(w, "meshes") == 0)

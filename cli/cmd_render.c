@@ -23,10 +23,8 @@ typedef struct render_args {
 static const char *const render__debug_views[] = { "none", "normals", NULL };
 
 const cli_option cli_render_options[] = {
-    { .name = "png", .kind = CLI_OPT_STRING, .offset = offsetof(render_args, out),
-      .value_name = "FILE", .help = "write the image to FILE (PNG)" },
-    { .name = "exr", .kind = CLI_OPT_STRING, .offset = offsetof(render_args, out),
-      .value_name = "FILE", .help = "write the image to FILE (EXR keeps float values)" },
+    CLI_STRING("png", render_args, out, "FILE", "write the image to FILE (PNG)"),
+    CLI_STRING("exr", render_args, out, "FILE", "write the image to FILE (EXR keeps float values)"),
     { .name = "supersample", .kind = CLI_OPT_INT, .offset = offsetof(render_args, supersample),
       .value_name = "N", .help = "render at N×N samples per pixel and box-filter down",
       .def = "1", .min = 1, .max = 8 },

@@ -39,16 +39,15 @@ static int view__timed(const cli_option *opt, const char *v, void *args, dm_str 
 }
 
 const cli_option cli_view_options[] = {
-    { .name = "config", .kind = CLI_OPT_STRING, .offset = offsetof(view_args, config),
-      .value_name = "KEY", .help = "the configuration with this key (or a unique prefix) in --results" },
-    { .name = "results", .kind = CLI_OPT_STRING, .offset = offsetof(view_args, results),
-      .value_name = "DIR", .help = "a run directory whose results.json holds --config" },
+    CLI_STRING("config", view_args, config, "KEY",
+               "the configuration with this key (or a unique prefix) in --results"),
+    CLI_STRING("results", view_args, results, "DIR",
+               "a run directory whose results.json holds --config"),
     { .name = "frames", .kind = CLI_OPT_INT, .offset = offsetof(view_args, frames), .value_name = "N",
       .min = 1, .max = 100000000, .help = "quit after N frames" },
-    { .name = "keys", .kind = CLI_OPT_STRING, .offset = offsetof(view_args, keys),
-      .value_name = "SCRIPT", .help = "typed input, one event per frame, then quit (docs/viewer.md)" },
-    { .name = "screenshot", .kind = CLI_OPT_STRING, .offset = offsetof(view_args, screenshot),
-      .value_name = "FILE", .help = "write the last frame as PNG" },
+    CLI_STRING("keys", view_args, keys, "SCRIPT",
+               "typed input, one event per frame, then quit (docs/viewer.md)"),
+    CLI_STRING("screenshot", view_args, screenshot, "FILE", "write the last frame as PNG"),
     { .name = "timed-seconds", .kind = CLI_OPT_DOUBLE, .value_name = "S", .parse = view__timed,
       .def = "20", .help = "duration of the timed test (T)" },
     CLI_OPT_END

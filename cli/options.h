@@ -60,6 +60,13 @@ struct cli_option {
 };
 
 #define CLI_OPT_END { 0 }
+/* Rows for the two common cases, as git's OPT_BOOL and OPT_STRING: a flag
+ * that sets an int field of the args struct T, and a string field. */
+#define CLI_BOOL(name_, T, field, help_) \
+    { .name = (name_), .kind = CLI_OPT_BOOL, .offset = offsetof(T, field), .help = (help_) }
+#define CLI_STRING(name_, T, field, value_name_, help_)                           \
+    { .name = (name_), .kind = CLI_OPT_STRING, .offset = offsetof(T, field), \
+      .value_name = (value_name_), .help = (help_) }
 
 /* Number of rows before CLI_OPT_END. */
 size_t cli_options_count(const cli_option *opts);
