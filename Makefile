@@ -1,11 +1,13 @@
 # The two commands of the README.  Everything else is CMake + ctest.
 #   make run   install deps, build, run the default sweep (results/latest/report.html)
 #   make test  install deps, build, run every test through ctest
+#   make install [PREFIX=/usr/local]  binary, man page, bash/zsh completions
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 CTEST_ARGS ?=
+PREFIX ?= /usr/local
 
-.PHONY: all deps build run test clean
+.PHONY: all deps build run test install clean
 
 all: build
 
@@ -21,6 +23,9 @@ run: build
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+
+install: build
+	@cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
 	rm -rf $(BUILD) $(BUILD).cmake.log

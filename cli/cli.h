@@ -1,31 +1,97 @@
-/* cli.h — the commands of the dmbench CLI; each returns a process exit code
- * (0 ok, 1 check failed, 2 bad input, 3 inconclusive).  argv[0] is the
- * command name. */
-#ifndef HARNESS_CLI_H
-#define HARNESS_CLI_H
+/* cli.h — the commands of the dmbench command line.
+ *
+ * The command table of cli/commands.c lists every command: its name, its
+ * function, a one-line summary, the positional synopsis, a description and
+ * its option table (options.h).  main() dispatches through it, and help,
+ * `dmbench help CMD`, the man page and the bash/zsh completions are
+ * generated from it, so none of them can drift from what the parser takes.
+ * Each command lives in its own cli/cmd_<name>.c with its option table and
+ * begins by calling cli_parse, which fills its args struct from the table.
+ *
+ * Adding a command `dmbench foo`:
+ *   1. cli/cmd_foo.c: `typedef struct foo_args {...} foo_args;`, the table
+ *      `const cli_option cli_foo_options[] = { { .name = "out", .kind =
+ *      CLI_OPT_STRING, .offset = offsetof(foo_args, out), .value_name =
+ *      "DIR", .help = "..." }, ..., CLI_OPT_END };` and
+ *          int cli_foo(int argc, char **argv)
+ *          {
+ *              foo_args a = {0};
+ *              int rc = cli_parse(argc, argv, &a, &argc);
+ *              if (rc >= 0)
+ *                  return rc;
+ *              ... argv[0..argc) are now the positional arguments ...
+ *   2. Its declarations below, a row in the table of cli/commands.c, and
+ *      cmd_foo.c in cli/CMakeLists.txt.
+ *   3. Its options in the expected lists of tests/cli/options.sh.
+ * Value checks beyond the kinds go in a cli_opt_parse_fn beside the table.
+ * A command returns a dm_exit code (core/dm_exit.h); errors are printed as
+ * "dmbench: error: <command>: ..." (cli_usage_error).
+ */
+#ifndef CLI_CLI_H
+#define CLI_CLI_H
 
 #include <stddef.h>
+#include "cli/options.h"
+
+/* argv[0] is the command name.  Returns a dm_exit code. */
+typedef int (*cli_command_fn)(int argc, char **argv);
+
+enum { CLI_CMD_HIDDEN = 1 };   /* not in help, man page or completion */
+
+typedef struct cli_command {
+    const char *name;
+    cli_command_fn fn;
+    const cli_option *options;    /* ends with CLI_OPT_END; NULL for none */
+    const char *summary;          /* one line, lower case, no full stop */
+    const char *synopsis;         /* positionals; '\n' between alternative forms */
+    const char *description;      /* more text for help and the man page, or NULL */
+    const char *const *pos_choices;/* first positional's choices (completion), or NULL */
+    unsigned flags;
+} cli_command;
 
 int cli_run(int argc, char **argv);
 int cli_report(int argc, char **argv);
 int cli_fit(int argc, char **argv);
+int cli_compare(int argc, char **argv);
+int cli_baseline(int argc, char **argv);
+int cli_merge(int argc, char **argv);
 int cli_list(int argc, char **argv);
 int cli_info(int argc, char **argv);
 int cli_render(int argc, char **argv);
-int cli_compare(int argc, char **argv);   /* cmd_compare.c */
-int cli_baseline(int argc, char **argv);  /* cmd_compare.c */
-int cli_merge(int argc, char **argv);
-int cli_view(int argc, char **argv);      /* cmd_view.c */
-int cli_slurm(int argc, char **argv);     /* cmd_slurm.c */
-int cli_export(int argc, char **argv);    /* cmd_export.c */
-int cli_history(int argc, char **argv);   /* cmd_history.c */
+int cli_view(int argc, char **argv);
+int cli_slurm(int argc, char **argv);
+int cli_export(int argc, char **argv);
+int cli_history(int argc, char **argv);
+extern const cli_option cli_run_options[], cli_report_options[], cli_fit_options[],
+    cli_compare_options[], cli_baseline_options[], cli_list_options[], cli_info_options[],
+    cli_render_options[], cli_view_options[], cli_merge_options[], cli_slurm_options[],
+    cli_export_options[], cli_history_options[];
+extern const char *const cli_list_lists[], *const cli_baseline_actions[], *const cli_export_formats[];
 
-/* Shared helpers (cli.c). */
-/* Prints "dmbench: error: <msg>" and returns 2. */
-int cli__usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
-/* Rejects an unknown option, listing the valid ones; returns 2. */
-int cli__unknown_option(const char *cmd, const char *opt, const char *const *valid, size_t n);
-/* Value of "--opt VALUE": advances *i; NULL (after printing) when missing. */
-const char *cli__value(int argc, char **argv, int *i);
+/* Parses the options of command argv[0] (from its table) into args, which
+ * the caller zeroed.  Returns -1 to go on, with the positional arguments
+ * moved to argv[0..*n_pos); DM_EXIT_OK after printing --help; DM_EXIT_USAGE
+ * after printing an error. */
+int cli_parse(int argc, char **argv, void *args, int *n_pos);
+
+/* The command table (commands.c), in help order, hidden ones included. */
+size_t cli_commands_count(void);
+const cli_command *cli_commands_at(size_t i);
+/* The command called name, or NULL. */
+const cli_command *cli_commands_find(const char *name);
+/* Runs `dmbench argv[1] ...`; returns the process exit code. */
+int cli_main(int argc, char **argv);
+/* `dmbench CMD --help` of one command, to f. */
+void cli_command_help(const cli_command *c, FILE *f);
+/* The version line: "dmbench 0.1.0 (git <rev>)". */
+const char *cli_version(void);
+
+/* Generated documents (gen.c): the man page and completion scripts. */
+void cli_gen_man(FILE *f);
+/* shell: "bash" or "zsh"; DM_ERR_ARG for another. */
+int cli_gen_completion(const char *shell, FILE *f);
+
+/* Prints "dmbench: error: <msg>" and returns DM_EXIT_USAGE. */
+int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 
 #endif

@@ -1,4 +1,4 @@
-/* cli_compare.c — `dmbench compare` and `dmbench baseline` (SPEC §9).
+/* cmd_compare.c — `dmbench compare` (SPEC §9).
  *
  * Sides of a comparison (BASE first, then NEW):
  *   PATH                 a results.json, a run directory or an output root
@@ -11,15 +11,14 @@
  */
 #include "cli.h"
 
-#include <libgen.h>
-#include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/stat.h>
 
 #include "core/dm_error.h"
+#include "core/dm_exit.h"
 #include "core/dm_util.h"
 #include "gate/compare.h"
 
@@ -34,7 +33,7 @@ typedef struct cli_compare_opts {
     compare_desc d;
     cli_side base, new_;
     const char *store;
-    const char *positional[2];
+    char **positional;
     int n_positional;
     const char *junit, *markdown, *json;
     const char *paired[3];
@@ -43,7 +42,7 @@ typedef struct cli_compare_opts {
 } cli_compare_opts;
 
 /* "5%" -> 0.05, "0.05" -> 0.05; -1 when not a non-negative number. */
-static double cli__fraction(const char *v)
+static double compare__fraction(const char *v)
 {
     char *end = NULL;
     double x = strtod(v, &end);
@@ -54,118 +53,93 @@ static double cli__fraction(const char *v)
     return *end ? -1 : x;
 }
 
-/* A numeric option; returns -1 to go on, else an exit code. */
-static int cli__num_opt(int argc, char **argv, int *i, double *out, int allow_percent)
+/* A non-negative number (a percentage too for --time-threshold) into the
+ * compare_desc field of the option's offset. */
+static int compare__number(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
-    const char *opt = argv[*i], *v = cli__value(argc, argv, i);
-    if (!v)
-        return 2;
-    double x = cli__fraction(v);
-    if (x < 0 || (!allow_percent && strchr(v, '%')))
-        return cli__usage_error("compare: %s '%s': expected a non-negative number%s", opt, v,
-                                allow_percent ? " or a percentage such as 5%" : "");
-    *out = x;
-    return -1;
-}
-
-/* --tolerance COUNTER=REL */
-static int cli__tolerance(cli_compare_opts *o, const char *v)
-{
-    const char *eq = strchr(v, '=');
-    double rel = eq ? cli__fraction(eq + 1) : -1;
-    if (!eq || eq == v || rel < 0)
-        return cli__usage_error("compare: --tolerance '%s': expected COUNTER=REL, e.g. "
-                                "FSInvocations=0.01 or FSInvocations=1%%", v);
-    compare_tolerance *t = &o->tol[o->d.n_tolerances++];
-    t->counter = dm_xasprintf("%.*s", (int)(eq - v), v);
-    t->rel = rel;
-    return -1;
-}
-
-/* String-valued options: returns the slot for opt, or NULL. */
-static const char **cli__string_slot(cli_compare_opts *o, const char *opt)
-{
-    struct { const char *name; const char **slot; } map[] = {
-        { "--junit", &o->junit }, { "--markdown", &o->markdown }, { "--json", &o->json },
-        { "--store", &o->store }, { "--base-store", &o->base.store }, { "--new-store", &o->new_.store },
-        { "--base-run", &o->base.run }, { "--base-tag", &o->base.tag }, { "--new-run", &o->new_.run },
-        { "--new-tag", &o->new_.tag }, { "--time-counter", &o->d.time_counter },
-    };
-    for (size_t i = 0; i < sizeof map / sizeof *map; i++)
-        if (strcmp(opt, map[i].name) == 0)
-            return map[i].slot;
-    return NULL;
-}
-
-/* Numeric options: returns -1 to go on, an exit code, or 0 when opt is not one. */
-static int cli__numeric(cli_compare_opts *o, int argc, char **argv, int *i)
-{
-    const char *a = argv[*i];
-    if (strcmp(a, "--time-threshold") == 0)
-        return cli__num_opt(argc, argv, i, &o->d.time_threshold, 1);
-    if (strcmp(a, "--alpha") == 0)
-        return cli__num_opt(argc, argv, i, &o->d.alpha, 0);
-    if (strcmp(a, "--psnr-drop") == 0)
-        return cli__num_opt(argc, argv, i, &o->d.psnr_drop, 0);
-    if (strcmp(a, "--ssim-drop") == 0)
-        return cli__num_opt(argc, argv, i, &o->d.ssim_drop, 0);
-    if (strcmp(a, "--seed") == 0 || strcmp(a, "--rounds") == 0) {
-        double x = 0;
-        int rc = cli__num_opt(argc, argv, i, &x, 0);
-        if (rc < 0 && x != floor(x))
-            rc = cli__usage_error("compare: %s: expected an integer", a);
-        if (a[2] == 's')
-            o->d.seed = (uint64_t)x;
-        else
-            o->rounds = (int)x;
-        return rc;
+    int allow_percent = strcmp(opt->name, "time-threshold") == 0;
+    double x = compare__fraction(v);
+    if (x < 0 || (!allow_percent && strchr(v, '%'))) {
+        dm_str_printf(err, "--%s '%s': expected a non-negative number%s", opt->name, v,
+                      allow_percent ? " or a percentage such as 5%" : "");
+        return DM_ERR_ARG;
     }
+    *(double *)((char *)args + opt->offset) = x;
     return 0;
 }
 
-static int cli__compare_options(int argc, char **argv, cli_compare_opts *o)
+/* --tolerance COUNTER=REL, repeatable. */
+static int compare__tolerance(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
-    static const char *const valid[] = {
-        "--time-threshold", "--alpha", "--psnr-drop", "--ssim-drop", "--tolerance", "--time-counter",
-        "--seed", "--counters-only", "--allow-env-mismatch", "--junit", "--markdown", "--json",
-        "--store", "--base-store", "--new-store", "--base-run", "--base-tag", "--new-run",
-        "--new-tag", "--baseline", "--paired", "--rounds", "--quiet" };
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i], **slot;
-        int rc;
-        if (a[0] != '-' || !a[1]) {
-            if (o->n_positional == 2)
-                return cli__usage_error("compare: too many arguments ('%s'): expected BASE NEW", a);
-            o->positional[o->n_positional++] = a;
-        } else if ((slot = cli__string_slot(o, a))) {
-            if (!(*slot = cli__value(argc, argv, &i)))
-                return 2;
-        } else if ((rc = cli__numeric(o, argc, argv, &i)) != 0) {
-            if (rc > 0)
-                return rc;
-        } else if (strcmp(a, "--tolerance") == 0) {
-            const char *v = cli__value(argc, argv, &i);
-            if (!v || (rc = cli__tolerance(o, v)) >= 0)
-                return v ? rc : 2;
-        } else if (strcmp(a, "--counters-only") == 0) {
-            o->d.counters_only = 1;
-        } else if (strcmp(a, "--allow-env-mismatch") == 0) {
-            o->d.allow_env_mismatch = 1;
-        } else if (strcmp(a, "--baseline") == 0) {
-            o->base.baseline = 1;
-        } else if (strcmp(a, "--quiet") == 0) {
-            o->quiet = 1;
-        } else if (strcmp(a, "--paired") == 0) {
-            if (i + 3 >= argc)
-                return cli__usage_error("compare: --paired needs BASE_BINARY NEW_BINARY SWEEP");
-            for (int k = 0; k < 3; k++)
-                o->paired[k] = argv[++i];
-        } else {
-            return cli__unknown_option("compare", a, valid, sizeof valid / sizeof *valid);
-        }
+    cli_compare_opts *o = args;
+    const char *eq = strchr(v, '=');
+    double rel = eq ? compare__fraction(eq + 1) : -1;
+    if (!eq || eq == v || rel < 0) {
+        dm_str_printf(err, "--%s '%s': expected COUNTER=REL, e.g. FSInvocations=0.01 or "
+                      "FSInvocations=1%%", opt->name, v);
+        return DM_ERR_ARG;
     }
-    return -1;
+    o->tol = dm_xrealloc(o->tol, (o->d.n_tolerances + 1) * sizeof *o->tol);
+    o->tol[o->d.n_tolerances].counter = dm_xasprintf("%.*s", (int)(eq - v), v);
+    o->tol[o->d.n_tolerances++].rel = rel;
+    o->d.tolerances = o->tol;
+    return 0;
 }
+
+static void compare__free_tolerances(cli_compare_opts *o)
+{
+    for (size_t i = 0; i < o->d.n_tolerances; i++)
+        free((char *)o->tol[i].counter);
+    free(o->tol);
+}
+
+#define COMPARE__OFF(field) offsetof(cli_compare_opts, field)
+const cli_option cli_compare_options[] = {
+    { .name = "time-threshold", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.time_threshold),
+      .value_name = "REL", .parse = compare__number,
+      .help = "smallest time change that counts, e.g. 5% or 0.05 [default 5%]" },
+    { .name = "alpha", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.alpha), .value_name = "P",
+      .parse = compare__number, .help = "significance level of the time test [default 0.01]" },
+    { .name = "psnr-drop", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.psnr_drop),
+      .value_name = "DB", .parse = compare__number, .help = "largest PSNR loss that passes [default 1 dB]" },
+    { .name = "ssim-drop", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.ssim_drop),
+      .value_name = "X", .parse = compare__number, .help = "largest SSIM loss that passes [default 0.01]" },
+    { .name = "tolerance", .kind = CLI_OPT_STRING, .value_name = "COUNTER=REL",
+      .parse = compare__tolerance, .repeat = 1, .help = "relative tolerance of one counter (repeatable)" },
+    CLI_STRING("time-counter", cli_compare_opts, d.time_counter, "NAME",
+               "the counter the time test uses [default WallTime]"),
+    { .name = "seed", .kind = CLI_OPT_UINT64, .offset = COMPARE__OFF(d.seed), .value_name = "N",
+      .help = "seed of the bootstrap resampling" },
+    CLI_BOOL("counters-only", cli_compare_opts, d.counters_only,
+             "compare the deterministic counters only (no timing, no noise)"),
+    CLI_BOOL("allow-env-mismatch", cli_compare_opts, d.allow_env_mismatch,
+             "compare runs from different environments (fingerprints)"),
+    CLI_STRING("junit", cli_compare_opts, junit, "FILE", "write a JUnit XML report"),
+    CLI_STRING("markdown", cli_compare_opts, markdown, "FILE", "write a Markdown report"),
+    CLI_STRING("json", cli_compare_opts, json, "FILE", "write a JSON report"),
+    { .name = "store", .kind = CLI_OPT_STRING, .offset = COMPARE__OFF(store), .value_name = "FILE",
+      .help = "the store of both sides [default " CLI_DEFAULT_STORE "]" },
+    CLI_STRING("base-store", cli_compare_opts, base.store, "FILE",
+               "the store of BASE (over --store)"),
+    CLI_STRING("new-store", cli_compare_opts, new_.store, "FILE",
+               "the store of NEW (over --store)"),
+    CLI_STRING("base-run", cli_compare_opts, base.run, "ID", "BASE is this run of the store"),
+    CLI_STRING("base-tag", cli_compare_opts, base.tag, "NAME",
+               "BASE is the newest run of the store with this tag"),
+    CLI_BOOL("baseline", cli_compare_opts, base.baseline,
+             "BASE is the accepted baseline of NEW's sweep (dmbench baseline accept)"),
+    CLI_STRING("new-run", cli_compare_opts, new_.run, "ID", "NEW is this run of the store"),
+    CLI_STRING("new-tag", cli_compare_opts, new_.tag, "NAME",
+               "NEW is the newest run of the store with this tag"),
+    { .name = "paired", .kind = CLI_OPT_STRING, .offset = COMPARE__OFF(paired), .nargs = 3,
+      .value_name = "BASE_BINARY NEW_BINARY SWEEP",
+      .help = "run both binaries on SWEEP in alternating rounds and compare" },
+    { .name = "rounds", .kind = CLI_OPT_INT, .offset = COMPARE__OFF(rounds), .value_name = "N",
+      .min = 0, .max = 1000000, .help = "--paired: rounds per binary" },
+    CLI_BOOL("quiet", cli_compare_opts, quiet,
+             "no text report on stdout (files and exit code only)"),
+    CLI_OPT_END
+};
 
 static int cli__from_store(const cli_side *s) { return s->baseline || s->run || s->tag; }
 
@@ -220,29 +194,33 @@ static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
         { o->json, compare_write_json } };
     for (size_t i = 0; i < sizeof w / sizeof *w; i++)
         if (w[i].path && w[i].fn(r, w[i].path) != 0)
-            return cli__usage_error("compare: cannot write %s", w[i].path);
+            return cli_usage_error("compare: cannot write %s", w[i].path);
     return 0;
 }
 
-/* Prints the error, frees everything, returns 2. */
+/* Prints the error, frees everything, returns DM_EXIT_USAGE. */
 static int cli__compare_fail(dm_str *err)
 {
     fprintf(stderr, "dmbench: error: %s\n", dm_str_get(err));
     dm_str_free(err);
-    return 2;
+    return DM_EXIT_USAGE;
 }
 
+/* `dmbench compare`: both sides, the comparison, its text and files;
+ * the exit code of the verdicts (compare_exit_code). */
 int cli_compare(int argc, char **argv)
 {
     cli_compare_opts o = {0};
-    o.tol = dm_xcalloc((size_t)argc, sizeof *o.tol);
-    o.d.tolerances = o.tol;
-    int rc = cli__compare_options(argc, argv, &o);
+    int rc = cli_parse(argc, argv, &o, &argc);
+    o.positional = argv;
+    o.n_positional = argc;
+    if (rc < 0 && argc > 2)
+        rc = cli_usage_error("compare: too many arguments ('%s'): expected BASE NEW", argv[2]);
     dm_run_result base = {0}, new_ = {0};
     compare_result r = {0};
     dm_str err = {0};
     if (rc < 0 && o.paired[0] && o.n_positional)
-        rc = cli__usage_error("compare: --paired takes no BASE/NEW paths ('%s')", o.positional[0]);
+        rc = cli_usage_error("compare: --paired takes no BASE/NEW paths ('%s')", o.positional[0]);
     if (rc < 0 && cli__load_sides(&o, &base, &new_, &err) != 0)
         rc = cli__compare_fail(&err);
     if (rc < 0) {
@@ -266,78 +244,8 @@ int cli_compare(int argc, char **argv)
     compare_result_free(&r);
     dm_run_free(&base);
     dm_run_free(&new_);
-    for (size_t i = 0; i < o.d.n_tolerances; i++)
-        free((char *)o.tol[i].counter);
-    free(o.tol);
+    compare__free_tolerances(&o);
     dm_str_free(&err);
     return rc;
 }
 
-/* RUN as a run directory (store beside it, id = its name) or, with
- * --store, a run id. */
-static int cli__baseline_target(const char *run, const char *store, char **store_path, char **id)
-{
-    struct stat st;
-    char real[PATH_MAX];
-    if (stat(run, &st) == 0 && S_ISDIR(st.st_mode) && realpath(run, real)) {
-        char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
-        *id = dm_xstrdup(basename(a));
-        *store_path = store ? dm_xstrdup(store) : dm_xasprintf("%s/dmbench.sqlite", dirname(b));
-        free(a);
-        free(b);
-        return -1;
-    }
-    if (!store)
-        return cli__usage_error("baseline: '%s' is not a run directory (give a run directory, or "
-                                "--store FILE and a run id)", run);
-    *store_path = dm_xstrdup(store);
-    *id = dm_xstrdup(run);
-    return -1;
-}
-
-int cli_baseline(int argc, char **argv)
-{
-    static const char *const valid[] = { "--reason", "--store" };
-    const char *run = NULL, *reason = NULL, *store = NULL;
-    if (argc < 2 || (strcmp(argv[1], "accept") != 0 && strcmp(argv[1], "show") != 0))
-        return cli__usage_error("usage: dmbench baseline accept RUN --reason TEXT [--store FILE] | "
-                                "baseline show [--store FILE]");
-    int show = strcmp(argv[1], "show") == 0;
-    for (int i = 2; i < argc; i++) {
-        const char **slot = strcmp(argv[i], "--reason") == 0 ? &reason
-                            : strcmp(argv[i], "--store") == 0 ? &store : NULL;
-        if (slot && !(*slot = cli__value(argc, argv, &i)))
-            return 2;
-        if (!slot && argv[i][0] == '-')
-            return cli__unknown_option("baseline", argv[i], valid, sizeof valid / sizeof *valid);
-        if (!slot && run)
-            return cli__usage_error("baseline: only one RUN may be given");
-        if (!slot)
-            run = argv[i];
-    }
-    dm_str err = {0};
-    char *store_path = NULL, *id = NULL;
-    int rc;
-    if (show) {
-        store_path = dm_xstrdup(store ? store : CLI_DEFAULT_STORE);
-        char *why = NULL;
-        rc = compare_baseline_latest(store_path, NULL, &id, &why, &err);
-        if (rc == 0)
-            printf("%s\t%s\n", id, why ? why : "");
-        free(why);
-    } else {
-        if (!run)
-            return cli__usage_error("baseline accept: missing RUN (a run directory, e.g. results/latest)");
-        if ((rc = cli__baseline_target(run, store, &store_path, &id)) >= 0)
-            return rc;
-        rc = compare_baseline_accept(store_path, id, reason, &err);
-        if (rc == 0)
-            printf("accepted run %s as the baseline of %s\n", id, store_path);
-    }
-    if (rc)
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
-    dm_str_free(&err);
-    free(store_path);
-    free(id);
-    return rc ? 2 : 0;
-}

@@ -10,6 +10,7 @@
 #include "gate/compare.h"
 #include "reports/export.h"
 
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -18,27 +19,32 @@ typedef struct export__opts {
     const char *run, *format, *out, *store;
 } export__opts;
 
-/* Every option of export in one place; returns -1 to go on or an exit code. */
+const char *const cli_export_formats[] = { "gbench", "bmf", "gab-smaller", "gab-bigger", NULL };
+
+/* --format: the names of reports/export.c (cli_export_formats lists them for
+ * help and completion; export__bad_format names the registry's list). */
+const cli_option cli_export_options[] = {
+    { .name = "format", .kind = CLI_OPT_STRING, .offset = offsetof(export__opts, format),
+      .value_name = "FORMAT", .choices = cli_export_formats,
+      .help = "gbench (Google Benchmark JSON), bmf (Bencher), gab-smaller|gab-bigger (github-action-benchmark)" },
+    { .name = "output", .short_name = 'o', .kind = CLI_OPT_STRING, .offset = offsetof(export__opts, out),
+      .value_name = "FILE", .help = "write to FILE instead of standard output" },
+    CLI_STRING("store", export__opts, store, "DB", "take RUN (a run id) from this store"),
+    CLI_OPT_END
+};
+
+/* Positional RUN and the required --format; returns -1 to go on or an exit code. */
 static int export__options(int argc, char **argv, export__opts *o)
 {
-    static const char *const valid[] = { "--format", "-o", "--store" };
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char **dst = strcmp(a, "--format") == 0 ? &o->format
-                           : strcmp(a, "-o") == 0     ? &o->out
-                           : strcmp(a, "--store") == 0 ? &o->store : NULL;
-        if (dst && !(*dst = cli__value(argc, argv, &i)))
-            return 2;
-        if (!dst && a[0] == '-' && a[1])
-            return cli__unknown_option("export", a, valid, sizeof valid / sizeof *valid);
-        if (!dst && o->run)
-            return cli__usage_error("export: one RUN only ('%s' and '%s')", o->run, a);
-        if (!dst)
-            o->run = a;
-    }
+    int rc = cli_parse(argc, argv, o, &argc);
+    if (rc >= 0)
+        return rc;
+    if (argc > 1)
+        return cli_usage_error("export: one RUN only ('%s' and '%s')", argv[0], argv[1]);
+    o->run = argc ? argv[0] : NULL;
     if (!o->run || !o->format)
-        return cli__usage_error("export: usage: dmbench export RUN --format gbench|bmf|gab-smaller|gab-bigger "
-                                "[-o FILE] [--store DB]");
+        return cli_usage_error("export: usage: dmbench export RUN --format gbench|bmf|gab-smaller|gab-bigger "
+                               "[-o FILE] [--store DB]");
     return -1;
 }
 
@@ -53,7 +59,7 @@ static int export__bad_format(const char *name)
         names[i] = f[i].name;
     dm_str_printf(&msg, "export: --format '%s' is not a format; valid choices: ", name);
     dm_str_cat_list(&msg, names, n < 8 ? n : 8);
-    int rc = cli__usage_error("%s", dm_str_get(&msg));
+    int rc = cli_usage_error("%s", dm_str_get(&msg));
     dm_str_free(&msg);
     return rc;
 }
@@ -69,9 +75,9 @@ int cli_export(int argc, char **argv)
     dm_str err = {0};
     if (rc < 0 && (o.store ? compare_load_store(o.store, o.run, NULL, &run, &err)
                            : compare_load_path(o.run, &run, &err)) != 0)
-        rc = cli__usage_error("export: %s", dm_str_get(&err));
+        rc = cli_usage_error("export: %s", dm_str_get(&err));
     if (rc < 0 && export_write(&run, f, o.out) != 0)
-        rc = cli__usage_error("export: cannot write %s", o.out ? o.out : "stdout");
+        rc = cli_usage_error("export: cannot write %s", o.out ? o.out : "stdout");
     if (rc < 0 && o.out && strcmp(o.out, "-") != 0)
         fprintf(stderr, "export: %s (%s) written to %s\n", f->name, f->what, o.out);
     dm_run_free(&run);

@@ -1,6 +1,7 @@
-/* cli_fit.c — `dmbench fit DIR | --data FILE.csv [--model NAME | --formula F] ...`. */
+/* cmd_fit.c — `dmbench fit DIR | --data FILE.csv [--model NAME | --formula F] ...`. */
 #include "cli.h"
 #include "core/dm_error.h"
+#include "core/dm_exit.h"
 #include "run/fitting.h"
 #include "store/store.h"
 #include "models/catalog.h"
@@ -11,6 +12,7 @@
 #include <libgen.h>
 #include <limits.h>
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -21,54 +23,60 @@ typedef struct fit_args {
     int json;
 } fit_args;
 
-static int fit__args(int argc, char **argv, fit_args *a)
+/* --loss huber|cauchy|none (unset: the fit's default). */
+static int fit__loss(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
-    static const char *const valid[] = { "--data", "--model", "--formula", "--response",
-                                         "--group-by", "--loss", "--json" };
-    for (int i = 1; i < argc; i++) {
-        const char *o = argv[i], **dst = NULL;
-        if (o[0] != '-') {
-            if (a->dir)
-                return cli__usage_error("fit: only one results directory may be given");
-            a->dir = o;
-            continue;
-        }
-        if (strcmp(o, "--json") == 0) {
-            a->json = 1;
-            continue;
-        }
-        if (strcmp(o, "--data") == 0) dst = &a->data;
-        else if (strcmp(o, "--model") == 0) dst = &a->model;
-        else if (strcmp(o, "--formula") == 0) dst = &a->formula;
-        else if (strcmp(o, "--response") == 0) dst = &a->response;
-        else if (strcmp(o, "--group-by") == 0) dst = &a->group_by;
-        else if (strcmp(o, "--loss") != 0)
-            return cli__unknown_option("fit", o, valid, sizeof valid / sizeof *valid);
-        const char *v = cli__value(argc, argv, &i);
-        if (!v)
-            return 2;
-        if (dst) {
-            *dst = v;
-        } else if (strcmp(v, "huber") == 0 || strcmp(v, "cauchy") == 0 || strcmp(v, "none") == 0) {
-            a->loss = v[0] == 'h' ? FIT_LOSS_HUBER : v[0] == 'c' ? FIT_LOSS_CAUCHY : FIT_LOSS_NONE;
-        } else {
-            return cli__usage_error("fit: --loss '%s': expected one of: huber, cauchy, none", v);
-        }
-    }
+    static const fit_loss loss[] = { FIT_LOSS_HUBER, FIT_LOSS_CAUCHY, FIT_LOSS_NONE };
+    int i = 0;
+    if (cli_option_choice(opt, v, &i, err) != 0)
+        return DM_ERR_ARG;
+    ((fit_args *)args)->loss = loss[i];
+    return 0;
+}
+
+static const char *const fit__losses[] = { "huber", "cauchy", "none", NULL };
+
+const cli_option cli_fit_options[] = {
+    CLI_STRING("data", fit_args, data, "FILE.csv",
+               "fit a CSV (one column per variable) instead of a run"),
+    CLI_STRING("model", fit_args, model, "NAME",
+               "a built-in model (dmbench list models) [default pipeline-linear]"),
+    CLI_STRING("formula", fit_args, formula, "F",
+               "a formula such as \"a + b*tess_level^p; a >= 0\" (docs/models.md)"),
+    CLI_STRING("response", fit_args, response, "NAME",
+               "the measured quantity to fit [default the model's, or WallTime]"),
+    CLI_STRING("group-by", fit_args, group_by, "A,B",
+               "one fit per value of these axes (run directories only)"),
+    { .name = "loss", .kind = CLI_OPT_CHOICE, .value_name = "LOSS", .choices = fit__losses,
+      .parse = fit__loss, .help = "robust loss of the fit" },
+    CLI_BOOL("json", fit_args, json, "print the fits as JSON"),
+    CLI_OPT_END
+};
+
+/* Checks the combination of arguments; -1 to go on, else an exit code. */
+static int fit__check(fit_args *a, int argc, char **argv)
+{
+    if (argc > 1)
+        return cli_usage_error("fit: only one results directory may be given");
+    a->dir = argc ? argv[0] : NULL;
     if (!a->dir == !a->data)
-        return cli__usage_error("fit: give a results directory or --data FILE.csv (one of them)");
+        return cli_usage_error("fit: give a results directory or --data FILE.csv (one of them)");
     if (a->model && a->formula)
-        return cli__usage_error("fit: give --model or --formula, not both");
+        return cli_usage_error("fit: give --model or --formula, not both");
     if (a->model && !models_builtin_find(a->model)) {
+        const char *names[64];
+        size_t n = 0;
+        for (; n < models_builtin_count() && n < 64; n++)
+            names[n] = models_builtin_at(n)->name;
         dm_str s = {0};
-        for (size_t i = 0; i < models_builtin_count(); i++)
-            dm_str_printf(&s, "%s%s", i ? ", " : "", models_builtin_at(i)->name);
-        int rc = cli__usage_error("fit: unknown model '%s'; built-in models: %s", a->model, dm_str_get(&s));
+        dm_str_printf(&s, "fit: unknown model '%s'", a->model);
+        dm_str_suggest(&s, a->model, names, n, "models");
+        int rc = cli_usage_error("%s", dm_str_get(&s));
         dm_str_free(&s);
         return rc;
     }
     if (a->data && a->group_by)
-        return cli__usage_error("fit: --group-by needs a results directory (a CSV has no axes)");
+        return cli_usage_error("fit: --group-by needs a results directory (a CSV has no axes)");
     return -1;
 }
 
@@ -158,7 +166,9 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
 int cli_fit(int argc, char **argv)
 {
     fit_args a = {0};
-    int rc = fit__args(argc, argv, &a);
+    int rc = cli_parse(argc, argv, &a, &argc);
+    if (rc < 0)
+        rc = fit__check(&a, argc, argv);
     if (rc >= 0)
         return rc;
     dm_fit_result *fits = NULL;
@@ -187,6 +197,6 @@ int cli_fit(int argc, char **argv)
     dm_str_free(&warn);
     dm_str_free(&err);
     if (rc == 0 && n == 0)
-        return 1;     /* nothing could be fitted: a failed check */
-    return rc == 0 ? 0 : (rc == DM_ERR_NUMERIC ? 1 : 2);
+        return DM_EXIT_FAILED;     /* nothing could be fitted: a failed check */
+    return dm_exit_from_error(rc);
 }

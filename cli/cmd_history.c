@@ -15,6 +15,7 @@
 #include "store/store_history.h"
 
 #include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -27,26 +28,25 @@ typedef struct history__opts {
     size_t n_keys;
 } history__opts;
 
-/* Every option of history in one place; returns -1 to go on or an exit code. */
+const cli_option cli_history_options[] = {
+    { .name = "store", .kind = CLI_OPT_STRING, .offset = offsetof(history__opts, store),
+      .value_name = "DB", .def = "results/dmbench.sqlite", .help = "the results store" },
+    CLI_STRING("run", history__opts, run, "ID", "the configurations of this run (default: the newest)"),
+    CLI_STRING("technique", history__opts, technique, "T", "only this technique"),
+    CLI_STRING("scene", history__opts, scene, "S", "only this scene"),
+    CLI_OPT_END
+};
+
+/* Options, then the KEYs; returns -1 to go on or an exit code. */
 static int history__options(int argc, char **argv, history__opts *o)
 {
-    static const char *const valid[] = { "--store", "--run", "--technique", "--scene" };
-    o->store = "results/dmbench.sqlite";
-    for (int i = 1; i < argc; i++) {
-        const char *a = argv[i];
-        const char **dst = strcmp(a, "--store") == 0       ? &o->store
-                           : strcmp(a, "--run") == 0       ? &o->run
-                           : strcmp(a, "--technique") == 0 ? &o->technique
-                           : strcmp(a, "--scene") == 0     ? &o->scene : NULL;
-        if (dst && !(*dst = cli__value(argc, argv, &i)))
-            return 2;
-        if (!dst && a[0] == '-')
-            return cli__unknown_option("history", a, valid, sizeof valid / sizeof *valid);
-        if (!dst && o->n_keys == HISTORY_MAX_KEYS)
-            return cli__usage_error("history: at most %d KEYs", HISTORY_MAX_KEYS);
-        if (!dst)
-            o->keys[o->n_keys++] = a;
-    }
+    int rc = cli_parse(argc, argv, o, &argc);
+    if (rc >= 0)
+        return rc;
+    if (argc > HISTORY_MAX_KEYS)
+        return cli_usage_error("history: at most %d KEYs", HISTORY_MAX_KEYS);
+    for (int i = 0; i < argc; i++)
+        o->keys[o->n_keys++] = argv[i];
     return -1;
 }
 
@@ -108,15 +108,15 @@ static int history__open(const history__opts *o, store **st, dm_run_result *run,
     char *id = NULL;
     int rc = -1;
     if (!dm_file_exists(o->store))
-        rc = cli__usage_error("history: %s: no such store (give --store FILE)", o->store);
+        rc = cli_usage_error("history: %s: no such store (give --store FILE)", o->store);
     else if (store_open(o->store, st, &err) != 0)
-        rc = cli__usage_error("history: %s", dm_str_get(&err));
+        rc = cli_usage_error("history: %s", dm_str_get(&err));
     else if (!o->run && store_latest_run(*st, NULL, &id) != 0)
-        rc = cli__usage_error("history: %s holds no run", o->store);
+        rc = cli_usage_error("history: %s holds no run", o->store);
     else if (store_run_load(*st, o->run ? o->run : id, run) != 0)
-        rc = cli__usage_error("history: run %s is not in %s", o->run ? o->run : id, o->store);
+        rc = cli_usage_error("history: run %s is not in %s", o->run ? o->run : id, o->store);
     else if (store_run_fingerprint(*st, run->id, fp) != 0)
-        rc = cli__usage_error("history: %s: %s", o->store, store_last_error(*st));
+        rc = cli_usage_error("history: %s: %s", o->store, store_last_error(*st));
     free(id);
     dm_str_free(&err);
     return rc;
@@ -141,7 +141,7 @@ int cli_history(int argc, char **argv)
         shown += history__print(st, &run, &run.configs[i], fp) > 0;
     }
     if (rc < 0 && !shown)
-        rc = cli__usage_error("history: no timed configuration of run %s matches%s%s%s%s", run.id,
+        rc = cli_usage_error("history: no timed configuration of run %s matches%s%s%s%s", run.id,
                               o.technique ? " --technique " : "", o.technique ? o.technique : "",
                               o.scene ? " --scene " : "", o.scene ? o.scene : "");
     free(fp);

@@ -1,7 +1,15 @@
-/* cli_list.c — `dmbench list techniques|axes|counters|meshes|textures|models`. */
+/* cmd_list.c — `dmbench list techniques|axes|counters|meshes|textures|models`.
+ *
+ * Every list is read from its registry (techniques/, counters/, meshes and
+ * maps, models/catalog.c), never typed in here; --json prints any of them as
+ * a JSON array of objects.
+ */
 #include "cli.h"
+#include "core/dm_error.h"
+#include "core/dm_exit.h"
 #include "core/dm_util.h"
 #include "counters/counters.h"
+#include "models/catalog.h"
 #include "run/gl_context.h"
 #include "techniques/axes.h"
 #include "techniques/maps.h"
@@ -9,9 +17,56 @@
 #include "techniques/technique.h"
 
 #include <cjson/cJSON.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* Prints a JSON value and frees it. */
+static int list__print_json(cJSON *v)
+{
+    char *text = cJSON_Print(v);
+    puts(text);
+    free(text);
+    cJSON_Delete(v);
+    return DM_EXIT_OK;
+}
+
+/* A NULL-terminated list of strings as a JSON array. */
+static cJSON *list__strings(const char *const *s)
+{
+    cJSON *arr = cJSON_CreateArray();
+    for (; s && *s; s++)
+        cJSON_AddItemToArray(arr, cJSON_CreateString(*s));
+    return arr;
+}
+
+/* Prints the JSON array of item(0..n) (NULL items are left out). */
+static int list__json(size_t n, cJSON *(*item)(size_t i))
+{
+    cJSON *arr = cJSON_CreateArray();
+    for (size_t i = 0; i < n; i++) {
+        cJSON *o = item(i);
+        if (o)
+            cJSON_AddItemToArray(arr, o);
+    }
+    return list__print_json(arr);
+}
+
+/* Technique i as JSON; NULL for a test-only technique. */
+static cJSON *list__technique_json(size_t i)
+{
+    const technique_desc *t = technique_at(i);
+    if (t->test_only)
+        return NULL;
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", t->name);
+    cJSON_AddStringToObject(o, "summary", t->summary ? t->summary : "");
+    cJSON_AddItemToObject(o, "axes", list__strings(t->axes));
+    if (t->requires_ext)
+        cJSON_AddStringToObject(o, "requires", t->requires_ext);
+    return o;
+}
 
 static int list__techniques(void)
 {
@@ -23,13 +78,34 @@ static int list__techniques(void)
         dm_str axes = {0};
         for (const char *const *a = t->axes; a && *a; a++)
             dm_str_printf(&axes, "%s%s", a == t->axes ? "" : ", ", *a);
-        printf("%-20s reads: scene axes%s%s%s\n", "", axes.len ? ", " : "", dm_str_get(&axes),
-               t->requires_ext ? "" : "");
+        printf("%-20s reads: scene axes%s%s\n", "", axes.len ? ", " : "", dm_str_get(&axes));
         if (t->requires_ext)
             printf("%-20s needs: %s\n", "", t->requires_ext);
         dm_str_free(&axes);
     }
-    return 0;
+    return DM_EXIT_OK;
+}
+
+static const char *list__axis_kind(const axis_info *a)
+{
+    return a->kind == AXIS_ENUM ? "enum" : a->kind == AXIS_SIZE2 ? "size" : a->kind == AXIS_INT ? "int" : "real";
+}
+
+static cJSON *list__axis_json(size_t i)
+{
+    const axis_info *a = axes_at(i);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "name", a->name);
+    cJSON_AddStringToObject(o, "kind", list__axis_kind(a));
+    cJSON_AddBoolToObject(o, "scene", a->scene);
+    cJSON_AddStringToObject(o, "default", a->def);
+    if (a->kind == AXIS_ENUM)
+        cJSON_AddItemToObject(o, "choices", list__strings(a->choices));
+    if (a->kind == AXIS_INT || a->kind == AXIS_FLOAT) {
+        cJSON_AddNumberToObject(o, "min", a->min);
+        cJSON_AddNumberToObject(o, "max", a->max);
+    }
+    return o;
 }
 
 static int list__axes(void)
@@ -49,7 +125,7 @@ static int list__axes(void)
                dm_str_get(&v));
         dm_str_free(&v);
     }
-    return 0;
+    return DM_EXIT_OK;
 }
 
 /* Counters as JSON: metadata, availability and what they count here. */
@@ -73,66 +149,11 @@ static void list__counters_json(counters_context *cc)
             cJSON_AddStringToObject(o, "formula", c->formula);
         cJSON_AddItemToArray(arr, o);
     }
-    char *text = cJSON_Print(arr);
-    puts(text);
-    free(text);
-    cJSON_Delete(arr);
+    list__print_json(arr);
 }
 
-/* Lists counters with their availability on the current driver. */
-static int list__counters(const char *passes, int json)
+static void list__counters_text(counters_context *cc)
 {
-    gl_context *gl = NULL;
-    counters_context *cc = NULL;
-    dm_str err = {0};
-    if (gl_context_create(NULL, &gl, &err) == 0)
-        counters_context_create(&cc);
-    if (passes) {
-        char *copy = dm_xstrdup(passes);
-        const char *names[64];
-        size_t n = 0;
-        char *save = NULL;
-        for (char *t = strtok_r(copy, ",", &save); t && n < 64; t = strtok_r(NULL, ",", &save)) {
-            names[n++] = t;
-            if (counters_find(t))
-                continue;
-            const char **all = dm_xmalloc(counters_count() * sizeof *all);
-            for (size_t i = 0; i < counters_count(); i++)
-                all[i] = counters_info_at(i)->name;
-            const char *close = dm_closest(t, all, counters_count());
-            dm_str msg = {0};
-            dm_str_printf(&msg, "list: --passes: unknown counter '%s'", t);
-            if (close)
-                dm_str_printf(&msg, "; did you mean '%s'?", close);
-            dm_str_cat(&msg, " valid counters: ");
-            dm_str_cat_list(&msg, all, counters_count());
-            int rc = cli__usage_error("%s", dm_str_get(&msg));
-            dm_str_free(&msg);
-            free(all);
-            free(copy);
-            counters_context_destroy(cc);
-            gl_context_destroy(gl);
-            return rc;
-        }
-        dm_str out = {0};
-        int rc = cc ? counters_plan_describe(cc, names, n, &out) : -1;
-        if (rc == 0)
-            fputs(dm_str_get(&out), stdout);
-        else
-            fprintf(stderr, "dmbench: error: %s\n", out.len ? dm_str_get(&out) : "no GL context");
-        dm_str_free(&out);
-        free(copy);
-        counters_context_destroy(cc);
-        gl_context_destroy(gl);
-        return rc == 0 ? 0 : 2;
-    }
-    if (json) {
-        list__counters_json(cc);
-        dm_str_free(&err);
-        counters_context_destroy(cc);
-        gl_context_destroy(gl);
-        return 0;
-    }
     printf("%-26s %-17s %-7s %-5s %-11s %s\n", "counter", "group", "unit", "det", "available", "description");
     for (size_t i = 0; i < counters_count(); i++) {
         const counters_info *c = counters_info_at(i);
@@ -144,57 +165,147 @@ static int list__counters(const char *passes, int json)
         if (!avail && why)
             printf("%-26s   unavailable: %s\n", "", why);
     }
+}
+
+/* The render passes a selection of counters needs (names checked by
+ * list__passes); exit 2 without a GL context. */
+static int list__plan(counters_context *cc, const char *passes)
+{
+    char *copy = dm_xstrdup(passes), *save = NULL;
+    const char *names[64];
+    size_t n = 0;
+    for (char *t = strtok_r(copy, ",", &save); t && n < 64; t = strtok_r(NULL, ",", &save))
+        names[n++] = t;
+    dm_str out = {0};
+    int rc = cc ? counters_plan_describe(cc, names, n, &out) : -1;
+    if (rc == 0)
+        fputs(dm_str_get(&out), stdout);
+    else
+        fprintf(stderr, "dmbench: error: %s\n", out.len ? dm_str_get(&out) : "no GL context");
+    dm_str_free(&out);
+    free(copy);
+    return rc == 0 ? DM_EXIT_OK : DM_EXIT_USAGE;
+}
+
+/* Lists counters with their availability on the current driver. */
+static int list__counters(const char *passes, int json)
+{
+    gl_context *gl = NULL;
+    counters_context *cc = NULL;
+    dm_str err = {0};
+    int rc = DM_EXIT_OK;
+    if (gl_context_create(NULL, &gl, &err) == 0)
+        counters_context_create(&cc);
+    if (passes)
+        rc = list__plan(cc, passes);
+    else if (json)
+        list__counters_json(cc);
+    else
+        list__counters_text(cc);
     dm_str_free(&err);
     counters_context_destroy(cc);
     gl_context_destroy(gl);
-    return 0;
+    return rc;
 }
 
-static int list__names(const char *const *names)
+static int list__names(const char *const *names, int json)
 {
+    if (json)
+        return list__print_json(list__strings(names));
     for (const char *const *n = names; *n; n++)
         printf("%s\n", *n);
-    return 0;
+    return DM_EXIT_OK;
 }
 
+/* The built-in cost models of models/catalog.c. */
+static int list__models(int json)
+{
+    cJSON *arr = json ? cJSON_CreateArray() : NULL;
+    for (size_t i = 0; i < models_builtin_count(); i++) {
+        const models_builtin *m = models_builtin_at(i);
+        if (!json) {
+            printf("%-18s %s = %s\n%-18s %s\n", m->name, m->response, m->formula, "", m->description);
+            continue;
+        }
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "name", m->name);
+        cJSON_AddStringToObject(o, "response", m->response);
+        cJSON_AddStringToObject(o, "formula", m->formula);
+        cJSON_AddStringToObject(o, "description", m->description);
+        cJSON_AddItemToArray(arr, o);
+    }
+    if (json)
+        return list__print_json(arr);
+    printf("(or any formula: dmbench fit --formula \"a + b*tess_level^p\")\n");
+    return DM_EXIT_OK;
+}
+
+const char *const cli_list_lists[] = { "techniques", "axes", "counters", "meshes", "textures",
+                                          "models", NULL };
+
+typedef struct list_args {
+    const char *passes;
+    int json;
+} list_args;
+
+/* --passes A,B,...: every name must be a counter of the registry. */
+static int list__passes(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    char *copy = dm_xstrdup(v), *save = NULL;
+    int rc = 0;
+    for (char *t = strtok_r(copy, ",", &save); t && !rc; t = strtok_r(NULL, ",", &save)) {
+        if (counters_find(t))
+            continue;
+        const char **all = dm_xmalloc(counters_count() * sizeof *all);
+        for (size_t i = 0; i < counters_count(); i++)
+            all[i] = counters_info_at(i)->name;
+        dm_str_printf(err, "--%s: unknown counter '%s'", opt->name, t);
+        dm_str_suggest(err, t, all, counters_count(), "counters");
+        free(all);
+        rc = DM_ERR_UNKNOWN;
+    }
+    free(copy);
+    ((list_args *)args)->passes = v;
+    return rc;
+}
+
+const cli_option cli_list_options[] = {
+    { .name = "passes", .kind = CLI_OPT_STRING, .value_name = "A,B,...", .parse = list__passes,
+      .help = "list counters: how many render passes this selection of counters needs" },
+    CLI_BOOL("json", list_args, json, "print the list as a JSON array"),
+    CLI_OPT_END
+};
+
+/* `dmbench list WHAT`: one registry's list as text or JSON. */
 int cli_list(int argc, char **argv)
 {
-    static const char *const what[] = { "techniques", "axes", "counters", "meshes", "textures", "models" };
-    static const char *const models[] = {
-        "pipeline-linear   WallTime = c0 + sum c_k*counter_k (VS, TES, clipped primitives, samples), c_k >= 0",
-        "tess-power        a + b*tess_level^p",
-        "resolution-linear a + b*SamplesPassed",
-        "(or any formula: --formula \"a + b*tess_level^p\")", NULL };
-    const char *passes = NULL;
-    int json = 0;
-    if (argc < 2)
-        return cli__usage_error("usage: dmbench list techniques|axes|counters|meshes|textures|models");
-    for (int i = 2; i < argc; i++) {
-        if (strcmp(argv[i], "--passes") == 0 && strcmp(argv[1], "counters") == 0) {
-            if (!(passes = cli__value(argc, argv, &i)))
-                return 2;
-        } else if (strcmp(argv[i], "--json") == 0 && strcmp(argv[1], "counters") == 0) {
-            json = 1;
-        } else {
-            static const char *const valid[] = { "--passes", "--json" };
-            return cli__unknown_option("list", argv[i], valid, 2);
-        }
-    }
-    const char *w = argv[1];
+    list_args args = {0}, *a = &args;
+    int rc = cli_parse(argc, argv, a, &argc);
+    if (rc < 0 && argc == 0)
+        rc = cli_usage_error("usage: dmbench list techniques|axes|counters|meshes|textures|models");
+    if (rc < 0 && argc > 1)
+        rc = cli_usage_error("list: one list at a time ('%s' and '%s')", argv[0], argv[1]);
+    if (rc >= 0)
+        return rc;
+    const char *w = argv[0];
+    if (a->passes && strcmp(w, "counters") != 0)
+        return cli_usage_error("list: --passes applies to 'list counters' only");
     if (strcmp(w, "techniques") == 0)
-        return list__techniques();
+        return a->json ? list__json(technique_count(), list__technique_json) : list__techniques();
     if (strcmp(w, "axes") == 0)
-        return list__axes();
+        return a->json ? list__json(axes_count(), list__axis_json) : list__axes();
     if (strcmp(w, "counters") == 0)
-        return list__counters(passes, json);
+        return list__counters(a->passes, a->json);
     if (strcmp(w, "meshes") == 0)
-        return list__names(mesh_names());
+        return list__names(mesh_names(), a->json);
     if (strcmp(w, "textures") == 0)
-        return list__names(maps_names());
+        return list__names(maps_names(), a->json);
     if (strcmp(w, "models") == 0)
-        return list__names(models);
-    const char *close = dm_closest(w, what, 6);
-    return cli__usage_error("list: unknown list '%s'%s%s%s; valid: techniques, axes, counters, meshes, "
-                            "textures, models", w, close ? "; did you mean '" : "", close ? close : "",
-                            close ? "'?" : "");
+        return list__models(a->json);
+    dm_str msg = {0};
+    dm_str_printf(&msg, "list: unknown list '%s'", w);
+    dm_str_suggest(&msg, w, cli_list_lists, sizeof cli_list_lists / sizeof *cli_list_lists - 1, "lists");
+    rc = cli_usage_error("%s", dm_str_get(&msg));
+    dm_str_free(&msg);
+    return rc;
 }

@@ -9,6 +9,7 @@
  */
 #include "cli.h"
 #include "core/dm_error.h"
+#include "core/dm_exit.h"
 #include "store/merge.h"
 #include "store/store.h"
 #include "reports/report.h"
@@ -16,6 +17,7 @@
 #include <dirent.h>
 #include <libgen.h>
 #include <limits.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -28,19 +30,19 @@ static int merge__load(const char *dir, dm_run_result *out)
 {
     char real[PATH_MAX];
     if (!realpath(dir, real))
-        return cli__usage_error("merge: %s: no such run directory", dir);
+        return cli_usage_error("merge: %s: no such run directory", dir);
     char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
     char *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(a));
     store *st = NULL;
     dm_str err = {0};
     int rc = -1;
     if (!dm_file_exists(store_path))
-        rc = cli__usage_error("merge: %s is not a run directory: no results store beside it (%s); "
+        rc = cli_usage_error("merge: %s is not a run directory: no results store beside it (%s); "
                               "give e.g. results/s1/latest", dir, store_path);
     else if (store_open(store_path, &st, &err) != 0)
-        rc = cli__usage_error("merge: %s", dm_str_get(&err));
+        rc = cli_usage_error("merge: %s", dm_str_get(&err));
     else if (store_run_load(st, basename(b), out) != 0)
-        rc = cli__usage_error("merge: %s: run %s is not in %s", dir, basename(b), store_path);
+        rc = cli_usage_error("merge: %s: run %s is not in %s", dir, basename(b), store_path);
     store_close(st);
     dm_str_free(&err);
     free(store_path);
@@ -86,21 +88,21 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
     char *store_path = dm_xasprintf("%s/dmbench.sqlite", out);
     store *st = NULL;
     dm_str err = {0};
-    int rc = dm_mkdirs(img) == 0 ? -1 : cli__usage_error("merge: %s: cannot create the run directory", run_dir);
+    int rc = dm_mkdirs(img) == 0 ? -1 : cli_usage_error("merge: %s: cannot create the run directory", run_dir);
     if (rc < 0 && store_open(store_path, &st, &err) != 0)
-        rc = cli__usage_error("merge: %s", dm_str_get(&err));
+        rc = cli_usage_error("merge: %s", dm_str_get(&err));
     if (rc < 0 && store_run_begin(st, m, "merged") != 0)
-        rc = cli__usage_error("merge: %s", store_last_error(st));
+        rc = cli_usage_error("merge: %s", store_last_error(st));
     for (size_t i = 0; rc < 0 && i < m->n_configs; i++)
         if (store_config_put(st, m->id, &m->configs[i]) != 0)
-            rc = cli__usage_error("merge: %s", store_last_error(st));
+            rc = cli_usage_error("merge: %s", store_last_error(st));
     for (size_t i = 0; rc < 0 && i < m->n_left_out; i++)
         store_left_out_put(st, m->id, &m->left_out[i]);
     for (int i = 0; rc < 0 && i < n; i++)
         merge__copy_images(dirs[i], run_dir);
     char e[512] = "";
     if (rc < 0 && report_write_all(m, run_dir, e, sizeof e) != 0)
-        rc = cli__usage_error("merge: report: %s", e);
+        rc = cli_usage_error("merge: report: %s", e);
     if (rc < 0) {
         char *link = dm_xasprintf("%s/latest", out);
         unlink(link);
@@ -108,7 +110,7 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
             dm_log(DM_LOG_WARN, "%s: cannot create the 'latest' link", link);
         free(link);
         printf("merged %d runs, %zu configurations: %s/report.html\n", n, m->n_configs, run_dir);
-        rc = 0;
+        rc = DM_EXIT_OK;
     }
     store_close(st);
     dm_str_free(&err);
@@ -118,26 +120,15 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
     return rc;
 }
 
-/* Parses merge's arguments: OUT DIR... [--allow-missing].  Collects the
- * directories into dirs (argv order); returns -1 to go on or an exit code. */
-static int merge__args(int argc, char **argv, const char **out, char **dirs, int *n, int *allow_missing)
-{
-    static const char *const valid[] = { "--allow-missing" };
-    for (int i = 1; i < argc; i++) {
-        if (strcmp(argv[i], "--allow-missing") == 0)
-            *allow_missing = 1;
-        else if (argv[i][0] == '-')
-            return cli__unknown_option("merge", argv[i], valid, 1);
-        else if (!*out)
-            *out = argv[i];
-        else
-            dirs[(*n)++] = argv[i];
-    }
-    if (!*out || *n == 0)
-        return cli__usage_error("usage: dmbench merge OUT DIR... [--allow-missing]   (DIR: run "
-                                "directories of shards, e.g. results/s1/latest)");
-    return -1;
-}
+typedef struct merge_args {
+    int allow_missing;
+} merge_args;
+
+const cli_option cli_merge_options[] = {
+    CLI_BOOL("allow-missing", merge_args, allow_missing,
+             "merge even with missing or incomplete shards (noted in the run)"),
+    CLI_OPT_END
+};
 
 /* Refuses (exit 2) or, with --allow-missing, records missing and incomplete
  * shards as a run warning; returns -1 to go on or an exit code. */
@@ -147,7 +138,7 @@ static int merge__check_missing(merge_state *m, int allow_missing)
     size_t n = merge_missing(m, &lines);
     int rc = -1;
     if (n && !allow_missing) {
-        rc = cli__usage_error("merge: %zu shard%s missing or incomplete:\n%s"
+        rc = cli_usage_error("merge: %zu shard%s missing or incomplete:\n%s"
                               "(resume a shard with dmbench run ... --shard K/N --resume, or merge "
                               "anyway with --allow-missing)", n, n == 1 ? "" : "s", dm_str_get(&lines));
     } else if (n) {
@@ -164,17 +155,23 @@ static int merge__check_missing(merge_state *m, int allow_missing)
 
 int cli_merge(int argc, char **argv)
 {
-    const char *out = NULL;
-    char **dirs = dm_xcalloc((size_t)argc + 1, sizeof *dirs);
-    int n = 0, allow_missing = 0;
-    int rc = merge__args(argc, argv, &out, dirs, &n, &allow_missing);
+    merge_args args = {0};
+    int rc = cli_parse(argc, argv, &args, &argc);
+    if (rc >= 0)
+        return rc;
+    if (argc < 2)
+        return cli_usage_error("usage: dmbench merge OUT DIR... [--allow-missing]   (DIR: run "
+                               "directories of shards, e.g. results/s1/latest)");
+    const char *out = argv[0];
+    char **dirs = argv + 1;
+    int n = argc - 1, allow_missing = args.allow_missing;
     merge_state m = {0};
     for (int i = 0; rc < 0 && i < n; i++) {
         dm_run_result r = {0};
         dm_str err = {0};
         rc = merge__load(dirs[i], &r);
         if (rc < 0 && merge_add(&m, &r, dirs[i], &err) != 0)
-            rc = cli__usage_error("merge: %s", dm_str_get(&err));
+            rc = cli_usage_error("merge: %s", dm_str_get(&err));
         dm_run_free(&r);
         dm_str_free(&err);
     }
@@ -187,6 +184,5 @@ int cli_merge(int argc, char **argv)
         rc = merge__write(&m.out, out, dirs, n);
     }
     merge_free(&m);
-    free(dirs);
     return rc;
 }

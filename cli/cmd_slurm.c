@@ -18,6 +18,7 @@
 #include "sweep/sweep.h"
 
 #include <limits.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -30,53 +31,42 @@ typedef struct slurm_args {
     int n_extra;
 } slurm_args;
 
-/* Parses slurm's options into a; returns -1 to go on or an exit code. */
+const cli_option cli_slurm_options[] = {
+    { .name = "shards", .kind = CLI_OPT_INT, .offset = offsetof(slurm_args, shards),
+      .value_name = "N", .min = 1, .max = 10000, .help = "tasks of the job array, one shard each (required)" },
+    { .name = "out", .kind = CLI_OPT_STRING, .offset = offsetof(slurm_args, out), .value_name = "DIR",
+      .def = "results/slurm", .help = "shards go to DIR/shards/sK, the merged run to DIR/merged" },
+    CLI_STRING("partition", slurm_args, partition, "P", "sbatch --partition"),
+    CLI_STRING("time", slurm_args, time, "T", "sbatch --time of each task"),
+    CLI_BOOL("print", slurm_args, print, "write the job scripts without submitting them"),
+    CLI_BOOL("resume", slurm_args, resume, "submit only the shards that are missing or incomplete"),
+    CLI_STRING("collect", slurm_args, collect, "DIR", "(the merge job) merge the shards under DIR"),
+    CLI_STRING("job", slurm_args, job, "ID", "(the merge job, with --collect) the array's job id"),
+    CLI_OPT_END
+};
+
+/* Parses slurm's options into a: options, then [SWEEP], then "--" and the
+ * arguments for sbatch as they are.  Returns -1 to go on or an exit code. */
 static int slurm__args(int argc, char **argv, slurm_args *a)
 {
-    static const char *const valid[] = { "--shards", "--out", "--partition", "--time", "--print",
-                                         "--resume", "--collect", "--job", "--" };
-    for (int i = 1; i < argc; i++) {
-        const char *o = argv[i], **dst = NULL, *v = NULL;
-        if (strcmp(o, "--") == 0) {
-            a->extra = argv + i + 1;
-            a->n_extra = argc - i - 1;
-            break;
-        }
-        if (o[0] != '-') {
-            if (a->sweep)
-                return cli__usage_error("slurm: only one sweep file may be given ('%s' and '%s')", a->sweep, o);
-            a->sweep = o;
-            continue;
-        }
-        if (strcmp(o, "--print") == 0 || strcmp(o, "--resume") == 0) {
-            *(o[2] == 'p' ? &a->print : &a->resume) = 1;
-            continue;
-        }
-        if (strcmp(o, "--out") == 0) dst = &a->out;
-        else if (strcmp(o, "--partition") == 0) dst = &a->partition;
-        else if (strcmp(o, "--time") == 0) dst = &a->time;
-        else if (strcmp(o, "--collect") == 0) dst = &a->collect;
-        else if (strcmp(o, "--job") == 0) dst = &a->job;
-        else if (strcmp(o, "--shards") != 0)
-            return cli__unknown_option("slurm", o, valid, sizeof valid / sizeof *valid);
-        if (!(v = cli__value(argc, argv, &i)))
-            return 2;
-        if (dst) {
-            *dst = v;
-            continue;
-        }
-        char *end = NULL;
-        long n = strtol(v, &end, 10);
-        if (!*v || *end || n < 1 || n > 10000)
-            return cli__usage_error("slurm: --shards '%s': expected a whole number of shards, "
-                                    "1 to 10000", v);
-        a->shards = (int)n;
+    int d = 1;
+    while (d < argc && strcmp(argv[d], "--") != 0)
+        d++;
+    if (d < argc) {             /* everything after "--" goes to sbatch untouched */
+        a->extra = argv + d + 1;
+        a->n_extra = argc - d - 1;
     }
+    int n = d, rc = cli_parse(d, argv, a, &n);
+    if (rc >= 0)
+        return rc;
+    if (n > 1)
+        return cli_usage_error("slurm: only one sweep file may be given ('%s' and '%s')", argv[0], argv[1]);
+    a->sweep = n ? argv[0] : NULL;
     if (!a->shards)
-        return cli__usage_error("usage: dmbench slurm [SWEEP] --shards N [--out DIR] [--partition P] "
-                                "[--time T] [--print] [--resume] [-- SBATCH_ARG...]");
+        return cli_usage_error("usage: dmbench slurm [SWEEP] --shards N [--out DIR] [--partition P] "
+                               "[--time T] [--print] [--resume] [-- SBATCH_ARG...]");
     if (a->collect && !a->job)
-        return cli__usage_error("slurm: --collect DIR needs --job ID (the array's job id)");
+        return cli_usage_error("slurm: --collect DIR needs --job ID (the array's job id)");
     return -1;
 }
 
@@ -90,13 +80,13 @@ static int slurm__plan(const slurm_args *a, char **name)
     int rc = a->sweep ? sweep_load(a->sweep, &s, &err)
                       : sweep_parse(sweep_default_text(0), "<default>", &s, &err);
     if (rc != 0) {
-        rc = cli__usage_error("%s", dm_str_get(&err));
+        rc = cli_usage_error("%s", dm_str_get(&err));
         dm_str_free(&err);
         return rc;
     }
-    rc = plan_build(&s, &p, &err) != 0 ? cli__usage_error("%s", dm_str_get(&err)) : -1;
+    rc = plan_build(&s, &p, &err) != 0 ? cli_usage_error("%s", dm_str_get(&err)) : -1;
     if (rc < 0 && (size_t)a->shards > p.n_configs)
-        rc = cli__usage_error("slurm: --shards %d: %s plans only %zu configurations; use at most "
+        rc = cli_usage_error("slurm: --shards %d: %s plans only %zu configurations; use at most "
                               "%zu shards", a->shards, s.path, p.n_configs, p.n_configs);
     if (rc < 0)
         *name = dm_xstrdup(s.name ? s.name : "sweep");
@@ -127,7 +117,7 @@ static int slurm__todo(const slurm_args *a, const char *dir, char **list)
     }
     if (found && !a->resume) {
         dm_str_free(&s);
-        return cli__usage_error("slurm: %s already holds shard results; continue them with "
+        return cli_usage_error("slurm: %s already holds shard results; continue them with "
                                 "--resume, or give another --out", dir);
     }
     *list = todo == a->shards ? dm_xasprintf("1-%d", a->shards) : todo ? dm_str_take(&s) : NULL;
@@ -220,14 +210,14 @@ static int slurm__submit(const slurm_args *a, const char *dir, const char *list,
 /* Absolute paths of the binary, the sweep and DIR (made). -1 or exit code. */
 static int slurm__paths(const slurm_args *a, slurm_desc *d, char *bin, char *sweep, char *dir)
 {
-    char *out = dm_xstrdup(a->out ? a->out : "results/slurm");
+    char *out = dm_xstrdup(a->out);
     int rc = -1;
     if (!realpath("/proc/self/exe", bin))
-        rc = cli__usage_error("slurm: cannot find the dmbench binary (/proc/self/exe)");
+        rc = cli_usage_error("slurm: cannot find the dmbench binary (/proc/self/exe)");
     else if (a->sweep && !realpath(a->sweep, sweep))
-        rc = cli__usage_error("slurm: %s: no such sweep file", a->sweep);
+        rc = cli_usage_error("slurm: %s: no such sweep file", a->sweep);
     else if (dm_mkdirs(out) != 0 || !realpath(out, dir) || access(dir, W_OK) != 0)
-        rc = cli__usage_error("slurm: %s: cannot create or write the output directory", out);
+        rc = cli_usage_error("slurm: %s: cannot create or write the output directory", out);
     d->dmbench = bin;
     d->sweep = a->sweep ? sweep : NULL;
     d->dir = dir;
@@ -244,14 +234,14 @@ static int slurm__main(const slurm_args *a)
     dm_str err = {0};
     int rc = slurm__plan(a, &name);
     if (rc < 0 && !a->print && slurm_which("sbatch", &sbatch) != 0)
-        rc = cli__usage_error("slurm: sbatch not found on PATH: install Slurm's client commands "
+        rc = cli_usage_error("slurm: sbatch not found on PATH: install Slurm's client commands "
                               "(Debian/Ubuntu package slurm-client, or slurm-wlm for a whole "
                               "node), or use --print to only write the job scripts");
     rc = rc < 0 ? slurm__paths(a, &d, bin, sweep, dir) : rc;
     d.name = name;
     rc = rc < 0 ? slurm__todo(a, dir, &list) : rc;
     if (rc < 0 && slurm_write_scripts(&d, &err) != 0)
-        rc = cli__usage_error("slurm: %s", dm_str_get(&err));
+        rc = cli_usage_error("slurm: %s", dm_str_get(&err));
     if (rc < 0 && a->print) {
         printf("%s/slurm/shards.sbatch\n%s/slurm/merge.sbatch\nsubmit with: sbatch --array=%s "
                "%s/slurm/shards.sbatch, then sbatch --dependency=afterany:<array job id> "
@@ -294,8 +284,12 @@ static int slurm__collect(const slurm_args *a)
     int rc = 1;
     if (failed)
         argv[argc++] = "--allow-missing";
+    /* cli_merge's parser reorders its argv: it gets a copy, ours is freed */
+    char **margv = dm_xcalloc((size_t)argc + 1, sizeof *margv);
+    memcpy(margv, argv, (size_t)argc * sizeof *argv);
     if (failed < a->shards)
-        rc = cli_merge(argc, argv);
+        rc = cli_merge(argc, margv);
+    free(margv);
     if (failed)
         fprintf(stderr, "dmbench: slurm: %d of %d shards failed%s; re-submit them with the same "
                 "dmbench slurm command plus --resume\n", failed, a->shards,

@@ -1,121 +1,68 @@
-/* cmd_view.c — `dmbench view [KEY=VALUE...]`: every technique live in a GLFW window.
- *
- * The viewer is a thin loop around the batch path: the techniques renderer
- * draws the configuration into the window (framebuffer 0), the counters
- * library measures it (live every VIEWER__LIVE_EVERY frames, and the timed
- * test `T`), and input goes through viewer_state (keys, mouse, `--keys`
- * scripts alike).  `--frames`, `--keys` and `--screenshot` make it
- * scriptable for tests; see docs/viewer.md.
+/* cmd_view.c — `dmbench view [KEY=VALUE...]`: the options of the interactive
+ * viewer.  This file turns the command line into a viewer_desc (the initial
+ * configuration, from --config/--results and KEY=VALUE, and the --keys
+ * script); the window loop is viewer/viewer.c.  See docs/viewer.md.
  */
 #include "cli/cli.h"
+#include "cli/params.h"
 #include "core/dm_error.h"
-#include "run/gl_context.h"
-#include "viewer/viewer_measure.h"
-#include "viewer/viewer_overlay.h"
+#include "core/dm_exit.h"
+#include "viewer/viewer.h"
 #include "viewer/viewer_script.h"
-#include "viewer/viewer_state.h"
 #include "reports/report.h"
 #include "techniques/axes.h"
-#include "techniques/technique.h"
 
-#include <GLFW/glfw3.h>
-#include <math.h>
+#include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
-#define VIEWER__LIVE_EVERY 30
-
-typedef struct viewer_opts {
+typedef struct view_args {
     dm_kv *kv;                   /* KEY=VALUE from the command line (canonical) */
     size_t n;
     const char *config, *results, *keys, *screenshot;
     int frames;                  /* 0 = until closed (or the script ends) */
-    double timed_seconds;        /* T duration; default 20 */
-} viewer_opts;
+    double timed_seconds;
+} view_args;
 
-typedef struct viewer {
-    viewer_opts o;
-    viewer_state st;
-    gl_context *gl;
-    tech_renderer *r;
-    counters_context *cc;
-    tech_item item;              /* the last configuration that prepared */
-    dm_kv *good;                 /* its params, restored when a change fails */
-    size_t n_good;
-    viewer_counters live;
-    int live_due;                /* frame of the next live counters session */
-    int gl_errors;
-    int n_shots;
-    viewer_event *ev;
-    size_t n_ev;
-    int dragging, panning;       /* left / right button held */
-    double mx, my;
-    viewer_overlay *ov;          /* C: counters drawn as text */
-} viewer;
-
-/* ---- command line ------------------------------------------------------- */
-
-static int viewer__param(viewer_opts *o, char *arg)
+/* --timed-seconds S with 0 < S <= 3600. */
+static int view__timed(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
-    char *eq = strchr(arg, '=');
-    *eq = '\0';
-    dm_str err = {0};
-    if (axes_check(arg, eq + 1, &err) != 0) {
-        int rc = cli__usage_error("view: %s", dm_str_get(&err));
-        dm_str_free(&err);
-        return rc;
+    char *end = NULL;
+    double s = strtod(v, &end);
+    if (!*v || *end || !(s > 0 && s <= 3600)) {
+        dm_str_printf(err, "--%s expects 0 < S <= 3600, got '%s'", opt->name, v);
+        return DM_ERR_ARG;
     }
-    char *canon = axes_canonical(arg, eq + 1);
-    dm_kv_push(&o->kv, &o->n, arg, canon);
-    free(canon);
-    return -1;
+    ((view_args *)args)->timed_seconds = s;
+    return 0;
 }
 
-/* Parses the arguments; -1 to go on, else the exit code. */
-static int viewer__args(int argc, char **argv, viewer_opts *o)
-{
-    static const char *const valid[] = {"--config", "--results", "--frames", "--keys",
-                                        "--screenshot", "--timed-seconds"};
-    const char **strs[] = {&o->config, &o->results, NULL, &o->keys, &o->screenshot, NULL};
-    o->timed_seconds = 20;
-    for (int i = 1; i < argc; i++) {
-        size_t k = 0;
-        while (k < 6 && strcmp(argv[i], valid[k]) != 0)
-            k++;
-        if (k == 6 && strchr(argv[i], '=') && argv[i][0] != '-') {
-            int rc = viewer__param(o, argv[i]);
-            if (rc >= 0)
-                return rc;
-            continue;
-        }
-        if (k == 6)
-            return cli__unknown_option("view", argv[i], valid, 6);
-        const char *v = cli__value(argc, argv, &i);
-        if (!v)
-            return 2;
-        if (strs[k])
-            *strs[k] = v;
-        else if (k == 2 && ((o->frames = atoi(v)) < 1))
-            return cli__usage_error("view: --frames expects a positive count, got '%s'", v);
-        else if (k == 5 && !((o->timed_seconds = atof(v)) > 0 && o->timed_seconds <= 3600))
-            return cli__usage_error("view: --timed-seconds expects 0 < S <= 3600, got '%s'", v);
-    }
-    if (!o->config != !o->results)
-        return cli__usage_error("view: --config KEY and --results DIR go together");
-    return -1;
-}
+const cli_option cli_view_options[] = {
+    CLI_STRING("config", view_args, config, "KEY",
+               "the configuration with this key (or a unique prefix) in --results"),
+    CLI_STRING("results", view_args, results, "DIR",
+               "a run directory whose results.json holds --config"),
+    { .name = "frames", .kind = CLI_OPT_INT, .offset = offsetof(view_args, frames), .value_name = "N",
+      .min = 1, .max = 100000000, .help = "quit after N frames" },
+    CLI_STRING("keys", view_args, keys, "SCRIPT",
+               "typed input, one event per frame, then quit (docs/viewer.md)"),
+    CLI_STRING("screenshot", view_args, screenshot, "FILE", "write the last frame as PNG"),
+    { .name = "timed-seconds", .kind = CLI_OPT_DOUBLE, .value_name = "S", .parse = view__timed,
+      .def = "20", .help = "duration of the timed test (T)" },
+    CLI_OPT_END
+};
 
 /* The params of configuration `key` (or a unique prefix of it) in
  * DIR/results.json, then the command-line ones over them. */
-static int viewer__from_results(viewer_opts *o, dm_kv **kv, size_t *n)
+static int view__from_results(const view_args *o, dm_kv **kv, size_t *n)
 {
     char *path = dm_xasprintf("%s/results.json", o->results), err[512];
     dm_run_result run;
     int rc = report_read_json(path, &run, err, sizeof err);
     free(path);
     if (rc != 0)
-        return cli__usage_error("view: %s", err);
+        return cli_usage_error("view: %s", err);
     const dm_config_result *hit = NULL;
     int matches = 0;
     for (size_t i = 0; i < run.n_configs; i++)
@@ -124,7 +71,7 @@ static int viewer__from_results(viewer_opts *o, dm_kv **kv, size_t *n)
             matches++;
         }
     rc = matches == 1 ? -1
-         : cli__usage_error("view: --config '%s' %s in %s/results.json (%zu configurations)",
+         : cli_usage_error("view: --config '%s' %s in %s/results.json (%zu configurations)",
                             o->config, matches ? "is ambiguous" : "not found", o->results, run.n_configs);
     for (size_t i = 0; hit && matches == 1 && i < hit->n_params; i++)
         if (!dm_kv_get(o->kv, o->n, hit->params[i].key))
@@ -133,313 +80,43 @@ static int viewer__from_results(viewer_opts *o, dm_kv **kv, size_t *n)
     return rc;
 }
 
-/* ---- input -------------------------------------------------------------- */
-
-static void viewer__on_char(GLFWwindow *w, unsigned c)
-{
-    viewer_state_char(&((viewer *)glfwGetWindowUserPointer(w))->st, c);
-}
-
-static void viewer__on_key(GLFWwindow *w, int key, int scancode, int action, int mods)
-{
-    (void)scancode;
-    (void)mods;
-    if (key == GLFW_KEY_ESCAPE && action == GLFW_PRESS)
-        viewer_state_special(&((viewer *)glfwGetWindowUserPointer(w))->st, VIEWER_KEY_ESC);
-}
-
-static void viewer__on_button(GLFWwindow *w, int button, int action, int mods)
-{
-    (void)mods;
-    viewer *v = glfwGetWindowUserPointer(w);
-    if (button == GLFW_MOUSE_BUTTON_LEFT)
-        v->dragging = action == GLFW_PRESS;
-    if (button == GLFW_MOUSE_BUTTON_RIGHT)
-        v->panning = action == GLFW_PRESS;
-    glfwGetCursorPos(w, &v->mx, &v->my);
-}
-
-static void viewer__on_cursor(GLFWwindow *w, double x, double y)
-{
-    viewer *v = glfwGetWindowUserPointer(w);
-    if (v->dragging)
-        viewer_state_orbit(&v->st, x - v->mx, y - v->my);
-    else if (v->panning)
-        viewer_state_pan(&v->st, x - v->mx, y - v->my);
-    v->mx = x;
-    v->my = y;
-}
-
-static void viewer__on_scroll(GLFWwindow *w, double dx, double dy)
-{
-    (void)dx;
-    viewer_state_zoom(&((viewer *)glfwGetWindowUserPointer(w))->st, dy);
-}
-
-static void viewer__apply_event(viewer *v, const viewer_event *e)
-{
-    switch (e->kind) {
-    case VIEWER_EV_CHAR: viewer_state_char(&v->st, e->ch); break;
-    case VIEWER_EV_ESC: viewer_state_special(&v->st, VIEWER_KEY_ESC); break;
-    case VIEWER_EV_DRAG: viewer_state_orbit(&v->st, e->dx, e->dy); break;
-    case VIEWER_EV_PAN: viewer_state_pan(&v->st, e->dx, e->dy); break;
-    case VIEWER_EV_WHEEL: viewer_state_zoom(&v->st, e->dy); break;
-    case VIEWER_EV_WAIT: break;
-    }
-}
-
-/* ---- frames ------------------------------------------------------------- */
-
-/* Re-prepares after a change.  A change that fails to prepare is reported
- * and undone; failing at startup (no item yet) returns DM_ERR_*. */
-static int viewer__prepare(viewer *v)
-{
-    if (!v->st.dirty)
-        return 0;
-    v->st.dirty = 0;
-    tech_item item;
-    dm_str log = {0};
-    tech_renderer_set_debug_view(v->r, v->st.normals ? TECH_DEBUG_NORMALS : TECH_DEBUG_NONE);
-    int rc = tech_prepare(v->r, v->st.params, v->st.n_params, &item, &log);
-    if (rc != 0) {
-        fprintf(stderr, "dmbench: view: cannot prepare this configuration (%s):\n%s",
-                dm_strerror(rc), dm_str_get(&log));
-        dm_str_free(&log);
-        if (!v->item.id)
-            return rc;
-        viewer_state_restore(&v->st, v->good, v->n_good);   /* back to the last good one */
-        return 0;
-    }
-    dm_str_free(&log);
-    if (v->item.id)
-        tech_release(v->r, v->item);
-    v->item = item;
-    dm_kv_free(v->good, v->n_good);
-    v->good = NULL;
-    v->n_good = 0;
-    for (size_t i = 0; i < v->st.n_params; i++)
-        dm_kv_push(&v->good, &v->n_good, v->st.params[i].key, v->st.params[i].value);
-    return 0;
-}
-
-static viewer_frame viewer__frame(viewer *v)
-{
-    viewer_frame f = {.r = v->r, .item = v->item, .wireframe = v->st.wireframe};
-    glfwGetFramebufferSize(gl_context_window(v->gl), &f.w, &f.h);
-    f.w = f.w > 0 ? f.w : 1;
-    f.h = f.h > 0 ? f.h : 1;
-    return f;
-}
-
-static void viewer__title(viewer *v, const viewer_frame *f)
-{
-    dm_str t = {0};
-    dm_str_printf(&t, "dmbench view: %s on %s %dx%d | ", viewer_state_get(&v->st, "technique"),
-                  viewer_state_get(&v->st, "mesh"), f->w, f->h);
-    viewer_counters_format(&v->live, "  ", &t);
-    glfwSetWindowTitle(gl_context_window(v->gl), dm_str_get(&t));
-    dm_str_free(&t);
-}
-
-/* C: the configuration and the live counters as text in the window. */
-static void viewer__overlay(viewer *v, const viewer_frame *f)
-{
-    static const char *const shown[] = {"technique", "mesh", "filter", "tess_level", "steps",
-                                        "height_scale", "light.azimuth"};
-    const technique_desc *t = technique_find(viewer_state_get(&v->st, "technique"));
-    dm_str text = {0};
-    for (size_t i = 0; i < sizeof shown / sizeof *shown; i++)
-        if (t && technique_reads_axis(t, shown[i]))
-            dm_str_printf(&text, "%s %s\n", shown[i], viewer_state_get(&v->st, shown[i]));
-    viewer_counters_format(&v->live, "\n", &text);
-    dm_str_printf(&text, "\n%dx%d%s%s%s", f->w, f->h, v->st.wireframe ? "  wireframe" : "",
-                  v->st.normals ? "  normals" : "", v->st.light_orbit ? "  light orbit" : "");
-    viewer_overlay_draw(&v->ov, dm_str_get(&text), f->w, f->h);
-    dm_str_free(&text);
-}
-
-/* Writes the back buffer (the frame just drawn) as PNG. */
-static int viewer__screenshot(const viewer_frame *f, const char *path)
-{
-    img im = {0};
-    char err[512] = "";
-    int rc = viewer_read_window(f->w, f->h, &im);
-    rc = rc ? rc : img_save(&im, path, err, sizeof err);
-    img_free(&im);
-    if (rc != 0)
-        fprintf(stderr, "dmbench: error: view: screenshot %s: %s\n", path, err);
-    else
-        printf("screenshot: %s (%dx%d)\n", path, f->w, f->h);
-    return rc;
-}
-
-/* Carries out what the input asked for (help, timed test, screenshot). */
-static void viewer__requests(viewer *v, const viewer_frame *f)
-{
-    if (v->st.want_help)
-        fputs(viewer_state_help(), stdout);
-    if (v->st.want_timed) {
-        dm_str out = {0};
-        printf("timed: %s for %.1f s...\n", viewer_state_get(&v->st, "technique"), v->o.timed_seconds);
-        fflush(stdout);
-        viewer_measure_timed(v->cc, f, v->o.timed_seconds, &out);
-        fputs(dm_str_get(&out), stdout);
-        dm_str_free(&out);
-    }
-    v->st.want_help = v->st.want_timed = 0;
-}
-
-/* Counts KHR_debug messages and glGetError codes since the last frame. */
-static void viewer__check_gl(viewer *v, int frame)
-{
-    dm_str msgs = {0};
-    int n = gl_context_take_messages(v->gl, &msgs) + gl_context_check_errors(&msgs);
-    if (n > 0)
-        fprintf(stderr, "dmbench: view: %d GL error(s) at frame %d:\n%s", n, frame, dm_str_get(&msgs));
-    v->gl_errors += n;
-    dm_str_free(&msgs);
-}
-
-/* One frame: input, light orbit, prepare, counters, requests, draw,
- * screenshot, swap.  The light orbit alone does not postpone the live
- * counters (they would never run while it is on). */
-static int viewer__frame_step(viewer *v, int frame)
-{
-    glfwPollEvents();
-    if ((size_t)frame < v->n_ev)
-        viewer__apply_event(v, &v->ev[frame]);
-    fputs(dm_str_get(&v->st.msg), stdout);
-    dm_str_free(&v->st.msg);
-    int changed = v->st.dirty;
-    viewer_state_tick(&v->st);
-    int rc = viewer__prepare(v);
-    if (rc != 0)
-        return rc;
-    viewer_frame f = viewer__frame(v);
-    if (changed)
-        v->live_due = frame + 2;        /* after the first draw has JIT-compiled */
-    if (frame == v->live_due) {
-        dm_str log = {0};
-        if (viewer_measure_live(v->cc, &f, &v->live, &log) != 0)
-            fputs(dm_str_get(&log), stderr);
-        dm_str_free(&log);
-        viewer__title(v, &f);
-        v->live_due = frame + VIEWER__LIVE_EVERY;
-    }
-    viewer__requests(v, &f);
-    viewer_draw(&f);
-    if (v->st.overlay)
-        viewer__overlay(v, &f);
-    if (v->st.want_screenshot) {
-        char name[64];
-        snprintf(name, sizeof name, "viewer-%03d.png", v->n_shots++);
-        viewer__screenshot(&f, name);
-        v->st.want_screenshot = 0;
-    }
-    viewer__check_gl(v, frame);
-    glfwSwapBuffers(gl_context_window(v->gl));
-    return 0;
-}
-
-/* Runs frames until Esc / window close, --frames, or the end of --keys. */
-static int viewer__loop(viewer *v)
-{
-    GLFWwindow *w = gl_context_window(v->gl);
-    for (int frame = 0;; frame++) {
-        if (v->o.frames ? frame >= v->o.frames : v->o.keys && (size_t)frame > v->n_ev)
-            break;
-        if (glfwWindowShouldClose(w) || v->st.want_quit)
-            break;
-        int rc = viewer__frame_step(v, frame);
-        if (rc != 0)
-            return rc;
-    }
-    if (v->o.screenshot) {             /* the last frame again, read before any swap */
-        viewer_frame f = viewer__frame(v);
-        viewer_draw(&f);
-        if (v->st.overlay)
-            viewer__overlay(v, &f);
-        if (viewer__screenshot(&f, v->o.screenshot) != 0)
-            return DM_ERR_IO;
-        viewer__check_gl(v, -1);
-    }
-    return 0;
-}
-
-/* Window, renderer, counters and callbacks; the exit code on failure, -1 ok. */
-static int viewer__open(viewer *v)
-{
-    int w = 0, h = 0;
-    axes_parse_size2(viewer_state_get(&v->st, "resolution"), &w, &h);
-    dm_str err = {0};
-    int rc = gl_context_create(&(gl_context_desc){.backend = GL_BACKEND_GLFW_WINDOW, .width = w,
-                                                  .height = h, .title = "dmbench view"},
-                               &v->gl, &err);
-    if (rc != 0) {
-        fprintf(stderr, "dmbench: error: view: %s\n", dm_str_get(&err));
-        dm_str_free(&err);
-        return rc == DM_ERR_UNSUPPORTED ? 2 : 1;
-    }
-    if (tech_renderer_create(&v->r) != 0 || counters_context_create(&v->cc) != 0) {
-        fprintf(stderr, "dmbench: error: view: no usable OpenGL 4.5 context for the renderer\n");
-        return 1;
-    }
-    GLFWwindow *win = gl_context_window(v->gl);
-    glfwSetWindowUserPointer(win, v);
-    glfwSetCharCallback(win, viewer__on_char);
-    glfwSetKeyCallback(win, viewer__on_key);
-    glfwSetMouseButtonCallback(win, viewer__on_button);
-    glfwSetCursorPosCallback(win, viewer__on_cursor);
-    glfwSetScrollCallback(win, viewer__on_scroll);
-    return -1;
-}
-
-static void viewer__close(viewer *v)
-{
-    viewer_overlay_destroy(v->ov);
-    counters_context_destroy(v->cc);
-    tech_renderer_destroy(v->r);
-    gl_context_destroy(v->gl);
-    viewer_state_free(&v->st);
-    dm_kv_free(v->good, v->n_good);
-    dm_kv_free(v->o.kv, v->o.n);
-    free(v->ev);
-}
-
 /* Options → initial configuration and script; -1 to go on. */
-static int viewer__setup(viewer *v, int argc, char **argv)
+static int view__setup(view_args *a, int argc, char **argv, dm_kv **kv, size_t *n,
+                       viewer_event **ev, size_t *n_ev)
 {
-    int rc = viewer__args(argc, argv, &v->o);
-    dm_kv *kv = NULL;
-    size_t n = 0;
-    if (rc < 0 && v->o.config)
-        rc = viewer__from_results(&v->o, &kv, &n);
-    for (size_t i = 0; i < v->o.n; i++)
-        dm_kv_push(&kv, &n, v->o.kv[i].key, v->o.kv[i].value);
-    viewer_state_init(&v->st, kv, n);
-    dm_kv_free(kv, n);
+    int rc = cli_params_parse("view", argc, argv, &a->kv, &a->n);
+    if (rc < 0 && !a->config != !a->results)
+        rc = cli_usage_error("view: --config KEY and --results DIR go together");
+    if (rc < 0 && a->config)
+        rc = view__from_results(a, kv, n);
+    for (size_t i = 0; i < a->n; i++)
+        dm_kv_push(kv, n, a->kv[i].key, a->kv[i].value);
     dm_str err = {0};
-    if (rc < 0 && v->o.keys && viewer_script_parse(v->o.keys, &v->ev, &v->n_ev, &err) != 0)
-        rc = cli__usage_error("view: %s", dm_str_get(&err));
+    if (rc < 0 && a->keys && viewer_script_parse(a->keys, ev, n_ev, &err) != 0)
+        rc = cli_usage_error("view: %s", dm_str_get(&err));
     dm_str_free(&err);
     return rc;
 }
 
+/* `dmbench view`: the options into a viewer_desc, then the window loop;
+ * the loop's DM_ERR_* mapped by dm_exit_from_error. */
 int cli_view(int argc, char **argv)
 {
-    viewer v = {0};
-    int rc = viewer__setup(&v, argc, argv);
+    view_args args = {0}, *a = &args;
+    int rc = cli_parse(argc, argv, a, &argc);
+    dm_kv *kv = NULL;
+    size_t n = 0, n_ev = 0;
+    viewer_event *ev = NULL;
     if (rc < 0)
-        rc = viewer__open(&v);
+        rc = view__setup(a, argc, argv, &kv, &n, &ev, &n_ev);
     if (rc < 0) {
-        int lrc = viewer__loop(&v);
-        rc = lrc != 0 ? 1 : 0;
-        if (v.gl_errors > 0) {
-            fprintf(stderr, "dmbench: view: %d GL error(s) captured (KHR_debug / glGetError)\n",
-                    v.gl_errors);
-            rc = 1;
-        }
+        viewer_desc d = { .params = kv, .n_params = n, .events = ev, .n_events = n_ev,
+                          .scripted = a->keys != NULL, .frames = a->frames,
+                          .screenshot = a->screenshot, .timed_seconds = a->timed_seconds };
+        rc = dm_exit_from_error(viewer_run(&d));
     }
-    viewer__close(&v);
+    dm_kv_free(kv, n);
+    dm_kv_free(a->kv, a->n);
+    free(ev);
     return rc;
 }

@@ -303,3 +303,24 @@ void dm_str_cat_list(dm_str *s, const char *const *choices, size_t n)
     for (size_t i = 0; i < n; i++)
         dm_str_printf(s, "%s%s", i ? ", " : "", choices[i]);
 }
+
+void dm_str_suggest(dm_str *s, const char *word, const char *const *choices, size_t n,
+                    const char *what)
+{
+    const char *close = word ? dm_closest(word, choices, n) : NULL;
+    if (close)
+        dm_str_printf(s, "; did you mean '%s'?", close);
+    else
+        dm_str_cat(s, ";");
+    dm_str_printf(s, " valid %s: ", what);
+    dm_str_cat_list(s, choices, n);
+}
+
+void dm_str_expected(dm_str *s, const char *value, const char *const *choices, size_t n)
+{
+    const char *close = value ? dm_closest(value, choices, n) : NULL;
+    dm_str_cat(s, "expected one of: ");
+    dm_str_cat_list(s, choices, n);
+    if (close)
+        dm_str_printf(s, " (did you mean '%s'?)", close);
+}

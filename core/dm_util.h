@@ -40,6 +40,14 @@ void dm_str_free(dm_str *s);
 const char *dm_closest(const char *word, const char *const *choices, size_t n);
 /* Appends "a, b, c" (n choices) to s. */
 void dm_str_cat_list(dm_str *s, const char *const *choices, size_t n);
+/* The one "did you mean": after "unknown <thing> 'word'" appends
+ * "; did you mean 'X'? valid <what>: a, b, c" (X from dm_closest), or
+ * "; valid <what>: a, b, c" when no choice is close. */
+void dm_str_suggest(dm_str *s, const char *word, const char *const *choices, size_t n,
+                    const char *what);
+/* The same for a value that must be one of a fixed set: appends
+ * "expected one of: a, b, c" and " (did you mean 'X'?)" when one is close. */
+void dm_str_expected(dm_str *s, const char *value, const char *const *choices, size_t n);
 
 /* ---- memory: abort with a message on failure (for small bookkeeping) --- */
 void *dm_xmalloc(size_t n);

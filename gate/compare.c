@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/dm_exit.h"
 #include "core/dm_error.h"
 #include "run/env.h"
 #include "models/compare_stats.h"
@@ -447,8 +448,8 @@ int compare_runs(const dm_run_result *base, const dm_run_result *new_, const com
 int compare_exit_code(const compare_result *r)
 {
     if (r->count[COMPARE_REGRESSION])
-        return 1;
-    return r->count[COMPARE_INCONCLUSIVE] ? 3 : 0;
+        return DM_EXIT_FAILED;
+    return r->count[COMPARE_INCONCLUSIVE] ? DM_EXIT_INCONCLUSIVE : DM_EXIT_OK;
 }
 
 static void compare__free_list(char **list, size_t n)

@@ -120,7 +120,7 @@ const char *compare_verdict_name(compare_verdict v);
  * GPUTime marked partial (never gated) — err says why. */
 int compare_runs(const dm_run_result *base, const dm_run_result *new_, const compare_desc *d,
                  compare_result *out, dm_str *err);
-/* 0 pass, 1 regression, 3 inconclusive (see top). */
+/* DM_EXIT_OK pass, DM_EXIT_FAILED regression, DM_EXIT_INCONCLUSIVE (see top). */
 int compare_exit_code(const compare_result *r);
 void compare_result_free(compare_result *r);
 

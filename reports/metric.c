@@ -42,12 +42,8 @@ int report_metric_parse(const char *name, report_metric *out)
 
 void report_metric_unknown(const char *name, dm_str *err)
 {
-    const char *close = name ? dm_closest(name, metric_names, REPORT_METRIC_COUNT) : NULL;
     dm_str_printf(err, "unknown metric '%s'", name ? name : "(none)");
-    if (close)
-        dm_str_printf(err, "; did you mean '%s'?", close);
-    dm_str_cat(err, " valid metrics: ");
-    dm_str_cat_list(err, metric_names, REPORT_METRIC_COUNT);
+    dm_str_suggest(err, name, metric_names, REPORT_METRIC_COUNT, "metrics");
 }
 
 const char *report_metric_name(report_metric m)

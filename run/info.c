@@ -1,5 +1,6 @@
 /* info.c — what the driver offers and whether its timer can be trusted. */
 #include "info.h"
+#include "core/dm_exit.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
 #include "run/env.h"
@@ -87,7 +88,7 @@ int info_main(int json)
     if (gl_context_create(NULL, &gl, &err) != 0) {
         fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
         dm_str_free(&err);
-        return 1;
+        return DM_EXIT_FAILED;
     }
     counters_context *cc = NULL;
     counters_timer_calibration cal = { .verdict = "unavailable" };
@@ -104,5 +105,5 @@ int info_main(int json)
     cJSON_Delete(root);
     counters_context_destroy(cc);
     gl_context_destroy(gl);
-    return 0;
+    return DM_EXIT_OK;
 }

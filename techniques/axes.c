@@ -119,23 +119,13 @@ const axis_info *axes_find(const char *name)
     return NULL;
 }
 
-static void axes__list(dm_str *err, const char *const *names, size_t n)
-{
-    for (size_t i = 0; i < n && names[i]; i++)
-        dm_str_printf(err, "%s%s", i ? ", " : "", names[i]);
-}
-
 static int axes__unknown(const char *name, dm_str *err)
 {
     const char *names[AXES__N];
     for (size_t i = 0; i < AXES__N; i++)
         names[i] = axes_at(i)->name;
-    const char *near = dm_closest(name, names, AXES__N);
-    dm_str_printf(err, "unknown axis '%s'; ", name);
-    if (near)
-        dm_str_printf(err, "did you mean '%s'? ", near);
-    dm_str_cat(err, "valid axes: ");
-    axes__list(err, names, AXES__N);
+    dm_str_printf(err, "unknown axis '%s'", name);
+    dm_str_suggest(err, name, names, AXES__N, "axes");
     return DM_ERR_UNKNOWN;
 }
 
@@ -217,11 +207,8 @@ static int axes__check_enum(const axis_info *a, const char *value, dm_str *err)
     for (; a->choices && a->choices[n]; n++)
         if (strcmp(a->choices[n], value) == 0)
             return 0;
-    dm_str_printf(err, "invalid value '%s' for %s; expected one of: ", value, a->name);
-    axes__list(err, a->choices, n);
-    const char *near = a->choices ? dm_closest(value, a->choices, n) : NULL;
-    if (near)
-        dm_str_printf(err, " (did you mean '%s'?)", near);
+    dm_str_printf(err, "invalid value '%s' for %s; ", value, a->name);
+    dm_str_expected(err, value, a->choices, n);
     return DM_ERR_ARG;
 }
 

@@ -1,4 +1,4 @@
-/* Unit tests of core/: error names, strings, HTML escaping, hashing, files. */
+/* Unit tests of core/: error names, exit codes, "did you mean", strings, HTML escaping, hashing, files. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -9,6 +9,7 @@
 #include <unistd.h>
 
 #include "core/dm_error.h"
+#include "core/dm_exit.h"
 #include "core/dm_util.h"
 #include "core/dm_results.h"
 
@@ -91,10 +92,49 @@ static void test_closest(void **state)
     dm_str_free(&s);
 }
 
+static void test_exit_codes(void **state)
+{
+    (void)state;
+    assert_int_equal(DM_EXIT_OK, 0);
+    assert_int_equal(DM_EXIT_FAILED, 1);
+    assert_int_equal(DM_EXIT_USAGE, 2);
+    assert_int_equal(DM_EXIT_INCONCLUSIVE, 3);
+    assert_int_equal(DM_EXIT_ENV, 4);
+    assert_non_null(dm_exit_meaning(4));
+    assert_null(dm_exit_meaning(5));
+    assert_null(dm_exit_meaning(-1));
+    assert_int_equal(dm_exit_from_error(0), DM_EXIT_OK);
+    static const int usage[] = { DM_ERR_ARG, DM_ERR_PARSE, DM_ERR_RANGE, DM_ERR_UNKNOWN, DM_ERR_NOTFOUND,
+                                 DM_ERR_EXISTS, DM_ERR_IO, DM_ERR_UNSUPPORTED };
+    for (size_t i = 0; i < sizeof usage / sizeof *usage; i++)
+        assert_int_equal(dm_exit_from_error(usage[i]), DM_EXIT_USAGE);
+    static const int failed[] = { DM_ERR_NOMEM, DM_ERR_GL, DM_ERR_SHADER, DM_ERR_NUMERIC, DM_ERR_CHILD,
+                                  DM_ERR_TIMEOUT, DM_ERR_STORE };
+    for (size_t i = 0; i < sizeof failed / sizeof *failed; i++)
+        assert_int_equal(dm_exit_from_error(failed[i]), DM_EXIT_FAILED);
+}
+
+static void test_suggest(void **state)
+{
+    (void)state;
+    static const char *const c[] = { "techniques", "textures", "axes" };
+    dm_str s = {0};
+    dm_str_cat(&s, "unknown list 'texturs'");
+    dm_str_suggest(&s, "texturs", c, 3, "lists");
+    assert_string_equal(dm_str_get(&s), "unknown list 'texturs'; did you mean 'textures'? "
+                                        "valid lists: techniques, textures, axes");
+    dm_str_free(&s);
+    dm_str_suggest(&s, "zzzzzzzzzzzz", c, 3, "lists");
+    assert_string_equal(dm_str_get(&s), "; valid lists: techniques, textures, axes");
+    dm_str_free(&s);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_error_names),
+        cmocka_unit_test(test_exit_codes),
+        cmocka_unit_test(test_suggest),
         cmocka_unit_test(test_str_and_html),
         cmocka_unit_test(test_hash),
         cmocka_unit_test(test_files),

@@ -29,7 +29,7 @@ expect 2 "fit: --loss 'l2': expected one of: huber, cauchy, none" -- "$BIN" fit 
 expect 2 "unknown counter 'VSInvocatons'; did you mean 'VSInvocations'" -- "$BIN" list counters --passes WallTime,VSInvocatons
 expect 2 "merge: .*no such run directory" -- "$BIN" merge "$OUT/m" "$OUT/nope"
 expect 2 "report: --metric: unknown metric 'rsme'; did you mean 'rmse'" -- "$BIN" report "$OUT" --metric rsme
-expect 2 "render: --debug expects 'normals'" -- "$BIN" render technique=normal --debug normls --png "$OUT/x.png"
+expect 2 "render: --debug 'normls': expected one of: none, normals (did you mean 'normals'?)" -- "$BIN" render technique=normal --debug normls --png "$OUT/x.png"
 expect 2 "invalid value 'phongg' for tess_smooth; expected one of: off, phong (did you mean 'phong'?)" -- "$BIN" render technique=tess-displacement tess_smooth=phongg --png "$OUT/x.png"
 printf 'x,WallTime\n1,3\n2,5\n3,7\n4,9\n' > "$OUT/fit.csv"
 expect 2 "formula: bound 1 ' a => 0'" -- "$BIN" fit --data "$OUT/fit.csv" --formula "a + b*x; a => 0"

@@ -1,0 +1,107 @@
+/* cmd_report.c — `dmbench report DIR`: rebuild a run's report files from the store. */
+#include "cli.h"
+#include "core/dm_error.h"
+#include "core/dm_exit.h"
+#include "core/dm_util.h"
+#include "store/store.h"
+#include "reports/metric.h"
+#include "reports/report.h"
+#include "run/trends.h"
+
+#include <libgen.h>
+#include <limits.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+typedef struct report_args {
+    const char *metric;
+    const char *out;
+} report_args;
+
+/* --metric NAME: one of the report metrics (reports/metric.c). */
+static int report__metric(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    report_metric m;
+    if (report_metric_parse(v, &m) != 0) {
+        dm_str_printf(err, "--%s: ", opt->name);
+        report_metric_unknown(v, err);
+        return DM_ERR_ARG;
+    }
+    ((report_args *)args)->metric = v;
+    return 0;
+}
+
+const cli_option cli_report_options[] = {
+    { .name = "metric", .kind = CLI_OPT_STRING, .value_name = "NAME", .parse = report__metric,
+      .help = "Pareto error metric for these files (the store keeps the run's own)" },
+    CLI_STRING("out", report_args, out, "DIR",
+               "write the files into DIR (created) instead of the run directory"),
+    CLI_OPT_END
+};
+
+/* Resolves a run directory to (store path, run id): the store lives in the
+ * directory above the run, the run id is the directory's name. */
+static int report__locate_run(const char *dir, char **store_path, char **run_id)
+{
+    char real[PATH_MAX];
+    if (!realpath(dir, real))
+        return cli_usage_error("%s: no such run directory", dir);
+    char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
+    *run_id = dm_xstrdup(basename(a));
+    *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(b));
+    free(a);
+    free(b);
+    if (!dm_file_exists(*store_path))
+        return cli_usage_error("%s: no results store beside the run directory (%s)", dir, *store_path);
+    return -1;
+}
+
+/* Rebuilds a run's report files from the store; --metric overrides the
+ * Pareto metric the run recorded (for these files only; the store keeps it);
+ * --out writes them into another directory (created) instead of the run's. */
+int cli_report(int argc, char **argv)
+{
+    report_args args = {0};
+    int rc = cli_parse(argc, argv, &args, &argc);
+    if (rc >= 0)
+        return rc;
+    const char *metric = args.metric, *out = args.out;
+    if (argc > 1)
+        return cli_usage_error("report: only one run directory may be given ('%s' and '%s')",
+                               argv[0], argv[1]);
+    if (argc == 0)
+        return cli_usage_error("usage: dmbench report DIR [--metric NAME] [--out DIR2]   (a run "
+                               "directory, e.g. results/latest)");
+    const char *dir = argv[0];
+    char *store_path = NULL, *run_id = NULL;
+    rc = report__locate_run(dir, &store_path, &run_id);
+    store *st = NULL;
+    dm_str err = {0};
+    dm_run_result run = {0};
+    if (rc < 0 && store_open(store_path, &st, &err) != 0)
+        rc = cli_usage_error("%s", dm_str_get(&err));
+    if (rc < 0 && store_run_load(st, run_id, &run) != 0)
+        rc = cli_usage_error("%s: run %s is not in %s", dir, run_id, store_path);
+    if (rc < 0 && metric)
+        report_metric_set(&run, metric);   /* validated by report__metric */
+    char e[512] = "";
+    if (rc < 0 && out && dm_mkdirs(out) != 0)
+        rc = cli_usage_error("report: --out %s: cannot create the directory", out);
+    report_trends tr = {0};
+    if (rc < 0)
+        run_trends(st, &run, &tr);   /* none on a store failure: the report goes on */
+    if (rc < 0 && report_write_all_trends(&run, dir, out ? out : dir, &tr, e, sizeof e) != 0)
+        rc = cli_usage_error("report: %s", e);
+    report_trends_free(&tr);
+    if (rc < 0) {
+        printf("report: %s/report.html\n", out ? out : dir);
+        rc = DM_EXIT_OK;
+    }
+    dm_run_free(&run);
+    store_close(st);
+    dm_str_free(&err);
+    free(store_path);
+    free(run_id);
+    return rc;
+}

@@ -1,0 +1,101 @@
+/* cmd_run.c — `dmbench run [SWEEP.yaml]`: measure a sweep into a run directory. */
+#include "cli.h"
+#include "core/dm_error.h"
+#include "core/dm_exit.h"
+#include "core/dm_util.h"
+#include "run/runner.h"
+#include "sweep/sweep.h"
+
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+
+typedef struct run_args {
+    runner_opts o;
+    int quick;
+} run_args;
+
+/* --shard K/N with 1 <= K <= N. */
+static int run__shard(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    runner_opts *o = &((run_args *)args)->o;
+    if (sscanf(v, "%d/%d", &o->shard_k, &o->shard_n) != 2 || o->shard_n < 1 ||
+        o->shard_k < 1 || o->shard_k > o->shard_n) {
+        dm_str_printf(err, "--%s '%s': expected K/N with 1 <= K <= N, e.g. 2/4", opt->name, v);
+        return DM_ERR_ARG;
+    }
+    return 0;
+}
+
+/* --budget SEC > 0. */
+static int run__budget(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    char *end = NULL;
+    double *b = &((run_args *)args)->o.budget_s;
+    *b = strtod(v, &end);
+    if (!*v || *end || !(*b > 0)) {
+        dm_str_printf(err, "--%s '%s': expected seconds per configuration, > 0", opt->name, v);
+        return DM_ERR_ARG;
+    }
+    return 0;
+}
+
+const cli_option cli_run_options[] = {
+    { .name = "out", .kind = CLI_OPT_STRING, .offset = offsetof(run_args, o.out_root),
+      .value_name = "DIR", .help = "output root: DIR/dmbench.sqlite, DIR/<run-id>/, DIR/latest",
+      .def = "results" },
+    CLI_BOOL("resume", run_args, o.resume,
+             "continue the newest unfinished run of the store; nothing finished is redone"),
+    { .name = "shard", .kind = CLI_OPT_STRING, .value_name = "K/N", .parse = run__shard,
+      .help = "run the K-th of N deterministic shares of the configurations" },
+    { .name = "budget", .kind = CLI_OPT_DOUBLE, .value_name = "SEC", .parse = run__budget,
+      .help = "leave out configurations predicted to take longer than SEC seconds" },
+    { .name = "seed", .kind = CLI_OPT_UINT64, .offset = offsetof(run_args, o.seed),
+      .value_name = "N", .help = "seed of the round order (0 = 1)" },
+    CLI_STRING("tag", run_args, o.tag, "NAME",
+               "a name stored with the run (compare --base-tag/--new-tag)"),
+    CLI_BOOL("quick", run_args, quick,
+             "without SWEEP.yaml: the one-minute version of the default sweep"),
+    CLI_BOOL("quiet", run_args, o.quiet, "no progress output"),
+    CLI_BOOL("verbose", run_args, o.verbose,
+             "debug logging, and why a stored model could not predict a configuration"),
+    CLI_OPT_END
+};
+
+/* `dmbench run [SWEEP.yaml]`: loads the sweep (or the embedded default),
+ * runs it and prints where the report is.  Exit 2 for a bad sweep or
+ * option, else the runner's error mapped by dm_exit_from_error. */
+int cli_run(int argc, char **argv)
+{
+    run_args args = {0}, *a = &args;
+    int rc = cli_parse(argc, argv, a, &argc);
+    if (rc < 0 && argc > 1)
+        rc = cli_usage_error("run: only one sweep file may be given ('%s' and '%s')", argv[0], argv[1]);
+    if (rc >= 0)
+        return rc;
+    const char *file = argc ? argv[0] : NULL;
+    if (a->o.verbose)
+        dm_log_set_level(DM_LOG_DEBUG);
+    sweep s;
+    dm_str err = {0};
+    rc = file ? sweep_load(file, &s, &err)
+                  : sweep_parse(sweep_default_text(a->quick), a->quick ? "<default --quick>" : "<default>",
+                                &s, &err);
+    if (rc != 0) {
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        dm_str_free(&err);
+        return DM_EXIT_USAGE;
+    }
+    char *dir = NULL;
+    rc = runner_run(&s, &a->o, &dir, &err);
+    sweep_free(&s);
+    if (rc != 0) {
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        dm_str_free(&err);
+        return dm_exit_from_error(rc);
+    }
+    if (!a->o.quiet)
+        printf("report: %s/report.html\n", dir);
+    free(dir);
+    return DM_EXIT_OK;
+}

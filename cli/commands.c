@@ -1,0 +1,247 @@
+/* commands.c — the command table, dispatch, help and --version. */
+#include "cli.h"
+#include "core/dm_error.h"
+#include "core/dm_exit.h"
+
+#include <assert.h>
+#include <stdarg.h>
+#include <stdlib.h>
+#include <string.h>
+
+#ifndef DM_GIT_REV
+#define DM_GIT_REV "unknown"
+#endif
+#ifndef DM_VERSION
+#define DM_VERSION "0.0.0"
+#endif
+
+static int commands__help(int argc, char **argv);
+static int commands__gen_man(int argc, char **argv);
+static int commands__gen_completion(int argc, char **argv);
+
+static const char *const commands__shells[] = { "bash", "zsh", NULL };
+
+/* The one list of commands, in the order help shows them. */
+static const cli_command commands[] = {
+    { .name = "run", .fn = cli_run, .options = cli_run_options,
+      .summary = "measure a sweep: every configuration, its counters, images and quality",
+      .synopsis = "[SWEEP.yaml]",
+      .description = "Without SWEEP.yaml the embedded default sweep runs (--quick: a one-minute\n"
+                     "version).  The report is written to DIR/<run-id>/report.html; see\n"
+                     "docs/sweep-files.md for the sweep file and docs/scale-out.md for shards." },
+    { .name = "report", .fn = cli_report, .options = cli_report_options, .synopsis = "DIR",
+      .summary = "rebuild report.html, results.json, results.csv and summary.md of a run",
+      .description = "DIR is a run directory (e.g. results/latest); its store is the\n"
+                     "dmbench.sqlite beside it." },
+    { .name = "fit", .fn = cli_fit, .options = cli_fit_options, .synopsis = "DIR\n--data FILE.csv",
+      .summary = "fit a cost model to a run (or a CSV): parameters, standard errors, R², CV-MAPE",
+      .description = "Exit 1 when nothing could be fitted (or the fit failed numerically)." },
+    { .name = "compare", .fn = cli_compare, .options = cli_compare_options,
+      .summary = "regression gate: compare two runs (exit 0 pass, 1 regression, 3 inconclusive)",
+      .synopsis = "BASE NEW\n--paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]",
+      .description =
+          "A side is a PATH (a results.json, a run directory or an output root) or is\n"
+          "taken from a store: --base-run ID | --base-tag NAME | --baseline for BASE,\n"
+          "--new-run ID | --new-tag NAME for NEW.  The store is --base-store/--new-store,\n"
+          "else --store, else results/dmbench.sqlite.  A side not taken from a store\n"
+          "takes the next PATH.  See docs/ci-gating.md." },
+    { .name = "baseline", .fn = cli_baseline, .options = cli_baseline_options,
+      .pos_choices = cli_baseline_actions, .synopsis = "accept RUN --reason TEXT\nshow",
+      .summary = "accept a run as the baseline of its sweep, or show the current baseline",
+      .description = "RUN is a run directory (its store beside it) or, with --store, a run id." },
+    { .name = "merge", .fn = cli_merge, .options = cli_merge_options, .synopsis = "OUT DIR...",
+      .summary = "unite the runs of shards (run --shard K/N) into one run in OUT",
+      .description = "Every DIR is a run directory of the same sweep file; each shard once, each\n"
+                     "configuration once; missing or incomplete shards are refused unless\n"
+                     "--allow-missing.  Shards of different machines are kept apart, never pooled.\n"
+                     "OUT gets dmbench.sqlite, the merged run directory and 'latest'." },
+    { .name = "slurm", .fn = cli_slurm, .options = cli_slurm_options,
+      .synopsis = "[SWEEP.yaml] --shards N [-- SBATCH_ARG...]",
+      .summary = "a Slurm job array, one task per shard, and a job that merges them",
+      .description = "Writes DIR/slurm/array.sh and merge.sh and submits them with sbatch (the\n"
+                     "merge job depends on the array).  See docs/scale-out.md." },
+    { .name = "export", .fn = cli_export, .options = cli_export_options, .synopsis = "RUN --format FORMAT",
+      .summary = "a run in a format other benchmark tools read (Google Benchmark, Bencher, ...)",
+      .description = "RUN is a run directory, a results.json, or with --store a run id.\n"
+                     "See docs/exports.md." },
+    { .name = "history", .fn = cli_history, .options = cli_history_options, .synopsis = "[KEY...]",
+      .summary = "a configuration's median across runs on this machine, with change points",
+      .description = "Without KEY, every timed configuration of the run (--technique and --scene\n"
+                     "narrow it).  Only runs with the same machine fingerprint are shown." },
+    { .name = "list", .fn = cli_list, .options = cli_list_options, .pos_choices = cli_list_lists,
+      .summary = "list the techniques, axes, counters, meshes, textures or built-in models",
+      .synopsis = "techniques|axes|counters|meshes|textures|models",
+      .description = "Each list comes from its registry; --json prints it as a JSON array.\n"
+                     "Counters show their availability on this driver (with a GL context)." },
+    { .name = "info", .fn = cli_info, .options = cli_info_options,
+      .summary = "the GL context, extensions, limits and whether GPUTime can be trusted" },
+    { .name = "render", .fn = cli_render, .options = cli_render_options,
+      .summary = "render one configuration to an image", .synopsis = "[KEY=VALUE...] --png FILE",
+      .description = "KEY=VALUE sets any axis of `dmbench list axes`; the others keep their\n"
+                     "defaults.  The image equals what a run of the same configuration stores." },
+    { .name = "view", .fn = cli_view, .options = cli_view_options, .synopsis = "[KEY=VALUE...]",
+      .summary = "look at a configuration live in a window (needs a display or xvfb-run)",
+      .description = "Keys: 1-9/0 technique, [ ] tessellation level or steps, F filter, M mesh,\n"
+                     "P spacing, H/Shift+H height scale, W wireframe, L light orbit, N normals,\n"
+                     "C counters overlay, T timed test, S screenshot, R reset camera, ? help,\n"
+                     "Esc quit; left drag orbits, right drag pans, wheel zooms (docs/viewer.md)." },
+    { .name = "help", .fn = commands__help, .synopsis = "[COMMAND]",
+      .summary = "this overview, or the help of one command" },
+    { .name = "__gen-man", .fn = commands__gen_man, .flags = CLI_CMD_HIDDEN,
+      .summary = "print the man page (build step)" },
+    { .name = "__gen-completion", .fn = commands__gen_completion, .synopsis = "bash|zsh",
+      .pos_choices = commands__shells, .flags = CLI_CMD_HIDDEN,
+      .summary = "print a completion script (build step)" },
+};
+#define COMMANDS__N (sizeof commands / sizeof *commands)
+
+size_t cli_commands_count(void) { return COMMANDS__N; }
+
+const cli_command *cli_commands_at(size_t i) { return i < COMMANDS__N ? &commands[i] : NULL; }
+
+const cli_command *cli_commands_find(const char *name)
+{
+    for (size_t i = 0; i < COMMANDS__N; i++)
+        if (strcmp(commands[i].name, name) == 0)
+            return &commands[i];
+    return NULL;
+}
+
+const char *cli_version(void)
+{
+    return "dmbench " DM_VERSION " (git " DM_GIT_REV ")";
+}
+
+int cli_usage_error(const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "dmbench: error: ");
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    return DM_EXIT_USAGE;
+}
+
+/* "usage: dmbench NAME SYNOPSIS [OPTIONS]", one line per form. */
+static void commands__usage(const cli_command *c, FILE *f)
+{
+    const char *s = c->synopsis ? c->synopsis : "";
+    int has_opts = cli_options_count(c->options) > 0;
+    for (int first = 1;; first = 0) {
+        size_t len = strcspn(s, "\n");
+        fprintf(f, "%s dmbench %s%s%.*s%s\n", first ? "usage:" : "   or:", c->name,
+                len ? " " : "", (int)len, s, first && has_opts ? " [OPTIONS]" : "");
+        if (!s[len])
+            break;
+        s += len + 1;
+    }
+}
+
+void cli_command_help(const cli_command *c, FILE *f)
+{
+    commands__usage(c, f);
+    fprintf(f, "\n%s.\n", c->summary);
+    if (c->description)
+        fprintf(f, "\n%s\n", c->description);
+    fprintf(f, "\noptions:\n");
+    cli_options_print(c->options, f);
+}
+
+/* The overview: commands, exit codes, where to read more. */
+static void commands__overview(FILE *f)
+{
+    fprintf(f, "%s — performance and quality of surface-detail rendering techniques\n\n"
+               "usage: dmbench COMMAND [ARGS] [OPTIONS]\n"
+               "       dmbench COMMAND --help | dmbench help COMMAND | dmbench --version\n\n"
+               "commands:\n", cli_version());
+    for (size_t i = 0; i < COMMANDS__N; i++)
+        if (!(commands[i].flags & CLI_CMD_HIDDEN))
+            fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
+    fprintf(f, "\nexit codes:\n");
+    for (int code = 0; dm_exit_meaning(code); code++)
+        fprintf(f, "  %d  %s\n", code, dm_exit_meaning(code));
+    fprintf(f, "\nDocumentation: man dmbench, README.md and docs/ in the source tree.\n");
+}
+
+/* "unknown command" with did you mean and the valid commands; exit 2. */
+static int commands__unknown(const char *name)
+{
+    const char *names[COMMANDS__N];
+    size_t n = 0;
+    for (size_t i = 0; i < COMMANDS__N; i++)
+        if (!(commands[i].flags & CLI_CMD_HIDDEN))
+            names[n++] = commands[i].name;
+    dm_str msg = {0};
+    dm_str_printf(&msg, "unknown command '%s'", name);
+    dm_str_suggest(&msg, name, names, n, "commands");
+    int rc = cli_usage_error("%s", dm_str_get(&msg));
+    dm_str_free(&msg);
+    return rc;
+}
+
+static int commands__help(int argc, char **argv)
+{
+    int rc = cli_parse(argc, argv, NULL, &argc);
+    if (rc >= 0)
+        return rc;
+    if (argc > 1)
+        return cli_usage_error("help: one command at most ('%s' and '%s')", argv[0], argv[1]);
+    if (argc == 0) {
+        commands__overview(stdout);
+        return DM_EXIT_OK;
+    }
+    const cli_command *c = cli_commands_find(argv[0]);
+    if (!c)
+        return commands__unknown(argv[0]);
+    cli_command_help(c, stdout);
+    return DM_EXIT_OK;
+}
+
+static int commands__gen_man(int argc, char **argv)
+{
+    int rc = cli_parse(argc, argv, NULL, &argc);
+    if (rc < 0 && argc)
+        rc = cli_usage_error("__gen-man takes no arguments");
+    if (rc >= 0)
+        return rc;
+    cli_gen_man(stdout);
+    return DM_EXIT_OK;
+}
+
+static int commands__gen_completion(int argc, char **argv)
+{
+    int rc = cli_parse(argc, argv, NULL, &argc);
+    if (rc < 0 && (argc != 1 || cli_gen_completion(argv[0], stdout) != 0))
+        rc = cli_usage_error("__gen-completion: expected one of: bash, zsh");
+    return rc >= 0 ? rc : DM_EXIT_OK;
+}
+
+int cli_parse(int argc, char **argv, void *args, int *n_pos)
+{
+    const cli_command *c = cli_commands_find(argv[0]);
+    int want_help = 0;
+    assert(c);
+    int rc = cli_options_parse(c->name, c->options, argc, argv, args, n_pos, &want_help);
+    if (rc == 0 && want_help)
+        cli_command_help(c, stdout);
+    return rc != 0 || want_help ? rc : -1;
+}
+
+int cli_main(int argc, char **argv)
+{
+    if (argc < 2) {                    /* the overview, but a usage error */
+        commands__overview(stdout);
+        return DM_EXIT_USAGE;
+    }
+    if (strcmp(argv[1], "--help") == 0 || strcmp(argv[1], "-h") == 0) {
+        commands__overview(stdout);
+        return DM_EXIT_OK;
+    }
+    if (strcmp(argv[1], "--version") == 0) {
+        printf("%s\n", cli_version());
+        return DM_EXIT_OK;
+    }
+    const cli_command *c = cli_commands_find(argv[1]);
+    return c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]);
+}
