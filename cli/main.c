@@ -7,6 +7,7 @@
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 #include "cli/cli.h"
+#include "run/callgrind.h"
 
 #include <stdio.h>
 #include <string.h>
@@ -59,6 +60,9 @@ int main(int argc, char **argv)
         printf("dmbench 0.1.0\n");
         return 0;
     }
+    /* internal: the Instructions pass's child, started under Valgrind by the runner */
+    if (strcmp(argv[1], "__instructions") == 0)
+        return callgrind_child_main(argc - 1, argv + 1);
     const char *names[sizeof commands / sizeof *commands];
     for (size_t i = 0; i < sizeof commands / sizeof *commands; i++) {
         names[i] = commands[i].name;
