@@ -103,6 +103,13 @@ static int cli__numeric(cli_compare_opts *o, int argc, char **argv, int *i)
     const char *a = argv[*i];
     if (strcmp(a, "--time-threshold") == 0)
         return cli__num_opt(argc, argv, i, &o->d.time_threshold, 1);
+    if (strcmp(a, "--threshold") == 0) {   /* Instructions; a fraction in (0, 1) */
+        int rc = cli__num_opt(argc, argv, i, &o->d.threshold, 1);
+        if (rc < 0 && !(o->d.threshold > 0 && o->d.threshold < 1))
+            rc = cli__usage_error("compare: --threshold '%s': expected a change in (0, 100%%), "
+                                  "e.g. 0.5%% or 0.005", argv[*i]);
+        return rc;
+    }
     if (strcmp(a, "--alpha") == 0)
         return cli__num_opt(argc, argv, i, &o->d.alpha, 0);
     if (strcmp(a, "--psnr-drop") == 0)
@@ -126,7 +133,7 @@ static int cli__numeric(cli_compare_opts *o, int argc, char **argv, int *i)
 static int cli__compare_options(int argc, char **argv, cli_compare_opts *o)
 {
     static const char *const valid[] = {
-        "--time-threshold", "--alpha", "--psnr-drop", "--ssim-drop", "--tolerance", "--time-counter",
+        "--time-threshold", "--threshold", "--alpha", "--psnr-drop", "--ssim-drop", "--tolerance", "--time-counter",
         "--seed", "--counters-only", "--allow-env-mismatch", "--junit", "--markdown", "--json",
         "--store", "--base-store", "--new-store", "--base-run", "--base-tag", "--new-run",
         "--new-tag", "--baseline", "--paired", "--rounds", "--quiet" };
@@ -160,6 +167,7 @@ static int cli__compare_options(int argc, char **argv, cli_compare_opts *o)
                 return cli__usage_error("compare: --paired needs BASE_BINARY NEW_BINARY SWEEP");
             for (int k = 0; k < 3; k++)
                 o->paired[k] = argv[++i];
+            o->d.paired = 1;
         } else {
             return cli__unknown_option("compare", a, valid, sizeof valid / sizeof *valid);
         }

@@ -24,7 +24,7 @@ static const command commands[] = {
     { "run", cli_run, "run [SWEEP.yaml] [--out DIR] [--resume] [--shard K/N] [--budget SEC] [--seed N] [--tag NAME] [--quick] [--quiet|--verbose]" },
     { "report", cli_report, "report DIR [--metric NAME]  rebuild report.html, results.json, results.csv, summary.md" },
     { "fit", cli_fit, "fit DIR | --data FILE.csv  --formula F | --model NAME  [--response NAME] [--group-by A,B] [--loss huber|cauchy|none] [--json]" },
-    { "compare", cli_compare, "compare BASE NEW [--time-threshold 5%] [--alpha 0.01] [--tolerance C=REL] [--psnr-drop DB] [--ssim-drop X]\n"
+    { "compare", cli_compare, "compare BASE NEW [--threshold 0.5%] [--time-threshold 5%] [--alpha 0.01] [--tolerance C=REL] [--psnr-drop DB] [--ssim-drop X]\n"
       "                        [--counters-only] [--allow-env-mismatch] [--junit F] [--markdown F] [--json F]\n"
       "                        [--store FILE] [--base-tag T|--base-run ID|--baseline] [--new-tag T|--new-run ID]\n"
       "  dmbench compare --paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]" },
