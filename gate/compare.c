@@ -120,7 +120,7 @@ static int compare__instructions(const compare_desc *d, const dm_config_result *
 {
     const dm_counter_result *cb = dm_config_counter(b, "Instructions");
     const dm_counter_result *cn = dm_config_counter(n, "Instructions");
-    if (!cb || !cn || !cb->available || !cn->available || !(cb->value > 0))
+    if (d->instr_off || !cb || !cn || !cb->available || !cn->available || !(cb->value > 0))
         return 0;
     it->instr = 1;
     it->instr_base = cb->value;
@@ -147,7 +147,7 @@ static void compare__deterministic(const compare_desc *d, const dm_config_result
         const dm_counter_result *cn = dm_config_counter(n, cb->name);
         if (!cb->deterministic || !cn)
             continue;
-        if (cb->available && cn->available && compare__is_cost(cb->name))
+        if (compare__is_cost(cb->name) && ((cb->available && cn->available) || d->instr_off))
             continue;          /* exact counts with a threshold: compare__instructions */
         if (cb->available != cn->available) {
             compare__change(it, cb->name, cb->value, cn->value,
@@ -409,6 +409,14 @@ static int compare__time_counter_ok(const compare_desc *d, const dm_run_result *
     return 1;
 }
 
+static int compare__has_instructions(const dm_run_result *r)
+{
+    for (size_t i = 0; i < r->n_configs; i++)
+        if (dm_config_counter(&r->configs[i], "Instructions"))
+            return 1;
+    return 0;
+}
+
 int compare_runs(const dm_run_result *base, const dm_run_result *new_, const compare_desc *d,
                  compare_result *out, dm_str *err)
 {
@@ -435,6 +443,15 @@ int compare_runs(const dm_run_result *base, const dm_run_result *new_, const com
         dm_str_printf(err, "%s is marked partial on this driver (the timer covers a fraction of "
                       "the work); it is never used to gate — use WallTime", o->time_counter);
         return DM_ERR_ARG;
+    }
+    const char *cpu_b = dm_kv_get(base->environment, base->n_environment, "cpu");
+    const char *cpu_n = dm_kv_get(new_->environment, new_->n_environment, "cpu");
+    if (cpu_b && cpu_n && strcmp(cpu_b, cpu_n) != 0 && compare__has_instructions(base)) {
+        out->desc.instr_off = 1;
+        compare__push(&out->warnings, &out->n_warnings,
+                      dm_xasprintf("Instructions not compared: BASE was counted on '%s', NEW on '%s' "
+                                   "(instruction counts depend on the CPU's instruction set)",
+                                   cpu_b, cpu_n));
     }
     int *pending = compare__match(o, base, new_, out);
     compare__timing(o, out, pending);

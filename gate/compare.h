@@ -67,6 +67,9 @@ typedef struct compare_desc {
     double time_threshold;   /* 0 -> 0.05 */
     double threshold;        /* Instructions: relative change that decides; 0 -> 0.005 */
     int paired;              /* samples are runs (rounds): notes say "rounds" */
+    int instr_off;           /* set by compare_runs when the runs' CPUs differ: instruction
+                                counts depend on the CPU (JIT target, libc ifuncs), so the
+                                Cost counters are not compared (a warning says so) */
     double alpha;            /* 0 -> 0.01 */
     double level;            /* 0 -> 0.95 */
     double psnr_drop;        /* 0 -> 1.0 dB */
