@@ -125,34 +125,41 @@ static pid_t cg__spawn(cg_state *g, int *fd)
     return pid;
 }
 
-/* The last lines of Valgrind's log of process pid (its own messages, the
- * "==PID==" prefixes removed), or NULL. */
-static char *cg__valgrind_message(const callgrind_desc *d, pid_t pid)
+/* Appends the last `keep` non-empty lines of file path (Valgrind's
+ * "==PID==" prefixes and banner removed) to out, " | "-separated. */
+static void cg__tail(const char *path, size_t keep, dm_str *out)
 {
-    char *path = dm_xasprintf("%s/valgrind.%d.log", d->work_dir, (int)pid), *text = NULL;
+    char *text = NULL;
     size_t len = 0;
-    int rc = dm_read_file(path, &text, &len);
-    free(path);
-    if (rc != 0) {   /* Valgrind failed before opening its log: its stderr */
-        path = dm_xasprintf("%s/child.log", d->work_dir);
-        rc = dm_read_file(path, &text, &len);
-        free(path);
-    }
-    if (rc != 0 || !text)
-        return NULL;
-    dm_str s = {0};
-    const char *lines[6] = {0};
+    if (dm_read_file(path, &text, &len) != 0 || !text)
+        return;
+    const char *lines[8] = {0};
     size_t k = 0;
     char *save = NULL;
+    keep = keep > 8 ? 8 : keep;
     for (char *l = strtok_r(text, "\n", &save); l; l = strtok_r(NULL, "\n", &save)) {
         char *p = l[0] == '=' && l[1] == '=' ? strstr(l + 2, "== ") : NULL;
         l = p ? p + 3 : l;
-        if (*l && !strstr(l, "Copyright") && !strstr(l, "Using Valgrind") && !strstr(l, "Command:"))
-            lines[k++ % 6] = l;
+        if (*l && !strstr(l, "Copyright") && !strstr(l, "Using Valgrind") && !strstr(l, "Command:") &&
+            !strstr(l, "Callgrind, a call-graph"))
+            lines[k++ % 8] = l;
     }
-    for (size_t i = k > 6 ? k - 6 : 0; i < k; i++)
-        dm_str_printf(&s, "%s%s", s.len ? " | " : "", lines[i % 6]);
+    for (size_t i = k > keep ? k - keep : 0; i < k; i++)
+        dm_str_printf(out, "%s%s", out->len ? " | " : "", lines[i % 8]);
     free(text);
+}
+
+/* What Valgrind (its log of process pid) and the child (its stderr) said
+ * last, or NULL. */
+static char *cg__valgrind_message(const callgrind_desc *d, pid_t pid)
+{
+    dm_str s = {0};
+    char *vlog = dm_xasprintf("%s/valgrind.%d.log", d->work_dir, (int)pid);
+    char *clog = dm_xasprintf("%s/child.log", d->work_dir);
+    cg__tail(vlog, 5, &s);
+    cg__tail(clog, 2, &s);
+    free(vlog);
+    free(clog);
     return s.len ? dm_str_take(&s) : (dm_str_free(&s), NULL);
 }
 
