@@ -721,7 +721,8 @@ int measure_pilot(const measure_job *job, dm_str *err)
  * before, with collection off. */
 static void measure__counted_samples(mscene *m, mconf *c, int frames, int samples)
 {
-    measure__frames(m, c, m->job->sweep->measure.warmup_frames > 0 ? m->job->sweep->measure.warmup_frames : 1);
+    int warm = m->job->sweep->measure.warmup_frames;
+    measure__frames(m, c, warm > 0 ? warm : 1);
     for (int s = 0; s < samples; s++) {
         char name[32];
         snprintf(name, sizeof name, "%s.%d", c->pc->key, s);
