@@ -24,5 +24,5 @@ target_link_libraries(dmbench_slowshader PRIVATE dm_cli)
 
 add_test(NAME test_instructions_gate
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/gate.sh $<TARGET_FILE:dmbench_slowshader>)
-set_tests_properties(test_instructions_gate PROPERTIES TIMEOUT 900
+set_tests_properties(test_instructions_gate PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
