@@ -104,6 +104,11 @@ grep -q "e2e baseline" "$OUT/stderr"
 expect 2 "$A" "$B" --time-treshold 5%
 grep -q "did you mean '--time-threshold'" "$OUT/stderr"
 expect 2 "$A" "$OUT/missing.json"
+for t in 0 100% 1.5 -1 abc; do                 # --threshold outside (0, 100 %)
+  expect 2 "$A" "$B" --threshold "$t"
+  grep -q -- "--threshold" "$OUT/stderr"
+done
+expect 0 "$A" "$A" --threshold 0.1%
 
 # Paired mode, the same binary on both sides: never a regression.
 expect "0 3" --paired "$BIN" "$BIN" "$SRC/tests/e2e/tiny.yaml" --rounds 2 --quiet
