@@ -45,7 +45,7 @@ static void make(dm_run_result *r, size_t n, size_t stray)
     r->n_configs = n;
     for (size_t i = 0; i < n; i++) {
         dm_config_result *c = &r->configs[i];
-        char key[17], mesh[8];
+        char key[32], mesh[32];
         snprintf(key, sizeof key, "%016zx", i + 1);
         snprintf(mesh, sizeof mesh, "m%zu", i);
         c->key = dm_xstrdup(key);
