@@ -21,23 +21,44 @@ static int proxy__pair(const dm_config_result *c, double *x, double *y)
     return isfinite(*x) && isfinite(*y) && *x > 0 && *y > 0;
 }
 
-static void proxy__label(const dm_config_result *c, char *buf, size_t cap)
+/* 1 when param k of c has another value (or none) in some configuration. */
+static int proxy__varies(const dm_run_result *run, const dm_kv *k)
 {
-    size_t len = 0;
-    buf[0] = '\0';
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const char *v = dm_kv_get(run->configs[i].params, run->configs[i].n_params, k->key);
+        if (!v || !k->value || strcmp(v, k->value) != 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* "TECHNIQUE SCENE k=v ..." with the other params that tell c apart
+ * within the run (its key when there is nothing). */
+static void proxy__label(const dm_run_result *run, const dm_config_result *c, char *buf, size_t cap)
+{
+    const char *tech = dm_kv_get(c->params, c->n_params, "technique");
+    int w0 = snprintf(buf, cap, "%s%s%s", tech ? tech : "", tech ? " " : "", c->scene ? c->scene : "");
+    size_t len = w0 > 0 && (size_t)w0 < cap ? (size_t)w0 : 0;
     for (size_t i = 0; i < c->n_params && len + 1 < cap; i++) {
+        const char *k = c->params[i].key;
+        if (!proxy__varies(run, &c->params[i]) || strcmp(k, "technique") == 0 ||
+            strcmp(k, "mesh") == 0 || strcmp(k, "resolution") == 0)
+            continue;
         int w = snprintf(buf + len, cap - len, "%s%s=%s", len ? " " : "", c->params[i].key,
                          c->params[i].value ? c->params[i].value : "");
         len += w > 0 ? (size_t)w : 0;
     }
+    if (!buf[0])
+        snprintf(buf, cap, "%s", c->key ? c->key : "?");
 }
 
 /* Keeps the REPORT_PROXY_STRAYS largest |residual_rel|, largest first. */
-static void proxy__stray(report_proxy *p, const dm_config_result *c, double y, double yhat)
+static void proxy__stray(report_proxy *p, const dm_run_result *run, const dm_config_result *c,
+                         double y, double yhat)
 {
     report_proxy_stray s = { .key = c->key, .wall_ns = y, .predicted_ns = yhat,
                              .residual_rel = (y - yhat) / yhat };
-    proxy__label(c, s.label, sizeof s.label);
+    proxy__label(run, c, s.label, sizeof s.label);
     size_t at = p->n_strays;
     while (at > 0 && fabs(p->strays[at - 1].residual_rel) < fabs(s.residual_rel))
         at--;
@@ -66,7 +87,7 @@ int report_proxy_fit(const dm_run_result *run, report_proxy *out)
     for (size_t i = 0; i < run->n_configs; i++)
         if (proxy__pair(&run->configs[i], &x, &y)) {
             sse += (y - a - b * x) * (y - a - b * x);
-            proxy__stray(out, &run->configs[i], y, a + b * x);
+            proxy__stray(out, run, &run->configs[i], y, a + b * x);
         }
     out->a_ns = a;
     out->ns_per_instruction = b;

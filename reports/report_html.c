@@ -432,7 +432,7 @@ static void proxy_section(dm_str *s, const dm_run_result *run)
     report_proxy p;
     if (report_proxy_fit(run, &p) == 0) {
         dm_str_printf(s, "<h2>Instructions as a proxy for frame time</h2>\n<p>WallTime ≈ %.4g ns + "
-                      "%.4g ns × Instructions over %zu configurations: R² = %.4f.</p>\n"
+                      "%.4g ns × Instructions over %zu configurations: R² = %.5f.</p>\n"
                       "<table><tr><th>strays most</th><th>WallTime</th><th>predicted</th>"
                       "<th>residual</th></tr>\n", p.a_ns, p.ns_per_instruction, p.n, p.r2);
         for (size_t i = 0; i < p.n_strays; i++) {

@@ -143,7 +143,7 @@ static void proxy_section(dm_str *s, const dm_run_result *run)
     report_proxy p;
     if (report_proxy_fit(run, &p) == 0) {
         dm_str_printf(s, "\n## Instructions as a proxy for frame time\n\nWallTime ≈ %.4g ns + %.4g ns × "
-                      "Instructions over %zu configurations: R² = %.4f. Strays most:\n\n",
+                      "Instructions over %zu configurations: R² = %.5f. Strays most:\n\n",
                       p.a_ns, p.ns_per_instruction, p.n, p.r2);
         for (size_t i = 0; i < p.n_strays; i++) {
             dm_str_cat(s, "- ");
