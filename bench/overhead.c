@@ -21,7 +21,15 @@
  *
  * Usage: bench_overhead [ROUNDS]   (default 9; dmbench: DMBENCH_BIN or the
  * one built beside this benchmark).  Exit 0 when every configuration was
- * measured, 1 when the work could not be done or checked. */
+ * measured, 1 when the work could not be done or checked.
+ *
+ * bench_overhead --instructions: the same comparison in instructions, both
+ * sides under Valgrind callgrind (LP_NUM_THREADS=0, collection only around
+ * the counted frames and their closing glFinish): the harness figure is
+ * the Instructions per frame dmbench records (its own Instructions pass,
+ * run/callgrind.h); the raw figure comes from this program re-run under
+ * callgrind (--raw-instructions) drawing the identical frame (checked bit
+ * for bit) as many frames as dmbench counts.  Deterministic: one run each. */
 #include <cjson/cJSON.h>
 #include <epoxy/gl.h>
 #include <fcntl.h>
@@ -31,9 +39,12 @@
 #include <string.h>
 #include <sys/wait.h>
 #include <unistd.h>
+#include <valgrind/callgrind.h>
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
+#include "counters/counters.h"
+#include "run/callgrind.h"
 #include "run/gl_context.h"
 #include "models/stats.h"
 #include "techniques/mesh.h"
@@ -74,6 +85,7 @@ static const char sweep_fmt[] =
     "  frames_per_sample: %d\n"
     "  samples: { min: 5, max: 30, target_ci: 0.03 }\n"
     "  max_seconds: 6\n"
+    "%s"
     "scene:\n"
     "  camera: { distance: 3.0, azimuth: 30, elevation: 35, fov: 45 }\n"
     "  material: { maps: bricks, height_scale: 0.06 }\n"
@@ -81,6 +93,9 @@ static const char sweep_fmt[] =
     "  mesh: [%s]\n"
     "  technique: [%s]\n"
     "%s";
+
+/* measure.counters for --instructions (else the default set) */
+static const char *counters_line = "";
 
 static int cmp_double(const void *a, const void *b)
 {
@@ -155,7 +170,7 @@ static int harness_measure(const char *bin, const char *dir, ov_conf *c, double 
     char *out = dm_xasprintf("%s/out-%s", dir, c->technique);
     char *log = dm_xasprintf("%s/%s.log", dir, c->technique);
     char *text = dm_xasprintf(sweep_fmt, c->technique, W, H, WARMUP_FRAMES, FRAMES_PER_SAMPLE,
-                              c->mesh, c->technique, c->axis ? c->axis : "");
+                              counters_line, c->mesh, c->technique, c->axis ? c->axis : "");
     int rc = dm_write_file(sweep, text, strlen(text));
     if (rc == 0 && run_dmbench(bin, sweep, out, log) != 0)
         rc = DM_ERR_IO;
@@ -325,8 +340,142 @@ static void report(const ov_conf *c, int rounds)
            h.min / 1e6, h.max / 1e6, 100 * dd.median, 100 * dd.ci_lo, 100 * dd.ci_hi, verdict);
 }
 
+/* ---- --instructions ------------------------------------------------------ */
+
+/* Instructions per frame of the single configuration in out/latest. */
+static int read_instructions(const char *out, double *per_frame)
+{
+    char *path = dm_xasprintf("%s/latest/results.json", out), *text = NULL;
+    int rc = dm_read_file(path, &text, NULL);
+    free(path);
+    cJSON *root = rc == 0 ? cJSON_Parse(text) : NULL;
+    free(text);
+    cJSON *c = cJSON_GetArrayItem(cJSON_GetObjectItem(root, "configs"), 0);
+    cJSON *m = cJSON_GetObjectItem(cJSON_GetObjectItem(cJSON_GetObjectItem(c, "counters"), "Instructions"),
+                                   "median");
+    rc = cJSON_IsNumber(m) ? 0 : DM_ERR_PARSE;
+    if (rc == 0)
+        *per_frame = m->valuedouble;
+    cJSON_Delete(root);
+    return rc;
+}
+
+/* The raw side under Valgrind (this program, --raw-instructions DIR TECH):
+ * prepares the raw loop from the parameters dmbench recorded in
+ * DIR/out-TECH, checks it draws the renderer's frame, warms up, then counts
+ * `frames` frames ended by glFinish and dumps them as "raw". */
+static int raw_instructions_child(const char *dir, const char *tech, int frames)
+{
+    ov_conf *c = NULL;
+    for (size_t i = 0; i < N_CONFS; i++)
+        c = strcmp(confs[i].technique, tech) == 0 ? &confs[i] : c;
+    gl_context *gl = NULL;
+    tech_renderer *r = NULL;
+    dm_str err = {0};
+    char *out = dm_xasprintf("%s/out-%s", dir, tech);
+    double ignored;
+    int rc = c && gl_context_create(NULL, &gl, &err) == 0 && tech_renderer_create(&r) == 0 ? 0 : DM_ERR_ARG;
+    rc = rc ? rc : read_result(out, &ignored, &c->params, &c->n_params);
+    if (rc == 0) {
+        raw_target();
+        dm_str log = {0};
+        rc = tech_prepare(r, c->params, c->n_params, &c->item, &log);
+        rc = rc ? rc : tech_draw(r, c->item, W, H);
+        GLint prog = 0;
+        glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
+        c->prog = (GLuint)prog;
+        rc = rc ? rc : raw_vao(c);
+        rc = rc ? rc : raw_same_image(r, c->item, c) ? 0 : DM_ERR_GL;
+        dm_str_free(&log);
+    }
+    if (rc == 0) {
+        raw_frames(c, WARMUP_FRAMES);
+        glFinish();
+        CALLGRIND_TOGGLE_COLLECT;
+        raw_frames(c, frames);
+        glFinish();
+        CALLGRIND_TOGGLE_COLLECT;
+        CALLGRIND_DUMP_STATS_AT("raw");
+    }
+    free(out);
+    tech_renderer_destroy(r);
+    gl_context_destroy(gl);
+    return rc == 0 ? 0 : 1;
+}
+
+/* Runs the raw side of c under callgrind; *per_frame from its dump. */
+static int raw_instructions(const char *self, const char *dir, const ov_conf *c, int frames,
+                            double *per_frame)
+{
+    char *vg = counters_valgrind_path();
+    char *cg = dm_xasprintf("--callgrind-out-file=%s/raw-%s.cg", dir, c->technique);
+    char *nf = dm_xasprintf("%d", frames);
+    pid_t pid = vg ? fork() : -1;
+    if (pid == 0) {
+        setenv("LP_NUM_THREADS", "0", 1);
+        execl(vg, vg, "--tool=callgrind", "--collect-atstart=no", "--smc-check=all-non-file", cg,
+              "-q", self, "--raw-instructions", dir, c->technique, nf, (char *)NULL);
+        _exit(127);
+    }
+    int st = 0, rc = pid > 0 && waitpid(pid, &st, 0) == pid && WIFEXITED(st) && WEXITSTATUS(st) == 0
+                         ? 0 : DM_ERR_CHILD;
+    char *dump = dm_xasprintf("%s/raw-%s.cg.1", dir, c->technique), *text = NULL, name[16];
+    double totals = 0;
+    rc = rc ? rc : dm_read_file(dump, &text, NULL);
+    rc = rc ? rc : callgrind_parse_dump(text, name, sizeof name, &totals);
+    if (rc == 0)
+        *per_frame = totals / frames;
+    else
+        fprintf(stderr, "bench_overhead: raw %s under callgrind failed (%s)\n", c->technique,
+                vg ? dm_strerror(rc) : "valgrind not found");
+    free(text);
+    free(dump);
+    free(nf);
+    free(cg);
+    free(vg);
+    return rc;
+}
+
+/* --instructions: one harness run and one raw run per configuration, both
+ * counted under callgrind; prints instructions per frame and the overhead. */
+static int instructions_main(const char *self, const char *bin)
+{
+    counters_line = "  counters: [WallTime, SamplesPassed, Instructions]\n";
+    sweep_measure sm = {.frames_per_sample = FRAMES_PER_SAMPLE};
+    int frames = callgrind_frames(&sm), rc = 0;
+    char dir[] = "/tmp/dmbench-overhead-XXXXXX";
+    if (!mkdtemp(dir))
+        return 1;
+    printf("harness overhead in instructions (callgrind, LP_NUM_THREADS=0, %dx%d, %d counted frames, "
+           "deterministic)\n", W, H, frames);
+    for (size_t i = 0; rc == 0 && i < N_CONFS; i++) {
+        ov_conf *c = &confs[i];
+        double wall, harness = 0, raw = 0;
+        rc = harness_measure(bin, dir, c, &wall, 0);
+        char *out = dm_xasprintf("%s/out-%s", dir, c->technique);
+        rc = rc ? rc : read_instructions(out, &harness);
+        free(out);
+        rc = rc ? rc : raw_instructions(self, dir, c, frames, &raw);
+        if (rc == 0)
+            printf("  %-8s raw %12.0f  harness %12.0f instructions/frame: overhead %+.3f %%%s\n",
+                   c->technique, raw, harness, 100 * (harness / raw - 1),
+                   fabs(harness / raw - 1) <= 0.01 ? " (within 1 %)" : " (over 1 %)");
+    }
+    printf("  (work dir %s)\n", dir);
+    return rc == 0 ? 0 : 1;
+}
+
 int main(int argc, char **argv)
 {
+    const char *bin0 = getenv("DMBENCH_BIN") ? getenv("DMBENCH_BIN") : DM_DMBENCH_PATH;
+    if (argc == 5 && strcmp(argv[1], "--raw-instructions") == 0)
+        return raw_instructions_child(argv[2], argv[3], atoi(argv[4]));
+    if (argc == 2 && strcmp(argv[1], "--instructions") == 0) {
+        char self[4096];
+        ssize_t n = readlink("/proc/self/exe", self, sizeof self - 1);
+        self[n > 0 ? n : 0] = '\0';
+        return instructions_main(self, bin0);
+    }
     int rounds = argc > 1 ? atoi(argv[1]) : 9;
     if (rounds < 1 || rounds > MAX_ROUNDS) {
         fprintf(stderr, "usage: bench_overhead [ROUNDS 1..%d]\n", MAX_ROUNDS);

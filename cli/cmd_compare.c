@@ -68,6 +68,20 @@ static int compare__number(const cli_option *opt, const char *v, void *args, dm_
     return 0;
 }
 
+/* --threshold: the Instructions change that counts, a fraction or a
+ * percentage strictly between 0 and 100 %. */
+static int compare__threshold(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    double x = compare__fraction(v);
+    if (!(x > 0 && x < 1)) {
+        dm_str_printf(err, "--%s '%s': expected a change in (0, 100%%), e.g. 0.5%% or 0.005",
+                      opt->name, v);
+        return DM_ERR_ARG;
+    }
+    *(double *)((char *)args + opt->offset) = x;
+    return 0;
+}
+
 /* --tolerance COUNTER=REL, repeatable. */
 static int compare__tolerance(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
@@ -98,6 +112,9 @@ const cli_option cli_compare_options[] = {
     { .name = "time-threshold", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.time_threshold),
       .value_name = "REL", .parse = compare__number,
       .help = "smallest time change that counts, e.g. 5% or 0.05 [default 5%]" },
+    { .name = "threshold", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.threshold),
+      .value_name = "REL", .parse = compare__threshold,
+      .help = "smallest Instructions change that counts, e.g. 0.5% or 0.005 [default 0.5%]" },
     { .name = "alpha", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.alpha), .value_name = "P",
       .parse = compare__number, .help = "significance level of the time test [default 0.01]" },
     { .name = "psnr-drop", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.psnr_drop),
@@ -214,6 +231,7 @@ int cli_compare(int argc, char **argv)
     int rc = cli_parse(argc, argv, &o, &argc);
     o.positional = argv;
     o.n_positional = argc;
+    o.d.paired = o.paired[0] != NULL;   /* pooled minimum times (compare.h) */
     if (rc < 0 && argc > 2)
         rc = cli_usage_error("compare: too many arguments ('%s'): expected BASE NEW", argv[2]);
     dm_run_result base = {0}, new_ = {0};

@@ -2,6 +2,7 @@
 #include "cli.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
+#include "run/callgrind.h"
 
 #include <assert.h>
 #include <stdarg.h>
@@ -87,6 +88,9 @@ static const cli_command commands[] = {
                      "Esc quit; left drag orbits, right drag pans, wheel zooms (docs/viewer.md)." },
     { .name = "help", .fn = commands__help, .synopsis = "[COMMAND]",
       .summary = "this overview, or the help of one command" },
+    { .name = "__instructions", .fn = callgrind_child_main, .flags = CLI_CMD_HIDDEN,
+      .synopsis = "SWEEP HASH KEY...",
+      .summary = "the Instructions pass's child, started under Valgrind by the runner" },
     { .name = "__gen-man", .fn = commands__gen_man, .flags = CLI_CMD_HIDDEN,
       .summary = "print the man page (build step)" },
     { .name = "__gen-completion", .fn = commands__gen_completion, .synopsis = "bash|zsh",

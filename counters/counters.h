@@ -44,7 +44,8 @@ typedef enum counters_backend {
     COUNTERS_BACKEND_PIPELINE_STATS,
     COUNTERS_BACKEND_OCCLUSION,    /* GL_SAMPLES_PASSED */
     COUNTERS_BACKEND_CPU_SIDE,     /* set by the caller (bytes, VT counters) */
-    COUNTERS_BACKEND_DERIVED       /* formula over other counters */
+    COUNTERS_BACKEND_DERIVED,      /* formula over other counters */
+    COUNTERS_BACKEND_CALLGRIND     /* instructions counted under Valgrind, own child (run/callgrind.h) */
 } counters_backend;
 
 typedef struct counters_info {
@@ -75,6 +76,10 @@ int counters_available(const counters_context *ctx, const char *name, const char
 /* What the counter really counts on this driver (e.g. per-4x4-block
  * FSInvocations on llvmpipe), or the generic description. */
 const char *counters_driver_note(const counters_context *ctx, const char *name);
+/* The Valgrind executable that counts the Cost group (Instructions): the
+ * path in DMBENCH_VALGRIND when set (tests point it at a missing file),
+ * else "valgrind" found on PATH.  Returns a malloc'd path or NULL. */
+char *counters_valgrind_path(void);
 /* Test hook: pretend an extension is missing ("GL_ARB_pipeline_statistics_query"). */
 void counters_context_hide_extension(counters_context *ctx, const char *ext);
 

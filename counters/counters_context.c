@@ -9,6 +9,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define EXT_PIPESTATS "GL_ARB_pipeline_statistics_query"
 #define EXT_TIMER     "GL_ARB_timer_query"
@@ -38,6 +39,9 @@ static int ctx__req_ok(const counters_context *ctx, counters__req req, const cha
     case COUNTERS__REQ_COMPUTE:
         *why = ps ? lacks_cs : lacks_ps;
         return ps && counters__has_ext(ctx, EXT_COMPUTE);
+    case COUNTERS__REQ_CALLGRIND:
+        *why = ctx->callgrind_why;
+        return ctx->callgrind_why[0] == '\0';
     }
     return 0;
 }
@@ -157,6 +161,45 @@ static void ctx__fs_note(counters_context *ctx)
                  r == 1.0 ? " (measured: 1 per covered pixel)" : " (granularity not measured)");
 }
 
+char *counters_valgrind_path(void)
+{
+    const char *env = getenv("DMBENCH_VALGRIND");
+    if (env && *env)
+        return access(env, X_OK) == 0 ? dm_xstrdup(env) : NULL;
+    const char *path = getenv("PATH");
+    char *copy = dm_xstrdup(path ? path : "/usr/bin:/bin"), *save = NULL, *found = NULL;
+    for (char *dir = strtok_r(copy, ":", &save); dir && !found; dir = strtok_r(NULL, ":", &save)) {
+        char *cand = dm_xasprintf("%s/valgrind", *dir ? dir : ".");
+        if (access(cand, X_OK) == 0)
+            found = cand;
+        else
+            free(cand);
+    }
+    free(copy);
+    return found;
+}
+
+/* Decides once whether Instructions can be counted here: instruction counts
+ * are the cost of rendering only when the rasteriser is CPU code (llvmpipe,
+ * softpipe: the one place the renderer's name decides, because no GL query
+ * says "software"), and they need Valgrind. */
+static void ctx__callgrind_probe(counters_context *ctx)
+{
+    const char *r = (const char *)glGetString(GL_RENDERER);
+    snprintf(ctx->renderer, sizeof ctx->renderer, "%s", r ? r : "?");
+    ctx->cpu_renderer = r && (strstr(r, "llvmpipe") || strstr(r, "softpipe"));
+    char *vg = counters_valgrind_path();
+    if (!ctx->cpu_renderer)
+        snprintf(ctx->callgrind_why, sizeof ctx->callgrind_why,
+                 "not a CPU renderer ('%s'): instructions of the calling process are not the cost "
+                 "of rendering on a GPU", ctx->renderer);
+    else if (!vg)
+        snprintf(ctx->callgrind_why, sizeof ctx->callgrind_why,
+                 "valgrind not found (%s); scripts/install-deps installs it",
+                 getenv("DMBENCH_VALGRIND") ? "DMBENCH_VALGRIND is not an executable" : "not on PATH");
+    free(vg);
+}
+
 int counters_context_create(counters_context **out)
 {
     counters_context *ctx = dm_xcalloc(1, sizeof *ctx);
@@ -164,6 +207,7 @@ int counters_context_create(counters_context **out)
     if (counters__has_ext(ctx, EXT_PIPESTATS))
         ctx->fs_per_pixel = ctx__probe_fs_granularity();
     ctx__fs_note(ctx);
+    ctx__callgrind_probe(ctx);
     snprintf(ctx->gpu_note, sizeof ctx->gpu_note, "%s; coverage not calibrated yet",
              counters_find("GPUTime")->description);
     *out = ctx;

@@ -26,7 +26,8 @@ typedef enum counters__req {
     COUNTERS__REQ_NONE = 0,
     COUNTERS__REQ_PIPESTATS,    /* GL_ARB_pipeline_statistics_query */
     COUNTERS__REQ_TIMER,        /* GL_ARB_timer_query */
-    COUNTERS__REQ_COMPUTE       /* pipeline statistics + GL_ARB_compute_shader */
+    COUNTERS__REQ_COMPUTE,      /* pipeline statistics + GL_ARB_compute_shader */
+    COUNTERS__REQ_CALLGRIND     /* Valgrind installed and a CPU renderer (llvmpipe, softpipe) */
 } counters__req;
 
 typedef struct counters__def {
@@ -47,6 +48,9 @@ struct counters_context {
     double fs_per_pixel;        /* FSInvocations for one covered pixel; 0 = not measured */
     char fs_note[320];
     char gpu_note[320];
+    int cpu_renderer;           /* GL_RENDERER is a CPU rasteriser: its "GPU" work is CPU instructions */
+    char renderer[128];
+    char callgrind_why[320];    /* why Instructions is unavailable; "" = available */
 };
 
 /* 1 if the driver offers ext and no test hid it. */

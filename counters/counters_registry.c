@@ -92,6 +92,12 @@ static const counters__def counters__table[] = {
     /* ---- Scene (caller-fed, needed by derived counters) ---- */
     {{"ViewportPixels", "Scene", "Pixels of the viewport times frames in the sample, fed by the caller",
       ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+    /* ---- Cost (own child under Valgrind callgrind, run/callgrind.h) ---- */
+    {{"Instructions", "Cost", "Instructions retired per frame by the measured frames (callgrind, collection only "
+      "around K frames ended by glFinish, LP_NUM_THREADS=0; deterministic on CPU renderers)",
+      ITEMS, U64, COUNTERS_BACKEND_CALLGRIND, 1, NULL}, P_NO, 0, COUNTERS__REQ_CALLGRIND},
+    {{"InstructionsPerPixel", "Cost", "Instructions per covered sample (Instructions / SamplesPassed)",
+      RATIO, F64, B_DER, 1, "Instructions / SamplesPassed"}, P_NO, 0, 0},
     /* ---- Derived ---- */
     {{"TessAmplification", "Derived", "TES invocations per tessellation patch",
       RATIO, F64, B_DER, 1, "TESInvocations / TCSPatches"}, P_NO, 0, 0},

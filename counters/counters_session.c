@@ -526,6 +526,9 @@ int counters_plan_describe(counters_context *ctx, const char *const *names, size
     const counters_backend cpu = COUNTERS_BACKEND_CPU_SIDE, der = COUNTERS_BACKEND_DERIVED;
     sess__list(s, out, "caller-fed: ", sess__is_backend, &cpu);
     sess__list(s, out, "derived: ", sess__is_backend, &der);
+    const counters_backend cg = COUNTERS_BACKEND_CALLGRIND;
+    sess__list(s, out, "callgrind child (own process under Valgrind, frames not timed): ",
+               sess__is_backend, &cg);
     sess__list(s, out, "unavailable: ", sess__is_unavailable, NULL);
     counters_session_destroy(s);
     return 0;

@@ -23,6 +23,7 @@ compare_desc compare_defaults(const compare_desc *d)
 {
     compare_desc o = *d;
     o.time_threshold = o.time_threshold > 0 ? o.time_threshold : 0.05;
+    o.threshold = o.threshold > 0 ? o.threshold : 0.005;
     o.alpha = o.alpha > 0 ? o.alpha : 0.01;
     o.level = o.level > 0 ? o.level : 0.95;
     o.psnr_drop = o.psnr_drop > 0 ? o.psnr_drop : 1.0;
@@ -106,6 +107,37 @@ static void compare__change(compare_item *it, const char *counter, double b, dou
     c->note = dm_xstrdup(note);
 }
 
+/* Counters of the Cost group (counted under Valgrind): gated by the
+ * threshold, not by exact equality. */
+static int compare__is_cost(const char *name)
+{
+    return strcmp(name, "Instructions") == 0 || strcmp(name, "InstructionsPerPixel") == 0;
+}
+
+/* Instructions on both sides decide the verdict by the threshold (exact
+ * counts need no statistics).  Returns 1 when decided. */
+static int compare__instructions(const compare_desc *d, const dm_config_result *b,
+                                 const dm_config_result *n, compare_item *it)
+{
+    const dm_counter_result *cb = dm_config_counter(b, "Instructions");
+    const dm_counter_result *cn = dm_config_counter(n, "Instructions");
+    if (d->instr_off || !cb || !cn || !cb->available || !cn->available || !(cb->value > 0))
+        return 0;
+    it->instr = 1;
+    it->instr_base = cb->value;
+    it->instr_new = cn->value;
+    double r = cn->value / cb->value, t = d->threshold;
+    const dm_counter_result *pb = dm_config_counter(b, "InstructionsPerPixel");
+    const dm_counter_result *pn = dm_config_counter(n, "InstructionsPerPixel");
+    if (pb && pn && pb->available && pn->available && pb->value > 0 &&
+        fabs(pn->value / pb->value - 1) > fabs(r - 1))
+        r = pn->value / pb->value;    /* the larger relative change of the two */
+    it->verdict = r > 1 + t ? COMPARE_REGRESSION : r < 1 - t ? COMPARE_IMPROVEMENT : COMPARE_PASS;
+    it->note = dm_xasprintf("Instructions %+.3f%% (%.0f -> %.0f per frame; threshold %.2g%%)",
+                            (r - 1) * 100, cb->value, cn->value, t * 100);
+    return 1;
+}
+
 /* Deterministic counters of BASE against NEW: a value outside the tolerance,
  * or a counter available on one side only, is a change. */
 static void compare__deterministic(const compare_desc *d, const dm_config_result *b,
@@ -116,6 +148,8 @@ static void compare__deterministic(const compare_desc *d, const dm_config_result
         const dm_counter_result *cn = dm_config_counter(n, cb->name);
         if (!cb->deterministic || !cn)
             continue;
+        if (compare__is_cost(cb->name) && ((cb->available && cn->available) || d->instr_off))
+            continue;          /* exact counts with a threshold: compare__instructions */
         if (cb->available != cn->available) {
             compare__change(it, cb->name, cb->value, cn->value,
                             cb->available ? "unavailable on NEW" : "unavailable on BASE");
@@ -188,13 +222,11 @@ static int compare__checks(const compare_desc *d, const dm_config_result *b,
         it->note = compare__changes_note(it);
         return 1;
     }
-    if (d->counters_only)
-        return 1;
-    if ((it->note = compare__quality(d, b, n, it))) {
+    if (!d->counters_only && (it->note = compare__quality(d, b, n, it))) {
         it->verdict = COMPARE_REGRESSION;
         return 1;
     }
-    return 0;
+    return compare__instructions(d, b, n, it) || d->counters_only;
 }
 
 /* Bootstrap CI and Mann-Whitney p of the time counter; 0 when timed. */
@@ -206,7 +238,8 @@ static int compare__time_stats(const compare_desc *d, const dm_config_result *b,
     if (!tb || !tn || !tb->available || !tn->available || !tb->n_samples || !tn->n_samples) {
         it->verdict = COMPARE_INCONCLUSIVE;
         it->extra_samples = -1;
-        it->note = dm_xasprintf("no %s samples on %s", d->time_counter,
+        it->detectable = NAN;
+        it->note = dm_xasprintf("no %s samples on %s: no change could be detected", d->time_counter,
                                 !tb || !tb->available || !tb->n_samples ? "BASE" : "NEW");
         return -1;
     }
@@ -226,6 +259,7 @@ static int compare__time_stats(const compare_desc *d, const dm_config_result *b,
     it->n_base = tb->n_samples;
     it->n_new = tn->n_samples;
     it->p = compare_stats_mann_whitney(tn->samples, tn->n_samples, tb->samples, tb->n_samples, NULL);
+    it->detectable = cr.ratio > 0 ? (cr.hi - cr.lo) / 2 / cr.ratio : NAN;
     return 0;
 }
 
@@ -254,6 +288,8 @@ static long compare__extra_samples(double t, const compare_item *it)
             f = fmax(f, compare__shrink(r, it->hi, 1.0 + t));
     }
     double n = (double)(it->n_base < it->n_new ? it->n_base : it->n_new);
+    /* and at least enough for the detectable change to reach t */
+    f = fmax(f, it->detectable > t ? (it->detectable / t) * (it->detectable / t) : 0);
     double need = ceil(n * f - n);
     return !isfinite(need) || need > 1e9 ? -1 : need < 1 ? 1 : (long)need;
 }
@@ -274,19 +310,26 @@ static void compare__time_verdict(const compare_desc *d, compare_item *it)
         it->verdict = COMPARE_PASS;
     } else {
         it->verdict = COMPARE_INCONCLUSIVE;
+        const char *unit = d->paired ? "rounds" : "samples per side";
+        char *head = dm_xasprintf("could detect changes >= %.1f%% (threshold %.1f%%)",
+                                  it->detectable * 100, t * 100);
         if (it->lo > 1.0 + t || it->hi < 1.0 - t) {
-            it->extra_samples = -1;
-            it->note = dm_xasprintf("CI outside the tolerance but not significant (q=%.2g >= %.2g)",
-                                    it->q, d->alpha);
+            /* outside the band but q >= alpha: significance needs more data */
+            double n = (double)(it->n_base < it->n_new ? it->n_base : it->n_new);
+            it->extra_samples = (long)(n > 0 ? n : 1);
+            it->note = dm_xasprintf("%s; CI outside the tolerance but not significant (q=%.2g >= "
+                                    "%.2g): about %ld more %s", head, it->q, d->alpha,
+                                    it->extra_samples, unit);
         } else {
             it->extra_samples = compare__extra_samples(t, it);
             it->note = it->extra_samples < 0
-                           ? dm_xasprintf("CI %.3f..%.3f straddles %.3f; more samples will not "
-                                          "decide it", it->lo, it->hi,
-                                          it->ratio > 1 ? 1 + t : 1 - t)
-                           : dm_xasprintf("CI %.3f..%.3f too wide: about %ld more samples per side",
-                                          it->lo, it->hi, it->extra_samples);
+                           ? dm_xasprintf("%s; CI %.3f..%.3f straddles %.3f; more %s will not "
+                                          "decide it", head, it->lo, it->hi,
+                                          it->ratio > 1 ? 1 + t : 1 - t, unit)
+                           : dm_xasprintf("%s; CI %.3f..%.3f: about %ld more %s", head,
+                                          it->lo, it->hi, it->extra_samples, unit);
         }
+        free(head);
     }
 }
 
@@ -406,6 +449,14 @@ static int compare__time_counter_ok(const compare_desc *d, const dm_run_result *
     return 1;
 }
 
+static int compare__has_instructions(const dm_run_result *r)
+{
+    for (size_t i = 0; i < r->n_configs; i++)
+        if (dm_config_counter(&r->configs[i], "Instructions"))
+            return 1;
+    return 0;
+}
+
 int compare_runs(const dm_run_result *base, const dm_run_result *new_, const compare_desc *d,
                  compare_result *out, dm_str *err)
 {
@@ -435,6 +486,15 @@ int compare_runs(const dm_run_result *base, const dm_run_result *new_, const com
         dm_str_printf(err, "%s is marked partial on this driver (the timer covers a fraction of "
                       "the work); it is never used to gate — use WallTime", o->time_counter);
         return DM_ERR_ARG;
+    }
+    const char *cpu_b = dm_kv_get(base->environment, base->n_environment, "cpu");
+    const char *cpu_n = dm_kv_get(new_->environment, new_->n_environment, "cpu");
+    if (cpu_b && cpu_n && strcmp(cpu_b, cpu_n) != 0 && compare__has_instructions(base)) {
+        out->desc.instr_off = 1;
+        compare__push(&out->warnings, &out->n_warnings,
+                      dm_xasprintf("Instructions not compared: BASE was counted on '%s', NEW on '%s' "
+                                   "(instruction counts depend on the CPU's instruction set)",
+                                   cpu_b, cpu_n));
     }
     int *pending = compare__match(o, base, new_, out);
     compare__timing(o, out, pending);

@@ -13,6 +13,11 @@
  *    its relative tolerance (default 0: exact)               -> REGRESSION
  *  - quality: PSNR dropped by more than psnr_drop dB or SSIM by more than
  *    ssim_drop (not in counters_only mode)                   -> REGRESSION
+ *  - Instructions (group Cost, exact counts) available on both sides: the
+ *    ratio new/base beyond 1 + threshold is REGRESSION, below 1 - threshold
+ *    IMPROVEMENT, else PASS — decided without statistics; timing is then
+ *    not gated (an exact count beats a noisy time).  InstructionsPerPixel
+ *    is compared with the same threshold.  Also in counters_only mode.
  *  - time (not in counters_only mode): the percentile bootstrap CI (level,
  *    seeded per key) of median(new)/median(base) of the time counter and a
  *    Mann-Whitney U p-value, Benjamini-Hochberg adjusted over all timed
@@ -21,7 +26,10 @@
  *      hi < 1 - t and q < alpha                              -> IMPROVEMENT
  *      1 - t <= lo and hi <= 1 + t                           -> PASS
  *      otherwise                                             -> INCONCLUSIVE
- *    INCONCLUSIVE carries the extra samples per side likely needed:
+ *    Identical samples on both sides give ratio = lo = hi = 1: PASS.
+ *    Every INCONCLUSIVE states `detectable`, the smallest change the data
+ *    could have detected (the CI's half-width relative to the ratio), and
+ *    the extra samples per side (rounds in paired mode) likely needed:
  *    n * f - n, n the smaller side's sample count, f the largest
  *    ((ratio - CI bound) / (ratio - threshold that bound must clear))^2
  *    over the CI sides that cross a threshold (a CI shrinks ~ 1/sqrt(n)).
@@ -57,6 +65,11 @@ typedef struct compare_tolerance {
 /* Zero means default everywhere (see compare_defaults). */
 typedef struct compare_desc {
     double time_threshold;   /* 0 -> 0.05 */
+    double threshold;        /* Instructions: relative change that decides; 0 -> 0.005 */
+    int paired;              /* samples are runs (rounds): notes say "rounds" */
+    int instr_off;           /* set by compare_runs when the runs' CPUs differ: instruction
+                                counts depend on the CPU (JIT target, libc ifuncs), so the
+                                Cost counters are not compared (a warning says so) */
     double alpha;            /* 0 -> 0.01 */
     double level;            /* 0 -> 0.95 */
     double psnr_drop;        /* 0 -> 1.0 dB */
@@ -86,6 +99,9 @@ typedef struct compare_item {
     size_t n_base, n_new;
     double median_new;       /* NEW's median of the time counter, ns per frame; 0 when none (JUnit time) */
     long extra_samples;      /* INCONCLUSIVE: per side; -1 unknown */
+    double detectable;       /* timed: smallest relative change the data could detect (CI half-width / ratio) */
+    int instr;               /* Instructions decided the verdict: */
+    double instr_base, instr_new;   /* per frame on each side */
     compare_change *changes; /* deterministic counters that changed */
     size_t n_changes;
     int quality;             /* both sides have quality */
@@ -169,7 +185,7 @@ typedef struct compare_paired_desc {
 } compare_paired_desc;
 /* Runs the sweep `rounds` times with each binary, each run a fresh process
  * writing to its own temporary output directory (removed afterwards), and
- * pools each side's per-run medians per key across rounds into *base / *new_
+ * pools each side's per-run minima per key across rounds into *base / *new_
  * (the run is the unit of replication: samples within one process are not
  * independent)
  * (deterministic counters, quality and status from the first round; a

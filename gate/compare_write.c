@@ -13,7 +13,9 @@
 /* "1.012 [0.998, 1.027]" or "-" when not timed. */
 static void compare__ratio_text(const compare_item *it, char *buf, size_t n)
 {
-    if (it->timed)
+    if (it->instr)
+        snprintf(buf, n, "%.5f (instructions)", it->instr_new / it->instr_base);
+    else if (it->timed)
         snprintf(buf, n, "%.3f [%.3f, %.3f]", it->ratio, it->lo, it->hi);
     else
         snprintf(buf, n, "-");
@@ -39,9 +41,9 @@ static void compare__text_list(FILE *f, const char *title, char **list, size_t n
 
 void compare_write_text(const compare_result *r, FILE *f)
 {
-    fprintf(f, "compare BASE %s -> NEW %s (%s; threshold %.1f%%, alpha %.3g%s)\n",
+    fprintf(f, "compare BASE %s -> NEW %s (%s; instructions threshold %.2g%%, time threshold %.1f%%, alpha %.3g%s)\n",
             r->base_id ? r->base_id : "?", r->new_id ? r->new_id : "?", r->sweep ? r->sweep : "?",
-            r->desc.time_threshold * 100, r->desc.alpha,
+            r->desc.threshold * 100, r->desc.time_threshold * 100, r->desc.alpha,
             r->desc.counters_only ? ", counters only" : "");
     fprintf(f, "%-12s  %-26s  %-8s  %-16s  %s\n", "verdict", "ratio [95% CI]", "q", "key",
             "configuration / note");
@@ -183,6 +185,12 @@ static cJSON *compare__json_item(const compare_item *it)
         compare__json_num(o, "q", it->q);
         cJSON_AddNumberToObject(o, "n_base", (double)it->n_base);
         cJSON_AddNumberToObject(o, "n_new", (double)it->n_new);
+        compare__json_num(o, "detectable", it->detectable);
+    }
+    if (it->instr) {
+        cJSON_AddNumberToObject(o, "instructions_base", it->instr_base);
+        cJSON_AddNumberToObject(o, "instructions_new", it->instr_new);
+        cJSON_AddNumberToObject(o, "instructions_ratio", it->instr_new / it->instr_base);
     }
     if (it->verdict == COMPARE_INCONCLUSIVE)
         cJSON_AddNumberToObject(o, "extra_samples", (double)it->extra_samples);
@@ -213,6 +221,7 @@ int compare_write_json(const compare_result *r, const char *path)
     cJSON_AddStringToObject(root, "new", r->new_id ? r->new_id : "");
     cJSON *set = cJSON_AddObjectToObject(root, "settings");
     cJSON_AddNumberToObject(set, "time_threshold", r->desc.time_threshold);
+    cJSON_AddNumberToObject(set, "threshold", r->desc.threshold);
     cJSON_AddNumberToObject(set, "alpha", r->desc.alpha);
     cJSON_AddNumberToObject(set, "level", r->desc.level);
     cJSON_AddNumberToObject(set, "psnr_drop", r->desc.psnr_drop);

@@ -28,6 +28,14 @@ int compare_stats_ratio_ci(const double *base, size_t n_base, const double *new_
     if (!mb || !mn || !(level > 0.0 && level < 1.0) || stats_quantile_sorted(sb, mb, 0.5) == 0.0)
         goto out;
     out->ratio = stats_quantile_sorted(sn, mn, 0.5) / stats_quantile_sorted(sb, mb, 0.5);
+    if (mb == mn && memcmp(sb, sn, mb * sizeof *sb) == 0) {
+        /* the same sample on both sides (a run against itself): resampling
+         * both with the same draws — they are one sample — gives a ratio of
+         * exactly 1 every time, so the CI is [1, 1], never a guess */
+        out->lo = out->hi = 1.0;
+        rc = 0;
+        goto out;
+    }
     double *ratios = dm_xmalloc(STATS_BOOTSTRAP_B * sizeof *ratios);
     double *tmp = dm_xmalloc((mb > mn ? mb : mn) * sizeof *tmp);
     rng_state r = rng_seed(seed);

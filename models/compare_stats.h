@@ -19,7 +19,8 @@ typedef struct compare_ratio {
 
 /* Bootstrap CI of median(new)/median(base): STATS_BOOTSTRAP_B resamples,
  * base and new resampled independently, percentile interval (type 7) at
- * `level` (e.g. 0.95).  Returns 0, or DM_ERR_ARG when a sample has no
+ * `level` (e.g. 0.95).  When both samples hold the same values (a run
+ * against itself) the ratio and both bounds are exactly 1.  Returns 0, or DM_ERR_ARG when a sample has no
  * finite value, the base median is 0 or level is not in (0, 1). */
 int compare_stats_ratio_ci(const double *base, size_t n_base, const double *new_, size_t n_new,
                            double level, uint64_t seed, compare_ratio *out);

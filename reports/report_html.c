@@ -7,6 +7,7 @@
  */
 #include "reports/report.h"
 #include "reports/report_internal.h"
+#include "reports/proxy.h"
 
 #include "core/dm_error.h"
 #include "reports/image.h"
@@ -134,7 +135,7 @@ static void toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t
     dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#failed\">Failed and left out</a>");
     if (run->n_fits)
         dm_str_cat(s, "<a href=\"#fits\">Model fits</a>");
-    dm_str_cat(s, "</nav>\n");
+    dm_str_cat(s, "<a href=\"#passes\">Counters by pass</a></nav>\n");
 }
 
 /* Lists more than this many noisy configurations inside a collapsed <details>. */
@@ -621,6 +622,35 @@ static void fits(dm_str *s, const dm_run_result *run)
         report__html_charts_fit(s, run, &run->fits[i]);
 }
 
+/* Instructions as a proxy for frame time (reports/proxy.h) and which
+ * pass each counter came from. */
+static void proxy_section(dm_str *s, const dm_run_result *run)
+{
+    report_proxy p;
+    if (report_proxy_fit(run, &p) == 0) {
+        dm_str_printf(s, "<h2 id="proxy">Instructions as a proxy for frame time</h2>\n<p>WallTime ≈ %.4g ns + "
+                      "%.4g ns × Instructions over %zu configurations: R² = %.5f.</p>\n"
+                      "<table><tr><th>strays most</th><th>WallTime</th><th>predicted</th>"
+                      "<th>residual</th></tr>\n", p.a_ns, p.ns_per_instruction, p.n, p.r2);
+        for (size_t i = 0; i < p.n_strays; i++) {
+            dm_str_cat(s, "<tr>");
+            tagged(s, "td", p.strays[i].label);
+            dm_str_printf(s, "<td class=\"n\">%.3f ms</td><td class=\"n\">%.3f ms</td>"
+                          "<td class=\"n\">%+.1f%%</td></tr>\n", p.strays[i].wall_ns / 1e6,
+                          p.strays[i].predicted_ns / 1e6, p.strays[i].residual_rel * 100);
+        }
+        dm_str_cat(s, "</table>\n");
+    }
+    dm_str passes = {0};
+    report_proxy_passes_text(run, "\n", &passes);
+    dm_str_cat(s, "<h2 id="passes">Counters by pass</h2>\n<ul>\n");
+    char *save = NULL;
+    for (char *l = passes.buf ? strtok_r(passes.buf, "\n", &save) : NULL; l; l = strtok_r(NULL, "\n", &save))
+        tagged(s, "li", l);
+    dm_str_cat(s, "</ul>\n");
+    dm_str_free(&passes);
+}
+
 /* "steps=32 filter=aniso" — the axes that vary in the scene, without technique. */
 static void settings_text(const dm_run_result *run, const dm_config_result *c, dm_str *out)
 {
@@ -720,6 +750,7 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
     gallery(&s, run, &im);
     failed_and_left_out(&s, run);
     fits(&s, run);
+    proxy_section(&s, run);
     dm_str_printf(&s, "<script>%s</script>\n</body></html>\n", sort_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);

@@ -18,6 +18,7 @@
  *    docs/results.schema.json.
  */
 #include "reports/report.h"
+#include "reports/proxy.h"
 #include "reports/report_internal.h"
 
 #include "core/dm_error.h"
@@ -175,6 +176,38 @@ cJSON *report_fit_to_json(const dm_fit_result *f)
     return o;
 }
 
+/* "instructions_proxy" (WallTime ≈ a + b·Instructions, reports/proxy.h)
+ * when the run has both counters, and "passes": counter -> its pass. */
+static void proxy_json(cJSON *root, const dm_run_result *r)
+{
+    report_proxy p;
+    if (report_proxy_fit(r, &p) == 0) {
+        cJSON *o = cJSON_AddObjectToObject(root, "instructions_proxy");
+        cJSON_AddStringToObject(o, "model", "WallTime_ns = a_ns + ns_per_instruction * Instructions");
+        cJSON_AddNumberToObject(o, "configurations", (double)p.n);
+        cJSON_AddNumberToObject(o, "a_ns", p.a_ns);
+        cJSON_AddNumberToObject(o, "ns_per_instruction", p.ns_per_instruction);
+        cJSON_AddNumberToObject(o, "r2", isfinite(p.r2) ? p.r2 : 0);
+        cJSON *a = cJSON_AddArrayToObject(o, "strays");
+        for (size_t i = 0; i < p.n_strays; i++) {
+            cJSON *s = cJSON_CreateObject();
+            add_str(s, "key", p.strays[i].key);
+            add_str(s, "configuration", p.strays[i].label);
+            cJSON_AddNumberToObject(s, "walltime_ns", p.strays[i].wall_ns);
+            cJSON_AddNumberToObject(s, "predicted_ns", p.strays[i].predicted_ns);
+            cJSON_AddNumberToObject(s, "residual_rel", p.strays[i].residual_rel);
+            cJSON_AddItemToArray(a, s);
+        }
+    }
+    cJSON *passes = cJSON_AddObjectToObject(root, "passes");
+    for (size_t i = 0; i < r->n_configs; i++)
+        for (size_t k = 0; k < r->configs[i].n_counters; k++) {
+            const dm_counter_result *c = &r->configs[i].counters[k];
+            if (!cJSON_GetObjectItemCaseSensitive(passes, c->name))
+                cJSON_AddStringToObject(passes, c->name, report_proxy_pass(c));
+        }
+}
+
 static cJSON *run_json(const dm_run_result *r)
 {
     cJSON *root = cJSON_CreateObject();
@@ -205,6 +238,7 @@ static cJSON *run_json(const dm_run_result *r)
     for (size_t i = 0; i < r->n_fits; i++)
         cJSON_AddItemToArray(a, report_fit_to_json(&r->fits[i]));
     cJSON_AddItemToObject(root, "warnings", str_array(r->warnings, r->n_warnings));
+    proxy_json(root, r);
     return root;
 }
 

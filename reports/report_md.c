@@ -2,6 +2,7 @@
  * failures and left-out configurations with their reasons. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
+#include "reports/proxy.h"
 
 #include "core/dm_error.h"
 
@@ -136,6 +137,25 @@ static void failures(dm_str *s, const dm_run_result *run)
         dm_str_cat(s, "None.\n");
 }
 
+/* Instructions as a proxy for frame time, and counters by pass. */
+static void proxy_section(dm_str *s, const dm_run_result *run)
+{
+    report_proxy p;
+    if (report_proxy_fit(run, &p) == 0) {
+        dm_str_printf(s, "\n## Instructions as a proxy for frame time\n\nWallTime ≈ %.4g ns + %.4g ns × "
+                      "Instructions over %zu configurations: R² = %.5f. Strays most:\n\n",
+                      p.a_ns, p.ns_per_instruction, p.n, p.r2);
+        for (size_t i = 0; i < p.n_strays; i++) {
+            dm_str_cat(s, "- ");
+            cell(s, p.strays[i].label);
+            dm_str_printf(s, ": %.3f ms measured, %.3f ms predicted (%+.1f%%)\n", p.strays[i].wall_ns / 1e6,
+                          p.strays[i].predicted_ns / 1e6, p.strays[i].residual_rel * 100);
+        }
+    }
+    dm_str_cat(s, "\n## Counters by pass\n\n");
+    report_proxy_passes_text(run, "\n\n", s);
+}
+
 int report_write_markdown(const dm_run_result *run, const char *path)
 {
     if (!run || !path)
@@ -174,6 +194,7 @@ int report_write_markdown(const dm_run_result *run, const char *path)
         scene_table(&s, run, scenes[i]);
     free(scenes);
     failures(&s, run);
+    proxy_section(&s, run);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     return rc;

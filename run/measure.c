@@ -2,6 +2,7 @@
 #include "measure.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
+#include "run/callgrind.h"
 #include "run/gl_context.h"
 #include "run/refcache.h"
 #include "store/store.h"
@@ -12,6 +13,7 @@
 #include "techniques/render.h"
 
 #include <epoxy/gl.h>
+#include <valgrind/callgrind.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -371,6 +373,28 @@ static void measure__derived(const plan_config *pc, dm_config_result *out)
     }
 }
 
+/* Instructions of configuration c from the Instructions pass (its own
+ * child under Valgrind): the per-frame count of each sample, or unavailable
+ * with the pass's reason.  Samples that disagree are noted in the log. */
+static void measure__instructions(mscene *m, mconf *c, dm_config_result *out)
+{
+    const callgrind_count *k = NULL;
+    for (size_t i = 0; i < m->job->n_instructions && !k; i++)
+        if (strcmp(m->job->instructions[i].key, c->pc->key) == 0)
+            k = &m->job->instructions[i];
+    if (!m->job->n_instructions)
+        return;
+    dm_counter_result *r = measure__push(out, "Instructions");
+    if (!k || !k->counted) {
+        r->available = 0;
+        r->unavailable_reason = dm_xstrdup(k && k->reason ? k->reason : "not counted");
+        return;
+    }
+    measure__counter_timed(r, k->samples, CALLGRIND_SAMPLES, m->job->seed);
+    if (r->max - r->min > CALLGRIND_AGREE * r->min)
+        dm_str_printf(&c->log, "Instructions: samples disagree (%.0f .. %.0f per frame)\n", r->min, r->max);
+}
+
 /* Fills the counters of a finished configuration into out. */
 static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
 {
@@ -412,6 +436,7 @@ static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
             continue;
         measure__push(out, n)->value = v;
     }
+    measure__instructions(m, c, out);
     measure__derived(c->pc, out);
 }
 
@@ -686,6 +711,59 @@ int measure_pilot(const measure_job *job, dm_str *err)
         measure__say(job, "P %s %.0f", c->pc->key, ns);
     }
     measure__teardown(&m, cs, rc == 0 ? job->n_configs : 0);
+    return rc;
+}
+
+/* The counted window of one configuration: collection switched on around
+ * `frames` frames and the glFinish that ends them (so the rasteriser's work,
+ * on the calling thread with LP_NUM_THREADS=0, is inside), then one dump
+ * named "KEY.S" per sample.  Setup, JIT compilation and warm-up happen
+ * before, with collection off. */
+static void measure__counted_samples(mscene *m, mconf *c, int frames, int samples)
+{
+    int warm = m->job->sweep->measure.warmup_frames;
+    measure__frames(m, c, warm > 0 ? warm : 1);
+    for (int s = 0; s < samples; s++) {
+        char name[32];
+        snprintf(name, sizeof name, "%s.%d", c->pc->key, s);
+        glFinish();
+        CALLGRIND_TOGGLE_COLLECT;
+        measure__frames(m, c, frames);
+        glFinish();
+        CALLGRIND_TOGGLE_COLLECT;
+        CALLGRIND_DUMP_STATS_AT(name);
+    }
+}
+
+int measure_instructions(const measure_job *job, int frames, int samples, dm_str *err)
+{
+    mscene m = { .job = job };
+    int rc = gl_context_create(NULL, &m.gl, err);
+    rc = rc ? rc : tech_renderer_create(&m.r);
+    if (rc == 0 && !RUNNING_ON_VALGRIND)
+        dm_log(DM_LOG_WARN, "measure_instructions: not running under Valgrind; nothing is counted");
+    mconf *cs = dm_xcalloc(job->n_configs + 1, sizeof *cs);
+    for (size_t i = 0; rc == 0 && i < job->n_configs; i++) {
+        mconf *c = &cs[i];
+        c->pc = &job->configs[i];
+        measure__say(job, "B %s", c->pc->key);
+        int prc = tech_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log);
+        if (gl_context_take_messages(m.gl, &c->log) > 0 || prc != 0) {
+            measure__say(job, "I %s failed %s", c->pc->key,
+                         prc == 0 ? "GL error while preparing" : dm_strerror(prc));
+            continue;
+        }
+        measure__counted_samples(&m, c, frames, samples);
+        int bad = gl_context_check_errors(&c->log) > 0;
+        measure__say(job, "I %s %s", c->pc->key, bad ? "failed GL error in the counted frames" : "ok");
+    }
+    for (size_t i = 0; i < job->n_configs; i++)
+        dm_str_free(&cs[i].log);
+    free(cs);
+    if (m.gl)
+        target_destroy(&m.rt);
+    tech_renderer_destroy(m.r);
+    gl_context_destroy(m.gl);
     return rc;
 }
 

@@ -22,6 +22,8 @@
 #include "sweep/plan.h"
 #include "sweep/sweep.h"
 
+struct callgrind_count;
+
 typedef struct measure_job {
     const sweep *sweep;
     const plan_config *configs;   /* configurations of one scene still to do */
@@ -33,6 +35,8 @@ typedef struct measure_job {
     uint64_t seed;
     int timer_partial;            /* GPUTime covers only part of the work */
     int report_fd;                /* -1: no progress lines */
+    const struct callgrind_count *instructions;   /* the Instructions pass (run/callgrind.h) */
+    size_t n_instructions;        /* 0: Instructions not asked for */
 } measure_job;
 
 /* Measures and commits every configuration of the job.  A configuration
@@ -40,6 +44,15 @@ typedef struct measure_job {
  * reason; the function returns 0 unless the context, store or target could
  * not be set up (DM_ERR_*, message in err). */
 int measure_scene(const measure_job *job, dm_str *err);
+
+/* The Instructions pass (run/callgrind.h), run under Valgrind callgrind
+ * started with --collect-atstart=no: per configuration prepare, warm up
+ * (warmup_frames), then `samples` samples of `frames` frames, collection
+ * on only around each sample and its closing glFinish, one dump "KEY.S"
+ * per sample.  Reports "B KEY" and "I KEY ok|failed REASON" lines.  No
+ * store, no timing, no images.  Returns 0 or DM_ERR_* (err) when the
+ * context cannot be set up. */
+int measure_instructions(const measure_job *job, int frames, int samples, dm_str *err);
 
 /* Pilot for --budget: prepares each configuration of the job and times one
  * warm frame (glFinish-fenced), reporting "P <key> <frame_ns>" lines (NaN

@@ -2,6 +2,7 @@
 #include "runner.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
+#include "run/callgrind.h"
 #include "run/env.h"
 #include "run/fitting.h"
 #include "run/gl_context.h"
@@ -39,6 +40,10 @@ typedef struct runner {
     int64_t t_start;
     int64_t measured_ns;       /* time inside timed samples, all configurations */
     int tty;
+    char *instr_why;           /* why Instructions cannot be counted here; NULL = it can */
+    callgrind_count *instr;    /* the Instructions pass (run/callgrind.h) */
+    size_t n_instr;
+    double instr_s;            /* wall time of that pass */
 } runner;
 
 /* ---- the probe child: environment, timer calibration, extensions ------- */
@@ -60,6 +65,9 @@ static void runner__probe_child(int fd)
         if (counters_context_create(&cc) == 0)
             counters_calibrate_timer(cc, &cal);
         dm_str_printf(&out, "T\t%.6f\t%s\n", cal.coverage, cal.verdict);
+        const char *why = NULL;
+        if (cc && !counters_available(cc, "Instructions", &why))
+            dm_str_printf(&out, "C\t%s\n", why ? why : "unavailable");
         for (size_t i = 0; i < technique_count(); i++) {
             const char *ext = technique_at(i)->requires_ext;
             if (ext && epoxy_has_gl_extension(ext))
@@ -124,6 +132,8 @@ static int runner__probe(runner *r, dm_str *err)
             r->env.gpu_time_coverage = strtod(f1, NULL);
             free(r->env.timer_verdict);
             r->env.timer_verdict = dm_xstrdup(f2);
+        } else if (line[0] == 'C' && f1) {
+            r->instr_why = dm_xstrdup(f1);
         } else if (line[0] == 'X' && f1) {
             r->exts = dm_xrealloc(r->exts, (r->n_exts + 1) * sizeof *r->exts);
             r->exts[r->n_exts++] = dm_xstrdup(f1);
@@ -237,7 +247,8 @@ static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd, 
                             .cache_dir = r->cache_dir,
                             .seed = r->o->seed ? r->o->seed : 1,
                             .timer_partial = strcmp(r->env.timer_verdict, "full") != 0,
-                            .report_fd = fds[1] };
+                            .report_fd = fds[1], .instructions = r->instr,
+                            .n_instructions = r->n_instr };
         dm_str err = {0};
         int rc = pilot ? measure_pilot(&job, &err) : measure_scene(&job, &err);
         if (rc != 0)
@@ -744,7 +755,68 @@ static void runner__free(runner *r)
     for (size_t i = 0; i < r->n_exts; i++)
         free(r->exts[i]);
     free(r->exts);
+    free(r->instr_why);
+    callgrind_counts_free(r->instr, r->n_instr);
+    free(r->instr);
     dm_run_free(&r->env);
+}
+
+/* 1 when the sweep asks for a counter of the Instructions pass. */
+static int runner__wants_instructions(const sweep *s)
+{
+    for (size_t i = 0; i < s->measure.n_counters; i++) {
+        const counters_info *ci = counters_find(s->measure.counters[i]);
+        if (ci && strcmp(ci->group, "Cost") == 0)
+            return 1;
+    }
+    return 0;
+}
+
+/* The Instructions pass, before any timing child: one child under Valgrind
+ * counts every configuration still to do (run/callgrind.h).  Where it
+ * cannot run here every configuration records Instructions as unavailable
+ * with the reason; a configuration Valgrind crashed or hung on fails. */
+static void runner__instructions(runner *r)
+{
+    if (!runner__wants_instructions(r->s))
+        return;
+    plan_config *todo = dm_xcalloc(r->p.n_configs + 1, sizeof *todo);
+    size_t nt = 0;
+    for (size_t i = 0; i < r->p.n_configs; i++)
+        if (store_config_done(r->st, r->run_id, r->p.configs[i].key) != 1)
+            todo[nt++] = r->p.configs[i];
+    r->instr = dm_xcalloc(nt + 1, sizeof *r->instr);
+    r->n_instr = nt;
+    char *vg = r->instr_why ? NULL : counters_valgrind_path();
+    if (!vg && !r->instr_why)
+        r->instr_why = dm_xstrdup("valgrind not found");
+    int64_t t0 = dm_now_ns();
+    if (vg && nt) {
+        if (!r->o->quiet)
+            fprintf(stderr, "dmbench: counting the instructions of %zu configurations under Valgrind "
+                    "(callgrind, LP_NUM_THREADS=0; frames ~300x slower, not timed)\n", nt);
+        char *dir = dm_xasprintf("%s/callgrind", r->run_dir);
+        callgrind_desc d = { .sweep = r->s, .valgrind = vg, .work_dir = dir,
+                             .timeout_s = 10 * r->s->measure.timeout_s, .quiet = r->o->quiet };
+        dm_str err = {0};
+        if (callgrind_run(&d, todo, nt, r->instr, &err) != 0) {
+            callgrind_counts_free(r->instr, nt);
+            memset(r->instr, 0, nt * sizeof *r->instr);
+            callgrind_mark_unavailable(r->instr, todo, nt, dm_str_get(&err));
+        }
+        dm_str_free(&err);
+        free(dir);
+    } else {
+        callgrind_mark_unavailable(r->instr, todo, nt, r->instr_why);
+    }
+    r->instr_s = (double)(dm_now_ns() - t0) / 1e9;
+    for (size_t i = 0; i < nt; i++)
+        if (r->instr[i].failed)
+            runner__fail_config(r, &todo[i], r->instr[i].reason);
+    if (vg && nt && !r->o->quiet)
+        fprintf(stderr, "dmbench: instructions counted in %.1f s\n", r->instr_s);
+    free(vg);
+    free(todo);
 }
 
 /* Runs every scene: configurations grouped by scene, in plan order. */
@@ -796,6 +868,7 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
                     s->name, r.p.n_combinations, r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
                     r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
                     r.p.n_left_out, r.run_dir);
+        runner__instructions(&r);
         runner__scenes(&r);
         rc = runner__finish(&r, err);
         double wall = (double)(dm_now_ns() - r.t_start) / 1e9, meas = (double)r.measured_ns / 1e9;

@@ -260,11 +260,138 @@ static void test_huge_noise_inconclusive(void **state)
             f = pow((rr - it->lo) / (rr - 1.05), 2);
         if (rr < 0.95)
             f = pow((it->hi - rr) / (0.95 - rr), 2);
+        /* ... and at least enough for the detectable change to reach 5 % */
+        double det = (it->hi - it->lo) / 2 / rr;
+        assert_true(fabs(it->detectable - det) <= 1e-12);
+        assert_true(det > 0.05);
+        f = fmax(f, pow(det / 0.05, 2));
         double need = ceil(10 * f - 10);
         assert_int_equal(it->extra_samples, need < 1 ? 1 : (long)need);
         assert_true(it->extra_samples > 0);
     }
     assert_int_equal(compare_exit_code(&r), 3);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+/* Every INCONCLUSIVE names the smallest change its data could detect
+ * (the CI half-width over the ratio), in the note and in the JSON field. */
+static void test_inconclusive_states_detectable(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 3, 10, 1.0, 0.1, 100);
+    make_run(&b, "B", 3, 10, 1.0, 0.1, 200);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    for (size_t i = 0; i < r.n_items; i++) {
+        const compare_item *it = &r.items[i];
+        if (it->verdict != COMPARE_INCONCLUSIVE)
+            continue;
+        char want[96];
+        snprintf(want, sizeof want, "could detect changes >= %.1f%% (threshold 5.0%%)",
+                 (it->hi - it->lo) / 2 / it->ratio * 100);
+        assert_non_null(strstr(it->note, want));
+        assert_non_null(strstr(it->note, "more samples per side"));
+    }
+    assert_true(r.count[COMPARE_INCONCLUSIVE] > 0);
+    compare_result_free(&r);
+    d.paired = 1;      /* paired mode counts rounds */
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    for (size_t i = 0; i < r.n_items; i++)
+        if (r.items[i].verdict == COMPARE_INCONCLUSIVE)
+            assert_non_null(strstr(r.items[i].note, "more rounds"));
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+/* A run against itself passes however noisy it is: the same samples on
+ * both sides are a ratio of exactly 1, never INCONCLUSIVE. */
+static void test_identical_noisy_pass(void **state)
+{
+    (void)state;
+    dm_run_result a;
+    make_run(&a, "A", 4, 5, 1.0, 0.4, 100);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &a, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_PASS], 4);
+    for (size_t i = 0; i < r.n_items; i++) {
+        assert_true(r.items[i].timed);
+        assert_true(r.items[i].lo == 1.0);
+        assert_true(r.items[i].hi == 1.0);
+    }
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    dm_run_free(&a);
+}
+
+/* Adds Instructions (per frame) to every configuration of r. */
+static void add_instructions(dm_run_result *r, double per_frame)
+{
+    for (size_t i = 0; i < r->n_configs; i++) {
+        dm_config_result *c = &r->configs[i];
+        c->counters = dm_xrealloc(c->counters, (c->n_counters + 1) * sizeof *c->counters);
+        memset(&c->counters[c->n_counters], 0, sizeof *c->counters);
+        det(&c->counters[c->n_counters++], "Instructions", per_frame * (double)(i + 1));
+    }
+}
+
+/* Instructions decide by the threshold alone, whatever the timing noise:
+ * +0.6 % is REGRESSION at 0.5 % and PASS at 1 %, +0.4 % PASS, -1 %
+ * IMPROVEMENT; unavailable on NEW is a change. */
+static void test_instructions_threshold(void **state)
+{
+    (void)state;
+    static const struct { double scale, threshold; compare_verdict want; int exit_code; } cases[] = {
+        { 1.006, 0, COMPARE_REGRESSION, 1 }, { 1.006, 0.01, COMPARE_PASS, 0 },
+        { 1.004, 0, COMPARE_PASS, 0 }, { 0.99, 0, COMPARE_IMPROVEMENT, 0 }, { 1.0, 0, COMPARE_PASS, 0 },
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        dm_run_result a, b;
+        make_run(&a, "A", 3, 5, 1.0, 0.4, 100);   /* timing far too noisy to decide */
+        make_run(&b, "B", 3, 5, 1.0, 0.4, 200);
+        add_instructions(&a, 1e9);
+        add_instructions(&b, 1e9 * cases[k].scale);
+        compare_desc d = { .threshold = cases[k].threshold };
+        compare_result r;
+        assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+        for (size_t i = 0; i < r.n_items; i++) {
+            assert_int_equal(r.items[i].verdict, cases[k].want);
+            assert_true(r.items[i].instr);
+            assert_true(fabs(r.items[i].instr_new / r.items[i].instr_base - cases[k].scale) <= 1e-12);
+        }
+        assert_int_equal(compare_exit_code(&r), cases[k].exit_code);
+        compare_result_free(&r);
+        dm_run_free(&a);
+        dm_run_free(&b);
+    }
+    dm_run_result a, b;
+    make_run(&a, "A", 2, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 2, 30, 1.0, 0.02, 100);
+    add_instructions(&a, 1e9);
+    add_instructions(&b, 1e9);
+    counter(&b, 0, "Instructions")->available = 0;
+    compare_desc d = { .counters_only = 1 };
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(item(&r, "0000000000000001")->verdict, COMPARE_REGRESSION);
+    assert_non_null(strstr(item(&r, "0000000000000001")->note, "Instructions unavailable on NEW"));
+    assert_int_equal(item(&r, "0000000000000002")->verdict, COMPARE_PASS);
+    compare_result_free(&r);
+    /* counted on another CPU: not compared (JIT target and libc pick other
+     * code), said in a warning; a 10 % change then passes */
+    counter(&b, 0, "Instructions")->available = 1;
+    counter(&b, 0, "Instructions")->value *= 1.1;
+    free(b.environment[3].value);
+    b.environment[3].value = dm_xstrdup("Other CPU");
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_PASS], 2);
+    assert_int_equal(r.n_warnings, 1);
+    assert_non_null(strstr(r.warnings[0], "Instructions not compared"));
     compare_result_free(&r);
     dm_run_free(&a);
     dm_run_free(&b);
@@ -569,6 +696,9 @@ int main(void)
         cmocka_unit_test(test_counters_only_ignores_time),
         cmocka_unit_test(test_failed_added_removed),
         cmocka_unit_test(test_quality_drop),
+        cmocka_unit_test(test_inconclusive_states_detectable),
+        cmocka_unit_test(test_identical_noisy_pass),
+        cmocka_unit_test(test_instructions_threshold),
         cmocka_unit_test(test_partial_gputime_refused),
         cmocka_unit_test_setup_teardown(test_json_roundtrip_and_outputs, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown),

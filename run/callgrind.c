@@ -1,0 +1,368 @@
+/* callgrind.c — the Instructions pass: launching the child under Valgrind,
+ * its watchdog, and reading callgrind's dump files (see callgrind.h). */
+#include "run/callgrind.h"
+#include "core/dm_error.h"
+#include "run/measure.h"
+
+#include <dirent.h>
+#include <errno.h>
+#include <fcntl.h>
+#include <math.h>
+#include <poll.h>
+#include <signal.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+int callgrind_frames(const sweep_measure *sm)
+{
+    int k = sm->frames_per_sample > 0 ? sm->frames_per_sample : 1;
+    return k < 4 ? k : 4;
+}
+
+void callgrind_mark_unavailable(callgrind_count *out, const plan_config *cs, size_t n,
+                                const char *why)
+{
+    for (size_t i = 0; i < n; i++) {
+        snprintf(out[i].key, sizeof out[i].key, "%s", cs[i].key);
+        out[i].reason = dm_xstrdup(why);
+    }
+}
+
+void callgrind_counts_free(callgrind_count *c, size_t n)
+{
+    for (size_t i = 0; c && i < n; i++)
+        free(c[i].reason);
+}
+
+int callgrind_parse_dump(const char *text, char *name, size_t cap, double *totals)
+{
+    static const char trig[] = "desc: Trigger: Client Request: ";
+    const char *t = strstr(text, trig), *tot = strstr(text, "\ntotals: ");
+    if (!t || !tot || cap == 0)
+        return DM_ERR_PARSE;
+    t += sizeof trig - 1;
+    size_t len = strcspn(t, "\n");
+    if (len == 0 || len >= cap)
+        return DM_ERR_PARSE;
+    memcpy(name, t, len);
+    name[len] = '\0';
+    char *end = NULL;
+    *totals = strtod(tot + 9, &end);
+    return end == tot + 9 ? DM_ERR_PARSE : 0;
+}
+
+/* ---- the parent side ------------------------------------------------------ */
+
+typedef struct cg_state {
+    const callgrind_desc *d;
+    const plan_config *cs;
+    size_t n;
+    callgrind_count *out;
+    int *tried, *done;
+    char current[17];
+} cg_state;
+
+static int cg__index(const cg_state *g, const char *key)
+{
+    for (size_t i = 0; i < g->n; i++)
+        if (strcmp(g->cs[i].key, key) == 0)
+            return (int)i;
+    return -1;
+}
+
+/* Execs Valgrind on `dmbench __instructions SWEEP HASH KEY...` for the
+ * configurations not tried yet; stdout is the pipe *fd. */
+static pid_t cg__spawn(cg_state *g, int *fd)
+{
+    const callgrind_desc *d = g->d;
+    char **argv = dm_xcalloc(g->n + 16, sizeof *argv);
+    size_t a = 0;
+    char hash[17];
+    dm_hex64(d->sweep->hash, hash);
+    argv[a++] = dm_xstrdup(d->valgrind);
+    argv[a++] = dm_xstrdup("--tool=callgrind");
+    argv[a++] = dm_xstrdup("--collect-atstart=no");    /* only the frames between the toggles */
+    argv[a++] = dm_xstrdup("--smc-check=all-non-file"); /* llvmpipe writes JIT code to the heap */
+    argv[a++] = dm_xasprintf("--callgrind-out-file=%s/cg.%%p.out", d->work_dir);
+    argv[a++] = dm_xasprintf("--log-file=%s/valgrind.%%p.log", d->work_dir);
+    char self[4096] = "";
+    ssize_t sl = d->self ? -1 : readlink("/proc/self/exe", self, sizeof self - 1);
+    if (sl > 0)
+        self[sl] = '\0';
+    /* resolved here: after exec, /proc/self/exe would name Valgrind */
+    argv[a++] = dm_xstrdup(d->self ? d->self : self);
+    argv[a++] = dm_xstrdup("__instructions");
+    argv[a++] = dm_xstrdup(d->sweep->path);
+    argv[a++] = dm_xstrdup(hash);
+    for (size_t i = 0; i < g->n; i++)
+        if (!g->tried[i])
+            argv[a++] = dm_xstrdup(g->cs[i].key);
+    int fds[2];
+    pid_t pid = pipe(fds) == 0 ? (fflush(NULL), fork()) : -1;
+    if (pid == 0) {
+        dup2(fds[1], 1);
+        close(fds[0]);
+        close(fds[1]);
+        char *log = dm_xasprintf("%s/child.log", d->work_dir);
+        int lfd = open(log, O_WRONLY | O_CREAT | O_APPEND, 0644);
+        if (lfd >= 0)
+            dup2(lfd, 2);
+        setenv("LP_NUM_THREADS", "0", 1);   /* rasteriser on the calling thread */
+        execv(argv[0], argv);
+        dprintf(1, "X cannot execute %s: %s\n", argv[0], strerror(errno));
+        _exit(127);
+    }
+    for (size_t i = 0; i < a; i++)
+        free(argv[i]);
+    free(argv);
+    if (pid > 0) {
+        close(fds[1]);
+        *fd = fds[0];
+    }
+    return pid;
+}
+
+/* Appends the last `keep` non-empty lines of file path (Valgrind's
+ * "==PID==" prefixes and banner removed) to out, " | "-separated. */
+static void cg__tail(const char *path, size_t keep, dm_str *out)
+{
+    char *text = NULL;
+    size_t len = 0;
+    if (dm_read_file(path, &text, &len) != 0 || !text)
+        return;
+    const char *lines[8] = {0};
+    size_t k = 0;
+    char *save = NULL;
+    keep = keep > 8 ? 8 : keep;
+    for (char *l = strtok_r(text, "\n", &save); l; l = strtok_r(NULL, "\n", &save)) {
+        char *p = l[0] == '=' && l[1] == '=' ? strstr(l + 2, "== ") : NULL;
+        l = p ? p + 3 : l;
+        if (*l && !strstr(l, "Copyright") && !strstr(l, "Using Valgrind") && !strstr(l, "Command:") &&
+            !strstr(l, "Callgrind, a call-graph"))
+            lines[k++ % 8] = l;
+    }
+    for (size_t i = k > keep ? k - keep : 0; i < k; i++)
+        dm_str_printf(out, "%s%s", out->len ? " | " : "", lines[i % 8]);
+    free(text);
+}
+
+/* What Valgrind (its log of process pid) and the child (its stderr) said
+ * last, or NULL. */
+static char *cg__valgrind_message(const callgrind_desc *d, pid_t pid)
+{
+    dm_str s = {0};
+    char *vlog = dm_xasprintf("%s/valgrind.%d.log", d->work_dir, (int)pid);
+    char *clog = dm_xasprintf("%s/child.log", d->work_dir);
+    cg__tail(vlog, 5, &s);
+    cg__tail(clog, 2, &s);
+    free(vlog);
+    free(clog);
+    return s.len ? dm_str_take(&s) : (dm_str_free(&s), NULL);
+}
+
+static void cg__line(cg_state *g, char *line)
+{
+    char key[17] = "", status[16] = "";
+    int off = 0;
+    if (sscanf(line, "B %16s", key) == 1 && cg__index(g, key) >= 0) {
+        snprintf(g->current, sizeof g->current, "%s", key);
+        g->tried[cg__index(g, key)] = 1;
+    } else if (sscanf(line, "I %16s %15s %n", key, status, &off) >= 2 && cg__index(g, key) >= 0) {
+        int i = cg__index(g, key);
+        g->done[i] = 1;
+        if (strcmp(status, "ok") != 0 && !g->out[i].reason)
+            g->out[i].reason = dm_xasprintf("not counted: %s", off ? line + off : status);
+        g->current[0] = '\0';
+    }
+}
+
+/* Reads the child's lines until EOF or the watchdog; returns the wait
+ * status, or -1 when the watchdog killed it. */
+static int cg__watch(cg_state *g, pid_t pid, int fd)
+{
+    dm_str buf = {0};
+    int64_t last = dm_now_ns();
+    int killed = 0;
+    for (;;) {
+        struct pollfd pfd = { fd, POLLIN, 0 };
+        if (poll(&pfd, 1, 500) > 0) {
+            char chunk[1024];
+            ssize_t got = read(fd, chunk, sizeof chunk);
+            if (got <= 0)
+                break;
+            last = dm_now_ns();
+            for (ssize_t i = 0; i < got; i++) {
+                if (chunk[i] != '\n') {
+                    dm_str_catn(&buf, &chunk[i], 1);
+                    continue;
+                }
+                char *line = dm_str_take(&buf);
+                cg__line(g, line);
+                free(line);
+            }
+        } else if ((double)(dm_now_ns() - last) / 1e9 > g->d->timeout_s) {
+            kill(pid, SIGKILL);
+            killed = 1;
+            break;
+        }
+    }
+    dm_str_free(&buf);
+    int status = 0;
+    waitpid(pid, &status, 0);
+    return killed ? -1 : status;
+}
+
+/* Fails configuration i (the child was on it) with Valgrind's message. */
+static void cg__fail(cg_state *g, int i, pid_t pid, int status)
+{
+    char *vg = cg__valgrind_message(g->d, pid);
+    char how[96];
+    if (status < 0)
+        snprintf(how, sizeof how, "the Valgrind child made no progress for %.0f s (killed)", g->d->timeout_s);
+    else if (WIFSIGNALED(status))
+        snprintf(how, sizeof how, "the Valgrind child died of signal %d", WTERMSIG(status));
+    else
+        snprintf(how, sizeof how, "the Valgrind child exited with status %d", WEXITSTATUS(status));
+    free(g->out[i].reason);
+    g->out[i].failed = 1;
+    g->out[i].reason = dm_xasprintf("Instructions: %s%s%s", how, vg ? "; valgrind: " : "", vg ? vg : "");
+    g->tried[i] = 1;
+    free(vg);
+}
+
+/* Reads every dump file of the work directory into out[].samples. */
+static void cg__read_dumps(cg_state *g, int frames)
+{
+    DIR *dir = opendir(g->d->work_dir);
+    struct dirent *e;
+    while (dir && (e = readdir(dir))) {
+        if (strncmp(e->d_name, "cg.", 3) != 0 || !strstr(e->d_name, ".out."))
+            continue;
+        char *path = dm_xasprintf("%s/%s", g->d->work_dir, e->d_name), *text = NULL, name[64];
+        size_t len = 0;
+        double totals = NAN;
+        if (dm_read_file(path, &text, &len) == 0 &&
+            callgrind_parse_dump(text, name, sizeof name, &totals) == 0) {
+            char *dot = strrchr(name, '.');
+            int s = dot ? atoi(dot + 1) : -1, i = -1;
+            if (dot) {
+                *dot = '\0';
+                i = cg__index(g, name);
+            }
+            if (i >= 0 && s >= 0 && s < CALLGRIND_SAMPLES)
+                g->out[i].samples[s] = totals / frames;
+        }
+        free(text);
+        free(path);
+    }
+    if (dir)
+        closedir(dir);
+}
+
+/* A configuration is counted when the child said ok and every sample's
+ * dump was read. */
+static void cg__settle(cg_state *g)
+{
+    for (size_t i = 0; i < g->n; i++) {
+        callgrind_count *c = &g->out[i];
+        int all = 1;
+        for (int s = 0; s < CALLGRIND_SAMPLES; s++)
+            all &= c->samples[s] > 0;
+        c->counted = g->done[i] && !c->reason && all;
+        if (!c->counted && !c->reason)
+            c->reason = dm_xstrdup(g->tried[i] ? "Instructions: no callgrind dump for this configuration"
+                                               : "Instructions: the Valgrind child did not reach it");
+    }
+}
+
+int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, callgrind_count *out,
+                  dm_str *err)
+{
+    if (dm_mkdirs(d->work_dir) != 0) {
+        dm_str_printf(err, "%s: cannot create the callgrind directory", d->work_dir);
+        return DM_ERR_IO;
+    }
+    cg_state g = { .d = d, .cs = cs, .n = n, .out = out };
+    g.tried = dm_xcalloc(n + 1, sizeof *g.tried);
+    g.done = dm_xcalloc(n + 1, sizeof *g.done);
+    for (size_t i = 0; i < n; i++)
+        snprintf(out[i].key, sizeof out[i].key, "%s", cs[i].key);
+    int rc = 0;
+    for (size_t left = n; left > 0;) {
+        int fd = -1;
+        pid_t pid = cg__spawn(&g, &fd);
+        if (pid < 0) {
+            dm_str_printf(err, "cannot start %s: %s", d->valgrind, strerror(errno));
+            rc = DM_ERR_CHILD;
+            break;
+        }
+        g.current[0] = '\0';
+        int status = cg__watch(&g, pid, fd);
+        close(fd);
+        int clean = status >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+        int cur = g.current[0] ? cg__index(&g, g.current) : -1;
+        if (!clean)
+            for (size_t i = 0; i < n; i++)   /* the one it was on, or all when it never started one */
+                if (!g.done[i] && (cur < 0 ? !g.tried[i] : (int)i == cur))
+                    cg__fail(&g, (int)i, pid, status);
+        left = 0;
+        for (size_t i = 0; i < n; i++)
+            left += !g.tried[i] && !g.done[i];
+        if (clean)
+            break;
+    }
+    cg__read_dumps(&g, callgrind_frames(&d->sweep->measure));
+    cg__settle(&g);
+    free(g.tried);
+    free(g.done);
+    return rc;
+}
+
+/* ---- the child side --------------------------------------------------------- */
+
+static int cg__load_sweep(const char *source, sweep *s, dm_str *err)
+{
+    if (strcmp(source, "<default>") == 0 || strcmp(source, "<default --quick>") == 0) {
+        int quick = strcmp(source, "<default>") != 0;
+        return sweep_parse(sweep_default_text(quick), source, s, err);
+    }
+    return sweep_load(source, s, err);
+}
+
+int callgrind_child_main(int argc, char **argv)
+{
+    if (argc < 3) {
+        fprintf(stderr, "usage: dmbench __instructions SWEEP HASH KEY... (run by dmbench itself)\n");
+        return 2;
+    }
+    sweep s = {0};
+    plan p = {0};
+    dm_str err = {0};
+    char hash[17] = "";
+    int rc = cg__load_sweep(argv[1], &s, &err);
+    if (rc == 0)
+        dm_hex64(s.hash, hash);
+    if (rc == 0 && strcmp(hash, argv[2]) != 0) {
+        dm_str_printf(&err, "%s changed since the run started (hash %s, expected %s)", argv[1], hash, argv[2]);
+        rc = DM_ERR_ARG;
+    }
+    rc = rc ? rc : plan_build(&s, &p, &err);
+    plan_config *cs = dm_xcalloc((size_t)argc + 1, sizeof *cs);
+    size_t n = 0;
+    for (int a = 3; rc == 0 && a < argc; a++)
+        for (size_t i = 0; i < p.n_configs; i++)
+            if (strcmp(p.configs[i].key, argv[a]) == 0)
+                cs[n++] = p.configs[i];
+    measure_job job = { .sweep = &s, .configs = cs, .n_configs = n, .report_fd = 1 };
+    rc = rc ? rc : measure_instructions(&job, callgrind_frames(&s.measure), CALLGRIND_SAMPLES, &err);
+    if (rc != 0)
+        fprintf(stderr, "dmbench __instructions: %s\n", dm_str_get(&err));
+    free(cs);
+    plan_free(&p);
+    sweep_free(&s);
+    dm_str_free(&err);
+    return rc ? 3 : 0;
+}

@@ -1,0 +1,83 @@
+/* callgrind.h — the Instructions pass (counter group "Cost"): retired
+ * instructions of the measured frames, counted by Valgrind's callgrind in a
+ * child of its own.
+ *
+ * Frames under Valgrind run ~300x slower, so they are never timed: a run
+ * that asks for Instructions (or InstructionsPerPixel) first runs one child
+ * `valgrind --tool=callgrind --collect-atstart=no dmbench __instructions
+ * SWEEP HASH KEY...` with LP_NUM_THREADS=0 (the rasteriser runs on the
+ * calling thread, so its work is inside the counted window).  The child
+ * (measure_instructions) prepares and warms up each configuration with
+ * collection off, then switches collection on around CALLGRIND_SAMPLES
+ * samples of callgrind_frames() frames ended by glFinish and dumps each
+ * sample under the name "KEY.S".  The parent parses the dump files
+ * ("desc: Trigger: Client Request: KEY.S", "totals: N").  The timing child
+ * that follows records the counts next to its own WallTime.
+ *
+ * Failure: a configuration the child was on when Valgrind crashed or the
+ * watchdog killed it fails with Valgrind's message; the child is restarted
+ * once per failure for the rest, and no configuration is tried twice.
+ */
+#ifndef RUN_CALLGRIND_H
+#define RUN_CALLGRIND_H
+
+#include <stddef.h>
+#include "core/dm_util.h"
+#include "sweep/plan.h"
+#include "sweep/sweep.h"
+
+/* Samples per configuration; they must agree (the count is deterministic). */
+#define CALLGRIND_SAMPLES 2
+/* Samples whose counts differ by more than this relative amount are a
+ * warning in the configuration's log (never seen on llvmpipe: ~2e-7). */
+#define CALLGRIND_AGREE 1e-4
+
+/* The result of one configuration. */
+typedef struct callgrind_count {
+    char key[17];
+    int counted;             /* samples[] are set */
+    double samples[CALLGRIND_SAMPLES];   /* instructions per frame, one per sample */
+    int failed;              /* Valgrind crashed or timed out on it: the configuration fails */
+    char *reason;            /* why not counted (unavailable or failed), NULL when counted */
+} callgrind_count;
+
+typedef struct callgrind_desc {
+    const sweep *sweep;      /* its path names the source: a file, "<default>" or "<default --quick>" */
+    const char *valgrind;    /* executable (counters_valgrind_path) */
+    const char *self;        /* this dmbench binary; NULL = /proc/self/exe */
+    const char *work_dir;    /* callgrind's files go here (created) */
+    double timeout_s;        /* watchdog: no progress for this long kills the child */
+    int quiet;
+} callgrind_desc;
+
+/* Frames per sample of the Instructions pass: min(K, 4).  Every frame of a
+ * configuration does the same work, so a few frames give the per-frame count
+ * and keep the ~300x slower frames affordable. */
+int callgrind_frames(const sweep_measure *sm);
+
+/* Counts the instructions of configurations cs[0..n) into out[0..n)
+ * (zeroed by the caller; release with callgrind_counts_free).  Returns 0
+ * when the child ran (per-configuration failures are in out), DM_ERR_* with
+ * err when it could not be started at all. */
+int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, callgrind_count *out,
+                  dm_str *err);
+
+/* Marks every configuration unavailable with `why` (Valgrind missing, not
+ * a CPU renderer). */
+void callgrind_mark_unavailable(callgrind_count *out, const plan_config *cs, size_t n,
+                                const char *why);
+
+/* Parses one callgrind dump file's text: the client-request trigger name
+ * into name (up to cap-1 chars) and the totals.  Returns 0, or
+ * DM_ERR_PARSE when it is not a client-request dump with totals. */
+int callgrind_parse_dump(const char *text, char *name, size_t cap, double *totals);
+
+void callgrind_counts_free(callgrind_count *c, size_t n);
+
+/* The child: `dmbench __instructions SWEEP HASH KEY...` (argv[0] is
+ * "__instructions").  Loads the sweep named by SWEEP, checks its hash,
+ * measures the keys under Valgrind, writes "B KEY" / "I KEY ok|failed
+ * REASON" lines to stdout.  Returns the process exit code. */
+int callgrind_child_main(int argc, char **argv);
+
+#endif

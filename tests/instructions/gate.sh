@@ -1,0 +1,67 @@
+#!/usr/bin/env bash
+# The Instructions gate end to end, under Valgrind: ci/gate.yaml run twice
+# with dmbench and once with dmbench_slowshader (a fragment shader with a
+# few more steps per fragment).  Asserts: every configuration has
+# Instructions; the two samples of a run and the two runs agree within
+# 0.01 %; `compare` of the two runs exits 0 (PASS everywhere, also without
+# --counters-only); the slower shader is a REGRESSION on every
+# configuration (exit 1) by more than the 0.5 % threshold; the original
+# binary against it passes again (IMPROVEMENT, exit 0).
+# Usage: gate.sh DMBENCH_SLOWSHADER  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set by ctest)
+set -euo pipefail
+SLOW=${1:?usage: gate.sh DMBENCH_SLOWSHADER}
+BIN=${DMBENCH_BINARY:?}
+SRC=${DMBENCH_SOURCE_DIR:?}
+OUT=$(mktemp -d)
+trap 'rm -rf "$OUT"' EXIT
+SWEEP="$SRC/ci/gate.yaml"
+
+expect() {
+  local want=$1; shift
+  set +e; "$BIN" compare "$@" >"$OUT/stdout" 2>"$OUT/stderr"; local rc=$?; set -e
+  cat "$OUT/stdout"
+  [ "$rc" = "$want" ] || { echo "compare $* -> exit $rc, expected $want"; cat "$OUT/stderr"; exit 1; }
+}
+
+t0=$(date +%s)
+"$BIN" run "$SWEEP" --out "$OUT/a" --seed 1 --quiet
+t1=$(date +%s)
+"$BIN" run "$SWEEP" --out "$OUT/b" --seed 2 --quiet
+"$SLOW" run "$SWEEP" --out "$OUT/s" --seed 1 --quiet
+t2=$(date +%s)
+echo "one gate run: $((t1 - t0)) s; three: $((t2 - t0)) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
+
+python3 - "$OUT/a/latest/results.json" "$OUT/b/latest/results.json" <<'PY'
+import json, sys
+runs = [{c["key"]: c for c in json.load(open(p))["configs"]} for p in sys.argv[1:]]
+assert runs[0].keys() == runs[1].keys() and len(runs[0]) == 4, (runs[0].keys(), runs[1].keys())
+for key, a in runs[0].items():
+    b = runs[1][key]
+    assert a["status"] == "ok" and b["status"] == "ok", (key, a.get("reason"), b.get("reason"))
+    ia, ib = a["counters"]["Instructions"], b["counters"]["Instructions"]
+    assert "unavailable" not in ia and "unavailable" not in ib, (key, ia, ib)
+    for s in (ia["samples"], ib["samples"]):          # repeated samples of one run
+        assert len(s) == 2 and abs(s[1] - s[0]) <= 1e-4 * s[0], (key, s)
+    rel = abs(ib["median"] - ia["median"]) / ia["median"]
+    assert rel <= 1e-4, (key, ia["median"], ib["median"], rel)   # two runs: within 0.01 %
+    ipp = a["counters"]["InstructionsPerPixel"]["value"]
+    sp = a["counters"]["SamplesPassed"]["value"]
+    assert abs(ipp - ia["median"] / sp) <= 1e-9 * ipp, (key, ipp, ia["median"], sp)
+    print(f"{key}: {ia['median']:.0f} vs {ib['median']:.0f} instructions/frame (spread {rel:.2e})")
+PY
+
+expect 0 "$OUT/a/latest" "$OUT/b/latest"
+expect 0 "$OUT/a/latest" "$OUT/b/latest" --counters-only
+expect 1 "$OUT/a/latest" "$OUT/s/latest" --counters-only --json "$OUT/slow.json"
+python3 - "$OUT/slow.json" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1]))
+assert len(j["configs"]) == 4
+for c in j["configs"]:
+    assert c["verdict"] == "REGRESSION", c
+    assert c["instructions_ratio"] > 1.005, c
+    print(f"slower shader detected on {c['configuration']}: +{(c['instructions_ratio'] - 1) * 100:.2f} % instructions")
+PY
+expect 0 "$OUT/s/latest" "$OUT/b/latest" --counters-only   # restored: faster again, passes
+grep -q "IMPROVEMENT" "$OUT/stdout"
+echo "instructions gate: all passed"
