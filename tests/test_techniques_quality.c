@@ -24,11 +24,14 @@
 #include "reports/quality.h"
 #include "tests/tech_fixture.h"
 
-#define W 240
-#define H 135
+static int W = 240, H = 135;
 #define REF_SS 2
 
-static int group_setup(void **state) { return techfix_setup(state, W, H); }
+static int group_setup(void **state)
+{
+    if (getenv("TQW")) { W = atoi(getenv("TQW")); H = W * 9 / 16; }
+    return techfix_setup(state, W, H);
+}
 
 /* Writes w×h RGBA floats read back from GL (bottom row first) as
  * TECHQ_IMG_DIR/<name>.png, top row first. */
