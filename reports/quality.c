@@ -19,36 +19,38 @@ static double luma(const float *p)
     return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
 }
 
-/* Normalised 1-D Gaussian; the 2-D window is its outer product. */
-static void gauss_weights(double w[SSIM_WIN])
+/* Normalised 1-D Gaussian of n taps (n <= SSIM_WIN), centred on (n-1)/2,
+ * sigma SSIM_SIGMA; the 2-D window is the outer product of one such vector
+ * per axis.  n = SSIM_WIN gives the standard window. */
+static void gauss_weights(int n, double w[SSIM_WIN])
 {
-    double sum = 0;
-    for (int i = 0; i < SSIM_WIN; i++) {
-        double x = i - SSIM_WIN / 2;
+    double sum = 0, c = (n - 1) / 2.0;
+    for (int i = 0; i < n; i++) {
+        double x = i - c;
         w[i] = exp(-x * x / (2 * SSIM_SIGMA * SSIM_SIGMA));
         sum += w[i];
     }
-    for (int i = 0; i < SSIM_WIN; i++)
+    for (int i = 0; i < n; i++)
         w[i] /= sum;
 }
 
-/* Horizontal "valid" pass of the five fields (a, b, a², b², ab) into h,
- * which holds F_COUNT planes of (w-10) × h values. */
-static void ssim_hpass(const img *a, const img *b, const double g[SSIM_WIN], double *hp)
+/* Horizontal "valid" pass of the five fields (a, b, a², b², ab) with the
+ * nx-tap window gx into hp, which holds F_COUNT planes of (w-nx+1) × h. */
+static void ssim_hpass(const img *a, const img *b, const double *gx, int nx, double *hp)
 {
-    int ow = a->w - SSIM_WIN + 1;
+    int ow = a->w - nx + 1;
     size_t plane = (size_t)ow * a->h;
     for (int y = 0; y < a->h; y++)
         for (int x = 0; x < ow; x++) {
             double s[F_COUNT] = {0};
-            for (int k = 0; k < SSIM_WIN; k++) {
+            for (int k = 0; k < nx; k++) {
                 size_t i = ((size_t)y * a->w + (size_t)(x + k)) * 4;
                 double ya = luma(a->px + i), yb = luma(b->px + i);
-                s[F_A] += g[k] * ya;
-                s[F_B] += g[k] * yb;
-                s[F_AA] += g[k] * ya * ya;
-                s[F_BB] += g[k] * yb * yb;
-                s[F_AB] += g[k] * ya * yb;
+                s[F_A] += gx[k] * ya;
+                s[F_B] += gx[k] * yb;
+                s[F_AA] += gx[k] * ya * ya;
+                s[F_BB] += gx[k] * yb * yb;
+                s[F_AB] += gx[k] * ya * yb;
             }
             for (int f = 0; f < F_COUNT; f++)
                 hp[f * plane + (size_t)y * ow + x] = s[f];
@@ -70,23 +72,27 @@ static double ssim_window(const double m[F_COUNT])
 int quality_ssim(const img *a, const img *b, double *ssim)
 {
     if (!a || !b || !ssim || !a->px || !b->px || a->w != b->w || a->h != b->h ||
-        a->w < SSIM_WIN || a->h < SSIM_WIN)
+        a->w < 1 || a->h < 1)
         return DM_ERR_ARG;
-    double g[SSIM_WIN];
-    gauss_weights(g);
-    int ow = a->w - SSIM_WIN + 1, oh = a->h - SSIM_WIN + 1;
+    /* An image narrower or shorter than the window gets a window as wide
+     * or tall as the image along that axis (quality.h). */
+    int nx = a->w < SSIM_WIN ? a->w : SSIM_WIN, ny = a->h < SSIM_WIN ? a->h : SSIM_WIN;
+    double gx[SSIM_WIN], gy[SSIM_WIN];
+    gauss_weights(nx, gx);
+    gauss_weights(ny, gy);
+    int ow = a->w - nx + 1, oh = a->h - ny + 1;
     size_t plane = (size_t)ow * a->h;
     double *hp = malloc(plane * F_COUNT * sizeof *hp);
     if (!hp)
         return DM_ERR_NOMEM;
-    ssim_hpass(a, b, g, hp);
+    ssim_hpass(a, b, gx, nx, hp);
     double total = 0;
     for (int y = 0; y < oh; y++)
         for (int x = 0; x < ow; x++) {
             double m[F_COUNT] = {0};
             for (int f = 0; f < F_COUNT; f++)
-                for (int k = 0; k < SSIM_WIN; k++)
-                    m[f] += g[k] * hp[f * plane + (size_t)(y + k) * ow + x];
+                for (int k = 0; k < ny; k++)
+                    m[f] += gy[k] * hp[f * plane + (size_t)(y + k) * ow + x];
             total += ssim_window(m);
         }
     free(hp);

@@ -11,7 +11,12 @@
 /* Mean SSIM of the luma (Y = 0.2126 R + 0.7152 G + 0.0722 B) of a and b:
  * Gaussian 11×11 window, sigma 1.5, K1 = 0.01, K2 = 0.03, L = 1, averaged
  * over the window positions fully inside the image (no padding).
- * DM_ERR_ARG when sizes differ or the image is smaller than 11×11. */
+ * Images narrower or shorter than 11 pixels: the window along that axis
+ * has as many taps as the image has pixels (the same sigma, centred, the
+ * weights renormalised), so a 4×4 image is one 4×4 window and a 1×1 image
+ * compares its single pixel (luminance term only); identical images give
+ * exactly 1 at every size.  DM_ERR_ARG when sizes differ or an image is
+ * empty. */
 int quality_ssim(const img *a, const img *b, double *ssim);
 
 /* Coverage mask of an image: alpha > 0.5.  mask must hold w*h bytes. */

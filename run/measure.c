@@ -508,6 +508,24 @@ static int measure__reference_image(mscene *m, const dm_kv *p, size_t n, mconf *
     return rc;
 }
 
+/* Sets the sweep's quality.reference axis values (e.g. normal_format) over
+ * the reference's parameters *p, replacing the scene's or configuration's. */
+static void measure__reference_overrides(const sweep *s, dm_kv **p, size_t *n)
+{
+    for (size_t i = 0; i < s->n_ref_params; i++) {
+        const dm_kv *o = &s->ref_params[i];
+        size_t k = 0;
+        while (k < *n && strcmp((*p)[k].key, o->key) != 0)
+            k++;
+        if (k == *n) {
+            dm_kv_push(p, n, o->key, o->value);
+            continue;
+        }
+        free((*p)[k].value);
+        (*p)[k].value = dm_xstrdup(o->value);
+    }
+}
+
 /* Renders the scene reference once (per process) for configuration c. */
 static int measure__reference(mscene *m, mconf *c)
 {
@@ -537,6 +555,7 @@ static int measure__reference(mscene *m, mconf *c)
             dm_kv_push(&p, &n, c->pc->scene_params[i].key, c->pc->scene_params[i].value);
         dm_kv_push(&p, &n, "technique", s->ref_technique);
     }
+    measure__reference_overrides(s, &p, &n);
     int rc = measure__reference_image(m, p, n, c);
     dm_kv_free(p, n);
     if (rc == 0) {
@@ -588,10 +607,15 @@ static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
         quality_depth_rmse(m->ref_depth, depth, ma, mb, np, &q->depth_rmse);
         q->crack_pixels = quality_crack_pixels(mb, w, h);
         q->nonfinite_pixels = quality_nonfinite_pixels(&test);
-        const char *rt = m->job->sweep->ref_technique;
-        q->reference = dm_xasprintf("%s, %dx supersampled",
+        const sweep *sw = m->job->sweep;
+        const char *rt = sw->ref_technique;
+        dm_str over = {0};
+        for (size_t i = 0; i < sw->n_ref_params; i++)
+            dm_str_printf(&over, "%s%s=%s", i ? " " : " (", sw->ref_params[i].key, sw->ref_params[i].value);
+        q->reference = dm_xasprintf("%s%s%s, %dx supersampled",
                                     !rt || strcmp(rt, "same") == 0 ? "same configuration" : rt,
-                                    m->job->sweep->supersample);
+                                    dm_str_get(&over), sw->n_ref_params ? ")" : "", sw->supersample);
+        dm_str_free(&over);
         free(ma);
         free(mb);
         snprintf(name, sizeof name, "%s-diff.png", c->pc->key);

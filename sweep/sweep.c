@@ -477,9 +477,40 @@ static int p__measure(pctx *c, yaml_node_t *map)
     return rc;
 }
 
+/* "unknown key" for quality.reference: the valid keys are technique,
+ * supersample and every axis name. */
+static int p__reference_unknown(pctx *c, yaml_node_t *k)
+{
+    size_t n = axes_count() + 2;
+    const char **valid = dm_xmalloc(n * sizeof *valid);
+    valid[0] = "technique";
+    valid[1] = "supersample";
+    for (size_t i = 2; i < n; i++)
+        valid[i] = axes_at(i - 2)->name;
+    int rc = p__unknown_key(c, k, "quality.reference", valid, n);
+    free(valid);
+    return rc;
+}
+
+/* Every override of quality.reference must be read by the reference
+ * technique (checked once the map is read, as `technique` may come last);
+ * with technique `same` each configuration's own technique applies. */
+static int p__reference_readable(pctx *c, yaml_node_t *v)
+{
+    const char *name = c->s->ref_technique ? c->s->ref_technique : "reference-mesh";
+    const technique_desc *t = strcmp(name, "same") == 0 ? NULL : technique_find(name);
+    P__FOREACH_PAIR(c, v, rp) {
+        yaml_node_t *rk = p__node(c, rp->key);
+        const char *axis = p__scalar(rk) ? p__scalar(rk) : "";
+        if (t && axes_find(axis) && strcmp(axis, "technique") != 0 && !technique_reads_axis(t, axis))
+            return p__fail(c, rk, "quality.reference: technique '%s' does not read axis '%s', so it "
+                           "cannot set the reference's %s", name, axis, axis);
+    }
+    return 0;
+}
+
 static int p__quality_reference(pctx *c, yaml_node_t *v)
 {
-    static const char *const ref_keys[] = { "technique", "supersample" };
     int rc = p__expect_map(c, v, "quality.reference");
     if (rc)
         return rc;
@@ -497,13 +528,19 @@ static int p__quality_reference(pctx *c, yaml_node_t *v)
             c->s->ref_technique = t;
         } else if (strcmp(name, "supersample") == 0) {
             rc = p__int(c, rv, "quality.reference.supersample", 1, 8, &c->s->supersample);
+        } else if (axes_find(name)) {             /* an axis value of the reference */
+            char *val = p__axis_value(c, name, rv);
+            if (!val)
+                return DM_ERR_PARSE;
+            dm_kv_push(&c->s->ref_params, &c->s->n_ref_params, name, val);
+            free(val);
         } else {
-            return p__unknown_key(c, rk, "quality.reference", ref_keys, 2);
+            return p__reference_unknown(c, rk);
         }
         if (rc)
             return rc;
     }
-    return 0;
+    return p__reference_readable(c, v);
 }
 
 /* quality.pareto_metric: one of reports/metric.h's names (the list is an
@@ -796,6 +833,7 @@ void sweep_free(sweep *s)
         free(s->measure.counters[i]);
     free(s->measure.counters);
     free(s->ref_technique);
+    dm_kv_free(s->ref_params, s->n_ref_params);
     free(s->pareto_metric);
     for (size_t i = 0; i < s->n_models; i++) {
         sweep_model *m = &s->models[i];

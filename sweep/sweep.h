@@ -62,6 +62,9 @@ typedef struct sweep {
     sweep_measure measure;
     char *ref_technique;     /* quality reference technique; NULL = same config supersampled */
     int supersample;         /* default 4 */
+    dm_kv *ref_params;       /* quality.reference axis overrides (axis -> canonical value),
+                                set over the reference's parameters; e.g. normal_format */
+    size_t n_ref_params;
     char *pareto_metric;     /* quality.pareto_metric: a reports/metric.h name (default "ssim") */
     sweep_model *models;
     size_t n_models;

@@ -52,6 +52,10 @@ typedef struct maps_set {
  * over the 2 world units that the UV range 0..1 spans on the built-in plane,
  * so the normal map matches the displaced surface of the default scene. */
 #define MAPS_NORMAL_SCALE 0.03f
+/* The height_scale a normal map derived at normal_strength 1 matches: the
+ * renderer scales such a map's x and y by height_scale / this before
+ * normalising, which is exact for a normal derived from a height field. */
+#define MAPS_NORMAL_HEIGHT_SCALE (2.0f * MAPS_NORMAL_SCALE)
 /* The analytic sets: `sine` is h = 0.5 + 0.25 (sin 2πFu + sin 2πFv) with
  * F = MAPS_SINE_FREQ; `checker` has MAPS_CHECKER_SQUARES squares per side,
  * albedo 0.05 / 0.95, height 0.5. */

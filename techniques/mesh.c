@@ -636,7 +636,7 @@ int mesh_subdivide_displace(const mesh_data *in, int k, const float *height, int
                 mesh_vertex v;
                 mesh__blend(in, t, w, k, &v);
                 mesh__normalize(v.nrm);
-                float d = height ? (mesh_height_bilinear(height, size, v.uv[0], v.uv[1]) - 0.5f) * scale : 0;
+                float d = height ? (mesh_height_bilinear(height, size, v.uv[0], v.uv[1]) - MESH_SURFACE_H0) * scale : 0;
                 uint32_t id = mesh__vert(&b, v.pos, v.nrm, v.uv[0], v.uv[1]);
                 for (int c = 0; c < 3; c++)
                     m.vertices[id].pos[c] += v.nrm[c] * d;

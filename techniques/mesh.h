@@ -114,10 +114,15 @@ int mesh_patch_vertices(const char *name);
 /* Bilinear sample at (u, v) of a size×size height map (row 0 = v 0) with
  * wrap-around and texel centres at (i + 0.5)/size, as GL REPEAT sampling. */
 float mesh_height_bilinear(const float *height, int size, float u, float v);
+/* Height of the base surface in the height map's 0..1 range: the one surface
+ * convention of every technique that reads heights (SURFACE_H0 in the GLSL,
+ * docs/techniques.md). */
+#define MESH_SURFACE_H0 0.5f
 /* Splits every triangle of `in` into k² triangles (a barycentric grid, k ≥ 1;
  * points on shared edges are bit-identical in both triangles) and, when
  * height is given, moves every new vertex along its interpolated unit normal
- * by (h − 0.5)·scale, h = mesh_height_bilinear at its interpolated UV.
+ * by (h − MESH_SURFACE_H0)·scale, h = mesh_height_bilinear at its
+ * interpolated UV.
  * Normals and tangents stay those of the undisplaced surface (per-pixel
  * normals come from the height field).  Returns 0 and out owns its arrays,
  * or DM_ERR_ARG. */

@@ -46,7 +46,8 @@
 
 static const char *const render__uniform_names[RU_COUNT] = {
     "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
-    "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_viewport"
+    "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_viewport",
+    "u_normal_xy_scale"
 };
 
 int tech_renderer_create(tech_renderer **out)
@@ -668,6 +669,17 @@ static void render__camera(const tech_renderer *r, const render__item *it, const
     }
 }
 
+/* The factor on the normal map's x and y that makes it match the item's
+ * height_scale (render__normal_height_scale; 1 for a user's normal file). */
+static float render__normal_xy_scale(const tech_renderer *r, const render__item *it)
+{
+    float made_for = r->maps[it->maps].normal_height_scale;
+    const axis_info *hs = axes_find("height_scale");
+    if (made_for <= 0 || !hs)
+        return 1.0f;
+    return (float)it->axis_val[hs - axes_at(0)] / made_for;
+}
+
 static void render__uniforms(tech_renderer *r, const render__item *it, const float viewport[2])
 {
     const render__program *p = &r->progs[it->prog];
@@ -693,6 +705,7 @@ static void render__uniforms(tech_renderer *r, const render__item *it, const flo
     glUniform1f(L[RU_SHININESS], 48.0f);
     glUniform1f(L[RU_F0], 0.04f);
     glUniform2f(L[RU_VIEWPORT], viewport[0], viewport[1]);
+    glUniform1f(L[RU_NORMAL_XY_SCALE], render__normal_xy_scale(r, it));
     for (size_t a = 0; a < axes_count(); a++) {
         if (p->axis_loc[a] < 0)
             continue;

@@ -29,7 +29,8 @@
 /* u_roughness is the roughness axis's uniform (set with every numeric axis). */
 enum render__uniform {
     RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
-    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_VIEWPORT, RU_COUNT
+    RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_VIEWPORT, RU_NORMAL_XY_SCALE,
+    RU_COUNT
 };
 
 typedef struct render__program {

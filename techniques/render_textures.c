@@ -33,6 +33,7 @@
 
 #include "core/dm_error.h"
 #include "techniques/maps.h"
+#include "techniques/mesh.h"
 #include "techniques/technique.h"
 #include "techniques/vt.h"
 
@@ -305,6 +306,20 @@ static int render__vt_make(render__maps *m, const render__cfg *c, dm_str *log)
     return rc;
 }
 
+float render__normal_height_scale(const char *maps)
+{
+    if (maps_kind(maps) == maps_kind("asteroid"))
+        return MESH_ASTEROID_SCALE;
+    if (!maps_is_material(maps))
+        return MAPS_NORMAL_HEIGHT_SCALE;
+    for (const char *p = maps; p; p = strchr(p, ';')) {   /* entries "key=PATH" split by ';' */
+        p += *p == ';';
+        if (strncmp(p, "normal=", 7) == 0)
+            return 0.0f;
+    }
+    return MAPS_NORMAL_HEIGHT_SCALE;
+}
+
 /* Generates (or loads from the disk cache, or from the user's files) and
  * uploads the maps of key. */
 static int render__maps_make(render__maps *m, const char *name, int size,
@@ -360,7 +375,7 @@ int render__maps_get(tech_renderer *r, const render__cfg *c, size_t *idx, dm_str
             *idx = i;
             return 0;
         }
-    render__maps m = {.key = key};
+    render__maps m = {.key = key, .normal_height_scale = render__normal_height_scale(name)};
     rc = soft ? render__vt_make(&m, c, log) : render__maps_make(&m, name, size, fmt, log);
     if (rc) {
         free(key);

@@ -23,6 +23,9 @@ typedef struct render__maps {
     size_t bytes[3];
     struct vt *vt;               /* virtual_texture=software, else NULL */
     float h_lo, h_hi;            /* range of the height map (0, 1 with a virtual texture) */
+    float normal_height_scale;   /* the height_scale the normal map was made for (its x, y
+                                    are scaled by height_scale / this); 0 = a user's
+                                    normal file, used as it is */
 } render__maps;
 
 typedef struct render__sampler {
@@ -30,6 +33,11 @@ typedef struct render__sampler {
     GLuint id;
 } render__sampler;
 
+/* The height_scale the normal map of a `maps` value was made for:
+ * MESH_ASTEROID_SCALE for `asteroid` (its baked true normals), 0 for a
+ * material with a normal file (used as it is), else
+ * MAPS_NORMAL_HEIGHT_SCALE (derived from the height map). */
+float render__normal_height_scale(const char *maps);
 /* Finds or creates the textures of the configuration's (maps, size,
  * formats); *idx indexes r->maps.  DM_ERR_* with a message in log. */
 int render__maps_get(struct tech_renderer *r, const struct render__cfg *c, size_t *idx, dm_str *log);

@@ -34,7 +34,7 @@
 static const char *const tech__axes_none[] = {NULL};
 static const char *const tech__axes_phong[] = {"lighting", "light_count", "roughness", NULL};
 static const char *const tech__axes_normal[] = {"lighting", "light_count", "roughness",
-                                                "normal_format", "toksvig", NULL};
+                                                "normal_format", "toksvig", "height_scale", NULL};
 static const char *const tech__axes_bump[] = {"lighting", "light_count", "roughness",
                                               "height_scale", "height_format", NULL};
 static const char *const tech__axes_parallax[] = {"lighting", "light_count", "roughness",

@@ -53,12 +53,57 @@ static void test_ssim_constant_offset_closed_form(void **state)
     double expect = (2 * ya * yb + 1e-4) / (ya * ya + yb * yb + 1e-4);
     assert_float_equal(s, expect, 1e-9);
     assert_float_equal(s, 0.6001 / 0.6101, 1e-7);
-    img c = {0};
-    assert_int_equal(img_alloc(&c, 10, 16), 0);   /* narrower than the window */
-    assert_int_equal(quality_ssim(&c, &c, &s), DM_ERR_ARG);
     img_free(&a);
     img_free(&b);
+}
+
+/* Images smaller than the 11×11 window (quality.h): identical images give
+ * exactly 1 at every size, the constant-offset closed form above holds with
+ * the shrunken window too (any normalised weights give zero variances), a
+ * tiny image with different structure scores below 1, and an empty image or
+ * a size mismatch is refused. */
+static void test_ssim_tiny_images(void **state)
+{
+    (void)state;
+    static const int sizes[][2] = {{1, 1}, {2, 3}, {4, 4}, {10, 16}, {16, 10}, {11, 11}, {12, 5}};
+    for (size_t k = 0; k < sizeof sizes / sizeof sizes[0]; k++) {
+        img a = {0}, b = {0};
+        int w = sizes[k][0], h = sizes[k][1];
+        assert_int_equal(img_alloc(&a, w, h), 0);
+        assert_int_equal(img_alloc(&b, w, h), 0);
+        for (int i = 0; i < w * h * 4; i++)
+            a.px[i] = (float)((i * 37) % 97) / 97.0f;
+        double s = 0;
+        assert_int_equal(quality_ssim(&a, &a, &s), 0);
+        if (s != 1.0)
+            fail_msg("%dx%d: SSIM of identical images %.17g, expected exactly 1", w, h, s);
+        fill(&a, 0.5f, 0.5f, 0.5f, 1.0f);
+        fill(&b, 0.6f, 0.6f, 0.6f, 1.0f);
+        assert_int_equal(quality_ssim(&a, &b, &s), 0);
+        double yb = (double)0.6f;
+        assert_float_equal(s, (2 * 0.5 * yb + 1e-4) / (0.25 + yb * yb + 1e-4), 1e-9);
+        if (w * h >= 4) {   /* a ramp against its mirror: same moments, other structure */
+            for (int i = 0; i < w * h; i++)
+                for (int c = 0; c < 3; c++) {
+                    a.px[i * 4 + c] = (float)i / (float)(w * h);
+                    b.px[i * 4 + c] = (float)(w * h - 1 - i) / (float)(w * h);
+                }
+            assert_int_equal(quality_ssim(&a, &b, &s), 0);
+            if (!(s < 0.5))
+                fail_msg("%dx%d: ramp against its mirror scored %.6f, expected < 0.5", w, h, s);
+        }
+        img_free(&a);
+        img_free(&b);
+    }
+    img e = {0, 4, NULL}, c = {0}, d = {0};
+    double s = 0;
+    assert_int_equal(img_alloc(&c, 4, 4), 0);
+    assert_int_equal(img_alloc(&d, 4, 5), 0);
+    e.px = c.px;
+    assert_int_equal(quality_ssim(&e, &e, &s), DM_ERR_ARG);
+    assert_int_equal(quality_ssim(&c, &d, &s), DM_ERR_ARG);
     img_free(&c);
+    img_free(&d);
 }
 
 static void test_ssim_structure_lowers_score(void **state)
@@ -172,6 +217,7 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_ssim_identical_is_one),
         cmocka_unit_test(test_ssim_constant_offset_closed_form),
+        cmocka_unit_test(test_ssim_tiny_images),
         cmocka_unit_test(test_ssim_structure_lowers_score),
         cmocka_unit_test(test_silhouette_shifted_square),
         cmocka_unit_test(test_depth_rmse_both_cover),

@@ -83,6 +83,34 @@ static void test_quality_section(void **state)
     dm_str_free(&err);
 }
 
+/* quality.reference takes axis values besides technique and supersample
+ * (canonical, in file order); the unknown and unreadable ones are in the
+ * bad-sweeps corpus. */
+static void test_reference_overrides(void **state)
+{
+    (void)state;
+    const char *text =
+        "name: q\n"
+        "quality:\n"
+        "  reference: { normal_format: rgba32f, technique: normal, height_scale: 0.12 }\n"
+        "sweep:\n"
+        "  technique: [normal]\n";
+    sweep s;
+    dm_str err = {0};
+    int rc = sweep_parse(text, "q.yaml", &s, &err);
+    if (rc)
+        fail_msg("%s", dm_str_get(&err));
+    assert_string_equal(s.ref_technique, "normal");
+    assert_int_equal(s.n_ref_params, 2);
+    assert_string_equal(s.ref_params[0].key, "normal_format");
+    assert_string_equal(s.ref_params[0].value, "rgba32f");
+    assert_string_equal(s.ref_params[1].key, "height_scale");
+    assert_string_equal(s.ref_params[1].value, "0.12");
+    assert_int_equal(s.supersample, 4);
+    sweep_free(&s);
+    dm_str_free(&err);
+}
+
 static void test_default_sweeps_parse(void **state)
 {
     (void)state;
@@ -154,6 +182,7 @@ int main(void)
         cmocka_unit_test(test_defaults_and_scene),
         cmocka_unit_test(test_default_sweeps_parse),
         cmocka_unit_test(test_quality_section),
+        cmocka_unit_test(test_reference_overrides),
         cmocka_unit_test(test_missing_file),
         cmocka_unit_test(test_bad_corpus),
     };

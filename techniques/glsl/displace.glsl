@@ -1,13 +1,11 @@
 // displace.glsl — shared by the geometry-displacing stages (tess.tes.glsl,
 // displace.vert.glsl): the height map, the displacement rule and the
 // SurfaceData output that surface.frag.glsl lights.
-//   P' = P + N * (h - DISPLACE_H0) * u_height_scale
-// h0 = 0.5: the procedural maps centre their heights on 0.5 (the `flat` map
-// is 0.5 everywhere), so a flat map displaces nothing and height_scale 0
-// equals the undisplaced mesh.
+//   P' = P + N * (h - SURFACE_H0) * u_height_scale
+// SURFACE_H0 (common.glsl) is the one surface convention every technique
+// that reads the height map shares; a flat map displaces nothing and
+// height_scale 0 equals the undisplaced mesh.
 #include "common.glsl"
-
-#define DISPLACE_H0 0.5
 
 layout(binding = 0) uniform sampler2D t_height;
 uniform float u_height_scale;
@@ -21,7 +19,7 @@ out SurfaceData {
 // Moves object-space p along n by the height h; returns the world position.
 vec3 displace_point(vec3 p, vec3 n, float h)
 {
-    vec3 q = p + normalize(n) * (h - DISPLACE_H0) * u_height_scale;
+    vec3 q = p + normalize(n) * (h - SURFACE_H0) * u_height_scale;
     return (u_model * vec4(q, 1.0)).xyz;
 }
 

@@ -28,10 +28,15 @@ layout(location = 3) in vec4 a_tan;
 const float VISIBILITY_MARGIN = 0.1;
 
 // Manual bilinear filter of level `lvl` with wrap-around (texel centres at
-// (i + 0.5) / size, as GL's REPEAT sampling).
+// (i + 0.5) / size, as GL's REPEAT sampling).  The level's size is level
+// 0's halved lvl times (GL's rule for a complete mip chain), not
+// textureSize(t_height, lvl): llvmpipe answers that query with one lane's
+// level for all 8 lanes of a vertex batch, so where `mip` switches level
+// between neighbouring vertices, a vertex shaded in two batches got two
+// sizes, two heights and a row of holes (docs/llvmpipe-findings.md).
 float bilinear_manual(vec2 uv, int lvl)
 {
-    ivec2 sz = textureSize(t_height, lvl);
+    ivec2 sz = max(textureSize(t_height, 0) >> lvl, ivec2(1));
     vec2 st = uv * vec2(sz) - 0.5;
     ivec2 i0 = ivec2(floor(st));
     vec2 f = st - vec2(i0);
@@ -78,7 +83,7 @@ void main()
     displace_emit((u_model * vec4(a_pos, 1.0)).xyz, a_uv, a_nrm, a_tan);
 #else
     vec4 clip = u_view_proj * (u_model * vec4(a_pos, 1.0));
-    float h = DISPLACE_H0;
+    float h = SURFACE_H0;
 #ifdef VISIBILITY_TEST_ON
     // llvmpipe runs vertex shaders 8 lanes wide under an execution mask and
     // emits no jump around a per-lane condition (an if or a loop), so the

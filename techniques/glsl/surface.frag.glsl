@@ -21,6 +21,11 @@ layout(binding = 0) uniform sampler2D t_height;
 layout(binding = 1) uniform sampler2D t_normal;
 layout(binding = 2) uniform sampler2D t_albedo;
 uniform float u_height_scale;
+// Normal maps follow height_scale: x and y of the map's normal are scaled
+// by u_normal_xy_scale = height_scale / the height_scale the map was made
+// for (render.c; 1 for a user's normal file) before normalising — exact
+// for a normal derived from a height field, n ∝ (−k·∂h/∂u, −k·∂h/∂v, 1).
+uniform float u_normal_xy_scale;
 uniform int u_steps;         // 0 = auto: min_steps at normal view .. max_steps at grazing
 uniform int u_min_steps;
 uniform int u_max_steps;
@@ -48,13 +53,20 @@ int search_steps(vec3 v)
     return clamp(n, 1, 512);
 }
 
-// Steep search (and POM refinement) from the top of the height field,
-// layers of depth 1/n along -V.xy/V.z; returns the UV where the ray meets it.
+// Steep search (and POM refinement).  The base surface (the mesh) lies at
+// h = SURFACE_H0 inside the slab of heights 0..1 (displace.glsl, the same
+// surface the displacing techniques and the reference mesh build), so the
+// view ray through the base point uv enters the slab's top, h = 1, at
+// uv + (1 - SURFACE_H0)·span and leaves its bottom at uv - SURFACE_H0·span,
+// span = V.xy/V.z·scale.  The search starts at the entry and walks layers
+// of depth 1/n toward the exit; returns the UV where the ray meets the field.
 vec2 parallax_search(vec2 uv, vec3 v)
 {
     int n = search_steps(v);
     float layer = 1.0 / float(n);
-    vec2 delta = -v.xy / max(v.z, PARALLAX_MIN_VZ) * u_height_scale * UV_PER_WORLD * layer;
+    vec2 span = v.xy / max(v.z, PARALLAX_MIN_VZ) * u_height_scale * UV_PER_WORLD;
+    vec2 delta = -span * layer;
+    uv += span * (1.0 - SURFACE_H0);
     float cur = 0.0, map = 1.0 - height_at(uv);
     vec2 prev_uv = uv;
     float prev = 0.0, prev_map = map;
@@ -76,7 +88,9 @@ vec2 parallax_search(vec2 uv, vec3 v)
 vec2 parallax_uv(vec2 uv, vec3 v)
 {
 #if SURF_PARALLAX == 1
-    float scale = u_height_scale * UV_PER_WORLD, bias = scale * 0.5;
+    // h' = (h - SURFACE_H0)·scale: the offset to the point of the same
+    // surface as the search's (bias = SURFACE_H0·scale, Kaneko's scale/2).
+    float scale = u_height_scale * UV_PER_WORLD, bias = scale * SURFACE_H0;
     float hp = height_at(uv) * scale - bias;
 #ifdef OFFSET_LIMIT_ON
     return uv + hp * v.xy;                                  // Welsh
@@ -105,7 +119,9 @@ vec3 surface_normal(vec2 uv, out float nlen)
     n.z = sqrt(max(0.0, 1.0 - dot(n.xy, n.xy)));
 #endif
     nlen = length(n);
-    return nlen > 1e-6 ? n / nlen : vec3(0.0, 0.0, 1.0);
+    n.xy *= u_normal_xy_scale;
+    float len = length(n);
+    return len > 1e-6 ? n / len : vec3(0.0, 0.0, 1.0);
 #elif defined(SURF_BUMP)
     vec2 ts = map_size(t_height);
     vec2 du = vec2(1.0 / ts.x, 0.0), dv = vec2(0.0, 1.0 / ts.y);
@@ -170,6 +186,15 @@ void main()
     vec3 v = normalize(vi.view_ts);
     vec2 uv = parallax_uv(vi.uv, v);
     vt_feedback(vi.uv, uv, g_dx, g_dy);
+#if SURF_PARALLAX > 0
+    // Light the point of the relief that was found, not the base point the
+    // rasteriser gave: its tangent-space offset from the base point (the
+    // same surface the reference mesh displaces) moves the eye and lights.
+    vec3 at = vec3((uv - vi.uv) / UV_PER_WORLD, (height_at(uv) - SURFACE_H0) * u_height_scale);
+    v = normalize(vi.view_ts - at);
+#else
+    const vec3 at = vec3(0.0);
+#endif
     vec3 albedo = map_sample(t_albedo, uv, g_dx, g_dy).rgb;
 #if defined(DEBUG_NORMALS)
     float nlen;
@@ -181,8 +206,8 @@ void main()
     vec3 n = surface_normal(uv, nlen);
     vec3 c = u_ambient * albedo;
     for (int i = 0; i < u_light_count && i < MAX_LIGHTS; i++)
-        c += self_shadow(uv, normalize(vi.light_ts[i]))
-           * lighting_light(n, v, vi.light_ts[i], u_light_color[i], albedo, nlen);
+        c += self_shadow(uv, normalize(vi.light_ts[i] - at))
+           * lighting_light(n, v, vi.light_ts[i] - at, u_light_color[i], albedo, nlen);
     o_color = vec4(c, 1.0);
 #endif
 }
