@@ -126,7 +126,7 @@ int cli_run(int argc, char **argv)
     if (rc != 0) {
         fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
         dm_str_free(&err);
-        return rc == DM_ERR_ARG || rc == DM_ERR_IO || rc == DM_ERR_PARSE || rc == DM_ERR_RANGE ? 2 : 1;
+        return dm_exit_code(rc);
     }
     if (!o.quiet)
         printf("report: %s/report.html\n", dir);

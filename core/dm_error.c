@@ -19,3 +19,17 @@ const char *dm_strerror(int code)
     }
     return "unknown error";
 }
+
+int dm_exit_code(int code)
+{
+    switch (code) {
+    case DM_ERR_OK:
+        return 0;
+    case DM_ERR_ARG: case DM_ERR_PARSE: case DM_ERR_RANGE: case DM_ERR_UNKNOWN:
+    case DM_ERR_NOTFOUND: case DM_ERR_IO:
+        return 2;
+    case DM_ERR_STORE: case DM_ERR_BUSY: case DM_ERR_CHILD: case DM_ERR_GL:
+        return DM_EXIT_ENV;
+    }
+    return 1;
+}

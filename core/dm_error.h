@@ -26,7 +26,15 @@
     X(CHILD,       -14, "child process failed")                             \
     X(STORE,       -15, "results store error")                              \
     X(RANGE,       -16, "value out of range")                               \
-    X(EXISTS,      -17, "already exists")
+    X(EXISTS,      -17, "already exists")                                 \
+    X(BUSY,        -18, "in use by another process")
+
+/* Process exit codes: 0 success, 1 a failed check or regression (compare,
+ * gate), 2 bad input (usage, sweep file, option value), DM_EXIT_ENV an
+ * environment failure that is not the user's input: disk full, a damaged or
+ * locked results store, an output directory in use by another run.
+ * docs/reliability.md lists which failure gets which code. */
+#define DM_EXIT_ENV 4
 
 enum dm_error {
 #define DM__ENUM(name, code, msg) DM_ERR_##name = (code),
@@ -38,5 +46,11 @@ enum dm_error {
 const char *dm_errname(int code);
 /* Short human message of a code ("malformed input"). */
 const char *dm_strerror(int code);
+
+/* Exit code for a DM_ERR_* code of a command that could not run: 2 for bad
+ * input (ARG, PARSE, RANGE, UNKNOWN, NOTFOUND, IO: a path the user gave),
+ * DM_EXIT_ENV for STORE, BUSY, CHILD and GL (the machine, not the input),
+ * 1 for the rest. */
+int dm_exit_code(int code);
 
 #endif

@@ -580,8 +580,11 @@ static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
     free(depth);
 }
 
-/* Builds the result of a configuration and commits it in one transaction. */
-static void measure__commit(mscene *m, mconf *c)
+/* Builds the result of a configuration and commits it in one transaction.
+ * Returns 0, or DM_ERR_STORE (message in err) when the store cannot take it
+ * (disk full, damaged database): the caller stops, as no later
+ * configuration could be saved either. */
+static int measure__commit(mscene *m, mconf *c, dm_str *err)
 {
     dm_config_result out = {0};
     out.key = dm_xstrdup(c->pc->key);
@@ -612,8 +615,10 @@ static void measure__commit(mscene *m, mconf *c)
         measure__say(m->job, "D %s %s %.0f %.4f %lld", c->pc->key, out.ok ? "ok" : "failed",
                      wt ? wt->median : NAN, ci, (long long)c->sampling_ns);
     else
-        dm_log(DM_LOG_ERROR, "store: %s", store_last_error(m->st));
+        dm_str_printf(err, "cannot save configuration %s: %s", c->pc->key,
+                      store_last_error(m->st));
     dm_config_result_free(&out);
+    return rc == 0 ? 0 : DM_ERR_STORE;
 }
 
 static int measure__setup(mscene *m, dm_str *err)
@@ -692,13 +697,13 @@ int measure_pilot(const measure_job *job, dm_str *err)
 int measure_scene(const measure_job *job, dm_str *err)
 {
     mscene m = { .job = job };
-    int rc = measure__setup(&m, err);
+    int rc = measure__setup(&m, err), set_up = rc == 0;
     mconf *cs = dm_xcalloc(job->n_configs + 1, sizeof *cs);
     for (size_t i = 0; rc == 0 && i < job->n_configs; i++) {
         cs[i].pc = &job->configs[i];
         measure__prepare(&m, &cs[i]);
         if (cs[i].failed)
-            measure__commit(&m, &cs[i]);
+            rc = measure__commit(&m, &cs[i], err);
     }
     size_t *order = dm_xcalloc(job->n_configs + 1, sizeof *order);
     for (uint64_t round = 0, active = 1; rc == 0 && active; round++) {
@@ -710,12 +715,14 @@ int measure_scene(const measure_job *job, dm_str *err)
                 continue;
             measure__timing_sample(&m, c);
             if (!c->active)
-                measure__commit(&m, c);
+                rc = measure__commit(&m, c, err);
             else
                 active = 1;
+            if (rc != 0)
+                break;
         }
     }
     free(order);
-    measure__teardown(&m, cs, rc == 0 ? job->n_configs : 0);
+    measure__teardown(&m, cs, set_up ? job->n_configs : 0);
     return rc;
 }

@@ -1006,6 +1006,27 @@ int store_open(const char *path, store **out, dm_str *err)
     return 0;
 }
 
+int store_check(store *s, dm_str *err)
+{
+    sqlite3_stmt *st = NULL;
+    int rc = sqlite3_prepare_v2(s->db, "PRAGMA quick_check(1)", -1, &st, NULL);
+    int step = rc == SQLITE_OK ? sqlite3_step(st) : rc;
+    const char *res = step == SQLITE_ROW ? (const char *)sqlite3_column_text(st, 0) : NULL;
+    int ok = res && strcmp(res, "ok") == 0;
+    if (!ok) {
+        char *why = dm_xstrdup(res ? res : sqlite3_errmsg(s->db));
+        for (char *p = why; *p; p++)
+            *p = *p == '\n' ? ' ' : *p;
+        store__failf(s, DM_ERR_STORE, "the results store is damaged (%s); restore it from a "
+                     "backup or give another --out", why);
+        free(why);
+    }
+    sqlite3_finalize(st);
+    if (!ok && err)
+        dm_str_cat(err, store_last_error(s));
+    return ok ? 0 : DM_ERR_STORE;
+}
+
 void store_close(store *s)
 {
     if (!s)

@@ -31,6 +31,11 @@ typedef struct store store;
  * the path and SQLite's message appended to err (err may be NULL); *out is
  * then NULL. */
 int store_open(const char *path, store **out, dm_str *err);
+/* Checks the database's structure (PRAGMA quick_check: every page, index and
+ * record readable, O(size) reads, no writes).  0 when intact; DM_ERR_STORE
+ * with "damaged" and SQLite's first finding in err (and store_last_error)
+ * when not, so nothing writes into a damaged store or reads half a run. */
+int store_check(store *s, dm_str *err);
 /* Closes the database; NULL is ignored. */
 void store_close(store *s);
 /* Message of the last failure of s ("" when none). Valid until the next call. */
