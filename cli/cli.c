@@ -69,16 +69,21 @@ static int cli__run_options(int argc, char **argv, runner_opts *o, const char **
         } else if (strcmp(a, "--shard") == 0) {
             if (!(v = cli__value(argc, argv, &i)))
                 return 2;
-            if (sscanf(v, "%d/%d", &o->shard_k, &o->shard_n) != 2 || o->shard_n < 1 ||
-                o->shard_k < 1 || o->shard_k > o->shard_n)
-                return cli__usage_error("run: --shard '%s': expected K/N with 1 <= K <= N, e.g. 2/4", v);
+            dm_str e = {0};
+            if (runner_parse_shard(v, &o->shard_k, &o->shard_n, &e) != 0) {
+                cli__usage_error("run: %s", dm_str_get(&e));
+                dm_str_free(&e);
+                return 2;
+            }
         } else if (strcmp(a, "--seed") == 0) {
             if (!(v = cli__value(argc, argv, &i)))
                 return 2;
-            char *end = NULL;
-            o->seed = strtoull(v, &end, 10);
-            if (!*v || *end)
-                return cli__usage_error("run: --seed '%s': expected a non-negative integer", v);
+            dm_str e = {0};
+            if (runner_parse_seed(v, &o->seed, &e) != 0) {
+                cli__usage_error("run: %s", dm_str_get(&e));
+                dm_str_free(&e);
+                return 2;
+            }
         } else if (strcmp(a, "--budget") == 0) {
             if (!(v = cli__value(argc, argv, &i)))
                 return 2;
@@ -134,21 +139,38 @@ int cli_run(int argc, char **argv)
     return 0;
 }
 
-/* Resolves a run directory to (store path, run id): the store lives in the
- * directory above the run, the run id is the directory's name. */
-static int cli__locate_run(const char *dir, char **store_path, char **run_id)
+int cli__load_run(const char *dir, dm_run_result *run, dm_str *err)
 {
+    char *store_path = NULL, *run_id = NULL;
     char real[PATH_MAX];
-    if (!realpath(dir, real))
-        return cli__usage_error("%s: no such run directory", dir);
+    int rc = 0;
+    if (!realpath(dir, real)) {
+        dm_str_printf(err, "%s: no such run directory", dir);
+        return DM_ERR_ARG;
+    }
     char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
-    *run_id = dm_xstrdup(basename(a));
-    *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(b));
+    run_id = dm_xstrdup(basename(a));
+    store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(b));
+    store *st = NULL;
+    if (!dm_file_exists(store_path)) {
+        dm_str_printf(err, "%s: not a run directory: no results store beside it (%s)", dir, store_path);
+        rc = DM_ERR_ARG;
+    }
+    rc = rc ? rc : store_open(store_path, &st, err);
+    rc = rc ? rc : store_check(st, err);
+    if (rc == 0 && (rc = store_run_load(st, run_id, run)) != 0) {
+        if (rc == DM_ERR_NOTFOUND)
+            dm_str_printf(err, "%s: run %s is not in %s", dir, run_id, store_path);
+        else
+            dm_str_cat(err, store_last_error(st));
+        rc = rc == DM_ERR_NOTFOUND ? DM_ERR_ARG : DM_ERR_STORE;
+    }
+    store_close(st);
     free(a);
     free(b);
-    if (!dm_file_exists(*store_path))
-        return cli__usage_error("%s: no results store beside the run directory (%s)", dir, *store_path);
-    return -1;
+    free(store_path);
+    free(run_id);
+    return rc;
 }
 
 /* Parses report's arguments: DIR [--metric NAME].  Returns -1 to go on or
@@ -189,16 +211,13 @@ int cli_report(int argc, char **argv)
 {
     const char *dir = NULL, *metric = NULL;
     int rc = cli__report_options(argc, argv, &dir, &metric);
-    char *store_path = NULL, *run_id = NULL;
-    if (rc < 0)
-        rc = cli__locate_run(dir, &store_path, &run_id);
-    store *st = NULL;
     dm_str err = {0};
     dm_run_result run = {0};
-    if (rc < 0 && store_open(store_path, &st, &err) != 0)
-        rc = cli__usage_error("%s", dm_str_get(&err));
-    if (rc < 0 && store_run_load(st, run_id, &run) != 0)
-        rc = cli__usage_error("%s: run %s is not in %s", dir, run_id, store_path);
+    int lrc = rc < 0 ? cli__load_run(dir, &run, &err) : 0;
+    if (lrc != 0) {
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        rc = dm_exit_code(lrc);
+    }
     if (rc < 0 && metric)
         report_metric_set(&run, metric);   /* validated above */
     char e[512] = "";
@@ -209,10 +228,7 @@ int cli_report(int argc, char **argv)
         rc = 0;
     }
     dm_run_free(&run);
-    store_close(st);
     dm_str_free(&err);
-    free(store_path);
-    free(run_id);
     return rc;
 }
 

@@ -6,6 +6,8 @@
 
 #include <stddef.h>
 
+#include "core/dm_util.h"
+
 int cli_run(int argc, char **argv);
 int cli_report(int argc, char **argv);
 int cli_fit(int argc, char **argv);
@@ -22,6 +24,13 @@ int cli_view(int argc, char **argv);      /* cmd_view.c */
 int cli__usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Rejects an unknown option, listing the valid ones; returns 2. */
 int cli__unknown_option(const char *cmd, const char *opt, const char *const *valid, size_t n);
+/* Loads the run of a run directory (the store in the directory above it)
+ * into *run after checking that the store exists (nothing is created) and is
+ * intact.  Returns 0, or DM_ERR_ARG (not a run directory, run not in the
+ * store) / DM_ERR_STORE (damaged or unreadable store) with the message in
+ * err; dm_exit_code() gives the exit code. */
+struct dm_run_result;
+int cli__load_run(const char *dir, struct dm_run_result *run, dm_str *err);
 /* Value of "--opt VALUE": advances *i; NULL (after printing) when missing. */
 const char *cli__value(int argc, char **argv, int *i);
 

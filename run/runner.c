@@ -653,6 +653,42 @@ static int runner__lock(runner *r, dm_str *err)
     return rc;
 }
 
+/* The part of the sweep this process measures, as recorded with the run
+ * (environment key "shard"): "K/N", or "all" without --shard. */
+static char *runner__shard_text(const runner *r)
+{
+    return r->o->shard_n ? dm_xasprintf("%d/%d", r->o->shard_k, r->o->shard_n) : dm_xstrdup("all");
+}
+
+/* --resume continues run r->run_id only when it was made from the same
+ * sweep file and the same --shard (else the other shard's configurations
+ * would be added to it).  0 or DM_ERR_ARG with the reason. */
+static int runner__resumable(runner *r, dm_str *err)
+{
+    dm_run_result old = {0};
+    int rc = store_run_load(r->st, r->run_id, &old);
+    if (rc != 0) {
+        dm_str_printf(err, "--resume: cannot load run %s: %s", r->run_id, store_last_error(r->st));
+        return DM_ERR_STORE;
+    }
+    char hash[17], *shard = runner__shard_text(r);
+    dm_hex64(r->s->hash, hash);
+    const char *was = dm_kv_get(old.environment, old.n_environment, "shard");
+    if (!old.sweep_hash || strcmp(old.sweep_hash, hash) != 0) {
+        dm_str_printf(err, "--resume: run %s was made from a different sweep file; "
+                      "run without --resume to start a new run", r->run_id);
+        rc = DM_ERR_ARG;
+    } else if (was && strcmp(was, shard) != 0) {
+        dm_str_printf(err, "--resume: run %s measures shard %s, not %s; resume it with "
+                      "%s%s, or use another --out for this shard", r->run_id, was, shard,
+                      strcmp(was, "all") ? "--shard " : "no --shard", strcmp(was, "all") ? was : "");
+        rc = DM_ERR_ARG;
+    }
+    free(shard);
+    dm_run_free(&old);
+    return rc;
+}
+
 static int runner__open(runner *r, dm_str *err)
 {
     r->root = dm_xstrdup(r->o->out_root ? r->o->out_root : "results");
@@ -677,17 +713,9 @@ static int runner__open(runner *r, dm_str *err)
             dm_str_printf(err, "%s: --resume: no run to resume in this store", r->store_path);
             return DM_ERR_ARG;
         }
-        dm_run_result old = {0};
-        store_run_load(r->st, r->run_id, &old);
-        char hash[17];
-        dm_hex64(r->s->hash, hash);
-        int same = old.sweep_hash && strcmp(old.sweep_hash, hash) == 0;
-        dm_run_free(&old);
-        if (!same) {
-            dm_str_printf(err, "--resume: run %s was made from a different sweep file; "
-                          "run without --resume to start a new run", r->run_id);
-            return DM_ERR_ARG;
-        }
+        rc = runner__resumable(r, err);
+        if (rc != 0)
+            return rc;
     } else {
         char stamp[32];
         time_t t = time(NULL);
@@ -727,6 +755,9 @@ static int runner__begin(runner *r)
     dm_hex64(r->s->hash, hash);
     e->sweep_hash = dm_xstrdup(hash);
     report_metric_set(e, r->s->pareto_metric);   /* so dmbench report redraws the same front */
+    char *shard = runner__shard_text(r);         /* so --resume continues the same shard */
+    dm_kv_push(&e->environment, &e->n_environment, "shard", shard);
+    free(shard);
     int rc = store_run_begin(r->st, e, r->o->tag);
     for (size_t i = 0; rc == 0 && i < r->p.n_left_out; i++)
         rc = store_left_out_put(r->st, r->run_id, &r->p.left_out[i]);
@@ -832,6 +863,77 @@ static int runner__scenes(runner *r)
     return rc;
 }
 
+/* Progress of planning on stderr: a line once a second after the first
+ * second (on a terminal one line rewritten), so a big sweep is not silent. */
+typedef struct runner__plan_tick {
+    const runner *r;
+    int64_t t0, last;
+    int shown;
+} runner__plan_tick;
+
+static void runner__plan_progress(size_t done, size_t total, void *user)
+{
+    runner__plan_tick *t = user;
+    int64_t now = dm_now_ns();
+    if (t->r->o->quiet || (now - t->last < 1000000000 && done < total) ||
+        (done == total && !t->shown) || now - t->t0 < 1000000000)
+        return;
+    t->last = now;
+    t->shown = 1;
+    fprintf(stderr, "%sdmbench: planning: %zu of %zu combinations (%.0f s)%s",
+            t->r->tty ? "\r\033[K" : "", done, total, (double)(now - t->t0) / 1e9,
+            t->r->tty && done < total ? "" : "\n");
+}
+
+static int runner__plan(runner *r, dm_str *err)
+{
+    runner__plan_tick t = { .r = r, .t0 = dm_now_ns() };
+    t.last = t.t0;
+    return plan_build_progress(r->s, &r->p, err, runner__plan_progress, &t);
+}
+
+/* A decimal number in [lo, hi] spanning exactly [text, text+len): no sign,
+ * no spaces; -1 when it is not one. */
+static long long runner__decimal(const char *text, size_t len, long long lo, long long hi)
+{
+    if (len == 0 || len > 18)
+        return -1;
+    long long v = 0;
+    for (size_t i = 0; i < len; i++) {
+        if (text[i] < '0' || text[i] > '9')
+            return -1;
+        v = v * 10 + (text[i] - '0');
+    }
+    return v >= lo && v <= hi ? v : -1;
+}
+
+int runner_parse_shard(const char *text, int *k, int *n, dm_str *err)
+{
+    const char *slash = strchr(text, '/');
+    long long kk = slash ? runner__decimal(text, (size_t)(slash - text), 1, 1000000) : -1;
+    long long nn = slash ? runner__decimal(slash + 1, strlen(slash + 1), 1, 1000000) : -1;
+    if (kk < 1 || nn < 1 || kk > nn) {
+        dm_str_printf(err, "--shard '%s': expected K/N with 1 <= K <= N <= 1000000, e.g. 2/4", text);
+        return DM_ERR_ARG;
+    }
+    *k = (int)kk;
+    *n = (int)nn;
+    return 0;
+}
+
+int runner_parse_seed(const char *text, uint64_t *seed, dm_str *err)
+{
+    char *end = NULL;
+    errno = 0;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (!(text[0] >= '0' && text[0] <= '9') || *end || errno == ERANGE) {
+        dm_str_printf(err, "--seed '%s': expected a non-negative integer below 2^64", text);
+        return DM_ERR_ARG;
+    }
+    *seed = v;
+    return 0;
+}
+
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err)
 {
     runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns(), .lock_fd = -1 };
@@ -840,7 +942,7 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
      * processes use one rasterizer thread unless the user chose otherwise.
      * The value is recorded in the environment and the fingerprint. */
     setenv("LP_NUM_THREADS", "1", 0);
-    int rc = plan_build(s, &r.p, err);
+    int rc = runner__plan(&r, err);
     if (rc == 0 && o->shard_n && (rc = plan_shard(&r.p, o->shard_k, o->shard_n)) != 0)
         dm_str_printf(err, "--shard %d/%d: expected K/N with 1 <= K <= N", o->shard_k, o->shard_n);
     rc = rc ? rc : runner__probe(&r, err);

@@ -25,6 +25,13 @@ typedef struct runner_opts {
     int quiet, verbose;
 } runner_opts;
 
+/* Parses --shard "K/N" (decimal, 1 <= K <= N <= 1e6, nothing else around
+ * it).  0, or DM_ERR_ARG with a message naming the value in err. */
+int runner_parse_shard(const char *text, int *k, int *n, dm_str *err);
+/* Parses --seed: a decimal integer 0 .. 2^64-1 without a sign.  0, or
+ * DM_ERR_ARG with a message in err. */
+int runner_parse_seed(const char *text, uint64_t *seed, dm_str *err);
+
 /* Runs the sweep.  Returns 0 when the run completed (failed configurations
  * are results, not errors) and sets *run_dir (caller frees); DM_ERR_* with a
  * message in err when it could not run at all. */
