@@ -942,7 +942,8 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
      * processes use one rasterizer thread unless the user chose otherwise.
      * The value is recorded in the environment and the fingerprint. */
     setenv("LP_NUM_THREADS", "1", 0);
-    int rc = runner__plan(&r, err);
+    int rc = fitting_check_models(s, err);       /* models: fail now, not after the run */
+    rc = rc ? rc : runner__plan(&r, err);
     if (rc == 0 && o->shard_n && (rc = plan_shard(&r.p, o->shard_k, o->shard_n)) != 0)
         dm_str_printf(err, "--shard %d/%d: expected K/N with 1 <= K <= N", o->shard_k, o->shard_n);
     rc = rc ? rc : runner__probe(&r, err);
