@@ -303,3 +303,9 @@ void dm_str_cat_list(dm_str *s, const char *const *choices, size_t n)
     for (size_t i = 0; i < n; i++)
         dm_str_printf(s, "%s%s", i ? ", " : "", choices[i]);
 }
+
+int dm_regular_file(const char *path)
+{
+    struct stat st;
+    return path && stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}

@@ -71,5 +71,8 @@ int dm_write_file(const char *path, const void *data, size_t len);
 /* mkdir -p; 0 if it exists or was made. */
 int dm_mkdirs(const char *path);
 int dm_file_exists(const char *path);
+/* 1 when path names a regular file (after symlinks): input files must be,
+ * since reading a FIFO or a device such as /dev/zero never ends. */
+int dm_regular_file(const char *path);
 
 #endif

@@ -504,6 +504,11 @@ static int maps__material_split(const char *value, char *paths[3], dm_str *err)
 static int maps__material_file(int key, const char *path, int *size, img *out, dm_str *err)
 {
     char why[256] = "";
+    if (dm_file_exists(path) && !dm_regular_file(path)) {
+        dm_str_printf(err, "material %s map '%s' is not a regular file (a directory, FIFO or "
+                      "device cannot be read as an image)", maps__material_keys[key], path);
+        return DM_ERR_IO;
+    }
     if (img_load(path, out, why, sizeof why) != 0) {
         dm_str_printf(err, "material %s map '%s' cannot be read: %s", maps__material_keys[key], path, why);
         return DM_ERR_IO;
