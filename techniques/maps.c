@@ -22,7 +22,7 @@
 #define MAPS__NOISE_CELLS 32  /* value-noise lattice cells per tile (tiles seamlessly) */
 #define MAPS__STONE_CELLS 8   /* cellular (Worley) cells per tile side */
 #define MAPS__FBM_OCTAVES 6   /* terrain: lattices of 4, 8, ... 128 cells */
-#define MAPS__CACHE_MAGIC "DMMAPS1"   /* 8 bytes with the NUL; bump when a generator changes */
+#define MAPS__CACHE_MAGIC "DMMAPS2"   /* 8 bytes with the NUL; bump when a generator or the layout changes */
 
 /* One texel of a set: height, linear albedo RGB and specular at (u,v). */
 typedef void (*maps__texel_fn)(float u, float v, float *h, float rgb[3], float *spec);
@@ -383,7 +383,16 @@ char *maps_cache_dir(void)
 }
 
 /* Cache file layout: magic (8 bytes), int32 size, then size² float heights
- * and size²·4 albedo8 bytes, native byte order (the cache is per machine). */
+ * and size²·4 albedo8 bytes, then a uint64 FNV-1a hash of both arrays, native
+ * byte order (the cache is per machine).  A file whose hash does not match
+ * (a damaged block) is not used; the maps are generated again. */
+static uint64_t maps__cache_hash(const maps_set *m)
+{
+    size_t texels = (size_t)m->size * (size_t)m->size;
+    uint64_t h = dm_fnv1a64(m->height, texels * sizeof(float), DM_FNV_SEED);
+    return dm_fnv1a64(m->albedo8, texels * 4, h);
+}
+
 static int maps__cache_read(const char *path, int size, maps_set *out)
 {
     FILE *f = fopen(path, "rb");
@@ -397,6 +406,10 @@ static int maps__cache_read(const char *path, int size, maps_set *out)
              fread(&s, sizeof s, 1, f) == 1 && s == size &&
              fread(out->height, sizeof(float), texels, f) == texels &&
              fread(out->albedo8, 4, texels, f) == texels;
+    uint64_t stored = 0;
+    char extra;
+    ok = ok && fread(&stored, sizeof stored, 1, f) == 1 && fread(&extra, 1, 1, f) == 0 &&
+         stored == maps__cache_hash(out);
     fclose(f);
     if (!ok)
         maps_free(out);
@@ -413,6 +426,8 @@ static int maps__cache_write(const char *dir, const char *path, const maps_set *
     int ok = f && fwrite(MAPS__CACHE_MAGIC, 1, 8, f) == 8 && fwrite(&s, sizeof s, 1, f) == 1 &&
              fwrite(m->height, sizeof(float), texels, f) == texels &&
              fwrite(m->albedo8, 4, texels, f) == texels;
+    uint64_t h = maps__cache_hash(m);
+    ok = ok && fwrite(&h, sizeof h, 1, f) == 1;
     if (f && fclose(f) != 0)
         ok = 0;
     if (ok && rename(tmp, path) != 0)
