@@ -182,7 +182,9 @@ static int p__user_maps(pctx *c, yaml_node_t *map)
                 return p__fail(c, val, "scene.material.%s: expected a file path", kinds[k]);
             }
             char *path = p__map_path(c, p__scalar(val));
-            dm_str_printf(&v, "%s%s=%s", v.len ? ";" : "", kinds[k], path);
+            dm_str_printf(&v, "%s%s=", v.len ? ";" : "", kinds[k]);
+            for (const char *p = path; *p; p++)   /* a ';' in the path is written ";;" */
+                dm_str_cat(&v, *p == ';' ? ";;" : (char[2]){ *p, 0 });
             free(path);
             first = first ? first : val;
         }

@@ -483,27 +483,45 @@ static const char *const maps__material_keys[3] = {"height", "normal", "albedo"}
 
 int maps_is_material(const char *value) { return value && strchr(value, '=') != NULL; }
 
+/* Next entry of a material at *p: up to a single ';' (";;" stands for a ';'
+ * inside a path); advances *p past it.  Returns the entry (caller frees). */
+static char *maps__material_entry(const char **p)
+{
+    dm_str e = {0};
+    dm_str_cat(&e, "");
+    for (; **p; (*p)++) {
+        if (**p == ';' && (*p)[1] != ';')
+            break;
+        dm_str_catn(&e, *p, 1);
+        if (**p == ';')
+            (*p)++;
+    }
+    if (**p == ';')
+        (*p)++;
+    return dm_str_take(&e);
+}
+
 /* Splits "k=PATH;k=PATH" into paths[3] (malloc'd, NULL when absent). */
 static int maps__material_split(const char *value, char *paths[3], dm_str *err)
 {
-    char *copy = dm_xstrdup(value), *save = NULL;
     int rc = 0, any = 0;
     paths[0] = paths[1] = paths[2] = NULL;
-    for (char *t = strtok_r(copy, ";", &save); t && !rc; t = strtok_r(NULL, ";", &save)) {
+    for (const char *p = value; *p && !rc;) {
+        char *t = maps__material_entry(&p);
         char *eq = strchr(t, '=');
         int k = -1;
         for (int i = 0; eq && i < 3; i++)
             if ((size_t)(eq - t) == strlen(maps__material_keys[i]) && strncmp(t, maps__material_keys[i], (size_t)(eq - t)) == 0)
                 k = i;
         if (k < 0 || paths[k] || !eq[1]) {
-            dm_str_printf(err, "invalid material entry '%s'; expected height=PATH, normal=PATH, albedo=PATH, each at most once", t);
+            dm_str_printf(err, "invalid material entry '%s'; expected height=PATH, normal=PATH, albedo=PATH, each at most once, separated by ';' (write ';;' for a ';' inside a path)", t);
             rc = DM_ERR_ARG;
         } else {
             paths[k] = dm_xstrdup(eq + 1);
             any = 1;
         }
+        free(t);
     }
-    free(copy);
     if (!rc && !any) {
         dm_str_printf(err, "empty material '%s'", value);
         rc = DM_ERR_ARG;
