@@ -214,6 +214,32 @@ static void measure__warmup(mscene *m, mconf *c)
     c->warmup_ns = dm_now_ns() - t0;
 }
 
+/* Continues from the samples a killed process checkpointed for this
+ * configuration (same counters, same count for each); at most
+ * samples_max - 1 are taken, so at least one more is measured here. */
+static void measure__restore(mscene *m, mconf *c)
+{
+    size_t cap = (size_t)m->job->sweep->measure.samples_max - 1, got = 0;
+    long ns = 0;
+    for (size_t i = 0; i < m->n_timing; i++) {
+        double *v = NULL;
+        size_t n = 0;
+        if (store_partial_get(m->st, m->job->run_id, c->pc->key, m->timing[i], &v, &n, &ns) != 0 ||
+            (i > 0 && n != got)) {
+            free(v);
+            return;   /* partial or none: measure from scratch */
+        }
+        got = n;
+        memcpy(c->timing[i], v, (n < cap ? n : cap) * sizeof *v);
+        free(v);
+    }
+    c->n_samples = got < cap ? got : cap;
+    c->sampling_ns = ns;
+    if (c->n_samples)
+        dm_str_printf(&c->log, "continued from %zu timing samples checkpointed by an "
+                      "interrupted process\n", c->n_samples);
+}
+
 /* Prepare + warm-up + statistics pass for one configuration. */
 static void measure__prepare(mscene *m, mconf *c)
 {
@@ -250,6 +276,27 @@ static void measure__prepare(mscene *m, mconf *c)
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i] = dm_xcalloc((size_t)sm->samples_max, sizeof **c->timing);
     c->active = 1;
+    measure__restore(m, c);
+}
+
+/* Checkpoints the samples of every configuration still sampling, in one
+ * transaction after a round: a kill then loses at most the round in flight.
+ * Returns 0 or DM_ERR_STORE (message in err). */
+static int measure__checkpoint(mscene *m, mconf *cs, size_t n, dm_str *err)
+{
+    store_partial *items = dm_xcalloc(n + 1, sizeof *items);
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        if (cs[i].active && !cs[i].failed && cs[i].n_samples)
+            items[k++] = (store_partial){ .key = cs[i].pc->key, .counters = m->timing,
+                                          .n_counters = m->n_timing, .samples = cs[i].timing,
+                                          .n_samples = cs[i].n_samples,
+                                          .sampling_ns = (long)cs[i].sampling_ns };
+    int rc = k ? store_partial_put(m->st, m->job->run_id, items, k) : 0;
+    if (rc != 0)
+        dm_str_printf(err, "cannot checkpoint the samples of a round: %s", store_last_error(m->st));
+    free(items);
+    return rc ? DM_ERR_STORE : 0;
 }
 
 static int measure__wall_index(const mscene *m)
@@ -721,6 +768,8 @@ int measure_scene(const measure_job *job, dm_str *err)
             if (rc != 0)
                 break;
         }
+        if (rc == 0 && active)
+            rc = measure__checkpoint(&m, cs, job->n_configs, err);
     }
     free(order);
     measure__teardown(&m, cs, set_up ? job->n_configs : 0);

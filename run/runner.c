@@ -22,6 +22,7 @@
 #include <string.h>
 #include <fcntl.h>
 #include <sys/file.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -240,6 +241,9 @@ static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd, 
     fflush(NULL);
     pid_t pid = fork();
     if (pid == 0) {
+        prctl(PR_SET_PDEATHSIG, SIGKILL);   /* a killed runner takes its child along */
+        if (getppid() == 1)
+            _exit(3);
         close(fds[0]);
         measure_job job = { .sweep = r->s, .configs = cs, .n_configs = n, .run_id = r->run_id,
                             .run_dir = r->run_dir, .store_path = r->store_path,

@@ -431,7 +431,7 @@ static void test_round_trip(void **state)
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
     assert_int_equal(sql_long(s, "SELECT length(data) FROM samples"), 400);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
     dm_run_free(&got);
     store_close(s);
     /* ...and again from a fresh connection. */
@@ -645,7 +645,7 @@ static void test_fit_condition_migration(void **state)
                                   "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_true(got.fits[0].condition == 0.0);
     run.fits[0].condition = 0.0;
@@ -868,7 +868,7 @@ static void test_open_alloc_faults(void **state)
         dm_str_free(&err);
         s = open_ok(t->db);
         assert_integrity_ok(s);
-        assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
+        assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
         store_close(s);
         if (!reached)
             break;
