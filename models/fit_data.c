@@ -34,6 +34,18 @@ static size_t fit_data__split(const char *line, size_t len, fit_data__cell *cell
     }
 }
 
+/* 1 when a column name is one a formula can use as a variable: a letter or
+ * '_', then letters, digits, '_' or '.' (axes such as camera.distance). */
+static int fit_data__name_ok(const char *s, size_t len)
+{
+    if (!len || !(isalpha((unsigned char)s[0]) || s[0] == '_'))
+        return 0;
+    for (size_t i = 1; i < len; i++)
+        if (!(isalnum((unsigned char)s[i]) || s[i] == '_' || s[i] == '.'))
+            return 0;
+    return 1;
+}
+
 static int fit_data__header(fit_data *d, const char *line, size_t len, const char *path,
                             dm_str *err)
 {
@@ -49,6 +61,12 @@ static int fit_data__header(fit_data *d, const char *line, size_t len, const cha
         if (rc || !c[i].len) {
             dm_str_printf(err, "%s:1:%zu: %s column name '%s'", path, c[i].col,
                           c[i].len ? "duplicate" : "empty", d->names[i]);
+            rc = DM_ERR_PARSE;
+        } else if (!fit_data__name_ok(c[i].start, c[i].len)) {
+            dm_str_printf(err, "%s:1:%zu: column name '%.*s' is not a name (letters, digits, "
+                          "'_' and '.', starting with a letter or '_'), so a formula could "
+                          "not read it", path, c[i].col, (int)(c[i].len > 64 ? 64 : c[i].len),
+                          c[i].start);
             rc = DM_ERR_PARSE;
         }
     }
@@ -91,14 +109,24 @@ int fit_data_load_csv(const char *path, fit_data *out, dm_str *err)
     size_t len = 0, lineno = 0;
     int rc = 0;
     memset(out, 0, sizeof *out);
+    if (dm_file_exists(path) && !dm_regular_file(path)) {
+        dm_str_printf(err, "%s: cannot read the file: not a regular file (a directory, FIFO or "
+                      "device)", path);
+        return DM_ERR_IO;
+    }
     if (dm_read_file(path, &text, &len) != 0) {
         dm_str_printf(err, "%s: cannot read the file", path);
         return DM_ERR_IO;
     }
-    size_t n_lines = 1;
+    size_t n_lines = 1, bom = len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0 ? 3 : 0;
     for (size_t i = 0; i < len; i++)
         n_lines += text[i] == '\n';
-    for (char *line = text, *next; line && !rc; line = next) {
+    if (memchr(text, '\0', len)) {
+        dm_str_printf(err, "%s: a NUL byte: a CSV file is text", path);
+        free(text);
+        return DM_ERR_PARSE;
+    }
+    for (char *line = text + bom, *next; line && !rc; line = next) {   /* a UTF-8 BOM is skipped */
         next = strchr(line, '\n');
         size_t l = next ? (size_t)(next - line) : strlen(line);
         next = next ? next + 1 : NULL;
