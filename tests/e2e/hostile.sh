@@ -54,6 +54,27 @@ expect 2 "m2.yaml:19: models: resolution-cost: formula: column 21: expected ')'"
 mkdir -p "$OUT/notrun/sub"
 expect 2 "not a run directory" -- "$BIN" fit "$OUT/notrun/sub"
 if [ -e "$OUT/notrun/dmbench.sqlite" ]; then fail=$((fail+1)); echo "FAIL: fit created a store"; else pass=$((pass+1)); fi
+# fit: a BOM is not a column, contradictory bounds, overflowing data, glog
+printf '\xef\xbb\xbfx,WallTime\n1,3\n2,5\n3,7\n4,9\n' > "$OUT/bom.csv"
+out=$("$BIN" fit --data "$OUT/bom.csv" --formula "a + b*x" 2>&1); rc=$?
+if [ "$rc" -eq 0 ] && grep -q "b *= *2 " <<<"$out" && ! grep -q "x *=" <<<"$out"; then pass=$((pass+1))
+else fail=$((fail+1)); echo "FAIL: BOM csv: rc $rc: $out"; fi
+expect 2 "bounds of 'p' contradict each other" -- "$BIN" fit --data "$OUT/fit.csv" --formula "a + p*x; p >= 2; p <= 1"
+printf 'x,WallTime\n1,1e308\n2,1.5e308\n3,1.7e308\n4,1.2e308\n' > "$OUT/big.csv"
+expect 1 "the fit is not finite" -- "$BIN" fit --data "$OUT/big.csv" --formula "a + b*x"
+printf 'x,WallTime\n1,1e-300\n2,2e-300\n3,3e-300\n' > "$OUT/tiny.csv"
+err=$("$BIN" fit --data "$OUT/tiny.csv" --formula "a*x" 2>&1 >/dev/null)
+if grep -q "InitGoogleLogging\|^[EWI][0-9]\{8\} " <<<"$err"; then fail=$((fail+1)); echo "FAIL: glog output: $err"
+else pass=$((pass+1)); fi
+# Huber: the standard error of a is on the inliers' noise scale (0.05), not the outliers'
+python3 -c "
+import math
+print('x,WallTime')
+for i in range(40):
+    print(f'{i},{4 + 2*i + 0.05*math.sin(7*i) + (200 if i % 10 == 0 else 0)}')" > "$OUT/huber.csv"
+se=$("$BIN" fit --data "$OUT/huber.csv" --formula "a + b*x" --loss huber | awk '$1 == "a" {print $5}')
+if python3 -c "import sys; sys.exit(0 if 0 < float('$se') < 0.5 else 1)" 2>/dev/null; then pass=$((pass+1))
+else fail=$((fail+1)); echo "FAIL: Huber standard error of a is '$se' (want < 0.5)"; fi
 # nothing may have been written by the failing runs
 if [ -e "$R" ]; then fail=$((fail+1)); echo "FAIL: bad input wrote $R"; else pass=$((pass+1)); fi
 echo "$pass passed, $fail failed"
