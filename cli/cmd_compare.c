@@ -76,8 +76,16 @@ static int cli__tolerance(cli_compare_opts *o, const char *v)
     if (!eq || eq == v || rel < 0)
         return cli__usage_error("compare: --tolerance '%s': expected COUNTER=REL, e.g. "
                                 "FSInvocations=0.01 or FSInvocations=1%%", v);
+    char *name = dm_xasprintf("%.*s", (int)(eq - v), v);
+    dm_str e = {0};
+    if (compare_check_tolerance_counter(name, &e) != 0) {
+        cli__usage_error("compare: %s", dm_str_get(&e));
+        dm_str_free(&e);
+        free(name);
+        return 2;
+    }
     compare_tolerance *t = &o->tol[o->d.n_tolerances++];
-    t->counter = dm_xasprintf("%.*s", (int)(eq - v), v);
+    t->counter = name;
     t->rel = rel;
     return -1;
 }
@@ -103,8 +111,14 @@ static int cli__numeric(cli_compare_opts *o, int argc, char **argv, int *i)
     const char *a = argv[*i];
     if (strcmp(a, "--time-threshold") == 0)
         return cli__num_opt(argc, argv, i, &o->d.time_threshold, 1);
-    if (strcmp(a, "--alpha") == 0)
-        return cli__num_opt(argc, argv, i, &o->d.alpha, 0);
+    if (strcmp(a, "--alpha") == 0) {
+        int rc = cli__num_opt(argc, argv, i, &o->d.alpha, 0);
+        dm_str e = {0};
+        if (rc < 0 && compare_check_alpha(o->d.alpha, &e) != 0)
+            rc = cli__usage_error("compare: %s", dm_str_get(&e));
+        dm_str_free(&e);
+        return rc;
+    }
     if (strcmp(a, "--psnr-drop") == 0)
         return cli__num_opt(argc, argv, i, &o->d.psnr_drop, 0);
     if (strcmp(a, "--ssim-drop") == 0)
@@ -250,6 +264,8 @@ int cli_compare(int argc, char **argv)
         for (size_t i = 0; i < base.n_warnings + new_.n_warnings && o.paired[0]; i++)
             fprintf(stderr, "dmbench: warning: %s\n",
                     i < base.n_warnings ? base.warnings[i] : new_.warnings[i - base.n_warnings]);
+        if (c == 0 && !o.paired[0])
+            c = compare_check_common(&r, &err);
         if (c != 0) {
             for (size_t i = 0; i < r.n_env_diffs; i++)
                 fprintf(stderr, "  %s\n", r.env_diffs[i]);
