@@ -121,7 +121,9 @@ int cli_run(int argc, char **argv)
     rc = file ? sweep_load(file, &s, &err)
               : sweep_parse(sweep_default_text(quick), quick ? "<default --quick>" : "<default>", &s, &err);
     if (rc != 0) {
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        char *b;
+        fprintf(stderr, "dmbench: error: %s\n", dm_term_safe(dm_str_get(&err), &b));
+        free(b);
         dm_str_free(&err);
         return 2;
     }
@@ -129,7 +131,9 @@ int cli_run(int argc, char **argv)
     rc = runner_run(&s, &o, &dir, &err);
     sweep_free(&s);
     if (rc != 0) {
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        char *b;
+        fprintf(stderr, "dmbench: error: %s\n", dm_term_safe(dm_str_get(&err), &b));
+        free(b);
         dm_str_free(&err);
         return dm_exit_code(rc);
     }

@@ -171,10 +171,13 @@ static void runner__progress(runner *r, const plan_config *c, const char *status
     else
         snprintf(line, sizeof line, "[%zu/%zu] %-18s %-28s FAILED (%s)  ETA %3.0fs",
                  r->done, r->total, tech, c->scene, status, eta);
+    char *b;
+    const char *safe = dm_term_safe(line, &b);   /* a scene names a user's map path */
     if (r->tty)
-        fprintf(stderr, "\r\033[K%s%s", line, r->done == r->total ? "\n" : "");
+        fprintf(stderr, "\r\033[K%s%s", safe, r->done == r->total ? "\n" : "");
     else
-        fprintf(stderr, "%s\n", line);
+        fprintf(stderr, "%s\n", safe);
+    free(b);
 }
 
 /* ---- scene children -------------------------------------------------------- */
@@ -959,13 +962,15 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
     rc = rc ? rc : runner__begin(&r);
     if (rc == 0) {
         r.total = r.p.n_configs;
+        char *name_buf = NULL;
         if (!o->quiet)
             fprintf(stderr, "dmbench: %s: %zu combinations -> %zu configurations "
                     "(%zu excluded by the sweep, %zu folded: axes the technique does not read), "
                     "%zu left out; run %s\n",
-                    s->name, r.p.n_combinations, r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
+                    dm_term_safe(s->name, &name_buf), r.p.n_combinations, r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
                     r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
                     r.p.n_left_out, r.run_dir);
+        free(name_buf);
         rc = runner__scenes(&r);
         if (rc != 0)
             dm_str_printf(err, "%s; stopped the run: the %zu configurations committed before are "

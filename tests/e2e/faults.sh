@@ -36,8 +36,41 @@ else
   echo "SKIP disk full: mount -t tmpfs was refused (not root or no CAP_SYS_ADMIN)"
 fi
 
-# A small finished run to damage and to lock.
-"$BIN" run "$TINY" --out "$OUT/good" --quiet || bad "the tiny run failed"
+# A small finished run to damage, to lock and to compare; its name carries
+# raw HTML and an ANSI escape, which must reach neither summary.md nor the
+# terminal.
+sed 's/^name: e2e-tiny/name: "<img src=x onerror=alert(1)>\\e[31mred"/' "$TINY" > "$OUT/evil.yaml"
+err=$("$BIN" run "$OUT/evil.yaml" --out "$OUT/good" 2>&1 >/dev/null) || bad "the tiny run failed"
+grep -q $'\e\[31m' <<<"$err" && bad "an ANSI escape from the sweep name reached the terminal" || ok
+grep -q "<img" "$OUT/good/latest/summary.md" && bad "raw HTML in summary.md" || ok
+grep -q "&lt;img src=x" "$OUT/good/latest/summary.md" && ok || bad "the sweep name is not in summary.md, escaped"
+
+# compare: bad options and bad results.json (exit 2), nothing in common,
+# raw HTML in a label kept out of --markdown
+J="$OUT/good/latest/results.json"
+python3 - "$J" "$OUT" <<'PY'
+import json, sys
+d = json.load(open(sys.argv[1])); o = sys.argv[2]
+def w(name, f):
+    x = json.loads(json.dumps(d)); f(x); json.dump(x, open(f"{o}/{name}.json", "w"))
+w("neg", lambda x: x["configs"][0]["counters"]["WallTime"].__setitem__("median", -5))
+w("type", lambda x: x["configs"][0]["counters"]["WallTime"].__setitem__("median", "fast"))
+def rekey(x):
+    for c in x["configs"]: c["key"] = "f" + c["key"][1:]
+w("other", rekey)
+def html(x):
+    for i, c in enumerate(x["configs"]): c["params"]["maps"] = f"height=/m/<script>{i}</script>.png"
+w("html", html)
+PY
+err=$("$BIN" compare "$J" "$J" --alpha 0 2>&1 >/dev/null); check "--alpha 0" 2 "between 0 and 1" $? "$err"
+err=$("$BIN" compare "$J" "$J" --alpha 2 2>&1 >/dev/null); check "--alpha 2" 2 "between 0 and 1" $? "$err"
+err=$("$BIN" compare "$J" "$J" --tolerance FSInvocatons=0.1 2>&1 >/dev/null); check "--tolerance" 2 "unknown counter 'FSInvocatons'; did you mean 'FSInvocations'" $? "$err"
+err=$("$BIN" compare "$J" "$OUT/neg.json" 2>&1 >/dev/null); check "negative time" 2 "WallTime is -5 ns" $? "$err"
+err=$("$BIN" compare "$J" "$OUT/type.json" 2>&1 >/dev/null); check "wrong type" 2 "not a number" $? "$err"
+err=$("$BIN" compare "$J" "$OUT/other.json" 2>&1 >/dev/null); check "nothing in common" 2 "no configuration in common" $? "$err"
+"$BIN" compare "$OUT/html.json" "$OUT/html.json" --markdown "$OUT/c.md" > /dev/null 2>&1
+grep -q "<script" "$OUT/c.md" && bad "raw HTML in compare --markdown" || ok
+grep -q "&lt;script&gt;" "$OUT/c.md" && ok || bad "the label is not in compare --markdown, escaped"
 
 # 2. Damaged store: a page in the middle overwritten.
 cp -r "$OUT/good" "$OUT/dmg"
