@@ -967,7 +967,8 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
             fprintf(stderr, "dmbench: %s: %zu combinations -> %zu configurations "
                     "(%zu excluded by the sweep, %zu folded: axes the technique does not read), "
                     "%zu left out; run %s\n",
-                    dm_term_safe(s->name, &name_buf), r.p.n_combinations, r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
+                    dm_term_safe(s->name, &name_buf), r.p.n_combinations,
+                    r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
                     r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
                     r.p.n_left_out, r.run_dir);
         free(name_buf);
