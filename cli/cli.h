@@ -49,6 +49,8 @@ typedef struct cli_command {
     unsigned flags;
 } cli_command;
 
+#include "core/dm_util.h"
+
 int cli_run(int argc, char **argv);
 int cli_report(int argc, char **argv);
 int cli_fit(int argc, char **argv);
@@ -93,5 +95,13 @@ int cli_gen_completion(const char *shell, FILE *f);
 
 /* Prints "dmbench: error: <msg>" and returns DM_EXIT_USAGE. */
 int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+
+/* Loads the run of a run directory (the store in the directory above it)
+ * into *run after checking that the store exists (nothing is created) and is
+ * intact.  Returns 0, or DM_ERR_ARG (not a run directory, run not in the
+ * store) / DM_ERR_STORE (damaged or unreadable store) with the message in
+ * err; dm_exit_from_error() gives the exit code. */
+struct dm_run_result;
+int cli_load_run(const char *dir, struct dm_run_result *run, dm_str *err);
 
 #endif

@@ -82,6 +82,13 @@ static int compare__threshold(const cli_option *opt, const char *v, void *args, 
     return 0;
 }
 
+/* --alpha: a significance level strictly between 0 and 1 (compare_check_alpha). */
+static int compare__alpha(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    int rc = compare__number(opt, v, args, err);
+    return rc ? rc : compare_check_alpha(*(double *)((char *)args + opt->offset), err);
+}
+
 /* --tolerance COUNTER=REL, repeatable. */
 static int compare__tolerance(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
@@ -93,8 +100,13 @@ static int compare__tolerance(const cli_option *opt, const char *v, void *args, 
                       "FSInvocations=1%%", opt->name, v);
         return DM_ERR_ARG;
     }
+    char *name = dm_xasprintf("%.*s", (int)(eq - v), v);
+    if (compare_check_tolerance_counter(name, err) != 0) {   /* a misspelled counter */
+        free(name);
+        return DM_ERR_UNKNOWN;
+    }
     o->tol = dm_xrealloc(o->tol, (o->d.n_tolerances + 1) * sizeof *o->tol);
-    o->tol[o->d.n_tolerances].counter = dm_xasprintf("%.*s", (int)(eq - v), v);
+    o->tol[o->d.n_tolerances].counter = name;
     o->tol[o->d.n_tolerances++].rel = rel;
     o->d.tolerances = o->tol;
     return 0;
@@ -116,7 +128,7 @@ const cli_option cli_compare_options[] = {
       .value_name = "REL", .parse = compare__threshold,
       .help = "smallest Instructions change that counts, e.g. 0.5% or 0.005 [default 0.5%]" },
     { .name = "alpha", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.alpha), .value_name = "P",
-      .parse = compare__number, .help = "significance level of the time test [default 0.01]" },
+      .parse = compare__alpha, .help = "significance level of the time test [default 0.01]" },
     { .name = "psnr-drop", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.psnr_drop),
       .value_name = "DB", .parse = compare__number, .help = "largest PSNR loss that passes [default 1 dB]" },
     { .name = "ssim-drop", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.ssim_drop),
@@ -246,6 +258,8 @@ int cli_compare(int argc, char **argv)
         for (size_t i = 0; i < base.n_warnings + new_.n_warnings && o.paired[0]; i++)
             fprintf(stderr, "dmbench: warning: %s\n",
                     i < base.n_warnings ? base.warnings[i] : new_.warnings[i - base.n_warnings]);
+        if (c == 0 && !o.paired[0])
+            c = compare_check_common(&r, &err);
         if (c != 0) {
             for (size_t i = 0; i < r.n_env_diffs; i++)
                 fprintf(stderr, "  %s\n", r.env_diffs[i]);

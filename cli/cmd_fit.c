@@ -126,24 +126,8 @@ static int fit__from_csv(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
 
 static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_str *warn, dm_str *err)
 {
-    char real[PATH_MAX];
-    if (!realpath(a->dir, real)) {
-        dm_str_printf(err, "%s: no such run directory", a->dir);
-        return DM_ERR_ARG;
-    }
-    char *c1 = dm_xstrdup(real), *c2 = dm_xstrdup(real);
-    char *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(c1));
-    store *st = NULL;
     dm_run_result run = {0};
-    int rc = 0;
-    if (!dm_file_exists(store_path)) {   /* store_open would create one */
-        dm_str_printf(err, "%s is not a run directory: no results store beside it (%s); give "
-                      "e.g. results/latest", a->dir, store_path);
-        rc = DM_ERR_ARG;
-    }
-    rc = rc ? rc : store_open(store_path, &st, err);
-    if (rc == 0 && (rc = store_run_load(st, basename(c2), &run)) != 0)
-        dm_str_printf(err, "%s: run %s is not in %s", a->dir, basename(c2), store_path);
+    int rc = cli_load_run(a->dir, &run, err);
     char *groups[16];
     size_t ng = 0;
     char *gb = a->group_by ? dm_xstrdup(a->group_by) : NULL;
@@ -156,10 +140,6 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
         rc = fitting_run(&spec, &run, fits, n, warn, err);
     free(gb);
     dm_run_free(&run);
-    store_close(st);
-    free(store_path);
-    free(c1);
-    free(c2);
     return rc;
 }
 

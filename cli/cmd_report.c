@@ -81,6 +81,10 @@ int cli_report(int argc, char **argv)
     dm_run_result run = {0};
     if (rc < 0 && store_open(store_path, &st, &err) != 0)
         rc = cli_usage_error("%s", dm_str_get(&err));
+    if (rc < 0 && store_check(st, &err) != 0) {   /* a damaged store: the machine's, exit 4 */
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        rc = DM_EXIT_ENV;
+    }
     if (rc < 0 && store_run_load(st, run_id, &run) != 0)
         rc = cli_usage_error("%s: run %s is not in %s", dir, run_id, store_path);
     if (rc < 0 && metric)

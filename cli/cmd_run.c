@@ -15,16 +15,19 @@ typedef struct run_args {
     int quick;
 } run_args;
 
-/* --shard K/N with 1 <= K <= N. */
+/* --shard K/N and --seed N: checked by the runner's own parsers
+ * (runner_parse_shard, runner_parse_seed), which name the valid form. */
 static int run__shard(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
     runner_opts *o = &((run_args *)args)->o;
-    if (sscanf(v, "%d/%d", &o->shard_k, &o->shard_n) != 2 || o->shard_n < 1 ||
-        o->shard_k < 1 || o->shard_k > o->shard_n) {
-        dm_str_printf(err, "--%s '%s': expected K/N with 1 <= K <= N, e.g. 2/4", opt->name, v);
-        return DM_ERR_ARG;
-    }
-    return 0;
+    (void)opt;
+    return runner_parse_shard(v, &o->shard_k, &o->shard_n, err);
+}
+
+static int run__seed(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    (void)opt;
+    return runner_parse_seed(v, &((run_args *)args)->o.seed, err);
 }
 
 /* --budget SEC > 0. */
@@ -50,8 +53,8 @@ const cli_option cli_run_options[] = {
       .help = "run the K-th of N deterministic shares of the configurations" },
     { .name = "budget", .kind = CLI_OPT_DOUBLE, .value_name = "SEC", .parse = run__budget,
       .help = "leave out configurations predicted to take longer than SEC seconds" },
-    { .name = "seed", .kind = CLI_OPT_UINT64, .offset = offsetof(run_args, o.seed),
-      .value_name = "N", .help = "seed of the round order (0 = 1)" },
+    { .name = "seed", .kind = CLI_OPT_UINT64, .value_name = "N", .parse = run__seed,
+      .help = "seed of the round order (0 = 1)" },
     CLI_STRING("tag", run_args, o.tag, "NAME",
                "a name stored with the run (compare --base-tag/--new-tag)"),
     CLI_BOOL("quick", run_args, quick,
@@ -82,7 +85,9 @@ int cli_run(int argc, char **argv)
                   : sweep_parse(sweep_default_text(a->quick), a->quick ? "<default --quick>" : "<default>",
                                 &s, &err);
     if (rc != 0) {
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        char *b;
+        fprintf(stderr, "dmbench: error: %s\n", dm_term_safe(dm_str_get(&err), &b));
+        free(b);
         dm_str_free(&err);
         return DM_EXIT_USAGE;
     }
@@ -90,7 +95,9 @@ int cli_run(int argc, char **argv)
     rc = runner_run(&s, &a->o, &dir, &err);
     sweep_free(&s);
     if (rc != 0) {
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        char *b;
+        fprintf(stderr, "dmbench: error: %s\n", dm_term_safe(dm_str_get(&err), &b));
+        free(b);
         dm_str_free(&err);
         return dm_exit_from_error(rc);
     }

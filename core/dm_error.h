@@ -26,7 +26,8 @@
     X(CHILD,       -14, "child process failed")                             \
     X(STORE,       -15, "results store error")                              \
     X(RANGE,       -16, "value out of range")                               \
-    X(EXISTS,      -17, "already exists")
+    X(EXISTS,      -17, "already exists")                                 \
+    X(BUSY,        -18, "in use by another process")
 
 enum dm_error {
 #define DM__ENUM(name, code, msg) DM_ERR_##name = (code),

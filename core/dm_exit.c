@@ -17,6 +17,11 @@ dm_exit dm_exit_from_error(int err)
     case DM_ERR_IO:
     case DM_ERR_UNSUPPORTED:
         return DM_EXIT_USAGE;
+    case DM_ERR_STORE:           /* damaged, locked or full store */
+    case DM_ERR_BUSY:            /* the output is in use by another run */
+    case DM_ERR_CHILD:           /* measuring processes that keep dying */
+    case DM_ERR_GL:              /* no usable GL context */
+        return DM_EXIT_ENV;
     default:
         return DM_EXIT_FAILED;
     }

@@ -24,9 +24,11 @@ typedef enum dm_exit {
 
 /* The exit code for a DM_ERR_* code: 0 → DM_EXIT_OK; input the user can fix
  * (ARG, PARSE, RANGE, UNKNOWN, NOTFOUND, EXISTS, IO, UNSUPPORTED) →
- * DM_EXIT_USAGE; everything else (a GL, shader, numeric or child failure)
- * → DM_EXIT_FAILED.  DM_EXIT_ENV is never produced here: only code that knows
- * the cause was the machine returns it. */
+ * DM_EXIT_USAGE; the machine rather than the input (STORE: a damaged,
+ * locked or full store; BUSY: the output in use by another run; CHILD:
+ * measuring processes that keep dying; GL: no usable context) →
+ * DM_EXIT_ENV; everything else (a shader, numeric or timeout failure) →
+ * DM_EXIT_FAILED.  docs/reliability.md lists which failure gets which code. */
 dm_exit dm_exit_from_error(int err);
 /* One-line meaning of an exit code, or NULL for a code not in DM_EXITS. */
 const char *dm_exit_meaning(int code);

@@ -324,3 +324,44 @@ void dm_str_expected(dm_str *s, const char *value, const char *const *choices, s
     if (close)
         dm_str_printf(s, " (did you mean '%s'?)", close);
 }
+
+int dm_regular_file(const char *path)
+{
+    struct stat st;
+    return path && stat(path, &st) == 0 && S_ISREG(st.st_mode);
+}
+
+void dm_str_cat_md(dm_str *s, const char *text)
+{
+    for (const unsigned char *p = (const unsigned char *)(text ? text : ""); *p; p++) {
+        const char *rep = *p == '|' ? "\\|" : *p == '<' ? "&lt;" : *p == '>' ? "&gt;"
+                        : *p == '&' ? "&amp;" : *p == '`' ? "'" : *p == '\n' || *p == '\r' ? " "
+                        : *p < 0x20 || *p == 0x7f ? "?" : NULL;
+        if (rep)
+            dm_str_cat(s, rep);
+        else
+            dm_str_catn(s, (const char *)p, 1);
+    }
+}
+
+void dm_str_cat_term(dm_str *s, const char *text)
+{
+    for (const unsigned char *p = (const unsigned char *)(text ? text : ""); *p; p++)
+        dm_str_catn(s, (*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7f ? "?"
+                           : (const char *)p, 1);
+}
+
+const char *dm_term_safe(const char *text, char **buf)
+{
+    *buf = NULL;
+    if (!text)
+        return "";
+    for (const unsigned char *p = (const unsigned char *)text; *p; p++)
+        if ((*p < 0x20 && *p != '\n' && *p != '\t') || *p == 0x7f) {
+            dm_str t = {0};
+            dm_str_cat_term(&t, text);
+            *buf = dm_str_take(&t);
+            return *buf;
+        }
+    return text;
+}

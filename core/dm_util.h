@@ -28,6 +28,18 @@ void dm_str_printf(dm_str *s, const char *fmt, ...) __attribute__((format(printf
 void dm_str_vprintf(dm_str *s, const char *fmt, va_list ap);
 /* Appends text with & < > " ' escaped for HTML. */
 void dm_str_cat_html(dm_str *s, const char *text);
+/* Appends text for one Markdown table cell or heading that a renderer such
+ * as GitHub's shows as plain text: '|' escaped, '<' '>' '&' as entities
+ * (no raw HTML from a sweep name or a path), '`' as '\'', line breaks as
+ * spaces, other control bytes (ANSI escapes) as '?'. */
+void dm_str_cat_md(dm_str *s, const char *text);
+/* Appends text for a terminal: control bytes other than '\n' and '\t'
+ * (ESC of ANSI sequences, '\r', ...) as '?', so user text cannot move the
+ * cursor, recolour or retitle the terminal. */
+void dm_str_cat_term(dm_str *s, const char *text);
+/* text if it has no control bytes, else a sanitised copy in *buf (freed by
+ * the caller, NULL when not needed); for printing user text to a terminal. */
+const char *dm_term_safe(const char *text, char **buf);
 /* Returns the buffer ("" when empty); the dm_str keeps ownership. */
 const char *dm_str_get(const dm_str *s);
 /* Hands the buffer to the caller (never NULL) and resets s. */
@@ -79,5 +91,8 @@ int dm_write_file(const char *path, const void *data, size_t len);
 /* mkdir -p; 0 if it exists or was made. */
 int dm_mkdirs(const char *path);
 int dm_file_exists(const char *path);
+/* 1 when path names a regular file (after symlinks): input files must be,
+ * since reading a FIFO or a device such as /dev/zero never ends. */
+int dm_regular_file(const char *path);
 
 #endif

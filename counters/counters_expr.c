@@ -10,7 +10,12 @@ typedef struct expr__p {
     counters__expr_lookup lookup;
     void *user;
     dm_str *err;
+    int nesting;          /* expr__unary calls in progress */
 } expr__p;
+
+/* Deepest nesting of parentheses and signs: the evaluator recurses, so
+ * hostile input gets an error instead of overflowing the stack. */
+#define EXPR__MAX_NESTING 200
 
 static int expr__sum(expr__p *p, double *v);
 
@@ -65,11 +70,18 @@ static int expr__primary(expr__p *p, double *v)
 static int expr__unary(expr__p *p, double *v)
 {
     expr__ws(p);
-    if (*p->s != '-')
-        return expr__primary(p, v);
-    p->s++;
-    int rc = expr__unary(p, v);
-    *v = -*v;
+    if (p->nesting >= EXPR__MAX_NESTING)
+        return expr__syntax(p, "nested deeper than 200 levels (parentheses or minus signs)");
+    p->nesting++;
+    int rc;
+    if (*p->s != '-') {
+        rc = expr__primary(p, v);
+    } else {
+        p->s++;
+        rc = expr__unary(p, v);
+        *v = -*v;
+    }
+    p->nesting--;
     return rc;
 }
 
@@ -107,7 +119,7 @@ static int expr__sum(expr__p *p, double *v)
 int counters__expr_eval(const char *formula, counters__expr_lookup lookup, void *user,
                         double *out, dm_str *err)
 {
-    expr__p p = {formula, formula, lookup, user, err};
+    expr__p p = { .s = formula, .formula = formula, .lookup = lookup, .user = user, .err = err };
     double v = 0;
     int rc = expr__sum(&p, &v);
     if (rc)

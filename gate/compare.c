@@ -8,6 +8,7 @@
 
 #include "core/dm_exit.h"
 #include "core/dm_error.h"
+#include "counters/counters.h"
 #include "run/env.h"
 #include "models/compare_stats.h"
 
@@ -503,6 +504,41 @@ int compare_runs(const dm_run_result *base, const dm_run_result *new_, const com
     for (size_t i = 0; i < out->n_items; i++)
         out->count[out->items[i].verdict]++;
     return 0;
+}
+
+int compare_check_alpha(double alpha, dm_str *err)
+{
+    if (alpha > 0 && alpha < 1)
+        return 0;
+    dm_str_printf(err, "--alpha %g: expected a significance level between 0 and 1 (exclusive), "
+                  "e.g. 0.05", alpha);
+    return DM_ERR_RANGE;
+}
+
+int compare_check_tolerance_counter(const char *counter, dm_str *err)
+{
+    if (counters_find(counter))
+        return 0;
+    const char **names = dm_xcalloc(counters_count() + 1, sizeof *names);
+    for (size_t i = 0; i < counters_count(); i++)
+        names[i] = counters_info_at(i)->name;
+    const char *near = dm_closest(counter, names, counters_count());
+    dm_str_printf(err, "--tolerance: unknown counter '%s'", counter);
+    if (near)
+        dm_str_printf(err, "; did you mean '%s'?", near);
+    dm_str_cat(err, " (dmbench list counters shows them all)");
+    free(names);
+    return DM_ERR_UNKNOWN;
+}
+
+int compare_check_common(const compare_result *r, dm_str *err)
+{
+    if (r->n_items > 0)
+        return 0;
+    dm_str_printf(err, "the runs have no configuration in common (%zu only in the base, %zu only "
+                  "in the new run): nothing was compared; were they made from the same sweep?",
+                  r->n_removed, r->n_added);
+    return DM_ERR_ARG;
 }
 
 int compare_exit_code(const compare_result *r)

@@ -136,6 +136,15 @@ const char *compare_verdict_name(compare_verdict v);
  * GPUTime marked partial (never gated) — err says why. */
 int compare_runs(const dm_run_result *base, const dm_run_result *new_, const compare_desc *d,
                  compare_result *out, dm_str *err);
+/* --alpha: a significance level strictly between 0 and 1 (0 would never
+ * call anything significant, >= 1 always).  0 or DM_ERR_RANGE (err). */
+int compare_check_alpha(double alpha, dm_str *err);
+/* --tolerance COUNTER=REL: COUNTER must be a known counter (err suggests
+ * the closest).  0 or DM_ERR_UNKNOWN. */
+int compare_check_tolerance_counter(const char *counter, dm_str *err);
+/* A comparison without a single configuration in common compared nothing:
+ * DM_ERR_ARG with the counts on each side in err; else 0. */
+int compare_check_common(const compare_result *r, dm_str *err);
 /* DM_EXIT_OK pass, DM_EXIT_FAILED regression, DM_EXIT_INCONCLUSIVE (see top). */
 int compare_exit_code(const compare_result *r);
 void compare_result_free(compare_result *r);

@@ -6,6 +6,7 @@
 #include <libgen.h>
 #include <limits.h>
 #include <stdlib.h>
+#include <math.h>
 #include <string.h>
 #include <sys/stat.h>
 
@@ -41,6 +42,26 @@ static int compare__load_dir_store(const char *dir, dm_run_result *out, dm_str *
     return rc;
 }
 
+/* A results file with a negative or infinite time is damaged or forged:
+ * the geometric mean of ratios would be NaN.  DM_ERR_PARSE naming it. */
+static int compare__times_ok(const char *path, const dm_run_result *r, dm_str *err)
+{
+    for (size_t i = 0; i < r->n_configs; i++)
+        for (size_t k = 0; k < r->configs[i].n_counters; k++) {
+            const dm_counter_result *c = &r->configs[i].counters[k];
+            int time = c->unit && strcmp(c->unit, "ns") == 0;
+            double v[3] = { c->value, c->median, c->n_samples ? c->min : NAN };
+            for (int j = 0; time && j < 3; j++)
+                if (v[j] < 0 || isinf(v[j])) {
+                    dm_str_printf(err, "%s: configuration %s: %s is %g ns; a time is finite and "
+                                  ">= 0 (is the file damaged?)", path, r->configs[i].key,
+                                  c->name, v[j]);
+                    return DM_ERR_PARSE;
+                }
+        }
+    return 0;
+}
+
 int compare_load_path(const char *path, dm_run_result *out, dm_str *err)
 {
     memset(out, 0, sizeof *out);
@@ -51,7 +72,7 @@ int compare_load_path(const char *path, dm_run_result *out, dm_str *err)
             dm_str_printf(err, "%s: no such file or run directory", path);
         else if (rc)
             dm_str_printf(err, "%s", e);
-        return rc;
+        return rc ? rc : compare__times_ok(path, out, err);
     }
     char *json = dm_xasprintf("%s/results.json", path);
     char *latest = dm_xasprintf("%s/latest", path);

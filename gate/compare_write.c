@@ -35,16 +35,25 @@ static void compare__summary(const compare_result *r, dm_str *s)
 
 static void compare__text_list(FILE *f, const char *title, char **list, size_t n)
 {
-    for (size_t i = 0; i < n; i++)
-        fprintf(f, "%s: %s\n", title, list[i]);
+    for (size_t i = 0; i < n; i++) {
+        char *b;
+        fprintf(f, "%s: %s\n", title, dm_term_safe(list[i], &b));
+        free(b);
+    }
 }
 
 void compare_write_text(const compare_result *r, FILE *f)
 {
+    char *b1, *b2, *b3;
     fprintf(f, "compare BASE %s -> NEW %s (%s; instructions threshold %.2g%%, time threshold %.1f%%, alpha %.3g%s)\n",
-            r->base_id ? r->base_id : "?", r->new_id ? r->new_id : "?", r->sweep ? r->sweep : "?",
+            dm_term_safe(r->base_id ? r->base_id : "?", &b1),
+            dm_term_safe(r->new_id ? r->new_id : "?", &b2),
+            dm_term_safe(r->sweep ? r->sweep : "?", &b3),
             r->desc.threshold * 100, r->desc.time_threshold * 100, r->desc.alpha,
             r->desc.counters_only ? ", counters only" : "");
+    free(b1);
+    free(b2);
+    free(b3);
     fprintf(f, "%-12s  %-26s  %-8s  %-16s  %s\n", "verdict", "ratio [95% CI]", "q", "key",
             "configuration / note");
     for (size_t i = 0; i < r->n_items; i++) {
@@ -53,8 +62,12 @@ void compare_write_text(const compare_result *r, FILE *f)
         compare__ratio_text(it, ratio, sizeof ratio);
         if (it->timed)
             snprintf(q, sizeof q, "%.2g", it->q);
+        char *b1, *b2;
         fprintf(f, "%-12s  %-26s  %-8s  %-16s  %s%s%s\n", compare_verdict_name(it->verdict), ratio,
-                q, it->key, it->label, it->note ? " — " : "", it->note ? it->note : "");
+                q, it->key, dm_term_safe(it->label, &b1), it->note ? " — " : "",
+                it->note ? dm_term_safe(it->note, &b2) : (b2 = NULL, ""));
+        free(b1);
+        free(b2);
     }
     compare__text_list(f, "added", r->added, r->n_added);
     compare__text_list(f, "removed", r->removed, r->n_removed);
@@ -73,22 +86,21 @@ static int compare__write(dm_str *s, const char *path)
     return rc;
 }
 
-/* Markdown table cell text: '|' and newlines would break the row. */
+/* Markdown table cell text: plain text only (a PR comment must not get raw
+ * HTML from a sweep name or a map path; see dm_str_cat_md). */
 static void compare__md_cell(dm_str *s, const char *text)
 {
-    for (const char *p = text ? text : ""; *p; p++) {
-        if (*p == '|')
-            dm_str_cat(s, "\\|");
-        else
-            dm_str_catn(s, *p == '\n' ? " " : p, 1);
-    }
+    dm_str_cat_md(s, text);
 }
 
 int compare_write_markdown(const compare_result *r, const char *path)
 {
     dm_str s = {0};
-    dm_str_printf(&s, "## dmbench compare: %s → %s\n\n", r->base_id ? r->base_id : "?",
-                  r->new_id ? r->new_id : "?");
+    dm_str_cat(&s, "## dmbench compare: ");
+    compare__md_cell(&s, r->base_id ? r->base_id : "?");
+    dm_str_cat(&s, " → ");
+    compare__md_cell(&s, r->new_id ? r->new_id : "?");
+    dm_str_cat(&s, "\n\n");
     compare__summary(r, &s);
     dm_str_cat(&s, "\n\n| Verdict | Configuration | Key | Ratio [95% CI] | q | Note |\n"
                    "|---|---|---|---|---|---|\n");
@@ -100,16 +112,27 @@ int compare_write_markdown(const compare_result *r, const char *path)
             snprintf(q, sizeof q, "%.2g", it->q);
         dm_str_printf(&s, "| %s | ", compare_verdict_name(it->verdict));
         compare__md_cell(&s, it->label);
-        dm_str_printf(&s, " | `%s` | %s | %s | ", it->key, ratio, q);
+        dm_str_cat(&s, " | `");
+        compare__md_cell(&s, it->key);
+        dm_str_printf(&s, "` | %s | %s | ", ratio, q);
         compare__md_cell(&s, it->note);
         dm_str_cat(&s, " |\n");
     }
-    for (size_t i = 0; i < r->n_added; i++)
-        dm_str_printf(&s, "%s- added: %s\n", i ? "" : "\n", r->added[i]);
-    for (size_t i = 0; i < r->n_removed; i++)
-        dm_str_printf(&s, "%s- removed: %s\n", i || r->n_added ? "" : "\n", r->removed[i]);
-    for (size_t i = 0; i < r->n_warnings; i++)
-        dm_str_printf(&s, "\n> warning: %s\n", r->warnings[i]);
+    for (size_t i = 0; i < r->n_added; i++) {
+        dm_str_printf(&s, "%s- added: ", i ? "" : "\n");
+        compare__md_cell(&s, r->added[i]);
+        dm_str_cat(&s, "\n");
+    }
+    for (size_t i = 0; i < r->n_removed; i++) {
+        dm_str_printf(&s, "%s- removed: ", i || r->n_added ? "" : "\n");
+        compare__md_cell(&s, r->removed[i]);
+        dm_str_cat(&s, "\n");
+    }
+    for (size_t i = 0; i < r->n_warnings; i++) {
+        dm_str_cat(&s, "\n> warning: ");
+        compare__md_cell(&s, r->warnings[i]);
+        dm_str_cat(&s, "\n");
+    }
     return compare__write(&s, path);
 }
 

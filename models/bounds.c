@@ -83,6 +83,27 @@ static int bounds__clause(const char *p, const char *e, fit_bound *b)
     return 1;
 }
 
+/* 0 when the bounds of every parameter leave some value (the highest lower
+ * bound <= the lowest upper bound), else DM_ERR_PARSE naming the parameter:
+ * the fit would otherwise silently break one of them. */
+static int bounds__consistent(const fit_bound *b, size_t n, dm_str *err)
+{
+    for (size_t i = 0; i < n; i++) {
+        double lo = b[i].lo, hi = b[i].hi;
+        for (size_t j = 0; j < n; j++)
+            if (strcmp(b[i].param, b[j].param) == 0) {
+                lo = b[j].lo > lo ? b[j].lo : lo;
+                hi = b[j].hi < hi ? b[j].hi : hi;
+            }
+        if (lo > hi) {
+            dm_str_printf(err, "formula: bounds of '%s' contradict each other (it must be "
+                          ">= %g and <= %g); no value satisfies them", b[i].param, lo, hi);
+            return DM_ERR_PARSE;
+        }
+    }
+    return 0;
+}
+
 int bounds_split(const char *text, char **expr, fit_bound **bounds, size_t *n_bounds, dm_str *err)
 {
     const char *semi = strchr(text, ';');
@@ -100,6 +121,10 @@ int bounds_split(const char *text, char **expr, fit_bound **bounds, size_t *n_bo
         }
         n++;
         p = e;
+    }
+    if (bounds__consistent(out, n, err) != 0) {
+        bounds_free(out, n);
+        return DM_ERR_PARSE;
     }
     *expr = semi ? bounds__strndup(text, (size_t)(semi - text)) : dm_xstrdup(text);
     *bounds = out;

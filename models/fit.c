@@ -326,6 +326,36 @@ static void fit__bounds_and_start(const fit_desc *d, const formula *f, double *l
 
 /* Parameters, stderr = sqrt(diag cov) * sqrt(RSS/(n-p)) (scaled residuals,
  * so the response scale cancels), and the goodness-of-fit figures. */
+static int fit__dcmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* Residual variance (in the solver's scaled units) behind the standard
+ * errors.  Least squares: RSS / (m - P).  A robust loss: the square of the
+ * residuals' normalised MAD (1.4826 * MAD) times m / (m - P), so outliers
+ * the loss discounts do not inflate the errors of the inliers' fit. */
+static double fit__residual_var(const fit__ctx *c, const dm_fit_result *r, double rss)
+{
+    size_t m = c->m, P = c->P;
+    if (m <= P)
+        return NAN;
+    if (c->d->loss != FIT_LOSS_HUBER && c->d->loss != FIT_LOSS_CAUCHY)
+        return rss / (c->s_y * c->s_y) / (double)(m - P);
+    double *e = dm_xmalloc(m * sizeof *e);
+    for (size_t i = 0; i < m; i++)
+        e[i] = r->predicted[i] - r->measured[i];
+    qsort(e, m, sizeof *e, fit__dcmp);
+    double med = e[m / 2];
+    for (size_t i = 0; i < m; i++)
+        e[i] = fabs(e[i] - med);
+    qsort(e, m, sizeof *e, fit__dcmp);
+    double sigma = 1.4826 * e[m / 2] / c->s_y;
+    free(e);
+    return sigma * sigma * (double)m / (double)(m - P);
+}
+
 static void fit__fill(fit__ctx *c, const double *p, const double *cov, int cov_ok,
                       dm_fit_result *r)
 {
@@ -349,7 +379,7 @@ static void fit__fill(fit__ctx *c, const double *p, const double *cov, int cov_o
     r->r2 = tss > 0.0 ? 1.0 - rss / tss : NAN;
     r->rmse = sqrt(rss / (double)m);
     r->mape = 100.0 * ape / (double)m;
-    double s2 = m > P ? rss / (c->s_y * c->s_y) / (double)(m - P) : NAN;
+    double s2 = fit__residual_var(c, r, rss);
     r->params = dm_xcalloc(P, sizeof *r->params);
     r->n_params = P;
     for (size_t j = 0; j < P; j++) {
@@ -484,6 +514,11 @@ static int fit__fit(fit__ctx *c, size_t *rows, size_t m, dm_fit_result *r, dm_st
     fit__fill(c, p, cov, sum.cov_ok, r);
     r->cv_mape = fit__cv_mape(c, rows, m, p, r);
     fit__warn_poor(r);
+    if (!isfinite(r->rmse)) {   /* e.g. responses near 1e308: the residuals overflow */
+        dm_str_printf(err, "fit: '%s': the fit is not finite (RMSE %g): the values are too large "
+                      "for double precision; rescale the data", c->d->formula, r->rmse);
+        rc = DM_ERR_NUMERIC;
+    }
 out:
     free(p);
     return rc;

@@ -62,6 +62,22 @@ void set_bounds_and_fixed(const fit_ceres_problem *pb, ceres::Problem &problem, 
 }
 
 // The dense Jacobian the solver sees at theta; false when it cannot be evaluated.
+// Ceres reports through glog; uninitialised, glog prints "Logging before
+// InitGoogleLogging()" and Ceres' warnings on stderr, which are not dmbench's
+// messages (the fit's own warnings say what matters).  Initialised once to
+// stderr only (no log files) and fatal errors only.
+void quiet_glog()
+{
+    static bool done = false;
+    if (done)
+        return;
+    done = true;
+    FLAGS_logtostderr = true;
+    FLAGS_minloglevel = google::GLOG_FATAL;
+    if (!google::IsGoogleLoggingInitialized())
+        google::InitGoogleLogging("dmbench");
+}
+
 bool dense_jacobian(ceres::Problem &problem, size_t n_params, Eigen::MatrixXd *j)
 {
     ceres::CRSMatrix crs;
@@ -118,6 +134,7 @@ void covariance(ceres::Problem &problem, const fit_ceres_problem *pb, double *th
 extern "C" int fit_ceres_solve(const fit_ceres_problem *pb, double *theta,
                                fit_ceres_summary *summary)
 {
+    quiet_glog();
     std::memset(summary, 0, sizeof *summary);
     size_t n_fixed = 0;
     for (size_t j = 0; pb->fixed && j < pb->n_params; j++)

@@ -144,10 +144,22 @@ int fit_data_load_csv(const char *path, fit_data *out, dm_str *err)
     size_t len = 0, pos = 0, line = 1;
     int rc = 0;
     memset(out, 0, sizeof *out);
+    if (dm_file_exists(path) && !dm_regular_file(path)) {
+        dm_str_printf(err, "%s: cannot read the file: not a regular file (a directory, FIFO or "
+                      "device)", path);
+        return DM_ERR_IO;
+    }
     if (dm_read_file(path, &text, &len) != 0) {
         dm_str_printf(err, "%s: cannot read the file", path);
         return DM_ERR_IO;
     }
+    if (memchr(text, '\0', len)) {
+        dm_str_printf(err, "%s: a NUL byte: a CSV file is text", path);
+        free(text);
+        return DM_ERR_PARSE;
+    }
+    if (len >= 3 && memcmp(text, "\xEF\xBB\xBF", 3) == 0)
+        pos = 3;                 /* a UTF-8 BOM is not part of the first column's name */
     while (pos < len && !rc) {
         size_t from = pos, lineno = line, n;
         fit_data__cell *c;

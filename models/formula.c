@@ -10,6 +10,9 @@
 
 #include "core/dm_error.h"
 
+#define FORMULA__XSTR(x) #x
+#define FORMULA__STR(x) FORMULA__XSTR(x)
+
 typedef enum formula__op {
     OP_NUM, OP_VAR, OP_PARAM, OP_ADD, OP_SUB, OP_MUL, OP_DIV, OP_POW, OP_NEG,
     OP_EXP, OP_LOG, OP_SQRT, OP_MIN, OP_MAX
@@ -23,7 +26,15 @@ typedef struct formula__node {
     struct formula__node *a, *b;
     size_t start, end;              /* source span [start, end) */
     size_t slot;                    /* workspace slot */
+    size_t height;                  /* levels of the subtree (a leaf is 1) */
 } formula__node;
+
+/* Nesting the parser accepts (parentheses, signs, powers, function calls)
+ * and the height of the tree (a sum of many terms is a tall tree): the
+ * parser and the evaluator recurse, so hostile input must not reach the
+ * end of the stack. */
+#define FORMULA__MAX_NESTING 200
+#define FORMULA__MAX_HEIGHT 2000
 
 struct formula {
     char *text;
@@ -48,6 +59,7 @@ typedef struct formula__parser {
     size_t start, end;              /* current token span */
     dm_str *err;
     int failed;
+    int nesting;                    /* formula__unary calls in progress */
 } formula__parser;
 
 /* Reports the first error only: "formula: column C: expected X after 'P'". */
@@ -132,6 +144,7 @@ static formula__node *formula__node_new(formula__op op, size_t start)
     formula__node *n = dm_xcalloc(1, sizeof *n);
     n->op = op;
     n->start = n->end = start;
+    n->height = 1;
     return n;
 }
 
@@ -156,6 +169,7 @@ static formula__node *formula__binary(formula__op op, formula__node *a, formula_
     n->a = a;
     n->b = b;
     n->end = b->end;
+    n->height = 1 + (a->height > b->height ? a->height : b->height);
     return n;
 }
 
@@ -163,6 +177,7 @@ static formula__node *formula__binary(formula__op op, formula__node *a, formula_
 
 static formula__node *formula__expr(formula__parser *ps);
 static formula__node *formula__unary(formula__parser *ps);
+static formula__node *formula__tall(formula__parser *ps, formula__node *n);
 
 static const struct { const char *name; formula__op op; int arity; } formula__funcs[] = {
     { "exp", OP_EXP, 1 }, { "log", OP_LOG, 1 }, { "sqrt", OP_SQRT, 1 },
@@ -189,6 +204,7 @@ static formula__node *formula__call(formula__parser *ps, formula__node *n, int a
         return NULL;
     }
     n->end = ps->end;
+    n->height = 1 + (n->a->height > (n->b ? n->b->height : 0) ? n->a->height : n->b->height);
     formula__next(ps);
     return n;
 }
@@ -259,10 +275,10 @@ static formula__node *formula__power(formula__parser *ps)
     if (!base || !formula__is_op(ps, '^'))
         return base;
     formula__next(ps);
-    return formula__binary(OP_POW, base, formula__unary(ps));
+    return formula__tall(ps, formula__binary(OP_POW, base, formula__unary(ps)));
 }
 
-static formula__node *formula__unary(formula__parser *ps)
+static formula__node *formula__unary_body(formula__parser *ps)
 {
     if (!formula__is_op(ps, '-'))
         return formula__power(ps);
@@ -274,7 +290,35 @@ static formula__node *formula__unary(formula__parser *ps)
     formula__node *n = formula__node_new(OP_NEG, start);
     n->a = a;
     n->end = a->end;
+    n->height = a->height + 1;
     return n;
+}
+
+/* Every recursion of the parser passes here: refuses nesting deeper than
+ * FORMULA__MAX_NESTING with a clear error instead of overflowing the stack. */
+static formula__node *formula__unary(formula__parser *ps)
+{
+    if (ps->nesting >= FORMULA__MAX_NESTING) {
+        formula__fail(ps, "nested deeper than " FORMULA__STR(FORMULA__MAX_NESTING)
+                      " levels (parentheses, minus signs, powers or calls); simplify it");
+        return NULL;
+    }
+    ps->nesting++;
+    formula__node *n = formula__unary_body(ps);
+    ps->nesting--;
+    return n;
+}
+
+/* Refuses a tree taller than FORMULA__MAX_HEIGHT (a sum or product of
+ * thousands of terms); n is freed then. */
+static formula__node *formula__tall(formula__parser *ps, formula__node *n)
+{
+    if (!n || n->height <= FORMULA__MAX_HEIGHT)
+        return n;
+    formula__fail(ps, "more than " FORMULA__STR(FORMULA__MAX_HEIGHT)
+                  " operations in a row; simplify it");
+    formula__node_free(n);
+    return NULL;
 }
 
 static formula__node *formula__term(formula__parser *ps)
@@ -283,7 +327,7 @@ static formula__node *formula__term(formula__parser *ps)
     while (n && (formula__is_op(ps, '*') || formula__is_op(ps, '/'))) {
         formula__op op = ps->ch == '*' ? OP_MUL : OP_DIV;
         formula__next(ps);
-        n = formula__binary(op, n, formula__unary(ps));
+        n = formula__tall(ps, formula__binary(op, n, formula__unary(ps)));
     }
     return n;
 }
@@ -294,7 +338,7 @@ static formula__node *formula__expr(formula__parser *ps)
     while (n && (formula__is_op(ps, '+') || formula__is_op(ps, '-'))) {
         formula__op op = ps->ch == '+' ? OP_ADD : OP_SUB;
         formula__next(ps);
-        n = formula__binary(op, n, formula__term(ps));
+        n = formula__tall(ps, formula__binary(op, n, formula__term(ps)));
     }
     return n;
 }

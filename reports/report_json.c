@@ -456,6 +456,38 @@ static void read_run(const cJSON *root, dm_run_result *r)
     r->warnings = read_strs(cJSON_GetObjectItemCaseSensitive(root, "warnings"), &r->n_warnings);
 }
 
+/* 1 when field name of o is absent, null or of the type is_type checks. */
+static int shape__field_ok(const cJSON *o, const char *name, cJSON_bool (*is_type)(const cJSON *))
+{
+    const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, name);
+    return !v || cJSON_IsNull(v) || is_type(v);
+}
+
+/* The types of one configuration's counters (an object of objects with
+ * number or null statistics and an array of numbers as samples), so a
+ * hand-edited file with "median": "fast" is refused rather than read as NaN. */
+static const char *shape__counters(const cJSON *cfg)
+{
+    static const char *const nums[] = { "value", "median", "mean", "min", "max", "stddev",
+                                        "mad", "cv", "outliers" };
+    const cJSON *ctr = cJSON_GetObjectItemCaseSensitive(cfg, "counters"), *k, *x;
+    if (ctr && !cJSON_IsObject(ctr))
+        return "a config's \"counters\" is not an object";
+    cJSON_ArrayForEach(k, ctr) {
+        if (!cJSON_IsObject(k))
+            return "a counter is not an object";
+        for (size_t i = 0; i < sizeof nums / sizeof *nums; i++)
+            if (!shape__field_ok(k, nums[i], cJSON_IsNumber))
+                return "a counter statistic is not a number";
+        if (!shape__field_ok(k, "samples", cJSON_IsArray) || !shape__field_ok(k, "unit", cJSON_IsString))
+            return "a counter's \"samples\" is not an array or its \"unit\" not a string";
+        cJSON_ArrayForEach(x, cJSON_GetObjectItemCaseSensitive(k, "samples"))
+            if (!cJSON_IsNumber(x) && !cJSON_IsNull(x))
+                return "a counter sample is not a number";
+    }
+    return NULL;
+}
+
 /* Checks the skeleton the reader relies on; names the first missing part. */
 static const char *shape_error(const cJSON *root)
 {
@@ -469,6 +501,9 @@ static const char *shape_error(const cJSON *root)
     cJSON_ArrayForEach(it, c)
         if (!cJSON_IsObject(it) || !cJSON_IsString(cJSON_GetObjectItemCaseSensitive(it, "key")))
             return "a config without a \"key\" string";
+    cJSON_ArrayForEach(it, c)
+        if (shape__counters(it))
+            return shape__counters(it);
     return NULL;
 }
 

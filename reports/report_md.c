@@ -11,15 +11,10 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Table-cell text: '|' escaped, line breaks flattened to spaces. */
+/* Table-cell text: plain text only (dm_str_cat_md: '|', HTML, control bytes). */
 static void cell(dm_str *s, const char *text)
 {
-    for (const char *p = text ? text : ""; *p; p++) {
-        if (*p == '|')
-            dm_str_cat(s, "\\|");
-        else
-            dm_str_catn(s, (*p == '\n' || *p == '\r') ? " " : p, 1);
-    }
+    dm_str_cat_md(s, text);
 }
 
 static void params_text(dm_str *s, const dm_kv *kv, size_t n)

@@ -5,6 +5,8 @@
 #include "models/bounds.h"
 #include "models/catalog.h"
 #include "models/formula.h"
+#include "sweep/sweep.h"
+#include "techniques/axes.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -334,5 +336,72 @@ int fitting_predict(const dm_fit_result *fit, const dm_kv *params, size_t n_para
     free(vars);
     formula_free(f);
     formula_free(names);
+    return rc;
+}
+
+/* Every counter and axis name: the names a formula reads as variables. */
+static const char **fitting__known_names(size_t *n)
+{
+    *n = counters_count() + axes_count();
+    const char **names = dm_xcalloc(*n + 1, sizeof *names);
+    for (size_t i = 0; i < counters_count(); i++)
+        names[i] = counters_info_at(i)->name;
+    for (size_t i = 0; i < axes_count(); i++)
+        names[counters_count() + i] = axes_at(i)->name;
+    return names;
+}
+
+/* A parameter name that is probably a misspelled variable: NULL, or the
+ * counter or axis it is close to. */
+static const char *fitting__misspelled(const char *param, const char **known, size_t n)
+{
+    if (strlen(param) < 4 || counters_find(param) || axes_find(param))
+        return NULL;
+    return dm_closest(param, known, n);
+}
+
+/* Checks one model of the sweep (see fitting_check_models). */
+static int fitting__check_model(const sweep *s, const sweep_model *m, const char **known,
+                                size_t n_known, dm_str *err)
+{
+    if (!m->formula) {
+        if (models_builtin_find(m->name))
+            return 0;
+        dm_str_printf(err, "%s:%d: models: '%s' is not a built-in model and has no formula",
+                      s->path, m->line, m->name);
+        return DM_ERR_UNKNOWN;
+    }
+    char *expr = NULL;
+    fit_bound *bounds = NULL;
+    size_t nb = 0;
+    formula *f = NULL;
+    dm_str why = {0};
+    int rc = bounds_split(m->formula, &expr, &bounds, &nb, &why);
+    rc = rc ? rc : formula_parse(expr, NULL, 0, &f, &why);
+    for (size_t j = 0; rc == 0 && j < formula_n_params(f); j++) {
+        const char *p = formula_param_name(f, j), *near = fitting__misspelled(p, known, n_known);
+        if (near) {
+            dm_str_printf(&why, "'%s' would be a fitted parameter; did you mean '%s'? (names "
+                          "that are not counters or axes are parameters)", p, near);
+            rc = DM_ERR_UNKNOWN;
+        }
+    }
+    if (rc)
+        dm_str_printf(err, "%s:%d: models: %s: %s", s->path, m->line, m->name, dm_str_get(&why));
+    formula_free(f);
+    bounds_free(bounds, nb);
+    free(expr);
+    dm_str_free(&why);
+    return rc;
+}
+
+int fitting_check_models(const sweep *s, dm_str *err)
+{
+    size_t n = 0;
+    const char **known = fitting__known_names(&n);
+    int rc = 0;
+    for (size_t i = 0; rc == 0 && i < s->n_models; i++)
+        rc = fitting__check_model(s, &s->models[i], known, n, err);
+    free(known);
     return rc;
 }

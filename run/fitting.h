@@ -30,6 +30,14 @@ typedef struct fitting_spec {
 int fitting_run(const fitting_spec *spec, const dm_run_result *run, dm_fit_result **fits,
                 size_t *n, dm_str *warnings, dm_str *err);
 
+/* Checks a sweep's models before anything is measured: a formula must
+ * parse (with its bounds) and a fitted parameter must not look like a
+ * misspelled counter or axis (a name of 4+ letters within dm_closest's
+ * distance of one); a model without a formula must be built in.  0, or
+ * DM_ERR_PARSE / DM_ERR_UNKNOWN with "FILE:LINE: models: NAME: ..." in err. */
+struct sweep;
+int fitting_check_models(const struct sweep *s, dm_str *err);
+
 /* Predicts the response of a stored fit for a configuration that has not
  * been measured (the planner's --budget).  The configuration is given by
  * its axes (params, as planned: `resolution` is W×H) and its key.  Names of

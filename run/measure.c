@@ -216,6 +216,32 @@ static void measure__warmup(mscene *m, mconf *c)
     c->warmup_ns = dm_now_ns() - t0;
 }
 
+/* Continues from the samples a killed process checkpointed for this
+ * configuration (same counters, same count for each); at most
+ * samples_max - 1 are taken, so at least one more is measured here. */
+static void measure__restore(mscene *m, mconf *c)
+{
+    size_t cap = (size_t)m->job->sweep->measure.samples_max - 1, got = 0;
+    long ns = 0;
+    for (size_t i = 0; i < m->n_timing; i++) {
+        double *v = NULL;
+        size_t n = 0;
+        if (store_partial_get(m->st, m->job->run_id, c->pc->key, m->timing[i], &v, &n, &ns) != 0 ||
+            (i > 0 && n != got)) {
+            free(v);
+            return;   /* partial or none: measure from scratch */
+        }
+        got = n;
+        memcpy(c->timing[i], v, (n < cap ? n : cap) * sizeof *v);
+        free(v);
+    }
+    c->n_samples = got < cap ? got : cap;
+    c->sampling_ns = ns;
+    if (c->n_samples)
+        dm_str_printf(&c->log, "continued from %zu timing samples checkpointed by an "
+                      "interrupted process\n", c->n_samples);
+}
+
 /* Prepare + warm-up + statistics pass for one configuration. */
 static void measure__prepare(mscene *m, mconf *c)
 {
@@ -252,6 +278,27 @@ static void measure__prepare(mscene *m, mconf *c)
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i] = dm_xcalloc((size_t)sm->samples_max, sizeof **c->timing);
     c->active = 1;
+    measure__restore(m, c);
+}
+
+/* Checkpoints the samples of every configuration still sampling, in one
+ * transaction after a round: a kill then loses at most the round in flight.
+ * Returns 0 or DM_ERR_STORE (message in err). */
+static int measure__checkpoint(mscene *m, mconf *cs, size_t n, dm_str *err)
+{
+    store_partial *items = dm_xcalloc(n + 1, sizeof *items);
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        if (cs[i].active && !cs[i].failed && cs[i].n_samples)
+            items[k++] = (store_partial){ .key = cs[i].pc->key, .counters = m->timing,
+                                          .n_counters = m->n_timing, .samples = cs[i].timing,
+                                          .n_samples = cs[i].n_samples,
+                                          .sampling_ns = (long)cs[i].sampling_ns };
+    int rc = k ? store_partial_put(m->st, m->job->run_id, items, k) : 0;
+    if (rc != 0)
+        dm_str_printf(err, "cannot checkpoint the samples of a round: %s", store_last_error(m->st));
+    free(items);
+    return rc ? DM_ERR_STORE : 0;
 }
 
 static int measure__wall_index(const mscene *m)
@@ -629,8 +676,11 @@ static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
     free(depth);
 }
 
-/* Builds the result of a configuration and commits it in one transaction. */
-static void measure__commit(mscene *m, mconf *c)
+/* Builds the result of a configuration and commits it in one transaction.
+ * Returns 0, or DM_ERR_STORE (message in err) when the store cannot take it
+ * (disk full, damaged database): the caller stops, as no later
+ * configuration could be saved either. */
+static int measure__commit(mscene *m, mconf *c, dm_str *err)
 {
     dm_config_result out = {0};
     out.key = dm_xstrdup(c->pc->key);
@@ -661,8 +711,10 @@ static void measure__commit(mscene *m, mconf *c)
         measure__say(m->job, "D %s %s %.0f %.4f %lld", c->pc->key, out.ok ? "ok" : "failed",
                      wt ? wt->median : NAN, ci, (long long)c->sampling_ns);
     else
-        dm_log(DM_LOG_ERROR, "store: %s", store_last_error(m->st));
+        dm_str_printf(err, "cannot save configuration %s: %s", c->pc->key,
+                      store_last_error(m->st));
     dm_config_result_free(&out);
+    return rc == 0 ? 0 : DM_ERR_STORE;
 }
 
 static int measure__setup(mscene *m, dm_str *err)
@@ -794,13 +846,13 @@ int measure_instructions(const measure_job *job, int frames, int samples, dm_str
 int measure_scene(const measure_job *job, dm_str *err)
 {
     mscene m = { .job = job };
-    int rc = measure__setup(&m, err);
+    int rc = measure__setup(&m, err), set_up = rc == 0;
     mconf *cs = dm_xcalloc(job->n_configs + 1, sizeof *cs);
     for (size_t i = 0; rc == 0 && i < job->n_configs; i++) {
         cs[i].pc = &job->configs[i];
         measure__prepare(&m, &cs[i]);
         if (cs[i].failed)
-            measure__commit(&m, &cs[i]);
+            rc = measure__commit(&m, &cs[i], err);
     }
     size_t *order = dm_xcalloc(job->n_configs + 1, sizeof *order);
     for (uint64_t round = 0, active = 1; rc == 0 && active; round++) {
@@ -812,12 +864,16 @@ int measure_scene(const measure_job *job, dm_str *err)
                 continue;
             measure__timing_sample(&m, c);
             if (!c->active)
-                measure__commit(&m, c);
+                rc = measure__commit(&m, c, err);
             else
                 active = 1;
+            if (rc != 0)
+                break;
         }
+        if (rc == 0 && active)
+            rc = measure__checkpoint(&m, cs, job->n_configs, err);
     }
     free(order);
-    measure__teardown(&m, cs, rc == 0 ? job->n_configs : 0);
+    measure__teardown(&m, cs, set_up ? job->n_configs : 0);
     return rc;
 }

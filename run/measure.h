@@ -9,7 +9,10 @@
  * shuffled order, until the 95% CI of the median is within the target or the
  * limits are reached.  Then the image, its quality against the scene's
  * reference (loaded from the reference cache, run/refcache.h, when the
- * job has a cache_dir), and one store transaction.  With --verbose each
+ * job has a cache_dir), and one store transaction.  After every round the
+ * samples of the configurations still sampling are checkpointed (one
+ * transaction) and a configuration prepared by a later process continues
+ * from its checkpoint, so a kill loses at most the round in flight.  With --verbose each
  * configuration logs its warm-up and where its time went.  Progress lines go to report_fd:
  * "B <key>" before work on a key, "D <key> <status> <median_ns> <ci_rel>
  * <sampling_ns>" after it is committed (sampling_ns: time in its timed samples).
@@ -42,7 +45,8 @@ typedef struct measure_job {
 /* Measures and commits every configuration of the job.  A configuration
  * that fails (shader, GL error, unsupported) is committed as failed with its
  * reason; the function returns 0 unless the context, store or target could
- * not be set up (DM_ERR_*, message in err). */
+ * not be set up (DM_ERR_*, message in err) or the store refuses a write
+ * (DM_ERR_STORE: it stops at once, nothing later could be saved). */
 int measure_scene(const measure_job *job, dm_str *err);
 
 /* The Instructions pass (run/callgrind.h), run under Valgrind callgrind

@@ -22,6 +22,9 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <fcntl.h>
+#include <sys/file.h>
+#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -44,6 +47,9 @@ typedef struct runner {
     callgrind_count *instr;    /* the Instructions pass (run/callgrind.h) */
     size_t n_instr;
     double instr_s;            /* wall time of that pass */
+    int lock_fd;               /* flock on <out>/dmbench.lock, -1 when none */
+    int futile;                /* measuring processes in a row that finished nothing */
+    dm_str stop;               /* why the run stopped before its end (store failure, ...) */
 } runner;
 
 /* ---- the probe child: environment, timer calibration, extensions ------- */
@@ -176,10 +182,13 @@ static void runner__progress(runner *r, const plan_config *c, const char *status
     else
         snprintf(line, sizeof line, "[%zu/%zu] %-18s %-28s FAILED (%s)  ETA %3.0fs",
                  r->done, r->total, tech, c->scene, status, eta);
+    char *b;
+    const char *safe = dm_term_safe(line, &b);   /* a scene names a user's map path */
     if (r->tty)
-        fprintf(stderr, "\r\033[K%s%s", line, r->done == r->total ? "\n" : "");
+        fprintf(stderr, "\r\033[K%s%s", safe, r->done == r->total ? "\n" : "");
     else
-        fprintf(stderr, "%s\n", line);
+        fprintf(stderr, "%s\n", safe);
+    free(b);
 }
 
 /* ---- scene children -------------------------------------------------------- */
@@ -192,17 +201,22 @@ static const plan_config *runner__find(const plan_config *cs, size_t n, const ch
     return NULL;
 }
 
-/* Records a configuration the child could not finish (crash, hang). */
-static void runner__fail_config(runner *r, const plan_config *c, const char *reason)
+/* Records a configuration the child could not finish (crash, hang).
+ * Returns 0, or DM_ERR_STORE (message in r->stop) when it cannot be saved. */
+static int runner__fail_config(runner *r, const plan_config *c, const char *reason)
 {
     dm_config_result out = { .key = dm_xstrdup(c->key), .scene = dm_xstrdup(c->scene),
                              .ok = 0, .reason = dm_xstrdup(reason) };
     for (size_t i = 0; i < c->n_params; i++)
         dm_kv_push(&out.params, &out.n_params, c->params[i].key, c->params[i].value);
-    if (store_config_put(r->st, r->run_id, &out) != 0)
-        dm_log(DM_LOG_ERROR, "store: %s", store_last_error(r->st));
+    int rc = store_config_put(r->st, r->run_id, &out) == 0 ? 0 : DM_ERR_STORE;
+    if (rc)
+        dm_str_printf(&r->stop, "cannot save configuration %s: %s", c->key,
+                      store_last_error(r->st));
     dm_config_result_free(&out);
-    runner__progress(r, c, reason, NAN, NAN);
+    if (rc == 0)
+        runner__progress(r, c, reason, NAN, NAN);
+    return rc;
 }
 
 typedef struct child_watch {
@@ -241,6 +255,9 @@ static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd, 
     fflush(NULL);
     pid_t pid = fork();
     if (pid == 0) {
+        prctl(PR_SET_PDEATHSIG, SIGKILL);   /* a killed runner takes its child along */
+        if (getppid() == 1)
+            _exit(3);
         close(fds[0]);
         measure_job job = { .sweep = r->s, .configs = cs, .n_configs = n, .run_id = r->run_id,
                             .run_dir = r->run_dir, .store_path = r->store_path,
@@ -251,8 +268,8 @@ static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd, 
                             .n_instructions = r->n_instr };
         dm_str err = {0};
         int rc = pilot ? measure_pilot(&job, &err) : measure_scene(&job, &err);
-        if (rc != 0)
-            dprintf(fds[1], "F %s\n", dm_str_get(&err));
+        if (rc != 0)   /* 'S': the store cannot take results; 'F': anything else */
+            dprintf(fds[1], "%c %s\n", rc == DM_ERR_STORE ? 'S' : 'F', dm_str_get(&err));
         _exit(rc ? 3 : 0);
     }
     close(fds[1]);
@@ -282,8 +299,8 @@ static int runner__watch(runner *r, child_watch *w, const plan_config *cs, size_
                     continue;
                 }
                 char *line = dm_str_take(&w->line);
-                if (line[0] == 'F' && !*fatal)
-                    *fatal = dm_xstrdup(line + 2);
+                if ((line[0] == 'F' || line[0] == 'S') && line[1] && !*fatal)
+                    *fatal = dm_xstrdup(line);
                 runner__child_line(r, w, cs, n, line, done_flags);
                 free(line);
             }
@@ -298,13 +315,90 @@ static int runner__watch(runner *r, child_watch *w, const plan_config *cs, size_
     return status;
 }
 
-/* Measures one scene, restarting a child after each crash or hang. */
-static void runner__scene(runner *r, const plan_config *cs, size_t n)
+/* Measuring processes in a row that may finish no configuration before the
+ * run stops: a child that keeps dying before it saves anything (it cannot
+ * set up, its store cannot be written) would otherwise be restarted forever. */
+#define RUNNER__MAX_FUTILE 3
+
+/* Why a child ended early (caller frees), or NULL when it just finished. */
+static char *runner__child_why(const runner *r, int status, const char *fatal)
+{
+    if (status == -1)
+        return dm_xasprintf("killed by the watchdog: no progress for %.0f s (measure.timeout_s)",
+                            r->s->measure.timeout_s);
+    if (WIFSIGNALED(status))
+        return dm_xasprintf("the measuring process crashed (signal %d, %s)", WTERMSIG(status),
+                            strsignal(WTERMSIG(status)));
+    if (fatal)
+        return dm_xasprintf("could not set up: %s", fatal + 2);
+    return NULL;
+}
+
+/* Accounts one ended child: a store failure stops the run at once; a child
+ * that finished nothing counts towards RUNNER__MAX_FUTILE.  Returns 0 to go
+ * on, DM_ERR_STORE / DM_ERR_CHILD (reason in r->stop) to stop. */
+static int runner__child_end(runner *r, const char *fatal, const char *why, size_t finished)
+{
+    if (fatal && fatal[0] == 'S') {
+        dm_str_printf(&r->stop, "the measuring process cannot save results: %s", fatal + 2);
+        return DM_ERR_STORE;
+    }
+    r->futile = finished ? 0 : r->futile + 1;
+    if (r->futile < RUNNER__MAX_FUTILE)
+        return 0;
+    dm_str_printf(&r->stop, "%d measuring processes in a row finished no configuration (last: %s)",
+                  RUNNER__MAX_FUTILE, why ? why : "it exited without a result");
+    return DM_ERR_CHILD;
+}
+
+/* Runs one child on the configurations not done yet and records what it
+ * finished in done[]; returns 0 or the code that stops the run. */
+static int runner__scene_child(runner *r, const plan_config *cs, size_t n, int *done,
+                               plan_config *remaining, size_t nt)
+{
+    child_watch w = { .current = "" };
+    w.pid = runner__spawn(r, remaining, nt, &w.fd, 0);
+    char *fatal = NULL;
+    int *tdone = dm_xcalloc(nt + 1, sizeof *tdone);
+    int status = runner__watch(r, &w, remaining, nt, tdone, &fatal);
+    close(w.fd);
+    dm_str_free(&w.line);
+    size_t finished = 0;
+    for (size_t i = 0; i < nt; i++)
+        if (tdone[i]) {
+            done[runner__find(cs, n, remaining[i].key) - cs] = 1;
+            finished++;
+        }
+    const plan_config *cur = w.current[0] ? runner__find(cs, n, w.current) : NULL;
+    char *why = runner__child_why(r, status, fatal);
+    int failing = why || (WIFEXITED(status) && WEXITSTATUS(status) != 0);
+    int rc = runner__child_end(r, fatal, why, finished + failing);
+    if (rc == 0 && why && cur) {
+        rc = runner__fail_config(r, cur, why);
+        done[cur - cs] = 1;
+    } else if (rc == 0 && failing) {
+        for (size_t i = 0; rc == 0 && i < n; i++)      /* no culprit: fail what is left */
+            if (!done[i]) {
+                rc = runner__fail_config(r, &cs[i], why ? why : "the measuring process failed");
+                done[i] = 1;
+            }
+    }
+    free(why);
+    free(fatal);
+    free(tdone);
+    return rc;
+}
+
+/* Measures one scene, restarting a child after each crash or hang (at most
+ * RUNNER__MAX_FUTILE in a row that finish nothing).  Returns 0, or the code
+ * that stops the run with the reason in r->stop. */
+static int runner__scene(runner *r, const plan_config *cs, size_t n)
 {
     int *done = dm_xcalloc(n + 1, sizeof *done);
+    int rc = 0;
     for (size_t i = 0; i < n; i++)
         done[i] = store_config_done(r->st, r->run_id, cs[i].key) == 1;
-    for (;;) {
+    while (rc == 0) {
         plan_config *remaining = dm_xcalloc(n + 1, sizeof *remaining);
         size_t nt = 0;
         for (size_t i = 0; i < n; i++)
@@ -314,42 +408,11 @@ static void runner__scene(runner *r, const plan_config *cs, size_t n)
             free(remaining);
             break;
         }
-        child_watch w = { .current = "" };
-        w.pid = runner__spawn(r, remaining, nt, &w.fd, 0);
-        char *fatal = NULL;
-        int *tdone = dm_xcalloc(nt + 1, sizeof *tdone);
-        int status = runner__watch(r, &w, remaining, nt, tdone, &fatal);
-        close(w.fd);
-        dm_str_free(&w.line);
-        for (size_t i = 0; i < nt; i++)
-            if (tdone[i])
-                done[runner__find(cs, n, remaining[i].key) - cs] = 1;
-        const plan_config *cur = w.current[0] ? runner__find(cs, n, w.current) : NULL;
-        char *why = NULL;
-        if (status == -1)
-            why = dm_xasprintf("killed by the watchdog: no progress for %.0f s (measure.timeout_s)",
-                               r->s->measure.timeout_s);
-        else if (WIFSIGNALED(status))
-            why = dm_xasprintf("the measuring process crashed (signal %d, %s)", WTERMSIG(status),
-                               strsignal(WTERMSIG(status)));
-        else if (fatal)
-            why = dm_xasprintf("could not set up: %s", fatal);
-        if (why && cur) {
-            runner__fail_config(r, cur, why);
-            done[cur - cs] = 1;
-        } else if (why || (WIFEXITED(status) && WEXITSTATUS(status) != 0)) {
-            for (size_t i = 0; i < n; i++)      /* no culprit: fail what is left */
-                if (!done[i]) {
-                    runner__fail_config(r, &cs[i], why ? why : "the measuring process failed");
-                    done[i] = 1;
-                }
-        }
-        free(why);
-        free(fatal);
-        free(tdone);
+        rc = runner__scene_child(r, cs, n, done, remaining, nt);
         free(remaining);
     }
     free(done);
+    return rc;
 }
 
 /* ---- --budget: a stored cost model, else a pilot frame ------------------------ */
@@ -569,6 +632,46 @@ static void runner__budget(runner *r)
 
 /* ---- run directory, store, report ---------------------------------------------- */
 
+/* Configurations of the run now in the store. */
+static size_t runner__committed(runner *r)
+{
+    dm_run_result run = {0};
+    size_t n = store_run_load(r->st, r->run_id, &run) == 0 ? run.n_configs : 0;
+    dm_run_free(&run);
+    return n;
+}
+
+/* Takes the lock of the output directory (flock on <root>/dmbench.lock,
+ * held until the process and its children end, so a kill -9 never leaves
+ * a stale lock).  DM_ERR_BUSY with the holder's pid when another process
+ * has it: two runs on one store would measure the same configurations and
+ * replace each other's results. */
+static int runner__lock(runner *r, dm_str *err)
+{
+    char *path = dm_xasprintf("%s/dmbench.lock", r->root);
+    r->lock_fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
+    int rc = 0;
+    if (r->lock_fd < 0) {
+        dm_str_printf(err, "%s: cannot create the lock file: %s", path, strerror(errno));
+        rc = DM_ERR_IO;
+    } else if (flock(r->lock_fd, LOCK_EX | LOCK_NB) != 0) {
+        char pid[32] = "";
+        ssize_t got = pread(r->lock_fd, pid, sizeof pid - 1, 0);
+        pid[got > 0 ? got : 0] = '\0';
+        pid[strcspn(pid, "\n")] = '\0';
+        dm_str_printf(err, "%s is in use by another dmbench run (pid %s); wait for it to end "
+                      "or give another --out", r->root, pid[0] ? pid : "unknown");
+        rc = DM_ERR_BUSY;
+    } else {
+        char pid[32];
+        int len = snprintf(pid, sizeof pid, "%ld\n", (long)getpid());
+        if (ftruncate(r->lock_fd, 0) != 0 || pwrite(r->lock_fd, pid, (size_t)len, 0) != len)
+            dm_log(DM_LOG_DEBUG, "%s: cannot record the pid", path);
+    }
+    free(path);
+    return rc;
+}
+
 /* The shard a run measures, as recorded in its environment ("K/N"), or
  * "none" for an unsharded run; into buf. */
 static void runner__shard_text(int k, int n, char buf[32])
@@ -610,13 +713,20 @@ static int runner__resume_check(const runner *r, const dm_run_result *old, dm_st
 static int runner__open(runner *r, dm_str *err)
 {
     r->root = dm_xstrdup(r->o->out_root ? r->o->out_root : "results");
+    r->store_path = dm_xasprintf("%s/dmbench.sqlite", r->root);
+    r->cache_dir = dm_xasprintf("%s/cache/programs", r->root);
+    if (r->o->resume && !dm_file_exists(r->store_path)) {
+        dm_str_printf(err, "--resume: %s: no results store there, so no run to resume; "
+                      "run without --resume to start one", r->root);
+        return DM_ERR_ARG;
+    }
     if (dm_mkdirs(r->root) != 0 || access(r->root, W_OK) != 0) {
         dm_str_printf(err, "%s: cannot create or write the output directory", r->root);
         return DM_ERR_IO;
     }
-    r->store_path = dm_xasprintf("%s/dmbench.sqlite", r->root);
-    r->cache_dir = dm_xasprintf("%s/cache/programs", r->root);
-    int rc = store_open(r->store_path, &r->st, err);
+    int rc = runner__lock(r, err);
+    rc = rc ? rc : store_open(r->store_path, &r->st, err);
+    rc = rc ? rc : store_check(r->st, err);
     if (rc != 0)
         return rc;
     if (r->o->resume) {
@@ -746,6 +856,9 @@ static int runner__finish(runner *r, dm_str *err)
 
 static void runner__free(runner *r)
 {
+    if (r->lock_fd >= 0)
+        close(r->lock_fd);
+    dm_str_free(&r->stop);
     plan_free(&r->p);
     store_close(r->st);
     free(r->root);
@@ -819,14 +932,16 @@ static void runner__instructions(runner *r)
     free(todo);
 }
 
-/* Runs every scene: configurations grouped by scene, in plan order. */
-static void runner__scenes(runner *r)
+/* Runs every scene: configurations grouped by scene, in plan order, until
+ * one stops the run (0 or its code, reason in r->stop). */
+static int runner__scenes(runner *r)
 {
     plan_config *cs = r->p.configs;
     size_t n = r->p.n_configs;
     int *taken = dm_xcalloc(n + 1, sizeof *taken);
     plan_config *group = dm_xcalloc(n + 1, sizeof *group);
-    for (size_t i = 0; i < n; i++) {
+    int rc = 0;
+    for (size_t i = 0; rc == 0 && i < n; i++) {
         if (taken[i])
             continue;
         size_t ng = 0;
@@ -835,21 +950,94 @@ static void runner__scenes(runner *r)
                 taken[j] = 1;
                 group[ng++] = cs[j];
             }
-        runner__scene(r, group, ng);
+        rc = runner__scene(r, group, ng);
     }
     free(group);
     free(taken);
+    return rc;
+}
+
+/* Progress of planning on stderr: a line once a second after the first
+ * second (on a terminal one line rewritten), so a big sweep is not silent. */
+typedef struct runner__plan_tick {
+    const runner *r;
+    int64_t t0, last;
+    int shown;
+} runner__plan_tick;
+
+static void runner__plan_progress(size_t done, size_t total, void *user)
+{
+    runner__plan_tick *t = user;
+    int64_t now = dm_now_ns();
+    if (t->r->o->quiet || (now - t->last < 1000000000 && done < total) ||
+        (done == total && !t->shown) || now - t->t0 < 1000000000)
+        return;
+    t->last = now;
+    t->shown = 1;
+    fprintf(stderr, "%sdmbench: planning: %zu of %zu combinations (%.0f s)%s",
+            t->r->tty ? "\r\033[K" : "", done, total, (double)(now - t->t0) / 1e9,
+            t->r->tty && done < total ? "" : "\n");
+}
+
+static int runner__plan(runner *r, dm_str *err)
+{
+    runner__plan_tick t = { .r = r, .t0 = dm_now_ns() };
+    t.last = t.t0;
+    return plan_build_progress(r->s, &r->p, err, runner__plan_progress, &t);
+}
+
+/* A decimal number in [lo, hi] spanning exactly [text, text+len): no sign,
+ * no spaces; -1 when it is not one. */
+static long long runner__decimal(const char *text, size_t len, long long lo, long long hi)
+{
+    if (len == 0 || len > 18)
+        return -1;
+    long long v = 0;
+    for (size_t i = 0; i < len; i++) {
+        if (text[i] < '0' || text[i] > '9')
+            return -1;
+        v = v * 10 + (text[i] - '0');
+    }
+    return v >= lo && v <= hi ? v : -1;
+}
+
+int runner_parse_shard(const char *text, int *k, int *n, dm_str *err)
+{
+    const char *slash = strchr(text, '/');
+    long long kk = slash ? runner__decimal(text, (size_t)(slash - text), 1, 1000000) : -1;
+    long long nn = slash ? runner__decimal(slash + 1, strlen(slash + 1), 1, 1000000) : -1;
+    if (kk < 1 || nn < 1 || kk > nn) {
+        dm_str_printf(err, "--shard '%s': expected K/N with 1 <= K <= N <= 1000000, e.g. 2/4", text);
+        return DM_ERR_ARG;
+    }
+    *k = (int)kk;
+    *n = (int)nn;
+    return 0;
+}
+
+int runner_parse_seed(const char *text, uint64_t *seed, dm_str *err)
+{
+    char *end = NULL;
+    errno = 0;
+    unsigned long long v = strtoull(text, &end, 10);
+    if (!(text[0] >= '0' && text[0] <= '9') || *end || errno == ERANGE) {
+        dm_str_printf(err, "--seed '%s': expected a non-negative integer below 2^64", text);
+        return DM_ERR_ARG;
+    }
+    *seed = v;
+    return 0;
 }
 
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err)
 {
-    runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns() };
+    runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns(), .lock_fd = -1 };
     /* llvmpipe rasterizes on one thread per core; on shared machines that
      * makes fenced timings several times noisier (LLVMPIPE.md), so measuring
      * processes use one rasterizer thread unless the user chose otherwise.
      * The value is recorded in the environment and the fingerprint. */
     setenv("LP_NUM_THREADS", "1", 0);
-    int rc = plan_build(s, &r.p, err);
+    int rc = fitting_check_models(s, err);       /* models: fail now, not after the run */
+    rc = rc ? rc : runner__plan(&r, err);
     if (rc == 0 && o->shard_n && (rc = plan_shard(&r.p, o->shard_k, o->shard_n)) != 0)
         dm_str_printf(err, "--shard %d/%d: expected K/N with 1 <= K <= N", o->shard_k, o->shard_n);
     rc = rc ? rc : runner__probe(&r, err);
@@ -861,16 +1049,23 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
     rc = rc ? rc : runner__begin(&r);
     if (rc == 0) {
         r.total = r.p.n_configs;
+        char *name_buf = NULL;
         if (!o->quiet)
             fprintf(stderr, "dmbench: %s: %zu combinations -> %zu configurations "
                     "(%zu excluded by the sweep, %zu folded: axes the technique does not read), "
                     "%zu left out; run %s\n",
-                    s->name, r.p.n_combinations, r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
+                    dm_term_safe(s->name, &name_buf), r.p.n_combinations,
+                    r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
                     r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
                     r.p.n_left_out, r.run_dir);
+        free(name_buf);
         runner__instructions(&r);
-        runner__scenes(&r);
-        rc = runner__finish(&r, err);
+        rc = runner__scenes(&r);
+        if (rc != 0)
+            dm_str_printf(err, "%s; stopped the run: the %zu configurations committed before are "
+                          "kept, continue with --resume once the cause is fixed",
+                          dm_str_get(&r.stop), runner__committed(&r));
+        rc = rc ? rc : runner__finish(&r, err);
         double wall = (double)(dm_now_ns() - r.t_start) / 1e9, meas = (double)r.measured_ns / 1e9;
         if (!o->quiet)
             fprintf(stderr, "dmbench: %zu configurations (%zu failed) in %.1f s; %.1f s in measured "

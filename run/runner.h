@@ -5,8 +5,13 @@
  * in a child process (measure.h) under a watchdog.  A crash or hang fails
  * only the configuration being worked on; a new child continues with the
  * rest.  Every finished configuration is committed to the SQLite store at
- * once, so --resume loses nothing.  At the end the sweep's models are
- * fitted and the report files are written into the run directory.
+ * once and the samples of every finished round are checkpointed, so a kill
+ * loses at most the round in flight and --resume continues.  A child that
+ * cannot save (disk full, damaged store) stops the run with the reason, as do
+ * three children in a row that finish nothing.  The output directory is
+ * locked (flock) for the whole run.  The sweep's models are checked before
+ * planning; at the end they are fitted and the report files are written
+ * into the run directory.  docs/reliability.md has the promises.
  */
 #ifndef HARNESS_RUNNER_H
 #define HARNESS_RUNNER_H
@@ -25,9 +30,18 @@ typedef struct runner_opts {
     int quiet, verbose;
 } runner_opts;
 
+/* Parses --shard "K/N" (decimal, 1 <= K <= N <= 1e6, nothing else around
+ * it).  0, or DM_ERR_ARG with a message naming the value in err. */
+int runner_parse_shard(const char *text, int *k, int *n, dm_str *err);
+/* Parses --seed: a decimal integer 0 .. 2^64-1 without a sign.  0, or
+ * DM_ERR_ARG with a message in err. */
+int runner_parse_seed(const char *text, uint64_t *seed, dm_str *err);
+
 /* Runs the sweep.  Returns 0 when the run completed (failed configurations
  * are results, not errors) and sets *run_dir (caller frees); DM_ERR_* with a
- * message in err when it could not run at all. */
+ * message in err when it could not run at all or was stopped: DM_ERR_BUSY
+ * (--out locked by another run), DM_ERR_STORE (damaged store, disk full),
+ * DM_ERR_CHILD (measuring processes that keep dying); see dm_exit_from_error(). */
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err);
 
 #endif

@@ -1,6 +1,6 @@
 /* store.c — the results store on SQLite.
  *
- * Schema (version 2, kept in PRAGMA user_version; store__migrations[i] takes a
+ * Schema (version 3, kept in PRAGMA user_version; store__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -20,6 +20,11 @@
  *            max, stddev, mad, cv, ci_lo, ci_hi, n_outliers, n_nonfinite)
  *            PK (run, key, name)             → configs
  *   samples(run, key, counter, data BLOB)    → counters
+ *   partial_samples(run, key, counter, data BLOB, sampling_ns)  PK (run,
+ *           key, counter): timing samples of a configuration still being
+ *           measured, checkpointed after every round so a kill loses at most
+ *           the round in flight; deleted when the configuration is stored
+ *           (version 3)
  *   left_out(run, seq, reason), left_out_params(run, seq, name, value)
  *   fits(run, seq, model, group_key, formula, response, r2, rmse, mape,
  *        cv_mape, n_points, n_excluded, termination, measured BLOB,
@@ -61,7 +66,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STORE_SCHEMA_VERSION 2
+#define STORE_SCHEMA_VERSION 3
 #define STORE__XSTR(x) #x
 #define STORE__STR(x) STORE__XSTR(x)
 
@@ -125,6 +130,10 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
     " FOREIGN KEY(run, seq) REFERENCES fits(run, seq) ON DELETE CASCADE);",
     /* 1 -> 2: a fit's condition number (0 = not computed) */
     "ALTER TABLE fits ADD COLUMN condition REAL DEFAULT 0;",
+    /* 2 -> 3: timing samples of configurations not finished yet */
+    "CREATE TABLE partial_samples(run TEXT NOT NULL REFERENCES runs(id) ON DELETE"
+    " CASCADE, key TEXT NOT NULL, counter TEXT NOT NULL, data BLOB,"
+    " sampling_ns INTEGER, PRIMARY KEY(run, key, counter));",
 };
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
@@ -176,6 +185,11 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
     X(SMP_INS, "INSERT INTO samples(run,key,counter,data) VALUES(?1,?2,?4,?5)")\
     X(SMP_SEL, "SELECT data FROM samples WHERE run=?1 AND key=?2 AND"         \
       " counter=?4")                                                          \
+    X(PART_DEL, "DELETE FROM partial_samples WHERE run=?1 AND key=?2")        \
+    X(PART_INS, "INSERT INTO partial_samples(run,key,counter,data,"           \
+      "sampling_ns) VALUES(?1,?2,?4,?5,?6)")                                  \
+    X(PART_SEL, "SELECT data,sampling_ns FROM partial_samples WHERE run=?1"   \
+      " AND key=?2 AND counter=?4")                                           \
     X(LO_SEQ, "SELECT IFNULL(MAX(seq),0)+1 FROM left_out WHERE run=?1")       \
     X(LO_INS, "INSERT INTO left_out(run,seq,reason) VALUES(?1,?3,?4)")        \
     X(LO_SEL, "SELECT seq,reason FROM left_out WHERE run=?1 ORDER BY seq")    \
@@ -543,6 +557,8 @@ static int store__config_write(store *s, const char *run, const dm_config_result
     int rc = store__scalar(s, &o.seq, STORE_SQL_CFG_SEQ, &o, "");
     if (rc == 0)
         rc = store__exec(s, STORE_SQL_CFG_DEL, &o, "");
+    if (rc == 0)
+        rc = store__exec(s, STORE_SQL_PART_DEL, &o, "");
     if (rc == 0)
         rc = store__config_row(s, &o, c);
     if (rc == 0)
@@ -1006,6 +1022,27 @@ int store_open(const char *path, store **out, dm_str *err)
     return 0;
 }
 
+int store_check(store *s, dm_str *err)
+{
+    sqlite3_stmt *st = NULL;
+    int rc = sqlite3_prepare_v2(s->db, "PRAGMA quick_check(1)", -1, &st, NULL);
+    int step = rc == SQLITE_OK ? sqlite3_step(st) : rc;
+    const char *res = step == SQLITE_ROW ? (const char *)sqlite3_column_text(st, 0) : NULL;
+    int ok = res && strcmp(res, "ok") == 0;
+    if (!ok) {
+        char *why = dm_xstrdup(res ? res : sqlite3_errmsg(s->db));
+        for (char *p = why; *p; p++)
+            *p = *p == '\n' ? ' ' : *p;
+        store__failf(s, DM_ERR_STORE, "the results store is damaged (%s); restore it from a "
+                     "backup or give another --out", why);
+        free(why);
+    }
+    sqlite3_finalize(st);
+    if (!ok && err)
+        dm_str_cat(err, store_last_error(s));
+    return ok ? 0 : DM_ERR_STORE;
+}
+
 void store_close(store *s)
 {
     if (!s)
@@ -1056,6 +1093,43 @@ int store_config_put(store *s, const char *run_id, const dm_config_result *cfg)
 {
     store__call c = { .run = run_id, .item = cfg };
     return store__tx(s, 1, store__config_fn, &c);
+}
+
+static int store__partial_fn(store *s, const store__call *c)
+{
+    const store_partial *items = c->item;
+    size_t n = *(const size_t *)c->out;
+    int rc = store__need_run(s, c->run);
+    for (size_t i = 0; rc == 0 && i < n; i++) {
+        store__owner o = { c->run, items[i].key, 0 };
+        rc = store__exec(s, STORE_SQL_PART_DEL, &o, "");
+        for (size_t k = 0; rc == 0 && k < items[i].n_counters; k++)
+            rc = store__exec(s, STORE_SQL_PART_INS, &o, "tbl", items[i].counters[k],
+                             items[i].samples[k], items[i].n_samples, items[i].sampling_ns);
+    }
+    return rc;
+}
+
+int store_partial_put(store *s, const char *run_id, const store_partial *items, size_t n)
+{
+    store__call c = { .run = run_id, .item = items, .out = &n };
+    return store__tx(s, 1, store__partial_fn, &c);
+}
+
+int store_partial_get(store *s, const char *run_id, const char *key, const char *counter,
+                      double **v, size_t *n, long *sampling_ns)
+{
+    store__owner o = { run_id, key, 0 };
+    *v = NULL;
+    *n = 0;
+    sqlite3_stmt *st = store__query(s, STORE_SQL_PART_SEL, &o, "t", counter);
+    int rc = st ? store__row(s, st) : DM_ERR_STORE;
+    if (rc != 1)
+        return rc < 0 ? rc : DM_ERR_NOTFOUND;
+    *v = store__col_doubles(st, 0, n);
+    *sampling_ns = (long)sqlite3_column_int64(st, 1);
+    sqlite3_reset(st);
+    return 0;
 }
 
 static int store__left_out_fn(store *s, const store__call *c)

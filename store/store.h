@@ -31,6 +31,11 @@ typedef struct store store;
  * the path and SQLite's message appended to err (err may be NULL); *out is
  * then NULL. */
 int store_open(const char *path, store **out, dm_str *err);
+/* Checks the database's structure (PRAGMA quick_check: every page, index and
+ * record readable, O(size) reads, no writes).  0 when intact; DM_ERR_STORE
+ * with "damaged" and SQLite's first finding in err (and store_last_error)
+ * when not, so nothing writes into a damaged store or reads half a run. */
+int store_check(store *s, dm_str *err);
 /* Closes the database; NULL is ignored. */
 void store_close(store *s);
 /* Message of the last failure of s ("" when none). Valid until the next call. */
@@ -51,6 +56,23 @@ int store_run_warning_put(store *s, const char *run_id, const char *text);
  * the store is unchanged.  DM_ERR_NOTFOUND if the run is absent, DM_ERR_ARG
  * if c->key is NULL. */
 int store_config_put(store *s, const char *run_id, const dm_config_result *c);
+/* Timing samples of one configuration still being measured (a checkpoint). */
+typedef struct store_partial {
+    const char *key;
+    const char *const *counters;     /* n_counters names */
+    size_t n_counters;
+    double *const *samples;          /* per counter: n_samples values */
+    size_t n_samples;
+    long sampling_ns;                /* time spent in those samples */
+} store_partial;
+/* Replaces the checkpoints of n configurations in ONE transaction (the
+ * measuring process calls it after every round, so a kill loses at most the
+ * round in flight).  store_config_put() of a key deletes its checkpoint. */
+int store_partial_put(store *s, const char *run_id, const store_partial *items, size_t n);
+/* The checkpointed samples of one counter of a configuration (*v malloc'd,
+ * *n values) and the sampling time.  DM_ERR_NOTFOUND when there are none. */
+int store_partial_get(store *s, const char *run_id, const char *key, const char *counter,
+                      double **v, size_t *n, long *sampling_ns);
 /* Appends one left-out configuration (params + reason), in one transaction. */
 int store_left_out_put(store *s, const char *run_id, const dm_left_out *l);
 /* Writes one fit (params, warnings, predicted/measured, point labels) in one

@@ -112,18 +112,47 @@ static void plan__config_free(plan_config *c)
     dm_kv_free(c->params, c->n_params);
 }
 
-/* Adds c unless a configuration with the same key exists (then folds it). */
-static void plan__add(plan *p, plan_config *c)
+/* Open-addressing index of the planned configurations by key, so adding
+ * one is O(1) and planning 1e6 combinations stays linear. */
+typedef struct plan__index {
+    size_t *slot;            /* configuration index + 1; 0 = empty */
+    size_t cap;              /* a power of two, kept > 2 * n_configs */
+} plan__index;
+
+static size_t *plan__slot(plan__index *ix, const plan *p, const char *key)
 {
-    for (size_t i = 0; i < p->n_configs; i++) {
-        if (strcmp(p->configs[i].key, c->key) == 0) {
-            p->configs[i].folded++;
-            plan__config_free(c);
-            return;
-        }
+    size_t i = (size_t)strtoull(key, NULL, 16) & (ix->cap - 1);
+    while (ix->slot[i] && strcmp(p->configs[ix->slot[i] - 1].key, key) != 0)
+        i = (i + 1) & (ix->cap - 1);
+    return &ix->slot[i];
+}
+
+static void plan__index_grow(plan__index *ix, const plan *p)
+{
+    free(ix->slot);
+    ix->cap = ix->cap ? ix->cap * 2 : 1024;
+    ix->slot = dm_xcalloc(ix->cap, sizeof *ix->slot);
+    for (size_t i = 0; i < p->n_configs; i++)
+        *plan__slot(ix, p, p->configs[i].key) = i + 1;
+}
+
+/* Adds c unless a configuration with the same key exists (then folds it). */
+static void plan__add(plan *p, plan__index *ix, size_t *cap, plan_config *c)
+{
+    size_t *slot = plan__slot(ix, p, c->key);
+    if (*slot) {
+        p->configs[*slot - 1].folded++;
+        plan__config_free(c);
+        return;
     }
-    p->configs = dm_xrealloc(p->configs, (p->n_configs + 1) * sizeof *p->configs);
+    if (p->n_configs == *cap) {
+        *cap = *cap ? *cap * 2 : 64;
+        p->configs = dm_xrealloc(p->configs, *cap * sizeof *p->configs);
+    }
     p->configs[p->n_configs++] = *c;
+    *slot = p->n_configs;
+    if (p->n_configs * 2 >= ix->cap)
+        plan__index_grow(ix, p);
 }
 
 /* 1 when the combination idx matches an `exclude` entry: for every axis of
@@ -146,7 +175,8 @@ static int plan__excluded(const sweep *s, const size_t *idx)
     return 0;
 }
 
-int plan_build(const sweep *s, plan *out, dm_str *err)
+int plan_build_progress(const sweep *s, plan *out, dm_str *err, plan_progress_fn progress,
+                        void *user)
 {
     memset(out, 0, sizeof *out);
     size_t total = 1;
@@ -159,13 +189,18 @@ int plan_build(const sweep *s, plan *out, dm_str *err)
         }
     }
     size_t *idx = dm_xcalloc(s->n_axes + 1, sizeof *idx);
+    plan__index ix = {0};
+    size_t cap = 0;
+    plan__index_grow(&ix, out);
     for (size_t n = 0; n < total; n++) {
         plan_config c;
+        if (progress && n % 4096 == 0)
+            progress(n, total, user);
         if (plan__excluded(s, idx)) {
             out->n_excluded++;
         } else {
             plan__project(s, idx, &c);
-            plan__add(out, &c);
+            plan__add(out, &ix, &cap, &c);
         }
         for (size_t i = 0; i < s->n_axes; i++) {      /* odometer over the axes */
             if (++idx[i] < s->axes[i].n_values)
@@ -174,8 +209,16 @@ int plan_build(const sweep *s, plan *out, dm_str *err)
         }
     }
     free(idx);
+    free(ix.slot);
+    if (progress)
+        progress(total, total, user);
     out->n_combinations = total;
     return 0;
+}
+
+int plan_build(const sweep *s, plan *out, dm_str *err)
+{
+    return plan_build_progress(s, out, err, NULL, NULL);
 }
 
 void plan_leave_out(plan *p, size_t i, const char *reason)
@@ -192,19 +235,35 @@ void plan_leave_out(plan *p, size_t i, const char *reason)
     p->n_configs--;
 }
 
+/* Moves configuration i to left_out without closing the gap (the caller
+ * compacts the array once, so leaving out many stays linear). */
+static void plan__leave_out_at(plan *p, size_t i, const char *reason)
+{
+    plan_config *c = &p->configs[i];
+    p->left_out = dm_xrealloc(p->left_out, (p->n_left_out + 1) * sizeof *p->left_out);
+    dm_left_out *l = &p->left_out[p->n_left_out++];
+    l->params = c->params;
+    l->n_params = c->n_params;
+    l->reason = dm_xstrdup(reason);
+    free(c->scene);
+    dm_kv_free(c->scene_params, c->n_scene_params);
+}
+
 void plan_filter_capabilities(plan *p, int (*has_ext)(const char *ext, void *user), void *user)
 {
-    for (size_t i = 0; i < p->n_configs;) {
+    size_t kept = 0;
+    for (size_t i = 0; i < p->n_configs; i++) {
         const char *tname = dm_kv_get(p->configs[i].params, p->configs[i].n_params, "technique");
         const technique_desc *t = technique_find(tname);
         if (t && t->requires_ext && !has_ext(t->requires_ext, user)) {
             char *why = dm_xasprintf("the driver lacks %s, which %s needs", t->requires_ext, tname);
-            plan_leave_out(p, i, why);
+            plan__leave_out_at(p, i, why);
             free(why);
             continue;
         }
-        i++;
+        p->configs[kept++] = p->configs[i];
     }
+    p->n_configs = kept;
 }
 
 int plan_shard(plan *p, int k, int n)

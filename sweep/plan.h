@@ -38,6 +38,12 @@ typedef struct plan {
 /* Plans a sweep.  Returns 0, or DM_ERR_RANGE when the product is larger
  * than 1e6 combinations (err says so). */
 int plan_build(const sweep *s, plan *out, dm_str *err);
+/* Called every few thousand combinations and once at the end (done == total). */
+typedef void (*plan_progress_fn)(size_t done, size_t total, void *user);
+/* plan_build with progress reports (progress may be NULL).  Linear in the
+ * number of combinations (configurations are found by key in a hash index). */
+int plan_build_progress(const sweep *s, plan *out, dm_str *err, plan_progress_fn progress,
+                        void *user);
 /* Leaves out configurations whose technique needs an extension the driver
  * lacks (has_ext(name) == 0), recording the reason. */
 void plan_filter_capabilities(plan *p, int (*has_ext)(const char *ext, void *user), void *user);

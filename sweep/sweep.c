@@ -182,7 +182,9 @@ static int p__user_maps(pctx *c, yaml_node_t *map)
                 return p__fail(c, val, "scene.material.%s: expected a file path", kinds[k]);
             }
             char *path = p__map_path(c, p__scalar(val));
-            dm_str_printf(&v, "%s%s=%s", v.len ? ";" : "", kinds[k], path);
+            dm_str_printf(&v, "%s%s=", v.len ? ";" : "", kinds[k]);
+            for (const char *p = path; *p; p++)   /* a ';' in the path is written ";;" */
+                dm_str_cat(&v, *p == ';' ? ";;" : (char[2]){ *p, 0 });
             free(path);
             first = first ? first : val;
         }
@@ -723,6 +725,47 @@ static void sweep__defaults(sweep *s)
         s->pareto_metric = dm_xstrdup("ssim");
 }
 
+/* Deepest nesting of YAML collections a sweep file may have (the deepest
+ * real one is 4: models, a model, group_by, ...). */
+#define SWEEP__MAX_DEPTH 16
+
+/* Refuses a document nested deeper than SWEEP__MAX_DEPTH, without
+ * recursion: libyaml numbers a collection before its children, so one pass
+ * in node order gives every node its depth. */
+static int sweep__depth_check(yaml_document_t *doc, const char *path, dm_str *err)
+{
+    size_t n = (size_t)(doc->nodes.top - doc->nodes.start);
+    int *depth = dm_xcalloc(n + 2, sizeof *depth), rc = 0;
+    for (size_t i = 0; i < n && rc == 0; i++) {
+        yaml_node_t *nd = &doc->nodes.start[i];
+        int kids[2];
+        for (size_t j = 0; ; j++) {
+            size_t nk = 0;
+            if (nd->type == YAML_SEQUENCE_NODE &&
+                nd->data.sequence.items.start + j < nd->data.sequence.items.top)
+                kids[nk++] = nd->data.sequence.items.start[j];
+            if (nd->type == YAML_MAPPING_NODE &&
+                nd->data.mapping.pairs.start + j < nd->data.mapping.pairs.top) {
+                kids[nk++] = nd->data.mapping.pairs.start[j].key;
+                kids[nk++] = nd->data.mapping.pairs.start[j].value;
+            }
+            if (nk == 0)
+                break;
+            for (size_t k = 0; k < nk; k++)
+                if (kids[k] >= 1 && (size_t)kids[k] <= n && depth[kids[k] - 1] < depth[i] + 1)
+                    depth[kids[k] - 1] = depth[i] + 1;
+        }
+        if (depth[i] > SWEEP__MAX_DEPTH) {
+            dm_str_printf(err, "%s:%zu:%zu: nested deeper than %d levels; a sweep file is "
+                          "never that deep", path, nd->start_mark.line + 1,
+                          nd->start_mark.column + 1, SWEEP__MAX_DEPTH);
+            rc = DM_ERR_PARSE;
+        }
+    }
+    free(depth);
+    return rc;
+}
+
 int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
 {
     memset(out, 0, sizeof *out);
@@ -742,7 +785,8 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
     }
     pctx c = { .doc = &doc, .path = path, .err = err, .s = out };
     out->path = dm_xstrdup(path);
-    int rc = p__top(&c, yaml_document_get_root_node(&doc));
+    int rc = sweep__depth_check(&doc, path, err);
+    rc = rc ? rc : p__top(&c, yaml_document_get_root_node(&doc));
     yaml_document_delete(&doc);
     yaml_parser_delete(&parser);
     if (rc == 0)
@@ -759,10 +803,26 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
 int sweep_load(const char *path, sweep *out, dm_str *err)
 {
     char *text = NULL;
-    if (dm_read_file(path, &text, NULL) != 0) {
-        memset(out, 0, sizeof *out);
+    size_t len = 0;
+    memset(out, 0, sizeof *out);
+    if (dm_file_exists(path) && !dm_regular_file(path)) {
+        dm_str_printf(err, "%s: cannot read the sweep file: not a regular file (a directory, "
+                      "FIFO or device)", path);
+        return DM_ERR_IO;
+    }
+    if (dm_read_file(path, &text, &len) != 0) {
         dm_str_printf(err, "%s: cannot read the sweep file", path);
         return DM_ERR_IO;
+    }
+    const char *nul = memchr(text, '\0', len);
+    if (nul) {   /* the YAML parser would stop there and silently drop the rest */
+        size_t line = 1;
+        for (const char *p = text; p < nul; p++)
+            line += *p == '\n';
+        dm_str_printf(err, "%s:%zu: a NUL byte: a sweep file is UTF-8 text (is this a binary "
+                      "file?)", path, line);
+        free(text);
+        return DM_ERR_PARSE;
     }
     int rc = sweep_parse(text, path, out, err);
     free(text);

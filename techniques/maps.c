@@ -22,7 +22,7 @@
 #define MAPS__NOISE_CELLS 32  /* value-noise lattice cells per tile (tiles seamlessly) */
 #define MAPS__STONE_CELLS 8   /* cellular (Worley) cells per tile side */
 #define MAPS__FBM_OCTAVES 6   /* terrain: lattices of 4, 8, ... 128 cells */
-#define MAPS__CACHE_MAGIC "DMMAPS1"   /* 8 bytes with the NUL; bump when a generator changes */
+#define MAPS__CACHE_MAGIC "DMMAPS2"   /* 8 bytes with the NUL; bump when a generator or the layout changes */
 
 /* One texel of a set: height, linear albedo RGB and specular at (u,v). */
 typedef void (*maps__texel_fn)(float u, float v, float *h, float rgb[3], float *spec);
@@ -383,7 +383,16 @@ char *maps_cache_dir(void)
 }
 
 /* Cache file layout: magic (8 bytes), int32 size, then size² float heights
- * and size²·4 albedo8 bytes, native byte order (the cache is per machine). */
+ * and size²·4 albedo8 bytes, then a uint64 FNV-1a hash of both arrays, native
+ * byte order (the cache is per machine).  A file whose hash does not match
+ * (a damaged block) is not used; the maps are generated again. */
+static uint64_t maps__cache_hash(const maps_set *m)
+{
+    size_t texels = (size_t)m->size * (size_t)m->size;
+    uint64_t h = dm_fnv1a64(m->height, texels * sizeof(float), DM_FNV_SEED);
+    return dm_fnv1a64(m->albedo8, texels * 4, h);
+}
+
 static int maps__cache_read(const char *path, int size, maps_set *out)
 {
     FILE *f = fopen(path, "rb");
@@ -397,6 +406,10 @@ static int maps__cache_read(const char *path, int size, maps_set *out)
              fread(&s, sizeof s, 1, f) == 1 && s == size &&
              fread(out->height, sizeof(float), texels, f) == texels &&
              fread(out->albedo8, 4, texels, f) == texels;
+    uint64_t stored = 0;
+    char extra;
+    ok = ok && fread(&stored, sizeof stored, 1, f) == 1 && fread(&extra, 1, 1, f) == 0 &&
+         stored == maps__cache_hash(out);
     fclose(f);
     if (!ok)
         maps_free(out);
@@ -413,6 +426,8 @@ static int maps__cache_write(const char *dir, const char *path, const maps_set *
     int ok = f && fwrite(MAPS__CACHE_MAGIC, 1, 8, f) == 8 && fwrite(&s, sizeof s, 1, f) == 1 &&
              fwrite(m->height, sizeof(float), texels, f) == texels &&
              fwrite(m->albedo8, 4, texels, f) == texels;
+    uint64_t h = maps__cache_hash(m);
+    ok = ok && fwrite(&h, sizeof h, 1, f) == 1;
     if (f && fclose(f) != 0)
         ok = 0;
     if (ok && rename(tmp, path) != 0)
@@ -468,27 +483,45 @@ static const char *const maps__material_keys[3] = {"height", "normal", "albedo"}
 
 int maps_is_material(const char *value) { return value && strchr(value, '=') != NULL; }
 
+/* Next entry of a material at *p: up to a single ';' (";;" stands for a ';'
+ * inside a path); advances *p past it.  Returns the entry (caller frees). */
+static char *maps__material_entry(const char **p)
+{
+    dm_str e = {0};
+    dm_str_cat(&e, "");
+    for (; **p; (*p)++) {
+        if (**p == ';' && (*p)[1] != ';')
+            break;
+        dm_str_catn(&e, *p, 1);
+        if (**p == ';')
+            (*p)++;
+    }
+    if (**p == ';')
+        (*p)++;
+    return dm_str_take(&e);
+}
+
 /* Splits "k=PATH;k=PATH" into paths[3] (malloc'd, NULL when absent). */
 static int maps__material_split(const char *value, char *paths[3], dm_str *err)
 {
-    char *copy = dm_xstrdup(value), *save = NULL;
     int rc = 0, any = 0;
     paths[0] = paths[1] = paths[2] = NULL;
-    for (char *t = strtok_r(copy, ";", &save); t && !rc; t = strtok_r(NULL, ";", &save)) {
+    for (const char *p = value; *p && !rc;) {
+        char *t = maps__material_entry(&p);
         char *eq = strchr(t, '=');
         int k = -1;
         for (int i = 0; eq && i < 3; i++)
             if ((size_t)(eq - t) == strlen(maps__material_keys[i]) && strncmp(t, maps__material_keys[i], (size_t)(eq - t)) == 0)
                 k = i;
         if (k < 0 || paths[k] || !eq[1]) {
-            dm_str_printf(err, "invalid material entry '%s'; expected height=PATH, normal=PATH, albedo=PATH, each at most once", t);
+            dm_str_printf(err, "invalid material entry '%s'; expected height=PATH, normal=PATH, albedo=PATH, each at most once, separated by ';' (write ';;' for a ';' inside a path)", t);
             rc = DM_ERR_ARG;
         } else {
             paths[k] = dm_xstrdup(eq + 1);
             any = 1;
         }
+        free(t);
     }
-    free(copy);
     if (!rc && !any) {
         dm_str_printf(err, "empty material '%s'", value);
         rc = DM_ERR_ARG;
@@ -504,6 +537,11 @@ static int maps__material_split(const char *value, char *paths[3], dm_str *err)
 static int maps__material_file(int key, const char *path, int *size, img *out, dm_str *err)
 {
     char why[256] = "";
+    if (dm_file_exists(path) && !dm_regular_file(path)) {
+        dm_str_printf(err, "material %s map '%s' is not a regular file (a directory, FIFO or "
+                      "device cannot be read as an image)", maps__material_keys[key], path);
+        return DM_ERR_IO;
+    }
     if (img_load(path, out, why, sizeof why) != 0) {
         dm_str_printf(err, "material %s map '%s' cannot be read: %s", maps__material_keys[key], path, why);
         return DM_ERR_IO;

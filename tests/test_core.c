@@ -108,10 +108,12 @@ static void test_exit_codes(void **state)
                                  DM_ERR_EXISTS, DM_ERR_IO, DM_ERR_UNSUPPORTED };
     for (size_t i = 0; i < sizeof usage / sizeof *usage; i++)
         assert_int_equal(dm_exit_from_error(usage[i]), DM_EXIT_USAGE);
-    static const int failed[] = { DM_ERR_NOMEM, DM_ERR_GL, DM_ERR_SHADER, DM_ERR_NUMERIC, DM_ERR_CHILD,
-                                  DM_ERR_TIMEOUT, DM_ERR_STORE };
+    static const int failed[] = { DM_ERR_NOMEM, DM_ERR_SHADER, DM_ERR_NUMERIC, DM_ERR_TIMEOUT };
     for (size_t i = 0; i < sizeof failed / sizeof *failed; i++)
         assert_int_equal(dm_exit_from_error(failed[i]), DM_EXIT_FAILED);
+    static const int env[] = { DM_ERR_STORE, DM_ERR_BUSY, DM_ERR_CHILD, DM_ERR_GL };
+    for (size_t i = 0; i < sizeof env / sizeof *env; i++)
+        assert_int_equal(dm_exit_from_error(env[i]), DM_EXIT_ENV);
 }
 
 static void test_suggest(void **state)

@@ -431,7 +431,7 @@ static void test_round_trip(void **state)
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
     assert_int_equal(sql_long(s, "SELECT length(data) FROM samples"), 400);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
     dm_run_free(&got);
     store_close(s);
     /* ...and again from a fresh connection. */
@@ -628,7 +628,7 @@ static void test_misuse_and_bad_files(void **state)
 }
 
 /* A version-1 store (before fits had a condition column) opens: it is
- * migrated to version 2, its fits read back with condition 0 ("not
+ * migrated to the current version, its fits read back with condition 0 ("not
  * computed") and everything else intact; new fits keep their condition,
  * infinity included. */
 static void test_fit_condition_migration(void **state)
@@ -642,10 +642,11 @@ static void test_fit_condition_migration(void **state)
     sqlite3 *db;
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
     assert_int_equal(sqlite3_exec(db, "ALTER TABLE fits DROP COLUMN condition;"
+                                  "DROP TABLE partial_samples;"   /* came with version 3 */
                                   "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_true(got.fits[0].condition == 0.0);
     run.fits[0].condition = 0.0;
@@ -868,7 +869,7 @@ static void test_open_alloc_faults(void **state)
         dm_str_free(&err);
         s = open_ok(t->db);
         assert_integrity_ok(s);
-        assert_int_equal(sql_long(s, "PRAGMA user_version"), 2);
+        assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
         store_close(s);
         if (!reached)
             break;
@@ -924,6 +925,38 @@ static void test_put_alloc_faults(void **state)
     store_close(s);
 }
 
+/* Round checkpoints: put/get round-trip every bit, a second put replaces
+ * the first, and storing the finished configuration deletes them; a
+ * damaged store is reported by store_check. */
+static void test_partial_samples(void **state)
+{
+    tmp *t = *state;
+    dm_run_result run;
+    run_full(&run, "r");
+    store *s = open_ok(t->db);
+    assert_int_equal(store_run_begin(s, &run, NULL), 0);
+    const char *names[2] = { "WallTime", "SamplesPassed" };
+    double a[3] = { 1.5, NAN, -0.0 }, b[3] = { 7, 8, 9 }, *v[2] = { a, b }, *got = NULL;
+    store_partial p = { .key = run.configs[0].key, .counters = names, .n_counters = 2,
+                        .samples = v, .n_samples = 2, .sampling_ns = 42 };
+    assert_int_equal(store_partial_put(s, "r", &p, 1), 0);
+    p.n_samples = 3;
+    assert_int_equal(store_partial_put(s, "r", &p, 1), 0);
+    size_t n = 0;
+    long ns = 0;
+    assert_int_equal(store_partial_get(s, "r", p.key, "WallTime", &got, &n, &ns), 0);
+    assert_int_equal(n, 3);
+    assert_int_equal(ns, 42);
+    assert_memory_equal(got, a, sizeof a);
+    free(got);
+    assert_int_equal(store_partial_get(s, "r", p.key, "GPUTime", &got, &n, &ns), DM_ERR_NOTFOUND);
+    assert_int_equal(store_config_put(s, "r", &run.configs[0]), 0);
+    assert_int_equal(store_partial_get(s, "r", p.key, "WallTime", &got, &n, &ns), DM_ERR_NOTFOUND);
+    assert_int_equal(store_check(s, NULL), 0);
+    store_close(s);
+    dm_run_free(&run);
+}
+
 int main(void)
 {
     fault_install();   /* before SQLite initialises; idle until armed */
@@ -932,6 +965,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_done_and_replace, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_fit_replace, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_fit_condition_migration, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_partial_samples, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_copy_run, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_latest_and_list, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_misuse_and_bad_files, tmp_setup, tmp_teardown),

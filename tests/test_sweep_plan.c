@@ -204,6 +204,59 @@ static void test_exclude_errors(void **state)
     }
 }
 
+/* Progress of planning: nondecreasing, ending at the total. */
+typedef struct progress_log { size_t calls, last, total; int monotonic; } progress_log;
+
+static void on_progress(size_t done, size_t total, void *user)
+{
+    progress_log *l = user;
+    l->monotonic &= done >= l->last && done <= total;
+    l->calls++;
+    l->last = done;
+    l->total = total;
+}
+
+/* A large sweep through the hash index: 150 x 150 distinct camera values are
+ * 22500 configurations with distinct keys, each folded once; 6000 copies of
+ * one value are one configuration folded 6000 times; progress is reported. */
+static void test_large_sweep_index(void **state)
+{
+    (void)state;
+    dm_str t = {0}, err = {0};
+    dm_str_cat(&t, "name: t\nsweep:\n  technique: [normal]\n  camera.azimuth: [");
+    for (int i = 0; i < 150; i++)
+        dm_str_printf(&t, "%s%d", i ? "," : "", i);
+    dm_str_cat(&t, "]\n  camera.distance: [");
+    for (int i = 0; i < 150; i++)
+        dm_str_printf(&t, "%s%.2f", i ? "," : "", 1 + i * 0.01);
+    dm_str_cat(&t, "]\n");
+    sweep s;
+    plan p;
+    assert_int_equal(sweep_parse(dm_str_get(&t), "t.yaml", &s, &err), 0);
+    progress_log l = { .monotonic = 1 };
+    assert_int_equal(plan_build_progress(&s, &p, &err, on_progress, &l), 0);
+    assert_int_equal(p.n_configs, 22500);
+    assert_true(l.monotonic && l.calls >= 5);
+    assert_int_equal(l.last, 22500);
+    for (size_t i = 1; i < p.n_configs; i++)
+        assert_int_equal(p.configs[i].folded, 1);
+    plan_free(&p);
+    sweep_free(&s);
+    t.len = 0;
+    dm_str_cat(&t, "name: t\nsweep:\n  technique: [normal]\n  camera.distance: [");
+    for (int i = 0; i < 6000; i++)
+        dm_str_cat(&t, i ? ",3" : "3");
+    dm_str_cat(&t, "]\n");
+    assert_int_equal(sweep_parse(dm_str_get(&t), "t.yaml", &s, &err), 0);
+    assert_int_equal(plan_build(&s, &p, &err), 0);
+    assert_int_equal(p.n_configs, 1);
+    assert_int_equal(p.configs[0].folded, 6000);
+    plan_free(&p);
+    sweep_free(&s);
+    dm_str_free(&t);
+    dm_str_free(&err);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -215,6 +268,7 @@ int main(void)
         cmocka_unit_test(test_keys_stable),
         cmocka_unit_test(test_shards_partition),
         cmocka_unit_test(test_shuffle_is_seeded_permutation),
+        cmocka_unit_test(test_large_sweep_index),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

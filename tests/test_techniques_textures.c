@@ -178,6 +178,18 @@ static void test_cache(void **state)
     maps_free(&c);
     assert_int_equal(maps_get_cached(&d, dir, &c), 0);
     assert_int_equal(c.from_cache, 1);   /* the bad file was replaced */
+    /* 4 KB overwritten in the middle (magic and size intact): not used */
+    FILE *f = fopen(path, "r+b");
+    assert_non_null(f);
+    char junk[4096];
+    memset(junk, 0x5a, sizeof junk);
+    assert_int_equal(fseek(f, (long)(n * sizeof(float) / 2), SEEK_SET), 0);
+    assert_int_equal(fwrite(junk, 1, sizeof junk, f), sizeof junk);
+    assert_int_equal(fclose(f), 0);
+    maps_free(&c);
+    assert_int_equal(maps_get_cached(&d, dir, &c), 0);
+    assert_int_equal(c.from_cache, 0);
+    assert_memory_equal(a.height, c.height, n * sizeof(float));
     maps_desc small = {.name = "checker", .size = 64};
     maps_set s;
     assert_int_equal(maps_get_cached(&small, dir, &s), 0);

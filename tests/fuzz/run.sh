@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # Builds the libFuzzer targets with clang and runs each for FUZZ_SECONDS
-# (default 60) on a copy of the stored corpus, both at once.  A crash, leak,
+# (default 60) on a copy of the stored corpus, two at a time: sweep files,
+# formulas, derived-counter expressions, CSV tables, results.json.  A crash, leak,
 # sanitizer report or broken invariant fails the test; the input that
 # triggered it is kept in the work dir and printed.
 set -euo pipefail
@@ -9,22 +10,30 @@ SECS=${FUZZ_SECONDS:-60}
 WORK=${FUZZ_WORK:-$(mktemp -d)}
 cmake -S "$SRC/tests/fuzz" -B "$WORK/build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ > "$WORK/cmake.log" 2>&1 || { cat "$WORK/cmake.log"; exit 1; }
 cmake --build "$WORK/build" -j 2 > "$WORK/build.log" 2>&1 || { tail -30 "$WORK/build.log"; exit 1; }
-pids=()
-for t in sweep formula; do
+# Two targets at a time (the machine has two cores), FUZZ_SECONDS each.
+TARGETS=(sweep formula expr csv results)
+fail=0; pass=0
+run_one() {
+  local t=$1
   mkdir -p "$WORK/corpus-$t"
   cp "$SRC/tests/fuzz/corpus/$t/"* "$WORK/corpus-$t/"
   ( cd "$WORK" && ./build/fuzz_$t "corpus-$t" -max_total_time="$SECS" -rss_limit_mb=2048 \
-      -artifact_prefix="$WORK/crash-$t-" > "$WORK/$t.log" 2>&1 ) &
-  pids+=($!)
-done
-fail=0; pass=0
-for i in 0 1; do
-  t=$([ $i -eq 0 ] && echo sweep || echo formula)
-  if wait "${pids[$i]}"; then
+      -artifact_prefix="$WORK/crash-$t-" > "$WORK/$t.log" 2>&1 )
+}
+report() {
+  local t=$1 rc=$2
+  if [ "$rc" -eq 0 ]; then
     pass=$((pass+1)); echo "fuzz_$t: $(grep -E '^Done [0-9]+ runs' "$WORK/$t.log" || echo done)"
   else
     fail=$((fail+1)); echo "fuzz_$t FAILED:"; tail -40 "$WORK/$t.log"; ls "$WORK"/crash-$t-* 2>/dev/null || true
   fi
+}
+for ((i = 0; i < ${#TARGETS[@]}; i += 2)); do
+  pids=(); names=()
+  for t in "${TARGETS[@]:i:2}"; do run_one "$t" & pids+=($!); names+=("$t"); done
+  for k in "${!pids[@]}"; do
+    if wait "${pids[$k]}"; then report "${names[$k]}" 0; else report "${names[$k]}" 1; fi
+  done
 done
 echo "$pass passed, $fail failed"
 [ "$fail" -eq 0 ]

@@ -1,0 +1,39 @@
+/* libFuzzer target: results.json as `dmbench compare` reads it.  Any input
+ * is loaded or refused without crashing; a loaded file compared with
+ * itself gives a finite positive geometric mean whenever it timed anything
+ * (no "-nan" from negative or mistyped times). */
+#include <math.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
+
+#include "gate/compare.h"
+
+int LLVMFuzzerTestOneInput(const uint8_t *data, size_t size)
+{
+    static char path[64];
+    if (!path[0])
+        snprintf(path, sizeof path, "/tmp/dm-fuzz-results-%ld.json", (long)getpid());
+    FILE *f = fopen(path, "wb");
+    if (!f || fwrite(data, 1, size, f) != size || fclose(f) != 0)
+        abort();
+    dm_run_result run;
+    dm_str err = {0};
+    if (compare_load_path(path, &run, &err) == 0) {
+        compare_desc d = { .allow_env_mismatch = 1 };
+        compare_result r;
+        dm_str e2 = {0};
+        if (compare_runs(&run, &run, &d, &r, &e2) == 0 && r.n_geomean &&
+            !(isfinite(r.geomean) && r.geomean > 0))
+            abort();
+        compare_result_free(&r);
+        dm_str_free(&e2);
+        dm_run_free(&run);
+    } else if (!err.len) {
+        abort();
+    }
+    dm_str_free(&err);
+    return 0;
+}
