@@ -1,4 +1,4 @@
-/* overhead.c — SPEC §12 "harness overhead": the per-frame time dmbench
+/* overhead.c — harness overhead (docs/measurement.md): the per-frame time dmbench
  * REPORTS for a configuration against a minimal raw-GL loop drawing the
  * same thing.
  *
@@ -509,7 +509,7 @@ int main(int argc, char **argv)
                 c->raw[k] = raw_measure(r, c);
         }
     if (rc == 0) {
-        printf("harness overhead (SPEC 12): %dx%d, LP_NUM_THREADS=%s, %d interleaved rounds, "
+        printf("harness overhead (docs/measurement.md): %dx%d, LP_NUM_THREADS=%s, %d interleaved rounds, "
                "raw = median of %d samples per round, harness = dmbench's reported median WallTime\n",
                W, H, getenv("LP_NUM_THREADS"), rounds, RAW_SAMPLES);
         for (size_t i = 0; i < N_CONFS; i++)

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# SPEC §12 "setup reuse": a second run of the default sweep spends < 10 % of
+# Setup reuse (docs/measurement.md): a second run of the default sweep spends < 10 % of
 # its wall time outside measured frames (program, texture and reference
 # caches).  Runs the default sweep twice into one output root and prints the
 # runner's own accounting of each run, then where the time outside the

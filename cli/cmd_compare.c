@@ -1,4 +1,4 @@
-/* cmd_compare.c — `dmbench compare` (SPEC §9).
+/* cmd_compare.c — `dmbench compare` (docs/ci-gating.md).
  *
  * Sides of a comparison (BASE first, then NEW):
  *   PATH                 a results.json, a run directory or an output root

@@ -3,7 +3,7 @@
  * The harness fills it (from the SQLite store, the single source of truth);
  * models/ adds fits; reports/ renders it to HTML/JSON/CSV/Markdown.  It is
  * plain data: every string and array is owned by the structure and released
- * by dm_run_free().  Field names follow the results.json contract (SPEC §8).
+ * by dm_run_free().  Field names follow the results.json contract (docs/exports.md).
  */
 #ifndef DM_RESULTS_H
 #define DM_RESULTS_H

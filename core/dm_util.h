@@ -2,7 +2,7 @@
  *
  * Everything here is layer-neutral (no GL, no SQLite, no libraries) so that
  * every folder may depend on core/ without breaking the one-way flow of
- * SPEC §2.
+ * README, Layout.
  */
 #ifndef DM_UTIL_H
 #define DM_UTIL_H

@@ -1,6 +1,6 @@
 /* counters.h — a GPUPerfAPI-shaped counter library over GL queries and clocks.
  *
- * Usage (mirrors GPUPerfAPI's session/pass/sample workflow, SEEDS S4):
+ * Usage (mirrors GPUPerfAPI's session/pass/sample workflow, study S4 (docs/studies.md)):
  *
  *   counters_context *ctx;  counters_context_create(&ctx);   // GL current; probes once
  *   counters_session *s;    counters_session_create(ctx, &s);
@@ -50,7 +50,7 @@ typedef enum counters_backend {
 
 typedef struct counters_info {
     const char *name;
-    const char *group;          /* "Timing", "Vertex", ... (SPEC §4) */
+    const char *group;          /* "Timing", "Vertex", ... (docs/counters.md) */
     const char *description;    /* what it counts in general */
     counters_unit unit;
     counters_type type;
@@ -121,7 +121,7 @@ int counters_derive(const char *name, counters_value_fn value, void *user, doubl
 /* 1 when every input of derived counter `name` satisfies has(input, user). */
 int counters_derive_inputs(const char *name, int (*has)(const char *input, void *user), void *user);
 
-/* ---- timer calibration (SPEC §4) -----------------------------------------
+/* ---- timer calibration (docs/counters.md) -----------------------------------------
  * Runs a heavy draw of its own (fragment-bound, into an internal FBO) and
  * compares GL_TIME_ELAPSED with glFinish-fenced wall time.  coverage =
  * GPUTime / WallTime; verdict "partial" below 0.5, else "full".  Decided by

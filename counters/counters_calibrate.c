@@ -1,5 +1,5 @@
 /* counters_calibrate.c — how much of the work GL_TIME_ELAPSED covers,
- * measured on a fragment-bound draw of our own (SPEC §4). */
+ * measured on a fragment-bound draw of our own (docs/counters.md). */
 #include "counters_internal.h"
 #include "core/dm_error.h"
 

@@ -12,7 +12,7 @@
 #define COUNTERS__MAX 64        /* upper bound on the registry size */
 #define COUNTERS__MAX_HIDDEN 8
 
-/* Which pass measures a counter (SPEC §4: timing never shares with queries). */
+/* Which pass measures a counter (docs/counters.md: timing never shares with queries). */
 typedef enum counters__pass {
     COUNTERS__PASS_NONE = 0,    /* caller-fed or derived: no pass */
     COUNTERS__PASS_TIMING,

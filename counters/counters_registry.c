@@ -1,4 +1,4 @@
-/* counters_registry.c — the one table of counters (SPEC §4), as data.
+/* counters_registry.c — the one table of counters (docs/counters.md), as data.
  *
  * Each row: public metadata (name, group, description, unit, type, backend,
  * deterministic, formula) + which pass measures it, its GL query target and

@@ -439,7 +439,7 @@ static int *compare__match(const compare_desc *d, const dm_run_result *base,
     return pending;
 }
 
-/* GPUTime marked partial in either run may not gate (SPEC §4). */
+/* GPUTime marked partial in either run may not gate (docs/counters.md). */
 static int compare__time_counter_ok(const compare_desc *d, const dm_run_result *r)
 {
     for (size_t i = 0; i < r->n_configs; i++) {

@@ -1,4 +1,4 @@
-/* compare.h — the regression gate (SPEC §9): compare two runs configuration
+/* compare.h — the regression gate (docs/ci-gating.md): compare two runs configuration
  * by configuration and give each a verdict.
  *
  * Matching: configurations are matched by key; keys on one side only are

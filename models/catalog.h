@@ -1,4 +1,4 @@
-/* catalog.h — built-in cost models (SPEC §7): a name, a formula and bounds.
+/* catalog.h — built-in cost models (docs/models.md): a name, a formula and bounds.
  *
  * Built-in models are formulas like any user formula; the catalog only
  * gives them names and non-negativity bounds where physics demands them

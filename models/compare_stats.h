@@ -1,4 +1,4 @@
-/* compare_stats.h — statistics for the regression gate (SPEC §9): ratio of
+/* compare_stats.h — statistics for the regression gate (docs/ci-gating.md): ratio of
  * medians with a bootstrap CI, Mann-Whitney U test, Benjamini-Hochberg.
  *
  * Non-finite values are ignored.  Resampling is seeded (reproducible).

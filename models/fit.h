@@ -7,7 +7,7 @@
  * exact derivatives (forward-mode dual numbers in formula.c; the Ceres
  * bridge is fit_ceres.h).  Grammar and errors: formula.h.
  *
- * How a fit is done (numerical stability, SPEC §7):
+ * How a fit is done (numerical stability, docs/models.md):
  *  - Screening: a point is excluded (counted in n_excluded, one warning)
  *    when its response is non-finite or <= 0 or a variable the formula uses
  *    is non-finite.  Fewer usable points than parameters -> DM_ERR_ARG.

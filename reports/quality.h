@@ -1,4 +1,4 @@
-/* quality.h — image-quality metrics of a render against its reference (SPEC §6).
+/* quality.h — image-quality metrics of a render against its reference (docs/sweep-files.md, Quality).
  *
  * Pure C over the float RGBA images of image.h; no OpenImageIO needed.
  * Coverage masks are one byte per pixel, 1 = covered, row-major like img.

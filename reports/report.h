@@ -5,7 +5,7 @@
  * is HTML-escaped.  Image paths are relative to the run directory and are
  * refused if they would leave it.
  *
- * results.json encoding (SPEC §8 names; additions are marked +):
+ * results.json encoding (docs/exports.md names; additions are marked +):
  *  - PSNR of identical images is +infinity, which JSON cannot hold: it is
  *    written "PSNR": null together with "PSNR_infinite": true (+, always
  *    present, false otherwise).  Any other non-finite number is null and

@@ -1,4 +1,4 @@
-/* report_json.c — results.json (SPEC §8) written and read back with cJSON.
+/* report_json.c — results.json (docs/exports.md) written and read back with cJSON.
  *
  * Encoding choices (stable; scripts rely on them):
  *  - a NULL string is JSON null; a non-finite double is null (cJSON's rule);

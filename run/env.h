@@ -1,4 +1,4 @@
-/* env.h — the environment a run was measured in (SPEC §5).
+/* env.h — the environment a run was measured in (docs/measurement.md).
  *
  * Collected in the measuring process (it needs a current GL context):
  * renderer, GL/GLSL versions, Mesa and LLVM versions as the driver reports

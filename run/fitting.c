@@ -33,7 +33,7 @@ static void fitting__names(const dm_run_result *run, const char ***names, size_t
 }
 
 /* A counter's value for fitting, NaN when it has none: unavailable, or a
- * partial GPUTime (SPEC §4). */
+ * partial GPUTime (docs/counters.md). */
 static double fitting__counter_value(const dm_run_result *run, const dm_counter_result *r)
 {
     int partial = r->partial || (strcmp(r->name, "GPUTime") == 0 && run->timer_verdict &&

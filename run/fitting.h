@@ -4,7 +4,7 @@
  * timed counters, its value otherwise), every numeric axis, and
  * `resolution` as the pixel count W×H.  A configuration missing a variable
  * or the response gets NaN there, which the fitter excludes and counts.
- * GPUTime is never used when the timer is partial (SPEC §4).  Failed
+ * GPUTime is never used when the timer is partial (docs/counters.md).  Failed
  * configurations are not used.
  */
 #ifndef HARNESS_FITTING_H

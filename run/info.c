@@ -11,7 +11,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 
-/* The extensions that matter to dmbench (LLVMPIPE.md). */
+/* The extensions that matter to dmbench (docs/llvmpipe-findings.md). */
 static const char *const info__exts[] = {
     "GL_ARB_tessellation_shader", "GL_ARB_pipeline_statistics_query", "GL_ARB_timer_query",
     "GL_ARB_query_buffer_object", "GL_ARB_get_program_binary", "GL_KHR_debug",

@@ -398,7 +398,7 @@ static int measure__derive_has(const char *name, void *user)
     return strcmp(name, "ViewportPixels") == 0 || dm_config_counter(e->out, name) != NULL;
 }
 
-/* Adds every derived counter whose inputs were all collected (SPEC §4:
+/* Adds every derived counter whose inputs were all collected (docs/counters.md:
  * formulas over the above); a zero denominator is unavailable, not infinite. */
 static void measure__derived(const plan_config *pc, dm_config_result *out)
 {

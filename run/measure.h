@@ -1,4 +1,4 @@
-/* measure.h — measuring the configurations of one scene (SPEC §5), in the
+/* measure.h — measuring the configurations of one scene (docs/measurement.md), in the
  * process that owns the GL context (a child of the runner).
  *
  * Per configuration: prepare (SetupTime), warm up until the JIT is done and

@@ -1,4 +1,4 @@
-/* refcache.h — on-disk cache of quality reference images (SPEC §6, §12).
+/* refcache.h — on-disk cache of quality reference images (docs/sweep-files.md, Quality; docs/measurement.md, Setup reuse).
  *
  * A scene's reference (by default the configuration itself or
  * reference-mesh, 4x supersampled) is the most expensive image of a run and

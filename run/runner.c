@@ -1032,7 +1032,7 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
 {
     runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns(), .lock_fd = -1 };
     /* llvmpipe rasterizes on one thread per core; on shared machines that
-     * makes fenced timings several times noisier (LLVMPIPE.md), so measuring
+     * makes fenced timings several times noisier (docs/llvmpipe-findings.md), so measuring
      * processes use one rasterizer thread unless the user chose otherwise.
      * The value is recorded in the environment and the fingerprint. */
     setenv("LP_NUM_THREADS", "1", 0);

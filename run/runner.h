@@ -1,4 +1,4 @@
-/* runner.h — running a sweep end to end (SPEC §1, §5, §10).
+/* runner.h — running a sweep end to end (README; docs/measurement.md; docs/scale-out.md).
  *
  * The runner process never touches GL: a first child probes the driver
  * (environment, timer calibration, extensions); then each scene is measured

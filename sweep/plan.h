@@ -1,4 +1,4 @@
-/* plan.h — from a sweep to the configurations worth measuring (SPEC §3).
+/* plan.h — from a sweep to the configurations worth measuring (docs/sweep-files.md).
  *
  * The planner takes the cartesian product of the sweep's axes, projects each
  * combination onto the axes its technique reads (scene axes + the

@@ -719,7 +719,7 @@ static void sweep__defaults(sweep *s)
     }
     if (!s->supersample)
         s->supersample = 4;
-    if (!s->ref_technique)          /* ground truth: the CPU-displaced fine mesh (SPEC §6) */
+    if (!s->ref_technique)          /* ground truth: the CPU-displaced fine mesh (docs/sweep-files.md, Quality) */
         s->ref_technique = dm_xstrdup("reference-mesh");
     if (!s->pareto_metric)
         s->pareto_metric = dm_xstrdup("ssim");

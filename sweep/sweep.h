@@ -1,4 +1,4 @@
-/* sweep.h — sweep files (SPEC §3): parsing and validation.
+/* sweep.h — sweep files (docs/sweep-files.md): parsing and validation.
  *
  * A sweep file says what to render (scene defaults and axes whose cartesian
  * product is planned), how to measure it, what quality reference to use and
@@ -78,7 +78,7 @@ typedef struct sweep {
 int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err);
 /* Reads and parses a file; DM_ERR_IO with the path when unreadable. */
 int sweep_load(const char *path, sweep *out, dm_str *err);
-/* The embedded default sweep (SPEC §1); quick = the short version for tests. */
+/* The embedded default sweep (README); quick = the short version for tests. */
 const char *sweep_default_text(int quick);
 void sweep_free(sweep *s);
 

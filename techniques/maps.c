@@ -151,7 +151,7 @@ static void maps__flat(float u, float v, float *h, float rgb[3], float *spec)
 }
 
 /* Asteroid: the body of mesh_asteroid_radius baked over the sphere's UVs
- * (SEEDS S4's reduced mesh): h = (r − RMIN) / (RMAX − RMIN) along the
+ * (study S4's reduced mesh): h = (r − RMIN) / (RMAX − RMIN) along the
  * direction of (u, v); grey rock, darker in the hollows. */
 static void maps__asteroid(float u, float v, float *h, float rgb[3], float *spec)
 {

@@ -357,7 +357,7 @@ static void mesh__asteroid_reduced(mesh__builder *b, int level)
 /* Plane y = 0 over [-1,1]² made of two halves of q×2q quads each (x < 0 and
  * x > 0).  The column x = 0 is duplicated: the right half's UVs are shifted
  * by (0.37, 0.21), so heights sampled on the two sides of the seam disagree
- * (a UV seam, SEEDS S4 cracks).  When `flat_left` is set instead, every left
+ * (a UV seam, study S4 (docs/studies.md) cracks).  When `flat_left` is set instead, every left
  * vertex except the shared column gets the one UV (0.5, 0.5): the height
  * map is constant there (the `halfflat` mesh of the flatness test). */
 static void mesh__halves(mesh__builder *b, int q, int flat_left)

@@ -44,7 +44,7 @@ typedef struct mesh_data {
  *   fullscreen  clip-space quad, 4 vertices, 2 triangles, z = 0, clip_space
  *   cylinder    radius 1, y in [-1,1]; density = segments, 3..1024, default
  *               58: segments × 12 side quads + two fans = 26·segments
- *               triangles (1 508 by default, as in SEEDS S3)
+ *               triangles (1 508 by default, as in study S3 (docs/studies.md))
  *   sphere      icosphere of radius 1; density = subdivision level 0..7,
  *               default 4: 20·4^level triangles (5 120), seam vertices
  *               duplicated so u runs past 1 instead of wrapping back
@@ -52,8 +52,8 @@ typedef struct mesh_data {
  *               = tiles per side, 1..512, default 16: (d+1)² shared
  *               vertices, 2d² triangles; each tile is also one quad patch
  *               (n_quad_indices), neighbouring tiles share their edge
- *               vertices (SEEDS S4)
- *   asteroid    the original body of SEEDS S4: icosphere of level density
+ *               vertices (study S4 (docs/studies.md))
+ *   asteroid    the original body of study S4 (docs/studies.md): icosphere of level density
  *               (0..7, default 6: 81 920 triangles) displaced radially on
  *               the CPU by mesh_asteroid_radius, normals rebuilt from the
  *               faces
@@ -83,7 +83,7 @@ const char *const *mesh_names(void);
  * DM_ERR_UNKNOWN for an unknown name / DM_ERR_RANGE for a bad density, with
  * out untouched. */
 int mesh_build(const mesh_desc *desc, mesh_data *out);
-/* Recomputes tangents from triangle edges and UV deltas (SEEDS S1 formula),
+/* Recomputes tangents from triangle edges and UV deltas (study S1 (docs/studies.md) formula),
  * accumulated per vertex and Gram–Schmidt orthonormalised against the
  * normal.  Degenerate UV triangles (|M| < 1e-12) add nothing; a vertex left
  * without a usable tangent gets a unit vector perpendicular to its normal

@@ -2,7 +2,7 @@
  *
  * Adding a technique = one entry here + its GLSL under techniques/glsl/.
  * The fragment-stage techniques share surface.vert.glsl (TBN in the vertex
- * stage, light and view vectors moved to tangent space — SEEDS S1 method 3)
+ * stage, light and view vectors moved to tangent space — study S1 (docs/studies.md) method 3)
  * and surface.frag.glsl, whose variants are chosen by #define:
  *   SURF_UNLIT        albedo only, no lighting
  *   SURF_NORMAL_MAP   normal from the normal map (else the surface normal,

@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # The unit and GL integration tests, built with AddressSanitizer +
-# UndefinedBehaviorSanitizer in a tree of their own (SPEC §13).  Any
+# UndefinedBehaviorSanitizer in a tree of their own.  Any
 # sanitizer report fails the test that triggered it, and so this one.
 set -euo pipefail
 SRC=${DMBENCH_SOURCE_DIR:?}

@@ -13,7 +13,7 @@
 #include "counters/counters.h"
 #include "counters/counters_expr.h"
 
-/* Every counter SPEC §4 names, with its group. */
+/* Every counter docs/counters.md names, with its group. */
 static const char *const spec_counters[][2] = {
     {"WallTime", "Timing"}, {"GPUTime", "Timing"}, {"CPUTime", "Timing"},
     {"SubmitTime", "Timing"}, {"GeometryTime", "Timing"}, {"SetupTime", "Timing"},

@@ -48,7 +48,7 @@ static void test_defaults_and_scene(void **state)
     assert_string_equal(s.axes[2].values[0], "640x360");
     assert_string_equal(s.axes[2].values[1], "320x180");
     assert_int_equal(s.axes[0].line, 8);
-    /* measure defaults (SPEC §3) */
+    /* measure defaults (docs/sweep-files.md) */
     assert_int_equal(s.measure.warmup_frames, 8);
     assert_int_equal(s.measure.frames_per_sample, 16);
     assert_int_equal(s.measure.samples_min, 5);

@@ -1,4 +1,4 @@
-// surface.vert.glsl — TBN in the vertex stage (SEEDS S1 method 3): the view
+// surface.vert.glsl — TBN in the vertex stage (study S1 (docs/studies.md) method 3): the view
 // and light vectors are moved into tangent space and interpolated.
 #include "common.glsl"
 

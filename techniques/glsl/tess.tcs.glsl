@@ -11,7 +11,7 @@
 // PATCH_CULL_ON: levels 0 (patch discarded) when the patch faces away from
 // the camera or all its vertices lie outside one clip plane widened by
 // CULL_MARGIN (relative to w) — displacement can move it back into view.
-// TESS_QUADS: 4-vertex quad patches (the terrain tiles, SEEDS S4), corners
+// TESS_QUADS: 4-vertex quad patches (the terrain tiles, study S4 (docs/studies.md)), corners
 // in domain order (0,0), (1,0), (1,1), (0,1); outer level i belongs to
 // edge u=0, v=0, u=1, v=1 as GL defines them, inner 0 / 1 to the u / v
 // direction.  Otherwise triangle patches: outer level i belongs to the edge

@@ -33,7 +33,7 @@ declare -A expected=(
 # A valid value for options whose value is checked; others take "x".
 declare -A value=(
   [--shard]=1/2 [--budget]=1 [--seed]=1 [--metric]=rmse [--loss]=huber [--passes]=WallTime
-  [--time-threshold]=5% [--threshold]=1% [--alpha]=0.1 [--psnr-drop]=1 [--ssim-drop]=0.1 [--tolerance]=A=1
+  [--time-threshold]=5% [--threshold]=1% [--alpha]=0.1 [--psnr-drop]=1 [--ssim-drop]=0.1 [--tolerance]=FSInvocations=1
   [--rounds]=1 [--supersample]=2 [--debug]=normals [--frames]=1 [--timed-seconds]=1
   [--paired]="a b c" [--shards]=2 [--format]=gbench
 )

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Bad input (SPEC §11): exit 2, a message naming file:line and the valid
+# Bad input (docs/reliability.md): exit 2, a message naming file:line and the valid
 # choices, and nothing written.
 set -uo pipefail
 BIN=${DMBENCH_BINARY:?}

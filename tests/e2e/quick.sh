@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The embedded default sweep in its --quick form (SPEC §1, the 1-minute
+# The embedded default sweep in its --quick form (README, the 1-minute
 # version): no file, every technique, results and report written, nothing
 # failed.  Prints its wall time; the time bound only catches a run-away.
 set -euo pipefail

@@ -53,7 +53,7 @@ for c in j["configs"]:
     sp = c["counters"]["SamplesPassed"]
     w, h = map(int, c["params"]["resolution"].split("x"))
     assert 0 < sp["value"] <= w * h, sp
-    # derived counters are formulas over the measured values (SPEC §4)
+    # derived counters are formulas over the measured values (docs/counters.md)
     fs = c["counters"]["FSInvocations"]["value"]
     assert abs(c["counters"]["ShadingEfficiency"]["value"] - sp["value"] / fs) < 1e-12
     assert abs(c["counters"]["Overdraw"]["value"] - sp["value"] / (w * h)) < 1e-12
