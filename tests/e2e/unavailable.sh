@@ -2,7 +2,8 @@
 # A counter the driver cannot provide is reported as unavailable with the
 # reason — never as 0 — through results.json, results.csv and the report.
 # The missing extension is simulated with DMBENCH_HIDE_EXTENSIONS; missing
-# Valgrind (Instructions) with DMBENCH_VALGRIND naming no executable.
+# Valgrind (Instructions) with DMBENCH_VALGRIND naming no executable, and
+# Valgrind crashing or hanging with DMBENCH_VALGRIND naming a script that does.
 set -euo pipefail
 BIN=${DMBENCH_BINARY:?}
 SRC=${DMBENCH_SOURCE_DIR:?}
@@ -49,4 +50,43 @@ for c in j["configs"]:
 assert j["passes"]["Instructions"] == "instructions" and j["passes"]["WallTime"] == "timing"
 print("Instructions unavailable ok")
 PY
-echo "2 passed, 0 failed"
+# Valgrind crashing or hanging in the Instructions child: every
+# configuration it was counting fails with Valgrind's own message (the hang
+# through the watchdog, 10 x timeout_s), Valgrind is started once (no endless
+# retry), nothing is left running, and the run finishes.
+cat > "$OUT/crash-valgrind" <<'SH'
+#!/bin/sh
+echo started >> "$FAKE_VG_LOG"
+echo "==1== valgrind: the 'impossible' happened (simulated)" >&2
+exit 1
+SH
+cat > "$OUT/hang-valgrind" <<'SH'
+#!/bin/sh
+echo started >> "$FAKE_VG_LOG"
+echo "==1== valgrind: simulated hang" >&2
+exec sleep 600
+SH
+chmod +x "$OUT/crash-valgrind" "$OUT/hang-valgrind"
+if grep -q '^  timeout_s:' "$OUT/instr.yaml"; then
+  sed -i 's/^  timeout_s: .*/  timeout_s: 1/' "$OUT/instr.yaml"
+else
+  sed -i 's/^measure:/measure:\n  timeout_s: 1/' "$OUT/instr.yaml"
+fi
+for kind in crash hang; do
+  FAKE_VG_LOG=$OUT/$kind.log DMBENCH_VALGRIND=$OUT/$kind-valgrind \
+    timeout 120 "$BIN" run "$OUT/instr.yaml" --out "$OUT/$kind" --quiet
+  [ "$(wc -l < "$OUT/$kind.log")" -eq 1 ] || { echo "FAIL: $kind: Valgrind started $(wc -l < "$OUT/$kind.log") times"; exit 1; }
+  python3 - "$OUT/$kind/latest" "$kind" <<'PY'
+import json, os, sys
+j = json.load(open(os.path.join(sys.argv[1], "results.json")))
+want = {"crash": "exited with status 1", "hang": "made no progress for 10 s (killed)"}[sys.argv[2]]
+msg = {"crash": "the 'impossible' happened", "hang": "simulated hang"}[sys.argv[2]]
+assert j["configs"]
+for c in j["configs"]:
+    assert c["status"] == "failed", c
+    assert want in c["reason"] and msg in c["reason"], c["reason"]
+print(sys.argv[2], "ok: every configuration failed with Valgrind's message")
+PY
+done
+pgrep -f "sleep 600" >/dev/null && { echo "FAIL: the hung Valgrind child was left running"; exit 1; }
+echo "3 passed, 0 failed"
