@@ -628,7 +628,7 @@ static void proxy_section(dm_str *s, const dm_run_result *run)
 {
     report_proxy p;
     if (report_proxy_fit(run, &p) == 0) {
-        dm_str_printf(s, "<h2 id="proxy">Instructions as a proxy for frame time</h2>\n<p>WallTime ≈ %.4g ns + "
+        dm_str_printf(s, "<h2 id=\"proxy\">Instructions as a proxy for frame time</h2>\n<p>WallTime ≈ %.4g ns + "
                       "%.4g ns × Instructions over %zu configurations: R² = %.5f.</p>\n"
                       "<table><tr><th>strays most</th><th>WallTime</th><th>predicted</th>"
                       "<th>residual</th></tr>\n", p.a_ns, p.ns_per_instruction, p.n, p.r2);
@@ -643,7 +643,7 @@ static void proxy_section(dm_str *s, const dm_run_result *run)
     }
     dm_str passes = {0};
     report_proxy_passes_text(run, "\n", &passes);
-    dm_str_cat(s, "<h2 id="passes">Counters by pass</h2>\n<ul>\n");
+    dm_str_cat(s, "<h2 id=\"passes\">Counters by pass</h2>\n<ul>\n");
     char *save = NULL;
     for (char *l = passes.buf ? strtok_r(passes.buf, "\n", &save) : NULL; l; l = strtok_r(NULL, "\n", &save))
         tagged(s, "li", l);

@@ -12,6 +12,7 @@
 #include "store/store.h"
 #include "reports/metric.h"
 #include "reports/report.h"
+#include "techniques/axes.h"
 #include "techniques/technique.h"
 
 #include <epoxy/gl.h>
@@ -73,6 +74,9 @@ static void runner__probe_child(int fd)
             if (ext && epoxy_has_gl_extension(ext))
                 dm_str_printf(&out, "X\t%s\n", ext);
         }
+        for (size_t i = 0; axes_value_ext_at(i); i++)
+            if (epoxy_has_gl_extension(axes_value_ext_at(i)))
+                dm_str_printf(&out, "X\t%s\n", axes_value_ext_at(i));
         counters_context_destroy(cc);
         dm_kv_free(kv, n);
         gl_context_destroy(gl);
