@@ -22,12 +22,16 @@ typedef struct runner_opts {
     uint64_t seed;             /* round order; 0 = 1 */
     double budget_s;           /* > 0: leave out configurations predicted to take longer */
     const char *tag;           /* stored with the run */
+    int dry_run;               /* print the plan (and estimates) to stdout; measure nothing */
     int quiet, verbose;
 } runner_opts;
 
 /* Runs the sweep.  Returns 0 when the run completed (failed configurations
  * are results, not errors) and sets *run_dir (caller frees); DM_ERR_* with a
- * message in err when it could not run at all. */
+ * message in err when it could not run at all.  With o->dry_run it plans
+ * (probing the driver for the left-out configurations), prints the plan with
+ * the estimates a stored model of o->out_root gives, creates nothing,
+ * returns 0 and leaves *run_dir untouched. */
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err);
 
 #endif

@@ -15,3 +15,4 @@ add_test(NAME test_ci_gate COMMAND bash ${CMAKE_SOURCE_DIR}/ci/gate.sh $<TARGET_
 set_tests_properties(test_ci_gate PROPERTIES TIMEOUT 1200 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")
 dm_add_e2e(test_e2e_quick quick.sh)
 dm_add_e2e(test_e2e_exchange exchange.sh)
+dm_add_e2e(test_e2e_dry_run dry_run.sh)
