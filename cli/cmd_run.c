@@ -59,6 +59,9 @@ const cli_option cli_run_options[] = {
                "a name stored with the run (compare --base-tag/--new-tag)"),
     CLI_BOOL("quick", run_args, quick,
              "without SWEEP.yaml: the one-minute version of the default sweep"),
+    CLI_BOOL("dry-run", run_args, o.dry_run,
+             "print the planned configurations (folded, left out with reasons, estimated time "
+             "from a stored model) and exit without measuring"),
     CLI_BOOL("quiet", run_args, o.quiet, "no progress output"),
     CLI_BOOL("verbose", run_args, o.verbose,
              "debug logging, and why a stored model could not predict a configuration"),
@@ -101,7 +104,7 @@ int cli_run(int argc, char **argv)
         dm_str_free(&err);
         return dm_exit_from_error(rc);
     }
-    if (!a->o.quiet)
+    if (!a->o.quiet && dir)
         printf("report: %s/report.html\n", dir);
     free(dir);
     return DM_EXIT_OK;

@@ -12,6 +12,7 @@
 #include "store/store.h"
 #include "reports/metric.h"
 #include "reports/report.h"
+#include "techniques/axes.h"
 #include "techniques/technique.h"
 
 #include <epoxy/gl.h>
@@ -79,6 +80,9 @@ static void runner__probe_child(int fd)
             if (ext && epoxy_has_gl_extension(ext))
                 dm_str_printf(&out, "X\t%s\n", ext);
         }
+        for (size_t i = 0; axes_value_ext_at(i); i++)
+            if (epoxy_has_gl_extension(axes_value_ext_at(i)))
+                dm_str_printf(&out, "X\t%s\n", axes_value_ext_at(i));
         counters_context_destroy(cc);
         dm_kv_free(kv, n);
         gl_context_destroy(gl);
@@ -630,6 +634,91 @@ static void runner__budget(runner *r)
     runner__budget_free(&b);
 }
 
+/* ---- --dry-run: the plan, printed, nothing measured ----------------------------- */
+
+/* The values of the sweep's own axes in a configuration ("technique=pom
+ * shadow=raytrace"), the part of it the user chose; axes the technique does
+ * not read are absent (folded). */
+static void runner__dry_label(const sweep *s, const dm_kv *params, size_t n, FILE *f)
+{
+    const char *tech = dm_kv_get(params, n, "technique");
+    fprintf(f, "technique=%s", tech ? tech : "?");
+    for (size_t i = 0; i < s->n_axes; i++) {
+        const char *v = dm_kv_get(params, n, s->axes[i].name);
+        if (v && strcmp(s->axes[i].name, "technique") != 0)
+            fprintf(f, " %s=%s", s->axes[i].name, v);
+    }
+}
+
+/* Opens the store of --out only when it exists (a dry run creates nothing),
+ * and loads what --budget would know from it. */
+static void runner__dry_models(runner *r, runner_budget *b)
+{
+    char *path = dm_xasprintf("%s/dmbench.sqlite", r->o->out_root ? r->o->out_root : "results");
+    dm_str err = {0};
+    if (dm_file_exists(path) && store_open(path, &r->st, &err) == 0)
+        runner__budget_load(r, b);
+    else if (dm_file_exists(path))
+        dm_log(DM_LOG_WARN, "%s: cannot read the store, so no estimates: %s", path, dm_str_get(&err));
+    dm_str_free(&err);
+    free(path);
+}
+
+/* One planned configuration: key, scene, label, folded combinations and the
+ * predicted measuring time (added to *total) where a stored model has one. */
+static int runner__dry_config(runner *r, runner_budget *b, const plan_config *c, double *total)
+{
+    const dm_fit_result *fit = NULL;
+    double ns = b->n_fits ? runner__model_frame(b, c, &fit) : NAN;
+    printf("  %s  %s  ", c->key, c->scene);
+    runner__dry_label(r->s, c->params, c->n_params, stdout);
+    if (c->folded > 1)
+        printf("  (%zu combinations folded)", c->folded);
+    if (!fit) {
+        printf("  estimate: none (no stored model predicts it)\n");
+        return 0;
+    }
+    double t = runner__predict(&r->s->measure, ns);
+    *total += t;
+    printf("  estimate: %.3g ms/frame, %.2g s (model %s)\n", ns / 1e6, t, fit->model);
+    return 1;
+}
+
+/* --dry-run: prints the counts, every planned configuration with its
+ * estimate, the left-out ones with their reasons and the estimated total;
+ * measures nothing and writes nothing. */
+static void runner__dry_run(runner *r)
+{
+    const plan *p = &r->p;
+    runner_budget b = {0};
+    runner__dry_models(r, &b);
+    printf("dry run of %s (%s): %zu combinations -> %zu configurations (%zu excluded by the "
+           "sweep, %zu folded: axes the technique does not read); %zu planned, %zu left out; "
+           "nothing is measured\n", r->s->name, r->s->path ? r->s->path : "<default>",
+           p->n_combinations, p->n_configs + p->n_left_out, p->n_excluded,
+           p->n_combinations - p->n_excluded - p->n_configs - p->n_left_out, p->n_configs,
+           p->n_left_out);
+    printf("planned configurations (%zu):\n", p->n_configs);
+    double total = 0;
+    size_t n_est = 0;
+    for (size_t i = 0; i < p->n_configs; i++)
+        n_est += (size_t)runner__dry_config(r, &b, &p->configs[i], &total);
+    printf("left out (%zu):\n", p->n_left_out);
+    for (size_t i = 0; i < p->n_left_out; i++) {
+        printf("  ");
+        runner__dry_label(r->s, p->left_out[i].params, p->left_out[i].n_params, stdout);
+        printf(": %s\n", p->left_out[i].reason);
+    }
+    if (n_est)
+        printf("estimated time: %.2g s for the %zu of %zu configurations a stored model predicts "
+               "(run %s)%s\n", total, n_est, p->n_configs, b.fits_run,
+               n_est < p->n_configs ? "; the others have no estimate" : "");
+    else
+        printf("estimated time: unknown (no stored run on this machine has a model that predicts "
+               "these configurations)\n");
+    runner__budget_free(&b);
+}
+
 /* ---- run directory, store, report ---------------------------------------------- */
 
 /* Configurations of the run now in the store. */
@@ -1043,6 +1132,11 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
     rc = rc ? rc : runner__probe(&r, err);
     if (rc == 0)
         plan_filter_capabilities(&r.p, runner__has_ext, &r);
+    if (rc == 0 && o->dry_run) {
+        runner__dry_run(&r);
+        runner__free(&r);
+        return 0;
+    }
     rc = rc ? rc : runner__open(&r, err);
     if (rc == 0 && o->budget_s > 0 && !o->resume)
         runner__budget(&r);

@@ -27,6 +27,7 @@ typedef struct runner_opts {
     uint64_t seed;             /* round order; 0 = 1 */
     double budget_s;           /* > 0: leave out configurations predicted to take longer */
     const char *tag;           /* stored with the run */
+    int dry_run;               /* print the plan (and estimates) to stdout; measure nothing */
     int quiet, verbose;
 } runner_opts;
 
@@ -41,7 +42,10 @@ int runner_parse_seed(const char *text, uint64_t *seed, dm_str *err);
  * are results, not errors) and sets *run_dir (caller frees); DM_ERR_* with a
  * message in err when it could not run at all or was stopped: DM_ERR_BUSY
  * (--out locked by another run), DM_ERR_STORE (damaged store, disk full),
- * DM_ERR_CHILD (measuring processes that keep dying); see dm_exit_from_error(). */
+ * DM_ERR_CHILD (measuring processes that keep dying); see dm_exit_from_error().
+ * With o->dry_run it plans (probing the driver for the left-out
+ * configurations), prints the plan with the estimates a stored model of
+ * o->out_root gives, creates nothing, returns 0 and leaves *run_dir untouched. */
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err);
 
 #endif

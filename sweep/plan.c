@@ -255,8 +255,12 @@ void plan_filter_capabilities(plan *p, int (*has_ext)(const char *ext, void *use
     for (size_t i = 0; i < p->n_configs; i++) {
         const char *tname = dm_kv_get(p->configs[i].params, p->configs[i].n_params, "technique");
         const technique_desc *t = technique_find(tname);
-        if (t && t->requires_ext && !has_ext(t->requires_ext, user)) {
-            char *why = dm_xasprintf("the driver lacks %s, which %s needs", t->requires_ext, tname);
+        char *why = t && t->requires_ext && !has_ext(t->requires_ext, user)
+            ? dm_xasprintf("the driver lacks %s, which %s needs", t->requires_ext, tname) : NULL;
+        for (size_t k = 0; !why && k < p->configs[i].n_params; k++)
+            why = axes_value_refusal(p->configs[i].params[k].key, p->configs[i].params[k].value,
+                                     has_ext, user);
+        if (why) {
             plan__leave_out_at(p, i, why);
             free(why);
             continue;

@@ -45,7 +45,8 @@ typedef void (*plan_progress_fn)(size_t done, size_t total, void *user);
 int plan_build_progress(const sweep *s, plan *out, dm_str *err, plan_progress_fn progress,
                         void *user);
 /* Leaves out configurations whose technique needs an extension the driver
- * lacks (has_ext(name) == 0), recording the reason. */
+ * lacks (has_ext(name) == 0), and those with an axis value the driver or
+ * dmbench cannot measure (axes_value_refusal), recording the reason. */
 void plan_filter_capabilities(plan *p, int (*has_ext)(const char *ext, void *user), void *user);
 /* Keeps the deterministic part K of N (1-based K), by key. 0 or DM_ERR_ARG. */
 int plan_shard(plan *p, int k, int n);

@@ -298,3 +298,33 @@ int axes_condition_holds(const char *name, const char *(*value)(const char *axis
     }
     return 1;
 }
+
+/* Axis values that need a driver extension, and those dmbench refuses even
+ * where the extension exists because it does not implement them (axes.h). */
+static const struct {
+    const char *axis, *value, *ext, *unimplemented;
+} axes__needs[] = {
+    {"virtual_texture", "sparse", "GL_ARB_sparse_texture",
+     "dmbench does not implement it: no sparse page is ever committed, and a plain texture "
+     "under that name would measure something else (use virtual_texture=software)"},
+};
+
+const char *axes_value_ext_at(size_t i)
+{
+    return i < sizeof axes__needs / sizeof axes__needs[0] ? axes__needs[i].ext : NULL;
+}
+
+char *axes_value_refusal(const char *axis, const char *value,
+                         int (*has_ext)(const char *ext, void *user), void *user)
+{
+    for (size_t i = 0; i < sizeof axes__needs / sizeof axes__needs[0]; i++) {
+        if (strcmp(axes__needs[i].axis, axis) != 0 || strcmp(axes__needs[i].value, value) != 0)
+            continue;
+        if (!has_ext(axes__needs[i].ext, user))
+            return dm_xasprintf("the driver lacks %s, which %s=%s needs", axes__needs[i].ext, axis,
+                                value);
+        if (axes__needs[i].unimplemented)
+            return dm_xasprintf("%s=%s: %s", axis, value, axes__needs[i].unimplemented);
+    }
+    return NULL;
+}

@@ -52,6 +52,17 @@ char *axes_canonical(const char *name, const char *value);
  * read, so e.g. roughness folds unless lighting=cook-torrance. */
 int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),
                          void *ctx);
+/* Why a configuration with axis=value cannot be measured on a driver, as a
+ * malloc'd reason, or NULL when it can.  Some values need an extension
+ * (has_ext(ext, user) says whether the driver has it): without it the
+ * reason names the extension.  virtual_texture=sparse is refused on every
+ * driver (dmbench commits no sparse pages); the reason says so.  The planner
+ * leaves such configurations out and the renderer refuses them. */
+char *axes_value_refusal(const char *axis, const char *value,
+                         int (*has_ext)(const char *ext, void *user), void *user);
+/* The i-th extension an axis value needs (for the driver probe), or NULL
+ * past the end. */
+const char *axes_value_ext_at(size_t i);
 /* Parses "WxH", "W,H" or "[W, H]" with each side in [1, 8192]; 0 or
  * DM_ERR_ARG (w, h untouched). */
 int axes_parse_size2(const char *s, int *w, int *h);

@@ -32,6 +32,7 @@
 #include <string.h>
 
 #include "core/dm_error.h"
+#include "techniques/axes.h"
 #include "techniques/maps.h"
 #include "techniques/mesh.h"
 #include "techniques/technique.h"
@@ -259,15 +260,23 @@ static void render__note_clamp(const tech_renderer *r, const char *filter, dm_st
                       filter, (double)r->max_aniso);
 }
 
-/* `sparse` where the driver lacks ARB_sparse_texture: left out, with the reason. */
+static int render__has_ext(const char *ext, void *user)
+{
+    (void)user;
+    return epoxy_has_gl_extension(ext);
+}
+
+/* `sparse` is refused with the reason (axes_value_refusal): the missing
+ * extension, or on a driver that has it, that no page is committed. */
 static int render__sparse_check(const render__cfg *c, dm_str *log)
 {
-    if (strcmp(render__get(c, "virtual_texture"), "sparse") == 0 &&
-        !epoxy_has_gl_extension("GL_ARB_sparse_texture")) {
-        dm_str_printf(log, "virtual_texture=sparse needs GL_ARB_sparse_texture, which this driver lacks\n");
-        return DM_ERR_UNSUPPORTED;
-    }
-    return 0;
+    char *why = axes_value_refusal("virtual_texture", render__get(c, "virtual_texture"),
+                                   render__has_ext, NULL);
+    if (!why)
+        return 0;
+    dm_str_printf(log, "%s\n", why);
+    free(why);
+    return DM_ERR_UNSUPPORTED;
 }
 
 /* virtual_texture=software covers the fragment-stage techniques (the maps

@@ -257,6 +257,44 @@ static void test_large_sweep_index(void **state)
     dm_str_free(&err);
 }
 
+/* has_ext for plan_filter_capabilities: user points at the one extension
+ * the pretend driver has, or NULL for none. */
+static int plan_test_has_ext(const char *ext, void *user)
+{
+    return user && strcmp(ext, (const char *)user) == 0;
+}
+
+/* virtual_texture=sparse is left out at plan time with the reason: the
+ * missing extension on a driver without it, "not implemented" on one with
+ * it (never a plain texture under that name); off and software stay. */
+static void test_sparse_left_out(void **state)
+{
+    (void)state;
+    static const char *const drivers[] = {NULL, "GL_ARB_sparse_texture"};
+    static const char *const reasons[] = {
+        "the driver lacks GL_ARB_sparse_texture, which virtual_texture=sparse needs",
+        "virtual_texture=sparse: dmbench does not implement it: no sparse page is ever committed"};
+    for (int d = 0; d < 2; d++) {
+        sweep s;
+        plan p;
+        plan_text("name: t\nsweep:\n  technique: [texture]\n"
+                  "  virtual_texture: [off, software, sparse]\n", &s, &p);
+        assert_int_equal(p.n_configs, 3);
+        plan_filter_capabilities(&p, plan_test_has_ext, (void *)drivers[d]);
+        assert_int_equal(p.n_configs, 2);
+        assert_int_equal(p.n_left_out, 1);
+        assert_string_equal(dm_kv_get(p.left_out[0].params, p.left_out[0].n_params,
+                                      "virtual_texture"), "sparse");
+        if (!strstr(p.left_out[0].reason, reasons[d]))
+            fail_msg("driver %d: reason '%s' lacks '%s'", d, p.left_out[0].reason, reasons[d]);
+        for (size_t i = 0; i < p.n_configs; i++)
+            assert_string_not_equal(dm_kv_get(p.configs[i].params, p.configs[i].n_params,
+                                              "virtual_texture"), "sparse");
+        plan_free(&p);
+        sweep_free(&s);
+    }
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -269,6 +307,7 @@ int main(void)
         cmocka_unit_test(test_shards_partition),
         cmocka_unit_test(test_shuffle_is_seeded_permutation),
         cmocka_unit_test(test_large_sweep_index),
+        cmocka_unit_test(test_sparse_left_out),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
