@@ -221,20 +221,6 @@ int plan_build(const sweep *s, plan *out, dm_str *err)
     return plan_build_progress(s, out, err, NULL, NULL);
 }
 
-void plan_leave_out(plan *p, size_t i, const char *reason)
-{
-    plan_config *c = &p->configs[i];
-    p->left_out = dm_xrealloc(p->left_out, (p->n_left_out + 1) * sizeof *p->left_out);
-    dm_left_out *l = &p->left_out[p->n_left_out++];
-    l->params = c->params;
-    l->n_params = c->n_params;
-    l->reason = dm_xstrdup(reason);
-    free(c->scene);
-    dm_kv_free(c->scene_params, c->n_scene_params);
-    memmove(c, c + 1, (p->n_configs - i - 1) * sizeof *c);
-    p->n_configs--;
-}
-
 /* Moves configuration i to left_out without closing the gap (the caller
  * compacts the array once, so leaving out many stays linear). */
 static void plan__leave_out_at(plan *p, size_t i, const char *reason)
@@ -247,6 +233,13 @@ static void plan__leave_out_at(plan *p, size_t i, const char *reason)
     l->reason = dm_xstrdup(reason);
     free(c->scene);
     dm_kv_free(c->scene_params, c->n_scene_params);
+}
+
+void plan_leave_out(plan *p, size_t i, const char *reason)
+{
+    plan__leave_out_at(p, i, reason);
+    memmove(&p->configs[i], &p->configs[i + 1], (p->n_configs - i - 1) * sizeof *p->configs);
+    p->n_configs--;
 }
 
 void plan_filter_capabilities(plan *p, int (*has_ext)(const char *ext, void *user), void *user)
