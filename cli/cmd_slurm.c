@@ -99,16 +99,16 @@ static int slurm__plan(const slurm_args *a, char **name)
 /* The shards to submit, as sbatch's --array list ("1-4" or "2,4"), or
  * NULL when every shard is complete.  Without --resume, refuses a DIR that
  * already holds shard results.  -1 to go on or an exit code. */
-static int slurm__todo(const slurm_args *a, const char *dir, char **list)
+static int slurm__pending(const slurm_args *a, const char *dir, char **list)
 {
     dm_str s = {0};
-    int found = 0, todo = 0;
+    int found = 0, pending = 0;
     for (int k = 1; k <= a->shards; k++) {
         char *store_path = dm_xasprintf("%s/shards/s%d/dmbench.sqlite", dir, k);
         dm_str why = {0};
         found |= dm_file_exists(store_path);
         if (!a->resume || !slurm_shard_done(dir, k, a->shards, NULL, &why)) {
-            dm_str_printf(&s, "%s%d", todo++ ? "," : "", k);
+            dm_str_printf(&s, "%s%d", pending++ ? "," : "", k);
             if (a->resume && !a->print)
                 fprintf(stderr, "dmbench: slurm: shard %d/%d to run: %s\n", k, a->shards, dm_str_get(&why));
         }
@@ -120,7 +120,7 @@ static int slurm__todo(const slurm_args *a, const char *dir, char **list)
         return cli_usage_error("slurm: %s already holds shard results; continue them with "
                                 "--resume, or give another --out", dir);
     }
-    *list = todo == a->shards ? dm_xasprintf("1-%d", a->shards) : todo ? dm_str_take(&s) : NULL;
+    *list = pending == a->shards ? dm_xasprintf("1-%d", a->shards) : pending ? dm_str_take(&s) : NULL;
     dm_str_free(&s);
     return -1;
 }
@@ -239,7 +239,7 @@ static int slurm__main(const slurm_args *a)
                               "node), or use --print to only write the job scripts");
     rc = rc < 0 ? slurm__paths(a, &d, bin, sweep, dir) : rc;
     d.name = name;
-    rc = rc < 0 ? slurm__todo(a, dir, &list) : rc;
+    rc = rc < 0 ? slurm__pending(a, dir, &list) : rc;
     if (rc < 0 && slurm_write_scripts(&d, &err) != 0)
         rc = cli_usage_error("slurm: %s", dm_str_get(&err));
     if (rc < 0 && a->print) {
