@@ -11,6 +11,7 @@
 #include "counters/counters.h"
 #include "models/catalog.h"
 #include "run/gl_context.h"
+#include "sweep/sweep.h"
 #include "techniques/axes.h"
 #include "techniques/maps.h"
 #include "techniques/mesh.h"
@@ -240,8 +241,36 @@ static int list__models(int json)
     return DM_EXIT_OK;
 }
 
+/* The sweep-file keys of sweep/sweep.c's key table: the Markdown key
+ * reference of docs/sweep-files.md, or a JSON array of the rows. */
+static cJSON *list__key_json(size_t i)
+{
+    const sweep_key *k = sweep_keys_at(i);
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "section", k->section);
+    cJSON_AddStringToObject(o, "key", k->name);
+    cJSON_AddStringToObject(o, "value", k->type);
+    cJSON_AddStringToObject(o, "default", k->deflt);
+    cJSON_AddStringToObject(o, "meaning", k->doc);
+    if (k->example)
+        cJSON_AddStringToObject(o, "example", k->example);
+    return o;
+}
+
+static int list__keys(int json)
+{
+    if (json)
+        return list__json(sweep_keys_count(), list__key_json);
+    dm_str md = {0};
+    sweep_keys_markdown(&md);
+    fputs(dm_str_get(&md), stdout);
+    dm_str_free(&md);
+    return DM_EXIT_OK;
+}
+
 const char *const cli_list_lists[] = { "techniques", "axes", "counters", "meshes", "textures",
-                                          "models", NULL };
+                                          "models", "keys", NULL };
+#define LIST__N (sizeof cli_list_lists / sizeof *cli_list_lists - 1)
 
 typedef struct list_args {
     const char *passes;
@@ -281,8 +310,13 @@ int cli_list(int argc, char **argv)
 {
     list_args args = {0}, *a = &args;
     int rc = cli_parse(argc, argv, a, &argc);
-    if (rc < 0 && argc == 0)
-        rc = cli_usage_error("usage: dmbench list techniques|axes|counters|meshes|textures|models");
+    if (rc < 0 && argc == 0) {
+        dm_str msg = {0};
+        dm_str_cat(&msg, "list: which list? ");
+        dm_str_expected(&msg, NULL, cli_list_lists, LIST__N);
+        rc = cli_usage_error("%s", dm_str_get(&msg));
+        dm_str_free(&msg);
+    }
     if (rc < 0 && argc > 1)
         rc = cli_usage_error("list: one list at a time ('%s' and '%s')", argv[0], argv[1]);
     if (rc >= 0)
@@ -302,9 +336,11 @@ int cli_list(int argc, char **argv)
         return list__names(maps_names(), a->json);
     if (strcmp(w, "models") == 0)
         return list__models(a->json);
+    if (strcmp(w, "keys") == 0)
+        return list__keys(a->json);
     dm_str msg = {0};
     dm_str_printf(&msg, "list: unknown list '%s'", w);
-    dm_str_suggest(&msg, w, cli_list_lists, sizeof cli_list_lists / sizeof *cli_list_lists - 1, "lists");
+    dm_str_suggest(&msg, w, cli_list_lists, LIST__N, "lists");
     rc = cli_usage_error("%s", dm_str_get(&msg));
     dm_str_free(&msg);
     return rc;

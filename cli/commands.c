@@ -70,9 +70,10 @@ static const cli_command commands[] = {
       .description = "Without KEY, every timed configuration of the run (--technique and --scene\n"
                      "narrow it).  Only runs with the same machine fingerprint are shown." },
     { .name = "list", .fn = cli_list, .options = cli_list_options, .pos_choices = cli_list_lists,
-      .summary = "list the techniques, axes, counters, meshes, textures or built-in models",
-      .synopsis = "techniques|axes|counters|meshes|textures|models",
+      .summary = "list the techniques, axes, counters, meshes, textures, built-in models or sweep-file keys",
+      .synopsis = "techniques|axes|counters|meshes|textures|models|keys",
       .description = "Each list comes from its registry; --json prints it as a JSON array.\n"
+                     "'keys' prints the sweep-file key reference of docs/sweep-files.md.\n"
                      "Counters show their availability on this driver (with a GL context)." },
     { .name = "info", .fn = cli_info, .options = cli_info_options,
       .summary = "the GL context, extensions, limits and whether GPUTime can be trusted" },

@@ -365,3 +365,11 @@ const char *dm_term_safe(const char *text, char **buf)
         }
     return text;
 }
+
+void dm_vec_push(void *arr, size_t *n, const void *elem, size_t size)
+{
+    void **p = arr;
+    *p = dm_xrealloc(*p, (*n + 1) * size);
+    memcpy((char *)*p + *n * size, elem, size);
+    (*n)++;
+}

@@ -19,6 +19,13 @@ enum dm_log_level dm_log_get_level(void);
 void dm_log(enum dm_log_level level, const char *fmt, ...)
     __attribute__((format(printf, 2, 3)));
 
+/* ---- growable arrays --------------------------------------------------
+ * The one convention for arrays that grow: a pointer and a count side by
+ * side, appended to with dm_vec_push (one realloc per element; the arrays
+ * here hold tens of elements, not millions). */
+/* Appends the `size` bytes at elem to the array *(T **)arr of *n elements. */
+void dm_vec_push(void *arr, size_t *n, const void *elem, size_t size);
+
 /* ---- growable string -------------------------------------------------- */
 typedef struct dm_str { char *buf; size_t len, cap; } dm_str;
 /* Appends; on allocation failure aborts (strings are small; see dm_xmalloc). */

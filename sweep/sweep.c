@@ -12,6 +12,8 @@
 #include "reports/metric.h"
 
 #include <math.h>
+#include <stddef.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 #include <yaml.h>
@@ -23,6 +25,10 @@ typedef struct pctx {
     const char *path;
     dm_str *err;
     sweep *s;
+    sweep_axis **axes;          /* the axis block being read: sweep or an exclude entry */
+    size_t *n_axes;
+    sweep_model *model;         /* the models[] entry being read */
+    unsigned char seen[64];     /* rows of the key table the file gave */
 } pctx;
 
 #define P__FOREACH_PAIR(c, map, pair)                                           \
@@ -50,20 +56,6 @@ static const char *p__scalar(const yaml_node_t *n)
 }
 
 static yaml_node_t *p__node(pctx *c, int id) { return yaml_document_get_node(c->doc, id); }
-
-/* Rejects an unknown key, listing the valid ones and the closest match. */
-static int p__unknown_key(pctx *c, yaml_node_t *k, const char *where,
-                          const char *const *valid, size_t n)
-{
-    const char *key = p__scalar(k) ? p__scalar(k) : "?";
-    const char *close = dm_closest(key, valid, n);
-    p__fail(c, k, "unknown key '%s' in %s", key, where);
-    if (close)
-        dm_str_printf(c->err, "; did you mean '%s'?", close);
-    dm_str_cat(c->err, " valid keys: ");
-    dm_str_cat_list(c->err, valid, n);
-    return DM_ERR_PARSE;
-}
 
 static int p__int(pctx *c, yaml_node_t *n, const char *what, long lo, long hi, int *out)
 {
@@ -221,133 +213,530 @@ static int p__expect_map(pctx *c, yaml_node_t *n, const char *what)
     return 0;
 }
 
-/* scene: { camera: {...}, lights: {...}, material: {...}, <axis>: value } */
-static int p__scene_group(pctx *c, yaml_node_t *map, const char *group,
-                          const char *const *keys, const char *const *axes, size_t n)
+/* ---- The key table --------------------------------------------------------
+ *
+ * Every key a sweep file may hold is one row below: where it stands, what
+ * parses it, its range and default, and what the docs say of it.  The
+ * parser walks a mapping by looking each key up here (p__section), the
+ * defaults are filled in from here, and docs/sweep-files.md's key reference
+ * is generated from here (`dmbench __gen-sweep-keys`; a test keeps the two
+ * equal), so the parser and the docs cannot drift apart. */
+
+typedef struct p__key p__key;
+typedef int (*p__fn)(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v);
+
+struct p__key {
+    sweep_key doc;           /* section, name, type, default, meaning, example */
+    p__fn fn;
+    const char *arg;         /* the axis a scene key sets, the section a key opens, or what a
+                                list holds (for the message when it is not a list) */
+    int (*entry)(pctx *c, yaml_node_t *e);   /* lists: reads one entry */
+    size_t off;              /* numeric keys: the field in `sweep` */
+    double lo, hi, def;      /* numeric keys: range and default */
+};
+
+static int p__section(pctx *c, yaml_node_t *map, const char *section);
+
+/* "section.name" of a row, for messages. */
+static const char *p__what(const p__key *row, char *buf, size_t size)
 {
-    int rc = p__expect_map(c, map, group);
-    if (rc)
-        return rc;
-    P__FOREACH_PAIR(c, map, pr) {
-        yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const char *name = p__scalar(k);
-        size_t i = 0;
-        while (i < n && (!name || strcmp(name, keys[i]) != 0))
-            i++;
-        if (i == n)
-            return p__unknown_key(c, k, group, keys, n);
-        if (axes[i] && (rc = p__set_scene(c, axes[i], k, v)))
-            return rc;
+    snprintf(buf, size, "%s%s%s", row->doc.section, *row->doc.section ? "." : "", row->doc.name);
+    return buf;
+}
+
+static int p__k_int(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)k;
+    char what[64];
+    return p__int(c, v, p__what(row, what, sizeof what), (long)row->lo, (long)row->hi,
+                  (int *)(void *)((char *)c->s + row->off));
+}
+
+static int p__k_real(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)k;
+    char what[64];
+    return p__real(c, v, p__what(row, what, sizeof what), row->lo, row->hi,
+                   (double *)(void *)((char *)c->s + row->off));
+}
+
+/* A nested mapping: its keys are the rows of section `arg`. */
+static int p__k_section(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)k;
+    return p__section(c, v, row->arg);
+}
+
+/* A scene default: the axis `arg`, or the key itself when arg is NULL. */
+static int p__k_scene_axis(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    return p__set_scene(c, row->arg ? row->arg : p__scalar(k), k, v);
+}
+
+static int p__k_name(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)row, (void)k;
+    if (!p__scalar(v) || !*p__scalar(v))
+        return p__fail(c, v, "name: expected a non-empty string");
+    free(c->s->name);
+    c->s->name = dm_xstrdup(p__scalar(v));
+    return 0;
+}
+
+/* measure.samples: max may not be below min when both are given. */
+static int p__k_samples(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    const sweep_measure *m = &c->s->measure;
+    int rc = p__k_section(c, row, k, v);
+    if (rc == 0 && m->samples_min && m->samples_max && m->samples_max < m->samples_min)
+        rc = p__fail(c, v, "measure.samples: max (%d) is less than min (%d)", m->samples_max,
+                     m->samples_min);
+    return rc;
+}
+
+static int p__k_counters(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)row, (void)k;
+    if (v->type != YAML_SEQUENCE_NODE)
+        return p__fail(c, v, "measure.counters: expected a list of counter names");
+    sweep_measure *m = &c->s->measure;
+    for (yaml_node_item_t *it = v->data.sequence.items.start; it < v->data.sequence.items.top; it++) {
+        yaml_node_t *n = p__node(c, *it);
+        const char *name = p__scalar(n);
+        if (!name || !counters_find(name)) {
+            size_t nc = counters_count();
+            const char **names = dm_xmalloc(nc * sizeof *names);
+            for (size_t i = 0; i < nc; i++)
+                names[i] = counters_info_at(i)->name;
+            p__fail(c, n, "unknown counter '%s'", name ? name : "?");
+            dm_str_suggest(c->err, name, names, nc, "counters");
+            free(names);
+            return DM_ERR_PARSE;
+        }
+        m->counters = dm_xrealloc(m->counters, (m->n_counters + 1) * sizeof *m->counters);
+        m->counters[m->n_counters++] = dm_xstrdup(name);
     }
     return 0;
 }
 
-static int p__scene(pctx *c, yaml_node_t *map)
+/* scene.material: its keys, then the user's map files as one `maps` value. */
+static int p__k_material(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
 {
-    static const char *const cam_keys[] = { "distance", "azimuth", "elevation", "fov" };
-    static const char *const cam_axes[] = { "camera.distance", "camera.azimuth",
-                                            "camera.elevation", "camera.fov" };
-    static const char *const light_keys[] = { "model", "count" };
-    static const char *const light_axes[] = { "lighting", "light_count" };
-    static const char *const mat_keys[] = { "maps", "height_scale", "height", "normal", "albedo" };
-    static const char *const mat_axes[] = { "maps", "height_scale", NULL, NULL, NULL };
-    int rc = p__expect_map(c, map, "scene");
-    if (rc)
-        return rc;
-    P__FOREACH_PAIR(c, map, pr) {
-        yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const char *name = p__scalar(k) ? p__scalar(k) : "";
-        if (strcmp(name, "camera") == 0)
-            rc = p__scene_group(c, v, "scene.camera", cam_keys, cam_axes, 4);
-        else if (strcmp(name, "lights") == 0)
-            rc = p__scene_group(c, v, "scene.lights", light_keys, light_axes, 2);
-        else if (strcmp(name, "material") == 0)
-            rc = p__scene_group(c, v, "scene.material", mat_keys, mat_axes, 5) ||
-                 p__user_maps(c, v) ? DM_ERR_PARSE : 0;
+    int rc = p__k_section(c, row, k, v);
+    return rc ? rc : p__user_maps(c, v) ? DM_ERR_PARSE : 0;   /* an unreadable map is bad input */
+}
+
+/* scene.material.height|normal|albedo: a file path (read by p__user_maps). */
+static int p__k_map_file(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)k;
+    if (!p__scalar(v) || !*p__scalar(v))
+        return p__fail(c, v, "scene.material.%s: expected a file path", row->doc.name);
+    return 0;
+}
+
+/* One axis of the `sweep` block or of an `exclude` entry: a value or a list
+ * of values appended to the block being read (c->axes). */
+static int p__k_axis_values(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)row;
+    const char *name = p__scalar(k) ? p__scalar(k) : "";
+    if (!axes_find(name))
+        return p__set_scene(c, name, k, v);   /* reports the unknown axis */
+    sweep_axis ax = { .name = dm_xstrdup(name), .line = (int)k->start_mark.line + 1 };
+    /* resolution: [1280, 720] is one value; [[640, 360], "1280x720"] is a list. */
+    int is_pair = 0, rc = 0;
+    if (v->type == YAML_SEQUENCE_NODE && strcmp(name, "resolution") == 0 &&
+        v->data.sequence.items.top - v->data.sequence.items.start == 2) {
+        const char *first = p__scalar(p__node(c, v->data.sequence.items.start[0]));
+        is_pair = first && !strchr(first, 'x');
+    }
+    yaml_node_item_t one = 0, *it = &one, *top = &one + 1;
+    if (v->type == YAML_SEQUENCE_NODE && !is_pair)
+        it = v->data.sequence.items.start, top = v->data.sequence.items.top;
+    for (; it < top && rc == 0; it++) {
+        char *val = p__axis_value(c, name, it == &one ? v : p__node(c, *it));
+        if (!val)
+            rc = DM_ERR_PARSE;
         else
-            rc = p__set_scene(c, name, k, v);
-        if (rc)
-            return rc;
+            dm_vec_push(&ax.values, &ax.n_values, &val, sizeof val);
+    }
+    if (rc == 0 && ax.n_values == 0)
+        rc = p__fail(c, v, "axis '%s' has no values (an empty list would plan nothing)", name);
+    dm_vec_push(c->axes, c->n_axes, &ax, sizeof ax);
+    return rc;
+}
+
+static int p__k_sweep(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    c->axes = &c->s->axes, c->n_axes = &c->s->n_axes;
+    return p__k_section(c, row, k, v);
+}
+
+/* A list whose entries the row's `entry` reads, stopping at the first
+ * error. */
+static int p__k_list(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)k;
+    if (v->type != YAML_SEQUENCE_NODE)
+        return p__fail(c, v, "%s: expected a list of %s", row->doc.name, row->arg);
+    int rc = 0;
+    for (yaml_node_item_t *it = v->data.sequence.items.start; rc == 0 && it < v->data.sequence.items.top; it++)
+        rc = row->entry(c, p__node(c, *it));
+    return rc;
+}
+
+/* One `exclude` entry: {axis: value | [values], ...}. */
+static int p__exclude_entry(pctx *c, yaml_node_t *e)
+{
+    sweep_exclude ex = {.line = (int)e->start_mark.line + 1};
+    c->axes = &ex.axes, c->n_axes = &ex.n_axes;
+    int rc = p__section(c, e, "exclude[]");
+    if (rc == 0 && ex.n_axes == 0)
+        rc = p__fail(c, e, "exclude[]: an empty entry would exclude everything");
+    dm_vec_push(&c->s->excludes, &c->s->n_excludes, &ex, sizeof ex);
+    return rc;
+}
+
+/* Every override of quality.reference must be read by the reference
+ * technique (checked once the map is read, as `technique` may come last);
+ * with technique `same` each configuration's own technique applies. */
+static int p__reference_readable(pctx *c, yaml_node_t *v)
+{
+    const char *name = c->s->ref_technique ? c->s->ref_technique : "reference-mesh";
+    const technique_desc *t = strcmp(name, "same") == 0 ? NULL : technique_find(name);
+    P__FOREACH_PAIR(c, v, rp) {
+        yaml_node_t *rk = p__node(c, rp->key);
+        const char *axis = p__scalar(rk) ? p__scalar(rk) : "";
+        if (t && axes_find(axis) && strcmp(axis, "technique") != 0 && !technique_reads_axis(t, axis))
+            return p__fail(c, rk, "quality.reference: technique '%s' does not read axis '%s', so it "
+                           "cannot set the reference's %s", name, axis, axis);
     }
     return 0;
 }
 
-/* sweep: { axis: [v1, v2, ...] | v } */
-/* A mapping axis -> value | [values] into (*axes, *n): the `sweep` block
- * and each `exclude` entry (`what` names it in messages). */
-static int p__axis_block(pctx *c, yaml_node_t *map, const char *what, sweep_axis **axes, size_t *n_axes)
+static int p__k_reference(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
 {
-    int rc = p__expect_map(c, map, what);
-    if (rc)
-        return rc;
+    int rc = p__k_section(c, row, k, v);
+    return rc ? rc : p__reference_readable(c, v);
+}
+
+static int p__k_ref_technique(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)row, (void)k;
+    int same = p__scalar(v) && strcmp(p__scalar(v), "same") == 0;
+    char *t = same ? dm_xstrdup("same") : p__axis_value(c, "technique", v);
+    if (!t)
+        return DM_ERR_PARSE;
+    free(c->s->ref_technique);
+    c->s->ref_technique = t;
+    return 0;
+}
+
+static int p__unknown_key(pctx *c, yaml_node_t *k, const char *section);
+
+/* quality.reference.<axis>: an axis value set on the reference only. */
+static int p__k_ref_axis(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    const char *name = p__scalar(k) ? p__scalar(k) : "";
+    if (!axes_find(name))
+        return p__unknown_key(c, k, row->doc.section);
+    char *val = p__axis_value(c, name, v);
+    if (!val)
+        return DM_ERR_PARSE;
+    dm_kv_push(&c->s->ref_params, &c->s->n_ref_params, name, val);
+    free(val);
+    return 0;
+}
+
+/* quality.pareto_metric: one of reports/metric.h's names (the list is an
+ * X-macro, so no link to reports/ is needed). */
+static int p__k_pareto(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)row, (void)k;
+    static const char *const names[] = {
+#define P__METRIC_NAME(id, name) name,
+        REPORT_METRICS(P__METRIC_NAME)
+#undef P__METRIC_NAME
+    };
+    const size_t n = sizeof names / sizeof *names;
+    const char *m = p__scalar(v);
+    for (size_t i = 0; m && i < n; i++)
+        if (strcmp(m, names[i]) == 0) {
+            free(c->s->pareto_metric);
+            c->s->pareto_metric = dm_xstrdup(m);
+            return 0;
+        }
+    p__fail(c, v, "quality.pareto_metric: unknown metric '%s'", m ? m : "(not a scalar)");
+    dm_str_suggest(c->err, m, names, n, "metrics");
+    return DM_ERR_PARSE;
+}
+
+/* One `models` entry: {name, formula, response, group_by}. */
+static int p__model_entry(pctx *c, yaml_node_t *e)
+{
+    sweep_model md = { .line = (int)e->start_mark.line + 1 };
+    c->model = &md;
+    int rc = p__section(c, e, "models[]");
+    if (rc == 0 && !md.name)
+        rc = p__fail(c, e, "models[]: every model needs a name");
+    c->model = NULL;
+    dm_vec_push(&c->s->models, &c->s->n_models, &md, sizeof md);
+    return rc;
+}
+
+/* models[].name|formula|response: a string (a response must be a counter). */
+static int p__k_model_text(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)k;
+    const char *name = row->doc.name, *text = p__scalar(v);
+    if (!text || !*text)
+        return p__fail(c, v, "models[].%s: expected a non-empty string", name);
+    if (strcmp(name, "response") == 0 && !counters_find(text))
+        return p__fail(c, v, "models: response '%s' is not a counter", text);
+    char **field = strcmp(name, "name") == 0 ? &c->model->name
+                 : strcmp(name, "formula") == 0 ? &c->model->formula : &c->model->response;
+    free(*field);
+    *field = dm_xstrdup(text);
+    return 0;
+}
+
+static int p__k_group_by(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)row, (void)k;
+    if (v->type != YAML_SEQUENCE_NODE)
+        return p__fail(c, v, "models[].group_by: expected a list of axis names");
+    sweep_model *md = c->model;
+    for (yaml_node_item_t *it = v->data.sequence.items.start; it < v->data.sequence.items.top; it++) {
+        const char *g = p__scalar(p__node(c, *it));
+        if (!g || !axes_find(g))
+            return p__fail(c, p__node(c, *it), "models: group_by: '%s' is not an axis", g ? g : "?");
+        char *copy = dm_xstrdup(g);
+        dm_vec_push(&md->group_by, &md->n_group_by, &copy, sizeof copy);
+    }
+    return 0;
+}
+
+#define P__INT(sec, key, field, lo, hi, def, doc, ex) \
+    { { sec, key, "integer " #lo "–" #hi, #def, doc, ex }, p__k_int, NULL, NULL, offsetof(sweep, field), lo, hi, def }
+#define P__REAL(sec, key, field, lo, hi, def, doc, ex) \
+    { { sec, key, "number " #lo "–" #hi, #def, doc, ex }, p__k_real, NULL, NULL, offsetof(sweep, field), lo, hi, def }
+#define P__ROW(sec, key, fn, arg, type, deflt, doc, ex) { { sec, key, type, deflt, doc, ex }, fn, arg, NULL, 0, 0, 0, 0 }
+#define P__AXIS(sec, key, axis, ex) { { sec, key, "a value of `" axis "`", "the axis' default", \
+    "sets the `" axis "` axis", ex }, p__k_scene_axis, axis, NULL, 0, 0, 0, 0 }
+#define P__FILE(key, doc) { { "scene.material", key, "file path", "procedural", doc, \
+    "maps/" key ".png" }, p__k_map_file, NULL, NULL, 0, 0, 0, 0 }
+#define P__MAP(sec, key, fn, opens, doc) \
+    { { sec, key, "mapping", "see `" opens "`", doc, NULL }, fn, opens, NULL, 0, 0, 0, 0 }
+#define P__LIST(sec, key, entry, holds, deflt, doc) \
+    { { sec, key, "list of mappings", deflt, doc, NULL }, p__k_list, holds, entry, 0, 0, 0, 0 }
+
+static const p__key p__keys[] = {
+    P__ROW("", "name", p__k_name, NULL, "string", "`unnamed`",
+           "name of the sweep, shown in reports and stored with the run", "tess-study"),
+    P__ROW("", "resolution", p__k_scene_axis, "resolution", "`[W, H]` or `\"WxH\"`", "the axis' default",
+           "default render size (the `resolution` axis)", "[480, 270]"),
+    P__MAP("", "measure", p__k_section, "measure", "how each configuration is measured"),
+    P__ROW("", "scene", p__k_section, "scene", "mapping", "catalog defaults",
+           "defaults for every configuration", NULL),
+    P__ROW("", "sweep", p__k_sweep, "sweep", "mapping", "no axes: one configuration",
+           "the axes; their cartesian product is planned", NULL),
+    P__LIST("", "exclude", p__exclude_entry, "{axis: value or [values], ...} entries", "none",
+            "combinations of sweep values not to plan"),
+    P__MAP("", "quality", p__k_section, "quality", "what images are compared with"),
+    P__LIST("", "models", p__model_entry, "{name, formula, group_by, response}", "none",
+            "cost models fitted after the run"),
+
+    P__INT("measure", "warmup_frames", measure.warmup_frames, 0, 100000, 8,
+           "frames drawn before anything is timed; warm-up then goes on until two consecutive "
+           "samples agree within 10 %", "4"),
+    P__INT("measure", "frames_per_sample", measure.frames_per_sample, 1, 100000, 16,
+           "K: one sample is K frames fenced by `glFinish`; frame time = sample / K", "8"),
+    P__REAL("measure", "min_sample_ms", measure.min_sample_ms, 0, 10000, 20,
+            "K is raised per configuration until a sample lasts this long (0: K exactly)", "20"),
+    P__MAP("measure", "samples", p__k_samples, "measure.samples", "how many samples"),
+    P__REAL("measure", "max_seconds", measure.max_seconds, 0.01, 86400, 10,
+            "time cap on sampling one configuration (after `samples.min`)", "6"),
+    P__REAL("measure", "timeout_s", measure.timeout_s, 1, 86400, 120,
+            "watchdog: a configuration without progress for this long is killed and recorded "
+            "as failed", "60"),
+    P__ROW("measure", "counters", p__k_counters, NULL, "list of counter names",
+           "WallTime, CPUTime, SubmitTime, GPUTime, the pipeline statistics, SamplesPassed, "
+           "TextureBytes, MeshBytes, MeshTriangles",
+           "the counters read per configuration (`dmbench list counters`)", "[WallTime, FSInvocations]"),
+
+    P__INT("measure.samples", "min", measure.samples_min, 2, 10000, 5,
+           "never fewer samples", "5"),
+    P__INT("measure.samples", "max", measure.samples_max, 2, 10000, 30,
+           "never more samples (raised to `min` when `min` is larger and `max` is not given)", "30"),
+    P__REAL("measure.samples", "target_ci", measure.target_ci, 0, 1, 0.03,
+            "stop once the 95 % CI of the median is within ± this fraction of it", "0.03"),
+
+    P__MAP("scene", "camera", p__k_section, "scene.camera", "where the camera is"),
+    P__MAP("scene", "lights", p__k_section, "scene.lights", "how the scene is lit"),
+    P__MAP("scene", "material", p__k_material, "scene.material", "the surface's maps"),
+    P__ROW("scene", "*", p__k_scene_axis, NULL, "a value of that axis", "the axis' default",
+           "any axis (`dmbench list axes`): its value for every configuration", "mesh: cube"),
+
+    P__AXIS("scene.camera", "distance", "camera.distance", "3.0"),
+    P__AXIS("scene.camera", "azimuth", "camera.azimuth", "30"),
+    P__AXIS("scene.camera", "elevation", "camera.elevation", "35"),
+    P__AXIS("scene.camera", "fov", "camera.fov", "45"),
+
+    P__AXIS("scene.lights", "model", "lighting", "blinn-phong"),
+    P__AXIS("scene.lights", "count", "light_count", "1"),
+
+    P__AXIS("scene.material", "maps", "maps", "bricks"),
+    P__AXIS("scene.material", "height_scale", "height_scale", "0.06"),
+    P__FILE("height", "the user's height map (relative to the sweep file); with `normal` and "
+            "`albedo` it becomes the `maps` value"),
+    P__FILE("normal", "the user's normal map"),
+    P__FILE("albedo", "the user's albedo map"),
+
+    P__ROW("sweep", "*", p__k_axis_values, NULL, "a value or a list of values", "—",
+           "an axis (`dmbench list axes`) and the values it takes", "tess_level: [1, 16, 64]"),
+    P__ROW("exclude[]", "*", p__k_axis_values, NULL, "a value or a list of values", "—",
+           "a sweep axis; the entry drops combinations with one of these values on every "
+           "axis it names", "technique: phong"),
+
+    P__ROW("quality", "reference", p__k_reference, "quality.reference", "mapping",
+           "see `quality.reference`", "the image every configuration is compared with", NULL),
+    P__ROW("quality", "pareto_metric", p__k_pareto, NULL,
+           "`ssim`, `psnr`, `rmse`, `max-error`, `silhouette` or `depth-rmse`", "`ssim`",
+           "the error the report's Pareto front uses", "psnr"),
+
+    P__ROW("quality.reference", "technique", p__k_ref_technique, NULL, "a technique or `same`",
+           "`reference-mesh`", "the reference's technique; `same`: each configuration "
+           "supersampled", "normal"),
+    P__INT("quality.reference", "supersample", supersample, 1, 8, 4,
+           "the reference is rendered this many times larger per axis, then reduced", "4"),
+    P__ROW("quality.reference", "*", p__k_ref_axis, NULL, "a value of that axis",
+           "the configuration's", "any axis the reference technique reads, set on the "
+           "reference only", "maps: stones"),
+
+    P__ROW("models[]", "name", p__k_model_text, NULL, "string", "— (required)",
+           "the model's name; without `formula` a built-in model (`dmbench list models`)",
+           "pixel-cost"),
+    P__ROW("models[]", "formula", p__k_model_text, NULL, "formula", "the built-in's",
+           "expression and bounds (see `models`)", "\"a + b*SamplesPassed\""),
+    P__ROW("models[]", "response", p__k_model_text, NULL, "counter name", "`WallTime`",
+           "the counter the formula predicts", "WallTime"),
+    P__ROW("models[]", "group_by", p__k_group_by, NULL, "list of axes", "none",
+           "one fit per distinct value of these axes", "[technique]"),
+};
+#define P__N_KEYS (sizeof p__keys / sizeof p__keys[0])
+_Static_assert(P__N_KEYS <= sizeof ((pctx *)0)->seen, "pctx.seen is too small for the key table");
+
+size_t sweep_keys_count(void) { return P__N_KEYS; }
+const sweep_key *sweep_keys_at(size_t i) { return i < P__N_KEYS ? &p__keys[i].doc : NULL; }
+
+/* The row of `name` in `section`, else the section's "*" row, else NULL. */
+static const p__key *p__lookup(const char *section, const char *name)
+{
+    const p__key *any = NULL;
+    for (size_t i = 0; i < P__N_KEYS; i++) {
+        if (strcmp(p__keys[i].doc.section, section) != 0)
+            continue;
+        if (strcmp(p__keys[i].doc.name, name) == 0)
+            return &p__keys[i];
+        if (strcmp(p__keys[i].doc.name, "*") == 0)
+            any = &p__keys[i];
+    }
+    return any;
+}
+
+/* Rejects a key that is no row of `section` (nor an axis where the section
+ * takes axes), listing the valid ones and the closest match. */
+static int p__unknown_key(pctx *c, yaml_node_t *k, const char *section)
+{
+    const char *key = p__scalar(k) ? p__scalar(k) : "?";
+    size_t n = 0;
+    const char **valid = dm_xmalloc((P__N_KEYS + axes_count()) * sizeof *valid);
+    for (size_t i = 0; i < P__N_KEYS; i++)
+        if (strcmp(p__keys[i].doc.section, section) == 0 && strcmp(p__keys[i].doc.name, "*") != 0)
+            valid[n++] = p__keys[i].doc.name;
+    for (size_t i = 0; p__lookup(section, "\x01") && i < axes_count(); i++)
+        valid[n++] = axes_at(i)->name;
+    p__fail(c, k, "unknown key '%s' in %s", key, *section ? section : "the sweep file");
+    dm_str_suggest(c->err, key, valid, n, "keys");
+    free(valid);
+    return DM_ERR_PARSE;
+}
+
+/* Reads a mapping whose keys are the rows of `section`. */
+static int p__section(pctx *c, yaml_node_t *map, const char *section)
+{
+    int rc = p__expect_map(c, map, *section ? section : "sweep file");
     P__FOREACH_PAIR(c, map, pr) {
+        if (rc)
+            break;
         yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const char *name = p__scalar(k) ? p__scalar(k) : "";
-        if (!axes_find(name))
-            return p__set_scene(c, name, k, v);   /* reports the unknown axis */
-        for (size_t i = 0; i < *n_axes; i++)
-            if (strcmp((*axes)[i].name, name) == 0)
-                return p__fail(c, k, "axis '%s' is given twice (first on line %d)", name,
-                               (*axes)[i].line);
-        sweep_axis ax = { .name = dm_xstrdup(name), .line = (int)k->start_mark.line + 1 };
-        /* resolution: [1280, 720] is one value; [[640, 360], "1280x720"] is a list. */
-        int is_pair = 0;
-        if (v->type == YAML_SEQUENCE_NODE && strcmp(name, "resolution") == 0 &&
-            v->data.sequence.items.top - v->data.sequence.items.start == 2) {
-            const char *first = p__scalar(p__node(c, v->data.sequence.items.start[0]));
-            is_pair = first && !strchr(first, 'x');
-        }
-        if (v->type == YAML_SEQUENCE_NODE && !is_pair) {
-            for (yaml_node_item_t *it = v->data.sequence.items.start; it < v->data.sequence.items.top; it++) {
-                char *val = p__axis_value(c, name, p__node(c, *it));
-                if (!val) {
-                    rc = DM_ERR_PARSE;
-                    break;
-                }
-                ax.values = dm_xrealloc(ax.values, (ax.n_values + 1) * sizeof *ax.values);
-                ax.values[ax.n_values++] = val;
-            }
-        } else {
-            char *val = p__axis_value(c, name, v);
-            if (val) {
-                ax.values = dm_xmalloc(sizeof *ax.values);
-                ax.values[ax.n_values++] = val;
-            } else {
-                rc = DM_ERR_PARSE;
-            }
-        }
-        if (rc == 0 && ax.n_values == 0)
-            rc = p__fail(c, v, "axis '%s' has no values (an empty list would plan nothing)", name);
-        *axes = dm_xrealloc(*axes, (*n_axes + 1) * sizeof **axes);
-        (*axes)[(*n_axes)++] = ax;
-        if (rc)
-            return rc;
+        const p__key *row = p__lookup(section, p__scalar(k) ? p__scalar(k) : "");
+        if (!row)
+            return p__unknown_key(c, k, section);
+        c->seen[row - p__keys] = 1;
+        rc = row->fn(c, row, k, v);
     }
-    return 0;
+    return rc;
 }
 
-static int p__axes(pctx *c, yaml_node_t *map)
+/* A Markdown table cell: '|' escaped, so a type such as "a | b" stays one cell. */
+static void p__md_cell(dm_str *out, const char *text)
 {
-    return p__axis_block(c, map, "sweep", &c->s->axes, &c->s->n_axes);
+    dm_str_cat(out, " ");
+    for (const char *p = text; *p; p++)
+        dm_str_cat(out, *p == '|' ? "\\|" : (char[2]){ *p, 0 });
+    dm_str_cat(out, " |");
 }
 
-/* exclude: a list of {axis: value | [values], ...} entries. */
-static int p__excludes(pctx *c, yaml_node_t *seq)
+void sweep_keys_markdown(dm_str *out)
 {
-    if (seq->type != YAML_SEQUENCE_NODE)
-        return p__fail(c, seq, "exclude: expected a list of {axis: value or [values], ...} entries");
-    for (yaml_node_item_t *it = seq->data.sequence.items.start; it < seq->data.sequence.items.top; it++) {
-        yaml_node_t *e = p__node(c, *it);
-        sweep_exclude ex = {.line = (int)e->start_mark.line + 1};
-        int rc = p__axis_block(c, e, "exclude[]", &ex.axes, &ex.n_axes);
-        if (rc == 0 && ex.n_axes == 0)
-            rc = p__fail(c, e, "exclude[]: an empty entry would exclude everything");
-        c->s->excludes = dm_xrealloc(c->s->excludes, (c->s->n_excludes + 1) * sizeof *c->s->excludes);
-        c->s->excludes[c->s->n_excludes++] = ex;
-        if (rc)
-            return rc;
+    const char *section = NULL;
+    for (size_t i = 0; i < P__N_KEYS; i++) {
+        const p__key *row = &p__keys[i];
+        if (!section || strcmp(section, row->doc.section) != 0) {
+            section = row->doc.section;
+            dm_str_printf(out, "%s### %s%s%s\n\n| key | value | default | meaning |\n|---|---|---|---|\n",
+                          i ? "\n" : "", *section ? "`" : "", *section ? section : "Top level",
+                          *section ? "`" : "");
+        }
+        char key[64];
+        if (strcmp(row->doc.name, "*") == 0)
+            snprintf(key, sizeof key, "*AXIS*");
+        else
+            snprintf(key, sizeof key, "`%s`", row->doc.name);
+        dm_str_cat(out, "|");
+        p__md_cell(out, key);
+        p__md_cell(out, row->doc.type);
+        p__md_cell(out, row->doc.deflt);
+        dm_str doc = {0};
+        dm_str_cat(&doc, row->doc.doc);
+        if (row->doc.example && strcmp(row->doc.name, "*") == 0)
+            dm_str_printf(&doc, "; e.g. `%s`", row->doc.example);
+        else if (row->doc.example)
+            dm_str_printf(&doc, "; e.g. `%s: %s`", row->doc.name, row->doc.example);
+        p__md_cell(out, dm_str_get(&doc));
+        dm_str_free(&doc);
+        dm_str_cat(out, "\n");
     }
-    return 0;
+}
+
+/* Numeric keys the file did not give take the table's default. */
+static void p__numeric_defaults(pctx *c)
+{
+    for (size_t i = 0; i < P__N_KEYS; i++) {
+        const p__key *row = &p__keys[i];
+        char *field = (char *)c->s + row->off;
+        if (c->seen[i] || (row->fn != p__k_int && row->fn != p__k_real))
+            continue;
+        if (row->fn == p__k_int)
+            *(int *)(void *)field = (int)row->def;
+        else
+            *(double *)(void *)field = row->def;
+    }
+    sweep_measure *m = &c->s->measure;
+    if (m->samples_max < m->samples_min)   /* only min was given, above max's default */
+        m->samples_max = m->samples_min;
 }
 
 /* Every excluded axis must be a sweep axis and every value one of its
@@ -394,296 +783,6 @@ static void sweep__axes_free(sweep_axis *axes, size_t n)
     free(axes);
 }
 
-static int p__counter_list(pctx *c, yaml_node_t *seq)
-{
-    if (seq->type != YAML_SEQUENCE_NODE)
-        return p__fail(c, seq, "measure.counters: expected a list of counter names");
-    sweep_measure *m = &c->s->measure;
-    for (yaml_node_item_t *it = seq->data.sequence.items.start; it < seq->data.sequence.items.top; it++) {
-        yaml_node_t *n = p__node(c, *it);
-        const char *name = p__scalar(n);
-        if (!name || !counters_find(name)) {
-            size_t nc = counters_count();
-            const char **names = dm_xmalloc(nc * sizeof *names);
-            for (size_t i = 0; i < nc; i++)
-                names[i] = counters_info_at(i)->name;
-            const char *close = name ? dm_closest(name, names, nc) : NULL;
-            p__fail(c, n, "unknown counter '%s'", name ? name : "?");
-            if (close)
-                dm_str_printf(c->err, "; did you mean '%s'?", close);
-            dm_str_cat(c->err, " valid counters: ");
-            dm_str_cat_list(c->err, names, nc);
-            free(names);
-            return DM_ERR_PARSE;
-        }
-        m->counters = dm_xrealloc(m->counters, (m->n_counters + 1) * sizeof *m->counters);
-        m->counters[m->n_counters++] = dm_xstrdup(name);
-    }
-    return 0;
-}
-
-static int p__samples(pctx *c, yaml_node_t *map)
-{
-    static const char *const keys[] = { "min", "max", "target_ci" };
-    sweep_measure *m = &c->s->measure;
-    int rc = p__expect_map(c, map, "measure.samples");
-    P__FOREACH_PAIR(c, map, pr) {
-        if (rc)
-            break;
-        yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const char *name = p__scalar(k) ? p__scalar(k) : "";
-        if (strcmp(name, "min") == 0)
-            rc = p__int(c, v, "measure.samples.min", 2, 10000, &m->samples_min);
-        else if (strcmp(name, "max") == 0)
-            rc = p__int(c, v, "measure.samples.max", 2, 10000, &m->samples_max);
-        else if (strcmp(name, "target_ci") == 0)
-            rc = p__real(c, v, "measure.samples.target_ci", 0.0, 1.0, &m->target_ci);
-        else
-            rc = p__unknown_key(c, k, "measure.samples", keys, 3);
-    }
-    if (rc == 0 && m->samples_max < m->samples_min)
-        rc = p__fail(c, map, "measure.samples: max (%d) is less than min (%d)", m->samples_max,
-                     m->samples_min);
-    return rc;
-}
-
-static int p__measure(pctx *c, yaml_node_t *map)
-{
-    static const char *const keys[] = { "warmup_frames", "frames_per_sample", "samples",
-                                        "counters", "timeout_s", "max_seconds", "min_sample_ms" };
-    sweep_measure *m = &c->s->measure;
-    int rc = p__expect_map(c, map, "measure");
-    P__FOREACH_PAIR(c, map, pr) {
-        if (rc)
-            break;
-        yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const char *name = p__scalar(k) ? p__scalar(k) : "";
-        if (strcmp(name, "warmup_frames") == 0)
-            rc = p__int(c, v, "measure.warmup_frames", 0, 100000, &m->warmup_frames);
-        else if (strcmp(name, "frames_per_sample") == 0)
-            rc = p__int(c, v, "measure.frames_per_sample", 1, 100000, &m->frames_per_sample);
-        else if (strcmp(name, "samples") == 0)
-            rc = p__samples(c, v);
-        else if (strcmp(name, "counters") == 0)
-            rc = p__counter_list(c, v);
-        else if (strcmp(name, "timeout_s") == 0)
-            rc = p__real(c, v, "measure.timeout_s", 1, 86400, &m->timeout_s);
-        else if (strcmp(name, "max_seconds") == 0)
-            rc = p__real(c, v, "measure.max_seconds", 0.01, 86400, &m->max_seconds);
-        else if (strcmp(name, "min_sample_ms") == 0)
-            rc = p__real(c, v, "measure.min_sample_ms", 0, 10000, &m->min_sample_ms),
-            m->min_sample_set = 1;
-        else
-            rc = p__unknown_key(c, k, "measure", keys, 7);
-    }
-    return rc;
-}
-
-/* "unknown key" for quality.reference: the valid keys are technique,
- * supersample and every axis name. */
-static int p__reference_unknown(pctx *c, yaml_node_t *k)
-{
-    size_t n = axes_count() + 2;
-    const char **valid = dm_xmalloc(n * sizeof *valid);
-    valid[0] = "technique";
-    valid[1] = "supersample";
-    for (size_t i = 2; i < n; i++)
-        valid[i] = axes_at(i - 2)->name;
-    int rc = p__unknown_key(c, k, "quality.reference", valid, n);
-    free(valid);
-    return rc;
-}
-
-/* Every override of quality.reference must be read by the reference
- * technique (checked once the map is read, as `technique` may come last);
- * with technique `same` each configuration's own technique applies. */
-static int p__reference_readable(pctx *c, yaml_node_t *v)
-{
-    const char *name = c->s->ref_technique ? c->s->ref_technique : "reference-mesh";
-    const technique_desc *t = strcmp(name, "same") == 0 ? NULL : technique_find(name);
-    P__FOREACH_PAIR(c, v, rp) {
-        yaml_node_t *rk = p__node(c, rp->key);
-        const char *axis = p__scalar(rk) ? p__scalar(rk) : "";
-        if (t && axes_find(axis) && strcmp(axis, "technique") != 0 && !technique_reads_axis(t, axis))
-            return p__fail(c, rk, "quality.reference: technique '%s' does not read axis '%s', so it "
-                           "cannot set the reference's %s", name, axis, axis);
-    }
-    return 0;
-}
-
-static int p__quality_reference(pctx *c, yaml_node_t *v)
-{
-    int rc = p__expect_map(c, v, "quality.reference");
-    if (rc)
-        return rc;
-    P__FOREACH_PAIR(c, v, rp) {
-        yaml_node_t *rk = p__node(c, rp->key), *rv = p__node(c, rp->value);
-        const char *name = p__scalar(rk) ? p__scalar(rk) : "";
-        if (strcmp(name, "technique") == 0 && p__scalar(rv) && strcmp(p__scalar(rv), "same") == 0) {
-            free(c->s->ref_technique);          /* each configuration, supersampled */
-            c->s->ref_technique = dm_xstrdup("same");
-        } else if (strcmp(name, "technique") == 0) {
-            char *t = p__axis_value(c, "technique", rv);
-            if (!t)
-                return DM_ERR_PARSE;
-            free(c->s->ref_technique);
-            c->s->ref_technique = t;
-        } else if (strcmp(name, "supersample") == 0) {
-            rc = p__int(c, rv, "quality.reference.supersample", 1, 8, &c->s->supersample);
-        } else if (axes_find(name)) {             /* an axis value of the reference */
-            char *val = p__axis_value(c, name, rv);
-            if (!val)
-                return DM_ERR_PARSE;
-            dm_kv_push(&c->s->ref_params, &c->s->n_ref_params, name, val);
-            free(val);
-        } else {
-            return p__reference_unknown(c, rk);
-        }
-        if (rc)
-            return rc;
-    }
-    return p__reference_readable(c, v);
-}
-
-/* quality.pareto_metric: one of reports/metric.h's names (the list is an
- * X-macro, so no link to reports/ is needed). */
-static int p__pareto_metric(pctx *c, yaml_node_t *v)
-{
-    static const char *const names[] = {
-#define P__METRIC_NAME(id, name) name,
-        REPORT_METRICS(P__METRIC_NAME)
-#undef P__METRIC_NAME
-    };
-    const size_t n = sizeof names / sizeof *names;
-    const char *m = p__scalar(v);
-    for (size_t i = 0; m && i < n; i++)
-        if (strcmp(m, names[i]) == 0) {
-            free(c->s->pareto_metric);
-            c->s->pareto_metric = dm_xstrdup(m);
-            return 0;
-        }
-    const char *close = m ? dm_closest(m, names, n) : NULL;
-    p__fail(c, v, "quality.pareto_metric: unknown metric '%s'", m ? m : "(not a scalar)");
-    if (close)
-        dm_str_printf(c->err, "; did you mean '%s'?", close);
-    dm_str_cat(c->err, " valid metrics: ");
-    dm_str_cat_list(c->err, names, n);
-    return DM_ERR_PARSE;
-}
-
-static int p__quality(pctx *c, yaml_node_t *map)
-{
-    static const char *const keys[] = { "reference", "pareto_metric" };
-    int rc = p__expect_map(c, map, "quality");
-    if (rc)
-        return rc;
-    P__FOREACH_PAIR(c, map, pr) {
-        yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const char *name = p__scalar(k) ? p__scalar(k) : "";
-        if (strcmp(name, "reference") == 0)
-            rc = p__quality_reference(c, v);
-        else if (strcmp(name, "pareto_metric") == 0)
-            rc = p__pareto_metric(c, v);
-        else
-            return p__unknown_key(c, k, "quality", keys, 2);
-        if (rc)
-            return rc;
-    }
-    return 0;
-}
-
-static int p__model(pctx *c, yaml_node_t *map)
-{
-    static const char *const keys[] = { "name", "formula", "group_by", "response" };
-    int rc = p__expect_map(c, map, "models[]");
-    if (rc)
-        return rc;
-    sweep_model md = { .line = (int)map->start_mark.line + 1 };
-    P__FOREACH_PAIR(c, map, pr) {
-        yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const char *name = p__scalar(k) ? p__scalar(k) : "";
-        if (strcmp(name, "group_by") == 0 && v->type == YAML_SEQUENCE_NODE) {
-            for (yaml_node_item_t *it = v->data.sequence.items.start; it < v->data.sequence.items.top; it++) {
-                const char *g = p__scalar(p__node(c, *it));
-                if (!g || !axes_find(g)) {
-                    rc = p__fail(c, p__node(c, *it), "models: group_by: '%s' is not an axis",
-                                 g ? g : "?");
-                    break;
-                }
-                md.group_by = dm_xrealloc(md.group_by, (md.n_group_by + 1) * sizeof(char *));
-                md.group_by[md.n_group_by++] = dm_xstrdup(g);
-            }
-        } else if (strcmp(name, "name") == 0 && p__scalar(v)) {
-            md.name = dm_xstrdup(p__scalar(v));
-        } else if (strcmp(name, "formula") == 0 && p__scalar(v)) {
-            md.formula = dm_xstrdup(p__scalar(v));
-        } else if (strcmp(name, "response") == 0 && p__scalar(v)) {
-            if (!counters_find(p__scalar(v)))
-                rc = p__fail(c, v, "models: response '%s' is not a counter", p__scalar(v));
-            md.response = dm_xstrdup(p__scalar(v));
-        } else {
-            rc = p__unknown_key(c, k, "models[]", keys, 4);
-        }
-        if (rc)
-            break;
-    }
-    if (rc == 0 && !md.name)
-        rc = p__fail(c, map, "models[]: every model needs a name");
-    c->s->models = dm_xrealloc(c->s->models, (c->s->n_models + 1) * sizeof *c->s->models);
-    c->s->models[c->s->n_models++] = md;
-    return rc;
-}
-
-static int p__models(pctx *c, yaml_node_t *seq)
-{
-    if (seq->type != YAML_SEQUENCE_NODE)
-        return p__fail(c, seq, "models: expected a list of {name, formula, group_by, response}");
-    for (yaml_node_item_t *it = seq->data.sequence.items.start; it < seq->data.sequence.items.top; it++) {
-        int rc = p__model(c, p__node(c, *it));
-        if (rc)
-            return rc;
-    }
-    return 0;
-}
-
-static int p__top(pctx *c, yaml_node_t *root)
-{
-    static const char *const keys[] = { "name", "resolution", "measure", "scene", "sweep",
-                                        "exclude", "quality", "models" };
-    if (!root)
-        return p__fail(c, NULL, "empty sweep file (expected keys: name, sweep, ...)");
-    int rc = p__expect_map(c, root, "sweep file");
-    P__FOREACH_PAIR(c, root, pr) {
-        if (rc)
-            break;
-        yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const char *name = p__scalar(k) ? p__scalar(k) : "";
-        if (strcmp(name, "name") == 0) {
-            if (!p__scalar(v) || !*p__scalar(v))
-                rc = p__fail(c, v, "name: expected a non-empty string");
-            else
-                c->s->name = dm_xstrdup(p__scalar(v));
-        } else if (strcmp(name, "resolution") == 0) {
-            rc = p__set_scene(c, "resolution", k, v);
-        } else if (strcmp(name, "measure") == 0) {
-            rc = p__measure(c, v);
-        } else if (strcmp(name, "scene") == 0) {
-            rc = p__scene(c, v);
-        } else if (strcmp(name, "sweep") == 0) {
-            rc = p__axes(c, v);
-        } else if (strcmp(name, "quality") == 0) {
-            rc = p__quality(c, v);
-        } else if (strcmp(name, "models") == 0) {
-            rc = p__models(c, v);
-        } else if (strcmp(name, "exclude") == 0) {
-            rc = p__excludes(c, v);
-        } else {
-            rc = p__unknown_key(c, k, "the sweep file", keys, 8);
-        }
-    }
-    return rc;
-}
-
 static void sweep__defaults(sweep *s)
 {
     static const char *const counters[] = {
@@ -694,22 +793,6 @@ static void sweep__defaults(sweep *s)
     sweep_measure *m = &s->measure;
     if (!s->name)
         s->name = dm_xstrdup("unnamed");
-    if (!m->warmup_frames)
-        m->warmup_frames = 8;
-    if (!m->frames_per_sample)
-        m->frames_per_sample = 16;
-    if (!m->samples_min)
-        m->samples_min = 5;
-    if (!m->samples_max)
-        m->samples_max = m->samples_min > 30 ? m->samples_min : 30;
-    if (m->target_ci <= 0)
-        m->target_ci = 0.03;
-    if (m->timeout_s <= 0)
-        m->timeout_s = 120;
-    if (m->max_seconds <= 0)
-        m->max_seconds = 10;
-    if (!m->min_sample_set)
-        m->min_sample_ms = 20;
     if (!m->n_counters) {
         size_t n = sizeof counters / sizeof counters[0];
         m->counters = dm_xmalloc(n * sizeof *m->counters);
@@ -717,8 +800,6 @@ static void sweep__defaults(sweep *s)
             m->counters[i] = dm_xstrdup(counters[i]);
         m->n_counters = n;
     }
-    if (!s->supersample)
-        s->supersample = 4;
     if (!s->ref_technique)          /* ground truth: the CPU-displaced fine mesh (docs/sweep-files.md, Quality) */
         s->ref_technique = dm_xstrdup("reference-mesh");
     if (!s->pareto_metric)
@@ -786,7 +867,10 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
     pctx c = { .doc = &doc, .path = path, .err = err, .s = out };
     out->path = dm_xstrdup(path);
     int rc = sweep__depth_check(&doc, path, err);
-    rc = rc ? rc : p__top(&c, yaml_document_get_root_node(&doc));
+    yaml_node_t *root = yaml_document_get_root_node(&doc);
+    if (rc == 0 && !root)
+        rc = p__fail(&c, NULL, "empty sweep file (expected keys: name, sweep, ...)");
+    rc = rc ? rc : p__section(&c, root, "");
     yaml_document_delete(&doc);
     yaml_parser_delete(&parser);
     if (rc == 0)
@@ -795,6 +879,7 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
         sweep_free(out);
         return rc;
     }
+    p__numeric_defaults(&c);
     sweep__defaults(out);
     out->hash = dm_fnv1a64(text, strlen(text), DM_FNV_SEED);
     return 0;

@@ -42,7 +42,6 @@ typedef struct sweep_measure {
     int warmup_frames;       /* minimum warm-up frames (default 8) */
     int frames_per_sample;   /* K (default 16); raised per configuration so that */
     double min_sample_ms;    /* a sample lasts at least this long (default 20; 0 = K exactly) */
-    int min_sample_set;
     int samples_min;         /* default 5 */
     int samples_max;         /* default 30 */
     double target_ci;        /* relative half-width of the median's 95% CI (default 0.03) */
@@ -81,5 +80,23 @@ int sweep_load(const char *path, sweep *out, dm_str *err);
 /* The embedded default sweep (README); quick = the short version for tests. */
 const char *sweep_default_text(int quick);
 void sweep_free(sweep *s);
+
+/* One key a sweep file may hold: a row of the parser's key table, which is
+ * the only list of keys (the parser looks keys up in it, and
+ * docs/sweep-files.md's key reference is generated from it). */
+typedef struct sweep_key {
+    const char *section;     /* "" = top level, "measure.samples", "models[]" (each entry) ... */
+    const char *name;        /* "*" = any axis name */
+    const char *type;        /* what the value is, for the docs */
+    const char *deflt;       /* the default, for the docs */
+    const char *doc;         /* what it means */
+    const char *example;     /* a valid value (NULL for a mapping or a list of mappings) */
+} sweep_key;
+
+size_t sweep_keys_count(void);
+const sweep_key *sweep_keys_at(size_t i);
+/* The key reference of docs/sweep-files.md: one Markdown table per
+ * section, in table order, from the same rows the parser uses. */
+void sweep_keys_markdown(dm_str *out);
 
 #endif

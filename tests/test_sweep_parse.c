@@ -176,6 +176,105 @@ static void test_bad_corpus(void **state)
     assert_true(n >= 20);
 }
 
+/* A sweep text holding `line` (a "key: value" line, or an axis line for a
+ * "*" row) at the place of `section`: nested mappings for "a.b", an entry
+ * of the list for "models[]" and "exclude[]". */
+static void key_text(const char *section, const char *line, dm_str *t)
+{
+    if (strcmp(section, "models[]") == 0) {
+        dm_str_printf(t, "models:\n  - %s%s\n", strncmp(line, "name:", 5) ? "name: m\n    " : "", line);
+        return;
+    }
+    if (strcmp(section, "exclude[]") == 0) {
+        dm_str_printf(t, "sweep:\n  technique: [phong, normal]\nexclude:\n  - { %s }\n", line);
+        return;
+    }
+    int depth = 0;
+    for (const char *p = section; *p; depth++) {
+        const char *dot = strchr(p, '.');
+        size_t n = dot ? (size_t)(dot - p) : strlen(p);
+        dm_str_printf(t, "%*s%.*s:\n", 2 * depth, "", (int)n, p);
+        p += n + (dot != NULL);
+    }
+    dm_str_printf(t, "%*s%s\n", 2 * depth, "", line);
+}
+
+/* Every row of the key table is a key the parser takes: its example, put in
+ * its section, parses (a map file row is accepted as a key and the file is
+ * then looked for); an unknown key in a section without axes is refused
+ * with every key of that section listed. */
+static void test_key_table(void **state)
+{
+    (void)state;
+    size_t n = sweep_keys_count(), examples = 0;
+    assert_true(n >= 30);
+    for (size_t i = 0; i < n; i++) {
+        const sweep_key *k = sweep_keys_at(i);
+        if (!k->example)
+            continue;
+        dm_str line = {0}, text = {0}, err = {0};
+        if (strcmp(k->name, "*") == 0)
+            dm_str_cat(&line, k->example);
+        else
+            dm_str_printf(&line, "%s: %s", k->name, k->example);
+        key_text(k->section, dm_str_get(&line), &text);
+        sweep s;
+        int rc = sweep_parse(dm_str_get(&text), "keys.yaml", &s, &err);
+        if (strcmp(k->type, "file path") == 0) {
+            assert_int_equal(rc, DM_ERR_PARSE);
+            assert_non_null(strstr(dm_str_get(&err), k->example));
+        } else {
+            if (rc)
+                fail_msg("%s.%s: %s\n%s", k->section, k->name, dm_str_get(&err), dm_str_get(&text));
+            sweep_free(&s);
+        }
+        examples++;
+        dm_str_free(&line), dm_str_free(&text), dm_str_free(&err);
+    }
+    assert_true(examples >= 25);
+    for (size_t i = 0; i < n; i++) {
+        const sweep_key *k = sweep_keys_at(i);
+        if (i && strcmp(k->section, sweep_keys_at(i - 1)->section) == 0)
+            continue;
+        if (strcmp(k->section, "scene") == 0 || strcmp(k->section, "sweep") == 0 ||
+            strcmp(k->section, "exclude[]") == 0)
+            continue;                  /* keys there are axes: "unknown axis", tested by the corpus */
+        dm_str text = {0}, err = {0};
+        key_text(k->section, "zzz_unknown: 1", &text);
+        sweep s;
+        assert_int_equal(sweep_parse(dm_str_get(&text), "keys.yaml", &s, &err), DM_ERR_PARSE);
+        const char *msg = dm_str_get(&err), *valid = strstr(msg, "valid keys: ");
+        assert_non_null(strstr(msg, "unknown key 'zzz_unknown'"));
+        assert_non_null(valid);
+        for (size_t j = i; j < n && strcmp(sweep_keys_at(j)->section, k->section) == 0; j++)
+            if (strcmp(sweep_keys_at(j)->name, "*") != 0 && !strstr(valid, sweep_keys_at(j)->name))
+                fail_msg("%s: '%s' missing from: %s", k->section, sweep_keys_at(j)->name, msg);
+        dm_str_free(&text), dm_str_free(&err);
+    }
+}
+
+/* Numeric defaults come from the key table only when a key is absent: an
+ * explicit 0 stays 0, and samples.max follows a larger samples.min. */
+static void test_numeric_defaults(void **state)
+{
+    (void)state;
+    sweep s;
+    dm_str err = {0};
+    assert_int_equal(sweep_parse("measure:\n  warmup_frames: 0\n  min_sample_ms: 0\n"
+                                 "  samples: { min: 40 }\n", "d.yaml", &s, &err), 0);
+    assert_int_equal(s.measure.warmup_frames, 0);
+    assert_true(s.measure.min_sample_ms == 0);
+    assert_int_equal(s.measure.samples_min, 40);
+    assert_int_equal(s.measure.samples_max, 40);
+    assert_int_equal(s.measure.frames_per_sample, 16);
+    assert_true(s.measure.max_seconds == 10 && s.measure.timeout_s == 120);
+    sweep_free(&s);
+    assert_int_equal(sweep_parse("measure:\n  samples: { min: 9, max: 6 }\n", "d.yaml", &s, &err),
+                     DM_ERR_PARSE);
+    assert_non_null(strstr(dm_str_get(&err), "max (6) is less than min (9)"));
+    dm_str_free(&err);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -185,6 +284,8 @@ int main(void)
         cmocka_unit_test(test_reference_overrides),
         cmocka_unit_test(test_missing_file),
         cmocka_unit_test(test_bad_corpus),
+        cmocka_unit_test(test_key_table),
+        cmocka_unit_test(test_numeric_defaults),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
