@@ -7,6 +7,7 @@
 #include "run/fitting.h"
 #include "run/gl_context.h"
 #include "run/measure.h"
+#include "run/protocol.h"
 #include "run/trends.h"
 #include "sweep/plan.h"
 #include "store/store.h"
@@ -424,18 +425,13 @@ static int runner__scene(runner *r, const plan_config *cs, size_t n)
 /* Earlier runs searched for a cost model and counters (newest first). */
 #define RUNNER__BUDGET_RUNS 16
 
-/* Predicted seconds to measure a configuration from one pilot frame:
- * warm-up plus samples_max samples, each at least K frames and min_sample_ms
- * long, capped by max_seconds, plus the image renders. */
+/* Predicted seconds to measure a configuration from its frame time, as the
+ * protocol sees it (run/protocol.h: protocol_predict_s). */
 static double runner__predict(const sweep_measure *m, double frame_ns)
 {
-    double sample = frame_ns * m->frames_per_sample;
-    if (sample < m->min_sample_ms * 1e6)
-        sample = m->min_sample_ms * 1e6;
-    double sampling = sample * m->samples_max / 1e9;
-    if (sampling > m->max_seconds)
-        sampling = m->max_seconds;
-    return sampling + frame_ns * (m->warmup_frames + 12.0 * m->frames_per_sample + 20) / 1e9;
+    protocol_desc d;
+    protocol_desc_from_measure(&d, m, 0);
+    return protocol_predict_s(&d, frame_ns);
 }
 
 /* What --budget knows from the store: earlier runs (newest first) and the
