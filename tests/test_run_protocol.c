@@ -24,11 +24,29 @@ static protocol_desc desc(void)
     return d;
 }
 
+/* The default desc with another stop rule. */
+static protocol_desc desc_stop(int samples_min, int samples_max, double target_ci, double max_seconds)
+{
+    protocol_desc d = desc();
+    d.samples_min = samples_min;
+    d.samples_max = samples_max;
+    d.target_ci = target_ci;
+    d.max_seconds = max_seconds;
+    return d;
+}
+
 /* Deterministic values uniform in [-1, 1) (a 64-bit LCG). */
 static double uniform(uint64_t *s)
 {
     *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
     return (double)(*s >> 11) / (double)(1ULL << 52) - 1.0;
+}
+
+/* x[0..n) = 1 ms +- spread (relative), uniform, from the given seed. */
+static void noisy(double *x, size_t n, double spread, uint64_t seed)
+{
+    for (size_t i = 0; i < n; i++)
+        x[i] = 1e6 * (1 + spread * uniform(&seed));
 }
 
 /* Feeds x[0..n) one sample at a time with elapsed_s = i * dt after the
@@ -42,6 +60,16 @@ static size_t feed(const protocol_desc *d, const double *x, size_t n, double dt,
             return i;
     }
     return 0;
+}
+
+/* Feeds x[0..n) (see feed) and asserts it stops at sample want for why. */
+static protocol_decision expect_stop(const protocol_desc *d, const double *x, size_t n, double dt,
+                                     size_t want, protocol_stop why)
+{
+    protocol_decision last;
+    assert_int_equal(feed(d, x, n, dt, &last), want);
+    assert_int_equal(last.stop, why);
+    return last;
 }
 
 static int cmp(const void *a, const void *b)
@@ -80,22 +108,15 @@ static double ci_rel_exact(const double *x, size_t n)
 static void stops_when_ci_reaches_target(void **state)
 {
     (void)state;
-    protocol_desc d = desc();
-    d.samples_min = 6;
-    d.samples_max = 60;
-    d.target_ci = 0.04;
+    protocol_desc d = desc_stop(6, 60, 0.04, 10);
     double x[60];
-    uint64_t seed = 7;
-    for (size_t i = 0; i < 60; i++)
-        x[i] = 1e6 * (1 + 0.1 * uniform(&seed));
+    noisy(x, 60, 0.1, 7);
     size_t want = 0;
     for (size_t n = 6; n <= 60 && !want; n++)
         if (ci_rel_exact(x, n) <= d.target_ci)
             want = n;
     assert_true(want > 10 && want < 60);   /* the stream makes the rule work */
-    protocol_decision last;
-    assert_int_equal(feed(&d, x, 60, 0.01, &last), want);
-    assert_int_equal(last.stop, PROTOCOL_CONVERGED);
+    protocol_decision last = expect_stop(&d, x, 60, 0.01, want, PROTOCOL_CONVERGED);
     assert_true(fabs(last.ci_rel - ci_rel_exact(x, want)) < 1e-12);
     printf("converged at sample %zu of a +-10 %% stream (CI +-%.2f %%)\n", want, 100 * last.ci_rel);
 }
@@ -109,31 +130,22 @@ static void never_before_samples_min(void **state)
     double x[30];
     for (size_t i = 0; i < 30; i++)
         x[i] = 2.5e6;
-    protocol_decision last;
-    assert_int_equal(feed(&d, x, 30, 0.01, &last), 5);
-    assert_int_equal(last.stop, PROTOCOL_CONVERGED);
+    protocol_decision last = expect_stop(&d, x, 30, 0.01, 5, PROTOCOL_CONVERGED);
     assert_true(last.ci_rel == 0);
     d.samples_min = 12;
-    assert_int_equal(feed(&d, x, 30, 0.01, &last), 12);
-    assert_int_equal(last.stop, PROTOCOL_CONVERGED);
+    expect_stop(&d, x, 30, 0.01, 12, PROTOCOL_CONVERGED);
     /* also when the time cap is long passed */
-    assert_int_equal(feed(&d, x, 30, 100, &last), 12);
+    expect_stop(&d, x, 30, 100, 12, PROTOCOL_CONVERGED);
 }
 
 /* A +-50 % stream never reaches a 0.1 % CI: it stops at samples_max. */
 static void stops_at_samples_max(void **state)
 {
     (void)state;
-    protocol_desc d = desc();
-    d.target_ci = 0.001;
-    d.samples_max = 20;
+    protocol_desc d = desc_stop(5, 20, 0.001, 10);
     double x[40];
-    uint64_t seed = 3;
-    for (size_t i = 0; i < 40; i++)
-        x[i] = 1e6 * (1 + 0.5 * uniform(&seed));
-    protocol_decision last;
-    assert_int_equal(feed(&d, x, 40, 0.01, &last), 20);
-    assert_int_equal(last.stop, PROTOCOL_MAX_SAMPLES);
+    noisy(x, 40, 0.5, 3);
+    protocol_decision last = expect_stop(&d, x, 40, 0.01, 20, PROTOCOL_MAX_SAMPLES);
     assert_true(last.ci_rel > d.target_ci);
 }
 
@@ -142,21 +154,13 @@ static void stops_at_samples_max(void **state)
 static void stops_at_time_cap(void **state)
 {
     (void)state;
-    protocol_desc d = desc();
-    d.target_ci = 0.001;
-    d.max_seconds = 1.0;
-    d.samples_min = 2;
+    protocol_desc d = desc_stop(2, 30, 0.001, 1.0);
     double x[30];
-    uint64_t seed = 11;
-    for (size_t i = 0; i < 30; i++)
-        x[i] = 1e6 * (1 + 0.5 * uniform(&seed));
-    protocol_decision last;
+    noisy(x, 30, 0.5, 11);
     /* 0.25 s per sample: 1.0 s after 4 is not over the cap, 1.25 s after 5 is */
-    assert_int_equal(feed(&d, x, 30, 0.25, &last), 5);
-    assert_int_equal(last.stop, PROTOCOL_TIME_CAP);
+    expect_stop(&d, x, 30, 0.25, 5, PROTOCOL_TIME_CAP);
     d.samples_min = 8;   /* over the cap long before, but samples_min rules */
-    assert_int_equal(feed(&d, x, 30, 0.25, &last), 8);
-    assert_int_equal(last.stop, PROTOCOL_TIME_CAP);
+    expect_stop(&d, x, 30, 0.25, 8, PROTOCOL_TIME_CAP);
 }
 
 /* Without a stop counter (WallTime not measured) one sample is all. */
@@ -189,14 +193,25 @@ static void drift_flagged_only_for_a_trend(void **state)
     protocol_decision last;
     d.samples_max = 30;
     d.target_ci = 0.0001;
-    assert_int_equal(feed(&d, x, 30, 0.01, &last), 30);
+    last = expect_stop(&d, x, 30, 0.01, 30, PROTOCOL_MAX_SAMPLES);
     assert_int_equal(last.drifting, 1);
-    for (size_t i = 0; i < 30; i++)
-        x[i] = 1e6 * (1 + 0.1 * uniform(&seed));
+    noisy(x, 30, 0.1, seed);
     assert_int_equal(protocol_drift(&d, x, 30, &drift), 0);
     assert_true(fabs(drift) < d.drift_limit);
-    assert_int_equal(feed(&d, x, 30, 0.01, &last), 30);
+    last = expect_stop(&d, x, 30, 0.01, 30, PROTOCOL_MAX_SAMPLES);
     assert_int_equal(last.drifting, 0);
+    /* over 200 streams of 30 samples: +1 % per sample under +-10 % noise is
+     * always flagged, the same noise without the trend never */
+    int trend = 0, still = 0;
+    for (uint64_t k = 1; k <= 200; k++) {
+        noisy(x, 30, 0.1, k);
+        still += protocol_drift(&d, x, 30, &drift);
+        for (size_t i = 0; i < 30; i++)
+            x[i] *= 1 + 0.01 * (double)i;
+        trend += protocol_drift(&d, x, 30, &drift);
+    }
+    assert_int_equal(trend, 200);
+    assert_int_equal(still, 0);
     /* too few samples to tell */
     for (size_t i = 0; i < 3; i++)
         x[i] = 1.0 + 0.5 * (double)i;
