@@ -959,12 +959,26 @@ static void runner__free(runner *r)
     dm_run_free(&r->env);
 }
 
-/* 1 when the sweep asks for a counter of the Instructions pass. */
+/* Input check of counters_derive_inputs that notes, in *user, an input
+ * counted under callgrind; every input "is there", so all are visited. */
+static int runner__callgrind_input(const char *input, void *user)
+{
+    const counters_info *ci = counters_find(input);
+    if (ci && ci->backend == COUNTERS_BACKEND_CALLGRIND)
+        *(int *)user = 1;
+    return 1;
+}
+
+/* 1 when the sweep asks for a counter of the Instructions pass, by the
+ * registry: a callgrind counter, or one derived from one. */
 static int runner__wants_instructions(const sweep *s)
 {
     for (size_t i = 0; i < s->measure.n_counters; i++) {
         const counters_info *ci = counters_find(s->measure.counters[i]);
-        if (ci && strcmp(ci->group, "Cost") == 0)
+        int via = 0;
+        if (ci && ci->backend == COUNTERS_BACKEND_DERIVED)
+            counters_derive_inputs(ci->name, runner__callgrind_input, &via);
+        if (via || (ci && ci->backend == COUNTERS_BACKEND_CALLGRIND))
             return 1;
     }
     return 0;
