@@ -86,7 +86,8 @@ int protocol_warmup_begin(const protocol_desc *d, protocol_warmup *w);
 int protocol_warmup_next(const protocol_desc *d, protocol_warmup *w, double frame_ns);
 /* Frames per agreement sample: K, or fewer (at least 1) when K frames of
  * frame_ns would outlast min_sample_ms; K when min_sample_ms is 0 or
- * frame_ns is not positive. */
+ * frame_ns is not positive.  The agreement check then costs 2 frames, not
+ * 2K, on configurations whose frame alone lasts min_sample_ms. */
 int protocol_warmup_frames(const protocol_desc *d, double frame_ns);
 
 /* ---- timing samples ------------------------------------------------------------ */
