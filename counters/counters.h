@@ -48,6 +48,20 @@ typedef enum counters_backend {
     COUNTERS_BACKEND_CALLGRIND     /* instructions counted under Valgrind, own child (run/callgrind.h) */
 } counters_backend;
 
+/* Who supplies the value of a caller-fed (COUNTERS_BACKEND_CPU_SIDE)
+ * counter when dmbench measures a configuration (run/measure.c reads this
+ * column instead of matching names); NONE: a pass measures it, a formula
+ * derives it, or nothing in dmbench feeds it yet. */
+typedef enum counters_feed {
+    COUNTERS_FEED_NONE = 0,
+    COUNTERS_FEED_SETUP_NS,        /* the renderer's prepare time */
+    COUNTERS_FEED_WARMUP_NS,       /* the warm-up's time */
+    COUNTERS_FEED_TEXTURE_BYTES,   /* the renderer's item: texture storage */
+    COUNTERS_FEED_MESH_BYTES,      /* the renderer's item: vertex and index buffers */
+    COUNTERS_FEED_MESH_TRIANGLES,  /* the renderer's item: triangles submitted */
+    COUNTERS_FEED_VIEWPORT_PIXELS  /* the render target: width x height */
+} counters_feed;
+
 typedef struct counters_info {
     const char *name;
     const char *group;          /* "Timing", "Vertex", ... (docs/counters.md) */
@@ -57,6 +71,8 @@ typedef struct counters_info {
     counters_backend backend;
     int deterministic;          /* same scene + driver => same value */
     const char *formula;        /* derived counters only */
+    counters_feed feed;         /* caller-fed counters: where the value comes from */
+    int stops_sampling;         /* timed counter whose CI decides when sampling stops */
 } counters_info;
 
 typedef struct counters_context counters_context;

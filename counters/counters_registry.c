@@ -1,7 +1,8 @@
 /* counters_registry.c — the one table of counters (docs/counters.md), as data.
  *
  * Each row: public metadata (name, group, description, unit, type, backend,
- * deterministic, formula) + which pass measures it, its GL query target and
+ * deterministic, formula, who feeds a caller-fed value, whether its CI
+ * stops sampling; the last two default to none) + which pass measures it, its GL query target and
  * what the driver must offer.  Derived counters are formulas over other rows
  * (evaluated by counters_expr.c).  Adding a counter is adding a row.
  */
@@ -27,94 +28,95 @@
 #define P_ST  COUNTERS__PASS_STATS
 #define P_NO  COUNTERS__PASS_NONE
 #define R_PS  COUNTERS__REQ_PIPESTATS
+#define F_NO  COUNTERS_FEED_NONE, 0   /* not caller-fed, does not stop sampling */
 
 static const counters__def counters__table[] = {
     /* ---- Timing ---- */
     {{"WallTime", "Timing", "Wall-clock time of the sample, glFinish before and after",
-      NS, U64, B_CLK, 0, NULL}, P_TIM, 0, 0},
+      NS, U64, B_CLK, 0, NULL, COUNTERS_FEED_NONE, 1}, P_TIM, 0, 0},
     {{"GPUTime", "Timing", "GL_TIME_ELAPSED query around the sample (check the timer calibration)",
-      NS, U64, B_TQ, 0, NULL}, P_TIM, GL_TIME_ELAPSED, COUNTERS__REQ_TIMER},
+      NS, U64, B_TQ, 0, NULL, F_NO}, P_TIM, GL_TIME_ELAPSED, COUNTERS__REQ_TIMER},
     {{"CPUTime", "Timing", "Process CPU time over the sample, all threads, including the final glFinish",
-      NS, U64, B_CLK, 0, NULL}, P_TIM, 0, 0},
+      NS, U64, B_CLK, 0, NULL, F_NO}, P_TIM, 0, 0},
     {{"SubmitTime", "Timing", "Calling-thread CPU time from sample begin until the closing glFinish (inside draw calls)",
-      NS, U64, B_CLK, 0, NULL}, P_TIM, 0, 0},
+      NS, U64, B_CLK, 0, NULL, F_NO}, P_TIM, 0, 0},
     {{"GeometryTime", "Timing", "Wall time of the same draws with GL_RASTERIZER_DISCARD (own pass)",
-      NS, U64, B_CLK, 0, NULL}, P_GEO, 0, 0},
+      NS, U64, B_CLK, 0, NULL, F_NO}, P_GEO, 0, 0},
     {{"SetupTime", "Timing", "Compile, link and upload time, fed by the caller",
-      NS, U64, B_CPU, 0, NULL}, P_NO, 0, 0},
+      NS, U64, B_CPU, 0, NULL, COUNTERS_FEED_SETUP_NS, 0}, P_NO, 0, 0},
     {{"WarmupTime", "Timing", "First-draw time (shader JIT), fed by the caller",
-      NS, U64, B_CPU, 0, NULL}, P_NO, 0, 0},
+      NS, U64, B_CPU, 0, NULL, COUNTERS_FEED_WARMUP_NS, 0}, P_NO, 0, 0},
     /* ---- Vertex ---- */
     {{"VerticesSubmitted", "Vertex", "Vertices fetched by the vertex puller, repeats included",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_VERTICES_SUBMITTED_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_VERTICES_SUBMITTED_ARB, R_PS},
     {{"PrimitivesSubmitted", "Vertex", "Primitives assembled from the submitted vertices",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_PRIMITIVES_SUBMITTED_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_PRIMITIVES_SUBMITTED_ARB, R_PS},
     {{"VSInvocations", "Vertex", "Vertex shader invocations (after post-transform vertex reuse)",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_VERTEX_SHADER_INVOCATIONS_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_VERTEX_SHADER_INVOCATIONS_ARB, R_PS},
     /* ---- Tessellation ---- */
     {{"TCSPatches", "Tessellation", "Patches processed by the tessellation control shader",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_TESS_CONTROL_SHADER_PATCHES_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_TESS_CONTROL_SHADER_PATCHES_ARB, R_PS},
     {{"TESInvocations", "Tessellation", "Tessellation evaluation shader invocations",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB, R_PS},
     /* ---- Geometry ---- */
     {{"GSInvocations", "Geometry", "Geometry shader invocations",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_GEOMETRY_SHADER_INVOCATIONS, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_GEOMETRY_SHADER_INVOCATIONS, R_PS},
     {{"GSPrimitivesEmitted", "Geometry", "Primitives emitted by the geometry shader",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_GEOMETRY_SHADER_PRIMITIVES_EMITTED_ARB, R_PS},
     /* ---- PrimitiveAssembly ---- */
     {{"ClippingInputPrimitives", "PrimitiveAssembly", "Primitives entering the clipper",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_CLIPPING_INPUT_PRIMITIVES_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_CLIPPING_INPUT_PRIMITIVES_ARB, R_PS},
     {{"ClippingOutputPrimitives", "PrimitiveAssembly", "Primitives leaving the clipper (to the rasterizer)",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_CLIPPING_OUTPUT_PRIMITIVES_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_CLIPPING_OUTPUT_PRIMITIVES_ARB, R_PS},
     {{"PrimitivesGenerated", "PrimitiveAssembly", "GL_PRIMITIVES_GENERATED: primitives out of the last vertex-processing stage",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_PRIMITIVES_GENERATED, 0},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_PRIMITIVES_GENERATED, 0},
     /* ---- Fragment ---- */
     {{"FSInvocations", "Fragment", "Fragment shader invocations",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_FRAGMENT_SHADER_INVOCATIONS_ARB, R_PS},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_FRAGMENT_SHADER_INVOCATIONS_ARB, R_PS},
     {{"SamplesPassed", "Fragment", "Samples that passed the depth and stencil tests (occlusion query)",
-      ITEMS, U64, B_OCC, 1, NULL}, P_ST, GL_SAMPLES_PASSED, 0},
+      ITEMS, U64, B_OCC, 1, NULL, F_NO}, P_ST, GL_SAMPLES_PASSED, 0},
     /* ---- Compute ---- */
     {{"ComputeInvocations", "Compute", "Compute shader invocations",
-      ITEMS, U64, B_PS, 1, NULL}, P_ST, GL_COMPUTE_SHADER_INVOCATIONS_ARB, COUNTERS__REQ_COMPUTE},
+      ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_COMPUTE_SHADER_INVOCATIONS_ARB, COUNTERS__REQ_COMPUTE},
     /* ---- Memory (caller-fed) ---- */
     {{"TextureBytes", "Memory", "Bytes of texture storage (driver-reported sizes), fed by the caller",
-      BYTES, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+      BYTES, U64, B_CPU, 1, NULL, COUNTERS_FEED_TEXTURE_BYTES, 0}, P_NO, 0, 0},
     {{"MeshBytes", "Memory", "Bytes of vertex and index buffers, fed by the caller",
-      BYTES, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+      BYTES, U64, B_CPU, 1, NULL, COUNTERS_FEED_MESH_BYTES, 0}, P_NO, 0, 0},
     {{"MeshTriangles", "Memory", "Triangles of the mesh as submitted (before tessellation), fed by the caller",
-      ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+      ITEMS, U64, B_CPU, 1, NULL, COUNTERS_FEED_MESH_TRIANGLES, 0}, P_NO, 0, 0},
     {{"VTPagesResident", "Memory", "Virtual-texture pages resident at sample end, fed by the caller",
-      ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+      ITEMS, U64, B_CPU, 1, NULL, F_NO}, P_NO, 0, 0},
     {{"VTPageMisses", "Memory", "Virtual-texture page requests not resident, fed by the caller",
-      ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+      ITEMS, U64, B_CPU, 1, NULL, F_NO}, P_NO, 0, 0},
     {{"VTUploadBytes", "Memory", "Bytes uploaded to the virtual-texture cache, fed by the caller",
-      BYTES, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+      BYTES, U64, B_CPU, 1, NULL, F_NO}, P_NO, 0, 0},
     /* ---- Scene (caller-fed, needed by derived counters) ---- */
     {{"ViewportPixels", "Scene", "Pixels of the viewport times frames in the sample, fed by the caller",
-      ITEMS, U64, B_CPU, 1, NULL}, P_NO, 0, 0},
+      ITEMS, U64, B_CPU, 1, NULL, COUNTERS_FEED_VIEWPORT_PIXELS, 0}, P_NO, 0, 0},
     /* ---- Cost (own child under Valgrind callgrind, run/callgrind.h) ---- */
     {{"Instructions", "Cost", "Instructions retired per frame by the measured frames (callgrind, collection only "
       "around K frames ended by glFinish, LP_NUM_THREADS=0; deterministic on CPU renderers)",
-      ITEMS, U64, COUNTERS_BACKEND_CALLGRIND, 1, NULL}, P_NO, 0, COUNTERS__REQ_CALLGRIND},
+      ITEMS, U64, COUNTERS_BACKEND_CALLGRIND, 1, NULL, F_NO}, P_NO, 0, COUNTERS__REQ_CALLGRIND},
     {{"InstructionsPerPixel", "Cost", "Instructions per covered sample (Instructions / SamplesPassed)",
-      RATIO, F64, B_DER, 1, "Instructions / SamplesPassed"}, P_NO, 0, 0},
+      RATIO, F64, B_DER, 1, "Instructions / SamplesPassed", F_NO}, P_NO, 0, 0},
     /* ---- Derived ---- */
     {{"TessAmplification", "Derived", "TES invocations per tessellation patch",
-      RATIO, F64, B_DER, 1, "TESInvocations / TCSPatches"}, P_NO, 0, 0},
+      RATIO, F64, B_DER, 1, "TESInvocations / TCSPatches", F_NO}, P_NO, 0, 0},
     {{"VertexReuse", "Derived", "Submitted vertices per vertex shader invocation (post-transform reuse)",
-      RATIO, F64, B_DER, 1, "VerticesSubmitted / VSInvocations"}, P_NO, 0, 0},
+      RATIO, F64, B_DER, 1, "VerticesSubmitted / VSInvocations", F_NO}, P_NO, 0, 0},
     {{"ClippedFraction", "Derived", "1 - clipper output / clipper input primitives (negative when clipping splits)",
-      RATIO, F64, B_DER, 1, "1 - ClippingOutputPrimitives / ClippingInputPrimitives"}, P_NO, 0, 0},
+      RATIO, F64, B_DER, 1, "1 - ClippingOutputPrimitives / ClippingInputPrimitives", F_NO}, P_NO, 0, 0},
     {{"PixelsPerTriangle", "Derived", "Samples passed per primitive reaching the rasterizer",
-      RATIO, F64, B_DER, 1, "SamplesPassed / ClippingOutputPrimitives"}, P_NO, 0, 0},
+      RATIO, F64, B_DER, 1, "SamplesPassed / ClippingOutputPrimitives", F_NO}, P_NO, 0, 0},
     {{"Overdraw", "Derived", "Samples passed per viewport pixel (depth-tested overdraw; needs ViewportPixels)",
-      RATIO, F64, B_DER, 1, "SamplesPassed / ViewportPixels"}, P_NO, 0, 0},
+      RATIO, F64, B_DER, 1, "SamplesPassed / ViewportPixels", F_NO}, P_NO, 0, 0},
     {{"ShadingEfficiency", "Derived", "Samples passed per fragment shader invocation",
-      RATIO, F64, B_DER, 1, "SamplesPassed / FSInvocations"}, P_NO, 0, 0},
+      RATIO, F64, B_DER, 1, "SamplesPassed / FSInvocations", F_NO}, P_NO, 0, 0},
     {{"RasterTime", "Derived", "Wall time minus geometry-only time (rasterization and shading)",
-      NS, F64, B_DER, 0, "WallTime - GeometryTime"}, P_NO, 0, 0},
+      NS, F64, B_DER, 0, "WallTime - GeometryTime", F_NO}, P_NO, 0, 0},
     {{"TimePerPixel", "Derived", "Wall time per sample passed",
-      NS, F64, B_DER, 0, "WallTime / SamplesPassed"}, P_NO, 0, 0},
+      NS, F64, B_DER, 0, "WallTime / SamplesPassed", F_NO}, P_NO, 0, 0},
 };
 
 #define COUNTERS__N (sizeof counters__table / sizeof counters__table[0])

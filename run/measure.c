@@ -4,6 +4,7 @@
 #include "counters/counters.h"
 #include "run/callgrind.h"
 #include "run/gl_context.h"
+#include "run/protocol.h"
 #include "run/refcache.h"
 #include "store/store.h"
 #include "run/target.h"
@@ -50,6 +51,8 @@ typedef struct mscene {
     size_t n_timing;
     const char **statistic;
     size_t n_statistic;
+    int stop_index;             /* timing[] index of the counter that stops sampling, -1: none */
+    protocol_desc pd;           /* the measuring decisions' settings (run/protocol.h) */
     target rt;                  /* the scene's render target (one resolution per scene) */
     float *ref_rgba, *ref_depth;   /* scene reference, rendered on first use */
     char *ref_path;
@@ -73,23 +76,27 @@ static void measure__say(const measure_job *job, const char *fmt, ...)
     dm_str_free(&s);
 }
 
-/* Sorts the sweep's counters into those read in timed passes and those read
- * in the one-frame statistics pass; CPU-side and setup counters are filled
- * from the renderer. */
+/* Sorts the sweep's counters, by their registry backend, into those read in
+ * timed passes and those read in the one-frame statistics pass; caller-fed
+ * counters (their registry feed) are filled from the renderer, derived ones
+ * by formula.  The timed counter flagged stops_sampling drives the stop rule. */
 static void measure__classify(mscene *m)
 {
     const sweep_measure *sm = &m->job->sweep->measure;
     m->timing = dm_xcalloc(sm->n_counters, sizeof *m->timing);
     m->statistic = dm_xcalloc(sm->n_counters, sizeof *m->statistic);
+    m->stop_index = -1;
     for (size_t i = 0; i < sm->n_counters; i++) {
         const counters_info *ci = counters_find(sm->counters[i]);
         if (!ci)
             continue;
         if (ci->backend == COUNTERS_BACKEND_PIPELINE_STATS || ci->backend == COUNTERS_BACKEND_OCCLUSION)
             m->statistic[m->n_statistic++] = ci->name;
-        else if ((ci->backend == COUNTERS_BACKEND_CLOCK || ci->backend == COUNTERS_BACKEND_TIMER_QUERY) &&
-                 strcmp(ci->name, "SetupTime") != 0 && strcmp(ci->name, "WarmupTime") != 0)
+        else if (ci->backend == COUNTERS_BACKEND_CLOCK || ci->backend == COUNTERS_BACKEND_TIMER_QUERY) {
+            if (ci->stops_sampling && m->stop_index < 0)
+                m->stop_index = (int)m->n_timing;
             m->timing[m->n_timing++] = ci->name;
+        }
     }
 }
 
@@ -162,57 +169,31 @@ static int measure__session(mscene *m, mconf *c, const char **names, size_t n, i
     return rc;
 }
 
-/* Frames per warm-up sample: K, or fewer when K frames of frame_ns would
- * last longer than min_sample_ms (the length the harness deems enough for
- * a sample, see the timing samples), never fewer than 1.  The agreement
- * check then costs 2 frames, not 2K, on configurations whose frame alone
- * lasts min_sample_ms.  min_sample_ms = 0 keeps K exactly. */
-static int measure__warmup_sample_frames(const sweep_measure *sm, double frame_ns)
-{
-    int k = sm->frames_per_sample > 0 ? sm->frames_per_sample : 1;
-    if (sm->min_sample_ms <= 0 || !(frame_ns > 0))
-        return k;
-    double want = ceil(sm->min_sample_ms * 1e6 / frame_ns);
-    return want < 1 ? 1 : want > k ? k : (int)want;
-}
-
-/* Warm-up of a prepared configuration: warmup_frames frames, then samples
- * until two consecutive ones agree within 10 %; sets c->frames (frames per
- * timing sample) and c->warmup_ns.  llvmpipe JIT-compiles a program's
- * variant at its first draw, also when the program came from the binary
- * cache: on a warm second run of the default sweep the first frame took a
- * median 2.5 ms (up to 23 ms) more than the steady frame, and the frames
- * after it were steady.  So the first frame is timed alone and the frames
- * after it give the frame time that sizes the warm-up samples. */
+/* Warm-up of a prepared configuration, as the protocol asks (run/protocol.h):
+ * the first frame alone, the rest of warmup_frames, then samples until two
+ * consecutive ones agree; sets c->frames (frames per timing sample) and
+ * c->warmup_ns.  llvmpipe JIT-compiles a program's variant at its first
+ * draw, also when the program came from the binary cache: on a warm second
+ * run of the default sweep the first frame took a median 2.5 ms (up to
+ * 23 ms) more than the steady frame, and the frames after it were steady. */
 static void measure__warmup(mscene *m, mconf *c)
 {
-    const sweep_measure *sm = &m->job->sweep->measure;
     int64_t t0 = dm_now_ns();
-    double first = measure__plain_sample(m, c, 1);
-    double rest = sm->warmup_frames > 1 ? measure__plain_sample(m, c, sm->warmup_frames - 1) : first;
-    int wf = measure__warmup_sample_frames(sm, rest);
-    double prev = measure__plain_sample(m, c, wf);
+    protocol_warmup w;
     dm_str seq = {0};
-    dm_str_printf(&seq, "%.2f", prev / 1e6);
-    for (int tries = 0; tries < 10; tries++) {   /* until two samples agree within 10 % */
-        double cur = measure__plain_sample(m, c, wf);
-        dm_str_printf(&seq, " %.2f", cur / 1e6);
-        if (fabs(cur - prev) <= 0.10 * prev)
-            break;
-        prev = cur;
+    for (int f = protocol_warmup_begin(&m->pd, &w); f > 0;) {
+        int agreeing = w.stage == PROTOCOL_WARMUP_AGREE_STAGE;
+        double ns = measure__plain_sample(m, c, f);
+        if (agreeing)
+            dm_str_printf(&seq, "%s%.2f", seq.len ? " " : "", ns / 1e6);
+        f = protocol_warmup_next(&m->pd, &w, ns);
     }
     dm_log(DM_LOG_DEBUG, "warm-up %s: program %s, first frame %.2f ms, then %.2f ms/frame; "
            "samples of %d frames: %s ms/frame", c->pc->key,
            c->info.program_cached == 2 ? "from the binary cache" : c->info.program_cached ? "in memory" : "compiled",
-           first / 1e6, rest / 1e6, wf, dm_str_get(&seq));
+           w.first_ns / 1e6, w.rest_ns / 1e6, w.sample_frames, dm_str_get(&seq));
     dm_str_free(&seq);
-    /* Short samples measure the scheduler more than the frame: take enough
-     * frames per sample to last min_sample_ms (as Google Benchmark grows its
-     * iteration count), never fewer than K. */
-    double want = sm->min_sample_ms * 1e6 / (prev > 1 ? prev : 1);
-    c->frames = want > sm->frames_per_sample ? (int)ceil(want) : sm->frames_per_sample;
-    if (c->frames > 100000)
-        c->frames = 100000;
+    c->frames = protocol_sample_frames(&m->pd, w.settled_ns);
     c->warmup_ns = dm_now_ns() - t0;
 }
 
@@ -221,7 +202,7 @@ static void measure__warmup(mscene *m, mconf *c)
  * samples_max - 1 are taken, so at least one more is measured here. */
 static void measure__restore(mscene *m, mconf *c)
 {
-    size_t cap = (size_t)m->job->sweep->measure.samples_max - 1, got = 0;
+    size_t cap = protocol_resume_limit(&m->pd), got = 0;
     long ns = 0;
     for (size_t i = 0; i < m->n_timing; i++) {
         double *v = NULL;
@@ -301,18 +282,10 @@ static int measure__checkpoint(mscene *m, mconf *cs, size_t n, dm_str *err)
     return rc ? DM_ERR_STORE : 0;
 }
 
-static int measure__wall_index(const mscene *m)
-{
-    for (size_t i = 0; i < m->n_timing; i++)
-        if (strcmp(m->timing[i], "WallTime") == 0)
-            return (int)i;
-    return -1;
-}
-
-/* Takes one timing sample of a configuration and decides whether it stops. */
+/* Takes one timing sample of a configuration and asks the protocol whether
+ * it stops; a drifting stop counter is noted in the configuration's log. */
 static void measure__timing_sample(mscene *m, mconf *c)
 {
-    const sweep_measure *sm = &m->job->sweep->measure;
     double *vals = dm_xcalloc(m->n_timing + 1, sizeof *vals);
     measure__say(m->job, "B %s", c->pc->key);
     int64_t t0 = dm_now_ns();
@@ -326,14 +299,18 @@ static void measure__timing_sample(mscene *m, mconf *c)
     c->n_samples++;
     c->sampling_ns += dm_now_ns() - t0;
     free(vals);
-    int wi = measure__wall_index(m);
-    stats_summary su;
+    const double *x = m->stop_index >= 0 ? c->timing[m->stop_index] : NULL;
     double elapsed = (double)c->sampling_ns / 1e9;   /* its own samples only, not the round's */
-    int precise = wi >= 0 && stats_summarize(c->timing[wi], c->n_samples, m->job->seed, &su) == 0 &&
-                  su.ci_rel <= sm->target_ci;
-    if ((c->n_samples >= (size_t)sm->samples_min && (precise || elapsed > sm->max_seconds)) ||
-        c->n_samples >= (size_t)sm->samples_max || wi < 0)
-        c->active = 0;
+    protocol_decision d = protocol_decide(&m->pd, x, c->n_samples, elapsed);
+    if (d.stop == PROTOCOL_CONTINUE)
+        return;
+    c->active = 0;
+    if (d.drifting)
+        dm_str_printf(&c->log, "%s drifted %+.1f %% over its %zu samples (a trend, not noise: the "
+                      "machine's load or clock changed while sampling)\n", m->timing[m->stop_index],
+                      100 * d.drift, c->n_samples);
+    dm_log(DM_LOG_DEBUG, "sampling %s: %zu samples, stop: %s, CI ±%.2f %%", c->pc->key, c->n_samples,
+           protocol_stop_name(d.stop), 100 * d.ci_rel);
 }
 
 static void measure__counter_timed(dm_counter_result *r, const double *x, size_t n, uint64_t seed)
@@ -374,18 +351,36 @@ static dm_counter_result *measure__push(dm_config_result *out, const char *name)
     return r;
 }
 
-/* Value of a collected counter for derived formulas: the median of timed
- * counters, the value of the others; ViewportPixels is the target size. */
-typedef struct derive_env { const dm_config_result *out; double viewport; } derive_env;
+/* Value of a caller-fed counter for configuration c, by its registry feed;
+ * NaN when nothing feeds it. */
+static double measure__fed(const mconf *c, counters_feed feed)
+{
+    switch (feed) {
+    case COUNTERS_FEED_SETUP_NS: return (double)c->info.setup_ns;
+    case COUNTERS_FEED_WARMUP_NS: return (double)c->warmup_ns;
+    case COUNTERS_FEED_TEXTURE_BYTES: return (double)c->info.texture_bytes;
+    case COUNTERS_FEED_MESH_BYTES: return (double)c->info.mesh_bytes;
+    case COUNTERS_FEED_MESH_TRIANGLES: return (double)c->info.mesh_triangles;
+    case COUNTERS_FEED_VIEWPORT_PIXELS: return (double)c->pc->width * c->pc->height;
+    case COUNTERS_FEED_NONE: break;
+    }
+    return NAN;
+}
+
+/* Value of a counter for derived formulas: the median of timed counters,
+ * the value of the others; a caller-fed counter the sweep did not list
+ * (ViewportPixels) is fed all the same. */
+typedef struct derive_env { const dm_config_result *out; const mconf *c; } derive_env;
 
 static int measure__derive_value(const char *name, void *user, double *value)
 {
     const derive_env *e = user;
-    if (strcmp(name, "ViewportPixels") == 0) {
-        *value = e->viewport;
+    const dm_counter_result *r = dm_config_counter(e->out, name);
+    const counters_info *ci = counters_find(name);
+    if (!r && ci && ci->feed != COUNTERS_FEED_NONE) {
+        *value = measure__fed(e->c, ci->feed);
         return 0;
     }
-    const dm_counter_result *r = dm_config_counter(e->out, name);
     if (!r || !r->available || r->partial)
         return DM_ERR_UNAVAILABLE;
     *value = r->value;
@@ -395,14 +390,15 @@ static int measure__derive_value(const char *name, void *user, double *value)
 static int measure__derive_has(const char *name, void *user)
 {
     const derive_env *e = user;
-    return strcmp(name, "ViewportPixels") == 0 || dm_config_counter(e->out, name) != NULL;
+    const counters_info *ci = counters_find(name);
+    return (ci && ci->feed != COUNTERS_FEED_NONE) || dm_config_counter(e->out, name) != NULL;
 }
 
 /* Adds every derived counter whose inputs were all collected (docs/counters.md:
  * formulas over the above); a zero denominator is unavailable, not infinite. */
-static void measure__derived(const plan_config *pc, dm_config_result *out)
+static void measure__derived(const mconf *c, dm_config_result *out)
 {
-    derive_env e = { out, (double)pc->width * pc->height };
+    derive_env e = { out, c };
     for (size_t i = 0; i < counters_count(); i++) {
         const counters_info *ci = counters_info_at(i);
         if (ci->backend != COUNTERS_BACKEND_DERIVED || !counters_derive_inputs(ci->name, measure__derive_has, &e))
@@ -455,7 +451,8 @@ static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
             continue;
         }
         measure__counter_timed(r, c->timing[i], c->n_samples, m->job->seed);
-        r->partial = strcmp(m->timing[i], "GPUTime") == 0 && m->job->timer_partial;
+        /* GL_TIME_ELAPSED covers only part of the work on some drivers */
+        r->partial = counters_find(m->timing[i])->backend == COUNTERS_BACKEND_TIMER_QUERY && m->job->timer_partial;
     }
     for (size_t i = 0; i < m->n_statistic; i++) {
         dm_counter_result *r = measure__push(out, m->statistic[i]);
@@ -467,24 +464,13 @@ static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
         }
     }
     for (size_t i = 0; i < sm->n_counters; i++) {
-        const char *n = sm->counters[i];
-        double v = NAN;
-        if (strcmp(n, "TextureBytes") == 0)
-            v = (double)c->info.texture_bytes;
-        else if (strcmp(n, "MeshBytes") == 0)
-            v = (double)c->info.mesh_bytes;
-        else if (strcmp(n, "MeshTriangles") == 0)
-            v = (double)c->info.mesh_triangles;
-        else if (strcmp(n, "SetupTime") == 0)
-            v = (double)c->info.setup_ns;
-        else if (strcmp(n, "WarmupTime") == 0)
-            v = (double)c->warmup_ns;
-        else
-            continue;
-        measure__push(out, n)->value = v;
+        const counters_info *ci = counters_find(sm->counters[i]);
+        double v = ci ? measure__fed(c, ci->feed) : NAN;
+        if (ci && isfinite(v))
+            measure__push(out, ci->name)->value = v;
     }
     measure__instructions(m, c, out);
-    measure__derived(c->pc, out);
+    measure__derived(c, out);
 }
 
 static char *measure__img_path(const measure_job *job, const char *name)
@@ -705,7 +691,7 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
     out.reason = dm_xstrdup(c->reason);
     out.log = c->log.len ? dm_xstrdup(dm_str_get(&c->log)) : NULL;
     int rc = store_config_put(m->st, m->job->run_id, &out);
-    const dm_counter_result *wt = dm_config_counter(&out, "WallTime");
+    const dm_counter_result *wt = m->stop_index >= 0 ? dm_config_counter(&out, m->timing[m->stop_index]) : NULL;
     double ci = wt && wt->median > 0 ? (wt->ci_hi - wt->ci_lo) / 2 / wt->median : NAN;
     if (rc == 0)
         measure__say(m->job, "D %s %s %.0f %.4f %lld", c->pc->key, out.ok ? "ok" : "failed",
@@ -735,6 +721,7 @@ static int measure__setup(mscene *m, dm_str *err)
         free(copy);
     }
     rc = rc ? rc : store_open(m->job->store_path, &m->st, err);
+    protocol_desc_from_measure(&m->pd, &m->job->sweep->measure, m->job->seed);
     if (rc == 0)
         measure__classify(m);
     else if (!err->len)

@@ -16,6 +16,8 @@
  * configuration logs its warm-up and where its time went.  Progress lines go to report_fd:
  * "B <key>" before work on a key, "D <key> <status> <median_ns> <ci_rel>
  * <sampling_ns>" after it is committed (sampling_ns: time in its timed samples).
+ * The measuring decisions (warm-up, frames per sample, when to stop, drift)
+ * are asked of run/protocol.h; this file renders, reads clocks and stores.
  */
 #ifndef HARNESS_MEASURE_H
 #define HARNESS_MEASURE_H

@@ -7,6 +7,7 @@
 #include "run/fitting.h"
 #include "run/gl_context.h"
 #include "run/measure.h"
+#include "run/protocol.h"
 #include "run/trends.h"
 #include "sweep/plan.h"
 #include "store/store.h"
@@ -424,18 +425,13 @@ static int runner__scene(runner *r, const plan_config *cs, size_t n)
 /* Earlier runs searched for a cost model and counters (newest first). */
 #define RUNNER__BUDGET_RUNS 16
 
-/* Predicted seconds to measure a configuration from one pilot frame:
- * warm-up plus samples_max samples, each at least K frames and min_sample_ms
- * long, capped by max_seconds, plus the image renders. */
+/* Predicted seconds to measure a configuration from its frame time, as the
+ * protocol sees it (run/protocol.h: protocol_predict_s). */
 static double runner__predict(const sweep_measure *m, double frame_ns)
 {
-    double sample = frame_ns * m->frames_per_sample;
-    if (sample < m->min_sample_ms * 1e6)
-        sample = m->min_sample_ms * 1e6;
-    double sampling = sample * m->samples_max / 1e9;
-    if (sampling > m->max_seconds)
-        sampling = m->max_seconds;
-    return sampling + frame_ns * (m->warmup_frames + 12.0 * m->frames_per_sample + 20) / 1e9;
+    protocol_desc d;
+    protocol_desc_from_measure(&d, m, 0);
+    return protocol_predict_s(&d, frame_ns);
 }
 
 /* What --budget knows from the store: earlier runs (newest first) and the
@@ -963,12 +959,26 @@ static void runner__free(runner *r)
     dm_run_free(&r->env);
 }
 
-/* 1 when the sweep asks for a counter of the Instructions pass. */
+/* Input check of counters_derive_inputs that notes, in *user, an input
+ * counted under callgrind; every input "is there", so all are visited. */
+static int runner__callgrind_input(const char *input, void *user)
+{
+    const counters_info *ci = counters_find(input);
+    if (ci && ci->backend == COUNTERS_BACKEND_CALLGRIND)
+        *(int *)user = 1;
+    return 1;
+}
+
+/* 1 when the sweep asks for a counter of the Instructions pass, by the
+ * registry: a callgrind counter, or one derived from one. */
 static int runner__wants_instructions(const sweep *s)
 {
     for (size_t i = 0; i < s->measure.n_counters; i++) {
         const counters_info *ci = counters_find(s->measure.counters[i]);
-        if (ci && strcmp(ci->group, "Cost") == 0)
+        int via = 0;
+        if (ci && ci->backend == COUNTERS_BACKEND_DERIVED)
+            counters_derive_inputs(ci->name, runner__callgrind_input, &via);
+        if (via || (ci && ci->backend == COUNTERS_BACKEND_CALLGRIND))
             return 1;
     }
     return 0;

@@ -2,3 +2,5 @@
 # (needs GL via dmbench).
 dm_add_gl(test_run_refcache test_run_refcache.c LIBS dm_run)
 add_dependencies(test_run_refcache dmbench)
+# The measuring decisions (run/protocol.c), pure: synthetic sample streams.
+dm_add_unit(test_run_protocol test_run_protocol.c LIBS dm_protocol)

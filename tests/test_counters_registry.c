@@ -160,6 +160,37 @@ static void test_derived_formulas_resolve(void **state)
     }
 }
 
+/* The columns run/measure.c reads instead of names: only caller-fed rows
+ * have a feed, each feed is on one row, the six fed by dmbench are the ones
+ * expected; exactly one counter stops sampling, WallTime, a timed one. */
+static void test_feeds_and_stop_counter(void **state)
+{
+    (void)state;
+    static const struct { const char *name; counters_feed feed; } fed[] = {
+        {"SetupTime", COUNTERS_FEED_SETUP_NS}, {"WarmupTime", COUNTERS_FEED_WARMUP_NS},
+        {"TextureBytes", COUNTERS_FEED_TEXTURE_BYTES}, {"MeshBytes", COUNTERS_FEED_MESH_BYTES},
+        {"MeshTriangles", COUNTERS_FEED_MESH_TRIANGLES}, {"ViewportPixels", COUNTERS_FEED_VIEWPORT_PIXELS},
+    };
+    size_t n_fed = 0, n_stop = 0;
+    for (size_t i = 0; i < counters_count(); i++) {
+        const counters_info *c = counters_info_at(i);
+        if (c->feed != COUNTERS_FEED_NONE) {
+            assert_int_equal(c->backend, COUNTERS_BACKEND_CPU_SIDE);
+            n_fed++;
+        }
+        if (c->stops_sampling) {
+            assert_string_equal(c->name, "WallTime");
+            assert_int_equal(c->backend, COUNTERS_BACKEND_CLOCK);
+            n_stop++;
+        }
+    }
+    assert_int_equal(n_fed, sizeof fed / sizeof fed[0]);
+    assert_int_equal(n_stop, 1);
+    for (size_t i = 0; i < sizeof fed / sizeof fed[0]; i++)
+        assert_int_equal(counters_find(fed[i].name)->feed, fed[i].feed);
+    assert_int_equal(counters_find("VTPagesResident")->feed, COUNTERS_FEED_NONE);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -168,6 +199,7 @@ int main(void)
         cmocka_unit_test(test_expr_known_inputs),
         cmocka_unit_test(test_expr_syntax_errors),
         cmocka_unit_test(test_derived_formulas_resolve),
+        cmocka_unit_test(test_feeds_and_stop_counter),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -1,0 +1,142 @@
+/* protocol.h — the measuring decisions, as pure functions of the numbers
+ * measured so far (docs/measurement.md, "The protocol").
+ *
+ * No GL, no clock, no I/O: the caller (run/measure.c) renders, reads the
+ * clocks and feeds the figures in; the protocol answers how many frames to
+ * time next, whether the warm-up is done, whether sampling stops and why,
+ * whether the samples drift, and how long measuring a configuration would
+ * take (--budget).  Modelled on Google Benchmark's
+ * ShouldReportIterationResults, so unit tests drive it with made-up
+ * streams (tests/test_run_protocol.c).
+ *
+ *   protocol_desc d;  protocol_desc_from_measure(&d, &sweep->measure, seed);
+ *   protocol_warmup w;
+ *   for (int f = protocol_warmup_begin(&d, &w); f > 0; )
+ *       f = protocol_warmup_next(&d, &w, time_frames(f) / f);
+ *   int frames = protocol_sample_frames(&d, w.settled_ns);
+ *   do x[n++] = time_frames(frames) / frames;
+ *   while (protocol_decide(&d, x, n, elapsed_s).stop == PROTOCOL_CONTINUE);
+ */
+#ifndef RUN_PROTOCOL_H
+#define RUN_PROTOCOL_H
+
+#include <stddef.h>
+#include <stdint.h>
+
+#include "sweep/sweep.h"
+
+/* Defaults of the protocol's own constants (zero in a desc means these). */
+#define PROTOCOL_WARMUP_AGREE    0.10     /* two warm-up samples agree within 10 % */
+#define PROTOCOL_WARMUP_TRIES    10       /* at most this many samples after the first agreement sample */
+#define PROTOCOL_MAX_FRAMES      100000   /* frames per timing sample, at most */
+#define PROTOCOL_DRIFT_LIMIT     0.05     /* trend over the samples, relative to the median */
+#define PROTOCOL_DRIFT_T         3.0      /* |t| of the trend's slope that is not noise */
+
+/* The settings: the sweep's measure block plus the protocol's constants.
+ * Zero means default for the constants (protocol_defaults fills them). */
+typedef struct protocol_desc {
+    int warmup_frames;       /* frames before the agreement samples (measure.warmup_frames) */
+    int frames_per_sample;   /* K: frames per timing sample, at least */
+    double min_sample_ms;    /* a timing sample lasts at least this long (0 = K exactly) */
+    int samples_min, samples_max;
+    double target_ci;        /* stop when the median's 95 % CI half-width / median <= this */
+    double max_seconds;      /* stop (after samples_min) when sampling took longer */
+    uint64_t seed;           /* of the bootstrap CI for fewer than 6 samples */
+    double warmup_agree;     /* 0 = PROTOCOL_WARMUP_AGREE */
+    int warmup_tries;        /* 0 = PROTOCOL_WARMUP_TRIES */
+    int max_frames;          /* 0 = PROTOCOL_MAX_FRAMES */
+    double drift_limit;      /* 0 = PROTOCOL_DRIFT_LIMIT */
+    double drift_t;          /* 0 = PROTOCOL_DRIFT_T */
+} protocol_desc;
+
+/* Fills the zero constants of d with their defaults. */
+void protocol_defaults(protocol_desc *d);
+/* d from a parsed sweep's measure block (defaults filled) and the run's seed. */
+void protocol_desc_from_measure(protocol_desc *d, const sweep_measure *m, uint64_t seed);
+
+/* ---- warm-up ---------------------------------------------------------------- */
+
+/* What the next warm-up sample is for. */
+typedef enum protocol_warmup_stage {
+    PROTOCOL_WARMUP_FIRST = 0,   /* the first frame alone (JIT compilation) */
+    PROTOCOL_WARMUP_REST,        /* the other warmup_frames - 1 frames */
+    PROTOCOL_WARMUP_AGREE_STAGE, /* samples of sample_frames until two agree */
+    PROTOCOL_WARMUP_DONE
+} protocol_warmup_stage;
+
+typedef struct protocol_warmup {
+    protocol_warmup_stage stage;
+    double first_ns;         /* ns of the first frame */
+    double rest_ns;          /* ns/frame of the rest (= first_ns when warmup_frames <= 1) */
+    int sample_frames;       /* frames per agreement sample */
+    int n_agree;             /* agreement samples taken */
+    int agreed;              /* 1: two consecutive samples agreed; 0: tries ran out */
+    double prev_ns;          /* ns/frame of the last agreement sample compared against */
+    double settled_ns;       /* once done: the frame time that sizes the timing samples */
+} protocol_warmup;
+
+/* Starts a warm-up; returns the frames of the first sample (always 1). */
+int protocol_warmup_begin(const protocol_desc *d, protocol_warmup *w);
+/* Feeds the ns per frame of the sample just taken (of the frames the last
+ * call returned); returns the frames of the next sample, or 0 when the
+ * warm-up is done (then w->settled_ns is set).  The first frame is timed
+ * alone, then warmup_frames - 1 frames, then samples of
+ * protocol_warmup_frames() frames until two consecutive ones agree within
+ * warmup_agree, at most 1 + warmup_tries of them. */
+int protocol_warmup_next(const protocol_desc *d, protocol_warmup *w, double frame_ns);
+/* Frames per agreement sample: K, or fewer (at least 1) when K frames of
+ * frame_ns would outlast min_sample_ms; K when min_sample_ms is 0 or
+ * frame_ns is not positive.  The agreement check then costs 2 frames, not
+ * 2K, on configurations whose frame alone lasts min_sample_ms. */
+int protocol_warmup_frames(const protocol_desc *d, double frame_ns);
+
+/* ---- timing samples ------------------------------------------------------------ */
+
+/* Frames per timing sample for a settled frame time: enough frames to last
+ * min_sample_ms, never fewer than K, at most max_frames. */
+int protocol_sample_frames(const protocol_desc *d, double frame_ns);
+
+/* Why sampling stops (PROTOCOL_CONTINUE: it does not). */
+typedef enum protocol_stop {
+    PROTOCOL_CONTINUE = 0,
+    PROTOCOL_CONVERGED,      /* CI within target_ci, at least samples_min samples */
+    PROTOCOL_TIME_CAP,       /* sampling took longer than max_seconds, at least samples_min */
+    PROTOCOL_MAX_SAMPLES,    /* samples_max samples */
+    PROTOCOL_NO_STOP_COUNTER /* nothing to judge the precision by: one sample is all */
+} protocol_stop;
+
+typedef struct protocol_decision {
+    protocol_stop stop;
+    double ci_rel;           /* CI half-width / median of the samples so far (NaN: none) */
+    int drifting;            /* the samples follow a trend (see protocol_drift) */
+    double drift;            /* that trend over the samples, relative to the median */
+} protocol_decision;
+
+/* The decision after the n-th sample: x holds the per-frame values of the
+ * stop counter (WallTime) so far, NULL when it is not measured; elapsed_s
+ * is the configuration's own sampling time.  Stops once n >= samples_min
+ * and (CI within target or elapsed_s > max_seconds), or at samples_max. */
+protocol_decision protocol_decide(const protocol_desc *d, const double *x, size_t n, double elapsed_s);
+
+/* Trend of x over its index: *drift gets the least-squares slope times
+ * (n - 1) over the median (the relative change across the samples).
+ * Returns 1 (drifting) when |drift| > drift_limit and the slope's
+ * t-statistic exceeds drift_t, i.e. the trend is large and not noise;
+ * 0 for fewer than 4 finite samples. */
+int protocol_drift(const protocol_desc *d, const double *x, size_t n, double *drift);
+
+/* Name of a stop reason for logs ("converged", "time cap", ...). */
+const char *protocol_stop_name(protocol_stop s);
+
+/* Samples a checkpoint may give back: samples_max - 1, so that a resumed
+ * configuration measures at least one more. */
+size_t protocol_resume_limit(const protocol_desc *d);
+
+/* ---- --budget ------------------------------------------------------------------ */
+
+/* Seconds to measure a configuration whose frame takes frame_ns: warm-up
+ * plus samples_max samples, each at least K frames and min_sample_ms long,
+ * the sampling capped at max_seconds, plus the image renders. */
+double protocol_predict_s(const protocol_desc *d, double frame_ns);
+
+#endif

@@ -1,0 +1,346 @@
+/* test_run_protocol.c — the measuring decisions (run/protocol.h) driven by
+ * made-up sample streams: the exact sample at which sampling stops and why,
+ * the drift flag, the warm-up's sample sizes and end, frames per sample and
+ * the --budget prediction.  The CI the stop rule is checked against is
+ * computed here with exact integer binomials, not with models/stats.c. */
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <math.h>
+#include <cmocka.h>
+
+#include "run/protocol.h"
+
+/* The default sweep's measure block. */
+static protocol_desc desc(void)
+{
+    protocol_desc d = { .warmup_frames = 8, .frames_per_sample = 16, .min_sample_ms = 20,
+                        .samples_min = 5, .samples_max = 30, .target_ci = 0.03,
+                        .max_seconds = 10, .seed = 42 };
+    protocol_defaults(&d);
+    return d;
+}
+
+/* The default desc with another stop rule. */
+static protocol_desc desc_stop(int samples_min, int samples_max, double target_ci, double max_seconds)
+{
+    protocol_desc d = desc();
+    d.samples_min = samples_min;
+    d.samples_max = samples_max;
+    d.target_ci = target_ci;
+    d.max_seconds = max_seconds;
+    return d;
+}
+
+/* Deterministic values uniform in [-1, 1) (a 64-bit LCG). */
+static double uniform(uint64_t *s)
+{
+    *s = *s * 6364136223846793005ULL + 1442695040888963407ULL;
+    return (double)(*s >> 11) / (double)(1ULL << 52) - 1.0;
+}
+
+/* x[0..n) = 1 ms +- spread (relative), uniform, from the given seed. */
+static void noisy(double *x, size_t n, double spread, uint64_t seed)
+{
+    for (size_t i = 0; i < n; i++)
+        x[i] = 1e6 * (1 + spread * uniform(&seed));
+}
+
+/* Feeds x[0..n) one sample at a time with elapsed_s = i * dt after the
+ * i-th; returns the 1-based sample at which the protocol stopped (0: never)
+ * and its decision in *last. */
+static size_t feed(const protocol_desc *d, const double *x, size_t n, double dt, protocol_decision *last)
+{
+    for (size_t i = 1; i <= n; i++) {
+        *last = protocol_decide(d, x, i, (double)i * dt);
+        if (last->stop != PROTOCOL_CONTINUE)
+            return i;
+    }
+    return 0;
+}
+
+/* Feeds x[0..n) (see feed) and asserts it stops at sample want for why. */
+static protocol_decision expect_stop(const protocol_desc *d, const double *x, size_t n, double dt,
+                                     size_t want, protocol_stop why)
+{
+    protocol_decision last;
+    assert_int_equal(feed(d, x, n, dt, &last), want);
+    assert_int_equal(last.stop, why);
+    return last;
+}
+
+static int cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* CI half-width over the median of x[0..n), 6 <= n <= 60: order statistics
+ * k and n-k+1 with k the largest such that 2 * sum_{i<k} C(n,i) <= 0.05 * 2^n
+ * (coverage >= 95 %), in exact integers. */
+static double ci_rel_exact(const double *x, size_t n)
+{
+    double *s = malloc(n * sizeof *s);
+    for (size_t i = 0; i < n; i++)
+        s[i] = x[i];
+    qsort(s, n, sizeof *s, cmp);
+    uint64_t c = 1, sum = 0, total = 1ULL << n;
+    size_t k = 0;
+    for (size_t j = 1; 2 * j <= n; j++) {
+        sum += c;                        /* sum of C(n, i) for i < j */
+        if (40 * sum > total)
+            break;
+        k = j;
+        c = c * (n - (j - 1)) / j;       /* C(n, j) */
+    }
+    assert_true(k >= 1);
+    double med = n % 2 ? s[n / 2] : (s[n / 2 - 1] + s[n / 2]) / 2;
+    double r = (s[n - k] - s[k - 1]) / 2 / med;
+    free(s);
+    return r;
+}
+
+/* A stream of +-10 % noise reaches a 4 % CI at the first n (>= samples_min)
+ * where the exact order-statistic CI is within it, and not a sample before. */
+static void stops_when_ci_reaches_target(void **state)
+{
+    (void)state;
+    protocol_desc d = desc_stop(6, 60, 0.04, 10);
+    double x[60];
+    noisy(x, 60, 0.1, 7);
+    size_t want = 0;
+    for (size_t n = 6; n <= 60 && !want; n++)
+        if (ci_rel_exact(x, n) <= d.target_ci)
+            want = n;
+    assert_true(want > 10 && want < 60);   /* the stream makes the rule work */
+    protocol_decision last = expect_stop(&d, x, 60, 0.01, want, PROTOCOL_CONVERGED);
+    assert_true(fabs(last.ci_rel - ci_rel_exact(x, want)) < 1e-12);
+    printf("converged at sample %zu of a +-10 %% stream (CI +-%.2f %%)\n", want, 100 * last.ci_rel);
+}
+
+/* A constant stream has a zero CI from the first sample, yet sampling goes
+ * on until samples_min. */
+static void never_before_samples_min(void **state)
+{
+    (void)state;
+    protocol_desc d = desc();
+    double x[30];
+    for (size_t i = 0; i < 30; i++)
+        x[i] = 2.5e6;
+    protocol_decision last = expect_stop(&d, x, 30, 0.01, 5, PROTOCOL_CONVERGED);
+    assert_true(last.ci_rel == 0);
+    d.samples_min = 12;
+    expect_stop(&d, x, 30, 0.01, 12, PROTOCOL_CONVERGED);
+    /* also when the time cap is long passed */
+    expect_stop(&d, x, 30, 100, 12, PROTOCOL_CONVERGED);
+}
+
+/* A +-50 % stream never reaches a 0.1 % CI: it stops at samples_max. */
+static void stops_at_samples_max(void **state)
+{
+    (void)state;
+    protocol_desc d = desc_stop(5, 20, 0.001, 10);
+    double x[40];
+    noisy(x, 40, 0.5, 3);
+    protocol_decision last = expect_stop(&d, x, 40, 0.01, 20, PROTOCOL_MAX_SAMPLES);
+    assert_true(last.ci_rel > d.target_ci);
+}
+
+/* The time cap: sampling time strictly over max_seconds stops it, with the
+ * cap reason, but not before samples_min. */
+static void stops_at_time_cap(void **state)
+{
+    (void)state;
+    protocol_desc d = desc_stop(2, 30, 0.001, 1.0);
+    double x[30];
+    noisy(x, 30, 0.5, 11);
+    /* 0.25 s per sample: 1.0 s after 4 is not over the cap, 1.25 s after 5 is */
+    expect_stop(&d, x, 30, 0.25, 5, PROTOCOL_TIME_CAP);
+    d.samples_min = 8;   /* over the cap long before, but samples_min rules */
+    expect_stop(&d, x, 30, 0.25, 8, PROTOCOL_TIME_CAP);
+}
+
+/* Without a stop counter (WallTime not measured) one sample is all. */
+static void no_stop_counter_one_sample(void **state)
+{
+    (void)state;
+    protocol_desc d = desc();
+    protocol_decision r = protocol_decide(&d, NULL, 1, 0.01);
+    assert_int_equal(r.stop, PROTOCOL_NO_STOP_COUNTER);
+    assert_true(isnan(r.ci_rel));
+    assert_int_equal(r.drifting, 0);
+}
+
+/* +1 % per sample is flagged as drift (exactly linear: the relative change
+ * is slope * (n - 1) / median); stationary +-10 % noise is not. */
+static void drift_flagged_only_for_a_trend(void **state)
+{
+    (void)state;
+    protocol_desc d = desc();
+    double x[30], drift;
+    for (size_t i = 0; i < 11; i++)
+        x[i] = 1.0 + 0.01 * (double)i;
+    assert_int_equal(protocol_drift(&d, x, 11, &drift), 1);
+    assert_true(fabs(drift - 0.01 * 10 / 1.05) < 1e-12);
+    uint64_t seed = 5;
+    for (size_t i = 0; i < 30; i++)   /* +1 % per sample compounded, +-2 % noise */
+        x[i] = 1e6 * pow(1.01, (double)i) * (1 + 0.02 * uniform(&seed));
+    assert_int_equal(protocol_drift(&d, x, 30, &drift), 1);
+    assert_true(drift > 0.25 && drift < 0.40);
+    protocol_decision last;
+    d.samples_max = 30;
+    d.target_ci = 0.0001;
+    last = expect_stop(&d, x, 30, 0.01, 30, PROTOCOL_MAX_SAMPLES);
+    assert_int_equal(last.drifting, 1);
+    noisy(x, 30, 0.1, seed);
+    assert_int_equal(protocol_drift(&d, x, 30, &drift), 0);
+    assert_true(fabs(drift) < d.drift_limit);
+    last = expect_stop(&d, x, 30, 0.01, 30, PROTOCOL_MAX_SAMPLES);
+    assert_int_equal(last.drifting, 0);
+    /* over 200 streams of 30 samples: +1 % per sample under +-10 % noise is
+     * always flagged, the same noise without the trend never */
+    int trend = 0, still = 0;
+    for (uint64_t k = 1; k <= 200; k++) {
+        noisy(x, 30, 0.1, k);
+        still += protocol_drift(&d, x, 30, &drift);
+        for (size_t i = 0; i < 30; i++)
+            x[i] *= 1 + 0.01 * (double)i;
+        trend += protocol_drift(&d, x, 30, &drift);
+    }
+    assert_int_equal(trend, 200);
+    assert_int_equal(still, 0);
+    /* too few samples to tell */
+    for (size_t i = 0; i < 3; i++)
+        x[i] = 1.0 + 0.5 * (double)i;
+    assert_int_equal(protocol_drift(&d, x, 3, &drift), 0);
+}
+
+/* Warm-up: the first frame alone, warmup_frames - 1 more, then samples of
+ * min_sample_ms worth of frames (at most K) until two consecutive ones agree
+ * within 10 %; the frame time that sizes the timing samples is the first of
+ * the agreeing pair. */
+static void warmup_settles_after_k_samples(void **state)
+{
+    (void)state;
+    protocol_desc d = desc();
+    protocol_warmup w;
+    assert_int_equal(protocol_warmup_begin(&d, &w), 1);
+    assert_int_equal(protocol_warmup_next(&d, &w, 12e6), 7);        /* JIT: 12 ms */
+    assert_int_equal(protocol_warmup_next(&d, &w, 2.0e6), 10);      /* 20 ms / 2 ms */
+    const double agree[] = { 3.0e6, 2.5e6, 2.2e6, 2.05e6 };         /* settles at the 4th */
+    for (int i = 0; i < 3; i++)
+        assert_int_equal(protocol_warmup_next(&d, &w, agree[i]), 10);
+    assert_int_equal(protocol_warmup_next(&d, &w, agree[3]), 0);
+    assert_int_equal(w.agreed, 1);
+    assert_int_equal(w.n_agree, 4);
+    assert_true(w.settled_ns == 2.2e6);
+    assert_true(w.first_ns == 12e6 && w.rest_ns == 2.0e6);
+    assert_int_equal(protocol_sample_frames(&d, w.settled_ns), 16);   /* 20/2.2 < K */
+    assert_int_equal(protocol_warmup_next(&d, &w, 1e6), 0);          /* done stays done */
+}
+
+/* A warm-up that never agrees ends after 1 + warmup_tries agreement samples
+ * on the last one; warmup_frames <= 1 goes from the first frame straight to
+ * the agreement samples, sized by the first frame. */
+static void warmup_gives_up_and_short_warmup(void **state)
+{
+    (void)state;
+    protocol_desc d = desc();
+    protocol_warmup w;
+    protocol_warmup_begin(&d, &w);
+    protocol_warmup_next(&d, &w, 1e6);
+    assert_int_equal(protocol_warmup_next(&d, &w, 1e6), 16);   /* 20 frames wanted, K = 16 */
+    int samples = 0, f = 16;
+    while (f > 0) {
+        f = protocol_warmup_next(&d, &w, samples % 2 ? 2e6 : 1e6);
+        samples++;
+    }
+    assert_int_equal(samples, 11);
+    assert_int_equal(w.agreed, 0);
+    assert_true(w.settled_ns == 1e6);   /* the 11th sample */
+    d.warmup_frames = 1;
+    d.min_sample_ms = 0;
+    protocol_warmup_begin(&d, &w);
+    assert_int_equal(protocol_warmup_next(&d, &w, 40e6), 16);   /* min_sample_ms 0: K */
+    assert_true(w.rest_ns == 40e6);
+    assert_int_equal(protocol_warmup_next(&d, &w, 40e6), 16);
+    assert_int_equal(protocol_warmup_next(&d, &w, 41e6), 0);
+    assert_true(w.settled_ns == 40e6);
+}
+
+/* Frames per sample: enough to last min_sample_ms, at least K, at most
+ * max_frames; warm-up samples: at most K, at least 1. */
+static void frames_per_sample(void **state)
+{
+    (void)state;
+    protocol_desc d = desc();
+    assert_int_equal(protocol_sample_frames(&d, 0.5e6), 40);
+    assert_int_equal(protocol_sample_frames(&d, 0.3e6), 67);       /* ceil(66.67) */
+    assert_int_equal(protocol_sample_frames(&d, 5e6), 16);
+    assert_int_equal(protocol_sample_frames(&d, 10), 100000);      /* 2e6 frames: capped */
+    assert_int_equal(protocol_sample_frames(&d, 0), 100000);
+    assert_int_equal(protocol_warmup_frames(&d, 0.5e6), 16);
+    assert_int_equal(protocol_warmup_frames(&d, 3e6), 7);          /* ceil(6.67) */
+    assert_int_equal(protocol_warmup_frames(&d, 30e6), 1);
+    assert_int_equal(protocol_warmup_frames(&d, NAN), 16);
+    d.min_sample_ms = 0;
+    assert_int_equal(protocol_sample_frames(&d, 0.5e6), 16);
+    assert_int_equal(protocol_warmup_frames(&d, 30e6), 16);
+    d.max_frames = 50;
+    d.min_sample_ms = 20;
+    assert_int_equal(protocol_sample_frames(&d, 0.1e6), 50);
+}
+
+/* --budget: samples_max samples of max(K frames, min_sample_ms), capped at
+ * max_seconds, plus (warmup_frames + 12 K + 20) frames. */
+static void budget_prediction(void **state)
+{
+    (void)state;
+    protocol_desc d = desc();
+    /* 1 ms: 30 x 20 ms = 0.6 s + 220 x 1 ms = 0.82 s */
+    assert_true(fabs(protocol_predict_s(&d, 1e6) - 0.82) < 1e-12);
+    /* 5 ms: 30 x 80 ms = 2.4 s + 220 x 5 ms = 3.5 s */
+    assert_true(fabs(protocol_predict_s(&d, 5e6) - 3.5) < 1e-12);
+    /* 50 ms: 30 x 800 ms = 24 s, capped at 10, + 11 s = 21 s */
+    assert_true(fabs(protocol_predict_s(&d, 50e6) - 21.0) < 1e-12);
+    assert_int_equal(protocol_resume_limit(&d), 29);
+}
+
+/* The desc from a sweep's measure block carries its values. */
+static void desc_from_measure(void **state)
+{
+    (void)state;
+    sweep_measure m = { .warmup_frames = 3, .frames_per_sample = 4, .min_sample_ms = 5,
+                        .samples_min = 6, .samples_max = 7, .target_ci = 0.08, .max_seconds = 9 };
+    protocol_desc d;
+    protocol_desc_from_measure(&d, &m, 99);
+    assert_int_equal(d.warmup_frames, 3);
+    assert_int_equal(d.frames_per_sample, 4);
+    assert_true(d.min_sample_ms == 5 && d.target_ci == 0.08 && d.max_seconds == 9);
+    assert_int_equal(d.samples_min, 6);
+    assert_int_equal(d.samples_max, 7);
+    assert_int_equal(d.seed, 99);
+    assert_true(d.warmup_agree == PROTOCOL_WARMUP_AGREE && d.warmup_tries == PROTOCOL_WARMUP_TRIES);
+    assert_true(d.max_frames == PROTOCOL_MAX_FRAMES && d.drift_limit == PROTOCOL_DRIFT_LIMIT);
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(stops_when_ci_reaches_target),
+        cmocka_unit_test(never_before_samples_min),
+        cmocka_unit_test(stops_at_samples_max),
+        cmocka_unit_test(stops_at_time_cap),
+        cmocka_unit_test(no_stop_counter_one_sample),
+        cmocka_unit_test(drift_flagged_only_for_a_trend),
+        cmocka_unit_test(warmup_settles_after_k_samples),
+        cmocka_unit_test(warmup_gives_up_and_short_warmup),
+        cmocka_unit_test(frames_per_sample),
+        cmocka_unit_test(budget_prediction),
+        cmocka_unit_test(desc_from_measure),
+    };
+    return cmocka_run_group_tests(tests, NULL, NULL);
+}
