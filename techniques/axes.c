@@ -188,18 +188,14 @@ int axes_parse_size2(const char *s, int *w, int *h)
  * through Assimp, so a missing or corrupt file stops the run before any work. */
 static int axes__check_user_mesh(const char *path, dm_str *err)
 {
-    mesh_data md;
-    int had_tangents = 0;
-    dm_str why = {0};
     if (dm_file_exists(path) && !dm_regular_file(path)) {
         dm_str_printf(err, "mesh file '%s' cannot be used: not a regular file (a directory, FIFO "
                       "or device)", path);
         return DM_ERR_ARG;
     }
-    int rc = user_mesh_load(path, &md, &had_tangents, &why);
-    if (rc == 0)
-        mesh_free(&md);
-    else
+    dm_str why = {0};
+    int rc = user_mesh_check(path, &why);
+    if (rc)
         dm_str_printf(err, "mesh file '%s' cannot be used: %s", path, dm_str_get(&why));
     dm_str_free(&why);
     return rc ? DM_ERR_ARG : 0;
