@@ -85,6 +85,10 @@ static axis_info axes__table[] = {
      "degrees added to the camera elevation (light i: min(cam + this - 10*(i mod 3), 80))"},
     {"light.distance", F, NULL, 0, 100, "1.2", 1,
      "light distance from the camera target as a multiple of camera.distance (0 = at the target)"},
+    {"camera.orbit_deg_per_frame", F, NULL, -360, 360, "0", 1,
+     "degrees the camera azimuth turns per frame of a sample (0 = still; lights follow it)"},
+    {"light.orbit_deg_per_frame", F, NULL, -360, 360, "0", 1,
+     "degrees the lights' azimuth turns per frame of a sample on top of the camera's (S2's light circles)"},
     {"maps", E, NULL, 0, 0, "bricks", 1,
      "procedural material maps, or user maps: height=PATH;normal=PATH;albedo=PATH"},
 };
@@ -278,6 +282,9 @@ static const struct {
     const char *axis, *when_axis, *when_value;
 } axes__conditions[] = {
     {"roughness", "lighting", "cook-torrance"},
+    /* still scenes keep the keys they had before the orbit axes existed */
+    {"camera.orbit_deg_per_frame", "camera.orbit_deg_per_frame", "!0"},
+    {"light.orbit_deg_per_frame", "light.orbit_deg_per_frame", "!0"},
 };
 
 int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),
@@ -290,7 +297,8 @@ int axes_condition_holds(const char *name, const char *(*value)(const char *axis
             continue;
         const char *v = value ? value(axes__conditions[i].when_axis, ctx) : NULL;
         v = v ? v : axes_find(axes__conditions[i].when_axis)->def;
-        return strcmp(v, axes__conditions[i].when_value) == 0;
+        const char *want = axes__conditions[i].when_value;   /* "!X": any value but X */
+        return (strcmp(v, want + (want[0] == '!')) == 0) != (want[0] == '!');
     }
     return 1;
 }

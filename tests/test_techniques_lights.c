@@ -381,6 +381,50 @@ static void test_normals_view(void **state)
     assert_int_equal(tech_renderer_set_debug_view(F.r, TECH_DEBUG_NONE), 0);
 }
 
+/* Renders frame `frame` of spec (its orbits turned by frame × degrees). */
+static float *render_frame(const char *spec, uint64_t frame)
+{
+    tech_item it = spec_prepare(F.r, spec, 0, NULL);
+    assert_int_equal(tech_set_frame(F.r, it, frame), 0);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    float *px = malloc((size_t)F.w * (size_t)F.h * 4 * sizeof(float));
+    glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, px);
+    tech_release(F.r, it);
+    return px;
+}
+
+/* Moving camera and lights (S2's light circles): frame k of an orbit is
+ * bit-identical to a still render at the azimuths turned by k × degrees
+ * (camera 30 + 3·10 = 60, lights 45 + 3·15 = 90 on top of it); frame 0 is
+ * the still scene; and the path really moves. */
+static void test_orbit_per_frame(void **state)
+{
+    (void)state;
+    const char *base = "technique=pom mesh=cube light_count=8";
+    char moving[256], still[256];
+    snprintf(moving, sizeof moving, "%s camera.orbit_deg_per_frame=10 light.orbit_deg_per_frame=15", base);
+    snprintf(still, sizeof still, "%s camera.azimuth=60 light.azimuth=90", base);
+    size_t bytes = npix() * 4 * sizeof(float);
+    float *k3 = render_frame(moving, 3), *at = render(still);
+    assert_memory_equal(k3, at, bytes);
+    float *k0 = render_frame(moving, 0), *plain = render(base);
+    assert_memory_equal(k0, plain, bytes);
+    assert_true(psnr(k0, k3, npix()) < 30.0);
+    /* the lights alone: frame 2 at 20°/frame = light.azimuth 85 */
+    free(k3);
+    free(at);
+    snprintf(moving, sizeof moving, "%s light.orbit_deg_per_frame=20", base);
+    snprintf(still, sizeof still, "%s light.azimuth=85", base);
+    k3 = render_frame(moving, 2);
+    at = render(still);
+    assert_memory_equal(k3, at, bytes);
+    assert_true(psnr(k3, plain, npix()) < 60.0);
+    free(k3);
+    free(at);
+    free(k0);
+    free(plain);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -389,6 +433,7 @@ int main(void)
         cmocka_unit_test(test_light_axes),
         cmocka_unit_test(test_camera_target_pans),
         cmocka_unit_test(test_normals_view),
+        cmocka_unit_test(test_orbit_per_frame),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
