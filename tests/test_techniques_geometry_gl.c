@@ -50,6 +50,23 @@ static stats count(const char *spec)
     return s;
 }
 
+/* Primitives submitted by one draw of spec (the pipeline statistic). */
+static GLuint64 submitted(const char *spec)
+{
+    tech_item it = prepare(spec);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    GLuint q;
+    GLuint64 n = 0;
+    glGenQueries(1, &q);
+    glBeginQuery(GL_PRIMITIVES_SUBMITTED_ARB, q);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    glEndQuery(GL_PRIMITIVES_SUBMITTED_ARB);
+    glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
+    glDeleteQueries(1, &q);
+    tech_release(F.r, it);
+    return n;
+}
+
 /* Renders spec into im (allocated, row 0 = GL's bottom row). */
 static void render_img(const char *spec, img *im)
 {
@@ -487,6 +504,20 @@ static void test_scale_zero_equals_normal(void **state)
     }
 }
 
+/* The scene meshes through the pipeline: S2's scene 1 submits its 22 086
+ * triangles; S4's reduced asteroid scene is 12 + 5·320 = 1 612 patches, and
+ * at level 1 every patch is evaluated at its 3 corners. */
+static void test_scene_counts(void **state)
+{
+    (void)state;
+    assert_int_equal(submitted("technique=normal mesh=s2-scene1"), 22086);
+    assert_int_equal(submitted("technique=normal mesh=s4-asteroids mesh_density=2"), 12 + 5 * 320);
+    stats s = count("technique=tess-displacement mesh=s4-asteroids-reduced maps=asteroid "
+                    "height_scale=0.207 tess_level=1");
+    assert_int_equal(s.patches, 1612);
+    assert_int_equal(s.tes, 3 * 1612);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -505,6 +536,7 @@ int main(void)
         cmocka_unit_test(test_bilinear_manual_matches_hw),
         cmocka_unit_test(test_visibility_test),
         cmocka_unit_test(test_reference_mesh),
+        cmocka_unit_test(test_scene_counts),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
