@@ -16,6 +16,7 @@
 #include "techniques/technique.h"
 
 static const char *const axes__on_off[] = {"on", "off", NULL};
+static const char *const axes__dnormals[] = {"map", "height", NULL};
 static const char *const axes__spacing[] = {"equal", "fractional_even", "fractional_odd", NULL};
 static const char *const axes__lod[] = {"uniform", "distance", "screen-edge", "flatness", NULL};
 static const char *const axes__smooth[] = {"off", "phong", NULL};
@@ -72,6 +73,10 @@ static axis_info axes__table[] = {
     {"vt_page_size", I, NULL, 16, 1024, "128", 1, "virtual texture page size in texels"},
     {"vt_cache_pages", I, NULL, 1, 65536, "256", 1, "pages in the physical page cache"},
     {"toksvig", E, axes__on_off, 0, 0, "off", 0, "Toksvig specular anti-aliasing from the filtered normal length"},
+    {"specular_map", E, axes__on_off, 0, 0, "off", 0,
+     "scale the specular term by the material's specular map (albedo alpha), as S3 does"},
+    {"displaced_normals", E, axes__dnormals, 0, 0, "map", 0,
+     "shading normals of a displacing technique: the normal map, or rebuilt from the height map (S3)"},
     {"camera.distance", F, NULL, 0.1, 100, "3.0", 1, "orbit camera distance from its target (camera.target_*)"},
     {"camera.azimuth", F, NULL, -360, 360, "30", 1, "orbit azimuth in degrees (0 = camera on +Z)"},
     {"camera.elevation", F, NULL, -89.9, 89.9, "20", 1, "orbit elevation in degrees toward +Y"},
@@ -285,6 +290,8 @@ static const struct {
     /* still scenes keep the keys they had before the orbit axes existed */
     {"camera.orbit_deg_per_frame", "camera.orbit_deg_per_frame", "!0"},
     {"light.orbit_deg_per_frame", "light.orbit_deg_per_frame", "!0"},
+    {"specular_map", "specular_map", "!off"},
+    {"displaced_normals", "displaced_normals", "!map"},
 };
 
 int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),

@@ -24,10 +24,11 @@ static void test_catalog(void **state)
         "virtual_texture", "vt_page_size", "vt_cache_pages", "toksvig", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "camera.target_x", "camera.target_y",
         "camera.target_z", "light.azimuth", "light.elevation", "light.distance",
-        "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", "maps", NULL};
+        "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", "maps", "specular_map",
+        "displaced_normals", NULL};
     for (size_t i = 0; spec[i]; i++)
         assert_non_null(axes_find(spec[i]));
-    assert_int_equal(axes_count(), 43);
+    assert_int_equal(axes_count(), 45);
     static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
         "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", "camera.target_x",
@@ -144,6 +145,8 @@ static void test_conditions(void **state)
     assert_false(axes_condition_holds("light.orbit_deg_per_frame", orbit_value, "0"));
     assert_true(axes_condition_holds("light.orbit_deg_per_frame", orbit_value, "1.5"));
     assert_true(axes_condition_holds("camera.orbit_deg_per_frame", orbit_value, "-2"));
+    assert_false(axes_condition_holds("specular_map", NULL, NULL));
+    assert_false(axes_condition_holds("displaced_normals", NULL, NULL));
     for (size_t i = 0; i < technique_count(); i++) {
         const technique_desc *t = technique_at(i);
         assert_int_equal(technique_reads_axis(t, "roughness"), technique_reads_axis(t, "lighting"));

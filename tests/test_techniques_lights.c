@@ -425,6 +425,39 @@ static void test_orbit_per_frame(void **state)
     free(plain);
 }
 
+/* specular_map: on scales each light's specular term by the material's
+ * specular map, `flat` holds 0.5 everywhere: the image is the Lambert image
+ * plus half the Blinn-Phong highlight, pixel by pixel (so a zero map leaves
+ * no highlight), and the highlight is really there. */
+static void test_specular_map(void **state)
+{
+    (void)state;
+    const char *base = "technique=normal mesh=sphere maps=flat light_count=3";
+    char spec[256];
+    float *a = render(base);
+    snprintf(spec, sizeof spec, "%s lighting=lambert", base);
+    float *b = render(spec);
+    snprintf(spec, sizeof spec, "%s specular_map=on", base);
+    float *c = render(spec);
+    double num = 0, den = 0, top = 0;
+    for (size_t i = 0; i < 4 * npix(); i++) {
+        double h = (double)a[i] - b[i];
+        num += ((double)c[i] - b[i]) * h;
+        den += h * h;
+        top = fmax(top, h);
+    }
+    double k = num / den, worst = 0;
+    for (size_t i = 0; i < 4 * npix(); i++)
+        worst = fmax(worst, fabs((double)c[i] - b[i] - k * ((double)a[i] - b[i])));
+    print_message("specular_map on: highlight x %.4f, worst residual %.2e, highlight peak %.3f\n", k, worst, top);
+    assert_true(top > 0.2);
+    assert_true(fabs(k - 128.0 / 255.0) < 2e-3);   /* 0.5 stored in 8 bits */
+    assert_true(worst < 1e-4);
+    free(a);
+    free(b);
+    free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -434,6 +467,7 @@ int main(void)
         cmocka_unit_test(test_camera_target_pans),
         cmocka_unit_test(test_normals_view),
         cmocka_unit_test(test_orbit_per_frame),
+        cmocka_unit_test(test_specular_map),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }
