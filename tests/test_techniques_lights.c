@@ -432,13 +432,10 @@ static void test_orbit_per_frame(void **state)
 static void test_specular_map(void **state)
 {
     (void)state;
-    const char *base = "technique=normal mesh=sphere maps=flat light_count=3";
-    char spec[256];
-    float *a = render(base);
-    snprintf(spec, sizeof spec, "%s lighting=lambert", base);
-    float *b = render(spec);
-    snprintf(spec, sizeof spec, "%s specular_map=on", base);
-    float *c = render(spec);
+#define SPEC_BASE "technique=normal mesh=sphere maps=flat light_count=3"
+    float *a = render(SPEC_BASE), *b = render(SPEC_BASE " lighting=lambert"),
+          *c = render(SPEC_BASE " specular_map=on");
+#undef SPEC_BASE
     double num = 0, den = 0, top = 0;
     for (size_t i = 0; i < 4 * npix(); i++) {
         double h = (double)a[i] - b[i];
