@@ -121,8 +121,10 @@ static void measure__frames(mscene *m, mconf *c, int frames)
         }
     }
     target_bind(&m->rt);
-    for (int f = 0; f < frames; f++)
+    for (int f = 0; f < frames; f++) {
+        tech_set_frame(m->r, c->item, (uint64_t)f);   /* orbits: frame f of every sample */
         tech_draw(m->r, c->item, c->pc->width, c->pc->height);
+    }
 }
 
 /* One fenced sample of K frames without a counter session: wall ns/frame. */

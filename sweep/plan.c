@@ -14,7 +14,7 @@ static const char *const plan__scene_axes[] = {
     "mesh", "resolution", "camera.distance", "camera.azimuth", "camera.elevation",
     "camera.fov", "camera.target_x", "camera.target_y", "camera.target_z", "maps", "lighting",
     "light_count", "light.azimuth", "light.elevation", "light.distance", "roughness",
-    "height_scale" };
+    "height_scale", "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame" };
 
 static int plan__kv_cmp(const void *a, const void *b)
 {

@@ -10,6 +10,7 @@
 #include "counters/counters.h"
 #include "techniques/axes.h"
 #include "reports/metric.h"
+#include "sweep/sweep_paths.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -99,7 +100,7 @@ static char *p__value_text(pctx *c, yaml_node_t *n)
  * after writing the error. */
 static char *p__axis_value(pctx *c, const char *axis, yaml_node_t *n)
 {
-    char *text = p__value_text(c, n);
+    char *text = sweep_paths_resolve(c->path, axis, p__value_text(c, n));
     if (!text) {
         p__fail(c, n, "%s: expected a single value%s", axis,
                 strcmp(axis, "resolution") == 0 ? " or a [width, height] pair" : "");

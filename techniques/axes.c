@@ -16,6 +16,7 @@
 #include "techniques/technique.h"
 
 static const char *const axes__on_off[] = {"on", "off", NULL};
+static const char *const axes__dnormals[] = {"map", "height", NULL};
 static const char *const axes__spacing[] = {"equal", "fractional_even", "fractional_odd", NULL};
 static const char *const axes__lod[] = {"uniform", "distance", "screen-edge", "flatness", NULL};
 static const char *const axes__smooth[] = {"off", "phong", NULL};
@@ -72,6 +73,10 @@ static axis_info axes__table[] = {
     {"vt_page_size", I, NULL, 16, 1024, "128", 1, "virtual texture page size in texels"},
     {"vt_cache_pages", I, NULL, 1, 65536, "256", 1, "pages in the physical page cache"},
     {"toksvig", E, axes__on_off, 0, 0, "off", 0, "Toksvig specular anti-aliasing from the filtered normal length"},
+    {"specular_map", E, axes__on_off, 0, 0, "off", 0,
+     "scale the specular term by the material's specular map (albedo alpha), as S3 does"},
+    {"displaced_normals", E, axes__dnormals, 0, 0, "map", 0,
+     "shading normals of a displacing technique: the normal map, or rebuilt from the height map (S3)"},
     {"camera.distance", F, NULL, 0.1, 100, "3.0", 1, "orbit camera distance from its target (camera.target_*)"},
     {"camera.azimuth", F, NULL, -360, 360, "30", 1, "orbit azimuth in degrees (0 = camera on +Z)"},
     {"camera.elevation", F, NULL, -89.9, 89.9, "20", 1, "orbit elevation in degrees toward +Y"},
@@ -85,6 +90,10 @@ static axis_info axes__table[] = {
      "degrees added to the camera elevation (light i: min(cam + this - 10*(i mod 3), 80))"},
     {"light.distance", F, NULL, 0, 100, "1.2", 1,
      "light distance from the camera target as a multiple of camera.distance (0 = at the target)"},
+    {"camera.orbit_deg_per_frame", F, NULL, -360, 360, "0", 1,
+     "degrees the camera azimuth turns per frame of a sample (0 = still; lights follow it)"},
+    {"light.orbit_deg_per_frame", F, NULL, -360, 360, "0", 1,
+     "degrees the lights' azimuth turns per frame of a sample on top of the camera's (S2's light circles)"},
     {"maps", E, NULL, 0, 0, "bricks", 1,
      "procedural material maps, or user maps: height=PATH;normal=PATH;albedo=PATH"},
 };
@@ -188,18 +197,14 @@ int axes_parse_size2(const char *s, int *w, int *h)
  * through Assimp, so a missing or corrupt file stops the run before any work. */
 static int axes__check_user_mesh(const char *path, dm_str *err)
 {
-    mesh_data md;
-    int had_tangents = 0;
-    dm_str why = {0};
     if (dm_file_exists(path) && !dm_regular_file(path)) {
         dm_str_printf(err, "mesh file '%s' cannot be used: not a regular file (a directory, FIFO "
                       "or device)", path);
         return DM_ERR_ARG;
     }
-    int rc = user_mesh_load(path, &md, &had_tangents, &why);
-    if (rc == 0)
-        mesh_free(&md);
-    else
+    dm_str why = {0};
+    int rc = user_mesh_check(path, &why);
+    if (rc)
         dm_str_printf(err, "mesh file '%s' cannot be used: %s", path, dm_str_get(&why));
     dm_str_free(&why);
     return rc ? DM_ERR_ARG : 0;
@@ -282,6 +287,11 @@ static const struct {
     const char *axis, *when_axis, *when_value;
 } axes__conditions[] = {
     {"roughness", "lighting", "cook-torrance"},
+    /* still scenes keep the keys they had before the orbit axes existed */
+    {"camera.orbit_deg_per_frame", "camera.orbit_deg_per_frame", "!0"},
+    {"light.orbit_deg_per_frame", "light.orbit_deg_per_frame", "!0"},
+    {"specular_map", "specular_map", "!off"},
+    {"displaced_normals", "displaced_normals", "!map"},
 };
 
 int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),
@@ -294,7 +304,8 @@ int axes_condition_holds(const char *name, const char *(*value)(const char *axis
             continue;
         const char *v = value ? value(axes__conditions[i].when_axis, ctx) : NULL;
         v = v ? v : axes_find(axes__conditions[i].when_axis)->def;
-        return strcmp(v, axes__conditions[i].when_value) == 0;
+        const char *want = axes__conditions[i].when_value;   /* "!X": any value but X */
+        return (strcmp(v, want + (want[0] == '!')) == 0) != (want[0] == '!');
     }
     return 1;
 }

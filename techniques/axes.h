@@ -46,7 +46,9 @@ int axes_check(const char *name, const char *value, dm_str *err);
 char *axes_canonical(const char *name, const char *value);
 /* 1 when the condition of axis `name` holds or it has none; 0 when it fails
  * or the axis is unknown.  Conditions (axes.c): roughness needs
- * lighting=cook-torrance.  value(axis, ctx) gives the
+ * lighting=cook-torrance; camera.orbit_deg_per_frame and
+ * light.orbit_deg_per_frame count only when not 0 (a still scene's
+ * configurations keep their keys).  value(axis, ctx) gives the
  * configuration's value of an axis (NULL: the axis default).  The planner
  * drops an axis whose condition fails, as it drops axes a technique does not
  * read, so e.g. roughness folds unless lighting=cook-torrance. */

@@ -7,13 +7,14 @@
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
+#include "techniques/mesh_scene.h"
 
 #define MESH__PI 3.14159265358979323846f
 #define MESH__CYL_STACKS 12
 
 static const char *const mesh__names[] = {
     "plane", "cube", "triangle", "fullscreen", "cylinder", "sphere", "terrain", "asteroid",
-    "seam", "halfflat", "asteroid-reduced", NULL
+    "seam", "halfflat", "asteroid-reduced", "s2-scene1", "s4-asteroids", "s4-asteroids-reduced", NULL
 };
 
 const char *const *mesh_names(void) { return mesh__names; }
@@ -390,6 +391,8 @@ int mesh_build(const mesh_desc *desc, mesh_data *out)
 {
     const char *name = desc && desc->name ? desc->name : "plane";
     int d = desc ? desc->density : 0;
+    if (mesh_scene_is(name))
+        return mesh_scene_build(name, d, out);   /* several objects (mesh_scene.h) */
     int kind = -1;
     for (int i = 0; mesh__names[i]; i++)
         if (strcmp(name, mesh__names[i]) == 0)

@@ -70,6 +70,8 @@ typedef struct mesh_data {
  *   halfflat    test mesh: as seam without the shift, but every left-half
  *               vertex off the shared column has UV (0.5, 0.5), so any height
  *               map is constant (flat) over most of the left half
+ *   s2-scene1, s4-asteroids, s4-asteroids-reduced  scenes of several
+ *               objects (techniques/mesh_scene.h)
  * cube, triangle and fullscreen accept and ignore densities up to 1024. */
 typedef struct mesh_desc {
     const char *name;       /* "plane", "cube", "triangle", "fullscreen", ... */

@@ -503,13 +503,15 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
 /* Fills the item's numeric uniforms and camera from the configuration. */
 static void render__item_values(render__item *it, const render__cfg *c)
 {
-    static const char *const cam[10] = {"camera.distance", "camera.azimuth", "camera.elevation",
+    static const char *const cam[12] = {"camera.distance", "camera.azimuth", "camera.elevation",
                                         "camera.fov", "camera.target_x", "camera.target_y",
                                         "camera.target_z", "light.azimuth", "light.elevation",
-                                        "light.distance"};
-    float *dst[10] = {&it->cam[0], &it->cam[1], &it->cam[2], &it->cam[3], &it->target[0],
-                      &it->target[1], &it->target[2], &it->light[0], &it->light[1], &it->light[2]};
-    for (int i = 0; i < 10; i++)
+                                        "light.distance", "camera.orbit_deg_per_frame",
+                                        "light.orbit_deg_per_frame"};
+    float *dst[12] = {&it->cam[0], &it->cam[1], &it->cam[2], &it->cam[3], &it->target[0],
+                      &it->target[1], &it->target[2], &it->light[0], &it->light[1], &it->light[2],
+                      &it->orbit[0], &it->orbit[1]};
+    for (int i = 0; i < 12; i++)
         *dst[i] = (float)atof(render__get(c, cam[i]));
     it->axis_val = dm_xcalloc(axes_count(), sizeof(double));
     for (size_t a = 0; a < axes_count(); a++) {
@@ -628,9 +630,22 @@ static render__item *render__item_of(tech_renderer *r, tech_item item)
 
 /* Light i of n, placed from the camera and the light.* axes around the
  * camera target (see the top comment). */
+/* Degrees orbit k (0 camera, 1 lights) has turned by at the item's frame,
+ * in [0, 360): exact for whole degrees, so frame k of an orbit equals a
+ * static render at the turned azimuth. */
+static float render__orbit(const render__item *it, int k)
+{
+    return (float)fmod((double)it->frame * (double)it->orbit[k], 360.0);
+}
+
+static float render__cam_azimuth(const render__item *it)
+{
+    return it->cam[1] + render__orbit(it, 0);
+}
+
 static void render__light(const render__item *it, int i, float pos[3], float col[3])
 {
-    float az = glm_rad(it->cam[1] + it->light[0] + 45.0f * (float)i);
+    float az = glm_rad(render__cam_azimuth(it) + (it->light[0] + render__orbit(it, 1)) + 45.0f * (float)i);
     float el = glm_rad(fminf(it->cam[2] + it->light[1] - 10.0f * (float)(i % 3), 80.0f));
     float d = it->light[2] * it->cam[0];
     pos[0] = it->target[0] + d * cosf(el) * sinf(az);
@@ -655,7 +670,7 @@ static void render__debug_lights(float lp[][3])
 static void render__camera(const tech_renderer *r, const render__item *it, const float viewport[2],
                            vec3 eye, mat4 vp)
 {
-    float az = glm_rad(it->cam[1]), el = glm_rad(it->cam[2]), d = it->cam[0];
+    float az = glm_rad(render__cam_azimuth(it)), el = glm_rad(it->cam[2]), d = it->cam[0];
     eye[0] = it->target[0] + d * cosf(el) * sinf(az);
     eye[1] = it->target[1] + d * sinf(el);
     eye[2] = it->target[2] + d * cosf(el) * cosf(az);
@@ -735,6 +750,15 @@ static void render__draw_triangles(tech_renderer *r, const render__item *it, int
         glDrawElements(GL_TRIANGLES, (GLsizei)count[i], GL_UNSIGNED_INT,
                        (const void *)(first[i] * sizeof(uint32_t)));
     free(first);
+}
+
+int tech_set_frame(tech_renderer *r, tech_item item, uint64_t frame)
+{
+    render__item *it = render__item_of(r, item);
+    if (!it)
+        return DM_ERR_ARG;
+    it->frame = frame;
+    return 0;
 }
 
 int tech_draw(tech_renderer *r, tech_item item, int width, int height)

@@ -57,6 +57,12 @@ int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params,
 /* Draws one frame of the item into the bound framebuffer (viewport w×h,
  * clears colour to 0 and depth to 1 first).  Does not glFinish. */
 int tech_draw(tech_renderer *r, tech_item item, int width, int height);
+/* Sets the frame index the item's moving camera and lights follow
+ * (camera.orbit_deg_per_frame, light.orbit_deg_per_frame: azimuths turned
+ * by frame × degrees); 0 when prepared.  The runner sets the index of the
+ * frame within its sample, so every sample, pass, reference and quality
+ * image (frame 0) sees the same path.  Returns 0 or DM_ERR_ARG. */
+int tech_set_frame(tech_renderer *r, tech_item item, uint64_t frame);
 int tech_item_get_info(tech_renderer *r, tech_item item, tech_item_info *out);
 void tech_release(tech_renderer *r, tech_item item);
 

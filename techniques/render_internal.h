@@ -57,6 +57,8 @@ typedef struct render__item {
     float cam[4];                /* distance, azimuth, elevation, fov */
     float target[3];             /* camera.target_x/y/z: orbit centre */
     float light[3];              /* light.azimuth, light.elevation, light.distance */
+    float orbit[2];              /* camera/light.orbit_deg_per_frame */
+    uint64_t frame;              /* frame index the orbits turn by (tech_set_frame) */
     int debug_view;              /* tech_debug_view it was prepared with */
     double *axis_val;            /* per axis index: numeric value (steps auto = 0) */
     int light_count;

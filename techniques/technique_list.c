@@ -17,7 +17,11 @@
  * steps toward the light, hard; soft = 7 samples at 0.88..0.22 of the ray,
  * shadow = 1 − clamp(max(32·(h_i − ray_i)·(1 − t_i))).
  * Every lit technique declares roughness (Cook-Torrance only: its only_if
- * condition in axes.c lets the planner fold it under the other models).
+ * condition in axes.c lets the planner fold it under the other models) and
+ * specular_map (on: specular × the albedo map's alpha, S3's specular map);
+ * the displacing techniques declare displaced_normals (height: SURF_BUMP's
+ * normal from the height map instead of the normal map, as S3 rebuilds
+ * normals after displacement).
  * Every technique-declared ENUM axis also becomes "#define AXIS_VALUE"
  * (e.g. LIGHTING_COOK_TORRANCE, SHADOW_SOFT, TOKSVIG_ON); every INT/FLOAT
  * axis is set as uniform u_<axis> (render.c), so one program serves all
@@ -32,26 +36,26 @@
     "u_light_count, u_atten (c,l,q), u_ambient, u_shininess, u_f0, u_roughness (axis)"
 
 static const char *const tech__axes_none[] = {NULL};
-static const char *const tech__axes_phong[] = {"lighting", "light_count", "roughness", NULL};
-static const char *const tech__axes_normal[] = {"lighting", "light_count", "roughness",
+static const char *const tech__axes_phong[] = {"lighting", "light_count", "roughness", "specular_map", NULL};
+static const char *const tech__axes_normal[] = {"lighting", "light_count", "roughness", "specular_map",
                                                 "normal_format", "toksvig", "height_scale", NULL};
-static const char *const tech__axes_bump[] = {"lighting", "light_count", "roughness",
+static const char *const tech__axes_bump[] = {"lighting", "light_count", "roughness", "specular_map",
                                               "height_scale", "height_format", NULL};
-static const char *const tech__axes_parallax[] = {"lighting", "light_count", "roughness",
+static const char *const tech__axes_parallax[] = {"lighting", "light_count", "roughness", "specular_map",
                                                   "normal_format", "toksvig", "height_scale",
                                                   "height_format", "offset_limit", NULL};
-static const char *const tech__axes_steep[] = {"lighting", "light_count", "roughness",
+static const char *const tech__axes_steep[] = {"lighting", "light_count", "roughness", "specular_map",
                                                "normal_format", "toksvig", "height_scale",
                                                "height_format", "steps", "min_steps", "max_steps",
                                                NULL};
-static const char *const tech__axes_tess[] = {"lighting", "light_count", "roughness",
+static const char *const tech__axes_tess[] = {"lighting", "light_count", "roughness", "specular_map",
                                               "normal_format", "toksvig", "height_scale",
                                               "tess_level", "tess_spacing", "lod", "patch_cull",
-                                              "crack_free", "tess_smooth", NULL};
-static const char *const tech__axes_vdisp[] = {"lighting", "light_count", "roughness",
+                                              "crack_free", "tess_smooth", "displaced_normals", NULL};
+static const char *const tech__axes_vdisp[] = {"lighting", "light_count", "roughness", "specular_map",
                                                "normal_format", "toksvig", "height_scale",
-                                               "vertex_filter", "visibility_test", NULL};
-static const char *const tech__axes_pom[] = {"lighting", "light_count", "roughness",
+                                               "vertex_filter", "visibility_test", "displaced_normals", NULL};
+static const char *const tech__axes_pom[] = {"lighting", "light_count", "roughness", "specular_map",
                                              "normal_format", "toksvig", "height_scale",
                                              "height_format", "steps", "min_steps", "max_steps",
                                              "shadow", NULL};

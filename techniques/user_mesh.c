@@ -74,6 +74,43 @@ static void user_mesh__fit(mesh_data *m)
             m->vertices[i].pos[a] = (m->vertices[i].pos[a] - 0.5f * (lo[a] + hi[a])) * s;
 }
 
+/* Names the first attribute a triangle mesh of sc lacks (normals, then
+ * texture coordinates), or NULL when every one has both. */
+static const char *user_mesh__missing(const struct aiScene *sc, unsigned *which)
+{
+    for (unsigned i = 0; i < sc->mNumMeshes; i++) {
+        const struct aiMesh *am = sc->mMeshes[i];
+        if (!(am->mPrimitiveTypes & aiPrimitiveType_TRIANGLE))
+            continue;
+        *which = i;
+        if (!am->mNormals)
+            return "normals (vn lines in an OBJ)";
+        if (!am->mTextureCoords[0])
+            return "texture coordinates (vt lines in an OBJ)";
+    }
+    return NULL;
+}
+
+int user_mesh_check(const char *path, dm_str *err)
+{
+    const struct aiScene *sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
+    if (!sc) {
+        dm_str_printf(err, "Assimp cannot read it: %s", aiGetErrorString());
+        return DM_ERR_IO;
+    }
+    unsigned which = 0, tris = 0;
+    for (unsigned i = 0; i < sc->mNumMeshes; i++)
+        tris += (sc->mMeshes[i]->mPrimitiveTypes & aiPrimitiveType_TRIANGLE) != 0;
+    const char *missing = user_mesh__missing(sc, &which);
+    if (tris == 0)
+        dm_str_printf(err, "it holds no triangles (faces of 3 or more vertices)");
+    else if (missing)
+        dm_str_printf(err, "its mesh %u ('%s') has no %s; every technique needs them for its "
+                      "tangent frame", which, sc->mMeshes[which]->mName.data, missing);
+    aiReleaseImport(sc);
+    return tris == 0 || missing ? DM_ERR_PARSE : 0;
+}
+
 int user_mesh_load(const char *path, mesh_data *out, int *had_tangents, dm_str *err)
 {
     if (!path || !out)

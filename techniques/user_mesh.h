@@ -1,8 +1,9 @@
 /* user_mesh.h — meshes from files through the Assimp C API (OBJ, glTF, PLY,
  * and whatever else Assimp reads).
  *
- * A user names a file as the mesh value `file:PATH` (mesh_build needs the
- * axes catalog to accept such values; until then call user_mesh_load).  The
+ * A user names a file as the mesh value `file:PATH` (a sweep file's path is
+ * relative to the sweep file; the planner checks it with user_mesh_check and
+ * the renderer loads it with user_mesh_load).  The
  * file's meshes are triangulated, node transforms applied and all triangle
  * meshes concatenated into one mesh_data, then centred and uniformly scaled
  * so the bounding box's longest side spans [-1,1] like the built-in meshes.
@@ -24,5 +25,12 @@
  * it holds no triangles.  *had_tangents (may be NULL) = 1 when the file's
  * own tangents were used. */
 int user_mesh_load(const char *path, mesh_data *out, int *had_tangents, dm_str *err);
+
+/* The plan-time check of a mesh-axis file: Assimp reads it, it holds
+ * triangles, and every triangle mesh has its own normals and texture
+ * coordinates (user_mesh_load would make up normals and zero UVs, which no
+ * technique of the axis can use).  Returns 0, DM_ERR_IO (Assimp's message in
+ * err, without the path) or DM_ERR_PARSE (which mesh lacks what, in err). */
+int user_mesh_check(const char *path, dm_str *err);
 
 #endif

@@ -23,21 +23,23 @@ static void test_catalog(void **state)
         "visibility_test", "height_format", "normal_format", "albedo_format", "texture_size",
         "virtual_texture", "vt_page_size", "vt_cache_pages", "toksvig", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "camera.target_x", "camera.target_y",
-        "camera.target_z", "light.azimuth", "light.elevation", "light.distance", "maps", NULL};
+        "camera.target_z", "light.azimuth", "light.elevation", "light.distance",
+        "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", "maps", "specular_map",
+        "displaced_normals", NULL};
     for (size_t i = 0; spec[i]; i++)
         assert_non_null(axes_find(spec[i]));
-    assert_int_equal(axes_count(), 41);
+    assert_int_equal(axes_count(), 45);
     static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
         "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", "camera.target_x",
         "camera.target_y", "camera.target_z", "light.azimuth", "light.elevation",
-        "light.distance", NULL};
+        "light.distance", "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", NULL};
     size_t n_scene = 0;
     for (size_t i = 0; i < axes_count(); i++)
         n_scene += axes_at(i)->scene;
     for (size_t i = 0; scene[i]; i++)
         assert_int_equal(axes_find(scene[i])->scene, 1);
-    assert_int_equal(n_scene, 21);   /* the 20 above + technique */
+    assert_int_equal(n_scene, 23);   /* the 22 above + technique */
     assert_string_equal(axes_find("roughness")->def, "0.35");
     assert_int_equal(axes_find("roughness")->scene, 0);
     assert_string_equal(axes_find("light.distance")->def, "1.2");
@@ -122,6 +124,11 @@ static const char *cond_value(const char *axis, void *ctx)
     return strcmp(axis, "lighting") == 0 ? (const char *)ctx : NULL;
 }
 
+static const char *orbit_value(const char *axis, void *ctx)
+{
+    return strstr(axis, "orbit_deg_per_frame") ? (const char *)ctx : NULL;
+}
+
 /* roughness matters only with lighting=cook-torrance (its only_if); axes
  * without a condition always hold; unknown axes never do. */
 static void test_conditions(void **state)
@@ -133,6 +140,13 @@ static void test_conditions(void **state)
     assert_false(axes_condition_holds("roughness", cond_value, NULL));
     assert_true(axes_condition_holds("light.azimuth", cond_value, "lambert"));
     assert_false(axes_condition_holds("no_such_axis", NULL, NULL));
+    /* the orbits count only when moving, so still scenes keep their keys */
+    assert_false(axes_condition_holds("camera.orbit_deg_per_frame", NULL, NULL));
+    assert_false(axes_condition_holds("light.orbit_deg_per_frame", orbit_value, "0"));
+    assert_true(axes_condition_holds("light.orbit_deg_per_frame", orbit_value, "1.5"));
+    assert_true(axes_condition_holds("camera.orbit_deg_per_frame", orbit_value, "-2"));
+    assert_false(axes_condition_holds("specular_map", NULL, NULL));
+    assert_false(axes_condition_holds("displaced_normals", NULL, NULL));
     for (size_t i = 0; i < technique_count(); i++) {
         const technique_desc *t = technique_at(i);
         assert_int_equal(technique_reads_axis(t, "roughness"), technique_reads_axis(t, "lighting"));

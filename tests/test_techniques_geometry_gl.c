@@ -50,6 +50,23 @@ static stats count(const char *spec)
     return s;
 }
 
+/* Primitives submitted by one draw of spec (the pipeline statistic). */
+static GLuint64 submitted(const char *spec)
+{
+    tech_item it = prepare(spec);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    GLuint q;
+    GLuint64 n = 0;
+    glGenQueries(1, &q);
+    glBeginQuery(GL_PRIMITIVES_SUBMITTED_ARB, q);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    glEndQuery(GL_PRIMITIVES_SUBMITTED_ARB);
+    glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
+    glDeleteQueries(1, &q);
+    tech_release(F.r, it);
+    return n;
+}
+
 /* Renders spec into im (allocated, row 0 = GL's bottom row). */
 static void render_img(const char *spec, img *im)
 {
@@ -487,6 +504,42 @@ static void test_scale_zero_equals_normal(void **state)
     }
 }
 
+/* displaced_normals: height shades a displaced surface with the normal the
+ * reference builds (from the height map by central differences, S3), so it
+ * comes closer to the reference than the normal map does.  The procedural
+ * normal map is made from the same height field, so the two images differ
+ * only by how each normal is discretised: not bit-identical, but close. */
+static void test_displaced_normals(void **state)
+{
+    (void)state;
+    const char *ref = "technique=reference-mesh mesh=plane maps=stones height_scale=0.1 camera.elevation=40";
+    static const char *const tech[2] = {"tess-displacement tess_level=32", "vertex-displacement mesh_density=256"};
+    for (int i = 0; i < 2; i++) {
+        char map[256], height[320];
+        snprintf(map, sizeof map, "technique=%s mesh=plane maps=stones height_scale=0.1 camera.elevation=40", tech[i]);
+        snprintf(height, sizeof height, "%s displaced_normals=height", map);
+        double p_map = psnr_of(ref, map), p_height = psnr_of(ref, height), p_both = psnr_of(map, height);
+        print_message("%s: PSNR against the reference %.2f dB (normal map), %.2f dB (height); "
+                      "map vs height %.2f dB\n", tech[i], p_map, p_height, p_both);
+        assert_true(p_height > p_map);
+        assert_true(isfinite(p_both) && p_both > 25.0);
+    }
+}
+
+/* The scene meshes through the pipeline: S2's scene 1 submits its 22 086
+ * triangles; S4's reduced asteroid scene is 12 + 5·320 = 1 612 patches, and
+ * at level 1 every patch is evaluated at its 3 corners. */
+static void test_scene_counts(void **state)
+{
+    (void)state;
+    assert_int_equal(submitted("technique=normal mesh=s2-scene1"), 22086);
+    assert_int_equal(submitted("technique=normal mesh=s4-asteroids mesh_density=2"), 12 + 5 * 320);
+    stats s = count("technique=tess-displacement mesh=s4-asteroids-reduced maps=asteroid "
+                    "height_scale=0.207 tess_level=1");
+    assert_int_equal(s.patches, 1612);
+    assert_int_equal(s.tes, 3 * 1612);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -505,6 +558,8 @@ int main(void)
         cmocka_unit_test(test_bilinear_manual_matches_hw),
         cmocka_unit_test(test_visibility_test),
         cmocka_unit_test(test_reference_mesh),
+        cmocka_unit_test(test_scene_counts),
+        cmocka_unit_test(test_displaced_normals),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

@@ -381,6 +381,80 @@ static void test_normals_view(void **state)
     assert_int_equal(tech_renderer_set_debug_view(F.r, TECH_DEBUG_NONE), 0);
 }
 
+/* Renders frame `frame` of spec (its orbits turned by frame × degrees). */
+static float *render_frame(const char *spec, uint64_t frame)
+{
+    tech_item it = spec_prepare(F.r, spec, 0, NULL);
+    assert_int_equal(tech_set_frame(F.r, it, frame), 0);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    float *px = malloc((size_t)F.w * (size_t)F.h * 4 * sizeof(float));
+    glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, px);
+    tech_release(F.r, it);
+    return px;
+}
+
+/* Moving camera and lights (S2's light circles): frame k of an orbit is
+ * bit-identical to a still render at the azimuths turned by k × degrees
+ * (camera 30 + 3·10 = 60, lights 45 + 3·15 = 90 on top of it); frame 0 is
+ * the still scene; and the path really moves. */
+static void test_orbit_per_frame(void **state)
+{
+    (void)state;
+    const char *base = "technique=pom mesh=cube light_count=8";
+    char moving[256], still[256];
+    snprintf(moving, sizeof moving, "%s camera.orbit_deg_per_frame=10 light.orbit_deg_per_frame=15", base);
+    snprintf(still, sizeof still, "%s camera.azimuth=60 light.azimuth=90", base);
+    size_t bytes = npix() * 4 * sizeof(float);
+    float *k3 = render_frame(moving, 3), *at = render(still);
+    assert_memory_equal(k3, at, bytes);
+    float *k0 = render_frame(moving, 0), *plain = render(base);
+    assert_memory_equal(k0, plain, bytes);
+    assert_true(psnr(k0, k3, npix()) < 30.0);
+    /* the lights alone: frame 2 at 20°/frame = light.azimuth 85 */
+    free(k3);
+    free(at);
+    snprintf(moving, sizeof moving, "%s light.orbit_deg_per_frame=20", base);
+    snprintf(still, sizeof still, "%s light.azimuth=85", base);
+    k3 = render_frame(moving, 2);
+    at = render(still);
+    assert_memory_equal(k3, at, bytes);
+    assert_true(psnr(k3, plain, npix()) < 60.0);
+    free(k3);
+    free(at);
+    free(k0);
+    free(plain);
+}
+
+/* specular_map: on scales each light's specular term by the material's
+ * specular map, `flat` holds 0.5 everywhere: the image is the Lambert image
+ * plus half the Blinn-Phong highlight, pixel by pixel (so a zero map leaves
+ * no highlight), and the highlight is really there. */
+static void test_specular_map(void **state)
+{
+    (void)state;
+#define SPEC_BASE "technique=normal mesh=sphere maps=flat light_count=3"
+    float *a = render(SPEC_BASE), *b = render(SPEC_BASE " lighting=lambert"),
+          *c = render(SPEC_BASE " specular_map=on");
+#undef SPEC_BASE
+    double num = 0, den = 0, top = 0;
+    for (size_t i = 0; i < 4 * npix(); i++) {
+        double h = (double)a[i] - b[i];
+        num += ((double)c[i] - b[i]) * h;
+        den += h * h;
+        top = fmax(top, h);
+    }
+    double k = num / den, worst = 0;
+    for (size_t i = 0; i < 4 * npix(); i++)
+        worst = fmax(worst, fabs((double)c[i] - b[i] - k * ((double)a[i] - b[i])));
+    print_message("specular_map on: highlight x %.4f, worst residual %.2e, highlight peak %.3f\n", k, worst, top);
+    assert_true(top > 0.2);
+    assert_true(fabs(k - 128.0 / 255.0) < 2e-3);   /* 0.5 stored in 8 bits */
+    assert_true(worst < 1e-4);
+    free(a);
+    free(b);
+    free(c);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -389,6 +463,8 @@ int main(void)
         cmocka_unit_test(test_light_axes),
         cmocka_unit_test(test_camera_target_pans),
         cmocka_unit_test(test_normals_view),
+        cmocka_unit_test(test_orbit_per_frame),
+        cmocka_unit_test(test_specular_map),
     };
     return cmocka_run_group_tests(tests, setup, teardown);
 }

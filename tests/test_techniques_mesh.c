@@ -148,6 +148,55 @@ static void test_all_frames_finite(void **state)
     }
 }
 
+static size_t tris_of(const char *name, int density)
+{
+    mesh_data m;
+    build(name, density, &m);
+    size_t t = m.n_indices / 3;
+    mesh_free(&m);
+    return t;
+}
+
+/* The scenes of several objects (mesh_scene.h): S2's scene 1 has S2's
+ * 22 086 triangles (plane 64² quads + level-4 sphere + 107×41-quad torus,
+ * (108·42) torus vertices); S4's scenes are a 12-triangle inward skybox
+ * drawn first plus 5 asteroid bodies, every count the sum of its parts. */
+static void test_scenes(void **state)
+{
+    (void)state;
+    mesh_data m, sphere;
+    build("s2-scene1", 0, &m);
+    build("sphere", 4, &sphere);
+    assert_int_equal(m.n_indices / 3, 22086);
+    assert_int_equal(8192 + 5120 + 2 * 107 * 41, 22086);
+    assert_int_equal(m.n_vertices, 65 * 65 + sphere.n_vertices + 108 * 42);
+    mesh_free(&sphere);
+    mesh_free(&m);
+    for (int level = 0; level <= 4; level++) {
+        size_t body = 20u << (2 * level);
+        assert_int_equal(tris_of("s4-asteroids", level), level ? 12 + 5 * body : 12 + 5 * 1280);
+        assert_int_equal(tris_of("s4-asteroids-reduced", level), level ? 12 + 5 * body : 12 + 5 * 320);
+    }
+    /* the skybox comes first, faces inward (normals toward the origin, winding
+     * reversed: the face normal from the winding agrees with the vertex normal) */
+    build("s4-asteroids", 1, &m);
+    for (size_t t = 0; t < 12; t++) {
+        const float *a = m.vertices[m.indices[3 * t]].pos, *b = m.vertices[m.indices[3 * t + 1]].pos,
+                    *c = m.vertices[m.indices[3 * t + 2]].pos;
+        const float *n = m.vertices[m.indices[3 * t]].nrm;
+        float e1[3] = {b[0] - a[0], b[1] - a[1], b[2] - a[2]}, e2[3] = {c[0] - a[0], c[1] - a[1], c[2] - a[2]};
+        float f[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
+        assert_true(f[0] * n[0] + f[1] * n[1] + f[2] * n[2] > 0);
+        assert_true(a[0] * n[0] + a[1] * n[1] + a[2] * n[2] < 0);
+        assert_float_equal(fabsf(a[0]) + fabsf(a[1]) + fabsf(a[2]), 30.0f, 1e-4f);
+    }
+    mesh_free(&m);
+    mesh_desc bad = {"s2-scene1", 2};
+    assert_int_equal(mesh_build(&bad, &m), DM_ERR_RANGE);
+    bad = (mesh_desc){"s4-asteroids", 8};
+    assert_int_equal(mesh_build(&bad, &m), DM_ERR_RANGE);
+}
+
 static void test_bytes(void **state)
 {
     (void)state;
@@ -168,6 +217,7 @@ int main(void)
         cmocka_unit_test(test_bad_input),       cmocka_unit_test(test_plane_tangents),
         cmocka_unit_test(test_mirrored_uv_sign), cmocka_unit_test(test_degenerate_frames),
         cmocka_unit_test(test_all_frames_finite), cmocka_unit_test(test_bytes),
+        cmocka_unit_test(test_scenes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

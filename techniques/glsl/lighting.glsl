@@ -1,7 +1,9 @@
 // lighting.glsl — the one lighting file.  Model by #define:
 //   LIGHTING_LAMBERT | LIGHTING_PHONG | LIGHTING_BLINN_PHONG (default) |
 //   LIGHTING_COOK_TORRANCE (Beckmann D, Schlick F, S3 geometric term G);
-//   TOKSVIG_ON scales the Phong/Blinn-Phong exponent by the Toksvig factor.
+//   TOKSVIG_ON scales the Phong/Blinn-Phong exponent by the Toksvig factor;
+//   SPECULAR_MAP_ON scales every specular term by lighting_spec_k, which the
+//   fragment stage sets from the material's specular map.
 // Point lights with attenuation 1/(c + l*d + q*d^2); no light where N.L <= 0.
 #include "common.glsl"
 
@@ -17,6 +19,10 @@ uniform float u_f0;          // Cook-Torrance Fresnel reflectance at normal inci
 uniform float u_roughness;   // Cook-Torrance Beckmann slope m
 
 const float LIGHTING_PI = 3.14159265;
+
+#ifdef SPECULAR_MAP_ON
+float lighting_spec_k = 1.0;   // the specular map at the shaded point
+#endif
 
 // Specular term for unit n, v, l; nlen = length of the filtered normal
 // before renormalisation (Toksvig), 1 when unknown.
@@ -58,5 +64,9 @@ vec3 lighting_light(vec3 n, vec3 v, vec3 lvec, vec3 color, vec3 albedo, float nl
     if (nl <= 0.0)
         return vec3(0.0);
     float att = 1.0 / (u_atten.x + u_atten.y * d + u_atten.z * d * d);
+#ifdef SPECULAR_MAP_ON
+    return color * att * (albedo * nl + vec3(lighting_spec_k * lighting_specular(n, v, l, nlen)));
+#else
     return color * att * (albedo * nl + vec3(lighting_specular(n, v, l, nlen)));
+#endif
 }

@@ -13,6 +13,14 @@
 #include "lighting.glsl"
 #include "vt.glsl"
 
+// DISPLACED_NORMALS_HEIGHT (displacing techniques, displaced_normals:
+// height): shade with the normal rebuilt from the height map by central
+// differences (SURF_BUMP), as S3 does after displacement, not the normal map.
+#ifdef DISPLACED_NORMALS_HEIGHT
+#undef SURF_NORMAL_MAP
+#define SURF_BUMP
+#endif
+
 #ifndef SURF_PARALLAX
 #define SURF_PARALLAX 0
 #endif
@@ -196,6 +204,9 @@ void main()
     const vec3 at = vec3(0.0);
 #endif
     vec3 albedo = map_sample(t_albedo, uv, g_dx, g_dy).rgb;
+#ifdef SPECULAR_MAP_ON
+    lighting_spec_k = map_sample(t_albedo, uv, g_dx, g_dy).a;   // specular in A (render_textures.c)
+#endif
 #if defined(DEBUG_NORMALS)
     float nlen;
     o_color = vec4(debug_world_normal(surface_normal(uv, nlen)) * 0.5 + 0.5, 1.0);

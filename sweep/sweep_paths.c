@@ -1,0 +1,22 @@
+/* sweep_paths.c — file-naming axis values relative to the sweep file (see
+ * sweep_paths.h). */
+#include "sweep/sweep_paths.h"
+
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_util.h"
+#include "techniques/user_mesh.h"
+
+char *sweep_paths_resolve(const char *sweep_path, const char *axis, char *text)
+{
+    size_t np = strlen(USER_MESH_PREFIX);
+    if (!text || strcmp(axis, "mesh") != 0 || strncmp(text, USER_MESH_PREFIX, np) != 0)
+        return text;
+    const char *path = text + np, *slash = strrchr(sweep_path, '/');
+    if (path[0] == '/' || path[0] == '\0' || !slash)
+        return text;
+    char *out = dm_xasprintf("%s%.*s/%s", USER_MESH_PREFIX, (int)(slash - sweep_path), sweep_path, path);
+    free(text);
+    return out;
+}
