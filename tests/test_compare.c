@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -552,9 +553,7 @@ static int tmp_setup(void **state)
 static int tmp_teardown(void **state)
 {
     tmp *t = *state;
-    char *cmd = dm_xasprintf("rm -rf '%s'", t->dir);
-    assert_int_equal(system(cmd), 0);
-    free(cmd);
+    test_rm_rf(t->dir);
     free(t);
     return 0;
 }
@@ -684,24 +683,19 @@ static void test_store_and_baselines(void **state)
     free(path);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_self_all_pass),
-        cmocka_unit_test(test_deterministic_change),
-        cmocka_unit_test(test_slowdown_20_percent_regression),
-        cmocka_unit_test(test_slowdown_1_percent_pass),
-        cmocka_unit_test(test_huge_noise_inconclusive),
-        cmocka_unit_test(test_env_mismatch),
-        cmocka_unit_test(test_counters_only_ignores_time),
-        cmocka_unit_test(test_failed_added_removed),
-        cmocka_unit_test(test_quality_drop),
-        cmocka_unit_test(test_inconclusive_states_detectable),
-        cmocka_unit_test(test_identical_noisy_pass),
-        cmocka_unit_test(test_instructions_threshold),
-        cmocka_unit_test(test_partial_gputime_refused),
-        cmocka_unit_test_setup_teardown(test_json_roundtrip_and_outputs, tmp_setup, tmp_teardown),
-        cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_self_all_pass),
+             cmocka_unit_test(test_deterministic_change),
+             cmocka_unit_test(test_slowdown_20_percent_regression),
+             cmocka_unit_test(test_slowdown_1_percent_pass),
+             cmocka_unit_test(test_huge_noise_inconclusive),
+             cmocka_unit_test(test_env_mismatch),
+             cmocka_unit_test(test_counters_only_ignores_time),
+             cmocka_unit_test(test_failed_added_removed),
+             cmocka_unit_test(test_quality_drop),
+             cmocka_unit_test(test_inconclusive_states_detectable),
+             cmocka_unit_test(test_identical_noisy_pass),
+             cmocka_unit_test(test_instructions_threshold),
+             cmocka_unit_test(test_partial_gputime_refused),
+             cmocka_unit_test_setup_teardown(test_json_roundtrip_and_outputs, tmp_setup, tmp_teardown),
+             cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown))

@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <stdlib.h>
 #include <string.h>
 #include <stdio.h>
@@ -160,14 +161,9 @@ static void test_derived_formulas_resolve(void **state)
     }
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_registry_has_spec_counters),
-        cmocka_unit_test(test_registry_names_unique_and_typed),
-        cmocka_unit_test(test_expr_known_inputs),
-        cmocka_unit_test(test_expr_syntax_errors),
-        cmocka_unit_test(test_derived_formulas_resolve),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_registry_has_spec_counters),
+             cmocka_unit_test(test_registry_names_unique_and_typed),
+             cmocka_unit_test(test_expr_known_inputs),
+             cmocka_unit_test(test_expr_syntax_errors),
+             cmocka_unit_test(test_derived_formulas_resolve))

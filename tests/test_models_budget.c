@@ -13,6 +13,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_util.h"
 
@@ -80,16 +81,9 @@ static void budget_from_stored_model(void **state)
     free(json);
     free(json_path);
     free(err);
-    char *rm = dm_xasprintf("rm -rf '%s'", dir);
-    assert_int_equal(system(rm), 0);
-    free(rm);
+    test_rm_rf(dir);
     free(yaml);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(budget_from_stored_model),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(budget_from_stored_model))

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_error.h"
 #include "models/fit_data.h"
@@ -155,13 +156,8 @@ static void bad_cells(void **state)
     dm_str_free(&err);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(load_and_fit),
-        cmocka_unit_test(bad_cells),
-        cmocka_unit_test(rfc4180_and_text_columns),
-        cmocka_unit_test(poor_fit_warns),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(load_and_fit),
+             cmocka_unit_test(bad_cells),
+             cmocka_unit_test(rfc4180_and_text_columns),
+             cmocka_unit_test(poor_fit_warns))

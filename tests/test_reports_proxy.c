@@ -6,6 +6,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -141,13 +142,8 @@ static void test_passes(void **state)
     dm_run_free(&r);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_exact_line),
-        cmocka_unit_test(test_stray_first),
-        cmocka_unit_test(test_unavailable),
-        cmocka_unit_test(test_passes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_exact_line),
+             cmocka_unit_test(test_stray_first),
+             cmocka_unit_test(test_unavailable),
+             cmocka_unit_test(test_passes))

@@ -18,6 +18,7 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "test_reports_fixture.h"
 
@@ -803,23 +804,18 @@ static void test_html_breakdown_fit_and_cap(void **state)
     rmdir(dir);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_json_round_trip),
-        cmocka_unit_test(test_json_read_errors),
-        cmocka_unit_test(test_csv_shape),
-        cmocka_unit_test(test_markdown),
-        cmocka_unit_test(test_html_escaping_and_images),
-        cmocka_unit_test(test_write_all),
-        cmocka_unit_test(test_html_charts_and_front),
-        cmocka_unit_test(test_metric_fronts),
-        cmocka_unit_test(test_metric_names),
-        cmocka_unit_test(test_metric_in_files),
-        cmocka_unit_test(test_noisy_warning),
-        cmocka_unit_test(test_quality_warnings),
-        cmocka_unit_test(test_html_chart_set),
-        cmocka_unit_test(test_html_breakdown_fit_and_cap),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_json_round_trip),
+             cmocka_unit_test(test_json_read_errors),
+             cmocka_unit_test(test_csv_shape),
+             cmocka_unit_test(test_markdown),
+             cmocka_unit_test(test_html_escaping_and_images),
+             cmocka_unit_test(test_write_all),
+             cmocka_unit_test(test_html_charts_and_front),
+             cmocka_unit_test(test_metric_fronts),
+             cmocka_unit_test(test_metric_names),
+             cmocka_unit_test(test_metric_in_files),
+             cmocka_unit_test(test_noisy_warning),
+             cmocka_unit_test(test_quality_warnings),
+             cmocka_unit_test(test_html_chart_set),
+             cmocka_unit_test(test_html_breakdown_fit_and_cap))

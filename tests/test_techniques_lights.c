@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -381,14 +382,9 @@ static void test_normals_view(void **state)
     assert_int_equal(tech_renderer_set_debug_view(F.r, TECH_DEBUG_NONE), 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_light_on_surface),
-        cmocka_unit_test(test_mirror_lobe),
-        cmocka_unit_test(test_light_axes),
-        cmocka_unit_test(test_camera_target_pans),
-        cmocka_unit_test(test_normals_view),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+DM_TEST_MAIN(setup, teardown,
+             cmocka_unit_test(test_light_on_surface),
+             cmocka_unit_test(test_mirror_lobe),
+             cmocka_unit_test(test_light_axes),
+             cmocka_unit_test(test_camera_target_pans),
+             cmocka_unit_test(test_normals_view))

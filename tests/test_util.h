@@ -1,0 +1,43 @@
+/* test_util.h — what the cmocka test files share, so that each of them holds
+ * only its own tests: the main() that runs them, a scratch directory, and
+ * images of one colour.  Include it after <cmocka.h> (and the headers cmocka
+ * needs); everything here is a macro or a static inline function, so a test
+ * that uses none of it pays nothing. */
+#ifndef TESTS_TEST_UTIL_H
+#define TESTS_TEST_UTIL_H
+
+#include <stdlib.h>
+
+#include "core/dm_image.h"
+#include "core/dm_util.h"
+
+/* main() of a test file: runs the cmocka_unit_test(...) entries given as the
+ * remaining arguments as one group; setup and teardown are the group's
+ * fixtures, or NULL.  Exits non-zero when a test fails. */
+#define DM_TEST_MAIN(setup, teardown, ...)                        \
+    int main(void)                                                \
+    {                                                             \
+        const struct CMUnitTest tests[] = { __VA_ARGS__ };        \
+        return cmocka_run_group_tests(tests, setup, teardown);    \
+    }
+
+/* Removes dir and everything below it; fails the test if rm fails. */
+static inline void test_rm_rf(const char *dir)
+{
+    char *cmd = dm_xasprintf("rm -rf '%s'", dir);
+    assert_int_equal(system(cmd), 0);
+    free(cmd);
+}
+
+/* Sets every pixel of im to the colour (r, g, b, a). */
+static inline void test_img_fill(img *im, float r, float g, float b, float a)
+{
+    for (int i = 0; i < im->w * im->h; i++) {
+        im->px[i * 4 + 0] = r;
+        im->px[i * 4 + 1] = g;
+        im->px[i * 4 + 2] = b;
+        im->px[i * 4 + 3] = a;
+    }
+}
+
+#endif
