@@ -558,13 +558,6 @@ static int tmp_teardown(void **state)
     return 0;
 }
 
-static char *slurp(const char *path)
-{
-    char *text = NULL;
-    assert_int_equal(dm_read_file(path, &text, NULL), 0);
-    return text;
-}
-
 static void test_json_roundtrip_and_outputs(void **state)
 {
     tmp *t = *state;
@@ -592,11 +585,11 @@ static void test_json_roundtrip_and_outputs(void **state)
     assert_int_equal(compare_write_markdown(&r, md), 0);
     assert_int_equal(compare_write_junit(&r, ju), 0);
     assert_int_equal(compare_write_json(&r, js), 0);
-    char *text = slurp(md);
+    char *text = test_slurp(md);
     assert_non_null(strstr(text, "| Verdict | Configuration | Key |"));
     assert_non_null(strstr(text, "| REGRESSION | mesh=m2 | `0000000000000003` |"));
     free(text);
-    text = slurp(ju);
+    text = test_slurp(ju);
     assert_non_null(strstr(text, "tests=\"3\" failures=\"1\""));
     assert_non_null(strstr(text, "<failure message=\"REGRESSION: TESInvocations changed 3169 -&gt; 6144\"/>"));
     assert_null(strstr(text, "time=\"0\""));
@@ -608,7 +601,7 @@ static void test_json_roundtrip_and_outputs(void **state)
         free(want);
     }
     free(text);
-    text = slurp(js);
+    text = test_slurp(js);
     assert_non_null(strstr(text, "\"REGRESSION\":\t1"));
     assert_non_null(strstr(text, "\"exit_code\":\t1"));
     free(text);
@@ -675,7 +668,7 @@ static void test_store_and_baselines(void **state)
     free(id);
     free(why);
     assert_int_equal(compare_baseline_latest(path, "other-sweep", &id, NULL, &err), DM_ERR_NOTFOUND);
-    char *bl = compare_baselines_path(path), *text = slurp(bl);
+    char *bl = compare_baselines_path(path), *text = test_slurp(bl);
     assert_non_null(strstr(text, "\"reason\":\t\"first\""));
     free(text);
     free(bl);

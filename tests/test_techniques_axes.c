@@ -176,6 +176,9 @@ static void test_canonical(void **state)
 }
 
 DM_TEST_MAIN(NULL, NULL,
-             cmocka_unit_test(test_catalog), cmocka_unit_test(test_technique_choices),
-             cmocka_unit_test(test_messages), cmocka_unit_test(test_closest),
-             cmocka_unit_test(test_canonical), cmocka_unit_test(test_conditions))
+             cmocka_unit_test(test_catalog),
+             cmocka_unit_test(test_technique_choices),
+             cmocka_unit_test(test_messages),
+             cmocka_unit_test(test_closest),
+             cmocka_unit_test(test_canonical),
+             cmocka_unit_test(test_conditions))

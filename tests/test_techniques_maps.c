@@ -88,5 +88,7 @@ static void test_normal_formula(void **state)
 }
 
 DM_TEST_MAIN(NULL, NULL,
-             cmocka_unit_test(test_flat), cmocka_unit_test(test_bricks),
-             cmocka_unit_test(test_bad_input), cmocka_unit_test(test_normal_formula))
+             cmocka_unit_test(test_flat),
+             cmocka_unit_test(test_bricks),
+             cmocka_unit_test(test_bad_input),
+             cmocka_unit_test(test_normal_formula))

@@ -163,7 +163,11 @@ static void test_bytes(void **state)
 }
 
 DM_TEST_MAIN(NULL, NULL,
-             cmocka_unit_test(test_counts),          cmocka_unit_test(test_sphere_vertices),
-             cmocka_unit_test(test_bad_input),       cmocka_unit_test(test_plane_tangents),
-             cmocka_unit_test(test_mirrored_uv_sign), cmocka_unit_test(test_degenerate_frames),
-             cmocka_unit_test(test_all_frames_finite), cmocka_unit_test(test_bytes))
+             cmocka_unit_test(test_counts),
+             cmocka_unit_test(test_sphere_vertices),
+             cmocka_unit_test(test_bad_input),
+             cmocka_unit_test(test_plane_tangents),
+             cmocka_unit_test(test_mirrored_uv_sign),
+             cmocka_unit_test(test_degenerate_frames),
+             cmocka_unit_test(test_all_frames_finite),
+             cmocka_unit_test(test_bytes))

@@ -307,10 +307,16 @@ static void test_axes_take_effect(void **state)
 }
 
 DM_TEST_MAIN(setup, teardown,
-             cmocka_unit_test(test_normal_plane),   cmocka_unit_test(test_fullscreen_coverage),
-             cmocka_unit_test(test_program_cache),  cmocka_unit_test(test_broken_shader),
-             cmocka_unit_test(test_bad_params),     cmocka_unit_test(test_item_info),
-             cmocka_unit_test(test_disk_cache),     cmocka_unit_test(test_compressed_bytes),
-             cmocka_unit_test(test_every_technique), cmocka_unit_test(test_parallax_scale_zero),
-             cmocka_unit_test(test_extreme_elevations), cmocka_unit_test(test_lighting_models),
+             cmocka_unit_test(test_normal_plane),
+             cmocka_unit_test(test_fullscreen_coverage),
+             cmocka_unit_test(test_program_cache),
+             cmocka_unit_test(test_broken_shader),
+             cmocka_unit_test(test_bad_params),
+             cmocka_unit_test(test_item_info),
+             cmocka_unit_test(test_disk_cache),
+             cmocka_unit_test(test_compressed_bytes),
+             cmocka_unit_test(test_every_technique),
+             cmocka_unit_test(test_parallax_scale_zero),
+             cmocka_unit_test(test_extreme_elevations),
+             cmocka_unit_test(test_lighting_models),
              cmocka_unit_test(test_axes_take_effect))

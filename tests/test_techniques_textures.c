@@ -304,9 +304,14 @@ static void test_user_maps(void **state)
 }
 
 DM_TEST_MAIN(NULL, NULL,
-             cmocka_unit_test(test_all_sets), cmocka_unit_test(test_sine_exact),
-             cmocka_unit_test(test_checker), cmocka_unit_test(test_relief),
-             cmocka_unit_test(test_compact), cmocka_unit_test(test_normal_rows),
-             cmocka_unit_test(test_srgb), cmocka_unit_test(test_cache),
-             cmocka_unit_test(test_bad_input), cmocka_unit_test(test_cache_dir),
+             cmocka_unit_test(test_all_sets),
+             cmocka_unit_test(test_sine_exact),
+             cmocka_unit_test(test_checker),
+             cmocka_unit_test(test_relief),
+             cmocka_unit_test(test_compact),
+             cmocka_unit_test(test_normal_rows),
+             cmocka_unit_test(test_srgb),
+             cmocka_unit_test(test_cache),
+             cmocka_unit_test(test_bad_input),
+             cmocka_unit_test(test_cache_dir),
              cmocka_unit_test(test_user_maps))

@@ -264,6 +264,9 @@ static void test_clamp_and_sparse(void **state)
 }
 
 DM_TEST_MAIN(setup, teardown,
-             cmocka_unit_test(test_normal_formats), cmocka_unit_test(test_height_formats),
-             cmocka_unit_test(test_texture_bytes), cmocka_unit_test(test_normal_mips),
-             cmocka_unit_test(test_filters), cmocka_unit_test(test_clamp_and_sparse))
+             cmocka_unit_test(test_normal_formats),
+             cmocka_unit_test(test_height_formats),
+             cmocka_unit_test(test_texture_bytes),
+             cmocka_unit_test(test_normal_mips),
+             cmocka_unit_test(test_filters),
+             cmocka_unit_test(test_clamp_and_sparse))

@@ -221,5 +221,7 @@ static void test_refusals(void **state)
 }
 
 DM_TEST_MAIN(setup, teardown,
-             cmocka_unit_test(test_converges_to_plain), cmocka_unit_test(test_small_cache_degrades),
-             cmocka_unit_test(test_huge), cmocka_unit_test(test_refusals))
+             cmocka_unit_test(test_converges_to_plain),
+             cmocka_unit_test(test_small_cache_degrades),
+             cmocka_unit_test(test_huge),
+             cmocka_unit_test(test_refusals))

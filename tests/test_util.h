@@ -1,8 +1,8 @@
 /* test_util.h — what the cmocka test files share, so that each of them holds
  * only its own tests: the main() that runs them, a scratch directory, and
  * images of one colour.  Include it after <cmocka.h> (and the headers cmocka
- * needs); everything here is a macro or a static inline function, so a test
- * that uses none of it pays nothing. */
+ * needs); everything here is a macro or a static function, so a test that
+ * uses none of it pays nothing. */
 #ifndef TESTS_TEST_UTIL_H
 #define TESTS_TEST_UTIL_H
 
@@ -27,6 +27,17 @@ static inline void test_rm_rf(const char *dir)
     char *cmd = dm_xasprintf("rm -rf '%s'", dir);
     assert_int_equal(system(cmd), 0);
     free(cmd);
+}
+
+/* The whole file at path as a NUL-terminated string the caller frees; fails
+ * the test if it cannot be read.  noinline: GCC 12 otherwise mistakes the
+ * result for the address of the local it was read through
+ * (-Wdangling-pointer false positive). */
+__attribute__((noinline, unused)) static char *test_slurp(const char *path)
+{
+    char *text = NULL;
+    assert_int_equal(dm_read_file(path, &text, NULL), 0);
+    return text;
 }
 
 /* Sets every pixel of im to the colour (r, g, b, a). */
