@@ -80,14 +80,8 @@ static void make_run(dm_run_result *r, const char *id, size_t n_cfg, size_t n, d
     r->configs = dm_xcalloc(n_cfg, sizeof *r->configs);
     for (size_t i = 0; i < n_cfg; i++) {
         dm_config_result *c = &r->configs[i];
-        char key[32], mesh[32];
-        snprintf(key, sizeof key, "%016zx", i + 1);
-        snprintf(mesh, sizeof mesh, "m%zu", i);
-        c->key = dm_xstrdup(key);
-        c->scene = dm_xstrdup(mesh);
-        dm_kv_push(&c->params, &c->n_params, "mesh", mesh);
+        test_config_init(c, i);
         dm_kv_push(&c->params, &c->n_params, "technique", "normal");
-        c->ok = 1;
         c->n_counters = 3;
         c->counters = dm_xcalloc(3, sizeof *c->counters);
         timed(&c->counters[0], n, 1e6 * (double)(i + 1) * scale, cv, seed + i);

@@ -1,14 +1,17 @@
-/* test_util.h — what the cmocka test files share, so that each of them holds
- * only its own tests: the main() that runs them, a scratch directory, and
- * images of one colour.  Include it after <cmocka.h> (and the headers cmocka
- * needs); everything here is a macro or a static function, so a test that
- * uses none of it pays nothing. */
+/* test_util.h — what the cmocka test files share, so that each holds only
+ * its own tests: the main() that runs them, reading a file, removing a
+ * scratch directory, synthetic configurations and images of one colour.
+ * Include it after <cmocka.h> (and the headers cmocka needs); everything
+ * here is a macro or a static function, so a test that uses none of it pays
+ * nothing. */
 #ifndef TESTS_TEST_UTIL_H
 #define TESTS_TEST_UTIL_H
 
+#include <stdio.h>
 #include <stdlib.h>
 
 #include "core/dm_image.h"
+#include "core/dm_results.h"
 #include "core/dm_util.h"
 
 /* main() of a test file: runs the cmocka_unit_test(...) entries given as the
@@ -38,6 +41,19 @@ __attribute__((noinline, unused)) static char *test_slurp(const char *path)
     char *text = NULL;
     assert_int_equal(dm_read_file(path, &text, NULL), 0);
     return text;
+}
+
+/* Makes c the i-th configuration of a synthetic run: its key the 16 hex
+ * digits of i + 1, its scene and its one param mesh "m<i>", measured ok. */
+static inline void test_config_init(dm_config_result *c, size_t i)
+{
+    char key[32], mesh[32];
+    snprintf(key, sizeof key, "%016zx", i + 1);
+    snprintf(mesh, sizeof mesh, "m%zu", i);
+    c->key = dm_xstrdup(key);
+    c->scene = dm_xstrdup(mesh);
+    dm_kv_push(&c->params, &c->n_params, "mesh", mesh);
+    c->ok = 1;
 }
 
 /* Sets every pixel of im to the colour (r, g, b, a). */
