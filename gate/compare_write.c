@@ -184,6 +184,16 @@ static void compare__json_num(cJSON *o, const char *name, double v)
         cJSON_AddNullToObject(o, name);
 }
 
+/* A value of BASE and NEW as the members PREFIXbase and PREFIXnew. */
+static void compare__json_base_new(cJSON *o, const char *prefix, double base, double new_)
+{
+    char name[32];
+    snprintf(name, sizeof name, "%sbase", prefix);
+    compare__json_num(o, name, base);
+    snprintf(name, sizeof name, "%snew", prefix);
+    compare__json_num(o, name, new_);
+}
+
 static cJSON *compare__json_list(char **list, size_t n)
 {
     cJSON *a = cJSON_CreateArray();
@@ -224,18 +234,15 @@ static cJSON *compare__json_item(const compare_item *it)
     for (size_t k = 0; k < it->n_changes; k++) {
         cJSON *c = cJSON_CreateObject();
         cJSON_AddStringToObject(c, "counter", it->changes[k].counter);
-        compare__json_num(c, "base", it->changes[k].base);
-        compare__json_num(c, "new", it->changes[k].new_);
+        compare__json_base_new(c, "", it->changes[k].base, it->changes[k].new_);
         if (it->changes[k].note)
             cJSON_AddStringToObject(c, "note", it->changes[k].note);
         cJSON_AddItemToArray(ch, c);
     }
     if (it->quality) {
         cJSON *q = cJSON_AddObjectToObject(o, "quality");
-        compare__json_num(q, "PSNR_base", it->psnr_base);
-        compare__json_num(q, "PSNR_new", it->psnr_new);
-        compare__json_num(q, "SSIM_base", it->ssim_base);
-        compare__json_num(q, "SSIM_new", it->ssim_new);
+        compare__json_base_new(q, "PSNR_", it->psnr_base, it->psnr_new);
+        compare__json_base_new(q, "SSIM_", it->ssim_base, it->ssim_new);
     }
     return o;
 }

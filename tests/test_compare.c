@@ -598,6 +598,12 @@ static void test_json_roundtrip_and_outputs(void **state)
     text = test_slurp(js);
     assert_non_null(strstr(text, "\"REGRESSION\":\t1"));
     assert_non_null(strstr(text, "\"exit_code\":\t1"));
+    /* a changed counter and the quality carry base and new values */
+    assert_non_null(strstr(text, "\"counter\":\t\"TESInvocations\",\n"));
+    assert_non_null(strstr(text, "\"base\":\t3169,\n"));
+    assert_non_null(strstr(text, "\"new\":\t6144"));
+    assert_non_null(strstr(text, "\"PSNR_base\":\t40,\n"));
+    assert_non_null(strstr(text, "\"SSIM_new\":\t0.98"));
     free(text);
     free(md);
     free(ju);
