@@ -20,6 +20,16 @@ const dm_counter_result *dm_config_counter(const dm_config_result *c, const char
     return NULL;
 }
 
+int dm_run_param_varies(const dm_run_result *run, const dm_kv *k)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const char *v = dm_kv_get(run->configs[i].params, run->configs[i].n_params, k->key);
+        if (!v || !k->value || strcmp(v, k->value) != 0)
+            return 1;
+    }
+    return 0;
+}
+
 void dm_kv_push(dm_kv **kv, size_t *n, const char *key, const char *value)
 {
     *kv = dm_xrealloc(*kv, (*n + 1) * sizeof **kv);

@@ -113,6 +113,9 @@ typedef struct dm_run_result {
 /* Lookup helpers; return NULL when absent. */
 const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key);
 const dm_counter_result *dm_config_counter(const dm_config_result *c, const char *name);
+/* 1 when param k has another value (or none) in some configuration of run,
+ * so that it tells configurations apart; 0 when all share it. */
+int dm_run_param_varies(const dm_run_result *run, const dm_kv *k);
 /* Appends a copy of key/value to a kv array (realloc'd). */
 void dm_kv_push(dm_kv **kv, size_t *n, const char *key, const char *value);
 void dm_kv_free(dm_kv *kv, size_t n);

@@ -187,17 +187,22 @@ void dm_hex64(uint64_t h, char out[17])
     snprintf(out, 17, "%016llx", (unsigned long long)h);
 }
 
+int dm_read_stream(FILE *f, dm_str *out)
+{
+    char chunk[65536];
+    size_t n;
+    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0)
+        dm_str_catn(out, chunk, n);
+    return ferror(f) ? DM_ERR_IO : 0;
+}
+
 int dm_read_file(const char *path, char **out, size_t *len)
 {
     FILE *f = fopen(path, "rb");
     if (!f)
         return DM_ERR_IO;
     dm_str s = {0};
-    char chunk[65536];
-    size_t n;
-    while ((n = fread(chunk, 1, sizeof chunk, f)) > 0)
-        dm_str_catn(&s, chunk, n);
-    int bad = ferror(f);
+    int bad = dm_read_stream(f, &s);
     fclose(f);
     if (bad) {
         dm_str_free(&s);

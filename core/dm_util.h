@@ -8,6 +8,7 @@
 #define DM_UTIL_H
 
 #include <stddef.h>
+#include <stdio.h>
 #include <stdint.h>
 #include <stdarg.h>
 
@@ -92,6 +93,9 @@ void dm_hex64(uint64_t h, char out[17]);
 /* Reads a whole file; returns 0 and a NUL-terminated malloc'd buffer, or a
  * negative DM_ERR_* (DM_ERR_IO) and *out untouched. */
 int dm_read_file(const char *path, char **out, size_t *len);
+/* Appends all that is left to read from f (a file or a pipe) to out; returns
+ * 0, or DM_ERR_IO on a read error with what was read before it in out. */
+int dm_read_stream(FILE *f, dm_str *out);
 /* Writes atomically (temp file + rename); DM_ERR_IO on failure, the old file
  * (if any) is left as it was. */
 int dm_write_file(const char *path, const void *data, size_t len);

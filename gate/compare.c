@@ -39,17 +39,6 @@ static void compare__push(char ***list, size_t *n, char *text)
     (*list)[(*n)++] = text;
 }
 
-/* 1 when param k has another value (or none) in some configuration of r. */
-static int compare__varies(const dm_run_result *r, const dm_kv *k)
-{
-    for (size_t i = 0; i < r->n_configs; i++) {
-        const char *v = dm_kv_get(r->configs[i].params, r->configs[i].n_params, k->key);
-        if (!v || !k->value || strcmp(v, k->value) != 0)
-            return 1;
-    }
-    return 0;
-}
-
 /* "k=v k=v" of the params that tell c apart within run r (all of them when
  * none do; its key when it has none). */
 static char *compare__label(const dm_config_result *c, const dm_run_result *r)
@@ -57,7 +46,7 @@ static char *compare__label(const dm_config_result *c, const dm_run_result *r)
     dm_str s = {0};
     for (int all = 0; all < 2 && !s.len; all++)
         for (size_t i = 0; i < c->n_params; i++)
-            if (all || compare__varies(r, &c->params[i]))
+            if (all || dm_run_param_varies(r, &c->params[i]))
                 dm_str_printf(&s, "%s%s=%s", s.len ? " " : "", c->params[i].key,
                               c->params[i].value ? c->params[i].value : "");
     if (!s.len)

@@ -10,15 +10,25 @@
 
 #include "core/dm_error.h"
 
-/* "1.012 [0.998, 1.027]" or "-" when not timed. */
-static void compare__ratio_text(const compare_item *it, char *buf, size_t n)
+/* The ratio and q columns of an item, as the text, Markdown and JUnit
+ * outputs print them. */
+typedef struct compare__cells {
+    char ratio[64];   /* "1.012 [0.998, 1.025]", "1.00004 (instructions)" or "-" */
+    char q[16];       /* the q-value, "-" when the item is not timed */
+} compare__cells;
+
+static compare__cells compare__item_cells(const compare_item *it)
 {
+    compare__cells c = { .q = "-" };
     if (it->instr)
-        snprintf(buf, n, "%.5f (instructions)", it->instr_new / it->instr_base);
+        snprintf(c.ratio, sizeof c.ratio, "%.5f (instructions)", it->instr_new / it->instr_base);
     else if (it->timed)
-        snprintf(buf, n, "%.3f [%.3f, %.3f]", it->ratio, it->lo, it->hi);
+        snprintf(c.ratio, sizeof c.ratio, "%.3f [%.3f, %.3f]", it->ratio, it->lo, it->hi);
     else
-        snprintf(buf, n, "-");
+        snprintf(c.ratio, sizeof c.ratio, "-");
+    if (it->timed)
+        snprintf(c.q, sizeof c.q, "%.2g", it->q);
+    return c;
 }
 
 static void compare__summary(const compare_result *r, dm_str *s)
@@ -58,13 +68,10 @@ void compare_write_text(const compare_result *r, FILE *f)
             "configuration / note");
     for (size_t i = 0; i < r->n_items; i++) {
         const compare_item *it = &r->items[i];
-        char ratio[64], q[16] = "-";
-        compare__ratio_text(it, ratio, sizeof ratio);
-        if (it->timed)
-            snprintf(q, sizeof q, "%.2g", it->q);
+        compare__cells cell = compare__item_cells(it);
         char *b1, *b2;
-        fprintf(f, "%-12s  %-26s  %-8s  %-16s  %s%s%s\n", compare_verdict_name(it->verdict), ratio,
-                q, it->key, dm_term_safe(it->label, &b1), it->note ? " — " : "",
+        fprintf(f, "%-12s  %-26s  %-8s  %-16s  %s%s%s\n", compare_verdict_name(it->verdict),
+                cell.ratio, cell.q, it->key, dm_term_safe(it->label, &b1), it->note ? " — " : "",
                 it->note ? dm_term_safe(it->note, &b2) : (b2 = NULL, ""));
         free(b1);
         free(b2);
@@ -106,15 +113,12 @@ int compare_write_markdown(const compare_result *r, const char *path)
                    "|---|---|---|---|---|---|\n");
     for (size_t i = 0; i < r->n_items; i++) {
         const compare_item *it = &r->items[i];
-        char ratio[64], q[16] = "-";
-        compare__ratio_text(it, ratio, sizeof ratio);
-        if (it->timed)
-            snprintf(q, sizeof q, "%.2g", it->q);
+        compare__cells cell = compare__item_cells(it);
         dm_str_printf(&s, "| %s | ", compare_verdict_name(it->verdict));
         compare__md_cell(&s, it->label);
         dm_str_cat(&s, " | `");
         compare__md_cell(&s, it->key);
-        dm_str_printf(&s, "` | %s | %s | ", ratio, q);
+        dm_str_printf(&s, "` | %s | %s | ", cell.ratio, cell.q);
         compare__md_cell(&s, it->note);
         dm_str_cat(&s, " |\n");
     }
@@ -146,8 +150,7 @@ int compare_write_junit(const compare_result *r, const char *path)
                   r->n_items, r->count[COMPARE_REGRESSION], skipped);
     for (size_t i = 0; i < r->n_items; i++) {
         const compare_item *it = &r->items[i];
-        char ratio[64];
-        compare__ratio_text(it, ratio, sizeof ratio);
+        compare__cells cell = compare__item_cells(it);
         dm_str_cat(&s, "  <testcase classname=\"dmbench.compare\" name=\"");
         dm_str_cat_html(&s, it->label);
         dm_str_printf(&s, " [%s]\" time=\"%.9f\">\n", it->key, it->median_new / 1e9);
@@ -159,7 +162,7 @@ int compare_write_junit(const compare_result *r, const char *path)
             dm_str_cat_html(&s, it->note ? it->note : "");
             dm_str_printf(&s, "\"/>\n");
         }
-        dm_str_printf(&s, "    <system-out>verdict=%s ratio=%s", compare_verdict_name(it->verdict), ratio);
+        dm_str_printf(&s, "    <system-out>verdict=%s ratio=%s", compare_verdict_name(it->verdict), cell.ratio);
         if (it->median_new > 0)
             dm_str_printf(&s, " median_ms=%.6g", it->median_new / 1e6);
         if (it->note) {
@@ -179,6 +182,16 @@ static void compare__json_num(cJSON *o, const char *name, double v)
         cJSON_AddNumberToObject(o, name, v);
     else
         cJSON_AddNullToObject(o, name);
+}
+
+/* A value of BASE and NEW as the members PREFIXbase and PREFIXnew. */
+static void compare__json_base_new(cJSON *o, const char *prefix, double base, double new_)
+{
+    char name[32];
+    snprintf(name, sizeof name, "%sbase", prefix);
+    compare__json_num(o, name, base);
+    snprintf(name, sizeof name, "%snew", prefix);
+    compare__json_num(o, name, new_);
 }
 
 static cJSON *compare__json_list(char **list, size_t n)
@@ -221,18 +234,15 @@ static cJSON *compare__json_item(const compare_item *it)
     for (size_t k = 0; k < it->n_changes; k++) {
         cJSON *c = cJSON_CreateObject();
         cJSON_AddStringToObject(c, "counter", it->changes[k].counter);
-        compare__json_num(c, "base", it->changes[k].base);
-        compare__json_num(c, "new", it->changes[k].new_);
+        compare__json_base_new(c, "", it->changes[k].base, it->changes[k].new_);
         if (it->changes[k].note)
             cJSON_AddStringToObject(c, "note", it->changes[k].note);
         cJSON_AddItemToArray(ch, c);
     }
     if (it->quality) {
         cJSON *q = cJSON_AddObjectToObject(o, "quality");
-        compare__json_num(q, "PSNR_base", it->psnr_base);
-        compare__json_num(q, "PSNR_new", it->psnr_new);
-        compare__json_num(q, "SSIM_base", it->ssim_base);
-        compare__json_num(q, "SSIM_new", it->ssim_new);
+        compare__json_base_new(q, "PSNR_", it->psnr_base, it->psnr_new);
+        compare__json_base_new(q, "SSIM_", it->ssim_base, it->ssim_new);
     }
     return o;
 }

@@ -24,6 +24,37 @@ static void export__num(cJSON *o, const char *name, double v)
         cJSON_AddNumberToObject(o, name, v);
 }
 
+/* One configuration as an exporter sees it: its result, its time, its name
+ * (report_config_name) and its index among the timed configurations. */
+typedef struct export__config {
+    const dm_config_result *c;
+    const dm_counter_result *t;
+    const char *name;
+    size_t index;
+    int bigger;   /* github-action-benchmark: the bigger-is-better list */
+} export__config;
+
+/* Adds what a format writes for one configuration to out. */
+typedef void (*export__add_fn)(cJSON *out, const export__config *e);
+
+/* Calls add for each configuration of run that has a time, in run order
+ * (the others are left out of every format). */
+static void export__each(const dm_run_result *run, cJSON *out, int bigger, export__add_fn add)
+{
+    size_t index = 0;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        const dm_counter_result *t = export__time(c);
+        if (!t)
+            continue;
+        dm_str name = {0};
+        report_config_name(run, c, &name);
+        export__config e = { c, t, dm_str_get(&name), index++, bigger };
+        add(out, &e);
+        dm_str_free(&name);
+    }
+}
+
 /* ---- Google Benchmark ---------------------------------------------------- */
 
 static cJSON *export__gbench_context(const dm_run_result *run)
@@ -66,37 +97,35 @@ static void export__user_counters(cJSON *o, const dm_config_result *c)
     }
 }
 
+/* One benchmark of the "benchmarks" list. */
+static void export__gbench_add(cJSON *list, const export__config *e)
+{
+    const dm_config_result *c = e->c;
+    const dm_counter_result *t = e->t, *cpu = dm_config_counter(c, "CPUTime");
+    cJSON *b = cJSON_CreateObject();
+    cJSON_AddStringToObject(b, "name", e->name);
+    cJSON_AddNumberToObject(b, "family_index", (double)e->index);
+    cJSON_AddNumberToObject(b, "per_family_instance_index", 0);
+    cJSON_AddStringToObject(b, "run_name", e->name);
+    cJSON_AddStringToObject(b, "run_type", "iteration");
+    cJSON_AddNumberToObject(b, "repetitions", 1);
+    cJSON_AddNumberToObject(b, "repetition_index", 0);
+    cJSON_AddNumberToObject(b, "threads", 1);
+    cJSON_AddNumberToObject(b, "iterations", (double)t->n_samples);
+    cJSON_AddNumberToObject(b, "real_time", t->median);
+    cJSON_AddNumberToObject(b, "cpu_time", cpu && cpu->available && cpu->has_samples &&
+                            isfinite(cpu->median) ? cpu->median : t->median);
+    cJSON_AddStringToObject(b, "time_unit", "ns");
+    cJSON_AddStringToObject(b, "label", c->key ? c->key : "");
+    export__user_counters(b, c);
+    cJSON_AddItemToArray(list, b);
+}
+
 static cJSON *export__gbench(const dm_run_result *run)
 {
     cJSON *root = cJSON_CreateObject();
     cJSON_AddItemToObject(root, "context", export__gbench_context(run));
-    cJSON *list = cJSON_AddArrayToObject(root, "benchmarks");
-    for (size_t i = 0, fam = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        const dm_counter_result *t = export__time(c), *cpu = dm_config_counter(c, "CPUTime");
-        if (!t)
-            continue;
-        dm_str name = {0};
-        report_config_name(run, c, &name);
-        cJSON *b = cJSON_CreateObject();
-        cJSON_AddStringToObject(b, "name", dm_str_get(&name));
-        cJSON_AddNumberToObject(b, "family_index", (double)fam++);
-        cJSON_AddNumberToObject(b, "per_family_instance_index", 0);
-        cJSON_AddStringToObject(b, "run_name", dm_str_get(&name));
-        cJSON_AddStringToObject(b, "run_type", "iteration");
-        cJSON_AddNumberToObject(b, "repetitions", 1);
-        cJSON_AddNumberToObject(b, "repetition_index", 0);
-        cJSON_AddNumberToObject(b, "threads", 1);
-        cJSON_AddNumberToObject(b, "iterations", (double)t->n_samples);
-        cJSON_AddNumberToObject(b, "real_time", t->median);
-        cJSON_AddNumberToObject(b, "cpu_time", cpu && cpu->available && cpu->has_samples &&
-                                isfinite(cpu->median) ? cpu->median : t->median);
-        cJSON_AddStringToObject(b, "time_unit", "ns");
-        cJSON_AddStringToObject(b, "label", c->key ? c->key : "");
-        export__user_counters(b, c);
-        cJSON_AddItemToArray(list, b);
-        dm_str_free(&name);
-    }
+    export__each(run, cJSON_AddArrayToObject(root, "benchmarks"), 0, export__gbench_add);
     return root;
 }
 
@@ -128,48 +157,46 @@ static void export__bmf_value(cJSON *o, const char *measure, double v)
     cJSON_AddNumberToObject(m, "value", v);
 }
 
+/* One benchmark: latency, quality and the deterministic counters. */
+static void export__bmf_add(cJSON *root, const export__config *e)
+{
+    const dm_config_result *c = e->c;
+    cJSON *b = cJSON_AddObjectToObject(root, e->name);
+    cJSON *lat = cJSON_AddObjectToObject(b, "latency");
+    cJSON_AddNumberToObject(lat, "value", e->t->median);
+    export__num(lat, "lower_value", e->t->ci_lo);
+    export__num(lat, "upper_value", e->t->ci_hi);
+    if (c->quality.present) {
+        export__bmf_value(b, "ssim", c->quality.ssim);
+        export__bmf_value(b, "psnr-db", c->quality.psnr);
+    }
+    for (size_t k = 0; k < c->n_counters; k++) {
+        const dm_counter_result *d = &c->counters[k];
+        if (!d->deterministic || !d->available || d->has_samples)
+            continue;
+        char *slug = export__kebab(d->name);
+        export__bmf_value(b, slug, d->value);
+        free(slug);
+    }
+}
+
 static cJSON *export__bmf(const dm_run_result *run)
 {
     cJSON *root = cJSON_CreateObject();
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        const dm_counter_result *t = export__time(c);
-        if (!t)
-            continue;
-        dm_str name = {0};
-        report_config_name(run, c, &name);
-        cJSON *b = cJSON_AddObjectToObject(root, dm_str_get(&name));
-        cJSON *lat = cJSON_AddObjectToObject(b, "latency");
-        cJSON_AddNumberToObject(lat, "value", t->median);
-        export__num(lat, "lower_value", t->ci_lo);
-        export__num(lat, "upper_value", t->ci_hi);
-        if (c->quality.present) {
-            export__bmf_value(b, "ssim", c->quality.ssim);
-            export__bmf_value(b, "psnr-db", c->quality.psnr);
-        }
-        for (size_t k = 0; k < c->n_counters; k++) {
-            const dm_counter_result *d = &c->counters[k];
-            if (!d->deterministic || !d->available || d->has_samples)
-                continue;
-            char *slug = export__kebab(d->name);
-            export__bmf_value(b, slug, d->value);
-            free(slug);
-        }
-        dm_str_free(&name);
-    }
+    export__each(run, root, 0, export__bmf_add);
     return root;
 }
 
 /* ---- github-action-benchmark ------------------------------------------- */
 
 /* One entry; suffix (NULL for the time) is appended as " (SUFFIX)". */
-static void export__gab_entry(cJSON *list, const dm_str *name, const char *suffix,
+static void export__gab_entry(cJSON *list, const char *name, const char *suffix,
                               const char *unit, double value, const char *range, const char *extra)
 {
     if (!isfinite(value))
         return;
     cJSON *e = cJSON_CreateObject();
-    char *n = suffix ? dm_xasprintf("%s (%s)", dm_str_get(name), suffix) : dm_xstrdup(dm_str_get(name));
+    char *n = suffix ? dm_xasprintf("%s (%s)", name, suffix) : dm_xstrdup(name);
     cJSON_AddStringToObject(e, "name", n);
     cJSON_AddStringToObject(e, "unit", unit);
     cJSON_AddNumberToObject(e, "value", value);
@@ -180,33 +207,32 @@ static void export__gab_entry(cJSON *list, const dm_str *name, const char *suffi
     free(n);
 }
 
+/* The entries of one configuration: its time and RMSE (smaller is better)
+ * or its SSIM and PSNR (bigger is better). */
+static void export__gab_add(cJSON *list, const export__config *e)
+{
+    const dm_counter_result *t = e->t;
+    const dm_quality *q = &e->c->quality;
+    char *extra = dm_xasprintf("key %s; median of %zu samples; 95%% CI [%.6g, %.6g] ms", e->c->key,
+                               t->n_samples, t->ci_lo / 1e6, t->ci_hi / 1e6);
+    char *range = dm_xasprintf("± %.4g", (t->ci_hi - t->ci_lo) / 2e6);
+    if (!e->bigger) {
+        export__gab_entry(list, e->name, NULL, "ms", t->median / 1e6,
+                          isfinite(t->ci_hi - t->ci_lo) ? range : NULL, extra);
+        if (q->present)
+            export__gab_entry(list, e->name, "RMSE", "RMSE", q->rmse, NULL, extra);
+    } else if (q->present) {
+        export__gab_entry(list, e->name, "SSIM", "SSIM", q->ssim, NULL, extra);
+        export__gab_entry(list, e->name, "PSNR", "dB", q->psnr, NULL, extra);
+    }
+    free(extra);
+    free(range);
+}
+
 static cJSON *export__gab(const dm_run_result *run, int bigger)
 {
     cJSON *list = cJSON_CreateArray();
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        const dm_counter_result *t = export__time(c);
-        if (!t)
-            continue;
-        dm_str name = {0};
-        report_config_name(run, c, &name);
-        char *extra = dm_xasprintf("key %s; median of %zu samples; 95%% CI [%.6g, %.6g] ms", c->key,
-                                   t->n_samples, t->ci_lo / 1e6, t->ci_hi / 1e6);
-        char *range = dm_xasprintf("± %.4g", (t->ci_hi - t->ci_lo) / 2e6);
-        const dm_quality *q = &c->quality;
-        if (!bigger) {
-            export__gab_entry(list, &name, NULL, "ms", t->median / 1e6,
-                              isfinite(t->ci_hi - t->ci_lo) ? range : NULL, extra);
-            if (q->present)
-                export__gab_entry(list, &name, "RMSE", "RMSE", q->rmse, NULL, extra);
-        } else if (q->present) {
-            export__gab_entry(list, &name, "SSIM", "SSIM", q->ssim, NULL, extra);
-            export__gab_entry(list, &name, "PSNR", "dB", q->psnr, NULL, extra);
-        }
-        free(extra);
-        free(range);
-        dm_str_free(&name);
-    }
+    export__each(run, list, bigger, export__gab_add);
     return list;
 }
 

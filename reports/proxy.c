@@ -21,17 +21,6 @@ static int proxy__pair(const dm_config_result *c, double *x, double *y)
     return isfinite(*x) && isfinite(*y) && *x > 0 && *y > 0;
 }
 
-/* 1 when param k of c has another value (or none) in some configuration. */
-static int proxy__varies(const dm_run_result *run, const dm_kv *k)
-{
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const char *v = dm_kv_get(run->configs[i].params, run->configs[i].n_params, k->key);
-        if (!v || !k->value || strcmp(v, k->value) != 0)
-            return 1;
-    }
-    return 0;
-}
-
 /* "TECHNIQUE SCENE k=v ..." with the other params that tell c apart
  * within the run (its key when there is nothing). */
 static void proxy__label(const dm_run_result *run, const dm_config_result *c, char *buf, size_t cap)
@@ -41,7 +30,7 @@ static void proxy__label(const dm_run_result *run, const dm_config_result *c, ch
     size_t len = w0 > 0 && (size_t)w0 < cap ? (size_t)w0 : 0;
     for (size_t i = 0; i < c->n_params && len + 1 < cap; i++) {
         const char *k = c->params[i].key;
-        if (!proxy__varies(run, &c->params[i]) || strcmp(k, "technique") == 0 ||
+        if (!dm_run_param_varies(run, &c->params[i]) || strcmp(k, "technique") == 0 ||
             strcmp(k, "mesh") == 0 || strcmp(k, "resolution") == 0)
             continue;
         int w = snprintf(buf + len, cap - len, "%s%s=%s", len ? " " : "", c->params[i].key,

@@ -459,12 +459,16 @@ static int store__scalar(store *s, long *v, enum store_sql id,
 
 /* ---- transactions ---------------------------------------------------------- */
 
+/* Writes item (of the type its function names) as part of run. */
+typedef int (*store__writer)(store *s, const char *run, const void *item);
+
 /* Arguments of one store operation, for store__tx. */
 typedef struct store__call {
     const char *run;
     const void *item;
     const char *text;
     void *out;
+    store__writer write;   /* for store__put */
 } store__call;
 
 typedef int (*store__fn)(store *s, const store__call *c);
@@ -548,9 +552,11 @@ static int store__config_row(store *s, const store__owner *o,
         c->img_reference);
 }
 
-/* Replaces configuration c of run, keeping its position when it existed. */
-static int store__config_write(store *s, const char *run, const dm_config_result *c)
+/* Replaces configuration item (a dm_config_result) of run, keeping its
+ * position when it existed. */
+static int store__config_write(store *s, const char *run, const void *item)
 {
+    const dm_config_result *c = item;
     store__owner o = { run, c->key, 0 };
     if (!c->key)
         return store__failf(s, DM_ERR_ARG, "configuration without a key");
@@ -568,8 +574,10 @@ static int store__config_write(store *s, const char *run, const dm_config_result
     return rc;
 }
 
-static int store__left_out_write(store *s, const char *run, const dm_left_out *l)
+/* Appends item (a dm_left_out) to the configurations run left out. */
+static int store__left_out_write(store *s, const char *run, const void *item)
 {
+    const dm_left_out *l = item;
     store__owner o = { run, NULL, 0 };
     int rc = store__scalar(s, &o.seq, STORE_SQL_LO_SEQ, &o, "");
     if (rc == 0)
@@ -616,9 +624,11 @@ static int store__fit_children(store *s, const store__owner *o,
     return rc;
 }
 
-/* Replaces the fit of the same model and group, keeping its position. */
-static int store__fit_write(store *s, const char *run, const dm_fit_result *f)
+/* Replaces the fit of the same model and group as item (a dm_fit_result),
+ * keeping its position. */
+static int store__fit_write(store *s, const char *run, const void *item)
 {
+    const dm_fit_result *f = item;
     if (!f->model || f->n_points < 0)
         return store__failf(s, DM_ERR_ARG, "fit without a model name or with "
                             "a negative point count");
@@ -1070,29 +1080,34 @@ int store_run_begin(store *s, const dm_run_result *run, const char *tag)
     return store__tx(s, 1, store__begin_fn, &c);
 }
 
-static int store__warning_fn(store *s, const store__call *c)
+static int store__put_fn(store *s, const store__call *c)
 {
-    store__owner o = { c->run, NULL, 0 };
     int rc = store__need_run(s, c->run);
-    return rc ? rc : store__exec(s, STORE_SQL_RWARN_INS, &o, "t", c->text);
+    return rc ? rc : c->write(s, c->run, c->item);
+}
+
+/* Writes item into run run_id with write, in one write transaction;
+ * DM_ERR_NOTFOUND (and nothing written) when the run is not in the store. */
+static int store__put(store *s, const char *run_id, const void *item, store__writer write)
+{
+    store__call c = { .run = run_id, .item = item, .write = write };
+    return store__tx(s, 1, store__put_fn, &c);
+}
+
+static int store__warning_write(store *s, const char *run, const void *text)
+{
+    store__owner o = { run, NULL, 0 };
+    return store__exec(s, STORE_SQL_RWARN_INS, &o, "t", (const char *)text);
 }
 
 int store_run_warning_put(store *s, const char *run_id, const char *text)
 {
-    store__call c = { .run = run_id, .text = text };
-    return store__tx(s, 1, store__warning_fn, &c);
-}
-
-static int store__config_fn(store *s, const store__call *c)
-{
-    int rc = store__need_run(s, c->run);
-    return rc ? rc : store__config_write(s, c->run, c->item);
+    return store__put(s, run_id, text, store__warning_write);
 }
 
 int store_config_put(store *s, const char *run_id, const dm_config_result *cfg)
 {
-    store__call c = { .run = run_id, .item = cfg };
-    return store__tx(s, 1, store__config_fn, &c);
+    return store__put(s, run_id, cfg, store__config_write);
 }
 
 static int store__partial_fn(store *s, const store__call *c)
@@ -1132,41 +1147,25 @@ int store_partial_get(store *s, const char *run_id, const char *key, const char 
     return 0;
 }
 
-static int store__left_out_fn(store *s, const store__call *c)
-{
-    int rc = store__need_run(s, c->run);
-    return rc ? rc : store__left_out_write(s, c->run, c->item);
-}
-
 int store_left_out_put(store *s, const char *run_id, const dm_left_out *l)
 {
-    store__call c = { .run = run_id, .item = l };
-    return store__tx(s, 1, store__left_out_fn, &c);
-}
-
-static int store__fit_fn(store *s, const store__call *c)
-{
-    int rc = store__need_run(s, c->run);
-    return rc ? rc : store__fit_write(s, c->run, c->item);
+    return store__put(s, run_id, l, store__left_out_write);
 }
 
 int store_fit_put(store *s, const char *run_id, const dm_fit_result *f)
 {
-    store__call c = { .run = run_id, .item = f };
-    return store__tx(s, 1, store__fit_fn, &c);
+    return store__put(s, run_id, f, store__fit_write);
 }
 
-static int store__finish_fn(store *s, const store__call *c)
+static int store__finish_write(store *s, const char *run, const void *iso)
 {
-    store__owner o = { c->run, NULL, 0 };
-    int rc = store__need_run(s, c->run);
-    return rc ? rc : store__exec(s, STORE_SQL_RUN_FINISH, &o, "t", c->text);
+    store__owner o = { run, NULL, 0 };
+    return store__exec(s, STORE_SQL_RUN_FINISH, &o, "t", (const char *)iso);
 }
 
 int store_run_finish(store *s, const char *run_id, const char *finished_iso)
 {
-    store__call c = { .run = run_id, .text = finished_iso };
-    return store__tx(s, 1, store__finish_fn, &c);
+    return store__put(s, run_id, finished_iso, store__finish_write);
 }
 
 int store_config_done(store *s, const char *run_id, const char *key)

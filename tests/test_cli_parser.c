@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -194,14 +195,9 @@ static void test_help(void **state)
     assert_non_null(strstr(text, "\n  -h, --help "));
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_kinds_and_positionals),
-        cmocka_unit_test(test_defaults),
-        cmocka_unit_test(test_errors),
-        cmocka_unit_test(test_command_table),
-        cmocka_unit_test(test_help),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_kinds_and_positionals),
+             cmocka_unit_test(test_defaults),
+             cmocka_unit_test(test_errors),
+             cmocka_unit_test(test_command_table),
+             cmocka_unit_test(test_help))

@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -79,14 +80,8 @@ static void make_run(dm_run_result *r, const char *id, size_t n_cfg, size_t n, d
     r->configs = dm_xcalloc(n_cfg, sizeof *r->configs);
     for (size_t i = 0; i < n_cfg; i++) {
         dm_config_result *c = &r->configs[i];
-        char key[32], mesh[32];
-        snprintf(key, sizeof key, "%016zx", i + 1);
-        snprintf(mesh, sizeof mesh, "m%zu", i);
-        c->key = dm_xstrdup(key);
-        c->scene = dm_xstrdup(mesh);
-        dm_kv_push(&c->params, &c->n_params, "mesh", mesh);
+        test_config_init(c, i);
         dm_kv_push(&c->params, &c->n_params, "technique", "normal");
-        c->ok = 1;
         c->n_counters = 3;
         c->counters = dm_xcalloc(3, sizeof *c->counters);
         timed(&c->counters[0], n, 1e6 * (double)(i + 1) * scale, cv, seed + i);
@@ -552,18 +547,9 @@ static int tmp_setup(void **state)
 static int tmp_teardown(void **state)
 {
     tmp *t = *state;
-    char *cmd = dm_xasprintf("rm -rf '%s'", t->dir);
-    assert_int_equal(system(cmd), 0);
-    free(cmd);
+    test_rm_rf(t->dir);
     free(t);
     return 0;
-}
-
-static char *slurp(const char *path)
-{
-    char *text = NULL;
-    assert_int_equal(dm_read_file(path, &text, NULL), 0);
-    return text;
 }
 
 static void test_json_roundtrip_and_outputs(void **state)
@@ -593,11 +579,11 @@ static void test_json_roundtrip_and_outputs(void **state)
     assert_int_equal(compare_write_markdown(&r, md), 0);
     assert_int_equal(compare_write_junit(&r, ju), 0);
     assert_int_equal(compare_write_json(&r, js), 0);
-    char *text = slurp(md);
+    char *text = test_slurp(md);
     assert_non_null(strstr(text, "| Verdict | Configuration | Key |"));
     assert_non_null(strstr(text, "| REGRESSION | mesh=m2 | `0000000000000003` |"));
     free(text);
-    text = slurp(ju);
+    text = test_slurp(ju);
     assert_non_null(strstr(text, "tests=\"3\" failures=\"1\""));
     assert_non_null(strstr(text, "<failure message=\"REGRESSION: TESInvocations changed 3169 -&gt; 6144\"/>"));
     assert_null(strstr(text, "time=\"0\""));
@@ -609,9 +595,15 @@ static void test_json_roundtrip_and_outputs(void **state)
         free(want);
     }
     free(text);
-    text = slurp(js);
+    text = test_slurp(js);
     assert_non_null(strstr(text, "\"REGRESSION\":\t1"));
     assert_non_null(strstr(text, "\"exit_code\":\t1"));
+    /* a changed counter and the quality carry base and new values */
+    assert_non_null(strstr(text, "\"counter\":\t\"TESInvocations\",\n"));
+    assert_non_null(strstr(text, "\"base\":\t3169,\n"));
+    assert_non_null(strstr(text, "\"new\":\t6144"));
+    assert_non_null(strstr(text, "\"PSNR_base\":\t40,\n"));
+    assert_non_null(strstr(text, "\"SSIM_new\":\t0.98"));
     free(text);
     free(md);
     free(ju);
@@ -676,7 +668,7 @@ static void test_store_and_baselines(void **state)
     free(id);
     free(why);
     assert_int_equal(compare_baseline_latest(path, "other-sweep", &id, NULL, &err), DM_ERR_NOTFOUND);
-    char *bl = compare_baselines_path(path), *text = slurp(bl);
+    char *bl = compare_baselines_path(path), *text = test_slurp(bl);
     assert_non_null(strstr(text, "\"reason\":\t\"first\""));
     free(text);
     free(bl);
@@ -684,24 +676,19 @@ static void test_store_and_baselines(void **state)
     free(path);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_self_all_pass),
-        cmocka_unit_test(test_deterministic_change),
-        cmocka_unit_test(test_slowdown_20_percent_regression),
-        cmocka_unit_test(test_slowdown_1_percent_pass),
-        cmocka_unit_test(test_huge_noise_inconclusive),
-        cmocka_unit_test(test_env_mismatch),
-        cmocka_unit_test(test_counters_only_ignores_time),
-        cmocka_unit_test(test_failed_added_removed),
-        cmocka_unit_test(test_quality_drop),
-        cmocka_unit_test(test_inconclusive_states_detectable),
-        cmocka_unit_test(test_identical_noisy_pass),
-        cmocka_unit_test(test_instructions_threshold),
-        cmocka_unit_test(test_partial_gputime_refused),
-        cmocka_unit_test_setup_teardown(test_json_roundtrip_and_outputs, tmp_setup, tmp_teardown),
-        cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_self_all_pass),
+             cmocka_unit_test(test_deterministic_change),
+             cmocka_unit_test(test_slowdown_20_percent_regression),
+             cmocka_unit_test(test_slowdown_1_percent_pass),
+             cmocka_unit_test(test_huge_noise_inconclusive),
+             cmocka_unit_test(test_env_mismatch),
+             cmocka_unit_test(test_counters_only_ignores_time),
+             cmocka_unit_test(test_failed_added_removed),
+             cmocka_unit_test(test_quality_drop),
+             cmocka_unit_test(test_inconclusive_states_detectable),
+             cmocka_unit_test(test_identical_noisy_pass),
+             cmocka_unit_test(test_instructions_threshold),
+             cmocka_unit_test(test_partial_gputime_refused),
+             cmocka_unit_test_setup_teardown(test_json_roundtrip_and_outputs, tmp_setup, tmp_teardown),
+             cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown))

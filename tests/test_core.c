@@ -4,6 +4,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <stdlib.h>
 #include <string.h>
 #include <unistd.h>
@@ -131,17 +132,12 @@ static void test_suggest(void **state)
     dm_str_free(&s);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_error_names),
-        cmocka_unit_test(test_exit_codes),
-        cmocka_unit_test(test_suggest),
-        cmocka_unit_test(test_str_and_html),
-        cmocka_unit_test(test_hash),
-        cmocka_unit_test(test_files),
-        cmocka_unit_test(test_results_kv),
-        cmocka_unit_test(test_closest),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_error_names),
+             cmocka_unit_test(test_exit_codes),
+             cmocka_unit_test(test_suggest),
+             cmocka_unit_test(test_str_and_html),
+             cmocka_unit_test(test_hash),
+             cmocka_unit_test(test_files),
+             cmocka_unit_test(test_results_kv),
+             cmocka_unit_test(test_closest))

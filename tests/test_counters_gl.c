@@ -19,6 +19,7 @@
 
 #include "core/dm_error.h"
 #include "counters/counters.h"
+#include "counters/counters_internal.h"
 #include "run/gl_context.h"
 
 #define W 64
@@ -39,20 +40,8 @@ static GLuint make_program(void)
     const char *vs = "#version 450 core\nlayout(location = 0) in vec2 p;\n"
                      "void main() { gl_Position = vec4(p, 0.0, 1.0); }\n";
     const char *fs = "#version 450 core\nout vec4 c;\nvoid main() { c = vec4(1.0); }\n";
-    GLuint v = glCreateShader(GL_VERTEX_SHADER), f = glCreateShader(GL_FRAGMENT_SHADER);
-    glShaderSource(v, 1, &vs, NULL);
-    glCompileShader(v);
-    glShaderSource(f, 1, &fs, NULL);
-    glCompileShader(f);
-    GLuint p = glCreateProgram();
-    glAttachShader(p, v);
-    glAttachShader(p, f);
-    glLinkProgram(p);
-    glDeleteShader(v);
-    glDeleteShader(f);
-    GLint ok = 0;
-    glGetProgramiv(p, GL_LINK_STATUS, &ok);
-    assert_true(ok);
+    unsigned p = 0;
+    assert_int_equal(counters__program(vs, fs, &p, NULL), 0);   /* the module's own builder */
     return p;
 }
 

@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <stdlib.h>
 #include <string.h>
 #include <stdio.h>
@@ -191,15 +192,10 @@ static void test_feeds_and_stop_counter(void **state)
     assert_int_equal(counters_find("VTPagesResident")->feed, COUNTERS_FEED_NONE);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_registry_has_spec_counters),
-        cmocka_unit_test(test_registry_names_unique_and_typed),
-        cmocka_unit_test(test_expr_known_inputs),
-        cmocka_unit_test(test_expr_syntax_errors),
-        cmocka_unit_test(test_derived_formulas_resolve),
-        cmocka_unit_test(test_feeds_and_stop_counter),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_registry_has_spec_counters),
+             cmocka_unit_test(test_registry_names_unique_and_typed),
+             cmocka_unit_test(test_expr_known_inputs),
+             cmocka_unit_test(test_expr_syntax_errors),
+             cmocka_unit_test(test_derived_formulas_resolve),
+             cmocka_unit_test(test_feeds_and_stop_counter))

@@ -13,36 +13,35 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_util.h"
 
-/* Runs dmbench with args and returns its stderr (stdout discarded). */
-static char *dmbench(const char *args)
+/* Runs dmbench with the arguments that fmt makes, prints its stderr to the
+ * test log (so that it is there when an assertion fails) and returns it;
+ * fails the test when dmbench fails. */
+__attribute__((format(printf, 1, 2))) static char *dmbench(const char *fmt, ...)
 {
     const char *bin = getenv("DMBENCH_BINARY");
     assert_non_null(bin);
-    char *cmd = dm_xasprintf("'%s' %s 2>&1 >/dev/null", bin, args);
+    va_list ap;
+    va_start(ap, fmt);
+    dm_str args = {0};
+    dm_str_vprintf(&args, fmt, ap);
+    va_end(ap);
+    char *cmd = dm_xasprintf("'%s' %s 2>&1 >/dev/null", bin, dm_str_get(&args));
     FILE *p = popen(cmd, "r");
     assert_non_null(p);
     dm_str out = {0};
-    char buf[4096];
-    size_t n;
-    while ((n = fread(buf, 1, sizeof buf, p)) > 0)
-        dm_str_catn(&out, buf, n);
+    assert_int_equal(dm_read_stream(p, &out), 0);
     int status = pclose(p);
+    printf("%s", dm_str_get(&out));
     if (status != 0)
-        printf("dmbench %s exited with %d:\n%s\n", args, status, dm_str_get(&out));
+        printf("dmbench %s exited with %d\n", dm_str_get(&args), status);
     assert_int_equal(status, 0);
     free(cmd);
+    dm_str_free(&args);
     return dm_str_take(&out);
-}
-
-static char *read_text(const char *path)
-{
-    char *text = NULL;
-    size_t len = 0;
-    assert_int_equal(dm_read_file(path, &text, &len), 0);
-    return text;
 }
 
 static void budget_from_stored_model(void **state)
@@ -54,42 +53,25 @@ static void budget_from_stored_model(void **state)
     assert_non_null(src);
     char *yaml = dm_xasprintf("%s/tests/e2e/tiny.yaml", src);
     /* A store without fits: every configuration gets a pilot frame. */
-    char *args = dm_xasprintf("run '%s' --out '%s/fresh' --budget 0.000001", yaml, dir);
-    char *err = dmbench(args);
-    printf("%s", err);   /* in the test log when an assertion fails */
+    char *err = dmbench("run '%s' --out '%s/fresh' --budget 0.000001", yaml, dir);
     assert_non_null(strstr(err, "--budget 1e-06 s: 0 configurations predicted by a cost model, "
                            "4 by a pilot frame; 4 left out"));
-    free(args);
     free(err);
     /* A measured run stores its fit; the next run predicts from it. */
-    args = dm_xasprintf("run '%s' --out '%s/s' --quiet", yaml, dir);
-    err = dmbench(args);
-    printf("%s", err);
-    free(err);
-    free(args);
-    args = dm_xasprintf("run '%s' --out '%s/s' --budget 0.000001", yaml, dir);
-    err = dmbench(args);
-    printf("%s", err);
+    free(dmbench("run '%s' --out '%s/s' --quiet", yaml, dir));
+    err = dmbench("run '%s' --out '%s/s' --budget 0.000001", yaml, dir);
     assert_non_null(strstr(err, "4 configurations predicted by a cost model (run "));
     assert_non_null(strstr(err, "0 by a pilot frame; 4 left out"));
-    free(args);
+    free(err);
     char *json_path = dm_xasprintf("%s/s/latest/results.json", dir);
-    char *json = read_text(json_path);
+    char *json = test_slurp(json_path);
+    free(json_path);
     assert_non_null(strstr(json, "over --budget 1e-06 s: model resolution-cost (run "));
     assert_null(strstr(json, "a pilot frame took"));
     free(json);
-    free(json_path);
-    free(err);
-    char *rm = dm_xasprintf("rm -rf '%s'", dir);
-    assert_int_equal(system(rm), 0);
-    free(rm);
+    test_rm_rf(dir);
     free(yaml);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(budget_from_stored_model),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(budget_from_stored_model))

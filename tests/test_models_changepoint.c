@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "models/changepoint.h"
 #include "models/rng.h"
@@ -71,11 +72,6 @@ static void no_samples_no_change(void **state)
     assert_int_equal(change[0], 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(finds_the_jumps),
-        cmocka_unit_test(no_samples_no_change),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(finds_the_jumps),
+             cmocka_unit_test(no_samples_no_change))

@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_error.h"
 #include "models/compare_stats.h"
@@ -94,13 +95,8 @@ static void ratio_ci(void **state)
     assert_int_equal(compare_stats_ratio_ci(base, 10, slow, 10, 1.5, 9, &r), DM_ERR_ARG);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(mann_whitney_exact),
-        cmocka_unit_test(mann_whitney_ties_normal),
-        cmocka_unit_test(benjamini_hochberg),
-        cmocka_unit_test(ratio_ci),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(mann_whitney_exact),
+             cmocka_unit_test(mann_whitney_ties_normal),
+             cmocka_unit_test(benjamini_hochberg),
+             cmocka_unit_test(ratio_ci))

@@ -9,6 +9,7 @@
 #include <string.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_error.h"
 #include "models/fit_data.h"
@@ -24,33 +25,59 @@ static char *temp_csv(const char *text)
     return path;
 }
 
+/* Loads text as a CSV file into d (which the caller frees); fails the test
+ * when it does not load. */
+static void load_text(const char *text, fit_data *d)
+{
+    char *path = temp_csv(text);
+    dm_str err = { 0 };
+    assert_int_equal(fit_data_load_csv(path, d, &err), 0);
+    dm_str_free(&err);
+    unlink(path);
+    free(path);
+}
+
+/* Fits formula to the column response of d; fails the test when the fit
+ * cannot be made. */
+static dm_fit_result fit_columns(fit_data *d, const char *formula, const char *response)
+{
+    fit_desc desc;
+    dm_fit_result r;
+    dm_str err = { 0 };
+    assert_int_equal(fit_data_desc(d, formula, response, &desc, &err), 0);
+    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    dm_str_free(&err);
+    return r;
+}
+
+/* d refuses column response as the response of a fit, with message. */
+static void expect_bad_response(fit_data *d, const char *response, const char *message)
+{
+    fit_desc desc;
+    dm_str err = { 0 };
+    assert_int_equal(fit_data_desc(d, "a", response, &desc, &err), DM_ERR_UNKNOWN);
+    assert_string_equal(dm_str_get(&err), message);
+    dm_str_free(&err);
+}
+
 static void load_and_fit(void **state)
 {
     (void)state;
     /* t = 5 + 2 L exactly; one missing cell excludes its row */
-    char *path = temp_csv("L, t ,other\r\n1,7,0\n2,9,0\n\n3, 11 ,1\n4,13,\n5,,2\n6,17,1e3\n");
     fit_data d;
-    dm_str err = { 0 };
-    assert_int_equal(fit_data_load_csv(path, &d, &err), 0);
+    load_text("L, t ,other\r\n1,7,0\n2,9,0\n\n3, 11 ,1\n4,13,\n5,,2\n6,17,1e3\n", &d);
     assert_int_equal(d.n_cols, 3);
     assert_int_equal(d.n_rows, 6);
     assert_string_equal(d.names[1], "t");
     assert_true(d.values[2 * 3 + 1] == 11.0 && d.values[5 * 3 + 2] == 1000.0);
     assert_true(isnan(d.values[3 * 3 + 2]));
-    fit_desc desc;
-    assert_int_equal(fit_data_desc(&d, "a + b*L", "t", &desc, &err), 0);
-    dm_fit_result r;
-    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    dm_fit_result r = fit_columns(&d, "a + b*L", "t");
     assert_int_equal(r.n_points, 5);
     assert_int_equal(r.n_excluded, 1);
     assert_true(fabs(r.params[0].value - 5.0) < 1e-9 && fabs(r.params[1].value - 2.0) < 1e-9);
     dm_fit_result_free(&r);
-    assert_int_equal(fit_data_desc(&d, "a", "T", &desc, &err), DM_ERR_UNKNOWN);
-    assert_string_equal(dm_str_get(&err), "fit: response 'T' is not a column (columns: L t other)");
+    expect_bad_response(&d, "T", "fit: response 'T' is not a column (columns: L t other)");
     fit_data_free(&d);
-    dm_str_free(&err);
-    unlink(path);
-    free(path);
 }
 
 /* dmbench's own results.csv shape: RFC 4180 quoting (a comma, a doubled
@@ -58,13 +85,11 @@ static void load_and_fit(void **state)
 static void rfc4180_and_text_columns(void **state)
 {
     (void)state;
-    char *path = temp_csv("key,scene,reason,L,t_ms\r\n"
-                          "57b7ede18e7a9e86,plane@80x45,,1,7\r\n"
-                          "a1,\"cube, big\",\"said \"\"no\"\"\r\nthen, crashed\",2,9\r\n"
-                          "b2,plane@80x45,,3,11\r\n");
     fit_data d;
-    dm_str err = { 0 };
-    assert_int_equal(fit_data_load_csv(path, &d, &err), 0);
+    load_text("key,scene,reason,L,t_ms\r\n"
+              "57b7ede18e7a9e86,plane@80x45,,1,7\r\n"
+              "a1,\"cube, big\",\"said \"\"no\"\"\r\nthen, crashed\",2,9\r\n"
+              "b2,plane@80x45,,3,11\r\n", &d);
     assert_int_equal(d.n_cols, 5);
     assert_int_equal(d.n_rows, 3);
     assert_int_equal(d.text[0], 1);
@@ -73,18 +98,11 @@ static void rfc4180_and_text_columns(void **state)
     assert_int_equal(d.text[3], 2);
     assert_true(d.values[2 * 5 + 3] == 3.0 && d.values[1 * 5 + 4] == 9.0);
     assert_true(isnan(d.values[1 * 5 + 1]));
-    fit_desc desc;
-    assert_int_equal(fit_data_desc(&d, "a + b*L", "t_ms", &desc, &err), 0);
-    dm_fit_result r;
-    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    dm_fit_result r = fit_columns(&d, "a + b*L", "t_ms");
     assert_true(fabs(r.params[0].value - 5.0) < 1e-9 && fabs(r.params[1].value - 2.0) < 1e-9);
     dm_fit_result_free(&r);
-    assert_int_equal(fit_data_desc(&d, "a", "scene", &desc, &err), DM_ERR_UNKNOWN);
-    assert_string_equal(dm_str_get(&err), "fit: response 'scene' is a text column, not numbers");
+    expect_bad_response(&d, "scene", "fit: response 'scene' is a text column, not numbers");
     fit_data_free(&d);
-    dm_str_free(&err);
-    unlink(path);
-    free(path);
 }
 
 /* 1 when one of r's warnings starts with prefix. */
@@ -101,27 +119,18 @@ static int has_warning(const dm_fit_result *r, const char *prefix)
 static void poor_fit_warns(void **state)
 {
     (void)state;
-    char *path = temp_csv("x,y\n1,10\n2,30\n3,12\n4,28\n5,11\n6,31\n7,10\n8,29\n9,12\n10,30\n");
     fit_data d;
-    dm_str err = { 0 };
-    assert_int_equal(fit_data_load_csv(path, &d, &err), 0);
-    fit_desc desc;
-    assert_int_equal(fit_data_desc(&d, "a + b*x", "y", &desc, &err), 0);
-    dm_fit_result r;
-    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    load_text("x,y\n1,10\n2,30\n3,12\n4,28\n5,11\n6,31\n7,10\n8,29\n9,12\n10,30\n", &d);
+    dm_fit_result r = fit_columns(&d, "a + b*x", "y");
     assert_true(r.r2 < 0.1);
     assert_true(has_warning(&r, "poor fit: R² "));
     assert_true(r.cv_mape > FIT_POOR_CV_MAPE);
     assert_true(has_warning(&r, "poor prediction: CV-MAPE "));
     dm_fit_result_free(&r);
-    assert_int_equal(fit_data_desc(&d, "a + b*x", "x", &desc, &err), 0);   /* x = a + b x: exact */
-    assert_int_equal(fit_run(&desc, &r, &err), 0);
+    r = fit_columns(&d, "a + b*x", "x");   /* x = a + b x: exact */
     assert_false(has_warning(&r, "poor "));
     dm_fit_result_free(&r);
     fit_data_free(&d);
-    dm_str_free(&err);
-    unlink(path);
-    free(path);
 }
 
 static void expect_parse_error(const char *text, const char *tail)
@@ -155,13 +164,8 @@ static void bad_cells(void **state)
     dm_str_free(&err);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(load_and_fit),
-        cmocka_unit_test(bad_cells),
-        cmocka_unit_test(rfc4180_and_text_columns),
-        cmocka_unit_test(poor_fit_warns),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(load_and_fit),
+             cmocka_unit_test(bad_cells),
+             cmocka_unit_test(rfc4180_and_text_columns),
+             cmocka_unit_test(poor_fit_warns))

@@ -8,6 +8,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_error.h"
 #include "models/fit.h"
@@ -423,23 +424,18 @@ static void condition_near_collinear(void **state)
     dm_fit_result_free(&r);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(exact_recovery),
-        cmocka_unit_test(noisy_within_3_stderr),
-        cmocka_unit_test(stiff),
-        cmocka_unit_test(near_collinear),
-        cmocka_unit_test(exact_collinear_rank_deficient),
-        cmocka_unit_test(too_few_points),
-        cmocka_unit_test(constant_column),
-        cmocka_unit_test(outliers_huber),
-        cmocka_unit_test(bad_values_excluded),
-        cmocka_unit_test(power_law),
-        cmocka_unit_test(bounds_and_errors),
-        cmocka_unit_test(bounds_in_formula),
-        cmocka_unit_test(condition_well_conditioned),
-        cmocka_unit_test(condition_near_collinear),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(exact_recovery),
+             cmocka_unit_test(noisy_within_3_stderr),
+             cmocka_unit_test(stiff),
+             cmocka_unit_test(near_collinear),
+             cmocka_unit_test(exact_collinear_rank_deficient),
+             cmocka_unit_test(too_few_points),
+             cmocka_unit_test(constant_column),
+             cmocka_unit_test(outliers_huber),
+             cmocka_unit_test(bad_values_excluded),
+             cmocka_unit_test(power_law),
+             cmocka_unit_test(bounds_and_errors),
+             cmocka_unit_test(bounds_in_formula),
+             cmocka_unit_test(condition_well_conditioned),
+             cmocka_unit_test(condition_near_collinear))

@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_error.h"
 #include "models/formula.h"
@@ -130,14 +131,9 @@ static void drop_terms(void **state)
     formula_free(f);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(parse_errors_name_column),
-        cmocka_unit_test(params_in_order_and_values),
-        cmocka_unit_test(precedence_and_functions),
-        cmocka_unit_test(linearity),
-        cmocka_unit_test(drop_terms),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(parse_errors_name_column),
+             cmocka_unit_test(params_in_order_and_values),
+             cmocka_unit_test(precedence_and_functions),
+             cmocka_unit_test(linearity),
+             cmocka_unit_test(drop_terms))

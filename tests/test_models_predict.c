@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_error.h"
 #include "run/fitting.h"
@@ -214,14 +215,9 @@ static void missing_counter_term_dropped(void **state)
     dm_run_free(&run);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(axes_only),
-        cmocka_unit_test(resolution_pixels),
-        cmocka_unit_test(stored_counters),
-        cmocka_unit_test(refusals),
-        cmocka_unit_test(missing_counter_term_dropped),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(axes_only),
+             cmocka_unit_test(resolution_pixels),
+             cmocka_unit_test(stored_counters),
+             cmocka_unit_test(refusals),
+             cmocka_unit_test(missing_counter_term_dropped))

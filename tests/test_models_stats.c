@@ -5,6 +5,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_error.h"
 #include "models/stats.h"
@@ -107,15 +108,10 @@ static void summary_empty(void **state)
     assert_int_equal(s.n, 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(quantile_type7),
-        cmocka_unit_test(ci_rank_rule),
-        cmocka_unit_test(summary_n10),
-        cmocka_unit_test(summary_outliers),
-        cmocka_unit_test(summary_small_bootstrap),
-        cmocka_unit_test(summary_empty),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(quantile_type7),
+             cmocka_unit_test(ci_rank_rule),
+             cmocka_unit_test(summary_n10),
+             cmocka_unit_test(summary_outliers),
+             cmocka_unit_test(summary_small_bootstrap),
+             cmocka_unit_test(summary_empty))

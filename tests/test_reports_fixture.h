@@ -72,21 +72,29 @@ static void fixture_quality(dm_quality *q, double psnr, double ssim, double rmse
     q->reference = dm_xstrdup("reference-mesh 4x supersampled");
 }
 
+/* Names configuration c of the fixture's scene: key, technique and mesh,
+ * with room for n_counters counters (ok when it has any). */
+static void fixture_config(dm_config_result *c, const char *key, const char *technique,
+                           const char *mesh, size_t n_counters)
+{
+    c->key = dm_xstrdup(key);
+    c->scene = dm_xstrdup(FIXTURE_SCENE);
+    dm_kv_push(&c->params, &c->n_params, "technique", technique);
+    dm_kv_push(&c->params, &c->n_params, "mesh", mesh);
+    c->ok = n_counters > 0;
+    c->n_counters = n_counters;
+    c->counters = n_counters ? dm_xcalloc(n_counters, sizeof *c->counters) : NULL;
+}
+
 static void fixture_configs(dm_run_result *r)
 {
     r->n_configs = 3;
     r->configs = dm_xcalloc(3, sizeof *r->configs);
     dm_config_result *c = r->configs;
-    c[0].key = dm_xstrdup(FIXTURE_KEY0);
-    c[0].scene = dm_xstrdup(FIXTURE_SCENE);
-    dm_kv_push(&c[0].params, &c[0].n_params, "technique", "pom");
-    dm_kv_push(&c[0].params, &c[0].n_params, "mesh", "plane");
+    fixture_config(&c[0], FIXTURE_KEY0, "pom", "plane", 3);
     dm_kv_push(&c[0].params, &c[0].n_params, "steps", "32");
     dm_kv_push(&c[0].params, &c[0].n_params, "scale", "1e6");
     dm_kv_push(&c[0].params, &c[0].n_params, "note", "a,b \"quoted\"");
-    c[0].ok = 1;
-    c[0].n_counters = 3;
-    c[0].counters = dm_xcalloc(3, sizeof *c[0].counters);
     fixture_timed(&c[0].counters[0], "WallTime", 1.0e6, 1.1e6, 1.2e6);
     fixture_unavailable(&c[0].counters[1], "GPUTime");
     fixture_det(&c[0].counters[2], "TESInvocations", 3169);
@@ -95,14 +103,8 @@ static void fixture_configs(dm_run_result *r)
     c[0].img_render = dm_xstrdup(fixture_img_files[1]);
     c[0].img_heatmap = dm_xstrdup(fixture_img_files[2]);
 
-    c[1].key = dm_xstrdup(FIXTURE_KEY1);
-    c[1].scene = dm_xstrdup(FIXTURE_SCENE);
-    dm_kv_push(&c[1].params, &c[1].n_params, "technique", "normal");
-    dm_kv_push(&c[1].params, &c[1].n_params, "mesh", "plane");
+    fixture_config(&c[1], FIXTURE_KEY1, "normal", "plane", 2);
     dm_kv_push(&c[1].params, &c[1].n_params, "tess_level", "4");
-    c[1].ok = 1;
-    c[1].n_counters = 2;
-    c[1].counters = dm_xcalloc(2, sizeof *c[1].counters);
     fixture_timed(&c[1].counters[0], "WallTime", 1.95e6, 2.0e6, 2.05e6);
     fixture_det(&c[1].counters[1], "TESInvocations", 100);
     fixture_quality(&c[1].quality, 38.25, 0.95, 0.0122);
@@ -110,10 +112,7 @@ static void fixture_configs(dm_run_result *r)
     c[1].img_heatmap = dm_xstrdup("/etc/passwd");
     c[1].img_reference = dm_xstrdup("../outside.png");
 
-    c[2].key = dm_xstrdup(FIXTURE_KEY2);
-    c[2].scene = dm_xstrdup(FIXTURE_SCENE);
-    dm_kv_push(&c[2].params, &c[2].n_params, "technique", "pom");
-    dm_kv_push(&c[2].params, &c[2].n_params, "mesh", "sphere");
+    fixture_config(&c[2], FIXTURE_KEY2, "pom", "sphere", 0);   /* failed */
     c[2].reason = dm_xstrdup(FIXTURE_REASON);
     c[2].log = dm_xstrdup(FIXTURE_LOG);
 }

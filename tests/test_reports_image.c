@@ -12,16 +12,7 @@
 #include <string.h>
 #include <unistd.h>
 #include <cmocka.h>
-
-static void fill(img *im, float r, float g, float b, float a)
-{
-    for (int i = 0; i < im->w * im->h; i++) {
-        im->px[i * 4 + 0] = r;
-        im->px[i * 4 + 1] = g;
-        im->px[i * 4 + 2] = b;
-        im->px[i * 4 + 3] = a;
-    }
-}
+#include "test_util.h"
 
 static void test_downsample_block_means(void **state)
 {
@@ -55,8 +46,8 @@ static void test_compare_identical_and_offset(void **state)
     img_metrics m;
     assert_int_equal(img_alloc(&a, 16, 8), 0);
     assert_int_equal(img_alloc(&b, 16, 8), 0);
-    fill(&a, 0.5f, 0.25f, 0.125f, 1.0f);
-    fill(&b, 0.5f, 0.25f, 0.125f, 1.0f);
+    test_img_fill(&a, 0.5f, 0.25f, 0.125f, 1.0f);
+    test_img_fill(&b, 0.5f, 0.25f, 0.125f, 1.0f);
     assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
     assert_true(m.rmse == 0.0);
     assert_true(isinf(m.psnr) && m.psnr > 0);
@@ -66,7 +57,7 @@ static void test_compare_identical_and_offset(void **state)
 
     /* +0.1 on every RGB channel: RMSE is the offset, PSNR = 20 log10(1/offset) = 20 dB
      * (up to the float rounding of the stored values, computed here exactly). */
-    fill(&b, 0.6f, 0.35f, 0.225f, 1.0f);
+    test_img_fill(&b, 0.6f, 0.35f, 0.225f, 1.0f);
     double d = (double)(0.6f - 0.5f);
     assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
     assert_float_equal(m.rmse, 0.1, 1e-6);
@@ -99,7 +90,7 @@ static void test_save_load_png_exr(void **state)
     snprintf(exr, sizeof exr, "%s/a.exr", dir);
     img a = {0}, l = {0};
     assert_int_equal(img_alloc(&a, 5, 3), 0);
-    fill(&a, 2.0f, 0.5f, -1.0f, 1.0f);
+    test_img_fill(&a, 2.0f, 0.5f, -1.0f, 1.0f);
     a.px[0] = 0.123456789f;
     assert_int_equal(img_save(&a, png, err, sizeof err), 0);
     assert_int_equal(img_load(png, &l, err, sizeof err), 0);
@@ -133,8 +124,8 @@ static void test_heatmap_inferno(void **state)
     img a = {0}, b = {0}, h = {0};
     assert_int_equal(img_alloc(&a, 4, 1), 0);
     assert_int_equal(img_alloc(&b, 4, 1), 0);
-    fill(&a, 0, 0, 0, 1);
-    fill(&b, 0, 0, 0, 1);
+    test_img_fill(&a, 0, 0, 0, 1);
+    test_img_fill(&b, 0, 0, 0, 1);
     b.px[1 * 4 + 2] = 0.5f;   /* pixel 1: half of the scale */
     b.px[2 * 4 + 0] = 1.0f;   /* pixel 2: full scale */
     b.px[3 * 4 + 1] = 3.0f;   /* pixel 3: beyond the scale, clamps */
@@ -153,13 +144,8 @@ static void test_heatmap_inferno(void **state)
     img_free(&h);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_downsample_block_means),
-        cmocka_unit_test(test_compare_identical_and_offset),
-        cmocka_unit_test(test_save_load_png_exr),
-        cmocka_unit_test(test_heatmap_inferno),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_downsample_block_means),
+             cmocka_unit_test(test_compare_identical_and_offset),
+             cmocka_unit_test(test_save_load_png_exr),
+             cmocka_unit_test(test_heatmap_inferno))

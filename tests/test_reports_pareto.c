@@ -7,6 +7,7 @@
 #include <stddef.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 /* Points (x = ms, y = error):
  *   0 (1, 9)  front: fastest
@@ -51,11 +52,6 @@ static void test_front_edge_cases(void **state)
     assert_int_equal(out[2], 0);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_front_known_points),
-        cmocka_unit_test(test_front_edge_cases),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_front_known_points),
+             cmocka_unit_test(test_front_edge_cases))

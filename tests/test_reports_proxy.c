@@ -6,6 +6,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -45,13 +46,7 @@ static void make(dm_run_result *r, size_t n, size_t stray)
     r->n_configs = n;
     for (size_t i = 0; i < n; i++) {
         dm_config_result *c = &r->configs[i];
-        char key[32], mesh[32];
-        snprintf(key, sizeof key, "%016zx", i + 1);
-        snprintf(mesh, sizeof mesh, "m%zu", i);
-        c->key = dm_xstrdup(key);
-        c->scene = dm_xstrdup(mesh);
-        c->ok = 1;
-        dm_kv_push(&c->params, &c->n_params, "mesh", mesh);
+        test_config_init(c, i);
         double instr = 1e6 * (double)(i + 1), wall = 5e4 + 0.5 * instr;
         counter(c, "WallTime", i == stray ? wall * 1.3 : wall, 1, 0);
         counter(c, "Instructions", instr, 1, 1);
@@ -141,13 +136,8 @@ static void test_passes(void **state)
     dm_run_free(&r);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_exact_line),
-        cmocka_unit_test(test_stray_first),
-        cmocka_unit_test(test_unavailable),
-        cmocka_unit_test(test_passes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_exact_line),
+             cmocka_unit_test(test_stray_first),
+             cmocka_unit_test(test_unavailable),
+             cmocka_unit_test(test_passes))

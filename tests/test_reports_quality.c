@@ -9,16 +9,7 @@
 #include <stdint.h>
 #include <string.h>
 #include <cmocka.h>
-
-static void fill(img *im, float r, float g, float b, float a)
-{
-    for (int i = 0; i < im->w * im->h; i++) {
-        im->px[i * 4 + 0] = r;
-        im->px[i * 4 + 1] = g;
-        im->px[i * 4 + 2] = b;
-        im->px[i * 4 + 3] = a;
-    }
-}
+#include "test_util.h"
 
 static void test_ssim_identical_is_one(void **state)
 {
@@ -45,8 +36,8 @@ static void test_ssim_constant_offset_closed_form(void **state)
     img a = {0}, b = {0};
     assert_int_equal(img_alloc(&a, 16, 16), 0);
     assert_int_equal(img_alloc(&b, 16, 16), 0);
-    fill(&a, 0.5f, 0.5f, 0.5f, 1.0f);
-    fill(&b, 0.6f, 0.6f, 0.6f, 1.0f);
+    test_img_fill(&a, 0.5f, 0.5f, 0.5f, 1.0f);
+    test_img_fill(&b, 0.6f, 0.6f, 0.6f, 1.0f);
     double s = 0;
     assert_int_equal(quality_ssim(&a, &b, &s), 0);
     double ya = 0.5, yb = (double)0.6f;   /* luma of the stored floats */
@@ -77,8 +68,8 @@ static void test_ssim_tiny_images(void **state)
         assert_int_equal(quality_ssim(&a, &a, &s), 0);
         if (s != 1.0)
             fail_msg("%dx%d: SSIM of identical images %.17g, expected exactly 1", w, h, s);
-        fill(&a, 0.5f, 0.5f, 0.5f, 1.0f);
-        fill(&b, 0.6f, 0.6f, 0.6f, 1.0f);
+        test_img_fill(&a, 0.5f, 0.5f, 0.5f, 1.0f);
+        test_img_fill(&b, 0.6f, 0.6f, 0.6f, 1.0f);
         assert_int_equal(quality_ssim(&a, &b, &s), 0);
         double yb = (double)0.6f;
         assert_float_equal(s, (2 * 0.5 * yb + 1e-4) / (0.25 + yb * yb + 1e-4), 1e-9);
@@ -212,17 +203,12 @@ static void test_crack_pixels_holes_in_disc(void **state)
     assert_int_equal(quality_crack_pixels(r, 5, 5), 1);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_ssim_identical_is_one),
-        cmocka_unit_test(test_ssim_constant_offset_closed_form),
-        cmocka_unit_test(test_ssim_tiny_images),
-        cmocka_unit_test(test_ssim_structure_lowers_score),
-        cmocka_unit_test(test_silhouette_shifted_square),
-        cmocka_unit_test(test_depth_rmse_both_cover),
-        cmocka_unit_test(test_nonfinite_pixels),
-        cmocka_unit_test(test_crack_pixels_holes_in_disc),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_ssim_identical_is_one),
+             cmocka_unit_test(test_ssim_constant_offset_closed_form),
+             cmocka_unit_test(test_ssim_tiny_images),
+             cmocka_unit_test(test_ssim_structure_lowers_score),
+             cmocka_unit_test(test_silhouette_shifted_square),
+             cmocka_unit_test(test_depth_rmse_both_cover),
+             cmocka_unit_test(test_nonfinite_pixels),
+             cmocka_unit_test(test_crack_pixels_holes_in_disc))

@@ -18,18 +18,9 @@
 #include <sys/stat.h>
 #include <unistd.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "test_reports_fixture.h"
-
-/* noinline: GCC 12 otherwise mistakes the result for the address of the
- * local it was read through (-Wdangling-pointer false positive). */
-__attribute__((noinline)) static char *slurp(const char *path)
-{
-    char *text = NULL;
-    size_t len = 0;
-    assert_int_equal(dm_read_file(path, &text, &len), 0);
-    return text;
-}
 
 static void test_json_round_trip(void **state)
 {
@@ -42,7 +33,7 @@ static void test_json_round_trip(void **state)
     assert_int_equal(report_write_json(&run, p1), 0);
     assert_int_equal(report_read_json(p1, &back, err, sizeof err), 0);
     assert_int_equal(report_write_json(&back, p2), 0);
-    char *t1 = slurp(p1), *t2 = slurp(p2);
+    char *t1 = test_slurp(p1), *t2 = test_slurp(p2);
     assert_string_equal(t1, t2);
     /* the contract's shapes */
     assert_non_null(strstr(t1, "\"steps\":\t32"));             /* canonical numbers are numbers */
@@ -142,7 +133,7 @@ static void test_csv_shape(void **state)
     dm_run_result run;
     fixture_run(&run);
     assert_int_equal(report_write_csv(&run, p), 0);
-    char *t = slurp(p);
+    char *t = test_slurp(p);
     size_t cols;
     char cell[64][64];
     memset(cell, 0, sizeof cell);
@@ -174,7 +165,7 @@ static void test_markdown(void **state)
     dm_run_result run;
     fixture_run(&run);
     assert_int_equal(report_write_markdown(&run, p), 0);
-    char *t = slurp(p);
+    char *t = test_slurp(p);
     assert_non_null(strstr(t, "## Scene `" FIXTURE_SCENE "`"));
     /* rows sorted by time; CI as a relative half-width: 0.1/1.1 = 9.1 %, 0.05/2 = 2.5 % */
     /* last quality column: the default Pareto metric, 1 − SSIM */
@@ -235,7 +226,7 @@ static void test_html_escaping_and_images(void **state)
     dm_run_result run;
     fixture_run(&run);
     assert_int_equal(report_write_html(&run, dir, p), 0);
-    char *t = slurp(p);
+    char *t = test_slurp(p);
     assert_non_null(strstr(t, "&lt;script&gt;alert(1)&lt;/script&gt;"));
     assert_null(strstr(t, "<script>alert"));
     assert_null(strstr(t, "<b>bold"));
@@ -262,7 +253,7 @@ static void test_html_escaping_and_images(void **state)
     /* written elsewhere (report --out): links go to the run directory */
     char *other = dm_xasprintf("%s/other.html", dir);
     assert_int_equal(report_write_html_to(&run, dir, other, "/abs/run/"), 0);
-    char *o = slurp(other);
+    char *o = test_slurp(other);
     assert_non_null(strstr(o, "<a href=\"/abs/run/img/c0_ref.png\">"));
     assert_non_null(strstr(o, "src=\"/abs/run/img/c0_heat.png\""));
     free(o);
@@ -342,7 +333,7 @@ static void test_html_charts_and_front(void **state)
     /* 40 reports × 3 charts: more than PLplot's 100 streams, so streams must be released */
     for (int i = 0; i < 40; i++)
         assert_int_equal(report_write_html(&run, NULL, p), 0);
-    char *t = slurp(p);
+    char *t = test_slurp(p);
     int svgs = 0;
     for (const char *q = strstr(t, "<svg"); q; q = strstr(q + 1, "<svg"))
         svgs++;
@@ -369,7 +360,7 @@ static void test_html_charts_and_front(void **state)
     /* L=2's CI reaching down into L=1's: marked tied with the row above, once */
     run.configs[1].counters[0].ci_lo = 1.0e6;
     assert_int_equal(report_write_html(&run, NULL, p), 0);
-    t = slurp(p);
+    t = test_slurp(p);
     ol = strstr(t, "id=\"front-0\"");
     const char *tie = strstr(ol, "≈ tied with the row above");
     assert_true(tie && tie > strstr(ol, "tess_level=2<") && tie < strstr(ol, "tess_level=4<"));
@@ -489,14 +480,14 @@ static void test_metric_in_files(void **state)
     assert_int_equal(report_metric_set(&run, "rmse"), 0);
     assert_int_equal(report_write_markdown(&run, md), 0);
     assert_int_equal(report_write_html(&run, NULL, html), 0);
-    char *t = slurp(md);
+    char *t = test_slurp(md);
     assert_non_null(strstr(t, "- Pareto metric: rmse (RMSE)\n"));
     assert_non_null(strstr(t, "(Pareto front of RMSE against median time, fastest first): "
                               "pom steps=8 (1 ms, RMSE 0.05); then pom steps=32 (3 ms, RMSE 0.02); "
                               "then pom steps=64 (4 ms, RMSE 0.01)."));
     assert_non_null(strstr(t, "| PSNR | SSIM | RMSE | key |"));
     free(t);
-    t = slurp(html);
+    t = test_slurp(html);
     assert_non_null(strstr(t, "<th>95% CI</th><th>RMSE</th><th>SSIM</th><th>PSNR dB</th><th>Pareto</th>"));
     int marks = 0;   /* c0, c2, c3 marked in the table; c1 not */
     for (const char *q = strstr(t, "<td>★ front</td>"); q; q = strstr(q + 1, "<td>★ front</td>"))
@@ -564,7 +555,7 @@ static void test_noisy_warning(void **state)
     run.configs[6].counters[0].name = dm_xstrdup("CPUTime");
     assert_int_equal(report_write_markdown(&run, md), 0);
     assert_int_equal(report_write_html(&run, NULL, html), 0);
-    char *t = slurp(md);
+    char *t = test_slurp(md);
     char *line = between(t, "- warning: ", "\n");
     assert_string_equal(line, "- warning: 3 noisy configurations (95% CI of the median wider than ±5% "
                               "of the median, or unknown): pom steps=2 `00000000000000e2` (±5.1%), "
@@ -572,7 +563,7 @@ static void test_noisy_warning(void **state)
                               "(CI unknown)");
     free(line);
     free(t);
-    t = slurp(html);
+    t = test_slurp(html);
     char *box = between(t, "<div class=\"warn noisy\">", "</div>");
     assert_non_null(strstr(box, "<b>3 noisy configurations</b>"));
     assert_null(strstr(box, "<details>"));
@@ -593,7 +584,7 @@ static void test_noisy_warning(void **state)
         many[i] = 0.1;
     noisy_run(&run, many, 12);
     assert_int_equal(report_write_html(&run, NULL, html), 0);
-    t = slurp(html);
+    t = test_slurp(html);
     assert_non_null(strstr(t, "<div class=\"warn noisy\"><details><summary><b>12 noisy configurations</b>"));
     free(t);
     dm_run_free(&run);
@@ -602,10 +593,10 @@ static void test_noisy_warning(void **state)
     run.configs[0].counters[0].ci_hi = 1.01e6;
     assert_int_equal(report_write_html(&run, NULL, html), 0);
     assert_int_equal(report_write_markdown(&run, md), 0);
-    t = slurp(html);
+    t = test_slurp(html);
     assert_null(strstr(t, "noisy"));
     free(t);
-    t = slurp(md);
+    t = test_slurp(md);
     assert_null(strstr(t, "noisy"));
     free(t);
     dm_run_free(&run);
@@ -635,7 +626,7 @@ static void test_quality_warnings(void **state)
     run.configs[3].quality.crack_pixels = 5;
     assert_int_equal(report_write_markdown(&run, md), 0);
     assert_int_equal(report_write_html(&run, NULL, html), 0);
-    char *t = slurp(md);
+    char *t = test_slurp(md);
     assert_non_null(strstr(t, "- warning: 1 configuration failed (see Failed configurations, with the reasons)\n"));
     assert_non_null(strstr(t, "- warning: 1 configuration with non-finite pixels: pom steps=2 "
                               "[00000000000000e2] (3)\n"));
@@ -643,7 +634,7 @@ static void test_quality_warnings(void **state)
                               "surface): pom steps=3 [00000000000000e3] (5)\n"));
     assert_null(strstr(t, "e0] ("));
     free(t);
-    t = slurp(html);
+    t = test_slurp(html);
     assert_non_null(strstr(t, "<div class=\"warn\">1 configuration with crack pixels (background enclosed "
                               "by the surface): pom steps=3 [00000000000000e3] (5)</div>"));
     assert_non_null(strstr(t, "<div class=\"warn\">1 configuration failed"));
@@ -651,7 +642,7 @@ static void test_quality_warnings(void **state)
     dm_run_free(&run);
     noisy_run(&run, rel, 2);
     assert_int_equal(report_write_markdown(&run, md), 0);
-    t = slurp(md);
+    t = test_slurp(md);
     assert_null(strstr(t, "- warning:"));
     free(t);
     dm_run_free(&run);
@@ -696,7 +687,7 @@ static size_t chart_titles(const char *html, char titles[][96], size_t max)
 static char *html_of(const dm_run_result *run, const char *path)
 {
     assert_int_equal(report_write_html(run, NULL, path), 0);
-    return slurp(path);
+    return test_slurp(path);
 }
 
 /* The fixture: one fit (tess-power, 2 points), key counters, no pipeline
@@ -803,23 +794,18 @@ static void test_html_breakdown_fit_and_cap(void **state)
     rmdir(dir);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_json_round_trip),
-        cmocka_unit_test(test_json_read_errors),
-        cmocka_unit_test(test_csv_shape),
-        cmocka_unit_test(test_markdown),
-        cmocka_unit_test(test_html_escaping_and_images),
-        cmocka_unit_test(test_write_all),
-        cmocka_unit_test(test_html_charts_and_front),
-        cmocka_unit_test(test_metric_fronts),
-        cmocka_unit_test(test_metric_names),
-        cmocka_unit_test(test_metric_in_files),
-        cmocka_unit_test(test_noisy_warning),
-        cmocka_unit_test(test_quality_warnings),
-        cmocka_unit_test(test_html_chart_set),
-        cmocka_unit_test(test_html_breakdown_fit_and_cap),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_json_round_trip),
+             cmocka_unit_test(test_json_read_errors),
+             cmocka_unit_test(test_csv_shape),
+             cmocka_unit_test(test_markdown),
+             cmocka_unit_test(test_html_escaping_and_images),
+             cmocka_unit_test(test_write_all),
+             cmocka_unit_test(test_html_charts_and_front),
+             cmocka_unit_test(test_metric_fronts),
+             cmocka_unit_test(test_metric_names),
+             cmocka_unit_test(test_metric_in_files),
+             cmocka_unit_test(test_noisy_warning),
+             cmocka_unit_test(test_quality_warnings),
+             cmocka_unit_test(test_html_chart_set),
+             cmocka_unit_test(test_html_breakdown_fit_and_cap))

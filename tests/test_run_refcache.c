@@ -4,6 +4,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include <cjson/cJSON.h>
 #include <dirent.h>
@@ -136,9 +137,7 @@ static void test_store_load(void **state)
     assert_int_equal(refcache_load(sub, key, W, H, &a, &b), DM_ERR_IO);
     assert_null(a);
     free(cmd);
-    assert_true(asprintf(&cmd, "rm -rf %s", dir) > 0);
-    assert_int_equal(system(cmd), 0);
-    free(cmd);
+    test_rm_rf(dir);
     free(other);
     free(key);
     free(sub);
@@ -281,23 +280,15 @@ static void test_second_run_loads(void **state)
     double other = run_silhouette(dir, 50);
     assert_true(other >= 0 && other < 0.5);
     assert_int_equal(entries(refs, 0), 2);
-    char *cmd = NULL;
-    assert_true(asprintf(&cmd, "rm -rf %s", dir) > 0);
-    assert_int_equal(system(cmd), 0);
-    free(cmd);
+    test_rm_rf(dir);
     free(refs);
     free(root);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_key_covers_inputs),
-        cmocka_unit_test(test_key_refusals),
-        cmocka_unit_test(test_dir_follows_env),
-        cmocka_unit_test(test_store_load),
-        cmocka_unit_test(test_trim_lru),
-        cmocka_unit_test(test_second_run_loads),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_key_covers_inputs),
+             cmocka_unit_test(test_key_refusals),
+             cmocka_unit_test(test_dir_follows_env),
+             cmocka_unit_test(test_store_load),
+             cmocka_unit_test(test_trim_lru),
+             cmocka_unit_test(test_second_run_loads))

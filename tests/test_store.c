@@ -8,6 +8,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include <math.h>
 #include <signal.h>
@@ -42,9 +43,7 @@ static int tmp_setup(void **state)
 static int tmp_teardown(void **state)
 {
     tmp *t = *state;
-    char *cmd = dm_xasprintf("rm -rf '%s'", t->dir);
-    assert_int_equal(system(cmd), 0);
-    free(cmd);
+    test_rm_rf(t->dir);
     free(t->db);
     free(t);
     return 0;

@@ -9,6 +9,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include <stdio.h>
 #include <stdlib.h>
@@ -167,14 +168,9 @@ static void test_one_machine_untouched(void **state)
     merge_free(&m);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_shards_once_each),
-        cmocka_unit_test(test_other_sweep_refused),
-        cmocka_unit_test(test_incomplete_shards),
-        cmocka_unit_test(test_machines_kept_apart),
-        cmocka_unit_test(test_one_machine_untouched),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_shards_once_each),
+             cmocka_unit_test(test_other_sweep_refused),
+             cmocka_unit_test(test_incomplete_shards),
+             cmocka_unit_test(test_machines_kept_apart),
+             cmocka_unit_test(test_one_machine_untouched))

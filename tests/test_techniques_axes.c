@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <stdlib.h>
 #include <string.h>
 
@@ -188,12 +189,10 @@ static void test_canonical(void **state)
     assert_int_equal(w * 10000 + h, 6400360);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_catalog), cmocka_unit_test(test_technique_choices),
-        cmocka_unit_test(test_messages), cmocka_unit_test(test_closest),
-        cmocka_unit_test(test_canonical), cmocka_unit_test(test_conditions),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_catalog),
+             cmocka_unit_test(test_technique_choices),
+             cmocka_unit_test(test_messages),
+             cmocka_unit_test(test_closest),
+             cmocka_unit_test(test_canonical),
+             cmocka_unit_test(test_conditions))

@@ -6,6 +6,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <epoxy/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -540,26 +541,21 @@ static void test_scene_counts(void **state)
     assert_int_equal(s.tes, 3 * 1612);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_rule_matches_known_counts),
-        cmocka_unit_test(test_exact_counts_every_even_level),
-        cmocka_unit_test(test_patch_cull_back_facing),
-        cmocka_unit_test(test_every_patch_tessellated),
-        cmocka_unit_test(test_scale_zero_equals_normal),
-        cmocka_unit_test(test_lod_distance_monotonic),
-        cmocka_unit_test(test_cracks_at_uv_seam),
-        cmocka_unit_test(test_lod_flatness),
-        cmocka_unit_test(test_terrain_quad_counts),
-        cmocka_unit_test(test_terrain_cracks),
-        cmocka_unit_test(test_asteroid_reduced_vs_original),
-        cmocka_unit_test(test_phong_tessellation),
-        cmocka_unit_test(test_bilinear_manual_matches_hw),
-        cmocka_unit_test(test_visibility_test),
-        cmocka_unit_test(test_reference_mesh),
-        cmocka_unit_test(test_scene_counts),
-        cmocka_unit_test(test_displaced_normals),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+DM_TEST_MAIN(setup, teardown,
+             cmocka_unit_test(test_rule_matches_known_counts),
+             cmocka_unit_test(test_exact_counts_every_even_level),
+             cmocka_unit_test(test_patch_cull_back_facing),
+             cmocka_unit_test(test_every_patch_tessellated),
+             cmocka_unit_test(test_scale_zero_equals_normal),
+             cmocka_unit_test(test_lod_distance_monotonic),
+             cmocka_unit_test(test_cracks_at_uv_seam),
+             cmocka_unit_test(test_lod_flatness),
+             cmocka_unit_test(test_terrain_quad_counts),
+             cmocka_unit_test(test_terrain_cracks),
+             cmocka_unit_test(test_asteroid_reduced_vs_original),
+             cmocka_unit_test(test_phong_tessellation),
+             cmocka_unit_test(test_bilinear_manual_matches_hw),
+             cmocka_unit_test(test_visibility_test),
+             cmocka_unit_test(test_reference_mesh),
+             cmocka_unit_test(test_scene_counts),
+             cmocka_unit_test(test_displaced_normals))

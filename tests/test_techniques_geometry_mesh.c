@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -400,21 +401,16 @@ static void test_user_mesh_ply_gltf(void **state)
     free(gltf);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_terrain),
-        cmocka_unit_test(test_asteroid),
-        cmocka_unit_test(test_terrain_quads),
-        cmocka_unit_test(test_cull_chunks),
-        cmocka_unit_test(test_canonical_seam),
-        cmocka_unit_test(test_asteroid_reduced),
-        cmocka_unit_test(test_asteroid_maps_baked),
-        cmocka_unit_test(test_seam_and_halfflat),
-        cmocka_unit_test(test_height_bilinear),
-        cmocka_unit_test(test_subdivide_displace),
-        cmocka_unit_test(test_user_mesh_obj),
-        cmocka_unit_test(test_user_mesh_ply_gltf),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_terrain),
+             cmocka_unit_test(test_asteroid),
+             cmocka_unit_test(test_terrain_quads),
+             cmocka_unit_test(test_cull_chunks),
+             cmocka_unit_test(test_canonical_seam),
+             cmocka_unit_test(test_asteroid_reduced),
+             cmocka_unit_test(test_asteroid_maps_baked),
+             cmocka_unit_test(test_seam_and_halfflat),
+             cmocka_unit_test(test_height_bilinear),
+             cmocka_unit_test(test_subdivide_displace),
+             cmocka_unit_test(test_user_mesh_obj),
+             cmocka_unit_test(test_user_mesh_ply_gltf))

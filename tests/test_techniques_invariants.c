@@ -6,6 +6,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -114,13 +115,8 @@ static void test_raytrace_shadow_darkens(void **state)
     free(ray);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_extreme_matrix),
-        cmocka_unit_test(test_pom_converges),
-        cmocka_unit_test(test_flat_normal_map_is_phong),
-        cmocka_unit_test(test_raytrace_shadow_darkens),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+DM_TEST_MAIN(setup, teardown,
+             cmocka_unit_test(test_extreme_matrix),
+             cmocka_unit_test(test_pom_converges),
+             cmocka_unit_test(test_flat_normal_map_is_phong),
+             cmocka_unit_test(test_raytrace_shadow_darkens))

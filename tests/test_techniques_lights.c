@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -455,16 +456,11 @@ static void test_specular_map(void **state)
     free(c);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_light_on_surface),
-        cmocka_unit_test(test_mirror_lobe),
-        cmocka_unit_test(test_light_axes),
-        cmocka_unit_test(test_camera_target_pans),
-        cmocka_unit_test(test_normals_view),
-        cmocka_unit_test(test_orbit_per_frame),
-        cmocka_unit_test(test_specular_map),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+DM_TEST_MAIN(setup, teardown,
+             cmocka_unit_test(test_light_on_surface),
+             cmocka_unit_test(test_mirror_lobe),
+             cmocka_unit_test(test_light_axes),
+             cmocka_unit_test(test_camera_target_pans),
+             cmocka_unit_test(test_normals_view),
+             cmocka_unit_test(test_orbit_per_frame),
+             cmocka_unit_test(test_specular_map))

@@ -4,6 +4,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -86,11 +87,8 @@ static void test_normal_formula(void **state)
     }
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_flat), cmocka_unit_test(test_bricks),
-        cmocka_unit_test(test_bad_input), cmocka_unit_test(test_normal_formula),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_flat),
+             cmocka_unit_test(test_bricks),
+             cmocka_unit_test(test_bad_input),
+             cmocka_unit_test(test_normal_formula))

@@ -4,6 +4,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <math.h>
 #include <string.h>
 
@@ -210,14 +211,13 @@ static void test_bytes(void **state)
     mesh_free(&m);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_counts),          cmocka_unit_test(test_sphere_vertices),
-        cmocka_unit_test(test_bad_input),       cmocka_unit_test(test_plane_tangents),
-        cmocka_unit_test(test_mirrored_uv_sign), cmocka_unit_test(test_degenerate_frames),
-        cmocka_unit_test(test_all_frames_finite), cmocka_unit_test(test_bytes),
-        cmocka_unit_test(test_scenes),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_counts),
+             cmocka_unit_test(test_sphere_vertices),
+             cmocka_unit_test(test_bad_input),
+             cmocka_unit_test(test_plane_tangents),
+             cmocka_unit_test(test_mirrored_uv_sign),
+             cmocka_unit_test(test_degenerate_frames),
+             cmocka_unit_test(test_all_frames_finite),
+             cmocka_unit_test(test_bytes),
+             cmocka_unit_test(test_scenes))

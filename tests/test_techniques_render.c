@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <epoxy/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -155,9 +156,7 @@ static void test_disk_cache(void **state)
             assert_int_equal(system(cmd), 0);
         }
     }
-    char cmd[128];
-    snprintf(cmd, sizeof cmd, "rm -rf %s", dir);
-    assert_int_equal(system(cmd), 0);
+    test_rm_rf(dir);
 }
 
 /* TextureBytes of a compressed map: 64² BC1 albedo, 8 bytes per 4×4 block,
@@ -307,16 +306,17 @@ static void test_axes_take_effect(void **state)
     free(bc5);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_normal_plane),   cmocka_unit_test(test_fullscreen_coverage),
-        cmocka_unit_test(test_program_cache),  cmocka_unit_test(test_broken_shader),
-        cmocka_unit_test(test_bad_params),     cmocka_unit_test(test_item_info),
-        cmocka_unit_test(test_disk_cache),     cmocka_unit_test(test_compressed_bytes),
-        cmocka_unit_test(test_every_technique), cmocka_unit_test(test_parallax_scale_zero),
-        cmocka_unit_test(test_extreme_elevations), cmocka_unit_test(test_lighting_models),
-        cmocka_unit_test(test_axes_take_effect),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+DM_TEST_MAIN(setup, teardown,
+             cmocka_unit_test(test_normal_plane),
+             cmocka_unit_test(test_fullscreen_coverage),
+             cmocka_unit_test(test_program_cache),
+             cmocka_unit_test(test_broken_shader),
+             cmocka_unit_test(test_bad_params),
+             cmocka_unit_test(test_item_info),
+             cmocka_unit_test(test_disk_cache),
+             cmocka_unit_test(test_compressed_bytes),
+             cmocka_unit_test(test_every_technique),
+             cmocka_unit_test(test_parallax_scale_zero),
+             cmocka_unit_test(test_extreme_elevations),
+             cmocka_unit_test(test_lighting_models),
+             cmocka_unit_test(test_axes_take_effect))

@@ -5,6 +5,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -302,15 +303,15 @@ static void test_user_maps(void **state)
     dm_str_free(&e);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_all_sets), cmocka_unit_test(test_sine_exact),
-        cmocka_unit_test(test_checker), cmocka_unit_test(test_relief),
-        cmocka_unit_test(test_compact), cmocka_unit_test(test_normal_rows),
-        cmocka_unit_test(test_srgb), cmocka_unit_test(test_cache),
-        cmocka_unit_test(test_bad_input), cmocka_unit_test(test_cache_dir),
-        cmocka_unit_test(test_user_maps),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_all_sets),
+             cmocka_unit_test(test_sine_exact),
+             cmocka_unit_test(test_checker),
+             cmocka_unit_test(test_relief),
+             cmocka_unit_test(test_compact),
+             cmocka_unit_test(test_normal_rows),
+             cmocka_unit_test(test_srgb),
+             cmocka_unit_test(test_cache),
+             cmocka_unit_test(test_bad_input),
+             cmocka_unit_test(test_cache_dir),
+             cmocka_unit_test(test_user_maps))

@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <epoxy/gl.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -69,8 +70,4 @@ static void test_16k(void **state)
     dm_str_free(&e);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {cmocka_unit_test(test_16k)};
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL, cmocka_unit_test(test_16k))

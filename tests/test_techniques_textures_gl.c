@@ -7,6 +7,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <epoxy/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -262,12 +263,10 @@ static void test_clamp_and_sparse(void **state)
     dm_str_free(&log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_normal_formats), cmocka_unit_test(test_height_formats),
-        cmocka_unit_test(test_texture_bytes), cmocka_unit_test(test_normal_mips),
-        cmocka_unit_test(test_filters), cmocka_unit_test(test_clamp_and_sparse),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+DM_TEST_MAIN(setup, teardown,
+             cmocka_unit_test(test_normal_formats),
+             cmocka_unit_test(test_height_formats),
+             cmocka_unit_test(test_texture_bytes),
+             cmocka_unit_test(test_normal_mips),
+             cmocka_unit_test(test_filters),
+             cmocka_unit_test(test_clamp_and_sparse))

@@ -8,6 +8,7 @@
 #include <setjmp.h>
 #include <stdint.h>
 #include <cmocka.h>
+#include "test_util.h"
 #include <epoxy/gl.h>
 #include <math.h>
 #include <stdio.h>
@@ -219,11 +220,8 @@ static void test_refusals(void **state)
     dm_str_free(&log);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_converges_to_plain), cmocka_unit_test(test_small_cache_degrades),
-        cmocka_unit_test(test_huge), cmocka_unit_test(test_refusals),
-    };
-    return cmocka_run_group_tests(tests, setup, teardown);
-}
+DM_TEST_MAIN(setup, teardown,
+             cmocka_unit_test(test_converges_to_plain),
+             cmocka_unit_test(test_small_cache_degrades),
+             cmocka_unit_test(test_huge),
+             cmocka_unit_test(test_refusals))

@@ -7,6 +7,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <cmocka.h>
+#include "test_util.h"
 
 #include "core/dm_error.h"
 #include "viewer/viewer_overlay.h"
@@ -298,22 +299,17 @@ static void test_font_raster_sizes_and_pixels(void **s)
     assert_null(viewer_font_raster("", 1, &w, &h));
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_level_doubles_and_halves_steps),
-        cmocka_unit_test(test_level_on_technique_without_levels_says_why),
-        cmocka_unit_test(test_digits_pick_techniques_in_registry_order),
-        cmocka_unit_test(test_filter_cycles_and_wraps),
-        cmocka_unit_test(test_height_scale_steps_only_where_read),
-        cmocka_unit_test(test_mouse_orbit_zoom_and_reset),
-        cmocka_unit_test(test_toggles_and_requests),
-        cmocka_unit_test(test_light_orbit_and_normals),
-        cmocka_unit_test(test_pan_and_reset),
-        cmocka_unit_test(test_restore_undoes_without_dirty),
-        cmocka_unit_test(test_script_events),
-        cmocka_unit_test(test_script_errors_name_the_offset),
-        cmocka_unit_test(test_font_raster_sizes_and_pixels),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_level_doubles_and_halves_steps),
+             cmocka_unit_test(test_level_on_technique_without_levels_says_why),
+             cmocka_unit_test(test_digits_pick_techniques_in_registry_order),
+             cmocka_unit_test(test_filter_cycles_and_wraps),
+             cmocka_unit_test(test_height_scale_steps_only_where_read),
+             cmocka_unit_test(test_mouse_orbit_zoom_and_reset),
+             cmocka_unit_test(test_toggles_and_requests),
+             cmocka_unit_test(test_light_orbit_and_normals),
+             cmocka_unit_test(test_pan_and_reset),
+             cmocka_unit_test(test_restore_undoes_without_dirty),
+             cmocka_unit_test(test_script_events),
+             cmocka_unit_test(test_script_errors_name_the_offset),
+             cmocka_unit_test(test_font_raster_sizes_and_pixels))

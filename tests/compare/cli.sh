@@ -8,19 +8,8 @@
 # tags and accepted baselines resolve; paired mode on one binary twice
 # never reports a regression.
 set -euo pipefail
-BIN=${DMBENCH_BINARY:?}
-SRC=${DMBENCH_SOURCE_DIR:?}
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
+. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 SWEEP="$SRC/tests/compare/e2e.yaml"
-
-# expect CODE ARGS...: runs `dmbench compare ARGS`, checks the exit code.
-expect() {
-  local want=$1; shift
-  set +e; "$BIN" compare "$@" >"$OUT/stdout" 2>"$OUT/stderr"; local rc=$?; set -e
-  case " $want " in *" $rc "*) ;; *)
-    echo "compare $* -> exit $rc, expected $want"; cat "$OUT/stdout" "$OUT/stderr"; exit 1;; esac
-}
 
 "$BIN" run "$SWEEP" --out "$OUT/a" --tag main --seed 1 --quiet
 "$BIN" run "$SWEEP" --out "$OUT/b" --tag pr --seed 2 --quiet
@@ -38,11 +27,11 @@ PY
 # (drift of a shared machine between runs: a 1.6x slower second run was
 # measured here), so only the outputs are checked — the paired mode below
 # is the no-false-alarm check.
-expect 0 "$A" "$A" --json "$OUT/aa.json"
+expect_compare 0 "$A" "$A" --json "$OUT/aa.json"
 grep -q "^REGRESSION" "$OUT/stdout" && { echo "self-compare reported a regression"; exit 1; }
-expect "0 1 3" "$A" "$B" --junit "$OUT/ab.xml" --markdown "$OUT/ab.md" --json "$OUT/ab.json"
-expect 0 "$A" "$B" --counters-only
-expect 0 "$A/results.json" "$OUT/b" --counters-only       # a file and an output root
+expect_compare "0 1 3" "$A" "$B" --junit "$OUT/ab.xml" --markdown "$OUT/ab.md" --json "$OUT/ab.json"
+expect_compare 0 "$A" "$B" --counters-only
+expect_compare 0 "$A/results.json" "$OUT/b" --counters-only       # a file and an output root
 
 # Injected slowdown, changed counter, other CPU: copies of A's results.json.
 python3 - "$A/results.json" "$OUT" <<'PY'
@@ -62,15 +51,15 @@ env = copy.deepcopy(j)
 env["run"]["environment"]["cpu"] = "Some Other CPU"
 json.dump(env, open(out + "/env.json", "w"))
 PY
-expect 1 "$A" "$OUT/slow.json" --junit "$OUT/slow.xml" --markdown "$OUT/slow.md"
+expect_compare 1 "$A" "$OUT/slow.json" --junit "$OUT/slow.xml" --markdown "$OUT/slow.md"
 grep -q "^REGRESSION" "$OUT/stdout"
-expect 1 "$A" "$OUT/counter.json" --counters-only
+expect_compare 1 "$A" "$OUT/counter.json" --counters-only
 grep -q "SamplesPassed changed" "$OUT/stdout"
-expect 2 "$A" "$OUT/env.json"
+expect_compare 2 "$A" "$OUT/env.json"
 grep -q "cpu: " "$OUT/stderr"
-expect "0 3" "$A" "$OUT/env.json" --allow-env-mismatch
+expect_compare "0 3" "$A" "$OUT/env.json" --allow-env-mismatch
 grep -q "warning: environment fingerprints differ" "$OUT/stderr"
-expect 0 "$A" "$OUT/env.json" --counters-only              # CPU is not part of the driver
+expect_compare 0 "$A" "$OUT/env.json" --counters-only              # CPU is not part of the driver
 
 python3 - "$OUT" "$A/results.json" <<'PY'
 import json, sys, xml.etree.ElementTree as ET
@@ -97,20 +86,20 @@ assert len(json.load(open(f"{out}/ab.json"))["configs"]) == n
 PY
 
 # Stores and tags, accepted baselines.
-expect 0 --base-store "$OUT/a/dmbench.sqlite" --base-tag main --new-store "$OUT/b/dmbench.sqlite" --new-tag pr --counters-only
+expect_compare 0 --base-store "$OUT/a/dmbench.sqlite" --base-tag main --new-store "$OUT/b/dmbench.sqlite" --new-tag pr --counters-only
 "$BIN" baseline accept "$A" --reason "e2e baseline" >/dev/null
-expect 0 --baseline --store "$OUT/a/dmbench.sqlite" "$B" --counters-only
+expect_compare 0 --baseline --store "$OUT/a/dmbench.sqlite" "$B" --counters-only
 grep -q "e2e baseline" "$OUT/stderr"
-expect 2 "$A" "$B" --time-treshold 5%
+expect_compare 2 "$A" "$B" --time-treshold 5%
 grep -q "did you mean '--time-threshold'" "$OUT/stderr"
-expect 2 "$A" "$OUT/missing.json"
+expect_compare 2 "$A" "$OUT/missing.json"
 for t in 0 100% 1.5 -1 abc; do                 # --threshold outside (0, 100 %)
-  expect 2 "$A" "$B" --threshold "$t"
+  expect_compare 2 "$A" "$B" --threshold "$t"
   grep -q -- "--threshold" "$OUT/stderr"
 done
-expect 0 "$A" "$A" --threshold 0.1%
+expect_compare 0 "$A" "$A" --threshold 0.1%
 
 # Paired mode, the same binary on both sides: never a regression.
-expect "0 3" --paired "$BIN" "$BIN" "$SRC/tests/e2e/tiny.yaml" --rounds 2 --quiet
-expect 0 --paired "$BIN" "$BIN" "$SRC/tests/e2e/tiny.yaml" --rounds 2 --counters-only --quiet
+expect_compare "0 3" --paired "$BIN" "$BIN" "$SRC/tests/e2e/tiny.yaml" --rounds 2 --quiet
+expect_compare 0 --paired "$BIN" "$BIN" "$SRC/tests/e2e/tiny.yaml" --rounds 2 --counters-only --quiet
 echo "compare cli: all passed"

@@ -4,10 +4,7 @@
 # nothing and creates nothing; after a real run of the same sweep, a stored
 # model gives each configuration an estimated measuring time.
 set -euo pipefail
-BIN=${DMBENCH_BINARY:?}
-SRC=${DMBENCH_SOURCE_DIR:?}
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
+. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 
 # texture does not read tess_level (2 combinations fold into each
 # configuration); virtual_texture=sparse is left out at plan time.

@@ -4,11 +4,8 @@
 # the store is intact, and the final set of keys equals an uninterrupted
 # run's.  Also: two shards merged equal the unsharded set of keys.
 set -euo pipefail
-BIN=${DMBENCH_BINARY:?}
-SRC=${DMBENCH_SOURCE_DIR:?}
+. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 SWEEP=$SRC/tests/e2e/resume.yaml
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
 q() { sqlite3 "$OUT/$1/dmbench.sqlite" "$2"; }
 
 # An uninterrupted run gives the reference set of keys.

@@ -3,10 +3,7 @@
 # contract's keys, report.html, results.csv, summary.md and the images; the
 # store holds the run; `dmbench report` rebuilds the files.
 set -euo pipefail
-BIN=${DMBENCH_BINARY:?}
-SRC=${DMBENCH_SOURCE_DIR:?}
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
+. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 
 # dmbench info finds a GL 4.5 context and decides the timer by measurement.
 "$BIN" info --json > "$OUT/info.json"

@@ -5,10 +5,7 @@
 # Valgrind (Instructions) with DMBENCH_VALGRIND naming no executable, and
 # Valgrind crashing or hanging with DMBENCH_VALGRIND naming a script that does.
 set -euo pipefail
-BIN=${DMBENCH_BINARY:?}
-SRC=${DMBENCH_SOURCE_DIR:?}
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
+. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 DMBENCH_HIDE_EXTENSIONS=GL_ARB_pipeline_statistics_query \
   "$BIN" run "$SRC/tests/e2e/tiny.yaml" --out "$OUT" --quiet
 python3 - "$OUT/latest" <<'PY'

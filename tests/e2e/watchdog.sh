@@ -4,10 +4,7 @@
 # DMBENCH_TEST_HANG hook (the measuring process blocks on reaching `normal`):
 # llvmpipe caps shader loops, so no shader can hang this driver.
 set -euo pipefail
-BIN=${DMBENCH_BINARY:?}
-SRC=${DMBENCH_SOURCE_DIR:?}
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
+. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 start=$(date +%s)
 DMBENCH_TEST_HANG=normal "$BIN" run "$SRC/tests/e2e/watchdog.yaml" --out "$OUT" --quiet
 took=$(( $(date +%s) - start ))

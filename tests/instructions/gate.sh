@@ -10,17 +10,13 @@
 # Usage: gate.sh DMBENCH_SLOWSHADER  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set by ctest)
 set -euo pipefail
 SLOW=${1:?usage: gate.sh DMBENCH_SLOWSHADER}
-BIN=${DMBENCH_BINARY:?}
-SRC=${DMBENCH_SOURCE_DIR:?}
-OUT=$(mktemp -d)
-trap 'rm -rf "$OUT"' EXIT
+. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 SWEEP="$SRC/ci/gate.yaml"
 
+# expect CODE ARGS...: expect_compare, with the verdicts in the test log.
 expect() {
-  local want=$1; shift
-  set +e; "$BIN" compare "$@" >"$OUT/stdout" 2>"$OUT/stderr"; local rc=$?; set -e
+  expect_compare "$@"
   cat "$OUT/stdout"
-  [ "$rc" = "$want" ] || { echo "compare $* -> exit $rc, expected $want"; cat "$OUT/stderr"; exit 1; }
 }
 
 t0=$(date +%s)
