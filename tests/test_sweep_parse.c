@@ -13,6 +13,7 @@
 
 #include "core/dm_error.h"
 #include "sweep/sweep.h"
+#include "test_util.h"
 
 static const char *src_dir(void)
 {
@@ -275,17 +276,12 @@ static void test_numeric_defaults(void **state)
     dm_str_free(&err);
 }
 
-int main(void)
-{
-    const struct CMUnitTest tests[] = {
-        cmocka_unit_test(test_defaults_and_scene),
-        cmocka_unit_test(test_default_sweeps_parse),
-        cmocka_unit_test(test_quality_section),
-        cmocka_unit_test(test_reference_overrides),
-        cmocka_unit_test(test_missing_file),
-        cmocka_unit_test(test_bad_corpus),
-        cmocka_unit_test(test_key_table),
-        cmocka_unit_test(test_numeric_defaults),
-    };
-    return cmocka_run_group_tests(tests, NULL, NULL);
-}
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_defaults_and_scene),
+             cmocka_unit_test(test_default_sweeps_parse),
+             cmocka_unit_test(test_quality_section),
+             cmocka_unit_test(test_reference_overrides),
+             cmocka_unit_test(test_missing_file),
+             cmocka_unit_test(test_bad_corpus),
+             cmocka_unit_test(test_key_table),
+             cmocka_unit_test(test_numeric_defaults))
