@@ -145,9 +145,8 @@ static int merge__check_missing(merge_state *m, int allow_missing)
         fprintf(stderr, "dmbench: warning: merging without %zu missing or incomplete shard%s:\n%s",
                 n, n == 1 ? "" : "s", dm_str_get(&lines));
         dm_run_result *r = &m->out;
-        r->warnings = dm_xrealloc(r->warnings, (r->n_warnings + 1) * sizeof *r->warnings);
-        r->warnings[r->n_warnings++] = dm_xasprintf("merged with --allow-missing; missing or "
-                                                    "incomplete: %s", dm_str_get(&lines));
+        DM_VEC_PUSH(r->warnings, r->n_warnings, dm_xasprintf("merged with --allow-missing; missing or "
+                                                    "incomplete: %s", dm_str_get(&lines)));
     }
     dm_str_free(&lines);
     return rc;

@@ -371,10 +371,15 @@ const char *dm_term_safe(const char *text, char **buf)
     return text;
 }
 
-void dm_vec_push(void *arr, size_t *n, const void *elem, size_t size)
+void *dm_vec_push(void *arr, size_t *n, const void *elem, size_t size)
 {
     void **p = arr;
     *p = dm_xrealloc(*p, (*n + 1) * size);
-    memcpy((char *)*p + *n * size, elem, size);
+    char *e = (char *)*p + *n * size;
+    if (elem)
+        memcpy(e, elem, size);
+    else
+        memset(e, 0, size);
     (*n)++;
+    return e;
 }

@@ -24,8 +24,15 @@ void dm_log(enum dm_log_level level, const char *fmt, ...)
  * The one convention for arrays that grow: a pointer and a count side by
  * side, appended to with dm_vec_push (one realloc per element; the arrays
  * here hold tens of elements, not millions). */
-/* Appends the `size` bytes at elem to the array *(T **)arr of *n elements. */
-void dm_vec_push(void *arr, size_t *n, const void *elem, size_t size);
+/* Appends the `size` bytes at elem (zeroes when elem is NULL) to the array
+ * *(T **)arr of *n elements; returns the new element. */
+void *dm_vec_push(void *arr, size_t *n, const void *elem, size_t size);
+/* arr[n++] = v, growing arr (both lvalues, evaluated more than once). */
+#define DM_VEC_PUSH(arr, n, v)                                                  \
+    do {                                                                         \
+        dm_vec_push(&(arr), &(n), NULL, sizeof *(arr));                          \
+        (arr)[(n) - 1] = (v);                                                    \
+    } while (0)
 
 /* ---- growable string -------------------------------------------------- */
 typedef struct dm_str { char *buf; size_t len, cap; } dm_str;

@@ -245,8 +245,7 @@ static int sess__pick(counters_session *s, uint32_t id)
         if (s->samples[i].measured)
             return sess__fail(s, DM_ERR_MISUSE, "sample %u used twice in pass 0", id);
         s->samples[i].measured = 1;
-        s->order = dm_xrealloc(s->order, (s->norder + 1) * sizeof *s->order);
-        s->order[s->norder++] = i;
+        DM_VEC_PUSH(s->order, s->norder, i);
         s->cur = i;
         return 0;
     }

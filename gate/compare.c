@@ -35,8 +35,7 @@ compare_desc compare_defaults(const compare_desc *d)
 
 static void compare__push(char ***list, size_t *n, char *text)
 {
-    *list = dm_xrealloc(*list, (*n + 1) * sizeof **list);
-    (*list)[(*n)++] = text;
+    DM_VEC_PUSH(*list, *n, text);
 }
 
 /* "k=v k=v" of the params that tell c apart within run r (all of them when
@@ -89,8 +88,7 @@ static double compare__tolerance(const compare_desc *d, const char *counter)
 
 static void compare__change(compare_item *it, const char *counter, double b, double n, const char *note)
 {
-    it->changes = dm_xrealloc(it->changes, (it->n_changes + 1) * sizeof *it->changes);
-    compare_change *c = &it->changes[it->n_changes++];
+    compare_change *c = dm_vec_push(&it->changes, &it->n_changes, NULL, sizeof *c);
     c->counter = dm_xstrdup(counter);
     c->base = b;
     c->new_ = n;

@@ -64,10 +64,9 @@ static void compare__pool_config(dm_config_result *into, const dm_config_result 
             memcpy(dst->samples + dst->n_samples, src->samples, src->n_samples * sizeof(double));
             dst->n_samples += src->n_samples;
         } else if (src->deterministic && src->value != dst->value) {
-            run->warnings = dm_xrealloc(run->warnings, (run->n_warnings + 1) * sizeof *run->warnings);
-            run->warnings[run->n_warnings++] =
+            DM_VEC_PUSH(run->warnings, run->n_warnings,
                 dm_xasprintf("%s of %s differs between rounds of one binary: %.17g vs %.17g",
-                             src->name, c->key, dst->value, src->value);
+                             src->name, c->key, dst->value, src->value));
         }
     }
 }

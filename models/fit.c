@@ -38,8 +38,7 @@ static void fit__warn(dm_fit_result *r, const char *fmt, ...)
     va_start(ap, fmt);
     dm_str_vprintf(&s, fmt, ap);
     va_end(ap);
-    r->warnings = dm_xrealloc(r->warnings, (r->n_warnings + 1) * sizeof *r->warnings);
-    r->warnings[r->n_warnings++] = dm_str_take(&s);
+    DM_VEC_PUSH(r->warnings, r->n_warnings, dm_str_take(&s));
 }
 
 static const double *fit__row(const fit_desc *d, size_t row)

@@ -25,8 +25,7 @@ static void fitting__names(const dm_run_result *run, const char ***names, size_t
             while (j < *n && strcmp((*names)[j], nm) != 0)
                 j++;
             if (j == *n) {
-                *names = dm_xrealloc(*names, (*n + 1) * sizeof **names);
-                (*names)[(*n)++] = nm;
+                DM_VEC_PUSH(*names, *n, nm);
             }
         }
     }
@@ -100,8 +99,7 @@ static void fitting__group(const fitting_spec *s, const models_builtin *b, const
         for (size_t i = 0; i < s->n_group_by; i++)
             dm_kv_push(&fr.group, &fr.n_group, s->group_by[i],
                        dm_kv_get(lead->params, lead->n_params, s->group_by[i]));
-        *fits = dm_xrealloc(*fits, (*nf + 1) * sizeof **fits);
-        (*fits)[(*nf)++] = fr;
+        DM_VEC_PUSH(*fits, *nf, fr);
     } else {
         dm_str_printf(warnings, "model %s", s->name);
         for (size_t i = 0; i < s->n_group_by; i++)
@@ -276,8 +274,7 @@ static int fitting__parse_fit(const dm_fit_result *fit, formula **f, formula **n
         while (k < fit->n_params && strcmp(fit->params[k].name, nm) != 0)
             k++;
         if (k == fit->n_params) {
-            *vars = dm_xrealloc(*vars, (*nv + 1) * sizeof **vars);
-            (*vars)[(*nv)++] = nm;
+            DM_VEC_PUSH(*vars, *nv, nm);
         }
     }
     rc = rc ? rc : formula_parse(expr, *vars, *nv, f, why);

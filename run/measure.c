@@ -343,8 +343,7 @@ static void measure__counter_timed(dm_counter_result *r, const double *x, size_t
 static dm_counter_result *measure__push(dm_config_result *out, const char *name)
 {
     const counters_info *ci = counters_find(name);
-    out->counters = dm_xrealloc(out->counters, (out->n_counters + 1) * sizeof *out->counters);
-    dm_counter_result *r = &out->counters[out->n_counters++];
+    dm_counter_result *r = dm_vec_push(&out->counters, &out->n_counters, NULL, sizeof *r);
     memset(r, 0, sizeof *r);
     r->name = dm_xstrdup(name);
     r->unit = dm_xstrdup(ci ? counters_unit_name(ci->unit) : "items");

@@ -204,8 +204,8 @@ int refcache_trim(const char *dir, unsigned long long max_bytes)
         size_t len = strlen(de->d_name);
         char *path = dm_xasprintf("%s/%s", dir, de->d_name);
         if (len > 6 && strcmp(de->d_name + len - 6, ".dmref") == 0 && stat(path, &st) == 0) {
-            e = dm_xrealloc(e, (n + 1) * sizeof *e);
-            e[n++] = (refcache__entry){path, st.st_size, st.st_mtim};
+            refcache__entry en = {path, st.st_size, st.st_mtim};
+            DM_VEC_PUSH(e, n, en);
             total += (unsigned long long)st.st_size;
         } else {
             free(path);

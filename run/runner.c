@@ -146,8 +146,7 @@ static int runner__probe(runner *r, dm_str *err)
         } else if (line[0] == 'C' && f1) {
             r->instr_why = dm_xstrdup(f1);
         } else if (line[0] == 'X' && f1) {
-            r->exts = dm_xrealloc(r->exts, (r->n_exts + 1) * sizeof *r->exts);
-            r->exts[r->n_exts++] = dm_xstrdup(f1);
+            DM_VEC_PUSH(r->exts, r->n_exts, dm_xstrdup(f1));
         }
     }
     free(text);
@@ -907,8 +906,7 @@ static void runner__fit(runner *r, dm_run_result *run)
              line = strtok_r(NULL, "\n", &save)) {
             dm_log(DM_LOG_WARN, "%s", line);
             store_run_warning_put(r->st, r->run_id, line);
-            run->warnings = dm_xrealloc(run->warnings, (run->n_warnings + 1) * sizeof *run->warnings);
-            run->warnings[run->n_warnings++] = dm_xstrdup(line);
+            DM_VEC_PUSH(run->warnings, run->n_warnings, dm_xstrdup(line));
         }
         dm_str_free(&warn);
         dm_str_free(&err);

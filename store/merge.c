@@ -117,8 +117,7 @@ int merge_add(merge_state *m, dm_run_result *run, const char *dir, dm_str *err)
     rc = rc ? rc : merge__check_shard(m, &sh, err);
     rc = rc ? rc : merge__check_keys(m, run, dir, err);
     if (rc == 0) {
-        m->inputs = dm_xrealloc(m->inputs, (m->n_inputs + 1) * sizeof *m->inputs);
-        m->inputs[m->n_inputs++] = sh;
+        DM_VEC_PUSH(m->inputs, m->n_inputs, sh);
         if (m->n_inputs == 1)
             merge__first(m, run);
         merge__take(m, run, m->n_inputs - 1);

@@ -673,24 +673,13 @@ static int store__run_write(store *s, const dm_run_result *r, const char *tag)
 
 /* ---- reading ------------------------------------------------------------------ */
 
-/* Appends a zeroed element of size bytes to the array *arr of *n. */
-static void *store__push(void *arr, size_t *n, size_t size)
-{
-    void **pa = arr;
-    *pa = dm_xrealloc(*pa, (*n + 1) * size);
-    char *e = (char *)*pa + *n * size;
-    memset(e, 0, size);
-    (*n)++;
-    return e;
-}
-
 static int store__kv_read(store *s, enum store_sql id, const store__owner *o,
                           dm_kv **kv, size_t *n)
 {
     sqlite3_stmt *st = store__query(s, id, o, "");
     int rc = st ? 1 : DM_ERR_STORE;
     while (rc == 1 && (rc = store__row(s, st)) == 1) {
-        dm_kv *e = store__push(kv, n, sizeof *e);
+        dm_kv *e = dm_vec_push(kv, n, NULL, sizeof *e);
         e->key = store__col_str(st, 0);
         e->value = store__col_str(st, 1);
     }
@@ -703,14 +692,14 @@ static int store__strv_read(store *s, enum store_sql id, const store__owner *o,
     sqlite3_stmt *st = store__query(s, id, o, "");
     int rc = st ? 1 : DM_ERR_STORE;
     while (rc == 1 && (rc = store__row(s, st)) == 1)
-        *(char **)store__push(v, n, sizeof **v) = store__col_str(st, 0);
+        *(char **)dm_vec_push(v, n, NULL, sizeof **v) = store__col_str(st, 0);
     return rc;
 }
 
 /* Reads a query's first column as integers (the seq of left-out / fits). */
 static void store__push_seq(sqlite3_stmt *st, long **seqs, size_t *n)
 {
-    *(long *)store__push(seqs, n, sizeof **seqs) = (long)sqlite3_column_int64(st, 0);
+    *(long *)dm_vec_push(seqs, n, NULL, sizeof **seqs) = (long)sqlite3_column_int64(st, 0);
 }
 
 static void store__counter_cols(sqlite3_stmt *st, dm_counter_result *k)
@@ -748,7 +737,7 @@ static int store__counters_read(store *s, const store__owner *o, dm_config_resul
     sqlite3_stmt *st = store__query(s, STORE_SQL_CTR_SEL, o, "");
     int rc = st ? 1 : DM_ERR_STORE;
     while (rc == 1 && (rc = store__row(s, st)) == 1)
-        store__counter_cols(st, store__push(&c->counters, &c->n_counters,
+        store__counter_cols(st, dm_vec_push(&c->counters, &c->n_counters, NULL,
                                             sizeof *c->counters));
     for (size_t i = 0; i < c->n_counters && rc == 0; i++)
         if (c->counters[i].has_samples)
@@ -784,7 +773,7 @@ static int store__configs_read(store *s, dm_run_result *r)
     sqlite3_stmt *st = store__query(s, STORE_SQL_CFG_SEL, &o, "");
     int rc = st ? 1 : DM_ERR_STORE;
     while (rc == 1 && (rc = store__row(s, st)) == 1)
-        store__config_cols(st, store__push(&r->configs, &r->n_configs,
+        store__config_cols(st, dm_vec_push(&r->configs, &r->n_configs, NULL,
                                            sizeof *r->configs));
     for (size_t i = 0; i < r->n_configs && rc == 0; i++) {
         dm_config_result *c = &r->configs[i];
@@ -805,7 +794,7 @@ static int store__left_out_read(store *s, dm_run_result *r)
     int rc = st ? 1 : DM_ERR_STORE;
     while (rc == 1 && (rc = store__row(s, st)) == 1) {
         store__push_seq(st, &seqs, &n_seqs);
-        dm_left_out *l = store__push(&r->left_out, &r->n_left_out, sizeof *l);
+        dm_left_out *l = dm_vec_push(&r->left_out, &r->n_left_out, NULL, sizeof *l);
         l->reason = store__col_str(st, 1);
     }
     for (size_t i = 0; i < r->n_left_out && rc == 0; i++) {
@@ -822,7 +811,7 @@ static int store__fit_params_read(store *s, const store__owner *o, dm_fit_result
     sqlite3_stmt *st = store__query(s, STORE_SQL_FPAR_SEL, o, "");
     int rc = st ? 1 : DM_ERR_STORE;
     while (rc == 1 && (rc = store__row(s, st)) == 1) {
-        dm_fit_param *p = store__push(&f->params, &f->n_params, sizeof *p);
+        dm_fit_param *p = dm_vec_push(&f->params, &f->n_params, NULL, sizeof *p);
         p->name = store__col_str(st, 0);
         p->value = store__col_double(st, 1);
         p->stderr_ = store__col_double(st, 2);
@@ -894,7 +883,7 @@ static int store__fits_read(store *s, dm_run_result *r)
     int rc = st ? 1 : DM_ERR_STORE;
     while (rc == 1 && (rc = store__row(s, st)) == 1) {
         store__push_seq(st, &seqs, &n_seqs);
-        if (store__fit_cols(s, st, store__push(&r->fits, &r->n_fits,
+        if (store__fit_cols(s, st, dm_vec_push(&r->fits, &r->n_fits, NULL,
                                                sizeof *r->fits)) < 0) {
             sqlite3_reset(st);
             rc = DM_ERR_STORE;
@@ -1213,7 +1202,7 @@ static int store__runs(store *s, const char *tag, size_t max, char ***ids, size_
     sqlite3_stmt *st = store__query(s, STORE_SQL_RUN_LIST, NULL, "t", tag);
     int rc = st ? 1 : DM_ERR_STORE;
     while (rc == 1 && *n < max && (rc = store__row(s, st)) == 1)
-        *(char **)store__push(ids, n, sizeof **ids) = store__col_str(st, 0);
+        *(char **)dm_vec_push(ids, n, NULL, sizeof **ids) = store__col_str(st, 0);
     if (rc == 1)
         sqlite3_reset(st);
     if (rc >= 0)

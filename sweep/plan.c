@@ -226,8 +226,7 @@ int plan_build(const sweep *s, plan *out, dm_str *err)
 static void plan__leave_out_at(plan *p, size_t i, const char *reason)
 {
     plan_config *c = &p->configs[i];
-    p->left_out = dm_xrealloc(p->left_out, (p->n_left_out + 1) * sizeof *p->left_out);
-    dm_left_out *l = &p->left_out[p->n_left_out++];
+    dm_left_out *l = dm_vec_push(&p->left_out, &p->n_left_out, NULL, sizeof *l);
     l->params = c->params;
     l->n_params = c->n_params;
     l->reason = dm_xstrdup(reason);

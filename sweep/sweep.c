@@ -314,8 +314,7 @@ static int p__k_counters(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t
             free(names);
             return DM_ERR_PARSE;
         }
-        m->counters = dm_xrealloc(m->counters, (m->n_counters + 1) * sizeof *m->counters);
-        m->counters[m->n_counters++] = dm_xstrdup(name);
+        DM_VEC_PUSH(m->counters, m->n_counters, dm_xstrdup(name));
     }
     return 0;
 }

@@ -13,8 +13,7 @@
 
 static void viewer__push(viewer_event **ev, size_t *n, viewer_event e)
 {
-    *ev = dm_xrealloc(*ev, (*n + 1) * sizeof **ev);
-    (*ev)[(*n)++] = e;
+    DM_VEC_PUSH(*ev, *n, e);
 }
 
 /* One {name} or {name:args} token (without braces); 0 or DM_ERR_PARSE. */
