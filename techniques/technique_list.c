@@ -11,7 +11,7 @@
  *                     2 = steep parallax, 3 = parallax occlusion mapping
  * Parallax depth: height_scale world units = height_scale·0.5 UV units (the
  * plane spans 2 world units per UV unit); plain parallax uses
- * h' = h·scale − scale/2; V.z is clamped to ≥ 0.05 before any division so
+ * h' = h·scale − parallax_bias·scale (default 0.5: Kaneko's scale/2); V.z is clamped to ≥ 0.05 before any division so
  * grazing views give long but finite offsets.  steps = auto picks
  * mix(max_steps, min_steps, |V.z|).  Shadows (pom only): raytrace = 30
  * steps toward the light, hard; soft = 7 samples at 0.88..0.22 of the ray,
@@ -29,29 +29,39 @@
 
 #define TECH__LIGHT_UNIFORMS \
     "u_model, u_view_proj, u_normal_mat, u_camera_pos, u_light_pos[8], u_light_color[8], " \
-    "u_light_count, u_atten (c,l,q), u_ambient, u_shininess, u_f0, u_roughness (axis)"
+    "u_light_count, u_atten (c,l,q), u_ambient, u_shininess, u_f0, u_roughness, " \
+    "u_light_radius (axes)"
 
 static const char *const tech__axes_none[] = {NULL};
-static const char *const tech__axes_phong[] = {"lighting", "light_count", "roughness", NULL};
+static const char *const tech__axes_phong[] = {"lighting", "light_count", "roughness",
+                                               "attenuation", "light_radius", NULL};
 static const char *const tech__axes_normal[] = {"lighting", "light_count", "roughness",
+                                                "attenuation", "light_radius",
                                                 "normal_format", "toksvig", "height_scale", NULL};
 static const char *const tech__axes_bump[] = {"lighting", "light_count", "roughness",
+                                              "attenuation", "light_radius",
                                               "height_scale", "height_format", NULL};
 static const char *const tech__axes_parallax[] = {"lighting", "light_count", "roughness",
+                                                  "attenuation", "light_radius", "parallax_bias",
                                                   "normal_format", "toksvig", "height_scale",
                                                   "height_format", "offset_limit", NULL};
 static const char *const tech__axes_steep[] = {"lighting", "light_count", "roughness",
+                                               "attenuation", "light_radius",
                                                "normal_format", "toksvig", "height_scale",
                                                "height_format", "steps", "min_steps", "max_steps",
                                                NULL};
 static const char *const tech__axes_tess[] = {"lighting", "light_count", "roughness",
+                                              "attenuation", "light_radius", "tess_inner",
+                                              "tess_outer",
                                               "normal_format", "toksvig", "height_scale",
                                               "tess_level", "tess_spacing", "lod", "patch_cull",
                                               "crack_free", "tess_smooth", NULL};
 static const char *const tech__axes_vdisp[] = {"lighting", "light_count", "roughness",
+                                               "attenuation", "light_radius", "height_format",
                                                "normal_format", "toksvig", "height_scale",
                                                "vertex_filter", "visibility_test", NULL};
 static const char *const tech__axes_pom[] = {"lighting", "light_count", "roughness",
+                                             "attenuation", "light_radius",
                                              "normal_format", "toksvig", "height_scale",
                                              "height_format", "steps", "min_steps", "max_steps",
                                              "shadow", NULL};
