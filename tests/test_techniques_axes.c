@@ -23,21 +23,22 @@ static void test_catalog(void **state)
         "visibility_test", "height_format", "normal_format", "albedo_format", "texture_size",
         "virtual_texture", "vt_page_size", "vt_cache_pages", "toksvig", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "camera.target_x", "camera.target_y",
-        "camera.target_z", "light.azimuth", "light.elevation", "light.distance", "maps", NULL};
+        "camera.target_z", "light.azimuth", "light.elevation", "light.distance", "maps",
+        "cull", "tess_inner", "tess_outer", "parallax_bias", "attenuation", "light_radius", NULL};
     for (size_t i = 0; spec[i]; i++)
         assert_non_null(axes_find(spec[i]));
-    assert_int_equal(axes_count(), 41);
+    assert_int_equal(axes_count(), 47);
     static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
         "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", "camera.target_x",
         "camera.target_y", "camera.target_z", "light.azimuth", "light.elevation",
-        "light.distance", NULL};
+        "light.distance", "cull", NULL};
     size_t n_scene = 0;
     for (size_t i = 0; i < axes_count(); i++)
         n_scene += axes_at(i)->scene;
     for (size_t i = 0; scene[i]; i++)
         assert_int_equal(axes_find(scene[i])->scene, 1);
-    assert_int_equal(n_scene, 21);   /* the 20 above + technique */
+    assert_int_equal(n_scene, 22);   /* the 21 above + technique */
     assert_string_equal(axes_find("roughness")->def, "0.35");
     assert_int_equal(axes_find("roughness")->scene, 0);
     assert_string_equal(axes_find("light.distance")->def, "1.2");
@@ -117,6 +118,56 @@ static void test_messages(void **state)
     expect("technique", "debug-broken-shader", DM_ERR_ARG, "expected one of");
 }
 
+/* The axes of the studies' missing experiments (issue 19): defaults that
+ * keep today's renders, who reads them, their conditions and messages. */
+static const char *exp_value(const char *axis, void *ctx)
+{
+    const char *const *kv = ctx;
+    for (size_t i = 0; kv && kv[i]; i += 2)
+        if (strcmp(kv[i], axis) == 0)
+            return kv[i + 1];
+    return NULL;
+}
+
+static void test_experiment_axes(void **state)
+{
+    (void)state;
+    assert_string_equal(axes_find("cull")->def, "back");
+    assert_string_equal(axes_find("tess_inner")->def, "auto");
+    assert_string_equal(axes_find("tess_outer")->def, "auto");
+    assert_string_equal(axes_find("attenuation")->def, "inverse-quadratic");
+    assert_string_equal(axes_find("parallax_bias")->def, "0.5");
+    assert_string_equal(axes_find("lod")->def, "uniform");
+    for (size_t i = 0; i < technique_count(); i++) {
+        const technique_desc *t = technique_at(i);
+        assert_int_equal(technique_reads_axis(t, "attenuation"), technique_reads_axis(t, "lighting"));
+        assert_int_equal(technique_reads_axis(t, "light_radius"), technique_reads_axis(t, "lighting"));
+        assert_int_equal(technique_reads_axis(t, "tess_inner"), t->tcs != NULL);
+        assert_int_equal(technique_reads_axis(t, "tess_outer"), t->tcs != NULL);
+        assert_int_equal(technique_reads_axis(t, "parallax_bias"), strcmp(t->name, "parallax") == 0);
+        assert_true(technique_reads_axis(t, "cull"));
+    }
+    assert_true(technique_reads_axis(technique_find("vertex-displacement"), "height_format"));
+    const char *s1[] = {"attenuation", "s1", NULL}, *cpu[] = {"lod", "cpu-distance", NULL};
+    assert_true(axes_condition_holds("light_radius", exp_value, (void *)s1));
+    assert_false(axes_condition_holds("light_radius", exp_value, NULL));
+    assert_true(axes_condition_holds("tess_inner", exp_value, NULL));    /* lod uniform */
+    assert_false(axes_condition_holds("tess_inner", exp_value, (void *)cpu));
+    assert_false(axes_condition_holds("tess_outer", exp_value, (void *)cpu));
+    expect("cull", "front", DM_ERR_ARG, "invalid value 'front' for cull; expected one of: back, off");
+    expect("lod", "cpu-distance", 0, NULL);
+    expect("lod", "cpu", DM_ERR_ARG, "uniform, distance, cpu-distance, screen-edge, flatness");
+    expect("tess_inner", "auto", 0, NULL);
+    expect("tess_outer", "64", 0, NULL);
+    expect("tess_outer", "0", DM_ERR_ARG, "expected an integer in [1, 64] or 'auto'");
+    expect("attenuation", "linear", DM_ERR_ARG, "expected one of: inverse-quadratic, s1, none");
+    expect("light_radius", "0", DM_ERR_ARG, "expected a number in [0.01, 1000]");
+    expect("parallax_bias", "2.5", DM_ERR_ARG, "expected a number in [-1, 2]");
+    char *c = axes_canonical("tess_inner", "auto");
+    assert_string_equal(c, "auto");
+    free(c);
+}
+
 static const char *cond_value(const char *axis, void *ctx)
 {
     return strcmp(axis, "lighting") == 0 ? (const char *)ctx : NULL;
@@ -180,6 +231,7 @@ int main(void)
         cmocka_unit_test(test_catalog), cmocka_unit_test(test_technique_choices),
         cmocka_unit_test(test_messages), cmocka_unit_test(test_closest),
         cmocka_unit_test(test_canonical), cmocka_unit_test(test_conditions),
+        cmocka_unit_test(test_experiment_axes),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }
