@@ -79,7 +79,7 @@ static void test_lod_cpu_equals_shader(void **state)
 {
     (void)state;
     static const char *const scene[] = {
-        "mesh=sphere camera.distance=2.2 tess_level=12",
+        "mesh=sphere mesh_density=2 camera.distance=2.2 tess_level=12",
         "mesh=terrain camera.distance=1.6 camera.elevation=35 tess_level=10",
     };
     for (int s = 0; s < 2; s++)
@@ -180,8 +180,9 @@ static void test_inner_outer_counts(void **state)
             assert_int_equal(s.clip_out, t);
         }
     /* auto = tess_level: the default renders and counts as inner = outer = level */
-    const char *def = "technique=tess-displacement mesh=sphere tess_level=6";
-    const char *expl = "technique=tess-displacement mesh=sphere tess_level=6 tess_inner=6 tess_outer=6";
+    const char *def = "technique=tess-displacement mesh=sphere mesh_density=2 tess_level=6";
+    const char *expl = "technique=tess-displacement mesh=sphere mesh_density=2 tess_level=6 "
+                       "tess_inner=6 tess_outer=6";
     assert_true(same_image(def, expl));
     assert_int_equal(count(def).tes, count(expl).tes);
 }
