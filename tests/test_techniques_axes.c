@@ -154,15 +154,20 @@ static void test_experiment_axes(void **state)
     assert_true(axes_condition_holds("tess_inner", exp_value, NULL));    /* lod uniform */
     assert_false(axes_condition_holds("tess_inner", exp_value, (void *)cpu));
     assert_false(axes_condition_holds("tess_outer", exp_value, (void *)cpu));
-    expect("cull", "front", DM_ERR_ARG, "invalid value 'front' for cull; expected one of: back, off");
-    expect("lod", "cpu-distance", 0, NULL);
-    expect("lod", "cpu", DM_ERR_ARG, "uniform, distance, cpu-distance, screen-edge, flatness");
-    expect("tess_inner", "auto", 0, NULL);
-    expect("tess_outer", "64", 0, NULL);
-    expect("tess_outer", "0", DM_ERR_ARG, "expected an integer in [1, 64] or 'auto'");
-    expect("attenuation", "linear", DM_ERR_ARG, "expected one of: inverse-quadratic, s1, none");
-    expect("light_radius", "0", DM_ERR_ARG, "expected a number in [0.01, 1000]");
-    expect("parallax_bias", "2.5", DM_ERR_ARG, "expected a number in [-1, 2]");
+    /* axis, value, then the message (NULL: the value is valid) */
+    static const char *const check[][3] = {
+        {"cull", "front", "invalid value 'front' for cull; expected one of: back, off"},
+        {"lod", "cpu-distance", NULL},
+        {"lod", "cpu", "uniform, distance, cpu-distance, screen-edge, flatness"},
+        {"tess_inner", "auto", NULL},
+        {"tess_outer", "64", NULL},
+        {"tess_outer", "0", "expected an integer in [1, 64] or 'auto'"},
+        {"attenuation", "linear", "expected one of: inverse-quadratic, s1, none"},
+        {"light_radius", "0", "expected a number in [0.01, 1000]"},
+        {"parallax_bias", "2.5", "expected a number in [-1, 2]"},
+    };
+    for (size_t i = 0; i < sizeof check / sizeof check[0]; i++)
+        expect(check[i][0], check[i][1], check[i][2] ? DM_ERR_ARG : 0, check[i][2]);
     char *c = axes_canonical("tess_inner", "auto");
     assert_string_equal(c, "auto");
     free(c);

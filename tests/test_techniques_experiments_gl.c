@@ -27,24 +27,12 @@ typedef struct stats { GLuint64 tes, clip_in, clip_out, fs; } stats;
 
 static stats count(const char *spec)
 {
-    tech_item it = spec_prepare(F.r, spec, 0, NULL);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
     static const GLenum tgt[4] = {GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB,
                                   GL_CLIPPING_INPUT_PRIMITIVES_ARB,
                                   GL_CLIPPING_OUTPUT_PRIMITIVES_ARB,
                                   GL_FRAGMENT_SHADER_INVOCATIONS_ARB};
-    GLuint q[4];
     GLuint64 v[4];
-    glGenQueries(4, q);
-    for (int i = 0; i < 4; i++)
-        glBeginQuery(tgt[i], q[i]);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
-    for (int i = 0; i < 4; i++)
-        glEndQuery(tgt[i]);
-    for (int i = 0; i < 4; i++)
-        glGetQueryObjectui64v(q[i], GL_QUERY_RESULT, &v[i]);
-    glDeleteQueries(4, q);
-    tech_release(F.r, it);
+    draw_queried(spec, tgt, 4, v);
     return (stats){v[0], v[1], v[2], v[3]};
 }
 
@@ -71,27 +59,29 @@ static size_t covered(const char *spec)
 
 /* ---- lod = cpu-distance -------------------------------------------------- */
 
+/* Triangle patches (sphere) and quad patches (terrain) close enough for
+ * the distance levels to vary from patch to patch. */
+static const char *const lod_scene[2] = {
+    "mesh=sphere mesh_density=2 camera.distance=2.2 tess_level=12",
+    "mesh=terrain camera.distance=1.6 camera.elevation=35 tess_level=10",
+};
+
 /* The shader's distance LOD and the same LOD computed on the CPU give the
  * same tessellation: identical evaluation and primitive counts, and the
- * same image, on triangle patches (sphere) and quad patches (terrain), with
- * one level per patch and per edge (crack_free). */
+ * same image, with one level per patch and per edge (crack_free). */
 static void test_lod_cpu_equals_shader(void **state)
 {
     (void)state;
-    static const char *const scene[] = {
-        "mesh=sphere mesh_density=2 camera.distance=2.2 tess_level=12",
-        "mesh=terrain camera.distance=1.6 camera.elevation=35 tess_level=10",
-    };
     for (int s = 0; s < 2; s++)
         for (int cf = 0; cf < 2; cf++) {
             char a[256], b[256], u[256];
             const char *crack = cf ? "crack_free=on" : "crack_free=off";
-            snprintf(a, sizeof a, "technique=tess-displacement %s %s lod=distance", scene[s], crack);
-            snprintf(b, sizeof b, "technique=tess-displacement %s %s lod=cpu-distance", scene[s], crack);
-            snprintf(u, sizeof u, "technique=tess-displacement %s %s lod=uniform", scene[s], crack);
+            snprintf(a, sizeof a, "technique=tess-displacement %s %s lod=distance", lod_scene[s], crack);
+            snprintf(b, sizeof b, "technique=tess-displacement %s %s lod=cpu-distance", lod_scene[s], crack);
+            snprintf(u, sizeof u, "technique=tess-displacement %s %s lod=uniform", lod_scene[s], crack);
             stats sa = count(a), sb = count(b), su = count(u);
             printf("%s %s: shader LOD %llu evaluations / %llu primitives, CPU LOD %llu / %llu, "
-                   "uniform %llu\n", scene[s], crack, (unsigned long long)sa.tes,
+                   "uniform %llu\n", lod_scene[s], crack, (unsigned long long)sa.tes,
                    (unsigned long long)sa.clip_out, (unsigned long long)sb.tes,
                    (unsigned long long)sb.clip_out, (unsigned long long)su.tes);
             assert_int_equal(sa.tes, sb.tes);
