@@ -88,7 +88,8 @@ const technique_desc technique__list[] = {
      .defines = "#define SURF_NORMAL_MAP\n#define SURF_PARALLAX 1\n",
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
      .axes = tech__axes_parallax, .version = 1,
-     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale; t_height, t_normal, t_albedo"},
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_parallax_bias; t_height, t_normal, "
+                 "t_albedo"},
     {.name = "steep-parallax", .summary = "steep parallax mapping: linear search of the height field",
      .vs = "surface.vert.glsl", .fs = "surface.frag.glsl",
      .defines = "#define SURF_NORMAL_MAP\n#define SURF_PARALLAX 2\n",
@@ -115,8 +116,9 @@ const technique_desc technique__list[] = {
      .fs = "surface.frag.glsl", .defines = "#define SURF_NORMAL_MAP\n",
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
      .axes = tech__axes_tess, .version = 2,
-     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_tess_level, u_viewport; "
-                 "t_height, t_normal, t_albedo"},
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_tess_level, u_tess_inner, "
+                 "u_tess_outer (0 = auto), u_viewport; lod=cpu-distance: u_lod_base and the "
+                 "per-patch levels at storage binding 3; t_height, t_normal, t_albedo"},
     {.name = "reference-mesh",
      .summary = "ground truth: mesh subdivided and displaced on the CPU, per-pixel normals from the height field",
      .vs = "displace.vert.glsl", .fs = "surface.frag.glsl",
