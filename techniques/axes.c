@@ -308,20 +308,39 @@ static const struct {
     {"light_radius", "attenuation", "s1"},
     {"tess_inner", "lod", "uniform"},
     {"tess_outer", "lod", "uniform"},
+    /* at their defaults these axes render as before they existed and stay out
+     * of the configuration, so its key is the one it had then ("!X": any
+     * value but X) */
+    {"tess_inner", "tess_inner", "!auto"},
+    {"tess_outer", "tess_outer", "!auto"},
+    {"cull", "cull", "!back"},
+    {"attenuation", "attenuation", "!inverse-quadratic"},
+    {"parallax_bias", "parallax_bias", "!0.5"},
 };
+
+/* One condition row: the configuration's value of when_axis (canonical, so
+ * "0.50" is "0.5") is when_value, or with "!X" is anything but X. */
+static int axes__condition_row(size_t i, const char *(*value)(const char *axis, void *ctx),
+                               void *ctx)
+{
+    const char *v = value ? value(axes__conditions[i].when_axis, ctx) : NULL;
+    v = v ? v : axes_find(axes__conditions[i].when_axis)->def;
+    char *cv = axes_canonical(axes__conditions[i].when_axis, v);
+    const char *want = axes__conditions[i].when_value;
+    int neg = want[0] == '!';
+    int equal = strcmp(cv ? cv : v, want + neg) == 0;
+    free(cv);
+    return equal != neg;
+}
 
 int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),
                          void *ctx)
 {
     if (!axes_find(name))
         return 0;
-    for (size_t i = 0; i < sizeof axes__conditions / sizeof axes__conditions[0]; i++) {
-        if (strcmp(axes__conditions[i].axis, name) != 0)
-            continue;
-        const char *v = value ? value(axes__conditions[i].when_axis, ctx) : NULL;
-        v = v ? v : axes_find(axes__conditions[i].when_axis)->def;
-        return strcmp(v, axes__conditions[i].when_value) == 0;
-    }
+    for (size_t i = 0; i < sizeof axes__conditions / sizeof axes__conditions[0]; i++)
+        if (strcmp(axes__conditions[i].axis, name) == 0 && !axes__condition_row(i, value, ctx))
+            return 0;   /* every row of the axis must hold */
     return 1;
 }
 

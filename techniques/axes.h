@@ -47,7 +47,10 @@ char *axes_canonical(const char *name, const char *value);
 /* 1 when the condition of axis `name` holds or it has none; 0 when it fails
  * or the axis is unknown.  Conditions (axes.c): roughness needs
  * lighting=cook-torrance, light_radius attenuation=s1, tess_inner and
- * tess_outer lod=uniform.  value(axis, ctx) gives the
+ * tess_outer lod=uniform; tess_inner, tess_outer, cull, attenuation and
+ * parallax_bias count only away from their defaults (so configurations keep
+ * the keys they had before these axes existed).  Every condition of an axis
+ * must hold.  value(axis, ctx) gives the
  * configuration's value of an axis (NULL: the axis default).  The planner
  * drops an axis whose condition fails, as it drops axes a technique does not
  * read, so e.g. roughness folds unless lighting=cook-torrance. */

@@ -149,11 +149,25 @@ static void test_experiment_axes(void **state)
     }
     assert_true(technique_reads_axis(technique_find("vertex-displacement"), "height_format"));
     const char *s1[] = {"attenuation", "s1", NULL}, *cpu[] = {"lod", "cpu-distance", NULL};
+    const char *in4[] = {"tess_inner", "4", "tess_outer", "2", NULL};
+    const char *in4cpu[] = {"tess_inner", "4", "tess_outer", "2", "lod", "cpu-distance", NULL};
+    const char *moved[] = {"cull", "off", "attenuation", "none", "parallax_bias", "0.25", NULL};
+    const char *spelled[] = {"cull", "back", "parallax_bias", "0.50", NULL};
     assert_true(axes_condition_holds("light_radius", exp_value, (void *)s1));
     assert_false(axes_condition_holds("light_radius", exp_value, NULL));
-    assert_true(axes_condition_holds("tess_inner", exp_value, NULL));    /* lod uniform */
-    assert_false(axes_condition_holds("tess_inner", exp_value, (void *)cpu));
+    assert_true(axes_condition_holds("tess_inner", exp_value, (void *)in4));   /* lod uniform */
+    assert_true(axes_condition_holds("tess_outer", exp_value, (void *)in4));
+    assert_false(axes_condition_holds("tess_inner", exp_value, (void *)in4cpu));
     assert_false(axes_condition_holds("tess_outer", exp_value, (void *)cpu));
+    /* at their defaults (spelled either way) the new axes stay out of keys */
+    static const char *const keyless[] = {"tess_inner", "tess_outer", "cull", "attenuation",
+                                          "parallax_bias", NULL};
+    for (size_t i = 0; keyless[i]; i++) {
+        assert_false(axes_condition_holds(keyless[i], exp_value, NULL));
+        assert_false(axes_condition_holds(keyless[i], exp_value, (void *)spelled));
+    }
+    for (size_t i = 2; keyless[i]; i++)
+        assert_true(axes_condition_holds(keyless[i], exp_value, (void *)moved));
     /* axis, value, then the message (NULL: the value is valid) */
     static const char *const check[][3] = {
         {"cull", "front", "invalid value 'front' for cull; expected one of: back, off"},
