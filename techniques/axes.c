@@ -18,7 +18,10 @@
 static const char *const axes__on_off[] = {"on", "off", NULL};
 static const char *const axes__dnormals[] = {"map", "height", NULL};
 static const char *const axes__spacing[] = {"equal", "fractional_even", "fractional_odd", NULL};
-static const char *const axes__lod[] = {"uniform", "distance", "screen-edge", "flatness", NULL};
+static const char *const axes__lod[] = {"uniform", "distance", "cpu-distance", "screen-edge",
+                                        "flatness", NULL};
+static const char *const axes__cull[] = {"back", "off", NULL};
+static const char *const axes__atten[] = {"inverse-quadratic", "s1", "none", NULL};
 static const char *const axes__smooth[] = {"off", "phong", NULL};
 static const char *const axes__shadow[] = {"none", "raytrace", "soft", NULL};
 static const char *const axes__lighting[] = {"lambert", "phong", "blinn-phong", "cook-torrance", NULL};
@@ -44,7 +47,13 @@ static axis_info axes__table[] = {
     {"mesh_density", I, NULL, 0, 1024, "0", 1,
      "mesh resolution (plane: vertices per side, sphere: subdivision level, cylinder: segments); 0 = mesh default"},
     {"resolution", AXIS_SIZE2, NULL, 1, 8192, "640x360", 1, "render target size WxH"},
+    {"cull", E, axes__cull, 0, 0, "back", 1,
+     "rasteriser face culling: back (back faces dropped) or off (both sides drawn)"},
     {"tess_level", I, NULL, 1, 64, "1", 0, "tessellation level (inner = outer)"},
+    {"tess_inner", I, NULL, 1, 64, "auto", 0,
+     "inner tessellation level with lod=uniform, or 'auto' (= tess_level)"},
+    {"tess_outer", I, NULL, 1, 64, "auto", 0,
+     "every outer tessellation level with lod=uniform, or 'auto' (= tess_level)"},
     {"tess_spacing", E, axes__spacing, 0, 0, "equal", 0, "tessellation spacing"},
     {"lod", E, axes__lod, 0, 0, "uniform", 0, "how the tessellation level is chosen per patch"},
     {"patch_cull", E, axes__on_off, 0, 0, "off", 0, "cull back-facing/off-screen patches in the control stage"},
@@ -52,6 +61,8 @@ static axis_info axes__table[] = {
     {"tess_smooth", E, axes__smooth, 0, 0, "off", 0,
      "smooth base surface of tess-displacement: phong = Phong tessellation (alpha 0.75)"},
     {"height_scale", F, NULL, -1, 1, "0.06", 0, "displacement / parallax depth in world units per height unit"},
+    {"parallax_bias", F, NULL, -1, 2, "0.5", 0,
+     "plain parallax bias as a fraction of the depth: h' = (h - bias)·scale (0.5 = Kaneko's scale/2)"},
     {"offset_limit", E, axes__on_off, 0, 0, "off", 0, "parallax offset limiting (Welsh): drop the division by V.z"},
     {"steps", I, NULL, 1, 512, "32", 0, "parallax search steps, or 'auto' (min_steps..max_steps by view angle)"},
     {"min_steps", I, NULL, 1, 512, "8", 0, "fewest steps of steps=auto (view along the normal)"},
@@ -59,6 +70,10 @@ static axis_info axes__table[] = {
     {"shadow", E, axes__shadow, 0, 0, "none", 0, "self-shadowing from the height map"},
     {"lighting", E, axes__lighting, 0, 0, "blinn-phong", 0, "lighting model"},
     {"light_count", I, NULL, 1, 8, "1", 0, "number of point lights"},
+    {"attenuation", E, axes__atten, 0, 0, "inverse-quadratic", 0,
+     "light falloff with distance d: 1/(1 + 0.1d + 0.05d²), s1 = max(0, 1 - d²/r²), or none"},
+    {"light_radius", F, NULL, 0.01, 1000, "10", 0,
+     "r of attenuation=s1: the distance at which a light's contribution reaches 0"},
     {"roughness", F, NULL, 0.01, 1, "0.35", 0,
      "Cook-Torrance Beckmann roughness m (read with lighting=cook-torrance only)"},
     {"filter", E, axes__filter, 0, 0, "trilinear", 1, "texture filtering of the material maps"},
@@ -210,6 +225,14 @@ static int axes__check_user_mesh(const char *path, dm_str *err)
     return rc ? DM_ERR_ARG : 0;
 }
 
+/* 1 for the integer axes that also take the word 'auto' (steps: chosen by
+ * view angle; tess_inner / tess_outer: = tess_level). */
+static int axes__takes_auto(const axis_info *a)
+{
+    return strcmp(a->name, "steps") == 0 || strcmp(a->name, "tess_inner") == 0 ||
+           strcmp(a->name, "tess_outer") == 0;
+}
+
 /* Checks an enum value; appends "expected one of: ..." on failure. */
 static int axes__check_enum(const axis_info *a, const char *value, dm_str *err)
 {
@@ -239,12 +262,12 @@ int axes_check(const char *name, const char *value, dm_str *err)
             return axes__check_user_mesh(value + strlen(USER_MESH_PREFIX), err);
         return axes__check_enum(a, value, err);
     case AXIS_INT:
-        if (strcmp(a->name, "steps") == 0 && strcmp(value, "auto") == 0)
+        if (axes__takes_auto(a) && strcmp(value, "auto") == 0)
             return 0;
         if (axes__int(value, &iv) && iv >= a->min && iv <= a->max)
             return 0;
         dm_str_printf(err, "invalid value '%s' for %s; expected an integer in [%g, %g]%s", value,
-                      a->name, a->min, a->max, strcmp(a->name, "steps") == 0 ? " or 'auto'" : "");
+                      a->name, a->min, a->max, axes__takes_auto(a) ? " or 'auto'" : "");
         return DM_ERR_ARG;
     case AXIS_FLOAT:
         if (axes__real(value, &fv) && fv >= a->min && fv <= a->max)
@@ -292,21 +315,42 @@ static const struct {
     {"light.orbit_deg_per_frame", "light.orbit_deg_per_frame", "!0"},
     {"specular_map", "specular_map", "!off"},
     {"displaced_normals", "displaced_normals", "!map"},
+    {"light_radius", "attenuation", "s1"},
+    {"tess_inner", "lod", "uniform"},
+    {"tess_outer", "lod", "uniform"},
+    /* at their defaults these axes render as before they existed and stay out
+     * of the configuration, so its key is the one it had then ("!X": any
+     * value but X) */
+    {"tess_inner", "tess_inner", "!auto"},
+    {"tess_outer", "tess_outer", "!auto"},
+    {"cull", "cull", "!back"},
+    {"attenuation", "attenuation", "!inverse-quadratic"},
+    {"parallax_bias", "parallax_bias", "!0.5"},
 };
+
+/* One condition row: the configuration's value of when_axis (canonical, so
+ * "0.50" is "0.5") is when_value, or with "!X" is anything but X. */
+static int axes__condition_row(size_t i, const char *(*value)(const char *axis, void *ctx),
+                               void *ctx)
+{
+    const char *v = value ? value(axes__conditions[i].when_axis, ctx) : NULL;
+    v = v ? v : axes_find(axes__conditions[i].when_axis)->def;
+    char *cv = axes_canonical(axes__conditions[i].when_axis, v);
+    const char *want = axes__conditions[i].when_value;
+    int neg = want[0] == '!';
+    int equal = strcmp(cv ? cv : v, want + neg) == 0;
+    free(cv);
+    return equal != neg;
+}
 
 int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),
                          void *ctx)
 {
     if (!axes_find(name))
         return 0;
-    for (size_t i = 0; i < sizeof axes__conditions / sizeof axes__conditions[0]; i++) {
-        if (strcmp(axes__conditions[i].axis, name) != 0)
-            continue;
-        const char *v = value ? value(axes__conditions[i].when_axis, ctx) : NULL;
-        v = v ? v : axes_find(axes__conditions[i].when_axis)->def;
-        const char *want = axes__conditions[i].when_value;   /* "!X": any value but X */
-        return (strcmp(v, want + (want[0] == '!')) == 0) != (want[0] == '!');
-    }
+    for (size_t i = 0; i < sizeof axes__conditions / sizeof axes__conditions[0]; i++)
+        if (strcmp(axes__conditions[i].axis, name) == 0 && !axes__condition_row(i, value, ctx))
+            return 0;   /* every row of the axis must hold */
     return 1;
 }
 

@@ -19,7 +19,7 @@ typedef enum axis_kind {
 } axis_kind;
 
 /* Scene axes (scene = 1) are read by every technique: mesh, mesh_density,
- * resolution, camera.* (with the orbit target camera.target_*), light.*
+ * resolution, cull, camera.* (with the orbit target camera.target_*), light.*
  * (light placement), maps, texture_size, filter, albedo_format (and
  * technique itself).  Every other axis is declared by the techniques that
  * read it (technique_desc.axes). */
@@ -46,9 +46,12 @@ int axes_check(const char *name, const char *value, dm_str *err);
 char *axes_canonical(const char *name, const char *value);
 /* 1 when the condition of axis `name` holds or it has none; 0 when it fails
  * or the axis is unknown.  Conditions (axes.c): roughness needs
- * lighting=cook-torrance; camera.orbit_deg_per_frame and
- * light.orbit_deg_per_frame count only when not 0 (a still scene's
- * configurations keep their keys).  value(axis, ctx) gives the
+ * lighting=cook-torrance, light_radius attenuation=s1, tess_inner and
+ * tess_outer lod=uniform; tess_inner, tess_outer, cull, attenuation,
+ * parallax_bias, camera.orbit_deg_per_frame and light.orbit_deg_per_frame
+ * count only away from their defaults (so configurations keep the keys they
+ * had before these axes existed).  Every condition of an axis must hold.
+ * value(axis, ctx) gives the
  * configuration's value of an axis (NULL: the axis default).  The planner
  * drops an axis whose condition fails, as it drops axes a technique does not
  * read, so e.g. roughness folds unless lighting=cook-torrance. */

@@ -5,13 +5,15 @@
  *    origin); azimuth 0 / elevation 0 puts it on +Z of T looking at T,
  *    elevation turns it up toward +Y; perspective with the vertical fov in
  *    degrees, aspect from the viewport, near 0.05, far 100;
- *  - meshes are drawn in object space = world space (model = identity);
+ *  - meshes are drawn in object space = world space (model = identity),
+ *    counter-clockwise front faces, back faces culled unless cull=off;
  *    clip_space meshes (`fullscreen`) are drawn with identity matrices;
  *  - light i (of light_count) is a point light around T at azimuth +
  *    light.azimuth + i·45°, elevation min(elevation + light.elevation −
  *    10°·(i mod 3), 80°), distance light.distance × the camera distance
  *    (defaults 45°, 35°, 1.2; distance 0 puts every light at T); colour
- *    1.6/(1 + 0.25·(count − 1)); attenuation 1/(1 + 0.1 d + 0.05 d²);
+ *    1.6/(1 + 0.25·(count − 1)); attenuation (axis) 1/(1 + 0.1 d + 0.05 d²)
+ *    by default, S1's max(0, 1 − d²/r²) with r = light_radius, or none;
  *    ambient 0.08; shininess 48; Cook-Torrance f0 0.04, roughness = the
  *    roughness axis (u_roughness, default 0.35);
  *  - debug view normals (tech_renderer_set_debug_view): light slots 0..3
@@ -42,12 +44,12 @@
 #include "techniques/technique.h"
 #include "techniques/render_internal.h"
 #include "techniques/user_mesh.h"
-
+#include "techniques/lod_cpu.h"
 
 static const char *const render__uniform_names[RU_COUNT] = {
     "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
     "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_viewport",
-    "u_normal_xy_scale"
+    "u_normal_xy_scale", "u_lod_base"
 };
 
 int tech_renderer_create(tech_renderer **out)
@@ -81,11 +83,16 @@ void tech_renderer_destroy(tech_renderer *r)
         glDeleteBuffers(1, &r->meshes[i].ibo);
         glDeleteBuffers(1, &r->meshes[i].seam_vbo);
         cull_free(&r->meshes[i].cull);
+        free(r->meshes[i].cpu_pos);
+        free(r->meshes[i].cpu_idx);
         free(r->meshes[i].key);
     }
     render__maps_destroy(r);
-    for (size_t i = 0; i < r->n_items; i++)
+    for (size_t i = 0; i < r->n_items; i++) {
         free(r->items[i].axis_val);
+        free(r->items[i].lod_levels);
+        glDeleteBuffers(1, &r->items[i].lod_buf);
+    }
     free(r->progs);
     free(r->meshes);
     free(r->items);
@@ -491,8 +498,15 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
         glVertexArrayAttribFormat(m->vao, a, (GLint)comps[a], GL_FLOAT, GL_FALSE, (GLuint)offs[a]);
         glVertexArrayAttribBinding(m->vao, a, 0);
     }
-    if (t->tcs)
+    if (t->tcs) {
         render__mesh_seams(m, &md);
+        m->cpu_pos = dm_xmalloc(md.n_vertices * 3 * sizeof(float));
+        for (size_t v = 0; v < md.n_vertices; v++)
+            memcpy(m->cpu_pos + 3 * v, md.vertices[v].pos, 3 * sizeof(float));
+        size_t ni = md.n_indices + md.n_quad_indices;
+        m->cpu_idx = dm_xmalloc((ni ? ni : 1) * sizeof(uint32_t));
+        memcpy(m->cpu_idx, md.indices, ni * sizeof(uint32_t));
+    }
     mesh_free(&md);
     *idx = n;
     return 0;
@@ -561,7 +575,8 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
 static size_t render__patch_chunk(const render__cfg *c, int quads)
 {
     int L = atoi(render__get(c, "tess_level"));
-    if (strcmp(render__get(c, "lod"), "distance") == 0)
+    if (strcmp(render__get(c, "lod"), "distance") == 0 ||
+        strcmp(render__get(c, "lod"), "cpu-distance") == 0)
         L = 64;
     int half = (L + 3) / 2 + 1;
     size_t v = quads ? (size_t)(L + 3) * (size_t)(L + 3)
@@ -581,6 +596,21 @@ static void render__cull_setup(const tech_renderer *r, render__item *it, const r
     float reach = fmaxf(fabsf(mp->h_hi - 0.5f), fabsf(mp->h_lo - 0.5f));
     it->cull = 1;
     it->cull_pad = fabsf((float)atof(render__get(c, "height_scale"))) * reach;
+}
+
+/* lod=cpu-distance: the item's per-patch level buffer (filled every draw by
+ * render__lod_upload) and whether levels are per edge (crack_free). */
+static void render__lod_setup(const tech_renderer *r, render__item *it, const render__cfg *c)
+{
+    if (!it->tech->tcs || strcmp(render__get(c, "lod"), "cpu-distance") != 0)
+        return;
+    const render__mesh *m = &r->meshes[it->mesh];
+    size_t n = it->patch_vertices == 4 ? m->n_quad_indices / 4 : m->n_indices / 3;
+    it->lod_levels = dm_xcalloc(n ? n : 1, 4 * sizeof(float));
+    it->lod_per_edge = strcmp(render__get(c, "crack_free"), "on") == 0;
+    glCreateBuffers(1, &it->lod_buf);
+    glNamedBufferStorage(it->lod_buf, (GLsizeiptr)((n ? n : 1) * 4 * sizeof(float)), NULL,
+                         GL_DYNAMIC_STORAGE_BIT);
 }
 
 static void render__item_info(tech_renderer *r, render__item *it)
@@ -611,7 +641,9 @@ int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_it
     if (it.tech->tcs || it.tech->tes) {
         it.patch_vertices = r->meshes[it.mesh].n_quad_indices && it.tech->tcs ? 4 : 3;
         it.patch_chunk = render__patch_chunk(&c, it.patch_vertices == 4);
+        render__lod_setup(r, &it, &c);
     }
+    it.cull_off = strcmp(render__get(&c, "cull"), "off") == 0;
     render__item_info(r, &it);
     it.used = 1;
     it.info.setup_ns = dm_now_ns() - t0;
@@ -731,6 +763,25 @@ static void render__uniforms(tech_renderer *r, const render__item *it, const flo
     }
 }
 
+/* lod=cpu-distance: the levels of every patch for this draw's camera,
+ * computed on the CPU (lod_cpu.h) and uploaded to the buffer the control
+ * stage reads (binding 3). */
+static void render__lod_upload(tech_renderer *r, const render__item *it, const float viewport[2])
+{
+    const render__mesh *m = &r->meshes[it->mesh];
+    int pn = it->patch_vertices;
+    size_t n = pn == 4 ? m->n_quad_indices / 4 : m->n_indices / 3;
+    const uint32_t *idx = m->cpu_idx + (pn == 4 ? m->n_indices : 0);
+    vec3 eye;
+    mat4 vp;
+    render__camera(r, it, viewport, eye, vp);
+    const axis_info *tl = axes_find("tess_level");
+    lod_cpu_levels(m->cpu_pos, idx, n, pn, eye, (float)(int)it->axis_val[tl - axes_at(0)],
+                   it->lod_per_edge, it->lod_levels);
+    glNamedBufferSubData(it->lod_buf, 0, (GLsizeiptr)(n * 4 * sizeof(float)), it->lod_levels);
+    glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, it->lod_buf);
+}
+
 /* The triangle list, or with it->cull only the chunks not culled under the
  * item's camera (the margin is the vertex stage's VISIBILITY_MARGIN). */
 static void render__draw_triangles(tech_renderer *r, const render__item *it, int width, int height)
@@ -771,7 +822,10 @@ int tech_draw(tech_renderer *r, tech_item item, int width, int height)
     glEnable(GL_DEPTH_TEST);
     glDepthFunc(GL_LESS);
     glDepthMask(GL_TRUE);
-    glEnable(GL_CULL_FACE);
+    if (it->cull_off)
+        glDisable(GL_CULL_FACE);
+    else
+        glEnable(GL_CULL_FACE);
     glCullFace(GL_BACK);
     glFrontFace(GL_CCW);
     glDisable(GL_BLEND);
@@ -787,8 +841,11 @@ int tech_draw(tech_renderer *r, tech_item item, int width, int height)
         size_t pv = (size_t)it->patch_vertices, step = pv * it->patch_chunk;
         size_t base = pv == 4 ? m->n_indices : 0, total = pv == 4 ? m->n_quad_indices : m->n_indices;
         glPatchParameteri(GL_PATCH_VERTICES, (GLint)pv);
+        if (it->lod_buf)
+            render__lod_upload(r, it, (float[2]){(float)width, (float)height});
         for (size_t first = 0; first < total; first += step) {
             size_t n = total - first < step ? total - first : step;
+            glUniform1i(r->progs[it->prog].loc[RU_LOD_BASE], (GLint)(first / pv));
             glDrawElements(GL_PATCHES, (GLsizei)n, GL_UNSIGNED_INT,
                            (const void *)((base + first) * sizeof(uint32_t)));
         }
@@ -815,5 +872,9 @@ void tech_release(tech_renderer *r, tech_item item)
         return;
     free(it->axis_val);
     it->axis_val = NULL;
+    free(it->lod_levels);
+    it->lod_levels = NULL;
+    glDeleteBuffers(1, &it->lod_buf);
+    it->lod_buf = 0;
     it->used = 0;
 }

@@ -30,7 +30,7 @@
 enum render__uniform {
     RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
     RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_VIEWPORT, RU_NORMAL_XY_SCALE,
-    RU_COUNT
+    RU_LOD_BASE, RU_COUNT
 };
 
 typedef struct render__program {
@@ -48,6 +48,8 @@ typedef struct render__mesh {
     cull_set cull;               /* triangle chunks with bounds (visibility_test), n = 0: none */
     GLuint seam_vbo;             /* patch meshes: canonical UV + normal per vertex, else 0 */
     int clip_space;
+    float *cpu_pos;              /* patch meshes: xyz per vertex kept for lod=cpu-distance */
+    uint32_t *cpu_idx;           /* patch meshes: the index list (triangles, then quads) */
 } render__mesh;
 
 typedef struct render__item {
@@ -66,6 +68,10 @@ typedef struct render__item {
     int patch_vertices;          /* 3 (triangle patches) or 4 (quad patches, TESS_QUADS) */
     int cull;                    /* visibility_test on: draw only the chunks that can be seen */
     float cull_pad;              /* largest displacement, object units */
+    int cull_off;                /* cull=off: back faces are rasterised too */
+    GLuint lod_buf;              /* lod=cpu-distance: per-patch levels (lod_cpu.h), else 0 */
+    float *lod_levels;           /* CPU side of lod_buf, 4 floats per patch */
+    int lod_per_edge;            /* crack_free on: one level per outer edge */
     tech_item_info info;
 } render__item;
 

@@ -11,7 +11,7 @@
  *                     2 = steep parallax, 3 = parallax occlusion mapping
  * Parallax depth: height_scale world units = height_scale·0.5 UV units (the
  * plane spans 2 world units per UV unit); plain parallax uses
- * h' = h·scale − scale/2; V.z is clamped to ≥ 0.05 before any division so
+ * h' = h·scale − parallax_bias·scale (default 0.5: Kaneko's scale/2); V.z is clamped to ≥ 0.05 before any division so
  * grazing views give long but finite offsets.  steps = auto picks
  * mix(max_steps, min_steps, |V.z|).  Shadows (pom only): raytrace = 30
  * steps toward the light, hard; soft = 7 samples at 0.88..0.22 of the ray,
@@ -33,29 +33,39 @@
 
 #define TECH__LIGHT_UNIFORMS \
     "u_model, u_view_proj, u_normal_mat, u_camera_pos, u_light_pos[8], u_light_color[8], " \
-    "u_light_count, u_atten (c,l,q), u_ambient, u_shininess, u_f0, u_roughness (axis)"
+    "u_light_count, u_atten (c,l,q), u_ambient, u_shininess, u_f0, u_roughness, " \
+    "u_light_radius (axes)"
 
 static const char *const tech__axes_none[] = {NULL};
-static const char *const tech__axes_phong[] = {"lighting", "light_count", "roughness", "specular_map", NULL};
+static const char *const tech__axes_phong[] = {"lighting", "light_count", "roughness", "specular_map",
+                                               "attenuation", "light_radius", NULL};
 static const char *const tech__axes_normal[] = {"lighting", "light_count", "roughness", "specular_map",
+                                                "attenuation", "light_radius",
                                                 "normal_format", "toksvig", "height_scale", NULL};
 static const char *const tech__axes_bump[] = {"lighting", "light_count", "roughness", "specular_map",
+                                              "attenuation", "light_radius",
                                               "height_scale", "height_format", NULL};
 static const char *const tech__axes_parallax[] = {"lighting", "light_count", "roughness", "specular_map",
+                                                  "attenuation", "light_radius", "parallax_bias",
                                                   "normal_format", "toksvig", "height_scale",
                                                   "height_format", "offset_limit", NULL};
 static const char *const tech__axes_steep[] = {"lighting", "light_count", "roughness", "specular_map",
+                                               "attenuation", "light_radius",
                                                "normal_format", "toksvig", "height_scale",
                                                "height_format", "steps", "min_steps", "max_steps",
                                                NULL};
 static const char *const tech__axes_tess[] = {"lighting", "light_count", "roughness", "specular_map",
+                                              "attenuation", "light_radius", "tess_inner",
+                                              "tess_outer",
                                               "normal_format", "toksvig", "height_scale",
                                               "tess_level", "tess_spacing", "lod", "patch_cull",
                                               "crack_free", "tess_smooth", "displaced_normals", NULL};
 static const char *const tech__axes_vdisp[] = {"lighting", "light_count", "roughness", "specular_map",
+                                               "attenuation", "light_radius", "height_format",
                                                "normal_format", "toksvig", "height_scale",
                                                "vertex_filter", "visibility_test", "displaced_normals", NULL};
 static const char *const tech__axes_pom[] = {"lighting", "light_count", "roughness", "specular_map",
+                                             "attenuation", "light_radius",
                                              "normal_format", "toksvig", "height_scale",
                                              "height_format", "steps", "min_steps", "max_steps",
                                              "shadow", NULL};
@@ -82,7 +92,8 @@ const technique_desc technique__list[] = {
      .defines = "#define SURF_NORMAL_MAP\n#define SURF_PARALLAX 1\n",
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
      .axes = tech__axes_parallax, .version = 1,
-     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale; t_height, t_normal, t_albedo"},
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_parallax_bias; t_height, t_normal, "
+                 "t_albedo"},
     {.name = "steep-parallax", .summary = "steep parallax mapping: linear search of the height field",
      .vs = "surface.vert.glsl", .fs = "surface.frag.glsl",
      .defines = "#define SURF_NORMAL_MAP\n#define SURF_PARALLAX 2\n",
@@ -109,8 +120,9 @@ const technique_desc technique__list[] = {
      .fs = "surface.frag.glsl", .defines = "#define SURF_NORMAL_MAP\n",
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
      .axes = tech__axes_tess, .version = 2,
-     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_tess_level, u_viewport; "
-                 "t_height, t_normal, t_albedo"},
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_tess_level, u_tess_inner, "
+                 "u_tess_outer (0 = auto), u_viewport; lod=cpu-distance: u_lod_base and the "
+                 "per-patch levels at storage binding 3; t_height, t_normal, t_albedo"},
     {.name = "reference-mesh",
      .summary = "ground truth: mesh subdivided and displaced on the CPU, per-pixel normals from the height field",
      .vs = "displace.vert.glsl", .fs = "surface.frag.glsl",

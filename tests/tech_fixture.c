@@ -128,3 +128,21 @@ void render_expect_in_range(const char *spec)
         fail_msg("%s: %zu values non-finite or outside [0, 1e4]", spec, bad);
     free(px);
 }
+
+void draw_queried(const char *spec, const GLenum *targets, int n, GLuint64 *out)
+{
+    assert_true(n >= 1 && n <= 8);
+    tech_item it = spec_prepare(F.r, spec, 0, NULL);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    GLuint q[8];
+    glGenQueries(n, q);
+    for (int i = 0; i < n; i++)
+        glBeginQuery(targets[i], q[i]);
+    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    for (int i = 0; i < n; i++)
+        glEndQuery(targets[i]);
+    for (int i = 0; i < n; i++)
+        glGetQueryObjectui64v(q[i], GL_QUERY_RESULT, &out[i]);
+    glDeleteQueries(n, q);
+    tech_release(F.r, it);
+}

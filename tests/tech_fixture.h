@@ -33,5 +33,9 @@ size_t npix(void);
 size_t out_of_range(const float *px, size_t n);
 /* Renders spec and fails the test when a value is out of range. */
 void render_expect_in_range(const char *spec);
+/* Draws spec once (warm-up: llvmpipe compiles at the first draw), then once
+ * inside one query of each of the n (at most 8) targets; out[i] gets the
+ * result of targets[i], e.g. GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB. */
+void draw_queried(const char *spec, const GLenum *targets, int n, GLuint64 *out);
 
 #endif

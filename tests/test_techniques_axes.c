@@ -26,21 +26,22 @@ static void test_catalog(void **state)
         "camera.azimuth", "camera.elevation", "camera.fov", "camera.target_x", "camera.target_y",
         "camera.target_z", "light.azimuth", "light.elevation", "light.distance",
         "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", "maps", "specular_map",
-        "displaced_normals", NULL};
+        "displaced_normals", "cull", "tess_inner", "tess_outer", "parallax_bias", "attenuation",
+        "light_radius", NULL};
     for (size_t i = 0; spec[i]; i++)
         assert_non_null(axes_find(spec[i]));
-    assert_int_equal(axes_count(), 45);
+    assert_int_equal(axes_count(), 51);
     static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
         "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", "camera.target_x",
         "camera.target_y", "camera.target_z", "light.azimuth", "light.elevation",
-        "light.distance", "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", NULL};
+        "light.distance", "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", "cull", NULL};
     size_t n_scene = 0;
     for (size_t i = 0; i < axes_count(); i++)
         n_scene += axes_at(i)->scene;
     for (size_t i = 0; scene[i]; i++)
         assert_int_equal(axes_find(scene[i])->scene, 1);
-    assert_int_equal(n_scene, 23);   /* the 22 above + technique */
+    assert_int_equal(n_scene, 24);   /* the 23 above + technique */
     assert_string_equal(axes_find("roughness")->def, "0.35");
     assert_int_equal(axes_find("roughness")->scene, 0);
     assert_string_equal(axes_find("light.distance")->def, "1.2");
@@ -120,6 +121,75 @@ static void test_messages(void **state)
     expect("technique", "debug-broken-shader", DM_ERR_ARG, "expected one of");
 }
 
+/* The axes of the studies' missing experiments (issue 19): defaults that
+ * keep today's renders, who reads them, their conditions and messages. */
+static const char *exp_value(const char *axis, void *ctx)
+{
+    const char *const *kv = ctx;
+    for (size_t i = 0; kv && kv[i]; i += 2)
+        if (strcmp(kv[i], axis) == 0)
+            return kv[i + 1];
+    return NULL;
+}
+
+static void test_experiment_axes(void **state)
+{
+    (void)state;
+    assert_string_equal(axes_find("cull")->def, "back");
+    assert_string_equal(axes_find("tess_inner")->def, "auto");
+    assert_string_equal(axes_find("tess_outer")->def, "auto");
+    assert_string_equal(axes_find("attenuation")->def, "inverse-quadratic");
+    assert_string_equal(axes_find("parallax_bias")->def, "0.5");
+    assert_string_equal(axes_find("lod")->def, "uniform");
+    for (size_t i = 0; i < technique_count(); i++) {
+        const technique_desc *t = technique_at(i);
+        assert_int_equal(technique_reads_axis(t, "attenuation"), technique_reads_axis(t, "lighting"));
+        assert_int_equal(technique_reads_axis(t, "light_radius"), technique_reads_axis(t, "lighting"));
+        assert_int_equal(technique_reads_axis(t, "tess_inner"), t->tcs != NULL);
+        assert_int_equal(technique_reads_axis(t, "tess_outer"), t->tcs != NULL);
+        assert_int_equal(technique_reads_axis(t, "parallax_bias"), strcmp(t->name, "parallax") == 0);
+        assert_true(technique_reads_axis(t, "cull"));
+    }
+    assert_true(technique_reads_axis(technique_find("vertex-displacement"), "height_format"));
+    const char *s1[] = {"attenuation", "s1", NULL}, *cpu[] = {"lod", "cpu-distance", NULL};
+    const char *in4[] = {"tess_inner", "4", "tess_outer", "2", NULL};
+    const char *in4cpu[] = {"tess_inner", "4", "tess_outer", "2", "lod", "cpu-distance", NULL};
+    const char *moved[] = {"cull", "off", "attenuation", "none", "parallax_bias", "0.25", NULL};
+    const char *spelled[] = {"cull", "back", "parallax_bias", "0.50", NULL};
+    assert_true(axes_condition_holds("light_radius", exp_value, (void *)s1));
+    assert_false(axes_condition_holds("light_radius", exp_value, NULL));
+    assert_true(axes_condition_holds("tess_inner", exp_value, (void *)in4));   /* lod uniform */
+    assert_true(axes_condition_holds("tess_outer", exp_value, (void *)in4));
+    assert_false(axes_condition_holds("tess_inner", exp_value, (void *)in4cpu));
+    assert_false(axes_condition_holds("tess_outer", exp_value, (void *)cpu));
+    /* at their defaults (spelled either way) the new axes stay out of keys */
+    static const char *const keyless[] = {"tess_inner", "tess_outer", "cull", "attenuation",
+                                          "parallax_bias", NULL};
+    for (size_t i = 0; keyless[i]; i++) {
+        assert_false(axes_condition_holds(keyless[i], exp_value, NULL));
+        assert_false(axes_condition_holds(keyless[i], exp_value, (void *)spelled));
+    }
+    for (size_t i = 2; keyless[i]; i++)
+        assert_true(axes_condition_holds(keyless[i], exp_value, (void *)moved));
+    /* axis, value, then the message (NULL: the value is valid) */
+    static const char *const check[][3] = {
+        {"cull", "front", "invalid value 'front' for cull; expected one of: back, off"},
+        {"lod", "cpu-distance", NULL},
+        {"lod", "cpu", "uniform, distance, cpu-distance, screen-edge, flatness"},
+        {"tess_inner", "auto", NULL},
+        {"tess_outer", "64", NULL},
+        {"tess_outer", "0", "expected an integer in [1, 64] or 'auto'"},
+        {"attenuation", "linear", "expected one of: inverse-quadratic, s1, none"},
+        {"light_radius", "0", "expected a number in [0.01, 1000]"},
+        {"parallax_bias", "2.5", "expected a number in [-1, 2]"},
+    };
+    for (size_t i = 0; i < sizeof check / sizeof check[0]; i++)
+        expect(check[i][0], check[i][1], check[i][2] ? DM_ERR_ARG : 0, check[i][2]);
+    char *c = axes_canonical("tess_inner", "auto");
+    assert_string_equal(c, "auto");
+    free(c);
+}
+
 static const char *cond_value(const char *axis, void *ctx)
 {
     return strcmp(axis, "lighting") == 0 ? (const char *)ctx : NULL;
@@ -195,4 +265,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_messages),
              cmocka_unit_test(test_closest),
              cmocka_unit_test(test_canonical),
-             cmocka_unit_test(test_conditions))
+             cmocka_unit_test(test_conditions),
+             cmocka_unit_test(test_experiment_axes))

@@ -31,24 +31,11 @@ typedef struct stats { GLuint64 tes, clip_out, patches; } stats;
 
 static stats count(const char *spec)
 {
-    tech_item it = prepare(spec);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);   /* warm-up / JIT */
-    GLuint q[3];
     static const GLenum tgt[3] = {GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB,
                                   GL_CLIPPING_OUTPUT_PRIMITIVES_ARB, GL_TESS_CONTROL_SHADER_PATCHES_ARB};
-    glGenQueries(3, q);
-    for (int i = 0; i < 3; i++)
-        glBeginQuery(tgt[i], q[i]);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
-    for (int i = 0; i < 3; i++)
-        glEndQuery(tgt[i]);
-    stats s;
-    glGetQueryObjectui64v(q[0], GL_QUERY_RESULT, &s.tes);
-    glGetQueryObjectui64v(q[1], GL_QUERY_RESULT, &s.clip_out);
-    glGetQueryObjectui64v(q[2], GL_QUERY_RESULT, &s.patches);
-    glDeleteQueries(3, q);
-    tech_release(F.r, it);
-    return s;
+    GLuint64 v[3];
+    draw_queried(spec, tgt, 3, v);
+    return (stats){v[0], v[1], v[2]};
 }
 
 /* Primitives submitted by one draw of spec (the pipeline statistic). */

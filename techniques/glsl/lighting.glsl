@@ -4,7 +4,10 @@
 //   TOKSVIG_ON scales the Phong/Blinn-Phong exponent by the Toksvig factor;
 //   SPECULAR_MAP_ON scales every specular term by lighting_spec_k, which the
 //   fragment stage sets from the material's specular map.
-// Point lights with attenuation 1/(c + l*d + q*d^2); no light where N.L <= 0.
+// Point lights; no light where N.L <= 0.  Attenuation by #define:
+//   ATTENUATION_INVERSE_QUADRATIC (default) 1/(c + l*d + q*d^2) with u_atten
+//   ATTENUATION_S1                           max(0, 1 - d^2/r^2), r = u_light_radius (S1)
+//   ATTENUATION_NONE                         1
 #include "common.glsl"
 
 #if !defined(LIGHTING_LAMBERT) && !defined(LIGHTING_PHONG) && !defined(LIGHTING_COOK_TORRANCE)
@@ -17,6 +20,18 @@ uniform vec3 u_ambient;
 uniform float u_shininess;   // Phong / Blinn-Phong exponent n
 uniform float u_f0;          // Cook-Torrance Fresnel reflectance at normal incidence
 uniform float u_roughness;   // Cook-Torrance Beckmann slope m
+uniform float u_light_radius;   // r of ATTENUATION_S1
+
+float lighting_attenuation(float d)
+{
+#if defined(ATTENUATION_S1)
+    return max(0.0, 1.0 - (d * d) / (u_light_radius * u_light_radius));
+#elif defined(ATTENUATION_NONE)
+    return 1.0;
+#else
+    return 1.0 / (u_atten.x + u_atten.y * d + u_atten.z * d * d);
+#endif
+}
 
 const float LIGHTING_PI = 3.14159265;
 
@@ -63,7 +78,7 @@ vec3 lighting_light(vec3 n, vec3 v, vec3 lvec, vec3 color, vec3 albedo, float nl
     float nl = dot(n, l);
     if (nl <= 0.0)
         return vec3(0.0);
-    float att = 1.0 / (u_atten.x + u_atten.y * d + u_atten.z * d * d);
+    float att = lighting_attenuation(d);
 #ifdef SPECULAR_MAP_ON
     return color * att * (albedo * nl + vec3(lighting_spec_k * lighting_specular(n, v, l, nlen)));
 #else

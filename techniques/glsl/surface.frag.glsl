@@ -37,6 +37,7 @@ uniform float u_normal_xy_scale;
 uniform int u_steps;         // 0 = auto: min_steps at normal view .. max_steps at grazing
 uniform int u_min_steps;
 uniform int u_max_steps;
+uniform float u_parallax_bias;   // plain parallax: bias as a fraction of the depth (0.5 default)
 
 in SurfaceData {
     vec2 uv;
@@ -96,9 +97,10 @@ vec2 parallax_search(vec2 uv, vec3 v)
 vec2 parallax_uv(vec2 uv, vec3 v)
 {
 #if SURF_PARALLAX == 1
-    // h' = (h - SURFACE_H0)·scale: the offset to the point of the same
-    // surface as the search's (bias = SURFACE_H0·scale, Kaneko's scale/2).
-    float scale = u_height_scale * UV_PER_WORLD, bias = scale * SURFACE_H0;
+    // h' = (h - bias)·scale: with the default u_parallax_bias = SURFACE_H0
+    // the offset to the point of the same surface as the search's (Kaneko's
+    // scale/2); the parallax_bias axis moves the reference height.
+    float scale = u_height_scale * UV_PER_WORLD, bias = scale * u_parallax_bias;
     float hp = height_at(uv) * scale - bias;
 #ifdef OFFSET_LIMIT_ON
     return uv + hp * v.xy;                                  // Welsh

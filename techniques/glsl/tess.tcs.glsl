@@ -1,10 +1,15 @@
 // tess.tcs.glsl — control stage of tess-displacement: levels and culling.
 //   LOD_UNIFORM (default)  every level = u_tess_level
 //   LOD_DISTANCE           level = u_tess_level / distance(camera, point)  (S4)
+//   LOD_CPU_DISTANCE       the same levels computed on the CPU every draw
+//                          (lod_cpu.h) and read from cpu_levels[patch]: S4's
+//                          "LOD from a CPU uniform" variant
 //   LOD_SCREEN_EDGE        level = projected edge length in pixels / TESS_TARGET_PX,
 //                          at most u_tess_level
 //   LOD_FLATNESS           u_tess_level where the height sampled at a few
 //                          points varies by more than FLAT_EPS, else 1
+// LOD_UNIFORM: u_tess_outer / u_tess_inner > 0 replace the outer / inner
+// levels (0 = their axis is 'auto': u_tess_level), S4's separate levels.
 // CRACK_FREE_ON: outer level i from the edge opposite vertex i alone (its
 // midpoint / endpoints / samples along it), so the two patches sharing an
 // edge agree; inner = the largest outer.  Otherwise one level per patch.
@@ -30,6 +35,15 @@ layout(binding = 0) uniform sampler2D t_height;
 uniform int u_tess_level;
 uniform float u_height_scale;
 uniform vec2 u_viewport;
+uniform int u_tess_inner;   // 0 = auto
+uniform int u_tess_outer;   // 0 = auto
+
+#ifdef LOD_CPU_DISTANCE
+// Per patch: the outer levels (per edge under CRACK_FREE_ON, else the patch
+// level in every slot), unclamped; patch = u_lod_base + gl_PrimitiveID.
+layout(std430, binding = 3) readonly buffer CpuLevels { vec4 cpu_levels[]; };
+uniform int u_lod_base;     // first patch of this draw call
+#endif
 
 const float TESS_TARGET_PX = 8.0;
 const float FLAT_EPS = 1e-3;     // world units of displacement range
@@ -93,7 +107,9 @@ vec3 patch_centre()
 
 float patch_level()
 {
-#if defined(LOD_DISTANCE)
+#if defined(LOD_CPU_DISTANCE)
+    return cpu_levels[u_lod_base + gl_PrimitiveID].x;
+#elif defined(LOD_DISTANCE)
     return float(u_tess_level) / max(distance(u_camera_pos, patch_centre()), 1e-3);
 #elif defined(LOD_FLATNESS)
     // Every edge and every corner-to-centre line: 2 × PATCH_N × 9 samples.
@@ -109,6 +125,29 @@ float patch_level()
     for (int i = 0; i < PATCH_N; i++)
         l = max(l, edge_level(i, (i + 1) % PATCH_N));
     return l;
+#endif
+}
+
+// Outer level i of CRACK_FREE_ON: the level of its edge alone.
+float outer_level(int i)
+{
+#if defined(LOD_CPU_DISTANCE)
+    return cpu_levels[u_lod_base + gl_PrimitiveID][i];
+#else
+    ivec2 ab = outer_edge(i);
+    return edge_level(ab.x, ab.y);
+#endif
+}
+
+// LOD_UNIFORM: the tess_outer / tess_inner axes where they are not auto.
+void fixed_levels()
+{
+#ifdef LOD_UNIFORM
+    if (u_tess_outer > 0)
+        for (int i = 0; i < PATCH_N; i++)
+            gl_TessLevelOuter[i] = clamp(float(u_tess_outer), 1.0, 64.0);
+    if (u_tess_inner > 0)
+        gl_TessLevelInner[0] = gl_TessLevelInner[1] = clamp(float(u_tess_inner), 1.0, 64.0);
 #endif
 }
 
@@ -158,8 +197,7 @@ void main()
 #ifdef CRACK_FREE_ON
     float e[PATCH_N];
     for (int i = 0; i < PATCH_N; i++) {
-        ivec2 ab = outer_edge(i);
-        e[i] = clamp(edge_level(ab.x, ab.y), 1.0, 64.0);
+        e[i] = clamp(outer_level(i), 1.0, 64.0);
         gl_TessLevelOuter[i] = e[i];
     }
 #ifdef TESS_QUADS
@@ -174,4 +212,5 @@ void main()
         gl_TessLevelOuter[i] = l;
     gl_TessLevelInner[0] = gl_TessLevelInner[1] = l;
 #endif
+    fixed_levels();
 }

@@ -1,0 +1,57 @@
+/* lod_cpu.c — distance LOD on the CPU (see lod_cpu.h). */
+#include "techniques/lod_cpu.h"
+
+#include <math.h>
+
+/* level / max(|eye − p|, 1e-3), as GLSL's distance() then a division. */
+static float lod_cpu__at(const float eye[3], const float p[3], float level)
+{
+    float dx = eye[0] - p[0], dy = eye[1] - p[1], dz = eye[2] - p[2];
+    float d = sqrtf(dx * dx + dy * dy + dz * dz);
+    return level / fmaxf(d, 1e-3f);
+}
+
+/* Corners of outer edge i (tess.tcs.glsl, outer_edge). */
+static void lod_cpu__edge(int patch_n, int i, int *a, int *b)
+{
+    static const int tri[3][2] = {{1, 2}, {2, 0}, {0, 1}};
+    static const int quad[4][2] = {{0, 3}, {0, 1}, {1, 2}, {3, 2}};
+    *a = patch_n == 4 ? quad[i][0] : tri[i][0];
+    *b = patch_n == 4 ? quad[i][1] : tri[i][1];
+}
+
+/* The four slots of one patch whose corners are c[0..patch_n-1]. */
+static void lod_cpu__patch(const float *c[4], int patch_n, const float eye[3], float level,
+                           int per_edge, float out[4])
+{
+    out[0] = out[1] = out[2] = out[3] = 0.0f;
+    if (per_edge) {
+        for (int i = 0; i < patch_n; i++) {
+            int a, b;
+            lod_cpu__edge(patch_n, i, &a, &b);
+            float m[3];
+            for (int k = 0; k < 3; k++)
+                m[k] = 0.5f * (c[a][k] + c[b][k]);
+            out[i] = lod_cpu__at(eye, m, level);
+        }
+        return;
+    }
+    float centre[3] = {0.0f, 0.0f, 0.0f};
+    for (int i = 0; i < patch_n; i++)
+        for (int k = 0; k < 3; k++)
+            centre[k] += c[i][k];
+    for (int k = 0; k < 3; k++)
+        centre[k] /= (float)patch_n;
+    out[0] = out[1] = out[2] = out[3] = lod_cpu__at(eye, centre, level);
+}
+
+void lod_cpu_levels(const float *pos, const uint32_t *idx, size_t n_patches, int patch_n,
+                    const float eye[3], float level, int per_edge, float *out)
+{
+    for (size_t p = 0; p < n_patches; p++) {
+        const float *c[4] = {0};
+        for (int i = 0; i < patch_n; i++)
+            c[i] = pos + 3 * (size_t)idx[(size_t)patch_n * p + (size_t)i];
+        lod_cpu__patch(c, patch_n, eye, level, per_edge, out + 4 * p);
+    }
+}

@@ -1,0 +1,322 @@
+/* GL tests of the axes of the studies' missing experiments (issue 19) on
+ * llvmpipe: lod=cpu-distance gives the shader distance LOD's exact counts,
+ * tess_inner / tess_outer give the triangle tessellation rule's counts,
+ * cull=off rasterises the back faces, attenuation=s1 matches
+ * max(0, 1 - d²/r²) at a known distance, vertex-displacement's height moves
+ * by the height format's quantisation, parallax_bias shifts the image; each
+ * default renders exactly as the configuration that spells today's values. */
+#include <stdarg.h>
+#include <stddef.h>
+#include <setjmp.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include <epoxy/gl.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "tests/tech_fixture.h"
+#include "techniques/lod_cpu.h"
+#include "techniques/render.h"
+
+static int setup(void **state) { return techfix_setup(state, 256, 192); }
+
+/* Pipeline statistics of one draw of spec (after a warm-up draw). */
+typedef struct stats { GLuint64 tes, clip_in, clip_out, fs; } stats;
+
+static stats count(const char *spec)
+{
+    static const GLenum tgt[4] = {GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB,
+                                  GL_CLIPPING_INPUT_PRIMITIVES_ARB,
+                                  GL_CLIPPING_OUTPUT_PRIMITIVES_ARB,
+                                  GL_FRAGMENT_SHADER_INVOCATIONS_ARB};
+    GLuint64 v[4];
+    draw_queried(spec, tgt, 4, v);
+    return (stats){v[0], v[1], v[2], v[3]};
+}
+
+/* 1 when spec a and spec b render bit-identical images. */
+static int same_image(const char *a, const char *b)
+{
+    float *pa = render(a), *pb = render(b);
+    int same = memcmp(pa, pb, npix() * 4 * sizeof(float)) == 0;
+    free(pa);
+    free(pb);
+    return same;
+}
+
+/* Pixels whose alpha is set (the clear colour is 0, every draw writes 1). */
+static size_t covered(const char *spec)
+{
+    float *px = render(spec);
+    size_t n = 0;
+    for (size_t i = 0; i < npix(); i++)
+        n += px[4 * i + 3] > 0.5f;
+    free(px);
+    return n;
+}
+
+/* ---- lod = cpu-distance -------------------------------------------------- */
+
+/* Triangle patches (sphere) and quad patches (terrain) close enough for
+ * the distance levels to vary from patch to patch. */
+static const char *const lod_scene[2] = {
+    "mesh=sphere mesh_density=2 camera.distance=2.2 tess_level=12",
+    "mesh=terrain camera.distance=1.6 camera.elevation=35 tess_level=10",
+};
+
+/* The shader's distance LOD and the same LOD computed on the CPU give the
+ * same tessellation: identical evaluation and primitive counts, and the
+ * same image, with one level per patch and per edge (crack_free). */
+static void test_lod_cpu_equals_shader(void **state)
+{
+    (void)state;
+    for (int s = 0; s < 2; s++)
+        for (int cf = 0; cf < 2; cf++) {
+            char a[256], b[256], u[256];
+            const char *crack = cf ? "crack_free=on" : "crack_free=off";
+            snprintf(a, sizeof a, "technique=tess-displacement %s %s lod=distance", lod_scene[s], crack);
+            snprintf(b, sizeof b, "technique=tess-displacement %s %s lod=cpu-distance", lod_scene[s], crack);
+            snprintf(u, sizeof u, "technique=tess-displacement %s %s lod=uniform", lod_scene[s], crack);
+            stats sa = count(a), sb = count(b), su = count(u);
+            printf("%s %s: shader LOD %llu evaluations / %llu primitives, CPU LOD %llu / %llu, "
+                   "uniform %llu\n", lod_scene[s], crack, (unsigned long long)sa.tes,
+                   (unsigned long long)sa.clip_out, (unsigned long long)sb.tes,
+                   (unsigned long long)sb.clip_out, (unsigned long long)su.tes);
+            assert_int_equal(sa.tes, sb.tes);
+            assert_int_equal(sa.clip_in, sb.clip_in);
+            assert_int_equal(sa.clip_out, sb.clip_out);
+            assert_true(sa.tes != su.tes);   /* the level does depend on distance here */
+            assert_true(same_image(a, b));
+        }
+}
+
+/* The CPU levels follow level / distance: a patch twice as far gets half
+ * the level; per-edge levels use the edge opposite each corner. */
+static void test_lod_cpu_levels(void **state)
+{
+    (void)state;
+    const float pos[] = {0, 0, 0, 3, 0, 0, 0, 3, 0, /* patch 0 */ 0, 0, 6, 3, 0, 6, 0, 3, 6};
+    const uint32_t idx[] = {0, 1, 2, 3, 4, 5};
+    const float eye[3] = {1, 1, -2};
+    float out[8];
+    lod_cpu_levels(pos, idx, 2, 3, eye, 12.0f, 0, out);
+    assert_float_equal(out[0], 12.0f / 2.0f, 1e-6);      /* centre (1,1,0) at distance 2 */
+    assert_float_equal(out[3], 12.0f / 2.0f, 1e-6);
+    assert_float_equal(out[4], 12.0f / 8.0f, 1e-6);      /* centre (1,1,6) at distance 8 */
+    lod_cpu_levels(pos, idx, 1, 3, eye, 12.0f, 1, out);
+    /* edge 0 = corners 1-2, midpoint (1.5,1.5,0): distance sqrt(0.5 + 4) */
+    assert_float_equal(out[0], 12.0f / sqrtf(4.5f), 1e-5);
+    /* edge 2 = corners 0-1, midpoint (1.5,0,0): distance sqrt(0.25 + 1 + 4) */
+    assert_float_equal(out[2], 12.0f / sqrtf(5.25f), 1e-5);
+    assert_float_equal(out[3], 0.0f, 0);
+}
+
+/* ---- tess_inner / tess_outer --------------------------------------------- */
+
+/* The tessellation rule for one triangle patch, equal spacing, inner level
+ * n and all three outer levels o: the outer ring has 3o vertices; inner
+ * rings of m = n-2, n-4, ... segments per side have 3m vertices (m = 0: the
+ * centre alone); between the outer ring and the first inner ring lie
+ * 3(o + n - 2) triangles, between rings m and m-2 3(2m - 2), and an
+ * innermost ring of m = 1 is one triangle.  An inner level 1 with an outer
+ * level above 1 is tessellated as 2 (GL: 1 + epsilon, rounded up); all
+ * levels 1 give the patch itself. */
+static void tri_rule(int n, int o, GLuint64 *vertices, GLuint64 *triangles)
+{
+    if (n == 1 && o == 1) {
+        *vertices = 3;
+        *triangles = 1;
+        return;
+    }
+    n = n == 1 ? 2 : n;
+    GLuint64 v = 3 * (GLuint64)o, t = 3 * (GLuint64)(o + n - 2);
+    for (int m = n - 2; m >= 0; m -= 2) {
+        v += m ? 3 * (GLuint64)m : 1;
+        t += m >= 2 ? 3 * (GLuint64)(2 * m - 2) : (GLuint64)(m == 1);
+    }
+    *vertices = v;
+    *triangles = t;
+}
+
+static void test_inner_outer_counts(void **state)
+{
+    (void)state;
+    GLuint64 v, t;
+    tri_rule(4, 1, &v, &t);          /* 3 corners + ring of 6 + centre; 9 + 6 */
+    assert_int_equal(v, 10);
+    assert_int_equal(t, 15);
+    tri_rule(1, 4, &v, &t);          /* 12 on the outer ring + centre; a fan of 12 */
+    assert_int_equal(v, 13);
+    assert_int_equal(t, 12);
+    tri_rule(64, 64, &v, &t);        /* S4: one triangle at level 64 */
+    assert_int_equal(v, 3169);
+    assert_int_equal(t, 6144);
+    static const int inner[] = {1, 2, 3, 4, 7, 16, 33}, outer[] = {1, 2, 5, 16, 64};
+    for (size_t i = 0; i < sizeof inner / sizeof *inner; i++)
+        for (size_t o = 0; o < sizeof outer / sizeof *outer; o++) {
+            char spec[256];
+            snprintf(spec, sizeof spec, "technique=tess-displacement mesh=triangle tess_level=9 "
+                     "tess_inner=%d tess_outer=%d camera.azimuth=0 camera.elevation=0 "
+                     "height_scale=0", inner[i], outer[o]);
+            stats s = count(spec);
+            tri_rule(inner[i], outer[o], &v, &t);
+            if (s.tes != v || s.clip_out != t)
+                printf("inner %d outer %d: %llu evaluations, %llu primitives; rule %llu, %llu\n",
+                       inner[i], outer[o], (unsigned long long)s.tes,
+                       (unsigned long long)s.clip_out, (unsigned long long)v, (unsigned long long)t);
+            assert_int_equal(s.tes, v);
+            assert_int_equal(s.clip_out, t);
+        }
+    /* auto = tess_level: the default renders and counts as inner = outer = level */
+    const char *def = "technique=tess-displacement mesh=sphere mesh_density=2 tess_level=6";
+    const char *expl = "technique=tess-displacement mesh=sphere mesh_density=2 tess_level=6 "
+                       "tess_inner=6 tess_outer=6";
+    assert_true(same_image(def, expl));
+    assert_int_equal(count(def).tes, count(expl).tes);
+}
+
+/* ---- cull ---------------------------------------------------------------- */
+
+/* From inside the closed cube (half-size 1, camera 0.5 from its centre)
+ * every face is a back face: cull=back draws nothing, cull=off covers every
+ * pixel.  Outside it (distance 8, all of it in view) cull=off also draws
+ * the 6 back triangles: the image stays the same (they are hidden), the
+ * fragment work grows (llvmpipe counts all 12 triangles in the clipping
+ * stage either way: its culling comes after). */
+static void test_cull_axis(void **state)
+{
+    (void)state;
+    assert_int_equal(covered("technique=phong mesh=cube camera.distance=0.5"), 0);
+    assert_int_equal(covered("technique=phong mesh=cube camera.distance=0.5 cull=off"), npix());
+    const char *back = "technique=phong mesh=cube camera.distance=8",
+               *off = "technique=phong mesh=cube camera.distance=8 cull=off";
+    stats sb = count(back), so = count(off);
+    printf("cube from outside: cull=back %llu fragment invocations, cull=off %llu\n",
+           (unsigned long long)sb.fs, (unsigned long long)so.fs);
+    assert_int_equal(sb.clip_in, 12);
+    assert_int_equal(so.clip_in, 12);
+    assert_true(so.fs > sb.fs);
+    assert_true(same_image(back, off));
+    assert_true(same_image(back, "technique=phong mesh=cube camera.distance=8 cull=back"));
+    /* a plane seen from below */
+    assert_int_equal(covered("technique=phong mesh=plane camera.elevation=-30"), 0);
+    assert_true(covered("technique=phong mesh=plane camera.elevation=-30 cull=off") > npix() / 10);
+}
+
+/* ---- attenuation ----------------------------------------------------------- */
+
+/* Centre pixel of an odd-sized target: the ray through the camera target,
+ * the origin, a point of the plane at distance light.distance ·
+ * camera.distance = 1.2 · 3 = 3.6 from light 0.  The lit part of a pixel
+ * is attenuation × (the same diffuse + specular), so against a render where
+ * s1's radius is below 3.6 (attenuation 0: ambient only) the ratio of the
+ * lit parts is the ratio of attenuations: s1 with r = 7.2 gives
+ * 1 - 3.6²/7.2² = 0.75, the default 1/(1 + 0.1·3.6 + 0.05·3.6²) = 1/2.008,
+ * none 1. */
+static void test_attenuation_s1(void **state)
+{
+    (void)state;
+    target(65, 65);
+    const char *base = "technique=phong mesh=plane maps=flat";
+    char spec[4][160];
+    snprintf(spec[0], sizeof spec[0], "%s attenuation=s1 light_radius=3.5", base);
+    snprintf(spec[1], sizeof spec[1], "%s attenuation=s1 light_radius=7.2", base);
+    snprintf(spec[2], sizeof spec[2], "%s", base);
+    snprintf(spec[3], sizeof spec[3], "%s attenuation=none", base);
+    float c[4][3];
+    size_t centre = 4 * (32 * 65 + 32);
+    for (int i = 0; i < 4; i++) {
+        float *px = render(spec[i]);
+        memcpy(c[i], px + centre, sizeof c[i]);
+        free(px);
+    }
+    double inv = 1.0 / (1.0 + 0.1 * 3.6 + 0.05 * 3.6 * 3.6);
+    for (int k = 0; k < 3; k++) {
+        double lit_s1 = c[1][k] - c[0][k], lit_inv = c[2][k] - c[0][k], lit_none = c[3][k] - c[0][k];
+        printf("channel %d: ambient %.6f, s1 %.6f, inverse-quadratic %.6f, none %.6f\n", k,
+               c[0][k], lit_s1, lit_inv, lit_none);
+        assert_true(lit_none > 0.05);
+        assert_float_equal(lit_s1 / lit_none, 0.75, 1e-4);
+        assert_float_equal(lit_inv / lit_none, inv, 1e-4);
+    }
+    /* the default is today's inverse-quadratic falloff */
+    assert_true(same_image(base, "technique=phong mesh=plane maps=flat attenuation=inverse-quadratic"));
+    target(256, 192);
+}
+
+/* ---- height_format in vertex-displacement --------------------------------- */
+
+/* View-space depth of the centre pixel (centre row and column of the
+ * target), from the depth buffer and the renderer's near 0.05 / far 100. */
+static double centre_depth(const char *spec)
+{
+    float *px = render(spec);
+    free(px);
+    float z;
+    glReadPixels(F.w / 2, F.h / 2, 1, 1, GL_DEPTH_COMPONENT, GL_FLOAT, &z);
+    double n = 0.05, f = 100, ndc = 2.0 * z - 1.0;
+    return 2.0 * n * f / (f + n - ndc * (f - n));
+}
+
+/* The flat map's height 0.5 is exact in r32f but 128/255 in r8 and
+ * 32768/65535 in r16: with height_scale 1 the r8 plane lies
+ * (128/255 - 0.5) = 0.00196 world units higher, seen from straight above
+ * 0.00196 nearer the camera; r16's offset is 128 times smaller. */
+static void test_vertex_height_format(void **state)
+{
+    (void)state;
+    target(65, 65);
+    const char *base = "technique=vertex-displacement mesh=plane maps=flat height_scale=1 "
+                       "camera.elevation=89.9";
+    char spec[160];
+    double d32 = centre_depth(base);
+    snprintf(spec, sizeof spec, "%s height_format=r8", base);
+    double d8 = centre_depth(spec);
+    snprintf(spec, sizeof spec, "%s height_format=r16", base);
+    double d16 = centre_depth(spec);
+    double want8 = 128.0 / 255.0 - 0.5;
+    printf("centre depth r32f %.7f, r8 %.7f (nearer by %.7f, expected %.7f), r16 %.7f\n", d32, d8,
+           d32 - d8, want8, d16);
+    assert_float_equal(d32, 3.0, 1e-3);
+    assert_float_equal(d32 - d8, want8, 0.1 * want8);
+    assert_true(fabs(d32 - d16) < 0.1 * want8);
+    snprintf(spec, sizeof spec, "%s height_format=r32f", base);
+    assert_true(same_image(base, spec));
+    target(256, 192);
+}
+
+/* ---- parallax_bias ------------------------------------------------------- */
+
+static void test_parallax_bias(void **state)
+{
+    (void)state;
+    const char *def = "technique=parallax mesh=plane maps=bricks height_scale=0.1";
+    assert_true(same_image(def, "technique=parallax mesh=plane maps=bricks height_scale=0.1 "
+                                "parallax_bias=0.5"));
+    float *a = render(def);
+    float *b = render("technique=parallax mesh=plane maps=bricks height_scale=0.1 parallax_bias=0");
+    double p = psnr(a, b, npix());
+    printf("parallax_bias 0 against the default 0.5: PSNR %.2f dB\n", p);
+    assert_true(isfinite(p) && p < 40.0);
+    free(a);
+    free(b);
+    /* with no depth the bias has nothing to scale */
+    assert_true(same_image("technique=parallax mesh=plane height_scale=0",
+                           "technique=parallax mesh=plane height_scale=0 parallax_bias=1"));
+}
+
+int main(void)
+{
+    const struct CMUnitTest tests[] = {
+        cmocka_unit_test(test_lod_cpu_levels),
+        cmocka_unit_test(test_lod_cpu_equals_shader),
+        cmocka_unit_test(test_inner_outer_counts),
+        cmocka_unit_test(test_cull_axis),
+        cmocka_unit_test(test_attenuation_s1),
+        cmocka_unit_test(test_vertex_height_format),
+        cmocka_unit_test(test_parallax_bias),
+    };
+    return cmocka_run_group_tests(tests, setup, teardown);
+}
