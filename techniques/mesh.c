@@ -120,13 +120,21 @@ static void mesh__fullscreen(mesh__builder *b)
     b->m->clip_space = 1;
 }
 
+/* Angle of the cylinder's segment boundary i of seg: one expression for the
+ * side and the caps, and i = seg is i = 0, so the rim and the side's UV
+ * seam share bit-identical positions (mesh_canonical joins them). */
+static float mesh__cyl_angle(int i, int seg)
+{
+    return 2 * MESH__PI * (float)(i % seg) / (float)seg;
+}
+
 /* One cap fan of the cylinder at height y (±1), `seg` triangles. */
 static void mesh__cap(mesh__builder *b, int seg, float y)
 {
     float n[3] = {0, y, 0}, c[3] = {0, y, 0};
     uint32_t centre = mesh__vert(b, c, n, 0.5f, 0.5f);
     for (int i = 0; i < seg; i++) {
-        float a = 2 * MESH__PI * (float)i / (float)seg;
+        float a = mesh__cyl_angle(i, seg);
         float p[3] = {sinf(a), y, cosf(a)};
         mesh__vert(b, p, n, 0.5f + 0.5f * p[0], 0.5f - 0.5f * y * p[2]);
     }
@@ -146,7 +154,7 @@ static void mesh__cylinder(mesh__builder *b, int seg)
     for (int j = 0; j <= MESH__CYL_STACKS; j++)
         for (int i = 0; i <= seg; i++) {
             float u = (float)i / (float)seg, v = (float)j / MESH__CYL_STACKS;
-            float a = 2 * MESH__PI * u;
+            float a = mesh__cyl_angle(i, seg);
             float n[3] = {sinf(a), 0, cosf(a)}, p[3] = {n[0], 2 * v - 1, n[2]};
             mesh__vert(b, p, n, u, v);
         }

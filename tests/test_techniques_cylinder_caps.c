@@ -41,10 +41,10 @@ static void render_img(const char *spec, img *im)
     free(px);
 }
 
-/* Cap pixels: where the undisplaced cylinder's world normal (debug view of
- * `normal` on the flat map) points up (y > 0.9), shrunk by `erode` pixels
- * so the rim and silhouette stay out. */
-static unsigned char *cap_mask(int erode)
+/* Pixels of the undisplaced cylinder (debug view of `normal` on the flat
+ * map) — only where its world normal points up (y > 0.9) with cap_only —
+ * shrunk by `erode` pixels so the rim and silhouette stay out. */
+static unsigned char *view_mask(int erode, int cap_only)
 {
     assert_int_equal(tech_renderer_set_debug_view(F.r, TECH_DEBUG_NORMALS), 0);
     float *px = render("technique=normal maps=flat " CAPS_VIEW);
@@ -52,13 +52,14 @@ static unsigned char *cap_mask(int erode)
     int w = F.w, h = F.h;
     unsigned char *m = calloc((size_t)w * h, 1), *tmp = calloc((size_t)w * h, 1);
     for (size_t i = 0; i < (size_t)w * h; i++)
-        m[i] = px[4 * i + 1] > 0.95f && px[4 * i + 3] > 0.5f;
+        m[i] = (!cap_only || px[4 * i + 1] > 0.95f) && px[4 * i + 3] > 0.5f;
     for (int e = 0; e < erode; e++) {
         memcpy(tmp, m, (size_t)w * h);
-        for (int y = 1; y + 1 < h; y++)
-            for (int x = 1; x + 1 < w; x++) {
+        for (int y = 0; y < h; y++)
+            for (int x = 0; x < w; x++) {   /* the image border counts as outside */
                 size_t i = (size_t)y * w + x;
-                m[i] = tmp[i] && tmp[i - 1] && tmp[i + 1] && tmp[i - w] && tmp[i + w];
+                m[i] = x > 0 && y > 0 && x + 1 < w && y + 1 < h && tmp[i] && tmp[i - 1] &&
+                       tmp[i + 1] && tmp[i - w] && tmp[i + w];
             }
     }
     free(tmp);
@@ -99,7 +100,7 @@ static void save_on_failure(int ok, const img *im, const char *name)
 static void test_cap_against_reference(void **state)
 {
     (void)state;
-    unsigned char *mask = cap_mask(3);
+    unsigned char *mask = view_mask(3, 1);
     img ref, t16, t64;
     render_img("technique=reference-mesh " CAPS_VIEW, &ref);
     render_img("technique=tess-displacement tess_level=16 crack_free=on " CAPS_VIEW, &t16);
@@ -120,37 +121,49 @@ static void test_cap_against_reference(void **state)
     free(mask);
 }
 
-static long crack_pixels_of(const char *spec)
+/* Background pixels of spec inside `inside` (the undisplaced cylinder
+ * shrunk by more than the largest displacement, so every one is a hole in
+ * the surface).  CrackPixels' flood fill is not used: at the bumpy back
+ * silhouette displaced bricks can enclose background pixels (several at
+ * this view before and after the fix), which are no cracks. */
+static long holes_of(const char *spec, const unsigned char *inside)
 {
     img im;
     render_img(spec, &im);
     unsigned char *m = malloc((size_t)im.w * im.h);
     quality_coverage(&im, m);
-    long c = quality_crack_pixels(m, im.w, im.h);
-    save_on_failure(c == 0, &im, "cracks");
+    long c = 0;
+    for (size_t i = 0; i < (size_t)im.w * im.h; i++)
+        c += inside[i] && !m[i];
+    save_on_failure(c == 0, &im, "holes");
     free(m);
     img_free(&im);
     return c;
 }
 
 /* The rim: cap and side displaced to one point, so no background shows
- * through with crack_free on (levels 1, 16, 64) nor in the reference; with
- * crack_free off the cap and side still part (two heights, two directions). */
+ * through the surface with crack_free on (levels 1, 16, 64) nor in the
+ * reference.  Before the fix level 1 showed 12 holes here: the rim and
+ * the side's u = 0/1 seam had positions a few ulps apart (two angle
+ * expressions), so the seam data did not join them. */
 static void test_rim_closed(void **state)
 {
     (void)state;
-    static const int levels[] = {16, 64, 1};
+    /* Largest displacement 0.5 · 0.06 world units ≈ 2.6 px here: erode 4. */
+    unsigned char *inside = view_mask(4, 0);
+    static const int levels[] = {1, 16, 64};
     char spec[256];
     for (int i = 0; i < 3; i++) {
         snprintf(spec, sizeof spec, "technique=tess-displacement tess_level=%d crack_free=on "
                  CAPS_VIEW, levels[i]);
-        long c = crack_pixels_of(spec);
-        printf("CrackPixels level %d crack_free on: %ld\n", levels[i], c);
+        long c = holes_of(spec, inside);
+        printf("holes level %d crack_free on: %ld\n", levels[i], c);
         assert_int_equal(c, 0);
     }
-    long r = crack_pixels_of("technique=reference-mesh " CAPS_VIEW);
-    printf("CrackPixels reference-mesh: %ld\n", r);
+    long r = holes_of("technique=reference-mesh " CAPS_VIEW, inside);
+    printf("holes reference-mesh: %ld\n", r);
     assert_int_equal(r, 0);
+    free(inside);
 }
 
 int main(void)
