@@ -176,14 +176,12 @@ static void test_ladder(void **state)
 static void test_stones_exception_is_misplacement(void **state)
 {
     (void)state;
-    static const rung r[] = {
-        {"texture", "technique=texture"},
-        {"normal", "technique=normal"},
-        {"normal32f", "technique=normal normal_format=rgba32f"},
-        {"bump", "technique=bump"},
-        {"parallax", "technique=parallax"},
-    };
     enum { TEX, NRM, NRM32, BUMP, PAR, N };
+    static const rung r[N] = {
+        [TEX] = {"texture", "technique=texture"}, [NRM] = {"normal", "technique=normal"},
+        [NRM32] = {"normal32f", "technique=normal normal_format=rgba32f"},
+        [BUMP] = {"bump", "technique=bump"}, [PAR] = {"parallax", "technique=parallax"},
+    };
     static const char *const scenes[] = {
         "mesh=plane maps=stones camera.elevation=30 height_scale=0.08 camera.distance=2",
         "mesh=plane maps=stones camera.elevation=89 height_scale=0.08 camera.distance=2",
