@@ -477,8 +477,8 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
         cull_build(&md, RENDER__CULL_CHUNK, &m->cull);
     m->bytes = mesh_bytes(&md);
     m->clip_space = md.clip_space;
-    float longest;
-    m->edge_median = mesh_edge_median(&md, &longest);
+    float longest = 0;   /* the long-edge rule is tessellation's (tess.tcs.glsl) */
+    m->edge_median = t->tcs ? mesh_edge_median(&md, &longest) : 0;
     m->edge_factor_max = mesh_edge_factor(longest, m->edge_median);
     glCreateVertexArrays(1, &m->vao);
     glCreateBuffers(1, &m->vbo);
