@@ -344,7 +344,7 @@ static int pair_cmp(const void *a, const void *b)
 static size_t open_edges(const mesh_data *m)
 {
     size_t nv = m->n_vertices, nt = m->n_indices / 3, bad = 0;
-    uint32_t *ord = malloc(nv * sizeof *ord), *id = malloc(nv * sizeof *id);
+    uint32_t *ord = malloc(2 * nv * sizeof *ord), *id = ord + nv;   /* one block */
     uint32_t *e = malloc(nt * 6 * sizeof *e), ne = 0;
     for (size_t i = 0; i < nv; i++)
         ord[i] = (uint32_t)i;
@@ -371,9 +371,8 @@ static size_t open_edges(const mesh_data *m)
             ;
         bad += hi - lo != 2;
     }
-    free(ord);
-    free(id);
     free(e);
+    free(ord);
     return bad;
 }
 
