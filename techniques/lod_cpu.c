@@ -1,5 +1,6 @@
 /* lod_cpu.c — distance LOD on the CPU (see lod_cpu.h). */
 #include "techniques/lod_cpu.h"
+#include "techniques/mesh.h"
 
 #include <math.h>
 
@@ -20,9 +21,16 @@ static void lod_cpu__edge(int patch_n, int i, int *a, int *b)
     *b = patch_n == 4 ? quad[i][1] : tri[i][1];
 }
 
+/* The long-edge factor of the edge a-b (tess.tcs.glsl, edge_factor). */
+static float lod_cpu__factor(const float *a, const float *b, float edge_ref)
+{
+    float dx = a[0] - b[0], dy = a[1] - b[1], dz = a[2] - b[2];
+    return (float)mesh_edge_factor(sqrtf(dx * dx + dy * dy + dz * dz), edge_ref);
+}
+
 /* The four slots of one patch whose corners are c[0..patch_n-1]. */
 static void lod_cpu__patch(const float *c[4], int patch_n, const float eye[3], float level,
-                           int per_edge, float out[4])
+                           float edge_ref, int per_edge, float out[4])
 {
     out[0] = out[1] = out[2] = out[3] = 0.0f;
     if (per_edge) {
@@ -32,26 +40,29 @@ static void lod_cpu__patch(const float *c[4], int patch_n, const float eye[3], f
             float m[3];
             for (int k = 0; k < 3; k++)
                 m[k] = 0.5f * (c[a][k] + c[b][k]);
-            out[i] = lod_cpu__at(eye, m, level);
+            out[i] = lod_cpu__at(eye, m, lod_cpu__factor(c[a], c[b], edge_ref) * level);
         }
         return;
     }
+    float f = 1.0f;   /* the patch's largest factor (patch_factor) */
+    for (int i = 0; i < patch_n; i++)
+        f = fmaxf(f, lod_cpu__factor(c[i], c[(i + 1) % patch_n], edge_ref));
     float centre[3] = {0.0f, 0.0f, 0.0f};
     for (int i = 0; i < patch_n; i++)
         for (int k = 0; k < 3; k++)
             centre[k] += c[i][k];
     for (int k = 0; k < 3; k++)
         centre[k] /= (float)patch_n;
-    out[0] = out[1] = out[2] = out[3] = lod_cpu__at(eye, centre, level);
+    out[0] = out[1] = out[2] = out[3] = lod_cpu__at(eye, centre, f * level);
 }
 
 void lod_cpu_levels(const float *pos, const uint32_t *idx, size_t n_patches, int patch_n,
-                    const float eye[3], float level, int per_edge, float *out)
+                    const float eye[3], float level, float edge_ref, int per_edge, float *out)
 {
     for (size_t p = 0; p < n_patches; p++) {
         const float *c[4] = {0};
         for (int i = 0; i < patch_n; i++)
             c[i] = pos + 3 * (size_t)idx[(size_t)patch_n * p + (size_t)i];
-        lod_cpu__patch(c, patch_n, eye, level, per_edge, out + 4 * p);
+        lod_cpu__patch(c, patch_n, eye, level, edge_ref, per_edge, out + 4 * p);
     }
 }

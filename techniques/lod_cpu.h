@@ -19,8 +19,11 @@
  * 1e-3), centre = the corners' mean; per_edge = 1 (crack_free): slot i =
  * level / max(|eye − midpoint of outer edge i|, 1e-3), outer edge i as GL
  * numbers them (triangles: the edge opposite corner i; quads: u=0, v=0,
- * u=1, v=1), unused slots 0.  Levels are not clamped (the shader clamps). */
+ * u=1, v=1), unused slots 0.  Each level is first multiplied by the long-edge
+ * factor (mesh_edge_factor of the edge's length against edge_ref, the mesh's
+ * median edge; per patch the largest of its edges'; edge_ref 0: factor 1),
+ * as the shader does.  Levels are not clamped (the shader clamps). */
 void lod_cpu_levels(const float *pos, const uint32_t *idx, size_t n_patches, int patch_n,
-                    const float eye[3], float level, int per_edge, float *out);
+                    const float eye[3], float level, float edge_ref, int per_edge, float *out);
 
 #endif

@@ -121,13 +121,21 @@ static void mesh__fullscreen(mesh__builder *b)
     b->m->clip_space = 1;
 }
 
+/* Angle of the cylinder's segment boundary i of seg: one expression for the
+ * side and the caps, and i = seg is i = 0, so the rim and the side's UV
+ * seam share bit-identical positions (mesh_canonical joins them). */
+static float mesh__cyl_angle(int i, int seg)
+{
+    return 2 * MESH__PI * (float)(i % seg) / (float)seg;
+}
+
 /* One cap fan of the cylinder at height y (±1), `seg` triangles. */
 static void mesh__cap(mesh__builder *b, int seg, float y)
 {
     float n[3] = {0, y, 0}, c[3] = {0, y, 0};
     uint32_t centre = mesh__vert(b, c, n, 0.5f, 0.5f);
     for (int i = 0; i < seg; i++) {
-        float a = 2 * MESH__PI * (float)i / (float)seg;
+        float a = mesh__cyl_angle(i, seg);
         float p[3] = {sinf(a), y, cosf(a)};
         mesh__vert(b, p, n, 0.5f + 0.5f * p[0], 0.5f - 0.5f * y * p[2]);
     }
@@ -147,7 +155,7 @@ static void mesh__cylinder(mesh__builder *b, int seg)
     for (int j = 0; j <= MESH__CYL_STACKS; j++)
         for (int i = 0; i <= seg; i++) {
             float u = (float)i / (float)seg, v = (float)j / MESH__CYL_STACKS;
-            float a = 2 * MESH__PI * u;
+            float a = mesh__cyl_angle(i, seg);
             float n[3] = {sinf(a), 0, cosf(a)}, p[3] = {n[0], 2 * v - 1, n[2]};
             mesh__vert(b, p, n, u, v);
         }
@@ -550,20 +558,54 @@ static int mesh__pos_cmp(const void *a, const void *b, void *ctx)
     return c ? c : (i > j) - (i < j);
 }
 
-void mesh_canonical(const mesh_data *m, float *uv, float *nrm)
+/* Sum of the unit normals of order[lo..hi) (one position), normalised; the
+ * first vertex's normal when all are bit-identical (a UV seam). */
+static void mesh__seam_normal(const mesh_data *m, const uint32_t *order, size_t lo, size_t hi,
+                              float out[3])
+{
+    memcpy(out, m->vertices[order[lo]].nrm, 3 * sizeof(float));
+    int same = 1;
+    for (size_t k = lo + 1; k < hi; k++)
+        same &= memcmp(m->vertices[order[k]].nrm, out, 3 * sizeof(float)) == 0;
+    if (same)
+        return;
+    float sum[3] = {0, 0, 0};
+    for (size_t k = lo; k < hi; k++)
+        for (int c = 0; c < 3; c++)
+            sum[c] += m->vertices[order[k]].nrm[c];
+    if (mesh__normalize(sum))
+        memcpy(out, sum, sizeof sum);
+}
+
+void mesh_canonical_index(const mesh_data *m, uint32_t *first, float *uv, float *nrm)
 {
     uint32_t *order = dm_xmalloc((m->n_vertices + 1) * sizeof *order);
     for (size_t i = 0; i < m->n_vertices; i++)
         order[i] = (uint32_t)i;
     qsort_r(order, m->n_vertices, sizeof *order, mesh__pos_cmp, (void *)m);
-    for (size_t k = 0, first = 0; k < m->n_vertices; k++) {
-        if (memcmp(m->vertices[order[k]].pos, m->vertices[order[first]].pos, sizeof m->vertices[0].pos))
-            first = k;   /* a new position: the run's lowest index comes first */
-        const mesh_vertex *c = &m->vertices[order[first]];
-        memcpy(&uv[2 * order[k]], c->uv, 2 * sizeof(float));
-        memcpy(&nrm[3 * order[k]], c->nrm, 3 * sizeof(float));
+    for (size_t lo = 0, hi; lo < m->n_vertices; lo = hi) {
+        const mesh_vertex *c = &m->vertices[order[lo]];   /* the run's lowest index */
+        for (hi = lo + 1; hi < m->n_vertices &&
+             memcmp(m->vertices[order[hi]].pos, c->pos, sizeof c->pos) == 0; hi++)
+            ;
+        float n[3];
+        if (nrm)
+            mesh__seam_normal(m, order, lo, hi, n);
+        for (size_t k = lo; k < hi; k++) {
+            if (first)
+                first[order[k]] = order[lo];
+            if (uv)
+                memcpy(&uv[2 * order[k]], c->uv, 2 * sizeof(float));
+            if (nrm)
+                memcpy(&nrm[3 * order[k]], n, sizeof n);
+        }
     }
     free(order);
+}
+
+void mesh_canonical(const mesh_data *m, float *uv, float *nrm)
+{
+    mesh_canonical_index(m, NULL, uv, nrm);
 }
 
 size_t mesh_bytes(const mesh_data *m)
@@ -597,30 +639,243 @@ float mesh_height_bilinear(const float *height, int size, float u, float v)
     return top + (bot - top) * fy;
 }
 
-/* Vertex at integer barycentric weights w[3]/k of triangle t: each field is
- * summed over the corners in increasing vertex-index order, so a point on
- * an edge shared by two triangles comes out bit-identical in both. */
-static void mesh__blend(const mesh_data *m, const uint32_t *t, const int w[3], int k,
+/* ---- edge lengths (per-edge levels and splits) ------------------------- */
+
+static int mesh__float_cmp(const void *a, const void *b)
+{
+    float x = *(const float *)a, y = *(const float *)b;
+    return (x > y) - (x < y);
+}
+
+static float mesh__edge_len(const mesh_data *m, uint32_t a, uint32_t b)
+{
+    float d[3];
+    for (int c = 0; c < 3; c++)
+        d[c] = m->vertices[a].pos[c] - m->vertices[b].pos[c];
+    return sqrtf(mesh__dot(d, d));
+}
+
+float mesh_edge_median(const mesh_data *m, float *longest)
+{
+    size_t n = m->n_indices - m->n_indices % 3;
+    if (longest)
+        *longest = 0;
+    if (!n)
+        return 0;
+    float *len = dm_xmalloc(n * sizeof *len);
+    for (size_t i = 0; i < n; i++)
+        len[i] = mesh__edge_len(m, m->indices[i], m->indices[i - i % 3 + (i + 1) % 3]);
+    qsort(len, n, sizeof *len, mesh__float_cmp);
+    float med = len[n / 2];
+    if (longest)
+        *longest = len[n - 1];
+    free(len);
+    return med;
+}
+
+int mesh_edge_factor(float len, float median)
+{
+    if (!(median > 0))
+        return 1;
+    float f = floorf(len / median + MESH_EDGE_FACTOR_SLACK);
+    return f < 1 ? 1 : f > 64 ? 64 : (int)f;
+}
+
+/* ---- CPU subdivision and displacement (reference-mesh) ------------------- */
+
+/* What the subdivision of one mesh shares across its triangles. */
+typedef struct mesh__sub {
+    const mesh_data *in;
+    uint32_t *first;          /* canonical (lowest-index) vertex at each position */
+    float *cuv, *cnrm;        /* canonical UV and averaged normal per vertex */
+    unsigned char *seam_edge; /* per index slot i: edge (i, next in triangle) is a seam */
+    unsigned char *seam_vert; /* per vertex: on some seam edge */
+    float median;
+    int k;
+    const float *height;
+    int size;
+    float scale;
+} mesh__sub;
+
+/* Edge record for seam detection: canonical pair, own pair, index slot. */
+typedef struct mesh__edge { uint32_t ca, cb, a, b, slot; } mesh__edge;
+
+static int mesh__edge_cmp(const void *x, const void *y)
+{
+    const mesh__edge *p = x, *q = y;
+    const uint32_t u[4] = {p->ca, p->cb, p->a, p->b}, v[4] = {q->ca, q->cb, q->a, q->b};
+    for (int i = 0; i < 4; i++)
+        if (u[i] != v[i])
+            return (u[i] > v[i]) - (u[i] < v[i]);
+    return 0;
+}
+
+/* Marks seam edges: edges whose two positions are also joined by an edge of
+ * other vertices (a UV seam or a crease such as the cylinder's rim). */
+static void mesh__find_seams(mesh__sub *s)
+{
+    const mesh_data *m = s->in;
+    size_t n = m->n_indices - m->n_indices % 3;
+    mesh__edge *e = dm_xmalloc((n + 1) * sizeof *e);
+    for (size_t i = 0; i < n; i++) {
+        uint32_t a = m->indices[i], b = m->indices[i - i % 3 + (i + 1) % 3];
+        uint32_t ca = s->first[a], cb = s->first[b];
+        int swap = ca > cb || (ca == cb && a > b);
+        e[i] = (mesh__edge){swap ? cb : ca, swap ? ca : cb, swap ? b : a, swap ? a : b, (uint32_t)i};
+    }
+    qsort(e, n, sizeof *e, mesh__edge_cmp);
+    for (size_t lo = 0, hi; lo < n; lo = hi) {
+        int seam = 0;
+        for (hi = lo + 1; hi < n && e[hi].ca == e[lo].ca && e[hi].cb == e[lo].cb; hi++)
+            seam |= e[hi].a != e[lo].a || e[hi].b != e[lo].b;
+        for (size_t k = lo; seam && k < hi; k++) {
+            s->seam_edge[e[k].slot] = 1;
+            s->seam_vert[e[k].a] = s->seam_vert[e[k].b] = 1;
+        }
+    }
+    free(e);
+}
+
+/* Blend of the triangle's corners with integer weights w[3]/k, summed in
+ * increasing canonical-index order, so a point on an edge shared by two
+ * triangles (also across a seam) comes out bit-identical in both. */
+static void mesh__blend(const mesh__sub *s, const uint32_t *t, const int w[3], int k,
                         mesh_vertex *out)
 {
     int o[3] = {0, 1, 2};
     for (int a = 0; a < 2; a++)
-        for (int b = a + 1; b < 3; b++)
-            if (t[o[b]] < t[o[a]]) {
+        for (int b = a + 1; b < 3; b++) {
+            uint32_t fa = s->first[t[o[a]]], fb = s->first[t[o[b]]];
+            if (fb < fa || (fb == fa && t[o[b]] < t[o[a]])) {
                 int x = o[a];
                 o[a] = o[b];
                 o[b] = x;
             }
+        }
     float *dst = (float *)out;
     const size_t nf = sizeof(mesh_vertex) / sizeof(float);
     memset(out, 0, sizeof *out);
     for (int c = 0; c < 3; c++) {
-        const float *src = (const float *)&m->vertices[t[o[c]]];
+        const float *src = (const float *)&s->in->vertices[t[o[c]]];
         float wc = (float)w[o[c]] / (float)k;
         for (size_t f = 0; f < nf; f++)
             dst[f] += wc * src[f];
     }
-    out->tan[3] = m->vertices[t[0]].tan[3];
+    out->tan[3] = s->in->vertices[t[0]].tan[3];
+}
+
+/* Height UV and displacement direction of a seam point with weights w/k:
+ * the corners' canonical UVs, unwrapped by whole tiles toward the smallest
+ * (the maps tile), and their averaged normals. */
+static void mesh__seam_data(const mesh__sub *s, const uint32_t *t, const int w[3], int k,
+                            float uv[2], float n[3])
+{
+    float ref[2] = {1e30f, 1e30f};
+    for (int c = 0; c < 3; c++) {
+        const float *u = &s->cuv[2 * t[c]];
+        if (w[c] > 0 && (u[0] < ref[0] || (u[0] == ref[0] && u[1] < ref[1])))
+            memcpy(ref, u, sizeof ref);
+    }
+    memset(uv, 0, 2 * sizeof(float));
+    memset(n, 0, 3 * sizeof(float));
+    for (int c = 0; c < 3; c++) {
+        float wc = (float)w[c] / (float)k;
+        for (int d = 0; d < 2 && w[c] > 0; d++)
+            uv[d] += wc * (s->cuv[2 * t[c] + d] + roundf(ref[d] - s->cuv[2 * t[c] + d]));
+        for (int d = 0; d < 3; d++)
+            n[d] += wc * s->cnrm[3 * t[c] + d];
+    }
+    mesh__normalize(n);
+}
+
+/* Grid point w/kt of triangle slot ti, displaced.  A point on an edge split
+ * into fewer segments than kt snaps to the edge's own grid (degenerate
+ * triangles, no T-junction); points on seam edges and seam corners take the
+ * shared seam data. */
+static void mesh__sub_point(const mesh__sub *s, size_t ti, int w[3], int kt, const int *ne,
+                            mesh_vertex *v)
+{
+    const uint32_t *t = &s->in->indices[ti];
+    int k = kt, zero = -1, nz = 0, seam = 0;
+    for (int c = 0; c < 3; c++)
+        if (w[c] == 0) {
+            zero = c;
+            nz++;
+        }
+    if (nz == 1) {   /* on the edge opposite corner `zero`: slot (zero + 1) */
+        int a = (zero + 1) % 3, b = (zero + 2) % 3, n = ne[a];
+        seam = s->seam_edge[ti + (size_t)a];
+        if (n < kt) {
+            w[a] = (int)lround((double)w[a] * n / kt);
+            w[b] = n - w[a];
+            k = n;
+        }
+    } else if (nz == 2) {
+        for (int c = 0; c < 3; c++)
+            seam |= w[c] > 0 && s->seam_vert[t[c]];
+    }
+    mesh__blend(s, t, w, k, v);
+    mesh__normalize(v->nrm);
+    float uv[2] = {v->uv[0], v->uv[1]}, dir[3];
+    memcpy(dir, v->nrm, sizeof dir);
+    if (seam)
+        mesh__seam_data(s, t, w, k, uv, dir);
+    float d = s->height ? (mesh_height_bilinear(s->height, s->size, uv[0], uv[1]) - MESH_SURFACE_H0) * s->scale : 0;
+    for (int c = 0; c < 3; c++)
+        v->pos[c] += dir[c] * d;
+}
+
+/* Splits of each edge of triangle slot ti (ne[i]: edge from corner i to
+ * i+1) and of its interior (the largest). */
+static int mesh__sub_splits(const mesh__sub *s, size_t ti, int ne[3])
+{
+    const uint32_t *t = &s->in->indices[ti];
+    int kt = 0;
+    for (int i = 0; i < 3; i++) {
+        ne[i] = s->k * mesh_edge_factor(mesh__edge_len(s->in, t[i], t[(i + 1) % 3]), s->median);
+        kt = ne[i] > kt ? ne[i] : kt;
+    }
+    return kt;
+}
+
+/* Appends triangle slot ti split kt² (a barycentric grid). */
+static void mesh__sub_triangle(const mesh__sub *s, size_t ti, mesh__builder *b)
+{
+    int ne[3], kt = mesh__sub_splits(s, ti, ne);
+    uint32_t first = (uint32_t)b->m->n_vertices;
+    for (int j = 0; j <= kt; j++)
+        for (int i = 0; i + j <= kt; i++) {
+            int w[3] = {kt - i - j, i, j};
+            mesh_vertex v;
+            mesh__sub_point(s, ti, w, kt, ne, &v);
+            uint32_t id = mesh__vert(b, v.pos, v.nrm, v.uv[0], v.uv[1]);
+            memcpy(b->m->vertices[id].tan, v.tan, sizeof v.tan);
+        }
+    /* Row j starts at first + j(kt+1) - j(j-1)/2 and holds kt+1-j points. */
+    for (int j = 0; j < kt; j++) {
+        uint32_t r0 = first + (uint32_t)(j * (kt + 1) - j * (j - 1) / 2);
+        uint32_t r1 = r0 + (uint32_t)(kt + 1 - j);
+        for (int i = 0; i + j < kt; i++) {
+            mesh__tri(b, r0 + (uint32_t)i, r0 + (uint32_t)i + 1, r1 + (uint32_t)i);
+            if (i + j + 1 < kt)
+                mesh__tri(b, r0 + (uint32_t)i + 1, r1 + (uint32_t)i + 1, r1 + (uint32_t)i);
+        }
+    }
+}
+
+size_t mesh_subdivide_cost(const mesh_data *m, int k)
+{
+    float med = mesh_edge_median(m, NULL);
+    size_t sum = 0;
+    for (size_t ti = 0; ti + 2 < m->n_indices; ti += 3) {
+        int f = 1;
+        for (int i = 0; i < 3; i++) {
+            int fi = mesh_edge_factor(mesh__edge_len(m, m->indices[ti + i], m->indices[ti + (i + 1) % 3]), med);
+            f = fi > f ? fi : f;
+        }
+        sum += (size_t)f * (size_t)f;
+    }
+    return sum * (size_t)k * (size_t)k;
 }
 
 int mesh_subdivide_displace(const mesh_data *in, int k, const float *height, int size,
@@ -628,35 +883,22 @@ int mesh_subdivide_displace(const mesh_data *in, int k, const float *height, int
 {
     if (!in || !out || k < 1 || (height && size < 1))
         return DM_ERR_ARG;
+    size_t nv = in->n_vertices + 1;
+    mesh__sub s = {in, dm_xmalloc(nv * sizeof(uint32_t)), dm_xmalloc(nv * 2 * sizeof(float)),
+                   dm_xmalloc(nv * 3 * sizeof(float)), dm_xcalloc(in->n_indices + 1, 1),
+                   dm_xcalloc(nv, 1), mesh_edge_median(in, NULL), k, height, size, scale};
+    mesh_canonical_index(in, s.first, s.cuv, s.cnrm);
+    mesh__find_seams(&s);
     mesh_data m = {0};
     mesh__builder b = {&m, 0, 0};
-    for (size_t ti = 0; ti + 2 < in->n_indices; ti += 3) {
-        const uint32_t *t = &in->indices[ti];
-        uint32_t first = (uint32_t)m.n_vertices;
-        for (int j = 0; j <= k; j++)
-            for (int i = 0; i + j <= k; i++) {
-                int w[3] = {k - i - j, i, j};
-                mesh_vertex v;
-                mesh__blend(in, t, w, k, &v);
-                mesh__normalize(v.nrm);
-                float d = height ? (mesh_height_bilinear(height, size, v.uv[0], v.uv[1]) - MESH_SURFACE_H0) * scale : 0;
-                uint32_t id = mesh__vert(&b, v.pos, v.nrm, v.uv[0], v.uv[1]);
-                for (int c = 0; c < 3; c++)
-                    m.vertices[id].pos[c] += v.nrm[c] * d;
-                memcpy(m.vertices[id].tan, v.tan, sizeof v.tan);
-            }
-        /* Row j starts at first + j(k+1) - j(j-1)/2 and holds k+1-j points. */
-        for (int j = 0; j < k; j++) {
-            uint32_t r0 = first + (uint32_t)(j * (k + 1) - j * (j - 1) / 2);
-            uint32_t r1 = r0 + (uint32_t)(k + 1 - j);
-            for (int i = 0; i + j < k; i++) {
-                mesh__tri(&b, r0 + (uint32_t)i, r0 + (uint32_t)i + 1, r1 + (uint32_t)i);
-                if (i + j + 1 < k)
-                    mesh__tri(&b, r0 + (uint32_t)i + 1, r1 + (uint32_t)i + 1, r1 + (uint32_t)i);
-            }
-        }
-    }
+    for (size_t ti = 0; ti + 2 < in->n_indices; ti += 3)
+        mesh__sub_triangle(&s, ti, &b);
     m.clip_space = in->clip_space;
     *out = m;
+    free(s.first);
+    free(s.cuv);
+    free(s.cnrm);
+    free(s.seam_edge);
+    free(s.seam_vert);
     return 0;
 }

@@ -120,22 +120,47 @@ float mesh_height_bilinear(const float *height, int size, float u, float v);
  * convention of every technique that reads heights (SURFACE_H0 in the GLSL,
  * docs/techniques.md). */
 #define MESH_SURFACE_H0 0.5f
-/* Splits every triangle of `in` into k² triangles (a barycentric grid, k ≥ 1;
- * points on shared edges are bit-identical in both triangles) and, when
- * height is given, moves every new vertex along its interpolated unit normal
- * by (h − MESH_SURFACE_H0)·scale, h = mesh_height_bilinear at its
- * interpolated UV.
+/* Edge-length rule shared by tess-displacement's levels and the reference
+ * mesh's splits: an edge f times longer than the mesh's median edge gets f
+ * times the level / splits, f = max(1, floor(len / median + SLACK)) (at most
+ * 64), so long edges such as the cylinder's cap spokes are sampled as
+ * densely as the rest while meshes of near-equal edges keep f = 1.  The
+ * slack absorbs rounding of lengths that are whole multiples (the GLSL rule
+ * in tess.tcs.glsl is the same). */
+#define MESH_EDGE_FACTOR_SLACK 0.01f
+/* Median of the triangles' edge lengths (object units, every triangle's
+ * three edges); *longest (if given) gets the longest.  0 for no triangles. */
+float mesh_edge_median(const mesh_data *m, float *longest);
+int mesh_edge_factor(float len, float median);
+/* Splits every triangle of `in` into a barycentric grid (points on shared
+ * edges are bit-identical in both triangles, also across UV seams and
+ * creases) and, when height is given, moves every new vertex along its
+ * interpolated unit normal by (h − MESH_SURFACE_H0)·scale, h =
+ * mesh_height_bilinear at its interpolated UV.  An edge is split k·f times
+ * (f = mesh_edge_factor of its length), a triangle's interior as its most
+ * split edge; a point on a less split edge snaps to that edge's grid, so
+ * the result is watertight (degenerate triangles, no T-junctions).  Points
+ * on seam edges (two positions joined by edges of different vertices: a UV
+ * seam, the cylinder's rim) and their corners read h at the corners'
+ * canonical UVs and move along their averaged normals (mesh_canonical),
+ * so both sides displace a shared point identically.
  * Normals and tangents stay those of the undisplaced surface (per-pixel
  * normals come from the height field).  Returns 0 and out owns its arrays,
- * or DM_ERR_ARG. */
+ * or DM_ERR_ARG (k < 1). */
 int mesh_subdivide_displace(const mesh_data *in, int k, const float *height, int size,
                             float scale, mesh_data *out);
+/* Triangles mesh_subdivide_displace(m, k, ...) produces. */
+size_t mesh_subdivide_cost(const mesh_data *m, int k);
 /* Seam data for crack-free tessellation: vertices at the same position
- * (bit-identical) are one surface point; each gets the UV and normal of the
- * lowest-index vertex at its position (uv: 2, nrm: 3 floats per vertex), so
- * patches on both sides of a UV seam can sample and displace their shared
- * edge alike. */
+ * (bit-identical) are one surface point; each gets the UV of the
+ * lowest-index vertex at its position and the normalised sum of the unit
+ * normals there (the lowest-index vertex's normal when all are equal, as
+ * on a UV seam): uv 2, nrm 3 floats per vertex.  Patches on both sides of
+ * a seam or a crease (the cylinder's rim) then sample and displace their
+ * shared edge alike.  mesh_canonical_index also gives the lowest index at
+ * each vertex's position (first, 1 per vertex); any output may be NULL. */
 void mesh_canonical(const mesh_data *m, float *uv, float *nrm);
+void mesh_canonical_index(const mesh_data *m, uint32_t *first, float *uv, float *nrm);
 /* Bytes the mesh occupies on the GPU (vertex + index buffers). */
 size_t mesh_bytes(const mesh_data *m);
 void mesh_free(mesh_data *m);

@@ -49,7 +49,7 @@
 static const char *const render__uniform_names[RU_COUNT] = {
     "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
     "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_viewport",
-    "u_normal_xy_scale", "u_lod_base"
+    "u_normal_xy_scale", "u_lod_base", "u_tess_edge_ref"
 };
 
 int tech_renderer_create(tech_renderer **out)
@@ -411,6 +411,8 @@ static int render__mesh_displace(const render__cfg *c, mesh_data *base)
     size_t tris = base->n_indices / 3 ? base->n_indices / 3 : 1;
     int k = (int)floor(sqrt((double)RENDER__REFERENCE_TRIANGLES / (double)tris));
     k = k < 1 ? 1 : k > 512 ? 512 : k;
+    while (k > 1 && mesh_subdivide_cost(base, k) > 2 * (size_t)RENDER__REFERENCE_TRIANGLES)
+        k--;   /* long edges get more splits (mesh.h): at most twice the budget */
     mesh_data out;
     rc = mesh_subdivide_displace(base, k, ms.height, ms.size,
                                  (float)atof(render__get(c, "height_scale")), &out);
@@ -482,6 +484,9 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
         cull_build(&md, RENDER__CULL_CHUNK, &m->cull);
     m->bytes = mesh_bytes(&md);
     m->clip_space = md.clip_space;
+    float longest = 0;   /* the long-edge rule is tessellation's (tess.tcs.glsl) */
+    m->edge_median = t->tcs ? mesh_edge_median(&md, &longest) : 0;
+    m->edge_factor_max = mesh_edge_factor(longest, m->edge_median);
     glCreateVertexArrays(1, &m->vao);
     glCreateBuffers(1, &m->vbo);
     glCreateBuffers(1, &m->ibo);
@@ -571,12 +576,13 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
  * tenth of its triangles; the counters still count them), so a draw is
  * split into calls of at most 65 535 / V patches, V = the most vertices one
  * triangle patch can produce at the item's highest level (lod distance can
- * reach 64; fractional spacing rounds up to the next even level + 2). */
-static size_t render__patch_chunk(const render__cfg *c, int quads)
+ * reach 64, long edges get `edge_factor` times the level (mesh.h);
+ * fractional spacing rounds up to the next even level + 2). */
+static size_t render__patch_chunk(const render__cfg *c, int quads, int edge_factor)
 {
-    int L = atoi(render__get(c, "tess_level"));
+    int L = atoi(render__get(c, "tess_level")) * edge_factor;
     if (strcmp(render__get(c, "lod"), "distance") == 0 ||
-        strcmp(render__get(c, "lod"), "cpu-distance") == 0)
+        strcmp(render__get(c, "lod"), "cpu-distance") == 0 || L > 64)
         L = 64;
     int half = (L + 3) / 2 + 1;
     size_t v = quads ? (size_t)(L + 3) * (size_t)(L + 3)
@@ -640,7 +646,8 @@ int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_it
     render__cull_setup(r, &it, &c);
     if (it.tech->tcs || it.tech->tes) {
         it.patch_vertices = r->meshes[it.mesh].n_quad_indices && it.tech->tcs ? 4 : 3;
-        it.patch_chunk = render__patch_chunk(&c, it.patch_vertices == 4);
+        it.patch_chunk = render__patch_chunk(&c, it.patch_vertices == 4,
+                                             r->meshes[it.mesh].edge_factor_max);
         render__lod_setup(r, &it, &c);
     }
     it.cull_off = strcmp(render__get(&c, "cull"), "off") == 0;
@@ -753,6 +760,7 @@ static void render__uniforms(tech_renderer *r, const render__item *it, const flo
     glUniform1f(L[RU_F0], 0.04f);
     glUniform2f(L[RU_VIEWPORT], viewport[0], viewport[1]);
     glUniform1f(L[RU_NORMAL_XY_SCALE], render__normal_xy_scale(r, it));
+    glUniform1f(L[RU_TESS_EDGE_REF], r->meshes[it->mesh].edge_median);
     for (size_t a = 0; a < axes_count(); a++) {
         if (p->axis_loc[a] < 0)
             continue;
@@ -777,7 +785,7 @@ static void render__lod_upload(tech_renderer *r, const render__item *it, const f
     render__camera(r, it, viewport, eye, vp);
     const axis_info *tl = axes_find("tess_level");
     lod_cpu_levels(m->cpu_pos, idx, n, pn, eye, (float)(int)it->axis_val[tl - axes_at(0)],
-                   it->lod_per_edge, it->lod_levels);
+                   m->edge_median, it->lod_per_edge, it->lod_levels);
     glNamedBufferSubData(it->lod_buf, 0, (GLsizeiptr)(n * 4 * sizeof(float)), it->lod_levels);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, it->lod_buf);
 }

@@ -30,7 +30,7 @@
 enum render__uniform {
     RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
     RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_VIEWPORT, RU_NORMAL_XY_SCALE,
-    RU_LOD_BASE, RU_COUNT
+    RU_LOD_BASE, RU_TESS_EDGE_REF, RU_COUNT
 };
 
 typedef struct render__program {
@@ -47,6 +47,8 @@ typedef struct render__mesh {
     size_t n_quad_indices;       /* quad patches after the triangles (mesh.h), 0 = none */
     cull_set cull;               /* triangle chunks with bounds (visibility_test), n = 0: none */
     GLuint seam_vbo;             /* patch meshes: canonical UV + normal per vertex, else 0 */
+    float edge_median;           /* median edge length (mesh_edge_median): u_tess_edge_ref */
+    int edge_factor_max;         /* largest mesh_edge_factor of its edges */
     int clip_space;
     float *cpu_pos;              /* patch meshes: xyz per vertex kept for lod=cpu-distance */
     uint32_t *cpu_idx;           /* patch meshes: the index list (triangles, then quads) */

@@ -60,10 +60,13 @@ static size_t covered(const char *spec)
 /* ---- lod = cpu-distance -------------------------------------------------- */
 
 /* Triangle patches (sphere) and quad patches (terrain) close enough for
- * the distance levels to vary from patch to patch. */
-static const char *const lod_scene[2] = {
+ * the distance levels to vary from patch to patch; the cylinder's cap
+ * spokes carry a long-edge factor of 6 (mesh_edge_factor), which the CPU
+ * side must apply as the shader does. */
+static const char *const lod_scene[3] = {
     "mesh=sphere mesh_density=2 camera.distance=2.2 tess_level=12",
     "mesh=terrain camera.distance=1.6 camera.elevation=35 tess_level=10",
+    "mesh=cylinder camera.distance=2.5 camera.elevation=50 tess_level=4",
 };
 
 /* The shader's distance LOD and the same LOD computed on the CPU give the
@@ -72,7 +75,7 @@ static const char *const lod_scene[2] = {
 static void test_lod_cpu_equals_shader(void **state)
 {
     (void)state;
-    for (int s = 0; s < 2; s++)
+    for (int s = 0; s < 3; s++)
         for (int cf = 0; cf < 2; cf++) {
             char a[256], b[256], u[256];
             const char *crack = cf ? "crack_free=on" : "crack_free=off";
@@ -101,11 +104,11 @@ static void test_lod_cpu_levels(void **state)
     const uint32_t idx[] = {0, 1, 2, 3, 4, 5};
     const float eye[3] = {1, 1, -2};
     float out[8];
-    lod_cpu_levels(pos, idx, 2, 3, eye, 12.0f, 0, out);
+    lod_cpu_levels(pos, idx, 2, 3, eye, 12.0f, 0.0f, 0, out);
     assert_float_equal(out[0], 12.0f / 2.0f, 1e-6);      /* centre (1,1,0) at distance 2 */
     assert_float_equal(out[3], 12.0f / 2.0f, 1e-6);
     assert_float_equal(out[4], 12.0f / 8.0f, 1e-6);      /* centre (1,1,6) at distance 8 */
-    lod_cpu_levels(pos, idx, 1, 3, eye, 12.0f, 1, out);
+    lod_cpu_levels(pos, idx, 1, 3, eye, 12.0f, 0.0f, 1, out);
     /* edge 0 = corners 1-2, midpoint (1.5,1.5,0): distance sqrt(0.5 + 4) */
     assert_float_equal(out[0], 12.0f / sqrtf(4.5f), 1e-5);
     /* edge 2 = corners 0-1, midpoint (1.5,0,0): distance sqrt(0.25 + 1 + 4) */

@@ -326,6 +326,80 @@ static void test_subdivide_displace(void **state)
     mesh_free(&p);
 }
 
+/* Position ids: equal float bytes = one id (qsort of indices by bytes). */
+static const mesh_data *pos_mesh;
+static int pos_cmp(const void *a, const void *b)
+{
+    uint32_t i = *(const uint32_t *)a, j = *(const uint32_t *)b;
+    return memcmp(pos_mesh->vertices[i].pos, pos_mesh->vertices[j].pos, sizeof(float) * 3);
+}
+
+static int pair_cmp(const void *a, const void *b)
+{
+    const uint32_t *x = a, *y = b;
+    return x[0] != y[0] ? (x[0] > y[0]) - (x[0] < y[0]) : (x[1] > y[1]) - (x[1] < y[1]);
+}
+
+/* Edges (by position) of the non-degenerate triangles of m used by other
+ * than exactly two triangles: 0 for a closed, watertight surface. */
+static size_t open_edges(const mesh_data *m)
+{
+    size_t nv = m->n_vertices, nt = m->n_indices / 3, bad = 0;
+    uint32_t *ord = malloc(2 * nv * sizeof *ord), *id = ord + nv;   /* one block */
+    uint32_t *e = malloc(nt * 6 * sizeof *e), ne = 0;
+    for (size_t i = 0; i < nv; i++)
+        ord[i] = (uint32_t)i;
+    pos_mesh = m;
+    qsort(ord, nv, sizeof *ord, pos_cmp);
+    for (size_t k = 0, cur = 0; k < nv; k++) {
+        if (k && pos_cmp(&ord[k], &ord[k - 1]) != 0)
+            cur++;
+        id[ord[k]] = (uint32_t)cur;
+    }
+    for (size_t t = 0; t < nt; t++) {
+        uint32_t v[3] = {id[m->indices[3 * t]], id[m->indices[3 * t + 1]], id[m->indices[3 * t + 2]]};
+        if (v[0] == v[1] || v[1] == v[2] || v[0] == v[2])
+            continue;   /* snapped (degenerate) triangle */
+        for (int c = 0; c < 3; c++, ne++) {
+            uint32_t a = v[c], b = v[(c + 1) % 3];
+            e[2 * ne] = a < b ? a : b;
+            e[2 * ne + 1] = a < b ? b : a;
+        }
+    }
+    qsort(e, ne, 2 * sizeof *e, pair_cmp);
+    for (size_t lo = 0, hi; lo < ne; lo = hi) {
+        for (hi = lo + 1; hi < ne && pair_cmp(&e[2 * hi], &e[2 * lo]) == 0; hi++)
+            ;
+        bad += hi - lo != 2;
+    }
+    free(e);
+    free(ord);
+    return bad;
+}
+
+/* The cylinder's reference: cap spokes (6× the median edge) get 6× the
+ * splits, and the displaced mesh is closed — the rim (cap and side share
+ * positions, not vertices) and the side's u = 0/1 seam displace alike, and
+ * the less split rim edges snap instead of leaving T-junctions. */
+static void test_subdivide_cylinder_watertight(void **state)
+{
+    (void)state;
+    mesh_data c = build("cylinder", 0), s;
+    float longest, med = mesh_edge_median(&c, &longest);
+    assert_float_equal(med, 1.0 / 6.0, 1e-5);        /* a side's vertical edge */
+    assert_int_equal(mesh_edge_factor(longest, med), 6);   /* a spoke */
+    assert_int_equal(mesh_edge_factor(0.1986f, med), 1);   /* a side's diagonal */
+    assert_int_equal(mesh_subdivide_cost(&c, 2), 4 * (1392 + 116 * 36));
+    float h[64];
+    for (int i = 0; i < 64; i++)
+        h[i] = (float)((i * 37) % 64) / 63.0f;   /* rough, so any gap shows */
+    assert_int_equal(mesh_subdivide_displace(&c, 2, h, 8, 0.2f, &s), 0);
+    assert_int_equal(s.n_indices / 3, mesh_subdivide_cost(&c, 2));
+    assert_int_equal(open_edges(&s), 0);
+    mesh_free(&s);
+    mesh_free(&c);
+}
+
 static char *write_tmp(const char *ext, const char *text)
 {
     char *path = dm_xasprintf("/tmp/dm_geom_test_%d.%s", (int)getpid(), ext);
@@ -412,5 +486,6 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_seam_and_halfflat),
              cmocka_unit_test(test_height_bilinear),
              cmocka_unit_test(test_subdivide_displace),
+             cmocka_unit_test(test_subdivide_cylinder_watertight),
              cmocka_unit_test(test_user_mesh_obj),
              cmocka_unit_test(test_user_mesh_ply_gltf))

@@ -10,6 +10,11 @@
 //                          points varies by more than FLAT_EPS, else 1
 // LOD_UNIFORM: u_tess_outer / u_tess_inner > 0 replace the outer / inner
 // levels (0 = their axis is 'auto': u_tess_level), S4's separate levels.
+// Long edges: under LOD_UNIFORM, LOD_DISTANCE and LOD_FLATNESS an edge
+// f = max(1, floor(length / u_tess_edge_ref + 0.01)) times longer than the
+// mesh's median edge (u_tess_edge_ref, object units) gets f times the level
+// (techniques/mesh.h, mesh_edge_factor), so the cylinder's cap spokes are
+// sampled like its sides; meshes of near-equal edges keep f = 1.
 // CRACK_FREE_ON: outer level i from the edge opposite vertex i alone (its
 // midpoint / endpoints / samples along it), so the two patches sharing an
 // edge agree; inner = the largest outer.  Otherwise one level per patch.
@@ -44,6 +49,7 @@ uniform int u_tess_outer;   // 0 = auto
 layout(std430, binding = 3) readonly buffer CpuLevels { vec4 cpu_levels[]; };
 uniform int u_lod_base;     // first patch of this draw call
 #endif
+uniform float u_tess_edge_ref;
 
 const float TESS_TARGET_PX = 8.0;
 const float FLAT_EPS = 1e-3;     // world units of displacement range
@@ -72,17 +78,33 @@ float range_along(vec2 a, vec2 b, int n)
     return (hi - lo) * abs(u_height_scale);
 }
 
+// Long-edge factor of the edge a-b (see the top comment).
+float edge_factor(int a, int b)
+{
+    float f = u_tess_edge_ref > 0.0 ? floor(distance(gi[a].pos, gi[b].pos) / u_tess_edge_ref + 0.01) : 1.0;
+    return clamp(f, 1.0, 64.0);
+}
+
 float edge_level(int a, int b)
 {
 #if defined(LOD_DISTANCE)
-    return float(u_tess_level) / max(distance(u_camera_pos, 0.5 * (wpos(a) + wpos(b))), 1e-3);
+    return edge_factor(a, b) * float(u_tess_level) / max(distance(u_camera_pos, 0.5 * (wpos(a) + wpos(b))), 1e-3);
 #elif defined(LOD_SCREEN_EDGE)
     return min(distance(screen(wpos(a)), screen(wpos(b))) / TESS_TARGET_PX, float(u_tess_level));
 #elif defined(LOD_FLATNESS)
-    return range_along(gi[a].uv, gi[b].uv, 8) > FLAT_EPS ? float(u_tess_level) : 1.0;
+    return range_along(gi[a].uv, gi[b].uv, 8) > FLAT_EPS ? edge_factor(a, b) * float(u_tess_level) : 1.0;
 #else
-    return float(u_tess_level);
+    return edge_factor(a, b) * float(u_tess_level);
 #endif
+}
+
+// Largest long-edge factor of the patch's edges.
+float patch_factor()
+{
+    float f = 1.0;
+    for (int i = 0; i < PATCH_N; i++)
+        f = max(f, edge_factor(i, (i + 1) % PATCH_N));
+    return f;
 }
 
 // Corners of outer edge i: for triangles the edge opposite vertex i, for
@@ -110,7 +132,7 @@ float patch_level()
 #if defined(LOD_CPU_DISTANCE)
     return cpu_levels[u_lod_base + gl_PrimitiveID].x;
 #elif defined(LOD_DISTANCE)
-    return float(u_tess_level) / max(distance(u_camera_pos, patch_centre()), 1e-3);
+    return patch_factor() * float(u_tess_level) / max(distance(u_camera_pos, patch_centre()), 1e-3);
 #elif defined(LOD_FLATNESS)
     // Every edge and every corner-to-centre line: 2 × PATCH_N × 9 samples.
     vec2 c = vec2(0.0);
@@ -119,7 +141,7 @@ float patch_level()
     float r = 0.0;
     for (int i = 0; i < PATCH_N; i++)
         r = max(r, max(range_along(gi[i].uv, gi[(i + 1) % PATCH_N].uv, 8), range_along(gi[i].uv, c, 8)));
-    return r > FLAT_EPS ? float(u_tess_level) : 1.0;
+    return r > FLAT_EPS ? patch_factor() * float(u_tess_level) : 1.0;
 #else
     float l = 0.0;
     for (int i = 0; i < PATCH_N; i++)
