@@ -6,6 +6,7 @@
  * the registry in counters/counters.h.
  */
 #include "sweep.h"
+#include "published.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
 #include "techniques/axes.h"
@@ -649,7 +650,7 @@ static int p__models(pctx *c, yaml_node_t *seq)
 static int p__top(pctx *c, yaml_node_t *root)
 {
     static const char *const keys[] = { "name", "resolution", "measure", "scene", "sweep",
-                                        "exclude", "quality", "models" };
+                                        "exclude", "quality", "models", "published" };
     if (!root)
         return p__fail(c, NULL, "empty sweep file (expected keys: name, sweep, ...)");
     int rc = p__expect_map(c, root, "sweep file");
@@ -677,8 +678,10 @@ static int p__top(pctx *c, yaml_node_t *root)
             rc = p__models(c, v);
         } else if (strcmp(name, "exclude") == 0) {
             rc = p__excludes(c, v);
+        } else if (strcmp(name, "published") == 0) {
+            rc = published_parse(c->doc, v, c->path, &c->s->published, c->err);
         } else {
-            rc = p__unknown_key(c, k, "the sweep file", keys, 8);
+            rc = p__unknown_key(c, k, "the sweep file", keys, 9);
         }
     }
     return rc;
@@ -905,5 +908,6 @@ void sweep_free(sweep *s)
         free(m->group_by);
     }
     free(s->models);
+    published_free(s->published);
     memset(s, 0, sizeof *s);
 }
