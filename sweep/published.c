@@ -22,15 +22,18 @@ static const char *const pub__units[] = { "fps", "seconds", "ms" };
 static int pub__fail(pub_ctx *c, const yaml_node_t *n, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
-/* "path:line:col: published...: message"; returns DM_ERR_PARSE. */
+/* Writes "path:line:col: message" (the node's position) into the error;
+ * returns DM_ERR_PARSE. */
 static int pub__fail(pub_ctx *c, const yaml_node_t *n, const char *fmt, ...)
 {
-    dm_str_printf(c->err, "%s:%zu:%zu: ", c->path, n ? n->start_mark.line + 1 : 1,
-                  n ? n->start_mark.column + 1 : 1);
+    dm_str msg = {0};
     va_list ap;
     va_start(ap, fmt);
-    dm_str_vprintf(c->err, fmt, ap);
+    dm_str_vprintf(&msg, fmt, ap);
     va_end(ap);
+    size_t line = n ? n->start_mark.line + 1 : 1, col = n ? n->start_mark.column + 1 : 1;
+    dm_str_printf(c->err, "%s:%zu:%zu: %s", c->path, line, col, dm_str_get(&msg));
+    dm_str_free(&msg);
     return DM_ERR_PARSE;
 }
 
@@ -316,41 +319,43 @@ int published_resolve(published *p, const plan *pl, const char *path, dm_str *er
     return 0;
 }
 
+/* One values[] entry of published.json; NULL when cJSON runs out of memory. */
+static cJSON *pub__json_value(const published_value *v)
+{
+    cJSON *o = cJSON_CreateObject();
+    if (o && cJSON_AddStringToObject(o, "label", v->label) && cJSON_AddStringToObject(o, "key", v->key) &&
+        cJSON_AddNumberToObject(o, "value", v->value))
+        return o;
+    cJSON_Delete(o);
+    return NULL;
+}
+
 int published_write_json(const published *p, const char *path)
 {
     cJSON *root = cJSON_CreateObject(), *src = cJSON_AddObjectToObject(root, "source");
-    cJSON_AddStringToObject(src, "study", p->study);
-    cJSON_AddStringToObject(src, "table", p->table);
-    if (p->gpu)
-        cJSON_AddStringToObject(src, "gpu", p->gpu);
+    const char *fields[][2] = { { "study", p->study }, { "table", p->table }, { "gpu", p->gpu } };
+    for (size_t i = 0; i < 3; i++)
+        if (fields[i][1])
+            cJSON_AddStringToObject(src, fields[i][0], fields[i][1]);
     cJSON_AddStringToObject(root, "unit", p->unit);
     cJSON_AddStringToObject(root, "baseline", p->baseline);
     cJSON *vals = cJSON_AddArrayToObject(root, "values");
-    for (size_t i = 0; i < p->n_values; i++) {
-        cJSON *o = cJSON_CreateObject();
-        cJSON_AddStringToObject(o, "label", p->values[i].label);
-        cJSON_AddStringToObject(o, "key", p->values[i].key);
-        cJSON_AddNumberToObject(o, "value", p->values[i].value);
-        cJSON_AddItemToArray(vals, o);
-    }
+    for (size_t i = 0; i < p->n_values; i++)
+        cJSON_AddItemToArray(vals, pub__json_value(&p->values[i]));
     char *text = cJSON_Print(root);
     int rc = text && dm_write_file(path, text, strlen(text)) == 0 ? 0 : DM_ERR_IO;
-    free(text);
+    cJSON_free(text);
     cJSON_Delete(root);
     return rc;
 }
 
 void published_free(published *p)
 {
-    if (!p)
-        return;
-    free(p->study);
-    free(p->table);
-    free(p->gpu);
-    free(p->unit);
-    free(p->baseline);
-    for (size_t i = 0; i < p->n_values; i++)
+    for (size_t i = 0; p && i < p->n_values; i++)
         free(p->values[i].label);
-    free(p->values);
+    char *owned[] = { p ? p->study : NULL, p ? p->table : NULL, p ? p->gpu : NULL,
+                      p ? p->unit : NULL, p ? p->baseline : NULL, p ? (char *)p->values : NULL };
+    for (size_t i = 0; i < sizeof owned / sizeof *owned; i++)
+        free(owned[i]);
     free(p);
 }

@@ -5,9 +5,9 @@
 # planned configuration is refused at plan time with exit 2, file:line and
 # a did-you-mean over the planned labels.
 set -euo pipefail
-BIN=${DMBENCH_BINARY:?}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
+BIN=${DMBENCH_BINARY:?}
 
 cat > "$OUT/pub.yaml" <<'YAML'
 name: pub
