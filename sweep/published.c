@@ -122,9 +122,6 @@ static int pub__values(pub_ctx *c, yaml_node_t *map, published *p)
         p->values[p->n_values++] = (published_value){ .label = dm_xstrdup(label), .value = x,
                                                       .line = (int)k->start_mark.line + 1 };
     }
-    if (p->n_values < 2)
-        return pub__fail(c, map, "published.values: needs the baseline and at least one other "
-                         "configuration (ratios to the baseline are compared)");
     return 0;
 }
 
