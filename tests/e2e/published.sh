@@ -32,6 +32,16 @@ cat "$OUT/err.txt"
 test "$rc" = 2 || { echo "bad label: exit $rc, expected 2"; exit 1; }
 grep -qF "bad.yaml:12: published label 'pom stesp=32' names no planned configuration; did you mean 'pom steps=32'? valid planned labels: phong, pom steps=8, pom steps=32" "$OUT/err.txt"
 
+# a bad block is refused when the file is read (exit 2, file:line:col)
+sed 's/unit: fps/unit: hz/' "$OUT/pub.yaml" > "$OUT/unit.yaml"
+set +e
+"$BIN" run "$OUT/unit.yaml" --dry-run 2> "$OUT/err2.txt"
+rc=$?
+set -e
+test "$rc" = 2 || { echo "bad unit: exit $rc, expected 2"; exit 1; }
+grep -qF "unit.yaml:10:9: published.unit: unknown unit 'hz'; did you mean 'ms'? valid units: fps, seconds, ms" "$OUT/err2.txt" ||
+  { cat "$OUT/err2.txt"; exit 1; }
+
 "$BIN" run "$OUT/pub.yaml" --out "$OUT/s" --quiet
 python3 - "$OUT/s/latest" <<'PY'
 import json, re, sys
