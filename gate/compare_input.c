@@ -72,7 +72,9 @@ int compare_load_path(const char *path, dm_run_result *out, dm_str *err)
             dm_str_printf(err, "%s: no such file or run directory", path);
         else if (rc)
             dm_str_printf(err, "%s", e);
-        return rc ? rc : compare__times_ok(path, out, err);
+        if (rc == 0 && (rc = compare__times_ok(path, out, err)) != 0)
+            dm_run_free(out);   /* refused: nothing half-loaded is handed back */
+        return rc;
     }
     char *json = dm_xasprintf("%s/results.json", path);
     char *latest = dm_xasprintf("%s/latest", path);

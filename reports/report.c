@@ -1,6 +1,7 @@
 /* report.c — report_write_all and the helpers shared by the writers. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
+#include "reports/published_report.h"
 
 #include "core/dm_error.h"
 
@@ -311,7 +312,9 @@ int report_write_all_trends(const dm_run_result *run, const char *dir, const cha
     char real[PATH_MAX];   /* links from elsewhere: the run directory's absolute path */
     char *href = strcmp(dir, out) == 0 ? dm_xstrdup("")
                  : dm_xasprintf("%s/", realpath(dir, real) ? real : dir);
-    int rc = 0;
+    int rc = report_published_copy(dir, out);   /* summary.md reads it beside itself */
+    if (rc)
+        snprintf(err, errlen, "%s/published.json: cannot copy", out);
     for (int i = 0; i < 4 && !rc; i++) {
         char *path = dm_xasprintf("%s/%s", out, names[i]);
         rc = i == 0 ? report_write_json(run, path)

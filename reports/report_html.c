@@ -7,6 +7,7 @@
  */
 #include "reports/report.h"
 #include "reports/report_internal.h"
+#include "reports/published_report.h"
 #include "reports/proxy.h"
 
 #include "core/dm_error.h"
@@ -750,6 +751,7 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
     gallery(&s, run, &im);
     failed_and_left_out(&s, run);
     fits(&s, run);
+    report_published_section(&s, run, dir, path, 1);
     proxy_section(&s, run);
     dm_str_printf(&s, "<script>%s</script>\n</body></html>\n", sort_js);
     int rc = report__save(&s, path);

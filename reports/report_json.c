@@ -24,6 +24,7 @@
 #include "core/dm_error.h"
 
 #include <cjson/cJSON.h>
+#include <limits.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -328,6 +329,14 @@ static char **read_strs(const cJSON *a, size_t *n)
     return v;
 }
 
+/* A count field: NaN, negative or beyond INT_MAX (a damaged file) reads as 0
+ * rather than an undefined conversion. */
+static int get_count(const cJSON *o, const char *name)
+{
+    double v = get_num(o, name);
+    return v >= 0 && v <= INT_MAX ? (int)v : 0;
+}
+
 static void read_counter(const cJSON *o, dm_counter_result *c)
 {
     c->name = dm_xstrdup(o->string);
@@ -355,8 +364,8 @@ static void read_counter(const cJSON *o, dm_counter_result *c)
     c->stddev = get_num(o, "stddev");
     c->mad = get_num(o, "mad");
     c->cv = get_num(o, "cv");
-    c->n_outliers = (int)get_num(o, "outliers");
-    c->n_nonfinite = (int)get_num(o, "nonfinite");
+    c->n_outliers = get_count(o, "outliers");
+    c->n_nonfinite = get_count(o, "nonfinite");
 }
 
 static void read_quality(const cJSON *o, dm_quality *q)
@@ -369,8 +378,8 @@ static void read_quality(const cJSON *o, dm_quality *q)
     q->ssim = get_num(o, "SSIM");
     q->silhouette_error = get_num(o, "SilhouetteError");
     q->depth_rmse = get_num(o, "DepthRMSE");
-    q->crack_pixels = (long)get_num(o, "CrackPixels");
-    q->nonfinite_pixels = (long)get_num(o, "NonFinitePixels");
+    q->crack_pixels = get_count(o, "CrackPixels");
+    q->nonfinite_pixels = get_count(o, "NonFinitePixels");
     q->max_error = get_num(o, "MaxError");
     q->pct_over_threshold = get_num(o, "PctOverThreshold");
     q->reference = get_str(o, "reference");
@@ -416,8 +425,8 @@ static void read_fit(const cJSON *o, dm_fit_result *f)
     f->rmse = get_num(o, "rmse");
     f->mape = get_num(o, "mape");
     f->cv_mape = get_num(o, "cv_mape");
-    f->n_points = (int)get_num(o, "n_points");
-    f->n_excluded = (int)get_num(o, "n_excluded");
+    f->n_points = get_count(o, "n_points");
+    f->n_excluded = get_count(o, "n_excluded");
     f->termination = get_str(o, "termination");
     f->condition = get_bool(o, "condition_infinite") ? INFINITY
                  : cJSON_HasObjectItem(o, "condition") ? get_num(o, "condition") : 0.0;

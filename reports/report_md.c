@@ -2,6 +2,7 @@
  * failures and left-out configurations with their reasons. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
+#include "reports/published_report.h"
 #include "reports/proxy.h"
 
 #include "core/dm_error.h"
@@ -189,6 +190,7 @@ int report_write_markdown(const dm_run_result *run, const char *path)
         scene_table(&s, run, scenes[i]);
     free(scenes);
     failures(&s, run);
+    report_published_section(&s, run, NULL, path, 0);
     proxy_section(&s, run);
     int rc = report__save(&s, path);
     dm_str_free(&s);

@@ -10,6 +10,7 @@
 #include "run/protocol.h"
 #include "run/trends.h"
 #include "sweep/plan.h"
+#include "sweep/published.h"
 #include "store/store.h"
 #include "reports/metric.h"
 #include "reports/report.h"
@@ -872,7 +873,10 @@ static int runner__begin(runner *r)
         snprintf(buf, sizeof buf, "%zu", r->p.n_configs);
         dm_kv_push(&e->environment, &e->n_environment, "shard_configs", buf);
     }
-    int rc = store_run_begin(r->st, e, r->o->tag);
+    char *pub = dm_xasprintf("%s/published.json", r->run_dir);   /* for the report's section */
+    int rc = r->s->published ? published_write_json(r->s->published, pub) : 0;
+    free(pub);
+    rc = rc ? rc : store_run_begin(r->st, e, r->o->tag);
     for (size_t i = 0; rc == 0 && i < r->p.n_left_out; i++)
         rc = store_left_out_put(r->st, r->run_id, &r->p.left_out[i]);
     return rc;
@@ -1135,6 +1139,7 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
     setenv("LP_NUM_THREADS", "1", 0);
     int rc = fitting_check_models(s, err);       /* models: fail now, not after the run */
     rc = rc ? rc : runner__plan(&r, err);
+    rc = rc ? rc : published_resolve(s->published, &r.p, s->path, err);   /* labels: exit 2 now */
     if (rc == 0 && o->shard_n && (rc = plan_shard(&r.p, o->shard_k, o->shard_n)) != 0)
         dm_str_printf(err, "--shard %d/%d: expected K/N with 1 <= K <= N", o->shard_k, o->shard_n);
     rc = rc ? rc : runner__probe(&r, err);

@@ -6,6 +6,8 @@
  * the registry in counters/counters.h.
  */
 #include "sweep.h"
+#include "published.h"
+#include "published.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
 #include "techniques/axes.h"
@@ -517,6 +519,13 @@ static int p__k_group_by(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t
     return 0;
 }
 
+/* published: a study's figures (sweep/published.c reads the block). */
+static int p__k_published(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)row, (void)k;
+    return published_parse(c->doc, v, c->path, &c->s->published, c->err);
+}
+
 #define P__INT(sec, key, field, lo, hi, def, doc, ex) \
     { { sec, key, "integer " #lo "–" #hi, #def, doc, ex }, p__k_int, NULL, NULL, offsetof(sweep, field), lo, hi, def }
 #define P__REAL(sec, key, field, lo, hi, def, doc, ex) \
@@ -546,6 +555,8 @@ static const p__key p__keys[] = {
     P__MAP("", "quality", p__k_section, "quality", "what images are compared with"),
     P__LIST("", "models", p__model_entry, "{name, formula, group_by, response}", "none",
             "cost models fitted after the run"),
+    P__ROW("", "published", p__k_published, NULL, "mapping (see `published`)", "none",
+           "a study's figures, set beside the measured ones in the report", NULL),
 
     P__INT("measure", "warmup_frames", measure.warmup_frames, 0, 100000, 8,
            "frames drawn before anything is timed; warm-up then goes on until two consecutive "
@@ -990,5 +1001,6 @@ void sweep_free(sweep *s)
         free(m->group_by);
     }
     free(s->models);
+    published_free(s->published);
     memset(s, 0, sizeof *s);
 }

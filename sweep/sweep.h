@@ -69,6 +69,7 @@ typedef struct sweep {
     size_t n_models;
     sweep_exclude *excludes;
     size_t n_excludes;
+    struct published *published;  /* `published:` block (sweep/published.h), NULL when absent */
     uint64_t hash;           /* FNV-1a of the file text */
 } sweep;
 

@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# Every sweep shipped in sweeps/ plans on this driver (`dmbench run SWEEP
+# --dry-run` exits 0), and every study-table sweep (s<N>-table*.yaml,
+# s2-section*.yaml) carries a `published:` block whose labels each name one
+# planned configuration (the dry run refuses any other with exit 2), with
+# every published figure's label present in the printed plan.
+set -euo pipefail
+SRC=${DMBENCH_SOURCE_DIR:?}
+BIN=${DMBENCH_BINARY:?}
+TMP=$(mktemp -d)
+trap 'rm -rf "$TMP"' EXIT
+n_tables=0
+for f in "$SRC"/sweeps/*.yaml; do
+  name=$(basename "$f")
+  if ! "$BIN" run "$f" --dry-run --out "$TMP/none" > "$TMP/plan.txt" 2> "$TMP/err.txt"; then
+    echo "$name: the dry run failed:"; cat "$TMP/err.txt"; exit 1
+  fi
+  case "$name" in
+    s[1-4]-table*.yaml|s2-section*.yaml) ;;
+    *) continue ;;
+  esac
+  n_tables=$((n_tables + 1))
+  python3 - "$f" "$TMP/plan.txt" <<'PY'
+import re, sys
+text = open(sys.argv[1]).read()
+plan = open(sys.argv[2]).read()
+m = re.search(r"^published:\n((?:[ #].*\n?)*)", text, re.M)
+assert m, "%s: no published: block" % sys.argv[1]
+block = m.group(1)
+vals = re.search(r"^  values:\n((?:    .*\n?)*)", block, re.M)
+assert vals, "%s: published: has no values" % sys.argv[1]
+labels = [l.split(":")[0].strip().strip('"') for l in vals.group(1).splitlines()
+          if l.strip() and not l.strip().startswith("#")]
+assert labels, sys.argv[1]
+base = re.search(r"^  baseline: (.*)$", block, re.M).group(1).strip().strip('"')
+assert base in labels, (base, labels)
+# each label's words hold for one planned configuration line
+rows = [r for r in plan.splitlines() if re.match(r"^  [0-9a-f]{16}  ", r)]
+for l in labels:
+    words = l.split()
+    hits = [r for r in rows if all((" technique=%s " % w) in r + " " if "=" not in w
+                                   else (" %s " % w) in r + " " for w in words)]
+    assert len(hits) == 1, (sys.argv[1], l, hits)
+print("%s: %d published labels, each one planned configuration" % (sys.argv[1], len(labels)))
+PY
+done
+test "$n_tables" -ge 8 || { echo "expected the 8 study-table sweeps, found $n_tables"; exit 1; }
