@@ -8,6 +8,7 @@
  * OUT/<run-id>/ with images and report, OUT/latest).
  */
 #include "cli.h"
+#include "reports/published_report.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "store/merge.h"
@@ -100,6 +101,11 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
         store_left_out_put(st, m->id, &m->left_out[i]);
     for (int i = 0; rc < 0 && i < n; i++)
         merge__copy_images(dirs[i], run_dir);
+    char *pub = dm_xasprintf("%s/published.json", run_dir);   /* the same sweep: the first shard's */
+    for (int i = 0; rc < 0 && i < n && !dm_file_exists(pub); i++)
+        if (report_published_copy(dirs[i], run_dir) != 0)
+            dm_log(DM_LOG_WARN, "%s/published.json: cannot copy; the report has no published section", dirs[i]);
+    free(pub);
     char e[512] = "";
     if (rc < 0 && report_write_all(m, run_dir, e, sizeof e) != 0)
         rc = cli_usage_error("merge: report: %s", e);

@@ -73,3 +73,15 @@ for label, pr in (("pom steps=8", 2.0), ("steps=32 pom", 4.0)):
     assert row.group(1).startswith("agrees") == agrees, (row.group(1), pr, mr)
 print("ok")
 PY
+
+# sharded runs merged: the merged run keeps the published figures (the
+# labels' keys are the same configurations) and its report has the section
+"$BIN" run "$OUT/pub.yaml" --out "$OUT/k1" --shard 1/2 --quiet
+"$BIN" run "$OUT/pub.yaml" --out "$OUT/k2" --shard 2/2 --quiet
+"$BIN" merge "$OUT/m" "$OUT/k1/latest" "$OUT/k2/latest" > /dev/null
+cmp -s "$OUT/s/latest/published.json" "$OUT/m/latest/published.json" ||
+  { echo "merged run: published.json missing or different"; exit 1; }
+grep -qF "## Published figures beside ours" "$OUT/m/latest/summary.md" ||
+  { echo "merged run: no published section in summary.md"; exit 1; }
+echo "merge ok"
+
