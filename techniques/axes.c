@@ -23,7 +23,7 @@ static const char *const axes__lod[] = {"uniform", "distance", "cpu-distance", "
 static const char *const axes__cull[] = {"back", "off", NULL};
 static const char *const axes__atten[] = {"inverse-quadratic", "s1", "none", NULL};
 static const char *const axes__smooth[] = {"off", "phong", NULL};
-static const char *const axes__shadow[] = {"none", "raytrace", "soft", NULL};
+static const char *const axes__shadow[] = {"none", "raytrace", "soft", "soft-s2", NULL};
 static const char *const axes__lighting[] = {"lambert", "phong", "blinn-phong", "cook-torrance", NULL};
 static const char *const axes__filter[] = {"nearest", "bilinear", "trilinear", "aniso2",
                                            "aniso4", "aniso8", "aniso16", NULL};

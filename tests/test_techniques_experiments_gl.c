@@ -249,6 +249,39 @@ static void test_attenuation_s1(void **state)
     target(256, 192);
 }
 
+/* ---- shadow = soft-s2 --------------------------------------------------------- */
+
+/* S2's soft shadow with its own constants: on the flat map every sample's
+ * penetration is h - h0 - t = -t, the largest of (-t)(5.1 - t) over
+ * t = 0.88 .. 0.22 is at t = 0.22, so the light's term is scaled by
+ * (1 + 0.22 * 4.88) * 0.45 = 0.93312 (the ambient term is not shadowed;
+ * a light attenuated to 0 gives the ambient-only image). */
+static void test_shadow_soft_s2(void **state)
+{
+    (void)state;
+    target(65, 65);
+    const char *base = "technique=pom mesh=plane maps=flat lighting=lambert attenuation=s1";
+    char spec[3][200];
+    snprintf(spec[0], sizeof spec[0], "%s light_radius=1 shadow=none", base);
+    snprintf(spec[1], sizeof spec[1], "%s light_radius=50 shadow=none", base);
+    snprintf(spec[2], sizeof spec[2], "%s light_radius=50 shadow=soft-s2", base);
+    float c[3][3];
+    size_t centre = 4 * (32 * 65 + 32);
+    for (int i = 0; i < 3; i++) {
+        float *px = render(spec[i]);
+        memcpy(c[i], px + centre, sizeof c[i]);
+        free(px);
+    }
+    for (int k = 0; k < 3; k++) {
+        double lit = c[1][k] - c[0][k], s2 = c[2][k] - c[0][k];
+        printf("channel %d: ambient %.6f, lit %.6f, soft-s2 %.6f (ratio %.6f)\n", k, c[0][k], lit,
+               s2, s2 / lit);
+        assert_true(lit > 0.05);
+        assert_float_equal(s2 / lit, (1.0 + 0.22 * 4.88) * 0.45, 2e-3);
+    }
+    target(256, 192);
+}
+
 /* ---- height_format in vertex-displacement --------------------------------- */
 
 /* View-space depth of the centre pixel (centre row and column of the
@@ -318,6 +351,7 @@ int main(void)
         cmocka_unit_test(test_inner_outer_counts),
         cmocka_unit_test(test_cull_axis),
         cmocka_unit_test(test_attenuation_s1),
+        cmocka_unit_test(test_shadow_soft_s2),
         cmocka_unit_test(test_vertex_height_format),
         cmocka_unit_test(test_parallax_bias),
     };

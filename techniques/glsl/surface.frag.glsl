@@ -147,7 +147,7 @@ vec3 surface_normal(vec2 uv, out float nlen)
 // Self-shadowing toward light direction l (tangent space, unit) from uv.
 float self_shadow(vec2 uv, vec3 l)
 {
-#if SURF_PARALLAX == 3 && (defined(SHADOW_RAYTRACE) || defined(SHADOW_SOFT))
+#if SURF_PARALLAX == 3 && (defined(SHADOW_RAYTRACE) || defined(SHADOW_SOFT) || defined(SHADOW_SOFT_S2))
     if (l.z <= 0.0)
         return 1.0;
     float h0 = height_at(uv);
@@ -160,6 +160,19 @@ float self_shadow(vec2 uv, vec3 l)
             return 0.0;
     }
     return 1.0;
+#elif defined(SHADOW_SOFT_S2)
+    // S2's soft shadow with its own constants (its listing in section
+    // 5.4.7.2): the same 7 samples at 0.88 .. 0.22 of the ray, penetration
+    // h - h0 - t scaled by 5.1 - t (4.22 .. 4.88), shadow = (1 - max) * 0.45,
+    // unclamped: S2 lets unshadowed fragments brighten (1 - max > 1) and
+    // scales every fragment by 0.45.  The ray is dmbench's (toward the top
+    // of the height slab), S2's ray was the light's xy times the bump scale.
+    float occ = -1e9;
+    for (int i = 0; i < 7; i++) {
+        float t = 0.88 - 0.11 * float(i);
+        occ = max(occ, (height_at(uv + span * t) - h0 - t) * (5.1 - t));
+    }
+    return (1.0 - occ) * 0.45;
 #else
     // Soft (Tatarchuk 2006): 7 samples at 0.88 .. 0.22 of the ray, the
     // deepest penetration weighted toward the surface darkens most;
