@@ -62,6 +62,15 @@ static void test_defaults_and_scene(void **state)
     dm_str_free(&err);
 }
 
+/* Parses text into s, failing the test with the parser's message. */
+static void parse_ok(const char *text, sweep *s)
+{
+    dm_str err = {0};
+    if (sweep_parse(text, "q.yaml", s, &err) != 0)
+        fail_msg("%s", dm_str_get(&err));
+    dm_str_free(&err);
+}
+
 static void test_quality_section(void **state)
 {
     (void)state;
@@ -73,15 +82,11 @@ static void test_quality_section(void **state)
         "sweep:\n"
         "  technique: [normal]\n";
     sweep s;
-    dm_str err = {0};
-    int rc = sweep_parse(text, "q.yaml", &s, &err);
-    if (rc)
-        fail_msg("%s", dm_str_get(&err));
+    parse_ok(text, &s);
     assert_string_equal(s.pareto_metric, "depth-rmse");
     assert_string_equal(s.ref_technique, "same");
     assert_int_equal(s.supersample, 2);
     sweep_free(&s);
-    dm_str_free(&err);
 }
 
 /* quality.reference takes axis values besides technique and supersample
@@ -97,10 +102,7 @@ static void test_reference_overrides(void **state)
         "sweep:\n"
         "  technique: [normal]\n";
     sweep s;
-    dm_str err = {0};
-    int rc = sweep_parse(text, "q.yaml", &s, &err);
-    if (rc)
-        fail_msg("%s", dm_str_get(&err));
+    parse_ok(text, &s);
     assert_string_equal(s.ref_technique, "normal");
     assert_int_equal(s.n_ref_params, 2);
     assert_string_equal(s.ref_params[0].key, "normal_format");
@@ -109,7 +111,6 @@ static void test_reference_overrides(void **state)
     assert_string_equal(s.ref_params[1].value, "0.12");
     assert_int_equal(s.supersample, 4);
     sweep_free(&s);
-    dm_str_free(&err);
 }
 
 static void test_default_sweeps_parse(void **state)

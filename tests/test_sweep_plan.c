@@ -265,8 +265,9 @@ static int plan_test_has_ext(const char *ext, void *user)
 }
 
 /* virtual_texture=sparse is left out at plan time with the reason: the
- * missing extension on a driver without it, "not implemented" on one with
- * it (never a plain texture under that name); off and software stay. */
+ * missing extension on a driver without it; on a driver with it, that
+ * dmbench commits no sparse pages (never a plain texture under that name);
+ * off and software stay. */
 static void test_sparse_left_out(void **state)
 {
     (void)state;
