@@ -161,16 +161,29 @@ static int render__validate(const render__cfg *c, const technique_desc **tech, d
     return 0;
 }
 
-/* "#define AXIS_VALUE" for every ENUM axis the technique declares. */
+/* The defines of a configuration's program: "#define AXIS_VALUE" for every
+ * ENUM axis the technique declares, "#define AXIS_AUTO" for an integer axis
+ * it declares at 'auto', and VT_SOFTWARE (+ VT_FILTER_TRILINEAR) with
+ * virtual_texture=software.  Whatever changes a shader's control flow or
+ * sampling path is compiled in, not switched by a uniform: llvmpipe 22.3
+ * runs both sides of a branch on a uniform condition, so a switched-off
+ * path would be measured as part of the technique (docs/techniques.md). */
 static void render__defines(const technique_desc *t, const render__cfg *c, dm_str *out)
 {
     if (t->defines)
         dm_str_cat(out, t->defines);
     if (t->tcs && mesh_patch_vertices(render__get(c, "mesh")) == 4)
         dm_str_cat(out, "#define TESS_QUADS\n");
+    if (strcmp(render__get(c, "virtual_texture"), "software") == 0) {
+        dm_str_cat(out, "#define VT_SOFTWARE\n");
+        if (render__vt_filter(render__get(c, "filter")) == 2)
+            dm_str_cat(out, "#define VT_FILTER_TRILINEAR\n");
+    }
     for (size_t i = 0; t->axes && t->axes[i]; i++) {
         const axis_info *a = axes_find(t->axes[i]);
-        if (!a || a->kind != AXIS_ENUM)
+        if (!a || (a->kind != AXIS_ENUM && a->kind != AXIS_INT))
+            continue;
+        if (a->kind == AXIS_INT && strcmp(render__get(c, a->name), "auto") != 0)
             continue;
         char buf[128];
         snprintf(buf, sizeof buf, "%s_%s", a->name, render__get(c, a->name));

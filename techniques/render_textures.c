@@ -423,8 +423,7 @@ size_t render__sampler_get(tech_renderer *r, const char *filter)
     return n;
 }
 
-/* vt.glsl filter code of a `filter` value: 0 nearest, 1 bilinear, 2 trilinear/aniso. */
-static int render__vt_filter(const char *filter)
+int render__vt_filter(const char *filter)
 {
     return strcmp(filter, "nearest") == 0 ? 0 : strcmp(filter, "bilinear") == 0 ? 1 : 2;
 }
@@ -439,9 +438,6 @@ void render__maps_bind(tech_renderer *r, const render__item *it)
         vt_frame(m->vt, (GLuint)prog, render__vt_filter(r->samplers[it->sampler].key), vp[2], vp[3]);
         return;
     }
-    /* programs are shared with virtual-texture items: switch vt.glsl off */
-    if (prog)
-        glProgramUniform1i((GLuint)prog, glGetUniformLocation((GLuint)prog, "u_vt"), 0);
     for (GLuint u = 0; u < 3; u++) {
         glBindTextureUnit(u, m->tex[u]);
         glBindSampler(u, r->samplers[it->sampler].id);

@@ -45,6 +45,9 @@ int render__maps_get(struct tech_renderer *r, const struct render__cfg *c, size_
 size_t render__sampler_get(struct tech_renderer *r, const char *filter);
 /* Binds the item's maps and sampler to units 0 (height), 1 (normal), 2 (albedo). */
 void render__maps_bind(struct tech_renderer *r, const struct render__item *it);
+/* vt.glsl filter class of a `filter` value: 0 nearest, 1 bilinear, 2
+ * trilinear or anisotropic (VT_FILTER_TRILINEAR). */
+int render__vt_filter(const char *filter);
 /* Bytes of the maps the item's technique samples. */
 size_t render__maps_bytes(struct tech_renderer *r, const struct render__item *it);
 /* Releases every map and sampler of the renderer. */

@@ -99,14 +99,14 @@ const technique_desc technique__list[] = {
      .defines = "#define SURF_NORMAL_MAP\n#define SURF_PARALLAX 2\n",
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
      .axes = tech__axes_steep, .version = 1,
-     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_steps (0 = auto), u_min_steps, "
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_steps, u_min_steps, "
                  "u_max_steps; t_height, t_normal, t_albedo"},
     {.name = "pom", .summary = "parallax occlusion mapping, optional self-shadowing (S2 scenes 4-5)",
      .vs = "surface.vert.glsl", .fs = "surface.frag.glsl",
      .defines = "#define SURF_NORMAL_MAP\n#define SURF_PARALLAX 3\n",
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
      .axes = tech__axes_pom, .version = 1,
-     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_steps (0 = auto), u_min_steps, "
+     .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_steps, u_min_steps, "
                  "u_max_steps; t_height, t_normal, t_albedo"},
     {.name = "vertex-displacement",
      .summary = "height fetched and applied in the vertex stage of a dense mesh (S1 methods 5-9)",
@@ -121,7 +121,7 @@ const technique_desc technique__list[] = {
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
      .axes = tech__axes_tess, .version = 2,
      .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_tess_level, u_tess_inner, "
-                 "u_tess_outer (0 = auto), u_viewport; lod=cpu-distance: u_lod_base and the "
+                 "u_tess_outer, u_viewport; lod=cpu-distance: u_lod_base and the "
                  "per-patch levels at storage binding 3; t_height, t_normal, t_albedo"},
     {.name = "reference-mesh",
      .summary = "ground truth: mesh subdivided and displaced on the CPU, per-pixel normals from the height field",

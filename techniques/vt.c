@@ -326,17 +326,17 @@ void vt_destroy(vt *v)
     free(v);
 }
 
-/* Sets the vt.glsl uniforms of program (locations of -1 are ignored). */
-static void vt__uniforms(const vt *v, GLuint p, int filter)
+/* Sets the vt.glsl uniforms of program (locations of -1 are ignored); the
+ * program was compiled with VT_SOFTWARE (and VT_FILTER_TRILINEAR for
+ * trilinear/anisotropic filters), see render__defines. */
+static void vt__uniforms(const vt *v, GLuint p)
 {
-    glProgramUniform1i(p, glGetUniformLocation(p, "u_vt"), 1);
     glProgramUniform1f(p, glGetUniformLocation(p, "u_vt_size"), (float)v->size);
     glProgramUniform1f(p, glGetUniformLocation(p, "u_vt_page"), (float)v->page);
     glProgramUniform1f(p, glGetUniformLocation(p, "u_vt_border"), (float)VT_BORDER);
     glProgramUniform1i(p, glGetUniformLocation(p, "u_vt_per_row"), v->per_row);
     glProgramUniform1f(p, glGetUniformLocation(p, "u_vt_phys"), (float)(v->per_row * v->slot));
     glProgramUniform1i(p, glGetUniformLocation(p, "u_vt_levels"), v->levels);
-    glProgramUniform1i(p, glGetUniformLocation(p, "u_vt_filter"), filter);
     glProgramUniform1i(p, glGetUniformLocation(p, "u_vt_fb_width"), v->fb_w);
 }
 
@@ -363,7 +363,7 @@ void vt_frame(vt *v, GLuint program, int filter, int width, int height)
     glBindTextureUnit(3, v->table);
     glBindSampler(3, 0);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 0, v->feedback);
-    vt__uniforms(v, program, filter);
+    vt__uniforms(v, program);
     v->st.frames++;
     v->st.pages_resident = 0;
     for (int s = 0; s < v->n_slots; s++)

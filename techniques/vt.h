@@ -49,8 +49,9 @@ void vt_destroy(vt *v);
  * previous frame's feedback, updates the cache within the budget, binds the
  * physical textures to units 0-2 (GL_NEAREST or GL_LINEAR, no mips, clamped),
  * the page table to unit 3 and the cleared feedback buffer to SSBO binding
- * 0, and sets the u_vt* uniforms of `program` (vt.glsl).
- * filter: 0 nearest, 1 bilinear, 2 trilinear (anisotropic = trilinear). */
+ * 0, and sets the u_vt* uniforms of `program` (vt.glsl, compiled with
+ * VT_SOFTWARE).  filter: 0 nearest, 1 bilinear, 2 trilinear (anisotropic =
+ * trilinear); the program's VT_FILTER_TRILINEAR must match it. */
 void vt_frame(vt *v, GLuint program, int filter, int width, int height);
 /* Bytes of the physical textures and the page table (from their formats). */
 size_t vt_bytes(const vt *v);

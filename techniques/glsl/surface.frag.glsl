@@ -34,7 +34,10 @@ uniform float u_height_scale;
 // for (render.c; 1 for a user's normal file) before normalising — exact
 // for a normal derived from a height field, n ∝ (−k·∂h/∂u, −k·∂h/∂v, 1).
 uniform float u_normal_xy_scale;
-uniform int u_steps;         // 0 = auto: min_steps at normal view .. max_steps at grazing
+// steps: a loop bound stays a uniform (a renderer sets it per material);
+// steps = auto is compiled in (STEPS_AUTO): min_steps at normal view ..
+// max_steps at grazing.
+uniform int u_steps;
 uniform int u_min_steps;
 uniform int u_max_steps;
 uniform float u_parallax_bias;   // plain parallax: bias as a fraction of the depth (0.5 default)
@@ -58,7 +61,11 @@ float height_at(vec2 uv) { return map_sample(t_height, uv, g_dx, g_dy).r; }
 #if SURF_PARALLAX >= 2
 int search_steps(vec3 v)
 {
-    int n = u_steps > 0 ? u_steps : int(mix(float(u_max_steps), float(u_min_steps), abs(v.z)));
+#ifdef STEPS_AUTO
+    int n = int(mix(float(u_max_steps), float(u_min_steps), abs(v.z)));
+#else
+    int n = u_steps;
+#endif
     return clamp(n, 1, 512);
 }
 

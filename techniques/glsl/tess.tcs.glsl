@@ -8,8 +8,9 @@
 //                          at most u_tess_level
 //   LOD_FLATNESS           u_tess_level where the height sampled at a few
 //                          points varies by more than FLAT_EPS, else 1
-// LOD_UNIFORM: u_tess_outer / u_tess_inner > 0 replace the outer / inner
-// levels (0 = their axis is 'auto': u_tess_level), S4's separate levels.
+// LOD_UNIFORM: u_tess_outer / u_tess_inner replace the outer / inner
+// levels, S4's separate levels, unless TESS_OUTER_AUTO / TESS_INNER_AUTO
+// (their axis is 'auto': u_tess_level) compiles that out.
 // Long edges: under LOD_UNIFORM, LOD_DISTANCE and LOD_FLATNESS an edge
 // f = max(1, floor(length / u_tess_edge_ref + 0.01)) times longer than the
 // mesh's median edge (u_tess_edge_ref, object units) gets f times the level
@@ -40,8 +41,8 @@ layout(binding = 0) uniform sampler2D t_height;
 uniform int u_tess_level;
 uniform float u_height_scale;
 uniform vec2 u_viewport;
-uniform int u_tess_inner;   // 0 = auto
-uniform int u_tess_outer;   // 0 = auto
+uniform int u_tess_inner;
+uniform int u_tess_outer;
 
 #ifdef LOD_CPU_DISTANCE
 // Per patch: the outer levels (per edge under CRACK_FREE_ON, else the patch
@@ -164,12 +165,12 @@ float outer_level(int i)
 // LOD_UNIFORM: the tess_outer / tess_inner axes where they are not auto.
 void fixed_levels()
 {
-#ifdef LOD_UNIFORM
-    if (u_tess_outer > 0)
-        for (int i = 0; i < PATCH_N; i++)
-            gl_TessLevelOuter[i] = clamp(float(u_tess_outer), 1.0, 64.0);
-    if (u_tess_inner > 0)
-        gl_TessLevelInner[0] = gl_TessLevelInner[1] = clamp(float(u_tess_inner), 1.0, 64.0);
+#if defined(LOD_UNIFORM) && !defined(TESS_OUTER_AUTO)
+    for (int i = 0; i < PATCH_N; i++)
+        gl_TessLevelOuter[i] = clamp(float(u_tess_outer), 1.0, 64.0);
+#endif
+#if defined(LOD_UNIFORM) && !defined(TESS_INNER_AUTO)
+    gl_TessLevelInner[0] = gl_TessLevelInner[1] = clamp(float(u_tess_inner), 1.0, 64.0);
 #endif
 }
 

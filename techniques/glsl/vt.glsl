@@ -1,19 +1,23 @@
 // vt.glsl — sampling the material maps, plain or through the software
 // virtual texture (techniques/vt.h), and the virtual texture's feedback.
-// u_vt = 0: plain textures on units 0-2 (textureGrad).  u_vt = 1: units 0-2
-// hold the physical page caches, unit 3 the page table (per level and page:
-// slot, level of the resident page used); the level of detail is computed
-// here from the UV derivatives, nearest/bilinear sample round(lod),
-// trilinear blends floor(lod) and the next level (anisotropic filtering is
-// treated as trilinear); lod is clamped to the page levels.
-uniform int u_vt;
+// The path is compiled in, never switched by a uniform: a driver may run
+// both sides of a branch on a uniform condition (llvmpipe 22.3 does), and
+// the untaken virtual-texture side would then be measured as part of every
+// technique (docs/techniques.md, "What a configuration's shader contains").
+// Without VT_SOFTWARE: plain textures on units 0-2 (textureGrad).
+// VT_SOFTWARE (virtual_texture: software): units 0-2 hold the physical page
+// caches, unit 3 the page table (per level and page: slot, level of the
+// resident page used); the level of detail is computed here from the UV
+// derivatives; without VT_FILTER_TRILINEAR (nearest, bilinear) a sample
+// reads round(lod), with it (trilinear, anisotropic) it blends floor(lod)
+// and the next level; lod is clamped to the page levels.
+#ifdef VT_SOFTWARE
 uniform float u_vt_size;      // virtual texels per side at level 0
 uniform float u_vt_page;      // page texels per side
 uniform float u_vt_border;    // border texels on each side of a page
 uniform int u_vt_per_row;     // slots per row of the cache
 uniform float u_vt_phys;      // cache texels per side
 uniform int u_vt_levels;      // page-table levels
-uniform int u_vt_filter;      // 0 nearest, 1 bilinear, 2 trilinear
 uniform int u_vt_fb_width;    // feedback row length
 layout(binding = 3) uniform usampler2D t_vt_table;
 layout(std430, binding = 0) buffer VtFeedback { uint vt_fb[]; };
@@ -50,25 +54,21 @@ vec2 vt_phys_uv(vec2 uv, int m)
 vec4 vt_sample(sampler2D t, vec2 uv, vec2 dx, vec2 dy)
 {
     float lod = clamp(vt_lod(dx, dy), 0.0, float(u_vt_levels - 1));
-    if (u_vt_filter < 2)
-        return textureLod(t, vt_phys_uv(uv, int(lod + 0.5)), 0.0);
+#ifndef VT_FILTER_TRILINEAR
+    return textureLod(t, vt_phys_uv(uv, int(lod + 0.5)), 0.0);
+#else
     int m0 = int(lod);
     vec4 c0 = textureLod(t, vt_phys_uv(uv, m0), 0.0);
     if (m0 + 1 >= u_vt_levels)
         return c0;
     return mix(c0, textureLod(t, vt_phys_uv(uv, m0 + 1), 0.0), lod - float(m0));
+#endif
 }
 
-vec4 map_sample(sampler2D t, vec2 uv, vec2 dx, vec2 dy)
-{
-    return u_vt != 0 ? vt_sample(t, uv, dx, dy) : textureGrad(t, uv, dx, dy);
-}
+vec4 map_sample(sampler2D t, vec2 uv, vec2 dx, vec2 dy) { return vt_sample(t, uv, dx, dy); }
 
-// Texels per side of the maps (the virtual size with a virtual texture).
-vec2 map_size(sampler2D t)
-{
-    return u_vt != 0 ? vec2(u_vt_size) : vec2(textureSize(t, 0));
-}
+// Texels per side of the maps: the virtual size.
+vec2 map_size(sampler2D t) { return vec2(u_vt_size); }
 
 // One fragment in VT_FEEDBACK_SCALE² records the page it wants: in a
 // checkerboard of feedback texels, the page at the shaded uv and the page at
@@ -76,13 +76,27 @@ vec2 map_size(sampler2D t)
 void vt_feedback(vec2 uv0, vec2 uv, vec2 dx, vec2 dy)
 {
     ivec2 p = ivec2(gl_FragCoord.xy);
-    if (u_vt == 0 || p.x % VT_FEEDBACK_SCALE != 0 || p.y % VT_FEEDBACK_SCALE != 0)
+    if (p.x % VT_FEEDBACK_SCALE != 0 || p.y % VT_FEEDBACK_SCALE != 0)
         return;
     if (((p.x + p.y) / VT_FEEDBACK_SCALE) % 2 != 0)
         uv = uv0;
     float lod = clamp(vt_lod(dx, dy), 0.0, float(u_vt_levels - 1));
-    int m = u_vt_filter < 2 ? int(lod + 0.5) : int(lod);
+#ifdef VT_FILTER_TRILINEAR
+    int m = int(lod);
+#else
+    int m = int(lod + 0.5);
+#endif
     ivec2 pg = vt_page_of(fract(uv), m);
     vt_fb[(p.y / VT_FEEDBACK_SCALE) * u_vt_fb_width + p.x / VT_FEEDBACK_SCALE] =
         uint(m) << 28 | uint(pg.y) << 14 | uint(pg.x);
 }
+
+#else   // plain textures
+
+vec4 map_sample(sampler2D t, vec2 uv, vec2 dx, vec2 dy) { return textureGrad(t, uv, dx, dy); }
+
+vec2 map_size(sampler2D t) { return vec2(textureSize(t, 0)); }
+
+void vt_feedback(vec2 uv0, vec2 uv, vec2 dx, vec2 dy) {}
+
+#endif
