@@ -588,6 +588,14 @@ static int measure__reference(mscene *m, mconf *c)
         for (size_t i = 0; i < c->pc->n_scene_params; i++)
             dm_kv_push(&p, &n, c->pc->scene_params[i].key, c->pc->scene_params[i].value);
         dm_kv_push(&p, &n, "technique", s->ref_technique);
+        /* The ground truth samples plain textures: a virtual-texture
+         * configuration is compared with the same maps unpaged, whichever
+         * configuration of the scene this process measures first. */
+        for (size_t i = 0; i < n; i++)
+            if (strcmp(p[i].key, "virtual_texture") == 0) {
+                free(p[i].value);
+                p[i].value = dm_xstrdup("off");
+            }
     }
     measure__reference_overrides(s, &p, &n);
     int rc = measure__reference_image(m, p, n, c);
