@@ -3,6 +3,7 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/callgrind.h"
+#include "run/drivers.h"
 
 #include <assert.h>
 #include <stdarg.h>
@@ -246,6 +247,13 @@ int cli_main(int argc, char **argv)
     if (strcmp(argv[1], "--version") == 0) {
         printf("%s\n", cli_version());
         return DM_EXIT_OK;
+    }
+    dm_str derr = {0};
+    int drc = drivers_enter(argv, &derr);   /* returns only when no re-exec is due */
+    if (drc) {
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&derr));
+        dm_str_free(&derr);
+        return dm_exit_from_error(drc);
     }
     const cli_command *c = cli_commands_find(argv[1]);
     return c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]);

@@ -1,5 +1,6 @@
 #include "env.h"
 #include "core/dm_util.h"
+#include "run/drivers.h"
 
 #include <epoxy/gl.h>
 #include <stdio.h>
@@ -43,6 +44,7 @@ void env_collect(dm_kv **kv, size_t *n, int gl)
         dm_kv_push(kv, n, "glsl_version", (const char *)glGetString(GL_SHADING_LANGUAGE_VERSION));
         dm_kv_push(kv, n, "vendor", (const char *)glGetString(GL_VENDOR));
     }
+    dm_kv_push(kv, n, "driver", drivers_current());
     const char *lp = getenv("LP_NUM_THREADS");
     dm_kv_push(kv, n, "lp_num_threads", lp ? lp : "default");
     char *cpu = env__cpu_model();
