@@ -128,6 +128,17 @@ int cli_usage_error(const char *fmt, ...)
     return DM_EXIT_USAGE;
 }
 
+int cli_error(int err, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "dmbench: error: ");
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    return err == DM_ERR_STORE || err == DM_ERR_BUSY ? DM_EXIT_ENV : DM_EXIT_USAGE;
+}
+
 /* "usage: dmbench NAME SYNOPSIS [OPTIONS]", one line per form. */
 static void commands__usage(const cli_command *c, FILE *f)
 {
