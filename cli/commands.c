@@ -5,6 +5,7 @@
 #include "run/callgrind.h"
 
 #include <assert.h>
+#include <errno.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -244,6 +245,20 @@ int cli_parse(int argc, char **argv, void *args, int *n_pos)
     return rc != 0 || want_help ? rc : -1;
 }
 
+/* The exit code rc, unless what the command printed could not be written
+ * (stdout on a full disk, /dev/full, a closed descriptor): the output is
+ * lost, so a command that had succeeded exits DM_EXIT_ENV with the reason
+ * instead of 0. */
+static int commands__flush(int rc)
+{
+    errno = 0;
+    if (fflush(stdout) == 0 && !ferror(stdout))
+        return rc;
+    fprintf(stderr, "dmbench: error: cannot write the standard output (%s); what was printed "
+            "is lost: free space, or send it elsewhere\n", errno ? strerror(errno) : "write error");
+    return rc == DM_EXIT_OK ? DM_EXIT_ENV : rc;
+}
+
 int cli_main(int argc, char **argv)
 {
     if (argc < 2) {                    /* the overview, but a usage error */
@@ -259,5 +274,5 @@ int cli_main(int argc, char **argv)
         return DM_EXIT_OK;
     }
     const cli_command *c = cli_commands_find(argv[1]);
-    return c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]);
+    return commands__flush(c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]));
 }

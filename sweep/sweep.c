@@ -281,6 +281,9 @@ static int p__k_name(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
     (void)row, (void)k;
     if (!p__scalar(v) || !*p__scalar(v))
         return p__fail(c, v, "name: expected a non-empty string");
+    if (strlen(p__scalar(v)) > SWEEP_NAME_MAX)   /* it titles reports, jobs and terminal lines */
+        return p__fail(c, v, "name: %zu bytes long; at most %d", strlen(p__scalar(v)),
+                       SWEEP_NAME_MAX);
     free(c->s->name);
     c->s->name = dm_xstrdup(p__scalar(v));
     return 0;
