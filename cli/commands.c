@@ -6,6 +6,7 @@
 
 #include <assert.h>
 #include <errno.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -261,6 +262,10 @@ static int commands__flush(int rc)
 
 int cli_main(int argc, char **argv)
 {
+    /* Over a file-size limit (ulimit -f) a write fails with EFBIG and is
+     * reported like a full disk (exit 4, the store intact), instead of
+     * SIGXFSZ killing the process mid-write; measuring processes inherit it. */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc < 2) {                    /* the overview, but a usage error */
         commands__overview(stdout);
         return DM_EXIT_USAGE;

@@ -60,6 +60,13 @@ static void gl__egl_init_failure(int saved_errno, dm_str *err)
 static int gl__create_egl(gl_context *ctx, dm_str *err)
 {
     errno = 0;
+    /* Without an EGL vendor offering platform displays (no Mesa, a bad
+     * __EGL_VENDOR_LIBRARY_FILENAMES, or its library not mappable) libepoxy
+     * would abort on the call below: ask for the client extension first. */
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base")) {
+        gl__egl_init_failure(errno, err);
+        return DM_ERR_GL;
+    }
     ctx->dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
     EGLint major, minor;
     if (ctx->dpy == EGL_NO_DISPLAY || !eglInitialize(ctx->dpy, &major, &minor)) {

@@ -267,8 +267,13 @@ static int store__failf(store *s, int code, const char *fmt, ...)
 /* Records SQLite's current message for what was being done; DM_ERR_STORE. */
 static int store__fail(store *s, const char *what)
 {
-    return store__failf(s, DM_ERR_STORE, "%s: %s (SQLite code %d)", what,
-                        sqlite3_errmsg(s->db), sqlite3_extended_errcode(s->db));
+    int code = sqlite3_extended_errcode(s->db), prim = code & 0xff;
+    if (prim == SQLITE_CORRUPT || prim == SQLITE_NOTADB)   /* say what to do, not only what broke */
+        return store__failf(s, DM_ERR_STORE, "the results store is damaged (%s: %s, SQLite code "
+                            "%d); restore dmbench.sqlite from a backup, or give another --out",
+                            what, sqlite3_errmsg(s->db), code);
+    return store__failf(s, DM_ERR_STORE, "%s: %s (SQLite code %d)", what, sqlite3_errmsg(s->db),
+                        code);
 }
 
 const char *store_last_error(const store *s)

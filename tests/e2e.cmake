@@ -21,3 +21,7 @@ dm_add_e2e(test_e2e_dry_run dry_run.sh)
 dm_add_e2e(test_e2e_user_mesh user_mesh.sh)
 dm_add_e2e(test_e2e_published published.sh)
 dm_add_e2e(test_e2e_study_sweeps study_sweeps.sh)
+# The hostile corpus: >= 100 cases over every command, each with its exit
+# code and first words, and the conditions table of docs/reliability.md
+# checked row by row (about 2-3 min on 2 cores; nothing renders above 16x16).
+dm_add_e2e(test_e2e_corpus corpus.sh)
