@@ -47,6 +47,9 @@ hcase() {
   pass=$((pass+1)); case_ok=1
 }
 
+# wanted PREFIX: the cases of PREFIX are to run (CORPUS_ONLY).
+wanted() { [ -z "${CORPUS_ONLY:-}" ] || [[ $1 == "$CORPUS_ONLY"* ]] || [[ $CORPUS_ONLY == "$1"* ]]; }
+
 # unchanged FILE SUM: a refused command left FILE as it was (data kept).
 unchanged() {
   if [ "$(sha256sum < "$1")" = "$2" ]; then pass=$((pass+1))
@@ -230,6 +233,27 @@ hcase cli/out-long 2 "" -- "$BIN" run "$OUT/ok.yaml" --out "$OUT/$(printf 'd%.0s
 hcase cli/empty-out 2 "" -- "$BIN" run "$OUT/ok.yaml" --out ""
 hcase cli/many-args 2 "only one" -- "$BIN" report $(seq 1 20000)
 
+# ---- slurm --print: what is pasted into a shell, and the #SBATCH lines ----
+if wanted slurm; then
+D="$OUT/o x; \$(touch $OUT/pwned) #%a"
+f=$(sweep markup "resolution: [16, 16]" "sweep:" "  technique: [normal]" "  mesh: [plane, cube]")
+sed -i 's|^name: corpus|name: "<b>x</b> y"|' "$f"
+hcase slurm/print-quoted 0 "" -- "$BIN" slurm "$f" --shards 2 --print --out "$D"
+line=$("$BIN" slurm "$f" --shards 2 --print --resume --out "$D" 2>/dev/null | sed -n 's/^submit with: //p')
+sbatch() { printf '%s\n' "$@"; }
+got=$(eval "${line%%, then *}")    # the first command as a shell runs it
+want=$(printf '%s\n' "--array=1-2" "$D/slurm/shards.sbatch")
+if [ "$got" = "$want" ] && [ ! -e "$OUT/pwned" ]; then pass=$((pass+1))
+else echo "FAIL: slurm --print: 'submit with' runs as: $got"; fail=$((fail+1)); fi
+unset -f sbatch
+sb="$D/slurm/shards.sbatch"
+if grep -qxF "#SBATCH --output=\"$OUT/o x; \$(touch $OUT/pwned) #%%a\"/slurm/logs/shard-%a.out" "$sb" &&
+   grep -qxF "#SBATCH --job-name=dmbench-_b_x__b__y" "$sb" &&
+   grep -qxF "#SBATCH --job-name=dmbench-_b_x__b__y-merge" "$D/slurm/merge.sbatch"; then pass=$((pass+1))
+else echo "FAIL: slurm #SBATCH lines: $(grep '^#SBATCH' "$sb")"; fail=$((fail+1)); fi
+bash -n "$sb" && bash -n "$D/slurm/merge.sbatch" && pass=$((pass+1)) || { echo "FAIL: slurm scripts do not parse"; fail=$((fail+1)); }
+fi
+
 # ---- environment ----
 hcase env/ulimit-v-run 4 "address-space limit" -- "${LIMIT[@]}" "-v 600000" "$BIN" run "$OUT/ok.yaml" --out "$OUT/ulv" --quiet
 hcase env/ulimit-v-render 4 "address-space limit" -- "${LIMIT[@]}" "-v 600000" "$BIN" render resolution=16x16 --png "$OUT/x.png"
@@ -253,6 +277,7 @@ hcase env/stdout-full 4 "cannot write the standard output" -- bash -c '"$0" list
 # ---- signals: an interrupted run keeps what it committed; --resume ends it ----
 S="$OUT/sig"
 for sig in TERM INT HUP; do
+  wanted "signal/$sig" || continue
   rm -rf "$S"
   "$BIN" run "$OUT/ok.yaml" --out "$S" --quiet >/dev/null 2>&1 &
   pid=$!   # killed once its run is in the store: mid-run, or just after it ended
