@@ -39,14 +39,17 @@ static void GLAPIENTRY gl__debug_cb(GLenum source, GLenum type, GLuint id, GLenu
  * Mesa cannot map llvmpipe's driver and code memory, and fails exactly as if
  * it were not installed; the limit, or ENOMEM left by the failed mapping,
  * names the real cause instead of sending the user to reinstall Mesa. */
+#define GL__AS_SUSPECT ((rlim_t)8 << 30)   /* limits below 8 GB are suspected */
+
 static void gl__egl_init_failure(int saved_errno, dm_str *err)
 {
     struct rlimit as;
-    int limited = getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY;
-    if (limited)
+    int limited = getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY &&
+                  as.rlim_cur < GL__AS_SUSPECT;
+    if (limited)   /* llvmpipe maps its driver, LLVM and thread stacks: several hundred MB */
         dm_str_printf(err, "EGL: cannot initialise a surfaceless display: llvmpipe could not map "
                       "its memory under the address-space limit of %llu MB (ulimit -v %llu); "
-                      "raise it (ulimit -v unlimited, or at least 4 GB) and run again",
+                      "raise it (ulimit -v unlimited) and run again",
                       (unsigned long long)(as.rlim_cur >> 20),
                       (unsigned long long)(as.rlim_cur >> 10));
     else if (saved_errno == ENOMEM)
