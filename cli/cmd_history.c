@@ -113,8 +113,10 @@ static int history__open(const history__opts *o, store **st, dm_run_result *run,
         rc = cli_error(e, "history: %s", dm_str_get(&err));
     else if (!o->run && store_latest_run(*st, NULL, &id) != 0)
         rc = cli_usage_error("history: %s holds no run", o->store);
-    else if (store_run_load(*st, o->run ? o->run : id, run) != 0)
+    else if ((e = store_run_load(*st, o->run ? o->run : id, run)) == DM_ERR_NOTFOUND)
         rc = cli_usage_error("history: run %s is not in %s", o->run ? o->run : id, o->store);
+    else if (e != 0)
+        rc = cli_error(e, "history: %s", store_last_error(*st));
     else if (store_run_fingerprint(*st, run->id, fp) != 0)
         rc = cli_usage_error("history: %s: %s", o->store, store_last_error(*st));
     free(id);
