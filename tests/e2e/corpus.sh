@@ -269,6 +269,8 @@ hcase env/proc-report-out 2 "cannot create the directory" -- "$BIN" report "$OUT
 hcase env/proc-cache 0 "" -- env DMBENCH_CACHE_DIR=/proc/dmbench-cache "$BIN" run "$OUT/ok.yaml" --out "$OUT/pc" --quiet
 hcase env/no-egl-vendor 4 "is Mesa's EGL installed" -- env __EGL_VENDOR_LIBRARY_FILENAMES=/nonexistent.json "$BIN" render resolution=16x16 --png "$OUT/x.png"
 hcase env/no-driver 4 "is Mesa's EGL installed" -- env LIBGL_DRIVERS_PATH=/nonexistent "$BIN" run "$OUT/ok.yaml" --out "$OUT/nodrv" --quiet
+hcase env/driver-unknown 2 "unknown driver; the drivers are" -- env DMBENCH_DRIVER=voodoo "$BIN" run "$OUT/ok.yaml" --out "$NEVER"
+hcase env/driver-missing 2 "needs Mesa 25 in /nonexistent" -- env DMBENCH_DRIVER=llvmpipe-25 DMBENCH_MESA25_PREFIX=/nonexistent "$BIN" info
 hcase env/no-home 0 "" -- env -u HOME -u XDG_CACHE_HOME "$BIN" list techniques
 hcase env/tmpdir-missing 0 "" -- env TMPDIR=/nonexistent "$BIN" render resolution=16x16 --png "$OUT/tmp.png"
 hcase env/cache-is-file 0 "" -- env DMBENCH_CACHE_DIR="$OUT/ok.yaml" "$BIN" render resolution=16x16 --png "$OUT/c.png"
