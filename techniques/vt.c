@@ -235,6 +235,11 @@ static uint32_t *vt__wanted(vt *v, size_t *count)
 {
     size_t n = (size_t)v->fb_w * (size_t)v->fb_h;
     uint32_t *fb = dm_xmalloc(n * sizeof *fb);
+    /* Shader-storage writes are incoherent: without the barrier llvmpipe
+     * (which rasterizes when it flushes) returns the buffer as cleared
+     * whenever nothing else flushed the frame, and every other frame's
+     * requests were lost. */
+    glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
     glGetNamedBufferSubData(v->feedback, 0, (GLsizeiptr)(n * sizeof *fb), fb);
     n = vt__unique(fb, n);
     uint32_t *all = dm_xmalloc((n * (size_t)v->levels + 1) * sizeof *all);
