@@ -126,6 +126,19 @@ static int compare__instructions(const compare_desc *d, const dm_config_result *
     return 1;
 }
 
+/* The relative tolerance a deterministic counter always has: 0 for a count
+ * (an integer, equal or changed), COMPARE_DERIVED_EPS for a floating value
+ * (a derived ratio such as ShadingEfficiency = SamplesPassed /
+ * FSInvocations), whose last bit depends on the order of the arithmetic
+ * and on how it was written; its integer parts are compared exactly
+ * beside it, so a real change is never hidden.  A counter the registry does
+ * not know is compared exactly. */
+static double compare__float_eps(const char *counter)
+{
+    const counters_info *info = counters_find(counter);
+    return info && info->type == COUNTERS_TYPE_FLOAT64 ? COMPARE_DERIVED_EPS : 0.0;
+}
+
 /* Deterministic counters of BASE against NEW: a value outside the tolerance,
  * or a counter available on one side only, is a change. */
 static void compare__deterministic(const compare_desc *d, const dm_config_result *b,
@@ -143,7 +156,7 @@ static void compare__deterministic(const compare_desc *d, const dm_config_result
                             cb->available ? "unavailable on NEW" : "unavailable on BASE");
             continue;
         }
-        double tol = compare__tolerance(d, cb->name);
+        double tol = fmax(compare__tolerance(d, cb->name), compare__float_eps(cb->name));
         if (cb->available && !(fabs(cn->value - cb->value) <= tol * fabs(cb->value)))
             compare__change(it, cb->name, cb->value, cn->value, NULL);
     }

@@ -10,7 +10,8 @@
  * Per matched configuration, in this order, the first failing check wins:
  *  - NEW failed where BASE was ok                          -> REGRESSION
  *  - a deterministic counter available on both sides differs by more than
- *    its relative tolerance (default 0: exact)               -> REGRESSION
+ *    its relative tolerance (default: counts exact, floating derived
+ *    counters COMPARE_DERIVED_EPS)                           -> REGRESSION
  *  - quality: PSNR dropped by more than psnr_drop dB or SSIM by more than
  *    ssim_drop (not in counters_only mode)                   -> REGRESSION
  *  - Instructions (group Cost, exact counts) available on both sides: the
@@ -47,6 +48,11 @@
 
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+
+/* Relative tolerance of a deterministic floating counter (a derived ratio):
+ * two computations of one ratio from equal integer parts agree to a few
+ * ULP (1e-16); any real change of a count moves a ratio by far more. */
+#define COMPARE_DERIVED_EPS 1e-12
 
 /* Worst first: the table is sorted by descending verdict. */
 typedef enum compare_verdict {

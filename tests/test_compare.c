@@ -676,6 +676,116 @@ static void test_store_and_baselines(void **state)
     free(path);
 }
 
+/* ---- exact counters through the store and results.json (issue 27) ----- */
+
+/* ShadingEfficiency = 705/1160 (its 15-digit text reads back one ULP off),
+ * its integer parts, and WallTime samples of full precision. */
+static void add_shading(dm_run_result *r)
+{
+    for (size_t i = 0; i < r->n_configs; i++) {
+        dm_config_result *c = &r->configs[i];
+        c->counters = dm_xrealloc(c->counters, (c->n_counters + 2) * sizeof *c->counters);
+        memset(&c->counters[c->n_counters], 0, 2 * sizeof *c->counters);
+        det(&c->counters[c->n_counters++], "FSInvocations", 1160);
+        det(&c->counters[c->n_counters], "ShadingEfficiency", 0.60775862068965514);
+        free(c->counters[c->n_counters].unit);
+        c->counters[c->n_counters++].unit = dm_xstrdup("ratio");
+    }
+}
+
+/* The two ways one run is read back must agree bit for bit. */
+static void assert_same_bits(const dm_run_result *a, const dm_run_result *b)
+{
+    assert_int_equal(a->n_configs, b->n_configs);
+    for (size_t i = 0; i < a->n_configs; i++)
+        for (size_t k = 0; k < a->configs[i].n_counters; k++) {
+            const dm_counter_result *x = &a->configs[i].counters[k];
+            const dm_counter_result *y = dm_config_counter(&b->configs[i], x->name);
+            assert_non_null(y);
+            assert_memory_equal(&x->value, &y->value, sizeof x->value);
+            assert_int_equal(x->n_samples, y->n_samples);
+            if (x->n_samples)
+                assert_memory_equal(x->samples, y->samples, x->n_samples * sizeof *x->samples);
+        }
+}
+
+/* Runs A and B (the same measurements) each in the store and in a
+ * results.json; the counters gate passes in all four pairings and the
+ * sides read back identical doubles. */
+static void test_store_file_four_pairings(void **state)
+{
+    tmp *t = *state;
+    char *path = dm_xasprintf("%s/dmbench.sqlite", t->dir);
+    const char *ids[] = { "A", "B" };
+    char *files[2];
+    store *s = NULL;
+    dm_str err = {0};
+    assert_int_equal(store_open(path, &s, &err), 0);
+    for (int k = 0; k < 2; k++) {
+        dm_run_result run;
+        make_run(&run, ids[k], 3, 12, 1.0 / 3.0, 0.02, 7);
+        add_shading(&run);
+        assert_int_equal(store_run_begin(s, &run, NULL), 0);
+        for (size_t i = 0; i < run.n_configs; i++)
+            assert_int_equal(store_config_put(s, ids[k], &run.configs[i]), 0);
+        files[k] = dm_xasprintf("%s/%s.json", t->dir, ids[k]);
+        assert_int_equal(report_write_json(&run, files[k]), 0);
+        dm_run_free(&run);
+    }
+    store_close(s);
+    dm_run_result side[2][2];   /* [run][0 store, 1 file] */
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(compare_load_store(path, ids[k], NULL, &side[k][0], &err), 0);
+        assert_int_equal(compare_load_path(files[k], &side[k][1], &err), 0);
+        assert_same_bits(&side[k][0], &side[k][1]);
+        assert_true(dm_config_counter(&side[k][1].configs[0], "ShadingEfficiency")->value ==
+                    0.60775862068965514);
+    }
+    for (int fb = 0; fb < 2; fb++)
+        for (int fn = 0; fn < 2; fn++) {
+            compare_desc d = { .counters_only = 1 };
+            compare_result r;
+            assert_int_equal(run_compare(&side[0][fb], &side[1][fn], &d, &r), 0);
+            assert_int_equal(r.count[COMPARE_PASS], 3);
+            assert_int_equal(compare_exit_code(&r), 0);
+            compare_result_free(&r);
+        }
+    for (int k = 0; k < 2; k++) {
+        dm_run_free(&side[k][0]);
+        dm_run_free(&side[k][1]);
+        free(files[k]);
+    }
+    dm_str_free(&err);
+    free(path);
+}
+
+/* A floating derived counter within COMPARE_DERIVED_EPS passes; beyond it,
+ * and any change of an integer count, is a change. */
+static void test_derived_epsilon(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 2, 10, 1.0, 0.02, 1);
+    make_run(&b, "B", 2, 10, 1.0, 0.02, 1);
+    add_shading(&a);
+    add_shading(&b);
+    counter(&b, 0, "ShadingEfficiency")->value = nextafter(0.60775862068965514, 1.0);
+    compare_desc d = { .counters_only = 1 };
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    counter(&b, 0, "ShadingEfficiency")->value = 0.60775862068965514 * (1 + 1e-11);
+    counter(&b, 1, "FSInvocations")->value = 1161;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 2);
+    assert_non_null(strstr(item(&r, "0000000000000001")->note, "ShadingEfficiency changed"));
+    assert_string_equal(item(&r, "0000000000000002")->note, "FSInvocations changed 1160 -> 1161");
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_self_all_pass),
              cmocka_unit_test(test_deterministic_change),
@@ -691,4 +801,6 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_instructions_threshold),
              cmocka_unit_test(test_partial_gputime_refused),
              cmocka_unit_test_setup_teardown(test_json_roundtrip_and_outputs, tmp_setup, tmp_teardown),
-             cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown))
+             cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown),
+             cmocka_unit_test_setup_teardown(test_store_file_four_pairings, tmp_setup, tmp_teardown),
+             cmocka_unit_test(test_derived_epsilon))
