@@ -261,6 +261,9 @@ int compare_write_json(const compare_result *r, const char *path)
     cJSON_AddNumberToObject(set, "ssim_drop", r->desc.ssim_drop);
     cJSON_AddStringToObject(set, "time_counter", r->desc.time_counter);
     cJSON_AddBoolToObject(set, "counters_only", r->desc.counters_only);
+    cJSON *tol = cJSON_AddObjectToObject(set, "tolerances");
+    for (size_t i = 0; i < r->desc.n_tolerances; i++)
+        cJSON_AddNumberToObject(tol, r->desc.tolerances[i].counter, r->desc.tolerances[i].rel);
     cJSON *sum = cJSON_AddObjectToObject(root, "summary");
     for (int v = COMPARE_PASS; v <= COMPARE_REGRESSION; v++)
         cJSON_AddNumberToObject(sum, compare_verdict_name((compare_verdict)v), (double)r->count[v]);
