@@ -39,7 +39,7 @@ typedef struct cli_compare_opts {
     int n_positional;
     const char *junit, *markdown, *json;
     const char *paired[3];
-    int rounds, quiet;
+    int rounds, quiet, only_changed;
     compare_tolerance *tol;
 } cli_compare_opts;
 
@@ -64,6 +64,7 @@ static const struct { const char *flag; fraction_range range; } compare__fractio
     { "threshold", { 0, 1, 1, 1 } },               /* an Instructions change */
     { "alpha", { 0, 1, 1, 1 } },                   /* a significance level */
     { "ssim-drop", { 0, 1, 1, 0 } },               /* SSIM is in [0, 1] */
+    { "run-spread", { 0, INFINITY, 1, 0 } },       /* the machine's between-run spread */
 };
 
 /* A fraction flag (the table above) into its compare_desc field. */
@@ -142,10 +143,19 @@ const cli_option cli_compare_options[] = {
       .help = "seed of the bootstrap resampling" },
     CLI_BOOL("counters-only", cli_compare_opts, d.counters_only,
              "compare the deterministic counters only (no timing, no noise)"),
+    { .name = "run-spread", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.run_spread),
+      .value_name = "REL", .parse = compare__fraction,
+      .help = "how far this machine's speed moves between two runs, 10% or 0.1; a time change "
+              "within it is not a regression without --paired [default 10%]" },
+    CLI_BOOL("no-blocking", cli_compare_opts, d.no_blocking,
+             "time CIs of the raw samples, not blocked by round"),
     CLI_BOOL("allow-env-mismatch", cli_compare_opts, d.allow_env_mismatch,
              "compare runs from different environments (fingerprints)"),
     CLI_STRING("junit", cli_compare_opts, junit, "FILE", "write a JUnit XML report"),
-    CLI_STRING("markdown", cli_compare_opts, markdown, "FILE", "write a Markdown report"),
+    CLI_STRING("markdown", cli_compare_opts, markdown, "FILE",
+               "write a Markdown report for a PR comment (always, also when nothing compared)"),
+    CLI_BOOL("only-changed", cli_compare_opts, only_changed,
+             "--markdown: only what changed (no PASS rows)"),
     CLI_STRING("json", cli_compare_opts, json, "FILE", "write a JSON report"),
     { .name = "store", .kind = CLI_OPT_STRING, .offset = COMPARE__OFF(store), .value_name = "FILE",
       .help = "the store of both sides [default " CLI_DEFAULT_STORE "]" },
@@ -219,19 +229,24 @@ static int cli__load_sides(cli_compare_opts *o, dm_run_result *base, dm_run_resu
 
 static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
 {
+    compare_md_desc md = { .only_changed = o->only_changed };
+    if (o->markdown && compare_write_markdown_ex(r, &md, o->markdown) != 0)
+        return cli_usage_error("compare: cannot write %s", o->markdown);
     struct { const char *path; int (*fn)(const compare_result *, const char *); } w[] = {
-        { o->markdown, compare_write_markdown }, { o->junit, compare_write_junit },
-        { o->json, compare_write_json } };
+        { o->junit, compare_write_junit }, { o->json, compare_write_json } };
     for (size_t i = 0; i < sizeof w / sizeof *w; i++)
         if (w[i].path && w[i].fn(r, w[i].path) != 0)
             return cli_usage_error("compare: cannot write %s", w[i].path);
     return 0;
 }
 
-/* Prints the error, frees everything, returns DM_EXIT_USAGE. */
-static int cli__compare_fail(dm_str *err)
+/* Prints the error (and writes it as the Markdown report, so a CI step
+ * that posts the file always finds one), returns DM_EXIT_USAGE. */
+static int cli__compare_fail(const cli_compare_opts *o, const compare_result *r, dm_str *err)
 {
     fprintf(stderr, "dmbench: error: %s\n", dm_str_get(err));
+    if (o->markdown && compare_write_markdown_none(dm_str_get(err), r, o->markdown) != 0)
+        fprintf(stderr, "dmbench: error: compare: cannot write %s\n", o->markdown);
     dm_str_free(err);
     return DM_EXIT_USAGE;
 }
@@ -253,7 +268,7 @@ int cli_compare(int argc, char **argv)
     if (rc < 0 && o.paired[0] && o.n_positional)
         rc = cli_usage_error("compare: --paired takes no BASE/NEW paths ('%s')", o.positional[0]);
     if (rc < 0 && cli__load_sides(&o, &base, &new_, &err) != 0)
-        rc = cli__compare_fail(&err);
+        rc = cli__compare_fail(&o, NULL, &err);
     if (rc < 0) {
         int c = compare_runs(&base, &new_, &o.d, &r, &err);
         for (size_t i = 0; i < base.n_warnings + new_.n_warnings && o.paired[0]; i++)
@@ -264,7 +279,7 @@ int cli_compare(int argc, char **argv)
         if (c != 0) {
             for (size_t i = 0; i < r.n_env_diffs; i++)
                 fprintf(stderr, "  %s\n", r.env_diffs[i]);
-            rc = cli__compare_fail(&err);
+            rc = cli__compare_fail(&o, &r, &err);
         } else {
             for (size_t i = 0; i < r.n_warnings; i++)
                 fprintf(stderr, "dmbench: warning: %s\n", r.warnings[i]);
