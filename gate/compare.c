@@ -12,6 +12,7 @@
 #include "counters/counters.h"
 #include "run/env.h"
 #include "models/compare_stats.h"
+#include "models/stats.h"
 #include "reports/report.h"
 
 static const char *const compare__verdict_names[] = { "PASS", "SKIPPED", "IMPROVEMENT",
@@ -273,6 +274,10 @@ static int compare__time_stats(const compare_desc *d, const dm_config_result *b,
         it->hi = cr.hi * it->ratio / cr.ratio;
     }
     it->p = compare_stats_mann_whitney(xn, tn->n_samples, xb, tb->n_samples, NULL);
+    if (d->paired) {   /* the samples are pooled run minima: show what the ratio is of */
+        it->median_base = stats_median(tb->samples, tb->n_samples);
+        it->median_new = stats_median(tn->samples, tn->n_samples);
+    }
     it->detectable = cr.ratio > 0 ? (cr.hi - cr.lo) / 2 / cr.ratio : NAN;
     return 0;
 }
