@@ -70,10 +70,13 @@ typedef enum compare_verdict {
     COMPARE_REGRESSION,
 } compare_verdict;
 
-/* Between-run spread assumed when the runs themselves do not show more:
- * two runs of one binary on a shared 2-core llvmpipe host, minutes apart
- * and with no other change visible, differed by up to ~8 % in median
- * WallTime (docs/ci-gating.md, "Why one run per side cannot gate").  */
+/* Between-run spread assumed when the runs themselves do not show more
+ * (--run-spread).  A floor, not a measurement: one run per side cannot
+ * estimate its between-run variance (Kalibera & Jones, ISMM 2013), and on
+ * the shared machine this was written on the runs' own round spread was
+ * larger every time (+-9..78 %; docs/ci-gating.md, "Timing between two
+ * runs").  Set it from `dmbench compare` of two runs of one binary on
+ * your runner. */
 #define COMPARE_RUN_SPREAD 0.10
 /* A change in WallTime / CPUTime between the runs beyond this is contention:
  * other processes took the CPU from ours (wall time moved, CPU time not). */

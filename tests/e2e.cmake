@@ -21,3 +21,6 @@ dm_add_e2e(test_e2e_dry_run dry_run.sh)
 dm_add_e2e(test_e2e_user_mesh user_mesh.sh)
 dm_add_e2e(test_e2e_published published.sh)
 dm_add_e2e(test_e2e_study_sweeps study_sweeps.sh)
+# docs/ci-gating.md's recipe, run as written (ci/perf-gate.sh, baselines).
+add_test(NAME test_ci_recipe COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/ci_recipe.sh)
+set_tests_properties(test_ci_recipe PROPERTIES TIMEOUT 1800 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")
