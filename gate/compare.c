@@ -324,10 +324,11 @@ static void compare__machine_held(const compare_desc *d, const compare_machine *
     const char *why = m->contention && m->load_changed ? "contention, load changed"
                       : m->contention ? "contention" : m->load_changed ? "load changed"
                       : "between-run spread";
-    it->note = dm_xasprintf("%s %.1f%% %s (CI %.3f..%.3f), within what the machine alone may do "
-                            "between two runs (x%.3f..x%.3f: %s): use compare --paired, or more "
-                            "runs per side", d->time_counter, fabs(it->ratio - 1) * 100,
-                            it->ratio > 1 ? "slower" : "faster", it->lo, it->hi, m->lo, m->hi, why);
+    it->note = dm_xasprintf("%s %.1f%% %s (CI %.3f..%.3f), within what the machine alone may "
+                            "do between two runs (x%.3f..x%.3f: %s): use compare --paired (both "
+                            "builds in alternating rounds)", d->time_counter,
+                            fabs(it->ratio - 1) * 100, it->ratio > 1 ? "slower" : "faster",
+                            it->lo, it->hi, m->lo, m->hi, why);
 }
 
 /* The three-way time verdict of a timed item, with q already set; the CI

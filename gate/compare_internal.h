@@ -17,7 +17,8 @@ void compare__blocked_free(double **blocked, size_t n);
  * the common mode over the timed items (timed[i] for out->items[i]), the
  * CPUTime common mode over the matched configurations, contention, load,
  * and the machine interval; [1, 1] in paired mode. */
-void compare__machine_checks(const compare_desc *d, const dm_run_result *base, const dm_run_result *new_,
-                      const int *timed, compare_result *out);
+void compare__machine_checks(const compare_desc *d, const dm_run_result *base,
+                             const dm_run_result *new_,
+                             const int *timed, compare_result *out);
 
 #endif

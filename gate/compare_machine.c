@@ -172,8 +172,9 @@ static void compare__machine_reason(const compare_desc *d, compare_machine *m)
     dm_str_free(&s);
 }
 
-void compare__machine_checks(const compare_desc *d, const dm_run_result *base, const dm_run_result *new_,
-                      const int *timed, compare_result *out)
+void compare__machine_checks(const compare_desc *d, const dm_run_result *base,
+                             const dm_run_result *new_,
+                             const int *timed, compare_result *out)
 {
     compare_machine *m = &out->machine;
     double *v = dm_xcalloc(out->n_items + 1, sizeof *v);
