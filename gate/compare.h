@@ -108,7 +108,9 @@ typedef struct compare_machine {
     int load_changed;        /* load averages differ by COMPARE_LOAD_TOL or more */
     double spread;           /* max(run_spread, both runs' round_spread) */
     double lo, hi;           /* machine interval: [1/(1+s), 1+s], widened to take in
-                                wall_ratio when the machine changed; [1, 1] when paired */
+                                wall_ratio when the machine changed; paired: [1, 1], or
+                                the span of 1 and wall_ratio / cpu_ratio with contention
+                                (a real change of the code moves CPU time too) */
     char *reason;            /* the checks in words, e.g. "WallTime x1.53 while CPUTime
                                 x1.08 (contention); load average 0.70 -> 3.50" */
 } compare_machine;

@@ -87,7 +87,14 @@ static void compare__precision(const dm_run_result *r, const char *counter, doub
     free(bl);
 }
 
-/* Median over configurations of median(counter a) / median(counter b). */
+/* The median of a counter's samples: what a ratio is of (in paired mode
+ * the samples are the pooled run minima; the stored median is one run's). */
+static double compare__sample_median(const dm_counter_result *t)
+{
+    return stats_median(t->samples, t->n_samples);
+}
+
+/* Median over configurations of median(wall) / median(CPUTime). */
 static double compare__wall_per_cpu(const dm_run_result *r, const char *wall)
 {
     double *v = dm_xcalloc(r->n_configs + 1, sizeof *v);
@@ -95,8 +102,8 @@ static double compare__wall_per_cpu(const dm_run_result *r, const char *wall)
     for (size_t i = 0; i < r->n_configs; i++) {
         const dm_counter_result *w = compare__timed(&r->configs[i], wall);
         const dm_counter_result *c = compare__timed(&r->configs[i], "CPUTime");
-        if (w && c && c->median > 0)
-            v[m++] = w->median / c->median;
+        if (w && c && compare__sample_median(c) > 0)
+            v[m++] = compare__sample_median(w) / compare__sample_median(c);
     }
     double x = m ? stats_median(v, m) : NAN;
     free(v);
@@ -145,11 +152,11 @@ static double compare__common_mode(const dm_run_result *base, const dm_run_resul
     size_t m = 0;
     for (size_t i = 0; i < base->n_configs; i++) {
         const dm_counter_result *b = compare__timed(&base->configs[i], counter);
-        for (size_t j = 0; b && b->median > 0 && j < new_->n_configs; j++)
+        for (size_t j = 0; b && compare__sample_median(b) > 0 && j < new_->n_configs; j++)
             if (strcmp(base->configs[i].key, new_->configs[j].key) == 0) {
                 const dm_counter_result *n = compare__timed(&new_->configs[j], counter);
                 if (n)
-                    v[m++] = n->median / b->median;
+                    v[m++] = compare__sample_median(n) / compare__sample_median(b);
                 break;
             }
     }
@@ -193,9 +200,13 @@ void compare__machine_checks(const compare_desc *d, const dm_run_result *base,
     m->load_changed = isfinite(m->base.load) && isfinite(m->new_.load) &&
                       fabs(m->new_.load - m->base.load) >= tol;
     compare__machine_reason(d, m);
-    if (d->paired) {   /* ABBA rounds on one machine: its changes hit both sides */
+    if (d->paired) {   /* ABBA rounds on one machine: its changes hit both sides ... */
         m->spread = 0;
         m->lo = m->hi = 1;
+        if (m->contention) {   /* ... unless one side waited more: what CPU time does not explain */
+            m->lo = fmin(1, m->wall_ratio / m->cpu_ratio);
+            m->hi = fmax(1, m->wall_ratio / m->cpu_ratio);
+        }
         return;
     }
     m->spread = fmax(d->run_spread, fmax(m->base.round_spread, m->new_.round_spread));

@@ -93,8 +93,14 @@ static void compare__machine_text(const compare_result *r, dm_str *s)
     size_t held = 0;
     for (size_t i = 0; i < r->n_items; i++)
         held += (size_t)r->items[i].machine_held;
-    if (r->desc.paired)
+    int widened = m->lo < 1 || m->hi > 1;
+    if (r->desc.paired && !widened)
         dm_str_cat(s, "machine: paired rounds on one machine: its changes hit both sides\n");
+    else if (r->desc.paired)
+        dm_str_printf(s, "machine: paired rounds on one machine, but one side waited more "
+                      "(WallTime moved beyond CPUTime): x%.3f..x%.3f of it is not attributed; "
+                      "%zu verdict%s held INCONCLUSIVE\n", m->lo, m->hi, held,
+                      held == 1 ? "" : "s");
     else
         dm_str_printf(s, "machine: between two runs the machine alone may move times by "
                       "x%.3f..x%.3f (between-run spread %.0f%%); %zu verdict%s held INCONCLUSIVE "

@@ -892,6 +892,32 @@ static void test_contention_is_named_not_regression(void **state)
     dm_run_free(&b);
 }
 
+/* Paired rounds where one side waited more (WallTime x1.6, CPUTime x1.0):
+ * the wait is not the code's — INCONCLUSIVE; a real change moves CPU time
+ * with WallTime and stays REGRESSION. */
+static void test_paired_contention(void **state)
+{
+    (void)state;
+    dm_run_result a, b, c;
+    make_scene_run(&a, "A", 6, 12, 1.0, 1.0, 0.01, 10, 0.8, NULL);
+    make_scene_run(&b, "B", 6, 12, 1.6, 1.6, 0.01, 50, 0.8, NULL);   /* waits, no more work */
+    make_scene_run(&c, "C", 6, 12, 1.3, 1.0, 0.01, 50, 0.8, NULL);   /* 30 % more work */
+    compare_desc d = { .paired = 1 };
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_true(r.machine.contention && fabs(r.machine.hi - 1.6) < 0.05);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 0);
+    assert_int_equal(r.count[COMPARE_INCONCLUSIVE], 6);
+    compare_result_free(&r);
+    assert_int_equal(run_compare(&a, &c, &d, &r), 0);
+    assert_true(!r.machine.contention && r.machine.hi == 1);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 6);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+    dm_run_free(&c);
+}
+
 /* A true shift beyond the between-run spread is REGRESSION. */
 static void test_shift_beyond_spread_regression(void **state)
 {
@@ -1034,5 +1060,6 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_between_run_shift_within_spread),
              cmocka_unit_test(test_contention_is_named_not_regression),
              cmocka_unit_test(test_shift_beyond_spread_regression),
+             cmocka_unit_test(test_paired_contention),
              cmocka_unit_test(test_blocking_narrows_ci),
              cmocka_unit_test_setup_teardown(test_markdown_pr_comment, tmp_setup, tmp_teardown))

@@ -59,7 +59,9 @@ def rekey(x):
     for c in x["configs"]: c["key"] = "f" + c["key"][1:]
 w("other", rekey)
 def html(x):
-    for i, c in enumerate(x["configs"]): c["params"]["maps"] = f"height=/m/<script>{i}</script>.png"
+    for i, c in enumerate(x["configs"]):   # in a param and in the scene: the short names carry it
+        c["params"]["maps"] = f"height=/m/<script>{i}</script>.png"
+        c["scene"] = f"plane<script>{i}</script>"
 w("html", html)
 PY
 err=$("$BIN" compare "$J" "$J" --alpha 0 2>&1 >/dev/null); check "--alpha 0" 2 "(0 %, 100 %)" $? "$err"
