@@ -241,14 +241,16 @@ static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
 }
 
 /* Prints the error (and writes it as the Markdown report, so a CI step
- * that posts the file always finds one), returns DM_EXIT_USAGE. */
-static int cli__compare_fail(const cli_compare_opts *o, const compare_result *r, dm_str *err)
+ * that posts the file always finds one), frees err, returns the exit code
+ * of e (cli_error): 4 for a damaged or newer store, 2 otherwise. */
+static int cli__compare_fail(const cli_compare_opts *o, const compare_result *r, int e,
+                             dm_str *err)
 {
-    fprintf(stderr, "dmbench: error: %s\n", dm_str_get(err));
+    int rc = cli_error(e, "%s", dm_str_get(err));
     if (o->markdown && compare_write_markdown_none(dm_str_get(err), r, o->markdown) != 0)
         fprintf(stderr, "dmbench: error: compare: cannot write %s\n", o->markdown);
     dm_str_free(err);
-    return DM_EXIT_USAGE;
+    return rc;
 }
 
 /* `dmbench compare`: both sides, the comparison, its text and files;
@@ -267,8 +269,9 @@ int cli_compare(int argc, char **argv)
     dm_str err = {0};
     if (rc < 0 && o.paired[0] && o.n_positional)
         rc = cli_usage_error("compare: --paired takes no BASE/NEW paths ('%s')", o.positional[0]);
-    if (rc < 0 && cli__load_sides(&o, &base, &new_, &err) != 0)
-        rc = cli__compare_fail(&o, NULL, &err);
+    int e = 0;
+    if (rc < 0 && (e = cli__load_sides(&o, &base, &new_, &err)) != 0)
+        rc = cli__compare_fail(&o, NULL, e, &err);
     if (rc < 0) {
         int c = compare_runs(&base, &new_, &o.d, &r, &err);
         for (size_t i = 0; i < base.n_warnings + new_.n_warnings && o.paired[0]; i++)
@@ -279,7 +282,7 @@ int cli_compare(int argc, char **argv)
         if (c != 0) {
             for (size_t i = 0; i < r.n_env_diffs; i++)
                 fprintf(stderr, "  %s\n", r.env_diffs[i]);
-            rc = cli__compare_fail(&o, &r, &err);
+            rc = cli__compare_fail(&o, &r, c, &err);
         } else {
             for (size_t i = 0; i < r.n_warnings; i++)
                 fprintf(stderr, "dmbench: warning: %s\n", r.warnings[i]);

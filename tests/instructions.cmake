@@ -26,3 +26,25 @@ add_test(NAME test_instructions_gate
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/gate.sh $<TARGET_FILE:dmbench_slowshader>)
 set_tests_properties(test_instructions_gate PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
+
+# dmbench_plainshader: dmbench with a test-only copy of the GLSL whose
+# vt.glsl has no virtual-texturing code (instructions/plain_vt.glsl).
+# test_instructions_uber asserts that every technique with
+# virtual_texture: off costs the same instructions with either binary.
+set(DM_PLAIN_DIR ${CMAKE_CURRENT_BINARY_DIR}/plain_glsl)
+set(DM_PLAIN_C ${CMAKE_CURRENT_BINARY_DIR}/shaders_plain.c)
+add_custom_command(OUTPUT ${DM_PLAIN_C}
+  COMMAND ${CMAKE_COMMAND} -E copy_directory ${CMAKE_SOURCE_DIR}/techniques/glsl ${DM_PLAIN_DIR}
+  COMMAND ${CMAKE_COMMAND} -E copy ${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl ${DM_PLAIN_DIR}/vt.glsl
+  COMMAND ${CMAKE_COMMAND} -DGLSL_DIR=${DM_PLAIN_DIR} -DOUT=${DM_PLAIN_C}
+          -P ${CMAKE_SOURCE_DIR}/cmake/embed_glsl.cmake
+  DEPENDS ${DM_SLOW_GLSL_IN} ${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl
+          ${CMAKE_SOURCE_DIR}/cmake/embed_glsl.cmake
+  COMMENT "Embedding the test-only GLSL without virtual texturing")
+add_executable(dmbench_plainshader ${CMAKE_SOURCE_DIR}/cli/main.c ${DM_PLAIN_C})
+target_link_libraries(dmbench_plainshader PRIVATE dm_cli)
+
+add_test(NAME test_instructions_uber
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/uber.sh $<TARGET_FILE:dmbench_plainshader>)
+set_tests_properties(test_instructions_uber PROPERTIES TIMEOUT 1800
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
