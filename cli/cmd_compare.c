@@ -11,6 +11,7 @@
  */
 #include "cli.h"
 
+#include <assert.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -21,6 +22,7 @@
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
 #include "gate/compare.h"
+#include "sweep/fraction.h"
 
 #define CLI_DEFAULT_STORE "results/dmbench.sqlite"
 
@@ -37,56 +39,47 @@ typedef struct cli_compare_opts {
     int n_positional;
     const char *junit, *markdown, *json;
     const char *paired[3];
-    int rounds, quiet;
+    int rounds, quiet, only_changed;
     compare_tolerance *tol;
 } cli_compare_opts;
 
-/* "5%" -> 0.05, "0.05" -> 0.05; -1 when not a non-negative number. */
-static double compare__fraction(const char *v)
+/* A non-negative number (--psnr-drop, in dB) into the compare_desc field
+ * of the option's offset. */
+static int compare__number(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
     char *end = NULL;
     double x = strtod(v, &end);
-    if (end == v || !isfinite(x) || x < 0)
-        return -1;
-    if (*end == '%' && end[1] == '\0')
-        return x / 100.0;
-    return *end ? -1 : x;
-}
-
-/* A non-negative number (a percentage too for --time-threshold) into the
- * compare_desc field of the option's offset. */
-static int compare__number(const cli_option *opt, const char *v, void *args, dm_str *err)
-{
-    int allow_percent = strcmp(opt->name, "time-threshold") == 0;
-    double x = compare__fraction(v);
-    if (x < 0 || (!allow_percent && strchr(v, '%'))) {
-        dm_str_printf(err, "--%s '%s': expected a non-negative number%s", opt->name, v,
-                      allow_percent ? " or a percentage such as 5%" : "");
+    if (end == v || *end || !isfinite(x) || x < 0) {
+        dm_str_printf(err, "--%s '%s': expected a non-negative number", opt->name, v);
         return DM_ERR_ARG;
     }
     *(double *)((char *)args + opt->offset) = x;
     return 0;
 }
 
-/* --threshold: the Instructions change that counts, a fraction or a
- * percentage strictly between 0 and 100 %. */
-static int compare__threshold(const cli_option *opt, const char *v, void *args, dm_str *err)
-{
-    double x = compare__fraction(v);
-    if (!(x > 0 && x < 1)) {
-        dm_str_printf(err, "--%s '%s': expected a change in (0, 100%%), e.g. 0.5%% or 0.005",
-                      opt->name, v);
-        return DM_ERR_ARG;
-    }
-    *(double *)((char *)args + opt->offset) = x;
-    return 0;
-}
+/* The range of each fraction flag (sweep/fraction.h grammar: 5% or 0.05).
+ * 0 is refused where it would silently mean "the default". */
+static const struct { const char *flag; fraction_range range; } compare__fractions[] = {
+    { "time-threshold", { 0, INFINITY, 1, 0 } },   /* a time change; above 100 % as a percentage */
+    { "threshold", { 0, 1, 1, 1 } },               /* an Instructions change */
+    { "alpha", { 0, 1, 1, 1 } },                   /* a significance level */
+    { "ssim-drop", { 0, 1, 1, 0 } },               /* SSIM is in [0, 1] */
+    { "run-spread", { 0, INFINITY, 1, 0 } },       /* the machine's between-run spread */
+};
 
-/* --alpha: a significance level strictly between 0 and 1 (compare_check_alpha). */
-static int compare__alpha(const cli_option *opt, const char *v, void *args, dm_str *err)
+/* A fraction flag (the table above) into its compare_desc field. */
+static int compare__fraction(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
-    int rc = compare__number(opt, v, args, err);
-    return rc ? rc : compare_check_alpha(*(double *)((char *)args + opt->offset), err);
+    for (size_t i = 0; i < sizeof compare__fractions / sizeof *compare__fractions; i++)
+        if (strcmp(compare__fractions[i].flag, opt->name) == 0) {
+            char *what = dm_xasprintf("--%s", opt->name);
+            int rc = fraction_parse(v, what, &compare__fractions[i].range,
+                                    (double *)((char *)args + opt->offset), err);
+            free(what);
+            return rc;
+        }
+    assert(!"a fraction flag without a range");
+    return DM_ERR_ARG;
 }
 
 /* --tolerance COUNTER=REL, repeatable. */
@@ -94,13 +87,21 @@ static int compare__tolerance(const cli_option *opt, const char *v, void *args, 
 {
     cli_compare_opts *o = args;
     const char *eq = strchr(v, '=');
-    double rel = eq ? compare__fraction(eq + 1) : -1;
-    if (!eq || eq == v || rel < 0) {
+    if (!eq || eq == v) {
         dm_str_printf(err, "--%s '%s': expected COUNTER=REL, e.g. FSInvocations=0.01 or "
                       "FSInvocations=1%%", opt->name, v);
         return DM_ERR_ARG;
     }
+    static const fraction_range any = { 0, INFINITY, 0, 0 };
+    double rel = 0;
     char *name = dm_xasprintf("%.*s", (int)(eq - v), v);
+    char *what = dm_xasprintf("--%s %s", opt->name, name);
+    int rc = fraction_parse(eq + 1, what, &any, &rel, err);
+    free(what);
+    if (rc) {
+        free(name);
+        return rc;
+    }
     if (compare_check_tolerance_counter(name, err) != 0) {   /* a misspelled counter */
         free(name);
         return DM_ERR_UNKNOWN;
@@ -122,17 +123,18 @@ static void compare__free_tolerances(cli_compare_opts *o)
 #define COMPARE__OFF(field) offsetof(cli_compare_opts, field)
 const cli_option cli_compare_options[] = {
     { .name = "time-threshold", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.time_threshold),
-      .value_name = "REL", .parse = compare__number,
-      .help = "smallest time change that counts, e.g. 5% or 0.05 [default 5%]" },
+      .value_name = "REL", .parse = compare__fraction,
+      .help = "smallest time change that counts, 5% or 0.05 (a bare 5 is refused) [default 5%]" },
     { .name = "threshold", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.threshold),
-      .value_name = "REL", .parse = compare__threshold,
-      .help = "smallest Instructions change that counts, e.g. 0.5% or 0.005 [default 0.5%]" },
+      .value_name = "REL", .parse = compare__fraction,
+      .help = "smallest Instructions change that counts, 0.5% or 0.005 [default 0.5%]" },
     { .name = "alpha", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.alpha), .value_name = "P",
-      .parse = compare__alpha, .help = "significance level of the time test [default 0.01]" },
+      .parse = compare__fraction, .help = "significance level of the time test, 1% or 0.01 [default 1%]" },
     { .name = "psnr-drop", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.psnr_drop),
       .value_name = "DB", .parse = compare__number, .help = "largest PSNR loss that passes [default 1 dB]" },
     { .name = "ssim-drop", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.ssim_drop),
-      .value_name = "X", .parse = compare__number, .help = "largest SSIM loss that passes [default 0.01]" },
+      .value_name = "X", .parse = compare__fraction,
+      .help = "largest SSIM loss that passes, 1% or 0.01 [default 0.01]" },
     { .name = "tolerance", .kind = CLI_OPT_STRING, .value_name = "COUNTER=REL",
       .parse = compare__tolerance, .repeat = 1, .help = "relative tolerance of one counter (repeatable)" },
     CLI_STRING("time-counter", cli_compare_opts, d.time_counter, "NAME",
@@ -141,10 +143,19 @@ const cli_option cli_compare_options[] = {
       .help = "seed of the bootstrap resampling" },
     CLI_BOOL("counters-only", cli_compare_opts, d.counters_only,
              "compare the deterministic counters only (no timing, no noise)"),
+    { .name = "run-spread", .kind = CLI_OPT_DOUBLE, .offset = COMPARE__OFF(d.run_spread),
+      .value_name = "REL", .parse = compare__fraction,
+      .help = "how far this machine's speed moves between two runs, 10% or 0.1; a time change "
+              "within it is not a regression without --paired [default 10%]" },
+    CLI_BOOL("no-blocking", cli_compare_opts, d.no_blocking,
+             "time CIs of the raw samples, not blocked by round"),
     CLI_BOOL("allow-env-mismatch", cli_compare_opts, d.allow_env_mismatch,
              "compare runs from different environments (fingerprints)"),
     CLI_STRING("junit", cli_compare_opts, junit, "FILE", "write a JUnit XML report"),
-    CLI_STRING("markdown", cli_compare_opts, markdown, "FILE", "write a Markdown report"),
+    CLI_STRING("markdown", cli_compare_opts, markdown, "FILE",
+               "write a Markdown report for a PR comment (always, also when nothing compared)"),
+    CLI_BOOL("only-changed", cli_compare_opts, only_changed,
+             "--markdown: only what changed (no PASS rows)"),
     CLI_STRING("json", cli_compare_opts, json, "FILE", "write a JSON report"),
     { .name = "store", .kind = CLI_OPT_STRING, .offset = COMPARE__OFF(store), .value_name = "FILE",
       .help = "the store of both sides [default " CLI_DEFAULT_STORE "]" },
@@ -218,20 +229,26 @@ static int cli__load_sides(cli_compare_opts *o, dm_run_result *base, dm_run_resu
 
 static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
 {
+    compare_md_desc md = { .only_changed = o->only_changed };
+    if (o->markdown && compare_write_markdown_ex(r, &md, o->markdown) != 0)
+        return cli_usage_error("compare: cannot write %s", o->markdown);
     struct { const char *path; int (*fn)(const compare_result *, const char *); } w[] = {
-        { o->markdown, compare_write_markdown }, { o->junit, compare_write_junit },
-        { o->json, compare_write_json } };
+        { o->junit, compare_write_junit }, { o->json, compare_write_json } };
     for (size_t i = 0; i < sizeof w / sizeof *w; i++)
         if (w[i].path && w[i].fn(r, w[i].path) != 0)
             return cli_usage_error("compare: cannot write %s", w[i].path);
     return 0;
 }
 
-/* Prints the error, frees err, returns the exit code of e (cli_error):
- * 4 for a damaged or newer store, 2 otherwise. */
-static int cli__compare_fail(int e, dm_str *err)
+/* Prints the error (and writes it as the Markdown report, so a CI step
+ * that posts the file always finds one), frees err, returns the exit code
+ * of e (cli_error): 4 for a damaged or newer store, 2 otherwise. */
+static int cli__compare_fail(const cli_compare_opts *o, const compare_result *r, int e,
+                             dm_str *err)
 {
     int rc = cli_error(e, "%s", dm_str_get(err));
+    if (o->markdown && compare_write_markdown_none(dm_str_get(err), r, o->markdown) != 0)
+        fprintf(stderr, "dmbench: error: compare: cannot write %s\n", o->markdown);
     dm_str_free(err);
     return rc;
 }
@@ -254,7 +271,7 @@ int cli_compare(int argc, char **argv)
         rc = cli_usage_error("compare: --paired takes no BASE/NEW paths ('%s')", o.positional[0]);
     int e = 0;
     if (rc < 0 && (e = cli__load_sides(&o, &base, &new_, &err)) != 0)
-        rc = cli__compare_fail(e, &err);
+        rc = cli__compare_fail(&o, NULL, e, &err);
     if (rc < 0) {
         int c = compare_runs(&base, &new_, &o.d, &r, &err);
         for (size_t i = 0; i < base.n_warnings + new_.n_warnings && o.paired[0]; i++)
@@ -265,7 +282,7 @@ int cli_compare(int argc, char **argv)
         if (c != 0) {
             for (size_t i = 0; i < r.n_env_diffs; i++)
                 fprintf(stderr, "  %s\n", r.env_diffs[i]);
-            rc = cli__compare_fail(c, &err);
+            rc = cli__compare_fail(&o, &r, c, &err);
         } else {
             for (size_t i = 0; i < r.n_warnings; i++)
                 fprintf(stderr, "dmbench: warning: %s\n", r.warnings[i]);

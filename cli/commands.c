@@ -48,7 +48,12 @@ static const cli_command commands[] = {
           "taken from a store: --base-run ID | --base-tag NAME | --baseline for BASE,\n"
           "--new-run ID | --new-tag NAME for NEW.  The store is --base-store/--new-store,\n"
           "else --store, else results/dmbench.sqlite.  A side not taken from a store\n"
-          "takes the next PATH.  See docs/ci-gating.md." },
+          "takes the next PATH.  Two separate runs cannot tell a slower machine from\n"
+          "slower code: a time change the machine could explain (WallTime against\n"
+          "CPUTime, load average, how far its rounds moved, --run-spread) is\n"
+          "INCONCLUSIVE, not REGRESSION; --paired runs both builds in alternating\n"
+          "rounds and is the way to gate time.  Exit 2 bad input (also: environments\n"
+          "differ), 4 environment failure.  See docs/ci-gating.md." },
     { .name = "baseline", .fn = cli_baseline, .options = cli_baseline_options,
       .pos_choices = cli_baseline_actions, .synopsis = "accept RUN --reason TEXT\nshow",
       .summary = "accept a run as the baseline of its sweep, or show the current baseline",

@@ -1,6 +1,7 @@
 /* compare.c — the regression gate's engine: matching, checks, verdicts
  * (see compare.h for the rules). */
 #include "gate/compare.h"
+#include "gate/compare_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -11,6 +12,8 @@
 #include "counters/counters.h"
 #include "run/env.h"
 #include "models/compare_stats.h"
+#include "models/stats.h"
+#include "reports/report.h"
 
 static const char *const compare__verdict_names[] = { "PASS", "SKIPPED", "IMPROVEMENT",
                                                       "INCONCLUSIVE", "REGRESSION" };
@@ -30,6 +33,7 @@ compare_desc compare_defaults(const compare_desc *d)
     o.psnr_drop = o.psnr_drop > 0 ? o.psnr_drop : 1.0;
     o.ssim_drop = o.ssim_drop > 0 ? o.ssim_drop : 0.01;
     o.time_counter = o.time_counter ? o.time_counter : "WallTime";
+    o.run_spread = o.run_spread > 0 ? o.run_spread : COMPARE_RUN_SPREAD;
     return o;
 }
 
@@ -126,6 +130,19 @@ static int compare__instructions(const compare_desc *d, const dm_config_result *
     return 1;
 }
 
+/* The relative tolerance a deterministic counter always has: 0 for a count
+ * (an integer, equal or changed), COMPARE_DERIVED_EPS for a floating value
+ * (a derived ratio such as ShadingEfficiency = SamplesPassed /
+ * FSInvocations), whose last bit depends on the order of the arithmetic
+ * and on how it was written; its integer parts are compared exactly
+ * beside it, so a real change is never hidden.  A counter the registry does
+ * not know is compared exactly. */
+static double compare__float_eps(const char *counter)
+{
+    const counters_info *info = counters_find(counter);
+    return info && info->type == COUNTERS_TYPE_FLOAT64 ? COMPARE_DERIVED_EPS : 0.0;
+}
+
 /* Deterministic counters of BASE against NEW: a value outside the tolerance,
  * or a counter available on one side only, is a change. */
 static void compare__deterministic(const compare_desc *d, const dm_config_result *b,
@@ -143,7 +160,7 @@ static void compare__deterministic(const compare_desc *d, const dm_config_result
                             cb->available ? "unavailable on NEW" : "unavailable on BASE");
             continue;
         }
-        double tol = compare__tolerance(d, cb->name);
+        double tol = fmax(compare__tolerance(d, cb->name), compare__float_eps(cb->name));
         if (cb->available && !(fabs(cn->value - cb->value) <= tol * fabs(cb->value)))
             compare__change(it, cb->name, cb->value, cn->value, NULL);
     }
@@ -217,9 +234,12 @@ static int compare__checks(const compare_desc *d, const dm_config_result *b,
     return compare__instructions(d, b, n, it) || d->counters_only;
 }
 
-/* Bootstrap CI and Mann-Whitney p of the time counter; 0 when timed. */
+/* Bootstrap CI and Mann-Whitney p of the time counter, on the samples
+ * blocked by round where a side has them (bb, bn: NULL for raw), and the
+ * CI of the raw samples beside it; 0 when timed. */
 static int compare__time_stats(const compare_desc *d, const dm_config_result *b,
-                               const dm_config_result *n, compare_item *it)
+                               const dm_config_result *n, const double *bb, const double *bn,
+                               compare_item *it)
 {
     const dm_counter_result *tb = dm_config_counter(b, d->time_counter);
     const dm_counter_result *tn = dm_config_counter(n, d->time_counter);
@@ -242,11 +262,22 @@ static int compare__time_stats(const compare_desc *d, const dm_config_result *b,
     }
     it->timed = 1;
     it->ratio = cr.ratio;
-    it->lo = cr.lo;
-    it->hi = cr.hi;
+    it->lo = it->lo_raw = cr.lo;
+    it->hi = it->hi_raw = cr.hi;
     it->n_base = tb->n_samples;
     it->n_new = tn->n_samples;
-    it->p = compare_stats_mann_whitney(tn->samples, tn->n_samples, tb->samples, tb->n_samples, NULL);
+    const double *xb = bb ? bb : tb->samples, *xn = bn ? bn : tn->samples;
+    it->blocked = (bb || bn) && compare_stats_ratio_ci(xb, tb->n_samples, xn, tn->n_samples,
+                                                       d->level, seed, &cr) == 0;
+    if (it->blocked) {   /* the ratio of medians stays the raw one; the CI is the blocked one's */
+        it->lo = cr.lo * it->ratio / cr.ratio;
+        it->hi = cr.hi * it->ratio / cr.ratio;
+    }
+    it->p = compare_stats_mann_whitney(xn, tn->n_samples, xb, tb->n_samples, NULL);
+    if (d->paired) {   /* the samples are pooled run minima: show what the ratio is of */
+        it->median_base = stats_median(tb->samples, tb->n_samples);
+        it->median_new = stats_median(tn->samples, tn->n_samples);
+    }
     it->detectable = cr.ratio > 0 ? (cr.hi - cr.lo) / 2 / cr.ratio : NAN;
     return 0;
 }
@@ -282,12 +313,34 @@ static long compare__extra_samples(double t, const compare_item *it)
     return !isfinite(need) || need > 1e9 ? -1 : need < 1 ? 1 : (long)need;
 }
 
-/* The three-way time verdict of a timed item, with q already set. */
-static void compare__time_verdict(const compare_desc *d, compare_item *it)
+/* An item whose CI cleared the threshold but not the machine interval:
+ * INCONCLUSIVE, naming the machine's change and the remedy. */
+static void compare__machine_held(const compare_desc *d, const compare_machine *m,
+                                  compare_item *it)
+{
+    it->verdict = COMPARE_INCONCLUSIVE;
+    it->machine_held = 1;
+    it->extra_samples = -1;
+    const char *why = m->contention && m->load_changed ? "contention, load changed"
+                      : m->contention ? "contention" : m->load_changed ? "load changed"
+                      : "between-run spread";
+    it->note = dm_xasprintf("%s %.1f%% %s (CI %.3f..%.3f), within what the machine alone may "
+                            "do between two runs (x%.3f..x%.3f: %s): use compare --paired (both "
+                            "builds in alternating rounds)", d->time_counter,
+                            fabs(it->ratio - 1) * 100, it->ratio > 1 ? "slower" : "faster",
+                            it->lo, it->hi, m->lo, m->hi, why);
+}
+
+/* The three-way time verdict of a timed item, with q already set; the CI
+ * must clear the threshold also after dividing by the machine interval. */
+static void compare__time_verdict(const compare_desc *d, const compare_machine *m, compare_item *it)
 {
     double t = d->time_threshold;
     int sig = it->q < d->alpha;
-    if (it->lo > 1.0 + t && sig) {
+    if ((it->lo > 1.0 + t && it->lo / m->hi <= 1.0 + t && sig) ||
+        (it->hi < 1.0 - t && it->hi / m->lo >= 1.0 - t && sig)) {
+        compare__machine_held(d, m, it);
+    } else if (it->lo > 1.0 + t && sig) {
         it->verdict = COMPARE_REGRESSION;
         it->note = dm_xasprintf("%s %.1f%% slower (CI %.3f..%.3f, q=%.2g)", d->time_counter,
                                 (it->ratio - 1) * 100, it->lo, it->hi, it->q);
@@ -336,7 +389,7 @@ static void compare__timing(const compare_desc *d, compare_result *out, const in
             continue;
         compare_item *it = &out->items[i];
         it->q = p[k++];
-        compare__time_verdict(d, it);
+        compare__time_verdict(d, &out->machine, it);
         logsum += log(it->ratio);
         out->n_geomean++;
     }
@@ -391,9 +444,11 @@ static int compare__other_machine(const compare_desc *d, const dm_run_result *ba
     return 1;
 }
 
-/* Matches configurations by key, lists added and removed ones. */
+/* Matches configurations by key, lists added and removed ones; the time
+ * statistics use the blocked samples blk_b / blk_n (compare__block). */
 static int *compare__match(const compare_desc *d, const dm_run_result *base,
-                           const dm_run_result *new_, compare_result *out)
+                           const dm_run_result *new_, double *const *blk_b,
+                           double *const *blk_n, compare_result *out)
 {
     out->items = dm_xcalloc(base->n_configs + 1, sizeof *out->items);
     int *pending = dm_xcalloc(base->n_configs + 1, sizeof *pending);
@@ -408,12 +463,19 @@ static int *compare__match(const compare_desc *d, const dm_run_result *base,
         compare_item *it = &out->items[out->n_items];
         it->key = dm_xstrdup(b->key);
         it->label = label;
+        dm_str name = {0};
+        report_config_name(base, b, &name);
+        it->name = dm_str_take(&name);
         it->p = it->q = NAN;
+        const dm_counter_result *tb = dm_config_counter(b, d->time_counter);
+        if (tb && tb->available && tb->has_samples && isfinite(tb->median))
+            it->median_base = tb->median;
         const dm_counter_result *tn = dm_config_counter(n, d->time_counter);
         if (tn && tn->available && tn->has_samples && isfinite(tn->median))
             it->median_new = tn->median;   /* the JUnit time of every verdict */
         if (!compare__other_machine(d, base, b, new_, n, it) && !compare__checks(d, b, n, it))
-            pending[out->n_items] = compare__time_stats(d, b, n, it) == 0;
+            pending[out->n_items] =
+                compare__time_stats(d, b, n, blk_b[i], blk_n[(size_t)(n - new_->configs)], it) == 0;
         out->n_items++;
     }
     for (size_t i = 0; i < new_->n_configs; i++)
@@ -484,9 +546,14 @@ int compare_runs(const dm_run_result *base, const dm_run_result *new_, const com
                                    "(instruction counts depend on the CPU's instruction set)",
                                    cpu_b, cpu_n));
     }
-    int *pending = compare__match(o, base, new_, out);
+    double **blk_b = compare__block(base, o->time_counter, o->no_blocking, &out->machine.base);
+    double **blk_n = compare__block(new_, o->time_counter, o->no_blocking, &out->machine.new_);
+    int *pending = compare__match(o, base, new_, blk_b, blk_n, out);
+    compare__machine_checks(o, base, new_, pending, out);
     compare__timing(o, out, pending);
     free(pending);
+    compare__blocked_free(blk_b, base->n_configs);
+    compare__blocked_free(blk_n, new_->n_configs);
     qsort(out->items, out->n_items, sizeof *out->items, compare__item_cmp);
     for (size_t i = 0; i < out->n_items; i++)
         out->count[out->items[i].verdict]++;
@@ -553,6 +620,7 @@ void compare_result_free(compare_result *r)
         free(it->changes);
         free(it->key);
         free(it->label);
+        free(it->name);
         free(it->note);
     }
     free(r->items);
@@ -560,6 +628,7 @@ void compare_result_free(compare_result *r)
     compare__free_list(r->removed, r->n_removed);
     compare__free_list(r->env_diffs, r->n_env_diffs);
     compare__free_list(r->warnings, r->n_warnings);
+    free(r->machine.reason);
     free(r->base_id);
     free(r->new_id);
     free(r->sweep);

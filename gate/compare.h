@@ -10,7 +10,8 @@
  * Per matched configuration, in this order, the first failing check wins:
  *  - NEW failed where BASE was ok                          -> REGRESSION
  *  - a deterministic counter available on both sides differs by more than
- *    its relative tolerance (default 0: exact)               -> REGRESSION
+ *    its relative tolerance (default: counts exact, floating derived
+ *    counters COMPARE_DERIVED_EPS)                           -> REGRESSION
  *  - quality: PSNR dropped by more than psnr_drop dB or SSIM by more than
  *    ssim_drop (not in counters_only mode)                   -> REGRESSION
  *  - Instructions (group Cost, exact counts) available on both sides: the
@@ -27,6 +28,13 @@
  *      1 - t <= lo and hi <= 1 + t                           -> PASS
  *      otherwise                                             -> INCONCLUSIVE
  *    Identical samples on both sides give ratio = lo = hi = 1: PASS.
+ *    Between runs (not in paired mode) the bounds are first divided by the
+ *    machine interval [machine.lo, machine.hi] (compare_machine below): a
+ *    REGRESSION needs lo / machine.hi > 1 + t, an IMPROVEMENT hi /
+ *    machine.lo < 1 - t; a change the machine alone could explain is
+ *    INCONCLUSIVE, its note naming the machine's change and the remedy.
+ *    The samples are first blocked by round (models/blocking.h) unless
+ *    no_blocking; lo_raw/hi_raw keep the CI of the raw samples.
  *    Every INCONCLUSIVE states `detectable`, the smallest change the data
  *    could have detected (the CI's half-width relative to the ratio), and
  *    the extra samples per side (rounds in paired mode) likely needed:
@@ -48,6 +56,11 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 
+/* Relative tolerance of a deterministic floating counter (a derived ratio):
+ * two computations of one ratio from equal integer parts agree to a few
+ * ULP (1e-16); any real change of a count moves a ratio by far more. */
+#define COMPARE_DERIVED_EPS 1e-12
+
 /* Worst first: the table is sorted by descending verdict. */
 typedef enum compare_verdict {
     COMPARE_PASS = 0,
@@ -56,6 +69,51 @@ typedef enum compare_verdict {
     COMPARE_INCONCLUSIVE,
     COMPARE_REGRESSION,
 } compare_verdict;
+
+/* Between-run spread assumed when the runs themselves do not show more
+ * (--run-spread).  A floor, not a measurement: one run per side cannot
+ * estimate its between-run variance (Kalibera & Jones, ISMM 2013), and on
+ * the shared machine this was written on the runs' own round spread was
+ * larger every time (+-9..78 %; docs/ci-gating.md, "Timing between two
+ * runs").  Set it from `dmbench compare` of two runs of one binary on
+ * your runner. */
+#define COMPARE_RUN_SPREAD 0.10
+/* A change in WallTime / CPUTime between the runs beyond this is contention:
+ * other processes took the CPU from ours (wall time moved, CPU time not). */
+#define COMPARE_CONTENTION_TOL 0.05
+/* A change of the 1-minute load average at least this large (and at least
+ * a quarter of the CPU count) is a changed machine. */
+#define COMPARE_LOAD_TOL 0.5
+
+/* What one run says about the machine it ran on. */
+typedef struct compare_side_state {
+    double load;             /* 1-minute load average at the run's start; NaN unknown */
+    double wall_per_cpu;     /* median over configurations of median WallTime / median
+                                CPUTime; NaN without CPUTime */
+    double round_spread;     /* largest blocking_spread of a scene's round factors */
+    size_t n_timed;          /* configurations with time samples */
+    size_t n_precise_raw;    /* ... whose 95 % CI of the median is within +-3 % */
+    size_t n_precise_blocked;/* ... the same after blocking by round */
+    double ci_rel_raw, ci_rel_blocked;   /* median CI half-width / median, raw and blocked */
+} compare_side_state;
+
+/* The machine checks of a comparison: how far the machine alone may have
+ * moved the times between BASE and NEW. */
+typedef struct compare_machine {
+    compare_side_state base, new_;
+    double wall_ratio;       /* common mode: median over timed configurations of
+                                median(NEW)/median(BASE) of the time counter; NaN none */
+    double cpu_ratio;        /* the same for CPUTime; NaN without it */
+    int contention;          /* wall_ratio / cpu_ratio beyond COMPARE_CONTENTION_TOL */
+    int load_changed;        /* load averages differ by COMPARE_LOAD_TOL or more */
+    double spread;           /* max(run_spread, both runs' round_spread) */
+    double lo, hi;           /* machine interval: [1/(1+s), 1+s], widened to take in
+                                wall_ratio when the machine changed; paired: [1, 1], or
+                                the span of 1 and wall_ratio / cpu_ratio with contention
+                                (a real change of the code moves CPU time too) */
+    char *reason;            /* the checks in words, e.g. "WallTime x1.53 while CPUTime
+                                x1.08 (contention); load average 0.70 -> 3.50" */
+} compare_machine;
 
 typedef struct compare_tolerance {
     const char *counter;
@@ -78,6 +136,9 @@ typedef struct compare_desc {
     uint64_t seed;           /* bootstrap seed (0 is a valid seed) */
     int counters_only;
     int allow_env_mismatch;
+    double run_spread;       /* 0 -> COMPARE_RUN_SPREAD: how far the machine's speed may move
+                                between two runs when the runs show no more (compare_machine) */
+    int no_blocking;         /* 1: the time CI of the raw samples, not blocked by round */
     const compare_tolerance *tolerances;
     size_t n_tolerances;
 } compare_desc;
@@ -91,13 +152,18 @@ typedef struct compare_change {
 typedef struct compare_item {
     char *key;
     char *label;             /* "mesh=plane technique=normal resolution=96x54" */
+    char *name;              /* short: "plane@96x54/pom steps=32" (report_config_name) */
     compare_verdict verdict;
     char *note;              /* why (first failing check), NULL for a plain PASS */
     int timed;               /* the time statistics below are set */
-    double ratio, lo, hi;    /* median(new)/median(base) and its CI */
+    double ratio, lo, hi;    /* median(new)/median(base) and its CI (blocked by round) */
+    double lo_raw, hi_raw;   /* the CI of the raw samples (= lo, hi when not blocked) */
+    int blocked;             /* a side's samples were corrected by round */
+    int machine_held;        /* the CI cleared the threshold but not the machine interval */
     double p, q;             /* Mann-Whitney p, BH-adjusted q */
     size_t n_base, n_new;
     double median_new;       /* NEW's median of the time counter, ns per frame; 0 when none (JUnit time) */
+    double median_base;      /* BASE's, the same way */
     long extra_samples;      /* INCONCLUSIVE: per side; -1 unknown */
     double detectable;       /* timed: smallest relative change the data could detect (CI half-width / ratio) */
     int instr;               /* Instructions decided the verdict: */
@@ -120,6 +186,7 @@ typedef struct compare_result {
     char **warnings;
     size_t n_warnings;
     size_t count[COMPARE_REGRESSION + 1];
+    compare_machine machine; /* machine checks (timed comparisons) */
     double geomean;          /* NaN when no configuration was timed */
     size_t n_geomean;
 } compare_result;
@@ -157,6 +224,26 @@ void compare_write_text(const compare_result *r, FILE *f);
  * verdict in system-out); JSON (everything in compare_result).  Each returns
  * 0 or DM_ERR_IO and writes atomically. */
 int compare_write_markdown(const compare_result *r, const char *path);
+/* Markdown for a pull-request comment:
+ *   a headline: the verdict in words with the counts;
+ *   the machine checks in one line when they held verdicts;
+ *   a table of what changed only (not PASS): configuration (short name),
+ *   base, new, ratio, CI, verdict, note;
+ *   the PASS rows in a <details> block (none with only_changed);
+ *   at most COMPARE_MD_MAX characters: rows that do not fit are cut, PASS
+ *   rows first, with a line saying how many and where the rest is.
+ * The same options; 0 or DM_ERR_IO. */
+#define COMPARE_MD_MAX 60000
+typedef struct compare_md_desc {
+    int only_changed;
+    size_t max_chars;        /* 0 -> COMPARE_MD_MAX */
+} compare_md_desc;
+int compare_write_markdown_ex(const compare_result *r, const compare_md_desc *d, const char *path);
+/* The Markdown of a comparison that did not happen (no configuration in
+ * common, environments differ, a side could not be read): the headline
+ * says so and why (reason), so the CI step that posts it always has a
+ * file.  0 or DM_ERR_IO. */
+int compare_write_markdown_none(const char *reason, const compare_result *r, const char *path);
 int compare_write_junit(const compare_result *r, const char *path);
 int compare_write_json(const compare_result *r, const char *path);
 

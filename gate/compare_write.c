@@ -43,6 +43,73 @@ static void compare__summary(const compare_result *r, dm_str *s)
                       r->geomean, r->n_geomean);
 }
 
+/* One side's machine figures: "load 0.70, WallTime/CPUTime 1.01, rounds
+ * moved +-4.2 %". */
+static void compare__side_text(const compare_side_state *st, dm_str *s)
+{
+    if (isfinite(st->load))
+        dm_str_printf(s, "load %.2f, ", st->load);
+    if (isfinite(st->wall_per_cpu))
+        dm_str_printf(s, "WallTime/CPUTime %.2f, ", st->wall_per_cpu);
+    dm_str_printf(s, "rounds moved +-%.1f%%", st->round_spread * 100);
+}
+
+/* The precision of one side, raw and blocked by round, against the target
+ * (95 % CI within +-3 % for 90 % of the configurations). */
+static void compare__precision_text(const char *side, const compare_side_state *st, dm_str *s)
+{
+    if (!st->n_timed)
+        return;
+    size_t best = st->n_precise_blocked > st->n_precise_raw ? st->n_precise_blocked
+                                                             : st->n_precise_raw;
+    dm_str_printf(s, "precision %s: median CI +-%.1f%% raw, +-%.1f%% blocked by round; within "
+                  "+-3%%: %zu/%zu raw, %zu/%zu blocked (target 90%%: ", side,
+                  st->ci_rel_raw * 100, st->ci_rel_blocked * 100, st->n_precise_raw, st->n_timed,
+                  st->n_precise_blocked, st->n_timed);
+    if ((double)best >= 0.9 * (double)st->n_timed)
+        dm_str_cat(s, "met)\n");
+    else if (st->wall_per_cpu > 1.2)   /* CPU time is what the work took; the rest was waiting */
+        dm_str_printf(s, "missed: the run had 1/%.1f of a CPU, WallTime/CPUTime %.2f: other "
+                      "processes shared the cores)\n", st->wall_per_cpu, st->wall_per_cpu);
+    else if (st->round_spread > 0.05)
+        dm_str_printf(s, "missed: the machine's speed moved +-%.0f%% between rounds)\n",
+                      st->round_spread * 100);
+    else
+        dm_str_cat(s, "missed: noise within rounds; take more samples)\n");
+}
+
+/* The machine checks in lines: both sides, what changed, the interval,
+ * how many verdicts it held, and the precision of each side. */
+static void compare__machine_text(const compare_result *r, dm_str *s)
+{
+    const compare_machine *m = &r->machine;
+    if (!r->n_geomean)
+        return;
+    dm_str_cat(s, "machine: BASE ");
+    compare__side_text(&m->base, s);
+    dm_str_cat(s, "; NEW ");
+    compare__side_text(&m->new_, s);
+    dm_str_printf(s, "\nmachine: %s\n", m->reason ? m->reason : "no change seen between the runs");
+    size_t held = 0;
+    for (size_t i = 0; i < r->n_items; i++)
+        held += (size_t)r->items[i].machine_held;
+    int widened = m->lo < 1 || m->hi > 1;
+    if (r->desc.paired && !widened)
+        dm_str_cat(s, "machine: paired rounds on one machine: its changes hit both sides\n");
+    else if (r->desc.paired)
+        dm_str_printf(s, "machine: paired rounds on one machine, but one side waited more "
+                      "(WallTime moved beyond CPUTime): x%.3f..x%.3f of it is not attributed; "
+                      "%zu verdict%s held INCONCLUSIVE\n", m->lo, m->hi, held,
+                      held == 1 ? "" : "s");
+    else
+        dm_str_printf(s, "machine: between two runs the machine alone may move times by "
+                      "x%.3f..x%.3f (between-run spread %.0f%%); %zu verdict%s held INCONCLUSIVE "
+                      "by it (compare --paired decides them)\n", m->lo, m->hi, m->spread * 100,
+                      held, held == 1 ? "" : "s");
+    compare__precision_text("BASE", &m->base, s);
+    compare__precision_text("NEW", &m->new_, s);
+}
+
 static void compare__text_list(FILE *f, const char *title, char **list, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
@@ -81,6 +148,7 @@ void compare_write_text(const compare_result *r, FILE *f)
     compare__text_list(f, "environment", r->env_diffs, r->n_env_diffs);
     compare__text_list(f, "warning", r->warnings, r->n_warnings);
     dm_str s = {0};
+    compare__machine_text(r, &s);
     compare__summary(r, &s);
     fprintf(f, "%s\n", dm_str_get(&s));
     dm_str_free(&s);
@@ -100,43 +168,186 @@ static void compare__md_cell(dm_str *s, const char *text)
     dm_str_cat_md(s, text);
 }
 
-int compare_write_markdown(const compare_result *r, const char *path)
+/* "1.234 ms" of a time in ns, "12.35 M" of an instruction count. */
+static void compare__md_value(dm_str *s, double v, int instr)
 {
-    dm_str s = {0};
-    dm_str_cat(&s, "## dmbench compare: ");
-    compare__md_cell(&s, r->base_id ? r->base_id : "?");
-    dm_str_cat(&s, " → ");
-    compare__md_cell(&s, r->new_id ? r->new_id : "?");
-    dm_str_cat(&s, "\n\n");
-    compare__summary(r, &s);
-    dm_str_cat(&s, "\n\n| Verdict | Configuration | Key | Ratio [95% CI] | q | Note |\n"
-                   "|---|---|---|---|---|---|\n");
+    if (!(v > 0))
+        dm_str_cat(s, "-");
+    else if (instr)
+        dm_str_printf(s, "%.4g M instr", v / 1e6);
+    else
+        dm_str_printf(s, "%.4g ms", v / 1e6);
+}
+
+/* The note of a changed row: short (the machine's line says the rest). */
+static void compare__md_note(dm_str *s, const compare_item *it)
+{
+    if (it->machine_held) {
+        dm_str_cat(s, "within what the machine may do between runs (see above)");
+        return;
+    }
+    if (!it->note)
+        return;
+    size_t n = strlen(it->note);
+    char *cut = n > 200 ? dm_xasprintf("%.197s...", it->note) : NULL;
+    compare__md_cell(s, cut ? cut : it->note);
+    free(cut);
+}
+
+/* One table row; changed rows carry verdict and note. */
+static void compare__md_row(dm_str *s, const compare_item *it, int changed)
+{
+    dm_str_cat(s, "| ");
+    compare__md_cell(s, it->name ? it->name : it->label);
+    dm_str_cat(s, " | ");
+    compare__md_value(s, it->instr ? it->instr_base : it->median_base, it->instr);
+    dm_str_cat(s, " | ");
+    compare__md_value(s, it->instr ? it->instr_new : it->median_new, it->instr);
+    if (it->instr)
+        dm_str_printf(s, " | %.5f | - |", it->instr_new / it->instr_base);
+    else if (it->timed)
+        dm_str_printf(s, " | %.3f | %.3f–%.3f |", it->ratio, it->lo, it->hi);
+    else
+        dm_str_cat(s, " | - | - |");
+    if (changed) {
+        dm_str_printf(s, " %s | ", compare_verdict_name(it->verdict));
+        compare__md_note(s, it);
+        dm_str_cat(s, " |");
+    }
+    dm_str_cat(s, "\n");
+}
+
+static const char *compare__md_verdict(const compare_result *r)
+{
+    return r->count[COMPARE_REGRESSION] ? "REGRESSION"
+           : r->count[COMPARE_INCONCLUSIVE] ? "INCONCLUSIVE" : "PASS";
+}
+
+/* Headline, settings and machine line. */
+static void compare__md_head(const compare_result *r, dm_str *s)
+{
+    dm_str_printf(s, "## dmbench compare: %s — %zu regressed, %zu inconclusive, %zu improved, "
+                  "%zu passed of %zu configurations\n\n", compare__md_verdict(r),
+                  r->count[COMPARE_REGRESSION], r->count[COMPARE_INCONCLUSIVE],
+                  r->count[COMPARE_IMPROVEMENT], r->count[COMPARE_PASS], r->n_items);
+    dm_str_cat(s, "BASE ");
+    compare__md_cell(s, r->base_id ? r->base_id : "?");
+    dm_str_cat(s, " → NEW ");
+    compare__md_cell(s, r->new_id ? r->new_id : "?");
+    dm_str_cat(s, " · sweep ");
+    compare__md_cell(s, r->sweep ? r->sweep : "?");
+    if (r->n_geomean)
+        dm_str_printf(s, " · geometric mean ×%.3f", r->geomean);
+    dm_str_printf(s, " · thresholds: time %.1f%%, instructions %.2g%%\n",
+                  r->desc.time_threshold * 100, r->desc.threshold * 100);
+    size_t held = 0;
+    for (size_t i = 0; i < r->n_items; i++)
+        held += (size_t)r->items[i].machine_held;
+    if (held)
+        dm_str_printf(s, "\n> Machine: %s. Between two runs the machine alone may move times by "
+                      "×%.2f..×%.2f, so %zu timing verdict%s stay INCONCLUSIVE: run "
+                      "`dmbench compare --paired BASE_BIN NEW_BIN SWEEP` to decide them.\n",
+                      r->machine.reason ? r->machine.reason : "no change seen, but one run per "
+                      "side cannot tell the machine's between-run spread from the code",
+                      r->machine.lo, r->machine.hi, held, held == 1 ? "" : "s");
+}
+
+/* "- added: ..." lines, at most 20 of a list. */
+static void compare__md_list(dm_str *s, const char *title, char **list, size_t n)
+{
+    for (size_t i = 0; i < n && i < 20; i++) {
+        dm_str_printf(s, "- %s: ", title);
+        compare__md_cell(s, list[i]);
+        dm_str_cat(s, "\n");
+    }
+    if (n > 20)
+        dm_str_printf(s, "- … and %zu more %s\n", n - 20, title);
+}
+
+static void compare__md_tail(const compare_result *r, dm_str *s)
+{
+    if (r->n_added || r->n_removed)
+        dm_str_cat(s, "\n");
+    compare__md_list(s, "added", r->added, r->n_added);
+    compare__md_list(s, "removed", r->removed, r->n_removed);
+    for (size_t i = 0; i < r->n_warnings; i++) {
+        dm_str_cat(s, "\n> warning: ");
+        compare__md_cell(s, r->warnings[i]);
+        dm_str_cat(s, "\n");
+    }
+}
+
+/* Appends the rows of one kind (changed or PASS) while they fit in budget;
+ * returns how many were cut. */
+static size_t compare__md_rows(const compare_result *r, int changed, size_t budget, dm_str *s,
+                               size_t *written)
+{
+    size_t cut = 0;
     for (size_t i = 0; i < r->n_items; i++) {
         const compare_item *it = &r->items[i];
-        compare__cells cell = compare__item_cells(it);
-        dm_str_printf(&s, "| %s | ", compare_verdict_name(it->verdict));
-        compare__md_cell(&s, it->label);
-        dm_str_cat(&s, " | `");
-        compare__md_cell(&s, it->key);
-        dm_str_printf(&s, "` | %s | %s | ", cell.ratio, cell.q);
-        compare__md_cell(&s, it->note);
-        dm_str_cat(&s, " |\n");
+        if ((it->verdict != COMPARE_PASS) != changed)
+            continue;
+        dm_str row = {0};
+        compare__md_row(&row, it, changed);
+        if (s->len + row.len <= budget) {
+            dm_str_cat(s, dm_str_get(&row));
+            (*written)++;
+        } else
+            cut++;
+        dm_str_free(&row);
     }
-    for (size_t i = 0; i < r->n_added; i++) {
-        dm_str_printf(&s, "%s- added: ", i ? "" : "\n");
-        compare__md_cell(&s, r->added[i]);
+    return cut;
+}
+
+int compare_write_markdown_ex(const compare_result *r, const compare_md_desc *d, const char *path)
+{
+    size_t max = d->max_chars ? d->max_chars : COMPARE_MD_MAX;
+    dm_str s = {0}, tail = {0};
+    compare__md_head(r, &s);
+    compare__md_tail(r, &tail);
+    size_t reserve = tail.len + 400, budget = max > reserve ? max - reserve : 0, n = 0, cut = 0;
+    size_t n_pass = r->count[COMPARE_PASS], n_changed = r->n_items - n_pass;
+    if (n_changed) {
+        dm_str_cat(&s, "\n| Configuration | Base | New | Ratio | 95% CI | Verdict | Note |\n"
+                       "|---|---|---|---|---|---|---|\n");
+        cut += compare__md_rows(r, 1, budget, &s, &n);
+    } else if (r->n_items)
+        dm_str_cat(&s, "\nNothing changed.\n");
+    if (n_pass && !d->only_changed) {
+        dm_str_printf(&s, "\n<details><summary>%zu PASS</summary>\n\n"
+                          "| Configuration | Base | New | Ratio | 95%% CI |\n|---|---|---|---|---|\n",
+                      n_pass);
+        cut += compare__md_rows(r, 0, budget, &s, &n);
+        dm_str_cat(&s, "\n</details>\n");
+    }
+    if (cut)
+        dm_str_printf(&s, "\n_%zu of %zu rows cut to stay under %zu characters (a GitHub comment "
+                      "holds 65536); the full comparison is in the --json and --junit files._\n",
+                      cut, cut + n, max);
+    dm_str_cat(&s, dm_str_get(&tail));
+    dm_str_free(&tail);
+    return compare__write(&s, path);
+}
+
+int compare_write_markdown(const compare_result *r, const char *path)
+{
+    return compare_write_markdown_ex(r, &(compare_md_desc){ 0 }, path);
+}
+
+int compare_write_markdown_none(const char *reason, const compare_result *r, const char *path)
+{
+    dm_str s = {0};
+    dm_str_cat(&s, "## dmbench compare: nothing compared\n\n");
+    compare__md_cell(&s, reason ? reason : "no reason given");
+    dm_str_cat(&s, "\n");
+    for (size_t i = 0; r && i < r->n_env_diffs; i++) {
+        dm_str_cat(&s, "- ");
+        compare__md_cell(&s, r->env_diffs[i]);
         dm_str_cat(&s, "\n");
     }
-    for (size_t i = 0; i < r->n_removed; i++) {
-        dm_str_printf(&s, "%s- removed: ", i || r->n_added ? "" : "\n");
-        compare__md_cell(&s, r->removed[i]);
-        dm_str_cat(&s, "\n");
-    }
-    for (size_t i = 0; i < r->n_warnings; i++) {
-        dm_str_cat(&s, "\n> warning: ");
-        compare__md_cell(&s, r->warnings[i]);
-        dm_str_cat(&s, "\n");
-    }
+    if (r && (r->n_added || r->n_removed))
+        dm_str_printf(&s, "\n%zu configuration%s only in BASE, %zu only in NEW.\n", r->n_removed,
+                      r->n_removed == 1 ? "" : "s", r->n_added);
     return compare__write(&s, path);
 }
 
@@ -194,6 +405,38 @@ static void compare__json_base_new(cJSON *o, const char *prefix, double base, do
     compare__json_num(o, name, new_);
 }
 
+static cJSON *compare__json_side(const compare_side_state *st)
+{
+    cJSON *o = cJSON_CreateObject();
+    compare__json_num(o, "load", st->load);
+    compare__json_num(o, "wall_per_cpu", st->wall_per_cpu);
+    compare__json_num(o, "round_spread", st->round_spread);
+    cJSON_AddNumberToObject(o, "timed", (double)st->n_timed);
+    cJSON_AddNumberToObject(o, "precise_raw", (double)st->n_precise_raw);
+    cJSON_AddNumberToObject(o, "precise_blocked", (double)st->n_precise_blocked);
+    compare__json_num(o, "ci_rel_raw", st->ci_rel_raw);
+    compare__json_num(o, "ci_rel_blocked", st->ci_rel_blocked);
+    return o;
+}
+
+static void compare__json_machine(cJSON *root, const compare_machine *m)
+{
+    cJSON *o = cJSON_AddObjectToObject(root, "machine");
+    cJSON_AddItemToObject(o, "base", compare__json_side(&m->base));
+    cJSON_AddItemToObject(o, "new", compare__json_side(&m->new_));
+    compare__json_num(o, "wall_ratio", m->wall_ratio);
+    compare__json_num(o, "cpu_ratio", m->cpu_ratio);
+    cJSON_AddBoolToObject(o, "contention", m->contention);
+    cJSON_AddBoolToObject(o, "load_changed", m->load_changed);
+    compare__json_num(o, "spread", m->spread);
+    compare__json_num(o, "lo", m->lo);
+    compare__json_num(o, "hi", m->hi);
+    if (m->reason)
+        cJSON_AddStringToObject(o, "reason", m->reason);
+    else
+        cJSON_AddNullToObject(o, "reason");
+}
+
 static cJSON *compare__json_list(char **list, size_t n)
 {
     cJSON *a = cJSON_CreateArray();
@@ -217,6 +460,11 @@ static cJSON *compare__json_item(const compare_item *it)
         cJSON *ci = cJSON_AddArrayToObject(o, "ci95");
         cJSON_AddItemToArray(ci, isfinite(it->lo) ? cJSON_CreateNumber(it->lo) : cJSON_CreateNull());
         cJSON_AddItemToArray(ci, isfinite(it->hi) ? cJSON_CreateNumber(it->hi) : cJSON_CreateNull());
+        cJSON *raw = cJSON_AddArrayToObject(o, "ci95_raw");   /* not blocked by round */
+        cJSON_AddItemToArray(raw, isfinite(it->lo_raw) ? cJSON_CreateNumber(it->lo_raw) : cJSON_CreateNull());
+        cJSON_AddItemToArray(raw, isfinite(it->hi_raw) ? cJSON_CreateNumber(it->hi_raw) : cJSON_CreateNull());
+        cJSON_AddBoolToObject(o, "blocked", it->blocked);
+        cJSON_AddBoolToObject(o, "machine_held", it->machine_held);
         compare__json_num(o, "p", it->p);
         compare__json_num(o, "q", it->q);
         cJSON_AddNumberToObject(o, "n_base", (double)it->n_base);
@@ -261,6 +509,12 @@ int compare_write_json(const compare_result *r, const char *path)
     cJSON_AddNumberToObject(set, "ssim_drop", r->desc.ssim_drop);
     cJSON_AddStringToObject(set, "time_counter", r->desc.time_counter);
     cJSON_AddBoolToObject(set, "counters_only", r->desc.counters_only);
+    cJSON *tol = cJSON_AddObjectToObject(set, "tolerances");
+    for (size_t i = 0; i < r->desc.n_tolerances; i++)
+        cJSON_AddNumberToObject(tol, r->desc.tolerances[i].counter, r->desc.tolerances[i].rel);
+    compare__json_num(set, "run_spread", r->desc.run_spread);
+    cJSON_AddBoolToObject(set, "blocking", !r->desc.no_blocking);
+    compare__json_machine(root, &r->machine);
     cJSON *sum = cJSON_AddObjectToObject(root, "summary");
     for (int v = COMPARE_PASS; v <= COMPARE_REGRESSION; v++)
         cJSON_AddNumberToObject(sum, compare_verdict_name((compare_verdict)v), (double)r->count[v]);

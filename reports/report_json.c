@@ -257,11 +257,40 @@ int report_write_cjson(const cJSON *root, const char *path)
     return rc;
 }
 
+/* Every finite number of the tree as raw text in the fewest of 15..17
+ * significant digits that reads back to the same double, bit for bit.
+ * cJSON 1.7 keeps its 15-digit text whenever that reads back within
+ * DBL_EPSILON of the value, so a ratio could come back one ULP off and a
+ * results.json no longer matched the store it was written from (issue 27).
+ * Non-finite numbers stay numbers (cJSON writes them as null). */
+static void exact_numbers(cJSON *node)
+{
+    for (; node; node = node->next) {
+        exact_numbers(node->child);
+        double v = node->valuedouble;
+        if (!cJSON_IsNumber(node) || !isfinite(v))
+            continue;
+        char buf[40];
+        for (int digits = 15; digits <= 17; digits++) {
+            snprintf(buf, sizeof buf, "%.*g", digits, v);
+            if (strtod(buf, NULL) == v)
+                break;
+        }
+        char *text = cJSON_malloc(strlen(buf) + 1);
+        if (!text)
+            continue;   /* keeps cJSON's own number text */
+        strcpy(text, buf);
+        node->type = cJSON_Raw;
+        node->valuestring = text;
+    }
+}
+
 int report_write_json(const dm_run_result *run, const char *path)
 {
     if (!run || !path)
         return DM_ERR_ARG;
     cJSON *root = run_json(run);
+    exact_numbers(root);
     int rc = report_write_cjson(root, path);
     cJSON_Delete(root);
     return rc;

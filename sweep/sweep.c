@@ -13,6 +13,7 @@
 #include "techniques/axes.h"
 #include "reports/metric.h"
 #include "sweep/sweep_paths.h"
+#include "sweep/fraction.h"
 
 #include <math.h>
 #include <stddef.h>
@@ -261,6 +262,21 @@ static int p__k_real(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
     char what[64];
     return p__real(c, v, p__what(row, what, sizeof what), row->lo, row->hi,
                    (double *)(void *)((char *)c->s + row->off));
+}
+
+/* A fraction key: the one grammar of flags and keys (sweep/fraction.h). */
+static int p__k_frac(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)k;
+    char what[64];
+    dm_str msg = {0};
+    fraction_range range = { row->lo, row->hi, 0, 0 };
+    int rc = fraction_parse(p__scalar(v), p__what(row, what, sizeof what), &range,
+                            (double *)(void *)((char *)c->s + row->off), &msg);
+    if (rc)
+        rc = p__fail(c, v, "%s", dm_str_get(&msg));
+    dm_str_free(&msg);
+    return rc;
 }
 
 /* A nested mapping: its keys are the rows of section `arg`. */
@@ -533,6 +549,10 @@ static int p__k_published(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_
     { { sec, key, "integer " #lo "–" #hi, #def, doc, ex }, p__k_int, NULL, NULL, offsetof(sweep, field), lo, hi, def }
 #define P__REAL(sec, key, field, lo, hi, def, doc, ex) \
     { { sec, key, "number " #lo "–" #hi, #def, doc, ex }, p__k_real, NULL, NULL, offsetof(sweep, field), lo, hi, def }
+/* A fraction (sweep/fraction.h): "3%" or 0.03; a bare number above 1 is refused. */
+#define P__FRAC(sec, key, field, lo, hi, def, def_text, doc, ex) \
+    { { sec, key, "fraction: `3%` or `0.03`", def_text, doc, ex }, p__k_frac, NULL, NULL, \
+      offsetof(sweep, field), lo, hi, def }
 #define P__ROW(sec, key, fn, arg, type, deflt, doc, ex) { { sec, key, type, deflt, doc, ex }, fn, arg, NULL, 0, 0, 0, 0 }
 #define P__AXIS(sec, key, axis, ex) { { sec, key, "a value of `" axis "`", "the axis' default", \
     "sets the `" axis "` axis", ex }, p__k_scene_axis, axis, NULL, 0, 0, 0, 0 }
@@ -583,8 +603,8 @@ static const p__key p__keys[] = {
            "never fewer samples", "5"),
     P__INT("measure.samples", "max", measure.samples_max, 2, 10000, 30,
            "never more samples (raised to `min` when `min` is larger and `max` is not given)", "30"),
-    P__REAL("measure.samples", "target_ci", measure.target_ci, 0, 1, 0.03,
-            "stop once the 95 % CI of the median is within ± this fraction of it", "0.03"),
+    P__FRAC("measure.samples", "target_ci", measure.target_ci, 0, 1, 0.03, "3%",
+            "stop once the 95 % CI of the median is within ± this fraction of it", "3%"),
 
     P__MAP("scene", "camera", p__k_section, "scene.camera", "where the camera is"),
     P__MAP("scene", "lights", p__k_section, "scene.lights", "how the scene is lit"),
@@ -741,7 +761,7 @@ static void p__numeric_defaults(pctx *c)
     for (size_t i = 0; i < P__N_KEYS; i++) {
         const p__key *row = &p__keys[i];
         char *field = (char *)c->s + row->off;
-        if (c->seen[i] || (row->fn != p__k_int && row->fn != p__k_real))
+        if (c->seen[i] || (row->fn != p__k_int && row->fn != p__k_real && row->fn != p__k_frac))
             continue;
         if (row->fn == p__k_int)
             *(int *)(void *)field = (int)row->def;

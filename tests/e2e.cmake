@@ -28,3 +28,6 @@ set_tests_properties(test_e2e_drivers PROPERTIES SKIP_RETURN_CODE 77)
 # code and first words, and the conditions table of docs/reliability.md
 # checked row by row (about 2-3 min on 2 cores; nothing renders above 16x16).
 dm_add_e2e(test_e2e_corpus corpus.sh)
+# docs/ci-gating.md's recipe, run as written (ci/perf-gate.sh, baselines).
+add_test(NAME test_ci_recipe COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/ci_recipe.sh)
+set_tests_properties(test_ci_recipe PROPERTIES TIMEOUT 1800 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")

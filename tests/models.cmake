@@ -10,3 +10,4 @@ dm_add_unit(test_models_predict test_models_predict.c LIBS dm_run)
 # --budget end to end: the real binary predicts from a stored fit (~10 s).
 dm_add_gl(test_models_budget test_models_budget.c LIBS dm_core LABELS e2e)
 add_dependencies(test_models_budget dmbench)
+dm_add_unit(test_models_blocking test_models_blocking.c LIBS dm_models)

@@ -21,6 +21,7 @@
 #include "gate/compare.h"
 #include "store/store.h"
 #include "models/rng.h"
+#include "models/stats.h"
 #include "reports/report.h"
 
 /* ---- synthetic runs ----------------------------------------------------- */
@@ -580,8 +581,9 @@ static void test_json_roundtrip_and_outputs(void **state)
     assert_int_equal(compare_write_junit(&r, ju), 0);
     assert_int_equal(compare_write_json(&r, js), 0);
     char *text = test_slurp(md);
-    assert_non_null(strstr(text, "| Verdict | Configuration | Key |"));
-    assert_non_null(strstr(text, "| REGRESSION | mesh=m2 | `0000000000000003` |"));
+    assert_non_null(strstr(text, "| Configuration | Base | New | Ratio | 95% CI | Verdict | Note |"));
+    assert_non_null(strstr(text, "| m2/normal | 3 ms | 3 ms | "));
+    assert_non_null(strstr(text, " REGRESSION | TESInvocations changed 3169 -&gt; 6144 |"));
     free(text);
     text = test_slurp(ju);
     assert_non_null(strstr(text, "tests=\"3\" failures=\"1\""));
@@ -676,6 +678,367 @@ static void test_store_and_baselines(void **state)
     free(path);
 }
 
+/* ---- exact counters through the store and results.json (issue 27) ----- */
+
+/* ShadingEfficiency = 705/1160 (its 15-digit text reads back one ULP off),
+ * its integer parts, and WallTime samples of full precision. */
+static void add_shading(dm_run_result *r)
+{
+    for (size_t i = 0; i < r->n_configs; i++) {
+        dm_config_result *c = &r->configs[i];
+        c->counters = dm_xrealloc(c->counters, (c->n_counters + 2) * sizeof *c->counters);
+        memset(&c->counters[c->n_counters], 0, 2 * sizeof *c->counters);
+        det(&c->counters[c->n_counters++], "FSInvocations", 1160);
+        det(&c->counters[c->n_counters], "ShadingEfficiency", 0.60775862068965514);
+        free(c->counters[c->n_counters].unit);
+        c->counters[c->n_counters++].unit = dm_xstrdup("ratio");
+    }
+}
+
+/* The two ways one run is read back must agree bit for bit. */
+static void assert_same_bits(const dm_run_result *a, const dm_run_result *b)
+{
+    assert_int_equal(a->n_configs, b->n_configs);
+    for (size_t i = 0; i < a->n_configs; i++)
+        for (size_t k = 0; k < a->configs[i].n_counters; k++) {
+            const dm_counter_result *x = &a->configs[i].counters[k];
+            const dm_counter_result *y = dm_config_counter(&b->configs[i], x->name);
+            assert_non_null(y);
+            assert_memory_equal(&x->value, &y->value, sizeof x->value);
+            assert_int_equal(x->n_samples, y->n_samples);
+            if (x->n_samples)
+                assert_memory_equal(x->samples, y->samples, x->n_samples * sizeof *x->samples);
+        }
+}
+
+/* Runs A and B (the same measurements) each in the store and in a
+ * results.json; the counters gate passes in all four pairings and the
+ * sides read back identical doubles. */
+static void test_store_file_four_pairings(void **state)
+{
+    tmp *t = *state;
+    char *path = dm_xasprintf("%s/dmbench.sqlite", t->dir);
+    const char *ids[] = { "A", "B" };
+    char *files[2];
+    store *s = NULL;
+    dm_str err = {0};
+    assert_int_equal(store_open(path, &s, &err), 0);
+    for (int k = 0; k < 2; k++) {
+        dm_run_result run;
+        make_run(&run, ids[k], 3, 12, 1.0 / 3.0, 0.02, 7);
+        add_shading(&run);
+        assert_int_equal(store_run_begin(s, &run, NULL), 0);
+        for (size_t i = 0; i < run.n_configs; i++)
+            assert_int_equal(store_config_put(s, ids[k], &run.configs[i]), 0);
+        files[k] = dm_xasprintf("%s/%s.json", t->dir, ids[k]);
+        assert_int_equal(report_write_json(&run, files[k]), 0);
+        dm_run_free(&run);
+    }
+    store_close(s);
+    dm_run_result side[2][2];   /* [run][0 store, 1 file] */
+    for (int k = 0; k < 2; k++) {
+        assert_int_equal(compare_load_store(path, ids[k], NULL, &side[k][0], &err), 0);
+        assert_int_equal(compare_load_path(files[k], &side[k][1], &err), 0);
+        assert_same_bits(&side[k][0], &side[k][1]);
+        assert_true(dm_config_counter(&side[k][1].configs[0], "ShadingEfficiency")->value ==
+                    0.60775862068965514);
+    }
+    for (int fb = 0; fb < 2; fb++)
+        for (int fn = 0; fn < 2; fn++) {
+            compare_desc d = { .counters_only = 1 };
+            compare_result r;
+            assert_int_equal(run_compare(&side[0][fb], &side[1][fn], &d, &r), 0);
+            assert_int_equal(r.count[COMPARE_PASS], 3);
+            assert_int_equal(compare_exit_code(&r), 0);
+            compare_result_free(&r);
+        }
+    for (int k = 0; k < 2; k++) {
+        dm_run_free(&side[k][0]);
+        dm_run_free(&side[k][1]);
+        free(files[k]);
+    }
+    dm_str_free(&err);
+    free(path);
+}
+
+/* A floating derived counter within COMPARE_DERIVED_EPS passes; beyond it,
+ * and any change of an integer count, is a change. */
+static void test_derived_epsilon(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 2, 10, 1.0, 0.02, 1);
+    make_run(&b, "B", 2, 10, 1.0, 0.02, 1);
+    add_shading(&a);
+    add_shading(&b);
+    counter(&b, 0, "ShadingEfficiency")->value = nextafter(0.60775862068965514, 1.0);
+    compare_desc d = { .counters_only = 1 };
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    counter(&b, 0, "ShadingEfficiency")->value = 0.60775862068965514 * (1 + 1e-11);
+    counter(&b, 1, "FSInvocations")->value = 1161;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 2);
+    assert_non_null(strstr(item(&r, "0000000000000001")->note, "ShadingEfficiency changed"));
+    assert_string_equal(item(&r, "0000000000000002")->note, "FSInvocations changed 1160 -> 1161");
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+/* ---- timing between runs (issue 27, item 1) ----------------------------- */
+
+/* A run of n_cfg configurations sharing one scene, measured in n rounds:
+ * WallTime of configuration i in round r = 1e6 (i+1) * scale * round[r] *
+ * (1 + cv N(0,1)) (round NULL: 1), CPUTime = WallTime / cpu_scale, and the
+ * load average at its start. */
+static void make_scene_run(dm_run_result *r, const char *id, size_t n_cfg, size_t n, double scale,
+                           double cpu_scale, double cv, uint64_t seed, double load,
+                           const double *round)
+{
+    make_run(r, id, n_cfg, n, scale, cv, seed);
+    char buf[64];
+    snprintf(buf, sizeof buf, "%.2f 0.00 0.00", load);
+    dm_kv_push(&r->environment, &r->n_environment, "load_average", buf);
+    for (size_t i = 0; i < n_cfg; i++) {
+        dm_config_result *c = &r->configs[i];
+        free(c->scene);
+        c->scene = dm_xstrdup("plane@96x54");
+        dm_counter_result *w = &c->counters[0];
+        for (size_t k = 0; round && k < n; k++)
+            w->samples[k] *= round[k];
+        c->counters = dm_xrealloc(c->counters, (c->n_counters + 1) * sizeof *c->counters);
+        w = &c->counters[0];
+        dm_counter_result *cpu = &c->counters[c->n_counters++];
+        memset(cpu, 0, sizeof *cpu);
+        timed(cpu, n, 1, 0, 0);
+        free(cpu->name);
+        cpu->name = dm_xstrdup("CPUTime");
+        for (size_t k = 0; k < n; k++)
+            cpu->samples[k] = w->samples[k] / cpu_scale;
+        w->median = w->value = stats_median(w->samples, n);
+        cpu->median = cpu->value = stats_median(cpu->samples, n);
+    }
+}
+
+/* Two runs of one binary, the second on a machine that became 8 % slower
+ * between them (CPU time too: a host that slowed the CPU) — within the
+ * between-run spread: the within-run CI alone clears 5 %, yet the verdict
+ * is not REGRESSION, and the note says why and what to do. */
+static void test_between_run_shift_within_spread(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_scene_run(&a, "A", 6, 20, 1.0, 1.0, 0.01, 10, 0.8, NULL);
+    make_scene_run(&b, "B", 6, 20, 1.08, 1.0, 0.01, 50, 0.9, NULL);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 0);
+    assert_int_equal(r.count[COMPARE_INCONCLUSIVE], 6);
+    for (size_t i = 0; i < r.n_items; i++) {
+        const compare_item *it = &r.items[i];
+        assert_true(it->machine_held && it->lo > 1.05);   /* the old rule said REGRESSION */
+        assert_non_null(strstr(it->note, "compare --paired"));
+    }
+    assert_true(!r.machine.contention && !r.machine.load_changed && r.machine.reason == NULL);
+    assert_true(r.machine.spread == COMPARE_RUN_SPREAD);
+    assert_int_equal(compare_exit_code(&r), 3);
+    compare_result_free(&r);
+    /* the same data from paired rounds (ABBA on one machine): REGRESSION */
+    d.paired = 1;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 6);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+/* The issue's two runs: WallTime x1.53 while CPUTime x1.08 and the load
+ * average moved: contention, named in words, never REGRESSION.  A
+ * configuration that slowed far beyond the machine's change still is. */
+static void test_contention_is_named_not_regression(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_scene_run(&a, "A", 6, 20, 1.0, 1.0, 0.02, 10, 0.7, NULL);
+    make_scene_run(&b, "B", 6, 20, 1.53, 1.53 / 1.08, 0.02, 50, 3.5, NULL);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 0);
+    assert_int_equal(r.count[COMPARE_INCONCLUSIVE], 6);
+    assert_true(r.machine.contention && r.machine.load_changed);
+    assert_true(fabs(r.machine.wall_ratio - 1.53) < 0.02 && fabs(r.machine.cpu_ratio - 1.08) < 0.02);
+    char want[96];
+    snprintf(want, sizeof want, "WallTime x%.2f while CPUTime x%.2f", r.machine.wall_ratio,
+             r.machine.cpu_ratio);
+    assert_non_null(strstr(r.machine.reason, want));
+    assert_non_null(strstr(r.machine.reason, "load average 0.70 (BASE) -> 3.50 (NEW)"));
+    assert_non_null(strstr(r.items[0].note, "contention"));
+    compare_result_free(&r);
+    /* configuration 3 truly 2x slower on top of the machine's change */
+    dm_counter_result *w = counter(&b, 3, "WallTime");
+    for (size_t k = 0; k < w->n_samples; k++)
+        w->samples[k] *= 2;
+    w->median *= 2;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 1);
+    assert_string_equal(r.items[0].key, "0000000000000004");
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+/* Paired rounds where one side waited more (WallTime x1.6, CPUTime x1.0):
+ * the wait is not the code's — INCONCLUSIVE; a real change moves CPU time
+ * with WallTime and stays REGRESSION. */
+static void test_paired_contention(void **state)
+{
+    (void)state;
+    dm_run_result a, b, c;
+    make_scene_run(&a, "A", 6, 12, 1.0, 1.0, 0.01, 10, 0.8, NULL);
+    make_scene_run(&b, "B", 6, 12, 1.6, 1.6, 0.01, 50, 0.8, NULL);   /* waits, no more work */
+    make_scene_run(&c, "C", 6, 12, 1.3, 1.0, 0.01, 50, 0.8, NULL);   /* 30 % more work */
+    compare_desc d = { .paired = 1 };
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_true(r.machine.contention && fabs(r.machine.hi - 1.6) < 0.05);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 0);
+    assert_int_equal(r.count[COMPARE_INCONCLUSIVE], 6);
+    compare_result_free(&r);
+    assert_int_equal(run_compare(&a, &c, &d, &r), 0);
+    assert_true(!r.machine.contention && r.machine.hi == 1);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 6);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+    dm_run_free(&c);
+}
+
+/* A true shift beyond the between-run spread is REGRESSION. */
+static void test_shift_beyond_spread_regression(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_scene_run(&a, "A", 6, 20, 1.0, 1.0, 0.02, 10, 0.8, NULL);
+    make_scene_run(&b, "B", 6, 20, 1.30, 1.0 / 1.30 * 1.30, 0.02, 50, 0.8, NULL);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 6);
+    assert_int_equal(compare_exit_code(&r), 1);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+/* Blocking by round: the issue's noisy day, one round of every
+ * configuration at 0.77 of the others (12.0 ms where the rest are near
+ * 15.5) and a slow drift.  The blocked CI is narrower than the raw one,
+ * both are reported, and the round spread enters the machine interval. */
+static void test_blocking_narrows_ci(void **state)
+{
+    (void)state;
+    double round[16];
+    for (size_t k = 0; k < 16; k++)
+        round[k] = (k == 5 ? 0.77 : 1.0) * (1 + 0.06 * sin((double)k));
+    dm_run_result a, b;
+    make_scene_run(&a, "A", 8, 16, 1.0, 1.0, 0.01, 10, 0.8, round);
+    make_scene_run(&b, "B", 8, 16, 1.0, 1.0, 0.01, 50, 0.8, round);
+    compare_desc d = { .paired = 1 };
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    for (size_t i = 0; i < r.n_items; i++) {
+        const compare_item *it = &r.items[i];
+        assert_true(it->blocked);
+        assert_true(it->hi - it->lo < 0.6 * (it->hi_raw - it->lo_raw));
+    }
+    assert_true(r.machine.base.ci_rel_blocked < 0.5 * r.machine.base.ci_rel_raw);
+    assert_true(r.machine.base.n_precise_blocked > r.machine.base.n_precise_raw);
+    assert_true(r.machine.base.round_spread > 0.15);
+    assert_int_equal(r.count[COMPARE_PASS], 8);
+    compare_result_free(&r);
+    d.no_blocking = 1;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    for (size_t i = 0; i < r.n_items; i++)
+        assert_true(!r.items[i].blocked && r.items[i].lo == r.items[i].lo_raw);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+/* ---- the PR comment (issue 27, item 5) ------------------------------------ */
+
+/* 400 configurations with long names, one changed: the headline counts, the changed row
+ * first and in full, PASS rows in <details>, the size under the limit with
+ * a note of what was cut; --only-changed drops the PASS rows; a comparison
+ * that did not happen still writes a file saying why. */
+static void test_markdown_pr_comment(void **state)
+{
+    tmp *t = *state;
+    dm_run_result a, b;
+    make_run(&a, "A", 400, 6, 1.0, 0.02, 3);
+    make_run(&b, "B", 400, 6, 1.0, 0.02, 3);
+    for (size_t i = 0; i < 400; i++) {   /* a user's map paths: long names */
+        char maps[200];
+        snprintf(maps, sizeof maps, "height=/home/user/project/assets/terrain/heights/tile-%03zu-"
+                 "of-the-large-survey-area-at-full-resolution.png", i);
+        dm_kv_push(&a.configs[i].params, &a.configs[i].n_params, "maps", maps);
+        dm_kv_push(&b.configs[i].params, &b.configs[i].n_params, "maps", maps);
+        free(a.configs[i].scene);
+        free(b.configs[i].scene);
+        a.configs[i].scene = dm_xstrdup("survey");
+        b.configs[i].scene = dm_xstrdup("survey");
+    }
+    counter(&b, 300, "TESInvocations")->value = 6144;
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    char *md = dm_xasprintf("%s/pr.md", t->dir);
+    assert_int_equal(compare_write_markdown(&r, md), 0);
+    char *text = test_slurp(md);
+    assert_true(strlen(text) <= COMPARE_MD_MAX);
+    const char *head = "## dmbench compare: REGRESSION — 1 regressed, 0 inconclusive, 0 "
+                       "improved, 399 passed of 400 configurations\n";
+    assert_true(strncmp(text, head, strlen(head)) == 0);
+    const char *row = strstr(text, "| survey/normal mesh=m300 maps=height=/home/user/project/assets/"
+                                   "terrain/heights/tile-300-of-the-large-survey-area-at-full-"
+                                   "resolution.png | 301 ms | 301 ms | - | - | REGRESSION | "
+                                   "TESInvocations changed 3169 -&gt; 6144 |");
+    const char *details = strstr(text, "<details><summary>399 PASS</summary>");
+    assert_non_null(row);
+    assert_non_null(details);
+    assert_true(row < details);
+    assert_non_null(strstr(text, "rows cut to stay under 60000 characters"));
+    assert_non_null(strstr(text, "</details>"));
+    free(text);
+    compare_md_desc only = { .only_changed = 1 };
+    assert_int_equal(compare_write_markdown_ex(&r, &only, md), 0);
+    text = test_slurp(md);
+    assert_null(strstr(text, "<details>"));
+    assert_null(strstr(text, "rows cut"));
+    assert_true(strlen(text) < 1000);
+    free(text);
+    compare_md_desc tiny = { .max_chars = 1200 };
+    assert_int_equal(compare_write_markdown_ex(&r, &tiny, md), 0);
+    text = test_slurp(md);
+    assert_true(strlen(text) <= 1200);
+    assert_non_null(strstr(text, "rows cut to stay under 1200 characters"));
+    free(text);
+    assert_int_equal(compare_write_markdown_none("the runs have no configuration in common", &r, md), 0);
+    text = test_slurp(md);
+    assert_non_null(strstr(text, "## dmbench compare: nothing compared\n\nthe runs have no "
+                                 "configuration in common\n"));
+    free(text);
+    free(md);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_self_all_pass),
              cmocka_unit_test(test_deterministic_change),
@@ -691,4 +1054,12 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_instructions_threshold),
              cmocka_unit_test(test_partial_gputime_refused),
              cmocka_unit_test_setup_teardown(test_json_roundtrip_and_outputs, tmp_setup, tmp_teardown),
-             cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown))
+             cmocka_unit_test_setup_teardown(test_store_and_baselines, tmp_setup, tmp_teardown),
+             cmocka_unit_test_setup_teardown(test_store_file_four_pairings, tmp_setup, tmp_teardown),
+             cmocka_unit_test(test_derived_epsilon),
+             cmocka_unit_test(test_between_run_shift_within_spread),
+             cmocka_unit_test(test_contention_is_named_not_regression),
+             cmocka_unit_test(test_shift_beyond_spread_regression),
+             cmocka_unit_test(test_paired_contention),
+             cmocka_unit_test(test_blocking_narrows_ci),
+             cmocka_unit_test_setup_teardown(test_markdown_pr_comment, tmp_setup, tmp_teardown))

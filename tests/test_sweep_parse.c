@@ -277,6 +277,29 @@ static void test_numeric_defaults(void **state)
     dm_str_free(&err);
 }
 
+/* samples.target_ci takes the fraction grammar of every flag: 3% and 0.03
+ * are one double; a bare 3 is refused (tests/data/bad-sweeps/43-*). */
+static void test_target_ci_percent(void **state)
+{
+    (void)state;
+    const char *texts[] = { "measure:\n  samples: { target_ci: 3% }\n",
+                            "measure:\n  samples: { target_ci: 0.03 }\n",
+                            "measure:\n  samples:\n    target_ci: \"3%\"\n" };
+    for (size_t i = 0; i < 3; i++) {
+        sweep s;
+        parse_ok(texts[i], &s);
+        assert_true(s.measure.target_ci == 0.03);
+        sweep_free(&s);
+    }
+    sweep s;
+    dm_str err = {0};
+    assert_int_equal(sweep_parse("measure:\n  samples: { target_ci: 3 }\n", "t.yaml", &s, &err),
+                     DM_ERR_PARSE);
+    assert_non_null(strstr(dm_str_get(&err), "t.yaml:2:"));
+    assert_non_null(strstr(dm_str_get(&err), "write 3% or 0.03"));
+    dm_str_free(&err);
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_defaults_and_scene),
              cmocka_unit_test(test_default_sweeps_parse),
@@ -285,4 +308,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_missing_file),
              cmocka_unit_test(test_bad_corpus),
              cmocka_unit_test(test_key_table),
-             cmocka_unit_test(test_numeric_defaults))
+             cmocka_unit_test(test_numeric_defaults),
+             cmocka_unit_test(test_target_ci_percent))

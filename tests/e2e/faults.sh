@@ -59,11 +59,13 @@ def rekey(x):
     for c in x["configs"]: c["key"] = "f" + c["key"][1:]
 w("other", rekey)
 def html(x):
-    for i, c in enumerate(x["configs"]): c["params"]["maps"] = f"height=/m/<script>{i}</script>.png"
+    for i, c in enumerate(x["configs"]):   # in a param and in the scene: the short names carry it
+        c["params"]["maps"] = f"height=/m/<script>{i}</script>.png"
+        c["scene"] = f"plane<script>{i}</script>"
 w("html", html)
 PY
-err=$("$BIN" compare "$J" "$J" --alpha 0 2>&1 >/dev/null); check "--alpha 0" 2 "between 0 and 1" $? "$err"
-err=$("$BIN" compare "$J" "$J" --alpha 2 2>&1 >/dev/null); check "--alpha 2" 2 "between 0 and 1" $? "$err"
+err=$("$BIN" compare "$J" "$J" --alpha 0 2>&1 >/dev/null); check "--alpha 0" 2 "(0 %, 100 %)" $? "$err"
+err=$("$BIN" compare "$J" "$J" --alpha 2 2>&1 >/dev/null); check "--alpha 2" 2 "write 2% or 0.02" $? "$err"
 err=$("$BIN" compare "$J" "$J" --tolerance FSInvocatons=0.1 2>&1 >/dev/null); check "--tolerance" 2 "unknown counter 'FSInvocatons'; did you mean 'FSInvocations'" $? "$err"
 err=$("$BIN" compare "$J" "$OUT/neg.json" 2>&1 >/dev/null); check "negative time" 2 "WallTime is -5 ns" $? "$err"
 err=$("$BIN" compare "$J" "$OUT/type.json" 2>&1 >/dev/null); check "wrong type" 2 "not a number" $? "$err"
