@@ -519,3 +519,35 @@ int flip_compare(const img *ref, const img *test, const flip_desc *d, flip_stats
         free(m);
     return rc;
 }
+
+/* Nine anchors at v = 0, 1/8, ..., 1: dark (low error recedes) to bright,
+ * monotone in lightness so the order survives greyscale printing. */
+static const float flip__ramp[9][3] = {
+    { 0.000f, 0.000f, 0.016f }, { 0.110f, 0.065f, 0.275f }, { 0.315f, 0.070f, 0.485f },
+    { 0.510f, 0.130f, 0.505f }, { 0.715f, 0.215f, 0.475f }, { 0.905f, 0.320f, 0.390f },
+    { 0.985f, 0.535f, 0.380f }, { 0.995f, 0.760f, 0.545f }, { 0.988f, 0.990f, 0.750f } };
+
+void flip_colormap(double v, float rgb[3])
+{
+    v = clamp01(v) * 8;
+    int i = v >= 8 ? 7 : (int)v;
+    float t = (float)(v - i);
+    for (int c = 0; c < 3; c++)
+        rgb[c] = flip__ramp[i][c] + t * (flip__ramp[i + 1][c] - flip__ramp[i][c]);
+}
+
+int flip_map_save(const float *map, int w, int h, const char *path, char *err, size_t errlen)
+{
+    if (!map || w < 1 || h < 1 || !path)
+        return DM_ERR_ARG;
+    img im = {0};
+    if (img_alloc(&im, w, h) != 0)
+        return DM_ERR_NOMEM;
+    for (size_t i = 0; i < (size_t)w * h; i++) {
+        flip_colormap(map[i], im.px + i * 4);
+        im.px[i * 4 + 3] = 1;
+    }
+    int rc = img_save(&im, path, err, errlen);
+    img_free(&im);
+    return rc;
+}

@@ -59,6 +59,16 @@ int flip_pool(const float *map, size_t n, flip_stats *out);
  * here).  Same return codes as flip_map; *out is untouched on failure. */
 int flip_compare(const img *ref, const img *test, const flip_desc *d, flip_stats *out, float *map);
 
+/* Colour of error v on FLIP's fixed scale: v in [0,1] (clamped) through a
+ * perceptually ordered dark-purple -> red -> orange -> pale-yellow ramp
+ * (our own nine anchors in the manner of magma, linearly interpolated). */
+void flip_colormap(double v, float rgb[3]);
+/* Writes map (w*h values in [0,1]) through flip_colormap as an image
+ * (format by extension, as img_save): the same colour means the same error
+ * in every map, so maps of two techniques compare side by side.  0,
+ * DM_ERR_ARG, DM_ERR_NOMEM, or DM_ERR_IO with the reason in err. */
+int flip_map_save(const float *map, int w, int h, const char *path, char *err, size_t errlen);
+
 /* ---- Stages (exposed for tests) ---- */
 
 /* sRGB-encoded value in [0,1] -> linear. */

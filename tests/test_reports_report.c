@@ -139,8 +139,8 @@ static void test_csv_shape(void **state)
     memset(cell, 0, sizeof cell);
     assert_int_equal(csv_shape(t, &cols, cell, 64), 4);   /* header + 3 configs */
     /* key scene status reason | technique mesh steps scale note tess_level |
-     * WallTime ×3 | TESInvocations | 8 quality | label pareto */
-    assert_int_equal(cols, 4 + 6 + 3 + 1 + 8 + 2);
+     * WallTime ×3 | TESInvocations | 11 quality (FLIP mean, median, max last) | label pareto */
+    assert_int_equal(cols, 4 + 6 + 3 + 1 + 11 + 2);
     assert_string_equal(cell[0], FIXTURE_KEY0);
     assert_string_equal(cell[8], "a,b \"quoted\"");   /* note param round-trips through quoting */
     assert_string_equal(cell[10], "1.1");              /* WallTime median, ms */
@@ -456,7 +456,7 @@ static void test_metric_names(void **state)
     dm_str e = {0};
     report_metric_unknown("dpeth-rmse", &e);
     assert_string_equal(dm_str_get(&e), "unknown metric 'dpeth-rmse'; did you mean 'depth-rmse'? "
-                                         "valid metrics: ssim, psnr, rmse, max-error, silhouette, depth-rmse");
+                                         "valid metrics: ssim, psnr, rmse, max-error, silhouette, depth-rmse, flip");
     dm_str_free(&e);
     dm_quality q = {.present = 1, .psnr = INFINITY, .ssim = 0.25};
     assert_true(report_metric_error(&q, REPORT_METRIC_PSNR) == -DBL_MAX);
