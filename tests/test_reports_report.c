@@ -216,6 +216,38 @@ static int all_refs_exist(const char *html, const char *dir, const char *attr, i
     return 1;
 }
 
+/* A configuration with a FLIP map: the gallery shows it with its mean and
+ * maximum in the caption, and the fixed scale drawn from flip_colormap
+ * (anchor 0 = #000004, anchor 1 = #fcfcbf). */
+static void test_html_flip_maps(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_flip_XXXXXX", err[512];
+    assert_non_null(mkdtemp(dir));
+    assert_int_equal(fixture_images(dir, err, sizeof err), 0);
+    char *p = dm_xasprintf("%s/report.html", dir);
+    dm_run_result run;
+    fixture_run(&run);
+    dm_config_result *c = &run.configs[0];
+    c->img_flip = dm_xstrdup(fixture_img_files[2]);
+    c->quality.flip = 0.04521;
+    c->quality.flip_max = 0.5192;
+    c->quality.flip_ppd = 67.0206;
+    assert_int_equal(report_write_html(&run, dir, p), 0);
+    char *t = test_slurp(p);
+    assert_non_null(strstr(t, "src=\"img/c0_heat.png\" alt=\"FLIP\""));
+    assert_non_null(strstr(t, ", FLIP 0.0452 (max 0.519)</figcaption>"));
+    assert_non_null(strstr(t, "at 67 pixels per degree, on one fixed scale"));
+    assert_non_null(strstr(t, "background:linear-gradient(90deg,#000004,"));
+    assert_non_null(strstr(t, ",#fcfcbf)\"></span> 1"));
+    free(t);
+    dm_run_free(&run);
+    fixture_images_remove(dir);
+    unlink(p);
+    free(p);
+    rmdir(dir);
+}
+
 static void test_html_escaping_and_images(void **state)
 {
     (void)state;
@@ -800,6 +832,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
              cmocka_unit_test(test_html_escaping_and_images),
+             cmocka_unit_test(test_html_flip_maps),
              cmocka_unit_test(test_write_all),
              cmocka_unit_test(test_html_charts_and_front),
              cmocka_unit_test(test_metric_fronts),
