@@ -27,6 +27,7 @@ declare -A expected=(
   [list]="--help --json --passes"
   [info]="--help --json"
   [render]="--debug --exr --help --png --supersample"
+  [diff]="--heatmap --help --json --ppd"
   [view]="--config --frames --help --keys --results --screenshot --timed-seconds"
   [help]="--help"
 )
@@ -35,7 +36,7 @@ declare -A value=(
   [--shard]=1/2 [--budget]=1 [--seed]=1 [--metric]=rmse [--loss]=huber [--passes]=WallTime
   [--time-threshold]=5% [--threshold]=1% [--alpha]=0.1 [--psnr-drop]=1 [--ssim-drop]=0.1 [--flip-rise]=0.01 [--tolerance]=FSInvocations=1
   [--rounds]=1 [--supersample]=2 [--debug]=normals [--frames]=1 [--timed-seconds]=1
-  [--paired]="a b c" [--shards]=2 [--format]=gbench
+  [--paired]="a b c" [--shards]=2 [--format]=gbench [--ppd]=30
 )
 
 sorted() { tr ' ' '\n' | grep -v '^$' | sort -u | tr '\n' ' ' | sed 's/ $//'; }
