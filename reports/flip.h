@@ -24,6 +24,8 @@
 
 #include <stddef.h>
 #include "core/dm_image.h"
+#include "core/dm_results.h"
+#include "core/dm_util.h"
 
 /* FLIP's default viewing condition: a 0.7 m wide 3840-pixel monitor seen
  * from 0.7 m, 3840 * (0.7 / 0.7) * pi / 180 = 67.02 pixels per degree. */
@@ -68,6 +70,15 @@ void flip_colormap(double v, float rgb[3]);
  * in every map, so maps of two techniques compare side by side.  0,
  * DM_ERR_ARG, DM_ERR_NOMEM, or DM_ERR_IO with the reason in err. */
 int flip_map_save(const float *map, int w, int h, const char *path, char *err, size_t errlen);
+
+/* FLIP of every configuration of run again at ppd, from the render and
+ * reference files under the run directory dir (8-bit PNGs, so values
+ * differ slightly from the run's, computed on float images); the maps are
+ * written as dir/img/<key>-flip-ppd<N>.png and the configurations point to
+ * them.  Configurations without both images keep their values.  0,
+ * DM_ERR_ARG (ppd < 1), or the first failure (DM_ERR_IO ...) with the
+ * configuration and reason in err. */
+int flip_run_recompute(dm_run_result *run, const char *dir, double ppd, dm_str *err);
 
 /* ---- Stages (exposed for tests) ---- */
 

@@ -385,7 +385,62 @@ static void test_flip_stable(void **state)
     img_free(&b);
 }
 
+/* report --flip-ppd: FLIP again from a run directory's 8-bit PNGs.  Flat
+ * 128/255 against 153/255 grey gives the hand value of those levels at any
+ * ppd; the map is written and pointed to; a configuration without images
+ * keeps its values; an unreadable render is an error naming it. */
+static void test_flip_run_recompute(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_flip_run_XXXXXX", e[256];
+    assert_non_null(mkdtemp(dir));
+    char *sub = dm_xasprintf("%s/img", dir), *pa = dm_xasprintf("%s/img/r.png", dir),
+         *pb = dm_xasprintf("%s/img/t.png", dir);
+    assert_int_equal(dm_mkdirs(sub), 0);
+    const double g1[3] = { 128 / 255.0, 128 / 255.0, 128 / 255.0 }, g2[3] = { 153 / 255.0, 153 / 255.0, 153 / 255.0 };
+    img a = {0}, b = {0};
+    fill(&a, 16, 8, g1);
+    fill(&b, 16, 8, g2);
+    assert_int_equal(img_save(&a, pa, e, sizeof e), 0);
+    assert_int_equal(img_save(&b, pb, e, sizeof e), 0);
+    dm_run_result run = {0};
+    run.n_configs = 2;
+    run.configs = dm_xcalloc(2, sizeof *run.configs);
+    for (int i = 0; i < 2; i++) {
+        run.configs[i].key = dm_xstrdup(i ? "k1" : "k0");
+        run.configs[i].quality.present = 1;
+        run.configs[i].quality.flip = 0.5;
+    }
+    run.configs[0].img_reference = dm_xstrdup("img/r.png");
+    run.configs[0].img_render = dm_xstrdup("img/t.png");
+    dm_str err = {0};
+    assert_int_equal(flip_run_recompute(&run, dir, 30, &err), 0);
+    double want = hand_flip_flat(g1, g2);
+    assert_true(fabs(run.configs[0].quality.flip - want) < 1e-5);
+    assert_true(run.configs[0].quality.flip_ppd == 30);
+    assert_string_equal(run.configs[0].img_flip, "img/k0-flip-ppd30.png");
+    assert_true(run.configs[1].quality.flip == 0.5);
+    char *map = dm_xasprintf("%s/img/k0-flip-ppd30.png", dir);
+    assert_true(dm_file_exists(map));
+    free(run.configs[0].img_render);
+    run.configs[0].img_render = dm_xstrdup("img/missing.png");
+    assert_int_equal(flip_run_recompute(&run, dir, 30, &err), DM_ERR_IO);
+    assert_non_null(strstr(dm_str_get(&err), "configuration k0: "));
+    assert_non_null(strstr(dm_str_get(&err), "missing.png"));
+    assert_int_equal(flip_run_recompute(&run, dir, 0.5, &err), DM_ERR_ARG);
+    dm_str_free(&err);
+    dm_run_free(&run);
+    img_free(&a);
+    img_free(&b);
+    test_rm_rf(dir);
+    free(map);
+    free(sub);
+    free(pa);
+    free(pb);
+}
+
 DM_TEST_MAIN(NULL, NULL,
+    cmocka_unit_test(test_flip_run_recompute),
     cmocka_unit_test(test_flip_identical_is_zero_everywhere),
     cmocka_unit_test(test_flip_flat_pairs_match_hand_hyab),
     cmocka_unit_test(test_flip_chromatic_only_pair),
