@@ -328,10 +328,13 @@ static void feature_kernels(double ppd, int r, double *gauss, double *edge, doub
         pp += point[i + r] > 0 ? point[i + r] : 0;
         pn += point[i + r] < 0 ? -point[i + r] : 0;
     }
+    /* At very low ppd (sigma << 1 pixel) the off-centre taps underflow to
+     * 0: no feature can be seen, and the kernels are 0 rather than 0/0. */
     for (int i = 0; i <= 2 * r; i++) {
         gauss[i] /= gs;
-        edge[i] /= ep;
-        point[i] /= point[i] > 0 ? pp : pn;
+        edge[i] = ep > 0 ? edge[i] / ep : 0;
+        double d = point[i] > 0 ? pp : pn;
+        point[i] = d > 0 ? point[i] / d : 0;
     }
 }
 

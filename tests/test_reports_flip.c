@@ -356,9 +356,10 @@ static void test_flip_pool_weighted(void **state)
 static void test_flip_bad_args(void **state)
 {
     (void)state;
-    img a = {0}, b = {0};
+    img a = {0}, b = {0}, b2 = {0};
     noise(&a, 8, 8, 1);
     noise(&b, 9, 8, 1);
+    noise(&b2, 8, 8, 2);
     flip_stats st = { .mean = 42 };
     assert_int_equal(flip_compare(&a, &b, NULL, &st, NULL), DM_ERR_ARG);
     assert_true(st.mean == 42);
@@ -368,8 +369,13 @@ static void test_flip_bad_args(void **state)
     assert_int_equal(flip_compare(&a, &a, &d, &st, NULL), DM_ERR_ARG);
     d.ppd = 1e6;                                   /* kernels too wide */
     assert_int_equal(flip_compare(&a, &a, &d, &st, NULL), DM_ERR_ARG);
+    /* a tiny ppd: feature kernels underflow, still finite, in [0,1] */
+    d.ppd = 0.01;
+    assert_int_equal(flip_compare(&a, &b2, &d, &st, NULL), 0);
+    assert_true(isfinite(st.mean) && st.max <= 1);
     img_free(&a);
     img_free(&b);
+    img_free(&b2);
 }
 
 /* The same pair twice gives bit-identical maps. */
