@@ -23,5 +23,5 @@ for c in json.load(open(sys.argv[1]))["configs"]:
 print(f"{'technique':10} {'instr off':>12} {'instr VT':>12} {'ratio':>6} {'ms off':>8} {'ms VT':>8} {'ratio':>6}")
 for t, r in rows.items():
     (io, wo), (iv, wv) = r["off"], r["software"]
-    print(f"{t:10} {io:12.0f} {iv:12.0f} {iv / io:6.2f} {wo:8.2f} {wv:8.2f} {wv / wo:6.2f}")
+    print(f"{t:10} {io:12.0f} {iv:12.0f} {iv / io:6.2f} {wo / 1e6:8.2f} {wv / 1e6:8.2f} {wv / wo:6.2f}")
 PY

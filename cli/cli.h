@@ -96,6 +96,12 @@ int cli_gen_completion(const char *shell, FILE *f);
 
 /* Prints "dmbench: error: <msg>" and returns DM_EXIT_USAGE. */
 int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
+/* Prints "dmbench: error: <msg>" and returns the exit code of a failure
+ * that err (a DM_ERR_* code) caused: DM_EXIT_ENV for a store that is
+ * damaged, from a newer dmbench or full (DM_ERR_STORE) and for DM_ERR_BUSY,
+ * DM_EXIT_USAGE for everything else, so one condition has one exit code
+ * whichever command meets it (docs/reliability.md). */
+int cli_error(int err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Loads the run of a run directory (the store in the directory above it)
  * into *run after checking that the store exists (nothing is created) and is

@@ -66,7 +66,7 @@ static int baseline__show(const char *store, dm_str *err)
 }
 
 /* `dmbench baseline accept RUN --reason TEXT | show`.  Exit 2 when the
- * store or the run cannot be used. */
+ * store or the run cannot be used, 4 when the store is damaged or newer. */
 int cli_baseline(int argc, char **argv)
 {
     baseline_args args = {0}, *a = &args;
@@ -92,9 +92,9 @@ int cli_baseline(int argc, char **argv)
             printf("accepted run %s as the baseline of %s\n", id, store_path);
     }
     if (rc)
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        rc = cli_error(rc, "%s", dm_str_get(&err));   /* a damaged store: 4 */
     dm_str_free(&err);
     free(store_path);
     free(id);
-    return rc ? DM_EXIT_USAGE : DM_EXIT_OK;
+    return rc;
 }

@@ -230,12 +230,13 @@ static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
     return 0;
 }
 
-/* Prints the error, frees everything, returns DM_EXIT_USAGE. */
-static int cli__compare_fail(dm_str *err)
+/* Prints the error, frees err, returns the exit code of e (cli_error):
+ * 4 for a damaged or newer store, 2 otherwise. */
+static int cli__compare_fail(int e, dm_str *err)
 {
-    fprintf(stderr, "dmbench: error: %s\n", dm_str_get(err));
+    int rc = cli_error(e, "%s", dm_str_get(err));
     dm_str_free(err);
-    return DM_EXIT_USAGE;
+    return rc;
 }
 
 /* `dmbench compare`: both sides, the comparison, its text and files;
@@ -254,8 +255,9 @@ int cli_compare(int argc, char **argv)
     dm_str err = {0};
     if (rc < 0 && o.paired[0] && o.n_positional)
         rc = cli_usage_error("compare: --paired takes no BASE/NEW paths ('%s')", o.positional[0]);
-    if (rc < 0 && cli__load_sides(&o, &base, &new_, &err) != 0)
-        rc = cli__compare_fail(&err);
+    int e = 0;
+    if (rc < 0 && (e = cli__load_sides(&o, &base, &new_, &err)) != 0)
+        rc = cli__compare_fail(e, &err);
     if (rc < 0) {
         int c = compare_runs(&base, &new_, &o.d, &r, &err);
         for (size_t i = 0; i < base.n_warnings + new_.n_warnings && o.paired[0]; i++)
@@ -266,7 +268,7 @@ int cli_compare(int argc, char **argv)
         if (c != 0) {
             for (size_t i = 0; i < r.n_env_diffs; i++)
                 fprintf(stderr, "  %s\n", r.env_diffs[i]);
-            rc = cli__compare_fail(&err);
+            rc = cli__compare_fail(c, &err);
         } else {
             for (size_t i = 0; i < r.n_warnings; i++)
                 fprintf(stderr, "dmbench: warning: %s\n", r.warnings[i]);

@@ -73,9 +73,10 @@ int cli_export(int argc, char **argv)
         rc = export__bad_format(o.format);
     dm_run_result run = {0};
     dm_str err = {0};
-    if (rc < 0 && (o.store ? compare_load_store(o.store, o.run, NULL, &run, &err)
-                           : compare_load_path(o.run, &run, &err)) != 0)
-        rc = cli_usage_error("export: %s", dm_str_get(&err));
+    int e = 0;
+    if (rc < 0 && (e = o.store ? compare_load_store(o.store, o.run, NULL, &run, &err)
+                               : compare_load_path(o.run, &run, &err)) != 0)
+        rc = cli_error(e, "export: %s", dm_str_get(&err));
     if (rc < 0 && export_write(&run, f, o.out) != 0)
         rc = cli_usage_error("export: cannot write %s", o.out ? o.out : "stdout");
     if (rc < 0 && o.out && strcmp(o.out, "-") != 0)

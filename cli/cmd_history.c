@@ -106,15 +106,17 @@ static int history__open(const history__opts *o, store **st, dm_run_result *run,
 {
     dm_str err = {0};
     char *id = NULL;
-    int rc = -1;
+    int rc = -1, e = 0;
     if (!dm_file_exists(o->store))
         rc = cli_usage_error("history: %s: no such store (give --store FILE)", o->store);
-    else if (store_open(o->store, st, &err) != 0)
-        rc = cli_usage_error("history: %s", dm_str_get(&err));
+    else if ((e = store_open(o->store, st, &err)) != 0)
+        rc = cli_error(e, "history: %s", dm_str_get(&err));
     else if (!o->run && store_latest_run(*st, NULL, &id) != 0)
         rc = cli_usage_error("history: %s holds no run", o->store);
-    else if (store_run_load(*st, o->run ? o->run : id, run) != 0)
+    else if ((e = store_run_load(*st, o->run ? o->run : id, run)) == DM_ERR_NOTFOUND)
         rc = cli_usage_error("history: run %s is not in %s", o->run ? o->run : id, o->store);
+    else if (e != 0)
+        rc = cli_error(e, "history: %s", store_last_error(*st));
     else if (store_run_fingerprint(*st, run->id, fp) != 0)
         rc = cli_usage_error("history: %s: %s", o->store, store_last_error(*st));
     free(id);

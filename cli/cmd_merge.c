@@ -36,14 +36,16 @@ static int merge__load(const char *dir, dm_run_result *out)
     char *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(a));
     store *st = NULL;
     dm_str err = {0};
-    int rc = -1;
+    int rc = -1, e = 0;
     if (!dm_file_exists(store_path))
         rc = cli_usage_error("merge: %s is not a run directory: no results store beside it (%s); "
                               "give e.g. results/s1/latest", dir, store_path);
-    else if (store_open(store_path, &st, &err) != 0)
-        rc = cli_usage_error("merge: %s", dm_str_get(&err));
-    else if (store_run_load(st, basename(b), out) != 0)
+    else if ((e = store_open(store_path, &st, &err)) != 0 || (e = store_check(st, &err)) != 0)
+        rc = cli_error(e, "merge: %s", dm_str_get(&err));
+    else if ((e = store_run_load(st, basename(b), out)) == DM_ERR_NOTFOUND)
         rc = cli_usage_error("merge: %s: run %s is not in %s", dir, basename(b), store_path);
+    else if (e != 0)
+        rc = cli_error(DM_ERR_STORE, "merge: %s", store_last_error(st));
     store_close(st);
     dm_str_free(&err);
     free(store_path);
@@ -90,8 +92,9 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
     store *st = NULL;
     dm_str err = {0};
     int rc = dm_mkdirs(img) == 0 ? -1 : cli_usage_error("merge: %s: cannot create the run directory", run_dir);
-    if (rc < 0 && store_open(store_path, &st, &err) != 0)
-        rc = cli_usage_error("merge: %s", dm_str_get(&err));
+    int se = 0;
+    if (rc < 0 && (se = store_open(store_path, &st, &err)) != 0)
+        rc = cli_error(se, "merge: %s", dm_str_get(&err));
     if (rc < 0 && store_run_begin(st, m, "merged") != 0)
         rc = cli_usage_error("merge: %s", store_last_error(st));
     for (size_t i = 0; rc < 0 && i < m->n_configs; i++)

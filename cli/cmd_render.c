@@ -4,6 +4,7 @@
 #include "cli/params.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
+#include "run/env.h"
 #include "run/gl_context.h"
 #include "run/measure.h"
 #include "reports/image.h"
@@ -55,9 +56,13 @@ int cli_render(int argc, char **argv)
     gl_context *gl = NULL;
     tech_renderer *r = NULL;
     dm_str err = {0};
-    if (rc < 0 && (gl_context_create(NULL, &gl, &err) != 0 || tech_renderer_create(&r) != 0)) {
+    int e = rc < 0 ? env_check(&err) : 0;
+    if (rc < 0 && e == 0 && (e = gl_context_create(NULL, &gl, &err)) == 0 &&
+        tech_renderer_create(&r) != 0)
+        e = DM_ERR_GL;
+    if (rc < 0 && e != 0) {   /* no usable GL is the machine's: exit 4, as for run */
         fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
-        rc = DM_EXIT_FAILED;
+        rc = dm_exit_from_error(e);
     }
     if (rc < 0)
         tech_renderer_set_debug_view(r, dbg);

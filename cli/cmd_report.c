@@ -85,14 +85,15 @@ int cli_report(int argc, char **argv)
     store *st = NULL;
     dm_str err = {0};
     dm_run_result run = {0};
-    if (rc < 0 && store_open(store_path, &st, &err) != 0)
-        rc = cli_usage_error("%s", dm_str_get(&err));
-    if (rc < 0 && store_check(st, &err) != 0) {   /* a damaged store: the machine's, exit 4 */
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
-        rc = DM_EXIT_ENV;
-    }
-    if (rc < 0 && store_run_load(st, run_id, &run) != 0)
+    int se = 0;   /* a damaged or newer store is the machine's: exit 4 (cli_error) */
+    if (rc < 0 && (se = store_open(store_path, &st, &err)) != 0)
+        rc = cli_error(se, "%s", dm_str_get(&err));
+    if (rc < 0 && (se = store_check(st, &err)) != 0)
+        rc = cli_error(se, "%s", dm_str_get(&err));
+    if (rc < 0 && (se = store_run_load(st, run_id, &run)) == DM_ERR_NOTFOUND)
         rc = cli_usage_error("%s: run %s is not in %s", dir, run_id, store_path);
+    else if (rc < 0 && se != 0)
+        rc = cli_error(DM_ERR_STORE, "%s", store_last_error(st));
     if (rc < 0 && metric)
         report_metric_set(&run, metric);   /* validated by report__metric */
     if (rc < 0 && args.flip_ppd > 0 && flip_run_recompute(&run, dir, args.flip_ppd, &err) != 0)

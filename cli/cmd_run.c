@@ -6,6 +6,7 @@
 #include "run/runner.h"
 #include "sweep/sweep.h"
 
+#include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -30,14 +31,15 @@ static int run__seed(const cli_option *opt, const char *v, void *args, dm_str *e
     return runner_parse_seed(v, &((run_args *)args)->o.seed, err);
 }
 
-/* --budget SEC > 0. */
+/* --budget SEC > 0 and finite ("inf" would plan as if there were no budget). */
 static int run__budget(const cli_option *opt, const char *v, void *args, dm_str *err)
 {
     char *end = NULL;
     double *b = &((run_args *)args)->o.budget_s;
     *b = strtod(v, &end);
-    if (!*v || *end || !(*b > 0)) {
-        dm_str_printf(err, "--%s '%s': expected seconds per configuration, > 0", opt->name, v);
+    if (!*v || *end || !(*b > 0) || !isfinite(*b)) {
+        dm_str_printf(err, "--%s '%s': expected seconds per configuration, > 0 and finite",
+                      opt->name, v);
         return DM_ERR_ARG;
     }
     return 0;

@@ -211,6 +211,7 @@ static int slurm__submit(const slurm_args *a, const char *dir, const char *list,
 static int slurm__paths(const slurm_args *a, slurm_desc *d, char *bin, char *sweep, char *dir)
 {
     char *out = dm_xstrdup(a->out);
+    dm_str err = {0};
     int rc = -1;
     if (!realpath("/proc/self/exe", bin))
         rc = cli_usage_error("slurm: cannot find the dmbench binary (/proc/self/exe)");
@@ -218,12 +219,41 @@ static int slurm__paths(const slurm_args *a, slurm_desc *d, char *bin, char *swe
         rc = cli_usage_error("slurm: %s: no such sweep file", a->sweep);
     else if (dm_mkdirs(out) != 0 || !realpath(out, dir) || access(dir, W_OK) != 0)
         rc = cli_usage_error("slurm: %s: cannot create or write the output directory", out);
+    else if (slurm_check_dir(dir, &err) != 0)
+        rc = cli_usage_error("slurm: --out: %s", dm_str_get(&err));
+    dm_str_free(&err);
     d->dmbench = bin;
     d->sweep = a->sweep ? sweep : NULL;
     d->dir = dir;
     d->shards = a->shards;
     free(out);
     return rc;
+}
+
+/* Prints the scripts written and the commands that submit them, for
+ * copying into a shell: every path is one single-quoted word, so a path
+ * with blanks, ';' or '$(...)' is passed as it is and runs nothing. */
+static void slurm__print_submit(const char *dir, const char *list)
+{
+    char *array = dm_xasprintf("%s/slurm/shards.sbatch", dir);
+    char *merge = dm_xasprintf("%s/slurm/merge.sbatch", dir);
+    dm_str s = {0};
+    dm_str_printf(&s, "%s\n%s\nsubmit with: ", array, merge);
+    if (list) {
+        dm_str_printf(&s, "sbatch --array=%s ", list);
+        slurm_shell_quote(&s, array);
+        dm_str_cat(&s, ", then sbatch --dependency=afterany:<array job id> ");
+    } else {   /* every shard is complete: only the merge job is left */
+        dm_str_cat(&s, "sbatch ");
+    }
+    slurm_shell_quote(&s, merge);
+    dm_str_cat(&s, list ? " <array job id>\n" : " 0\n");
+    char *buf = NULL;
+    fputs(dm_term_safe(dm_str_get(&s), &buf), stdout);
+    free(buf);
+    dm_str_free(&s);
+    free(array);
+    free(merge);
 }
 
 static int slurm__main(const slurm_args *a)
@@ -243,9 +273,7 @@ static int slurm__main(const slurm_args *a)
     if (rc < 0 && slurm_write_scripts(&d, &err) != 0)
         rc = cli_usage_error("slurm: %s", dm_str_get(&err));
     if (rc < 0 && a->print) {
-        printf("%s/slurm/shards.sbatch\n%s/slurm/merge.sbatch\nsubmit with: sbatch --array=%s "
-               "%s/slurm/shards.sbatch, then sbatch --dependency=afterany:<array job id> "
-               "%s/slurm/merge.sbatch <array job id>\n", dir, dir, list ? list : "(none)", dir, dir);
+        slurm__print_submit(dir, list);
         rc = 0;
     } else if (rc < 0) {
         rc = slurm__submit(a, dir, list, sbatch);

@@ -3,8 +3,11 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/callgrind.h"
+#include "run/drivers.h"
 
 #include <assert.h>
+#include <errno.h>
+#include <signal.h>
 #include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
@@ -133,6 +136,17 @@ int cli_usage_error(const char *fmt, ...)
     return DM_EXIT_USAGE;
 }
 
+int cli_error(int err, const char *fmt, ...)
+{
+    va_list ap;
+    va_start(ap, fmt);
+    fprintf(stderr, "dmbench: error: ");
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+    va_end(ap);
+    return err == DM_ERR_STORE || err == DM_ERR_BUSY ? DM_EXIT_ENV : DM_EXIT_USAGE;
+}
+
 /* "usage: dmbench NAME SYNOPSIS [OPTIONS]", one line per form. */
 static void commands__usage(const cli_command *c, FILE *f)
 {
@@ -238,8 +252,26 @@ int cli_parse(int argc, char **argv, void *args, int *n_pos)
     return rc != 0 || want_help ? rc : -1;
 }
 
+/* The exit code rc, unless what the command printed could not be written
+ * (stdout on a full disk, /dev/full, a closed descriptor): the output is
+ * lost, so a command that had succeeded exits DM_EXIT_ENV with the reason
+ * instead of 0. */
+static int commands__flush(int rc)
+{
+    errno = 0;
+    if (fflush(stdout) == 0 && !ferror(stdout))
+        return rc;
+    fprintf(stderr, "dmbench: error: cannot write the standard output (%s); what was printed "
+            "is lost: free space, or send it elsewhere\n", errno ? strerror(errno) : "write error");
+    return rc == DM_EXIT_OK ? DM_EXIT_ENV : rc;
+}
+
 int cli_main(int argc, char **argv)
 {
+    /* Over a file-size limit (ulimit -f) a write fails with EFBIG and is
+     * reported like a full disk (exit 4, the store intact), instead of
+     * SIGXFSZ killing the process mid-write; measuring processes inherit it. */
+    signal(SIGXFSZ, SIG_IGN);
     if (argc < 2) {                    /* the overview, but a usage error */
         commands__overview(stdout);
         return DM_EXIT_USAGE;
@@ -252,6 +284,13 @@ int cli_main(int argc, char **argv)
         printf("%s\n", cli_version());
         return DM_EXIT_OK;
     }
+    dm_str derr = {0};
+    int drc = drivers_enter(argv, &derr);   /* returns only when no re-exec is due */
+    if (drc) {
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&derr));
+        dm_str_free(&derr);
+        return dm_exit_from_error(drc);
+    }
     const cli_command *c = cli_commands_find(argv[1]);
-    return c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]);
+    return commands__flush(c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]));
 }

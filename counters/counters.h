@@ -59,7 +59,11 @@ typedef enum counters_feed {
     COUNTERS_FEED_TEXTURE_BYTES,   /* the renderer's item: texture storage */
     COUNTERS_FEED_MESH_BYTES,      /* the renderer's item: vertex and index buffers */
     COUNTERS_FEED_MESH_TRIANGLES,  /* the renderer's item: triangles submitted */
-    COUNTERS_FEED_VIEWPORT_PIXELS  /* the render target: width x height */
+    COUNTERS_FEED_VIEWPORT_PIXELS, /* the render target: width x height */
+    COUNTERS_FEED_VT_RESIDENT,     /* virtual texture: pages resident at sample end */
+    COUNTERS_FEED_VT_MISSES,       /* virtual texture: misses in the configuration's samples */
+    COUNTERS_FEED_VT_UPLOAD_BYTES, /* virtual texture: bytes uploaded in its samples */
+    COUNTERS_FEED_VT_COMMITTED_BYTES /* virtual texture: page storage committed at sample end */
 } counters_feed;
 
 typedef struct counters_info {

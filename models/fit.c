@@ -292,16 +292,22 @@ static double fit__corr(const fit_desc *d, const size_t *rows, size_t m, size_t 
 static void fit__warn_collinear(const fit_desc *d, const formula *f, const size_t *rows,
                                 size_t m, dm_fit_result *r)
 {
-    for (size_t u = 0; u < d->n_vars; u++)
-        for (size_t v = u + 1; v < d->n_vars; v++) {
-            if (!formula_uses_var(f, u) || !formula_uses_var(f, v))
-                continue;
+    /* Only the variables the formula uses: a table of 10^5 columns has
+     * 5*10^9 pairs, a formula a handful of variables. */
+    size_t *used = dm_xcalloc(d->n_vars ? d->n_vars : 1, sizeof *used), n_used = 0;
+    for (size_t v = 0; v < d->n_vars; v++)
+        if (formula_uses_var(f, v))
+            used[n_used++] = v;
+    for (size_t i = 0; i < n_used; i++)
+        for (size_t j = i + 1; j < n_used; j++) {
+            size_t u = used[i], v = used[j];
             double c = fit__corr(d, rows, m, u, v);
             if (fabs(c) > 0.9999)
                 fit__warn(r, "variables '%s' and '%s' are nearly collinear (corr = %.6f): "
                           "their coefficients are poorly determined", d->variables[u],
                           d->variables[v], c);
         }
+    free(used);
 }
 
 /* Bounds of the current parameters (+-INFINITY when none) and a feasible

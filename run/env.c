@@ -1,7 +1,10 @@
 #include "env.h"
+#include "core/dm_error.h"
 #include "core/dm_util.h"
+#include "run/drivers.h"
 
 #include <epoxy/gl.h>
+#include <errno.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
@@ -35,6 +38,25 @@ static char *env__cpu_model(void)
     return model ? model : dm_xstrdup("unknown");
 }
 
+int env_check(dm_str *err)
+{
+    const char *lp = getenv("LP_NUM_THREADS");
+    if (!lp)
+        return 0;
+    char *end = NULL;
+    errno = 0;
+    long v = strtol(lp, &end, 10);
+    int digits = *lp >= '0' && *lp <= '9';   /* no sign, no space: exactly what was meant */
+    if (digits && errno == 0 && *end == '\0' && v >= 0 && v <= ENV_LP_MAX_THREADS)
+        return 0;
+    char *buf = NULL;
+    dm_str_printf(err, "LP_NUM_THREADS='%.40s': expected a whole number of llvmpipe rasteriser "
+                  "threads from 0 to %d (0: rasterise on the calling thread); unset it to "
+                  "measure with 1", dm_term_safe(lp, &buf), ENV_LP_MAX_THREADS);
+    free(buf);
+    return DM_ERR_ARG;
+}
+
 void env_collect(dm_kv **kv, size_t *n, int gl)
 {
     if (gl) {
@@ -43,6 +65,7 @@ void env_collect(dm_kv **kv, size_t *n, int gl)
         dm_kv_push(kv, n, "glsl_version", (const char *)glGetString(GL_SHADING_LANGUAGE_VERSION));
         dm_kv_push(kv, n, "vendor", (const char *)glGetString(GL_VENDOR));
     }
+    dm_kv_push(kv, n, "driver", drivers_current());
     const char *lp = getenv("LP_NUM_THREADS");
     dm_kv_push(kv, n, "lp_num_threads", lp ? lp : "default");
     char *cpu = env__cpu_model();

@@ -12,7 +12,15 @@
 
 #include <stddef.h>
 #include "core/dm_results.h"
+#include "core/dm_util.h"
 
+/* llvmpipe's rasteriser threads: LP_NUM_THREADS takes 0 (rasterise on the
+ * calling thread) to ENV_LP_MAX_THREADS; Mesa reads other text as 0 and
+ * clamps larger numbers, so the value recorded would not be the one used. */
+#define ENV_LP_MAX_THREADS 32
+/* Checks LP_NUM_THREADS when it is set: 0, or DM_ERR_ARG with a message
+ * naming the variable, its value and the valid range appended to err. */
+int env_check(dm_str *err);
 /* Appends environment key/values to kv.  GL keys are skipped when no
  * context is current (gl = 0). */
 void env_collect(dm_kv **kv, size_t *n, int gl);

@@ -4,8 +4,10 @@
 #include <epoxy/egl.h>
 #include <epoxy/gl.h>
 #include <GLFW/glfw3.h>
+#include <errno.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 
 struct gl_context {
     gl_backend backend;
@@ -33,13 +35,45 @@ static void GLAPIENTRY gl__debug_cb(GLenum source, GLenum type, GLuint id, GLenu
         dm_str_printf(&ctx->messages, "GL debug %s: %s\n", error ? "error" : "message", msg);
 }
 
+/* Why EGL could not initialise.  Under an address-space limit (ulimit -v)
+ * Mesa cannot map llvmpipe's driver and code memory, and fails exactly as if
+ * it were not installed; the limit, or ENOMEM left by the failed mapping,
+ * names the real cause instead of sending the user to reinstall Mesa. */
+#define GL__AS_SUSPECT ((rlim_t)8 << 30)   /* limits below 8 GB are suspected */
+
+static void gl__egl_init_failure(int saved_errno, dm_str *err)
+{
+    struct rlimit as;
+    int limited = getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY &&
+                  as.rlim_cur < GL__AS_SUSPECT;
+    if (limited)   /* llvmpipe maps its driver, LLVM and thread stacks: several hundred MB */
+        dm_str_printf(err, "EGL: cannot initialise a surfaceless display: llvmpipe could not map "
+                      "its memory under the address-space limit of %llu MB (ulimit -v %llu); "
+                      "raise it (ulimit -v unlimited) and run again",
+                      (unsigned long long)(as.rlim_cur >> 20),
+                      (unsigned long long)(as.rlim_cur >> 10));
+    else if (saved_errno == ENOMEM)
+        dm_str_cat(err, "EGL: cannot initialise a surfaceless display: out of memory while "
+                        "loading llvmpipe; free memory (or check ulimit -v) and run again");
+    else
+        dm_str_cat(err, "EGL: cannot initialise a surfaceless display "
+                        "(is Mesa's EGL installed? run scripts/install-deps)");
+}
+
 static int gl__create_egl(gl_context *ctx, dm_str *err)
 {
+    errno = 0;
+    /* Without an EGL vendor offering platform displays (no Mesa, a bad
+     * __EGL_VENDOR_LIBRARY_FILENAMES, or its library not mappable) libepoxy
+     * would abort on the call below: ask for the client extension first. */
+    if (!epoxy_has_egl_extension(EGL_NO_DISPLAY, "EGL_EXT_platform_base")) {
+        gl__egl_init_failure(errno, err);
+        return DM_ERR_GL;
+    }
     ctx->dpy = eglGetPlatformDisplayEXT(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, NULL);
     EGLint major, minor;
     if (ctx->dpy == EGL_NO_DISPLAY || !eglInitialize(ctx->dpy, &major, &minor)) {
-        dm_str_cat(err, "EGL: cannot initialise a surfaceless display "
-                        "(is Mesa's EGL installed? run scripts/install-deps)");
+        gl__egl_init_failure(errno, err);
         return DM_ERR_GL;
     }
     if (!eglBindAPI(EGL_OPENGL_API)) {

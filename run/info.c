@@ -85,10 +85,12 @@ int info_main(int json)
 {
     gl_context *gl = NULL;
     dm_str err = {0};
-    if (gl_context_create(NULL, &gl, &err) != 0) {
+    int rc = env_check(&err);
+    rc = rc ? rc : gl_context_create(NULL, &gl, &err);
+    if (rc != 0) {   /* bad LP_NUM_THREADS: 2; no usable GL: 4, as for run */
         fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
         dm_str_free(&err);
-        return DM_EXIT_FAILED;
+        return dm_exit_from_error(rc);
     }
     counters_context *cc = NULL;
     counters_timer_calibration cal = { .verdict = "unavailable" };

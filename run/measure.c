@@ -22,6 +22,9 @@
 #include <string.h>
 #include <unistd.h>
 
+/* Draws at most this many frames to converge a virtual texture before an image. */
+#define MEASURE_VT_CONVERGE_MAX 64
+
 /* State of one configuration while its scene is measured. */
 typedef struct mconf {
     const plan_config *pc;
@@ -40,6 +43,8 @@ typedef struct mconf {
     size_t n_samples;
     double *stats;              /* per statistics counter: per-frame value (NAN = unavailable) */
     char **stats_reason;
+    int has_vt;                 /* virtual-textured: vt holds its samples' figures */
+    tech_vt_stats vt;           /* misses and upload bytes summed over its samples, the rest at the last */
 } mconf;
 
 typedef struct mscene {
@@ -292,10 +297,19 @@ static void measure__timing_sample(mscene *m, mconf *c)
     double *vals = dm_xcalloc(m->n_timing + 1, sizeof *vals);
     measure__say(m->job, "B %s", c->pc->key);
     int64_t t0 = dm_now_ns();
+    tech_vt_stats v0, v1;
+    int vt = tech_item_vt_stats(m->r, c->item, &v0) == 0;
     if (measure__session(m, c, m->timing, m->n_timing, c->frames, vals, NULL) != 0) {
         measure__fail(c, "counter session failed (see log)");
         free(vals);
         return;
+    }
+    if (vt && tech_item_vt_stats(m->r, c->item, &v1) == 0) {   /* the VT may be shared: its own deltas */
+        c->has_vt = 1;
+        c->vt.page_misses += v1.page_misses - v0.page_misses;
+        c->vt.upload_bytes += v1.upload_bytes - v0.upload_bytes;
+        c->vt.pages_resident = v1.pages_resident;
+        c->vt.committed_bytes = v1.committed_bytes;
     }
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i][c->n_samples] = vals[i];
@@ -364,6 +378,10 @@ static double measure__fed(const mconf *c, counters_feed feed)
     case COUNTERS_FEED_MESH_BYTES: return (double)c->info.mesh_bytes;
     case COUNTERS_FEED_MESH_TRIANGLES: return (double)c->info.mesh_triangles;
     case COUNTERS_FEED_VIEWPORT_PIXELS: return (double)c->pc->width * c->pc->height;
+    case COUNTERS_FEED_VT_RESIDENT: return c->has_vt ? (double)c->vt.pages_resident : NAN;
+    case COUNTERS_FEED_VT_MISSES: return c->has_vt ? (double)c->vt.page_misses : NAN;
+    case COUNTERS_FEED_VT_UPLOAD_BYTES: return c->has_vt ? (double)c->vt.upload_bytes : NAN;
+    case COUNTERS_FEED_VT_COMMITTED_BYTES: return c->has_vt ? (double)c->vt.committed_bytes : NAN;
     case COUNTERS_FEED_NONE: break;
     }
     return NAN;
@@ -480,6 +498,25 @@ static char *measure__img_path(const measure_job *job, const char *name)
     return dm_xasprintf("%s/img/%s", job->run_dir, name);
 }
 
+/* A virtual texture holds what earlier draws wanted (its cache may be
+ * shared with other configurations): draws item at w×h until a frame loads
+ * no page (at most MEASURE_VT_CONVERGE_MAX), so what follows — an image,
+ * counted frames — sees the pages this view converges to, whatever was
+ * drawn before.  Nothing for an item without a virtual texture. */
+static void measure__vt_converge(struct tech_renderer *r, tech_item item, int w, int h)
+{
+    tech_vt_stats vs0, vs1;
+    if (tech_item_vt_stats(r, item, &vs0) != 0)
+        return;
+    for (int f = 0; f < MEASURE_VT_CONVERGE_MAX; f++) {
+        tech_draw(r, item, w, h);
+        tech_item_vt_stats(r, item, &vs1);
+        if (f > 0 && vs1.page_misses == vs0.page_misses)
+            break;
+        vs0 = vs1;
+    }
+}
+
 int measure_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_params,
                          int w, int h, int supersample, float **rgba, float **depth, dm_str *log)
 {
@@ -493,6 +530,7 @@ int measure_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_
         dm_str_printf(log, "cannot create a %dx%d render target\n", w * ss, h * ss);
         return rc;
     }
+    measure__vt_converge(r, item, w * ss, h * ss);
     tech_draw(r, item, w * ss, h * ss);
     img big = {0}, small = {0};
     img_alloc(&big, w * ss, h * ss);
@@ -824,6 +862,7 @@ static void measure__counted_samples(mscene *m, mconf *c, int frames, int sample
 {
     int warm = m->job->sweep->measure.warmup_frames;
     measure__frames(m, c, warm > 0 ? warm : 1);
+    measure__vt_converge(m->r, c->item, c->pc->width, c->pc->height);   /* no page generation counted */
     for (int s = 0; s < samples; s++) {
         char name[32];
         snprintf(name, sizeof name, "%s.%d", c->pc->key, s);

@@ -66,7 +66,9 @@ int measure_instructions(const measure_job *job, int frames, int samples, dm_str
 int measure_pilot(const measure_job *job, dm_str *err);
 
 /* Renders one configuration into a float image (w*h*4, row 0 top);
- * supersample >= 1 renders at that multiple and box-filters down.
+ * supersample >= 1 renders at that multiple and box-filters down.  A
+ * virtual-textured configuration is first drawn until a frame loads no
+ * page (at most 64 frames), so its image does not depend on earlier draws.
  * Used for quality references and `dmbench render`. */
 struct tech_renderer;
 int measure_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_params,

@@ -1136,8 +1136,9 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
      * makes fenced timings several times noisier (docs/llvmpipe-findings.md), so measuring
      * processes use one rasterizer thread unless the user chose otherwise.
      * The value is recorded in the environment and the fingerprint. */
+    int rc = env_check(err);                      /* the user's LP_NUM_THREADS, before it is recorded */
     setenv("LP_NUM_THREADS", "1", 0);
-    int rc = fitting_check_models(s, err);       /* models: fail now, not after the run */
+    rc = rc ? rc : fitting_check_models(s, err);  /* models: fail now, not after the run */
     rc = rc ? rc : runner__plan(&r, err);
     rc = rc ? rc : published_resolve(s->published, &r.p, s->path, err);   /* labels: exit 2 now */
     if (rc == 0 && o->shard_n && (rc = plan_shard(&r.p, o->shard_k, o->shard_n)) != 0)

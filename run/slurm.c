@@ -13,13 +13,50 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-/* Appends s as one single-quoted shell word. */
-static void slurm__quote(dm_str *out, const char *s)
+void slurm_shell_quote(dm_str *out, const char *s)
 {
     dm_str_cat(out, "'");
     for (; *s; s++)
         dm_str_cat(out, *s == '\'' ? "'\\''" : (char[]){ *s, 0 });
     dm_str_cat(out, "'");
+}
+
+/* Appends a path for an #SBATCH directive: sbatch splits those lines at
+ * blanks outside quotes, ends them at an unquoted '#', and expands '%' in
+ * file names, so the path goes in double quotes with '"' and '\\' escaped
+ * and '%' doubled.  (Line breaks cannot be written; slurm_check_dir refuses
+ * them.) */
+static void slurm__directive_path(dm_str *out, const char *s)
+{
+    dm_str_cat(out, "\"");
+    for (; *s; s++)
+        dm_str_cat(out, *s == '"' ? "\\\"" : *s == '\\' ? "\\\\" : *s == '%' ? "%%"
+                                                                    : (char[]){ *s, 0 });
+    dm_str_cat(out, "\"");
+}
+
+/* Appends a job name made of the sweep name's letters, digits, '.', '_' and
+ * '-' (anything else, markup and blanks included, becomes '_'), at most 64
+ * bytes: squeue, sacct and mail show it unescaped. */
+static void slurm__job_name(dm_str *out, const char *name)
+{
+    size_t n = 0;
+    for (const unsigned char *p = (const unsigned char *)name; *p && n < 64; p++, n++) {
+        int ok = (*p >= 'a' && *p <= 'z') || (*p >= 'A' && *p <= 'Z') ||
+                 (*p >= '0' && *p <= '9') || *p == '.' || *p == '_' || *p == '-';
+        dm_str_cat(out, ok ? (char[]){ (char)*p, 0 } : "_");
+    }
+}
+
+int slurm_check_dir(const char *dir, dm_str *err)
+{
+    for (const unsigned char *p = (const unsigned char *)dir; *p; p++)
+        if (*p < 0x20 || *p == 0x7f) {
+            dm_str_cat(err, "the output directory's path holds a line break or another control "
+                            "byte, which a #SBATCH line cannot carry; give another --out");
+            return DM_ERR_ARG;
+        }
+    return 0;
 }
 
 static int slurm__save(const char *path, const dm_str *text, dm_str *err)
@@ -35,18 +72,26 @@ static int slurm__save(const char *path, const dm_str *text, dm_str *err)
  * (--resume) a run an earlier attempt left in that store. */
 static void slurm__array_script(const slurm_desc *d, const char *name, dm_str *s)
 {
-    dm_str_printf(s, "#!/bin/bash\n# Written by dmbench slurm: task K runs shard K/%d of %s.\n"
-                  "#SBATCH --job-name=dmbench-%s\n#SBATCH --output=%s/slurm/logs/shard-%%a.out\n"
-                  "#SBATCH --cpus-per-task=1\nset -euo pipefail\n"
-                  "k=${SLURM_ARRAY_TASK_ID:?run this script with sbatch --array}\nout=",
-                  d->shards, d->sweep ? d->sweep : "the default sweep", name, d->dir);
-    slurm__quote(s, d->dir);
+    dm_str_printf(s, "#!/bin/bash\n# Written by dmbench slurm: task K runs shard K/%d of ",
+                  d->shards);
+    if (d->sweep)   /* a comment line: a line break in the path would end it */
+        for (const unsigned char *p = (const unsigned char *)d->sweep; *p; p++)
+            dm_str_cat(s, *p < 0x20 || *p == 0x7f ? "?" : (char[]){ (char)*p, 0 });
+    else
+        dm_str_cat(s, "the default sweep");
+    dm_str_cat(s, ".\n#SBATCH --job-name=dmbench-");
+    slurm__job_name(s, name);
+    dm_str_cat(s, "\n#SBATCH --output=");
+    slurm__directive_path(s, d->dir);
+    dm_str_cat(s, "/slurm/logs/shard-%a.out\n#SBATCH --cpus-per-task=1\nset -euo pipefail\n"
+                  "k=${SLURM_ARRAY_TASK_ID:?run this script with sbatch --array}\nout=");
+    slurm_shell_quote(s, d->dir);
     dm_str_cat(s, "/shards/s$k\nresume=()\n"
                   "if [ -s \"$out/dmbench.sqlite\" ]; then resume=(--resume); fi\nexec ");
-    slurm__quote(s, d->dmbench);
+    slurm_shell_quote(s, d->dmbench);
     dm_str_cat(s, " run ");
     if (d->sweep) {
-        slurm__quote(s, d->sweep);
+        slurm_shell_quote(s, d->sweep);
         dm_str_cat(s, " ");
     }
     dm_str_printf(s, "--shard \"$k/%d\" --out \"$out\" --quiet ${resume[@]+\"${resume[@]}\"}\n",
@@ -56,13 +101,15 @@ static void slurm__array_script(const slurm_desc *d, const char *name, dm_str *s
 /* The merge job: reports failed shards with Slurm's reason, then merges. */
 static void slurm__merge_script(const slurm_desc *d, const char *name, dm_str *s)
 {
-    dm_str_printf(s, "#!/bin/bash\n# Written by dmbench slurm: after the array (any outcome), "
-                  "reports failed shards and merges the others.\n"
-                  "#SBATCH --job-name=dmbench-%s-merge\n#SBATCH --output=%s/slurm/logs/merge.out\n"
-                  "#SBATCH --cpus-per-task=1\nexec ", name, d->dir);
-    slurm__quote(s, d->dmbench);
+    dm_str_cat(s, "#!/bin/bash\n# Written by dmbench slurm: after the array (any outcome), "
+                  "reports failed shards and merges the others.\n#SBATCH --job-name=dmbench-");
+    slurm__job_name(s, name);
+    dm_str_cat(s, "-merge\n#SBATCH --output=");
+    slurm__directive_path(s, d->dir);
+    dm_str_cat(s, "/slurm/logs/merge.out\n#SBATCH --cpus-per-task=1\nexec ");
+    slurm_shell_quote(s, d->dmbench);
     dm_str_cat(s, " slurm --collect ");
-    slurm__quote(s, d->dir);
+    slurm_shell_quote(s, d->dir);
     dm_str_printf(s, " --shards %d --job \"${1:?the array job id}\"\n", d->shards);
 }
 

@@ -24,6 +24,13 @@ typedef struct slurm_desc {
     int shards;                /* N >= 1 */
 } slurm_desc;
 
+/* Appends s as one single-quoted shell word (for scripts and for lines
+ * printed to be copied into a shell). */
+void slurm_shell_quote(dm_str *out, const char *s);
+/* 0 when dir can be written into #SBATCH lines (the scripts quote blanks,
+ * quotes, '#' and '%'); DM_ERR_ARG with the reason in err when it holds a
+ * line break or another control byte. */
+int slurm_check_dir(const char *dir, dm_str *err);
 /* Writes DIR/slurm/shards.sbatch and merge.sbatch (atomically, mode 0755)
  * and makes DIR/slurm/logs.  The array range is not in the script: it is
  * given to sbatch (--array), so --resume can submit only some shards.

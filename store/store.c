@@ -278,8 +278,13 @@ static int store__failf(store *s, int code, const char *fmt, ...)
 /* Records SQLite's current message for what was being done; DM_ERR_STORE. */
 static int store__fail(store *s, const char *what)
 {
-    return store__failf(s, DM_ERR_STORE, "%s: %s (SQLite code %d)", what,
-                        sqlite3_errmsg(s->db), sqlite3_extended_errcode(s->db));
+    int code = sqlite3_extended_errcode(s->db), prim = code & 0xff;
+    if (prim == SQLITE_CORRUPT || prim == SQLITE_NOTADB)   /* say what to do, not only what broke */
+        return store__failf(s, DM_ERR_STORE, "the results store is damaged (%s: %s, SQLite code "
+                            "%d); restore dmbench.sqlite from a backup, or give another --out",
+                            what, sqlite3_errmsg(s->db), code);
+    return store__failf(s, DM_ERR_STORE, "%s: %s (SQLite code %d)", what, sqlite3_errmsg(s->db),
+                        code);
 }
 
 const char *store_last_error(const store *s)
@@ -971,8 +976,9 @@ static int store__migrate(store *s)
     rc = rc == SQLITE_OK ? sqlite3_finalize(st) : rc;
     if (rc == SQLITE_OK && v > STORE_SCHEMA_VERSION) {
         sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
-        return store__failf(s, DM_ERR_STORE, "schema version %ld is newer than "
-                            "this dmbench's (%d)", v, STORE_SCHEMA_VERSION);
+        return store__failf(s, DM_ERR_STORE, "the results store was written by a newer dmbench "
+                            "(schema version %ld; this one reads up to %d): open it with that "
+                            "dmbench, or give another --out", v, STORE_SCHEMA_VERSION);
     }
     int upgrade = v < STORE_SCHEMA_VERSION;
     for (; rc == SQLITE_OK && v < STORE_SCHEMA_VERSION; v++)
@@ -988,6 +994,75 @@ static int store__migrate(store *s)
     if (!sqlite3_get_autocommit(s->db))
         sqlite3_exec(s->db, "ROLLBACK", NULL, NULL, NULL);
     return rc;
+}
+
+/* A reference schema: every migration applied to an empty in-memory
+ * database, so the expected tables and columns come from the one place that
+ * creates them.  Returns the connection (caller closes) or NULL. */
+static sqlite3 *store__reference_schema(void)
+{
+    sqlite3 *ref = NULL;
+    int rc = sqlite3_open_v2(":memory:", &ref, SQLITE_OPEN_READWRITE, NULL);
+    for (int v = 0; rc == SQLITE_OK && v < STORE_SCHEMA_VERSION; v++)
+        rc = sqlite3_exec(ref, store__migrations[v], NULL, NULL, NULL);
+    if (rc != SQLITE_OK) {
+        sqlite3_close(ref);
+        return NULL;
+    }
+    return ref;
+}
+
+/* Every (table, column) of db as "\ttable\tcolumn\n" lines into out. */
+static int store__columns(sqlite3 *db, dm_str *out)
+{
+    sqlite3_stmt *st = NULL;
+    int rc = sqlite3_prepare_v2(db, "SELECT m.name, p.name FROM sqlite_schema m, "
+                                "pragma_table_info(m.name) p WHERE m.type = 'table' "
+                                "ORDER BY m.rowid, p.cid", -1, &st, NULL);
+    while (rc == SQLITE_OK && (rc = sqlite3_step(st)) == SQLITE_ROW) {
+        dm_str_printf(out, "\t%s\t%s\n", (const char *)sqlite3_column_text(st, 0),
+                      (const char *)sqlite3_column_text(st, 1));
+        rc = SQLITE_OK;
+    }
+    sqlite3_finalize(st);
+    return rc == SQLITE_DONE ? SQLITE_OK : rc;
+}
+
+/* Checks that every table and column of the reference schema is in the
+ * file.  A table dropped or a column lost (a hand edit, a partial restore,
+ * another program) makes the store damaged now, at open, instead of a
+ * "run not found" or a half-read run later.  0, or DM_ERR_STORE naming the
+ * first table or column missing. */
+static int store__verify_schema(store *s)
+{
+    sqlite3 *ref = store__reference_schema();
+    dm_str want = {0}, have = {0};
+    int rc = ref ? store__columns(ref, &want) : SQLITE_NOMEM;
+    rc = rc == SQLITE_OK ? store__columns(s->db, &have) : rc;
+    sqlite3_close(ref);
+    int missing = 0;
+    for (char *line = want.buf; rc == SQLITE_OK && !missing && line && *line;) {
+        char *table = line + 1, *tab = strchr(table, '\t'), *end = strchr(tab, '\n');
+        *tab = *end = '\0';
+        char *col = tab + 1, *pair = dm_xasprintf("\t%s\t%s\n", table, col);
+        char *prefix = dm_xasprintf("\t%s\t", table);
+        if (!strstr(dm_str_get(&have), pair))
+            missing = strstr(dm_str_get(&have), prefix)
+                ? store__failf(s, DM_ERR_STORE, "the results store is damaged: column '%s' of "
+                               "table '%s' is missing; restore dmbench.sqlite from a backup, or "
+                               "give another --out", col, table)
+                : store__failf(s, DM_ERR_STORE, "the results store is damaged: table '%s' is "
+                               "missing; restore dmbench.sqlite from a backup, or give another "
+                               "--out", table);
+        free(pair);
+        free(prefix);
+        line = end + 1;
+    }
+    dm_str_free(&want);
+    dm_str_free(&have);
+    if (missing)
+        return missing;
+    return rc == SQLITE_OK ? 0 : store__fail(s, "checking the schema");
 }
 
 /* Opening failures caused by the file system are I/O errors; the rest (not
@@ -1009,11 +1084,13 @@ static int store__connect(store *s)
         rc = sqlite3_exec(s->db, "PRAGMA foreign_keys=ON;"
                           "PRAGMA journal_mode=WAL;PRAGMA synchronous=FULL",
                           NULL, NULL, NULL);
-    if (rc == SQLITE_OK)
-        return store__migrate(s);
-    int code = store__open_code(s->db ? sqlite3_extended_errcode(s->db) : rc);
-    store__fail(s, "cannot open the results store");
-    return code;
+    if (rc != SQLITE_OK) {
+        int code = store__open_code(s->db ? sqlite3_extended_errcode(s->db) : rc);
+        store__fail(s, "cannot open the results store");
+        return code;
+    }
+    rc = store__migrate(s);
+    return rc ? rc : store__verify_schema(s);
 }
 
 int store_open(const char *path, store **out, dm_str *err)

@@ -26,8 +26,10 @@ typedef struct store store;
 /* Opens or creates the database at path (WAL journal, synchronous=FULL so a
  * committed configuration also survives a power loss, busy_timeout 5 s,
  * foreign keys on) and creates or migrates the schema (PRAGMA user_version).
+ * Then checks that every table and column the schema defines is there.
  * Returns 0 and *out, or DM_ERR_IO (the file cannot be opened or created) /
- * DM_ERR_STORE (not a database, newer schema, any other SQLite failure) with
+ * DM_ERR_STORE (not a database, newer schema, a table or column missing:
+ * "the results store is damaged", any other SQLite failure) with
  * the path and SQLite's message appended to err (err may be NULL); *out is
  * then NULL. */
 int store_open(const char *path, store **out, dm_str *err);

@@ -281,6 +281,9 @@ static int p__k_name(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
     (void)row, (void)k;
     if (!p__scalar(v) || !*p__scalar(v))
         return p__fail(c, v, "name: expected a non-empty string");
+    if (strlen(p__scalar(v)) > SWEEP_NAME_MAX)   /* it titles reports, jobs and terminal lines */
+        return p__fail(c, v, "name: %zu bytes long; at most %d", strlen(p__scalar(v)),
+                       SWEEP_NAME_MAX);
     free(c->s->name);
     c->s->name = dm_xstrdup(p__scalar(v));
     return 0;
@@ -918,8 +921,14 @@ int sweep_load(const char *path, sweep *out, dm_str *err)
         size_t line = 1;
         for (const char *p = text; p < nul; p++)
             line += *p == '\n';
-        dm_str_printf(err, "%s:%zu: a NUL byte: a sweep file is UTF-8 text (is this a binary "
-                      "file?)", path, line);
+        int utf16 = len >= 2 && ((unsigned char)text[0] == 0xff || (unsigned char)text[0] == 0xfe) &&
+                    (unsigned char)text[0] + (unsigned char)text[1] == 0xff + 0xfe;
+        if (utf16)   /* a byte-order mark FF FE or FE FF: an editor's "Unicode" */
+            dm_str_printf(err, "%s:1: the file is UTF-16 text (it starts with a UTF-16 byte-order "
+                          "mark); a sweep file is UTF-8: save it as UTF-8", path);
+        else
+            dm_str_printf(err, "%s:%zu: a NUL byte: a sweep file is UTF-8 text (is this a binary "
+                          "file?)", path, line);
         free(text);
         return DM_ERR_PARSE;
     }

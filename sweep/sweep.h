@@ -14,6 +14,10 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 
+/* Longest sweep name in bytes: it titles reports, Slurm jobs and terminal
+ * lines, so a megabyte of name is refused at parse time. */
+#define SWEEP_NAME_MAX 200
+
 typedef struct sweep_axis {
     char *name;
     char **values;           /* canonical text values */

@@ -163,8 +163,8 @@ static int render__validate(const render__cfg *c, const technique_desc **tech, d
 
 /* The defines of a configuration's program: "#define AXIS_VALUE" for every
  * ENUM axis the technique declares, "#define AXIS_AUTO" for an integer axis
- * it declares at 'auto', and VT_SOFTWARE (+ VT_FILTER_TRILINEAR) with
- * virtual_texture=software.  Whatever changes a shader's control flow or
+ * it declares at 'auto', and VT_SOFTWARE or VT_SPARSE (+
+ * VT_FILTER_TRILINEAR) with virtual_texture=software or sparse.  Whatever changes a shader's control flow or
  * sampling path is compiled in, not switched by a uniform: llvmpipe 22.3
  * runs both sides of a branch on a uniform condition, so a switched-off
  * path would be measured as part of the technique (docs/techniques.md). */
@@ -174,8 +174,9 @@ static void render__defines(const technique_desc *t, const render__cfg *c, dm_st
         dm_str_cat(out, t->defines);
     if (t->tcs && mesh_patch_vertices(render__get(c, "mesh")) == 4)
         dm_str_cat(out, "#define TESS_QUADS\n");
-    if (strcmp(render__get(c, "virtual_texture"), "software") == 0) {
-        dm_str_cat(out, "#define VT_SOFTWARE\n");
+    const char *vtv = render__get(c, "virtual_texture");
+    if (strcmp(vtv, "software") == 0 || strcmp(vtv, "sparse") == 0) {
+        dm_str_cat(out, strcmp(vtv, "sparse") == 0 ? "#define VT_SPARSE\n" : "#define VT_SOFTWARE\n");
         if (render__vt_filter(render__get(c, "filter")) == 2)
             dm_str_cat(out, "#define VT_FILTER_TRILINEAR\n");
     }

@@ -75,6 +75,7 @@ typedef struct tech_vt_stats {
     uint64_t page_misses;        /* requested pages that were not resident */
     uint64_t upload_bytes;       /* bytes uploaded into the page cache */
     int64_t feedback_ns;         /* time spent in feedback passes and readback */
+    uint64_t committed_bytes;    /* page storage now: committed pages (sparse), the cache (software) */
 } tech_vt_stats;
 int tech_item_vt_stats(tech_renderer *r, tech_item item, tech_vt_stats *out);
 

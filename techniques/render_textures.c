@@ -266,8 +266,8 @@ static int render__has_ext(const char *ext, void *user)
     return epoxy_has_gl_extension(ext);
 }
 
-/* `sparse` is refused with the reason (axes_value_refusal): the missing
- * extension, or on a driver that has it, that no page is committed. */
+/* `sparse` is refused with the reason (axes_value_refusal) where the
+ * driver lacks GL_ARB_sparse_texture. */
 static int render__sparse_check(const render__cfg *c, dm_str *log)
 {
     char *why = axes_value_refusal("virtual_texture", render__get(c, "virtual_texture"),
@@ -279,39 +279,43 @@ static int render__sparse_check(const render__cfg *c, dm_str *log)
     return DM_ERR_UNSUPPORTED;
 }
 
-/* virtual_texture=software covers the fragment-stage techniques (the maps
- * are sampled through vt.glsl in surface.frag.glsl only) with the page
- * formats of vt.h. */
+/* virtual_texture=software|sparse covers the fragment-stage techniques
+ * (the maps are sampled through vt.glsl in surface.frag.glsl only) with
+ * the page formats of vt.h. */
 static int render__vt_usable(const render__cfg *c, const render__format *fmt[3], dm_str *log)
 {
     const technique_desc *t = technique_find(render__get(c, "technique"));
+    const char *how = render__get(c, "virtual_texture");
     if (t && (t->tcs || t->tes || t->gs || strcmp(t->vs, "surface.vert.glsl") != 0 ||
               strcmp(t->fs, "surface.frag.glsl") != 0)) {
-        dm_str_printf(log, "virtual_texture=software covers the fragment-stage techniques only, not '%s'\n", t->name);
+        dm_str_printf(log, "virtual_texture=%s covers the fragment-stage techniques only, not '%s'\n", how,
+                      t->name);
         return DM_ERR_UNSUPPORTED;
     }
     if (fmt[0]->internal != GL_R32F || (fmt[1]->internal != GL_RGB8 && fmt[1]->internal != GL_RGBA8) ||
         fmt[2]->internal != GL_RGBA8) {
-        dm_str_printf(log, "virtual_texture=software stores pages as r32f height, rgb8 normal and rgba8 albedo; "
-                      "got %s/%s/%s\n", fmt[0]->name, fmt[1]->name, fmt[2]->name);
+        dm_str_printf(log, "virtual_texture=%s stores pages as r32f height, rgb8 normal and rgba8 albedo; "
+                      "got %s/%s/%s\n", how, fmt[0]->name, fmt[1]->name, fmt[2]->name);
         return DM_ERR_UNSUPPORTED;
     }
     return 0;
 }
 
-/* Creates the software virtual texture of the configuration. */
+/* Creates the software or sparse virtual texture of the configuration. */
 static int render__vt_make(render__maps *m, const render__cfg *c, dm_str *log)
 {
     vt_desc d = {.maps = render__get(c, "maps"), .size = atoi(render__get(c, "texture_size")),
                  .page = atoi(render__get(c, "vt_page_size")),
-                 .cache_pages = atoi(render__get(c, "vt_cache_pages"))};
+                 .cache_pages = atoi(render__get(c, "vt_cache_pages")),
+                 .sparse = strcmp(render__get(c, "virtual_texture"), "sparse") == 0};
     int64_t t0 = dm_now_ns();
     int rc = vt_create(&d, &m->vt, log);
     m->h_lo = 0;    /* procedural sets: heights in [0, 1] */
     m->h_hi = 1;
     if (!rc)
-        dm_str_printf(log, "virtual texture %s %d² (pages %d, cache %d): created in %.1f ms\n", d.maps,
-                      d.size, d.page, d.cache_pages, (double)(dm_now_ns() - t0) / 1e6);
+        dm_str_printf(log, "%s virtual texture %s %d² (pages %d, cache %d): created in %.1f ms\n",
+                      d.sparse ? "sparse" : "software", d.maps, d.size, d.page, d.cache_pages,
+                      (double)(dm_now_ns() - t0) / 1e6);
     return rc;
 }
 
@@ -363,6 +367,7 @@ int render__maps_get(tech_renderer *r, const render__cfg *c, size_t *idx, dm_str
     const char *name = render__get(c, "maps");
     int size = atoi(render__get(c, "texture_size"));
     int soft = strcmp(render__get(c, "virtual_texture"), "software") == 0;
+    int sparse = strcmp(render__get(c, "virtual_texture"), "sparse") == 0;
     const char *f[3] = {render__get(c, "height_format"), render__get(c, "normal_format"),
                         render__get(c, "albedo_format")};
     const render__format *fmt[3];
@@ -372,11 +377,13 @@ int render__maps_get(tech_renderer *r, const render__cfg *c, size_t *idx, dm_str
             return DM_ERR_ARG;
         }
     render__note_clamp(r, render__get(c, "filter"), log);
-    int rc = soft ? render__vt_usable(c, fmt, log) : render__sparse_check(c, log);
+    int rc = render__sparse_check(c, log);
+    if (!rc && (soft || sparse))
+        rc = render__vt_usable(c, fmt, log);
     if (rc)
         return rc;
-    char *key = soft ? dm_xasprintf("vt:%s/%d/%s/%s", name, size, render__get(c, "vt_page_size"),
-                                    render__get(c, "vt_cache_pages"))
+    char *key = soft || sparse ? dm_xasprintf("%s:%s/%d/%s/%s", sparse ? "sparse" : "vt", name, size,
+                                              render__get(c, "vt_page_size"), render__get(c, "vt_cache_pages"))
                      : dm_xasprintf("%s/%d/%s/%s/%s", name, size, f[0], f[1], f[2]);
     for (size_t i = 0; i < r->n_maps; i++)
         if (strcmp(r->maps[i].key, key) == 0) {
@@ -385,7 +392,7 @@ int render__maps_get(tech_renderer *r, const render__cfg *c, size_t *idx, dm_str
             return 0;
         }
     render__maps m = {.key = key, .normal_height_scale = render__normal_height_scale(name)};
-    rc = soft ? render__vt_make(&m, c, log) : render__maps_make(&m, name, size, fmt, log);
+    rc = soft || sparse ? render__vt_make(&m, c, log) : render__maps_make(&m, name, size, fmt, log);
     if (rc) {
         free(key);
         return rc;

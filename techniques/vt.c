@@ -18,7 +18,9 @@
 #define VT__SUB 4              /* at most 4×4 level-0 samples per page texel */
 
 struct vt {
-    int kind, size, page, slot, per_row, n_slots, levels, budget;
+    int kind, size, page, slot, per_row, n_slots, levels, budget, sparse;
+    uint64_t committed;        /* sparse: pages committed now */
+    GLuint staging[3], fbo[2]; /* sparse: a page of each map, read and draw framebuffers */
     GLuint phys[3], table, feedback, samplers[2];
     int fb_w, fb_h, fb_valid;
     uint32_t *slot_page;       /* page id in each slot, VT__NONE when free */
@@ -121,6 +123,17 @@ static void vt__page(const vt *v, int m, int px, int py, float *h, float *n, flo
     free(H);
 }
 
+/* Commits or releases the p×p region at (x, y) of level m of sparse texture
+ * tex (ARB_sparse_texture has no direct-state-access form). */
+static void vt__commit(GLuint tex, int m, int x, int y, int p, GLboolean commit)
+{
+    GLint old = 0;
+    glGetIntegerv(GL_TEXTURE_BINDING_2D, &old);
+    glBindTexture(GL_TEXTURE_2D, tex);
+    glTexPageCommitmentARB(GL_TEXTURE_2D, m, x, y, 0, p, p, 1, commit);
+    glBindTexture(GL_TEXTURE_2D, (GLuint)old);
+}
+
 /* Generates page id into slot and makes it resident in the page table. */
 static void vt__load(vt *v, uint32_t id, int slot)
 {
@@ -128,12 +141,43 @@ static void vt__load(vt *v, uint32_t id, int slot)
     size_t t = (size_t)S * (size_t)S;
     float *buf = dm_xmalloc(t * 9 * sizeof(float));
     vt__page(v, m, px, py, buf, buf + t, buf + 5 * t);
-    int sx = slot % v->per_row * S, sy = slot / v->per_row * S;
-    glTextureSubImage2D(v->phys[0], 0, sx, sy, S, S, GL_RED, GL_FLOAT, buf);
-    glTextureSubImage2D(v->phys[1], 0, sx, sy, S, S, GL_RGBA, GL_FLOAT, buf + t);
-    glTextureSubImage2D(v->phys[2], 0, sx, sy, S, S, GL_RGBA, GL_FLOAT, buf + 5 * t);
+    if (v->sparse) {   /* commit the page at its place and upload it without border */
+        int x = px * v->page, y = py * v->page, P = v->page;
+        for (int i = 0; i < 3; i++)
+            vt__commit(v->phys[i], m, x, y, P, GL_TRUE);
+        /* zink binds sparse memory on the queue asynchronously; an upload
+         * issued before the binding completes is lost (the page reads
+         * back as zero in some runs), so the commitment is waited for.
+         * The page is then drawn in by a blit from a staging texture: with
+         * Mesa 25.0 (zink on lavapipe) glTextureSubImage2D into a level
+         * wider than one page lands with the wrong layout (read back, 87 %
+         * of a page's texels differ; sampled, stripes), the blit does not. */
+        glFinish();
+        float *tight = dm_xmalloc((size_t)P * (size_t)P * 4 * sizeof *tight);
+        for (int i = 0; i < 3; i++) {   /* the page without its border, rows packed */
+            int ch = i ? 4 : 1;
+            const float *src = buf + (i == 0 ? 0 : i == 1 ? t : 5 * t);
+            for (int r = 0; r < P; r++)
+                memcpy(tight + (size_t)r * (size_t)P * (size_t)ch,
+                       src + ((size_t)(r + VT_BORDER) * (size_t)S + VT_BORDER) * (size_t)ch,
+                       (size_t)P * (size_t)ch * sizeof *tight);
+            glTextureSubImage2D(v->staging[i], 0, 0, 0, P, P, i ? GL_RGBA : GL_RED, GL_FLOAT, tight);
+            glNamedFramebufferTexture(v->fbo[0], GL_COLOR_ATTACHMENT0, v->staging[i], 0);
+            glNamedFramebufferTexture(v->fbo[1], GL_COLOR_ATTACHMENT0, v->phys[i], m);
+            glBlitNamedFramebuffer(v->fbo[0], v->fbo[1], 0, 0, P, P, x, y, x + P, y + P, GL_COLOR_BUFFER_BIT,
+                                   GL_NEAREST);
+        }
+        free(tight);
+        v->committed++;
+        v->st.upload_bytes += (size_t)P * (size_t)P * 12;
+    } else {
+        int sx = slot % v->per_row * S, sy = slot / v->per_row * S;
+        glTextureSubImage2D(v->phys[0], 0, sx, sy, S, S, GL_RED, GL_FLOAT, buf);
+        glTextureSubImage2D(v->phys[1], 0, sx, sy, S, S, GL_RGBA, GL_FLOAT, buf + t);
+        glTextureSubImage2D(v->phys[2], 0, sx, sy, S, S, GL_RGBA, GL_FLOAT, buf + 5 * t);
+        v->st.upload_bytes += t * 12;   /* R32F + RGBA8 + RGBA8 */
+    }
     free(buf);
-    v->st.upload_bytes += t * 12;   /* R32F + RGBA8 + RGBA8 */
     v->slot_page[slot] = id;
     v->slot_used[slot] = v->frame;
     uint16_t *e = vt__entry(v, m, px, py);
@@ -159,6 +203,11 @@ static int vt__victim(vt *v)
     uint32_t id = v->slot_page[best];
     int m = (int)(id >> 28), py = (int)(id >> 14 & 0x3FFF), px = (int)(id & 0x3FFF);
     v->slot_page[best] = VT__NONE;
+    if (v->sparse) {
+        for (int i = 0; i < 3; i++)
+            vt__commit(v->phys[i], m, px * v->page, py * v->page, v->page, GL_FALSE);
+        v->committed--;
+    }
     memcpy(vt__entry(v, m, px, py), vt__entry(v, m + 1, px / 2, py / 2), 2 * sizeof(uint16_t));
     vt__subtree(v, m, px, py);
     return best;
@@ -227,15 +276,137 @@ static void vt__update(vt *v)
     free(ids);
 }
 
-/* Creates the GL objects of a validated desc. */
-static void vt__gl_create(vt *v)
+static const GLenum vt__fmt[3] = {GL_R32F, GL_RGBA8, GL_RGBA8};
+static const char *const vt__fmt_name[3] = {"r32f", "rgba8", "rgba8"};
+
+/* Sparse: the three maps as sparse textures of size² with one level per
+ * page level, nothing committed.  DM_ERR_UNSUPPORTED / DM_ERR_RANGE with
+ * the GL error and the size in log. */
+static int vt__sparse_create(vt *v, dm_str *log)
 {
-    int phys = v->per_row * v->slot;
-    static const GLenum fmt[3] = {GL_R32F, GL_RGBA8, GL_RGBA8};
+    GLint max = 0;
+    glGetIntegerv(GL_MAX_SPARSE_TEXTURE_SIZE_ARB, &max);
+    if (v->size > max) {
+        dm_str_printf(log, "virtual_texture=sparse: texture_size %d exceeds the driver's "
+                      "GL_MAX_SPARSE_TEXTURE_SIZE_ARB %d\n", v->size, max);
+        return DM_ERR_RANGE;
+    }
+    for (int i = 0; i < 3; i++) {
+        GLint px = 0, py = 0;
+        glGetInternalformativ(GL_TEXTURE_2D, vt__fmt[i], GL_VIRTUAL_PAGE_SIZE_X_ARB, 1, &px);
+        glGetInternalformativ(GL_TEXTURE_2D, vt__fmt[i], GL_VIRTUAL_PAGE_SIZE_Y_ARB, 1, &py);
+        if (px < 1 || py < 1 || v->page % px || v->page % py) {
+            dm_str_printf(log, "virtual_texture=sparse: vt_page_size %d is not a multiple of the driver's "
+                          "sparse page of %s (%dx%d texels)\n", v->page, vt__fmt_name[i], px, py);
+            return DM_ERR_RANGE;
+        }
+    }
+    while (glGetError() != GL_NO_ERROR)
+        ;
     glCreateTextures(GL_TEXTURE_2D, 3, v->phys);
     for (int i = 0; i < 3; i++) {
-        glTextureStorage2D(v->phys[i], 1, fmt[i], phys, phys);
-        glTextureParameteri(v->phys[i], GL_TEXTURE_MAX_LEVEL, 0);
+        glTextureParameteri(v->phys[i], GL_TEXTURE_SPARSE_ARB, GL_TRUE);
+        glTextureParameteri(v->phys[i], GL_VIRTUAL_PAGE_SIZE_INDEX_ARB, 0);
+        glTextureStorage2D(v->phys[i], v->levels, vt__fmt[i], v->size, v->size);
+        GLint sparse_levels = 0;
+        glGetTextureParameteriv(v->phys[i], GL_NUM_SPARSE_LEVELS_ARB, &sparse_levels);
+        GLenum e = glGetError();
+        if (e != GL_NO_ERROR || sparse_levels < v->levels) {
+            dm_str_printf(log, "virtual_texture=sparse: a %dx%d %s sparse texture with %d levels: %s\n",
+                          v->size, v->size, vt__fmt_name[i], v->levels,
+                          e == GL_OUT_OF_MEMORY ? "GL_OUT_OF_MEMORY"
+                          : e != GL_NO_ERROR    ? "GL error"
+                                                : "its coarsest levels fall into the mip tail "
+                                                  "(use a larger vt_page_size)");
+            glDeleteTextures(3, v->phys);
+    glDeleteTextures(3, v->staging);
+    glDeleteFramebuffers(2, v->fbo);
+            memset(v->phys, 0, sizeof v->phys);
+            return e == GL_OUT_OF_MEMORY ? DM_ERR_RANGE : DM_ERR_UNSUPPORTED;
+        }
+    }
+    return 0;
+}
+
+/* Mesa accepts a page commitment only up to the level range it computes
+ * when it first validates a texture for a draw (texture_page_commitment:
+ * "level > _MaxLevel" is GL_INVALID_VALUE until then), and a technique's
+ * draws validate only the maps it samples.  One point drawn under
+ * rasterizer discard by a program sampling all three maps validates them;
+ * the state it touches is restored. */
+static void vt__sparse_validate(vt *v)
+{
+    static const char *vs = "#version 450 core\nvoid main() { gl_Position = vec4(0, 0, 0, 1); }\n";
+    static const char *fs =
+        "#version 450 core\nlayout(binding = 0) uniform sampler2D a;\n"
+        "layout(binding = 1) uniform sampler2D b;\nlayout(binding = 2) uniform sampler2D c;\n"
+        "out vec4 o;\nvoid main() { o = textureLod(a, vec2(0.5), 0.0) + textureLod(b, vec2(0.5), 0.0)"
+        " + textureLod(c, vec2(0.5), 0.0); }\n";
+    GLint prog = 0, vao = 0, fbo = 0, active = 0, tex[3];
+    GLboolean discard = glIsEnabled(GL_RASTERIZER_DISCARD);
+    glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
+    glGetIntegerv(GL_VERTEX_ARRAY_BINDING, &vao);
+    glGetIntegerv(GL_DRAW_FRAMEBUFFER_BINDING, &fbo);
+    glGetIntegerv(GL_ACTIVE_TEXTURE, &active);
+    for (int i = 0; i < 3; i++) {
+        glActiveTexture(GL_TEXTURE0 + (GLenum)i);
+        glGetIntegerv(GL_TEXTURE_BINDING_2D, &tex[i]);
+    }
+    glActiveTexture((GLenum)active);
+    GLuint rb = 0, fb = 0;   /* a complete framebuffer: the surfaceless default one is not */
+    glCreateRenderbuffers(1, &rb);
+    glNamedRenderbufferStorage(rb, GL_RGBA8, 1, 1);
+    glCreateFramebuffers(1, &fb);
+    glNamedFramebufferRenderbuffer(fb, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, fb);
+    GLuint p = glCreateShaderProgramv(GL_VERTEX_SHADER, 1, &vs), q = glCreateShaderProgramv(GL_FRAGMENT_SHADER, 1, &fs);
+    GLuint pipe = 0, va = 0;
+    glCreateProgramPipelines(1, &pipe);
+    glUseProgramStages(pipe, GL_VERTEX_SHADER_BIT, p);
+    glUseProgramStages(pipe, GL_FRAGMENT_SHADER_BIT, q);
+    glCreateVertexArrays(1, &va);
+    glUseProgram(0);
+    glBindProgramPipeline(pipe);
+    glBindVertexArray(va);
+    for (GLuint u = 0; u < 3; u++)
+        glBindTextureUnit(u, v->phys[u]);
+    glEnable(GL_RASTERIZER_DISCARD);
+    glDrawArrays(GL_POINTS, 0, 1);
+    if (!discard)
+        glDisable(GL_RASTERIZER_DISCARD);
+    for (GLuint u = 0; u < 3; u++)
+        glBindTextureUnit(u, (GLuint)tex[u]);
+    glBindVertexArray((GLuint)vao);
+    glBindFramebuffer(GL_DRAW_FRAMEBUFFER, (GLuint)fbo);
+    glDeleteFramebuffers(1, &fb);
+    glDeleteRenderbuffers(1, &rb);
+    glBindProgramPipeline(0);
+    glUseProgram((GLuint)prog);
+    glDeleteVertexArrays(1, &va);
+    glDeleteProgramPipelines(1, &pipe);
+    glDeleteProgram(p);
+    glDeleteProgram(q);
+}
+
+/* Creates the GL objects of a validated desc. */
+static int vt__gl_create(vt *v, dm_str *log)
+{
+    int phys = v->per_row * v->slot;
+    if (v->sparse) {
+        int rc = vt__sparse_create(v, log);
+        if (rc)
+            return rc;
+        vt__sparse_validate(v);
+        glCreateTextures(GL_TEXTURE_2D, 3, v->staging);
+        for (int i = 0; i < 3; i++)
+            glTextureStorage2D(v->staging[i], 1, vt__fmt[i], v->page, v->page);
+        glCreateFramebuffers(2, v->fbo);
+    } else {
+        glCreateTextures(GL_TEXTURE_2D, 3, v->phys);
+        for (int i = 0; i < 3; i++) {
+            glTextureStorage2D(v->phys[i], 1, vt__fmt[i], phys, phys);
+            glTextureParameteri(v->phys[i], GL_TEXTURE_MAX_LEVEL, 0);
+        }
     }
     glCreateTextures(GL_TEXTURE_2D, 1, &v->table);
     glTextureStorage2D(v->table, v->levels, GL_RG16UI, vt__pages(v, 0), vt__pages(v, 0));
@@ -244,13 +415,17 @@ static void vt__gl_create(vt *v)
     glTextureParameteri(v->table, GL_TEXTURE_MAG_FILTER, GL_NEAREST);
     glCreateSamplers(2, v->samplers);
     for (int i = 0; i < 2; i++) {
+        /* sparse: one level, the one the shader names (textureLod) */
         GLint f = i ? GL_LINEAR : GL_NEAREST;
-        glSamplerParameteri(v->samplers[i], GL_TEXTURE_MIN_FILTER, f);
+        GLint fmin = !v->sparse ? f : i ? GL_LINEAR_MIPMAP_NEAREST : GL_NEAREST_MIPMAP_NEAREST;
+        GLint wrap = v->sparse ? GL_REPEAT : GL_CLAMP_TO_EDGE;
+        glSamplerParameteri(v->samplers[i], GL_TEXTURE_MIN_FILTER, fmin);
         glSamplerParameteri(v->samplers[i], GL_TEXTURE_MAG_FILTER, f);
-        glSamplerParameteri(v->samplers[i], GL_TEXTURE_WRAP_S, GL_CLAMP_TO_EDGE);
-        glSamplerParameteri(v->samplers[i], GL_TEXTURE_WRAP_T, GL_CLAMP_TO_EDGE);
+        glSamplerParameteri(v->samplers[i], GL_TEXTURE_WRAP_S, wrap);
+        glSamplerParameteri(v->samplers[i], GL_TEXTURE_WRAP_T, wrap);
     }
     glCreateBuffers(1, &v->feedback);
+    return 0;
 }
 
 /* Checks the desc; fills size fields of v.  Message in log on failure. */
@@ -272,13 +447,14 @@ static int vt__check(const vt_desc *d, vt *v, dm_str *log)
     }
     v->size = d->size;
     v->page = d->page;
+    v->sparse = d->sparse;
     v->slot = d->page + 2 * VT_BORDER;
     v->per_row = (int)ceil(sqrt((double)d->cache_pages));
     v->n_slots = d->cache_pages;
     v->budget = d->budget > 0 ? d->budget : VT_UPLOAD_BUDGET;
     for (v->levels = 1; (d->size / d->page) >> v->levels; v->levels++)
         ;
-    if ((long)v->per_row * v->slot > max_tex) {
+    if (!v->sparse && (long)v->per_row * v->slot > max_tex) {
         dm_str_printf(log, "virtual texture: a cache of %d pages of %d texels needs a %dx%d texture; "
                       "GL_MAX_TEXTURE_SIZE is %d\n", d->cache_pages, v->slot, v->per_row * v->slot,
                       v->per_row * v->slot, max_tex);
@@ -302,7 +478,11 @@ int vt_create(const vt_desc *d, vt **out, dm_str *log)
     v->dirty = dm_xcalloc((size_t)v->levels * 4, sizeof *v->dirty);
     for (int m = 0; m < v->levels; m++)
         v->tab[m] = dm_xcalloc((size_t)vt__pages(v, m) * (size_t)vt__pages(v, m) * 2, sizeof(uint16_t));
-    vt__gl_create(v);
+    rc = vt__gl_create(v, log);
+    if (rc) {
+        vt_destroy(v);
+        return rc;
+    }
     vt__load(v, vt__id(v->levels - 1, 0, 0), 0);   /* the coarsest page, pinned in slot 0 */
     vt__table_upload(v);
     *out = v;
@@ -314,6 +494,8 @@ void vt_destroy(vt *v)
     if (!v)
         return;
     glDeleteTextures(3, v->phys);
+    glDeleteTextures(3, v->staging);
+    glDeleteFramebuffers(2, v->fbo);
     glDeleteTextures(1, &v->table);
     glDeleteSamplers(2, v->samplers);
     glDeleteBuffers(1, &v->feedback);
@@ -373,10 +555,17 @@ void vt_frame(vt *v, GLuint program, int filter, int width, int height)
 size_t vt_bytes(const vt *v)
 {
     size_t phys = (size_t)v->per_row * (size_t)v->slot;
-    size_t total = phys * phys * 12;   /* R32F + RGBA8 + RGBA8 */
+    size_t total = v->sparse ? (size_t)v->committed * (size_t)v->page * (size_t)v->page * 12
+                             : phys * phys * 12;   /* R32F + RGBA8 + RGBA8 */
     for (int m = 0; m < v->levels; m++)
         total += (size_t)vt__pages(v, m) * (size_t)vt__pages(v, m) * 4;   /* RG16UI */
     return total;
 }
 
-void vt_get_stats(const vt *v, tech_vt_stats *out) { *out = v->st; }
+void vt_get_stats(const vt *v, tech_vt_stats *out)
+{
+    *out = v->st;
+    size_t phys = (size_t)v->per_row * (size_t)v->slot;
+    out->committed_bytes = v->sparse ? (uint64_t)v->committed * (uint64_t)v->page * (uint64_t)v->page * 12
+                                     : (uint64_t)(phys * phys * 12);
+}

@@ -15,6 +15,16 @@
  * pages and their ancestors, evicts the least recently used pages not
  * wanted this frame, and generates at most VT_UPLOAD_BUDGET pages, coarse
  * levels first.  See docs/textures.md for the diagram.
+ *
+ * Sparse (desc.sparse, virtual_texture=sparse, GL_ARB_sparse_texture): the
+ * three maps are sparse textures of size² texels with one mip level per
+ * page level, and "a slot" is a committed page: the same feedback, LRU and
+ * budget commit a page (glTexPageCommitmentARB) and upload it without
+ * border where the software path copies it into a slot, and uncommit the
+ * victim.  Without ARB_sparse_texture2 the shader cannot ask whether a
+ * texel is resident, so it samples the level the page table names (the
+ * finest resident ancestor), as S3 did; pages must be at least the
+ * driver's virtual page size of each format.
  */
 #ifndef TECHNIQUES_VT_H
 #define TECHNIQUES_VT_H
@@ -35,6 +45,7 @@ typedef struct vt_desc {
     int page;                  /* page texels per side, a power of two <= size */
     int cache_pages;           /* slots in the physical cache (>= 2) */
     int budget;                /* pages per frame; 0 = VT_UPLOAD_BUDGET */
+    int sparse;                /* 1: GL_ARB_sparse_texture (see below) */
 } vt_desc;
 
 typedef struct vt vt;

@@ -22,3 +22,9 @@ dm_add_e2e(test_e2e_user_mesh user_mesh.sh)
 dm_add_e2e(test_e2e_published published.sh)
 dm_add_e2e(test_e2e_study_sweeps study_sweeps.sh)
 dm_add_e2e(test_e2e_vt_quality vt_quality.sh)
+dm_add_e2e(test_e2e_drivers drivers.sh)
+set_tests_properties(test_e2e_drivers PROPERTIES SKIP_RETURN_CODE 77)
+# The hostile corpus: >= 100 cases over every command, each with its exit
+# code and first words, and the conditions table of docs/reliability.md
+# checked row by row (about 2-3 min on 2 cores; nothing renders above 16x16).
+dm_add_e2e(test_e2e_corpus corpus.sh)

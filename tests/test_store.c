@@ -626,10 +626,52 @@ static void test_misuse_and_bad_files(void **state)
     sqlite3_close(db);
     err.len = 0;
     assert_int_equal(store_open(t->db, &s, &err), DM_ERR_STORE);
-    assert_non_null(strstr(dm_str_get(&err), "schema version 99"));
+    assert_non_null(strstr(dm_str_get(&err), "written by a newer dmbench (schema version 99"));
     dm_str_free(&err);
     free(below);
     free(file);
+}
+
+static void remove_db(const char *db);
+
+/* A checked store: a table dropped or a column lost is "damaged" at open
+ * (DM_ERR_STORE naming the table or column), never a lookup failure later;
+ * the file is not changed by the refused open. */
+static void test_missing_table_or_column(void **state)
+{
+    tmp *t = *state;
+    static const struct { const char *sql, *want; } cases[] = {
+        { "DROP TABLE samples", "damaged: table 'samples' is missing" },
+        { "DROP TABLE fit_labels", "damaged: table 'fit_labels' is missing" },
+        { "ALTER TABLE configs DROP COLUMN q_ssim",
+          "damaged: column 'q_ssim' of table 'configs' is missing" },
+        { "ALTER TABLE runs RENAME COLUMN tag TO label",
+          "damaged: column 'tag' of table 'runs' is missing" },
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof *cases; i++) {
+        remove_db(t->db);
+        store_close(open_ok(t->db));
+        sqlite3 *db;
+        assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+        assert_int_equal(sqlite3_exec(db, cases[i].sql, NULL, NULL, NULL), SQLITE_OK);
+        sqlite3_close(db);
+        char *before = NULL, *after = NULL;
+        size_t n_before = 0, n_after = 0;
+        assert_int_equal(dm_read_file(t->db, &before, &n_before), 0);
+        store *s = NULL;
+        dm_str err = {0};
+        assert_int_equal(store_open(t->db, &s, &err), DM_ERR_STORE);
+        assert_null(s);
+        if (!strstr(dm_str_get(&err), cases[i].want))
+            fail_msg("%s: got '%s', want '%s'", cases[i].sql, dm_str_get(&err), cases[i].want);
+        assert_non_null(strstr(dm_str_get(&err), "restore dmbench.sqlite from a backup"));
+        assert_int_equal(dm_read_file(t->db, &after, &n_after), 0);
+        assert_int_equal(n_before, n_after);
+        assert_memory_equal(before, after, n_before);
+        free(before);
+        free(after);
+        dm_str_free(&err);
+    }
 }
 
 /* A version-1 store (before fits had a condition column) opens: it is
@@ -895,15 +937,16 @@ static void remove_db(const char *db)
 /* Fails the 1st, 2nd, ... allocation of creating a store until none fails:
  * each failure is a clean error naming the path, and the file left behind
  * always opens afterwards as a sound, complete store.  Every point up to 200
- * (opening, pragmas, first statements), then every 13th, and past 5000
- * (version 4's ALTER TABLEs, each re-reading the schema) every 31st: the
- * ~9500 points are mostly alike allocations of the schema script, and each
- * round costs two fsync'd opens. */
+ * (opening, pragmas, first statements), then every 23rd, and past 10000
+ * (version 4's ALTER TABLEs, each re-reading the schema) every 61st: the
+ * ~20000 points are mostly alike allocations of the schema script (run
+ * twice: into the file, and into the in-memory reference the opened file is
+ * checked against), and each round costs two fsync'd opens. */
 static void test_open_alloc_faults(void **state)
 {
     tmp *t = *state;
     long n, failures = 0;
-    for (n = 1; n < 20000; n += n < 200 ? 1 : n < 5000 ? 13 : 31) {
+    for (n = 1; n < 40000; n += n < 200 ? 1 : n < 10000 ? 23 : 61) {
         remove_db(t->db);
         store *s = NULL;
         dm_str err = {0};
@@ -926,7 +969,7 @@ static void test_open_alloc_faults(void **state)
         if (!reached)
             break;
     }
-    assert_true(n < 20000);
+    assert_true(n < 40000);
     assert_true(failures > 10);
     print_message("store_open: %ld allocation points, %ld clean failures\n", n, failures);
 }
@@ -1022,6 +1065,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_copy_run, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_latest_and_list, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_misuse_and_bad_files, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_missing_table_or_column, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_disk_full, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_killed_mid_transaction, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_open_alloc_faults, tmp_setup, tmp_teardown),

@@ -11,7 +11,11 @@
 // derivatives; without VT_FILTER_TRILINEAR (nearest, bilinear) a sample
 // reads round(lod), with it (trilinear, anisotropic) it blends floor(lod)
 // and the next level; lod is clamped to the page levels.
-#ifdef VT_SOFTWARE
+// VT_SPARSE (virtual_texture: sparse, GL_ARB_sparse_texture): units 0-2
+// are the sparse maps themselves, one mip level per page level; the page
+// table gives the level of the finest resident page covering uv, and the
+// sample reads that level (no residency query without ARB_sparse_texture2).
+#if defined(VT_SOFTWARE) || defined(VT_SPARSE)
 uniform float u_vt_size;      // virtual texels per side at level 0
 uniform float u_vt_page;      // page texels per side
 uniform float u_vt_border;    // border texels on each side of a page
@@ -51,6 +55,27 @@ vec2 vt_phys_uv(vec2 uv, int m)
     return (slot + u_vt_border + off * u_vt_page) / u_vt_phys;
 }
 
+#ifdef VT_SPARSE
+// The level of the finest resident page covering uv at level m.
+float vt_resident(vec2 uv, int m)
+{
+    return float(texelFetch(t_vt_table, vt_page_of(fract(uv), m), m).y);
+}
+
+vec4 vt_sample(sampler2D t, vec2 uv, vec2 dx, vec2 dy)
+{
+    float lod = clamp(vt_lod(dx, dy), 0.0, float(u_vt_levels - 1));
+#ifndef VT_FILTER_TRILINEAR
+    return textureLod(t, uv, vt_resident(uv, int(lod + 0.5)));
+#else
+    int m0 = int(lod);
+    vec4 c0 = textureLod(t, uv, vt_resident(uv, m0));
+    if (m0 + 1 >= u_vt_levels)
+        return c0;
+    return mix(c0, textureLod(t, uv, vt_resident(uv, m0 + 1)), lod - float(m0));
+#endif
+}
+#else
 vec4 vt_sample(sampler2D t, vec2 uv, vec2 dx, vec2 dy)
 {
     float lod = clamp(vt_lod(dx, dy), 0.0, float(u_vt_levels - 1));
@@ -64,6 +89,7 @@ vec4 vt_sample(sampler2D t, vec2 uv, vec2 dx, vec2 dy)
     return mix(c0, textureLod(t, vt_phys_uv(uv, m0 + 1), 0.0), lod - float(m0));
 #endif
 }
+#endif
 
 vec4 map_sample(sampler2D t, vec2 uv, vec2 dx, vec2 dy) { return vt_sample(t, uv, dx, dy); }
 
