@@ -60,13 +60,14 @@ int cli_merge(int argc, char **argv);
 int cli_list(int argc, char **argv);
 int cli_info(int argc, char **argv);
 int cli_render(int argc, char **argv);
+int cli_diff(int argc, char **argv);
 int cli_view(int argc, char **argv);
 int cli_slurm(int argc, char **argv);
 int cli_export(int argc, char **argv);
 int cli_history(int argc, char **argv);
 extern const cli_option cli_run_options[], cli_report_options[], cli_fit_options[],
     cli_compare_options[], cli_baseline_options[], cli_list_options[], cli_info_options[],
-    cli_render_options[], cli_view_options[], cli_merge_options[], cli_slurm_options[],
+    cli_render_options[], cli_diff_options[], cli_view_options[], cli_merge_options[], cli_slurm_options[],
     cli_export_options[], cli_history_options[];
 extern const char *const cli_list_lists[], *const cli_baseline_actions[], *const cli_export_formats[];
 

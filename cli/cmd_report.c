@@ -4,6 +4,7 @@
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
 #include "store/store.h"
+#include "reports/flip.h"
 #include "reports/metric.h"
 #include "reports/report.h"
 #include "run/trends.h"
@@ -17,6 +18,7 @@
 typedef struct report_args {
     const char *metric;
     const char *out;
+    double flip_ppd;
 } report_args;
 
 /* --metric NAME: one of the report metrics (reports/metric.c). */
@@ -35,6 +37,9 @@ static int report__metric(const cli_option *opt, const char *v, void *args, dm_s
 const cli_option cli_report_options[] = {
     { .name = "metric", .kind = CLI_OPT_STRING, .value_name = "NAME", .parse = report__metric,
       .help = "Pareto error metric for these files (the store keeps the run's own)" },
+    { .name = "flip-ppd", .kind = CLI_OPT_DOUBLE, .offset = offsetof(report_args, flip_ppd),
+      .value_name = "N", .min = 1, .max = 600,
+      .help = "FLIP again at N pixels per degree from the stored images (for these files; docs/flip.md)" },
     CLI_STRING("out", report_args, out, "DIR",
                "write the files into DIR (created) instead of the run directory"),
     CLI_OPT_END
@@ -59,6 +64,7 @@ static int report__locate_run(const char *dir, char **store_path, char **run_id)
 
 /* Rebuilds a run's report files from the store; --metric overrides the
  * Pareto metric the run recorded (for these files only; the store keeps it);
+ * --flip-ppd recomputes FLIP at another viewing condition (likewise);
  * --out writes them into another directory (created) instead of the run's. */
 int cli_report(int argc, char **argv)
 {
@@ -90,6 +96,8 @@ int cli_report(int argc, char **argv)
         rc = cli_error(DM_ERR_STORE, "%s", store_last_error(st));
     if (rc < 0 && metric)
         report_metric_set(&run, metric);   /* validated by report__metric */
+    if (rc < 0 && args.flip_ppd > 0 && flip_run_recompute(&run, dir, args.flip_ppd, &err) != 0)
+        rc = cli_usage_error("report: --flip-ppd: %s", dm_str_get(&err));
     char e[512] = "";
     if (rc < 0 && out && dm_mkdirs(out) != 0)
         rc = cli_usage_error("report: --out %s: cannot create the directory", out);

@@ -89,6 +89,11 @@ static const cli_command commands[] = {
       .summary = "render one configuration to an image", .synopsis = "[KEY=VALUE...] --png FILE",
       .description = "KEY=VALUE sets any axis of `dmbench list axes`; the others keep their\n"
                      "defaults.  The image equals what a run of the same configuration stores." },
+    { .name = "diff", .fn = cli_diff, .options = cli_diff_options, .synopsis = "REF TEST",
+      .summary = "every image metric of two image files (RMSE, PSNR, SSIM, FLIP, ...), and the FLIP map",
+      .description = "REF and TEST are any images OpenImageIO reads (PNG, EXR, ...), of the same\n"
+                     "size.  Non-finite pixels are counted and said, and count as 0.  Exit 0, or 2\n"
+                     "for an unreadable file or different sizes.  See docs/flip.md." },
     { .name = "view", .fn = cli_view, .options = cli_view_options, .synopsis = "[KEY=VALUE...]",
       .summary = "look at a configuration live in a window (needs a display or xvfb-run)",
       .description = "Keys: 1-9/0 technique, [ ] tessellation level or steps, F filter, M mesh,\n"

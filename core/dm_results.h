@@ -41,6 +41,10 @@ typedef struct dm_quality {
     double rmse, psnr, ssim, max_error, pct_over_threshold;
     double silhouette_error, depth_rmse;
     long crack_pixels, nonfinite_pixels;
+    /* LDR-FLIP (reports/flip.h): mean, error-weighted quartiles, maximum,
+     * and the pixels per degree it was computed for; NaN when not computed
+     * (results from before FLIP). */
+    double flip, flip_q1, flip_median, flip_q3, flip_max, flip_ppd;
     char *reference;         /* description of what the reference was */
 } dm_quality;
 
@@ -58,6 +62,7 @@ typedef struct dm_config_result {
     char *img_render;        /* paths relative to the run directory */
     char *img_heatmap;
     char *img_reference;
+    char *img_flip;          /* FLIP map on the fixed [0,1] scale, may be NULL */
 } dm_config_result;
 
 typedef struct dm_left_out {

@@ -32,6 +32,7 @@ compare_desc compare_defaults(const compare_desc *d)
     o.level = o.level > 0 ? o.level : 0.95;
     o.psnr_drop = o.psnr_drop > 0 ? o.psnr_drop : 1.0;
     o.ssim_drop = o.ssim_drop > 0 ? o.ssim_drop : 0.01;
+    o.flip_rise = o.flip_rise > 0 ? o.flip_rise : 0.005;
     o.time_counter = o.time_counter ? o.time_counter : "WallTime";
     o.run_spread = o.run_spread > 0 ? o.run_spread : COMPARE_RUN_SPREAD;
     return o;
@@ -177,6 +178,8 @@ static char *compare__quality(const compare_desc *d, const dm_config_result *b,
     it->psnr_new = n->quality.psnr;
     it->ssim_base = b->quality.ssim;
     it->ssim_new = n->quality.ssim;
+    it->flip_base = b->quality.flip;
+    it->flip_new = n->quality.flip;
     /* inf - inf is NaN (no drop); inf - finite is an infinite drop */
     double dp = it->psnr_base == it->psnr_new ? 0.0 : it->psnr_base - it->psnr_new;
     if (dp > d->psnr_drop)
@@ -186,6 +189,10 @@ static char *compare__quality(const compare_desc *d, const dm_config_result *b,
     if (ds > d->ssim_drop)
         return dm_xasprintf("SSIM dropped %.4f (%.4f -> %.4f; limit %.4f)", ds, it->ssim_base,
                             it->ssim_new, d->ssim_drop);
+    double df = it->flip_new - it->flip_base;    /* NaN (a side without FLIP): no check */
+    if (df > d->flip_rise)
+        return dm_xasprintf("FLIP rose %.4f (%.4f -> %.4f; limit %.4f)", df, it->flip_base,
+                            it->flip_new, d->flip_rise);
     return NULL;
 }
 

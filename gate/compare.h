@@ -12,8 +12,9 @@
  *  - a deterministic counter available on both sides differs by more than
  *    its relative tolerance (default: counts exact, floating derived
  *    counters COMPARE_DERIVED_EPS)                           -> REGRESSION
- *  - quality: PSNR dropped by more than psnr_drop dB or SSIM by more than
- *    ssim_drop (not in counters_only mode)                   -> REGRESSION
+ *  - quality: PSNR dropped by more than psnr_drop dB, SSIM by more than
+ *    ssim_drop, or the mean FLIP error rose by more than flip_rise (when
+ *    both sides have FLIP) (not in counters_only mode)       -> REGRESSION
  *  - Instructions (group Cost, exact counts) available on both sides: the
  *    ratio new/base beyond 1 + threshold is REGRESSION, below 1 - threshold
  *    IMPROVEMENT, else PASS — decided without statistics; timing is then
@@ -132,6 +133,7 @@ typedef struct compare_desc {
     double level;            /* 0 -> 0.95 */
     double psnr_drop;        /* 0 -> 1.0 dB */
     double ssim_drop;        /* 0 -> 0.01 */
+    double flip_rise;        /* 0 -> 0.005 (mean LDR-FLIP, docs/flip.md) */
     const char *time_counter;/* NULL -> "WallTime" */
     uint64_t seed;           /* bootstrap seed (0 is a valid seed) */
     int counters_only;
@@ -172,6 +174,7 @@ typedef struct compare_item {
     size_t n_changes;
     int quality;             /* both sides have quality */
     double psnr_base, psnr_new, ssim_base, ssim_new;
+    double flip_base, flip_new;   /* NaN where a side has no FLIP */
 } compare_item;
 
 typedef struct compare_result {

@@ -491,6 +491,7 @@ static cJSON *compare__json_item(const compare_item *it)
         cJSON *q = cJSON_AddObjectToObject(o, "quality");
         compare__json_base_new(q, "PSNR_", it->psnr_base, it->psnr_new);
         compare__json_base_new(q, "SSIM_", it->ssim_base, it->ssim_new);
+        compare__json_base_new(q, "FLIP_", it->flip_base, it->flip_new);
     }
     return o;
 }
@@ -507,6 +508,7 @@ int compare_write_json(const compare_result *r, const char *path)
     cJSON_AddNumberToObject(set, "level", r->desc.level);
     cJSON_AddNumberToObject(set, "psnr_drop", r->desc.psnr_drop);
     cJSON_AddNumberToObject(set, "ssim_drop", r->desc.ssim_drop);
+    cJSON_AddNumberToObject(set, "flip_rise", r->desc.flip_rise);
     cJSON_AddStringToObject(set, "time_counter", r->desc.time_counter);
     cJSON_AddBoolToObject(set, "counters_only", r->desc.counters_only);
     cJSON *tol = cJSON_AddObjectToObject(set, "tolerances");

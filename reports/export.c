@@ -94,6 +94,7 @@ static void export__user_counters(cJSON *o, const dm_config_result *c)
         export__num(o, "SSIM", c->quality.ssim);
         export__num(o, "PSNR_dB", c->quality.psnr);
         export__num(o, "RMSE", c->quality.rmse);
+        export__num(o, "FLIP", c->quality.flip);   /* absent when not computed */
     }
 }
 
@@ -169,6 +170,7 @@ static void export__bmf_add(cJSON *root, const export__config *e)
     if (c->quality.present) {
         export__bmf_value(b, "ssim", c->quality.ssim);
         export__bmf_value(b, "psnr-db", c->quality.psnr);
+        export__bmf_value(b, "flip", c->quality.flip);
     }
     for (size_t k = 0; k < c->n_counters; k++) {
         const dm_counter_result *d = &c->counters[k];
@@ -221,6 +223,8 @@ static void export__gab_add(cJSON *list, const export__config *e)
                           isfinite(t->ci_hi - t->ci_lo) ? range : NULL, extra);
         if (q->present)
             export__gab_entry(list, e->name, "RMSE", "RMSE", q->rmse, NULL, extra);
+        if (q->present && isfinite(q->flip))        /* FLIP: smaller is better */
+            export__gab_entry(list, e->name, "FLIP", "FLIP", q->flip, NULL, extra);
     } else if (q->present) {
         export__gab_entry(list, e->name, "SSIM", "SSIM", q->ssim, NULL, extra);
         export__gab_entry(list, e->name, "PSNR", "dB", q->psnr, NULL, extra);
@@ -244,7 +248,7 @@ static cJSON *export__gab_bigger(const dm_run_result *run) { return export__gab(
 static const export_format formats[] = {
     { "gbench", "Google Benchmark JSON (compare.py from libbenchmark-tools)", export__gbench },
     { "bmf", "Bencher Metric Format JSON", export__bmf },
-    { "gab-smaller", "github-action-benchmark customSmallerIsBetter (time ms, RMSE)", export__gab_smaller },
+    { "gab-smaller", "github-action-benchmark customSmallerIsBetter (time ms, RMSE, FLIP)", export__gab_smaller },
     { "gab-bigger", "github-action-benchmark customBiggerIsBetter (SSIM, PSNR dB)", export__gab_bigger },
 };
 

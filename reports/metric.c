@@ -22,6 +22,7 @@ static const char *const metric_labels[REPORT_METRIC_COUNT] = {
     [REPORT_METRIC_MAX_ERROR] = "max error",
     [REPORT_METRIC_SILHOUETTE] = "silhouette error (1 - IoU)",
     [REPORT_METRIC_DEPTH_RMSE] = "depth RMSE",
+    [REPORT_METRIC_FLIP] = "FLIP (mean)",
 };
 
 size_t report_metric_names(const char *const **names)
@@ -66,6 +67,7 @@ double report_metric_shown(const dm_quality *q, report_metric m)
     case REPORT_METRIC_MAX_ERROR: return q->max_error;
     case REPORT_METRIC_SILHOUETTE: return q->silhouette_error;
     case REPORT_METRIC_DEPTH_RMSE: return q->depth_rmse;
+    case REPORT_METRIC_FLIP: return q->flip;
     default: return 1.0 - q->ssim;
     }
 }
@@ -87,6 +89,8 @@ void report_metric_text(const dm_quality *q, report_metric m, dm_str *out)
         dm_str_cat(out, "PSNR inf dB (identical)");
     else if (m == REPORT_METRIC_PSNR)
         dm_str_printf(out, "PSNR %.1f dB", v);
+    else if (m == REPORT_METRIC_FLIP)
+        dm_str_printf(out, "FLIP %.4f", v);
     else
         dm_str_printf(out, "%s %.3g", report_metric_label(m), v);
 }

@@ -25,7 +25,8 @@
     X(RMSE, "rmse")                \
     X(MAX_ERROR, "max-error")      \
     X(SILHOUETTE, "silhouette")    \
-    X(DEPTH_RMSE, "depth-rmse")
+    X(DEPTH_RMSE, "depth-rmse")    \
+    X(FLIP, "flip")
 
 typedef enum report_metric {
 #define REPORT__METRIC_ENUM(id, name) REPORT_METRIC_##id,
@@ -44,7 +45,7 @@ const char *report_metric_name(report_metric m);
 /* Axis / column label of the shown value, e.g. "1 - SSIM", "PSNR (dB, higher is better)". */
 const char *report_metric_label(report_metric m);
 /* Error, lower is better: 1 − SSIM, −PSNR, RMSE, MaxError, SilhouetteError,
- * DepthRMSE.  NaN when there is no quality or the value is NaN.  PSNR +∞
+ * DepthRMSE, FLIP mean.  NaN when there is no quality or the value is NaN.  PSNR +∞
  * (identical images) is −DBL_MAX: the best error and still finite, so it is
  * on the front. */
 double report_metric_error(const dm_quality *q, report_metric m);

@@ -21,7 +21,8 @@
 #include <string.h>
 
 static const char *quality_cols[] = {"RMSE", "PSNR_dB", "SSIM", "MaxError", "SilhouetteError",
-                                     "DepthRMSE", "CrackPixels", "NonFinitePixels"};
+                                     "DepthRMSE", "CrackPixels", "NonFinitePixels", "FLIP",
+                                     "FLIPMedian", "FLIPMax"};
 #define N_QUALITY (sizeof quality_cols / sizeof quality_cols[0])
 
 static void field(dm_str *s, const char *text, int first)
@@ -57,7 +58,8 @@ static void num_field(dm_str *s, double v, int present)
 static void quality_fields(dm_str *s, const dm_quality *q)
 {
     double v[N_QUALITY] = {q->rmse, q->psnr, q->ssim, q->max_error, q->silhouette_error,
-                           q->depth_rmse, (double)q->crack_pixels, (double)q->nonfinite_pixels};
+                           q->depth_rmse, (double)q->crack_pixels, (double)q->nonfinite_pixels,
+                           q->flip, q->flip_median, q->flip_max};
     for (size_t i = 0; i < N_QUALITY; i++)
         num_field(s, v[i], q->present);
 }

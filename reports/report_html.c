@@ -11,6 +11,7 @@
 #include "reports/proxy.h"
 
 #include "core/dm_error.h"
+#include "reports/flip.h"
 #include "reports/image.h"
 
 #include <math.h>
@@ -485,6 +486,20 @@ static void gallery_linked(dm_str *s, const html_images *im, const char *rel, co
     dm_str_cat(s, "</figcaption></figure>");
 }
 
+/* FLIP's fixed colour scale as a CSS gradient, from flip_colormap itself so
+ * the legend cannot drift from the maps. */
+static void flip_scale(dm_str *s)
+{
+    dm_str_cat(s, "<span class=\"scale\" style=\"background:linear-gradient(90deg");
+    for (int i = 0; i <= 8; i++) {
+        float c[3];
+        flip_colormap(i / 8.0, c);
+        dm_str_printf(s, ",#%02x%02x%02x", (int)lrintf(c[0] * 255), (int)lrintf(c[1] * 255),
+                      (int)lrintf(c[2] * 255));
+    }
+    dm_str_cat(s, ")\"></span>");
+}
+
 /* Index of rel in refs (appended when new); *fresh = 1 when appended. */
 static size_t gallery_ref_index(const char ***refs, size_t *n, const char *rel, int *fresh)
 {
@@ -505,7 +520,8 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
                           const char *scene, const char ***refs, size_t *nrefs)
 {
     size_t *rows, nr = report__scene_rows(run, scene, &rows);
-    double top = 0;
+    double top = 0, ppd = NAN;
+    int flips = 0;
     dm_str_cat(s, "<h3>");
     esc(s, scene);
     dm_str_cat(s, "</h3>\n<div class=\"grid\">");
@@ -523,7 +539,19 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
         dm_str label = {0};
         report__config_label(run, c, &label);
         gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), ref);
-        gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
+        /* each map's caption carries its error value */
+        dm_str cap = {0};
+        dm_str_printf(&cap, "%s, MaxError %.3g", dm_str_get(&label), c->quality.max_error);
+        gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&cap), -1);
+        if (c->img_flip) {
+            dm_str_free(&cap);
+            dm_str_printf(&cap, "%s, FLIP %.4f (max %.3f)", dm_str_get(&label), c->quality.flip,
+                          c->quality.flip_max);
+            gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&cap), -1);
+            flips = 1;
+            ppd = c->quality.flip_ppd;
+        }
+        dm_str_free(&cap);
         if (c->quality.present && isfinite(c->quality.max_error))
             top = fmax(top, c->quality.max_error);
         dm_str_free(&label);
@@ -532,6 +560,13 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
                      "channel), scaled to each image's own maximum (its MaxError, at most %.3g in "
                      "this scene): 0 <span class=\"scale\"></span> MaxError. Click a render to flip "
                      "it with the reference.</p>\n", top);
+    if (flips) {
+        dm_str_printf(s, "<p class=\"const\">FLIP map: LDR-FLIP error per pixel at %.3g pixels per "
+                         "degree, on one fixed scale for every map, so maps compare side by side: "
+                         "0 ", ppd);
+        flip_scale(s);
+        dm_str_cat(s, " 1 (docs/flip.md).</p>\n");
+    }
     free(rows);
 }
 

@@ -117,6 +117,12 @@ static cJSON *quality_json(const dm_quality *q)
     cJSON_AddNumberToObject(o, "NonFinitePixels", (double)q->nonfinite_pixels);
     cJSON_AddNumberToObject(o, "MaxError", q->max_error);
     cJSON_AddNumberToObject(o, "PctOverThreshold", q->pct_over_threshold);
+    cJSON_AddNumberToObject(o, "FLIP", q->flip);   /* NaN (not computed) → null */
+    cJSON_AddNumberToObject(o, "FLIPQ1", q->flip_q1);
+    cJSON_AddNumberToObject(o, "FLIPMedian", q->flip_median);
+    cJSON_AddNumberToObject(o, "FLIPQ3", q->flip_q3);
+    cJSON_AddNumberToObject(o, "FLIPMax", q->flip_max);
+    cJSON_AddNumberToObject(o, "FLIPPixelsPerDegree", q->flip_ppd);
     add_str(o, "reference", q->reference);
     return o;
 }
@@ -142,6 +148,7 @@ static cJSON *config_json(const dm_run_result *r, const dm_config_result *c, int
     add_str(im, "render", c->img_render);
     add_str(im, "heatmap", c->img_heatmap);
     add_str(im, "reference", c->img_reference);
+    add_str(im, "flip", c->img_flip);
     add_str(o, "log", c->log);
     return o;
 }
@@ -411,6 +418,12 @@ static void read_quality(const cJSON *o, dm_quality *q)
     q->nonfinite_pixels = get_count(o, "NonFinitePixels");
     q->max_error = get_num(o, "MaxError");
     q->pct_over_threshold = get_num(o, "PctOverThreshold");
+    q->flip = get_num(o, "FLIP");
+    q->flip_q1 = get_num(o, "FLIPQ1");
+    q->flip_median = get_num(o, "FLIPMedian");
+    q->flip_q3 = get_num(o, "FLIPQ3");
+    q->flip_max = get_num(o, "FLIPMax");
+    q->flip_ppd = get_num(o, "FLIPPixelsPerDegree");
     q->reference = get_str(o, "reference");
 }
 
@@ -433,6 +446,7 @@ static void read_config(const cJSON *o, dm_config_result *c)
     c->img_render = get_str(im, "render");
     c->img_heatmap = get_str(im, "heatmap");
     c->img_reference = get_str(im, "reference");
+    c->img_flip = get_str(im, "flip");
 }
 
 static void read_fit(const cJSON *o, dm_fit_result *f)

@@ -10,6 +10,7 @@
 #include "run/target.h"
 #include "models/stats.h"
 #include "reports/image.h"
+#include "reports/flip.h"
 #include "reports/quality.h"
 #include "techniques/render.h"
 
@@ -653,6 +654,33 @@ static int measure__reference(mscene *m, mconf *c)
     return rc;
 }
 
+/* FLIP of test against ref at the sweep's pixels per degree, and its map on
+ * the fixed [0,1] scale (img/<key>-flip.png).  FLIP fields stay NaN ("not
+ * computed") when it cannot be computed. */
+static void measure__flip(mscene *m, mconf *c, const img *ref, const img *test, dm_config_result *out)
+{
+    dm_quality *q = &out->quality;
+    q->flip = q->flip_q1 = q->flip_median = q->flip_q3 = q->flip_max = q->flip_ppd = NAN;
+    float *map = dm_xmalloc((size_t)ref->w * (size_t)ref->h * sizeof *map);
+    flip_desc d = flip_defaults(&(flip_desc){ .ppd = m->job->sweep->flip_ppd });
+    flip_stats st;
+    if (flip_compare(ref, test, &d, &st, map) == 0) {
+        q->flip = st.mean;
+        q->flip_q1 = st.q1;
+        q->flip_median = st.median;
+        q->flip_q3 = st.q3;
+        q->flip_max = st.max;
+        q->flip_ppd = d.ppd;
+        char e[256], name[64];
+        snprintf(name, sizeof name, "%s-flip.png", c->pc->key);
+        char *path = measure__img_path(m->job, name);
+        if (flip_map_save(map, ref->w, ref->h, path, e, sizeof e) == 0)
+            out->img_flip = dm_xasprintf("img/%s", name);
+        free(path);
+    }
+    free(map);
+}
+
 /* Image, quality and heatmap of a configuration against the scene reference. */
 static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
 {
@@ -679,6 +707,7 @@ static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
             q->pct_over_threshold = mt.pct_over;
         }
         quality_ssim(&ref, &test, &q->ssim);
+        measure__flip(m, c, &ref, &test, out);
         size_t np = (size_t)w * (size_t)h;
         unsigned char *ma = dm_xmalloc(np), *mb = dm_xmalloc(np);
         quality_coverage(&ref, ma);

@@ -1,6 +1,6 @@
 /* store.c — the results store on SQLite.
  *
- * Schema (version 3, kept in PRAGMA user_version; store__migrations[i] takes a
+ * Schema (version 4, kept in PRAGMA user_version; store__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -12,7 +12,9 @@
  *   configs(run, key, seq, scene, status 'ok'|'failed', reason, log,
  *           q_present, q_rmse, q_psnr, q_ssim, q_max_error, q_pct_over,
  *           q_silhouette, q_depth_rmse, q_crack_pixels, q_nonfinite_pixels,
- *           q_reference, img_render, img_heatmap, img_reference)
+ *           q_reference, img_render, img_heatmap, img_reference,
+ *           q_flip, q_flip_q1, q_flip_median, q_flip_q3, q_flip_max,
+ *           q_flip_ppd, img_flip (version 4))
  *           PK (run, key); seq is the insertion position, kept on replace
  *   config_params(run, key, name, value)     → configs
  *   counters(run, key, name, unit, available, unavailable_reason,
@@ -66,7 +68,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#define STORE_SCHEMA_VERSION 3
+#define STORE_SCHEMA_VERSION 4
 #define STORE__XSTR(x) #x
 #define STORE__STR(x) STORE__XSTR(x)
 
@@ -134,11 +136,20 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
     "CREATE TABLE partial_samples(run TEXT NOT NULL REFERENCES runs(id) ON DELETE"
     " CASCADE, key TEXT NOT NULL, counter TEXT NOT NULL, data BLOB,"
     " sampling_ns INTEGER, PRIMARY KEY(run, key, counter));",
+    /* 3 -> 4: LDR-FLIP (reports/flip.h) and its error map; NULL before */
+    "ALTER TABLE configs ADD COLUMN q_flip REAL;"
+    "ALTER TABLE configs ADD COLUMN q_flip_q1 REAL;"
+    "ALTER TABLE configs ADD COLUMN q_flip_median REAL;"
+    "ALTER TABLE configs ADD COLUMN q_flip_q3 REAL;"
+    "ALTER TABLE configs ADD COLUMN q_flip_max REAL;"
+    "ALTER TABLE configs ADD COLUMN q_flip_ppd REAL;"
+    "ALTER TABLE configs ADD COLUMN img_flip TEXT;",
 };
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
     "q_ssim,q_max_error,q_pct_over,q_silhouette,q_depth_rmse,q_crack_pixels," \
-    "q_nonfinite_pixels,q_reference,img_render,img_heatmap,img_reference"
+    "q_nonfinite_pixels,q_reference,img_render,img_heatmap,img_reference," \
+    "q_flip,q_flip_q1,q_flip_median,q_flip_q3,q_flip_max,q_flip_ppd,img_flip"
 #define STORE__CTR_COLS "unit,available,unavailable_reason,deterministic," \
     "partial,value,has_samples,median,mean,min,max,stddev,mad,cv,ci_lo," \
     "ci_hi,n_outliers,n_nonfinite"
@@ -169,7 +180,7 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
     X(CFG_DEL, "DELETE FROM configs WHERE run=?1 AND key=?2")                 \
     X(CFG_INS, "INSERT INTO configs(run,key,seq," STORE__CFG_COLS ") VALUES"  \
       "(?1,?2,?3,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,"  \
-      "?20,?21)")                                                             \
+      "?20,?21,?22,?23,?24,?25,?26,?27,?28)")                                                             \
     X(CFG_SEL, "SELECT key," STORE__CFG_COLS " FROM configs WHERE run=?1"     \
       " ORDER BY seq")                                                        \
     X(CFG_DONE, "SELECT 1 FROM configs WHERE run=?1 AND key=?2")              \
@@ -549,12 +560,13 @@ static int store__config_row(store *s, const store__owner *o,
                              const dm_config_result *c)
 {
     const dm_quality *q = &c->quality;
-    return store__exec(s, STORE_SQL_CFG_INS, o, "ttttiddddddd" "lltttt",
+    return store__exec(s, STORE_SQL_CFG_INS, o, "ttttiddddddd" "lltttt" "ddddddt",
         c->scene, c->ok ? "ok" : "failed", c->reason, c->log, q->present,
         q->rmse, q->psnr, q->ssim, q->max_error, q->pct_over_threshold,
         q->silhouette_error, q->depth_rmse, q->crack_pixels,
         q->nonfinite_pixels, q->reference, c->img_render, c->img_heatmap,
-        c->img_reference);
+        c->img_reference, q->flip, q->flip_q1, q->flip_median, q->flip_q3,
+        q->flip_max, q->flip_ppd, c->img_flip);
 }
 
 /* Replaces configuration item (a dm_config_result) of run, keeping its
@@ -770,6 +782,10 @@ static void store__config_cols(sqlite3_stmt *st, dm_config_result *c)
     c->img_render = store__col_str(st, 16);
     c->img_heatmap = store__col_str(st, 17);
     c->img_reference = store__col_str(st, 18);
+    double *f[] = { &q->flip, &q->flip_q1, &q->flip_median, &q->flip_q3, &q->flip_max, &q->flip_ppd };
+    for (int i = 0; i < 6; i++)
+        *f[i] = store__col_double(st, 19 + i);
+    c->img_flip = store__col_str(st, 25);
 }
 
 static int store__configs_read(store *s, dm_run_result *r)

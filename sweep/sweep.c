@@ -636,8 +636,11 @@ static const p__key p__keys[] = {
     P__ROW("quality", "reference", p__k_reference, "quality.reference", "mapping",
            "see `quality.reference`", "the image every configuration is compared with", NULL),
     P__ROW("quality", "pareto_metric", p__k_pareto, NULL,
-           "`ssim`, `psnr`, `rmse`, `max-error`, `silhouette` or `depth-rmse`", "`ssim`",
+           "`ssim`, `psnr`, `rmse`, `max-error`, `silhouette`, `depth-rmse` or `flip`", "`ssim`",
            "the error the report's Pareto front uses", "psnr"),
+    P__REAL("quality", "flip_ppd", flip_ppd, 1, 600, 67.0206,
+            "pixels per degree of visual angle FLIP assumes (docs/flip.md); the default is "
+            "FLIP's own, a 0.7 m wide 3840-pixel monitor seen from 0.7 m", "30"),
 
     P__ROW("quality.reference", "technique", p__k_ref_technique, NULL, "a technique or `same`",
            "`reference-mesh`", "the reference's technique; `same`: each configuration "

@@ -69,6 +69,7 @@ typedef struct sweep {
                                 set over the reference's parameters; e.g. normal_format */
     size_t n_ref_params;
     char *pareto_metric;     /* quality.pareto_metric: a reports/metric.h name (default "ssim") */
+    double flip_ppd;         /* quality.flip_ppd: FLIP's pixels per degree (default 67.0206) */
     sweep_model *models;
     size_t n_models;
     sweep_exclude *excludes;

@@ -1,10 +1,10 @@
 # The command line (cli/): the option parser and command table as a unit
 # test; every option in help, man page, completion and parser alike; bash
-# completion under bash; --json on every list; `cmake --install`.
+# completion under bash; --json on every list; `dmbench diff`; `cmake --install`.
 dm_add_unit(test_cli_parser test_cli_parser.c LIBS dm_cli LABELS cli)
 set(cli_env ${DM_TEST_ENV} "DMBENCH_MAN=${CMAKE_BINARY_DIR}/dmbench.1"
     "DMBENCH_BASH_COMPLETION=${CMAKE_BINARY_DIR}/completions/dmbench")
-foreach(t options completion lists keys)
+foreach(t options completion lists keys diff)
   add_test(NAME test_cli_${t} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/${t}.sh)
   set_tests_properties(test_cli_${t} PROPERTIES TIMEOUT 300 LABELS cli ENVIRONMENT "${cli_env}")
 endforeach()

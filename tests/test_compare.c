@@ -517,6 +517,38 @@ static void test_quality_drop(void **state)
     dm_run_free(&b);
 }
 
+/* FLIP: a rise of the mean over flip_rise (default 0.005) fails; at the
+ * limit passes; a side without FLIP (NaN, runs from before it) is not
+ * checked. */
+static void test_flip_rise(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 3, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 3, 30, 1.0, 0.02, 100);
+    for (size_t i = 0; i < 3; i++)
+        a.configs[i].quality.flip = 0.0400;
+    b.configs[0].quality.flip = 0.0460;   /* +0.006 > 0.005 */
+    b.configs[1].quality.flip = 0.0450;   /* +0.005: at the limit */
+    b.configs[2].quality.flip = NAN;      /* not computed on NEW */
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(item(&r, "0000000000000001")->verdict, COMPARE_REGRESSION);
+    assert_string_equal(item(&r, "0000000000000001")->note,
+                        "FLIP rose 0.0060 (0.0400 -> 0.0460; limit 0.0050)");
+    assert_int_equal(item(&r, "0000000000000002")->verdict, COMPARE_PASS);
+    assert_int_equal(item(&r, "0000000000000003")->verdict, COMPARE_PASS);
+    assert_true(r.desc.flip_rise == 0.005);
+    compare_result_free(&r);
+    d.flip_rise = 0.01;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(compare_exit_code(&r), 0);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
 static void test_partial_gputime_refused(void **state)
 {
     (void)state;
@@ -1049,6 +1081,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_counters_only_ignores_time),
              cmocka_unit_test(test_failed_added_removed),
              cmocka_unit_test(test_quality_drop),
+             cmocka_unit_test(test_flip_rise),
              cmocka_unit_test(test_inconclusive_states_detectable),
              cmocka_unit_test(test_identical_noisy_pass),
              cmocka_unit_test(test_instructions_threshold),

@@ -139,8 +139,8 @@ static void test_csv_shape(void **state)
     memset(cell, 0, sizeof cell);
     assert_int_equal(csv_shape(t, &cols, cell, 64), 4);   /* header + 3 configs */
     /* key scene status reason | technique mesh steps scale note tess_level |
-     * WallTime ×3 | TESInvocations | 8 quality | label pareto */
-    assert_int_equal(cols, 4 + 6 + 3 + 1 + 8 + 2);
+     * WallTime ×3 | TESInvocations | 11 quality (FLIP mean, median, max last) | label pareto */
+    assert_int_equal(cols, 4 + 6 + 3 + 1 + 11 + 2);
     assert_string_equal(cell[0], FIXTURE_KEY0);
     assert_string_equal(cell[8], "a,b \"quoted\"");   /* note param round-trips through quoting */
     assert_string_equal(cell[10], "1.1");              /* WallTime median, ms */
@@ -214,6 +214,38 @@ static int all_refs_exist(const char *html, const char *dir, const char *attr, i
         (*count)++;
     }
     return 1;
+}
+
+/* A configuration with a FLIP map: the gallery shows it with its mean and
+ * maximum in the caption, and the fixed scale drawn from flip_colormap
+ * (anchor 0 = #000004, anchor 1 = #fcfcbf). */
+static void test_html_flip_maps(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_flip_XXXXXX", err[512];
+    assert_non_null(mkdtemp(dir));
+    assert_int_equal(fixture_images(dir, err, sizeof err), 0);
+    char *p = dm_xasprintf("%s/report.html", dir);
+    dm_run_result run;
+    fixture_run(&run);
+    dm_config_result *c = &run.configs[0];
+    c->img_flip = dm_xstrdup(fixture_img_files[2]);
+    c->quality.flip = 0.04521;
+    c->quality.flip_max = 0.5192;
+    c->quality.flip_ppd = 67.0206;
+    assert_int_equal(report_write_html(&run, dir, p), 0);
+    char *t = test_slurp(p);
+    assert_non_null(strstr(t, "src=\"img/c0_heat.png\" alt=\"FLIP\""));
+    assert_non_null(strstr(t, ", FLIP 0.0452 (max 0.519)</figcaption>"));
+    assert_non_null(strstr(t, "at 67 pixels per degree, on one fixed scale"));
+    assert_non_null(strstr(t, "background:linear-gradient(90deg,#000004,"));
+    assert_non_null(strstr(t, ",#fcfcbf)\"></span> 1"));
+    free(t);
+    dm_run_free(&run);
+    fixture_images_remove(dir);
+    unlink(p);
+    free(p);
+    rmdir(dir);
 }
 
 static void test_html_escaping_and_images(void **state)
@@ -456,7 +488,7 @@ static void test_metric_names(void **state)
     dm_str e = {0};
     report_metric_unknown("dpeth-rmse", &e);
     assert_string_equal(dm_str_get(&e), "unknown metric 'dpeth-rmse'; did you mean 'depth-rmse'? "
-                                         "valid metrics: ssim, psnr, rmse, max-error, silhouette, depth-rmse");
+                                         "valid metrics: ssim, psnr, rmse, max-error, silhouette, depth-rmse, flip");
     dm_str_free(&e);
     dm_quality q = {.present = 1, .psnr = INFINITY, .ssim = 0.25};
     assert_true(report_metric_error(&q, REPORT_METRIC_PSNR) == -DBL_MAX);
@@ -800,6 +832,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
              cmocka_unit_test(test_html_escaping_and_images),
+             cmocka_unit_test(test_html_flip_maps),
              cmocka_unit_test(test_write_all),
              cmocka_unit_test(test_html_charts_and_front),
              cmocka_unit_test(test_metric_fronts),

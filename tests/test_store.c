@@ -167,11 +167,14 @@ static void config_sampled(dm_config_result *c, const char *key, size_t n_sample
     dm_quality *q = &c->quality;
     *q = (dm_quality){ .present = 1, .rmse = 0.0, .psnr = INFINITY, .ssim = 1.0,
         .max_error = 1e-300, .pct_over_threshold = 0.5, .silhouette_error = NAN,
-        .depth_rmse = 2.5e-7, .crack_pixels = 5, .nonfinite_pixels = 1L << 40 };
+        .depth_rmse = 2.5e-7, .crack_pixels = 5, .nonfinite_pixels = 1L << 40,
+        .flip = 0.125, .flip_q1 = 0.0625, .flip_median = 0.25, .flip_q3 = 0.5, .flip_max = 1,
+        .flip_ppd = 67.0206 };
     q->reference = dm_xstrdup("reference-mesh 4x");
     c->img_render = dm_xstrdup("img/c.png");
     c->img_heatmap = dm_xstrdup("img/c-heat.png");
     c->img_reference = dm_xstrdup("img/ref.png");
+    c->img_flip = dm_xstrdup("img/c-flip.png");
 }
 
 /* Adds n sampled counters "C0".."C<n-1>" of n_samples each to c. */
@@ -337,10 +340,12 @@ static void eq_quality(const dm_quality *a, const dm_quality *b)
 {
     assert_int_equal(a->present, b->present);
     const double qa[] = { a->rmse, a->psnr, a->ssim, a->max_error,
-        a->pct_over_threshold, a->silhouette_error, a->depth_rmse };
+        a->pct_over_threshold, a->silhouette_error, a->depth_rmse, a->flip, a->flip_q1,
+        a->flip_median, a->flip_q3, a->flip_max, a->flip_ppd };
     const double qb[] = { b->rmse, b->psnr, b->ssim, b->max_error,
-        b->pct_over_threshold, b->silhouette_error, b->depth_rmse };
-    eq_doubles(qa, qb, 7, "quality");
+        b->pct_over_threshold, b->silhouette_error, b->depth_rmse, b->flip, b->flip_q1,
+        b->flip_median, b->flip_q3, b->flip_max, b->flip_ppd };
+    eq_doubles(qa, qb, 13, "quality");
     assert_int_equal(a->crack_pixels, b->crack_pixels);
     assert_int_equal(a->nonfinite_pixels, b->nonfinite_pixels);
     EQ_STR(a->reference, b->reference, "quality reference");
@@ -361,6 +366,7 @@ static void eq_config(const dm_config_result *a, const dm_config_result *b)
     EQ_STR(a->img_render, b->img_render, "img_render");
     EQ_STR(a->img_heatmap, b->img_heatmap, "img_heatmap");
     EQ_STR(a->img_reference, b->img_reference, "img_reference");
+    EQ_STR(a->img_flip, b->img_flip, "img_flip");
 }
 
 static void eq_fit(const dm_fit_result *a, const dm_fit_result *b)
@@ -430,7 +436,7 @@ static void test_round_trip(void **state)
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
     assert_int_equal(sql_long(s, "SELECT length(data) FROM samples"), 400);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 4);
     dm_run_free(&got);
     store_close(s);
     /* ...and again from a fresh connection. */
@@ -672,6 +678,24 @@ static void test_missing_table_or_column(void **state)
  * migrated to the current version, its fits read back with condition 0 ("not
  * computed") and everything else intact; new fits keep their condition,
  * infinity included. */
+/* SQL that takes the configs table back to before version 4. */
+#define FLIP_COLUMNS_DROPPED                                                   \
+    "ALTER TABLE configs DROP COLUMN q_flip; ALTER TABLE configs DROP COLUMN q_flip_q1;"  \
+    "ALTER TABLE configs DROP COLUMN q_flip_median; ALTER TABLE configs DROP COLUMN q_flip_q3;" \
+    "ALTER TABLE configs DROP COLUMN q_flip_max; ALTER TABLE configs DROP COLUMN q_flip_ppd;" \
+    "ALTER TABLE configs DROP COLUMN img_flip;"
+
+/* What a store from before version 4 reads back: FLIP not computed. */
+static void flip_not_computed(dm_run_result *run)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        dm_quality *q = &run->configs[i].quality;
+        q->flip = q->flip_q1 = q->flip_median = q->flip_q3 = q->flip_max = q->flip_ppd = NAN;
+        free(run->configs[i].img_flip);
+        run->configs[i].img_flip = NULL;
+    }
+}
+
 static void test_fit_condition_migration(void **state)
 {
     tmp *t = *state;
@@ -684,13 +708,15 @@ static void test_fit_condition_migration(void **state)
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
     assert_int_equal(sqlite3_exec(db, "ALTER TABLE fits DROP COLUMN condition;"
                                   "DROP TABLE partial_samples;"   /* came with version 3 */
+                                  FLIP_COLUMNS_DROPPED
                                   "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 4);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_true(got.fits[0].condition == 0.0);
     run.fits[0].condition = 0.0;
+    flip_not_computed(&run);
     eq_run(&run, &got);
     dm_run_free(&got);
     run.fits[0].condition = INFINITY;
@@ -698,6 +724,32 @@ static void test_fit_condition_migration(void **state)
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_int_equal(got.n_fits, 1);
     assert_true(isinf(got.fits[0].condition) && got.fits[0].condition > 0);
+    assert_integrity_ok(s);
+    dm_run_free(&got);
+    dm_run_free(&run);
+    store_close(s);
+}
+
+/* A version-3 store (before FLIP) opens migrated: its configurations read
+ * back with FLIP NaN ("not computed") and no FLIP map, all else intact. */
+static void test_flip_migration(void **state)
+{
+    tmp *t = *state;
+    dm_run_result run, got;
+    run_full(&run, "old");
+    store *s = open_ok(t->db);
+    store_put_all(s, &run, NULL);
+    store_close(s);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, FLIP_COLUMNS_DROPPED "PRAGMA user_version=3",
+                                  NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    s = open_ok(t->db);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 4);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    flip_not_computed(&run);
+    eq_run(&run, &got);
     assert_integrity_ok(s);
     dm_run_free(&got);
     dm_run_free(&run);
@@ -885,15 +937,16 @@ static void remove_db(const char *db)
 /* Fails the 1st, 2nd, ... allocation of creating a store until none fails:
  * each failure is a clean error naming the path, and the file left behind
  * always opens afterwards as a sound, complete store.  Every point up to 200
- * (opening, pragmas, first statements), then every 23rd: the ~10000 points
- * are mostly alike allocations of the schema script (run twice: into the
- * file, and into the in-memory reference the opened file is checked
- * against), and each round costs two fsync'd opens. */
+ * (opening, pragmas, first statements), then every 23rd, and past 10000
+ * (version 4's ALTER TABLEs, each re-reading the schema) every 61st: the
+ * ~20000 points are mostly alike allocations of the schema script (run
+ * twice: into the file, and into the in-memory reference the opened file is
+ * checked against), and each round costs two fsync'd opens. */
 static void test_open_alloc_faults(void **state)
 {
     tmp *t = *state;
     long n, failures = 0;
-    for (n = 1; n < 20000; n += n < 200 ? 1 : 23) {
+    for (n = 1; n < 40000; n += n < 200 ? 1 : n < 10000 ? 23 : 61) {
         remove_db(t->db);
         store *s = NULL;
         dm_str err = {0};
@@ -911,12 +964,12 @@ static void test_open_alloc_faults(void **state)
         dm_str_free(&err);
         s = open_ok(t->db);
         assert_integrity_ok(s);
-        assert_int_equal(sql_long(s, "PRAGMA user_version"), 3);
+        assert_int_equal(sql_long(s, "PRAGMA user_version"), 4);
         store_close(s);
         if (!reached)
             break;
     }
-    assert_true(n < 20000);
+    assert_true(n < 40000);
     assert_true(failures > 10);
     print_message("store_open: %ld allocation points, %ld clean failures\n", n, failures);
 }
@@ -1007,6 +1060,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_done_and_replace, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_fit_replace, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_fit_condition_migration, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_flip_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_partial_samples, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_copy_run, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_latest_and_list, tmp_setup, tmp_teardown),

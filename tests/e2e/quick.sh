@@ -1,7 +1,9 @@
 #!/usr/bin/env bash
 # The embedded default sweep in its --quick form (README, the 1-minute
 # version): no file, every technique, results and report written, nothing
-# failed.  Prints its wall time; the time bound only catches a run-away.
+# failed; every configuration's FLIP in [0, 1] with its map, and the same
+# to 1e-6 in a second run.  Prints its wall time; the time bound only
+# catches a run-away.
 set -euo pipefail
 BIN=${DMBENCH_BINARY:?}
 OUT=$(mktemp -d)
@@ -25,4 +27,22 @@ print("quick:", len(j["configs"]), "configurations, every technique")
 PY
 echo "quick sweep: ${took} s"
 [ "$took" -lt 300 ]
+first=$(readlink -f "$OUT/latest")
+"$BIN" run --quick --out "$OUT" --quiet 2> "$OUT/log2"
+python3 - "$first" "$(readlink -f "$OUT/latest")" <<'PY'
+import json, os, sys
+runs = [json.load(open(os.path.join(d, "results.json"))) for d in sys.argv[1:]]
+flip = [{c["key"]: c["quality"]["FLIP"] for c in r["configs"] if c.get("quality")} for r in runs]
+for c in runs[0]["configs"]:
+    q = c.get("quality")
+    if not q:
+        continue
+    assert 0 <= q["FLIPQ1"] <= q["FLIPMedian"] <= q["FLIPQ3"] <= q["FLIPMax"] <= 1, (c["key"], q)
+    assert 0 < q["FLIP"] <= q["FLIPMax"] and q["FLIPPixelsPerDegree"] == 67.0206, (c["key"], q)
+    assert os.path.isfile(os.path.join(sys.argv[1], c["images"]["flip"])), c["images"]
+assert flip[0].keys() == flip[1].keys() and flip[0]
+worst = max(abs(flip[0][k] - flip[1][k]) for k in flip[0])
+assert worst <= 1e-6, worst
+print("FLIP:", len(flip[0]), "configurations, largest difference between two runs", worst)
+PY
 echo "1 passed, 0 failed"
