@@ -64,6 +64,7 @@ static const struct { const char *flag; fraction_range range; } compare__fractio
     { "threshold", { 0, 1, 1, 1 } },               /* an Instructions change */
     { "alpha", { 0, 1, 1, 1 } },                   /* a significance level */
     { "ssim-drop", { 0, 1, 1, 0 } },               /* SSIM is in [0, 1] */
+    { "flip-rise", { 0, 1, 1, 0 } },               /* FLIP is in [0, 1] */
     { "run-spread", { 0, INFINITY, 1, 0 } },       /* the machine's between-run spread */
 };
 

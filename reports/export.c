@@ -269,6 +269,7 @@ const export_format *export_find(const char *name)
 int export_write(const dm_run_result *run, const export_format *f, const char *path)
 {
     cJSON *root = f->build(run);
+    report_json_exact_numbers(root);
     int rc = 0;
     if (path && strcmp(path, "-") != 0) {
         rc = report_write_cjson(root, path);

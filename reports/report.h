@@ -112,6 +112,10 @@ unsigned char *report_pareto_flags(const dm_run_result *run);
  * to path (root stays the caller's).  0, DM_ERR_NOMEM or DM_ERR_IO. */
 struct cJSON;
 int report_write_cjson(const struct cJSON *root, const char *path);
+/* Rewrites every finite number of the tree as the fewest of 15..17
+ * significant digits that read back bit for bit, so results.json and the
+ * exports carry exactly the values of the store. */
+void report_json_exact_numbers(struct cJSON *node);
 /* One fit as its results.json "fits" entry (cJSON; the caller deletes it). */
 struct cJSON *report_fit_to_json(const dm_fit_result *f);
 /* Reads a results.json back (for compare/merge) into *out (zeroed first;

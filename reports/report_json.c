@@ -270,10 +270,10 @@ int report_write_cjson(const cJSON *root, const char *path)
  * DBL_EPSILON of the value, so a ratio could come back one ULP off and a
  * results.json no longer matched the store it was written from (issue 27).
  * Non-finite numbers stay numbers (cJSON writes them as null). */
-static void exact_numbers(cJSON *node)
+void report_json_exact_numbers(cJSON *node)
 {
     for (; node; node = node->next) {
-        exact_numbers(node->child);
+        report_json_exact_numbers(node->child);
         double v = node->valuedouble;
         if (!cJSON_IsNumber(node) || !isfinite(v))
             continue;
@@ -297,7 +297,7 @@ int report_write_json(const dm_run_result *run, const char *path)
     if (!run || !path)
         return DM_ERR_ARG;
     cJSON *root = run_json(run);
-    exact_numbers(root);
+    report_json_exact_numbers(root);
     int rc = report_write_cjson(root, path);
     cJSON_Delete(root);
     return rc;
