@@ -8,19 +8,26 @@
 # archive member defining the same table).  No production code path reads
 # anything that makes shaders slower.
 set(DM_SLOW_STEPS 1)
-file(GLOB DM_SLOW_GLSL_IN CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/techniques/glsl/*.glsl)
-set(DM_SLOW_DIR ${CMAKE_CURRENT_BINARY_DIR}/slow_glsl)
-set(DM_SLOW_C ${CMAKE_CURRENT_BINARY_DIR}/shaders_slow.c)
-add_custom_command(OUTPUT ${DM_SLOW_C}
-  COMMAND ${CMAKE_COMMAND} -DGLSL_DIR=${CMAKE_SOURCE_DIR}/techniques/glsl -DOUT_DIR=${DM_SLOW_DIR}
-          -DSTEPS=${DM_SLOW_STEPS} -P ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmake
-  COMMAND ${CMAKE_COMMAND} -DGLSL_DIR=${DM_SLOW_DIR} -DOUT=${DM_SLOW_C}
-          -P ${CMAKE_SOURCE_DIR}/cmake/embed_glsl.cmake
-  DEPENDS ${DM_SLOW_GLSL_IN} ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmake
-          ${CMAKE_SOURCE_DIR}/cmake/embed_glsl.cmake
-  COMMENT "Embedding the test-only slower GLSL")
-add_executable(dmbench_slowshader ${CMAKE_SOURCE_DIR}/cli/main.c ${DM_SLOW_C})
-target_link_libraries(dmbench_slowshader PRIVATE dm_cli)
+file(GLOB DM_GLSL_IN CONFIGURE_DEPENDS ${CMAKE_SOURCE_DIR}/techniques/glsl/*.glsl)
+
+# dm_glsl_variant(NAME SCRIPT [ARGS -D...] [DEPENDS files]): dmbench_NAMEshader,
+# dmbench with the GLSL that SCRIPT writes from techniques/glsl/ embedded in
+# place of the real table.
+function(dm_glsl_variant name script)
+  cmake_parse_arguments(V "" "" "ARGS;DEPENDS" ${ARGN})
+  set(dir ${CMAKE_CURRENT_BINARY_DIR}/${name}_glsl)
+  set(out ${CMAKE_CURRENT_BINARY_DIR}/shaders_${name}.c)
+  add_custom_command(OUTPUT ${out}
+    COMMAND ${CMAKE_COMMAND} -DGLSL_DIR=${CMAKE_SOURCE_DIR}/techniques/glsl -DOUT_DIR=${dir} ${V_ARGS}
+            -P ${script}
+    COMMAND ${CMAKE_COMMAND} -DGLSL_DIR=${dir} -DOUT=${out} -P ${CMAKE_SOURCE_DIR}/cmake/embed_glsl.cmake
+    DEPENDS ${DM_GLSL_IN} ${script} ${V_DEPENDS} ${CMAKE_SOURCE_DIR}/cmake/embed_glsl.cmake
+    COMMENT "Embedding the test-only GLSL of dmbench_${name}shader")
+  add_executable(dmbench_${name}shader ${CMAKE_SOURCE_DIR}/cli/main.c ${out})
+  target_link_libraries(dmbench_${name}shader PRIVATE dm_cli)
+endfunction()
+
+dm_glsl_variant(slow ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmake ARGS -DSTEPS=${DM_SLOW_STEPS})
 
 add_test(NAME test_instructions_gate
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/gate.sh $<TARGET_FILE:dmbench_slowshader>)
@@ -31,18 +38,9 @@ set_tests_properties(test_instructions_gate PROPERTIES TIMEOUT 1800
 # vt.glsl has no virtual-texturing code (instructions/plain_vt.glsl).
 # test_instructions_uber asserts that every technique with
 # virtual_texture: off costs the same instructions with either binary.
-set(DM_PLAIN_DIR ${CMAKE_CURRENT_BINARY_DIR}/plain_glsl)
-set(DM_PLAIN_C ${CMAKE_CURRENT_BINARY_DIR}/shaders_plain.c)
-add_custom_command(OUTPUT ${DM_PLAIN_C}
-  COMMAND ${CMAKE_COMMAND} -E copy_directory ${CMAKE_SOURCE_DIR}/techniques/glsl ${DM_PLAIN_DIR}
-  COMMAND ${CMAKE_COMMAND} -E copy ${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl ${DM_PLAIN_DIR}/vt.glsl
-  COMMAND ${CMAKE_COMMAND} -DGLSL_DIR=${DM_PLAIN_DIR} -DOUT=${DM_PLAIN_C}
-          -P ${CMAKE_SOURCE_DIR}/cmake/embed_glsl.cmake
-  DEPENDS ${DM_SLOW_GLSL_IN} ${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl
-          ${CMAKE_SOURCE_DIR}/cmake/embed_glsl.cmake
-  COMMENT "Embedding the test-only GLSL without virtual texturing")
-add_executable(dmbench_plainshader ${CMAKE_SOURCE_DIR}/cli/main.c ${DM_PLAIN_C})
-target_link_libraries(dmbench_plainshader PRIVATE dm_cli)
+dm_glsl_variant(plain ${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_glsl.cmake
+  ARGS -DVT_FILE=${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl
+  DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl)
 
 add_test(NAME test_instructions_uber
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/uber.sh $<TARGET_FILE:dmbench_plainshader>)
