@@ -26,3 +26,11 @@ add_test(NAME test_instructions_gate
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/gate.sh $<TARGET_FILE:dmbench_slowshader>)
 set_tests_properties(test_instructions_gate PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
+
+# Instructions repeat for every technique: three runs of a compact matrix
+# (tests/instructions/repeat.yaml), two from empty caches and one warm, in
+# other orders, agree within 0.01 % (docs/counters.md, "Repeatability").
+add_test(NAME test_instructions_repeat
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/repeat.sh)
+set_tests_properties(test_instructions_repeat PROPERTIES TIMEOUT 1800
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
