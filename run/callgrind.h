@@ -10,7 +10,10 @@
  * (measure_instructions) prepares and warms up each configuration with
  * collection off, then switches collection on around CALLGRIND_SAMPLES
  * samples of callgrind_frames() frames ended by glFinish and dumps each
- * sample under the name "KEY.S".  The parent parses the dump files
+ * sample under the name "KEY.S".  The child fixes its malloc's mmap
+ * threshold first, so a count does not depend on what the child did before
+ * (llvmpipe's tessellation grows arrays by realloc; docs/counters.md,
+ * "Repeatability"); it gets the configurations in the --seed's order.  The parent parses the dump files
  * ("desc: Trigger: Client Request: KEY.S", "totals: N").  The timing child
  * that follows records the counts next to its own WallTime.
  *
@@ -30,8 +33,9 @@
 #define CALLGRIND_SAMPLES 2
 /* Samples whose counts differ by more than this relative amount are a
  * warning of the run (results.json, report) and in the configuration's log.
- * With the counting child's allocator fixed (callgrind_child_main) they
- * agree to ~3e-6 on tessellation and ~2e-7 elsewhere (docs/counters.md). */
+ * Within one child they agreed to <= 3.1e-5 everywhere measured; counts of
+ * separate children can still differ more on tessellation (docs/counters.md,
+ * "Repeatability"). */
 #define CALLGRIND_AGREE 1e-4
 /* The counting child's malloc: blocks from this size up are mmapped, the
  * heap's top is neither padded nor kept (docs/counters.md, "Repeatability"). */
