@@ -24,11 +24,6 @@
 
 /* Draws at most this many frames to converge a virtual texture before an image. */
 #define MEASURE_VT_CONVERGE_MAX 64
-/* Frames drawn before counted frames at least: the driver's buffers (and
- * the allocator's blocks behind them) reach their steady size in the first
- * frames, which would otherwise make a run's first counted sample differ
- * from its second (docs/counters.md, "Repeatability of Instructions"). */
-#define MEASURE_COUNT_WARMUP 4
 
 /* State of one configuration while its scene is measured. */
 typedef struct mconf {
@@ -866,7 +861,7 @@ int measure_pilot(const measure_job *job, dm_str *err)
 static void measure__counted_samples(mscene *m, mconf *c, int frames, int samples)
 {
     int warm = m->job->sweep->measure.warmup_frames;
-    measure__frames(m, c, warm > MEASURE_COUNT_WARMUP ? warm : MEASURE_COUNT_WARMUP);
+    measure__frames(m, c, warm > 0 ? warm : 1);
     measure__vt_converge(m->r, c->item, c->pc->width, c->pc->height);   /* no page generation counted */
     /* The first sample counted after the warm-up differs from every later
      * one (by up to 7e-4 of a 64x64 frame), the later ones are equal: a
