@@ -557,9 +557,10 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
         dm_str_free(&label);
     }
     dm_str_printf(s, "</div>\n<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
-                     "channel), scaled to each image's own maximum (its MaxError, at most %.3g in "
-                     "this scene): 0 <span class=\"scale\"></span> MaxError. Click a render to flip "
-                     "it with the reference.</p>\n", top);
+                     "channel) on one absolute scale for every map, so maps compare side by side: "
+                     "0 <span class=\"scale\"></span> 1, a channel's whole range (the largest "
+                     "difference in this scene is %.3g). Click a render to flip it with the "
+                     "reference.</p>\n", top);
     if (flips) {
         dm_str_printf(s, "<p class=\"const\">FLIP map: LDR-FLIP error per pixel at %.3g pixels per "
                          "degree, on one fixed scale for every map, so maps compare side by side: "

@@ -729,7 +729,9 @@ static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
         free(mb);
         snprintf(name, sizeof name, "%s-diff.png", c->pc->key);
         path = measure__img_path(m->job, name);
-        if (img_heatmap(&ref, &test, 0, path, e, sizeof e) == 0)
+        /* one absolute scale for every map: a channel difference of 1 (the
+         * whole range) is the colour map's top, so maps compare side by side */
+        if (img_heatmap(&ref, &test, 1.0, path, e, sizeof e) == 0)
             out->img_heatmap = dm_xasprintf("img/%s", name);
         free(path);
         out->img_reference = dm_xasprintf("img/%s", m->ref_path);
