@@ -28,6 +28,13 @@ function(dm_glsl_variant name script)
 endfunction()
 
 dm_glsl_variant(slow ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmake ARGS -DSTEPS=${DM_SLOW_STEPS})
+# One slower shader per stage family (instructions/families.sh): the
+# vertex stage of vertex-displacement, the evaluation stage of
+# tess-displacement.
+dm_glsl_variant(slowvertex ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmake
+  ARGS -DSTEPS=512 -DFAMILY=vertex)
+dm_glsl_variant(slowtess ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmake
+  ARGS -DSTEPS=64 -DFAMILY=tess)
 
 add_test(NAME test_instructions_gate
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/gate.sh $<TARGET_FILE:dmbench_slowshader>)
@@ -58,3 +65,9 @@ add_test(NAME test_instructions_repeat
 # took 30 min under load 8, far over CI's budget.
 set_tests_properties(test_instructions_repeat PROPERTIES TIMEOUT 3600 DISABLED TRUE
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
+
+add_test(NAME test_instructions_families
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/families.sh
+          $<TARGET_FILE:dmbench_slowvertexshader> $<TARGET_FILE:dmbench_slowtessshader>)
+set_tests_properties(test_instructions_families PROPERTIES TIMEOUT 1800
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
