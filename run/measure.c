@@ -860,8 +860,12 @@ int measure_pilot(const measure_job *job, dm_str *err)
  * on the calling thread with LP_NUM_THREADS=0, is inside), then one dump
  * named "KEY.S" per sample.  Setup, JIT compilation and warm-up happen
  * before, with collection off. */
-static void measure__counted_samples(mscene *m, mconf *c, int frames, int samples)
+/* Returns the nanoseconds of the warm-up (incl. the discarded first sample)
+ * in *warm_ns and of the kept samples in *count_ns (bench/instructions_split.sh). */
+static void measure__counted_samples(mscene *m, mconf *c, int frames, int samples, int64_t *warm_ns,
+                                     int64_t *count_ns)
 {
+    int64_t t0 = dm_now_ns(), t1 = t0;
     int warm = m->job->sweep->measure.warmup_frames;
     measure__frames(m, c, warm > 0 ? warm : 1);
     measure__vt_converge(m->r, c->item, c->pc->width, c->pc->height);   /* no page generation counted */
@@ -878,14 +882,21 @@ static void measure__counted_samples(mscene *m, mconf *c, int frames, int sample
         glFinish();
         CALLGRIND_TOGGLE_COLLECT;
         CALLGRIND_DUMP_STATS_AT(name);
+        if (s < 0)
+            t1 = dm_now_ns();
     }
+    *warm_ns = t1 - t0;
+    *count_ns = dm_now_ns() - t1;
 }
 
 int measure_instructions(const measure_job *job, int frames, int samples, dm_str *err)
 {
     mscene m = { .job = job };
+    int64_t t0 = dm_now_ns();
     int rc = gl_context_create(NULL, &m.gl, err);
     rc = rc ? rc : tech_renderer_create(&m.r);
+    /* where the child's time goes, in its log (bench/instructions_split.sh) */
+    fprintf(stderr, "instructions split: context %.1f ms\n", (double)(dm_now_ns() - t0) / 1e6);
     if (rc == 0 && !RUNNING_ON_VALGRIND)
         dm_log(DM_LOG_WARN, "measure_instructions: not running under Valgrind; nothing is counted");
     mconf *cs = dm_xcalloc(job->n_configs + 1, sizeof *cs);
@@ -893,13 +904,17 @@ int measure_instructions(const measure_job *job, int frames, int samples, dm_str
         mconf *c = &cs[i];
         c->pc = &job->configs[i];
         measure__say(job, "B %s", c->pc->key);
+        int64_t tp = dm_now_ns(), warm_ns = 0, count_ns = 0;
         int prc = tech_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log);
+        int64_t prep_ns = dm_now_ns() - tp;
         if (gl_context_take_messages(m.gl, &c->log) > 0 || prc != 0) {
             measure__say(job, "I %s failed %s", c->pc->key,
                          prc == 0 ? "GL error while preparing" : dm_strerror(prc));
             continue;
         }
-        measure__counted_samples(&m, c, frames, samples);
+        measure__counted_samples(&m, c, frames, samples, &warm_ns, &count_ns);
+        fprintf(stderr, "instructions split: %s prepare %.1f ms, warm-up %.1f ms, counted %.1f ms\n",
+                c->pc->key, (double)prep_ns / 1e6, (double)warm_ns / 1e6, (double)count_ns / 1e6);
         int bad = gl_context_check_errors(&c->log) > 0;
         measure__say(job, "I %s %s", c->pc->key, bad ? "failed GL error in the counted frames" : "ok");
     }

@@ -2,8 +2,8 @@
 # The Instructions gate end to end, under Valgrind: ci/gate.yaml run twice
 # with dmbench and once with dmbench_slowshader (a fragment shader with a
 # few more steps per fragment).  Asserts: every configuration has
-# Instructions; the two samples of a run are equal and the two runs agree
-# within 0.05 %; `compare` of the two runs exits 0 (PASS everywhere, also without
+# Instructions; the two samples of a run agree within 0.01 % and the two
+# runs within 0.05 %; `compare` of the two runs exits 0 (PASS everywhere, also without
 # --counters-only); the slower shader is a REGRESSION on every
 # configuration (exit 1) by more than the 0.5 % threshold; the original
 # binary against it passes again (IMPROVEMENT, exit 0).
@@ -36,8 +36,8 @@ for key, a in runs[0].items():
     assert a["status"] == "ok" and b["status"] == "ok", (key, a.get("reason"), b.get("reason"))
     ia, ib = a["counters"]["Instructions"], b["counters"]["Instructions"]
     assert "unavailable" not in ia and "unavailable" not in ib, (key, ia, ib)
-    for s in (ia["samples"], ib["samples"]):          # repeated samples of one run: equal
-        assert len(s) == 2 and s[1] == s[0], (key, s)
+    for s in (ia["samples"], ib["samples"]):          # repeated samples of one run: within 0.01 %
+        assert len(s) == 2 and abs(s[1] - s[0]) <= 1e-4 * s[0], (key, s)
     rel = abs(ib["median"] - ia["median"]) / ia["median"]
     # two runs in other orders and cache states: within 0.05 % (the
     # allocator's search of its free lists, docs/counters.md,
