@@ -130,13 +130,19 @@ const char *cli_version(void)
     return "dmbench " DM_VERSION " (git " DM_GIT_REV ")";
 }
 
+/* "dmbench: error: " + the message + newline on stderr. */
+static void commands__verror(const char *fmt, va_list ap)
+{
+    fprintf(stderr, "dmbench: error: ");
+    vfprintf(stderr, fmt, ap);
+    fputc('\n', stderr);
+}
+
 int cli_usage_error(const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "dmbench: error: ");
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    commands__verror(fmt, ap);
     va_end(ap);
     return DM_EXIT_USAGE;
 }
@@ -145,9 +151,7 @@ int cli_error(int err, const char *fmt, ...)
 {
     va_list ap;
     va_start(ap, fmt);
-    fprintf(stderr, "dmbench: error: ");
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    commands__verror(fmt, ap);
     va_end(ap);
     return err == DM_ERR_STORE || err == DM_ERR_BUSY ? DM_EXIT_ENV : DM_EXIT_USAGE;
 }
@@ -292,9 +296,9 @@ int cli_main(int argc, char **argv)
     dm_str derr = {0};
     int drc = drivers_enter(argv, &derr);   /* returns only when no re-exec is due */
     if (drc) {
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&derr));
+        int code = cli_error(drc, "%s", dm_str_get(&derr));
         dm_str_free(&derr);
-        return dm_exit_from_error(drc);
+        return code;
     }
     const cli_command *c = cli_commands_find(argv[1]);
     return commands__flush(c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]));

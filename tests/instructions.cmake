@@ -45,8 +45,8 @@ set_tests_properties(test_instructions_gate PROPERTIES TIMEOUT 1800
 # vt.glsl has no virtual-texturing code (instructions/plain_vt.glsl).
 # test_instructions_uber asserts that every technique with
 # virtual_texture: off costs the same instructions with either binary.
-dm_glsl_variant(plain ${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_glsl.cmake
-  ARGS -DVT_FILE=${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl
+dm_glsl_variant(plain ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmake
+  ARGS -DFAMILY=plainvt -DVT_FILE=${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl
   DEPENDS ${CMAKE_CURRENT_SOURCE_DIR}/instructions/plain_vt.glsl)
 
 add_test(NAME test_instructions_uber

@@ -6,8 +6,11 @@
 #   FAMILY fragment (default): surface.frag.glsl, every technique's fragment stage
 #   FAMILY vertex:             displace.vert.glsl, vertex-displacement's vertex stage
 #   FAMILY tess:               tess.tes.glsl, tess-displacement's evaluation stage
+#   FAMILY plainvt:            vt.glsl replaced by VT_FILE (no virtual-texturing
+#                              code: dmbench_plainshader of test_instructions_uber)
 #   cmake -DGLSL_DIR=<techniques/glsl> -DOUT_DIR=<dir> -DSTEPS=<n> [-DFAMILY=f] -P slow_glsl.cmake
-if(NOT GLSL_DIR OR NOT OUT_DIR OR NOT STEPS)
+#   cmake -DGLSL_DIR=<techniques/glsl> -DOUT_DIR=<dir> -DFAMILY=plainvt -DVT_FILE=<file> -P slow_glsl.cmake
+if(NOT GLSL_DIR OR NOT OUT_DIR OR (NOT STEPS AND NOT FAMILY STREQUAL "plainvt"))
   message(FATAL_ERROR "slow_glsl.cmake: set GLSL_DIR, OUT_DIR and STEPS")
 endif()
 if(NOT FAMILY)
@@ -28,14 +31,18 @@ elseif(FAMILY STREQUAL "tess")
   set(target "tess.tes.glsl")
   set(anchor "    displace_emit(displace_point(p, dn, h), uv, n, t);\n}")
   set(steps "    for (int k = 0; k < ${STEPS}; k++)\n        h = h + 1e-9 * sin(h * 1.7 + float(k));\n")
+elseif(FAMILY STREQUAL "plainvt" AND VT_FILE)
+  set(target "vt.glsl")
 else()
-  message(FATAL_ERROR "slow_glsl.cmake: FAMILY must be fragment, vertex or tess")
+  message(FATAL_ERROR "slow_glsl.cmake: FAMILY must be fragment, vertex, tess or plainvt (with VT_FILE)")
 endif()
 file(MAKE_DIRECTORY ${OUT_DIR})
 file(GLOB files RELATIVE ${GLSL_DIR} ${GLSL_DIR}/*.glsl)
 foreach(f ${files})
   file(READ ${GLSL_DIR}/${f} text)
-  if(f STREQUAL target)
+  if(f STREQUAL target AND FAMILY STREQUAL "plainvt")
+    file(READ ${VT_FILE} text)
+  elseif(f STREQUAL target)
     string(FIND "${text}" "${anchor}" at)
     if(at EQUAL -1)
       message(FATAL_ERROR "slow_glsl.cmake: the end of main() in ${f} changed; update the anchor")
