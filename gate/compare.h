@@ -85,6 +85,11 @@ typedef enum compare_verdict {
 /* A change of the 1-minute load average at least this large (and at least
  * a quarter of the CPU count) is a changed machine. */
 #define COMPARE_LOAD_TOL 0.5
+/* A change of the calibration workload's time (run/calibrate.h) beyond this
+ * between BASE and NEW, or between a run's start and its end, is a machine
+ * that itself ran at another speed (its own spread, measured by
+ * bench/calibrate.c, is in docs/ci-gating.md, "The calibration workload"). */
+#define COMPARE_CALIB_TOL 0.05
 
 /* What one run says about the machine it ran on. */
 typedef struct compare_side_state {
@@ -96,6 +101,9 @@ typedef struct compare_side_state {
     size_t n_precise_raw;    /* ... whose 95 % CI of the median is within +-3 % */
     size_t n_precise_blocked;/* ... the same after blocking by round */
     double ci_rel_raw, ci_rel_blocked;   /* median CI half-width / median, raw and blocked */
+    double cal_cpu_ns;       /* calibration kernel, mean of the run's start and end; NaN none */
+    double cal_draw_ns;      /* calibration draw, the same */
+    double cal_drift;        /* largest |end / start - 1| of the two pieces; 0 unknown */
 } compare_side_state;
 
 /* The machine checks of a comparison: how far the machine alone may have
@@ -107,6 +115,11 @@ typedef struct compare_machine {
     double cpu_ratio;        /* the same for CPUTime; NaN without it */
     int contention;          /* wall_ratio / cpu_ratio beyond COMPARE_CONTENTION_TOL */
     int load_changed;        /* load averages differ by COMPARE_LOAD_TOL or more */
+    double cal_ratio;        /* calibration kernel NEW / BASE; NaN when a side lacks it */
+    double cal_draw_ratio;   /* calibration draw NEW / BASE; NaN when a side lacks it */
+    int cal_changed;         /* either ratio beyond COMPARE_CALIB_TOL */
+    double wall_per_cal;     /* wall_ratio / cal_ratio: the common mode once the machine's
+                                own speed is divided out (shown, not used for verdicts) */
     double spread;           /* max(run_spread, both runs' round_spread) */
     double lo, hi;           /* machine interval: [1/(1+s), 1+s], widened to take in
                                 wall_ratio when the machine changed; paired: [1, 1], or

@@ -11,6 +11,7 @@
 #include "core/dm_util.h"
 #include "models/blocking.h"
 #include "models/stats.h"
+#include "run/calibrate.h"
 
 /* The time counter of c when it has samples, else NULL. */
 static const dm_counter_result *compare__timed(const dm_config_result *c, const char *counter)
@@ -118,6 +119,27 @@ static double compare__load(const dm_run_result *r)
     return l && end != l && isfinite(x) ? x : NAN;
 }
 
+/* One calibration figure of the run's environment; NaN when absent. */
+static double compare__env_num(const dm_run_result *r, const char *key)
+{
+    const char *v = dm_kv_get(r->environment, r->n_environment, key);
+    char *end = NULL;
+    double x = v ? strtod(v, &end) : NAN;
+    return v && end != v && isfinite(x) && x > 0 ? x : NAN;
+}
+
+/* The run's calibration piece ("cpu" or "draw"): the mean of its start and
+ * end figures (either alone when the other is missing); its drift from
+ * start to end into *drift (kept when larger). */
+static double compare__calibration(const dm_run_result *r, const char *piece, double *drift)
+{
+    double a = compare__env_num(r, calibrate_key(piece, "start"));
+    double b = compare__env_num(r, calibrate_key(piece, "end"));
+    if (isfinite(a) && isfinite(b))
+        *drift = fmax(*drift, fabs(b / a - 1));
+    return isfinite(a) && isfinite(b) ? (a + b) / 2 : isfinite(a) ? a : b;
+}
+
 double **compare__block(const dm_run_result *r, const char *counter, int no_blocking,
                         compare_side_state *st)
 {
@@ -132,6 +154,8 @@ double **compare__block(const dm_run_result *r, const char *counter, int no_bloc
     }
     compare__precision(r, counter, blk, st);
     st->load = compare__load(r);
+    st->cal_cpu_ns = compare__calibration(r, "cpu", &st->cal_drift);
+    st->cal_draw_ns = compare__calibration(r, "draw", &st->cal_drift);
     st->wall_per_cpu = compare__wall_per_cpu(r, counter);
     return blk;
 }
@@ -175,6 +199,17 @@ static void compare__machine_reason(const compare_desc *d, compare_machine *m)
     if (m->load_changed)
         dm_str_printf(&s, "%sload average %.2f (BASE) -> %.2f (NEW)", s.len ? "; " : "",
                       m->base.load, m->new_.load);
+    if (m->cal_changed)
+        dm_str_printf(&s, "%sthe calibration workload took x%.2f (CPU kernel) and x%.2f (draw) "
+                      "of BASE's time in NEW: the machine itself ran at another speed",
+                      s.len ? "; " : "", m->cal_ratio, m->cal_draw_ratio);
+    const char *side[2] = { "BASE", "NEW" };
+    const compare_side_state *st[2] = { &m->base, &m->new_ };
+    for (int i = 0; i < 2; i++)
+        if (st[i]->cal_drift > COMPARE_CALIB_TOL)
+            dm_str_printf(&s, "%sthe calibration workload moved %.0f%% between %s's start and end "
+                          "(the machine changed during the run)", s.len ? "; " : "",
+                          st[i]->cal_drift * 100, side[i]);
     m->reason = s.len ? dm_str_take(&s) : NULL;
     dm_str_free(&s);
 }
@@ -199,6 +234,12 @@ void compare__machine_checks(const compare_desc *d, const dm_run_result *base,
     double tol = fmax(COMPARE_LOAD_TOL, (cpus ? atof(cpus) : 0) / 4);
     m->load_changed = isfinite(m->base.load) && isfinite(m->new_.load) &&
                       fabs(m->new_.load - m->base.load) >= tol;
+    m->cal_ratio = m->new_.cal_cpu_ns / m->base.cal_cpu_ns;
+    m->cal_draw_ratio = m->new_.cal_draw_ns / m->base.cal_draw_ns;
+    m->cal_changed = (isfinite(m->cal_ratio) && fabs(log(m->cal_ratio)) > log1p(COMPARE_CALIB_TOL)) ||
+                     (isfinite(m->cal_draw_ratio) &&
+                      fabs(log(m->cal_draw_ratio)) > log1p(COMPARE_CALIB_TOL));
+    m->wall_per_cal = m->wall_ratio / m->cal_ratio;
     compare__machine_reason(d, m);
     if (d->paired) {   /* ABBA rounds on one machine: its changes hit both sides ... */
         m->spread = 0;
@@ -210,10 +251,18 @@ void compare__machine_checks(const compare_desc *d, const dm_run_result *base,
         return;
     }
     m->spread = fmax(d->run_spread, fmax(m->base.round_spread, m->new_.round_spread));
+    m->spread = fmax(m->spread, fmax(m->base.cal_drift, m->new_.cal_drift));
     m->lo = 1 / (1 + m->spread);
     m->hi = 1 + m->spread;
     if ((m->contention || m->load_changed) && isfinite(m->wall_ratio)) {
         m->lo = fmin(1, m->wall_ratio) / (1 + m->spread);
         m->hi = fmax(1, m->wall_ratio) * (1 + m->spread);
+    }
+    for (int i = 0; m->cal_changed && i < 2; i++) {   /* the machine's own change, measured */
+        double c = i ? m->cal_draw_ratio : m->cal_ratio;
+        if (isfinite(c)) {
+            m->lo = fmin(m->lo, fmin(1, c) / (1 + m->spread));
+            m->hi = fmax(m->hi, fmax(1, c) * (1 + m->spread));
+        }
     }
 }

@@ -52,6 +52,10 @@ static void compare__side_text(const compare_side_state *st, dm_str *s)
     if (isfinite(st->wall_per_cpu))
         dm_str_printf(s, "WallTime/CPUTime %.2f, ", st->wall_per_cpu);
     dm_str_printf(s, "rounds moved +-%.1f%%", st->round_spread * 100);
+    if (isfinite(st->cal_cpu_ns))
+        dm_str_printf(s, ", calibration %.2f ms CPU", st->cal_cpu_ns / 1e6);
+    if (isfinite(st->cal_draw_ns))
+        dm_str_printf(s, " / %.2f ms draw", st->cal_draw_ns / 1e6);
 }
 
 /* The precision of one side, raw and blocked by round, against the target
@@ -90,6 +94,10 @@ static void compare__machine_text(const compare_result *r, dm_str *s)
     dm_str_cat(s, "; NEW ");
     compare__side_text(&m->new_, s);
     dm_str_printf(s, "\nmachine: %s\n", m->reason ? m->reason : "no change seen between the runs");
+    if (isfinite(m->wall_per_cal) && !r->desc.paired)
+        dm_str_printf(s, "machine: %s common mode x%.3f, x%.3f once divided by the calibration "
+                      "kernel's x%.3f (shown only: verdicts do not use it)\n", r->desc.time_counter,
+                      m->wall_ratio, m->wall_per_cal, m->cal_ratio);
     size_t held = 0;
     for (size_t i = 0; i < r->n_items; i++)
         held += (size_t)r->items[i].machine_held;

@@ -2,6 +2,7 @@
 #include "runner.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
+#include "run/calibrate.h"
 #include "run/callgrind.h"
 #include "run/env.h"
 #include "run/fitting.h"
@@ -851,6 +852,20 @@ static int runner__open(runner *r, dm_str *err)
     return rc;
 }
 
+/* Times the calibration workload (run/calibrate.h) in a child and adds
+ * its two figures to the environment as "calibration_*_ns_<which>". */
+static void runner__calibrate(dm_kv **env, size_t *n_env, const char *which)
+{
+    calibrate_result c;
+    if (calibrate_in_child(&c) != 0)
+        dm_log(DM_LOG_WARN, "the %s calibration gave no answer; compare cannot use it", which);
+    char buf[32];
+    snprintf(buf, sizeof buf, "%.0f", c.cpu_ns);
+    dm_kv_push(env, n_env, calibrate_key("cpu", which), buf);
+    snprintf(buf, sizeof buf, "%.0f", c.draw_ns);
+    dm_kv_push(env, n_env, calibrate_key("draw", which), buf);
+}
+
 static int runner__begin(runner *r)
 {
     if (r->o->resume)
@@ -873,6 +888,7 @@ static int runner__begin(runner *r)
         snprintf(buf, sizeof buf, "%zu", r->p.n_configs);
         dm_kv_push(&e->environment, &e->n_environment, "shard_configs", buf);
     }
+    runner__calibrate(&e->environment, &e->n_environment, "start");
     char *pub = dm_xasprintf("%s/published.json", r->run_dir);   /* for the report's section */
     int rc = r->s->published ? published_write_json(r->s->published, pub) : 0;
     free(pub);
@@ -924,6 +940,12 @@ static int runner__finish(runner *r, dm_str *err)
     store_run_finish(r->st, r->run_id, now);
     dm_run_result run = {0};
     int rc = store_run_load(r->st, r->run_id, &run);
+    if (rc == 0 && !dm_kv_get(run.environment, run.n_environment, calibrate_key("cpu", "end"))) {
+        size_t had = run.n_environment;
+        runner__calibrate(&run.environment, &run.n_environment, "end");
+        for (size_t i = had; i < run.n_environment; i++)
+            store_run_env_put(r->st, r->run_id, run.environment[i].key, run.environment[i].value);
+    }
     if (rc == 0) {
         runner__fit(r, &run);
         char e[512] = "";

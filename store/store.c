@@ -1187,6 +1187,18 @@ int store_run_warning_put(store *s, const char *run_id, const char *text)
     return store__put(s, run_id, text, store__warning_write);
 }
 
+static int store__env_write(store *s, const char *run, const void *kv)
+{
+    store__owner o = { run, NULL, 0 };
+    return store__kv_write(s, STORE_SQL_ENV_INS, &o, kv, 1);
+}
+
+int store_run_env_put(store *s, const char *run_id, const char *key, const char *value)
+{
+    dm_kv kv = { (char *)key, (char *)value };
+    return store__put(s, run_id, &kv, store__env_write);
+}
+
 int store_config_put(store *s, const char *run_id, const dm_config_result *cfg)
 {
     return store__put(s, run_id, cfg, store__config_write);

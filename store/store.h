@@ -51,6 +51,10 @@ const char *store_last_error(const store *s);
 int store_run_begin(store *s, const dm_run_result *run, const char *tag);
 /* Appends one run warning. DM_ERR_NOTFOUND if the run is absent. */
 int store_run_warning_put(store *s, const char *run_id, const char *text);
+/* Appends one environment entry (key, value) to the run: what is known
+ * only at its end, such as the closing calibration.  DM_ERR_NOTFOUND if the
+ * run is absent. */
+int store_run_env_put(store *s, const char *run_id, const char *key, const char *value);
 /* Writes one finished configuration (status, reason, log, params, every
  * counter with all its raw samples, quality, image paths) in ONE transaction.
  * A previous configuration of the same (run, key) is replaced and keeps its

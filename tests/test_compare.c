@@ -19,6 +19,7 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 #include "gate/compare.h"
+#include "run/calibrate.h"
 #include "store/store.h"
 #include "models/rng.h"
 #include "models/stats.h"
@@ -967,6 +968,61 @@ static void test_shift_beyond_spread_regression(void **state)
     dm_run_free(&b);
 }
 
+/* The run's calibration workload, as the runner records it. */
+static void set_calibration(dm_run_result *r, double cpu_start, double cpu_end, double draw)
+{
+    char buf[32];
+    const double v[4] = { cpu_start, cpu_end, draw, draw };
+    const char *piece[4] = { "cpu", "cpu", "draw", "draw" }, *which[4] = { "start", "end", "start", "end" };
+    for (int i = 0; i < 4; i++) {
+        snprintf(buf, sizeof buf, "%.0f", v[i]);
+        dm_kv_push(&r->environment, &r->n_environment, calibrate_key(piece[i], which[i]), buf);
+    }
+}
+
+/* The 30 % shift above, but NEW's calibration workload also took 1.30x as
+ * long: the machine itself was slower, so the shift is INCONCLUSIVE and the
+ * reason names the calibration; the ratio divided by it is shown.  With an
+ * unchanged calibration the shift stays REGRESSION; a calibration that
+ * moved 20 % within one run widens the between-run spread to 20 %. */
+static void test_calibration_names_slower_machine(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_scene_run(&a, "A", 6, 20, 1.0, 1.0, 0.02, 10, 0.8, NULL);
+    make_scene_run(&b, "B", 6, 20, 1.30, 1.0, 0.02, 50, 0.8, NULL);
+    set_calibration(&a, 10e6, 10e6, 3e6);
+    set_calibration(&b, 13e6, 13e6, 3.9e6);
+    compare_desc d = {0};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 0);
+    assert_int_equal(r.count[COMPARE_INCONCLUSIVE], 6);
+    assert_true(r.machine.cal_changed && fabs(r.machine.cal_ratio - 1.3) < 1e-9);
+    assert_true(fabs(r.machine.cal_draw_ratio - 1.3) < 1e-9);
+    assert_true(fabs(r.machine.wall_per_cal - r.machine.wall_ratio / 1.3) < 1e-12);
+    assert_non_null(strstr(r.machine.reason, "the calibration workload took x1.30 (CPU kernel) "
+                                             "and x1.30 (draw) of BASE's time in NEW"));
+    assert_true(r.machine.hi >= 1.3 * (1 + COMPARE_RUN_SPREAD) - 1e-9);
+    compare_result_free(&r);
+    dm_run_free(&b);
+    make_scene_run(&b, "B", 6, 20, 1.30, 1.0, 0.02, 50, 0.8, NULL);
+    set_calibration(&b, 10.1e6, 9.9e6, 3e6);   /* the same machine: the code is slower */
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_true(!r.machine.cal_changed && r.machine.reason == NULL);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 6);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    make_scene_run(&a, "A", 6, 20, 1.0, 1.0, 0.02, 10, 0.8, NULL);
+    set_calibration(&a, 10e6, 12e6, 3e6);      /* BASE's machine slowed 20 % during the run */
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_true(fabs(r.machine.base.cal_drift - 0.2) < 1e-9 && fabs(r.machine.spread - 0.2) < 1e-9);
+    assert_non_null(strstr(r.machine.reason, "moved 20% between BASE's start and end"));
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
 /* Blocking by round: the issue's noisy day, one round of every
  * configuration at 0.77 of the others (12.0 ms where the rest are near
  * 15.5) and a slow drift.  The blocked CI is narrower than the raw one,
@@ -1093,6 +1149,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_between_run_shift_within_spread),
              cmocka_unit_test(test_contention_is_named_not_regression),
              cmocka_unit_test(test_shift_beyond_spread_regression),
+        cmocka_unit_test(test_calibration_names_slower_machine),
              cmocka_unit_test(test_paired_contention),
              cmocka_unit_test(test_blocking_narrows_ci),
              cmocka_unit_test_setup_teardown(test_markdown_pr_comment, tmp_setup, tmp_teardown))

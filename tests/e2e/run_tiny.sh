@@ -36,6 +36,11 @@ for k in ("id", "sweep", "started", "environment", "timer"):
     assert k in j["run"], k
 for k in ("renderer", "gl_version", "lp_num_threads", "cpu", "fingerprint"):
     assert k in j["run"]["environment"], k
+# the calibration workload, timed at the run's start and end (nanoseconds)
+for piece in ("cpu", "draw"):
+    for which in ("start", "end"):
+        v = float(j["run"]["environment"]["calibration_%s_ns_%s" % (piece, which)])
+        assert 1e4 < v < 1e10, (piece, which, v)
 assert j["run"]["sweep"] == "e2e-tiny"
 assert j["run"]["timer"]["verdict"] in ("partial", "full", "unavailable")
 # 2 meshes x 2 resolutions; tess_level is folded (normal does not read it)
