@@ -432,6 +432,10 @@ static void test_round_trip(void **state)
     store_put_all(s, &run, NULL);
     assert_int_equal(store_run_finish(s, "run-1", "2026-01-02T04:00:00Z"), 0);
     run.finished = dm_xstrdup("2026-01-02T04:00:00Z");
+    /* an entry known only at the run's end joins its environment, last */
+    assert_int_equal(store_run_env_put(s, "run-1", "calibration_cpu_ns_end", "10123456"), 0);
+    dm_kv_push(&run.environment, &run.n_environment, "calibration_cpu_ns_end", "10123456");
+    assert_int_equal(store_run_env_put(s, "no-such-run", "k", "v"), DM_ERR_NOTFOUND);
     assert_int_equal(store_run_load(s, "run-1", &got), 0);
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
