@@ -1,6 +1,6 @@
 /* bench_calibrate — the calibration workload's own spread: N runs of it,
  * each in a fresh child as the runner does, and the spread of their
- * medians (docs/ci-gating.md, "The calibration workload").
+ * figures (each the shortest of 9 timings) (docs/ci-gating.md, "The calibration workload").
  *   build/bench/bench_calibrate [N]          (default 20)
  * Prints the load average, then per piece the median, min, max and the
  * largest |x / median - 1|. */

@@ -2,6 +2,8 @@
  *
  * Sides of a comparison (BASE first, then NEW):
  *   PATH                 a results.json, a run directory or an output root
+ *   PATH,PATH,...        several separate runs of one side, pooled one
+ *                        minimum per run (compare_load_paths)
  *   --base-run ID | --base-tag NAME | --baseline     BASE from a store
  *   --new-run ID  | --new-tag NAME                   NEW from a store
  * The store is --base-store / --new-store, else --store, else
@@ -33,6 +35,7 @@ typedef struct cli_side {
 
 typedef struct cli_compare_opts {
     compare_desc d;
+    size_t n_runs[2];        /* runs pooled into BASE, NEW (0 from a store) */
     cli_side base, new_;
     const char *store;
     char **positional;
@@ -187,9 +190,10 @@ const cli_option cli_compare_options[] = {
 
 static int cli__from_store(const cli_side *s) { return s->baseline || s->run || s->tag; }
 
-/* Loads one side from its store options or from path. */
+/* Loads one side from its store options or from path (a comma-separated
+ * list pools several runs; their number into *n_runs). */
 static int cli__load_side(const cli_compare_opts *o, const cli_side *s, const char *path,
-                          const char *sweep, dm_run_result *out, dm_str *err)
+                          const char *sweep, dm_run_result *out, size_t *n_runs, dm_str *err)
 {
     const char *store = s->store ? s->store : o->store ? o->store : CLI_DEFAULT_STORE;
     if (s->baseline) {
@@ -205,7 +209,22 @@ static int cli__load_side(const cli_compare_opts *o, const cli_side *s, const ch
     }
     if (s->run || s->tag)
         return compare_load_store(store, s->run, s->tag, out, err);
-    return compare_load_path(path, out, err);
+    return compare_load_paths(path, out, n_runs, err);
+}
+
+/* Several runs on one side only: the other side's between-run spread
+ * cannot be estimated, so the comparison could not say more than one run
+ * a side does. */
+static int cli__check_replicas(cli_compare_opts *o, dm_str *err)
+{
+    size_t b = o->n_runs[0] ? o->n_runs[0] : 1, n = o->n_runs[1] ? o->n_runs[1] : 1;
+    if ((b > 1) != (n > 1)) {
+        dm_str_printf(err, "compare: BASE has %zu run%s and NEW %zu: give both sides several runs "
+                      "(BASE1,BASE2,... NEW1,NEW2,...), or one each", b, b == 1 ? "" : "s", n);
+        return DM_ERR_ARG;
+    }
+    o->d.replicated = b > 1;
+    return 0;
 }
 
 /* Both sides (NEW first: --baseline picks the baseline of NEW's sweep);
@@ -225,10 +244,12 @@ static int cli__load_sides(cli_compare_opts *o, dm_run_result *base, dm_run_resu
                       new_pos ? "a path" : "the store", o->n_positional);
         return DM_ERR_ARG;
     }
-    int rc = cli__load_side(o, &o->new_, new_pos ? o->positional[base_pos] : NULL, NULL, new_, err);
+    int rc = cli__load_side(o, &o->new_, new_pos ? o->positional[base_pos] : NULL, NULL, new_,
+                            &o->n_runs[1], err);
     if (rc == 0)
-        rc = cli__load_side(o, &o->base, base_pos ? o->positional[0] : NULL, new_->sweep, base, err);
-    return rc;
+        rc = cli__load_side(o, &o->base, base_pos ? o->positional[0] : NULL, new_->sweep, base,
+                            &o->n_runs[0], err);
+    return rc ? rc : cli__check_replicas(o, err);
 }
 
 static int cli__outputs(const cli_compare_opts *o, const compare_result *r)

@@ -42,7 +42,7 @@ static const cli_command commands[] = {
       .description = "Exit 1 when nothing could be fitted (or the fit failed numerically)." },
     { .name = "compare", .fn = cli_compare, .options = cli_compare_options,
       .summary = "regression gate: compare two runs (exit 0 pass, 1 regression, 3 inconclusive)",
-      .synopsis = "BASE NEW\n--paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]",
+      .synopsis = "BASE NEW\nBASE1,BASE2,... NEW1,NEW2,...\n--paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]",
       .description =
           "A side is a PATH (a results.json, a run directory or an output root) or is\n"
           "taken from a store: --base-run ID | --base-tag NAME | --baseline for BASE,\n"
@@ -52,7 +52,9 @@ static const cli_command commands[] = {
           "slower code: a time change the machine could explain (WallTime against\n"
           "CPUTime, load average, how far its rounds moved, --run-spread) is\n"
           "INCONCLUSIVE, not REGRESSION; --paired runs both builds in alternating\n"
-          "rounds and is the way to gate time.  Exit 2 bad input (also: environments\n"
+          "rounds and is the way to gate time.  Several separate runs a side, comma-\n"
+          "separated, are pooled one minimum per run, so their between-run spread is\n"
+          "measured, not assumed (6 a side can reach q < 0.01).  Exit 2 bad input (also: environments\n"
           "differ), 4 environment failure.  See docs/ci-gating.md." },
     { .name = "baseline", .fn = cli_baseline, .options = cli_baseline_options,
       .pos_choices = cli_baseline_actions, .synopsis = "accept RUN --reason TEXT\nshow",

@@ -281,7 +281,7 @@ static int compare__time_stats(const compare_desc *d, const dm_config_result *b,
         it->hi = cr.hi * it->ratio / cr.ratio;
     }
     it->p = compare_stats_mann_whitney(xn, tn->n_samples, xb, tb->n_samples, NULL);
-    if (d->paired) {   /* the samples are pooled run minima: show what the ratio is of */
+    if (d->paired || d->replicated) {   /* pooled run minima: show what the ratio is of */
         it->median_base = stats_median(tb->samples, tb->n_samples);
         it->median_new = stats_median(tn->samples, tn->n_samples);
     }
@@ -358,7 +358,8 @@ static void compare__time_verdict(const compare_desc *d, const compare_machine *
         it->verdict = COMPARE_PASS;
     } else {
         it->verdict = COMPARE_INCONCLUSIVE;
-        const char *unit = d->paired ? "rounds" : "samples per side";
+        const char *unit = d->paired ? "rounds" : d->replicated ? "runs per side"
+                                                    : "samples per side";
         char *head = dm_xasprintf("could detect changes >= %.1f%% (threshold %.1f%%)",
                                   it->detectable * 100, t * 100);
         if (it->lo > 1.0 + t || it->hi < 1.0 - t) {

@@ -139,6 +139,9 @@ typedef struct compare_desc {
     double time_threshold;   /* 0 -> 0.05 */
     double threshold;        /* Instructions: relative change that decides; 0 -> 0.005 */
     int paired;              /* samples are runs (rounds): notes say "rounds" */
+    int replicated;          /* each side pooled from >= 2 separate runs (compare_load_paths):
+                                samples are run minima as in paired mode, and the
+                                between-run spread is in the data, not assumed */
     int instr_off;           /* set by compare_runs when the runs' CPUs differ: instruction
                                 counts depend on the CPU (JIT target, libc ifuncs), so the
                                 Cost counters are not compared (a warning says so) */
@@ -306,5 +309,14 @@ typedef struct compare_paired_desc {
  * Returns 0 or DM_ERR_CHILD (a run exited non-zero) / DM_ERR_IO. */
 int compare_paired_run(const compare_paired_desc *d, dm_run_result *base, dm_run_result *new_,
                        dm_str *err);
+
+/* ---- several separate runs per side (compare_paired.c) ------------------ */
+/* Pools run r (the index-th of its side; 0 takes r as it is) into *pooled,
+ * one minimum per run and key, as paired mode does; r is consumed. */
+void compare_pool_run(dm_run_result *pooled, dm_run_result *r, int index);
+/* Loads a comma-separated list of paths (each as compare_load_path) and
+ * pools them with compare_pool_run; *n_runs is the number of runs.  One
+ * path is loaded as it is (its samples kept). */
+int compare_load_paths(const char *list, dm_run_result *out, size_t *n_runs, dm_str *err);
 
 #endif

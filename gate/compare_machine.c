@@ -250,8 +250,10 @@ void compare__machine_checks(const compare_desc *d, const dm_run_result *base,
         }
         return;
     }
-    m->spread = fmax(d->run_spread, fmax(m->base.round_spread, m->new_.round_spread));
-    m->spread = fmax(m->spread, fmax(m->base.cal_drift, m->new_.cal_drift));
+    /* several runs a side: each run is one sample, so the between-run
+     * spread is in the CI and the assumed floor is not needed */
+    m->spread = d->replicated ? 0 : fmax(d->run_spread, fmax(m->base.round_spread,
+                                                             m->new_.round_spread));
     m->lo = 1 / (1 + m->spread);
     m->hi = 1 + m->spread;
     if ((m->contention || m->load_changed) && isfinite(m->wall_ratio)) {

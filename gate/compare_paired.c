@@ -97,9 +97,7 @@ static void compare__run_minima(dm_run_result *r)
         }
 }
 
-/* Pools round r's run into the side's pooled run (the first round is taken
- * as it is), one minimum per run and key. */
-static void compare__pool(dm_run_result *pooled, dm_run_result *r, int round)
+void compare_pool_run(dm_run_result *pooled, dm_run_result *r, int round)
 {
     compare__run_minima(r);
     if (round == 0) {
@@ -130,7 +128,7 @@ static int compare__paired_one(const compare_paired_desc *d, const char *tmp, in
                       round + 1, bin, d->sweep_path);
     dm_run_result r;
     if (!rc && (rc = compare_load_path(out, &r, err)) == 0)
-        compare__pool(side, &r, round);
+        compare_pool_run(side, &r, round);
     free(out);
     return rc;
 }
@@ -162,5 +160,27 @@ int compare_paired_run(const compare_paired_desc *desc, dm_run_result *base, dm_
         dm_run_free(base);
         dm_run_free(new_);
     }
+    return rc;
+}
+
+int compare_load_paths(const char *list, dm_run_result *out, size_t *n_runs, dm_str *err)
+{
+    memset(out, 0, sizeof *out);
+    *n_runs = 0;
+    if (!strchr(list, ',')) {
+        int rc = compare_load_path(list, out, err);
+        *n_runs = rc == 0;
+        return rc;
+    }
+    char *copy = dm_xstrdup(list), *save = NULL;
+    int rc = 0;
+    for (char *p = strtok_r(copy, ",", &save); p && rc == 0; p = strtok_r(NULL, ",", &save)) {
+        dm_run_result r;
+        if ((rc = compare_load_path(p, &r, err)) == 0)
+            compare_pool_run(out, &r, (int)(*n_runs)++);
+    }
+    free(copy);
+    if (rc)
+        dm_run_free(out);
     return rc;
 }

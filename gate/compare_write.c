@@ -104,6 +104,11 @@ static void compare__machine_text(const compare_result *r, dm_str *s)
     int widened = m->lo < 1 || m->hi > 1;
     if (r->desc.paired && !widened)
         dm_str_cat(s, "machine: paired rounds on one machine: its changes hit both sides\n");
+    else if (r->desc.replicated)
+        dm_str_printf(s, "machine: several separate runs per side, each one sample (its minimum "
+                      "time): the between-run spread is in the CI, not assumed; the machine checks "
+                      "(first runs) allow x%.3f..x%.3f, %zu verdict%s held INCONCLUSIVE by it\n",
+                      m->lo, m->hi, held, held == 1 ? "" : "s");
     else if (r->desc.paired)
         dm_str_printf(s, "machine: paired rounds on one machine, but one side waited more "
                       "(WallTime moved beyond CPUTime): x%.3f..x%.3f of it is not attributed; "

@@ -7,7 +7,8 @@
  * sweep: the kernel is 2^22 rounds of an integer and floating-point
  * recurrence, the draw one full-screen triangle of a fixed shader into a
  * 256x256 framebuffer, finished.  Each is timed CALIBRATE_REPS times after
- * CALIBRATE_WARMUP untimed repetitions; the median is kept. */
+ * CALIBRATE_WARMUP untimed repetitions; the shortest is kept (noise only
+ * adds time). */
 #ifndef DM_RUN_CALIBRATE_H
 #define DM_RUN_CALIBRATE_H
 
@@ -17,8 +18,8 @@
 #define CALIBRATE_WARMUP 2
 
 typedef struct calibrate_result {
-    double cpu_ns;    /* median time of the CPU kernel; NaN when not measured */
-    double draw_ns;   /* median time of the draw; NaN without a GL context */
+    double cpu_ns;    /* shortest time of the CPU kernel; NaN when not measured */
+    double draw_ns;   /* shortest time of the draw; NaN without a GL context */
 } calibrate_result;
 
 /* Times the CPU kernel, and the draw when a GL context is current

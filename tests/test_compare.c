@@ -984,7 +984,8 @@ static void set_calibration(dm_run_result *r, double cpu_start, double cpu_end, 
  * long: the machine itself was slower, so the shift is INCONCLUSIVE and the
  * reason names the calibration; the ratio divided by it is shown.  With an
  * unchanged calibration the shift stays REGRESSION; a calibration that
- * moved 20 % within one run widens the between-run spread to 20 %. */
+ * moved 20 % within one run is named (the rounds' spread, not it, widens
+ * the interval). */
 static void test_calibration_names_slower_machine(void **state)
 {
     (void)state;
@@ -1016,9 +1017,79 @@ static void test_calibration_names_slower_machine(void **state)
     make_scene_run(&a, "A", 6, 20, 1.0, 1.0, 0.02, 10, 0.8, NULL);
     set_calibration(&a, 10e6, 12e6, 3e6);      /* BASE's machine slowed 20 % during the run */
     assert_int_equal(run_compare(&a, &b, &d, &r), 0);
-    assert_true(fabs(r.machine.base.cal_drift - 0.2) < 1e-9 && fabs(r.machine.spread - 0.2) < 1e-9);
+    assert_true(fabs(r.machine.base.cal_drift - 0.2) < 1e-9);
+    assert_true(r.machine.spread == COMPARE_RUN_SPREAD);   /* named, not a wider interval */
     assert_non_null(strstr(r.machine.reason, "moved 20% between BASE's start and end"));
     compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
+/* One side of n separate runs, run k's machine at speed factor[k]
+ * (times scale), pooled as `compare BASE1,BASE2,... NEW1,...` pools them. */
+static void pooled_side(dm_run_result *side, const char *id, const double *factor, size_t n,
+                        double scale, uint64_t seed)
+{
+    memset(side, 0, sizeof *side);
+    for (size_t k = 0; k < n; k++) {
+        dm_run_result r;
+        make_scene_run(&r, id, 6, 20, scale * factor[k], 1.0, 0.01, seed + 7 * k, 0.8, NULL);
+        compare_pool_run(side, &r, (int)k);
+    }
+}
+
+/* Several runs a side: the machine moves each run by up to 10 % while the
+ * samples within a run agree to 1 %.  The same code on both sides is never
+ * a REGRESSION, although one run a side with the within-run statistics
+ * alone (no between-run allowance) calls every configuration one; 30 %
+ * slower code is REGRESSION on every configuration; an 8 % change with
+ * steady runs, INCONCLUSIVE from one run a side, is decided by six. */
+static void test_replicated_runs(void **state)
+{
+    (void)state;
+    const double fb[6] = { 0.95, 1.07, 1.00, 1.04, 0.97, 1.10 };
+    const double fn[6] = { 1.08, 0.96, 1.06, 0.99, 1.02, 0.94 };
+    compare_desc d = { .replicated = 1 };
+    compare_result r;
+    dm_run_result a, b;
+    pooled_side(&a, "A", fb, 6, 1.0, 10);
+    pooled_side(&b, "B", fn, 6, 1.0, 50);
+    assert_int_equal(a.configs[0].counters[0].n_samples, 6);   /* one minimum per run */
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION] + r.count[COMPARE_IMPROVEMENT], 0);
+    assert_true(r.machine.spread == 0 && r.machine.hi == 1);   /* measured, not assumed */
+    compare_result_free(&r);
+    dm_run_free(&b);
+    dm_run_result a1, b1;                  /* the first run of each side, alone */
+    make_scene_run(&a1, "A", 6, 20, fb[0], 1.0, 0.01, 10, 0.8, NULL);
+    make_scene_run(&b1, "B", 6, 20, fn[0], 1.0, 0.01, 50, 0.8, NULL);
+    compare_desc one = { .run_spread = 1e-6 };
+    assert_int_equal(run_compare(&a1, &b1, &one, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 6);      /* what within-run statistics say */
+    compare_result_free(&r);
+    dm_run_free(&a1);
+    dm_run_free(&b1);
+    pooled_side(&b, "B", fn, 6, 1.30, 50);
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 6);
+    assert_non_null(strstr(r.items[0].note, "slower"));
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+    const double steady[6] = { 1.00, 1.01, 0.995, 1.005, 0.99, 1.0 };
+    pooled_side(&a, "A", steady, 6, 1.0, 10);
+    pooled_side(&b, "B", steady, 6, 1.08, 50);
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.count[COMPARE_REGRESSION], 6);
+    compare_result_free(&r);
+    make_scene_run(&a1, "A", 6, 20, 1.0, 1.0, 0.01, 10, 0.8, NULL);
+    make_scene_run(&b1, "B", 6, 20, 1.08, 1.0, 0.01, 50, 0.8, NULL);
+    compare_desc plain = {0};
+    assert_int_equal(run_compare(&a1, &b1, &plain, &r), 0);
+    assert_int_equal(r.count[COMPARE_INCONCLUSIVE], 6);
+    compare_result_free(&r);
+    dm_run_free(&a1);
+    dm_run_free(&b1);
     dm_run_free(&a);
     dm_run_free(&b);
 }
@@ -1150,6 +1221,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_contention_is_named_not_regression),
              cmocka_unit_test(test_shift_beyond_spread_regression),
         cmocka_unit_test(test_calibration_names_slower_machine),
+        cmocka_unit_test(test_replicated_runs),
              cmocka_unit_test(test_paired_contention),
              cmocka_unit_test(test_blocking_narrows_ci),
              cmocka_unit_test_setup_teardown(test_markdown_pr_comment, tmp_setup, tmp_teardown))
