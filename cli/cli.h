@@ -61,13 +61,20 @@ int cli_list(int argc, char **argv);
 int cli_info(int argc, char **argv);
 int cli_render(int argc, char **argv);
 int cli_diff(int argc, char **argv);
+int cli_drivers(int argc, char **argv);
+/* `dmbench drivers` on sweep_path (NULL: the default sweep) with --drivers
+ * list (NULL: the sweep's `drivers:`, else every installed driver); `run`
+ * calls it for a sweep with `drivers:`.  Its runs have CLI_DRIVERS_CHILD set. */
+int cli_drivers_main(const char *sweep_path, const char *list, const char *out, const char *seed,
+                     int quiet);
+#define CLI_DRIVERS_CHILD "DMBENCH_DRIVERS_CHILD"
 int cli_view(int argc, char **argv);
 int cli_slurm(int argc, char **argv);
 int cli_export(int argc, char **argv);
 int cli_history(int argc, char **argv);
 extern const cli_option cli_run_options[], cli_report_options[], cli_fit_options[],
     cli_compare_options[], cli_baseline_options[], cli_list_options[], cli_info_options[],
-    cli_render_options[], cli_diff_options[], cli_view_options[], cli_merge_options[], cli_slurm_options[],
+    cli_render_options[], cli_diff_options[], cli_drivers_options[], cli_view_options[], cli_merge_options[], cli_slurm_options[],
     cli_export_options[], cli_history_options[];
 extern const char *const cli_list_lists[], *const cli_baseline_actions[], *const cli_export_formats[];
 

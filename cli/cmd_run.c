@@ -96,6 +96,18 @@ int cli_run(int argc, char **argv)
         dm_str_free(&err);
         return DM_EXIT_USAGE;
     }
+    if (s.n_drivers && !getenv(CLI_DRIVERS_CHILD) && !a->o.dry_run) {   /* one run per driver */
+        sweep_free(&s);
+        if (a->o.resume || a->o.shard_n)
+            return cli_usage_error("run: %s names drivers: --%s is not available with `drivers:` "
+                                   "(run each driver with DMBENCH_DRIVER instead)", file,
+                                   a->o.resume ? "resume" : "shard");
+        char seed[24] = "";
+        if (a->o.seed)
+            snprintf(seed, sizeof seed, "%llu", (unsigned long long)a->o.seed);
+        fprintf(stderr, "dmbench: %s names drivers: one run per driver (dmbench drivers)\n", file);
+        return cli_drivers_main(file, NULL, a->o.out_root, a->o.seed ? seed : NULL, a->o.quiet);
+    }
     char *dir = NULL;
     rc = runner_run(&s, &a->o, &dir, &err);
     sweep_free(&s);

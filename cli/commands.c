@@ -96,6 +96,15 @@ static const cli_command commands[] = {
       .description = "REF and TEST are any images OpenImageIO reads (PNG, EXR, ...), of the same\n"
                      "size.  Non-finite pixels are counted and said, and count as 0.  Exit 0, or 2\n"
                      "for an unreadable file or different sizes.  See docs/flip.md." },
+    { .name = "drivers", .fn = cli_drivers, .options = cli_drivers_options, .synopsis = "[SWEEP]",
+      .summary = "one sweep on several drivers, each in its own run, set side by side",
+      .description = "Runs `dmbench run SWEEP` once per driver with DMBENCH_DRIVER set, into\n"
+                     "OUT/DRIVER/, and writes OUT/drivers.md and drivers.json: per configuration\n"
+                     "time, Instructions and SSIM on each driver, whether the drivers rank the\n"
+                     "configurations alike (Kendall's tau), and each scene's Pareto front.  A\n"
+                     "driver not installed is left out with the reason; a failed run is said and\n"
+                     "the next driver runs.  Exit 0, 2 bad input (or no driver installed), 4 a\n"
+                     "driver's run failed.  See docs/drivers.md." },
     { .name = "view", .fn = cli_view, .options = cli_view_options, .synopsis = "[KEY=VALUE...]",
       .summary = "look at a configuration live in a window (needs a display or xvfb-run)",
       .description = "Keys: 1-9/0 technique, [ ] tessellation level or steps, F filter, M mesh,\n"

@@ -340,6 +340,31 @@ static int p__k_counters(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t
     return 0;
 }
 
+/* drivers: a list of names; which exist is run/drivers.h's to say, so the
+ * names are kept with their lines for `dmbench drivers` to check. */
+static int p__k_drivers(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+{
+    (void)row, (void)k;
+    if (v->type != YAML_SEQUENCE_NODE || v->data.sequence.items.start == v->data.sequence.items.top)
+        return p__fail(c, v, "drivers: expected a non-empty list of driver names, e.g. "
+                             "[llvmpipe, zink] (docs/drivers.md)");
+    sweep *s = c->s;
+    for (yaml_node_item_t *it = v->data.sequence.items.start; it < v->data.sequence.items.top; it++) {
+        yaml_node_t *n = p__node(c, *it);
+        const char *name = p__scalar(n);
+        if (!name || !*name)
+            return p__fail(c, n, "drivers: expected a driver name");
+        for (size_t i = 0; i < s->n_drivers; i++)
+            if (strcmp(s->drivers[i], name) == 0)
+                return p__fail(c, n, "drivers: '%s' is listed twice (line %d)", name,
+                               s->driver_lines[i]);
+        s->driver_lines = dm_xrealloc(s->driver_lines, (s->n_drivers + 1) * sizeof *s->driver_lines);
+        s->driver_lines[s->n_drivers] = (int)n->start_mark.line + 1;
+        DM_VEC_PUSH(s->drivers, s->n_drivers, dm_xstrdup(name));
+    }
+    return 0;
+}
+
 /* scene.material: its keys, then the user's map files as one `maps` value. */
 static int p__k_material(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
 {
@@ -580,6 +605,9 @@ static const p__key p__keys[] = {
             "cost models fitted after the run"),
     P__ROW("", "published", p__k_published, NULL, "mapping (see `published`)", "none",
            "a study's figures, set beside the measured ones in the report", NULL),
+    P__ROW("", "drivers", p__k_drivers, NULL, "list of driver names", "none: the run's own driver",
+           "measure the sweep once per driver, each in its own run, and set them side by side "
+           "(`dmbench drivers`, docs/drivers.md)", "[llvmpipe, zink]"),
 
     P__INT("measure", "warmup_frames", measure.warmup_frames, 0, 100000, 8,
            "frames drawn before anything is timed; warm-up then goes on until two consecutive "
@@ -1034,5 +1062,9 @@ void sweep_free(sweep *s)
     }
     free(s->models);
     published_free(s->published);
+    for (size_t i = 0; i < s->n_drivers; i++)
+        free(s->drivers[i]);
+    free(s->drivers);
+    free(s->driver_lines);
     memset(s, 0, sizeof *s);
 }

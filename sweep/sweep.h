@@ -75,6 +75,10 @@ typedef struct sweep {
     sweep_exclude *excludes;
     size_t n_excludes;
     struct published *published;  /* `published:` block (sweep/published.h), NULL when absent */
+    char **drivers;          /* `drivers:` names, as written (checked by `dmbench drivers`, which
+                                knows the drivers); NULL when absent */
+    int *driver_lines;       /* the line of each name */
+    size_t n_drivers;
     uint64_t hash;           /* FNV-1a of the file text */
 } sweep;
 

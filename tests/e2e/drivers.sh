@@ -10,7 +10,10 @@
 #   within 40 dB PSNR of them, its PSNR against the reference within
 #   0.1 dB of llvmpipe's;
 # - the fingerprints differ (compare keeps drivers apart);
-# - an unknown driver and a missing Mesa 25 exit 2 with the reason.
+# - an unknown driver and a missing Mesa 25 exit 2 with the reason;
+# - `dmbench drivers` runs the three and sets them side by side
+#   (drivers.md/json: every configuration on each driver, Kendall's tau of
+#   the times and qualities per pair, each scene's front per driver).
 # - virtual_texture: sparse on zink against software (below).
 # Skipped (77) when Mesa 25 is not installed.
 set -euo pipefail
@@ -19,14 +22,52 @@ expect_refused 2 "unknown driver; the drivers are: default llvmpipe llvmpipe-25 
   env DMBENCH_DRIVER=voodoo "$BIN" info
 expect_refused 2 "needs Mesa 25 in /nonexistent" -- \
   env DMBENCH_DRIVER=zink DMBENCH_MESA25_PREFIX=/nonexistent "$BIN" info
+expect_refused 2 "none of the drivers asked for is installed here" -- \
+  env DMBENCH_MESA25_PREFIX=/nonexistent "$BIN" drivers --drivers zink --out "$OUT/none"
+expect_refused 2 "unknown driver 'zin' (did you mean 'zink'?)" -- "$BIN" drivers --drivers zin
+expect_refused 2 "DMBENCH_DRIVER=zink is set: unset it" -- \
+  env DMBENCH_DRIVER=zink "$BIN" drivers --drivers llvmpipe
+# a sweep naming its drivers: `run` makes one run per driver; a driver not
+# installed (Mesa 25 moved away) is left out with the reason; a misspelt
+# name is the file's line with a suggestion
+printf 'name: bad\ndrivers: [llvmpipe, zinc]\n' > "$OUT/bad.yaml"
+expect_refused 2 "bad.yaml:2: drivers: unknown driver 'zinc' (did you mean 'zink'?)" -- \
+  "$BIN" run "$OUT/bad.yaml" --out "$OUT/bad"
+printf 'name: twice\ndrivers: [zink, llvmpipe, zink]\n' > "$OUT/twice.yaml"
+expect_refused 2 "twice.yaml:2:27: drivers: 'zink' is listed twice (line 2)" -- "$BIN" run "$OUT/twice.yaml"
+printf 'name: empty\ndrivers: []\n' > "$OUT/empty.yaml"
+expect_refused 2 "empty.yaml:2:10: drivers: expected a non-empty list of driver names" -- "$BIN" run "$OUT/empty.yaml"
+DMBENCH_MESA25_PREFIX=/nonexistent "$BIN" run "$SRC/tests/e2e/drivers_key.yaml" --out "$OUT/key" \
+  --quiet > "$OUT/key.txt" 2> "$OUT/key.err"
+grep -q "^1 driver ran, 1 left out, 0 failed" "$OUT/key.txt" || { cat "$OUT/key.txt" "$OUT/key.err"; exit 1; }
+grep -q "| llvmpipe-25 | — | left out: driver 'llvmpipe-25' needs Mesa 25 in /nonexistent" "$OUT/key/drivers.md" ||
+  { cat "$OUT/key/drivers.md"; exit 1; }
+test -s "$OUT/key/llvmpipe/latest/results.json"
 tally
 if ! DMBENCH_DRIVER=zink "$BIN" info >/dev/null 2>&1; then
   echo "Mesa 25 is not installed (scripts/install-mesa25): skipped"
   exit 77
 fi
-for d in default llvmpipe-25 zink; do
-  DMBENCH_DRIVER=$d timeout 600 "$BIN" run "$SRC/tests/e2e/drivers.yaml" --out "$OUT/$d" --seed 1 --quiet
-done
+timeout 1800 "$BIN" drivers "$SRC/tests/e2e/drivers.yaml" --drivers default,llvmpipe-25,zink \
+  --out "$OUT" --seed 1 --quiet > "$OUT/drivers.txt"
+grep -q "^3 drivers ran, 0 left out, 0 failed; side by side: $OUT/drivers.md" "$OUT/drivers.txt"
+python3 - "$OUT" <<'PY'
+import json, sys
+j = json.load(open(sys.argv[1] + "/drivers.json"))
+assert [d["driver"] for d in j["drivers"]] == ["default", "llvmpipe-25", "zink"], j["drivers"]
+assert all(d["configs_ok"] == 5 for d in j["drivers"]), j["drivers"]
+assert len(j["configs"]) == 5 and all(len(c["drivers"]) == 3 for c in j["configs"])
+assert len(j["agreement"]) == 3, j["agreement"]
+for a in j["agreement"]:
+    assert a["configs"] == 5 and -1 <= a["tau_walltime"] <= 1, a
+    if {a["a"], a["b"]} == {"default", "llvmpipe-25"}:
+        assert a["tau_ssim"] == 1, a        # byte-identical images: the same quality order
+front = next(iter(j["fronts"].values()))
+assert set(front) == {"default", "llvmpipe-25", "zink", "agree"}, front
+for a in j["agreement"]:
+    print(f"{a['a']} · {a['b']}: tau of WallTime {a['tau_walltime']:.3f}, of SSIM {a['tau_ssim']:.3f}")
+print("fronts agree:", front["agree"])
+PY
 python3 - "$OUT" <<'PY'
 import json, subprocess, sys
 out = sys.argv[1]

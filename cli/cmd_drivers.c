@@ -1,0 +1,261 @@
+/* cmd_drivers.c — `dmbench drivers [SWEEP]`: one sweep measured on several
+ * drivers, each in its own run (own process tree, environment and
+ * fingerprint), then set side by side (reports/drivers_report.h,
+ * docs/drivers.md "One sweep on several drivers").
+ *
+ * Each driver's run is `dmbench run SWEEP --out OUT/DRIVER` started with
+ * DMBENCH_DRIVER=DRIVER, so it re-executes under that driver's libraries
+ * exactly as a user's run would.  A driver that is not installed is left
+ * out with the reason; one whose run fails (a driver that hangs at start-up
+ * is killed by the run's probe watchdog) is recorded as failed and the
+ * next driver runs. */
+#include "cli.h"
+#include "core/dm_error.h"
+#include "core/dm_exit.h"
+#include "gate/compare.h"
+#include "reports/drivers_report.h"
+#include "run/drivers.h"
+#include "sweep/sweep.h"
+
+#include <errno.h>
+#include <stddef.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <sys/stat.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+typedef struct drivers_args {
+    const char *drivers;   /* comma-separated; NULL = every installed one */
+    const char *out;
+    const char *seed;
+    int quiet;
+} drivers_args;
+
+const cli_option cli_drivers_options[] = {
+    CLI_STRING("drivers", drivers_args, drivers, "LIST",
+               "comma-separated drivers: default, llvmpipe, llvmpipe-25, zink (docs/drivers.md) [default: every "
+               "installed one but 'default']"),
+    CLI_STRING("out", drivers_args, out, "DIR",
+               "output root: DIR/DRIVER/ per driver, DIR/drivers.md and drivers.json [default "
+               "results/drivers]"),
+    CLI_STRING("seed", drivers_args, seed, "N", "passed to every run (the same rounds on each driver)"),
+    CLI_BOOL("quiet", drivers_args, quiet, "no progress from the runs"),
+    CLI_OPT_END
+};
+
+/* "unknown driver 'x' (did you mean 'y'?); the drivers are: ..." into err. */
+static void drivers__unknown(const char *name, dm_str *err)
+{
+    dm_str names = {0};
+    const char *choices[16];
+    size_t nc = 0;
+    for (const driver_info *d = drivers_list(); d->name && nc < 16; d++) {
+        dm_str_printf(&names, "%s%s", names.len ? ", " : "", d->name);
+        choices[nc++] = d->name;
+    }
+    const char *near = dm_closest(name, choices, nc);
+    dm_str_printf(err, "unknown driver '%s'%s%s%s; the drivers are: %s", name,
+                  near ? " (did you mean '" : "", near ? near : "", near ? "'?)" : "",
+                  dm_str_get(&names));
+    dm_str_free(&names);
+}
+
+/* The sweep file's `drivers:` list, checked ("FILE:LINE: unknown driver"). */
+static int drivers__from_sweep(const sweep *s, char ***out, size_t *n)
+{
+    for (size_t i = 0; i < s->n_drivers; i++) {
+        if (!drivers_find(s->drivers[i])) {
+            dm_str e = {0};
+            drivers__unknown(s->drivers[i], &e);
+            int rc = cli_usage_error("%s:%d: drivers: %s", s->path, s->driver_lines[i], dm_str_get(&e));
+            dm_str_free(&e);
+            return rc;
+        }
+        DM_VEC_PUSH(*out, *n, dm_xstrdup(s->drivers[i]));
+    }
+    return 0;
+}
+
+/* The drivers asked for, checked: unknown names are exit 2 with the list.
+ * list NULL: the sweep's `drivers:`, else every installed driver. */
+static int drivers__names(const char *list, const sweep *s, char ***out, size_t *n)
+{
+    *out = NULL;
+    *n = 0;
+    if (!list && s && s->n_drivers)
+        return drivers__from_sweep(s, out, n);
+    if (!list) {
+        for (const driver_info *d = drivers_list(); d->name; d++)
+            if (strcmp(d->name, "default") != 0)
+                DM_VEC_PUSH(*out, *n, dm_xstrdup(d->name));
+        return 0;
+    }
+    char *copy = dm_xstrdup(list), *save = NULL;
+    int rc = 0;
+    for (char *p = strtok_r(copy, ",", &save); p && rc == 0; p = strtok_r(NULL, ",", &save)) {
+        if (!drivers_find(p)) {
+            dm_str e = {0};
+            drivers__unknown(p, &e);
+            rc = cli_usage_error("drivers: --drivers: %s", dm_str_get(&e));
+            dm_str_free(&e);
+        } else {
+            DM_VEC_PUSH(*out, *n, dm_xstrdup(p));
+        }
+    }
+    free(copy);
+    if (rc == 0 && *n == 0)
+        rc = cli_usage_error("drivers: --drivers '%s' names no driver", list);
+    return rc;
+}
+
+/* Runs the sweep under one driver; 0, or the run's exit status (>0), with
+ * a reason in *why. */
+static int drivers__run(const char *driver, const char *sweep, const char *out,
+                        const drivers_args *a, char **why)
+{
+    const char *argv[12];
+    size_t k = 0;
+    argv[k++] = "dmbench";
+    argv[k++] = "run";
+    if (sweep)
+        argv[k++] = sweep;
+    argv[k++] = "--out";
+    argv[k++] = out;
+    if (a->seed) {
+        argv[k++] = "--seed";
+        argv[k++] = a->seed;
+    }
+    if (a->quiet)
+        argv[k++] = "--quiet";
+    argv[k] = NULL;
+    fflush(NULL);
+    pid_t pid = fork();
+    if (pid == 0) {
+        setenv("DMBENCH_DRIVER", driver, 1);
+        setenv(CLI_DRIVERS_CHILD, "1", 1);   /* the run measures, it does not fan out again */
+        execv("/proc/self/exe", (char *const *)argv);
+        fprintf(stderr, "dmbench: error: drivers: cannot execute dmbench: %s\n", strerror(errno));
+        _exit(DM_EXIT_ENV);
+    }
+    int status = 0;
+    while (pid > 0 && waitpid(pid, &status, 0) < 0 && errno == EINTR)
+        ;
+    if (pid < 0) {
+        *why = dm_xasprintf("cannot start its run: %s", strerror(errno));
+        return DM_EXIT_ENV;
+    }
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 0)
+        return 0;
+    *why = WIFEXITED(status)
+               ? dm_xasprintf("its run exited %d (its message is above)", WEXITSTATUS(status))
+               : dm_xasprintf("its run was killed by signal %d", WTERMSIG(status));
+    return WIFEXITED(status) ? WEXITSTATUS(status) : DM_EXIT_ENV;
+}
+
+/* The sweep of path (NULL: none to read), for its `drivers:` list. */
+static int drivers__sweep(const char *path, sweep *s)
+{
+    memset(s, 0, sizeof *s);
+    dm_str err = {0};
+    int rc = path && sweep_load(path, s, &err) != 0 ? cli_usage_error("%s", dm_str_get(&err)) : 0;
+    dm_str_free(&err);
+    return rc;
+}
+
+int cli_drivers(int argc, char **argv)
+{
+    drivers_args a = {0};
+    int rc = cli_parse(argc, argv, &a, &argc);
+    if (rc >= 0)
+        return rc;
+    if (argc > 1)
+        return cli_usage_error("drivers: expected at most one SWEEP (got %d arguments)", argc);
+    return cli_drivers_main(argc ? argv[0] : NULL, a.drivers, a.out, a.seed, a.quiet);
+}
+
+int cli_drivers_main(const char *sweep_path, const char *list, const char *out, const char *seed,
+                     int quiet)
+{
+    drivers_args a = { .drivers = list, .out = out, .seed = seed, .quiet = quiet };
+    int argc = sweep_path ? 1 : 0;
+    const char *argv[1] = { sweep_path };
+    const char *applied = getenv("DMBENCH_DRIVER");
+    if (applied && *applied && strcmp(applied, "default") != 0)
+        return cli_usage_error("drivers: DMBENCH_DRIVER=%s is set: unset it; `dmbench drivers` "
+                               "chooses the driver of each run", applied);
+    sweep sw;
+    int rc = drivers__sweep(sweep_path, &sw);
+    char **names = NULL;
+    size_t n = 0;
+    rc = rc ? rc : drivers__names(a.drivers, &sw, &names, &n);
+    sweep_free(&sw);
+    if (rc != 0)
+        return rc;
+    const char *root = a.out ? a.out : "results/drivers";
+    if (dm_mkdirs(root) != 0) {
+        rc = cli_usage_error("drivers: cannot create '%s'", root);
+        n = 0;
+    }
+    drivers_side *sides = dm_xcalloc(n + 1, sizeof *sides);
+    dm_run_result *runs = dm_xcalloc(n + 1, sizeof *runs);
+    char **whys = dm_xcalloc(n + 1, sizeof *whys);
+    size_t ran = 0, missing = 0, failed = 0;
+    for (size_t i = 0; i < n; i++) {
+        sides[i].driver = names[i];
+        char *why = NULL;
+        const char *miss = drivers_missing(drivers_find(names[i]), &why);
+        if (miss) {
+            whys[i] = dm_xasprintf("left out: %s", miss);
+            free(why);
+            fprintf(stderr, "dmbench: drivers: %s %s\n", names[i], whys[i]);
+            missing++;
+        } else {
+            char *out = dm_xasprintf("%s/%s", root, names[i]);
+            fprintf(stderr, "dmbench: drivers: %s: dmbench run %s --out %s\n", names[i],
+                    argc ? argv[0] : "(the default sweep)", out);
+            if (drivers__run(names[i], argc ? argv[0] : NULL, out, &a, &why) != 0) {
+                whys[i] = dm_xasprintf("failed: %s", why);
+                fprintf(stderr, "dmbench: drivers: %s %s; going on with the next driver\n", names[i],
+                        whys[i]);
+                failed++;
+            } else {
+                dm_str err = {0};
+                if (compare_load_path(out, &runs[i], &err) == 0) {
+                    sides[i].run = &runs[i];
+                    ran++;
+                } else {
+                    whys[i] = dm_xasprintf("failed: %s", dm_str_get(&err));
+                    failed++;
+                }
+                dm_str_free(&err);
+            }
+            free(why);
+            free(out);
+        }
+        sides[i].why = whys[i];
+    }
+    dm_str err = {0};
+    if (rc == 0 && ran == 0 && failed == 0)
+        rc = cli_usage_error("drivers: none of the drivers asked for is installed here "
+                             "(scripts/install-mesa25 installs Mesa 25's llvmpipe and zink)");
+    else if (rc == 0 && drivers_report_write(sides, n, root, &err) != 0)
+        rc = cli_error(DM_ERR_IO, "drivers: %s", dm_str_get(&err));
+    else if (rc == 0) {
+        printf("%zu driver%s ran, %zu left out, %zu failed; side by side: %s/drivers.md\n", ran,
+               ran == 1 ? "" : "s", missing, failed, root);
+        rc = failed ? DM_EXIT_ENV : 0;
+    }
+    dm_str_free(&err);
+    for (size_t i = 0; i < n; i++) {
+        dm_run_free(&runs[i]);
+        free(whys[i]);
+        free(names[i]);
+    }
+    free(runs);
+    free(whys);
+    free(names);
+    free(sides);
+    return rc;
+}

@@ -1,0 +1,361 @@
+/* drivers_report.c — one sweep on several drivers, side by side
+ * (drivers_report.h). */
+#include "reports/drivers_report.h"
+#include "reports/pareto.h"
+#include "reports/report.h"
+#include "core/dm_error.h"
+
+#include <cjson/cJSON.h>
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+double drivers_kendall_tau(const double *x, const double *y, size_t n)
+{
+    double conc = 0, disc = 0, tx = 0, ty = 0;   /* tx, ty: pairs tied in x only / y only */
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!isfinite(x[i]) || !isfinite(y[i]))
+            continue;
+        m++;
+        for (size_t j = i + 1; j < n; j++) {
+            if (!isfinite(x[j]) || !isfinite(y[j]))
+                continue;
+            double dx = x[i] - x[j], dy = y[i] - y[j];
+            if (dx == 0 && dy == 0)
+                continue;
+            if (dx == 0)
+                tx++;
+            else if (dy == 0)
+                ty++;
+            else if ((dx > 0) == (dy > 0))
+                conc++;
+            else
+                disc++;
+        }
+    }
+    double den = sqrt((conc + disc + tx) * (conc + disc + ty));
+    return m < 2 || den == 0 ? NAN : (conc - disc) / den;
+}
+
+/* ---- matching the runs ------------------------------------------------------ */
+
+/* The configurations of the first run that ran, and each side's index of
+ * the same key (-1 when absent or failed). */
+typedef struct drivers__table {
+    const dm_run_result *ref;    /* the first side that ran */
+    size_t n_rows;
+    long *idx;                   /* n_rows x n_sides */
+} drivers__table;
+
+static void drivers__match(const drivers_side *s, size_t ns, drivers__table *t)
+{
+    memset(t, 0, sizeof *t);
+    for (size_t k = 0; k < ns && !t->ref; k++)
+        t->ref = s[k].run;
+    if (!t->ref)
+        return;
+    t->n_rows = t->ref->n_configs;
+    t->idx = dm_xcalloc(t->n_rows * ns + 1, sizeof *t->idx);
+    for (size_t i = 0; i < t->n_rows; i++)
+        for (size_t k = 0; k < ns; k++) {
+            long found = -1;
+            for (size_t j = 0; s[k].run && j < s[k].run->n_configs && found < 0; j++)
+                if (strcmp(s[k].run->configs[j].key, t->ref->configs[i].key) == 0 &&
+                    s[k].run->configs[j].ok)
+                    found = (long)j;
+            t->idx[i * ns + k] = found;
+        }
+}
+
+static const dm_config_result *drivers__cfg(const drivers_side *s, size_t ns,
+                                            const drivers__table *t, size_t row, size_t k)
+{
+    long j = t->idx[row * ns + k];
+    return j < 0 ? NULL : &s[k].run->configs[j];
+}
+
+static double drivers__median(const dm_config_result *c, const char *counter)
+{
+    const dm_counter_result *r = c ? dm_config_counter(c, counter) : NULL;
+    return r && r->available ? (r->has_samples ? r->median : r->value) : NAN;
+}
+
+static double drivers__ssim(const dm_config_result *c)
+{
+    return c && c->quality.present ? c->quality.ssim : NAN;
+}
+
+/* "cube@160x90 technique=pom steps=8": the scene, the technique, and the
+ * parameters whose value differs between configurations that have them. */
+static char *drivers__label(const dm_run_result *ref, const dm_config_result *c)
+{
+    dm_str s = {0};
+    dm_str_printf(&s, "%s", c->scene ? c->scene : "");
+    for (size_t p = 0; p < c->n_params; p++) {
+        const char *k = c->params[p].key, *v = c->params[p].value;
+        int varies = strcmp(k, "technique") == 0;
+        for (size_t j = 0; j < ref->n_configs && !varies; j++) {
+            const char *o = dm_kv_get(ref->configs[j].params, ref->configs[j].n_params, k);
+            varies = o && strcmp(o, v) != 0;
+        }
+        if (varies && strcmp(k, "resolution") != 0 && strcmp(k, "mesh") != 0)
+            dm_str_printf(&s, " %s=%s", k, v);
+    }
+    return dm_str_take(&s);
+}
+
+/* ---- agreement -------------------------------------------------------------- */
+
+/* Kendall's tau of sides a and b over the rows both ran, of WallTime
+ * (quality == 0) or of SSIM (quality == 1); *pairs gets the rows used. */
+static double drivers__tau(const drivers_side *s, size_t ns, const drivers__table *t, size_t a,
+                           size_t b, int quality, size_t *pairs)
+{
+    double *x = dm_xcalloc(t->n_rows + 1, sizeof *x), *y = dm_xcalloc(t->n_rows + 1, sizeof *y);
+    size_t m = 0;
+    for (size_t i = 0; i < t->n_rows; i++) {
+        const dm_config_result *ca = drivers__cfg(s, ns, t, i, a), *cb = drivers__cfg(s, ns, t, i, b);
+        if (!ca || !cb)
+            continue;
+        x[m] = quality ? drivers__ssim(ca) : drivers__median(ca, "WallTime");
+        y[m] = quality ? drivers__ssim(cb) : drivers__median(cb, "WallTime");
+        m += isfinite(x[m]) && isfinite(y[m]);
+    }
+    double tau = drivers_kendall_tau(x, y, m);
+    free(x);
+    free(y);
+    *pairs = m;
+    return tau;
+}
+
+/* The front of one scene on side k: its rows' indices into out (sorted by
+ * time); returns how many. */
+static size_t drivers__front(const drivers_side *s, size_t ns, const drivers__table *t, size_t k,
+                             const char *scene, size_t *out)
+{
+    double *x = dm_xcalloc(t->n_rows + 1, sizeof *x), *y = dm_xcalloc(t->n_rows + 1, sizeof *y);
+    size_t *row = dm_xcalloc(t->n_rows + 1, sizeof *row), *f = dm_xcalloc(t->n_rows + 1, sizeof *f);
+    size_t m = 0;
+    for (size_t i = 0; i < t->n_rows; i++) {
+        const dm_config_result *c = drivers__cfg(s, ns, t, i, k);
+        if (!c || !c->scene || strcmp(c->scene, scene) != 0)
+            continue;
+        x[m] = drivers__median(c, "WallTime");
+        y[m] = 1 - drivers__ssim(c);
+        row[m++] = i;
+    }
+    size_t nf = pareto_front(x, y, m, f);
+    for (size_t i = 0; i < nf; i++)
+        out[i] = row[f[i]];
+    free(x);
+    free(y);
+    free(row);
+    free(f);
+    return nf;
+}
+
+/* The distinct scenes of the reference run, in order. */
+static size_t drivers__scenes(const drivers__table *t, const char **out)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < t->n_rows; i++) {
+        const char *sc = t->ref->configs[i].scene;
+        int seen = !sc;
+        for (size_t j = 0; j < n && !seen; j++)
+            seen = strcmp(out[j], sc) == 0;
+        if (!seen)
+            out[n++] = sc;
+    }
+    return n;
+}
+
+/* ---- writing ---------------------------------------------------------------- */
+
+static void drivers__fmt(dm_str *s, double v, const char *fmt)
+{
+    if (isfinite(v))
+        dm_str_printf(s, fmt, v);
+    else
+        dm_str_cat(s, "—");
+}
+
+static void drivers__md_runs(const drivers_side *s, size_t ns, dm_str *md, cJSON *jd)
+{
+    dm_str_cat(md, "| driver | run | renderer | GL | fingerprint | configurations ok |\n"
+                   "|---|---|---|---|---|---|\n");
+    for (size_t k = 0; k < ns; k++) {
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "driver", s[k].driver);
+        const dm_run_result *r = s[k].run;
+        if (!r) {
+            dm_str_printf(md, "| %s | — | %s | | | |\n", s[k].driver, s[k].why ? s[k].why : "did not run");
+            cJSON_AddStringToObject(o, "why", s[k].why ? s[k].why : "did not run");
+        } else {
+            size_t ok = 0;
+            for (size_t i = 0; i < r->n_configs; i++)
+                ok += (size_t)r->configs[i].ok;
+            const char *ren = dm_kv_get(r->environment, r->n_environment, "renderer");
+            const char *gl = dm_kv_get(r->environment, r->n_environment, "gl_version");
+            const char *fp = dm_kv_get(r->environment, r->n_environment, "fingerprint");
+            dm_str_printf(md, "| %s | %s | %s | %s | %s | %zu of %zu |\n", s[k].driver, r->id,
+                          ren ? ren : "?", gl ? gl : "?", fp ? fp : "?", ok, r->n_configs);
+            cJSON_AddStringToObject(o, "run", r->id);
+            cJSON_AddStringToObject(o, "renderer", ren ? ren : "");
+            cJSON_AddStringToObject(o, "fingerprint", fp ? fp : "");
+            cJSON_AddNumberToObject(o, "configs_ok", (double)ok);
+        }
+        cJSON_AddItemToArray(jd, o);
+    }
+}
+
+static void drivers__md_rows(const drivers_side *s, size_t ns, const drivers__table *t, dm_str *md,
+                             cJSON *jrows)
+{
+    dm_str_cat(md, "\n## Per configuration\n\nMedian WallTime per frame (ms), Instructions per "
+                   "frame (millions) and SSIM against the reference, per driver.\n\n| configuration |");
+    for (size_t k = 0; k < ns; k++)
+        if (s[k].run)
+            dm_str_printf(md, " %s ms | %s Minstr | %s SSIM |", s[k].driver, s[k].driver, s[k].driver);
+    dm_str_cat(md, "\n|---|");
+    for (size_t k = 0; k < ns; k++)
+        if (s[k].run)
+            dm_str_cat(md, "---|---|---|");
+    dm_str_cat(md, "\n");
+    for (size_t i = 0; i < t->n_rows; i++) {
+        char *label = drivers__label(t->ref, &t->ref->configs[i]);
+        dm_str_printf(md, "| %s |", label);
+        cJSON *o = cJSON_CreateObject(), *per = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "key", t->ref->configs[i].key);
+        cJSON_AddStringToObject(o, "label", label);
+        for (size_t k = 0; k < ns; k++) {
+            if (!s[k].run)
+                continue;
+            const dm_config_result *c = drivers__cfg(s, ns, t, i, k);
+            double ms = drivers__median(c, "WallTime") / 1e6, mi = drivers__median(c, "Instructions") / 1e6;
+            double q = drivers__ssim(c);
+            dm_str_cat(md, " ");
+            drivers__fmt(md, ms, "%.3g");
+            dm_str_cat(md, " | ");
+            drivers__fmt(md, mi, "%.4g");
+            dm_str_cat(md, " | ");
+            drivers__fmt(md, q, "%.4f");
+            dm_str_cat(md, " |");
+            cJSON *d = cJSON_CreateObject();
+            cJSON_AddNumberToObject(d, "WallTime_ms", ms);
+            cJSON_AddNumberToObject(d, "Instructions", mi * 1e6);
+            cJSON_AddNumberToObject(d, "SSIM", q);
+            cJSON_AddItemToObject(per, s[k].driver, d);
+        }
+        dm_str_cat(md, "\n");
+        cJSON_AddItemToObject(o, "drivers", per);
+        cJSON_AddItemToArray(jrows, o);
+        free(label);
+    }
+}
+
+static void drivers__md_agreement(const drivers_side *s, size_t ns, const drivers__table *t,
+                                  dm_str *md, cJSON *jagree)
+{
+    dm_str_cat(md, "\n## Do the drivers rank the configurations alike?\n\nKendall's tau-b over "
+                   "the configurations both drivers ran: 1 = the same order, 0 = unrelated, "
+                   "-1 = reversed.\n\n| drivers | configurations | tau of WallTime | tau of SSIM |\n"
+                   "|---|---|---|---|\n");
+    for (size_t a = 0; a < ns; a++)
+        for (size_t b = a + 1; b < ns; b++) {
+            if (!s[a].run || !s[b].run)
+                continue;
+            size_t pt = 0, pq = 0;
+            double tt = drivers__tau(s, ns, t, a, b, 0, &pt), tq = drivers__tau(s, ns, t, a, b, 1, &pq);
+            dm_str_printf(md, "| %s · %s | %zu | ", s[a].driver, s[b].driver, pt);
+            drivers__fmt(md, tt, "%.3f");
+            dm_str_cat(md, " | ");
+            drivers__fmt(md, tq, "%.3f");
+            dm_str_cat(md, " |\n");
+            cJSON *o = cJSON_CreateObject();
+            cJSON_AddStringToObject(o, "a", s[a].driver);
+            cJSON_AddStringToObject(o, "b", s[b].driver);
+            cJSON_AddNumberToObject(o, "configs", (double)pt);
+            cJSON_AddNumberToObject(o, "tau_walltime", tt);
+            cJSON_AddNumberToObject(o, "tau_ssim", tq);
+            cJSON_AddItemToArray(jagree, o);
+        }
+}
+
+static void drivers__md_fronts(const drivers_side *s, size_t ns, const drivers__table *t,
+                               dm_str *md, cJSON *jfronts)
+{
+    dm_str_cat(md, "\n## Pareto fronts per scene (WallTime against 1 − SSIM)\n\n");
+    const char **scenes = dm_xcalloc(t->n_rows + 1, sizeof *scenes);
+    size_t nsc = drivers__scenes(t, scenes);
+    size_t *f = dm_xcalloc(t->n_rows + 1, sizeof *f), *f0 = dm_xcalloc(t->n_rows + 1, sizeof *f0);
+    for (size_t sc = 0; sc < nsc; sc++) {
+        dm_str_printf(md, "**%s**\n\n", scenes[sc]);
+        cJSON *js = cJSON_CreateObject();
+        size_t n0 = SIZE_MAX;
+        int same = 1;
+        for (size_t k = 0; k < ns; k++) {
+            if (!s[k].run)
+                continue;
+            size_t nf = drivers__front(s, ns, t, k, scenes[sc], f);
+            dm_str_printf(md, "- %s:", s[k].driver);
+            cJSON *arr = cJSON_CreateArray();
+            for (size_t i = 0; i < nf; i++) {
+                char *label = drivers__label(t->ref, &t->ref->configs[f[i]]);
+                const char *lab = label + strlen(scenes[sc]);
+                dm_str_printf(md, "%s%s", i ? " →" : "", lab);
+                cJSON_AddItemToArray(arr, cJSON_CreateString(t->ref->configs[f[i]].key));
+                free(label);
+            }
+            dm_str_cat(md, "\n");
+            cJSON_AddItemToObject(js, s[k].driver, arr);
+            if (n0 == SIZE_MAX) {
+                n0 = nf;
+                memcpy(f0, f, nf * sizeof *f);
+            } else {
+                same = same && nf == n0 && memcmp(f0, f, nf * sizeof *f) == 0;
+            }
+        }
+        dm_str_printf(md, "\n%s\n\n", same ? "The fronts agree." : "The fronts differ.");
+        cJSON_AddBoolToObject(js, "agree", same);
+        cJSON_AddItemToObject(jfronts, scenes[sc], js);
+    }
+    free(f);
+    free(f0);
+    free(scenes);
+}
+
+int drivers_report_write(const drivers_side *sides, size_t n, const char *dir, dm_str *err)
+{
+    drivers__table t;
+    drivers__match(sides, n, &t);
+    dm_str md = {0};
+    cJSON *root = cJSON_CreateObject(), *jd = cJSON_AddArrayToObject(root, "drivers");
+    dm_str_cat(&md, "# One sweep on several drivers\n\nEach driver ran the sweep in its own run, "
+                    "with its own environment and fingerprint: `dmbench compare` keeps them "
+                    "apart as different machines. Configurations are matched by key.\n\n");
+    drivers__md_runs(sides, n, &md, jd);
+    if (t.ref) {
+        drivers__md_rows(sides, n, &t, &md, cJSON_AddArrayToObject(root, "configs"));
+        drivers__md_agreement(sides, n, &t, &md, cJSON_AddArrayToObject(root, "agreement"));
+        drivers__md_fronts(sides, n, &t, &md, cJSON_AddObjectToObject(root, "fronts"));
+    } else {
+        dm_str_cat(&md, "\nNo driver ran the sweep.\n");
+    }
+    report_json_exact_numbers(root);
+    char *json = cJSON_Print(root);
+    char *pm = dm_xasprintf("%s/drivers.md", dir), *pj = dm_xasprintf("%s/drivers.json", dir);
+    int rc = 0;
+    if (dm_write_file(pm, md.buf, md.len) != 0)
+        rc = DM_ERR_IO, dm_str_printf(err, "%s: cannot write", pm);
+    else if (dm_write_file(pj, json, strlen(json)) != 0)
+        rc = DM_ERR_IO, dm_str_printf(err, "%s: cannot write", pj);
+    free(pm);
+    free(pj);
+    free(json);
+    cJSON_Delete(root);
+    dm_str_free(&md);
+    free(t.idx);
+    return rc;
+}
