@@ -141,6 +141,15 @@ int counters_derive(const char *name, counters_value_fn value, void *user, doubl
 /* 1 when every input of derived counter `name` satisfies has(input, user). */
 int counters_derive_inputs(const char *name, int (*has)(const char *input, void *user), void *user);
 
+/* ---- stage costs ------------------------------------------------------------
+ * The bottleneck verdict of a configuration from its stage counters
+ * (GeometryInstructions, RasterInstructions, FragmentInstructions, or the
+ * matching times): the three shares of their sum in decreasing order,
+ * rounded to whole percent, e.g. "fragment 87 %, geometry 9 %, raster 4 %",
+ * appended to out.  DM_ERR_UNAVAILABLE (out unchanged) when a part is
+ * negative or not finite or the sum is not positive. */
+int counters_stage_verdict(double geometry, double raster, double fragment, dm_str *out);
+
 /* ---- timer calibration (docs/counters.md) -----------------------------------------
  * Runs a heavy draw of its own (fragment-bound, into an internal FBO) and
  * compares GL_TIME_ELAPSED with glFinish-fenced wall time.  coverage =

@@ -436,9 +436,43 @@ static void measure__derived(const mconf *c, dm_config_result *out)
     }
 }
 
+/* The stage counters of a counted configuration (docs/counters.md, "Stage
+ * costs"), per sample: geometry = the discard window G; raster = the
+ * minimal-shader window R minus the same with discard M (the minimal
+ * program's own geometry, so a change of the geometry's work by the
+ * minimal shader does not enter raster); fragment = full − G − raster;
+ * residual = G − M (that change); unavailable with the reason when
+ * the windows were not counted. */
+static void measure__stage_counters(mconf *c, const callgrind_count *k, uint64_t seed, dm_config_result *out)
+{
+    static const char *const names[] = {"GeometryInstructions", "RasterInstructions", "FragmentInstructions",
+                                        "StageResidual"};
+    for (int st = 0; st < 4; st++) {
+        dm_counter_result *r = measure__push(out, names[st]);
+        if (!k || !k->staged) {
+            r->available = 0;
+            r->unavailable_reason = dm_xstrdup(k && k->stage_reason ? k->stage_reason
+                                               : k && k->reason ? k->reason : "not counted");
+            continue;
+        }
+        double v[CALLGRIND_SAMPLES];
+        for (int s = 0; s < CALLGRIND_SAMPLES; s++) {
+            double g = k->window[CALLGRIND_GEOMETRY][s], m = k->window[CALLGRIND_RESIDUAL][s];
+            double raster = k->window[CALLGRIND_RASTER][s] - m;   /* the minimal program's own geometry out */
+            double parts[4] = {g, raster, k->samples[s] - g - raster, g - m};
+            v[s] = parts[st];
+        }
+        measure__counter_timed(r, v, CALLGRIND_SAMPLES, seed);
+        if (r->value < 0 && st < 3)
+            dm_str_printf(&c->log, "%s: negative (%.0f per frame): the isolation passes did not "
+                          "nest here, see docs/counters.md\n", names[st], r->value);
+    }
+}
+
 /* Instructions of configuration c from the Instructions pass (its own
  * child under Valgrind): the per-frame count of each sample, or unavailable
- * with the pass's reason.  Samples that disagree are noted in the log. */
+ * with the pass's reason.  Samples that disagree are noted in the log.
+ * With stage counters asked for, also their three counters. */
 static void measure__instructions(mscene *m, mconf *c, dm_config_result *out)
 {
     const callgrind_count *k = NULL;
@@ -451,11 +485,13 @@ static void measure__instructions(mscene *m, mconf *c, dm_config_result *out)
     if (!k || !k->counted) {
         r->available = 0;
         r->unavailable_reason = dm_xstrdup(k && k->reason ? k->reason : "not counted");
-        return;
+    } else {
+        measure__counter_timed(r, k->samples, CALLGRIND_SAMPLES, m->job->seed);
+        if (r->max - r->min > CALLGRIND_AGREE * r->min)
+            dm_str_printf(&c->log, "Instructions: samples disagree (%.0f .. %.0f per frame)\n", r->min, r->max);
     }
-    measure__counter_timed(r, k->samples, CALLGRIND_SAMPLES, m->job->seed);
-    if (r->max - r->min > CALLGRIND_AGREE * r->min)
-        dm_str_printf(&c->log, "Instructions: samples disagree (%.0f .. %.0f per frame)\n", r->min, r->max);
+    if (callgrind_wants_stages(&m->job->sweep->measure))
+        measure__stage_counters(c, k, m->job->seed, out);
 }
 
 /* Fills the counters of a finished configuration into out. */
@@ -858,24 +894,28 @@ int measure_pilot(const measure_job *job, dm_str *err)
 /* The counted window of one configuration: collection switched on around
  * `frames` frames and the glFinish that ends them (so the rasteriser's work,
  * on the calling thread with LP_NUM_THREADS=0, is inside), then one dump
- * named "KEY.S" per sample.  Setup, JIT compilation and warm-up happen
- * before, with collection off. */
-/* Returns the nanoseconds of the warm-up (incl. the discarded first sample)
- * in *warm_ns and of the kept samples in *count_ns (bench/instructions_split.sh). */
-static void measure__counted_samples(mscene *m, mconf *c, int frames, int samples, int64_t *warm_ns,
-                                     int64_t *count_ns)
+ * per sample named "KEY.S" (window CALLGRIND_FULL), "KEY.g.S" (the same
+ * frames with GL_RASTERIZER_DISCARD), "KEY.r.S" (c->item is then the
+ * minimal-fragment-shader item) or "KEY.m.S" (that item with discard).  Setup, JIT compilation and `warm` warm-up
+ * frames happen before, with collection off.  Returns the nanoseconds of
+ * the warm-up (incl. the discarded first sample) in *warm_ns and of the
+ * kept samples in *count_ns (bench/instructions_split.sh). */
+static void measure__counted_samples(mscene *m, mconf *c, callgrind_window w, int warm, int frames,
+                                     int samples, int64_t *warm_ns, int64_t *count_ns)
 {
+    static const char *const tag[CALLGRIND_WINDOWS] = {"", ".g", ".r", ".m"};
     int64_t t0 = dm_now_ns(), t1 = t0;
-    int warm = m->job->sweep->measure.warmup_frames;
     measure__frames(m, c, warm > 0 ? warm : 1);
     measure__vt_converge(m->r, c->item, c->pc->width, c->pc->height);   /* no page generation counted */
+    if (w == CALLGRIND_GEOMETRY || w == CALLGRIND_RESIDUAL)
+        glEnable(GL_RASTERIZER_DISCARD);
     /* The first sample counted after the warm-up differs from every later
      * one (by up to 7e-4 of a 64x64 frame), the later ones are equal: a
      * first sample is counted and dumped as KEY.-1, which the parent
      * ignores (run/callgrind.c), before those that are kept. */
     for (int s = -1; s < samples; s++) {
-        char name[32];
-        snprintf(name, sizeof name, "%s.%d", c->pc->key, s);
+        char name[40];
+        snprintf(name, sizeof name, "%s%s.%d", c->pc->key, tag[w], s);
         glFinish();
         CALLGRIND_TOGGLE_COLLECT;
         measure__frames(m, c, frames);
@@ -885,14 +925,65 @@ static void measure__counted_samples(mscene *m, mconf *c, int frames, int sample
         if (s < 0)
             t1 = dm_now_ns();
     }
+    glDisable(GL_RASTERIZER_DISCARD);
     *warm_ns = t1 - t0;
     *count_ns = dm_now_ns() - t1;
+}
+
+/* Why the stages of item `info` cannot be isolated, or NULL (docs/counters.md,
+ * "Stage costs": what isolation changes). */
+static const char *measure__isolation_problem(const tech_item_info *info)
+{
+    if (!info->has_fs)
+        return "no fragment stage: nothing to isolate";
+    if (info->fs_discards)
+        return "the fragment shader can discard: the minimal shader would keep the fragments it drops, "
+               "so setup and raster would include their depth and colour writes";
+    return NULL;
+}
+
+/* The stage windows of a prepared, counted configuration (geometry with
+ * rasterizer discard, raster with the minimal fragment shader, and the
+ * minimal shader with discard for the residual), reported
+ * as "S KEY ok" or "S KEY unavailable REASON". */
+static void measure__stage_windows(mscene *m, mconf *c, int frames, int samples)
+{
+    tech_item_info info = {0};
+    tech_item_get_info(m->r, c->item, &info);
+    const char *why = measure__isolation_problem(&info);
+    if (why) {
+        measure__say(m->job, "S %s unavailable %s", c->pc->key, why);
+        return;
+    }
+    int64_t warm_ns = 0, count_ns = 0;
+    measure__counted_samples(m, c, CALLGRIND_GEOMETRY, 1, frames, samples, &warm_ns, &count_ns);
+    tech_item full = c->item, minimal = {0};
+    dm_str log = {0};
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_MINIMAL_FS);
+    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &minimal, &log);
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
+    if (gl_context_take_messages(m->gl, &log) > 0 || rc != 0) {
+        for (char *nl = strchr(log.buf ? log.buf : "", '\n'); nl; nl = strchr(nl, '\n'))
+            *nl = ' ';   /* one protocol line */
+        measure__say(m->job, "S %s unavailable the minimal fragment shader cannot be built: %s", c->pc->key,
+                     log.len ? dm_str_get(&log) : dm_strerror(rc));
+        dm_str_free(&log);
+        return;
+    }
+    dm_str_free(&log);
+    c->item = minimal;
+    measure__counted_samples(m, c, CALLGRIND_RASTER, 1, frames, samples, &warm_ns, &count_ns);
+    measure__counted_samples(m, c, CALLGRIND_RESIDUAL, 1, frames, samples, &warm_ns, &count_ns);
+    c->item = full;
+    tech_release(m->r, minimal);
+    measure__say(m->job, "S %s ok", c->pc->key);
 }
 
 int measure_instructions(const measure_job *job, int frames, int samples, dm_str *err)
 {
     mscene m = { .job = job };
     int64_t t0 = dm_now_ns();
+    int stages = callgrind_wants_stages(&job->sweep->measure);
     int rc = gl_context_create(NULL, &m.gl, err);
     rc = rc ? rc : tech_renderer_create(&m.r);
     /* where the child's time goes, in its log (bench/instructions_split.sh) */
@@ -912,9 +1003,16 @@ int measure_instructions(const measure_job *job, int frames, int samples, dm_str
                          prc == 0 ? "GL error while preparing" : dm_strerror(prc));
             continue;
         }
-        measure__counted_samples(&m, c, frames, samples, &warm_ns, &count_ns);
+        measure__counted_samples(&m, c, CALLGRIND_FULL, job->sweep->measure.warmup_frames, frames, samples,
+                                 &warm_ns, &count_ns);
         fprintf(stderr, "instructions split: %s prepare %.1f ms, warm-up %.1f ms, counted %.1f ms\n",
                 c->pc->key, (double)prep_ns / 1e6, (double)warm_ns / 1e6, (double)count_ns / 1e6);
+        if (stages) {
+            int64_t ts = dm_now_ns();
+            measure__stage_windows(&m, c, frames, samples);
+            fprintf(stderr, "instructions split: %s stage windows %.1f ms\n", c->pc->key,
+                    (double)(dm_now_ns() - ts) / 1e6);
+        }
         int bad = gl_context_check_errors(&c->log) > 0;
         measure__say(job, "I %s %s", c->pc->key, bad ? "failed GL error in the counted frames" : "ok");
     }

@@ -71,3 +71,12 @@ add_test(NAME test_instructions_families
           $<TARGET_FILE:dmbench_slowvertexshader> $<TARGET_FILE:dmbench_slowtessshader>)
 set_tests_properties(test_instructions_families PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
+
+# Stage costs (docs/counters.md, "Stage costs"): every technique's
+# geometry + raster + fragment instructions add up to Instructions with a
+# residual under 1 %, and on the full-screen quad fragment instructions are
+# linear in the covered pixels (tests/stages/stages.sh).
+add_test(NAME test_stage_instructions
+  COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/stages.sh)
+set_tests_properties(test_stage_instructions PROPERTIES TIMEOUT 1800
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
