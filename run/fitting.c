@@ -365,10 +365,6 @@ static int fitting__variables(const char *const *vars, size_t nv, const dm_kv *p
                               size_t n_runs, double *x, dm_str *why)
 {
     for (size_t v = 0; v < nv; v++) {
-        if (!axes_find(vars[v]) && !counters_find(vars[v])) {
-            x[v] = 0.0;   /* the parameter of a term the fit dropped (a constant column): the term is 0 */
-            continue;
-        }
         x[v] = fitting__param_value(params, n_params, vars[v]);
         if (!isfinite(x[v]))
             x[v] = fitting__stored_counter(runs, n_runs, key, vars[v]);
@@ -410,6 +406,101 @@ int fitting_predict(const dm_fit_result *fit, const dm_kv *params, size_t n_para
     }
     free(x);
     free(p);
+    free(vars);
+    formula_free(f);
+    formula_free(names);
+    return rc;
+}
+
+/* The product of the variables (axes, counters) of term [t, t+len) for a
+ * configuration: its axis values, else counters stored for key in runs;
+ * NaN when one has no value.  *n_vars counts them. */
+static double fitting__term_value(const char *t, size_t len, const dm_kv *params, size_t n_params,
+                                  const char *key, const dm_run_result *runs, size_t n_runs, int *n_vars)
+{
+    double prod = 1.0;
+    *n_vars = 0;
+    for (size_t i = 0; i < len;) {
+        size_t j = i;
+        while (j < len && (t[j] == '_' || t[j] == '.' || isalnum((unsigned char)t[j])))
+            j++;
+        if (j == i) {
+            i++;
+            continue;
+        }
+        char id[64];
+        snprintf(id, sizeof id, "%.*s", (int)(j - i), t + i);
+        if (axes_find(id) || counters_find(id)) {
+            double v = fitting__param_value(params, n_params, id);
+            prod *= isfinite(v) ? v : fitting__stored_counter(runs, n_runs, key, id);
+            (*n_vars)++;
+        }
+        i = j;
+    }
+    return prod;
+}
+
+/* The top-level term of formula text f that names identifier id, as
+ * [*t, *t + *len); 0 when none does. */
+static int fitting__term_of(const char *f, const char *id, const char **t, size_t *len)
+{
+    size_t il = strlen(id);
+    for (const char *s = f; *s;) {
+        const char *e = s;
+        for (int depth = 0; *e && !(depth == 0 && (*e == '+' || *e == ';')); e++)
+            depth += (*e == '(') - (*e == ')');
+        for (const char *p = s; p + il <= e; p++)
+            if (strncmp(p, id, il) == 0 && (p == s || !(isalnum((unsigned char)p[-1]) || p[-1] == '_')) &&
+                !(isalnum((unsigned char)p[il]) || p[il] == '_')) {
+                while (*s == ' ')
+                    s++;
+                while (e > s && e[-1] == ' ')
+                    e--;
+                *t = s;
+                *len = (size_t)(e - s);
+                return 1;
+            }
+        if (*e != '+')
+            break;
+        s = e + 1;
+    }
+    return 0;
+}
+
+int fitting_predict_dropped(const dm_fit_result *fit, const dm_run_result *train, const dm_kv *params,
+                            size_t n_params, const char *key, const dm_run_result *runs, size_t n_runs,
+                            double *value, dm_str *why)
+{
+    formula *f = NULL, *names = NULL;
+    const char **vars = NULL;
+    size_t nv = 0;
+    *value = NAN;
+    int rc = fit->formula ? fitting__parse_fit(fit, &f, &names, &vars, &nv, why) : DM_ERR_PARSE;
+    dm_fit_result ext = *fit;   /* shallow, with the dropped parameters added as 0 */
+    ext.params = dm_xcalloc(fit->n_params + nv + 1, sizeof *ext.params);
+    memcpy(ext.params, fit->params, fit->n_params * sizeof *ext.params);
+    for (size_t v = 0; rc == 0 && v < nv; v++) {
+        const char *t = NULL;
+        size_t len = 0;
+        int nvars = 0;
+        if (axes_find(vars[v]) || counters_find(vars[v]) || !fitting__term_of(fit->formula, vars[v], &t, &len))
+            continue;
+        double here = fitting__term_value(t, len, params, n_params, key, runs, n_runs, &nvars);
+        for (size_t i = 0; rc == 0 && i < train->n_configs; i++) {
+            const dm_config_result *c = &train->configs[i];
+            if (!c->ok || !fitting__in_group(fit, c->params, c->n_params))
+                continue;
+            double was = fitting__term_value(t, len, c->params, c->n_params, c->key, train, 1, &nvars);
+            if (!(was == here || (isnan(was) && isnan(here)) || fabs(was - here) <= 1e-9 * fabs(was))) {
+                dm_str_printf(why, "the fitted runs never varied '%.*s' in this group (%g), this configuration "
+                              "has %g: they cannot tell its cost", (int)len, t, was, here);
+                rc = DM_ERR_NOTFOUND;
+            }
+        }
+        ext.params[ext.n_params++] = (dm_fit_param){ (char *)vars[v], 0.0, NAN };
+    }
+    rc = rc ? rc : fitting_predict(&ext, params, n_params, key, runs, n_runs, value, why);
+    free(ext.params);
     free(vars);
     formula_free(f);
     formula_free(names);

@@ -80,3 +80,10 @@ add_test(NAME test_stage_instructions
   COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/stages.sh)
 set_tests_properties(test_stage_instructions PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
+
+# dmbench predict: a held-out resolution and step count within 5 % of the
+# measured Instructions, a variant never measured listed, another machine
+# and a missing counter refused (tests/stages/predict.sh).
+add_test(NAME test_predict COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/predict.sh)
+set_tests_properties(test_predict PROPERTIES TIMEOUT 1800
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")

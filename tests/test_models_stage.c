@@ -146,9 +146,17 @@ static void test_recovers_per_variant(void **state)
     const dm_config_result *m = &run.configs[0];   /* its counts, a new step count */
     double v = NAN;
     const dm_fit_result *pom = strcmp(fits[0].group[0].value, "pom") == 0 ? &fits[0] : &fits[1];
-    assert_int_equal(fitting_predict(pom, kv, nk, m->key, &run, 1, &v, &err), 0);
+    assert_int_equal(fitting_predict_dropped(pom, &run, kv, nk, m->key, &run, 1, &v, &err), 0);
     double fs = dm_config_counter(m, "FSInvocations")->value;
     assert_close(v, POM_C0 + POM_VS * 500.0 + POM_PRIM * 300.0 + POM_PX * fs + POM_STEP * fs * 64);
+    /* a value the variant never varied (TESInvocations was 0) is not guessed */
+    dm_config_result *t = &run.configs[0];
+    for (size_t k = 0; k < t->n_counters; k++)
+        if (strcmp(t->counters[k].name, "TESInvocations") == 0)
+            t->counters[k].value = 100;
+    dm_str_free(&err);
+    assert_int_equal(fitting_predict_dropped(pom, &run, kv, nk, m->key, &run, 1, &v, &err), DM_ERR_NOTFOUND);
+    assert_non_null(strstr(dm_str_get(&err), "never varied 'c_tes*TESInvocations'"));
     dm_kv_free(kv, nk);
     for (size_t i = 0; i < n; i++)
         dm_fit_result_free(&fits[i]);

@@ -10,7 +10,7 @@
 #    (SamplesPassed), the geometry is the same at every size within 0.5 %
 #    of the frame,
 #    and fragment instructions are F0 + f x pixels: the cost per added
-#    pixel is equal between the sizes within 1 % and F0 (per-draw state of
+#    pixel is equal between the sizes within 2 % and F0 (per-draw state of
 #    the fragment stage) is under 5 % of the 64x64 fragment count.
 set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
@@ -65,12 +65,15 @@ for t in ("phong", "texture"):
     if max(g1, g2, g3) - min(g1, g2, g3) > 0.005 * I64[t]:
         fails.append(f"{t}: geometry changed with the resolution: {g1}, {g2}, {g3}")
     # fragment = F0 + f*pixels: the cost per added pixel is the same between
-    # every pair of resolutions (within 1 %), F0 is below 5 % of the smallest frame's
+    # every pair of resolutions within 2 % (llvmpipe skips a branch for a
+    # whole 4x4 block where no pixel takes it, so shading is not exactly
+    # data-independent: 1.0 % measured for phong and texture), F0 is below
+    # 5 % of the smallest frame's
     d12, d23 = (f2 - f1) / (s2 - s1), (f3 - f2) / (s3 - s2)
     f0 = f1 - d12 * s1
     print(f"{t}: fragment per added pixel {d12:.2f} and {d23:.2f}; fixed part {f0:.0f}")
-    if abs(d23 / d12 - 1) > 0.01:
-        fails.append(f"{t}: fragment per pixel {d12:.2f} then {d23:.2f}, not linear within 1 %")
+    if abs(d23 / d12 - 1) > 0.02:
+        fails.append(f"{t}: fragment per pixel {d12:.2f} then {d23:.2f}, not linear within 2 %")
     if abs(f0) > 0.05 * f1:
         fails.append(f"{t}: fragment's fixed part {f0:.0f} is over 5 % of {f1:.0f}")
 for m in fails:
