@@ -109,8 +109,12 @@ void counters_session_destroy(counters_session *s);
 int counters_enable(counters_session *s, const char *name);        /* DM_ERR_UNKNOWN */
 int counters_enable_group(counters_session *s, const char *group);
 int counters_num_passes(counters_session *s, int *passes);
-/* Describes pass p ("timing", "statistics", "geometry"), for plans. */
+/* Describes pass p ("timing", "geometry", "raster", "statistics"), for plans. */
 const char *counters_pass_name(counters_session *s, int pass);
+/* 1 when, in pass p, the caller must draw the same work with a minimal
+ * fragment shader (same geometry, depth state and coverage; the raster
+ * pass of MinimalShadingTime, docs/counters.md "Stage costs"). */
+int counters_pass_minimal_fs(const counters_session *s, int pass);
 /* Appends the pass plan of the selection names[0..n) as text to out
  * ("dmbench list counters --passes A,B"): the pass count, each pass with its
  * counters, then caller-fed, derived (with formulas) and unavailable

@@ -29,6 +29,8 @@
 typedef struct mconf {
     const plan_config *pc;
     tech_item item;
+    tech_item item_min;         /* minimal-fragment-shader item for the raster pass (MinimalShadingTime), 0 = none */
+    char *min_why;              /* why there is none although the sweep asks for MinimalShadingTime */
     tech_item_info info;
     int active;                 /* still sampling */
     int failed;
@@ -156,10 +158,14 @@ static int measure__session(mscene *m, mconf *c, const char **names, size_t n, i
     if (rc == 0)
         rc = counters_num_passes(s, &passes);
     for (int p = 0; rc == 0 && p < passes; p++) {
+        tech_item full = c->item;
+        if (counters_pass_minimal_fs(s, p))
+            c->item = c->item_min;   /* the raster pass: the same draws, minimal fragment shading */
         rc = counters_pass_begin(s, p);
         rc = rc ? rc : counters_sample_begin(s, 0);
-        if (rc == 0)
+        if (rc == 0 && c->item.id)
             measure__frames(m, c, frames);
+        c->item = full;
         rc = rc ? rc : counters_sample_end(s);
         rc = rc ? rc : counters_pass_end(s);
     }
@@ -231,6 +237,45 @@ static void measure__restore(mscene *m, mconf *c)
                       "interrupted process\n", c->n_samples);
 }
 
+/* Why the stages of item `info` cannot be isolated, or NULL (docs/counters.md,
+ * "Stage costs": what isolation changes). */
+static const char *measure__isolation_problem(const tech_item_info *info)
+{
+    if (!info->has_fs)
+        return "no fragment stage: nothing to isolate";
+    if (info->fs_discards)
+        return "the fragment shader can discard: the minimal shader would keep the fragments it drops, "
+               "so setup and raster would include their depth and colour writes";
+    return NULL;
+}
+
+/* The raster pass's item (MinimalShadingTime): the configuration with the
+ * minimal fragment shader, warmed up (its JIT outside the samples); else
+ * c->min_why says why there is none. */
+static void measure__prepare_minimal(mscene *m, mconf *c)
+{
+    int wanted = 0;
+    for (size_t i = 0; i < m->n_timing; i++)
+        wanted |= strcmp(m->timing[i], "MinimalShadingTime") == 0;
+    const char *why = wanted ? measure__isolation_problem(&c->info) : NULL;
+    if (!wanted || why) {
+        c->min_why = why ? dm_xstrdup(why) : NULL;
+        return;
+    }
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_MINIMAL_FS);
+    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item_min, &c->log);
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
+    if (gl_context_take_messages(m->gl, &c->log) > 0 || rc != 0) {
+        c->item_min.id = 0;
+        c->min_why = dm_xstrdup("the minimal fragment shader cannot be built (see log)");
+        return;
+    }
+    tech_item full = c->item;
+    c->item = c->item_min;
+    measure__frames(m, c, m->job->sweep->measure.warmup_frames > 0 ? m->job->sweep->measure.warmup_frames : 1);
+    c->item = full;
+}
+
 /* Prepare + warm-up + statistics pass for one configuration. */
 static void measure__prepare(mscene *m, mconf *c)
 {
@@ -256,6 +301,7 @@ static void measure__prepare(mscene *m, mconf *c)
         return;
     }
     tech_item_get_info(m->r, c->item, &c->info);
+    measure__prepare_minimal(m, c);
     measure__warmup(m, c);
     c->stats = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats);
     c->stats_reason = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats_reason);
@@ -504,6 +550,11 @@ static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
         if (!counters_available(m->cc, m->timing[i], &why)) {
             r->available = 0;
             r->unavailable_reason = dm_xstrdup(why ? why : "unavailable on this driver");
+            continue;
+        }
+        if (c->min_why && strcmp(m->timing[i], "MinimalShadingTime") == 0) {
+            r->available = 0;
+            r->unavailable_reason = dm_xstrdup(c->min_why);
             continue;
         }
         measure__counter_timed(r, c->timing[i], c->n_samples, m->job->seed);
@@ -847,6 +898,7 @@ static void measure__teardown(mscene *m, mconf *cs, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
         free(cs[i].reason);
+        free(cs[i].min_why);
         dm_str_free(&cs[i].log);
         for (size_t k = 0; cs[i].timing && k < m->n_timing; k++)
             free(cs[i].timing[k]);
@@ -928,18 +980,6 @@ static void measure__counted_samples(mscene *m, mconf *c, callgrind_window w, in
     glDisable(GL_RASTERIZER_DISCARD);
     *warm_ns = t1 - t0;
     *count_ns = dm_now_ns() - t1;
-}
-
-/* Why the stages of item `info` cannot be isolated, or NULL (docs/counters.md,
- * "Stage costs": what isolation changes). */
-static const char *measure__isolation_problem(const tech_item_info *info)
-{
-    if (!info->has_fs)
-        return "no fragment stage: nothing to isolate";
-    if (info->fs_discards)
-        return "the fragment shader can discard: the minimal shader would keep the fragments it drops, "
-               "so setup and raster would include their depth and colour writes";
-    return NULL;
 }
 
 /* The stage windows of a prepared, counted configuration (geometry with

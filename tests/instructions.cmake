@@ -87,3 +87,8 @@ set_tests_properties(test_stage_instructions PROPERTIES TIMEOUT 1800
 add_test(NAME test_predict COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/predict.sh)
 set_tests_properties(test_predict PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
+
+# The timed stage split: GeometryTime, MinimalShadingTime and the derived
+# SetupRasterTime and FragmentTime (tests/stages/times.sh, no Valgrind).
+add_test(NAME test_stage_times COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/times.sh)
+set_tests_properties(test_stage_times PROPERTIES TIMEOUT 120 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e")
