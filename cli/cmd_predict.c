@@ -176,7 +176,7 @@ static void predict__config(const predict_fits *f, const plan_config *pc, const 
         return;
     }
     double ei = 2 * fi->cv_mape / 100, part[3] = {NAN, NAN, NAN};
-    printf("%s  %-40s %-28s %12.4g [%.4g, %.4g]", pc->key, pc->scene, variant, instr, instr * (1 - ei),
+    printf("%s  %-40s %-28s %12.6g [%.6g, %.6g]", pc->key, pc->scene, variant, instr, instr * (1 - ei),
            instr * (1 + ei));
     for (int s = 0; s < 3; s++) {
         const dm_fit_result *fs = predict__of(f->stage[s], f->n_stage[s], variant);

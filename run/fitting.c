@@ -412,32 +412,49 @@ int fitting_predict(const dm_fit_result *fit, const dm_kv *params, size_t n_para
     return rc;
 }
 
-/* The product of the variables (axes, counters) of term [t, t+len) for a
- * configuration: its axis values, else counters stored for key in runs;
- * NaN when one has no value.  *n_vars counts them. */
-static double fitting__term_value(const char *t, size_t len, const dm_kv *params, size_t n_params,
-                                  const char *key, const dm_run_result *runs, size_t n_runs, int *n_vars)
+/* The value of variable id (an axis, else a counter stored for key in runs)
+ * for a configuration; NaN when it has none. */
+static double fitting__var_value(const char *id, const dm_kv *params, size_t n_params, const char *key,
+                                 const dm_run_result *runs, size_t n_runs)
 {
-    double prod = 1.0;
-    *n_vars = 0;
+    double v = fitting__param_value(params, n_params, id);
+    return isfinite(v) ? v : fitting__stored_counter(runs, n_runs, key, id);
+}
+
+/* Checks the variables of dropped term [t, t+len) of fit: every one that
+ * was constant over the group's configurations in train must have that
+ * value here (the term's cost is then inside the other terms).  0, or
+ * DM_ERR_NOTFOUND with why. */
+static int fitting__dropped_ok(const dm_fit_result *fit, const dm_run_result *train, const char *t, size_t len,
+                               const dm_kv *params, size_t n_params, const char *key,
+                               const dm_run_result *runs, size_t n_runs, dm_str *why)
+{
     for (size_t i = 0; i < len;) {
         size_t j = i;
         while (j < len && (t[j] == '_' || t[j] == '.' || isalnum((unsigned char)t[j])))
             j++;
-        if (j == i) {
-            i++;
-            continue;
-        }
         char id[64];
         snprintf(id, sizeof id, "%.*s", (int)(j - i), t + i);
-        if (axes_find(id) || counters_find(id)) {
-            double v = fitting__param_value(params, n_params, id);
-            prod *= isfinite(v) ? v : fitting__stored_counter(runs, n_runs, key, id);
-            (*n_vars)++;
+        i = j > i ? j : i + 1;
+        if (!axes_find(id) && !counters_find(id))
+            continue;
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t k = 0; k < train->n_configs; k++) {
+            const dm_config_result *c = &train->configs[k];
+            if (!c->ok || !fitting__in_group(fit, c->params, c->n_params))
+                continue;
+            double v = fitting__var_value(id, c->params, c->n_params, c->key, train, 1);
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
         }
-        i = j;
+        double here = fitting__var_value(id, params, n_params, key, runs, n_runs);
+        if (lo == hi && !(fabs(here - lo) <= 1e-9 * fabs(lo))) {
+            dm_str_printf(why, "the fitted runs never varied %s in this group (%g), this configuration has %g: "
+                          "they cannot tell the cost of '%.*s'", id, lo, here, (int)len, t);
+            return DM_ERR_NOTFOUND;
+        }
     }
-    return prod;
+    return 0;
 }
 
 /* The top-level term of formula text f that names identifier id, as
@@ -482,21 +499,9 @@ int fitting_predict_dropped(const dm_fit_result *fit, const dm_run_result *train
     for (size_t v = 0; rc == 0 && v < nv; v++) {
         const char *t = NULL;
         size_t len = 0;
-        int nvars = 0;
         if (axes_find(vars[v]) || counters_find(vars[v]) || !fitting__term_of(fit->formula, vars[v], &t, &len))
             continue;
-        double here = fitting__term_value(t, len, params, n_params, key, runs, n_runs, &nvars);
-        for (size_t i = 0; rc == 0 && i < train->n_configs; i++) {
-            const dm_config_result *c = &train->configs[i];
-            if (!c->ok || !fitting__in_group(fit, c->params, c->n_params))
-                continue;
-            double was = fitting__term_value(t, len, c->params, c->n_params, c->key, train, 1, &nvars);
-            if (!(was == here || (isnan(was) && isnan(here)) || fabs(was - here) <= 1e-9 * fabs(was))) {
-                dm_str_printf(why, "the fitted runs never varied '%.*s' in this group (%g), this configuration "
-                              "has %g: they cannot tell its cost", (int)len, t, was, here);
-                rc = DM_ERR_NOTFOUND;
-            }
-        }
+        rc = fitting__dropped_ok(fit, train, t, len, params, n_params, key, runs, n_runs, why);
         ext.params[ext.n_params++] = (dm_fit_param){ (char *)vars[v], 0.0, NAN };
     }
     rc = rc ? rc : fitting_predict(&ext, params, n_params, key, runs, n_runs, value, why);

@@ -75,11 +75,12 @@ int fitting_predict(const dm_fit_result *fit, const dm_kv *params, size_t n_para
                     dm_str *why);
 
 /* fitting_predict for a fit of `train` whose formula keeps a term the fit
- * dropped because its value was the same in every configuration of the
- * group (a constant column: its cost is inside the intercept): when this
- * configuration has that same value the term counts 0, else DM_ERR_NOTFOUND
- * with why naming the term and both values ("the fitted runs never varied
- * 'c_vs*VSInvocations' in this group ..."). */
+ * dropped because one of its variables had the same value in every
+ * configuration of the group (a constant column: its cost is inside the
+ * other terms): when this configuration has the same value of each such
+ * variable the term counts 0, else DM_ERR_NOTFOUND with why naming the
+ * variable, both values and the term ("the fitted runs never varied
+ * TESInvocations in this group (0), this configuration has 100 ..."). */
 int fitting_predict_dropped(const dm_fit_result *fit, const dm_run_result *train, const dm_kv *params,
                             size_t n_params, const char *key, const dm_run_result *runs, size_t n_runs,
                             double *value, dm_str *why);

@@ -150,13 +150,17 @@ static void test_recovers_per_variant(void **state)
     double fs = dm_config_counter(m, "FSInvocations")->value;
     assert_close(v, POM_C0 + POM_VS * 500.0 + POM_PRIM * 300.0 + POM_PX * fs + POM_STEP * fs * 64);
     /* a value the variant never varied (TESInvocations was 0) is not guessed */
-    dm_config_result *t = &run.configs[0];
-    for (size_t k = 0; k < t->n_counters; k++)
-        if (strcmp(t->counters[k].name, "TESInvocations") == 0)
-            t->counters[k].value = 100;
+    dm_run_result other = {0};
+    dm_config_result *t = config(&other, "pom");
+    counter(t, "VSInvocations", 500);
+    counter(t, "TESInvocations", 100);
+    counter(t, "ClippingOutputPrimitives", 300);
+    counter(t, "FSInvocations", fs);
     dm_str_free(&err);
-    assert_int_equal(fitting_predict_dropped(pom, &run, kv, nk, m->key, &run, 1, &v, &err), DM_ERR_NOTFOUND);
-    assert_non_null(strstr(dm_str_get(&err), "never varied 'c_tes*TESInvocations'"));
+    assert_int_equal(fitting_predict_dropped(pom, &run, kv, nk, t->key, &other, 1, &v, &err), DM_ERR_NOTFOUND);
+    assert_non_null(strstr(dm_str_get(&err), "never varied TESInvocations in this group (0), this configuration "
+                                            "has 100: they cannot tell the cost of 'c_tes*TESInvocations'"));
+    dm_run_free(&other);
     dm_kv_free(kv, nk);
     for (size_t i = 0; i < n; i++)
         dm_fit_result_free(&fits[i]);
