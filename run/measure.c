@@ -493,6 +493,7 @@ static void measure__stage_counters(mconf *c, const callgrind_count *k, uint64_t
 {
     static const char *const names[] = {"GeometryInstructions", "RasterInstructions", "FragmentInstructions",
                                         "StageResidual"};
+    double part[4] = {NAN, NAN, NAN, NAN};
     for (int st = 0; st < 4; st++) {
         dm_counter_result *r = measure__push(out, names[st]);
         if (!k || !k->staged) {
@@ -509,10 +510,15 @@ static void measure__stage_counters(mconf *c, const callgrind_count *k, uint64_t
             v[s] = parts[st];
         }
         measure__counter_timed(r, v, CALLGRIND_SAMPLES, seed);
+        part[st] = r->value;
         if (r->value < 0 && st < 3)
             dm_str_printf(&c->log, "%s: negative (%.0f per frame): the isolation passes did not "
                           "nest here, see docs/counters.md\n", names[st], r->value);
     }
+    dm_str verdict = {0};   /* the bottleneck verdict, in the configuration's log */
+    if (counters_stage_verdict(part[0], part[1], part[2], &verdict) == 0)
+        dm_str_printf(&c->log, "stages (instructions): %s\n", dm_str_get(&verdict));
+    dm_str_free(&verdict);
 }
 
 /* Instructions of configuration c from the Instructions pass (its own
