@@ -54,6 +54,8 @@ typedef struct cli_command {
 int cli_run(int argc, char **argv);
 int cli_report(int argc, char **argv);
 int cli_fit(int argc, char **argv);
+int cli_predict(int argc, char **argv);
+extern const cli_option cli_predict_options[];
 int cli_compare(int argc, char **argv);
 int cli_baseline(int argc, char **argv);
 int cli_merge(int argc, char **argv);

@@ -53,6 +53,25 @@ const cli_option cli_fit_options[] = {
     CLI_OPT_END
 };
 
+/* A typo must not become a free parameter or a bogus group (exit 2 with
+ * a suggestion): formula names close to a counter or axis, --group-by
+ * keys that are not axes, a --response of a run that is not a counter or
+ * axis (a CSV's columns are checked when it is read).  -1 to go on. */
+static int fit__check_names(const fit_args *a)
+{
+    dm_str why = {0};
+    int rc = a->formula ? fitting_check_formula(a->formula, &why) : 0;
+    char *gb = a->group_by ? dm_xstrdup(a->group_by) : NULL, *save = NULL;
+    for (char *t = gb ? strtok_r(gb, ",", &save) : NULL; rc == 0 && t; t = strtok_r(NULL, ",", &save))
+        rc = fitting_check_name(t, 1, &why);
+    if (rc == 0 && a->response && a->dir)
+        rc = fitting_check_name(a->response, 0, &why);
+    free(gb);
+    int code = rc ? cli_usage_error("fit: %s", dm_str_get(&why)) : -1;
+    dm_str_free(&why);
+    return code;
+}
+
 /* Checks the combination of arguments; -1 to go on, else an exit code. */
 static int fit__check(fit_args *a, int argc, char **argv)
 {
@@ -77,7 +96,7 @@ static int fit__check(fit_args *a, int argc, char **argv)
     }
     if (a->data && a->group_by)
         return cli_usage_error("fit: --group-by needs a results directory (a CSV has no axes)");
-    return -1;
+    return fit__check_names(a);
 }
 
 static void fit__print(const dm_fit_result *f)

@@ -40,6 +40,7 @@ static const cli_command commands[] = {
     { .name = "fit", .fn = cli_fit, .options = cli_fit_options, .synopsis = "DIR\n--data FILE.csv",
       .summary = "fit a cost model to a run (or a CSV): parameters, standard errors, R², CV-MAPE",
       .description = "Exit 1 when nothing could be fitted (or the fit failed numerically)." },
+    { .name = "predict", .fn = cli_predict, .options = cli_predict_options, .synopsis = "SWEEP --from RUN[,RUN...]", .summary = "predict each configuration's Instructions, stage shares and WallTime from measured runs (docs/models.md)" },
     { .name = "compare", .fn = cli_compare, .options = cli_compare_options,
       .summary = "regression gate: compare two runs (exit 0 pass, 1 regression, 3 inconclusive)",
       .synopsis = "BASE NEW\nBASE1,BASE2,... NEW1,NEW2,...\n--paired BASE_BINARY NEW_BINARY SWEEP [--rounds N]",

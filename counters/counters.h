@@ -109,8 +109,12 @@ void counters_session_destroy(counters_session *s);
 int counters_enable(counters_session *s, const char *name);        /* DM_ERR_UNKNOWN */
 int counters_enable_group(counters_session *s, const char *group);
 int counters_num_passes(counters_session *s, int *passes);
-/* Describes pass p ("timing", "statistics", "geometry"), for plans. */
+/* Describes pass p ("timing", "geometry", "raster", "statistics"), for plans. */
 const char *counters_pass_name(counters_session *s, int pass);
+/* 1 when, in pass p, the caller must draw the same work with a minimal
+ * fragment shader (same geometry, depth state and coverage; the raster
+ * pass of MinimalShadingTime, docs/counters.md "Stage costs"). */
+int counters_pass_minimal_fs(const counters_session *s, int pass);
 /* Appends the pass plan of the selection names[0..n) as text to out
  * ("dmbench list counters --passes A,B"): the pass count, each pass with its
  * counters, then caller-fed, derived (with formulas) and unavailable
@@ -140,6 +144,15 @@ typedef int (*counters_value_fn)(const char *name, void *user, double *value);
 int counters_derive(const char *name, counters_value_fn value, void *user, double *out, dm_str *why);
 /* 1 when every input of derived counter `name` satisfies has(input, user). */
 int counters_derive_inputs(const char *name, int (*has)(const char *input, void *user), void *user);
+
+/* ---- stage costs ------------------------------------------------------------
+ * The bottleneck verdict of a configuration from its stage counters
+ * (GeometryInstructions, RasterInstructions, FragmentInstructions, or the
+ * matching times): the three shares of their sum in decreasing order,
+ * rounded to whole percent, e.g. "fragment 87 %, geometry 9 %, raster 4 %",
+ * appended to out.  DM_ERR_UNAVAILABLE (out unchanged) when a part is
+ * negative or not finite or the sum is not positive. */
+int counters_stage_verdict(double geometry, double raster, double fragment, dm_str *out);
 
 /* ---- timer calibration (docs/counters.md) -----------------------------------------
  * Runs a heavy draw of its own (fragment-bound, into an internal FBO) and

@@ -6,6 +6,7 @@
 #include "core/dm_error.h"
 #include "counters/counters_expr.h"
 
+#include <math.h>
 #include <stdio.h>
 #include <string.h>
 
@@ -65,4 +66,28 @@ int counters_derive_inputs(const char *name, int (*has)(const char *input, void 
     derive__ctx d = { .has = has, .user = user, .all = 1 };
     counters__expr_names(ci->formula, derive__check, &d);
     return d.all;
+}
+
+/* Share of part in total, as a rounded percentage. */
+static int derive__pct(double part, double total)
+{
+    return (int)lround(100.0 * part / total);
+}
+
+int counters_stage_verdict(double geometry, double raster, double fragment, dm_str *out)
+{
+    double total = geometry + raster + fragment;
+    if (!(isfinite(total) && total > 0 && geometry >= 0 && raster >= 0 && fragment >= 0))
+        return DM_ERR_UNAVAILABLE;
+    struct { const char *name; double v; } st[3] = {{"fragment", fragment}, {"geometry", geometry},
+                                                   {"raster", raster}};
+    for (int i = 1; i < 3; i++)   /* decreasing share; ties keep this order */
+        for (int j = i; j > 0 && st[j].v > st[j - 1].v; j--) {
+            __typeof__(st[0]) t = st[j];
+            st[j] = st[j - 1];
+            st[j - 1] = t;
+        }
+    dm_str_printf(out, "%s %d %%, %s %d %%, %s %d %%", st[0].name, derive__pct(st[0].v, total), st[1].name,
+                  derive__pct(st[1].v, total), st[2].name, derive__pct(st[2].v, total));
+    return 0;
 }

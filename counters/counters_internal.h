@@ -17,6 +17,7 @@ typedef enum counters__pass {
     COUNTERS__PASS_NONE = 0,    /* caller-fed or derived: no pass */
     COUNTERS__PASS_TIMING,
     COUNTERS__PASS_GEOMETRY,
+    COUNTERS__PASS_RASTER,      /* the caller draws with a minimal fragment shader (counters_pass_minimal_fs) */
     COUNTERS__PASS_STATS,
     COUNTERS__PASS_KINDS
 } counters__pass;

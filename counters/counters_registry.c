@@ -25,6 +25,7 @@
 #define B_DER COUNTERS_BACKEND_DERIVED
 #define P_TIM COUNTERS__PASS_TIMING
 #define P_GEO COUNTERS__PASS_GEOMETRY
+#define P_RAS COUNTERS__PASS_RASTER
 #define P_ST  COUNTERS__PASS_STATS
 #define P_NO  COUNTERS__PASS_NONE
 #define R_PS  COUNTERS__REQ_PIPESTATS
@@ -42,6 +43,9 @@ static const counters__def counters__table[] = {
       NS, U64, B_CLK, 0, NULL, F_NO}, P_TIM, 0, 0},
     {{"GeometryTime", "Timing", "Wall time of the same draws with GL_RASTERIZER_DISCARD (own pass)",
       NS, U64, B_CLK, 0, NULL, F_NO}, P_GEO, 0, 0},
+    {{"MinimalShadingTime", "Timing", "Wall time of the same draws with a minimal fragment shader (own pass; "
+      "docs/counters.md, Stage costs)",
+      NS, U64, B_CLK, 0, NULL, F_NO}, P_RAS, 0, 0},
     {{"SetupTime", "Timing", "Compile, link and upload time, fed by the caller",
       NS, U64, B_CPU, 0, NULL, COUNTERS_FEED_SETUP_NS, 0}, P_NO, 0, 0},
     {{"WarmupTime", "Timing", "First-draw time (shader JIT), fed by the caller",
@@ -103,6 +107,34 @@ static const counters__def counters__table[] = {
       ITEMS, U64, COUNTERS_BACKEND_CALLGRIND, 1, NULL, F_NO}, P_NO, 0, COUNTERS__REQ_CALLGRIND},
     {{"InstructionsPerPixel", "Cost", "Instructions per covered sample (Instructions / SamplesPassed)",
       RATIO, F64, B_DER, 1, "Instructions / SamplesPassed", F_NO}, P_NO, 0, 0},
+    /* stage costs: isolation windows counted in the same child (docs/counters.md, "Stage costs") */
+    {{"GeometryInstructions", "Cost", "Instructions per frame of the same frames with GL_RASTERIZER_DISCARD: "
+      "vertex, tessellation, primitive assembly and clipping",
+      ITEMS, U64, COUNTERS_BACKEND_CALLGRIND, 1, NULL, F_NO}, P_NO, 0, COUNTERS__REQ_CALLGRIND},
+    {{"RasterInstructions", "Cost", "Instructions per frame of setup, rasterization, depth test and output: "
+      "the frames with a minimal fragment shader minus GeometryInstructions",
+      ITEMS, U64, COUNTERS_BACKEND_CALLGRIND, 1, NULL, F_NO}, P_NO, 0, COUNTERS__REQ_CALLGRIND},
+    {{"FragmentInstructions", "Cost", "Instructions per frame of fragment shading: Instructions minus the "
+      "frames with a minimal fragment shader",
+      ITEMS, U64, COUNTERS_BACKEND_CALLGRIND, 1, NULL, F_NO}, P_NO, 0, COUNTERS__REQ_CALLGRIND},
+    {{"StageResidual", "Cost", "GeometryInstructions minus the same frames with the minimal fragment shader "
+      "and discard: geometry work the isolation changed (0 when exact)",
+      ITEMS, F64, COUNTERS_BACKEND_CALLGRIND, 1, NULL, F_NO}, P_NO, 0, COUNTERS__REQ_CALLGRIND},
+    {{"GeometryShare", "Cost", "Share of the frame's instructions in the geometry stages",
+      RATIO, F64, B_DER, 1, "GeometryInstructions / Instructions", F_NO}, P_NO, 0, 0},
+    {{"RasterShare", "Cost", "Share of the frame's instructions in setup and rasterization",
+      RATIO, F64, B_DER, 1, "RasterInstructions / Instructions", F_NO}, P_NO, 0, 0},
+    {{"FragmentShare", "Cost", "Share of the frame's instructions in fragment shading",
+      RATIO, F64, B_DER, 1, "FragmentInstructions / Instructions", F_NO}, P_NO, 0, 0},
+    {{"InstructionsPerVertex", "Cost", "Geometry instructions per vertex shader invocation",
+      RATIO, F64, B_DER, 1, "GeometryInstructions / VSInvocations", F_NO}, P_NO, 0, 0},
+    {{"InstructionsPerEvaluation", "Cost", "Geometry instructions per tessellation evaluation invocation "
+      "(unavailable without tessellation)",
+      RATIO, F64, B_DER, 1, "GeometryInstructions / TESInvocations", F_NO}, P_NO, 0, 0},
+    {{"RasterInstructionsPerPixel", "Cost", "Setup and rasterization instructions per covered sample",
+      RATIO, F64, B_DER, 1, "RasterInstructions / SamplesPassed", F_NO}, P_NO, 0, 0},
+    {{"FragmentInstructionsPerPixel", "Cost", "Fragment shading instructions per covered sample",
+      RATIO, F64, B_DER, 1, "FragmentInstructions / SamplesPassed", F_NO}, P_NO, 0, 0},
     /* ---- Derived ---- */
     {{"TessAmplification", "Derived", "TES invocations per tessellation patch",
       RATIO, F64, B_DER, 1, "TESInvocations / TCSPatches", F_NO}, P_NO, 0, 0},
@@ -118,6 +150,10 @@ static const counters__def counters__table[] = {
       RATIO, F64, B_DER, 1, "SamplesPassed / FSInvocations", F_NO}, P_NO, 0, 0},
     {{"RasterTime", "Derived", "Wall time minus geometry-only time (rasterization and shading)",
       NS, F64, B_DER, 0, "WallTime - GeometryTime", F_NO}, P_NO, 0, 0},
+    {{"SetupRasterTime", "Derived", "Setup and rasterization time: minimal-shader time minus geometry-only time",
+      NS, F64, B_DER, 0, "MinimalShadingTime - GeometryTime", F_NO}, P_NO, 0, 0},
+    {{"FragmentTime", "Derived", "Fragment shading time: wall time minus minimal-shader time",
+      NS, F64, B_DER, 0, "WallTime - MinimalShadingTime", F_NO}, P_NO, 0, 0},
     {{"TimePerPixel", "Derived", "Wall time per sample passed",
       NS, F64, B_DER, 0, "WallTime / SamplesPassed", F_NO}, P_NO, 0, 0},
 };

@@ -43,7 +43,7 @@ struct counters_session {
 };
 
 static const char *const sess__pass_names[COUNTERS__PASS_KINDS] = {
-    NULL, "timing", "geometry", "statistics"};
+    NULL, "timing", "geometry", "raster", "statistics"};
 
 static int sess__fail(counters_session *s, int code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
@@ -55,6 +55,11 @@ static int sess__fail(counters_session *s, int code, const char *fmt, ...)
     vsnprintf(s->err, sizeof s->err, fmt, ap);
     va_end(ap);
     return code;
+}
+
+int counters_pass_minimal_fs(const counters_session *s, int pass)
+{
+    return pass >= 0 && pass < s->nplan && s->plan[pass] == COUNTERS__PASS_RASTER;
 }
 
 const char *counters_last_error(const counters_session *s)
@@ -327,6 +332,8 @@ int counters_sample_end(counters_session *s)
         sess__store(s, smp, "SubmitTime", (double)submit);
     } else if (s->plan[s->pass] == COUNTERS__PASS_GEOMETRY) {
         sess__store(s, smp, "GeometryTime", (double)wall);
+    } else if (s->plan[s->pass] == COUNTERS__PASS_RASTER) {
+        sess__store(s, smp, "MinimalShadingTime", (double)wall);
     }
     s->cursor++;
     s->state = S_IN_PASS;

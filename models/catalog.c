@@ -7,16 +7,34 @@ static const fit_bound catalog__nonneg5[] = {
     { "c0", 0, INFINITY }, { "c_vs", 0, INFINITY }, { "c_tes", 0, INFINITY },
     { "c_prim", 0, INFINITY }, { "c_px", 0, INFINITY } };
 
+static const fit_bound catalog__nonneg_stage[] = {
+    { "c0", 0, INFINITY }, { "c_vs", 0, INFINITY }, { "c_tes", 0, INFINITY }, { "c_prim", 0, INFINITY },
+    { "c_px", 0, INFINITY }, { "c_step", 0, INFINITY }, { "c_light", 0, INFINITY } };
+
+static const fit_bound catalog__nonneg2[] = { { "a", 0, INFINITY }, { "b", 0, INFINITY } };
+
 static const models_builtin catalog__models[] = {
     { "pipeline-linear",
       "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_prim*ClippingOutputPrimitives + c_px*SamplesPassed",
       "WallTime",
       "frame time as a non-negative sum of per-stage costs (vertex, tessellation, primitive, pixel)",
-      catalog__nonneg5, 5 },
+      catalog__nonneg5, 5, NULL },
     { "tess-power", "a + b*tess_level^p", "WallTime",
-      "frame time against the tessellation level L: a + b*L^p", NULL, 0 },
+      "frame time against the tessellation level L: a + b*L^p", NULL, 0, NULL },
     { "resolution-linear", "a + b*SamplesPassed", "WallTime",
-      "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0 },
+      "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0, NULL },
+    /* one fit per shader variant: the costs per invocation are the variant's,
+     * the invocation counts the configuration's (docs/models.md) */
+    { "stage-instructions",
+      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_prim*ClippingOutputPrimitives + c_px*FSInvocations"
+      " + c_step*FSInvocations*steps + c_light*FSInvocations*light_count",
+      "Instructions",
+      "instructions per frame of one shader variant: a cost per vertex, evaluation, primitive and "
+      "fragment invocation, the fragment's growing with steps and lights",
+      catalog__nonneg_stage, 7, "variant" },
+    { "time-from-instructions", "a + b*Instructions", "WallTime",
+      "frame time from the frame's instructions: a fixed cost plus a time per instruction",
+      catalog__nonneg2, 2, NULL },
 };
 
 size_t models_builtin_count(void) { return sizeof catalog__models / sizeof *catalog__models; }

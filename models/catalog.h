@@ -17,6 +17,7 @@ typedef struct models_builtin {
     const char *description;
     const fit_bound *bounds;
     size_t n_bounds;
+    const char *group_by;          /* default --group-by (one key), NULL: one fit */
 } models_builtin;
 
 size_t models_builtin_count(void);

@@ -7,6 +7,7 @@
  */
 #include "reports/report.h"
 #include "reports/report_internal.h"
+#include "reports/stage_bar.h"
 #include "reports/published_report.h"
 #include "reports/proxy.h"
 
@@ -789,6 +790,7 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
     fits(&s, run);
     report_published_section(&s, run, dir, path, 1);
     proxy_section(&s, run);
+    report_stage_bars(&s, run);
     dm_str_printf(&s, "<script>%s</script>\n</body></html>\n", sort_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);

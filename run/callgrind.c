@@ -2,6 +2,7 @@
  * its watchdog, and reading callgrind's dump files (see callgrind.h). */
 #include "run/callgrind.h"
 #include "core/dm_error.h"
+#include "counters/counters.h"
 #include "run/measure.h"
 
 #include <dirent.h>
@@ -34,8 +35,41 @@ void callgrind_mark_unavailable(callgrind_count *out, const plan_config *cs, siz
 
 void callgrind_counts_free(callgrind_count *c, size_t n)
 {
-    for (size_t i = 0; c && i < n; i++)
+    for (size_t i = 0; c && i < n; i++) {
         free(c[i].reason);
+        free(c[i].stage_reason);
+    }
+}
+
+int callgrind_is_stage_counter(const char *name)
+{
+    static const char *const stages[] = {"GeometryInstructions", "RasterInstructions", "FragmentInstructions",
+                                         "StageResidual"};
+    for (size_t i = 0; name && i < sizeof stages / sizeof stages[0]; i++)
+        if (strcmp(name, stages[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* counters_derive_inputs check that notes a stage-counter input in *user. */
+static int cg__stage_input(const char *input, void *user)
+{
+    if (callgrind_is_stage_counter(input))
+        *(int *)user = 1;
+    return 1;
+}
+
+int callgrind_wants_stages(const sweep_measure *sm)
+{
+    for (size_t i = 0; i < sm->n_counters; i++) {
+        const counters_info *ci = counters_find(sm->counters[i]);
+        int via = callgrind_is_stage_counter(sm->counters[i]);
+        if (ci && ci->backend == COUNTERS_BACKEND_DERIVED)
+            counters_derive_inputs(ci->name, cg__stage_input, &via);
+        if (via)
+            return 1;
+    }
+    return 0;
 }
 
 char *callgrind_disagreement(const callgrind_count *c)
@@ -79,6 +113,7 @@ typedef struct cg_state {
     size_t n;
     callgrind_count *out;
     int *tried, *done;
+    int stages;              /* the sweep asks for the stage windows */
     char current[17];
 } cg_state;
 
@@ -187,6 +222,10 @@ static void cg__line(cg_state *g, char *line)
     if (sscanf(line, "B %16s", key) == 1 && cg__index(g, key) >= 0) {
         snprintf(g->current, sizeof g->current, "%s", key);
         g->tried[cg__index(g, key)] = 1;
+    } else if (sscanf(line, "S %16s %15s %n", key, status, &off) >= 2 && cg__index(g, key) >= 0) {
+        int i = cg__index(g, key);
+        if (strcmp(status, "ok") != 0 && !g->out[i].stage_reason)
+            g->out[i].stage_reason = dm_xstrdup(off ? line + off : status);
     } else if (sscanf(line, "I %16s %15s %n", key, status, &off) >= 2 && cg__index(g, key) >= 0) {
         int i = cg__index(g, key);
         g->done[i] = 1;
@@ -264,13 +303,22 @@ static void cg__read_dumps(cg_state *g, int frames)
         if (dm_read_file(path, &text, &len) == 0 &&
             callgrind_parse_dump(text, name, sizeof name, &totals) == 0) {
             char *dot = strrchr(name, '.');
-            int s = dot ? atoi(dot + 1) : -1, i = -1;
+            int s = dot ? atoi(dot + 1) : -1, i = -1, w = CALLGRIND_FULL;
             if (dot) {
                 *dot = '\0';
-                i = cg__index(g, name);
+                size_t nl = strlen(name);   /* "KEY.g", "KEY.r", "KEY.m": a stage window */
+                if (nl > 2 && name[nl - 2] == '.') {
+                    const char *tags = "grm", *t = strchr(tags, name[nl - 1]);
+                    w = t ? CALLGRIND_GEOMETRY + (int)(t - tags) : -1;
+                    name[nl - 2] = '\0';
+                }
+                i = w >= 0 ? cg__index(g, name) : -1;
             }
-            if (i >= 0 && s >= 0 && s < CALLGRIND_SAMPLES)
-                g->out[i].samples[s] = totals / frames;
+            if (i >= 0 && s >= 0 && s < CALLGRIND_SAMPLES) {
+                g->out[i].window[w][s] = totals / frames;
+                if (w == CALLGRIND_FULL)
+                    g->out[i].samples[s] = totals / frames;
+            }
         }
         free(text);
         free(path);
@@ -292,6 +340,16 @@ static void cg__settle(cg_state *g)
         if (!c->counted && !c->reason)
             c->reason = dm_xstrdup(g->tried[i] ? "Instructions: no callgrind dump for this configuration"
                                                : "Instructions: the Valgrind child did not reach it");
+        if (!g->stages)
+            continue;
+        int windows = 1;
+        for (int w = CALLGRIND_GEOMETRY; w < CALLGRIND_WINDOWS; w++)
+            for (int s = 0; s < CALLGRIND_SAMPLES; s++)
+                windows &= c->window[w][s] > 0;
+        c->staged = c->counted && !c->stage_reason && windows;
+        if (!c->staged && !c->stage_reason)
+            c->stage_reason = dm_xstrdup(c->counted ? "no stage-window dump for this configuration"
+                                                    : c->reason);
     }
 }
 
@@ -302,7 +360,8 @@ int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, call
         dm_str_printf(err, "%s: cannot create the callgrind directory", d->work_dir);
         return DM_ERR_IO;
     }
-    cg_state g = { .d = d, .cs = cs, .n = n, .out = out };
+    cg_state g = { .d = d, .cs = cs, .n = n, .out = out,
+                   .stages = callgrind_wants_stages(&d->sweep->measure) };
     g.tried = dm_xcalloc(n + 1, sizeof *g.tried);
     g.done = dm_xcalloc(n + 1, sizeof *g.done);
     for (size_t i = 0; i < n; i++)

@@ -41,11 +41,28 @@
  * heap's top is neither padded nor kept (docs/counters.md, "Repeatability"). */
 #define CALLGRIND_MMAP_THRESHOLD 4096
 
+/* The stage-isolation windows of a configuration whose sweep asks for a
+ * stage counter (callgrind_wants_stages; docs/counters.md, "Stage costs"),
+ * counted in the same child after the full frame's samples: the same
+ * frames with GL_RASTERIZER_DISCARD (dumps "KEY.g.S") and with the minimal
+ * fragment shader (techniques/fs_minimal.h, dumps "KEY.r.S"). */
+typedef enum callgrind_window {
+    CALLGRIND_FULL = 0,      /* the frame as measured: Instructions */
+    CALLGRIND_GEOMETRY,      /* rasterizer discard: vertex, tessellation, assembly, clipping */
+    CALLGRIND_RASTER,        /* minimal fragment shader: geometry + setup + rasterization */
+    CALLGRIND_RESIDUAL,      /* minimal fragment shader with rasterizer discard ("KEY.m.S"):
+                                equals GEOMETRY when the minimal shader kept the geometry's work */
+    CALLGRIND_WINDOWS
+} callgrind_window;
+
 /* The result of one configuration. */
 typedef struct callgrind_count {
     char key[17];
     int counted;             /* samples[] are set */
     double samples[CALLGRIND_SAMPLES];   /* instructions per frame, one per sample */
+    int staged;              /* window[] are set (stage counters) */
+    double window[CALLGRIND_WINDOWS][CALLGRIND_SAMPLES];   /* per frame; [FULL] = samples */
+    char *stage_reason;      /* why the stage counters are unavailable, NULL when staged */
     int failed;              /* Valgrind crashed or timed out on it: the configuration fails */
     char *reason;            /* why not counted (unavailable or failed), NULL when counted */
 } callgrind_count;
@@ -58,6 +75,15 @@ typedef struct callgrind_desc {
     double timeout_s;        /* watchdog: no progress for this long kills the child */
     int quiet;
 } callgrind_desc;
+
+/* 1 when the sweep asks for a stage counter (GeometryInstructions,
+ * RasterInstructions, FragmentInstructions, StageResidual) or a counter
+ * derived from one:
+ * the child then counts the stage windows too. */
+int callgrind_wants_stages(const sweep_measure *sm);
+
+/* 1 when counter `name` is one of the stage counters. */
+int callgrind_is_stage_counter(const char *name);
 
 /* Frames per sample of the Instructions pass: min(K, 4).  Every frame of a
  * configuration does the same work, so a few frames give the per-frame count
@@ -90,8 +116,9 @@ char *callgrind_disagreement(const callgrind_count *c);
 
 /* The child: `dmbench __instructions SWEEP HASH KEY...` (argv[0] is
  * "__instructions").  Loads the sweep named by SWEEP, checks its hash,
- * measures the keys under Valgrind, writes "B KEY" / "I KEY ok|failed
- * REASON" lines to stdout.  Returns the process exit code. */
+ * measures the keys under Valgrind, writes "B KEY" / "S KEY ok|unavailable
+ * REASON" (stage windows, when asked) / "I KEY ok|failed REASON" lines to
+ * stdout.  Returns the process exit code. */
 int callgrind_child_main(int argc, char **argv);
 
 #endif

@@ -60,15 +60,134 @@ static double fitting__value(const dm_run_result *run, const dm_config_result *c
     return r ? fitting__counter_value(run, r) : fitting__param_value(c->params, c->n_params, name);
 }
 
+char *fitting_variant(const dm_kv *params, size_t n)
+{
+    const char *t = dm_kv_get(params, n, "technique");
+    dm_str v = {0};
+    dm_str_cat(&v, t ? t : "?");
+    for (size_t i = 0; i < n; i++) {
+        const axis_info *a = axes_find(params[i].key);
+        int shader = a && !a->scene && (a->kind == AXIS_ENUM || (a->kind == AXIS_INT && params[i].value &&
+                                                                 strcmp(params[i].value, "auto") == 0));
+        if (shader || (a && strcmp(a->name, "virtual_texture") == 0))
+            dm_str_printf(&v, " %s=%s", params[i].key, params[i].value ? params[i].value : "");
+    }
+    return dm_str_take(&v);
+}
+
+/* The value of group key `name` for a configuration: FITTING_VARIANT is
+ * computed (malloc'd, *owned set), any other key is the axis value. */
+static const char *fitting__group_value(const dm_kv *params, size_t n, const char *name, char **owned)
+{
+    *owned = NULL;
+    if (strcmp(name, FITTING_VARIANT) != 0)
+        return dm_kv_get(params, n, name);
+    return *owned = fitting_variant(params, n);
+}
+
 static int fitting__same_group(const fitting_spec *s, const dm_config_result *a, const dm_config_result *b)
 {
-    for (size_t i = 0; i < s->n_group_by; i++) {
-        const char *x = dm_kv_get(a->params, a->n_params, s->group_by[i]);
-        const char *y = dm_kv_get(b->params, b->n_params, s->group_by[i]);
-        if ((x || y) && (!x || !y || strcmp(x, y) != 0))
-            return 0;
+    int same = 1;
+    for (size_t i = 0; same && i < s->n_group_by; i++) {
+        char *ox, *oy;
+        const char *x = fitting__group_value(a->params, a->n_params, s->group_by[i], &ox);
+        const char *y = fitting__group_value(b->params, b->n_params, s->group_by[i], &oy);
+        same = !((x || y) && (!x || !y || strcmp(x, y) != 0));
+        free(ox);
+        free(oy);
     }
-    return 1;
+    return same;
+}
+
+/* Says whether identifier `id` of a built-in model's term is missing (its
+ * term is then dropped). */
+typedef int (*fitting__missing_fn)(const char *id, const void *user);
+
+/* Run level: a counter the run did not record (names: the run's variables). */
+typedef struct fitting__names_ctx { const char **names; size_t nv; } fitting__names_ctx;
+
+static int fitting__missing_counter(const char *id, const void *user)
+{
+    const fitting__names_ctx *c = user;
+    for (size_t i = 0; i < c->nv; i++)
+        if (strcmp(c->names[i], id) == 0)
+            return 0;
+    return counters_find(id) != NULL;
+}
+
+/* Group level: a variable with no finite value in any point of the group
+ * (an axis the group's technique does not read, a counter it lacks), or
+ * an axis no configuration of the run has. */
+typedef struct fitting__group_ctx { const char **names; size_t nv, np; const double *x; } fitting__group_ctx;
+
+static int fitting__missing_in_group(const char *id, const void *user)
+{
+    const fitting__group_ctx *g = user;
+    for (size_t k = 0; k < g->nv; k++) {
+        if (strcmp(g->names[k], id) != 0)
+            continue;
+        for (size_t i = 0; i < g->np; i++)
+            if (isfinite(g->x[i * g->nv + k]))
+                return 0;
+        return 1;
+    }
+    return axes_find(id) != NULL;
+}
+
+/* 1 when an identifier of the term [t, t+len) is missing. */
+static int fitting__term_missing(const char *t, size_t len, fitting__missing_fn missing, const void *user)
+{
+    for (size_t i = 0; i < len;) {
+        if (!(t[i] == '_' || isalpha((unsigned char)t[i]))) {
+            i++;
+            continue;
+        }
+        size_t j = i;
+        while (j < len && (t[j] == '_' || t[j] == '.' || isalnum((unsigned char)t[j])))
+            j++;
+        char id[64];
+        if (j - i < sizeof id) {
+            memcpy(id, t + i, j - i);
+            id[j - i] = '\0';
+            if (missing(id, user))
+                return 1;
+        }
+        i = j;
+    }
+    return 0;
+}
+
+/* A built-in model (a sum of terms) without the terms that use a missing
+ * identifier: a missing counter is not a parameter.  Each dropped term is
+ * named in warnings (when warnings is not NULL, with `why`); bounds of
+ * parameters that no longer appear are dropped too.  Returns the formula
+ * (malloc'd). */
+static char *fitting__drop_missing(const models_builtin *b, fitting__missing_fn missing, const void *user,
+                                   fit_bound *bounds, size_t *n_bounds, const char *why, dm_str *warnings)
+{
+    dm_str out = {0};
+    const char *f = b->formula;
+    for (const char *t = f; *t;) {
+        int depth = 0;
+        const char *e = t;
+        for (; *e && !(depth == 0 && *e == '+'); e++)
+            depth += (*e == '(') - (*e == ')');
+        while (*t == ' ')
+            t++;
+        size_t len = (size_t)(e - t);
+        while (len && t[len - 1] == ' ')
+            len--;
+        if (!fitting__term_missing(t, len, missing, user))
+            dm_str_printf(&out, "%s%.*s", dm_str_get(&out)[0] ? " + " : "", (int)len, t);
+        else if (warnings)
+            dm_str_printf(warnings, "model %s: term '%.*s' dropped: %s\n", b->name, (int)len, t, why);
+        t = *e ? e + 1 : e;
+    }
+    *n_bounds = 0;
+    for (size_t i = 0; i < b->n_bounds; i++)
+        if (strstr(dm_str_get(&out), b->bounds[i].param))
+            bounds[(*n_bounds)++] = b->bounds[i];
+    return dm_str_take(&out);
 }
 
 /* Fits the group led by configuration `lead`. */
@@ -89,93 +208,42 @@ static void fitting__group(const fitting_spec *s, const models_builtin *b, const
         y[np] = fitting__value(run, c, s->response);
         labels[np++] = c->key;
     }
-    fit_desc d = { .model = s->name, .formula = s->formula, .response = s->response,
+    /* a built-in model's terms over a variable this group has no value of
+     * (an axis its technique does not read) are not part of its model */
+    fitting__group_ctx gc = { names, nv, np, x };
+    fit_bound *gb = b ? dm_xcalloc(b->n_bounds + 1, sizeof *gb) : NULL;
+    size_t ngb = 0;
+    char *gf = b ? fitting__drop_missing(b, fitting__missing_in_group, &gc, gb, &ngb, NULL, NULL) : NULL;
+    fit_desc d = { .model = s->name, .formula = gf && *gf ? gf : s->formula, .response = s->response,
                    .variables = names, .n_vars = nv, .x = x, .y = y, .n_points = np,
-                   .point_labels = labels, .bounds = b ? b->bounds : NULL,
-                   .n_bounds = b ? b->n_bounds : 0, .loss = s->loss, .seed = 1 };
+                   .point_labels = labels, .bounds = gf && *gf ? gb : b ? b->bounds : NULL,
+                   .n_bounds = gf && *gf ? ngb : b ? b->n_bounds : 0, .loss = s->loss, .seed = 1 };
     dm_fit_result fr = {0};
     dm_str err = {0};
     if (fit_run(&d, &fr, &err) == 0) {
-        for (size_t i = 0; i < s->n_group_by; i++)
+        for (size_t i = 0; i < s->n_group_by; i++) {
+            char *own;
             dm_kv_push(&fr.group, &fr.n_group, s->group_by[i],
-                       dm_kv_get(lead->params, lead->n_params, s->group_by[i]));
+                       fitting__group_value(lead->params, lead->n_params, s->group_by[i], &own));
+            free(own);
+        }
         DM_VEC_PUSH(*fits, *nf, fr);
     } else {
         dm_str_printf(warnings, "model %s", s->name);
-        for (size_t i = 0; i < s->n_group_by; i++)
-            dm_str_printf(warnings, " %s=%s", s->group_by[i],
-                          dm_kv_get(lead->params, lead->n_params, s->group_by[i]));
+        for (size_t i = 0; i < s->n_group_by; i++) {
+            char *own;
+            const char *gv = fitting__group_value(lead->params, lead->n_params, s->group_by[i], &own);
+            dm_str_printf(warnings, " %s=%s", s->group_by[i], gv ? gv : "");
+            free(own);
+        }
         dm_str_printf(warnings, ": not fitted: %s\n", dm_str_get(&err));
     }
     dm_str_free(&err);
+    free(gf);
+    free(gb);
     free(x);
     free(y);
     free(labels);
-}
-
-/* 1 when the identifier [p, p+len) is a counter that is not among names. */
-static int fitting__missing_counter(const char *p, size_t len, const char **names, size_t nv)
-{
-    char id[64];
-    if (len >= sizeof id)
-        return 0;
-    memcpy(id, p, len);
-    id[len] = '\0';
-    for (size_t i = 0; i < nv; i++)
-        if (strcmp(names[i], id) == 0)
-            return 0;
-    return counters_find(id) != NULL;
-}
-
-/* 1 when the term [t, t+len) names a counter the run did not record. */
-static int fitting__term_missing(const char *t, size_t len, const char **names, size_t nv)
-{
-    for (size_t i = 0; i < len;) {
-        if (!(t[i] == '_' || isalpha((unsigned char)t[i]))) {
-            i++;
-            continue;
-        }
-        size_t j = i;
-        while (j < len && (t[j] == '_' || t[j] == '.' || isalnum((unsigned char)t[j])))
-            j++;
-        if (fitting__missing_counter(t + i, j - i, names, nv))
-            return 1;
-        i = j;
-    }
-    return 0;
-}
-
-/* A built-in model (a sum of terms) without the terms that use a counter
- * the run did not record: a missing counter is not a parameter.  Each
- * dropped term is named in warnings; bounds of parameters that no longer
- * appear are dropped too.  Returns the formula (malloc'd). */
-static char *fitting__drop_missing(const models_builtin *b, const char **names, size_t nv,
-                                   fit_bound *bounds, size_t *n_bounds, dm_str *warnings)
-{
-    dm_str out = {0};
-    const char *f = b->formula;
-    for (const char *t = f; *t;) {
-        int depth = 0;
-        const char *e = t;
-        for (; *e && !(depth == 0 && *e == '+'); e++)
-            depth += (*e == '(') - (*e == ')');
-        while (*t == ' ')
-            t++;
-        size_t len = (size_t)(e - t);
-        while (len && t[len - 1] == ' ')
-            len--;
-        if (fitting__term_missing(t, len, names, nv))
-            dm_str_printf(warnings, "model %s: term '%.*s' dropped: the run did not record its counter\n",
-                          b->name, (int)len, t);
-        else
-            dm_str_printf(&out, "%s%.*s", dm_str_get(&out)[0] ? " + " : "", (int)len, t);
-        t = *e ? e + 1 : e;
-    }
-    *n_bounds = 0;
-    for (size_t i = 0; i < b->n_bounds; i++)
-        if (strstr(dm_str_get(&out), b->bounds[i].param))
-            bounds[(*n_bounds)++] = b->bounds[i];
-    return dm_str_take(&out);
 }
 
 int fitting_run(const fitting_spec *spec, const dm_run_result *run, dm_fit_result **fits,
@@ -195,6 +263,10 @@ int fitting_run(const fitting_spec *spec, const dm_run_result *run, dm_fit_resul
         b = NULL;                /* a user formula does not take the built-in bounds */
     if (!s.response)
         s.response = b ? b->response : "WallTime";
+    if (b && b->group_by && s.n_group_by == 0) {   /* the model's own grouping (stage-instructions: variant) */
+        s.group_by = &b->group_by;
+        s.n_group_by = 1;
+    }
     const char **names = NULL;
     size_t nv = 0;
     fitting__names(run, &names, &nv);
@@ -204,7 +276,9 @@ int fitting_run(const fitting_spec *spec, const dm_run_result *run, dm_fit_resul
     if (b) {
         reduced = *b;
         bounds = dm_xcalloc(b->n_bounds + 1, sizeof *bounds);
-        formula = fitting__drop_missing(b, names, nv, bounds, &reduced.n_bounds, warnings);
+        fitting__names_ctx nc = { names, nv };
+        formula = fitting__drop_missing(b, fitting__missing_counter, &nc, bounds, &reduced.n_bounds,
+                                        "the run did not record its counter", warnings);
         reduced.formula = s.formula = formula;
         reduced.bounds = bounds;
         b = &reduced;
@@ -230,12 +304,14 @@ int fitting_run(const fitting_spec *spec, const dm_run_result *run, dm_fit_resul
 /* 1 when every group pair of the fit is an axis value of the configuration. */
 static int fitting__in_group(const dm_fit_result *fit, const dm_kv *params, size_t n)
 {
-    for (size_t i = 0; i < fit->n_group; i++) {
-        const char *v = dm_kv_get(params, n, fit->group[i].key);
-        if (!v || !fit->group[i].value || strcmp(v, fit->group[i].value) != 0)
-            return 0;
+    int in = 1;
+    for (size_t i = 0; in && i < fit->n_group; i++) {
+        char *own;
+        const char *v = fitting__group_value(params, n, fit->group[i].key, &own);
+        in = v && fit->group[i].value && strcmp(v, fit->group[i].value) == 0;
+        free(own);
     }
-    return 1;
+    return in;
 }
 
 /* The counter `name` stored for configuration `key` in the first of runs
@@ -336,6 +412,106 @@ int fitting_predict(const dm_fit_result *fit, const dm_kv *params, size_t n_para
     return rc;
 }
 
+/* The value of variable id (an axis, else a counter stored for key in runs)
+ * for a configuration; NaN when it has none. */
+static double fitting__var_value(const char *id, const dm_kv *params, size_t n_params, const char *key,
+                                 const dm_run_result *runs, size_t n_runs)
+{
+    double v = fitting__param_value(params, n_params, id);
+    return isfinite(v) ? v : fitting__stored_counter(runs, n_runs, key, id);
+}
+
+/* Checks the variables of dropped term [t, t+len) of fit: every one that
+ * was constant over the group's configurations in train must have that
+ * value here (the term's cost is then inside the other terms).  0, or
+ * DM_ERR_NOTFOUND with why. */
+static int fitting__dropped_ok(const dm_fit_result *fit, const dm_run_result *train, const char *t, size_t len,
+                               const dm_kv *params, size_t n_params, const char *key,
+                               const dm_run_result *runs, size_t n_runs, dm_str *why)
+{
+    for (size_t i = 0; i < len;) {
+        size_t j = i;
+        while (j < len && (t[j] == '_' || t[j] == '.' || isalnum((unsigned char)t[j])))
+            j++;
+        char id[64];
+        snprintf(id, sizeof id, "%.*s", (int)(j - i), t + i);
+        i = j > i ? j : i + 1;
+        if (!axes_find(id) && !counters_find(id))
+            continue;
+        double lo = INFINITY, hi = -INFINITY;
+        for (size_t k = 0; k < train->n_configs; k++) {
+            const dm_config_result *c = &train->configs[k];
+            if (!c->ok || !fitting__in_group(fit, c->params, c->n_params))
+                continue;
+            double v = fitting__var_value(id, c->params, c->n_params, c->key, train, 1);
+            lo = v < lo ? v : lo;
+            hi = v > hi ? v : hi;
+        }
+        double here = fitting__var_value(id, params, n_params, key, runs, n_runs);
+        if (lo == hi && !(fabs(here - lo) <= 1e-9 * fabs(lo))) {
+            dm_str_printf(why, "the fitted runs never varied %s in this group (%g), this configuration has %g: "
+                          "they cannot tell the cost of '%.*s'", id, lo, here, (int)len, t);
+            return DM_ERR_NOTFOUND;
+        }
+    }
+    return 0;
+}
+
+/* The top-level term of formula text f that names identifier id, as
+ * [*t, *t + *len); 0 when none does. */
+static int fitting__term_of(const char *f, const char *id, const char **t, size_t *len)
+{
+    size_t il = strlen(id);
+    for (const char *s = f; *s;) {
+        const char *e = s;
+        for (int depth = 0; *e && !(depth == 0 && (*e == '+' || *e == ';')); e++)
+            depth += (*e == '(') - (*e == ')');
+        for (const char *p = s; p + il <= e; p++)
+            if (strncmp(p, id, il) == 0 && (p == s || !(isalnum((unsigned char)p[-1]) || p[-1] == '_')) &&
+                !(isalnum((unsigned char)p[il]) || p[il] == '_')) {
+                while (*s == ' ')
+                    s++;
+                while (e > s && e[-1] == ' ')
+                    e--;
+                *t = s;
+                *len = (size_t)(e - s);
+                return 1;
+            }
+        if (*e != '+')
+            break;
+        s = e + 1;
+    }
+    return 0;
+}
+
+int fitting_predict_dropped(const dm_fit_result *fit, const dm_run_result *train, const dm_kv *params,
+                            size_t n_params, const char *key, const dm_run_result *runs, size_t n_runs,
+                            double *value, dm_str *why)
+{
+    formula *f = NULL, *names = NULL;
+    const char **vars = NULL;
+    size_t nv = 0;
+    *value = NAN;
+    int rc = fit->formula ? fitting__parse_fit(fit, &f, &names, &vars, &nv, why) : DM_ERR_PARSE;
+    dm_fit_result ext = *fit;   /* shallow, with the dropped parameters added as 0 */
+    ext.params = dm_xcalloc(fit->n_params + nv + 1, sizeof *ext.params);
+    memcpy(ext.params, fit->params, fit->n_params * sizeof *ext.params);
+    for (size_t v = 0; rc == 0 && v < nv; v++) {
+        const char *t = NULL;
+        size_t len = 0;
+        if (axes_find(vars[v]) || counters_find(vars[v]) || !fitting__term_of(fit->formula, vars[v], &t, &len))
+            continue;
+        rc = fitting__dropped_ok(fit, train, t, len, params, n_params, key, runs, n_runs, why);
+        ext.params[ext.n_params++] = (dm_fit_param){ (char *)vars[v], 0.0, NAN };
+    }
+    rc = rc ? rc : fitting_predict(&ext, params, n_params, key, runs, n_runs, value, why);
+    free(ext.params);
+    free(vars);
+    formula_free(f);
+    formula_free(names);
+    return rc;
+}
+
 /* Every counter and axis name: the names a formula reads as variables. */
 static const char **fitting__known_names(size_t *n)
 {
@@ -357,9 +533,33 @@ static const char *fitting__misspelled(const char *param, const char **known, si
     return dm_closest(param, known, n);
 }
 
+int fitting_check_formula(const char *text, dm_str *why)
+{
+    size_t n_known = 0;
+    const char **known = fitting__known_names(&n_known);
+    char *expr = NULL;
+    fit_bound *bounds = NULL;
+    size_t nb = 0;
+    formula *f = NULL;
+    int rc = bounds_split(text, &expr, &bounds, &nb, why);
+    rc = rc ? rc : formula_parse(expr, NULL, 0, &f, why);
+    for (size_t j = 0; rc == 0 && j < formula_n_params(f); j++) {
+        const char *p = formula_param_name(f, j), *near = fitting__misspelled(p, known, n_known);
+        if (near) {
+            dm_str_printf(why, "'%s' would be a fitted parameter; did you mean '%s'? (names "
+                          "that are not counters or axes are parameters)", p, near);
+            rc = DM_ERR_UNKNOWN;
+        }
+    }
+    formula_free(f);
+    bounds_free(bounds, nb);
+    free(expr);
+    free(known);
+    return rc;
+}
+
 /* Checks one model of the sweep (see fitting_check_models). */
-static int fitting__check_model(const sweep *s, const sweep_model *m, const char **known,
-                                size_t n_known, dm_str *err)
+static int fitting__check_model(const sweep *s, const sweep_model *m, dm_str *err)
 {
     if (!m->formula) {
         if (models_builtin_find(m->name))
@@ -368,37 +568,37 @@ static int fitting__check_model(const sweep *s, const sweep_model *m, const char
                       s->path, m->line, m->name);
         return DM_ERR_UNKNOWN;
     }
-    char *expr = NULL;
-    fit_bound *bounds = NULL;
-    size_t nb = 0;
-    formula *f = NULL;
     dm_str why = {0};
-    int rc = bounds_split(m->formula, &expr, &bounds, &nb, &why);
-    rc = rc ? rc : formula_parse(expr, NULL, 0, &f, &why);
-    for (size_t j = 0; rc == 0 && j < formula_n_params(f); j++) {
-        const char *p = formula_param_name(f, j), *near = fitting__misspelled(p, known, n_known);
-        if (near) {
-            dm_str_printf(&why, "'%s' would be a fitted parameter; did you mean '%s'? (names "
-                          "that are not counters or axes are parameters)", p, near);
-            rc = DM_ERR_UNKNOWN;
-        }
-    }
+    int rc = fitting_check_formula(m->formula, &why);
     if (rc)
         dm_str_printf(err, "%s:%d: models: %s: %s", s->path, m->line, m->name, dm_str_get(&why));
-    formula_free(f);
-    bounds_free(bounds, nb);
-    free(expr);
     dm_str_free(&why);
     return rc;
 }
 
-int fitting_check_models(const sweep *s, dm_str *err)
+int fitting_check_name(const char *name, int axis_only, dm_str *why)
 {
+    if (axes_find(name) || (!axis_only && counters_find(name)) ||
+        (axis_only && strcmp(name, FITTING_VARIANT) == 0))
+        return 0;
     size_t n = 0;
     const char **known = fitting__known_names(&n);
+    if (axis_only) {   /* the axes and the variant */
+        for (size_t i = 0; i < axes_count(); i++)
+            known[i] = axes_at(i)->name;
+        known[axes_count()] = FITTING_VARIANT;
+        n = axes_count() + 1;
+    }
+    dm_str_printf(why, "unknown %s '%s'", axis_only ? "--group-by axis" : "--response", name);
+    dm_str_suggest(why, name, known, n, axis_only ? "axes" : "counters and axes");
+    free(known);
+    return DM_ERR_UNKNOWN;
+}
+
+int fitting_check_models(const sweep *s, dm_str *err)
+{
     int rc = 0;
     for (size_t i = 0; rc == 0 && i < s->n_models; i++)
-        rc = fitting__check_model(s, &s->models[i], known, n, err);
-    free(known);
+        rc = fitting__check_model(s, &s->models[i], err);
     return rc;
 }

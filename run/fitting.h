@@ -23,6 +23,15 @@ typedef struct fitting_spec {
     fit_loss loss;
 } fitting_spec;
 
+/* The group key that is not an axis: a configuration's shader variant,
+ * i.e. its technique and the axes that change its shaders (non-scene enum
+ * axes, integer axes set to "auto", virtual_texture), as text
+ * "pom shadow=hard steps=auto" (fitting_variant).  Numeric axes that are
+ * uniforms (steps, tess_level, light_count) are not part of it: a variant's
+ * model predicts across them. */
+#define FITTING_VARIANT "variant"
+char *fitting_variant(const dm_kv *params, size_t n);
+
 /* Fits the spec to the run; appends one dm_fit_result per group to
  * fits/n.  A group that cannot be fitted adds a line to warnings.
  * Returns 0, or DM_ERR_UNKNOWN when the model is neither built in nor
@@ -37,6 +46,16 @@ int fitting_run(const fitting_spec *spec, const dm_run_result *run, dm_fit_resul
  * DM_ERR_PARSE / DM_ERR_UNKNOWN with "FILE:LINE: models: NAME: ..." in err. */
 struct sweep;
 int fitting_check_models(const struct sweep *s, dm_str *err);
+
+/* The same check for one formula (with its bounds), e.g. `fit --formula`:
+ * 0, or DM_ERR_PARSE / DM_ERR_UNKNOWN with the reason in why ("'tess_levle'
+ * would be a fitted parameter; did you mean 'tess_level'? ..."). */
+int fitting_check_formula(const char *formula, dm_str *why);
+
+/* Checks a name given to `fit`: with axis_only, a --group-by key (an axis
+ * or FITTING_VARIANT), else a --response (a counter or an axis).  0, or
+ * DM_ERR_UNKNOWN with "unknown ... 'NAME'; did you mean 'X'? valid ...". */
+int fitting_check_name(const char *name, int axis_only, dm_str *why);
 
 /* Predicts the response of a stored fit for a configuration that has not
  * been measured (the planner's --budget).  The configuration is given by
@@ -54,5 +73,16 @@ int fitting_check_models(const struct sweep *s, dm_str *err);
 int fitting_predict(const dm_fit_result *fit, const dm_kv *params, size_t n_params,
                     const char *key, const dm_run_result *runs, size_t n_runs, double *value,
                     dm_str *why);
+
+/* fitting_predict for a fit of `train` whose formula keeps a term the fit
+ * dropped because one of its variables had the same value in every
+ * configuration of the group (a constant column: its cost is inside the
+ * other terms): when this configuration has the same value of each such
+ * variable the term counts 0, else DM_ERR_NOTFOUND with why naming the
+ * variable, both values and the term ("the fitted runs never varied
+ * TESInvocations in this group (0), this configuration has 100 ..."). */
+int fitting_predict_dropped(const dm_fit_result *fit, const dm_run_result *train, const dm_kv *params,
+                            size_t n_params, const char *key, const dm_run_result *runs, size_t n_runs,
+                            double *value, dm_str *why);
 
 #endif

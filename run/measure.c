@@ -29,6 +29,8 @@
 typedef struct mconf {
     const plan_config *pc;
     tech_item item;
+    tech_item item_min;         /* minimal-fragment-shader item for the raster pass (MinimalShadingTime), 0 = none */
+    char *min_why;              /* why there is none although the sweep asks for MinimalShadingTime */
     tech_item_info info;
     int active;                 /* still sampling */
     int failed;
@@ -156,10 +158,14 @@ static int measure__session(mscene *m, mconf *c, const char **names, size_t n, i
     if (rc == 0)
         rc = counters_num_passes(s, &passes);
     for (int p = 0; rc == 0 && p < passes; p++) {
+        tech_item full = c->item;
+        if (counters_pass_minimal_fs(s, p))
+            c->item = c->item_min;   /* the raster pass: the same draws, minimal fragment shading */
         rc = counters_pass_begin(s, p);
         rc = rc ? rc : counters_sample_begin(s, 0);
-        if (rc == 0)
+        if (rc == 0 && c->item.id)
             measure__frames(m, c, frames);
+        c->item = full;
         rc = rc ? rc : counters_sample_end(s);
         rc = rc ? rc : counters_pass_end(s);
     }
@@ -231,6 +237,45 @@ static void measure__restore(mscene *m, mconf *c)
                       "interrupted process\n", c->n_samples);
 }
 
+/* Why the stages of item `info` cannot be isolated, or NULL (docs/counters.md,
+ * "Stage costs": what isolation changes). */
+static const char *measure__isolation_problem(const tech_item_info *info)
+{
+    if (!info->has_fs)
+        return "no fragment stage: nothing to isolate";
+    if (info->fs_discards)
+        return "the fragment shader can discard: the minimal shader would keep the fragments it drops, "
+               "so setup and raster would include their depth and colour writes";
+    return NULL;
+}
+
+/* The raster pass's item (MinimalShadingTime): the configuration with the
+ * minimal fragment shader, warmed up (its JIT outside the samples); else
+ * c->min_why says why there is none. */
+static void measure__prepare_minimal(mscene *m, mconf *c)
+{
+    int wanted = 0;
+    for (size_t i = 0; i < m->n_timing; i++)
+        wanted |= strcmp(m->timing[i], "MinimalShadingTime") == 0;
+    const char *why = wanted ? measure__isolation_problem(&c->info) : NULL;
+    if (!wanted || why) {
+        c->min_why = why ? dm_xstrdup(why) : NULL;
+        return;
+    }
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_MINIMAL_FS);
+    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item_min, &c->log);
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
+    if (gl_context_take_messages(m->gl, &c->log) > 0 || rc != 0) {
+        c->item_min.id = 0;
+        c->min_why = dm_xstrdup("the minimal fragment shader cannot be built (see log)");
+        return;
+    }
+    tech_item full = c->item;
+    c->item = c->item_min;
+    measure__frames(m, c, m->job->sweep->measure.warmup_frames > 0 ? m->job->sweep->measure.warmup_frames : 1);
+    c->item = full;
+}
+
 /* Prepare + warm-up + statistics pass for one configuration. */
 static void measure__prepare(mscene *m, mconf *c)
 {
@@ -256,6 +301,7 @@ static void measure__prepare(mscene *m, mconf *c)
         return;
     }
     tech_item_get_info(m->r, c->item, &c->info);
+    measure__prepare_minimal(m, c);
     measure__warmup(m, c);
     c->stats = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats);
     c->stats_reason = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats_reason);
@@ -436,9 +482,49 @@ static void measure__derived(const mconf *c, dm_config_result *out)
     }
 }
 
+/* The stage counters of a counted configuration (docs/counters.md, "Stage
+ * costs"), per sample: geometry = the discard window G; raster = the
+ * minimal-shader window R minus the same with discard M (the minimal
+ * program's own geometry, so a change of the geometry's work by the
+ * minimal shader does not enter raster); fragment = full − G − raster;
+ * residual = G − M (that change); unavailable with the reason when
+ * the windows were not counted. */
+static void measure__stage_counters(mconf *c, const callgrind_count *k, uint64_t seed, dm_config_result *out)
+{
+    static const char *const names[] = {"GeometryInstructions", "RasterInstructions", "FragmentInstructions",
+                                        "StageResidual"};
+    double part[4] = {NAN, NAN, NAN, NAN};
+    for (int st = 0; st < 4; st++) {
+        dm_counter_result *r = measure__push(out, names[st]);
+        if (!k || !k->staged) {
+            r->available = 0;
+            r->unavailable_reason = dm_xstrdup(k && k->stage_reason ? k->stage_reason
+                                               : k && k->reason ? k->reason : "not counted");
+            continue;
+        }
+        double v[CALLGRIND_SAMPLES];
+        for (int s = 0; s < CALLGRIND_SAMPLES; s++) {
+            double g = k->window[CALLGRIND_GEOMETRY][s], m = k->window[CALLGRIND_RESIDUAL][s];
+            double raster = k->window[CALLGRIND_RASTER][s] - m;   /* the minimal program's own geometry out */
+            double parts[4] = {g, raster, k->samples[s] - g - raster, g - m};
+            v[s] = parts[st];
+        }
+        measure__counter_timed(r, v, CALLGRIND_SAMPLES, seed);
+        part[st] = r->value;
+        if (r->value < 0 && st < 3)
+            dm_str_printf(&c->log, "%s: negative (%.0f per frame): the isolation passes did not "
+                          "nest here, see docs/counters.md\n", names[st], r->value);
+    }
+    dm_str verdict = {0};   /* the bottleneck verdict, in the configuration's log */
+    if (counters_stage_verdict(part[0], part[1], part[2], &verdict) == 0)
+        dm_str_printf(&c->log, "stages (instructions): %s\n", dm_str_get(&verdict));
+    dm_str_free(&verdict);
+}
+
 /* Instructions of configuration c from the Instructions pass (its own
  * child under Valgrind): the per-frame count of each sample, or unavailable
- * with the pass's reason.  Samples that disagree are noted in the log. */
+ * with the pass's reason.  Samples that disagree are noted in the log.
+ * With stage counters asked for, also their three counters. */
 static void measure__instructions(mscene *m, mconf *c, dm_config_result *out)
 {
     const callgrind_count *k = NULL;
@@ -451,11 +537,13 @@ static void measure__instructions(mscene *m, mconf *c, dm_config_result *out)
     if (!k || !k->counted) {
         r->available = 0;
         r->unavailable_reason = dm_xstrdup(k && k->reason ? k->reason : "not counted");
-        return;
+    } else {
+        measure__counter_timed(r, k->samples, CALLGRIND_SAMPLES, m->job->seed);
+        if (r->max - r->min > CALLGRIND_AGREE * r->min)
+            dm_str_printf(&c->log, "Instructions: samples disagree (%.0f .. %.0f per frame)\n", r->min, r->max);
     }
-    measure__counter_timed(r, k->samples, CALLGRIND_SAMPLES, m->job->seed);
-    if (r->max - r->min > CALLGRIND_AGREE * r->min)
-        dm_str_printf(&c->log, "Instructions: samples disagree (%.0f .. %.0f per frame)\n", r->min, r->max);
+    if (callgrind_wants_stages(&m->job->sweep->measure))
+        measure__stage_counters(c, k, m->job->seed, out);
 }
 
 /* Fills the counters of a finished configuration into out. */
@@ -468,6 +556,11 @@ static void measure__collect(mscene *m, mconf *c, dm_config_result *out)
         if (!counters_available(m->cc, m->timing[i], &why)) {
             r->available = 0;
             r->unavailable_reason = dm_xstrdup(why ? why : "unavailable on this driver");
+            continue;
+        }
+        if (c->min_why && strcmp(m->timing[i], "MinimalShadingTime") == 0) {
+            r->available = 0;
+            r->unavailable_reason = dm_xstrdup(c->min_why);
             continue;
         }
         measure__counter_timed(r, c->timing[i], c->n_samples, m->job->seed);
@@ -811,6 +904,7 @@ static void measure__teardown(mscene *m, mconf *cs, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
         free(cs[i].reason);
+        free(cs[i].min_why);
         dm_str_free(&cs[i].log);
         for (size_t k = 0; cs[i].timing && k < m->n_timing; k++)
             free(cs[i].timing[k]);
@@ -858,24 +952,28 @@ int measure_pilot(const measure_job *job, dm_str *err)
 /* The counted window of one configuration: collection switched on around
  * `frames` frames and the glFinish that ends them (so the rasteriser's work,
  * on the calling thread with LP_NUM_THREADS=0, is inside), then one dump
- * named "KEY.S" per sample.  Setup, JIT compilation and warm-up happen
- * before, with collection off. */
-/* Returns the nanoseconds of the warm-up (incl. the discarded first sample)
- * in *warm_ns and of the kept samples in *count_ns (bench/instructions_split.sh). */
-static void measure__counted_samples(mscene *m, mconf *c, int frames, int samples, int64_t *warm_ns,
-                                     int64_t *count_ns)
+ * per sample named "KEY.S" (window CALLGRIND_FULL), "KEY.g.S" (the same
+ * frames with GL_RASTERIZER_DISCARD), "KEY.r.S" (c->item is then the
+ * minimal-fragment-shader item) or "KEY.m.S" (that item with discard).  Setup, JIT compilation and `warm` warm-up
+ * frames happen before, with collection off.  Returns the nanoseconds of
+ * the warm-up (incl. the discarded first sample) in *warm_ns and of the
+ * kept samples in *count_ns (bench/instructions_split.sh). */
+static void measure__counted_samples(mscene *m, mconf *c, callgrind_window w, int warm, int frames,
+                                     int samples, int64_t *warm_ns, int64_t *count_ns)
 {
+    static const char *const tag[CALLGRIND_WINDOWS] = {"", ".g", ".r", ".m"};
     int64_t t0 = dm_now_ns(), t1 = t0;
-    int warm = m->job->sweep->measure.warmup_frames;
     measure__frames(m, c, warm > 0 ? warm : 1);
     measure__vt_converge(m->r, c->item, c->pc->width, c->pc->height);   /* no page generation counted */
+    if (w == CALLGRIND_GEOMETRY || w == CALLGRIND_RESIDUAL)
+        glEnable(GL_RASTERIZER_DISCARD);
     /* The first sample counted after the warm-up differs from every later
      * one (by up to 7e-4 of a 64x64 frame), the later ones are equal: a
      * first sample is counted and dumped as KEY.-1, which the parent
      * ignores (run/callgrind.c), before those that are kept. */
     for (int s = -1; s < samples; s++) {
-        char name[32];
-        snprintf(name, sizeof name, "%s.%d", c->pc->key, s);
+        char name[40];
+        snprintf(name, sizeof name, "%s%s.%d", c->pc->key, tag[w], s);
         glFinish();
         CALLGRIND_TOGGLE_COLLECT;
         measure__frames(m, c, frames);
@@ -885,14 +983,53 @@ static void measure__counted_samples(mscene *m, mconf *c, int frames, int sample
         if (s < 0)
             t1 = dm_now_ns();
     }
+    glDisable(GL_RASTERIZER_DISCARD);
     *warm_ns = t1 - t0;
     *count_ns = dm_now_ns() - t1;
+}
+
+/* The stage windows of a prepared, counted configuration (geometry with
+ * rasterizer discard, raster with the minimal fragment shader, and the
+ * minimal shader with discard for the residual), reported
+ * as "S KEY ok" or "S KEY unavailable REASON". */
+static void measure__stage_windows(mscene *m, mconf *c, int frames, int samples)
+{
+    tech_item_info info = {0};
+    tech_item_get_info(m->r, c->item, &info);
+    const char *why = measure__isolation_problem(&info);
+    if (why) {
+        measure__say(m->job, "S %s unavailable %s", c->pc->key, why);
+        return;
+    }
+    int64_t warm_ns = 0, count_ns = 0;
+    measure__counted_samples(m, c, CALLGRIND_GEOMETRY, 1, frames, samples, &warm_ns, &count_ns);
+    tech_item full = c->item, minimal = {0};
+    dm_str log = {0};
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_MINIMAL_FS);
+    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &minimal, &log);
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
+    if (gl_context_take_messages(m->gl, &log) > 0 || rc != 0) {
+        for (char *nl = strchr(log.buf ? log.buf : "", '\n'); nl; nl = strchr(nl, '\n'))
+            *nl = ' ';   /* one protocol line */
+        measure__say(m->job, "S %s unavailable the minimal fragment shader cannot be built: %s", c->pc->key,
+                     log.len ? dm_str_get(&log) : dm_strerror(rc));
+        dm_str_free(&log);
+        return;
+    }
+    dm_str_free(&log);
+    c->item = minimal;
+    measure__counted_samples(m, c, CALLGRIND_RASTER, 1, frames, samples, &warm_ns, &count_ns);
+    measure__counted_samples(m, c, CALLGRIND_RESIDUAL, 1, frames, samples, &warm_ns, &count_ns);
+    c->item = full;
+    tech_release(m->r, minimal);
+    measure__say(m->job, "S %s ok", c->pc->key);
 }
 
 int measure_instructions(const measure_job *job, int frames, int samples, dm_str *err)
 {
     mscene m = { .job = job };
     int64_t t0 = dm_now_ns();
+    int stages = callgrind_wants_stages(&job->sweep->measure);
     int rc = gl_context_create(NULL, &m.gl, err);
     rc = rc ? rc : tech_renderer_create(&m.r);
     /* where the child's time goes, in its log (bench/instructions_split.sh) */
@@ -912,9 +1049,16 @@ int measure_instructions(const measure_job *job, int frames, int samples, dm_str
                          prc == 0 ? "GL error while preparing" : dm_strerror(prc));
             continue;
         }
-        measure__counted_samples(&m, c, frames, samples, &warm_ns, &count_ns);
+        measure__counted_samples(&m, c, CALLGRIND_FULL, job->sweep->measure.warmup_frames, frames, samples,
+                                 &warm_ns, &count_ns);
         fprintf(stderr, "instructions split: %s prepare %.1f ms, warm-up %.1f ms, counted %.1f ms\n",
                 c->pc->key, (double)prep_ns / 1e6, (double)warm_ns / 1e6, (double)count_ns / 1e6);
+        if (stages) {
+            int64_t ts = dm_now_ns();
+            measure__stage_windows(&m, c, frames, samples);
+            fprintf(stderr, "instructions split: %s stage windows %.1f ms\n", c->pc->key,
+                    (double)(dm_now_ns() - ts) / 1e6);
+        }
         int bad = gl_context_check_errors(&c->log) > 0;
         measure__say(job, "I %s %s", c->pc->key, bad ? "failed GL error in the counted frames" : "ok");
     }
@@ -923,6 +1067,36 @@ int measure_instructions(const measure_job *job, int frames, int samples, dm_str
     free(cs);
     if (m.gl)
         target_destroy(&m.rt);
+    tech_renderer_destroy(m.r);
+    gl_context_destroy(m.gl);
+    return rc;
+}
+
+int measure_counts(const plan_config *cs, size_t n, const char *const *names, size_t n_names, double *values,
+                   dm_str *err)
+{
+    sweep none = {0};
+    measure_job job = { .sweep = &none, .configs = cs, .n_configs = n, .report_fd = -1 };
+    mscene m = { .job = &job };
+    int rc = gl_context_create(NULL, &m.gl, err);
+    rc = rc ? rc : tech_renderer_create(&m.r);
+    rc = rc ? rc : counters_context_create(&m.cc);
+    for (size_t i = 0; i < n * n_names; i++)
+        values[i] = NAN;
+    for (size_t i = 0; rc == 0 && i < n; i++) {
+        mconf c = { .pc = &cs[i] };
+        if (tech_prepare(m.r, cs[i].params, cs[i].n_params, &c.item, &c.log) == 0) {
+            measure__frames(&m, &c, 1);   /* first use (JIT) outside the counted frame */
+            measure__vt_converge(m.r, c.item, cs[i].width, cs[i].height);
+            measure__session(&m, &c, (const char **)names, n_names, 1, values + i * n_names, NULL);
+            tech_release(m.r, c.item);
+        }
+        gl_context_take_messages(m.gl, NULL);
+        dm_str_free(&c.log);
+    }
+    if (m.gl)
+        target_destroy(&m.rt);
+    counters_context_destroy(m.cc);
     tech_renderer_destroy(m.r);
     gl_context_destroy(m.gl);
     return rc;

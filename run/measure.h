@@ -60,6 +60,16 @@ int measure_scene(const measure_job *job, dm_str *err);
  * context cannot be set up. */
 int measure_instructions(const measure_job *job, int frames, int samples, dm_str *err);
 
+/* The deterministic counters names[0..n_names) of configurations
+ * cs[0..n) over one frame each (after one uncounted frame), in this
+ * process (it creates and destroys its own GL context): the invocation
+ * counts `dmbench predict` multiplies by per-invocation costs.  values is
+ * n x n_names, row-major; NaN where a configuration cannot be prepared or
+ * a counter is unavailable.  Returns 0 or DM_ERR_* (err) when the context
+ * cannot be set up. */
+int measure_counts(const plan_config *cs, size_t n, const char *const *names, size_t n_names, double *values,
+                   dm_str *err);
+
 /* Pilot for --budget: prepares each configuration of the job and times one
  * warm frame (glFinish-fenced), reporting "P <key> <frame_ns>" lines (NaN
  * when it cannot be prepared).  Returns 0 or DM_ERR_* (err) on setup failure. */

@@ -45,6 +45,7 @@
 #include "techniques/render_internal.h"
 #include "techniques/user_mesh.h"
 #include "techniques/lod_cpu.h"
+#include "techniques/fs_minimal.h"
 
 static const char *const render__uniform_names[RU_COUNT] = {
     "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
@@ -117,7 +118,7 @@ int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir)
 
 int tech_renderer_set_debug_view(tech_renderer *r, tech_debug_view view)
 {
-    if (!r || (view != TECH_DEBUG_NONE && view != TECH_DEBUG_NORMALS))
+    if (!r || (view != TECH_DEBUG_NONE && view != TECH_DEBUG_NORMALS && view != TECH_DEBUG_MINIMAL_FS))
         return DM_ERR_ARG;
     r->debug_view = view;
     return 0;
@@ -196,6 +197,54 @@ static void render__defines(const technique_desc *t, const render__cfg *c, dm_st
 
 /* ---- programs ----------------------------------------------------------- */
 
+/* The inputs the compiler finds active in fragment shader src, one per
+ * line as GL names them, from a separable program of that stage alone
+ * (its inputs are the fragment stage's); NULL when it does not link. */
+static char *render__fs_active_inputs(const char *src)
+{
+    GLuint prog = glCreateShaderProgramv(GL_FRAGMENT_SHADER, 1, &src);
+    GLint ok = 0, n = 0;
+    glGetProgramiv(prog, GL_LINK_STATUS, &ok);
+    if (!ok) {
+        glDeleteProgram(prog);
+        return NULL;
+    }
+    glGetProgramInterfaceiv(prog, GL_PROGRAM_INPUT, GL_ACTIVE_RESOURCES, &n);
+    dm_str names = {0};
+    for (GLint i = 0; i < n; i++) {
+        char name[256];
+        GLsizei len = 0;
+        glGetProgramResourceName(prog, GL_PROGRAM_INPUT, (GLuint)i, sizeof name, &len, name);
+        dm_str_printf(&names, "%s\n", name);
+    }
+    glDeleteProgram(prog);
+    char *list = dm_str_take(&names);
+    return list ? list : dm_xstrdup("");
+}
+
+/* Replaces the composed fragment shader src by its minimal form
+ * (fs_minimal.h, the stage-isolation raster pass), reading the inputs the
+ * original reads; -1 with the reason in log. */
+static int render__minimal_fs(dm_str *src, const char *tname, dm_str *log)
+{
+    dm_str min = {0}, why = {0};
+    char *active = render__fs_active_inputs(dm_str_get(src));
+    int rc = active ? fs_minimal_make(dm_str_get(src), active, &min, &why) : DM_ERR_SHADER;
+    if (!active)
+        dm_str_cat(&why, "the fragment shader does not link alone");
+    free(active);
+    if (rc != 0)
+        dm_str_printf(log, "technique '%s': no minimal fragment shader: %s\n", tname, dm_str_get(&why));
+    else {
+        dm_str tmp = *src;
+        *src = min;
+        min = tmp;
+    }
+    dm_str_free(&min);
+    dm_str_free(&why);
+    return rc ? -1 : 0;
+}
+
 static GLuint render__compile(GLenum stage, const char *file, const char *defines,
                               const char *tname, dm_str *log)
 {
@@ -206,6 +255,9 @@ static GLuint render__compile(GLenum stage, const char *file, const char *define
         dm_str_free(&err);
         return 0;
     }
+    if (stage == GL_FRAGMENT_SHADER && defines && strstr(defines, FS_MINIMAL_DEFINE) &&
+        render__minimal_fs(&src, tname, log) != 0)
+        return 0;
     GLuint sh = glCreateShader(stage);
     const char *text = dm_str_get(&src);
     glShaderSource(sh, 1, &text, NULL);
@@ -558,6 +610,21 @@ static void render__item_values(render__item *it, const render__cfg *c)
                           ? atoi(render__get(c, "light_count")) : 1;
 }
 
+/* What the item's fragment shader does that stage isolation must know
+ * (tech_item_info: has_fs, fs_discards, fs_writes_depth). */
+static void render__fs_traits(render__item *it, const char *defines)
+{
+    dm_str src = {0}, err = {0};
+    fs_traits tr = {0};
+    it->info.has_fs = it->tech->fs != NULL;
+    if (it->tech->fs && shaders_compose(it->tech->fs, defines, &src, &err) == 0)
+        fs_minimal_traits(dm_str_get(&src), &tr);
+    it->info.fs_discards = tr.discards;
+    it->info.fs_writes_depth = tr.writes_depth;
+    dm_str_free(&src);
+    dm_str_free(&err);
+}
+
 static int render__prepare_resources(tech_renderer *r, render__item *it, const render__cfg *c,
                                      dm_str *log)
 {
@@ -571,6 +638,9 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
     render__defines(it->tech, c, &defs);
     if (it->debug_view == TECH_DEBUG_NORMALS)
         dm_str_cat(&defs, "#define DEBUG_NORMALS\n");
+    render__fs_traits(it, dm_str_get(&defs));
+    if (it->debug_view == TECH_DEBUG_MINIMAL_FS)
+        dm_str_cat(&defs, FS_MINIMAL_DEFINE);
     rc = render__program_get(r, it->tech, dm_str_get(&defs), &it->prog, &cached, log);
     dm_str_free(&defs);
     if (!rc)

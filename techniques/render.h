@@ -23,6 +23,9 @@ typedef struct tech_item_info {
     int64_t setup_ns;            /* compile/link/upload time spent preparing it */
     int program_cached;          /* 0 compiled now, 1 from the in-memory program cache,
                                     2 from the on-disk program-binary cache */
+    int has_fs;                  /* the program has a fragment stage */
+    int fs_discards;             /* its fragment shader can `discard` (fs_minimal.h) */
+    int fs_writes_depth;         /* its fragment shader writes gl_FragDepth */
 } tech_item_info;
 
 /* Returns 0 and a renderer, or DM_ERR_GL when no usable context is current. */
@@ -40,8 +43,11 @@ int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir);
 /* Debug views: every technique's fragment output replaced by a diagnostic. */
 typedef enum tech_debug_view {
     TECH_DEBUG_NONE = 0,         /* the technique's own output */
-    TECH_DEBUG_NORMALS           /* world-space shading normal (after bump, normal or
+    TECH_DEBUG_NORMALS,          /* world-space shading normal (after bump, normal or
                                     parallax perturbation) as n*0.5+0.5, alpha 1 */
+    TECH_DEBUG_MINIMAL_FS        /* stage isolation: the same stages, depth state and
+                                    coverage with a minimal fragment shader
+                                    (fs_minimal.h; the raster pass of docs/counters.md) */
 } tech_debug_view;
 /* Sets the debug view of the items prepared from now on (prepared items
  * keep theirs; it selects a program variant, #define DEBUG_NORMALS, part of

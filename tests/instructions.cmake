@@ -71,3 +71,24 @@ add_test(NAME test_instructions_families
           $<TARGET_FILE:dmbench_slowvertexshader> $<TARGET_FILE:dmbench_slowtessshader>)
 set_tests_properties(test_instructions_families PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
+
+# Stage costs (docs/counters.md, "Stage costs"): every technique's
+# geometry + raster + fragment instructions add up to Instructions with a
+# residual under 1 %, and on the full-screen quad fragment instructions are
+# linear in the covered pixels (tests/stages/stages.sh).
+add_test(NAME test_stage_instructions
+  COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/stages.sh)
+set_tests_properties(test_stage_instructions PROPERTIES TIMEOUT 1800
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
+
+# dmbench predict: a held-out resolution and step count within 5 % of the
+# measured Instructions, a variant never measured listed, another machine
+# and a missing counter refused (tests/stages/predict.sh).
+add_test(NAME test_predict COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/predict.sh)
+set_tests_properties(test_predict PROPERTIES TIMEOUT 1800
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
+
+# The timed stage split: GeometryTime, MinimalShadingTime and the derived
+# SetupRasterTime and FragmentTime (tests/stages/times.sh, no Valgrind).
+add_test(NAME test_stage_times COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/times.sh)
+set_tests_properties(test_stage_times PROPERTIES TIMEOUT 120 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e")

@@ -6,6 +6,7 @@ dm_add_unit(test_reports_report test_reports_report.c LIBS dm_reports)
 dm_add_unit(test_reports_pareto test_reports_pareto.c LIBS dm_reports)
 dm_add_unit(test_reports_proxy test_reports_proxy.c LIBS dm_reports)
 dm_add_unit(test_reports_drivers test_reports_drivers.c LIBS dm_reports)
+dm_add_unit(test_reports_stage_bar test_reports_stage_bar.c LIBS dm_reports)
 
 # Browser test: a generated report opened in headless chromium (tests/browser/).
 add_executable(test_reports_browser_gen browser/gen_report.c)

@@ -9,6 +9,7 @@
 #include <stdlib.h>
 #include <string.h>
 #include <stdio.h>
+#include <math.h>
 
 #include "core/dm_error.h"
 #include "counters/counters.h"
@@ -193,10 +194,57 @@ static void test_feeds_and_stop_counter(void **state)
         assert_int_equal(counters_find(fed[i].name)->feed, fed[i].feed);
 }
 
+/* The bottleneck verdict: shares of the sum, decreasing, whole percent;
+ * unavailable for a negative, non-finite or empty split. */
+static void test_stage_verdict(void **state)
+{
+    (void)state;
+    dm_str s = {0};
+    assert_int_equal(counters_stage_verdict(9.0, 4.0, 87.0, &s), 0);
+    assert_string_equal(dm_str_get(&s), "fragment 87 %, geometry 9 %, raster 4 %");
+    dm_str_free(&s);
+    assert_int_equal(counters_stage_verdict(1.0, 2.0, 1.0, &s), 0);   /* 25/50/25: ties keep fragment first */
+    assert_string_equal(dm_str_get(&s), "raster 50 %, fragment 25 %, geometry 25 %");
+    dm_str_free(&s);
+    assert_int_equal(counters_stage_verdict(-1.0, 2.0, 1.0, &s), DM_ERR_UNAVAILABLE);
+    assert_int_equal(counters_stage_verdict(0.0, 0.0, 0.0, &s), DM_ERR_UNAVAILABLE);
+    assert_int_equal(counters_stage_verdict(NAN, 1.0, 1.0, &s), DM_ERR_UNAVAILABLE);
+    assert_int_equal((int)s.len, 0);
+}
+
+/* The stage counters are counted in the Instructions pass, and the shares
+ * and per-invocation counters are formulas over them. */
+static void test_stage_counters_registered(void **state)
+{
+    (void)state;
+    static const char *const counted[] = {"GeometryInstructions", "RasterInstructions", "FragmentInstructions",
+                                          "StageResidual"};
+    for (size_t i = 0; i < 4; i++) {
+        const counters_info *ci = counters_find(counted[i]);
+        assert_non_null(ci);
+        assert_int_equal(ci->backend, COUNTERS_BACKEND_CALLGRIND);
+        assert_int_equal(ci->deterministic, 1);
+    }
+    static const char *const derived[][2] = {
+        {"GeometryShare", "GeometryInstructions / Instructions"},
+        {"RasterShare", "RasterInstructions / Instructions"},
+        {"FragmentShare", "FragmentInstructions / Instructions"},
+        {"InstructionsPerVertex", "GeometryInstructions / VSInvocations"},
+        {"InstructionsPerEvaluation", "GeometryInstructions / TESInvocations"},
+        {"FragmentInstructionsPerPixel", "FragmentInstructions / SamplesPassed"}};
+    for (size_t i = 0; i < sizeof derived / sizeof derived[0]; i++) {
+        const counters_info *ci = counters_find(derived[i][0]);
+        assert_non_null(ci);
+        assert_string_equal(ci->formula, derived[i][1]);
+    }
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_registry_has_spec_counters),
              cmocka_unit_test(test_registry_names_unique_and_typed),
              cmocka_unit_test(test_expr_known_inputs),
              cmocka_unit_test(test_expr_syntax_errors),
              cmocka_unit_test(test_derived_formulas_resolve),
-             cmocka_unit_test(test_feeds_and_stop_counter))
+             cmocka_unit_test(test_feeds_and_stop_counter),
+             cmocka_unit_test(test_stage_verdict),
+             cmocka_unit_test(test_stage_counters_registered))

@@ -18,6 +18,7 @@ declare -A expected=(
   [run]="--budget --dry-run --help --out --quick --quiet --resume --seed --shard --tag --verbose"
   [report]="--flip-ppd --help --metric --out"
   [fit]="--data --formula --group-by --help --json --loss --model --response"
+  [predict]="--allow-env-mismatch --from --help"
   [compare]="--allow-env-mismatch --alpha --base-run --base-store --base-tag --baseline --counters-only --flip-rise --help --json --junit --markdown --new-run --new-store --new-tag --no-blocking --only-changed --paired --psnr-drop --quiet --rounds --run-spread --seed --ssim-drop --store --threshold --time-counter --time-threshold --tolerance"
   [baseline]="--help --reason --store"
   [merge]="--allow-missing --help"

@@ -1,0 +1,73 @@
+#!/usr/bin/env bash
+# test_predict: `dmbench predict` (docs/models.md, "Prediction").
+#  - fitted on tests/stages/predict_fit.yaml (normal, pom at 8/16 steps,
+#    three resolutions), it predicts the held-out predict_new.yaml (160x160,
+#    pom at 24 steps) within 5 % of the Instructions measured there, and
+#    lists phong, a variant never measured, as not predicted;
+#  - refuses runs of another machine fingerprint naming the key (exit 2),
+#    unless --allow-env-mismatch, and a run without a needed counter.
+set -uo pipefail
+. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
+if [ -n "${PREDICT_RUNS:-}" ]; then   # reuse two runs made by hand: DIR with fit/ and new/
+  cp -r "$PREDICT_RUNS/fit" "$OUT/fit"; cp -r "$PREDICT_RUNS/new" "$OUT/new"
+else
+  t0=$(date +%s)
+  "$BIN" run "$SRC/tests/stages/predict_fit.yaml" --out "$OUT/fit" --seed 1 --quiet || exit 1
+  "$BIN" run "$SRC/tests/stages/predict_new.yaml" --out "$OUT/new" --seed 1 --quiet || exit 1
+  echo "two runs: $(( $(date +%s) - t0 )) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
+fi
+"$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest" > "$OUT/pred.txt" || {
+  echo "FAIL: predict exited $?"; cat "$OUT/pred.txt"; exit 1; }
+cat "$OUT/pred.txt"
+python3 - "$OUT/pred.txt" "$OUT/new/latest/results.json" <<'PY' && pass=$((pass+1)) || fail=$((fail+1))
+import json, re, sys
+lines = open(sys.argv[1]).read().splitlines()
+meas = {c["key"]: c for c in json.load(open(sys.argv[2]))["configs"]}
+checked, bad = 0, []
+for l in lines[1:]:
+    f = l.split()
+    if l.startswith(" ") or len(f) < 4 or f[0] not in meas:
+        continue
+    c = meas[f[0]]
+    t = c["params"]["technique"]
+    m = c["counters"]["Instructions"]
+    m = m.get("median", m.get("value"))
+    if t == "phong":
+        bad.append(f"phong was predicted: {l}")
+        continue
+    pred = float(re.search(r"(\S+) \[", l).group(1))   # Instructions, before its interval
+    err = pred / m - 1
+    print(f"{t} {c['params'].get('steps', '')} {c['params']['resolution']}: predicted {pred:.0f}, "
+          f"measured {m:.0f} ({100*err:+.2f} %)")
+    checked += 1
+    if abs(err) > 0.05:
+        bad.append(f"{t}: {100*err:+.2f} % off")
+unpred = "\n".join(lines)
+if not re.search(r"variant 'phong[^']*' was never measured by the runs", unpred):
+    bad.append("phong is not listed as not predicted")
+if checked != 3:
+    bad.append(f"{checked} configurations checked, expected 3")
+for b in bad:
+    print("FAIL:", b)
+sys.exit(1 if bad else 0)
+PY
+# another machine: the fitted run's cpu changed in its store
+python3 - "$OUT/fit/dmbench.sqlite" <<'PY'
+import sqlite3, sys
+db = sqlite3.connect(sys.argv[1])
+n = db.execute("UPDATE run_env SET value = 'Another CPU' WHERE key = 'cpu'").rowcount
+db.commit()
+assert n >= 1, "no cpu key in the store's environment table"
+PY
+expect_refused 2 "runs of another machine fingerprint: .*: cpu (run Another CPU" -- \
+  "$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest"
+if "$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest" --allow-env-mismatch >/dev/null 2>&1
+then pass=$((pass+1)); else fail=$((fail+1)); echo "FAIL: --allow-env-mismatch was refused"; fi
+# a run without the stage model's counters (one configuration, no Valgrind)
+sed -e 's/counters: \[.*/counters: [WallTime]/' -e '/^             SamplesPassed, Instructions\]/d' \
+    -e 's/technique: \[normal, pom\]/technique: [normal]/' -e 's/resolution: \[.*/resolution: ["64x64"]/' \
+    "$SRC/tests/stages/predict_fit.yaml" > "$OUT/nocount.yaml"
+"$BIN" run "$OUT/nocount.yaml" --out "$OUT/nocount" --seed 1 --quiet || exit 1
+expect_refused 2 "has no counter 'Instructions': add Instructions to measure.counters" -- \
+  "$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest,$OUT/nocount/latest"
+tally

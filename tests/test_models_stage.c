@@ -1,0 +1,217 @@
+/* test_models_stage.c — the built-in stage-instructions model (run/fitting.c,
+ * models/catalog.c) on synthetic runs with known coefficients: one fit per
+ * shader variant by default, terms over variables a variant lacks dropped,
+ * the coefficients recovered, and a new step count, level and resolution
+ * of a measured variant predicted exactly. */
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+#include <cmocka.h>
+#include "test_util.h"
+
+#include "core/dm_error.h"
+#include "run/fitting.h"
+
+/* Known per-invocation costs of two variants. */
+enum { POM_C0 = 80000, POM_VS = 60, POM_PRIM = 40, POM_PX = 150, POM_STEP = 25 };
+enum { TESS_C0 = 120000, TESS_TES = 300, TESS_PRIM = 50, TESS_PX = 90 };
+
+static void counter(dm_config_result *c, const char *name, double v)
+{
+    dm_counter_result *r = dm_vec_push(&c->counters, &c->n_counters, NULL, sizeof *r);
+    memset(r, 0, sizeof *r);
+    r->name = dm_xstrdup(name);
+    r->unit = dm_xstrdup("items");
+    r->available = r->deterministic = 1;
+    r->value = v;
+}
+
+static dm_config_result *config(dm_run_result *run, const char *technique)
+{
+    dm_config_result *c = dm_vec_push(&run->configs, &run->n_configs, NULL, sizeof *c);
+    memset(c, 0, sizeof *c);
+    c->key = dm_xasprintf("%016zx", run->n_configs);
+    c->ok = 1;
+    dm_kv_push(&c->params, &c->n_params, "technique", technique);
+    return c;
+}
+
+/* pom at steps 8/16/32, mesh density 1..3, 3 resolutions; tess-displacement
+ * (lod uniform) at levels 2/4/8 and the same resolutions. */
+static void synthetic_run(dm_run_result *run)
+{
+    static const int res[3][2] = {{64, 64}, {128, 96}, {160, 160}};
+    for (int s = 8; s <= 32; s *= 2)
+        for (int d = 1; d <= 3; d++)
+            for (int k = 0; k < 3; k++) {
+                dm_config_result *c = config(run, "pom");
+                char v[32];
+                snprintf(v, sizeof v, "%d", s);
+                dm_kv_push(&c->params, &c->n_params, "steps", v);
+                snprintf(v, sizeof v, "%d", d);
+                dm_kv_push(&c->params, &c->n_params, "mesh_density", v);
+                snprintf(v, sizeof v, "%dx%d", res[k][0], res[k][1]);
+                dm_kv_push(&c->params, &c->n_params, "resolution", v);
+                double vs = 400.0 * d + 100, prim = 300.0 * d * d, fs = res[k][0] * res[k][1] * 0.5;
+                counter(c, "VSInvocations", vs);
+                counter(c, "TESInvocations", 0);
+                counter(c, "ClippingOutputPrimitives", prim);
+                counter(c, "FSInvocations", fs);
+                counter(c, "Instructions", POM_C0 + POM_VS * vs + POM_PRIM * prim + POM_PX * fs + POM_STEP * fs * s);
+            }
+    for (int L = 2; L <= 8; L *= 2)
+        for (int k = 0; k < 3; k++) {
+            dm_config_result *c = config(run, "tess-displacement");
+            char v[32];
+            dm_kv_push(&c->params, &c->n_params, "lod", "uniform");
+            snprintf(v, sizeof v, "%d", L);
+            dm_kv_push(&c->params, &c->n_params, "tess_level", v);
+            snprintf(v, sizeof v, "%dx%d", res[k][0], res[k][1]);
+            dm_kv_push(&c->params, &c->n_params, "resolution", v);
+            double tes = 250.0 * L * L, prim = 1.5 * tes + 100 * L, fs = res[k][0] * res[k][1] * 0.4 + 50 * L;
+            counter(c, "VSInvocations", 500);
+            counter(c, "TESInvocations", tes);
+            counter(c, "ClippingOutputPrimitives", prim);
+            counter(c, "FSInvocations", fs);
+            counter(c, "Instructions", TESS_C0 + TESS_TES * tes + TESS_PRIM * prim + TESS_PX * fs);
+        }
+}
+
+static double param(const dm_fit_result *f, const char *name)
+{
+    for (size_t i = 0; i < f->n_params; i++)
+        if (strcmp(f->params[i].name, name) == 0)
+            return f->params[i].value;
+    return NAN;
+}
+
+static void assert_close(double got, double want)
+{
+    if (!(fabs(got - want) <= 1e-6 * fabs(want))) {
+        fprintf(stderr, "got %.9g, want %.9g\n", got, want);
+        fail();
+    }
+}
+
+/* One fit per variant; the known coefficients come back; the terms a
+ * variant has no variable for (light_count; steps for tessellation) are
+ * not in its formula. */
+static void test_recovers_per_variant(void **state)
+{
+    (void)state;
+    dm_run_result run = {0};
+    synthetic_run(&run);
+    fitting_spec spec = { .name = "stage-instructions" };
+    dm_fit_result *fits = NULL;
+    size_t n = 0;
+    dm_str warn = {0}, err = {0};
+    assert_int_equal(fitting_run(&spec, &run, &fits, &n, &warn, &err), 0);
+    assert_int_equal((int)n, 2);
+    for (size_t i = 0; i < n; i++) {
+        const dm_fit_result *f = &fits[i];
+        assert_int_equal((int)f->n_group, 1);
+        assert_string_equal(f->group[0].key, "variant");
+        assert_string_equal(f->response, "Instructions");
+        assert_null(strstr(f->formula, "light_count"));
+        fprintf(stderr, "%s: %s; CV-MAPE %.3g %%, condition %.3g\n", f->group[0].value, f->formula, f->cv_mape,
+                f->condition);
+        assert_true(f->cv_mape < 1e-6);
+        if (strcmp(f->group[0].value, "pom") == 0) {
+            assert_int_equal(f->n_points, 27);
+            assert_close(param(f, "c0"), POM_C0);
+            assert_close(param(f, "c_vs"), POM_VS);
+            assert_close(param(f, "c_prim"), POM_PRIM);
+            assert_close(param(f, "c_px"), POM_PX);
+            assert_close(param(f, "c_step"), POM_STEP);
+        } else {
+            assert_string_equal(f->group[0].value, "tess-displacement lod=uniform");
+            assert_null(strstr(f->formula, "steps"));
+            assert_int_equal(f->n_points, 9);
+            assert_close(param(f, "c0"), TESS_C0);
+            assert_close(param(f, "c_tes"), TESS_TES);
+            assert_close(param(f, "c_prim"), TESS_PRIM);
+            assert_close(param(f, "c_px"), TESS_PX);
+        }
+    }
+    /* predicted for a step count beyond those measured, from stored counts */
+    dm_kv *kv = NULL;
+    size_t nk = 0;
+    dm_kv_push(&kv, &nk, "technique", "pom");
+    dm_kv_push(&kv, &nk, "steps", "64");
+    const dm_config_result *m = &run.configs[0];   /* its counts, a new step count */
+    double v = NAN;
+    const dm_fit_result *pom = strcmp(fits[0].group[0].value, "pom") == 0 ? &fits[0] : &fits[1];
+    assert_int_equal(fitting_predict_dropped(pom, &run, kv, nk, m->key, &run, 1, &v, &err), 0);
+    double fs = dm_config_counter(m, "FSInvocations")->value;
+    assert_close(v, POM_C0 + POM_VS * 500.0 + POM_PRIM * 300.0 + POM_PX * fs + POM_STEP * fs * 64);
+    /* a value the variant never varied (TESInvocations was 0) is not guessed */
+    dm_run_result other = {0};
+    dm_config_result *t = config(&other, "pom");
+    counter(t, "VSInvocations", 500);
+    counter(t, "TESInvocations", 100);
+    counter(t, "ClippingOutputPrimitives", 300);
+    counter(t, "FSInvocations", fs);
+    dm_str_free(&err);
+    assert_int_equal(fitting_predict_dropped(pom, &run, kv, nk, t->key, &other, 1, &v, &err), DM_ERR_NOTFOUND);
+    assert_non_null(strstr(dm_str_get(&err), "never varied TESInvocations in this group (0), this configuration "
+                                            "has 100: they cannot tell the cost of 'c_tes*TESInvocations'"));
+    dm_run_free(&other);
+    dm_kv_free(kv, nk);
+    for (size_t i = 0; i < n; i++)
+        dm_fit_result_free(&fits[i]);
+    free(fits);
+    dm_str_free(&warn);
+    dm_str_free(&err);
+    dm_run_free(&run);
+}
+
+/* The variant: technique and the axes that change its shaders (enum, an
+ * integer "auto"), not the uniform numbers or scene axes. */
+static void test_variant_names(void **state)
+{
+    (void)state;
+    dm_kv *kv = NULL;
+    size_t n = 0;
+    dm_kv_push(&kv, &n, "technique", "pom");
+    dm_kv_push(&kv, &n, "mesh", "cube");
+    dm_kv_push(&kv, &n, "resolution", "64x64");
+    dm_kv_push(&kv, &n, "steps", "auto");
+    dm_kv_push(&kv, &n, "shadow", "hard");
+    dm_kv_push(&kv, &n, "light_count", "4");
+    char *v = fitting_variant(kv, n);
+    assert_string_equal(v, "pom steps=auto shadow=hard");
+    free(v);
+    dm_kv_free(kv, n);
+}
+
+/* fit's name checks: a typo close to an axis or counter, an unknown
+ * --group-by axis or --response, each with a suggestion. */
+static void test_name_checks(void **state)
+{
+    (void)state;
+    dm_str why = {0};
+    assert_int_equal(fitting_check_formula("a + b*tess_levle", &why), DM_ERR_UNKNOWN);
+    assert_non_null(strstr(dm_str_get(&why), "did you mean 'tess_level'?"));
+    dm_str_free(&why);
+    assert_int_equal(fitting_check_formula("a + b*tess_level^p", &why), 0);
+    assert_int_equal(fitting_check_name("techniqe", 1, &why), DM_ERR_UNKNOWN);
+    assert_non_null(strstr(dm_str_get(&why), "unknown --group-by axis 'techniqe'; did you mean 'technique'?"));
+    dm_str_free(&why);
+    assert_int_equal(fitting_check_name("variant", 1, &why), 0);
+    assert_int_equal(fitting_check_name("WallTime", 1, &why), DM_ERR_UNKNOWN);   /* a counter is no axis */
+    dm_str_free(&why);
+    assert_int_equal(fitting_check_name("Instructons", 0, &why), DM_ERR_UNKNOWN);
+    assert_non_null(strstr(dm_str_get(&why), "did you mean 'Instructions'?"));
+    dm_str_free(&why);
+    assert_int_equal(fitting_check_name("Instructions", 0, &why), 0);
+}
+
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_recovers_per_variant),
+             cmocka_unit_test(test_variant_names),
+             cmocka_unit_test(test_name_checks))
