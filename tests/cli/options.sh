@@ -29,6 +29,7 @@ declare -A expected=(
   [info]="--help --json"
   [render]="--debug --exr --help --png --supersample"
   [diff]="--heatmap --help --json --ppd"
+  [drivers]="--drivers --help --out --quiet --seed"
   [view]="--config --frames --help --keys --results --screenshot --timed-seconds"
   [help]="--help"
 )
