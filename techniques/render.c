@@ -31,6 +31,7 @@
 #include <epoxy/gl.h>
 #include <cglm/cglm.h>
 #include <ctype.h>
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -621,8 +622,9 @@ static void render__cull_setup(const tech_renderer *r, render__item *it, const r
     it->cull_pad = fabsf((float)atof(render__get(c, "height_scale"))) * reach;
 }
 
-/* lod=object-points / object-cpu on triangle patches: the mesh's objects
- * (lod_cpu.h), each drawn by its own call with its own uniforms. */
+/* lod=object-points / object-cpu: the mesh's objects (lod_cpu.h), each
+ * drawn by its own call with its own uniforms (a mesh of quad patches has
+ * no object_triangles: it is one object). */
 static void render__lod_objects_setup(const tech_renderer *r, render__item *it, const char *lod)
 {
     const render__mesh *m = &r->meshes[it->mesh];
@@ -639,7 +641,7 @@ static void render__lod_objects_setup(const tech_renderer *r, render__item *it, 
 static void render__lod_setup(const tech_renderer *r, render__item *it, const render__cfg *c)
 {
     const char *lod = render__get(c, "lod");
-    if (it->tech->tcs && it->patch_vertices == 3 && strncmp(lod, "object-", 7) == 0)
+    if (it->tech->tcs && strncmp(lod, "object-", 7) == 0)
         render__lod_objects_setup(r, it, lod);
     if (!it->tech->tcs || strcmp(lod, "cpu-per-patch") != 0)
         return;
@@ -843,17 +845,22 @@ static void render__draw_patches(tech_renderer *r, const render__item *it, size_
 static void render__draw_objects(tech_renderer *r, const render__item *it, const float viewport[2])
 {
     const GLint *L = r->progs[it->prog].loc;
+    const render__mesh *m = &r->meshes[it->mesh];
     vec3 eye;
     mat4 vp;
     render__camera(r, it, viewport, eye, vp);
-    glUniform1i(L[RU_LOD_TILED], r->meshes[it->mesh].object_tris != 0);
+    assert(it->patch_vertices == 3 || it->n_lod_objects == 1);
+    glUniform1i(L[RU_LOD_TILED], m->object_tris != 0);
     for (size_t o = 0; o < it->n_lod_objects; o++) {
         const lod_object *ob = &it->lod_objects[o];
         glUniform4fv(L[RU_LOD_TILE], 1, ob->tile);
         glUniform3fv(L[RU_LOD_ORIGIN], 1, ob->origin);
         if (it->lod_object_cpu)
             glUniform1f(L[RU_LOD_OBJECT_DIST], lod_cpu_distance(eye, ob->centre));
-        render__draw_patches(r, it, 0, 3 * ob->first_tri, 3 * ob->n_tris);
+        if (it->patch_vertices == 4)   /* quad patches: the whole mesh */
+            render__draw_patches(r, it, m->n_indices, 0, m->n_quad_indices);
+        else
+            render__draw_patches(r, it, 0, 3 * ob->first_tri, 3 * ob->n_tris);
     }
 }
 

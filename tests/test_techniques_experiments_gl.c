@@ -272,6 +272,30 @@ static void test_lod_object_uncracked_levels(void **state)
     assert_int_equal(s.tes, want);
 }
 
+/* A mesh of quad patches is one object: every quad of the terrain takes
+ * the level L / d, d from the mesh origin (object-points) or from the
+ * centre of its bounding box (object-cpu), and evaluates (l+1)² vertices. */
+static void test_lod_object_quads(void **state)
+{
+    (void)state;
+    mesh_data m;
+    assert_int_equal(mesh_build(&(mesh_desc){.name = "terrain", .density = 2}, &m), 0);
+    double lo = 1e9, hi = -1e9;
+    for (size_t v = 0; v < m.n_vertices; v++)
+        lo = fmin(lo, m.vertices[v].pos[1]), hi = fmax(hi, m.vertices[v].pos[1]);
+    mesh_free(&m);
+    const double el = 40 * M_PI / 180, eye[3] = {0, 1.3 * sin(el), 1.3 * cos(el)};
+    for (int cpu = 0; cpu < 2; cpu++) {
+        double c[3] = {0, cpu ? 0.5 * (lo + hi) : 0, 0};
+        int l = lvl(20 / dist3(eye, c));
+        char spec[256];
+        snprintf(spec, sizeof spec, "technique=tess-displacement mesh=terrain mesh_density=2 "
+                 "tess_level=20 crack_free=on lod=%s camera.distance=1.3 camera.azimuth=0 "
+                 "camera.elevation=40", cpu ? "object-cpu" : "object-points");
+        assert_int_equal(count(spec).tes, 4 * (GLuint64)(l + 1) * (GLuint64)(l + 1));
+    }
+}
+
 /* ---- tess_inner / tess_outer --------------------------------------------- */
 
 /* The tessellation rule for one triangle patch, equal spacing, inner level
@@ -503,6 +527,7 @@ int main(void)
         cmocka_unit_test(test_lod_cpu_objects),
         cmocka_unit_test(test_lod_object_counts),
         cmocka_unit_test(test_lod_object_uncracked_levels),
+        cmocka_unit_test(test_lod_object_quads),
         cmocka_unit_test(test_inner_outer_counts),
         cmocka_unit_test(test_cull_axis),
         cmocka_unit_test(test_attenuation_s1),
