@@ -4,12 +4,16 @@
 
 #include <math.h>
 
+float lod_cpu_distance(const float eye[3], const float p[3])
+{
+    float dx = eye[0] - p[0], dy = eye[1] - p[1], dz = eye[2] - p[2];
+    return sqrtf(dx * dx + dy * dy + dz * dz);
+}
+
 /* level / max(|eye − p|, 1e-3), as GLSL's distance() then a division. */
 static float lod_cpu__at(const float eye[3], const float p[3], float level)
 {
-    float dx = eye[0] - p[0], dy = eye[1] - p[1], dz = eye[2] - p[2];
-    float d = sqrtf(dx * dx + dy * dy + dz * dz);
-    return level / fmaxf(d, 1e-3f);
+    return level / fmaxf(lod_cpu_distance(eye, p), 1e-3f);
 }
 
 /* Corners of outer edge i (tess.tcs.glsl, outer_edge). */
@@ -65,4 +69,34 @@ void lod_cpu_levels(const float *pos, const uint32_t *idx, size_t n_patches, int
             c[i] = pos + 3 * (size_t)idx[(size_t)patch_n * p + (size_t)i];
         lod_cpu__patch(c, patch_n, eye, level, edge_ref, per_edge, out + 4 * p);
     }
+}
+
+/* Bounds, origin and centre of the triangles of one object. */
+static void lod_cpu__object(const float *pos, const uint32_t *idx, int tiled, lod_object *o)
+{
+    float lo[3] = {INFINITY, INFINITY, INFINITY}, hi[3] = {-INFINITY, -INFINITY, -INFINITY};
+    for (size_t i = 3 * o->first_tri; i < 3 * (o->first_tri + o->n_tris); i++)
+        for (int k = 0; k < 3; k++) {
+            lo[k] = fminf(lo[k], pos[3 * (size_t)idx[i] + (size_t)k]);
+            hi[k] = fmaxf(hi[k], pos[3 * (size_t)idx[i] + (size_t)k]);
+        }
+    float tile[4] = {lo[0], lo[2], hi[0], hi[2]};
+    for (int k = 0; k < 4; k++)
+        o->tile[k] = tile[k];
+    for (int k = 0; k < 3; k++) {
+        o->centre[k] = 0.5f * (lo[k] + hi[k]);
+        o->origin[k] = tiled && k != 1 ? o->centre[k] : 0.0f;
+    }
+}
+
+size_t lod_cpu_objects(const float *pos, const uint32_t *idx, size_t n_tris, size_t object_tris,
+                       lod_object *out)
+{
+    size_t run = object_tris ? object_tris : n_tris, n = 0;
+    for (size_t first = 0; first < n_tris; first += run, n++) {
+        out[n].first_tri = first;
+        out[n].n_tris = n_tris - first < run ? n_tris - first : run;
+        lod_cpu__object(pos, idx, object_tris != 0, &out[n]);
+    }
+    return n;
 }

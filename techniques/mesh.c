@@ -14,7 +14,7 @@
 
 static const char *const mesh__names[] = {
     "plane", "cube", "triangle", "fullscreen", "cylinder", "sphere", "terrain", "asteroid",
-    "seam", "halfflat", "asteroid-reduced", "s2-scene1", "s4-asteroids", "s4-asteroids-reduced", NULL
+    "seam", "halfflat", "asteroid-reduced", "terrain-tiles", "s2-scene1", "s4-asteroids", "s4-asteroids-reduced", NULL
 };
 
 const char *const *mesh_names(void) { return mesh__names; }
@@ -315,6 +315,31 @@ static void mesh__terrain(mesh__builder *b, int t)
     b->cap_i = nt + b->m->n_quad_indices;
 }
 
+/* Terrain of study S4's tiled surface: the same hills over [-1,1]² as
+ * `terrain` at 2t cells per side, listed tile by tile (t×t tiles of 2×2
+ * cells, 8 triangles each, tile rows from v = 0): one tile is one object
+ * of S4's Tables 8.3/8.4, drawn with triangle patches. */
+static void mesh__terrain_tiles(mesh__builder *b, int t)
+{
+    int c = 2 * t, n = c + 1;
+    for (int j = 0; j < n; j++)
+        for (int i = 0; i < n; i++) {
+            float u = (float)i / (float)c, v = (float)j / (float)c, dx, dz;
+            float p[3] = {2 * u - 1, 0, 1 - 2 * v};
+            p[1] = mesh__terrain_y(p[0], p[2], &dx, &dz);
+            float nr[3] = {-dx, 1, -dz};
+            mesh__normalize(nr);
+            mesh__vert(b, p, nr, u, v);
+        }
+    for (int tj = 0; tj < t; tj++)
+        for (int ti = 0; ti < t; ti++)
+            for (int k = 0; k < 4; k++) {
+                uint32_t a = (uint32_t)((2 * tj + k / 2) * n + 2 * ti + k % 2);
+                mesh__quad(b, a, a + 1, a + 1 + (uint32_t)n, a + (uint32_t)n);
+            }
+    b->m->object_triangles = 8;
+}
+
 int mesh_patch_vertices(const char *name)
 {
     return name && strcmp(name, "terrain") == 0 ? 4 : 3;
@@ -407,9 +432,9 @@ int mesh_build(const mesh_desc *desc, mesh_data *out)
             kind = i;
     if (kind < 0)
         return DM_ERR_UNKNOWN;
-    static const int def[] = {2, 0, 0, 0, 58, 4, 16, 6, 4, 4, 2},
-                     lo[] = {2, 0, 0, 0, 3, 0, 1, 0, 1, 1, 0},
-                     hi[] = {1024, 1024, 1024, 1024, 1024, 7, 512, 7, 256, 256, 7};
+    static const int def[] = {2, 0, 0, 0, 58, 4, 16, 6, 4, 4, 2, 8},
+                     lo[] = {2, 0, 0, 0, 3, 0, 1, 0, 1, 1, 0, 1},
+                     hi[] = {1024, 1024, 1024, 1024, 1024, 7, 512, 7, 256, 256, 7, 256};
     if (d == 0)
         d = def[kind];
     if (d < lo[kind] || d > hi[kind])
@@ -426,6 +451,7 @@ int mesh_build(const mesh_desc *desc, mesh_data *out)
     case 6: mesh__terrain(&b, d); break;
     case 7: mesh__asteroid(&b, d); break;
     case 10: mesh__asteroid_reduced(&b, d); break;
+    case 11: mesh__terrain_tiles(&b, d); break;
     default: mesh__halves(&b, d, kind == 9); break;
     }
     mesh_generate_tangents(out);

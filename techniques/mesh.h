@@ -32,6 +32,11 @@ typedef struct mesh_data {
      * counter-clockwise seen from the front.  Tessellating techniques draw
      * these as 4-vertex patches; everything else draws the triangles. */
     size_t n_quad_indices;
+    /* Objects (terrain-tiles only, else 0 = the whole mesh is one object):
+     * the triangle list is runs of object_triangles triangles, one run per
+     * object, as study S4 drew its terrain tile by tile (lod object-points /
+     * object-cpu compute one level per object). */
+    size_t object_triangles;
     int clip_space;         /* 1: positions are clip-space, draw with identity MVP */
 } mesh_data;
 
@@ -53,6 +58,11 @@ typedef struct mesh_data {
  *               vertices, 2d² triangles; each tile is also one quad patch
  *               (n_quad_indices), neighbouring tiles share their edge
  *               vertices (study S4 (docs/studies.md))
+ *   terrain-tiles  study S4's tiled surface: the hills of `terrain` over
+ *               [-1,1]² as d×d tiles (density 1..256, default 8) of 2×2
+ *               cells, 8 triangles per tile listed tile by tile
+ *               (object_triangles 8), (2d+1)² shared vertices; no quad
+ *               patches: S4's tiles are triangle patches
  *   asteroid    the original body of study S4 (docs/studies.md): icosphere of level density
  *               (0..7, default 6: 81 920 triangles) displaced radially on
  *               the CPU by mesh_asteroid_radius, normals rebuilt from the

@@ -31,6 +31,7 @@
 #include <epoxy/gl.h>
 #include <cglm/cglm.h>
 #include <ctype.h>
+#include <assert.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -50,7 +51,8 @@
 static const char *const render__uniform_names[RU_COUNT] = {
     "u_model", "u_view_proj", "u_normal_mat", "u_camera_pos", "u_light_pos", "u_light_color",
     "u_light_count", "u_atten", "u_ambient", "u_shininess", "u_f0", "u_viewport",
-    "u_normal_xy_scale", "u_lod_base", "u_tess_edge_ref"
+    "u_normal_xy_scale", "u_lod_base", "u_tess_edge_ref", "u_lod_origin", "u_lod_object_dist",
+    "u_lod_tile", "u_lod_tiled"
 };
 
 int tech_renderer_create(tech_renderer **out)
@@ -545,6 +547,7 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
     m->n_vertices = md.n_vertices;
     m->n_indices = md.n_indices;
     m->n_quad_indices = md.n_quad_indices;
+    m->object_tris = md.object_triangles;
     m->cull = (cull_set){0};
     if (!md.clip_space && md.n_indices)
         cull_build(&md, RENDER__CULL_CHUNK, &m->cull);
@@ -665,8 +668,9 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
 static size_t render__patch_chunk(const render__cfg *c, int quads, int edge_factor)
 {
     int L = atoi(render__get(c, "tess_level")) * edge_factor;
-    if (strcmp(render__get(c, "lod"), "distance") == 0 ||
-        strcmp(render__get(c, "lod"), "cpu-distance") == 0 || L > 64)
+    const char *lod = render__get(c, "lod");
+    if (strcmp(lod, "distance") == 0 || strcmp(lod, "cpu-per-patch") == 0 ||
+        strncmp(lod, "object-", 7) == 0 || L > 64)
         L = 64;
     int half = (L + 3) / 2 + 1;
     size_t v = quads ? (size_t)(L + 3) * (size_t)(L + 3)
@@ -688,11 +692,28 @@ static void render__cull_setup(const tech_renderer *r, render__item *it, const r
     it->cull_pad = fabsf((float)atof(render__get(c, "height_scale"))) * reach;
 }
 
-/* lod=cpu-distance: the item's per-patch level buffer (filled every draw by
- * render__lod_upload) and whether levels are per edge (crack_free). */
+/* lod=object-points / object-cpu: the mesh's objects (lod_cpu.h), each
+ * drawn by its own call with its own uniforms (a mesh of quad patches has
+ * no object_triangles: it is one object). */
+static void render__lod_objects_setup(const tech_renderer *r, render__item *it, const char *lod)
+{
+    const render__mesh *m = &r->meshes[it->mesh];
+    size_t n_tris = m->n_indices / 3, per = m->object_tris ? m->object_tris : n_tris;
+    it->lod_objects = dm_xcalloc(per ? (n_tris + per - 1) / per + 1 : 1, sizeof(lod_object));
+    it->n_lod_objects = lod_cpu_objects(m->cpu_pos, m->cpu_idx, n_tris, m->object_tris,
+                                        it->lod_objects);
+    it->lod_object_cpu = strcmp(lod, "object-cpu") == 0;
+}
+
+/* lod=cpu-per-patch: the item's per-patch level buffer (filled every draw by
+ * render__lod_upload) and whether levels are per edge (crack_free);
+ * object-points / object-cpu: the objects. */
 static void render__lod_setup(const tech_renderer *r, render__item *it, const render__cfg *c)
 {
-    if (!it->tech->tcs || strcmp(render__get(c, "lod"), "cpu-distance") != 0)
+    const char *lod = render__get(c, "lod");
+    if (it->tech->tcs && strncmp(lod, "object-", 7) == 0)
+        render__lod_objects_setup(r, it, lod);
+    if (!it->tech->tcs || strcmp(lod, "cpu-per-patch") != 0)
         return;
     const render__mesh *m = &r->meshes[it->mesh];
     size_t n = it->patch_vertices == 4 ? m->n_quad_indices / 4 : m->n_indices / 3;
@@ -855,7 +876,7 @@ static void render__uniforms(tech_renderer *r, const render__item *it, const flo
     }
 }
 
-/* lod=cpu-distance: the levels of every patch for this draw's camera,
+/* lod=cpu-per-patch: the levels of every patch for this draw's camera,
  * computed on the CPU (lod_cpu.h) and uploaded to the buffer the control
  * stage reads (binding 3). */
 static void render__lod_upload(tech_renderer *r, const render__item *it, const float viewport[2])
@@ -872,6 +893,45 @@ static void render__lod_upload(tech_renderer *r, const render__item *it, const f
                    m->edge_median, it->lod_per_edge, it->lod_levels);
     glNamedBufferSubData(it->lod_buf, 0, (GLsizeiptr)(n * 4 * sizeof(float)), it->lod_levels);
     glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, it->lod_buf);
+}
+
+/* Patches first .. first + n − 1 (indices, from base) in calls of at most
+ * it->patch_chunk patches; u_lod_base = the first patch of each call. */
+static void render__draw_patches(tech_renderer *r, const render__item *it, size_t base,
+                                 size_t first, size_t n)
+{
+    size_t pv = (size_t)it->patch_vertices, step = pv * it->patch_chunk;
+    for (size_t i = first; i < first + n; i += step) {
+        size_t k = first + n - i < step ? first + n - i : step;
+        glUniform1i(r->progs[it->prog].loc[RU_LOD_BASE], (GLint)(i / pv));
+        glDrawElements(GL_PATCHES, (GLsizei)k, GL_UNSIGNED_INT,
+                       (const void *)((base + i) * sizeof(uint32_t)));
+    }
+}
+
+/* lod=object-points / object-cpu: one call per object with its tile, its
+ * origin and (object-cpu) its distance from the eye, computed now on the
+ * CPU as S4 did at every frame. */
+static void render__draw_objects(tech_renderer *r, const render__item *it, const float viewport[2])
+{
+    const GLint *L = r->progs[it->prog].loc;
+    const render__mesh *m = &r->meshes[it->mesh];
+    vec3 eye;
+    mat4 vp;
+    render__camera(r, it, viewport, eye, vp);
+    assert(it->patch_vertices == 3 || it->n_lod_objects == 1);
+    glUniform1i(L[RU_LOD_TILED], m->object_tris != 0);
+    for (size_t o = 0; o < it->n_lod_objects; o++) {
+        const lod_object *ob = &it->lod_objects[o];
+        glUniform4fv(L[RU_LOD_TILE], 1, ob->tile);
+        glUniform3fv(L[RU_LOD_ORIGIN], 1, ob->origin);
+        if (it->lod_object_cpu)
+            glUniform1f(L[RU_LOD_OBJECT_DIST], lod_cpu_distance(eye, ob->centre));
+        if (it->patch_vertices == 4)   /* quad patches: the whole mesh */
+            render__draw_patches(r, it, m->n_indices, 0, m->n_quad_indices);
+        else
+            render__draw_patches(r, it, 0, 3 * ob->first_tri, 3 * ob->n_tris);
+    }
 }
 
 /* The triangle list, or with it->cull only the chunks not culled under the
@@ -930,17 +990,16 @@ int tech_draw(tech_renderer *r, tech_item item, int width, int height)
     glBindVertexArray(m->vao);
     if (it->patch_chunk) {
         /* quad patches are stored after the triangles (mesh.h) */
-        size_t pv = (size_t)it->patch_vertices, step = pv * it->patch_chunk;
+        size_t pv = (size_t)it->patch_vertices;
         size_t base = pv == 4 ? m->n_indices : 0, total = pv == 4 ? m->n_quad_indices : m->n_indices;
+        float vpt[2] = {(float)width, (float)height};
         glPatchParameteri(GL_PATCH_VERTICES, (GLint)pv);
         if (it->lod_buf)
-            render__lod_upload(r, it, (float[2]){(float)width, (float)height});
-        for (size_t first = 0; first < total; first += step) {
-            size_t n = total - first < step ? total - first : step;
-            glUniform1i(r->progs[it->prog].loc[RU_LOD_BASE], (GLint)(first / pv));
-            glDrawElements(GL_PATCHES, (GLsizei)n, GL_UNSIGNED_INT,
-                           (const void *)((base + first) * sizeof(uint32_t)));
-        }
+            render__lod_upload(r, it, vpt);
+        if (it->lod_objects)
+            render__draw_objects(r, it, vpt);
+        else
+            render__draw_patches(r, it, base, 0, total);
     } else {
         render__draw_triangles(r, it, width, height);
     }
@@ -966,6 +1025,8 @@ void tech_release(tech_renderer *r, tech_item item)
     it->axis_val = NULL;
     free(it->lod_levels);
     it->lod_levels = NULL;
+    free(it->lod_objects);
+    it->lod_objects = NULL;
     glDeleteBuffers(1, &it->lod_buf);
     it->lod_buf = 0;
     it->used = 0;

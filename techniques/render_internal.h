@@ -12,6 +12,7 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 #include "techniques/cull.h"
+#include "techniques/lod_cpu.h"
 #include "techniques/render.h"
 #include "techniques/render_textures.h"
 #include "techniques/technique.h"
@@ -30,7 +31,8 @@
 enum render__uniform {
     RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
     RU_LIGHT_COUNT, RU_ATTEN, RU_AMBIENT, RU_SHININESS, RU_F0, RU_VIEWPORT, RU_NORMAL_XY_SCALE,
-    RU_LOD_BASE, RU_TESS_EDGE_REF, RU_COUNT
+    RU_LOD_BASE, RU_TESS_EDGE_REF, RU_LOD_ORIGIN, RU_LOD_OBJECT_DIST, RU_LOD_TILE, RU_LOD_TILED,
+    RU_COUNT
 };
 
 typedef struct render__program {
@@ -50,7 +52,8 @@ typedef struct render__mesh {
     float edge_median;           /* median edge length (mesh_edge_median): u_tess_edge_ref */
     int edge_factor_max;         /* largest mesh_edge_factor of its edges */
     int clip_space;
-    float *cpu_pos;              /* patch meshes: xyz per vertex kept for lod=cpu-distance */
+    size_t object_tris;          /* triangles per object (mesh.h object_triangles), 0 = one */
+    float *cpu_pos;              /* patch meshes: xyz per vertex kept for the CPU's LOD */
     uint32_t *cpu_idx;           /* patch meshes: the index list (triangles, then quads) */
 } render__mesh;
 
@@ -71,9 +74,12 @@ typedef struct render__item {
     int cull;                    /* visibility_test on: draw only the chunks that can be seen */
     float cull_pad;              /* largest displacement, object units */
     int cull_off;                /* cull=off: back faces are rasterised too */
-    GLuint lod_buf;              /* lod=cpu-distance: per-patch levels (lod_cpu.h), else 0 */
+    GLuint lod_buf;              /* lod=cpu-per-patch: per-patch levels (lod_cpu.h), else 0 */
     float *lod_levels;           /* CPU side of lod_buf, 4 floats per patch */
     int lod_per_edge;            /* crack_free on: one level per outer edge */
+    lod_object *lod_objects;     /* lod=object-points / object-cpu: one draw each, else NULL */
+    size_t n_lod_objects;
+    int lod_object_cpu;          /* object-cpu: the distance comes from the CPU */
     tech_item_info info;
 } render__item;
 

@@ -121,8 +121,10 @@ const technique_desc technique__list[] = {
      .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
      .axes = tech__axes_tess, .version = 2,
      .uniforms = TECH__LIGHT_UNIFORMS ", u_height_scale, u_tess_level, u_tess_inner, "
-                 "u_tess_outer, u_viewport; lod=cpu-distance: u_lod_base and the "
-                 "per-patch levels at storage binding 3; t_height, t_normal, t_albedo"},
+                 "u_tess_outer, u_viewport; lod=cpu-per-patch: u_lod_base and the "
+                 "per-patch levels at storage binding 3; lod=object-points / object-cpu: "
+                 "u_lod_origin, u_lod_object_dist, u_lod_tile, u_lod_tiled; "
+                 "t_height, t_normal, t_albedo"},
     {.name = "reference-mesh",
      .summary = "ground truth: mesh subdivided and displaced on the CPU, per-pixel normals from the height field",
      .vs = "displace.vert.glsl", .fs = "surface.frag.glsl",

@@ -151,9 +151,9 @@ static void test_experiment_axes(void **state)
         assert_true(technique_reads_axis(t, "cull"));
     }
     assert_true(technique_reads_axis(technique_find("vertex-displacement"), "height_format"));
-    const char *s1[] = {"attenuation", "s1", NULL}, *cpu[] = {"lod", "cpu-distance", NULL};
+    const char *s1[] = {"attenuation", "s1", NULL}, *cpu[] = {"lod", "cpu-per-patch", NULL};
     const char *in4[] = {"tess_inner", "4", "tess_outer", "2", NULL};
-    const char *in4cpu[] = {"tess_inner", "4", "tess_outer", "2", "lod", "cpu-distance", NULL};
+    const char *in4cpu[] = {"tess_inner", "4", "tess_outer", "2", "lod", "cpu-per-patch", NULL};
     const char *moved[] = {"cull", "off", "attenuation", "none", "parallax_bias", "0.25", NULL};
     const char *spelled[] = {"cull", "back", "parallax_bias", "0.50", NULL};
     assert_true(axes_condition_holds("light_radius", exp_value, (void *)s1));
@@ -174,8 +174,8 @@ static void test_experiment_axes(void **state)
     /* axis, value, then the message (NULL: the value is valid) */
     static const char *const check[][3] = {
         {"cull", "front", "invalid value 'front' for cull; expected one of: back, off"},
-        {"lod", "cpu-distance", NULL},
-        {"lod", "cpu", "uniform, distance, cpu-distance, screen-edge, flatness"},
+        {"lod", "cpu-per-patch", NULL},
+        {"lod", "cpu", "uniform, distance, cpu-per-patch, object-points, object-cpu, screen-edge, flatness"},
         {"tess_inner", "auto", NULL},
         {"tess_outer", "64", NULL},
         {"tess_outer", "0", "expected an integer in [1, 64] or 'auto'"},

@@ -1,5 +1,7 @@
 /* GL tests of the axes of the studies' missing experiments (issue 19) on
- * llvmpipe: lod=cpu-distance gives the shader distance LOD's exact counts,
+ * llvmpipe: lod=cpu-per-patch gives the shader distance LOD's exact counts,
+ * lod=object-points / object-cpu (S4 Tables 8.3 / 8.4) give the counts of
+ * their per-tile levels computed here from the mesh,
  * tess_inner / tess_outer give the triangle tessellation rule's counts,
  * cull=off rasterises the back faces, attenuation=s1 matches
  * max(0, 1 - d²/r²) at a known distance, vertex-displacement's height moves
@@ -18,6 +20,7 @@
 
 #include "tests/tech_fixture.h"
 #include "techniques/lod_cpu.h"
+#include "techniques/mesh.h"
 #include "techniques/render.h"
 
 static int setup(void **state) { return techfix_setup(state, 256, 192); }
@@ -57,7 +60,7 @@ static size_t covered(const char *spec)
     return n;
 }
 
-/* ---- lod = cpu-distance -------------------------------------------------- */
+/* ---- lod = cpu-per-patch -------------------------------------------------- */
 
 /* Triangle patches (sphere) and quad patches (terrain) close enough for
  * the distance levels to vary from patch to patch; the cylinder's cap
@@ -80,7 +83,7 @@ static void test_lod_cpu_equals_shader(void **state)
             char a[256], b[256], u[256];
             const char *crack = cf ? "crack_free=on" : "crack_free=off";
             snprintf(a, sizeof a, "technique=tess-displacement %s %s lod=distance", lod_scene[s], crack);
-            snprintf(b, sizeof b, "technique=tess-displacement %s %s lod=cpu-distance", lod_scene[s], crack);
+            snprintf(b, sizeof b, "technique=tess-displacement %s %s lod=cpu-per-patch", lod_scene[s], crack);
             snprintf(u, sizeof u, "technique=tess-displacement %s %s lod=uniform", lod_scene[s], crack);
             stats sa = count(a), sb = count(b), su = count(u);
             printf("%s %s: shader LOD %llu evaluations / %llu primitives, CPU LOD %llu / %llu, "
@@ -114,6 +117,183 @@ static void test_lod_cpu_levels(void **state)
     /* edge 2 = corners 0-1, midpoint (1.5,0,0): distance sqrt(0.25 + 1 + 4) */
     assert_float_equal(out[2], 12.0f / sqrtf(5.25f), 1e-5);
     assert_float_equal(out[3], 0.0f, 0);
+}
+
+/* ---- lod = object-points / object-cpu (S4 Tables 8.3 / 8.4) --------------- */
+
+/* Objects of a small mesh: two runs of one triangle and a run of the
+ * whole mesh; bounds, tile origin on y = 0 and bounding-box centre. */
+static void test_lod_cpu_objects(void **state)
+{
+    (void)state;
+    const float pos[] = {0, 1, 0, 2, 3, 0, 0, 1, 4, /* */ 2, -1, 4, 6, 1, 4, 2, 1, 8};
+    const uint32_t idx[] = {0, 1, 2, 3, 4, 5};
+    lod_object o[3];
+    assert_int_equal(lod_cpu_objects(pos, idx, 2, 1, o), 2);
+    assert_int_equal(o[1].first_tri, 1);
+    assert_int_equal(o[1].n_tris, 1);
+    const float tile0[4] = {0, 0, 2, 4}, tile1[4] = {2, 4, 6, 8};
+    for (int k = 0; k < 4; k++) {
+        assert_float_equal(o[0].tile[k], tile0[k], 0);
+        assert_float_equal(o[1].tile[k], tile1[k], 0);
+    }
+    assert_float_equal(o[1].origin[0], 4.0f, 0);
+    assert_float_equal(o[1].origin[1], 0.0f, 0);     /* the tile's base plane */
+    assert_float_equal(o[1].origin[2], 6.0f, 0);
+    assert_float_equal(o[1].centre[1], 0.0f, 0);     /* y from -1 to 1 */
+    assert_float_equal(o[0].centre[1], 2.0f, 0);     /* y from 1 to 3 */
+    assert_int_equal(lod_cpu_objects(pos, idx, 2, 0, o), 1);   /* untiled: one object */
+    assert_int_equal(o[0].n_tris, 2);
+    assert_float_equal(o[0].origin[0], 0.0f, 0);      /* the mesh's own origin */
+    assert_float_equal(o[0].centre[2], 4.0f, 0);
+    const float eye[3] = {3, 4, 0}, at[3] = {0, 0, 0};
+    assert_float_equal(lod_cpu_distance(eye, at), 5.0f, 1e-6);
+}
+
+/* Vertices of one triangle patch, equal spacing, levels already rounded
+ * up: the outer ring o0 + o1 + o2, then inner rings of n−2, n−4, ...
+ * segments per side (3m vertices, m = 0: the centre); inner 1 under an
+ * outer above 1 counts as 2; all levels 1: the triangle itself. */
+static GLuint64 tri_vertices(int n, const int o[3])
+{
+    if (n == 1 && o[0] == 1 && o[1] == 1 && o[2] == 1)
+        return 3;
+    n = n == 1 ? 2 : n;
+    GLuint64 v = (GLuint64)(o[0] + o[1] + o[2]);
+    for (int m = n - 2; m >= 0; m -= 2)
+        v += m ? 3 * (GLuint64)m : 1;
+    return v;
+}
+
+static int lvl(double l) { return (int)ceil(fmin(fmax(l, 1.0), 64.0)); }
+
+static double dist3(const double a[3], const double b[3])
+{
+    return sqrt((a[0] - b[0]) * (a[0] - b[0]) + (a[1] - b[1]) * (a[1] - b[1]) +
+                (a[2] - b[2]) * (a[2] - b[2]));
+}
+
+/* The evaluations S4's per-tile levels give on terrain-tiles of d tiles at
+ * level L seen from eye: per tile (8 consecutive triangles) the object's
+ * distance is from the tile centre on y = 0 (cpu = 0, Table 8.3) or from
+ * the centre of the tile's bounding box (cpu = 1, Table 8.4); an outer
+ * edge lying on a side of the tile takes that side's centre (y = 0). */
+static GLuint64 tiles_expected(int d, int L, const double eye[3], int cpu)
+{
+    mesh_data m;
+    assert_int_equal(mesh_build(&(mesh_desc){.name = "terrain-tiles", .density = d}, &m), 0);
+    assert_int_equal(m.object_triangles, 8);
+    GLuint64 total = 0;
+    for (size_t t = 0; t < m.n_indices / 24; t++) {
+        const uint32_t *ix = m.indices + 24 * t;
+        double lo[3] = {1e9, 1e9, 1e9}, hi[3] = {-1e9, -1e9, -1e9};
+        for (int i = 0; i < 24; i++)
+            for (int k = 0; k < 3; k++) {
+                lo[k] = fmin(lo[k], m.vertices[ix[i]].pos[k]);
+                hi[k] = fmax(hi[k], m.vertices[ix[i]].pos[k]);
+            }
+        double c[3] = {0.5 * (lo[0] + hi[0]), cpu ? 0.5 * (lo[1] + hi[1]) : 0.0, 0.5 * (lo[2] + hi[2])};
+        double obj = L / dist3(eye, c);
+        for (int tri = 0; tri < 8; tri++) {
+            int o[3];
+            for (int e = 0; e < 3; e++) {
+                const float *a = m.vertices[ix[3 * tri + (e + 1) % 3]].pos;
+                const float *b = m.vertices[ix[3 * tri + (e + 2) % 3]].pos;
+                double side[3] = {c[0], 0.0, c[2]};
+                int on = 1;
+                if (a[0] == b[0] && (a[0] == lo[0] || a[0] == hi[0]))
+                    side[0] = a[0];
+                else if (a[2] == b[2] && (a[2] == lo[2] || a[2] == hi[2]))
+                    side[2] = a[2];
+                else
+                    on = 0;
+                o[e] = lvl(on ? L / dist3(eye, side) : obj);
+            }
+            total += tri_vertices(lvl(obj), o);
+        }
+    }
+    mesh_free(&m);
+    return total;
+}
+
+/* S4's two LOD variants on its tiled terrain of triangle patches: the
+ * evaluation counts are those of the per-tile levels computed above, and
+ * the two differ (the tile's origin on its base plane against its
+ * bounding-sphere centre), as S4's VSVerticesIn did (393 508 / 393 176). */
+static void test_lod_object_counts(void **state)
+{
+    (void)state;
+    static const struct { int d, L; double dist, az, el; } v[] = {
+        {8, 12, 1.6, 30, 35}, {4, 20, 2.5, 200, 50}, {8, 32, 1.1, 75, 20}};
+    for (size_t i = 0; i < sizeof v / sizeof *v; i++) {
+        double az = v[i].az * M_PI / 180, el = v[i].el * M_PI / 180;
+        double eye[3] = {v[i].dist * cos(el) * sin(az), v[i].dist * sin(el), v[i].dist * cos(el) * cos(az)};
+        GLuint64 e[2];
+        for (int cpu = 0; cpu < 2; cpu++) {
+            char spec[320];
+            snprintf(spec, sizeof spec, "technique=tess-displacement mesh=terrain-tiles mesh_density=%d "
+                     "tess_level=%d crack_free=on cull=off lod=%s camera.distance=%g "
+                     "camera.azimuth=%g camera.elevation=%g", v[i].d, v[i].L,
+                     cpu ? "object-cpu" : "object-points", v[i].dist, v[i].az, v[i].el);
+            e[cpu] = tiles_expected(v[i].d, v[i].L, eye, cpu);
+            stats s = count(spec);
+            printf("%s: %llu evaluations, expected %llu\n", spec, (unsigned long long)s.tes,
+                   (unsigned long long)e[cpu]);
+            assert_int_equal(s.tes, e[cpu]);
+        }
+        assert_true(e[0] != e[1]);
+    }
+}
+
+/* Without crack_free every edge of a tile takes the tile's level: the
+ * count is the sum over tiles of 8 patches at that one level. */
+static void test_lod_object_uncracked_levels(void **state)
+{
+    (void)state;
+    double eye[3] = {0, 1.6 * sin(35 * M_PI / 180), 1.6 * cos(35 * M_PI / 180)};
+    mesh_data m;
+    assert_int_equal(mesh_build(&(mesh_desc){.name = "terrain-tiles", .density = 4}, &m), 0);
+    GLuint64 want = 0;
+    for (size_t t = 0; t < m.n_indices / 24; t++) {
+        double lo[2] = {1e9, 1e9}, hi[2] = {-1e9, -1e9};
+        for (int i = 0; i < 24; i++) {
+            const float *p = m.vertices[m.indices[24 * t + (size_t)i]].pos;
+            lo[0] = fmin(lo[0], p[0]), hi[0] = fmax(hi[0], p[0]);
+            lo[1] = fmin(lo[1], p[2]), hi[1] = fmax(hi[1], p[2]);
+        }
+        double c[3] = {0.5 * (lo[0] + hi[0]), 0, 0.5 * (lo[1] + hi[1])};
+        int l = lvl(16 / dist3(eye, c));
+        want += 8 * tri_vertices(l, (const int[3]){l, l, l});
+    }
+    mesh_free(&m);
+    stats s = count("technique=tess-displacement mesh=terrain-tiles mesh_density=4 tess_level=16 "
+                    "crack_free=off lod=object-points camera.distance=1.6 camera.azimuth=0 "
+                    "camera.elevation=35");
+    assert_int_equal(s.tes, want);
+}
+
+/* A mesh of quad patches is one object: every quad of the terrain takes
+ * the level L / d, d from the mesh origin (object-points) or from the
+ * centre of its bounding box (object-cpu), and evaluates (l+1)² vertices. */
+static void test_lod_object_quads(void **state)
+{
+    (void)state;
+    mesh_data m;
+    assert_int_equal(mesh_build(&(mesh_desc){.name = "terrain", .density = 2}, &m), 0);
+    double lo = 1e9, hi = -1e9;
+    for (size_t v = 0; v < m.n_vertices; v++)
+        lo = fmin(lo, m.vertices[v].pos[1]), hi = fmax(hi, m.vertices[v].pos[1]);
+    mesh_free(&m);
+    const double el = 40 * M_PI / 180, eye[3] = {0, 1.3 * sin(el), 1.3 * cos(el)};
+    for (int cpu = 0; cpu < 2; cpu++) {
+        double c[3] = {0, cpu ? 0.5 * (lo + hi) : 0, 0};
+        int l = lvl(20 / dist3(eye, c));
+        char spec[256];
+        snprintf(spec, sizeof spec, "technique=tess-displacement mesh=terrain mesh_density=2 "
+                 "tess_level=20 crack_free=on lod=%s camera.distance=1.3 camera.azimuth=0 "
+                 "camera.elevation=40", cpu ? "object-cpu" : "object-points");
+        assert_int_equal(count(spec).tes, 4 * (GLuint64)(l + 1) * (GLuint64)(l + 1));
+    }
 }
 
 /* ---- tess_inner / tess_outer --------------------------------------------- */
@@ -344,6 +524,10 @@ int main(void)
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_lod_cpu_levels),
         cmocka_unit_test(test_lod_cpu_equals_shader),
+        cmocka_unit_test(test_lod_cpu_objects),
+        cmocka_unit_test(test_lod_object_counts),
+        cmocka_unit_test(test_lod_object_uncracked_levels),
+        cmocka_unit_test(test_lod_object_quads),
         cmocka_unit_test(test_inner_outer_counts),
         cmocka_unit_test(test_cull_axis),
         cmocka_unit_test(test_attenuation_s1),

@@ -45,6 +45,36 @@ static void test_terrain(void **state)
     mesh_free(&m);
 }
 
+/* S4's tiled terrain: d×d tiles of 2×2 cells, 8 triangles per tile listed
+ * tile by tile, the same surface as `terrain` at 2d cells, no quad
+ * patches; every triangle of tile t lies inside its 2×2-cell square. */
+static void test_terrain_tiles(void **state)
+{
+    (void)state;
+    const int d = 3;
+    mesh_data m = build("terrain-tiles", d), ref = build("terrain", 2 * d);
+    assert_int_equal(m.n_vertices, 49);
+    assert_int_equal(m.n_indices, 3 * 8 * d * d);
+    assert_int_equal(m.object_triangles, 8);
+    assert_int_equal(m.n_quad_indices, 0);
+    assert_int_equal(mesh_patch_vertices("terrain-tiles"), 3);
+    for (size_t v = 0; v < m.n_vertices; v++)
+        for (int k = 0; k < 3; k++)
+            assert_float_equal(m.vertices[v].pos[k], ref.vertices[v].pos[k], 0);
+    const float cell = 2.0f / (float)(2 * d);
+    for (size_t t = 0; t < (size_t)(d * d); t++) {
+        float x0 = -1.0f + 2 * cell * (float)(t % d), z1 = 1.0f - 2 * cell * (float)(t / d);
+        for (size_t i = 24 * t; i < 24 * (t + 1); i++) {
+            const float *p = m.vertices[m.indices[i]].pos;
+            assert_true(p[0] >= x0 - 1e-6f && p[0] <= x0 + 2 * cell + 1e-6f);
+            assert_true(p[2] <= z1 + 1e-6f && p[2] >= z1 - 2 * cell - 1e-6f);
+        }
+    }
+    assert_int_equal(mesh_build(&(mesh_desc){.name = "terrain-tiles", .density = 257}, &m), DM_ERR_RANGE);
+    mesh_free(&m);
+    mesh_free(&ref);
+}
+
 /* The terrain's tiles as quad patches: 4 indices per tile after the
  * triangles, corners in the quad domain's order (u,v) = (0,0), (1,0),
  * (1,1), (0,1), i.e. UV steps of +1/t along u then v; MeshBytes counts them. */
@@ -479,6 +509,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_terrain),
              cmocka_unit_test(test_asteroid),
              cmocka_unit_test(test_terrain_quads),
+             cmocka_unit_test(test_terrain_tiles),
              cmocka_unit_test(test_cull_chunks),
              cmocka_unit_test(test_canonical_seam),
              cmocka_unit_test(test_asteroid_reduced),

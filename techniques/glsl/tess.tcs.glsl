@@ -1,9 +1,23 @@
 // tess.tcs.glsl — control stage of tess-displacement: levels and culling.
 //   LOD_UNIFORM (default)  every level = u_tess_level
 //   LOD_DISTANCE           level = u_tess_level / distance(camera, point)  (S4)
-//   LOD_CPU_DISTANCE       the same levels computed on the CPU every draw
-//                          (lod_cpu.h) and read from cpu_levels[patch]: S4's
-//                          "LOD from a CPU uniform" variant
+//   LOD_CPU_PER_PATCH      the same levels computed on the CPU every draw
+//                          (lod_cpu.h) and read from cpu_levels[patch]
+//   LOD_OBJECT_POINTS      one level per object (S4 Table 8.3): the object's
+//                          origin and a helper point 100 units away along z
+//                          transformed here; level = u_tess_level / distance
+//                          (in object units) of the origin from the eye
+//   LOD_OBJECT_CPU         one level per object (S4 Table 8.4): the CPU gives
+//                          the distance from the eye to the object's
+//                          bounding-sphere centre (u_lod_object_dist) and
+//                          this stage divides u_tess_level by it
+//                          The two OBJECT modes under CRACK_FREE_ON take an
+//                          outer edge lying on a side of the object's tile
+//                          (u_lod_tile) from that side's centre, as S4's
+//                          border vertices did, by the helper points;
+//                          every other edge and the inner level take the
+//                          object's level.  The long-edge factor is not
+//                          applied (S4 had none).
 //   LOD_SCREEN_EDGE        level = projected edge length in pixels / TESS_TARGET_PX,
 //                          at most u_tess_level
 //   LOD_FLATNESS           u_tess_level where the height sampled at a few
@@ -44,13 +58,20 @@ uniform vec2 u_viewport;
 uniform int u_tess_inner;
 uniform int u_tess_outer;
 
-#ifdef LOD_CPU_DISTANCE
+#ifdef LOD_CPU_PER_PATCH
 // Per patch: the outer levels (per edge under CRACK_FREE_ON, else the patch
 // level in every slot), unclamped; patch = u_lod_base + gl_PrimitiveID.
 layout(std430, binding = 3) readonly buffer CpuLevels { vec4 cpu_levels[]; };
 uniform int u_lod_base;     // first patch of this draw call
 #endif
 uniform float u_tess_edge_ref;
+#if defined(LOD_OBJECT_POINTS) || defined(LOD_OBJECT_CPU)
+#define LOD_OBJECT
+uniform vec3 u_lod_origin;       // the object's origin, object space (points)
+uniform float u_lod_object_dist; // eye to bounding-sphere centre (cpu)
+uniform vec4 u_lod_tile;         // the tile's xmin, zmin, xmax, zmax
+uniform int u_lod_tiled;         // 0: the object has no tile sides
+#endif
 
 const float TESS_TARGET_PX = 8.0;
 const float FLAT_EPS = 1e-3;     // world units of displacement range
@@ -120,6 +141,53 @@ ivec2 outer_edge(int i)
     return e[i];
 }
 
+#ifdef LOD_OBJECT
+// S4's two helper points: the distance from the eye of object-space point o
+// in object units, 100 · |o'| / |o' − h'| where o' and h' are o and
+// o + (0, 0, 100) after the model transform, relative to the eye (the view
+// rotation keeps lengths, so world space minus the eye stands for view space).
+float helper_distance(vec3 o)
+{
+    vec3 p = (u_model * vec4(o, 1.0)).xyz - u_camera_pos;
+    vec3 q = (u_model * vec4(o + vec3(0.0, 0.0, 100.0), 1.0)).xyz - u_camera_pos;
+    return 100.0 * (length(p) / distance(p, q));
+}
+
+float object_level()
+{
+#ifdef LOD_OBJECT_CPU
+    float d = u_lod_object_dist;
+#else
+    float d = helper_distance(u_lod_origin);
+#endif
+    return float(u_tess_level) / max(d, 1e-3);
+}
+
+// Outer edge i: on a side of the tile, the level of that side's centre
+// (y = 0); else the object's level.
+float object_edge_level(int i)
+{
+    ivec2 ab = outer_edge(i);
+    vec3 a = gi[ab.x].pos, b = gi[ab.y].pos;
+    vec4 t = u_lod_tile;
+    vec2 mid = 0.5 * (t.xy + t.zw);
+    vec3 c;
+    if (u_lod_tiled == 0)
+        return object_level();
+    if (a.x == t.x && b.x == t.x)
+        c = vec3(t.x, 0.0, mid.y);
+    else if (a.x == t.z && b.x == t.z)
+        c = vec3(t.z, 0.0, mid.y);
+    else if (a.z == t.y && b.z == t.y)
+        c = vec3(mid.x, 0.0, t.y);
+    else if (a.z == t.w && b.z == t.w)
+        c = vec3(mid.x, 0.0, t.w);
+    else
+        return object_level();
+    return float(u_tess_level) / max(helper_distance(c), 1e-3);
+}
+#endif
+
 vec3 patch_centre()
 {
     vec3 c = vec3(0.0);
@@ -130,7 +198,9 @@ vec3 patch_centre()
 
 float patch_level()
 {
-#if defined(LOD_CPU_DISTANCE)
+#if defined(LOD_OBJECT)
+    return object_level();
+#elif defined(LOD_CPU_PER_PATCH)
     return cpu_levels[u_lod_base + gl_PrimitiveID].x;
 #elif defined(LOD_DISTANCE)
     return patch_factor() * float(u_tess_level) / max(distance(u_camera_pos, patch_centre()), 1e-3);
@@ -151,10 +221,13 @@ float patch_level()
 #endif
 }
 
+
 // Outer level i of CRACK_FREE_ON: the level of its edge alone.
 float outer_level(int i)
 {
-#if defined(LOD_CPU_DISTANCE)
+#if defined(LOD_OBJECT)
+    return object_edge_level(i);
+#elif defined(LOD_CPU_PER_PATCH)
     return cpu_levels[u_lod_base + gl_PrimitiveID][i];
 #else
     ivec2 ab = outer_edge(i);
@@ -226,6 +299,8 @@ void main()
 #ifdef TESS_QUADS
     gl_TessLevelInner[0] = max(e[1], e[3]);   // along u: the edges v=0 and v=1
     gl_TessLevelInner[1] = max(e[0], e[2]);
+#elif defined(LOD_OBJECT)
+    gl_TessLevelInner[0] = clamp(object_level(), 1.0, 64.0);   // S4: from the object's centre
 #else
     gl_TessLevelInner[0] = max(e[0], max(e[1], e[2]));
 #endif
