@@ -38,6 +38,7 @@ typedef struct ut__tech {
     const char *axes[UT__N_BUILTIN + USER_TECHNIQUE_MAX_PARAMS + 1];
     ut__param params[USER_TECHNIQUE_MAX_PARAMS];
     size_t n_params;
+    int name_line;               /* line of `//@technique` */
 } ut__tech;
 
 static ut__tech ut__techs[USER_TECHNIQUE_MAX];
@@ -201,6 +202,7 @@ static int ut__directive(ut__parse *p, char *d)
         if (*p->t->name)
             return ut__fail(p, "@technique is declared twice");
         snprintf(p->t->name, sizeof p->t->name, "%s", rest);
+        p->t->name_line = p->line;
         return 0;
     }
     if (strcmp(d, "summary") == 0) {
@@ -351,7 +353,7 @@ static char *ut__compose(const ut__tech *t)
     for (size_t i = 0; i < t->n_params; i++)
         dm_str_printf(&s, "uniform %s u_%s;\n", t->params[i].kind == AXIS_INT ? "int" : "float",
                       t->params[i].name);
-    dm_str_printf(&s, "#line 1 %d\n%s\n", USER_TECHNIQUE_SOURCE_NUMBER, t->text);
+    dm_str_printf(&s, "#line %d\n%s\n", USER_TECHNIQUE_LINE_BASE + 1, t->text);
     return dm_str_take(&s);
 }
 
@@ -428,6 +430,7 @@ static int ut__load_locked(const char *path, const char **name, dm_str *err)
     memset(t, 0, sizeof *t);
     ut__parse p = {.path = path, .err = err, .t = t};
     rc = ut__header(&p, text);
+    p.line = t->name_line;
     if (rc == 0 && technique_find(t->name))
         rc = ut__fail(&p, "technique name '%s' is taken (by %s); choose another in `//@technique`",
                       t->name, user_technique_path(technique_find(t->name))
@@ -463,9 +466,13 @@ void user_technique_map_log(const technique_desc *t, const char *log, dm_str *ou
         const char *nl = strchr(s, '\n');
         size_t len = nl ? (size_t)(nl - s) : strlen(s);
         int src = -1, line = 0, col = 0, used = 0;
-        if (path && sscanf(s, "%d:%d(%d): %n", &src, &line, &col, &used) == 3 && used > 0 &&
-            (size_t)used <= len && src == USER_TECHNIQUE_SOURCE_NUMBER)
-            dm_str_printf(out, "%s:%d:%d: %.*s\n", path, line, col, (int)(len - (size_t)used), s + used);
+        int located = sscanf(s, "%d:%d(%d): %n", &src, &line, &col, &used) == 3 && used > 0 &&
+                      (size_t)used <= len;
+        if (path && located && line > USER_TECHNIQUE_LINE_BASE)
+            dm_str_printf(out, "%s:%d:%d: %.*s\n", path, line - USER_TECHNIQUE_LINE_BASE, col,
+                          (int)(len - (size_t)used), s + used);
+        else if (path && located && strncmp(s + used, "warning", 7) == 0)
+            ;   /* the built-in stage's own warning */
         else
             dm_str_printf(out, "%.*s\n", (int)len, s);
         s += len + (nl ? 1 : 0);

@@ -28,9 +28,10 @@
 /* Most user techniques and parameters one process registers. */
 #define USER_TECHNIQUE_MAX 16
 #define USER_TECHNIQUE_MAX_PARAMS 8
-/* The GLSL source-string number the user's file gets (#line 1 N), so a
- * driver log line "N:LINE(COL)" is a line of the user's file. */
-#define USER_TECHNIQUE_SOURCE_NUMBER 7
+/* The user's file starts at this line of the fragment stage (#line), so a
+ * driver log line "0:LINE(COL)" with LINE above it is line LINE − BASE of
+ * the user's file (Mesa prints source string 0 whatever #line says). */
+#define USER_TECHNIQUE_LINE_BASE 100000
 
 /* 1 when a technique-axis value names a user file (ends in ".glsl"). */
 int user_technique_is_path(const char *value);
@@ -52,12 +53,20 @@ const technique_desc *user_technique_by_path(const char *path);
 /* The file a user technique was loaded from, or NULL for a built-in one. */
 const char *user_technique_path(const technique_desc *t);
 
+/* Compiles and links every loaded user technique in the current GL context
+ * (user_technique_check.c).  Returns 0, or DM_ERR_PARSE with
+ * "path: user technique 'NAME' cannot be used: ..." and the driver's log,
+ * lines of the user's file as "path:line:column: ...", in err; DM_ERR_GL
+ * without a usable context. */
+int user_technique_check_programs(dm_str *err);
+
 /* Source of a virtual shader name "user:NAME" (the built-in fragment stage
  * followed by the user's file), or NULL. */
 const char *user_technique_shader_source(const char *name);
 /* Appends a driver's info log to out with every line that refers to the
- * user's file ("7:12(3): error: ...") rewritten as "path:12:3: error: ...";
- * other lines are kept. */
+ * user's file ("0:100012(3): error: ...") rewritten as "path:12:3: error:
+ * ..."; for a user technique the built-in code's warnings are dropped (they
+ * are the same for every technique), everything else is kept. */
 void user_technique_map_log(const technique_desc *t, const char *log, dm_str *out);
 
 #endif
