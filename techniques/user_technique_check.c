@@ -2,6 +2,8 @@
  * a run measures anything (see user_technique.h). */
 #include "techniques/user_technique.h"
 
+#include <string.h>
+
 #include "core/dm_error.h"
 #include "techniques/render.h"
 
@@ -22,9 +24,15 @@ int user_technique_check_programs(dm_str *err)
         rc = tech_prepare(r, kv, sizeof kv / sizeof kv[0], &item, &log);
         if (rc == 0)
             tech_release(r, item);
-        else
-            dm_str_printf(err, "%s: user technique '%s' cannot be used: %s",
-                          user_technique_path(t), t->name, dm_str_get(&log));
+        else if (rc == DM_ERR_SHADER) {   /* the log's first line names the stage: said here */
+            const char *nl = strchr(dm_str_get(&log), '\n');
+            dm_str_printf(err, "%s: user technique '%s' does not %s; the driver says:\n%s",
+                          user_technique_path(t), t->name,
+                          strstr(dm_str_get(&log), "failed to link") ? "link" : "compile",
+                          nl ? nl + 1 : dm_str_get(&log));
+        } else
+            dm_str_printf(err, "%s: user technique '%s' cannot be used: %s", user_technique_path(t),
+                          t->name, dm_str_get(&log));
         dm_str_free(&log);
     }
     tech_renderer_destroy(r);
