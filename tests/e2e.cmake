@@ -36,3 +36,6 @@ set_tests_properties(test_ci_recipe PROPERTIES TIMEOUT 1800 ENVIRONMENT "${DM_TE
 # the instruction gate on them (tests/user_technique/gate.sh).
 add_test(NAME test_user_technique_contract COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/user_technique/contract.sh)
 set_tests_properties(test_user_technique_contract PROPERTIES TIMEOUT 600 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e")
+add_test(NAME test_user_technique_gate COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/user_technique/gate.sh)
+set_tests_properties(test_user_technique_gate PROPERTIES TIMEOUT 1800 ENVIRONMENT "${DM_TEST_ENV}"
+  LABELS "e2e;gate;valgrind")
