@@ -97,6 +97,7 @@ typedef struct ut__parse {
     int line;
     dm_str *err;
     ut__tech *t;
+    const ut__tech *self;        /* reloading: the registered technique of this file */
 } ut__parse;
 
 static int ut__fail(ut__parse *p, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
@@ -153,6 +154,9 @@ static int ut__param_line(ut__parse *p, char *rest)
         if (strcmp(p->t->params[i].name, name) == 0)
             return ut__fail(p, "parameter '%s' is declared twice", name);
     const axis_info *taken = axes_find(name);   /* built-in or another file's */
+    for (size_t i = 0; taken && p->self && i < p->self->n_params; i++)
+        if (strcmp(p->self->params[i].name, name) == 0)
+            taken = NULL;   /* its own, when reloading */
     int user = taken >= ut__axes && taken < ut__axes + ut__n_axes;
     if (taken)
         return ut__fail(p, "parameter '%s' collides with the %s axis '%s'; choose another name "
@@ -447,6 +451,61 @@ static int ut__load_locked(const char *path, const char **name, dm_str *err)
     if (name)
         *name = t->name;
     return 0;
+}
+
+static int ut__same_params(const ut__tech *a, const ut__tech *b)
+{
+    if (a->n_params != b->n_params)
+        return 0;
+    for (size_t i = 0; i < a->n_params; i++) {
+        const ut__param *x = &a->params[i], *y = &b->params[i];
+        if (strcmp(x->name, y->name) || x->kind != y->kind || x->min != y->min || x->max != y->max ||
+            strcmp(x->def, y->def))
+            return 0;
+    }
+    return 1;
+}
+
+/* Re-reads t's file: 1 when its text changed and was taken, 0 when it did
+ * not change, a DM_ERR_* with a line in msg when it was refused. */
+static int ut__reload_one(ut__tech *t, dm_str *msg)
+{
+    char *text = NULL;
+    dm_str err = {0};
+    int rc = ut__read(t->path, &text, &err);
+    if (rc == 0 && strcmp(text, t->text) == 0) {
+        free(text);
+        return 0;
+    }
+    ut__tech *fresh = dm_xcalloc(1, sizeof *fresh);
+    ut__parse p = {.path = t->path, .err = &err, .t = fresh, .self = t};
+    rc = rc ? rc : ut__header(&p, text);
+    rc = rc ? rc : ut__entry(&p, text);
+    if (rc == 0 && (strcmp(fresh->name, t->name) != 0 || !ut__same_params(fresh, t)))
+        rc = ut__fail(&p, "its name or parameters changed; restart to use them");
+    if (rc == 0) {
+        free(t->text);
+        free(t->shader);
+        t->text = text;
+        t->shader = ut__compose(t);
+        t->desc.source_hash = dm_fnv1a64(text, strlen(text), DM_FNV_SEED);
+    } else {
+        dm_str_printf(msg, "%s\n", dm_str_get(&err));
+        free(text);
+    }
+    free(fresh);
+    dm_str_free(&err);
+    return rc ? rc : 1;
+}
+
+int user_technique_reload(dm_str *msg)
+{
+    pthread_mutex_lock(&ut__lock);
+    int changed = 0;
+    for (size_t i = 0; i < ut__n; i++)
+        changed += ut__reload_one(&ut__techs[i], msg) == 1;
+    pthread_mutex_unlock(&ut__lock);
+    return changed;
 }
 
 int user_technique_load(const char *path, const char **name, dm_str *err)

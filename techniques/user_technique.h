@@ -43,6 +43,14 @@ int user_technique_is_path(const char *value);
  * "path[:line]: message" in err; nothing is registered then. */
 int user_technique_load(const char *path, const char **name, dm_str *err);
 
+/* Re-reads every loaded file (the viewer's reload on change).  A file whose
+ * text changed, with the same name and parameters, replaces the registered
+ * source (and source_hash): the next program built from it uses the new
+ * text.  A file that cannot be read, fails a check or changed its name or
+ * parameters keeps the old source, with a line in msg.  Returns how many
+ * changed. */
+int user_technique_reload(dm_str *msg);
+
 /* The registered user techniques and their parameter axes. */
 size_t user_technique_count(void);
 const technique_desc *user_technique_at(size_t i);

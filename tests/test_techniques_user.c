@@ -150,7 +150,42 @@ static void test_bad_headers(void **state)
     }
 }
 
+/* The viewer's reload: a changed body is taken, a changed parameter is not. */
+static void test_reload(void **state)
+{
+    (void)state;
+    static const char *const head = "//@technique reloaded\n//@param reload_k int 1 8 2\n";
+    char *text = dm_xasprintf("%svec3 user_surface(vec2 uv, vec3 v) { return vec3(uv, 0.5); }\n", head);
+    dm_str err = {0}, msg = {0};
+    char *path = NULL;
+    assert_int_equal(load_text(text, &err, &path), 0);
+    const technique_desc *t = technique_find("reloaded");
+    uint64_t h0 = t->source_hash;
+    assert_int_equal(user_technique_reload(&msg), 0);              /* nothing changed */
+    char *edited = dm_xasprintf("%svec3 user_surface(vec2 uv, vec3 v) { return vec3(uv, 0.25); }\n", head);
+    assert_int_equal(dm_write_file(path, edited, strlen(edited)), 0);
+    assert_int_equal(user_technique_reload(&msg), 1);
+    assert_string_equal(dm_str_get(&msg), "");
+    assert_true(t->source_hash == dm_fnv1a64(edited, strlen(edited), DM_FNV_SEED) && t->source_hash != h0);
+    assert_non_null(strstr(user_technique_shader_source(t->fs), "return vec3(uv, 0.25);"));
+    const char *renamed = "//@technique reloaded\n//@param reload_j int 1 8 2\n"
+                          "vec3 user_surface(vec2 uv, vec3 v) { return vec3(uv, 0.5); }\n";
+    assert_int_equal(dm_write_file(path, renamed, strlen(renamed)), 0);
+    assert_int_equal(user_technique_reload(&msg), 0);              /* refused, old source kept */
+    char *want = dm_xasprintf("%s: its name or parameters changed; restart to use them\n", path);
+    assert_string_equal(dm_str_get(&msg), want);
+    assert_non_null(strstr(user_technique_shader_source(t->fs), "return vec3(uv, 0.25);"));
+    unlink(path);
+    free(want);
+    free(edited);
+    free(text);
+    free(path);
+    dm_str_free(&msg);
+    dm_str_free(&err);
+}
+
 DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_reload),
              cmocka_unit_test(test_load_example),
              cmocka_unit_test(test_map_log),
              cmocka_unit_test(test_bad_headers))
