@@ -12,16 +12,36 @@
 
 #include "core/dm_error.h"
 
-/* The built-in axes every user technique reads: those of built-in pom
- * (lighting, maps' formats, depth, shadows) without its search's steps, which
- * a user technique declares as its own parameters. */
-static const char *const ut__builtin_axes[] = {
+/* The built-in axes a fragment-stage user technique reads: those of
+ * built-in pom (lighting, maps' formats, depth, shadows) without its
+ * search's steps, which a user technique declares as its own parameters. */
+static const char *const ut__fragment_axes[] = {
     "lighting", "light_count", "roughness", "specular_map", "attenuation", "light_radius",
-    "normal_format", "toksvig", "height_scale", "height_format", "shadow"};
-#define UT__N_BUILTIN (sizeof ut__builtin_axes / sizeof ut__builtin_axes[0])
+    "normal_format", "toksvig", "height_scale", "height_format", "shadow", NULL};
+/* A tessellation-level user technique: built-in tess-displacement's without
+ * lod, tess_inner and tess_outer, which the user's function replaces. */
+static const char *const ut__tess_axes[] = {
+    "lighting", "light_count", "roughness", "specular_map", "attenuation", "light_radius",
+    "normal_format", "toksvig", "height_scale", "tess_level", "tess_spacing", "patch_cull",
+    "crack_free", "tess_smooth", "displaced_normals", NULL};
+#define UT__MAX_BUILTIN 16
 
-#define UT__DEFINES "#define SURF_NORMAL_MAP\n#define SURF_USER\n"
-#define UT__ENTRY "vec3 user_surface(vec2 uv, vec3 v)"
+/* What a user file can be (`//@base`): the built-in stage its code is
+ * appended to, the entry point it must define and the define that calls it. */
+typedef struct ut__base {
+    const char *name, *stage_file, *entry, *entry_types, *returns, *defines;
+    const char *const *axes;
+} ut__base;
+
+static const ut__base ut__bases[] = {
+    {"fragment", "surface.frag.glsl", "user_surface", "vec3 user_surface(vec2, vec3)",
+     "vec3 user_surface(vec2 uv, vec3 v)` returning the visible point's UV (xy) and height (z)",
+     "#define SURF_NORMAL_MAP\n#define SURF_USER\n", ut__fragment_axes},
+    {"tess-level", "tess.tcs.glsl", "user_tess_level", "float user_tess_level(vec3, vec3)",
+     "float user_tess_level(vec3 a, vec3 b)` returning the tessellation level of the patch edge "
+     "from a to b (world space)", "#define SURF_NORMAL_MAP\n#define LOD_USER\n", ut__tess_axes},
+};
+#define UT__N_BASES (sizeof ut__bases / sizeof ut__bases[0])
 
 typedef struct ut__param {
     char name[64];
@@ -33,9 +53,10 @@ typedef struct ut__param {
 
 typedef struct ut__tech {
     technique_desc desc;
-    char name[64], summary[200], fs[80];
+    char name[64], summary[200], stage[80];   /* stage: "user:NAME", the composed stage */
     char *path, *text, *shader;
-    const char *axes[UT__N_BUILTIN + USER_TECHNIQUE_MAX_PARAMS + 1];
+    const ut__base *base;        /* `//@base`, default fragment */
+    const char *axes[UT__MAX_BUILTIN + USER_TECHNIQUE_MAX_PARAMS + 1];
     ut__param params[USER_TECHNIQUE_MAX_PARAMS];
     size_t n_params;
     int name_line;               /* line of `//@technique` */
@@ -85,7 +106,7 @@ const technique_desc *user_technique_by_path(const char *path)
 const char *user_technique_shader_source(const char *name)
 {
     for (size_t i = 0; name && i < ut__n; i++)
-        if (strcmp(ut__techs[i].fs, name) == 0)
+        if (strcmp(ut__techs[i].stage, name) == 0)
             return ut__techs[i].shader;
     return NULL;
 }
@@ -209,6 +230,14 @@ static int ut__directive(ut__parse *p, char *d)
         p->t->name_line = p->line;
         return 0;
     }
+    if (strcmp(d, "base") == 0) {
+        for (size_t i = 0; i < UT__N_BASES; i++)
+            if (strcmp(rest, ut__bases[i].name) == 0) {
+                p->t->base = &ut__bases[i];
+                return 0;
+            }
+        return ut__fail(p, "unknown base '%s'; valid bases: fragment, tess-level", rest);
+    }
     if (strcmp(d, "summary") == 0) {
         snprintf(p->t->summary, sizeof p->t->summary, "%s", rest);
         return 0;
@@ -218,7 +247,8 @@ static int ut__directive(ut__parse *p, char *d)
             return ut__fail(p, "@param before @technique: declare the technique's name first");
         return ut__param_line(p, rest);
     }
-    return ut__fail(p, "unknown directive '@%s'; valid directives: @technique, @summary, @param", d);
+    return ut__fail(p, "unknown directive '@%s'; valid directives: @technique, @summary, @base, "
+                    "@param", d);
 }
 
 /* Reads every `//@` line of the text. */
@@ -240,6 +270,8 @@ static int ut__header(ut__parse *p, const char *text)
         s += len + (nl ? 1 : 0);
     }
     p->line = 0;
+    if (!p->t->base)
+        p->t->base = &ut__bases[0];
     if (!*p->t->name)
         return ut__fail(p, "no `//@technique NAME` line: a user technique declares its name");
     return 0;
@@ -277,9 +309,9 @@ static int ut__line_of(const char *text, const char *at)
     return line;
 }
 
-/* The declaration "TYPE user_surface(PARAMS)" at the identifier `id`,
- * normalised to single spaces, with parameter names dropped. */
-static char *ut__signature(const char *code, const char *id)
+/* The declaration "TYPE ENTRY(PARAMS)" at the identifier `id`, normalised
+ * to single spaces, with parameter names dropped. */
+static char *ut__signature(const char *code, const char *id, const char *entry)
 {
     const char *b = id;
     while (b > code && isspace((unsigned char)b[-1]))
@@ -289,7 +321,7 @@ static char *ut__signature(const char *code, const char *id)
         b--;
     dm_str s = {0};
     dm_str_catn(&s, b, (size_t)(e - b));
-    dm_str_cat(&s, " user_surface(");
+    dm_str_printf(&s, " %s(", entry);
     const char *c = strchr(id, '(');
     const char *close = c ? strchr(c, ')') : NULL;
     if (!close) {
@@ -314,14 +346,15 @@ static char *ut__signature(const char *code, const char *id)
     return dm_str_take(&s);
 }
 
-/* Checks that the code defines vec3 user_surface(vec2, vec3). */
+/* Checks that the code defines the entry point of its base. */
 static int ut__entry(ut__parse *p, const char *text)
 {
+    const ut__base *b = p->t->base;
     char *code = ut__strip_comments(text);
     const char *found = NULL;
-    for (const char *c = strstr(code, "user_surface"); c; c = strstr(c + 1, "user_surface")) {
+    for (const char *c = strstr(code, b->entry); c; c = strstr(c + 1, b->entry)) {
         int start = c == code || !(isalnum((unsigned char)c[-1]) || c[-1] == '_');
-        const char *after = c + strlen("user_surface");
+        const char *after = c + strlen(b->entry);
         after += strspn(after, " \t\r\n");
         if (start && *after == '(') {
             found = c;
@@ -331,14 +364,13 @@ static int ut__entry(ut__parse *p, const char *text)
     int rc = 0;
     if (!found) {
         p->line = 0;
-        rc = ut__fail(p, "no entry point: define `" UT__ENTRY "` returning the visible point's UV "
-                      "(xy) and height (z)");
+        rc = ut__fail(p, "no entry point: define `%s", b->returns);
     } else {
-        char *sig = ut__signature(code, found);
-        if (strcmp(sig, "vec3 user_surface(vec2, vec3)") != 0) {
+        char *sig = ut__signature(code, found, b->entry);
+        if (strcmp(sig, b->entry_types) != 0) {
             p->line = ut__line_of(code, found);
-            rc = ut__fail(p, "entry point has the wrong signature `%s`; expected `" UT__ENTRY "`",
-                          sig);
+            rc = ut__fail(p, "entry point has the wrong signature `%s`; expected `%.*s`", sig,
+                          (int)strcspn(b->returns, "`"), b->returns);
         }
         free(sig);
     }
@@ -348,12 +380,12 @@ static int ut__entry(ut__parse *p, const char *text)
 
 /* ---- loading ---------------------------------------------------------------- */
 
-/* The fragment stage of t: the built-in surface stage, the uniforms of the
- * parameters, then the user's file as source string N from line 1. */
+/* The user's stage of t: the built-in stage of its base, the uniforms of the
+ * parameters, then the user's file from line USER_TECHNIQUE_LINE_BASE + 1. */
 static char *ut__compose(const ut__tech *t)
 {
     dm_str s = {0};
-    dm_str_cat(&s, "#include \"surface.frag.glsl\"\n");
+    dm_str_printf(&s, "#include \"%s\"\n", t->base->stage_file);
     for (size_t i = 0; i < t->n_params; i++)
         dm_str_printf(&s, "uniform %s u_%s;\n", t->params[i].kind == AXIS_INT ? "int" : "float",
                       t->params[i].name);
@@ -390,8 +422,8 @@ static int ut__read(const char *path, char **text, dm_str *err)
 static void ut__register(ut__tech *t)
 {
     size_t n = 0;
-    for (size_t i = 0; i < UT__N_BUILTIN; i++)
-        t->axes[n++] = ut__builtin_axes[i];
+    for (size_t i = 0; t->base->axes[i]; i++)
+        t->axes[n++] = t->base->axes[i];
     for (size_t i = 0; i < t->n_params; i++) {
         ut__param *q = &t->params[i];
         ut__axes[ut__n_axes++] = (axis_info){.name = q->name, .kind = q->kind, .min = q->min,
@@ -399,15 +431,21 @@ static void ut__register(ut__tech *t)
         t->axes[n++] = q->name;
     }
     t->axes[n] = NULL;
-    memcpy(t->fs, "user:", 5);
-    memcpy(t->fs + 5, t->name, strlen(t->name) + 1);   /* name < 64 bytes, fs 80 */
+    memcpy(t->stage, "user:", 5);
+    memcpy(t->stage + 5, t->name, strlen(t->name) + 1);   /* name < 64 bytes, stage 80 */
     t->shader = ut__compose(t);
     t->desc = (technique_desc){
         .name = t->name, .summary = *t->summary ? t->summary : "user technique",
-        .vs = "surface.vert.glsl", .fs = t->fs, .defines = UT__DEFINES,
+        .vs = "surface.vert.glsl", .fs = t->stage, .defines = t->base->defines,
         .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO, .axes = t->axes,
-        .version = 1, .uniforms = "the built-in pom's, plus u_<param> of each @param",
+        .version = 1, .uniforms = "the built-in technique's of its base, plus u_<param> of each @param",
         .source_hash = dm_fnv1a64(t->text, strlen(t->text), DM_FNV_SEED)};
+    if (t->base != &ut__bases[0])   /* tess-level: the user's control stage, the built-in others */
+        t->desc = (technique_desc){.name = t->desc.name, .summary = t->desc.summary,
+                                   .vs = "tess.vert.glsl", .tcs = t->stage, .tes = "tess.tes.glsl",
+                                   .fs = "surface.frag.glsl", .defines = t->desc.defines,
+                                   .textures = t->desc.textures, .axes = t->axes, .version = 1,
+                                   .uniforms = t->desc.uniforms, .source_hash = t->desc.source_hash};
     ut__n++;
     technique__names_changed();
 }
@@ -481,8 +519,9 @@ static int ut__reload_one(ut__tech *t, dm_str *msg)
     ut__parse p = {.path = t->path, .err = &err, .t = fresh, .self = t};
     rc = rc ? rc : ut__header(&p, text);
     rc = rc ? rc : ut__entry(&p, text);
-    if (rc == 0 && (strcmp(fresh->name, t->name) != 0 || !ut__same_params(fresh, t)))
-        rc = ut__fail(&p, "its name or parameters changed; restart to use them");
+    if (rc == 0 && (strcmp(fresh->name, t->name) != 0 || fresh->base != t->base ||
+                    !ut__same_params(fresh, t)))
+        rc = ut__fail(&p, "its name, base or parameters changed; restart to use them");
     if (rc == 0) {
         free(t->text);
         free(t->shader);

@@ -126,7 +126,7 @@ static void test_bad_headers(void **state)
         {"//@technique u4\n//@param k int 1 4.5 2\n", ":2: parameter 'k': MIN MAX DEFAULT must be int numbers"},
         {"//@technique U5\n", ":1: technique name 'U5': use lower-case letters"},
         {"//@technique u6\n//@params k int 1 4 2\n", ":2: unknown directive '@params'; valid directives: "
-                                                     "@technique, @summary, @param"},
+                                                     "@technique, @summary, @base, @param"},
         {"//@technique u7\n/* vec3 user_surface(vec2 uv, vec3 v) {} */\n", ": no entry point"},
         {"//@technique u8\nvec3 user_surface(vec2 uv, float v) { return vec3(0.0); }\n",
          ":2: entry point has the wrong signature `vec3 user_surface(vec2, float)`"},
@@ -172,7 +172,7 @@ static void test_reload(void **state)
                           "vec3 user_surface(vec2 uv, vec3 v) { return vec3(uv, 0.5); }\n";
     assert_int_equal(dm_write_file(path, renamed, strlen(renamed)), 0);
     assert_int_equal(user_technique_reload(&msg), 0);              /* refused, old source kept */
-    char *want = dm_xasprintf("%s: its name or parameters changed; restart to use them\n", path);
+    char *want = dm_xasprintf("%s: its name, base or parameters changed; restart to use them\n", path);
     assert_string_equal(dm_str_get(&msg), want);
     assert_non_null(strstr(user_technique_shader_source(t->fs), "return vec3(uv, 0.25);"));
     unlink(path);

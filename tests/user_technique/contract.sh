@@ -49,6 +49,31 @@ test ! -e "$OUT/dry" || fail "a dry run created its output"
 grep -Eq 'RMSE +0$' "$OUT/diff.txt" && grep -Eq 'MaxError +0 ' "$OUT/diff.txt" \
   || fail "normal-user differs from normal: $(cat "$OUT/diff.txt")"
 
+# the same for a level function: tess-uniform is lod: uniform
+"$BIN" render technique=tess-displacement tess_level=12 resolution=96x54 --exr "$OUT/tess.exr" > /dev/null
+"$BIN" render technique="$SRC/tests/user_technique/tess-uniform.glsl" tess_level=12 resolution=96x54 \
+  --exr "$OUT/tess-user.exr" > /dev/null
+"$BIN" diff "$OUT/tess.exr" "$OUT/tess-user.exr" > "$OUT/diff.txt"
+grep -Eq 'RMSE +0$' "$OUT/diff.txt" && grep -Eq 'MaxError +0 ' "$OUT/diff.txt" \
+  || fail "tess-uniform differs from tess-displacement: $(cat "$OUT/diff.txt")"
+"$BIN" run "$SRC/tests/user_technique/tess.yaml" --out "$OUT/tess" --quiet 2> /dev/null
+python3 - "$OUT/tess/latest/results.json" <<'PY'
+import json, sys
+cs = json.load(open(sys.argv[1]))["configs"]
+by = {(c["params"]["technique"], c["params"].get("tess_view_step")): c for c in cs}
+assert len(by) == 4, list(by)   # tess_view_step folds for the two that do not read it
+val = lambda c, k: c["counters"][k]["value"]
+ref, user = by[("tess-displacement", None)], by[("tess-uniform", None)]
+for k in ("VSInvocations", "TCSPatches", "TESInvocations", "FSInvocations", "SamplesPassed"):
+    assert val(ref, k) == val(user, k), (k, val(ref, k), val(user, k))
+fine, coarse = by[("tess-view", 0.02)], by[("tess-view", 0.1)]
+# on the 2-triangle plane at distance 3 an edge spans over 0.5 rad: 0.02 rad
+# per segment asks more than 64 (clamped: as uniform 64), 0.1 far fewer
+assert val(fine, "TESInvocations") == val(ref, "TESInvocations"), (val(fine, "TESInvocations"), val(ref, "TESInvocations"))
+assert val(coarse, "TESInvocations") < val(ref, "TESInvocations") / 4, val(coarse, "TESInvocations")
+print("tess: %d evaluations at level 64, tess-view 0.1 rad: %d" % (val(ref, "TESInvocations"), val(coarse, "TESInvocations")))
+PY
+
 # -- bad input: exit 2, the exact message, nothing run --------------------------
 cd "$OUT"
 bad() {   # bad NAME GLSL_TEXT EXPECTED_MESSAGE
@@ -78,6 +103,10 @@ bad noname "$OK" \
   "dmbench: error: noname.yaml:4:23: noname.glsl: no \`//@technique NAME\` line: a user technique declares its name"
 bad taken "//@technique pom\n$OK" \
   "dmbench: error: taken.yaml:4:23: taken.glsl:1: technique name 'pom' is taken (by a built-in technique); choose another in \`//@technique\`"
+bad tesssig "//@technique c7\n//@base tess-level\nfloat user_tess_level(vec3 a)\n{ return 1.0; }\n" \
+  "dmbench: error: tesssig.yaml:4:23: tesssig.glsl:3: entry point has the wrong signature \`float user_tess_level(vec3)\`; expected \`float user_tess_level(vec3 a, vec3 b)\`"
+bad base "//@technique c8\n//@base vertex\n$OK" \
+  "dmbench: error: base.yaml:4:23: base.glsl:2: unknown base 'vertex'; valid bases: fragment, tess-level"
 printf 'name: bad\nsweep:\n  technique: [missing.glsl]\n' > missing.yaml
 set +e; "$BIN" run missing.yaml --out bad --quiet 2> err.txt; rc=$?; set -e
 [ "$rc" = 2 ] && grep -qF 'dmbench: error: missing.yaml:3:15: missing.glsl: technique file not found' err.txt \
