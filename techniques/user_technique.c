@@ -434,18 +434,15 @@ static void ut__register(ut__tech *t)
     memcpy(t->stage, "user:", 5);
     memcpy(t->stage + 5, t->name, strlen(t->name) + 1);   /* name < 64 bytes, stage 80 */
     t->shader = ut__compose(t);
+    int tess = t->base != &ut__bases[0];   /* tess-level: the user's control stage */
     t->desc = (technique_desc){
         .name = t->name, .summary = *t->summary ? t->summary : "user technique",
-        .vs = "surface.vert.glsl", .fs = t->stage, .defines = t->base->defines,
-        .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO, .axes = t->axes,
-        .version = 1, .uniforms = "the built-in technique's of its base, plus u_<param> of each @param",
+        .vs = tess ? "tess.vert.glsl" : "surface.vert.glsl", .tcs = tess ? t->stage : NULL,
+        .tes = tess ? "tess.tes.glsl" : NULL, .fs = tess ? "surface.frag.glsl" : t->stage,
+        .defines = t->base->defines, .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
+        .axes = t->axes, .version = 1,
+        .uniforms = "those of the built-in stage of its base, plus u_<param> of each @param",
         .source_hash = dm_fnv1a64(t->text, strlen(t->text), DM_FNV_SEED)};
-    if (t->base != &ut__bases[0])   /* tess-level: the user's control stage, the built-in others */
-        t->desc = (technique_desc){.name = t->desc.name, .summary = t->desc.summary,
-                                   .vs = "tess.vert.glsl", .tcs = t->stage, .tes = "tess.tes.glsl",
-                                   .fs = "surface.frag.glsl", .defines = t->desc.defines,
-                                   .textures = t->desc.textures, .axes = t->axes, .version = 1,
-                                   .uniforms = t->desc.uniforms, .source_hash = t->desc.source_hash};
     ut__n++;
     technique__names_changed();
 }

@@ -8,8 +8,12 @@
  * the height field (z, 0..1; SURFACE_H0 for a flat technique).  The file is
  * appended to the built-in fragment stage (surface.frag.glsl with
  * SURF_USER), so shading, shadows and every counter see the surface the user
- * found, on the built-in vertex path.  Each `//@param NAME int|float MIN MAX
- * DEFAULT` becomes a sweep axis NAME and the uniform u_NAME.
+ * found, on the built-in vertex path.  With `//@base tess-level` the file
+ * defines `float user_tess_level(vec3 a, vec3 b)` instead (the level of a
+ * patch edge from its world-space endpoints) and is appended to
+ * tess-displacement's control stage (tess.tcs.glsl with LOD_USER).  Each
+ * `//@param NAME int|float MIN MAX DEFAULT` becomes a sweep axis NAME and
+ * the uniform u_NAME.
  *
  * A sweep names the file as a value of the technique axis
  * (`technique: [pom, examples/relief.glsl]`, relative to the sweep file);
@@ -68,8 +72,8 @@ const char *user_technique_path(const technique_desc *t);
  * without a usable context. */
 int user_technique_check_programs(dm_str *err);
 
-/* Source of a virtual shader name "user:NAME" (the built-in fragment stage
- * followed by the user's file), or NULL. */
+/* Source of a virtual shader name "user:NAME" (the built-in stage of its
+ * base followed by the user's file), or NULL. */
 const char *user_technique_shader_source(const char *name);
 /* Appends a driver's info log to out with every line that refers to the
  * user's file ("0:100012(3): error: ...") rewritten as "path:12:3: error:
