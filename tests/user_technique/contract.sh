@@ -41,6 +41,22 @@ for k in $(keys relief "$OUT/plan2.txt"); do
 done
 test ! -e "$OUT/dry" || fail "a dry run created its output"
 
+# -- the examples end to end: measured, against the reference, in the report ---
+"$BIN" run "$SRC/tests/user_technique/examples.yaml" --out "$OUT/ex-run" --quiet 2> /dev/null
+python3 - "$OUT/ex-run/latest/results.json" <<'PY'
+import json, sys
+cs = json.load(open(sys.argv[1]))["configs"]
+by = {(c["params"]["technique"], c["params"].get("relief_linear")): c for c in cs}
+assert set(by) == {("pom", None), ("relief", 4), ("relief", 32), ("pom-texel", None)}, list(by)
+for k, c in by.items():
+    assert c["status"] == "ok", (k, c.get("reason"), c.get("log"))
+    q = c["quality"]
+    assert q["NonFinitePixels"] == 0 and 0 < q["SSIM"] <= 1 and q["PSNR"] > 10, (k, q)
+    assert c["counters"]["SamplesPassed"]["value"] == by[("pom", None)]["counters"]["SamplesPassed"]["value"]
+PY
+grep -q 'relief relief_linear=32' "$OUT/ex-run/latest/report.html" || fail "relief not in the report"
+grep -q 'pom-texel' "$OUT/ex-run/latest/report.html" || fail "pom-texel not in the report"
+
 # -- bit for bit: normal as a user technique -----------------------------------
 "$BIN" render technique=normal resolution=96x54 --exr "$OUT/normal.exr" > /dev/null
 "$BIN" render technique="$SRC/tests/user_technique/normal-user.glsl" resolution=96x54 \
