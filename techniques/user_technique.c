@@ -54,6 +54,8 @@ typedef struct ut__param {
 typedef struct ut__tech {
     technique_desc desc;
     char name[64], summary[200], stage[80];   /* stage: "user:NAME", the composed stage */
+    char defines[128];           /* the base's, + USER_COLOR when it defines user_color */
+    int color;                   /* defines vec4 user_color(vec2 uv, vec3 v, vec3 at) */
     char *path, *text, *shader;
     const ut__base *base;        /* `//@base`, default fragment */
     const char *axes[UT__MAX_BUILTIN + USER_TECHNIQUE_MAX_PARAMS + 1];
@@ -346,34 +348,53 @@ static char *ut__signature(const char *code, const char *id, const char *entry)
     return dm_str_take(&s);
 }
 
-/* Checks that the code defines the entry point of its base. */
+/* The definition of function `entry` in code (comments blanked), or NULL. */
+static const char *ut__find_entry(const char *code, const char *entry)
+{
+    for (const char *c = strstr(code, entry); c; c = strstr(c + 1, entry)) {
+        int start = c == code || !(isalnum((unsigned char)c[-1]) || c[-1] == '_');
+        const char *after = c + strlen(entry);
+        after += strspn(after, " \t\r\n");
+        if (start && *after == '(')
+            return c;
+    }
+    return NULL;
+}
+
+/* Checks the signature of the entry found at `at`: types as `want`
+ * ("vec3 user_surface(vec2, vec3)"), `declared` the declaration to show. */
+static int ut__signature_ok(ut__parse *p, const char *code, const char *at, const char *entry,
+                            const char *want, const char *declared)
+{
+    char *sig = ut__signature(code, at, entry);
+    int rc = 0;
+    if (strcmp(sig, want) != 0) {
+        p->line = ut__line_of(code, at);
+        rc = ut__fail(p, "entry point has the wrong signature `%s`; expected `%.*s`", sig,
+                      (int)strcspn(declared, "`"), declared);
+    }
+    free(sig);
+    return rc;
+}
+
+/* Checks that the code defines the entry point of its base, and the
+ * optional colour function of a fragment-stage technique (sets t->color). */
 static int ut__entry(ut__parse *p, const char *text)
 {
     const ut__base *b = p->t->base;
     char *code = ut__strip_comments(text);
-    const char *found = NULL;
-    for (const char *c = strstr(code, b->entry); c; c = strstr(c + 1, b->entry)) {
-        int start = c == code || !(isalnum((unsigned char)c[-1]) || c[-1] == '_');
-        const char *after = c + strlen(b->entry);
-        after += strspn(after, " \t\r\n");
-        if (start && *after == '(') {
-            found = c;
-            break;
-        }
-    }
+    const char *found = ut__find_entry(code, b->entry);
+    const char *color = b == &ut__bases[0] ? ut__find_entry(code, "user_color") : NULL;
     int rc = 0;
     if (!found) {
         p->line = 0;
         rc = ut__fail(p, "no entry point: define `%s", b->returns);
-    } else {
-        char *sig = ut__signature(code, found, b->entry);
-        if (strcmp(sig, b->entry_types) != 0) {
-            p->line = ut__line_of(code, found);
-            rc = ut__fail(p, "entry point has the wrong signature `%s`; expected `%.*s`", sig,
-                          (int)strcspn(b->returns, "`"), b->returns);
-        }
-        free(sig);
     }
+    rc = rc ? rc : ut__signature_ok(p, code, found, b->entry, b->entry_types, b->returns);
+    if (rc == 0 && color)
+        rc = ut__signature_ok(p, code, color, "user_color", "vec4 user_color(vec2, vec3, vec3)",
+                              "vec4 user_color(vec2 uv, vec3 v, vec3 at)`");
+    p->t->color = color != NULL;
     free(code);
     return rc;
 }
@@ -435,11 +456,13 @@ static void ut__register(ut__tech *t)
     memcpy(t->stage + 5, t->name, strlen(t->name) + 1);   /* name < 64 bytes, stage 80 */
     t->shader = ut__compose(t);
     int tess = t->base != &ut__bases[0];   /* tess-level: the user's control stage */
+    snprintf(t->defines, sizeof t->defines, "%s%s", t->base->defines,
+             t->color ? "#define USER_COLOR\n" : "");
     t->desc = (technique_desc){
         .name = t->name, .summary = *t->summary ? t->summary : "user technique",
         .vs = tess ? "tess.vert.glsl" : "surface.vert.glsl", .tcs = tess ? t->stage : NULL,
         .tes = tess ? "tess.tes.glsl" : NULL, .fs = tess ? "surface.frag.glsl" : t->stage,
-        .defines = t->base->defines, .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
+        .defines = t->defines, .textures = TECH_TEX_HEIGHT | TECH_TEX_NORMAL | TECH_TEX_ALBEDO,
         .axes = t->axes, .version = 1,
         .uniforms = "those of the built-in stage of its base, plus u_<param> of each @param",
         .source_hash = dm_fnv1a64(t->text, strlen(t->text), DM_FNV_SEED)};
@@ -516,9 +539,9 @@ static int ut__reload_one(ut__tech *t, dm_str *msg)
     ut__parse p = {.path = t->path, .err = &err, .t = fresh, .self = t};
     rc = rc ? rc : ut__header(&p, text);
     rc = rc ? rc : ut__entry(&p, text);
-    if (rc == 0 && (strcmp(fresh->name, t->name) != 0 || fresh->base != t->base ||
+    if (rc == 0 && (strcmp(fresh->name, t->name) != 0 || fresh->base != t->base || fresh->color != t->color ||
                     !ut__same_params(fresh, t)))
-        rc = ut__fail(&p, "its name, base or parameters changed; restart to use them");
+        rc = ut__fail(&p, "its name, base, functions or parameters changed; restart to use them");
     if (rc == 0) {
         free(t->text);
         free(t->shader);

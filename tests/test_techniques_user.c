@@ -172,7 +172,7 @@ static void test_reload(void **state)
                           "vec3 user_surface(vec2 uv, vec3 v) { return vec3(uv, 0.5); }\n";
     assert_int_equal(dm_write_file(path, renamed, strlen(renamed)), 0);
     assert_int_equal(user_technique_reload(&msg), 0);              /* refused, old source kept */
-    char *want = dm_xasprintf("%s: its name, base or parameters changed; restart to use them\n", path);
+    char *want = dm_xasprintf("%s: its name, base, functions or parameters changed; restart to use them\n", path);
     assert_string_equal(dm_str_get(&msg), want);
     assert_non_null(strstr(user_technique_shader_source(t->fs), "return vec3(uv, 0.25);"));
     unlink(path);

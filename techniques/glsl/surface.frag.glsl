@@ -8,7 +8,8 @@
 // SURF_USER: a user technique (user_technique.c) — the user's file follows
 // this one and defines user_surface(), which replaces parallax_uv(): it
 // returns the visible point's UV and height, and shading, shadows and the
-// lit point's offset follow as for pom.
+// lit point's offset follow as for pom; with USER_COLOR the user's
+// user_color() shades that point instead.
 // DEBUG_NORMALS (the renderer's normals view): the output is the world-space
 // shading normal n*0.5+0.5.  The renderer then puts light slots 0..3 at the
 // origin and the world unit vectors X, Y, Z, so light_ts[k] - light_ts[0] is
@@ -107,6 +108,9 @@ vec2 parallax_search(vec2 uv, vec3 v)
 
 #ifdef SURF_USER
 vec3 user_surface(vec2 uv, vec3 v);   // the user's file (docs/user-techniques.md)
+#endif
+#ifdef USER_COLOR
+vec4 user_color(vec2 uv, vec3 v, vec3 at);   // optional: the user's shading of that point
 #endif
 
 vec2 parallax_uv(vec2 uv, vec3 v)
@@ -248,6 +252,8 @@ void main()
 #if defined(DEBUG_NORMALS)
     float nlen;
     o_color = vec4(debug_world_normal(surface_normal(uv, nlen)) * 0.5 + 0.5, 1.0);
+#elif defined(USER_COLOR)
+    o_color = user_color(uv, v, at);
 #elif defined(SURF_UNLIT)
     o_color = vec4(albedo, 1.0);
 #else

@@ -58,12 +58,15 @@ grep -q 'relief relief_linear=32' "$OUT/ex-run/latest/report.html" || fail "reli
 grep -q 'pom-texel' "$OUT/ex-run/latest/report.html" || fail "pom-texel not in the report"
 
 # -- bit for bit: normal as a user technique -----------------------------------
-"$BIN" render technique=normal resolution=96x54 --exr "$OUT/normal.exr" > /dev/null
-"$BIN" render technique="$SRC/tests/user_technique/normal-user.glsl" resolution=96x54 \
-  --exr "$OUT/user.exr" > /dev/null
-"$BIN" diff "$OUT/normal.exr" "$OUT/user.exr" > "$OUT/diff.txt"
-grep -Eq 'RMSE +0$' "$OUT/diff.txt" && grep -Eq 'MaxError +0 ' "$OUT/diff.txt" \
-  || fail "normal-user differs from normal: $(cat "$OUT/diff.txt")"
+# (normal-color also writes the shading out in its own user_color())
+"$BIN" render technique=normal resolution=96x54 light_count=2 --exr "$OUT/normal.exr" > /dev/null
+for u in normal-user normal-color; do
+  "$BIN" render technique="$SRC/tests/user_technique/$u.glsl" resolution=96x54 light_count=2 \
+    --exr "$OUT/user.exr" > /dev/null
+  "$BIN" diff "$OUT/normal.exr" "$OUT/user.exr" > "$OUT/diff.txt"
+  grep -Eq 'RMSE +0$' "$OUT/diff.txt" && grep -Eq 'MaxError +0 ' "$OUT/diff.txt" \
+    || fail "$u differs from normal: $(cat "$OUT/diff.txt")"
+done
 
 # the same for a level function: tess-uniform is lod: uniform
 "$BIN" render technique=tess-displacement tess_level=12 resolution=96x54 --exr "$OUT/tess.exr" > /dev/null
@@ -121,6 +124,8 @@ bad taken "//@technique pom\n$OK" \
   "dmbench: error: taken.yaml:4:23: taken.glsl:1: technique name 'pom' is taken (by a built-in technique); choose another in \`//@technique\`"
 bad tesssig "//@technique c7\n//@base tess-level\nfloat user_tess_level(vec3 a)\n{ return 1.0; }\n" \
   "dmbench: error: tesssig.yaml:4:23: tesssig.glsl:3: entry point has the wrong signature \`float user_tess_level(vec3)\`; expected \`float user_tess_level(vec3 a, vec3 b)\`"
+bad colorsig "//@technique c9\n$OK\nvec3 user_color(vec2 uv, vec3 v, vec3 at) { return vec3(1.0); }\n" \
+  "dmbench: error: colorsig.yaml:4:23: colorsig.glsl:3: entry point has the wrong signature \`vec3 user_color(vec2, vec3, vec3)\`; expected \`vec4 user_color(vec2 uv, vec3 v, vec3 at)\`"
 bad base "//@technique c8\n//@base vertex\n$OK" \
   "dmbench: error: base.yaml:4:23: base.glsl:2: unknown base 'vertex'; valid bases: fragment, tess-level"
 printf 'name: bad\nsweep:\n  technique: [missing.glsl]\n' > missing.yaml
