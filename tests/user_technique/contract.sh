@@ -125,7 +125,7 @@ bad taken "//@technique pom\n$OK" \
 bad tesssig "//@technique c7\n//@base tess-level\nfloat user_tess_level(vec3 a)\n{ return 1.0; }\n" \
   "dmbench: error: tesssig.yaml:4:23: tesssig.glsl:3: entry point has the wrong signature \`float user_tess_level(vec3)\`; expected \`float user_tess_level(vec3 a, vec3 b)\`"
 bad colorsig "//@technique c9\n$OK\nvec3 user_color(vec2 uv, vec3 v, vec3 at) { return vec3(1.0); }\n" \
-  "dmbench: error: colorsig.yaml:4:23: colorsig.glsl:3: entry point has the wrong signature \`vec3 user_color(vec2, vec3, vec3)\`; expected \`vec4 user_color(vec2 uv, vec3 v, vec3 at)\`"
+  "dmbench: error: colorsig.yaml:4:23: colorsig.glsl:4: entry point has the wrong signature \`vec3 user_color(vec2, vec3, vec3)\`; expected \`vec4 user_color(vec2 uv, vec3 v, vec3 at)\`"
 bad base "//@technique c8\n//@base vertex\n$OK" \
   "dmbench: error: base.yaml:4:23: base.glsl:2: unknown base 'vertex'; valid bases: fragment, tess-level"
 printf 'name: bad\nsweep:\n  technique: [missing.glsl]\n' > missing.yaml
