@@ -25,6 +25,7 @@
 #include "core/dm_util.h"
 #include "gate/compare.h"
 #include "sweep/fraction.h"
+#include "techniques/technique.h"
 
 #define CLI_DEFAULT_STORE "results/dmbench.sqlite"
 
@@ -278,6 +279,8 @@ static int cli__compare_fail(const cli_compare_opts *o, const compare_result *r,
     return rc;
 }
 
+static int cli__builtin_technique(const char *name) { return technique_find(name) != NULL; }
+
 /* `dmbench compare`: both sides, the comparison, its text and files;
  * the exit code of the verdicts (compare_exit_code). */
 int cli_compare(int argc, char **argv)
@@ -287,6 +290,7 @@ int cli_compare(int argc, char **argv)
     o.positional = argv;
     o.n_positional = argc;
     o.d.paired = o.paired[0] != NULL;   /* pooled minimum times (compare.h) */
+    o.d.builtin_technique = cli__builtin_technique;   /* a user's edited GLSL file: paired */
     if (rc < 0 && argc > 2)
         rc = cli_usage_error("compare: too many arguments ('%s'): expected BASE NEW", argv[2]);
     dm_run_result base = {0}, new_ = {0};

@@ -16,6 +16,7 @@
 #include "techniques/maps.h"
 #include "techniques/mesh.h"
 #include "techniques/technique.h"
+#include "techniques/user_technique.h"
 
 #include <cjson/cJSON.h>
 #include <stddef.h>
@@ -305,6 +306,22 @@ const cli_option cli_list_options[] = {
     CLI_OPT_END
 };
 
+/* `list WHAT FILE.glsl...`: the user techniques named after the list are
+ * loaded, so they and their parameters are listed; -1, or an exit code. */
+static int list__user_techniques(int argc, char **argv)
+{
+    for (int i = 1; i < argc; i++) {
+        if (!user_technique_is_path(argv[i]))
+            return cli_usage_error("list: one list at a time ('%s' and '%s')", argv[0], argv[i]);
+        dm_str err = {0};
+        int rc = user_technique_load(argv[i], NULL, &err) ? cli_usage_error("list: %s", dm_str_get(&err)) : -1;
+        dm_str_free(&err);
+        if (rc >= 0)
+            return rc;
+    }
+    return -1;
+}
+
 /* `dmbench list WHAT`: one registry's list as text or JSON. */
 int cli_list(int argc, char **argv)
 {
@@ -318,7 +335,7 @@ int cli_list(int argc, char **argv)
         dm_str_free(&msg);
     }
     if (rc < 0 && argc > 1)
-        rc = cli_usage_error("list: one list at a time ('%s' and '%s')", argv[0], argv[1]);
+        rc = list__user_techniques(argc, argv);
     if (rc >= 0)
         return rc;
     const char *w = argv[0];

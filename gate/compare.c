@@ -66,6 +66,38 @@ static const dm_config_result *compare__find(const dm_run_result *r, const char 
     return NULL;
 }
 
+static int compare__same_params(const dm_config_result *a, const dm_config_result *b)
+{
+    if (a->n_params != b->n_params)
+        return 0;
+    for (size_t i = 0; i < a->n_params; i++) {
+        const char *v = dm_kv_get(b->params, b->n_params, a->params[i].key);
+        if (!v || strcmp(v, a->params[i].value ? a->params[i].value : "") != 0)
+            return 0;
+    }
+    return 1;
+}
+
+/* c of a user technique (not a built-in one, compare_desc.builtin_technique)? */
+static int compare__user(const compare_desc *d, const dm_config_result *c)
+{
+    const char *t = dm_kv_get(c->params, c->n_params, "technique");
+    return d->builtin_technique && t && !d->builtin_technique(t);
+}
+
+/* c's configuration in `other`: the one of the same key, or for a user
+ * technique whose file changed, the one of identical parameters that has no
+ * key in c's run (compare_desc.builtin_technique). */
+static const dm_config_result *compare__counterpart(const compare_desc *d, const dm_config_result *c,
+                                                    const dm_run_result *own, const dm_run_result *other)
+{
+    const dm_config_result *n = compare__find(other, c->key);
+    for (size_t i = 0; !n && compare__user(d, c) && i < other->n_configs; i++)
+        if (!compare__find(own, other->configs[i].key) && compare__same_params(c, &other->configs[i]))
+            n = &other->configs[i];
+    return n;
+}
+
 /* Lists fingerprint differences; returns their number. */
 static size_t compare__env(const dm_run_result *a, const dm_run_result *b, int driver_only,
                            compare_result *out)
@@ -461,8 +493,13 @@ static int *compare__match(const compare_desc *d, const dm_run_result *base,
     out->items = dm_xcalloc(base->n_configs + 1, sizeof *out->items);
     int *pending = dm_xcalloc(base->n_configs + 1, sizeof *pending);
     for (size_t i = 0; i < base->n_configs; i++) {
-        const dm_config_result *b = &base->configs[i], *n = compare__find(new_, b->key);
+        const dm_config_result *b = &base->configs[i], *n = compare__counterpart(d, b, base, new_);
         char *label = compare__label(b, base);
+        if (n && strcmp(n->key, b->key) != 0) {   /* a user's edited GLSL file */
+            char *was = label;
+            label = dm_xasprintf("%s (technique source changed: key %s -> %s)", was, b->key, n->key);
+            free(was);
+        }
         if (!n) {
             compare__push(&out->removed, &out->n_removed, dm_xasprintf("%s [%s]", label, b->key));
             free(label);
@@ -487,7 +524,7 @@ static int *compare__match(const compare_desc *d, const dm_run_result *base,
         out->n_items++;
     }
     for (size_t i = 0; i < new_->n_configs; i++)
-        if (!compare__find(base, new_->configs[i].key)) {
+        if (!compare__counterpart(d, &new_->configs[i], new_, base)) {
             char *label = compare__label(&new_->configs[i], new_);
             compare__push(&out->added, &out->n_added,
                           dm_xasprintf("%s [%s]", label, new_->configs[i].key));

@@ -159,6 +159,14 @@ typedef struct compare_desc {
     int no_blocking;         /* 1: the time CI of the raw samples, not blocked by round */
     const compare_tolerance *tolerances;
     size_t n_tolerances;
+    /* 1 when `technique` names a built-in technique; NULL: every technique
+     * is.  A configuration of any other technique (a user's GLSL file,
+     * docs/user-techniques.md) whose key is on one side only is paired with
+     * the configuration of identical parameters on the other side: its key
+     * holds a hash of the file, so an edited shader changes the key, and the
+     * pair is compared as the same configuration with its label saying the
+     * source changed. */
+    int (*builtin_technique)(const char *technique);
 } compare_desc;
 
 typedef struct compare_change {

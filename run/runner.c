@@ -17,6 +17,7 @@
 #include "reports/report.h"
 #include "techniques/axes.h"
 #include "techniques/technique.h"
+#include "techniques/user_technique.h"
 
 #include <epoxy/gl.h>
 #include <errno.h>
@@ -83,6 +84,13 @@ static void runner__probe_child(int fd)
             if (ext && epoxy_has_gl_extension(ext))
                 dm_str_printf(&out, "X\t%s\n", ext);
         }
+        dm_str bad = {0};   /* a user's GLSL that does not build: exit 2 before any work */
+        if (user_technique_check_programs(&bad) == DM_ERR_PARSE) {
+            for (char *c = bad.buf; c && *c; c++)
+                *c = *c == '\n' ? '\x1f' : *c == '\t' ? ' ' : *c;   /* one protocol line */
+            dm_str_printf(&out, "U\t%s\n", dm_str_get(&bad));
+        }
+        dm_str_free(&bad);
         for (size_t i = 0; axes_value_ext_at(i); i++)
             if (epoxy_has_gl_extension(axes_value_ext_at(i)))
                 dm_str_printf(&out, "X\t%s\n", axes_value_ext_at(i));
@@ -147,6 +155,11 @@ static int runner__probe(runner *r, dm_str *err)
             r->env.timer_verdict = dm_xstrdup(f2);
         } else if (line[0] == 'C' && f1) {
             r->instr_why = dm_xstrdup(f1);
+        } else if (line[0] == 'U' && f1) {
+            for (char *c = f1; *c; c++)
+                *c = *c == '\x1f' ? '\n' : *c;
+            dm_str_cat(err, f1);
+            rc = DM_ERR_PARSE;
         } else if (line[0] == 'X' && f1) {
             DM_VEC_PUSH(r->exts, r->n_exts, dm_xstrdup(f1));
         }

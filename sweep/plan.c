@@ -41,6 +41,8 @@ static void plan__key(plan_config *c, const technique_desc *t)
     char ver[32];
     snprintf(ver, sizeof ver, "v%d;", t->version);
     h = dm_fnv1a64(ver, strlen(ver), h);
+    if (t->source_hash)   /* a user technique: its file's text (user_technique.h) */
+        h = dm_fnv1a64(&t->source_hash, sizeof t->source_hash, h);
     for (size_t i = 0; i < c->n_params; i++) {
         h = dm_fnv1a64(c->params[i].key, strlen(c->params[i].key) + 1, h);
         h = dm_fnv1a64(c->params[i].value, strlen(c->params[i].value) + 1, h);

@@ -23,6 +23,7 @@
 #include <yaml.h>
 
 #include "techniques/technique.h"
+#include "techniques/user_technique.h"
 
 typedef struct pctx {
     yaml_document_t *doc;
@@ -871,6 +872,41 @@ static void sweep__defaults(sweep *s)
         s->pareto_metric = dm_xstrdup("ssim");
 }
 
+/* The child of mapping n under key `name`, or NULL. */
+static yaml_node_t *p__child(pctx *c, yaml_node_t *n, const char *name)
+{
+    for (yaml_node_pair_t *p = n && n->type == YAML_MAPPING_NODE ? n->data.mapping.pairs.start : NULL;
+         p && p < n->data.mapping.pairs.top; p++) {
+        const char *k = p__scalar(p__node(c, p->key));
+        if (k && strcmp(k, name) == 0)
+            return p__node(c, p->value);
+    }
+    return NULL;
+}
+
+/* Loads the user techniques (docs/user-techniques.md) that `sweep:` and
+ * `scene:` name before anything else is read, so their parameters are axes
+ * wherever the file puts them.  Errors are left to the regular pass, which
+ * reports them at their line. */
+static void p__preload_techniques(pctx *c, yaml_node_t *root)
+{
+    static const char *const sections[] = {"sweep", "scene"};
+    for (size_t s = 0; s < 2; s++) {
+        yaml_node_t *t = p__child(c, p__child(c, root, sections[s]), "technique");
+        size_t n = t && t->type == YAML_SEQUENCE_NODE
+                       ? (size_t)(t->data.sequence.items.top - t->data.sequence.items.start) : 1;
+        for (size_t i = 0; t && i < n; i++) {
+            yaml_node_t *v = t->type == YAML_SEQUENCE_NODE ? p__node(c, t->data.sequence.items.start[i]) : t;
+            char *path = p__scalar(v) ? sweep_paths_resolve(c->path, "technique", dm_xstrdup(p__scalar(v))) : NULL;
+            dm_str ignored = {0};
+            if (path && user_technique_is_path(path))
+                user_technique_load(path, NULL, &ignored);
+            dm_str_free(&ignored);
+            free(path);
+        }
+    }
+}
+
 /* Deepest nesting of YAML collections a sweep file may have (the deepest
  * real one is 4: models, a model, group_by, ...). */
 #define SWEEP__MAX_DEPTH 16
@@ -935,6 +971,8 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
     yaml_node_t *root = yaml_document_get_root_node(&doc);
     if (rc == 0 && !root)
         rc = p__fail(&c, NULL, "empty sweep file (expected keys: name, sweep, ...)");
+    if (rc == 0)
+        p__preload_techniques(&c, root);
     rc = rc ? rc : p__section(&c, root, "");
     yaml_document_delete(&doc);
     yaml_parser_delete(&parser);

@@ -7,16 +7,22 @@
 
 #include "core/dm_util.h"
 #include "techniques/user_mesh.h"
+#include "techniques/user_technique.h"
 
 char *sweep_paths_resolve(const char *sweep_path, const char *axis, char *text)
 {
     size_t np = strlen(USER_MESH_PREFIX);
-    if (!text || strcmp(axis, "mesh") != 0 || strncmp(text, USER_MESH_PREFIX, np) != 0)
+    const char *prefix;
+    if (text && strcmp(axis, "mesh") == 0 && strncmp(text, USER_MESH_PREFIX, np) == 0)
+        prefix = USER_MESH_PREFIX;
+    else if (text && strcmp(axis, "technique") == 0 && user_technique_is_path(text))
+        prefix = "";   /* a user technique's GLSL file (user_technique.h) */
+    else
         return text;
-    const char *path = text + np, *slash = strrchr(sweep_path, '/');
+    const char *path = text + strlen(prefix), *slash = strrchr(sweep_path, '/');
     if (path[0] == '/' || path[0] == '\0' || !slash)
         return text;
-    char *out = dm_xasprintf("%s%.*s/%s", USER_MESH_PREFIX, (int)(slash - sweep_path), sweep_path, path);
+    char *out = dm_xasprintf("%s%.*s/%s", prefix, (int)(slash - sweep_path), sweep_path, path);
     free(text);
     return out;
 }

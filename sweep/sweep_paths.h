@@ -9,8 +9,8 @@
 #define SWEEP_SWEEP_PATHS_H
 
 /* Returns the value `text` of axis `axis` with a relative file path made
- * relative to the directory of sweep_path: today the mesh axis's
- * "file:PATH".  Takes ownership of text (heap); returns it unchanged or
+ * relative to the directory of sweep_path: the mesh axis's "file:PATH" and
+ * the technique axis's user GLSL files ("PATH.glsl").  Takes ownership of text (heap); returns it unchanged or
  * frees it and returns a new heap string. */
 char *sweep_paths_resolve(const char *sweep_path, const char *axis, char *text);
 

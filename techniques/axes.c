@@ -14,6 +14,7 @@
 #include "techniques/maps.h"
 #include "techniques/mesh.h"
 #include "techniques/technique.h"
+#include "techniques/user_technique.h"
 
 static const char *const axes__on_off[] = {"on", "off", NULL};
 static const char *const axes__dnormals[] = {"map", "height", NULL};
@@ -127,17 +128,18 @@ static void axes__init(void)
     axes__table[AXES__N - 1].choices = maps_names();
 }
 
-size_t axes_count(void) { return AXES__N; }
+/* The catalog, then the parameters of the user techniques loaded so far. */
+size_t axes_count(void) { return AXES__N + user_technique_axis_count(); }
 
 const axis_info *axes_at(size_t i)
 {
     pthread_once(&axes__once, axes__init);
-    return i < AXES__N ? &axes__table[i] : NULL;
+    return i < AXES__N ? &axes__table[i] : user_technique_axis_at(i - AXES__N);
 }
 
 const axis_info *axes_find(const char *name)
 {
-    for (size_t i = 0; name && i < AXES__N; i++)
+    for (size_t i = 0; name && i < axes_count(); i++)
         if (strcmp(axes_at(i)->name, name) == 0)
             return axes_at(i);
     return NULL;
@@ -260,6 +262,8 @@ int axes_check(const char *name, const char *value, dm_str *err)
             return maps_material_check(value, err) ? DM_ERR_ARG : 0;   /* user maps (maps.h) */
         if (strcmp(a->name, "mesh") == 0 && strncmp(value, USER_MESH_PREFIX, strlen(USER_MESH_PREFIX)) == 0)
             return axes__check_user_mesh(value + strlen(USER_MESH_PREFIX), err);
+        if (strcmp(a->name, "technique") == 0 && user_technique_is_path(value))
+            return user_technique_load(value, NULL, err);   /* registers it (user_technique.h) */
         return axes__check_enum(a, value, err);
     case AXIS_INT:
         if (axes__takes_auto(a) && strcmp(value, "auto") == 0)
@@ -302,6 +306,8 @@ char *axes_canonical(const char *name, const char *value)
         return dm_xasprintf("%.9g", fv);
     if (a->kind == AXIS_SIZE2 && axes_parse_size2(value, &w, &h) == 0)
         return dm_xasprintf("%dx%d", w, h);
+    if (a->kind == AXIS_ENUM && user_technique_by_path(value))
+        return dm_xstrdup(user_technique_by_path(value)->name);   /* a user file: its name */
     return dm_xstrdup(value);
 }
 

@@ -45,6 +45,7 @@
 #include "techniques/technique.h"
 #include "techniques/render_internal.h"
 #include "techniques/user_mesh.h"
+#include "techniques/user_technique.h"
 #include "techniques/lod_cpu.h"
 #include "techniques/fs_minimal.h"
 
@@ -248,8 +249,9 @@ static int render__minimal_fs(dm_str *src, const char *tname, dm_str *log)
 }
 
 static GLuint render__compile(GLenum stage, const char *file, const char *defines,
-                              const char *tname, dm_str *log)
+                              const technique_desc *t, dm_str *log)
 {
+    const char *tname = t->name;
     dm_str src = {0}, err = {0};
     if (shaders_compose(file, defines, &src, &err)) {
         dm_str_printf(log, "technique '%s': %s", tname, dm_str_get(&err));
@@ -272,7 +274,8 @@ static GLuint render__compile(GLenum stage, const char *file, const char *define
     glGetShaderiv(sh, GL_INFO_LOG_LENGTH, &len);
     char *info = dm_xcalloc(1, (size_t)len + 1);
     glGetShaderInfoLog(sh, len, NULL, info);
-    dm_str_printf(log, "technique '%s': shader '%s' failed to compile:\n%s\n", tname, file, info);
+    dm_str_printf(log, "technique '%s': shader '%s' failed to compile:\n", tname, file);
+    user_technique_map_log(t, info, log);   /* a user's lines as file:line:column */
     free(info);
     glDeleteShader(sh);
     return 0;
@@ -292,7 +295,7 @@ static GLuint render__link(const technique_desc *t, const char *defines, int ret
     for (int i = 0; i < 5; i++) {
         if (!files[i])
             continue;
-        sh[i] = render__compile(stages[i], files[i], defines, t->name, log);
+        sh[i] = render__compile(stages[i], files[i], defines, t, log);
         if (!sh[i])
             failed = 1;
         else
@@ -310,7 +313,8 @@ static GLuint render__link(const technique_desc *t, const char *defines, int ret
         glGetProgramiv(prog, GL_INFO_LOG_LENGTH, &len);
         char *info = dm_xcalloc(1, (size_t)len + 1);
         glGetProgramInfoLog(prog, len, NULL, info);
-        dm_str_printf(log, "technique '%s': program failed to link:\n%s\n", t->name, info);
+        dm_str_printf(log, "technique '%s': program failed to link:\n", t->name);
+        user_technique_map_log(t, info, log);
         free(info);
     }
     for (int i = 0; i < 5; i++)

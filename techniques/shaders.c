@@ -4,6 +4,7 @@
 #include <string.h>
 
 #include "core/dm_error.h"
+#include "techniques/user_technique.h"
 
 struct shaders__entry { const char *name; const char *source; };
 extern const struct shaders__entry shaders__table[];
@@ -16,7 +17,7 @@ const char *shaders_source(const char *name)
     for (size_t i = 0; name && shaders__table[i].name; i++)
         if (strcmp(shaders__table[i].name, name) == 0)
             return shaders__table[i].source;
-    return NULL;
+    return user_technique_shader_source(name);   /* "user:NAME" */
 }
 
 typedef struct shaders__ctx {

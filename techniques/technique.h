@@ -9,6 +9,7 @@
 #define TECHNIQUES_TECHNIQUE_H
 
 #include <stddef.h>
+#include <stdint.h>
 
 enum technique_texture {
     TECH_TEX_HEIGHT = 1u << 0,
@@ -30,9 +31,13 @@ typedef struct technique_desc {
     int cpu_displace;            /* 1: the renderer subdivides the mesh to about 2^20
                                     triangles and displaces it on the CPU from the
                                     height map (reference-mesh; render.c) */
+    uint64_t source_hash;        /* user techniques: FNV-1a of the user's file, part of
+                                    the configuration key (user_technique.h); 0 built-in */
 } technique_desc;
 
-/* All registered techniques, test-only ones included (check test_only). */
+/* All registered techniques, test-only ones included (check test_only):
+ * the built-in list, then the user techniques loaded so far
+ * (user_technique.h). */
 size_t technique_count(void);
 const technique_desc *technique_at(size_t i);
 const technique_desc *technique_find(const char *name);

@@ -31,3 +31,11 @@ dm_add_e2e(test_e2e_corpus corpus.sh)
 # docs/ci-gating.md's recipe, run as written (ci/perf-gate.sh, baselines).
 add_test(NAME test_ci_recipe COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/ci_recipe.sh)
 set_tests_properties(test_ci_recipe PROPERTIES TIMEOUT 1800 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")
+# User techniques (docs/user-techniques.md): the contract without Valgrind
+# (axes, keys, bit-exact normal, every bad file, watchdog, NaN; ~30 s) and
+# the instruction gate on them (tests/user_technique/gate.sh).
+add_test(NAME test_user_technique_contract COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/user_technique/contract.sh)
+set_tests_properties(test_user_technique_contract PROPERTIES TIMEOUT 600 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e")
+add_test(NAME test_user_technique_gate COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/user_technique/gate.sh)
+set_tests_properties(test_user_technique_gate PROPERTIES TIMEOUT 1800 ENVIRONMENT "${DM_TEST_ENV}"
+  LABELS "e2e;gate;valgrind")

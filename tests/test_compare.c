@@ -486,6 +486,38 @@ static void test_failed_added_removed(void **state)
     dm_run_free(&b);
 }
 
+/* "normal" stands for a user technique here: everything else is built in. */
+static int only_normal_is_user(const char *technique) { return strcmp(technique, "normal") != 0; }
+
+/* A user technique's key changes with its file: the configurations of equal
+ * parameters are paired and compared, the label says the source changed;
+ * a built-in technique's changed key stays removed + added. */
+static void test_user_technique_source_changed(void **state)
+{
+    (void)state;
+    dm_run_result a, b;
+    make_run(&a, "A", 3, 30, 1.0, 0.02, 100);
+    make_run(&b, "B", 3, 30, 1.0, 0.02, 100);
+    free(b.configs[2].key);
+    b.configs[2].key = dm_xstrdup("00000000000000ff");
+    compare_desc d = {.builtin_technique = only_normal_is_user};
+    compare_result r;
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.n_items, 3);
+    assert_int_equal(r.n_removed + r.n_added, 0);
+    assert_string_equal(item(&r, "0000000000000003")->label,
+                        "mesh=m2 (technique source changed: key 0000000000000003 -> 00000000000000ff)");
+    compare_result_free(&r);
+    d.builtin_technique = NULL;   /* every technique built in: not paired */
+    assert_int_equal(run_compare(&a, &b, &d, &r), 0);
+    assert_int_equal(r.n_items, 2);
+    assert_int_equal(r.n_removed, 1);
+    assert_int_equal(r.n_added, 1);
+    compare_result_free(&r);
+    dm_run_free(&a);
+    dm_run_free(&b);
+}
+
 static void test_quality_drop(void **state)
 {
     (void)state;
@@ -1207,6 +1239,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_env_mismatch),
              cmocka_unit_test(test_counters_only_ignores_time),
              cmocka_unit_test(test_failed_added_removed),
+             cmocka_unit_test(test_user_technique_source_changed),
              cmocka_unit_test(test_quality_drop),
              cmocka_unit_test(test_flip_rise),
              cmocka_unit_test(test_inconclusive_states_detectable),

@@ -15,6 +15,7 @@
 #include "viewer/viewer_state.h"
 #include "techniques/axes.h"
 #include "techniques/technique.h"
+#include "techniques/user_technique.h"
 
 #include <GLFW/glfw3.h>
 #include <math.h>
@@ -23,6 +24,8 @@
 #include <string.h>
 
 #define VIEWER__LIVE_EVERY 30
+/* Frames between two looks at the user techniques' files (reload on change). */
+#define VIEWER__RELOAD_EVERY 30
 
 typedef struct viewer {
     viewer_desc d;               /* filled in: viewer_desc_defaults */
@@ -227,6 +230,11 @@ static int viewer__frame_step(viewer *v, int frame)
         viewer__apply_event(v, &v->d.events[frame]);
     fputs(dm_str_get(&v->st.msg), stdout);
     dm_str_free(&v->st.msg);
+    dm_str reload = {0};   /* a user technique's file edited on disk (user_technique.h) */
+    if (frame % VIEWER__RELOAD_EVERY == 0 && user_technique_reload(&reload) > 0)
+        v->st.dirty = 1;
+    fputs(dm_str_get(&reload), stderr);
+    dm_str_free(&reload);
     int changed = v->st.dirty;
     viewer_state_tick(&v->st);
     int rc = viewer__prepare(v);

@@ -5,6 +5,11 @@
 // NORMAL_FORMAT_BC3NM (DXT5 with x in alpha: x,y = .a,.g, z reconstructed).
 // A reconstructed z makes the normal unit length again, so Toksvig sees no
 // shortening with the two-channel formats (nlen = 1).
+// SURF_USER: a user technique (user_technique.c) — the user's file follows
+// this one and defines user_surface(), which replaces parallax_uv(): it
+// returns the visible point's UV and height, and shading, shadows and the
+// lit point's offset follow as for pom; with USER_COLOR the user's
+// user_color() shades that point instead.
 // DEBUG_NORMALS (the renderer's normals view): the output is the world-space
 // shading normal n*0.5+0.5.  The renderer then puts light slots 0..3 at the
 // origin and the world unit vectors X, Y, Z, so light_ts[k] - light_ts[0] is
@@ -101,6 +106,13 @@ vec2 parallax_search(vec2 uv, vec3 v)
 }
 #endif
 
+#ifdef SURF_USER
+vec3 user_surface(vec2 uv, vec3 v);   // the user's file (docs/user-techniques.md)
+#endif
+#ifdef USER_COLOR
+vec4 user_color(vec2 uv, vec3 v, vec3 at);   // optional: the user's shading of that point
+#endif
+
 vec2 parallax_uv(vec2 uv, vec3 v)
 {
 #if SURF_PARALLAX == 1
@@ -154,7 +166,7 @@ vec3 surface_normal(vec2 uv, out float nlen)
 // Self-shadowing toward light direction l (tangent space, unit) from uv.
 float self_shadow(vec2 uv, vec3 l)
 {
-#if SURF_PARALLAX == 3 && (defined(SHADOW_RAYTRACE) || defined(SHADOW_SOFT) || defined(SHADOW_SOFT_S2))
+#if (SURF_PARALLAX == 3 || defined(SURF_USER)) && (defined(SHADOW_RAYTRACE) || defined(SHADOW_SOFT) || defined(SHADOW_SOFT_S2))
     if (l.z <= 0.0)
         return 1.0;
     float h0 = height_at(uv);
@@ -214,9 +226,17 @@ void main()
     g_dx = dFdx(vi.uv);
     g_dy = dFdy(vi.uv);
     vec3 v = normalize(vi.view_ts);
+#ifdef SURF_USER
+    vec3 surf = user_surface(vi.uv, v);
+    vec2 uv = surf.xy;
+#else
     vec2 uv = parallax_uv(vi.uv, v);
+#endif
     vt_feedback(vi.uv, uv, g_dx, g_dy);
-#if SURF_PARALLAX > 0
+#ifdef SURF_USER
+    vec3 at = vec3((uv - vi.uv) / UV_PER_WORLD, (surf.z - SURFACE_H0) * u_height_scale);
+    v = normalize(vi.view_ts - at);
+#elif SURF_PARALLAX > 0
     // Light the point of the relief that was found, not the base point the
     // rasteriser gave: its tangent-space offset from the base point (the
     // same surface the reference mesh displaces) moves the eye and lights.
@@ -232,6 +252,8 @@ void main()
 #if defined(DEBUG_NORMALS)
     float nlen;
     o_color = vec4(debug_world_normal(surface_normal(uv, nlen)) * 0.5 + 0.5, 1.0);
+#elif defined(USER_COLOR)
+    o_color = user_color(uv, v, at);
 #elif defined(SURF_UNLIT)
     o_color = vec4(albedo, 1.0);
 #else

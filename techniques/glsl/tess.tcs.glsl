@@ -30,6 +30,9 @@
 // mesh's median edge (u_tess_edge_ref, object units) gets f times the level
 // (techniques/mesh.h, mesh_edge_factor), so the cylinder's cap spokes are
 // sampled like its sides; meshes of near-equal edges keep f = 1.
+// LOD_USER: a user technique's level function (user_technique.c), its
+// file appended to this one: level of an edge = user_tess_level(a, b) of
+// its world-space endpoints; the patch takes the largest, as LOD_UNIFORM.
 // CRACK_FREE_ON: outer level i from the edge opposite vertex i alone (its
 // midpoint / endpoints / samples along it), so the two patches sharing an
 // edge agree; inner = the largest outer.  Otherwise one level per patch.
@@ -107,9 +110,15 @@ float edge_factor(int a, int b)
     return clamp(f, 1.0, 64.0);
 }
 
+#ifdef LOD_USER
+float user_tess_level(vec3 a, vec3 b);   // the user's file (docs/user-techniques.md)
+#endif
+
 float edge_level(int a, int b)
 {
-#if defined(LOD_DISTANCE)
+#if defined(LOD_USER)
+    return user_tess_level(wpos(a), wpos(b));
+#elif defined(LOD_DISTANCE)
     return edge_factor(a, b) * float(u_tess_level) / max(distance(u_camera_pos, 0.5 * (wpos(a) + wpos(b))), 1e-3);
 #elif defined(LOD_SCREEN_EDGE)
     return min(distance(screen(wpos(a)), screen(wpos(b))) / TESS_TARGET_PX, float(u_tess_level));
