@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "reports/pareto.h"
+#include "reports/recommend.h"
 
 /* 1 when param `name` takes two or more distinct values over the scene's
  * configurations (techniques that do not read it have no value and do not
@@ -28,6 +28,24 @@ int report__param_varies(const dm_run_result *run, const char *scene, const char
             return 1;
         if (v)
             first = v;
+    }
+    return 0;
+}
+
+/* 1 when param `name` takes two or more distinct values over all the scene's
+ * configurations, failed ones included (so a name does not change when a
+ * configuration fails). */
+static int report__param_varies_all(const dm_run_result *run, const char *scene, const char *name)
+{
+    const char *first = NULL;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (strcmp(c->scene ? c->scene : "", scene) != 0)
+            continue;
+        const char *v = dm_kv_get(c->params, c->n_params, name);
+        if (v && first && strcmp(v, first) != 0)
+            return 1;
+        first = v ? v : first;
     }
     return 0;
 }
@@ -56,16 +74,6 @@ size_t report__scene_rows(const dm_run_result *run, const char *scene, size_t **
     return n;
 }
 
-void report__config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)
-{
-    dm_str_cat(out, report__technique(c));
-    for (size_t i = 0; i < c->n_params; i++) {
-        if (strcmp(c->params[i].key, "technique") == 0 ||
-            !report__param_varies(run, c->scene ? c->scene : "", c->params[i].key))
-            continue;
-        dm_str_printf(out, " %s=%s", c->params[i].key, c->params[i].value);
-    }
-}
 
 size_t report__pareto_points(const dm_run_result *run, const char *scene, report_metric m,
                              size_t *idx, double *x, double *y)
@@ -85,15 +93,22 @@ size_t report__pareto_points(const dm_run_result *run, const char *scene, report
     return n;
 }
 
+/* The front with the metric's tolerance (reports/recommend.h): of two
+ * configurations of the same quality within it only the cheaper stays. */
 size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out)
 {
     size_t cap = run->n_configs + 1;
+    report_metric m = report_metric_of_run(run);
     double *x = dm_xcalloc(cap, sizeof *x), *y = dm_xcalloc(cap, sizeof *y);
     size_t *idx = dm_xcalloc(cap, sizeof *idx), *front = dm_xcalloc(cap, sizeof *front);
-    size_t n = report__pareto_points(run, scene, report_metric_of_run(run), idx, x, y);
-    size_t nf = pareto_front(x, y, n, front);
+    recommend_point *p = dm_xcalloc(cap, sizeof *p);
+    size_t n = report__pareto_points(run, scene, m, idx, x, y);
+    for (size_t i = 0; i < n; i++)
+        p[i] = (recommend_point){.time = x[i], .error = y[i]};
+    size_t nf = recommend_front(p, n, report_metric_epsilon(m), front);
     for (size_t i = 0; i < nf; i++)
         front[i] = idx[front[i]];
+    free(p);
     free(x);
     free(y);
     free(idx);
@@ -155,13 +170,88 @@ double report__ci_rel(const dm_counter_result *t)
     return t->median > 0 ? (t->ci_hi - t->ci_lo) / 2 / t->median : NAN;
 }
 
+/* A percentage with one decimal below 10 %, none above (the CI itself is
+ * known to about two digits). */
+static void report__pct(dm_str *out, double pct)
+{
+    dm_str_printf(out, pct < 9.95 ? "%.1f%%" : "%.0f%%", pct);
+}
+
 void report__ci_text(const dm_counter_result *t, dm_str *out)
 {
     double r = report__ci_rel(t);
-    if (isfinite(r))
-        dm_str_printf(out, "±%.1f%%", r * 100);
-    else
+    if (!isfinite(r)) {
         dm_str_cat(out, "CI unknown");
+        return;
+    }
+    double down = (t->median - t->ci_lo) / t->median * 100, up = (t->ci_hi - t->median) / t->median * 100;
+    if (fmax(down, up) > REPORT__CI_ASYMMETRIC * fmin(down, up) && fabs(up - down) >= 1) {
+        dm_str_cat(out, "−");
+        report__pct(out, down);
+        dm_str_cat(out, "/+");
+        report__pct(out, up);
+        return;
+    }
+    dm_str_cat(out, "±");
+    report__pct(out, r * 100);
+}
+
+void report__ms_text(double ns, dm_str *out)
+{
+    double ms = ns / 1e6;
+    if (!isfinite(ms) || ms <= 0) {
+        dm_str_printf(out, "%g", ms);
+        return;
+    }
+    int decimals = 2 - (int)floor(log10(ms) + 1e-12);
+    dm_str_printf(out, "%.*f", decimals < 0 ? 0 : decimals > 6 ? 6 : decimals, ms);
+}
+
+void report__time_ci_text(const dm_counter_result *t, dm_str *out)
+{
+    report__ms_text(t->median, out);
+    dm_str_cat(out, " ms");
+    if (!isfinite(t->ci_lo) || !isfinite(t->ci_hi))
+        return;
+    dm_str_cat(out, " [");
+    report__ms_text(t->ci_lo, out);
+    dm_str_cat(out, ", ");
+    report__ms_text(t->ci_hi, out);
+    dm_str_cat(out, "]");
+}
+
+/* Insertion sort of a copy (tens of samples). */
+static double *report__sorted_copy(const double *v, size_t n)
+{
+    double *s = dm_xcalloc(n + 1, sizeof *s);
+    for (size_t i = 0; i < n; i++) {
+        size_t b = i;
+        while (b > 0 && s[b - 1] > v[i]) {
+            s[b] = s[b - 1];
+            b--;
+        }
+        s[b] = v[i];
+    }
+    return s;
+}
+
+size_t report__bimodal(const dm_counter_result *t, double *low, double *high)
+{
+    size_t n = t ? t->n_samples : 0, split = 0;
+    if (n < 6)
+        return 0;
+    double *s = report__sorted_copy(t->samples, n), gap = 0;
+    for (size_t i = 1; i < n; i++)
+        if (s[i] - s[i - 1] > gap)
+            gap = s[i] - s[i - 1], split = i;
+    size_t least = n / 5 > 2 ? n / 5 : 2;
+    double spread = fmax(s[split - 1] - s[0], s[n - 1] - s[split]);
+    int two = split >= least && n - split >= least && gap > 3 * spread &&
+              gap > 0.1 * s[n / 2];
+    *low = s[(split - 1) / 2];
+    *high = s[split + (n - split) / 2];
+    free(s);
+    return two ? n - split : 0;
 }
 
 int report__noisy(const dm_config_result *c)
@@ -193,8 +283,8 @@ static void report__count_warning(const dm_run_result *run, int which, dm_str *o
         if (!c->ok || !c->quality.present || v <= 0)
             continue;
         dm_str label = {0};
-        report__config_label(run, c, &label);
-        dm_str_printf(&list, "%s%s [%s] (%ld)", n++ ? ", " : "", dm_str_get(&label), c->key, v);
+        report_config_label(run, c, &label);
+        dm_str_printf(&list, "%s%s (%ld)", n++ ? ", " : "", dm_str_get(&label), v);
         dm_str_free(&label);
     }
     if (n)
@@ -334,33 +424,80 @@ int report_write_all(const dm_run_result *run, const char *dir, char *err, size_
     return report_write_all_to(run, dir, dir, err, errlen);
 }
 
-/* 1 when param `name` takes two or more distinct values over all the scene's
- * configurations, failed ones included (so a name does not change when a
- * configuration fails). */
-static int report__param_varies_all(const dm_run_result *run, const char *scene, const char *name)
+void report__config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)
 {
-    const char *first = NULL;
+    const char *scene = c->scene ? c->scene : "";
+    dm_str_cat(out, report__technique(c));
+    for (size_t i = 0; i < c->n_params; i++)
+        if (strcmp(c->params[i].key, "technique") != 0 &&
+            report__param_varies_all(run, scene, c->params[i].key))
+            dm_str_printf(out, " %s=%s", c->params[i].key, c->params[i].value);
+}
+
+/* 1 when the scene-name piece (",key=value" of the planner's scene id) is
+ * the same in every scene of the run. */
+static int report__piece_everywhere(const dm_run_result *run, const char *piece, size_t len)
+{
     for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        if (strcmp(c->scene ? c->scene : "", scene) != 0)
-            continue;
-        const char *v = dm_kv_get(c->params, c->n_params, name);
-        if (v && first && strcmp(v, first) != 0)
-            return 1;
-        first = v ? v : first;
+        const char *sc = run->configs[i].scene ? run->configs[i].scene : "", *p = sc;
+        int found = 0;
+        while (!found && (p = strchr(p, ',')) != NULL) {
+            p++;
+            found = strncmp(p, piece, len) == 0 && (p[len] == ',' || p[len] == 0);
+        }
+        if (!found)
+            return 0;
     }
-    return 0;
+    return 1;
+}
+
+void report_scene_label(const dm_run_result *run, const char *scene, dm_str *out)
+{
+    const char *at = strchr(scene, '@'), *comma = at ? strchr(at, ',') : NULL;
+    if (!at) {
+        dm_str_cat(out, scene);
+        return;
+    }
+    dm_str_catn(out, scene, (size_t)(at - scene));
+    dm_str_cat(out, " ");
+    for (const char *p = at + 1; *p && p != comma; p++)
+        dm_str_cat(out, *p == 'x' ? "×" : (char[2]){*p, 0});
+    for (const char *p = comma; p && *p; p = strchr(p, ',')) {
+        p++;
+        const char *end = strchr(p, ',');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        if (!report__piece_everywhere(run, p, len)) {
+            dm_str_cat(out, " ");
+            dm_str_catn(out, p, len);
+        }
+    }
+}
+
+void report_scene_constants(const dm_run_result *run, dm_str *out)
+{
+    const char *sc = run->n_configs && run->configs[0].scene ? run->configs[0].scene : "";
+    for (const char *p = strchr(sc, ','); p && *p; p = strchr(p, ',')) {
+        p++;
+        const char *end = strchr(p, ',');
+        size_t len = end ? (size_t)(end - p) : strlen(p);
+        if (report__piece_everywhere(run, p, len)) {
+            dm_str_cat(out, out->len ? ", " : "");
+            dm_str_catn(out, p, len);
+        }
+    }
+}
+
+void report_config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)
+{
+    report_scene_label(run, c->scene ? c->scene : "", out);
+    dm_str_cat(out, " · ");
+    report__config_label(run, c, out);
 }
 
 /* The name without the uniqueness suffix. */
 static void report__base_name(const dm_run_result *run, const dm_config_result *c, dm_str *out)
 {
-    const char *scene = c->scene ? c->scene : "";
-    dm_str_printf(out, "%s/%s", scene, report__technique(c));
-    for (size_t i = 0; i < c->n_params; i++)
-        if (strcmp(c->params[i].key, "technique") != 0 &&
-            report__param_varies_all(run, scene, c->params[i].key))
-            dm_str_printf(out, " %s=%s", c->params[i].key, c->params[i].value);
+    report_config_label(run, c, out);
 }
 
 void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_str *out)

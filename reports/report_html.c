@@ -9,6 +9,7 @@
 #include "reports/report_internal.h"
 #include "reports/published_report.h"
 #include "reports/proxy.h"
+#include "reports/answer.h"
 
 #include "core/dm_error.h"
 #include "reports/flip.h"
@@ -40,7 +41,10 @@ static const char *css =
     ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:192px;cursor:pointer}"
     ".scale{display:inline-block;width:160px;height:10px;vertical-align:middle;border:1px solid #999;"
     "background:linear-gradient(90deg,#000004,#420a68,#932667,#dd513a,#fca50a,#fcffa4)}"
-    "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}";
+    "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}"
+    ".scene-answer{flex:1 1 36em;max-width:60em;min-width:0}.scene-answer h3{margin:.6em 0 .2em}"
+    "p.pick{margin:.2em 0}ul.rec{margin:.2em 0 .4em;padding-left:1.2em;font-size:13px}"
+    ".noisy{color:#a05a00;font-size:12px;white-space:nowrap}tr.pick td{background:#e3f1ff}";
 
 /* Click a column header to sort by it (numbers numerically); the content is
  * complete without it. */
@@ -77,6 +81,15 @@ static void tagged(dm_str *s, const char *tag, const char *text)
     dm_str_printf(s, "</%s>", tag);
 }
 
+/* The scene's label (report_scene_label), escaped. */
+static void scene_name(dm_str *s, const dm_run_result *run, const char *scene)
+{
+    dm_str l = {0};
+    report_scene_label(run, scene, &l);
+    esc(s, dm_str_get(&l));
+    dm_str_free(&l);
+}
+
 static void params_inline(dm_str *s, const dm_kv *kv, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
@@ -102,7 +115,16 @@ static void header(dm_str *s, const dm_run_result *run)
         dm_str_cat(s, ", finished ");
         esc(s, run->finished);
     }
-    dm_str_cat(s, ".</p>\n");
+    dm_str_cat(s, ".");
+    dm_str k = {0};
+    report_scene_constants(run, &k);
+    if (k.len) {
+        dm_str_cat(s, " Every scene: ");
+        esc(s, dm_str_get(&k));
+        dm_str_cat(s, ".");
+    }
+    dm_str_free(&k);
+    dm_str_cat(s, "</p>\n");
 }
 
 /* The environment, folded: the summary names the renderer and the load. */
@@ -131,13 +153,29 @@ static void toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t
                   "<a href=\"#warnings\">Warnings</a><a href=\"#environment\">Environment</a>");
     for (size_t i = 0; i < ns; i++) {
         dm_str_printf(s, "<a href=\"#scene-%zu\">", i);
-        esc(s, scenes[i]);
+        scene_name(s, run, scenes[i]);
         dm_str_cat(s, "</a>");
     }
     dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#failed\">Failed and left out</a>");
     if (run->n_fits)
         dm_str_cat(s, "<a href=\"#fits\">Model fits</a>");
     dm_str_cat(s, "<a href=\"#passes\">Counters by pass</a></nav>\n");
+}
+
+/* The timing marks of a row (noisy, bimodal) as a span with the reason. */
+static void marks_html(dm_str *s, const dm_config_result *c)
+{
+    dm_str mark = {0}, why = {0};
+    report__timing_marks(c, 0, &mark, &why);
+    if (mark.len) {
+        dm_str_cat(s, " <span class=\"noisy\" title=\"");
+        esc(s, dm_str_get(&why));
+        dm_str_cat(s, "\">");
+        esc(s, dm_str_get(&mark));
+        dm_str_cat(s, "</span>");
+    }
+    dm_str_free(&mark);
+    dm_str_free(&why);
 }
 
 /* Lists more than this many noisy configurations inside a collapsed <details>. */
@@ -157,13 +195,12 @@ static void noisy_warning(dm_str *s, const dm_run_result *run)
         for (size_t i = 0; i < n; i++) {
             const dm_config_result *c = &run->configs[idx[i]];
             dm_str label = {0};
-            report__config_label(run, c, &label);
+            report_config_label(run, c, &label);
             dm_str_cat(s, "<li>");
             esc(s, dm_str_get(&label));
-            dm_str_cat(s, " <code>");
-            esc(s, c->key);
-            dm_str_cat(s, "</code> ");
+            dm_str_cat(s, " ");
             report__ci_text(report__frame_time(c), s);
+            marks_html(s, c);
             dm_str_cat(s, "</li>");
             dm_str_free(&label);
         }
@@ -299,10 +336,14 @@ static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char
     for (size_t i = 0; i < np; i++)
         tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
     const dm_counter_result *t = report__frame_time(c);
-    if (t)
-        dm_str_printf(s, "<td class=\"n\">%.3f</td><td class=\"n\">±%.1f%%</td>", t->median / 1e6,
-                      report__ci_rel(t) * 100);
-    else
+    if (t) {
+        dm_str_cat(s, "<td class=\"n\">");
+        report__ms_text(t->median, s);
+        dm_str_cat(s, "</td><td class=\"n\">");
+        report__ci_text(t, s);
+        marks_html(s, c);
+        dm_str_cat(s, "</td>");
+    } else
         dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
     if (tr)
         trend_cell(s, trend_of(tr, c->key));
@@ -339,7 +380,7 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
     size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
     const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
     dm_str_printf(s, "<h2 id=\"scene-%zu\">Scene ", si);
-    esc(s, scene);
+    scene_name(s, run, scene);
     dm_str_cat(s, "</h2>\n<p class=\"const\">Same for every row: ");
     for (size_t i = 0; i < np; i++) {
         if (strcmp(params[i], "technique") == 0)
@@ -452,8 +493,7 @@ static int gallery_usable(dm_str *s, const html_images *im, const char *rel, con
 }
 
 /* A scene's reference, embedded once (id refs[k] = "ref-K"). */
-static void gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k,
-                              const char *scene)
+static void gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k)
 {
     if (!gallery_usable(s, im, rel, "reference"))
         return;
@@ -463,9 +503,7 @@ static void gallery_reference(dm_str *s, const html_images *im, const char *rel,
     esc(s, rel);
     dm_str_printf(s, "\"><img id=\"ref-%zu\" src=\"", k);
     image_src(s, im, full, rel);
-    dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b> ");
-    esc(s, scene);
-    dm_str_cat(s, "</figcaption></figure>");
+    dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b></figcaption></figure>");
     free(full);
 }
 
@@ -523,7 +561,7 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
     double top = 0, ppd = NAN;
     int flips = 0;
     dm_str_cat(s, "<h3>");
-    esc(s, scene);
+    scene_name(s, run, scene);
     dm_str_cat(s, "</h3>\n<div class=\"grid\">");
     for (size_t i = 0; i < nr; i++) {
         const dm_config_result *c = &run->configs[rows[i]];
@@ -532,7 +570,7 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
         if (c->img_reference && report__safe_relpath(c->img_reference)) {
             ref = (long)gallery_ref_index(refs, nrefs, c->img_reference, &fresh);
             if (fresh)
-                gallery_reference(s, im, c->img_reference, (size_t)ref, scene);
+                gallery_reference(s, im, c->img_reference, (size_t)ref);
         } else if (c->img_reference) {
             gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
         }
@@ -698,13 +736,16 @@ static void settings_text(const dm_run_result *run, const dm_config_result *c, d
     dm_str_free(&label);
 }
 
-/* One scene's Pareto front as a compact table, fastest first. */
+/* One scene's answer: the recommendation in words, then its front as a
+ * compact table, fastest first (the pick marked, cost relative to the
+ * fastest lit configuration). */
 static void answer_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si)
 {
-    size_t *front, nf = report__pareto(run, scene, &front), *rows;
-    size_t nr = report__scene_rows(run, scene, &rows);
+    size_t *front, nf = report__pareto(run, scene, &front);
+    recommend_result r;
+    report_recommend(run, scene, &r);
     report_metric m = report_metric_of_run(run);
-    const dm_counter_result *fastest = nr ? report__frame_time(&run->configs[rows[0]]) : NULL;
+    const dm_counter_result *base = r.fastest != RECOMMEND_NONE ? report__frame_time(&run->configs[r.fastest]) : NULL;
     int with_settings = 0;
     for (size_t i = 0; i < nf && !with_settings; i++) {
         dm_str set = {0};
@@ -712,11 +753,15 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
         with_settings = *dm_str_get(&set) != 0;
         dm_str_free(&set);
     }
-    dm_str_printf(s, "<table class=\"answer front\" id=\"front-%zu\"><caption>", si);
-    esc(s, scene);
-    dm_str_printf(s, "</caption><thead><tr><th>technique</th>%s<th>median ms</th>"
-                     "<th>95%% CI</th><th>%s</th><th>cost vs fastest</th></tr></thead><tbody>\n",
-                  with_settings ? "<th>settings</th>" : "", report_metric_label(m));
+    dm_str_printf(s, "<section class=\"scene-answer\" id=\"answer-%zu\"><h3>", si);
+    scene_name(s, run, scene);
+    dm_str_cat(s, "</h3>\n");
+    report_answer_scene(run, scene, REPORT_ANSWER_HTML, s);
+    dm_str_printf(s, "<div class=\"scroll\"><table class=\"answer front\" id=\"front-%zu\"><caption>"
+                     "Front: best quality for its cost</caption><thead><tr><th>technique</th>%s"
+                     "<th>median ms</th><th>95%% CI</th><th>%s</th><th>cost vs fastest lit</th>"
+                     "</tr></thead><tbody>\n", si, with_settings ? "<th>settings</th>" : "",
+                  report_metric_label(m));
     if (!nf)
         dm_str_printf(s, "<tr><td colspan=\"6\" class=\"missing\">no configuration has both a time "
                          "and a %s measurement</td></tr>\n", report_metric_label(m));
@@ -725,36 +770,43 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
         const dm_counter_result *t = report__frame_time(c);
         dm_str set = {0};
         settings_text(run, c, &set);
-        dm_str_cat(s, "<tr>");
-        tagged(s, "td", report__technique(c));
+        dm_str_printf(s, "<tr%s><td>", front[i] == r.pick ? " class=\"pick\"" : "");
+        esc(s, report__technique(c));
+        if (front[i] == r.pick)
+            dm_str_cat(s, " <b>← pick</b>");
+        if (report_family(c) == RECOMMEND_UNLIT)
+            dm_str_cat(s, " <span class=\"const\">(unlit baseline)</span>");
+        dm_str_cat(s, "</td>");
         if (with_settings)
             tagged(s, "td", dm_str_get(&set));
-        dm_str_printf(s, "<td class=\"n\">%.3f</td><td class=\"n\">", t->median / 1e6);
+        dm_str_cat(s, "<td class=\"n\">");
+        report__ms_text(t->median, s);
+        dm_str_cat(s, "</td><td class=\"n\">");
         report__ci_text(t, s);
+        marks_html(s, c);
         dm_str_cat(s, "</td>");
         num_cell(s, "%.4g", report_metric_shown(&c->quality, m));
-        dm_str_printf(s, "<td class=\"n\">×%.2f", fastest ? t->median / fastest->median : NAN);
-        if (i && report__tied(t, report__frame_time(&run->configs[front[i - 1]])))
-            dm_str_cat(s, " <span class=\"tied\" title=\"the 95% CIs of the two medians overlap\">"
-                          "≈ tied with the row above</span>");
-        dm_str_cat(s, "</td></tr>\n");
+        dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n", base ? t->median / base->median : NAN);
         dm_str_free(&set);
     }
-    dm_str_cat(s, "</tbody></table>\n");
+    dm_str_cat(s, "</tbody></table></div></section>\n");
     free(front);
-    free(rows);
 }
 
-/* The answer first: per scene, which configurations give the best quality
- * for their cost (the Pareto front of the run's metric against median time). */
+/* The answer first: per scene, the recommendation in words and the front
+ * (the run's metric against median time). */
 static void answer(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
 {
     report_metric m = report_metric_of_run(run);
-    dm_str_printf(s, "<h2 id=\"answer\">Answer: best quality for its cost</h2>\n<p>Per scene, the "
-                     "Pareto front of error (<b>%s</b>: %s against the reference) and median frame "
-                     "time, fastest first; every other configuration is slower than one of these "
-                     "and not better. \"≈ tied\": the time is not distinguishable from the row "
-                     "above (overlapping 95%% CIs).</p>\n", report_metric_name(m), report_metric_label(m));
+    dm_str_printf(s, "<h2 id=\"answer\">Answer: what to use</h2>\n<p class=\"const\">Quality is "
+                     "<b>%s</b> (%s) against the reference; two values closer than %g are the "
+                     "same quality and the cheaper configuration wins.  Times are the median frame "
+                     "time with its 95%% CI; ⚠ marks a timing too noisy or bimodal to trust "
+                     "(hover for the reason).  Unlit techniques are baselines, never the pick.  The default "
+                     "budget is a round number midway (on a log scale) between a scene's fastest and "
+                     "slowest lit times; set yours with <code>dmbench report --budget-ms</code> or the "
+                     "sweep key <code>quality.budget_ms</code>.</p>\n",
+                  report_metric_name(m), report_metric_label(m), report_metric_epsilon(m));
     dm_str_cat(s, "<div class=\"answers\">\n");
     for (size_t i = 0; i < ns; i++)
         answer_table(s, run, scenes[i], i);
