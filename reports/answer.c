@@ -1,5 +1,6 @@
 /* answer.c — the recommendation of each scene in words (see answer.h). */
 #include "reports/answer.h"
+#include "reports/report.h"
 #include "reports/report_internal.h"
 
 #include "core/dm_error.h"
@@ -260,10 +261,6 @@ void report_answer_scene(const dm_run_result *run, const char *scene, report_ans
     recommend_result r;
     report_recommend(run, scene, &r);
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "<p class=\"pick\">" : "");
-    if (f == REPORT_ANSWER_TEXT) {
-        w_text(&w, scene);
-        w_text(&w, ": ");
-    }
     w_pick(&w, run, &r);
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "</p>\n<ul class=\"rec\">" : f == REPORT_ANSWER_MD ? "\n" : "");
     w_item(&w, 1);
@@ -293,7 +290,10 @@ void report_answer_terminal(const dm_run_result *run, dm_str *out)
         answer__w w = {&one, REPORT_ANSWER_TEXT};
         recommend_result r;
         report_recommend(run, scenes[i], &r);
-        w_text(&w, scenes[i]);
+        dm_str l = {0};
+        report_scene_label(run, scenes[i], &l);
+        w_text(&w, dm_str_get(&l));
+        dm_str_free(&l);
         w_text(&w, ": ");
         w_pick(&w, run, &r);
         w_text(&w, "\n  ");

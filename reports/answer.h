@@ -40,7 +40,7 @@ size_t report_recommend(const dm_run_result *run, const char *scene, recommend_r
 /* The scene's answer as sentences: the pick (or that nothing fits), the
  * tie and budget notes, the knee, the family bests and the unlit baseline
  * note.  HTML: a <p class="pick"> and a <ul>; MD: a paragraph and a list;
- * TEXT: two lines ("scene: pick ...", "  knee ...; family bests ..."). */
+ * TEXT: a paragraph and indented lines. */
 void report_answer_scene(const dm_run_result *run, const char *scene, report_answer_format f,
                          dm_str *out);
 

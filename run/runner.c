@@ -12,6 +12,7 @@
 #include "sweep/plan.h"
 #include "sweep/published.h"
 #include "store/store.h"
+#include "reports/answer.h"
 #include "reports/metric.h"
 #include "reports/report.h"
 #include "techniques/axes.h"
@@ -864,6 +865,8 @@ static int runner__begin(runner *r)
     dm_hex64(r->s->hash, hash);
     e->sweep_hash = dm_xstrdup(hash);
     report_metric_set(e, r->s->pareto_metric);   /* so dmbench report redraws the same front */
+    if (r->s->budget_ms > 0)
+        report_budget_set(e, r->s->budget_ms);    /* and picks under the same budget */
     if (r->o->shard_n > 0) {
         /* merge checks duplicate and missing shards, and whether each one is
          * complete, from these two entries. */
@@ -917,6 +920,17 @@ static void runner__fit(runner *r, dm_run_result *run)
     }
 }
 
+/* The end of a run: each scene's recommendation in one or two lines. */
+static void runner__print_answer(const dm_run_result *run)
+{
+    dm_str a = {0};
+    report_answer_terminal(run, &a);
+    char *safe;
+    fputs(dm_term_safe(dm_str_get(&a), &safe), stdout);
+    free(safe);
+    dm_str_free(&a);
+}
+
 static int runner__finish(runner *r, dm_str *err)
 {
     char now[32];
@@ -933,6 +947,8 @@ static int runner__finish(runner *r, dm_str *err)
         report_trends_free(&tr);
         if (rc)
             dm_str_printf(err, "report: %s", e);
+        else if (!r->o->quiet)
+            runner__print_answer(&run);
     } else {
         dm_str_printf(err, "store: cannot reload run %s: %s", r->run_id, store_last_error(r->st));
     }
