@@ -695,7 +695,8 @@ static void test_quality_warnings(void **state)
 
 /* The chart titles of an HTML page in order: every chart is one
  * <div class="chart" ... aria-label="T"> holding exactly one <svg> whose
- * text (PLplot writes characters as &#xNN; references) includes T. */
+ * text includes T (PLplot writes characters as &#xNN; references, the
+ * hand-written charts escaped HTML). */
 static size_t chart_titles(const char *html, char titles[][96], size_t max)
 {
     static const char open[] = "<div class=\"chart\" role=\"img\" aria-label=\"";
@@ -711,7 +712,7 @@ static size_t chart_titles(const char *html, char titles[][96], size_t max)
         for (const char *c = titles[n]; *c; c++)
             dm_str_printf(&enc, "&#x%x;", (unsigned)(unsigned char)*c);
         char *body = dm_xasprintf("%.*s", (int)(end - svg), svg);
-        if (!strstr(body, dm_str_get(&enc)))
+        if (!strstr(body, dm_str_get(&enc)) && !strstr(body, titles[n]))
             fail_msg("chart '%s': title not drawn in its SVG", titles[n]);
         free(body);
         dm_str_free(&enc);
@@ -738,7 +739,7 @@ static void test_html_chart_set(void **state)
 {
     (void)state;
     static const char *want[] = {
-        "Error vs time: plane/cam0/sun/stone/64x64", "Time per configuration: plane/cam0/sun/stone/64x64",
+        "1 - SSIM vs time: plane/cam0/sun/stone/64x64", "Time per configuration: plane/cam0/sun/stone/64x64",
         "Key counters per configuration (relative to each maximum)",
         "Predicted vs measured: tess-power mesh=plane", "Residuals: tess-power mesh=plane" };
     char dir[] = "/tmp/dm_reports_charts_XXXXXX", titles[8][96];
