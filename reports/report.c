@@ -391,6 +391,44 @@ void report_trends_free(report_trends *t)
         free(t->items);
 }
 
+int report__copy_file(const char *from, const char *to)
+{
+    char *text = NULL, *parent = dm_xstrdup(to), *slash = strrchr(parent, '/');
+    size_t len = 0;
+    if (slash)
+        *slash = 0;
+    int rc = (!slash || dm_mkdirs(parent) == 0) && dm_read_file(from, &text, &len) == 0 &&
+             dm_write_file(to, text, len) == 0 ? 0 : DM_ERR_IO;
+    free(text);
+    free(parent);
+    return rc;
+}
+
+/* Copies every image the run names (safe relative paths that exist) from
+ * dir to the same relative path under out, so out is self-contained.  0,
+ * or DM_ERR_IO with err naming the file. */
+static int report__copy_images(const dm_run_result *run, const char *dir, const char *out, char *err,
+                               size_t errlen)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        const char *imgs[] = {c->img_reference, c->img_render, c->img_heatmap, c->img_flip};
+        for (size_t k = 0; k < sizeof imgs / sizeof *imgs; k++) {
+            if (!imgs[k] || !report__safe_relpath(imgs[k]))
+                continue;
+            char *from = dm_xasprintf("%s/%s", dir, imgs[k]), *to = dm_xasprintf("%s/%s", out, imgs[k]);
+            int rc = dm_file_exists(from) && !dm_file_exists(to) ? report__copy_file(from, to) : 0;
+            if (rc)
+                snprintf(err, errlen, "%s: cannot copy the image", to);
+            free(from);
+            free(to);
+            if (rc)
+                return rc;
+        }
+    }
+    return 0;
+}
+
 int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
                             const report_trends *t, char *err, size_t errlen)
 {
@@ -399,23 +437,22 @@ int report_write_all_trends(const dm_run_result *run, const char *dir, const cha
         snprintf(err, errlen, "report_write_all: no run or no directory");
         return DM_ERR_ARG;
     }
-    char real[PATH_MAX];   /* links from elsewhere: the run directory's absolute path */
-    char *href = strcmp(dir, out) == 0 ? dm_xstrdup("")
-                 : dm_xasprintf("%s/", realpath(dir, real) ? real : dir);
+    /* written elsewhere: the images come along, so the folder stands alone */
     int rc = report_published_copy(dir, out);   /* summary.md reads it beside itself */
     if (rc)
         snprintf(err, errlen, "%s/published.json: cannot copy", out);
+    if (!rc && strcmp(dir, out) != 0)
+        rc = report__copy_images(run, dir, out, err, errlen);
     for (int i = 0; i < 4 && !rc; i++) {
         char *path = dm_xasprintf("%s/%s", out, names[i]);
         rc = i == 0 ? report_write_json(run, path)
            : i == 1 ? report_write_csv(run, path)
            : i == 2 ? report_write_markdown(run, path)
-                    : report_write_html_trends(run, dir, path, href, t);
+                    : report_write_html_trends(run, dir, path, "", t);
         if (rc)
             snprintf(err, errlen, "%s: cannot write (%s)", path, dm_strerror(rc));
         free(path);
     }
-    free(href);
     return rc;
 }
 

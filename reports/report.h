@@ -67,8 +67,10 @@ int report_write_html(const dm_run_result *run, const char *dir, const char *pat
  * written outside the run directory still finds its images); NULL = "". */
 int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
                          const char *href);
-/* As report_write_all, the files going into out (which must exist) while
- * images stay in the run directory dir (`dmbench report DIR --out OUT`). */
+/* As report_write_all, the files going into out (which must exist), and
+ * the images the run names copied from the run directory dir to the same
+ * relative paths under out, so out opens on its own when moved or
+ * published (`dmbench report DIR --out OUT`). */
 int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
                         size_t errlen);
 

@@ -35,10 +35,12 @@ static const char *css =
     ".scroll{overflow-x:auto;max-width:100%}.scroll table{margin-top:.3em}"
     "table.hide-more .more{display:none}tr.front td{background:#eef7ee}"
     "table.answer{margin:.2em 0 .8em}table.answer caption{text-align:left;font-weight:bold;padding:.2em 0}"
-    "nav.toc{font-size:13px;margin:.3em 0 .8em}nav.toc a{margin-right:.9em}"
+    "nav.toc{font-size:13px;margin:.3em 0 .8em;display:flex;flex-wrap:wrap;gap:0 .9em}"
     ".tied{color:#946200;font-size:12px}.tools{margin:.3em 0}.tools input{width:16em}"
-    ".grid{display:flex;flex-wrap:wrap;gap:.6em}.grid figure{margin:0;width:196px}"
-    ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:192px;cursor:pointer}"
+    ".grid{display:flex;flex-wrap:wrap;gap:.8em;align-items:flex-start}.grid figure{margin:0;width:240px}"
+    ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:240px;cursor:pointer}"
+    ".pair{display:flex;flex-wrap:wrap;gap:.3em;border:1px solid #ddd;padding:.3em;max-width:100%}"
+    ".pair .cap{flex-basis:100%;margin:0;font-size:12px;max-width:490px}"
     ".scale{display:inline-block;width:160px;height:10px;vertical-align:middle;border:1px solid #999;"
     "background:linear-gradient(90deg,#000004,#420a68,#932667,#dd513a,#fca50a,#fcffa4)}"
     "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}"
@@ -149,17 +151,17 @@ static void environment(dm_str *s, const dm_run_result *run)
 /* Table of contents: the answer, each scene, gallery, failures, fits. */
 static void toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
 {
-    dm_str_cat(s, "<nav class=\"toc\"><b>Contents:</b> <a href=\"#answer\">Answer</a>"
-                  "<a href=\"#warnings\">Warnings</a><a href=\"#environment\">Environment</a>");
+    dm_str_cat(s, "<nav class=\"toc\"><b>Contents:</b> <a href=\"#answer\">Answer</a>");
     for (size_t i = 0; i < ns; i++) {
         dm_str_printf(s, "<a href=\"#scene-%zu\">", i);
         scene_name(s, run, scenes[i]);
         dm_str_cat(s, "</a>");
     }
-    dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#failed\">Failed and left out</a>");
+    dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#warnings\">Warnings</a>"
+                  "<a href=\"#failed\">Failed and left out</a>");
     if (run->n_fits)
         dm_str_cat(s, "<a href=\"#fits\">Model fits</a>");
-    dm_str_cat(s, "<a href=\"#passes\">Counters by pass</a></nav>\n");
+    dm_str_cat(s, "<a href=\"#passes\">Counters by pass</a><a href=\"#environment\">Environment</a></nav>\n");
 }
 
 /* The timing marks of a row (noisy, bimodal) as a span with the reason. */
@@ -437,7 +439,7 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
     free(params);
 }
 
-#define THUMB_MAX_DIM 192
+#define THUMB_MAX_DIM 240
 
 static void base64(dm_str *s, const unsigned char *d, size_t n)
 {
@@ -519,9 +521,12 @@ static void gallery_linked(dm_str *s, const html_images *im, const char *rel, co
     esc(s, rel);
     if (ref >= 0)
         dm_str_printf(s, "\" class=\"flip\" data-ref=\"ref-%ld", ref);
-    dm_str_printf(s, "\" alt=\"%s\" width=\"192\"><figcaption>%s: ", label, label);
+    dm_str_printf(s, "\" alt=\"%s: ", label);
     esc(s, caption);
-    dm_str_cat(s, "</figcaption></figure>");
+    dm_str_printf(s, "\"><figcaption>%s · <a class=\"full\" href=\"", label);
+    esc(s, im->href);
+    esc(s, rel);
+    dm_str_cat(s, "\">full size</a></figcaption></figure>");
 }
 
 /* FLIP's fixed colour scale as a CSS gradient, from flip_colormap itself so
@@ -576,19 +581,24 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
         }
         dm_str label = {0};
         report__config_label(run, c, &label);
+        dm_str_cat(s, "<div class=\"pair\">");
         gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), ref);
-        /* each map's caption carries its error value */
-        dm_str cap = {0};
-        dm_str_printf(&cap, "%s, MaxError %.3g", dm_str_get(&label), c->quality.max_error);
-        gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&cap), -1);
+        gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
         if (c->img_flip) {
-            dm_str_free(&cap);
-            dm_str_printf(&cap, "%s, FLIP %.4f (max %.3f)", dm_str_get(&label), c->quality.flip,
-                          c->quality.flip_max);
-            gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&cap), -1);
+            gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&label), -1);
             flips = 1;
             ppd = c->quality.flip_ppd;
         }
+        /* the caption of the pair carries its values */
+        dm_str cap = {0};
+        dm_str_printf(&cap, "%s: ", dm_str_get(&label));
+        report_metric_text(&c->quality, report_metric_of_run(run), &cap);
+        dm_str_printf(&cap, ", MaxError %.3g", c->quality.max_error);
+        if (c->img_flip)
+            dm_str_printf(&cap, ", FLIP %.4f (max %.3f)", c->quality.flip, c->quality.flip_max);
+        dm_str_cat(s, "<p class=\"cap\">");
+        esc(s, dm_str_get(&cap));
+        dm_str_cat(s, "</p></div>");
         dm_str_free(&cap);
         if (c->quality.present && isfinite(c->quality.max_error))
             top = fmax(top, c->quality.max_error);
@@ -614,8 +624,8 @@ static void gallery(dm_str *s, const dm_run_result *run, const html_images *im)
     const char **scenes, **refs = NULL;
     size_t ns = report__scenes(run, &scenes), nrefs = 0;
     dm_str_cat(s, "<h2 id=\"gallery\">Gallery</h2>\n<p>Per scene: the reference once (embedded), "
-                  "then each configuration's render and heatmap (files in img/ beside this "
-                  "report; click an image's link for the full size).</p>\n");
+                  "then each configuration's render and heatmap side by side, fastest first, with "
+                  "their values (files in img/ beside this report; \"full size\" opens one).</p>\n");
     for (size_t i = 0; i < ns; i++)
         gallery_scene(s, run, im, scenes[i], &refs, &nrefs);
     free(refs);
@@ -662,39 +672,89 @@ static void condition_cell(dm_str *s, double v)
         num_cell(s, "%.3g", v);
 }
 
+/* A fit worth its table row and plots: R² >= FIT_USABLE_R2 and full rank. */
+#define FIT_USABLE_R2 0.8
+static int fit_usable(const dm_fit_result *f)
+{
+    return isfinite(f->r2) && f->r2 >= FIT_USABLE_R2 && !isinf(f->condition) && f->n_params > 0;
+}
+
+static void fit_row(dm_str *s, const dm_fit_result *f)
+{
+    dm_str_cat(s, "<tr>");
+    tagged(s, "td", f->model);
+    dm_str_cat(s, "<td>");
+    params_inline(s, f->group, f->n_group);
+    dm_str_cat(s, "</td><td>");
+    for (size_t k = 0; k < f->n_params; k++) {
+        esc(s, f->params[k].name);
+        dm_str_printf(s, " = %.3g ± %.2g<br>", f->params[k].value, f->params[k].stderr_);
+    }
+    dm_str_cat(s, "</td>");
+    num_cell(s, "%.4f", f->r2);
+    num_cell(s, "%.4f", f->cv_mape);
+    condition_cell(s, f->condition);
+    dm_str_printf(s, "<td class=\"n\">%d</td><td>", f->n_points);
+    for (size_t k = 0; k < f->n_warnings; k++) {
+        esc(s, f->warnings[k]);
+        dm_str_cat(s, "<br>");
+    }
+    dm_str_cat(s, "</td></tr>\n");
+}
+
+/* One line for a fit that did not work: model, group, R² and its first warning. */
+static void fit_line(dm_str *s, const dm_fit_result *f)
+{
+    dm_str_cat(s, "<li>");
+    esc(s, f->model);
+    dm_str_cat(s, " (");
+    params_inline(s, f->group, f->n_group);
+    dm_str_printf(s, "): R² %.2f over %d points", f->r2, f->n_points);
+    if (f->n_warnings) {
+        dm_str_cat(s, "; ");
+        esc(s, f->warnings[0]);
+    }
+    dm_str_cat(s, "</li>\n");
+}
+
+/* Usable fits with their table and plots; the others folded, one line each. */
 static void fits(dm_str *s, const dm_run_result *run)
 {
     if (!run->n_fits)
         return;
-    dm_str_cat(s, "<h2 id=\"fits\">Model fits</h2>\n<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
-                  "<th>R²</th><th>CV MAPE</th><th title=\"2-norm condition number of the scaled "
-                  "Jacobian; large means the parameters are poorly determined\">condition</th>"
-                  "<th>points</th><th>warnings</th></tr>\n");
-    for (size_t i = 0; i < run->n_fits; i++) {
-        const dm_fit_result *f = &run->fits[i];
-        dm_str_cat(s, "<tr>");
-        tagged(s, "td", f->model);
-        dm_str_cat(s, "<td>");
-        params_inline(s, f->group, f->n_group);
-        dm_str_cat(s, "</td><td>");
-        for (size_t k = 0; k < f->n_params; k++) {
-            esc(s, f->params[k].name);
-            dm_str_printf(s, " = %.6g ± %.3g<br>", f->params[k].value, f->params[k].stderr_);
-        }
-        dm_str_cat(s, "</td>");
-        num_cell(s, "%.4f", f->r2);
-        num_cell(s, "%.4f", f->cv_mape);
-        condition_cell(s, f->condition);
-        dm_str_printf(s, "<td class=\"n\">%d</td><td>", f->n_points);
-        for (size_t k = 0; k < f->n_warnings; k++) {
-            esc(s, f->warnings[k]);
-            dm_str_cat(s, "<br>");
-        }
-        dm_str_cat(s, "</td></tr>\n");
-    }
-    dm_str_cat(s, "</table>\n");
+    size_t bad = 0;
     for (size_t i = 0; i < run->n_fits; i++)
-        report__html_charts_fit(s, run, &run->fits[i]);
+        bad += !fit_usable(&run->fits[i]);
+    dm_str_cat(s, "<h2 id=\"fits\">Model fits</h2>\n");
+    if (bad < run->n_fits) {
+        dm_str_cat(s, "<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
+                      "<th>R²</th><th>CV MAPE</th><th title=\"2-norm condition number of the scaled "
+                      "Jacobian; large means the parameters are poorly determined\">condition</th>"
+                      "<th>points</th><th>warnings</th></tr>\n");
+        for (size_t i = 0; i < run->n_fits; i++)
+            if (fit_usable(&run->fits[i]))
+                fit_row(s, &run->fits[i]);
+        dm_str_cat(s, "</table>\n");
+        for (size_t i = 0; i < run->n_fits; i++)   /* plots on demand: two per fit */
+            if (fit_usable(&run->fits[i])) {
+                dm_str_cat(s, "<details class=\"fit-plots\"><summary>Plots: ");
+                esc(s, run->fits[i].model);
+                dm_str_cat(s, " ");
+                params_inline(s, run->fits[i].group, run->fits[i].n_group);
+                dm_str_cat(s, "</summary>\n");
+                report__html_charts_fit(s, run, &run->fits[i]);
+                dm_str_cat(s, "</details>\n");
+            }
+    }
+    if (!bad)
+        return;
+    dm_str_printf(s, "<details class=\"fits-bad\"><summary>%zu fit%s not usable (R² below %.1f or "
+                     "rank deficient): one line each</summary><ul>\n", bad, bad == 1 ? "" : "s",
+                  FIT_USABLE_R2);
+    for (size_t i = 0; i < run->n_fits; i++)
+        if (!fit_usable(&run->fits[i]))
+            fit_line(s, &run->fits[i]);
+    dm_str_cat(s, "</ul></details>\n");
 }
 
 /* Instructions as a proxy for frame time (reports/proxy.h) and which
@@ -828,19 +888,21 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
     dm_str s = {0};
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);
+    /* by value: the answer, each scene's table and charts, the images, then
+     * the diagnostics, and what only a maintainer reads at the end */
     header(&s, run);
     toc(&s, run, scenes, ns);
     answer(&s, run, scenes, ns);
-    timer_and_warnings(&s, run);
-    environment(&s, run);
     for (size_t i = 0; i < ns; i++)
         scene_table(&s, run, scenes[i], i, t);
     free(scenes);
     gallery(&s, run, &im);
+    timer_and_warnings(&s, run);
     failed_and_left_out(&s, run);
     fits(&s, run);
     report_published_section(&s, run, dir, path, 1);
     proxy_section(&s, run);
+    environment(&s, run);
     dm_str_printf(&s, "<script>%s</script>\n</body></html>\n", sort_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);

@@ -121,6 +121,9 @@ void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *
  * percent of the measured value vs predicted), nothing without points. */
 void report__html_charts_fit(dm_str *s, const dm_run_result *run, const dm_fit_result *f);
 
+/* Copies the file from → to, creating to's directory; 0 or DM_ERR_IO. */
+int report__copy_file(const char *from, const char *to);
+
 /* Writes s to path (atomically); DM_ERR_IO. */
 int report__save(const dm_str *s, const char *path);
 

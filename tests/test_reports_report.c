@@ -237,8 +237,8 @@ static void test_html_flip_maps(void **state)
     c->quality.flip_ppd = 67.0206;
     assert_int_equal(report_write_html(&run, dir, p), 0);
     char *t = test_slurp(p);
-    assert_non_null(strstr(t, "src=\"img/c0_heat.png\" alt=\"FLIP\""));
-    assert_non_null(strstr(t, ", FLIP 0.0452 (max 0.519)</figcaption>"));
+    assert_non_null(strstr(t, "src=\"img/c0_heat.png\" alt=\"FLIP: "));
+    assert_non_null(strstr(t, ", FLIP 0.0452 (max 0.519)</p>"));
     assert_non_null(strstr(t, "at 67 pixels per degree, on one fixed scale"));
     assert_non_null(strstr(t, "background:linear-gradient(90deg,#000004,"));
     assert_non_null(strstr(t, ",#fcfcbf)\"></span> 1"));
@@ -277,12 +277,14 @@ static void test_html_escaping_and_images(void **state)
     assert_true(all_refs_exist(t, dir, " src=\"", &n));
     assert_int_equal(n, 4);
     /* the reference is embedded once and links its file; renders and
-     * heatmaps load from img/ beside the report */
+     * heatmaps load from img/ beside the report, each with a full-size
+     * link (c0 render and heatmap, c1 render) */
     assert_true(all_refs_exist(t, dir, " href=\"", &n));
-    assert_int_equal(n, 1);
+    assert_int_equal(n, 4);
     assert_non_null(strstr(t, "<a href=\"img/c0_ref.png\"><img id=\"ref-0\" src=\"data:image/png;base64,"));
     assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_render.png\" class=\"flip\" data-ref=\"ref-0\""));
-    assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_heat.png\" alt=\"heatmap\""));
+    assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_heat.png\" alt=\"heatmap: "));
+    assert_non_null(strstr(t, "heatmap · <a class=\"full\" href=\"img/c0_heat.png\">full size</a>"));
     assert_non_null(strstr(t, "<span class=\"scale\"></span>"));
     /* written elsewhere (report --out): links go to the run directory */
     char *other = dm_xasprintf("%s/other.html", dir);
@@ -760,7 +762,9 @@ static void test_html_chart_set(void **state)
     free(t);
     run.fits[0].condition = INFINITY;
     t = html_of(&run, p);
-    assert_non_null(strstr(t, "∞ (rank deficient)"));
+    /* a rank-deficient fit folds to one line, without its plots */
+    assert_non_null(strstr(t, "1 fit not usable (R² below 0.8 or rank deficient): one line each"));
+    assert_null(strstr(t, "Predicted vs measured"));
     free(t);
     dm_fit_result_free(&run.fits[0]);
     run.n_fits = 0;

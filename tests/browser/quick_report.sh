@@ -5,7 +5,9 @@
 # (DOM position), every front row whose CI is wider than ±5 % carries its
 # noisy mark, the page does not overflow horizontally, no SVG chart text is
 # clipped (every text box inside its SVG's box), and the file is under 2 MB.
-# The screenshots stay in ARTIFACTS (CI keeps them).
+# The screenshots stay in ARTIFACTS (CI keeps them).  Then `report --out`
+# into a folder that is moved elsewhere: every full-size link is relative and
+# resolves inside it, and chromium loads every image of the moved copy.
 set -eu
 bin=$1
 art=$2
@@ -65,4 +67,24 @@ for win in 1280,800 1920,1080; do
     [ "$clipped" = 0 ] || fail "$name: clipped chart text: $clipped"
     echo "$name: recommendation at y $1..$2 of $3; noisy rows marked; no overflow; $texts chart texts, none clipped"
 done
+"$bin" report "$work/res/latest" --out "$work/pub" >/dev/null || fail "report --out"
+mv "$work/pub" "$work/moved"
+links=$(grep -o 'class="full" href="[^"]*"' "$work/moved/report.html" | sed 's/.*href="//; s/"$//')
+[ -n "$links" ] || fail "no full-size links in the gallery"
+nlinks=0
+for l in $links; do
+    case $l in /*|*..*) fail "full-size link $l leaves the folder" ;; esac
+    [ -f "$work/moved/$l" ] || fail "full-size link $l does not resolve in the moved folder"
+    nlinks=$((nlinks + 1))
+done
+probe='<script>window.addEventListener("load",function(){var a=document.images,ok=0;'
+probe="$probe"'for(var i=0;i<a.length;i++)if(a[i].complete\&\&a[i].naturalWidth>0)ok++;'
+probe="$probe"'document.body.setAttribute("data-images",ok+"/"+a.length);});</script></body>'
+sed "s#</body>#$probe#; s#loading=\"lazy\" ##g" "$work/moved/report.html" > "$work/moved/probe.html"
+chrome --window-size=1280,800 --virtual-time-budget=8000 --dump-dom "file://$work/moved/probe.html" \
+    > "$work/dom.html" 2>/dev/null || fail "dump-dom of the moved copy"
+images=$(sed -n 's/.*data-images="\([0-9]*\/[0-9]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+[ -n "$images" ] && [ "${images%/*}" = "${images#*/}" ] && [ "${images#*/}" -gt 0 ] \
+    || fail "moved report --out copy: only ${images:-no} images loaded"
+echo "moved report --out copy: $nlinks full-size links resolve, $images images load"
 echo "report.html: $size bytes; screenshots in $art"
