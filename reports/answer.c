@@ -142,6 +142,14 @@ void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, 
         dm_str_printf(why, "the 95%% CI of the median is wider than ±%.0f%% of it (or unknown)",
                       REPORT__NOISY_CI_REL * 100);
     }
+    size_t dl;
+    const char *drift = report__drift(c, &dl);
+    if (drift) {
+        dm_str_printf(mark, "%s⚠ drift %.3g %%", mark->len ? "; " : "",
+                      strtod(drift + strlen("WallTime drifted"), NULL));
+        dm_str_cat(why, why->len ? "; " : "");
+        dm_str_catn(why, drift, dl);
+    }
     if (up) {
         dm_str_printf(mark, "%s⚠ bimodal: %zu of %zu samples near ", mark->len ? "; " : "", up,
                       t->n_samples);

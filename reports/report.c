@@ -293,6 +293,79 @@ static void report__count_warning(const dm_run_result *run, int which, dm_str *o
     dm_str_free(&list);
 }
 
+const char *report__drift(const dm_config_result *c, size_t *len)
+{
+    const char *d = c->log ? strstr(c->log, "WallTime drifted") : NULL;
+    if (d && len) {
+        const char *nl = strchr(d, '\n');
+        *len = nl ? (size_t)(nl - d) : strlen(d);
+    }
+    return d;
+}
+
+/* "N configurations drifted while sampling ...: label (−9.9 %), ..." */
+static void report__drift_warning(const dm_run_result *run, dm_str *out)
+{
+    dm_str list = {0};
+    size_t n = 0;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        const char *d = c->ok ? report__drift(c, NULL) : NULL;
+        if (!d)
+            continue;
+        dm_str label = {0};
+        report_config_label(run, c, &label);
+        dm_str_printf(&list, "%s%s (%.3g %%)", n++ ? ", " : "", dm_str_get(&label),
+                      strtod(d + strlen("WallTime drifted"), NULL));
+        dm_str_free(&label);
+    }
+    if (n)
+        dm_str_printf(out, "%zu configuration%s drifted while sampling (a trend, not noise: the "
+                           "machine's load or clock changed): %s\n", n, n == 1 ? "" : "s", dm_str_get(&list));
+    dm_str_free(&list);
+}
+
+static int report__has_warning(const dm_run_result *run, const char *w)
+{
+    for (size_t i = 0; i < run->n_warnings; i++)
+        if (run->warnings[i] && strcmp(run->warnings[i], w) == 0)
+            return 1;
+    return 0;
+}
+
+size_t report__warnings(const dm_run_result *run, char ***out)
+{
+    dm_str all = {0};
+    if (run->timer_verdict && strcmp(run->timer_verdict, "partial") == 0)
+        dm_str_printf(&all, "GPUTime is partial on this driver: it covers %.1f%% of fenced wall time; "
+                            "it is recorded, never used to fit or gate.\n", run->gpu_time_coverage * 100);
+    size_t *idx, nn = report__noisy_configs(run, &idx);
+    free(idx);
+    if (nn)
+        dm_str_printf(&all, "%zu noisy configuration%s: the 95%% CI of the median frame time is wider "
+                            "than ±%.0f%% of the median (or unknown); compare their times with care.\n",
+                      nn, nn == 1 ? "" : "s", REPORT__NOISY_CI_REL * 100);
+    report__drift_warning(run, &all);
+    report__quality_warnings(run, &all);
+    size_t n = 0;
+    *out = dm_xcalloc(run->n_warnings + 16, sizeof **out);
+    char *save = NULL;
+    for (char *l = all.buf ? strtok_r(all.buf, "\n", &save) : NULL; l && n < 15; l = strtok_r(NULL, "\n", &save))
+        if (!report__has_warning(run, l))
+            (*out)[n++] = dm_xstrdup(l);
+    for (size_t i = 0; i < run->n_warnings; i++)
+        (*out)[n++] = dm_xstrdup(run->warnings[i] ? run->warnings[i] : "");
+    dm_str_free(&all);
+    return n;
+}
+
+void report__warnings_free(char **w, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(w[i]);
+    free(w);
+}
+
 void report__quality_warnings(const dm_run_result *run, dm_str *out)
 {
     size_t failed = 0;

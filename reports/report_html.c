@@ -183,17 +183,14 @@ static void marks_html(dm_str *s, const dm_config_result *c)
 /* Lists more than this many noisy configurations inside a collapsed <details>. */
 #define NOISY_OPEN_MAX 8
 
-/* The warning box naming every configuration whose timing is too noisy to
- * trust (report__noisy); nothing when there is none. */
+/* The noisy configurations by label with their CI and marks, folded when
+ * there are many; nothing when there is none. */
 static void noisy_warning(dm_str *s, const dm_run_result *run)
 {
     size_t *idx, n = report__noisy_configs(run, &idx);
     if (n) {
-        dm_str_printf(s, "<div class=\"warn noisy\">%s<b>%zu noisy configuration%s</b>: the 95%% CI "
-                         "of the median frame time is wider than ±%.0f%% of the median (or unknown); "
-                         "compare their times with care.%s<ul>",
-                      n > NOISY_OPEN_MAX ? "<details><summary>" : "", n, n == 1 ? "" : "s",
-                      REPORT__NOISY_CI_REL * 100, n > NOISY_OPEN_MAX ? "</summary>" : "");
+        dm_str_printf(s, "<div class=\"warn noisy\"><details%s><summary><b>%zu noisy configuration%s</b> "
+                         "by label</summary><ul>", n > NOISY_OPEN_MAX ? "" : " open", n, n == 1 ? "" : "s");
         for (size_t i = 0; i < n; i++) {
             const dm_config_result *c = &run->configs[idx[i]];
             dm_str label = {0};
@@ -206,11 +203,13 @@ static void noisy_warning(dm_str *s, const dm_run_result *run)
             dm_str_cat(s, "</li>");
             dm_str_free(&label);
         }
-        dm_str_printf(s, "</ul>%s</div>\n", n > NOISY_OPEN_MAX ? "</details>" : "");
+        dm_str_cat(s, "</ul></details></div>\n");
     }
     free(idx);
 }
 
+/* The timer verdict, then every warning (report__warnings, the list of
+ * results.json), the noisy configurations listed under theirs. */
 static void timer_and_warnings(dm_str *s, const dm_run_result *run)
 {
     const char *v = run->timer_verdict ? run->timer_verdict : "unknown";
@@ -218,25 +217,15 @@ static void timer_and_warnings(dm_str *s, const dm_run_result *run)
     esc(s, v);
     dm_str_printf(s, "</b> (GPUTime covers %.1f%% of fenced wall time).</p>\n",
                   run->gpu_time_coverage * 100);
-    if (strcmp(v, "partial") == 0)
-        dm_str_printf(s, "<div class=\"warn\">GPUTime is partial on this driver: it covers %.1f%% "
-                         "of fenced wall time; it is recorded, never used to fit or gate.</div>\n",
-                      run->gpu_time_coverage * 100);
+    char **w;
+    size_t nw = report__warnings(run, &w);
+    for (size_t i = 0; i < nw; i++) {
+        dm_str_cat(s, "<div class=\"warn\">");
+        esc(s, w[i]);
+        dm_str_cat(s, "</div>\n");
+    }
+    report__warnings_free(w, nw);
     noisy_warning(s, run);
-    dm_str q = {0};
-    report__quality_warnings(run, &q);
-    char *save = NULL;
-    for (char *line = q.buf ? strtok_r(q.buf, "\n", &save) : NULL; line; line = strtok_r(NULL, "\n", &save)) {
-        dm_str_cat(s, "<div class=\"warn\">");
-        esc(s, line);
-        dm_str_cat(s, "</div>\n");
-    }
-    dm_str_free(&q);
-    for (size_t i = 0; i < run->n_warnings; i++) {
-        dm_str_cat(s, "<div class=\"warn\">");
-        esc(s, run->warnings[i]);
-        dm_str_cat(s, "</div>\n");
-    }
 }
 
 static void num_cell(dm_str *s, const char *fmt, double v)

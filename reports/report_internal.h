@@ -44,8 +44,8 @@ void report__time_ci_text(const dm_counter_result *t, dm_str *out);
  * group (0: not bimodal); *low and *high get each group's middle sample. */
 size_t report__bimodal(const dm_counter_result *t, double *low, double *high);
 /* The marks of a configuration's timing for tables and the answer:
- * "⚠ noisy: CI −5%/+89%" and/or "⚠ bimodal: 3 of 16 samples near 3.19 ms,
- * the rest near 1.60" into mark, the reasons in words into why (both left
+ * "⚠ noisy: CI −5%/+89%", "⚠ drift -9.9 %" (its log's drift line) and/or
+ * "⚠ bimodal: 3 of 16 samples near 3.19 ms, the rest near 1.60" into mark, the reasons in words into why (both left
  * unchanged when the timing is sound); without with_ci (a table that shows
  * the CI beside it) the noisy mark is just "⚠ noisy". */
 void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, dm_str *why);
@@ -63,6 +63,18 @@ size_t report__noisy_configs(const dm_run_result *run, size_t **out);
  * with non-finite pixels: label (count), ...", "N configurations with crack
  * pixels: label (count), ...".  Appends nothing when all is well. */
 void report__quality_warnings(const dm_run_result *run, dm_str *out);
+
+/* The "WallTime drifted ..." line of a configuration's log (its length in
+ * *len when len is not NULL), or NULL. */
+const char *report__drift(const dm_config_result *c, size_t *len);
+/* Every warning of the run as plain text, one string each, the same list in
+ * results.json "warnings", summary.md and report.html: the partial timer,
+ * the count of noisy configurations, drift, failures, non-finite and crack
+ * pixels, then the run's stored warnings.  A computed line already among the
+ * stored ones is not repeated, so read → write keeps the list as it was.
+ * *out malloc'd (report__warnings_free).  Returns the count. */
+size_t report__warnings(const dm_run_result *run, char ***out);
+void report__warnings_free(char **w, size_t n);
 
 /* Distinct scene names in first-appearance order; *out is malloc'd and points
  * into run (free only the array).  Returns the count. */

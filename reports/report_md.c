@@ -101,30 +101,26 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
 /* Noisy configurations listed this many to a line. */
 #define NOISY_PER_LINE 4
 
-/* "- warning: N noisy configurations ..." then the labels with their CI and
- * marks, a few per indented line; nothing when there is none. */
-static void noisy_warning(dm_str *s, const dm_run_result *run)
+/* The noisy configurations by label with their CI and marks, a few per
+ * indented line (under their warning). */
+static void noisy_list(dm_str *s, const dm_run_result *run)
 {
     size_t *idx, n = report__noisy_configs(run, &idx);
-    if (n)
-        dm_str_printf(s, "- warning: %zu noisy configuration%s (95%% CI of the median wider than "
-                         "±%.0f%% of the median, or unknown):",
-                      n, n == 1 ? "" : "s", REPORT__NOISY_CI_REL * 100);
     for (size_t i = 0; i < n; i++) {
         const dm_config_result *c = &run->configs[idx[i]];
         dm_str label = {0}, mark = {0}, why = {0};
         report_config_label(run, c, &label);
-        dm_str_cat(s, i % NOISY_PER_LINE ? "; " : "\n  - ");
+        dm_str_cat(s, i % NOISY_PER_LINE ? "; " : "  - ");
         cell(s, dm_str_get(&label));
         report__timing_marks(c, 1, &mark, &why);
         dm_str_cat(s, " (");
         cell(s, dm_str_get(&mark) + strlen("⚠ noisy: "));
         dm_str_cat(s, ")");
+        dm_str_cat(s, i % NOISY_PER_LINE == NOISY_PER_LINE - 1 || i + 1 == n ? "\n" : "");
         dm_str_free(&label);
         dm_str_free(&mark);
         dm_str_free(&why);
     }
-    dm_str_cat(s, n ? "\n" : "");
     free(idx);
 }
 
@@ -207,21 +203,16 @@ int report_write_markdown(const dm_run_result *run, const char *path)
         dm_str_cat(&s, "\n");
     }
     dm_str_free(&k);
-    for (size_t i = 0; i < run->n_warnings; i++) {
+    char **w;
+    size_t nw = report__warnings(run, &w);   /* the list of results.json */
+    for (size_t i = 0; i < nw; i++) {
         dm_str_cat(&s, "- warning: ");
-        cell(&s, run->warnings[i]);
+        cell(&s, w[i]);
         dm_str_cat(&s, "\n");
+        if (strstr(w[i], " noisy configuration") && strstr(w[i], "compare their times with care"))
+            noisy_list(&s, run);
     }
-    noisy_warning(&s, run);
-    dm_str q = {0};
-    report__quality_warnings(run, &q);
-    char *save = NULL;
-    for (char *line = q.buf ? strtok_r(q.buf, "\n", &save) : NULL; line; line = strtok_r(NULL, "\n", &save)) {
-        dm_str_cat(&s, "- warning: ");
-        cell(&s, line);
-        dm_str_cat(&s, "\n");
-    }
-    dm_str_free(&q);
+    report__warnings_free(w, nw);
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);
     for (size_t i = 0; i < ns; i++)

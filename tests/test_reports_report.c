@@ -595,8 +595,8 @@ static void test_noisy_warning(void **state)
     assert_int_equal(report_write_html(&run, NULL, html), 0);
     char *t = test_slurp(md);
     char *line = between(t, "- warning: ", "\n");
-    assert_string_equal(line, "- warning: 3 noisy configurations (95% CI of the median wider than ±5% "
-                              "of the median, or unknown):");
+    assert_string_equal(line, "- warning: 3 noisy configurations: the 95% CI of the median frame time "
+                              "is wider than ±5% of the median (or unknown); compare their times with care.");
     free(line);
     /* by label, a few to a line (no hashes) */
     line = between(t, "  - s · ", "\n");
@@ -607,7 +607,7 @@ static void test_noisy_warning(void **state)
     t = test_slurp(html);
     char *box = between(t, "<div class=\"warn noisy\">", "</div>");
     assert_non_null(strstr(box, "<b>3 noisy configurations</b>"));
-    assert_null(strstr(box, "<details>"));
+    assert_non_null(strstr(box, "<details open>"));
     static const char *named[] = {"s · pom steps=2 ±5.1%", "s · pom steps=3 ±20%", "s · pom steps=5 CI unknown"};
     for (int i = 0; i < 3; i++)
         assert_non_null(strstr(box, named[i]));
@@ -839,6 +839,64 @@ static void test_html_breakdown_fit_and_cap(void **state)
     rmdir(dir);
 }
 
+/* results.json "warnings" is the report's list word for word (summary.md's
+ * "- warning:" lines, report.html's warn boxes), drift is marked in the
+ * table with its reason, and read → write keeps the list as it was. */
+static void test_warnings_everywhere(void **state)
+{
+    (void)state;
+    static const double rel[] = {0.01, 0.20, 0.01};
+    char dir[] = "/tmp/dm_reports_warn_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    dm_run_result run, back;
+    noisy_run(&run, rel, 3);
+    run.configs[2].log = dm_xstrdup("WallTime drifted -9.9 % over its 15 samples (a trend, not noise)\n");
+    run.timer_verdict = dm_xstrdup("partial");
+    run.gpu_time_coverage = 0.015;
+    char e[256];
+    assert_int_equal(report_write_all(&run, dir, e, sizeof e), 0);
+    char *jp = dm_xasprintf("%s/results.json", dir), *md = dm_xasprintf("%s/summary.md", dir);
+    char *html = dm_xasprintf("%s/report.html", dir);
+    assert_int_equal(report_read_json(jp, &back, e, sizeof e), 0);
+    static const char *want[] = {
+        "GPUTime is partial on this driver: it covers 1.5% of fenced wall time; it is recorded, never "
+        "used to fit or gate.",
+        "1 noisy configuration: the 95% CI of the median frame time is wider than ±5% of the median "
+        "(or unknown); compare their times with care.",
+        "1 configuration drifted while sampling (a trend, not noise: the machine's load or clock "
+        "changed): s · pom steps=2 (-9.9 %)"};
+    assert_int_equal(back.n_warnings, 3);
+    char *m = test_slurp(md), *h = test_slurp(html);
+    for (size_t i = 0; i < 3; i++) {
+        assert_string_equal(back.warnings[i], want[i]);
+        char *line = dm_xasprintf("- warning: %s\n", want[i]);
+        assert_non_null(strstr(m, line));
+        free(line);
+        dm_str esc = {0};
+        dm_str_cat(&esc, "<div class=\"warn\">");
+        dm_str_cat_html(&esc, want[i]);
+        dm_str_cat(&esc, "</div>");
+        assert_non_null(strstr(h, dm_str_get(&esc)));
+        dm_str_free(&esc);
+    }
+    /* the drifted row carries its mark and the log line as the reason */
+    assert_non_null(strstr(h, "title=\"WallTime drifted -9.9 % over its 15 samples (a trend, not noise)\">⚠ drift -9.9 %</span>"));
+    assert_non_null(strstr(m, "⚠ drift -9.9 %"));
+    /* read → write: the same list, not doubled */
+    assert_int_equal(report_write_json(&back, jp), 0);
+    dm_run_result again;
+    assert_int_equal(report_read_json(jp, &again, e, sizeof e), 0);
+    assert_int_equal(again.n_warnings, 3);
+    free(m);
+    free(h);
+    dm_run_free(&again);
+    dm_run_free(&back);
+    dm_run_free(&run);
+    free(jp);
+    free(md);
+    free(html);
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_json_round_trip),
              cmocka_unit_test(test_json_read_errors),
@@ -852,6 +910,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_metric_names),
              cmocka_unit_test(test_metric_in_files),
              cmocka_unit_test(test_noisy_warning),
+             cmocka_unit_test(test_warnings_everywhere),
              cmocka_unit_test(test_quality_warnings),
              cmocka_unit_test(test_html_chart_set),
              cmocka_unit_test(test_html_breakdown_fit_and_cap))
