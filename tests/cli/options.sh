@@ -15,7 +15,7 @@ ok() { pass=$((pass+1)); }
 bad() { fail=$((fail+1)); echo "FAIL: $*"; }
 
 declare -A expected=(
-  [run]="--budget --dry-run --help --out --quick --quiet --resume --seed --shard --tag --verbose"
+  [run]="--budget --dry-run --help --out --print-default --quick --quiet --resume --seed --shard --tag --verbose"
   [report]="--budget-ms --flip-ppd --help --metric --out"
   [fit]="--data --formula --group-by --help --json --loss --model --response"
   [compare]="--allow-env-mismatch --alpha --base-run --base-store --base-tag --baseline --counters-only --flip-rise --help --json --junit --markdown --new-run --new-store --new-tag --no-blocking --only-changed --paired --psnr-drop --quiet --rounds --run-spread --seed --ssim-drop --store --threshold --time-counter --time-threshold --tolerance"
