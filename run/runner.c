@@ -174,6 +174,28 @@ static int runner__has_ext(const char *ext, void *user)
 
 /* ---- progress ------------------------------------------------------------ */
 
+/* Appends the ",key=value" pieces of a scene id (from comma on) that not
+ * every scene of the plan shares, space-separated (the shared ones are the
+ * sweep's constant settings). */
+static void runner__scene_pieces(const runner *r, const char *comma, dm_str *out)
+{
+    for (const char *p = comma; p && *p; p = strchr(p, ',')) {
+        p++;
+        size_t len = strcspn(p, ",");
+        int everywhere = 1;
+        for (size_t i = 0; i < r->p.n_configs && everywhere; i++) {
+            const char *q = strchr(r->p.configs[i].scene, ','), *hit = NULL;
+            for (; q && !hit; q = strchr(q + 1, ','))
+                hit = strncmp(q + 1, p, len) == 0 && (q[1 + len] == ',' || q[1 + len] == 0) ? q : NULL;
+            everywhere = hit != NULL;
+        }
+        if (!everywhere) {
+            dm_str_cat(out, " ");
+            dm_str_catn(out, p, len);
+        }
+    }
+}
+
 /* The configuration's label for progress lines: "plane 480×270 · pom
  * steps=8", the technique with the axes that take two or more values among
  * the plan's configurations of its scene. */
@@ -185,7 +207,7 @@ static void runner__label(const runner *r, const plan_config *c, dm_str *out)
         dm_str_cat(out, " ");
         for (const char *p = at + 1; *p && p != comma; p++)
             dm_str_cat(out, *p == 'x' ? "×" : (char[2]){*p, 0});
-        dm_str_cat(out, comma ? comma : "");
+        runner__scene_pieces(r, comma, out);
     } else {
         dm_str_cat(out, c->scene);
     }
