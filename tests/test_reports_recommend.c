@@ -22,6 +22,30 @@ static recommend_point pt(double t, double r, double e, recommend_family f)
     return (recommend_point){t * MS, t * MS * (1 - r), t * MS * (1 + r), e, f};
 }
 
+/* Epsilon 0 is the plain Pareto front (x = ms, error):
+ *   0 (1, 9) fastest · 1 (2, 5) · 2 (3, 6) dominated by 1 · 3 (4, 2)
+ *   4 (5, 2) equal error, slower than 3 · 5 (6, 1) most accurate
+ *   6 (7, 8) dominated · 7 (NaN, 0) ignored, must not knock out 5
+ *   8 (2, 5) equal to 1: one of equals stays, the lower index */
+static void test_front_known_points(void **state)
+{
+    (void)state;
+    double x[] = {1, 2, 3, 4, 5, 6, 7, NAN, 2}, y[] = {9, 5, 6, 2, 2, 1, 8, 0, 5};
+    recommend_point p[9];
+    for (int i = 0; i < 9; i++)
+        p[i] = (recommend_point){x[i], NAN, NAN, y[i], F};
+    size_t out[9], expect[] = {0, 1, 3, 5};
+    assert_int_equal(recommend_front(p, 9, 0, out), 4);
+    for (size_t i = 0; i < 4; i++)
+        assert_int_equal(out[i], expect[i]);
+    assert_int_equal(recommend_front(p, 0, 0, out), 0);
+    /* listed slowest first, a trade-off comes out fastest first */
+    recommend_point q[] = {{9, NAN, NAN, 1, F}, {5, NAN, NAN, 5, F}, {1, NAN, NAN, 9, F}};
+    assert_int_equal(recommend_front(q, 3, 0, out), 3);
+    assert_int_equal(out[0], 2);
+    assert_int_equal(out[2], 0);
+}
+
 /* Equal quality within epsilon collapses onto the cheaper point: the
  * issue's tess_level=1 (0.126703) and vertex-displacement (0.126700) case. */
 static void test_equal_quality_cheaper_wins(void **state)
@@ -175,6 +199,7 @@ static void test_default_budget(void **state)
 }
 
 DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_front_known_points),
              cmocka_unit_test(test_equal_quality_cheaper_wins),
              cmocka_unit_test(test_budget_respected),
              cmocka_unit_test(test_family_bests),
