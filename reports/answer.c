@@ -145,7 +145,7 @@ void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, 
     size_t dl;
     const char *drift = report__drift(c, &dl);
     if (drift) {
-        dm_str_printf(mark, "%s⚠ drift %.3g %%", mark->len ? "; " : "",
+        dm_str_printf(mark, "%s⚠ drift %+.3g %%", mark->len ? "; " : "",
                       strtod(drift + strlen("WallTime drifted"), NULL));
         dm_str_cat(why, why->len ? "; " : "");
         dm_str_catn(why, drift, dl);

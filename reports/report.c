@@ -315,7 +315,7 @@ static void report__drift_warning(const dm_run_result *run, dm_str *out)
             continue;
         dm_str label = {0};
         report_config_label(run, c, &label);
-        dm_str_printf(&list, "%s%s (%.3g %%)", n++ ? ", " : "", dm_str_get(&label),
+        dm_str_printf(&list, "%s%s (%+.3g %%)", n++ ? ", " : "", dm_str_get(&label),
                       strtod(d + strlen("WallTime drifted"), NULL));
         dm_str_free(&label);
     }
