@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Every mistyped command, action, option and value gets exit 2 and a
 # did-you-mean naming the right word; a missing required option says "is
-# required".  One --quick run gives history and export something to read.
+# required".  One --quick run gives history and export something to read
+# (and ends with each scene's recommendation).
 set -uo pipefail
 BIN=${DMBENCH_BINARY:?}
 pass=0; fail=0
@@ -10,7 +11,13 @@ bad() { fail=$((fail+1)); echo "FAIL: $*"; }
 work=$(mktemp -d /tmp/dm_didyoumean_XXXXXX)
 trap 'rm -rf "$work"' EXIT INT TERM
 
-"$BIN" run --quick --out "$work/res" --quiet 2>"$work/run.log" || { cat "$work/run.log"; exit 1; }
+"$BIN" run --quick --out "$work/res" >"$work/run.out" 2>"$work/run.log" || { cat "$work/run.log"; exit 1; }
+# the run ends with each scene's answer: the pick under the budget and the knee
+for scene in "plane 80×45" "plane 160×90"; do
+  grep -qE "^$scene: Under [0-9.]+ ms \(default budget; set one with report --budget-ms\): (pick|nothing fits)" "$work/run.out" \
+    && ok || bad "no answer for $scene at the end of run: $(cat "$work/run.out")"
+done
+[ "$(grep -c '^  Knee of the front' "$work/run.out")" = 2 ] && ok || bad "not one knee line per scene: $(cat "$work/run.out")"
 run="$work/res/latest"
 store="$work/res/dmbench.sqlite"
 
