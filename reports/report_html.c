@@ -39,6 +39,7 @@ static const char *css =
     ".tied{color:#946200;font-size:12px}.tools{margin:.3em 0}.tools input{width:16em}"
     ".grid{display:flex;flex-wrap:wrap;gap:.8em;align-items:flex-start}.grid figure{margin:0;width:240px}"
     ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:240px;cursor:pointer}"
+    ".charts{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}.charts .chart{max-width:100%}"
     ".pair{display:flex;flex-wrap:wrap;gap:.3em;border:1px solid #ddd;padding:.3em;max-width:100%}"
     ".pair .cap{flex-basis:100%;margin:0;font-size:12px;max-width:490px}"
     ".scale{display:inline-block;width:160px;height:10px;vertical-align:middle;border:1px solid #999;"
@@ -420,8 +421,10 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
         scene_row(s, run, rows[i], varying, nv, det, nd, on_front(front, nf, rows[i]),
                   trends ? t : NULL);
     dm_str_cat(s, "</tbody></table></div>\n");
+    dm_str_cat(s, "<div class=\"charts\">\n");   /* side by side where the window is wide enough */
     report__svg_scene(s, run, scene);
     report__html_charts_scene(s, run, scene);
+    dm_str_cat(s, "</div>\n");
     free(front);
     free(rows);
     free(varying);

@@ -2,8 +2,8 @@
 # quick_report.sh DMBENCH ARTIFACTS — the default quick run's report.html in
 # headless chromium, as a new user sees it: at 1280x800 and 1920x1080 the
 # first scene's recommendation (p.pick) lies entirely in the first screen
-# (DOM position), every front row whose CI is wider than ±5 % carries its
-# noisy mark, the page does not overflow horizontally, no SVG chart text is
+# (DOM position), every front row whose CI half-width is over ±5 % (the mean
+# of −x %/+y %; 0.1 of slack for the printed rounding) carries its noisy mark, the page does not overflow horizontally, no SVG chart text is
 # clipped (every text box inside its SVG's box), and the file is under 2 MB.
 # The screenshots stay in ARTIFACTS (CI keeps them).  Then `report --out`
 # into a folder that is moved elsewhere: every full-size link is relative and
@@ -26,7 +26,7 @@ probe='<script>window.addEventListener("load",function(){'
 probe="$probe"'var f=(document.getElementById("answer-0")||document).querySelector("p.pick"),r=f?f.getBoundingClientRect():null,bad=[],n=0,um=0;'
 probe="$probe"'document.querySelectorAll("table.front tbody tr").forEach(function(tr){var c=tr.cells[tr.cells.length-3];'
 probe="$probe"'if(!c)return;var w=(c.textContent.match(/[0-9.]+(?=%)/g)||[]).map(parseFloat);'
-probe="$probe"'if(Math.max.apply(null,w.concat([0]))>5\&\&!c.querySelector(".noisy"))um++;});'
+probe="$probe"'var h=w.length>1?(w[0]+w[1])/2:(w[0]||0);if(h>5.1\&\&!c.querySelector(".noisy"))um++;});'
 probe="$probe"'document.body.setAttribute("data-unmarked",um);'
 probe="$probe"'document.body.setAttribute("data-overflow",document.documentElement.scrollWidth-innerWidth);'
 probe="$probe"'document.querySelectorAll("svg").forEach(function(s){var b=s.getBoundingClientRect();'
