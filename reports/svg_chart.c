@@ -251,7 +251,7 @@ static void svg_point_label(dm_str *s, const dm_run_result *run, svg_points *p, 
     double tx, ty;
     int end;
     if (svg_place(p, svg_x(p->ax, p->x[i]), svg_y(p->ay, p->y[i]),
-                  (double)svg_chars(dm_str_get(&label)) * 5.6, &tx, &ty, &end) == 0) {
+                  (double)svg_chars(dm_str_get(&label)) * 6.4, &tx, &ty, &end) == 0) {
         dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\"%s>", tx, ty,
                       end ? " text-anchor=\"end\"" : "");
         dm_str_cat_html(s, dm_str_get(&label));
