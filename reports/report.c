@@ -545,11 +545,11 @@ void report__config_label(const dm_run_result *run, const dm_config_result *c, d
 }
 
 /* 1 when the scene-name piece (",key=value" of the planner's scene id) is
- * the same in every scene of the run. */
-static int report__piece_everywhere(const dm_run_result *run, const char *piece, size_t len)
+ * in every one of the n scene ids. */
+static int report__piece_everywhere(const char *const *all, size_t n, const char *piece, size_t len)
 {
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const char *sc = run->configs[i].scene ? run->configs[i].scene : "", *p = sc;
+    for (size_t i = 0; i < n; i++) {
+        const char *p = all[i] ? all[i] : "";
         int found = 0;
         while (!found && (p = strchr(p, ',')) != NULL) {
             p++;
@@ -561,7 +561,22 @@ static int report__piece_everywhere(const dm_run_result *run, const char *piece,
     return 1;
 }
 
-void report_scene_label(const dm_run_result *run, const char *scene, dm_str *out)
+/* Appends the pieces of scene (from its first ',') that are (shared = 1) or
+ * are not (0) in every id of all, each after sep. */
+static void report__pieces(const char *scene, const char *const *all, size_t n, int shared,
+                           const char *sep, dm_str *out)
+{
+    for (const char *p = strchr(scene, ','); p && *p; p = strchr(p, ',')) {
+        p++;
+        size_t len = strcspn(p, ",");
+        if (report__piece_everywhere(all, n, p, len) == shared) {
+            dm_str_cat(out, out->len && shared ? sep : shared ? "" : sep);
+            dm_str_catn(out, p, len);
+        }
+    }
+}
+
+void report_scene_label_among(const char *scene, const char *const *all, size_t n, dm_str *out)
 {
     const char *at = strchr(scene, '@'), *comma = at ? strchr(at, ',') : NULL;
     if (!at) {
@@ -572,29 +587,24 @@ void report_scene_label(const dm_run_result *run, const char *scene, dm_str *out
     dm_str_cat(out, " ");
     for (const char *p = at + 1; *p && p != comma; p++)
         dm_str_cat(out, *p == 'x' ? "×" : (char[2]){*p, 0});
-    for (const char *p = comma; p && *p; p = strchr(p, ',')) {
-        p++;
-        const char *end = strchr(p, ',');
-        size_t len = end ? (size_t)(end - p) : strlen(p);
-        if (!report__piece_everywhere(run, p, len)) {
-            dm_str_cat(out, " ");
-            dm_str_catn(out, p, len);
-        }
-    }
+    report__pieces(scene, all, n, 0, " ", out);
+}
+
+void report_scene_label(const dm_run_result *run, const char *scene, dm_str *out)
+{
+    const char **all;
+    size_t n = report__scenes(run, &all);
+    report_scene_label_among(scene, all, n, out);
+    free(all);
 }
 
 void report_scene_constants(const dm_run_result *run, dm_str *out)
 {
-    const char *sc = run->n_configs && run->configs[0].scene ? run->configs[0].scene : "";
-    for (const char *p = strchr(sc, ','); p && *p; p = strchr(p, ',')) {
-        p++;
-        const char *end = strchr(p, ',');
-        size_t len = end ? (size_t)(end - p) : strlen(p);
-        if (report__piece_everywhere(run, p, len)) {
-            dm_str_cat(out, out->len ? ", " : "");
-            dm_str_catn(out, p, len);
-        }
-    }
+    const char **all;
+    size_t n = report__scenes(run, &all);
+    if (n)
+        report__pieces(all[0], all, n, 1, ", ", out);
+    free(all);
 }
 
 void report_config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)

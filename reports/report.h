@@ -105,6 +105,9 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
 void report_config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out);
 /* The scene part alone, e.g. "cube 480×270". */
 void report_scene_label(const dm_run_result *run, const char *scene, dm_str *out);
+/* The same among the n scene ids of all (duplicates allowed), for callers
+ * without a run (the runner's progress lines). */
+void report_scene_label_among(const char *scene, const char *const *all, size_t n, dm_str *out);
 /* The scene settings every scene of the run shares ("camera.elevation=35"),
  * said once in headers; nothing when there are none. */
 void report_scene_constants(const dm_run_result *run, dm_str *out);

@@ -174,43 +174,16 @@ static int runner__has_ext(const char *ext, void *user)
 
 /* ---- progress ------------------------------------------------------------ */
 
-/* Appends the ",key=value" pieces of a scene id (from comma on) that not
- * every scene of the plan shares, space-separated (the shared ones are the
- * sweep's constant settings). */
-static void runner__scene_pieces(const runner *r, const char *comma, dm_str *out)
-{
-    for (const char *p = comma; p && *p; p = strchr(p, ',')) {
-        p++;
-        size_t len = strcspn(p, ",");
-        int everywhere = 1;
-        for (size_t i = 0; i < r->p.n_configs && everywhere; i++) {
-            const char *q = strchr(r->p.configs[i].scene, ','), *hit = NULL;
-            for (; q && !hit; q = strchr(q + 1, ','))
-                hit = strncmp(q + 1, p, len) == 0 && (q[1 + len] == ',' || q[1 + len] == 0) ? q : NULL;
-            everywhere = hit != NULL;
-        }
-        if (!everywhere) {
-            dm_str_cat(out, " ");
-            dm_str_catn(out, p, len);
-        }
-    }
-}
-
 /* The configuration's label for progress lines: "plane 480×270 · pom
  * steps=8", the technique with the axes that take two or more values among
  * the plan's configurations of its scene. */
 static void runner__label(const runner *r, const plan_config *c, dm_str *out)
 {
-    const char *at = strchr(c->scene, '@'), *comma = at ? strchr(at, ',') : NULL;
-    if (at) {
-        dm_str_catn(out, c->scene, (size_t)(at - c->scene));
-        dm_str_cat(out, " ");
-        for (const char *p = at + 1; *p && p != comma; p++)
-            dm_str_cat(out, *p == 'x' ? "×" : (char[2]){*p, 0});
-        runner__scene_pieces(r, comma, out);
-    } else {
-        dm_str_cat(out, c->scene);
-    }
+    const char **all = dm_xcalloc(r->p.n_configs + 1, sizeof *all);
+    for (size_t i = 0; i < r->p.n_configs; i++)
+        all[i] = r->p.configs[i].scene;
+    report_scene_label_among(c->scene, all, r->p.n_configs, out);   /* as the report names it */
+    free(all);
     dm_str_printf(out, " · %s", dm_kv_get(c->params, c->n_params, "technique"));
     for (size_t k = 0; k < c->n_params; k++) {
         if (strcmp(c->params[k].key, "technique") == 0)
