@@ -242,6 +242,18 @@ static void num_cell(dm_str *s, const char *fmt, double v)
     }
 }
 
+/* Where report.html reads the run's images: dir (the run directory, to
+ * embed and check files) and href (prefix of links, "" beside the run). */
+typedef struct html_images {
+    const char *dir;
+    const char *href;
+} html_images;
+
+static void gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
+                           const char *caption, long ref);
+static void scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
+                              const html_images *im);
+
 /* Counters worth a column in the scene tables (the rest are in the CSV/JSON). */
 static const char *const key_counters[] = {
     "VSInvocations", "TESInvocations", "ClippingOutputPrimitives", "SamplesPassed",
@@ -365,7 +377,7 @@ static void table_tools(dm_str *s, size_t si)
 }
 
 static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si,
-                        const report_trends *t)
+                        const report_trends *t, const html_images *im)
 {
     int trends = scene_has_trends(run, scene, t);
     const char **params;
@@ -422,6 +434,7 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
                   trends ? t : NULL);
     dm_str_cat(s, "</tbody></table></div>\n");
     dm_str_cat(s, "<div class=\"charts\">\n");   /* side by side where the window is wide enough */
+    scene_pick_images(s, run, scene, im);
     report__svg_scene(s, run, scene);
     report__html_charts_scene(s, run, scene);
     dm_str_cat(s, "</div>\n");
@@ -444,13 +457,6 @@ static void base64(dm_str *s, const unsigned char *d, size_t n)
         dm_str_catn(s, q, 4);
     }
 }
-
-/* Where report.html reads the run's images: dir (the run directory, to
- * embed and check files) and href (prefix of links, "" beside the run). */
-typedef struct html_images {
-    const char *dir;
-    const char *href;
-} html_images;
 
 /* An embedded PNG thumbnail of a readable file, else the link. */
 static void image_src(dm_str *s, const html_images *im, const char *full, const char *rel)
@@ -519,6 +525,31 @@ static void gallery_linked(dm_str *s, const html_images *im, const char *rel, co
     esc(s, im->href);
     esc(s, rel);
     dm_str_cat(s, "\">full size</a></figcaption></figure>");
+}
+
+/* The scene's pick (reports/answer.h) as its render and heatmap beside the
+ * charts, so the answer's image is next to its numbers; nothing without a
+ * pick. */
+static void scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
+                              const html_images *im)
+{
+    recommend_result r;
+    report_recommend(run, scene, &r);
+    if (r.pick == RECOMMEND_NONE)
+        return;
+    const dm_config_result *c = &run->configs[r.pick];
+    dm_str label = {0}, cap = {0};
+    report__config_label(run, c, &label);
+    dm_str_cat(s, "<div class=\"pair pick-images\">");
+    gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), -1);
+    gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
+    dm_str_printf(&cap, "The pick: %s, ", dm_str_get(&label));
+    report_metric_text(&c->quality, report_metric_of_run(run), &cap);
+    dm_str_cat(s, "<p class=\"cap\">");
+    esc(s, dm_str_get(&cap));
+    dm_str_cat(s, "</p></div>\n");
+    dm_str_free(&label);
+    dm_str_free(&cap);
 }
 
 /* FLIP's fixed colour scale as a CSS gradient, from flip_colormap itself so
@@ -886,7 +917,7 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
     toc(&s, run, scenes, ns);
     answer(&s, run, scenes, ns);
     for (size_t i = 0; i < ns; i++)
-        scene_table(&s, run, scenes[i], i, t);
+        scene_table(&s, run, scenes[i], i, t, &im);
     free(scenes);
     gallery(&s, run, &im);
     timer_and_warnings(&s, run);

@@ -273,14 +273,18 @@ static void test_html_escaping_and_images(void **state)
     assert_null(strstr(t, "http://"));
     assert_null(strstr(t, "https://"));
     int n = 0;
-    /* c0: 3 images, c1: render only (heatmap absolute, reference "..") */
+    /* c0: 3 images, c1: render only (heatmap absolute, reference ".."),
+     * and c1's render again beside its scene's charts: c1 is the pick (the
+     * scene's only lit configuration) */
+    assert_non_null(strstr(t, "<div class=\"pair pick-images\"><figure><img loading=\"lazy\" "
+                              "src=\"img/c1_render.png\""));
     assert_true(all_refs_exist(t, dir, " src=\"", &n));
-    assert_int_equal(n, 4);
+    assert_int_equal(n, 5);
     /* the reference is embedded once and links its file; renders and
      * heatmaps load from img/ beside the report, each with a full-size
-     * link (c0 render and heatmap, c1 render) */
+     * link (c0 render and heatmap, c1 render twice) */
     assert_true(all_refs_exist(t, dir, " href=\"", &n));
-    assert_int_equal(n, 4);
+    assert_int_equal(n, 5);
     assert_non_null(strstr(t, "<a href=\"img/c0_ref.png\"><img id=\"ref-0\" src=\"data:image/png;base64,"));
     assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_render.png\" class=\"flip\" data-ref=\"ref-0\""));
     assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_heat.png\" alt=\"heatmap: "));
