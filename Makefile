@@ -16,7 +16,8 @@ deps:
 
 build: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo > $(BUILD).cmake.log 2>&1 || (cat $(BUILD).cmake.log; exit 1)
-	@cmake --build $(BUILD) -j $(JOBS)
+	@# progress lines only: no "Entering directory" from the generated sub-makes
+	@MAKEFLAGS=--no-print-directory cmake --build $(BUILD) -j $(JOBS)
 
 run: build
 	@./$(BUILD)/dmbench run

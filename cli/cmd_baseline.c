@@ -71,9 +71,16 @@ int cli_baseline(int argc, char **argv)
 {
     baseline_args args = {0}, *a = &args;
     int rc = cli_parse(argc, argv, a, &argc);
-    if (rc < 0 && (argc < 1 || (strcmp(argv[0], "accept") != 0 && strcmp(argv[0], "show") != 0)))
+    if (rc < 0 && argc < 1)
         rc = cli_usage_error("usage: dmbench baseline accept RUN --reason TEXT [--store FILE] | "
                              "baseline show [--store FILE]");
+    if (rc < 0 && strcmp(argv[0], "accept") != 0 && strcmp(argv[0], "show") != 0) {
+        dm_str m = {0};
+        dm_str_printf(&m, "baseline: unknown action '%s'", argv[0]);
+        dm_str_suggest(&m, argv[0], cli_baseline_actions, 2, "actions");
+        rc = cli_usage_error("%s", dm_str_get(&m));
+        dm_str_free(&m);
+    }
     if (rc >= 0)
         return rc;
     if (argc > 2)

@@ -42,13 +42,16 @@ static int export__options(int argc, char **argv, export__opts *o)
     if (argc > 1)
         return cli_usage_error("export: one RUN only ('%s' and '%s')", argv[0], argv[1]);
     o->run = argc ? argv[0] : NULL;
-    if (!o->run || !o->format)
+    if (!o->run)
         return cli_usage_error("export: usage: dmbench export RUN --format gbench|bmf|gab-smaller|gab-bigger "
                                "[-o FILE] [--store DB]");
+    if (!o->format)
+        return cli_usage_error("export: --format is required (gbench, bmf, gab-smaller or gab-bigger; "
+                               "docs/exports.md)");
     return -1;
 }
 
-/* "--format 'x' is not a format; valid: a, b, ..." */
+/* "--format 'x' is not a format; did you mean 'y'? valid choices: a, b, ..." */
 static int export__bad_format(const char *name)
 {
     size_t n;
@@ -57,8 +60,8 @@ static int export__bad_format(const char *name)
     dm_str msg = {0};
     for (size_t i = 0; i < n && i < 8; i++)
         names[i] = f[i].name;
-    dm_str_printf(&msg, "export: --format '%s' is not a format; valid choices: ", name);
-    dm_str_cat_list(&msg, names, n < 8 ? n : 8);
+    dm_str_printf(&msg, "export: --format '%s' is not a format", name);
+    dm_str_suggest(&msg, name, names, n < 8 ? n : 8, "choices");
     int rc = cli_usage_error("%s", dm_str_get(&msg));
     dm_str_free(&msg);
     return rc;

@@ -124,6 +124,36 @@ static int history__open(const history__opts *o, store **st, dm_run_result *run,
     return rc;
 }
 
+/* --technique / --scene must name one of the run's (which = "technique" or
+ * NULL for the scene); -1 to go on, or exit 2 with a did-you-mean. */
+static int history__known(const dm_run_result *run, const char *opt, const char *value, int technique)
+{
+    if (!value)
+        return -1;
+    const char **seen = dm_xcalloc(run->n_configs + 1, sizeof *seen);
+    size_t n = 0;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        const char *v = technique ? dm_kv_get(c->params, c->n_params, "technique") : c->scene;
+        size_t k = 0;
+        while (v && k < n && strcmp(seen[k], v) != 0)
+            k++;
+        if (v && k == n)
+            seen[n++] = v;
+        if (v && strcmp(v, value) == 0) {
+            free(seen);
+            return -1;
+        }
+    }
+    dm_str m = {0};
+    dm_str_printf(&m, "history: --%s '%s' is not in run %s", opt, value, run->id ? run->id : "?");
+    dm_str_suggest(&m, value, seen, n, technique ? "techniques of the run" : "scenes of the run");
+    int rc = cli_usage_error("%s", dm_str_get(&m));
+    dm_str_free(&m);
+    free(seen);
+    return rc;
+}
+
 int cli_history(int argc, char **argv)
 {
     history__opts o = {0};
@@ -133,6 +163,10 @@ int cli_history(int argc, char **argv)
     char *fp = NULL;
     if (rc < 0)
         rc = history__open(&o, &st, &run, &fp);
+    if (rc < 0)
+        rc = history__known(&run, "technique", o.technique, 1);
+    if (rc < 0)
+        rc = history__known(&run, "scene", o.scene, 0);
     size_t shown = 0, header = 0;
     for (size_t i = 0; rc < 0 && i < run.n_configs; i++) {
         if (!run.configs[i].ok || !history__wanted(&o, &run.configs[i]))

@@ -5,6 +5,7 @@
 #include "core/dm_util.h"
 #include "store/store.h"
 #include "reports/flip.h"
+#include "reports/answer.h"
 #include "reports/metric.h"
 #include "reports/report.h"
 #include "run/trends.h"
@@ -19,6 +20,7 @@ typedef struct report_args {
     const char *metric;
     const char *out;
     double flip_ppd;
+    double budget_ms;
 } report_args;
 
 /* --metric NAME: one of the report metrics (reports/metric.c). */
@@ -40,6 +42,10 @@ const cli_option cli_report_options[] = {
     { .name = "flip-ppd", .kind = CLI_OPT_DOUBLE, .offset = offsetof(report_args, flip_ppd),
       .value_name = "N", .min = 1, .max = 600,
       .help = "FLIP again at N pixels per degree from the stored images (for these files; docs/flip.md)" },
+    { .name = "budget-ms", .kind = CLI_OPT_DOUBLE, .offset = offsetof(report_args, budget_ms),
+      .value_name = "MS", .min = 0.001, .max = 1e6,
+      .help = "the frame budget the recommendation picks under (default: per scene, midway between "
+              "its fastest and slowest lit times)" },
     CLI_STRING("out", report_args, out, "DIR",
                "write the files into DIR (created) instead of the run directory"),
     CLI_OPT_END
@@ -96,6 +102,8 @@ int cli_report(int argc, char **argv)
         rc = cli_error(DM_ERR_STORE, "%s", store_last_error(st));
     if (rc < 0 && metric)
         report_metric_set(&run, metric);   /* validated by report__metric */
+    if (rc < 0 && args.budget_ms > 0)
+        report_budget_set(&run, args.budget_ms);   /* range checked by the option table */
     if (rc < 0 && args.flip_ppd > 0 && flip_run_recompute(&run, dir, args.flip_ppd, &err) != 0)
         rc = cli_usage_error("report: --flip-ppd: %s", dm_str_get(&err));
     char e[512] = "";

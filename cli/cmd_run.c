@@ -14,6 +14,7 @@
 typedef struct run_args {
     runner_opts o;
     int quick;
+    int print_default;
 } run_args;
 
 /* --shard K/N and --seed N: checked by the runner's own parsers
@@ -60,7 +61,10 @@ const cli_option cli_run_options[] = {
     CLI_STRING("tag", run_args, o.tag, "NAME",
                "a name stored with the run (compare --base-tag/--new-tag)"),
     CLI_BOOL("quick", run_args, quick,
-             "without SWEEP.yaml: the one-minute version of the default sweep"),
+             "without SWEEP.yaml: a smaller default sweep that takes seconds"),
+    CLI_BOOL("print-default", run_args, print_default,
+             "print the default sweep (with --quick: the quick one) as YAML and exit, to copy "
+             "as a start of your own"),
     CLI_BOOL("dry-run", run_args, o.dry_run,
              "print the planned configurations (folded, left out with reasons, estimated time "
              "from a stored model) and exit without measuring"),
@@ -81,6 +85,10 @@ int cli_run(int argc, char **argv)
         rc = cli_usage_error("run: only one sweep file may be given ('%s' and '%s')", argv[0], argv[1]);
     if (rc >= 0)
         return rc;
+    if (a->print_default) {
+        fputs(sweep_default_text(a->quick), stdout);
+        return DM_EXIT_OK;
+    }
     const char *file = argc ? argv[0] : NULL;
     if (a->o.verbose)
         dm_log_set_level(DM_LOG_DEBUG);

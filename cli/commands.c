@@ -30,9 +30,11 @@ static const cli_command commands[] = {
     { .name = "run", .fn = cli_run, .options = cli_run_options,
       .summary = "measure a sweep: every configuration, its counters, images and quality",
       .synopsis = "[SWEEP.yaml]",
-      .description = "Without SWEEP.yaml the embedded default sweep runs (--quick: a one-minute\n"
-                     "version).  The report is written to DIR/<run-id>/report.html; see\n"
-                     "docs/sweep-files.md for the sweep file and docs/scale-out.md for shards." },
+      .description = "Without SWEEP.yaml the embedded default sweep runs (--quick: a smaller\n"
+                     "version that takes seconds; --print-default shows the default sweep as YAML).\n"
+                     "The report is written to DIR/<run-id>/report.html and each scene's\n"
+                     "recommendation is printed at the end; see docs/sweep-files.md for the sweep\n"
+                     "file and docs/scale-out.md for shards." },
     { .name = "report", .fn = cli_report, .options = cli_report_options, .synopsis = "DIR",
       .summary = "rebuild report.html, results.json, results.csv and summary.md of a run",
       .description = "DIR is a run directory (e.g. results/latest); its store is the\n"
@@ -70,8 +72,11 @@ static const cli_command commands[] = {
     { .name = "slurm", .fn = cli_slurm, .options = cli_slurm_options,
       .synopsis = "[SWEEP.yaml] --shards N [-- SBATCH_ARG...]",
       .summary = "a Slurm job array, one task per shard, and a job that merges them",
-      .description = "Writes DIR/slurm/array.sh and merge.sh and submits them with sbatch (the\n"
-                     "merge job depends on the array).  See docs/scale-out.md." },
+      .description = "Writes DIR/slurm/shards.sbatch (the job array, one task per shard) and\n"
+                     "DIR/slurm/merge.sbatch (runs `dmbench slurm --collect`, after the array with\n"
+                     "afterany) and submits both with sbatch; --print writes them without\n"
+                     "submitting.  Shards run into DIR/shards/sK; the merge goes to DIR/merged.\n"
+                     "See docs/scale-out.md." },
     { .name = "export", .fn = cli_export, .options = cli_export_options, .synopsis = "RUN --format FORMAT",
       .summary = "a run in a format other benchmark tools read (Google Benchmark, Bencher, ...)",
       .description = "RUN is a run directory, a results.json, or with --store a run id.\n"

@@ -376,7 +376,7 @@ int compare_write_junit(const compare_result *r, const char *path)
         const compare_item *it = &r->items[i];
         compare__cells cell = compare__item_cells(it);
         dm_str_cat(&s, "  <testcase classname=\"dmbench.compare\" name=\"");
-        dm_str_cat_html(&s, it->label);
+        dm_str_cat_html(&s, it->name ? it->name : it->label);   /* the one label of the report */
         dm_str_printf(&s, " [%s]\" time=\"%.9f\">\n", it->key, it->median_new / 1e9);
         const char *tag = it->verdict == COMPARE_REGRESSION ? "failure"
                           : it->verdict == COMPARE_INCONCLUSIVE || it->verdict == COMPARE_SKIPPED

@@ -1,7 +1,7 @@
 /* drivers_report.c — one sweep on several drivers, side by side
  * (drivers_report.h). */
 #include "reports/drivers_report.h"
-#include "reports/pareto.h"
+#include "reports/recommend.h"
 #include "reports/report.h"
 #include "core/dm_error.h"
 
@@ -87,22 +87,12 @@ static double drivers__ssim(const dm_config_result *c)
     return c && c->quality.present ? c->quality.ssim : NAN;
 }
 
-/* "cube@160x90 technique=pom steps=8": the scene, the technique, and the
- * parameters whose value differs between configurations that have them. */
+/* The configuration's one label (report_config_label), e.g.
+ * "cube 160×90 · pom steps=8". */
 static char *drivers__label(const dm_run_result *ref, const dm_config_result *c)
 {
     dm_str s = {0};
-    dm_str_printf(&s, "%s", c->scene ? c->scene : "");
-    for (size_t p = 0; p < c->n_params; p++) {
-        const char *k = c->params[p].key, *v = c->params[p].value;
-        int varies = strcmp(k, "technique") == 0;
-        for (size_t j = 0; j < ref->n_configs && !varies; j++) {
-            const char *o = dm_kv_get(ref->configs[j].params, ref->configs[j].n_params, k);
-            varies = o && strcmp(o, v) != 0;
-        }
-        if (varies && strcmp(k, "resolution") != 0 && strcmp(k, "mesh") != 0)
-            dm_str_printf(&s, " %s=%s", k, v);
-    }
+    report_config_label(ref, c, &s);
     return dm_str_take(&s);
 }
 
@@ -135,22 +125,21 @@ static double drivers__tau(const drivers_side *s, size_t ns, const drivers__tabl
 static size_t drivers__front(const drivers_side *s, size_t ns, const drivers__table *t, size_t k,
                              const char *scene, size_t *out)
 {
-    double *x = dm_xcalloc(t->n_rows + 1, sizeof *x), *y = dm_xcalloc(t->n_rows + 1, sizeof *y);
+    recommend_point *p = dm_xcalloc(t->n_rows + 1, sizeof *p);
     size_t *row = dm_xcalloc(t->n_rows + 1, sizeof *row), *f = dm_xcalloc(t->n_rows + 1, sizeof *f);
     size_t m = 0;
     for (size_t i = 0; i < t->n_rows; i++) {
         const dm_config_result *c = drivers__cfg(s, ns, t, i, k);
         if (!c || !c->scene || strcmp(c->scene, scene) != 0)
             continue;
-        x[m] = drivers__median(c, "WallTime");
-        y[m] = 1 - drivers__ssim(c);
+        p[m] = (recommend_point){ .time = drivers__median(c, "WallTime"), .ci_lo = NAN, .ci_hi = NAN,
+                                  .error = 1 - drivers__ssim(c) };
         row[m++] = i;
     }
-    size_t nf = pareto_front(x, y, m, f);
+    size_t nf = recommend_front(p, m, 0, f);   /* epsilon 0: the plain front */
     for (size_t i = 0; i < nf; i++)
         out[i] = row[f[i]];
-    free(x);
-    free(y);
+    free(p);
     free(row);
     free(f);
     return nf;
@@ -291,7 +280,9 @@ static void drivers__md_fronts(const drivers_side *s, size_t ns, const drivers__
     size_t nsc = drivers__scenes(t, scenes);
     size_t *f = dm_xcalloc(t->n_rows + 1, sizeof *f), *f0 = dm_xcalloc(t->n_rows + 1, sizeof *f0);
     for (size_t sc = 0; sc < nsc; sc++) {
-        dm_str_printf(md, "**%s**\n\n", scenes[sc]);
+        dm_str sl = {0};
+        report_scene_label(t->ref, scenes[sc], &sl);
+        dm_str_printf(md, "**%s**\n\n", dm_str_get(&sl));
         cJSON *js = cJSON_CreateObject();
         size_t n0 = SIZE_MAX;
         int same = 1;
@@ -303,8 +294,8 @@ static void drivers__md_fronts(const drivers_side *s, size_t ns, const drivers__
             cJSON *arr = cJSON_CreateArray();
             for (size_t i = 0; i < nf; i++) {
                 char *label = drivers__label(t->ref, &t->ref->configs[f[i]]);
-                const char *lab = label + strlen(scenes[sc]);
-                dm_str_printf(md, "%s%s", i ? " →" : "", lab);
+                const char *dot = strstr(label, " · ");   /* the scene is the heading */
+                dm_str_printf(md, "%s %s", i ? " →" : "", dot ? dot + strlen(" · ") : label);
                 cJSON_AddItemToArray(arr, cJSON_CreateString(t->ref->configs[f[i]].key));
                 free(label);
             }
@@ -318,6 +309,8 @@ static void drivers__md_fronts(const drivers_side *s, size_t ns, const drivers__
             }
         }
         dm_str_printf(md, "\n%s\n\n", same ? "The fronts agree." : "The fronts differ.");
+        cJSON_AddStringToObject(js, "scene", dm_str_get(&sl));
+        dm_str_free(&sl);
         cJSON_AddBoolToObject(js, "agree", same);
         cJSON_AddItemToObject(jfronts, scenes[sc], js);
     }

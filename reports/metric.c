@@ -25,6 +25,15 @@ static const char *const metric_labels[REPORT_METRIC_COUNT] = {
     [REPORT_METRIC_FLIP] = "FLIP (mean)",
 };
 
+double report_metric_epsilon(report_metric m)
+{
+    static const double eps[REPORT_METRIC_COUNT] = {
+        [REPORT_METRIC_SSIM] = 0.001, [REPORT_METRIC_PSNR] = 0.1, [REPORT_METRIC_RMSE] = 0.0005,
+        [REPORT_METRIC_MAX_ERROR] = 0.01, [REPORT_METRIC_SILHOUETTE] = 0.001,
+        [REPORT_METRIC_DEPTH_RMSE] = 0.0005, [REPORT_METRIC_FLIP] = 0.001};
+    return (size_t)m < REPORT_METRIC_COUNT ? eps[m] : eps[0];
+}
+
 size_t report_metric_names(const char *const **names)
 {
     *names = metric_names;

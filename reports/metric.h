@@ -54,6 +54,11 @@ double report_metric_shown(const dm_quality *q, report_metric m);
 /* Appends the value for a sentence, e.g. "SSIM 0.950", "PSNR 38.2 dB", "RMSE 0.0122". */
 void report_metric_text(const dm_quality *q, report_metric m, dm_str *out);
 
+/* Two errors closer than this are the same quality (the recommendation's
+ * tie rule, reports/recommend.h): SSIM 0.001, PSNR 0.1 dB, RMSE and depth
+ * RMSE 0.0005, max error 0.01, silhouette 0.001, FLIP 0.001. */
+double report_metric_epsilon(report_metric m);
+
 /* The run's metric (REPORT_METRIC_KEY in its environment); ssim when absent
  * or unknown (an unknown stored name is logged as a warning). */
 report_metric report_metric_of_run(const dm_run_result *run);

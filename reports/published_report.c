@@ -197,12 +197,9 @@ void report_published_section(dm_str *s, const dm_run_result *run, const char *d
 int report_published_copy(const char *dir, const char *out)
 {
     char *from = dm_xasprintf("%s/published.json", dir), *to = dm_xasprintf("%s/published.json", out);
-    char *text = NULL;
-    size_t len = 0;
     int rc = 0;
     if (strcmp(dir, out) != 0 && dm_file_exists(from))
-        rc = dm_read_file(from, &text, &len) == 0 && dm_write_file(to, text, len) == 0 ? 0 : DM_ERR_IO;
-    free(text);
+        rc = report__copy_file(from, to);
     free(from);
     free(to);
     return rc;

@@ -11,7 +11,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "reports/pareto.h"
+#include "reports/recommend.h"
 
 /* 1 when param `name` takes two or more distinct values over the scene's
  * configurations (techniques that do not read it have no value and do not
@@ -28,6 +28,24 @@ int report__param_varies(const dm_run_result *run, const char *scene, const char
             return 1;
         if (v)
             first = v;
+    }
+    return 0;
+}
+
+/* 1 when param `name` takes two or more distinct values over all the scene's
+ * configurations, failed ones included (so a name does not change when a
+ * configuration fails). */
+static int report__param_varies_all(const dm_run_result *run, const char *scene, const char *name)
+{
+    const char *first = NULL;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        if (strcmp(c->scene ? c->scene : "", scene) != 0)
+            continue;
+        const char *v = dm_kv_get(c->params, c->n_params, name);
+        if (v && first && strcmp(v, first) != 0)
+            return 1;
+        first = v ? v : first;
     }
     return 0;
 }
@@ -56,16 +74,6 @@ size_t report__scene_rows(const dm_run_result *run, const char *scene, size_t **
     return n;
 }
 
-void report__config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)
-{
-    dm_str_cat(out, report__technique(c));
-    for (size_t i = 0; i < c->n_params; i++) {
-        if (strcmp(c->params[i].key, "technique") == 0 ||
-            !report__param_varies(run, c->scene ? c->scene : "", c->params[i].key))
-            continue;
-        dm_str_printf(out, " %s=%s", c->params[i].key, c->params[i].value);
-    }
-}
 
 size_t report__pareto_points(const dm_run_result *run, const char *scene, report_metric m,
                              size_t *idx, double *x, double *y)
@@ -85,15 +93,22 @@ size_t report__pareto_points(const dm_run_result *run, const char *scene, report
     return n;
 }
 
+/* The front with the metric's tolerance (reports/recommend.h): of two
+ * configurations of the same quality within it only the cheaper stays. */
 size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out)
 {
     size_t cap = run->n_configs + 1;
+    report_metric m = report_metric_of_run(run);
     double *x = dm_xcalloc(cap, sizeof *x), *y = dm_xcalloc(cap, sizeof *y);
     size_t *idx = dm_xcalloc(cap, sizeof *idx), *front = dm_xcalloc(cap, sizeof *front);
-    size_t n = report__pareto_points(run, scene, report_metric_of_run(run), idx, x, y);
-    size_t nf = pareto_front(x, y, n, front);
+    recommend_point *p = dm_xcalloc(cap, sizeof *p);
+    size_t n = report__pareto_points(run, scene, m, idx, x, y);
+    for (size_t i = 0; i < n; i++)
+        p[i] = (recommend_point){.time = x[i], .error = y[i]};
+    size_t nf = recommend_front(p, n, report_metric_epsilon(m), front);
     for (size_t i = 0; i < nf; i++)
         front[i] = idx[front[i]];
+    free(p);
     free(x);
     free(y);
     free(idx);
@@ -155,13 +170,88 @@ double report__ci_rel(const dm_counter_result *t)
     return t->median > 0 ? (t->ci_hi - t->ci_lo) / 2 / t->median : NAN;
 }
 
+/* A percentage with one decimal below 10 %, none above (the CI itself is
+ * known to about two digits). */
+static void report__pct(dm_str *out, double pct)
+{
+    dm_str_printf(out, pct < 9.95 ? "%.1f%%" : "%.0f%%", pct);
+}
+
 void report__ci_text(const dm_counter_result *t, dm_str *out)
 {
     double r = report__ci_rel(t);
-    if (isfinite(r))
-        dm_str_printf(out, "±%.1f%%", r * 100);
-    else
+    if (!isfinite(r)) {
         dm_str_cat(out, "CI unknown");
+        return;
+    }
+    double down = (t->median - t->ci_lo) / t->median * 100, up = (t->ci_hi - t->median) / t->median * 100;
+    if (fmax(down, up) > REPORT__CI_ASYMMETRIC * fmin(down, up) && fabs(up - down) >= 1) {
+        dm_str_cat(out, "−");
+        report__pct(out, down);
+        dm_str_cat(out, "/+");
+        report__pct(out, up);
+        return;
+    }
+    dm_str_cat(out, "±");
+    report__pct(out, r * 100);
+}
+
+void report__ms_text(double ns, dm_str *out)
+{
+    double ms = ns / 1e6;
+    if (!isfinite(ms) || ms <= 0) {
+        dm_str_printf(out, "%g", ms);
+        return;
+    }
+    int decimals = 2 - (int)floor(log10(ms) + 1e-12);
+    dm_str_printf(out, "%.*f", decimals < 0 ? 0 : decimals > 6 ? 6 : decimals, ms);
+}
+
+void report__time_ci_text(const dm_counter_result *t, dm_str *out)
+{
+    report__ms_text(t->median, out);
+    dm_str_cat(out, " ms");
+    if (!isfinite(t->ci_lo) || !isfinite(t->ci_hi))
+        return;
+    dm_str_cat(out, " [");
+    report__ms_text(t->ci_lo, out);
+    dm_str_cat(out, ", ");
+    report__ms_text(t->ci_hi, out);
+    dm_str_cat(out, "]");
+}
+
+/* Insertion sort of a copy (tens of samples). */
+static double *report__sorted_copy(const double *v, size_t n)
+{
+    double *s = dm_xcalloc(n + 1, sizeof *s);
+    for (size_t i = 0; i < n; i++) {
+        size_t b = i;
+        while (b > 0 && s[b - 1] > v[i]) {
+            s[b] = s[b - 1];
+            b--;
+        }
+        s[b] = v[i];
+    }
+    return s;
+}
+
+size_t report__bimodal(const dm_counter_result *t, double *low, double *high)
+{
+    size_t n = t ? t->n_samples : 0, split = 0;
+    if (n < 6)
+        return 0;
+    double *s = report__sorted_copy(t->samples, n), gap = 0;
+    for (size_t i = 1; i < n; i++)
+        if (s[i] - s[i - 1] > gap)
+            gap = s[i] - s[i - 1], split = i;
+    size_t least = n / 5 > 2 ? n / 5 : 2;
+    double spread = fmax(s[split - 1] - s[0], s[n - 1] - s[split]);
+    int two = split >= least && n - split >= least && gap > 3 * spread &&
+              gap > 0.1 * s[n / 2];
+    *low = s[(split - 1) / 2];
+    *high = s[split + (n - split) / 2];
+    free(s);
+    return two ? n - split : 0;
 }
 
 int report__noisy(const dm_config_result *c)
@@ -193,14 +283,87 @@ static void report__count_warning(const dm_run_result *run, int which, dm_str *o
         if (!c->ok || !c->quality.present || v <= 0)
             continue;
         dm_str label = {0};
-        report__config_label(run, c, &label);
-        dm_str_printf(&list, "%s%s [%s] (%ld)", n++ ? ", " : "", dm_str_get(&label), c->key, v);
+        report_config_label(run, c, &label);
+        dm_str_printf(&list, "%s%s (%ld)", n++ ? ", " : "", dm_str_get(&label), v);
         dm_str_free(&label);
     }
     if (n)
         dm_str_printf(out, "%zu configuration%s with %s: %s\n", n, n == 1 ? "" : "s", what[which],
                       dm_str_get(&list));
     dm_str_free(&list);
+}
+
+const char *report__drift(const dm_config_result *c, size_t *len)
+{
+    const char *d = c->log ? strstr(c->log, "WallTime drifted") : NULL;
+    if (d && len) {
+        const char *nl = strchr(d, '\n');
+        *len = nl ? (size_t)(nl - d) : strlen(d);
+    }
+    return d;
+}
+
+/* "N configurations drifted while sampling ...: label (−9.9 %), ..." */
+static void report__drift_warning(const dm_run_result *run, dm_str *out)
+{
+    dm_str list = {0};
+    size_t n = 0;
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        const char *d = c->ok ? report__drift(c, NULL) : NULL;
+        if (!d)
+            continue;
+        dm_str label = {0};
+        report_config_label(run, c, &label);
+        dm_str_printf(&list, "%s%s (%+.3g %%)", n++ ? ", " : "", dm_str_get(&label),
+                      strtod(d + strlen("WallTime drifted"), NULL));
+        dm_str_free(&label);
+    }
+    if (n)
+        dm_str_printf(out, "%zu configuration%s drifted while sampling (a trend, not noise: the "
+                           "machine's load or clock changed): %s\n", n, n == 1 ? "" : "s", dm_str_get(&list));
+    dm_str_free(&list);
+}
+
+static int report__has_warning(const dm_run_result *run, const char *w)
+{
+    for (size_t i = 0; i < run->n_warnings; i++)
+        if (run->warnings[i] && strcmp(run->warnings[i], w) == 0)
+            return 1;
+    return 0;
+}
+
+size_t report__warnings(const dm_run_result *run, char ***out)
+{
+    dm_str all = {0};
+    if (run->timer_verdict && strcmp(run->timer_verdict, "partial") == 0)
+        dm_str_printf(&all, "GPUTime is partial on this driver: it covers %.1f%% of fenced wall time; "
+                            "it is recorded, never used to fit or gate.\n", run->gpu_time_coverage * 100);
+    size_t *idx, nn = report__noisy_configs(run, &idx);
+    free(idx);
+    if (nn)
+        dm_str_printf(&all, "%zu noisy configuration%s: the 95%% CI of the median frame time is wider "
+                            "than ±%.0f%% of the median (or unknown); compare their times with care.\n",
+                      nn, nn == 1 ? "" : "s", REPORT__NOISY_CI_REL * 100);
+    report__drift_warning(run, &all);
+    report__quality_warnings(run, &all);
+    size_t n = 0;
+    *out = dm_xcalloc(run->n_warnings + 16, sizeof **out);
+    char *save = NULL;
+    for (char *l = all.buf ? strtok_r(all.buf, "\n", &save) : NULL; l && n < 15; l = strtok_r(NULL, "\n", &save))
+        if (!report__has_warning(run, l))
+            (*out)[n++] = dm_xstrdup(l);
+    for (size_t i = 0; i < run->n_warnings; i++)
+        (*out)[n++] = dm_xstrdup(run->warnings[i] ? run->warnings[i] : "");
+    dm_str_free(&all);
+    return n;
+}
+
+void report__warnings_free(char **w, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(w[i]);
+    free(w);
 }
 
 void report__quality_warnings(const dm_run_result *run, dm_str *out)
@@ -301,6 +464,44 @@ void report_trends_free(report_trends *t)
         free(t->items);
 }
 
+int report__copy_file(const char *from, const char *to)
+{
+    char *text = NULL, *parent = dm_xstrdup(to), *slash = strrchr(parent, '/');
+    size_t len = 0;
+    if (slash)
+        *slash = 0;
+    int rc = (!slash || dm_mkdirs(parent) == 0) && dm_read_file(from, &text, &len) == 0 &&
+             dm_write_file(to, text, len) == 0 ? 0 : DM_ERR_IO;
+    free(text);
+    free(parent);
+    return rc;
+}
+
+/* Copies every image the run names (safe relative paths that exist) from
+ * dir to the same relative path under out, so out is self-contained.  0,
+ * or DM_ERR_IO with err naming the file. */
+static int report__copy_images(const dm_run_result *run, const char *dir, const char *out, char *err,
+                               size_t errlen)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        const char *imgs[] = {c->img_reference, c->img_render, c->img_heatmap, c->img_flip};
+        for (size_t k = 0; k < sizeof imgs / sizeof *imgs; k++) {
+            if (!imgs[k] || !report__safe_relpath(imgs[k]))
+                continue;
+            char *from = dm_xasprintf("%s/%s", dir, imgs[k]), *to = dm_xasprintf("%s/%s", out, imgs[k]);
+            int rc = dm_file_exists(from) && !dm_file_exists(to) ? report__copy_file(from, to) : 0;
+            if (rc)
+                snprintf(err, errlen, "%s: cannot copy the image", to);
+            free(from);
+            free(to);
+            if (rc)
+                return rc;
+        }
+    }
+    return 0;
+}
+
 int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
                             const report_trends *t, char *err, size_t errlen)
 {
@@ -309,23 +510,22 @@ int report_write_all_trends(const dm_run_result *run, const char *dir, const cha
         snprintf(err, errlen, "report_write_all: no run or no directory");
         return DM_ERR_ARG;
     }
-    char real[PATH_MAX];   /* links from elsewhere: the run directory's absolute path */
-    char *href = strcmp(dir, out) == 0 ? dm_xstrdup("")
-                 : dm_xasprintf("%s/", realpath(dir, real) ? real : dir);
+    /* written elsewhere: the images come along, so the folder stands alone */
     int rc = report_published_copy(dir, out);   /* summary.md reads it beside itself */
     if (rc)
         snprintf(err, errlen, "%s/published.json: cannot copy", out);
+    if (!rc && strcmp(dir, out) != 0)
+        rc = report__copy_images(run, dir, out, err, errlen);
     for (int i = 0; i < 4 && !rc; i++) {
         char *path = dm_xasprintf("%s/%s", out, names[i]);
         rc = i == 0 ? report_write_json(run, path)
            : i == 1 ? report_write_csv(run, path)
            : i == 2 ? report_write_markdown(run, path)
-                    : report_write_html_trends(run, dir, path, href, t);
+                    : report_write_html_trends(run, dir, path, "", t);
         if (rc)
             snprintf(err, errlen, "%s: cannot write (%s)", path, dm_strerror(rc));
         free(path);
     }
-    free(href);
     return rc;
 }
 
@@ -334,33 +534,90 @@ int report_write_all(const dm_run_result *run, const char *dir, char *err, size_
     return report_write_all_to(run, dir, dir, err, errlen);
 }
 
-/* 1 when param `name` takes two or more distinct values over all the scene's
- * configurations, failed ones included (so a name does not change when a
- * configuration fails). */
-static int report__param_varies_all(const dm_run_result *run, const char *scene, const char *name)
+void report__config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)
 {
-    const char *first = NULL;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        if (strcmp(c->scene ? c->scene : "", scene) != 0)
-            continue;
-        const char *v = dm_kv_get(c->params, c->n_params, name);
-        if (v && first && strcmp(v, first) != 0)
-            return 1;
-        first = v ? v : first;
+    const char *scene = c->scene ? c->scene : "";
+    dm_str_cat(out, report__technique(c));
+    for (size_t i = 0; i < c->n_params; i++)
+        if (strcmp(c->params[i].key, "technique") != 0 &&
+            report__param_varies_all(run, scene, c->params[i].key))
+            dm_str_printf(out, " %s=%s", c->params[i].key, c->params[i].value);
+}
+
+/* 1 when the scene-name piece (",key=value" of the planner's scene id) is
+ * in every one of the n scene ids. */
+static int report__piece_everywhere(const char *const *all, size_t n, const char *piece, size_t len)
+{
+    for (size_t i = 0; i < n; i++) {
+        const char *p = all[i] ? all[i] : "";
+        int found = 0;
+        while (!found && (p = strchr(p, ',')) != NULL) {
+            p++;
+            found = strncmp(p, piece, len) == 0 && (p[len] == ',' || p[len] == 0);
+        }
+        if (!found)
+            return 0;
     }
-    return 0;
+    return 1;
+}
+
+/* Appends the pieces of scene (from its first ',') that are (shared = 1) or
+ * are not (0) in every id of all, each after sep. */
+static void report__pieces(const char *scene, const char *const *all, size_t n, int shared,
+                           const char *sep, dm_str *out)
+{
+    for (const char *p = strchr(scene, ','); p && *p; p = strchr(p, ',')) {
+        p++;
+        size_t len = strcspn(p, ",");
+        if (report__piece_everywhere(all, n, p, len) == shared) {
+            dm_str_cat(out, out->len && shared ? sep : shared ? "" : sep);
+            dm_str_catn(out, p, len);
+        }
+    }
+}
+
+void report_scene_label_among(const char *scene, const char *const *all, size_t n, dm_str *out)
+{
+    const char *at = strchr(scene, '@'), *comma = at ? strchr(at, ',') : NULL;
+    if (!at) {
+        dm_str_cat(out, scene);
+        return;
+    }
+    dm_str_catn(out, scene, (size_t)(at - scene));
+    dm_str_cat(out, " ");
+    for (const char *p = at + 1; *p && p != comma; p++)
+        dm_str_cat(out, *p == 'x' ? "×" : (char[2]){*p, 0});
+    report__pieces(scene, all, n, 0, " ", out);
+}
+
+void report_scene_label(const dm_run_result *run, const char *scene, dm_str *out)
+{
+    const char **all;
+    size_t n = report__scenes(run, &all);
+    report_scene_label_among(scene, all, n, out);
+    free(all);
+}
+
+void report_scene_constants(const dm_run_result *run, dm_str *out)
+{
+    const char **all;
+    size_t n = report__scenes(run, &all);
+    if (n)
+        report__pieces(all[0], all, n, 1, ", ", out);
+    free(all);
+}
+
+void report_config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)
+{
+    report_scene_label(run, c->scene ? c->scene : "", out);
+    dm_str_cat(out, " · ");
+    report__config_label(run, c, out);
 }
 
 /* The name without the uniqueness suffix. */
 static void report__base_name(const dm_run_result *run, const dm_config_result *c, dm_str *out)
 {
-    const char *scene = c->scene ? c->scene : "";
-    dm_str_printf(out, "%s/%s", scene, report__technique(c));
-    for (size_t i = 0; i < c->n_params; i++)
-        if (strcmp(c->params[i].key, "technique") != 0 &&
-            report__param_varies_all(run, scene, c->params[i].key))
-            dm_str_printf(out, " %s=%s", c->params[i].key, c->params[i].value);
+    report_config_label(run, c, out);
 }
 
 void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_str *out)

@@ -67,8 +67,10 @@ int report_write_html(const dm_run_result *run, const char *dir, const char *pat
  * written outside the run directory still finds its images); NULL = "". */
 int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
                          const char *href);
-/* As report_write_all, the files going into out (which must exist) while
- * images stay in the run directory dir (`dmbench report DIR --out OUT`). */
+/* As report_write_all, the files going into out (which must exist), and
+ * the images the run names copied from the run directory dir to the same
+ * relative paths under out, so out opens on its own when moved or
+ * published (`dmbench report DIR --out OUT`). */
 int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
                         size_t errlen);
 
@@ -95,11 +97,23 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
  * (used to embed thumbnails and to mark missing files); NULL links images
  * without checking them. */
 
-/* The configuration's stable readable name, "scene/technique axis=value ..."
- * with the axes that take two or more values in its scene (failed
- * configurations included), e.g. "plane@480x270/pom steps=32"; " [key]" is
- * appended only when two configurations would otherwise share a name.  Used
- * as results.json "label" and as the benchmark name of every export. */
+/* The one label of a configuration, the same in every file and on the
+ * terminal: the scene (mesh, resolution with ×, and only the scene settings
+ * that differ between the run's scenes) · the technique and the axes that
+ * take two or more values in its scene (failed configurations included),
+ * e.g. "cube 480×270 · pom steps=8". */
+void report_config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out);
+/* The scene part alone, e.g. "cube 480×270". */
+void report_scene_label(const dm_run_result *run, const char *scene, dm_str *out);
+/* The same among the n scene ids of all (duplicates allowed), for callers
+ * without a run (the runner's progress lines). */
+void report_scene_label_among(const char *scene, const char *const *all, size_t n, dm_str *out);
+/* The scene settings every scene of the run shares ("camera.elevation=35"),
+ * said once in headers; nothing when there are none. */
+void report_scene_constants(const dm_run_result *run, dm_str *out);
+/* report_config_label, with " [key]" appended only when two configurations
+ * would otherwise share it.  Used as results.json "label" and as the
+ * benchmark name of every export. */
 void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_str *out);
 /* Per configuration (run order): 1 when it is on its scene's Pareto front
  * under the run's metric.  malloc'd, n_configs bytes (caller frees). */

@@ -10,6 +10,7 @@
 #include "reports/stage_bar.h"
 #include "reports/published_report.h"
 #include "reports/proxy.h"
+#include "reports/answer.h"
 
 #include "core/dm_error.h"
 #include "reports/flip.h"
@@ -35,13 +36,19 @@ static const char *css =
     ".scroll{overflow-x:auto;max-width:100%}.scroll table{margin-top:.3em}"
     "table.hide-more .more{display:none}tr.front td{background:#eef7ee}"
     "table.answer{margin:.2em 0 .8em}table.answer caption{text-align:left;font-weight:bold;padding:.2em 0}"
-    "nav.toc{font-size:13px;margin:.3em 0 .8em}nav.toc a{margin-right:.9em}"
+    "nav.toc{font-size:13px;margin:.3em 0 .8em;display:flex;flex-wrap:wrap;gap:0 .9em}"
     ".tied{color:#946200;font-size:12px}.tools{margin:.3em 0}.tools input{width:16em}"
-    ".grid{display:flex;flex-wrap:wrap;gap:.6em}.grid figure{margin:0;width:196px}"
-    ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:192px;cursor:pointer}"
+    ".grid{display:flex;flex-wrap:wrap;gap:.8em;align-items:flex-start}.grid figure{margin:0;width:240px}"
+    ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:240px;cursor:pointer}"
+    ".charts{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}.charts .chart{max-width:100%}"
+    ".pair{display:flex;flex-wrap:wrap;gap:.3em;border:1px solid #ddd;padding:.3em;max-width:100%}"
+    ".pair .cap{flex-basis:100%;margin:0;font-size:12px;max-width:490px}"
     ".scale{display:inline-block;width:160px;height:10px;vertical-align:middle;border:1px solid #999;"
     "background:linear-gradient(90deg,#000004,#420a68,#932667,#dd513a,#fca50a,#fcffa4)}"
-    "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}";
+    "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}"
+    ".scene-answer{flex:1 1 36em;max-width:60em;min-width:0}.scene-answer h3{margin:.6em 0 .2em}"
+    "p.pick{margin:.2em 0}ul.rec{margin:.2em 0 .4em;padding-left:1.2em;font-size:13px}"
+    ".noisy{color:#a05a00;font-size:12px;white-space:nowrap}tr.pick td{background:#e3f1ff}";
 
 /* Click a column header to sort by it (numbers numerically); the content is
  * complete without it. */
@@ -78,6 +85,15 @@ static void tagged(dm_str *s, const char *tag, const char *text)
     dm_str_printf(s, "</%s>", tag);
 }
 
+/* The scene's label (report_scene_label), escaped. */
+static void scene_name(dm_str *s, const dm_run_result *run, const char *scene)
+{
+    dm_str l = {0};
+    report_scene_label(run, scene, &l);
+    esc(s, dm_str_get(&l));
+    dm_str_free(&l);
+}
+
 static void params_inline(dm_str *s, const dm_kv *kv, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
@@ -103,7 +119,16 @@ static void header(dm_str *s, const dm_run_result *run)
         dm_str_cat(s, ", finished ");
         esc(s, run->finished);
     }
-    dm_str_cat(s, ".</p>\n");
+    dm_str_cat(s, ".");
+    dm_str k = {0};
+    report_scene_constants(run, &k);
+    if (k.len) {
+        dm_str_cat(s, " Every scene: ");
+        esc(s, dm_str_get(&k));
+        dm_str_cat(s, ".");
+    }
+    dm_str_free(&k);
+    dm_str_cat(s, "</p>\n");
 }
 
 /* The environment, folded: the summary names the renderer and the load. */
@@ -128,51 +153,65 @@ static void environment(dm_str *s, const dm_run_result *run)
 /* Table of contents: the answer, each scene, gallery, failures, fits. */
 static void toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
 {
-    dm_str_cat(s, "<nav class=\"toc\"><b>Contents:</b> <a href=\"#answer\">Answer</a>"
-                  "<a href=\"#warnings\">Warnings</a><a href=\"#environment\">Environment</a>");
+    dm_str_cat(s, "<nav class=\"toc\"><b>Contents:</b> <a href=\"#answer\">Answer</a>");
     for (size_t i = 0; i < ns; i++) {
         dm_str_printf(s, "<a href=\"#scene-%zu\">", i);
-        esc(s, scenes[i]);
+        scene_name(s, run, scenes[i]);
         dm_str_cat(s, "</a>");
     }
-    dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#failed\">Failed and left out</a>");
+    dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#warnings\">Warnings</a>"
+                  "<a href=\"#failed\">Failed and left out</a>");
     if (run->n_fits)
         dm_str_cat(s, "<a href=\"#fits\">Model fits</a>");
-    dm_str_cat(s, "<a href=\"#passes\">Counters by pass</a></nav>\n");
+    dm_str_cat(s, "<a href=\"#passes\">Counters by pass</a><a href=\"#environment\">Environment</a></nav>\n");
+}
+
+/* The timing marks of a row (noisy, bimodal) as a span with the reason. */
+static void marks_html(dm_str *s, const dm_config_result *c)
+{
+    dm_str mark = {0}, why = {0};
+    report__timing_marks(c, 0, &mark, &why);
+    if (mark.len) {
+        dm_str_cat(s, " <span class=\"noisy\" title=\"");
+        esc(s, dm_str_get(&why));
+        dm_str_cat(s, "\">");
+        esc(s, dm_str_get(&mark));
+        dm_str_cat(s, "</span>");
+    }
+    dm_str_free(&mark);
+    dm_str_free(&why);
 }
 
 /* Lists more than this many noisy configurations inside a collapsed <details>. */
 #define NOISY_OPEN_MAX 8
 
-/* The warning box naming every configuration whose timing is too noisy to
- * trust (report__noisy); nothing when there is none. */
+/* The noisy configurations by label with their CI and marks, folded when
+ * there are many; nothing when there is none. */
 static void noisy_warning(dm_str *s, const dm_run_result *run)
 {
     size_t *idx, n = report__noisy_configs(run, &idx);
     if (n) {
-        dm_str_printf(s, "<div class=\"warn noisy\">%s<b>%zu noisy configuration%s</b>: the 95%% CI "
-                         "of the median frame time is wider than ±%.0f%% of the median (or unknown); "
-                         "compare their times with care.%s<ul>",
-                      n > NOISY_OPEN_MAX ? "<details><summary>" : "", n, n == 1 ? "" : "s",
-                      REPORT__NOISY_CI_REL * 100, n > NOISY_OPEN_MAX ? "</summary>" : "");
+        dm_str_printf(s, "<div class=\"warn noisy\"><details%s><summary><b>%zu noisy configuration%s</b> "
+                         "by label</summary><ul>", n > NOISY_OPEN_MAX ? "" : " open", n, n == 1 ? "" : "s");
         for (size_t i = 0; i < n; i++) {
             const dm_config_result *c = &run->configs[idx[i]];
             dm_str label = {0};
-            report__config_label(run, c, &label);
+            report_config_label(run, c, &label);
             dm_str_cat(s, "<li>");
             esc(s, dm_str_get(&label));
-            dm_str_cat(s, " <code>");
-            esc(s, c->key);
-            dm_str_cat(s, "</code> ");
+            dm_str_cat(s, " ");
             report__ci_text(report__frame_time(c), s);
+            marks_html(s, c);
             dm_str_cat(s, "</li>");
             dm_str_free(&label);
         }
-        dm_str_printf(s, "</ul>%s</div>\n", n > NOISY_OPEN_MAX ? "</details>" : "");
+        dm_str_cat(s, "</ul></details></div>\n");
     }
     free(idx);
 }
 
+/* The timer verdict, then every warning (report__warnings, the list of
+ * results.json), the noisy configurations listed under theirs. */
 static void timer_and_warnings(dm_str *s, const dm_run_result *run)
 {
     const char *v = run->timer_verdict ? run->timer_verdict : "unknown";
@@ -180,25 +219,15 @@ static void timer_and_warnings(dm_str *s, const dm_run_result *run)
     esc(s, v);
     dm_str_printf(s, "</b> (GPUTime covers %.1f%% of fenced wall time).</p>\n",
                   run->gpu_time_coverage * 100);
-    if (strcmp(v, "partial") == 0)
-        dm_str_printf(s, "<div class=\"warn\">GPUTime is partial on this driver: it covers %.1f%% "
-                         "of fenced wall time; it is recorded, never used to fit or gate.</div>\n",
-                      run->gpu_time_coverage * 100);
+    char **w;
+    size_t nw = report__warnings(run, &w);
+    for (size_t i = 0; i < nw; i++) {
+        dm_str_cat(s, "<div class=\"warn\">");
+        esc(s, w[i]);
+        dm_str_cat(s, "</div>\n");
+    }
+    report__warnings_free(w, nw);
     noisy_warning(s, run);
-    dm_str q = {0};
-    report__quality_warnings(run, &q);
-    char *save = NULL;
-    for (char *line = q.buf ? strtok_r(q.buf, "\n", &save) : NULL; line; line = strtok_r(NULL, "\n", &save)) {
-        dm_str_cat(s, "<div class=\"warn\">");
-        esc(s, line);
-        dm_str_cat(s, "</div>\n");
-    }
-    dm_str_free(&q);
-    for (size_t i = 0; i < run->n_warnings; i++) {
-        dm_str_cat(s, "<div class=\"warn\">");
-        esc(s, run->warnings[i]);
-        dm_str_cat(s, "</div>\n");
-    }
 }
 
 static void num_cell(dm_str *s, const char *fmt, double v)
@@ -213,6 +242,18 @@ static void num_cell(dm_str *s, const char *fmt, double v)
         dm_str_cat(s, "</td>");
     }
 }
+
+/* Where report.html reads the run's images: dir (the run directory, to
+ * embed and check files) and href (prefix of links, "" beside the run). */
+typedef struct html_images {
+    const char *dir;
+    const char *href;
+} html_images;
+
+static void gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
+                           const char *caption, long ref);
+static void scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
+                              const html_images *im);
 
 /* Counters worth a column in the scene tables (the rest are in the CSV/JSON). */
 static const char *const key_counters[] = {
@@ -300,10 +341,14 @@ static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char
     for (size_t i = 0; i < np; i++)
         tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
     const dm_counter_result *t = report__frame_time(c);
-    if (t)
-        dm_str_printf(s, "<td class=\"n\">%.3f</td><td class=\"n\">±%.1f%%</td>", t->median / 1e6,
-                      report__ci_rel(t) * 100);
-    else
+    if (t) {
+        dm_str_cat(s, "<td class=\"n\">");
+        report__ms_text(t->median, s);
+        dm_str_cat(s, "</td><td class=\"n\">");
+        report__ci_text(t, s);
+        marks_html(s, c);
+        dm_str_cat(s, "</td>");
+    } else
         dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
     if (tr)
         trend_cell(s, trend_of(tr, c->key));
@@ -333,14 +378,14 @@ static void table_tools(dm_str *s, size_t si)
 }
 
 static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si,
-                        const report_trends *t)
+                        const report_trends *t, const html_images *im)
 {
     int trends = scene_has_trends(run, scene, t);
     const char **params;
     size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
     const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
     dm_str_printf(s, "<h2 id=\"scene-%zu\">Scene ", si);
-    esc(s, scene);
+    scene_name(s, run, scene);
     dm_str_cat(s, "</h2>\n<p class=\"const\">Same for every row: ");
     for (size_t i = 0; i < np; i++) {
         if (strcmp(params[i], "technique") == 0)
@@ -389,15 +434,18 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
         scene_row(s, run, rows[i], varying, nv, det, nd, on_front(front, nf, rows[i]),
                   trends ? t : NULL);
     dm_str_cat(s, "</tbody></table></div>\n");
+    dm_str_cat(s, "<div class=\"charts\">\n");   /* side by side where the window is wide enough */
+    scene_pick_images(s, run, scene, im);
     report__svg_scene(s, run, scene);
     report__html_charts_scene(s, run, scene);
+    dm_str_cat(s, "</div>\n");
     free(front);
     free(rows);
     free(varying);
     free(params);
 }
 
-#define THUMB_MAX_DIM 192
+#define THUMB_MAX_DIM 240
 
 static void base64(dm_str *s, const unsigned char *d, size_t n)
 {
@@ -410,13 +458,6 @@ static void base64(dm_str *s, const unsigned char *d, size_t n)
         dm_str_catn(s, q, 4);
     }
 }
-
-/* Where report.html reads the run's images: dir (the run directory, to
- * embed and check files) and href (prefix of links, "" beside the run). */
-typedef struct html_images {
-    const char *dir;
-    const char *href;
-} html_images;
 
 /* An embedded PNG thumbnail of a readable file, else the link. */
 static void image_src(dm_str *s, const html_images *im, const char *full, const char *rel)
@@ -453,8 +494,7 @@ static int gallery_usable(dm_str *s, const html_images *im, const char *rel, con
 }
 
 /* A scene's reference, embedded once (id refs[k] = "ref-K"). */
-static void gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k,
-                              const char *scene)
+static void gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k)
 {
     if (!gallery_usable(s, im, rel, "reference"))
         return;
@@ -464,9 +504,7 @@ static void gallery_reference(dm_str *s, const html_images *im, const char *rel,
     esc(s, rel);
     dm_str_printf(s, "\"><img id=\"ref-%zu\" src=\"", k);
     image_src(s, im, full, rel);
-    dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b> ");
-    esc(s, scene);
-    dm_str_cat(s, "</figcaption></figure>");
+    dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b></figcaption></figure>");
     free(full);
 }
 
@@ -482,9 +520,37 @@ static void gallery_linked(dm_str *s, const html_images *im, const char *rel, co
     esc(s, rel);
     if (ref >= 0)
         dm_str_printf(s, "\" class=\"flip\" data-ref=\"ref-%ld", ref);
-    dm_str_printf(s, "\" alt=\"%s\" width=\"192\"><figcaption>%s: ", label, label);
+    dm_str_printf(s, "\" alt=\"%s: ", label);
     esc(s, caption);
-    dm_str_cat(s, "</figcaption></figure>");
+    dm_str_printf(s, "\"><figcaption>%s · <a class=\"full\" href=\"", label);
+    esc(s, im->href);
+    esc(s, rel);
+    dm_str_cat(s, "\">full size</a></figcaption></figure>");
+}
+
+/* The scene's pick (reports/answer.h) as its render and heatmap beside the
+ * charts, so the answer's image is next to its numbers; nothing without a
+ * pick. */
+static void scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
+                              const html_images *im)
+{
+    recommend_result r;
+    report_recommend(run, scene, &r);
+    if (r.pick == RECOMMEND_NONE)
+        return;
+    const dm_config_result *c = &run->configs[r.pick];
+    dm_str label = {0}, cap = {0};
+    report__config_label(run, c, &label);
+    dm_str_cat(s, "<div class=\"pair pick-images\">");
+    gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), -1);
+    gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
+    dm_str_printf(&cap, "The pick: %s, ", dm_str_get(&label));
+    report_metric_text(&c->quality, report_metric_of_run(run), &cap);
+    dm_str_cat(s, "<p class=\"cap\">");
+    esc(s, dm_str_get(&cap));
+    dm_str_cat(s, "</p></div>\n");
+    dm_str_free(&label);
+    dm_str_free(&cap);
 }
 
 /* FLIP's fixed colour scale as a CSS gradient, from flip_colormap itself so
@@ -524,7 +590,7 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
     double top = 0, ppd = NAN;
     int flips = 0;
     dm_str_cat(s, "<h3>");
-    esc(s, scene);
+    scene_name(s, run, scene);
     dm_str_cat(s, "</h3>\n<div class=\"grid\">");
     for (size_t i = 0; i < nr; i++) {
         const dm_config_result *c = &run->configs[rows[i]];
@@ -533,25 +599,30 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
         if (c->img_reference && report__safe_relpath(c->img_reference)) {
             ref = (long)gallery_ref_index(refs, nrefs, c->img_reference, &fresh);
             if (fresh)
-                gallery_reference(s, im, c->img_reference, (size_t)ref, scene);
+                gallery_reference(s, im, c->img_reference, (size_t)ref);
         } else if (c->img_reference) {
             gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
         }
         dm_str label = {0};
         report__config_label(run, c, &label);
+        dm_str_cat(s, "<div class=\"pair\">");
         gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), ref);
-        /* each map's caption carries its error value */
-        dm_str cap = {0};
-        dm_str_printf(&cap, "%s, MaxError %.3g", dm_str_get(&label), c->quality.max_error);
-        gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&cap), -1);
+        gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
         if (c->img_flip) {
-            dm_str_free(&cap);
-            dm_str_printf(&cap, "%s, FLIP %.4f (max %.3f)", dm_str_get(&label), c->quality.flip,
-                          c->quality.flip_max);
-            gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&cap), -1);
+            gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&label), -1);
             flips = 1;
             ppd = c->quality.flip_ppd;
         }
+        /* the caption of the pair carries its values */
+        dm_str cap = {0};
+        dm_str_printf(&cap, "%s: ", dm_str_get(&label));
+        report_metric_text(&c->quality, report_metric_of_run(run), &cap);
+        dm_str_printf(&cap, ", MaxError %.3g", c->quality.max_error);
+        if (c->img_flip)
+            dm_str_printf(&cap, ", FLIP %.4f (max %.3f)", c->quality.flip, c->quality.flip_max);
+        dm_str_cat(s, "<p class=\"cap\">");
+        esc(s, dm_str_get(&cap));
+        dm_str_cat(s, "</p></div>");
         dm_str_free(&cap);
         if (c->quality.present && isfinite(c->quality.max_error))
             top = fmax(top, c->quality.max_error);
@@ -577,8 +648,8 @@ static void gallery(dm_str *s, const dm_run_result *run, const html_images *im)
     const char **scenes, **refs = NULL;
     size_t ns = report__scenes(run, &scenes), nrefs = 0;
     dm_str_cat(s, "<h2 id=\"gallery\">Gallery</h2>\n<p>Per scene: the reference once (embedded), "
-                  "then each configuration's render and heatmap (files in img/ beside this "
-                  "report; click an image's link for the full size).</p>\n");
+                  "then each configuration's render and heatmap side by side, fastest first, with "
+                  "their values (files in img/ beside this report; \"full size\" opens one).</p>\n");
     for (size_t i = 0; i < ns; i++)
         gallery_scene(s, run, im, scenes[i], &refs, &nrefs);
     free(refs);
@@ -625,39 +696,89 @@ static void condition_cell(dm_str *s, double v)
         num_cell(s, "%.3g", v);
 }
 
+/* A fit worth its table row and plots: R² >= FIT_USABLE_R2 and full rank. */
+#define FIT_USABLE_R2 0.8
+static int fit_usable(const dm_fit_result *f)
+{
+    return isfinite(f->r2) && f->r2 >= FIT_USABLE_R2 && !isinf(f->condition) && f->n_params > 0;
+}
+
+static void fit_row(dm_str *s, const dm_fit_result *f)
+{
+    dm_str_cat(s, "<tr>");
+    tagged(s, "td", f->model);
+    dm_str_cat(s, "<td>");
+    params_inline(s, f->group, f->n_group);
+    dm_str_cat(s, "</td><td>");
+    for (size_t k = 0; k < f->n_params; k++) {
+        esc(s, f->params[k].name);
+        dm_str_printf(s, " = %.3g ± %.2g<br>", f->params[k].value, f->params[k].stderr_);
+    }
+    dm_str_cat(s, "</td>");
+    num_cell(s, "%.4f", f->r2);
+    num_cell(s, "%.4f", f->cv_mape);
+    condition_cell(s, f->condition);
+    dm_str_printf(s, "<td class=\"n\">%d</td><td>", f->n_points);
+    for (size_t k = 0; k < f->n_warnings; k++) {
+        esc(s, f->warnings[k]);
+        dm_str_cat(s, "<br>");
+    }
+    dm_str_cat(s, "</td></tr>\n");
+}
+
+/* One line for a fit that did not work: model, group, R² and its first warning. */
+static void fit_line(dm_str *s, const dm_fit_result *f)
+{
+    dm_str_cat(s, "<li>");
+    esc(s, f->model);
+    dm_str_cat(s, " (");
+    params_inline(s, f->group, f->n_group);
+    dm_str_printf(s, "): R² %.2f over %d points", f->r2, f->n_points);
+    if (f->n_warnings) {
+        dm_str_cat(s, "; ");
+        esc(s, f->warnings[0]);
+    }
+    dm_str_cat(s, "</li>\n");
+}
+
+/* Usable fits with their table and plots; the others folded, one line each. */
 static void fits(dm_str *s, const dm_run_result *run)
 {
     if (!run->n_fits)
         return;
-    dm_str_cat(s, "<h2 id=\"fits\">Model fits</h2>\n<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
-                  "<th>R²</th><th>CV MAPE</th><th title=\"2-norm condition number of the scaled "
-                  "Jacobian; large means the parameters are poorly determined\">condition</th>"
-                  "<th>points</th><th>warnings</th></tr>\n");
-    for (size_t i = 0; i < run->n_fits; i++) {
-        const dm_fit_result *f = &run->fits[i];
-        dm_str_cat(s, "<tr>");
-        tagged(s, "td", f->model);
-        dm_str_cat(s, "<td>");
-        params_inline(s, f->group, f->n_group);
-        dm_str_cat(s, "</td><td>");
-        for (size_t k = 0; k < f->n_params; k++) {
-            esc(s, f->params[k].name);
-            dm_str_printf(s, " = %.6g ± %.3g<br>", f->params[k].value, f->params[k].stderr_);
-        }
-        dm_str_cat(s, "</td>");
-        num_cell(s, "%.4f", f->r2);
-        num_cell(s, "%.4f", f->cv_mape);
-        condition_cell(s, f->condition);
-        dm_str_printf(s, "<td class=\"n\">%d</td><td>", f->n_points);
-        for (size_t k = 0; k < f->n_warnings; k++) {
-            esc(s, f->warnings[k]);
-            dm_str_cat(s, "<br>");
-        }
-        dm_str_cat(s, "</td></tr>\n");
-    }
-    dm_str_cat(s, "</table>\n");
+    size_t bad = 0;
     for (size_t i = 0; i < run->n_fits; i++)
-        report__html_charts_fit(s, run, &run->fits[i]);
+        bad += !fit_usable(&run->fits[i]);
+    dm_str_cat(s, "<h2 id=\"fits\">Model fits</h2>\n");
+    if (bad < run->n_fits) {
+        dm_str_cat(s, "<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
+                      "<th>R²</th><th>CV MAPE</th><th title=\"2-norm condition number of the scaled "
+                      "Jacobian; large means the parameters are poorly determined\">condition</th>"
+                      "<th>points</th><th>warnings</th></tr>\n");
+        for (size_t i = 0; i < run->n_fits; i++)
+            if (fit_usable(&run->fits[i]))
+                fit_row(s, &run->fits[i]);
+        dm_str_cat(s, "</table>\n");
+        for (size_t i = 0; i < run->n_fits; i++)   /* plots on demand: two per fit */
+            if (fit_usable(&run->fits[i])) {
+                dm_str_cat(s, "<details class=\"fit-plots\"><summary>Plots: ");
+                esc(s, run->fits[i].model);
+                dm_str_cat(s, " ");
+                params_inline(s, run->fits[i].group, run->fits[i].n_group);
+                dm_str_cat(s, "</summary>\n");
+                report__html_charts_fit(s, run, &run->fits[i]);
+                dm_str_cat(s, "</details>\n");
+            }
+    }
+    if (!bad)
+        return;
+    dm_str_printf(s, "<details class=\"fits-bad\"><summary>%zu fit%s not usable (R² below %.1f or "
+                     "rank deficient): one line each</summary><ul>\n", bad, bad == 1 ? "" : "s",
+                  FIT_USABLE_R2);
+    for (size_t i = 0; i < run->n_fits; i++)
+        if (!fit_usable(&run->fits[i]))
+            fit_line(s, &run->fits[i]);
+    dm_str_cat(s, "</ul></details>\n");
 }
 
 /* Instructions as a proxy for frame time (reports/proxy.h) and which
@@ -699,13 +820,16 @@ static void settings_text(const dm_run_result *run, const dm_config_result *c, d
     dm_str_free(&label);
 }
 
-/* One scene's Pareto front as a compact table, fastest first. */
+/* One scene's answer: the recommendation in words, then its front as a
+ * compact table, fastest first (the pick marked, cost relative to the
+ * fastest lit configuration). */
 static void answer_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si)
 {
-    size_t *front, nf = report__pareto(run, scene, &front), *rows;
-    size_t nr = report__scene_rows(run, scene, &rows);
+    size_t *front, nf = report__pareto(run, scene, &front);
+    recommend_result r;
+    report_recommend(run, scene, &r);
     report_metric m = report_metric_of_run(run);
-    const dm_counter_result *fastest = nr ? report__frame_time(&run->configs[rows[0]]) : NULL;
+    const dm_counter_result *base = r.fastest != RECOMMEND_NONE ? report__frame_time(&run->configs[r.fastest]) : NULL;
     int with_settings = 0;
     for (size_t i = 0; i < nf && !with_settings; i++) {
         dm_str set = {0};
@@ -713,11 +837,15 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
         with_settings = *dm_str_get(&set) != 0;
         dm_str_free(&set);
     }
-    dm_str_printf(s, "<table class=\"answer front\" id=\"front-%zu\"><caption>", si);
-    esc(s, scene);
-    dm_str_printf(s, "</caption><thead><tr><th>technique</th>%s<th>median ms</th>"
-                     "<th>95%% CI</th><th>%s</th><th>cost vs fastest</th></tr></thead><tbody>\n",
-                  with_settings ? "<th>settings</th>" : "", report_metric_label(m));
+    dm_str_printf(s, "<section class=\"scene-answer\" id=\"answer-%zu\"><h3>", si);
+    scene_name(s, run, scene);
+    dm_str_cat(s, "</h3>\n");
+    report_answer_scene(run, scene, REPORT_ANSWER_HTML, s);
+    dm_str_printf(s, "<div class=\"scroll\"><table class=\"answer front\" id=\"front-%zu\"><caption>"
+                     "Front: best quality for its cost</caption><thead><tr><th>technique</th>%s"
+                     "<th>median ms</th><th>95%% CI</th><th>%s</th><th>cost vs fastest lit</th>"
+                     "</tr></thead><tbody>\n", si, with_settings ? "<th>settings</th>" : "",
+                  report_metric_label(m));
     if (!nf)
         dm_str_printf(s, "<tr><td colspan=\"6\" class=\"missing\">no configuration has both a time "
                          "and a %s measurement</td></tr>\n", report_metric_label(m));
@@ -726,36 +854,43 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
         const dm_counter_result *t = report__frame_time(c);
         dm_str set = {0};
         settings_text(run, c, &set);
-        dm_str_cat(s, "<tr>");
-        tagged(s, "td", report__technique(c));
+        dm_str_printf(s, "<tr%s><td>", front[i] == r.pick ? " class=\"pick\"" : "");
+        esc(s, report__technique(c));
+        if (front[i] == r.pick)
+            dm_str_cat(s, " <b>← pick</b>");
+        if (report_family(c) == RECOMMEND_UNLIT)
+            dm_str_cat(s, " <span class=\"const\">(unlit baseline)</span>");
+        dm_str_cat(s, "</td>");
         if (with_settings)
             tagged(s, "td", dm_str_get(&set));
-        dm_str_printf(s, "<td class=\"n\">%.3f</td><td class=\"n\">", t->median / 1e6);
+        dm_str_cat(s, "<td class=\"n\">");
+        report__ms_text(t->median, s);
+        dm_str_cat(s, "</td><td class=\"n\">");
         report__ci_text(t, s);
+        marks_html(s, c);
         dm_str_cat(s, "</td>");
         num_cell(s, "%.4g", report_metric_shown(&c->quality, m));
-        dm_str_printf(s, "<td class=\"n\">×%.2f", fastest ? t->median / fastest->median : NAN);
-        if (i && report__tied(t, report__frame_time(&run->configs[front[i - 1]])))
-            dm_str_cat(s, " <span class=\"tied\" title=\"the 95% CIs of the two medians overlap\">"
-                          "≈ tied with the row above</span>");
-        dm_str_cat(s, "</td></tr>\n");
+        dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n", base ? t->median / base->median : NAN);
         dm_str_free(&set);
     }
-    dm_str_cat(s, "</tbody></table>\n");
+    dm_str_cat(s, "</tbody></table></div></section>\n");
     free(front);
-    free(rows);
 }
 
-/* The answer first: per scene, which configurations give the best quality
- * for their cost (the Pareto front of the run's metric against median time). */
+/* The answer first: per scene, the recommendation in words and the front
+ * (the run's metric against median time). */
 static void answer(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
 {
     report_metric m = report_metric_of_run(run);
-    dm_str_printf(s, "<h2 id=\"answer\">Answer: best quality for its cost</h2>\n<p>Per scene, the "
-                     "Pareto front of error (<b>%s</b>: %s against the reference) and median frame "
-                     "time, fastest first; every other configuration is slower than one of these "
-                     "and not better. \"≈ tied\": the time is not distinguishable from the row "
-                     "above (overlapping 95%% CIs).</p>\n", report_metric_name(m), report_metric_label(m));
+    dm_str_printf(s, "<h2 id=\"answer\">Answer: what to use</h2>\n<p class=\"const\">Quality is "
+                     "<b>%s</b> (%s) against the reference; two values closer than %g are the "
+                     "same quality and the cheaper configuration wins.  Times are the median frame "
+                     "time with its 95%% CI; ⚠ marks a timing too noisy or bimodal to trust "
+                     "(hover for the reason).  Unlit techniques are baselines, never the pick.  The default "
+                     "budget is a round number midway (on a log scale) between a scene's fastest and "
+                     "slowest lit times; set yours with <code>dmbench report --budget-ms</code> or the "
+                     "sweep key <code>quality.budget_ms</code>.</p>\n",
+                  report_metric_name(m), report_metric_label(m), report_metric_epsilon(m));
     dm_str_cat(s, "<div class=\"answers\">\n");
     for (size_t i = 0; i < ns; i++)
         answer_table(s, run, scenes[i], i);
@@ -777,20 +912,22 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
     dm_str s = {0};
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);
+    /* by value: the answer, each scene's table and charts, the images, then
+     * the diagnostics, and what only a maintainer reads at the end */
     header(&s, run);
     toc(&s, run, scenes, ns);
     answer(&s, run, scenes, ns);
-    timer_and_warnings(&s, run);
-    environment(&s, run);
     for (size_t i = 0; i < ns; i++)
-        scene_table(&s, run, scenes[i], i, t);
+        scene_table(&s, run, scenes[i], i, t, &im);
     free(scenes);
     gallery(&s, run, &im);
+    report_stage_bars(&s, run);   /* where each configuration's cost goes (stage_bar.c) */
+    timer_and_warnings(&s, run);
     failed_and_left_out(&s, run);
     fits(&s, run);
     report_published_section(&s, run, dir, path, 1);
     proxy_section(&s, run);
-    report_stage_bars(&s, run);
+    environment(&s, run);
     dm_str_printf(&s, "<script>%s</script>\n</body></html>\n", sort_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);

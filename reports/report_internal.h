@@ -27,8 +27,28 @@ const dm_counter_result *report__frame_time(const dm_config_result *c);
 /* Relative half-width of the 95 % CI of t's median ((hi − lo) / 2 / median);
  * NaN when the median is not positive. */
 double report__ci_rel(const dm_counter_result *t);
-/* Appends "±9.1%" (the same as a percentage) or "CI unknown". */
+/* The CI around the median as percentages: "−5.0%/+89%" when one side is
+ * over REPORT__CI_ASYMMETRIC times the other and they differ by a
+ * percentage point or more, else "±9.1%" (one decimal below 10 %);
+ * "CI unknown" when unknown. */
+#define REPORT__CI_ASYMMETRIC 1.5
 void report__ci_text(const dm_counter_result *t, dm_str *out);
+/* ns as milliseconds to three significant digits without an exponent
+ * ("206", "4.43", "0.205"). */
+void report__ms_text(double ns, dm_str *out);
+/* "4.43 ms [4.33, 4.53]": the median and its 95 % CI, three significant digits. */
+void report__time_ci_text(const dm_counter_result *t, dm_str *out);
+/* Samples in two groups: sorted, split at the widest gap, each side holds at
+ * least a fifth of them (and two), and the gap is over three times the wider
+ * side's range and over 10 % of the median.  Returns the count of the upper
+ * group (0: not bimodal); *low and *high get each group's middle sample. */
+size_t report__bimodal(const dm_counter_result *t, double *low, double *high);
+/* The marks of a configuration's timing for tables and the answer:
+ * "⚠ noisy: CI −5%/+89%", "⚠ drift -9.9 %" (its log's drift line) and/or
+ * "⚠ bimodal: 3 of 16 samples near 3.19 ms, the rest near 1.60" into mark, the reasons in words into why (both left
+ * unchanged when the timing is sound); without with_ci (a table that shows
+ * the CI beside it) the noisy mark is just "⚠ noisy". */
+void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, dm_str *why);
 
 /* A configuration's timing is "noisy" (too noisy to trust) when it is ok
  * and the 95 % CI of its median frame time is wider than ± this fraction of
@@ -43,6 +63,18 @@ size_t report__noisy_configs(const dm_run_result *run, size_t **out);
  * with non-finite pixels: label (count), ...", "N configurations with crack
  * pixels: label (count), ...".  Appends nothing when all is well. */
 void report__quality_warnings(const dm_run_result *run, dm_str *out);
+
+/* The "WallTime drifted ..." line of a configuration's log (its length in
+ * *len when len is not NULL), or NULL. */
+const char *report__drift(const dm_config_result *c, size_t *len);
+/* Every warning of the run as plain text, one string each, the same list in
+ * results.json "warnings", summary.md and report.html: the partial timer,
+ * the count of noisy configurations, drift, failures, non-finite and crack
+ * pixels, then the run's stored warnings.  A computed line already among the
+ * stored ones is not repeated, so read → write keeps the list as it was.
+ * *out malloc'd (report__warnings_free).  Returns the count. */
+size_t report__warnings(const dm_run_result *run, char ***out);
+void report__warnings_free(char **w, size_t n);
 
 /* Distinct scene names in first-appearance order; *out is malloc'd and points
  * into run (free only the array).  Returns the count. */
@@ -100,6 +132,9 @@ void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *
 /* The two plots of one fit (predicted vs measured with y = x; residuals in
  * percent of the measured value vs predicted), nothing without points. */
 void report__html_charts_fit(dm_str *s, const dm_run_result *run, const dm_fit_result *f);
+
+/* Copies the file from → to, creating to's directory; 0 or DM_ERR_IO. */
+int report__copy_file(const char *from, const char *to);
 
 /* Writes s to path (atomically); DM_ERR_IO. */
 int report__save(const dm_str *s, const char *path);

@@ -245,7 +245,10 @@ static cJSON *run_json(const dm_run_result *r)
     a = cJSON_AddArrayToObject(root, "fits");
     for (size_t i = 0; i < r->n_fits; i++)
         cJSON_AddItemToArray(a, report_fit_to_json(&r->fits[i]));
-    cJSON_AddItemToObject(root, "warnings", str_array(r->warnings, r->n_warnings));
+    char **w;
+    size_t nw = report__warnings(r, &w);   /* the report's list, word for word */
+    cJSON_AddItemToObject(root, "warnings", str_array(w, nw));
+    report__warnings_free(w, nw);
     proxy_json(root, r);
     return root;
 }

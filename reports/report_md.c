@@ -4,6 +4,7 @@
 #include "reports/report_internal.h"
 #include "reports/published_report.h"
 #include "reports/proxy.h"
+#include "reports/answer.h"
 
 #include "core/dm_error.h"
 
@@ -50,10 +51,15 @@ static void quality_cells(dm_str *s, const dm_quality *q, report_metric m)
 
 static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
 {
-    dm_str_cat(s, "\n## Scene `");
-    cell(s, scene);
-    dm_str_printf(s, "`\n\nBest quality for its cost (Pareto front of %s against median time, "
-                     "fastest first): ", report_metric_label(report_metric_of_run(run)));
+    dm_str l = {0};
+    report_scene_label(run, scene, &l);
+    dm_str_cat(s, "\n## ");
+    cell(s, dm_str_get(&l));
+    dm_str_cat(s, "\n\n");
+    dm_str_free(&l);
+    report_answer_scene(run, scene, REPORT_ANSWER_MD, s);
+    dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ",
+                  report_metric_label(report_metric_of_run(run)));
     dm_str front = {0};
     report__pareto_text(run, scene, &front);
     cell(s, dm_str_get(&front));
@@ -70,10 +76,21 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
         dm_str_cat(s, "| ");
         cell(s, dm_str_get(&label));
         dm_str_free(&label);
-        if (t)
-            dm_str_printf(s, " | %.3f | ±%.1f%% |", t->median / 1e6,
-                          report__ci_rel(t) * 100);
-        else
+        if (t) {
+            dm_str mark = {0}, why = {0};
+            dm_str_cat(s, " | ");
+            report__ms_text(t->median, s);
+            dm_str_cat(s, " | ");
+            report__ci_text(t, s);
+            report__timing_marks(c, 0, &mark, &why);
+            if (mark.len) {
+                dm_str_cat(s, " ");
+                cell(s, dm_str_get(&mark));
+            }
+            dm_str_cat(s, " |");
+            dm_str_free(&mark);
+            dm_str_free(&why);
+        } else
             dm_str_cat(s, " | unavailable | |");
         quality_cells(s, &c->quality, m);
         dm_str_printf(s, " `%s` |\n", c->key);
@@ -81,26 +98,29 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
     free(rows);
 }
 
-/* "- warning: N noisy configurations ...: label `key` (±x%), ..." or nothing. */
-static void noisy_warning(dm_str *s, const dm_run_result *run)
+/* Noisy configurations listed this many to a line. */
+#define NOISY_PER_LINE 4
+
+/* The noisy configurations by label with their CI and marks, a few per
+ * indented line (under their warning). */
+static void noisy_list(dm_str *s, const dm_run_result *run)
 {
     size_t *idx, n = report__noisy_configs(run, &idx);
-    if (n)
-        dm_str_printf(s, "- warning: %zu noisy configuration%s (95%% CI of the median wider than "
-                         "±%.0f%% of the median, or unknown): ",
-                      n, n == 1 ? "" : "s", REPORT__NOISY_CI_REL * 100);
     for (size_t i = 0; i < n; i++) {
         const dm_config_result *c = &run->configs[idx[i]];
-        dm_str label = {0};
-        report__config_label(run, c, &label);
-        dm_str_cat(s, i ? ", " : "");
+        dm_str label = {0}, mark = {0}, why = {0};
+        report_config_label(run, c, &label);
+        dm_str_cat(s, i % NOISY_PER_LINE ? "; " : "  - ");
         cell(s, dm_str_get(&label));
-        dm_str_printf(s, " `%s` (", c->key);
-        report__ci_text(report__frame_time(c), s);
+        report__timing_marks(c, 1, &mark, &why);
+        dm_str_cat(s, " (");
+        cell(s, dm_str_get(&mark) + strlen("⚠ noisy: "));
         dm_str_cat(s, ")");
+        dm_str_cat(s, i % NOISY_PER_LINE == NOISY_PER_LINE - 1 || i + 1 == n ? "\n" : "");
         dm_str_free(&label);
+        dm_str_free(&mark);
+        dm_str_free(&why);
     }
-    dm_str_cat(s, n ? "\n" : "");
     free(idx);
 }
 
@@ -167,23 +187,32 @@ int report_write_markdown(const dm_run_result *run, const char *path)
     cell(&s, dm_kv_get(run->environment, run->n_environment, "renderer"));
     dm_str_printf(&s, "\n- Pareto metric: %s (%s)", report_metric_name(report_metric_of_run(run)),
                   report_metric_label(report_metric_of_run(run)));
+    dm_str_cat(&s, "\n- budget: ");
+    if (report_budget_ms(run) > 0)
+        dm_str_printf(&s, "%g ms", report_budget_ms(run));
+    else
+        dm_str_cat(&s, "default per scene, a round number midway (log scale) between its fastest and "
+                       "slowest lit times (set one with report --budget-ms or quality.budget_ms)");
     dm_str_printf(&s, "\n- timer: %s (GPUTime covers %.1f%% of fenced wall time)\n",
                   run->timer_verdict ? run->timer_verdict : "unknown", run->gpu_time_coverage * 100);
-    for (size_t i = 0; i < run->n_warnings; i++) {
-        dm_str_cat(&s, "- warning: ");
-        cell(&s, run->warnings[i]);
+    dm_str k = {0};
+    report_scene_constants(run, &k);
+    if (k.len) {
+        dm_str_cat(&s, "- every scene: ");
+        cell(&s, dm_str_get(&k));
         dm_str_cat(&s, "\n");
     }
-    noisy_warning(&s, run);
-    dm_str q = {0};
-    report__quality_warnings(run, &q);
-    char *save = NULL;
-    for (char *line = q.buf ? strtok_r(q.buf, "\n", &save) : NULL; line; line = strtok_r(NULL, "\n", &save)) {
+    dm_str_free(&k);
+    char **w;
+    size_t nw = report__warnings(run, &w);   /* the list of results.json */
+    for (size_t i = 0; i < nw; i++) {
         dm_str_cat(&s, "- warning: ");
-        cell(&s, line);
+        cell(&s, w[i]);
         dm_str_cat(&s, "\n");
+        if (strstr(w[i], " noisy configuration") && strstr(w[i], "compare their times with care"))
+            noisy_list(&s, run);
     }
-    dm_str_free(&q);
+    report__warnings_free(w, nw);
     const char **scenes;
     size_t ns = report__scenes(run, &scenes);
     for (size_t i = 0; i < ns; i++)

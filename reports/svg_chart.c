@@ -1,15 +1,19 @@
 /* svg_chart.c — the per-scene charts written as SVG by hand, so every label
  * is placed and sized by us and none is clipped:
- *  - error vs time: one point per configuration at (median ms, error) with
- *    a horizontal whisker for the 95 % CI of the median; each point carries
- *    a printed number (its row in the legend below the chart; points drawn
- *    on top of each other share one label, "3,4") and a hover title; front
- *    members are filled and joined by the front line;
+ *  - quality vs time, titled by the metric: one point per configuration at
+ *    (median ms, the metric's value) with a horizontal whisker for the 95 %
+ *    CI of the median, its colour and marker by technique family (legend in
+ *    the corner), filled on the front, its label beside it where there is
+ *    room (greedy placement, the front first) and a hover title; the time
+ *    axis is log10 when it spans more than a decade; ticks are round
+ *    (1-2-5);
  *  - time per configuration: one horizontal bar per configuration of the
  *    scene (never pooled across scenes), fastest first, with its CI whisker
  *    and its full label left of the bar (the SVG is as wide as the longest
  *    label needs).
  */
+#include "reports/answer.h"
+#include "reports/report.h"
 #include "reports/report_internal.h"
 
 #include <math.h>
@@ -25,37 +29,73 @@
 #define SVG_T 24.0
 #define SVG_B 44.0
 
-typedef struct svg_axis { double lo, hi; } svg_axis;
+/* Characters (not bytes) of UTF-8 text, for its drawn width. */
+static size_t svg_chars(const char *t)
+{
+    size_t n = 0;
+    for (; *t; t++)
+        n += ((unsigned char)*t & 0xC0) != 0x80;
+    return n;
+}
 
-static double svg_x(svg_axis a, double v) { return SVG_L + (v - a.lo) / (a.hi - a.lo) * (SVG_W - SVG_L - SVG_R); }
-static double svg_y(svg_axis a, double v) { return SVG_H - SVG_B - (v - a.lo) / (a.hi - a.lo) * (SVG_H - SVG_T - SVG_B); }
+/* An axis: linear, or log10 when its values span more than a decade. */
+typedef struct svg_axis { double lo, hi; int log; } svg_axis;
+
+static double svg_t(svg_axis a, double v)
+{
+    return a.log ? (log10(v) - log10(a.lo)) / (log10(a.hi) - log10(a.lo)) : (v - a.lo) / (a.hi - a.lo);
+}
+static double svg_x(svg_axis a, double v) { return SVG_L + svg_t(a, v) * (SVG_W - SVG_L - SVG_R); }
+static double svg_y(svg_axis a, double v) { return SVG_H - SVG_B - svg_t(a, v) * (SVG_H - SVG_T - SVG_B); }
 
 /* Opens <div class="chart" role="img" aria-label="title"><svg> of w × h
- * with the title drawn at the top (characters as &#xNN; references, the
- * way the PLplot charts write text). */
+ * with the title drawn at the top. */
 static void svg_open(dm_str *s, const char *title, double w, double h)
 {
     dm_str_cat(s, "<div class=\"chart\" role=\"img\" aria-label=\"");
     dm_str_cat_html(s, title);
     dm_str_printf(s, "\"><svg viewBox=\"0 0 %.0f %.0f\" width=\"%.0f\" font-family=\"sans-serif\" "
                      "font-size=\"11\"><text x=\"4\" y=\"12\" font-weight=\"bold\">", w, h, w);
-    for (const unsigned char *c = (const unsigned char *)title; *c; c++)
-        dm_str_printf(s, "&#x%x;", (unsigned)*c);
+    dm_str_cat_html(s, title);
     dm_str_cat(s, "</text>");
 }
 
-/* Five ticks of each axis with their numbers, and the axis titles. */
+/* Round tick values of an axis into v (room for 32): 1-2-5 per decade on a
+ * log axis, else a 1, 2 or 5 × 10^k step giving four to eight ticks. */
+static size_t svg_ticks(svg_axis a, double *v)
+{
+    size_t n = 0;
+    if (a.log) {
+        for (double d = pow(10, floor(log10(a.lo))); d <= a.hi && n < 30; d *= 10)
+            for (int k = 0; k < 3; k++) {
+                double t = d * (k == 0 ? 1 : k == 1 ? 2 : 5);
+                if (t >= a.lo && t <= a.hi)
+                    v[n++] = t;
+            }
+        return n;
+    }
+    double raw = (a.hi - a.lo) / 5, mag = pow(10, floor(log10(raw))), step = mag;
+    step = raw / mag >= 5 ? 5 * mag : raw / mag >= 2 ? 2 * mag : mag;
+    for (double t = ceil(a.lo / step) * step; t <= a.hi + step * 1e-9 && n < 30; t += step)
+        v[n++] = fabs(t) < step * 1e-9 ? 0 : t;
+    return n;
+}
+
+/* The ticks of both axes with their numbers (%g: round values print
+ * short), and the axis titles. */
 static void svg_axes(dm_str *s, svg_axis ax, svg_axis ay, const char *xt, const char *yt)
 {
+    double v[32];
     dm_str_printf(s, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" stroke=\"#888\"/>",
                   SVG_L, SVG_T, SVG_W - SVG_L - SVG_R, SVG_H - SVG_T - SVG_B);
-    for (int k = 0; k <= 4; k++) {
-        double vx = ax.lo + (ax.hi - ax.lo) * k / 4, vy = ay.lo + (ay.hi - ay.lo) * k / 4;
-        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%.3g</text>",
-                      svg_x(ax, vx), SVG_H - SVG_B + 14, vx);
-        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%.3g</text>",
-                      SVG_L - 4, svg_y(ay, vy) + 4, vy);
-    }
+    for (size_t k = 0, n = svg_ticks(ax, v); k < n; k++)
+        dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#eee\"/>"
+                         "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>",
+                      svg_x(ax, v[k]), svg_x(ax, v[k]), SVG_T, SVG_H - SVG_B, svg_x(ax, v[k]),
+                      SVG_H - SVG_B + 14, v[k]);
+    for (size_t k = 0, n = svg_ticks(ay, v); k < n; k++)
+        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>", SVG_L - 4,
+                      svg_y(ay, v[k]) + 4, v[k]);
     dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", (SVG_L + SVG_W - SVG_R) / 2, SVG_H - 8);
     dm_str_cat_html(s, xt);
     dm_str_printf(s, "</text><text x=\"12\" y=\"%.1f\" text-anchor=\"middle\" transform=\"rotate(-90 12 %.1f)\">",
@@ -68,21 +108,23 @@ static void svg_axes(dm_str *s, svg_axis ax, svg_axis ay, const char *xt, const 
 static void svg_title(dm_str *s, const dm_run_result *run, const dm_config_result *c, double err,
                       report_metric m)
 {
-    const dm_counter_result *t = report__frame_time(c);
-    dm_str label = {0};
-    report__config_label(run, c, &label);
+    dm_str text = {0};
+    report__config_label(run, c, &text);
+    dm_str_cat(&text, ": ");
+    report__time_ci_text(report__frame_time(c), &text);
+    dm_str_printf(&text, ", %s %.4g", report_metric_name(m), err);
     dm_str_cat(s, "<title>");
-    dm_str_cat_html(s, dm_str_get(&label));
-    dm_str_printf(s, ": %.3f ms [%.3f, %.3f], %s %.4g</title>", t->median / 1e6, t->ci_lo / 1e6,
-                  t->ci_hi / 1e6, report_metric_name(m), err);
-    dm_str_free(&label);
+    dm_str_cat_html(s, dm_str_get(&text));
+    dm_str_cat(s, "</title>");
+    dm_str_free(&text);
 }
 
 /* The points of one scene's scatter: config indexes, median ms, shown
- * error (an infinite PSNR at the top edge), the front and both axes. */
+ * error (an infinite PSNR at the top edge), the front, both axes and the
+ * label boxes placed so far (x0, y0, x1, y1 each). */
 typedef struct svg_points {
-    size_t n, nf, *idx, *front;
-    double *x, *y;
+    size_t n, nf, *idx, *front, nbox;
+    double *x, *y, *box;
     svg_axis ax, ay;
     report_metric m;
 } svg_points;
@@ -93,20 +135,25 @@ static void svg_points_load(svg_points *p, const dm_run_result *run, const char 
     p->idx = dm_xcalloc(cap, sizeof *p->idx);
     p->x = dm_xcalloc(cap, sizeof *p->x);
     p->y = dm_xcalloc(cap, sizeof *p->y);
+    p->box = dm_xcalloc(cap * 2 * 4, sizeof *p->box);
+    p->nbox = 0;
     p->m = report_metric_of_run(run);
     p->n = report__pareto_points(run, scene, p->m, p->idx, p->x, p->y);
     p->nf = report__pareto(run, scene, &p->front);
-    p->ax = (svg_axis){0, 0};
-    p->ay = (svg_axis){INFINITY, -INFINITY};
+    p->ax = (svg_axis){INFINITY, 0, 0};
+    p->ay = (svg_axis){INFINITY, -INFINITY, 0};
     for (size_t i = 0; i < p->n; i++) {
         const dm_counter_result *t = report__frame_time(&run->configs[p->idx[i]]);
         p->x[i] /= 1e6;
         p->ax.hi = fmax(p->ax.hi, isfinite(t->ci_hi) ? t->ci_hi / 1e6 : p->x[i]);
+        p->ax.lo = fmin(p->ax.lo, isfinite(t->ci_lo) && t->ci_lo > 0 ? t->ci_lo / 1e6 : p->x[i]);
         p->y[i] = report_metric_shown(&run->configs[p->idx[i]].quality, p->m);
         p->ay.lo = isfinite(p->y[i]) ? fmin(p->ay.lo, p->y[i]) : p->ay.lo;
         p->ay.hi = isfinite(p->y[i]) ? fmax(p->ay.hi, p->y[i]) : p->ay.hi;
     }
-    p->ax.hi = p->ax.hi > 0 ? p->ax.hi * 1.06 : 1;
+    p->ax.log = p->ax.lo > 0 && p->ax.hi > 10 * p->ax.lo;
+    p->ax.lo = p->ax.log ? p->ax.lo / 1.15 : 0;
+    p->ax.hi = p->ax.hi > 0 ? p->ax.hi * (p->ax.log ? 1.15 : 1.06) : 1;
     p->ay.lo = p->m == REPORT_METRIC_PSNR && isfinite(p->ay.lo) ? p->ay.lo - 1 : 0;   /* dB not from 0 */
     p->ay.hi = isfinite(p->ay.hi) && p->ay.hi > p->ay.lo ? p->ay.hi + (p->ay.hi - p->ay.lo) * 0.12
                                                          : p->ay.lo + 1;
@@ -119,31 +166,64 @@ static void svg_points_free(svg_points *p)
     free(p->idx);
     free(p->x);
     free(p->y);
+    free(p->box);
     free(p->front);
 }
 
-/* 1 when points i and j are drawn within 7 px of each other. */
-static int svg_near(const svg_points *p, size_t i, size_t j)
+/* Colour and marker per family (recommend_family order: unlit, fragment,
+ * vertex, tessellation): colour-blind-safe hues, and a shape each so the
+ * families differ in grey print too. */
+static const char *const svg_family_colour[RECOMMEND_FAMILY_COUNT] = {"#777777", "#0072b2", "#d55e00", "#7b3294"};
+
+static void svg_marker(dm_str *s, recommend_family f, double x, double y, int filled)
 {
-    return fabs(svg_x(p->ax, p->x[i]) - svg_x(p->ax, p->x[j])) < 7 &&
-           fabs(svg_y(p->ay, p->y[i]) - svg_y(p->ay, p->y[j])) < 7;
+    const char *c = svg_family_colour[f];
+    const char *fill = filled ? c : "#fff";
+    if (f == RECOMMEND_VERTEX)
+        dm_str_printf(s, "<rect x=\"%.1f\" y=\"%.1f\" width=\"8\" height=\"8\"", x - 4, y - 4);
+    else if (f == RECOMMEND_TESSELLATION)
+        dm_str_printf(s, "<path d=\"M%.1f %.1fl5 9h-10z\"", x, y - 5);
+    else if (f == RECOMMEND_UNLIT)
+        dm_str_printf(s, "<path d=\"M%.1f %.1fl5 5l-5 5l-5 -5z\"", x, y - 5);
+    else
+        dm_str_printf(s, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4.5\"", x, y);
+    dm_str_printf(s, " fill=\"%s\" stroke=\"%s\" stroke-width=\"1.5\"/>", fill, c);
 }
 
-/* The printed number of point i: "3" or, for points drawn on top of each
- * other, "3,4" at the first of them and nothing at the others. */
-static void svg_number(const svg_points *p, size_t i, dm_str *out)
+/* 1 when the box (x0, y0)–(x1, y1) overlaps a placed label or leaves the plot. */
+static int svg_box_taken(const svg_points *p, double x0, double y0, double x1, double y1)
 {
-    for (size_t j = 0; j < i; j++)
-        if (svg_near(p, i, j))
-            return;
-    dm_str_printf(out, "%zu", i + 1);
-    for (size_t j = i + 1; j < p->n; j++)
-        if (svg_near(p, i, j))
-            dm_str_printf(out, ",%zu", j + 1);
+    if (x0 < SVG_L + 1 || x1 > SVG_W - 2 || y0 < SVG_T + 1 || y1 > SVG_H - SVG_B - 1)
+        return 1;
+    for (size_t k = 0; k < p->nbox; k++) {
+        const double *b = &p->box[4 * k];
+        if (x0 < b[2] && b[0] < x1 && y0 < b[3] && b[1] < y1)
+            return 1;
+    }
+    return 0;
 }
 
-/* Point i: hover title, CI whisker, circle (filled on the front), number. */
-static void svg_point(dm_str *s, const dm_run_result *run, const svg_points *p, size_t i)
+/* Places the label of a point at (px, py): beside it right or left, a line
+ * up or down, farther out when taken; the markers are boxes too.  Returns
+ * 0 and sets *tx, *ty, *end when a place is free. */
+static int svg_place(svg_points *p, double px, double py, double w, double *tx, double *ty, int *end)
+{
+    static const double dy[] = {4, -6, 14, -16, 24, -26, 34, -36};
+    for (size_t k = 0; k < sizeof dy / sizeof *dy; k++)
+        for (int side = 0; side < 2; side++) {
+            double x0 = side ? px - 8 - w : px + 8, y1 = py + dy[k], y0 = y1 - 10;
+            if (svg_box_taken(p, x0, y0, x0 + w, y1 + 1))
+                continue;
+            double *b = &p->box[4 * p->nbox++];
+            b[0] = x0, b[1] = y0, b[2] = x0 + w, b[3] = y1 + 1;
+            *tx = side ? px - 8 : px + 8, *ty = y1, *end = side;
+            return 0;
+        }
+    return -1;
+}
+
+/* Point i: hover title, CI whisker, the family's marker (filled on the front). */
+static void svg_point(dm_str *s, const dm_run_result *run, svg_points *p, size_t i)
 {
     const dm_config_result *c = &run->configs[p->idx[i]];
     const dm_counter_result *t = report__frame_time(c);
@@ -151,37 +231,54 @@ static void svg_point(dm_str *s, const dm_run_result *run, const svg_points *p, 
     for (size_t k = 0; k < p->nf; k++)
         on |= p->front[k] == p->idx[i];
     double px = svg_x(p->ax, p->x[i]), py = svg_y(p->ay, p->y[i]);
-    int right = px > SVG_W - SVG_R - 30;
     dm_str_cat(s, "<g>");
     svg_title(s, run, c, p->y[i], p->m);
-    if (isfinite(t->ci_lo) && isfinite(t->ci_hi))
-        dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#777\"/>",
+    if (isfinite(t->ci_lo) && isfinite(t->ci_hi) && t->ci_lo > 0)
+        dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#999\"/>",
                       svg_x(p->ax, t->ci_lo / 1e6), svg_x(p->ax, t->ci_hi / 1e6), py, py);
-    dm_str_printf(s, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"%s\" stroke=\"#164\"/>", px, py,
-                  on ? "#2a7" : "#fff");
-    dm_str num = {0};
-    svg_number(p, i, &num);
-    if (num.len)
-        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"%s\">%s</text>",
-                      px + (right ? -6 : 6), py - 5 < SVG_T + 10 ? py + 14 : py - 5,
-                      right ? "end" : "start", dm_str_get(&num));
+    svg_marker(s, report_family(c), px, py, on);
     dm_str_cat(s, "</g>");
-    dm_str_free(&num);
+    double *b = &p->box[4 * p->nbox++];
+    b[0] = px - 5, b[1] = py - 5, b[2] = px + 5, b[3] = py + 5;
 }
 
-/* The numbered legend under the chart: point i + 1 is configuration i. */
+/* The label beside point i, or none when no place is free (its hover
+ * title still names it; the table below lists every configuration). */
+static void svg_point_label(dm_str *s, const dm_run_result *run, svg_points *p, size_t i)
+{
+    dm_str label = {0};
+    report__config_label(run, &run->configs[p->idx[i]], &label);
+    double tx, ty;
+    int end;
+    if (svg_place(p, svg_x(p->ax, p->x[i]), svg_y(p->ay, p->y[i]),
+                  (double)svg_chars(dm_str_get(&label)) * 6.4, &tx, &ty, &end) == 0) {
+        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\"%s>", tx, ty,
+                      end ? " text-anchor=\"end\"" : "");
+        dm_str_cat_html(s, dm_str_get(&label));
+        dm_str_cat(s, "</text>");
+    }
+    dm_str_free(&label);
+}
+
+/* The family legend in the top right corner of the plot. */
 static void svg_legend(dm_str *s, const dm_run_result *run, const svg_points *p)
 {
-    dm_str_cat(s, "<ol class=\"const legend\">");
-    for (size_t i = 0; i < p->n; i++) {
-        dm_str label = {0};
-        report__config_label(run, &run->configs[p->idx[i]], &label);
-        dm_str_cat(s, "<li>");
-        dm_str_cat_html(s, dm_str_get(&label));
-        dm_str_cat(s, "</li>");
-        dm_str_free(&label);
+    int present[RECOMMEND_FAMILY_COUNT] = {0};
+    for (size_t i = 0; i < p->n; i++)
+        present[report_family(&run->configs[p->idx[i]])] = 1;
+    double x = SVG_W - SVG_R - 6;
+    for (int f = RECOMMEND_FAMILY_COUNT - 1; f >= 0; f--) {
+        if (!present[f])
+            continue;
+        const char *name = recommend_family_name((recommend_family)f);
+        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"%s\">%s</text>", x,
+                      SVG_T - 8, svg_family_colour[f], name);
+        x -= strlen(name) * 6.2 + 4;
+        svg_marker(s, (recommend_family)f, x - 5, SVG_T - 12, 1);
+        x -= 18;
     }
-    dm_str_cat(s, "</ol>\n");
+    dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#555\">filled: on the "
+                     "front</text>", x, SVG_T - 8);
 }
 
 static void svg_scatter(dm_str *s, const dm_run_result *run, const char *scene)
@@ -189,12 +286,16 @@ static void svg_scatter(dm_str *s, const dm_run_result *run, const char *scene)
     svg_points p;
     svg_points_load(&p, run, scene);
     if (p.n) {
-        dm_str title = {0};
-        dm_str_printf(&title, "Error vs time: %s", scene);
+        dm_str title = {0}, l = {0};
+        report_scene_label(run, scene, &l);
+        dm_str_printf(&title, "%s vs time: %s", report_metric_label(p.m), dm_str_get(&l));
         svg_open(s, dm_str_get(&title), SVG_W, SVG_H);
         dm_str_free(&title);
-        svg_axes(s, p.ax, p.ay, "median frame time, ms (whisker: 95% CI)", report_metric_label(p.m));
-        dm_str_cat(s, "<polyline fill=\"none\" stroke=\"#2a7\" stroke-width=\"1.5\" points=\"");
+        dm_str_free(&l);
+        svg_axes(s, p.ax, p.ay, p.ax.log ? "median frame time, ms, log scale (whisker: 95% CI)"
+                                         : "median frame time, ms (whisker: 95% CI)",
+                 report_metric_label(p.m));
+        dm_str_printf(s, "<polyline fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"");
         for (size_t k = 0; k < p.nf; k++)
             for (size_t i = 0; i < p.n; i++)
                 if (p.idx[i] == p.front[k])
@@ -202,8 +303,19 @@ static void svg_scatter(dm_str *s, const dm_run_result *run, const char *scene)
         dm_str_cat(s, "\"/>");
         for (size_t i = 0; i < p.n; i++)
             svg_point(s, run, &p, i);
-        dm_str_cat(s, "</svg></div>\n");
+        for (size_t k = 0; k < p.nf; k++)   /* the front's labels first: they matter most */
+            for (size_t i = 0; i < p.n; i++)
+                if (p.idx[i] == p.front[k])
+                    svg_point_label(s, run, &p, i);
+        for (size_t i = 0; i < p.n; i++) {
+            int on = 0;
+            for (size_t k = 0; k < p.nf; k++)
+                on |= p.front[k] == p.idx[i];
+            if (!on)
+                svg_point_label(s, run, &p, i);
+        }
         svg_legend(s, run, &p);
+        dm_str_cat(s, "</svg></div>\n");
     }
     svg_points_free(&p);
 }
@@ -229,9 +341,11 @@ static void svg_bars(dm_str *s, const dm_run_result *run, const char *scene)
     }
     double lw = longest * SVG_CHAR_W + 12, bw = 420, rowh = 18, w = lw + bw + 70, h = n * rowh + 48;
     hi = hi / 1e6 * 1.04;
-    dm_str title = {0};
-    dm_str_printf(&title, "Time per configuration: %s", scene);
-    svg_open(s, dm_str_get(&title), fmax(w, (double)title.len * SVG_CHAR_W * 1.2 + 8), h);
+    dm_str title = {0}, l = {0};
+    report_scene_label(run, scene, &l);
+    dm_str_printf(&title, "Time per configuration: %s", dm_str_get(&l));
+    dm_str_free(&l);
+    svg_open(s, dm_str_get(&title), fmax(w, (double)svg_chars(dm_str_get(&title)) * SVG_CHAR_W * 1.2 + 8), h);
     dm_str_free(&title);
     dm_str_printf(s, "<text x=\"%.1f\" y=\"28\">median frame time, ms, this scene only "
                      "(whisker: 95%% CI)</text>", lw);
@@ -249,8 +363,10 @@ static void svg_bars(dm_str *s, const dm_run_result *run, const char *scene)
         if (isfinite(t->ci_lo) && isfinite(t->ci_hi))
             dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#333\"/>",
                           lw + t->ci_lo / 1e6 / hi * bw, lw + t->ci_hi / 1e6 / hi * bw, y + 8, y + 8);
-        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\">%.3g</text></g>",
-                      lw + fmax(t->ci_hi / 1e6, t->median / 1e6) / hi * bw + 4, y + 11, t->median / 1e6);
+        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\">", lw + fmax(t->ci_hi / 1e6, t->median / 1e6) / hi * bw + 4,
+                      y + 11);
+        report__ms_text(t->median, s);
+        dm_str_cat(s, "</text></g>");
         dm_str_free(&label);
     }
     dm_str_cat(s, "</svg></div>\n");

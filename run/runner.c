@@ -13,6 +13,7 @@
 #include "sweep/plan.h"
 #include "sweep/published.h"
 #include "store/store.h"
+#include "reports/answer.h"
 #include "reports/metric.h"
 #include "reports/report.h"
 #include "techniques/axes.h"
@@ -46,6 +47,9 @@ typedef struct runner {
     size_t n_exts;
     size_t done, total, failed;
     int64_t t_start;
+    int64_t t_last;            /* the last progress line (ns) */
+    size_t eta_done;           /* configurations done at the end of the last burst, */
+    double eta_el;             /* and the seconds it took: the ETA's rate */
     int64_t measured_ns;       /* time inside timed samples, all configurations */
     int tty;
     char *instr_why;           /* why Instructions cannot be counted here; NULL = it can */
@@ -184,6 +188,45 @@ static int runner__has_ext(const char *ext, void *user)
 
 /* ---- progress ------------------------------------------------------------ */
 
+/* The configuration's label for progress lines: "plane 480×270 · pom
+ * steps=8", the technique with the axes that take two or more values among
+ * the plan's configurations of its scene. */
+static void runner__label(const runner *r, const plan_config *c, dm_str *out)
+{
+    const char **all = dm_xcalloc(r->p.n_configs + 1, sizeof *all);
+    for (size_t i = 0; i < r->p.n_configs; i++)
+        all[i] = r->p.configs[i].scene;
+    report_scene_label_among(c->scene, all, r->p.n_configs, out);   /* as the report names it */
+    free(all);
+    dm_str_printf(out, " · %s", dm_kv_get(c->params, c->n_params, "technique"));
+    for (size_t k = 0; k < c->n_params; k++) {
+        if (strcmp(c->params[k].key, "technique") == 0)
+            continue;
+        int varies = 0;
+        for (size_t i = 0; i < r->p.n_configs && !varies; i++) {
+            const plan_config *o = &r->p.configs[i];
+            const char *v = strcmp(o->scene, c->scene) == 0 ? dm_kv_get(o->params, o->n_params, c->params[k].key) : NULL;
+            varies = v && strcmp(v, c->params[k].value) != 0;
+        }
+        if (varies)
+            dm_str_printf(out, " %s=%s", c->params[k].key, c->params[k].value);
+    }
+}
+
+/* "  ETA 42s" from the rate of the finished bursts (a scene's configurations
+ * finish together after its rounds), so the estimate never extrapolates
+ * from the first, slowest moments; "" until a burst has finished. */
+static void runner__eta(runner *r, char *buf, size_t len)
+{
+    int64_t now = dm_now_ns();
+    if (r->done > 1 && now - r->t_last > 500000000)   /* a new burst: the previous one ended at t_last */
+        r->eta_done = r->done - 1, r->eta_el = (double)(r->t_last - r->t_start) / 1e9;
+    r->t_last = now;
+    buf[0] = 0;
+    if (r->eta_done && r->done < r->total)
+        snprintf(buf, len, "  ETA %.0fs", r->eta_el / (double)r->eta_done * (double)(r->total - r->done));
+}
+
 static void runner__progress(runner *r, const plan_config *c, const char *status,
                              double median_ns, double ci_rel)
 {
@@ -191,23 +234,25 @@ static void runner__progress(runner *r, const plan_config *c, const char *status
     r->failed += strcmp(status, "ok") != 0;
     if (r->o->quiet)
         return;
-    double el = (double)(dm_now_ns() - r->t_start) / 1e9;
-    double eta = r->done ? el / (double)r->done * (double)(r->total - r->done) : 0;
-    const char *tech = dm_kv_get(c->params, c->n_params, "technique");
-    char line[256];
+    char eta[48];
+    runner__eta(r, eta, sizeof eta);
+    dm_str label = {0}, line = {0};
+    runner__label(r, c, &label);
     if (strcmp(status, "ok") == 0)
-        snprintf(line, sizeof line, "[%zu/%zu] %-18s %-28s %9.3f ms ±%4.1f%%  ETA %3.0fs",
-                 r->done, r->total, tech, c->scene, median_ns / 1e6, ci_rel * 100, eta);
+        dm_str_printf(&line, "[%zu/%zu] %-44s %9.3f ms ±%4.1f%%%s", r->done, r->total,
+                      dm_str_get(&label), median_ns / 1e6, ci_rel * 100, eta);
     else
-        snprintf(line, sizeof line, "[%zu/%zu] %-18s %-28s FAILED (%s)  ETA %3.0fs",
-                 r->done, r->total, tech, c->scene, status, eta);
+        dm_str_printf(&line, "[%zu/%zu] %-44s FAILED (%s)%s", r->done, r->total, dm_str_get(&label),
+                      status, eta);
     char *b;
-    const char *safe = dm_term_safe(line, &b);   /* a scene names a user's map path */
+    const char *safe = dm_term_safe(dm_str_get(&line), &b);   /* a scene names a user's map path */
     if (r->tty)
         fprintf(stderr, "\r\033[K%s%s", safe, r->done == r->total ? "\n" : "");
     else
         fprintf(stderr, "%s\n", safe);
     free(b);
+    dm_str_free(&label);
+    dm_str_free(&line);
 }
 
 /* ---- scene children -------------------------------------------------------- */
@@ -892,6 +937,8 @@ static int runner__begin(runner *r)
     dm_hex64(r->s->hash, hash);
     e->sweep_hash = dm_xstrdup(hash);
     report_metric_set(e, r->s->pareto_metric);   /* so dmbench report redraws the same front */
+    if (r->s->budget_ms > 0)
+        report_budget_set(e, r->s->budget_ms);    /* and picks under the same budget */
     if (r->o->shard_n > 0) {
         /* merge checks duplicate and missing shards, and whether each one is
          * complete, from these two entries. */
@@ -946,6 +993,17 @@ static void runner__fit(runner *r, dm_run_result *run)
     }
 }
 
+/* The end of a run: each scene's recommendation in one or two lines. */
+static void runner__print_answer(const dm_run_result *run)
+{
+    dm_str a = {0};
+    report_answer_terminal(run, &a);
+    char *safe;
+    fputs(dm_term_safe(dm_str_get(&a), &safe), stdout);
+    free(safe);
+    dm_str_free(&a);
+}
+
 static int runner__finish(runner *r, dm_str *err)
 {
     char now[32];
@@ -968,6 +1026,8 @@ static int runner__finish(runner *r, dm_str *err)
         report_trends_free(&tr);
         if (rc)
             dm_str_printf(err, "report: %s", e);
+        else if (!r->o->quiet)
+            runner__print_answer(&run);
     } else {
         dm_str_printf(err, "store: cannot reload run %s: %s", r->run_id, store_last_error(r->st));
     }

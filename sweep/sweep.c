@@ -667,6 +667,9 @@ static const p__key p__keys[] = {
     P__ROW("quality", "pareto_metric", p__k_pareto, NULL,
            "`ssim`, `psnr`, `rmse`, `max-error`, `silhouette`, `depth-rmse` or `flip`", "`ssim`",
            "the error the report's Pareto front uses", "psnr"),
+    P__REAL("quality", "budget_ms", budget_ms, 0.001, 1e6, 0,
+            "the frame budget (ms) the report's recommendation picks under; 0 or absent: per "
+            "scene, a round number midway between its fastest and slowest lit times", "16.7"),
     P__REAL("quality", "flip_ppd", flip_ppd, 1, 600, 67.0206,
             "pixels per degree of visual angle FLIP assumes (docs/flip.md); the default is "
             "FLIP's own, a 0.7 m wide 3840-pixel monitor seen from 0.7 m", "30"),

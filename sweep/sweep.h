@@ -70,6 +70,7 @@ typedef struct sweep {
     size_t n_ref_params;
     char *pareto_metric;     /* quality.pareto_metric: a reports/metric.h name (default "ssim") */
     double flip_ppd;         /* quality.flip_ppd: FLIP's pixels per degree (default 67.0206) */
+    double budget_ms;        /* quality.budget_ms: the report's frame budget; 0 = per-scene default */
     sweep_model *models;
     size_t n_models;
     sweep_exclude *excludes;

@@ -4,7 +4,7 @@
 dm_add_unit(test_cli_parser test_cli_parser.c LIBS dm_cli LABELS cli)
 set(cli_env ${DM_TEST_ENV} "DMBENCH_MAN=${CMAKE_BINARY_DIR}/dmbench.1"
     "DMBENCH_BASH_COMPLETION=${CMAKE_BINARY_DIR}/completions/dmbench")
-foreach(t options completion lists keys diff)
+foreach(t options completion lists keys diff didyoumean)
   add_test(NAME test_cli_${t} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/${t}.sh)
   set_tests_properties(test_cli_${t} PROPERTIES TIMEOUT 300 LABELS cli ENVIRONMENT "${cli_env}")
 endforeach()

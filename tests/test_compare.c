@@ -647,7 +647,7 @@ static void test_json_roundtrip_and_outputs(void **state)
     assert_int_equal(compare_write_json(&r, js), 0);
     char *text = test_slurp(md);
     assert_non_null(strstr(text, "| Configuration | Base | New | Ratio | 95% CI | Verdict | Note |"));
-    assert_non_null(strstr(text, "| m2/normal | 3 ms | 3 ms | "));
+    assert_non_null(strstr(text, "| m2 · normal | 3 ms | 3 ms | "));
     assert_non_null(strstr(text, " REGRESSION | TESInvocations changed 3169 -&gt; 6144 |"));
     free(text);
     text = test_slurp(ju);
@@ -1195,7 +1195,7 @@ static void test_markdown_pr_comment(void **state)
     const char *head = "## dmbench compare: REGRESSION — 1 regressed, 0 inconclusive, 0 "
                        "improved, 399 passed of 400 configurations\n";
     assert_true(strncmp(text, head, strlen(head)) == 0);
-    const char *row = strstr(text, "| survey/normal mesh=m300 maps=height=/home/user/project/assets/"
+    const char *row = strstr(text, "| survey · normal mesh=m300 maps=height=/home/user/project/assets/"
                                    "terrain/heights/tile-300-of-the-large-survey-area-at-full-"
                                    "resolution.png | 301 ms | 301 ms | - | - | REGRESSION | "
                                    "TESInvocations changed 3169 -&gt; 6144 |");

@@ -65,12 +65,15 @@ python3 - "$OUT" "$A/results.json" <<'PY'
 import json, sys, xml.etree.ElementTree as ET
 out, src = sys.argv[1], sys.argv[2]
 n = len(json.load(open(src))["configs"])
+labels = {c["key"]: c["label"] for c in json.load(open(src))["configs"]}   # the report's one label
 for name, want in (("slow", "REGRESSION"), ("ab", "any")):
     root = ET.parse(f"{out}/{name}.xml").getroot()
     cases = root.findall(".//testcase")
     assert len(cases) == n, (name, len(cases))
     verdicts = []
     for c in cases:
+        key = c.get("name")[-17:-1]
+        assert c.get("name") == labels[key] + " [" + key + "]", (c.get("name"), labels[key])
         text = c.find("system-out").text
         assert text.startswith("verdict="), text
         verdicts.append(text.split()[0][8:])

@@ -34,8 +34,17 @@ def timed(d):
 for r, d in zip(runs, docs):
     want = timed(d)
     assert want and len(set(want)) == len(want)
+    # one label everywhere: "mesh W×H · technique axis=value": summary.md and
+    # report.html say it as a scene heading plus the row's own part
+    summary = open(r + "/summary.md").read()
+    html = open(r + "/report.html").read()
     for c in d["configs"]:
-        assert c["label"].startswith(c["scene"] + "/" + c["params"]["technique"]), c["label"]
+        lab = c["label"]
+        scene, sep, own = lab.partition(" · ")
+        assert sep and scene.startswith(c["params"]["mesh"] + " ") and own.startswith(c["params"]["technique"]), lab
+        assert "\n## " + scene + "\n" in summary, (lab, "summary.md heading")
+        assert "| " + own.split(" [")[0] + " | " in summary, (lab, "summary.md row")
+        assert ">Scene " + scene + "</h2>" in html.replace("&times;", "×"), (lab, "report.html heading")
     assert any(c["pareto"] for c in d["configs"])
     # Google Benchmark JSON
     g = json.load(open(r + "/export-gbench.json"))

@@ -227,7 +227,7 @@ hcase cli/render-unwritable 2 "" -- "$BIN" render resolution=16x16 --png /proc/x
 hcase cli/diff-huge 2 "cannot read" -- "$BIN" diff "$G/huge.png" "$G/huge.png"
 hcase cli/diff-truncated-exr 2 "cannot read" -- "$BIN" diff "$G/truncated.exr" "$G/random.png"
 hcase cli/diff-text 2 "cannot read" -- "$BIN" diff "$G/text.png" "$G/text.png"
-hcase cli/diff-map-unwritable 2 "cannot write" -- "$BIN" diff "$SRC/docs/img/report-after-1280x800.png" "$SRC/docs/img/report-after-1280x800.png" -o /proc/x.png
+hcase cli/diff-map-unwritable 2 "cannot write" -- "$BIN" diff "$SRC/docs/img/pom.png" "$SRC/docs/img/pom.png" -o /proc/x.png
 hcase cli/slurm-zero 2 "--shards" -- "$BIN" slurm "$OUT/ok.yaml" --shards 0 --print --out "$OUT/sl"
 hcase cli/slurm-many 2 "--shards" -- "$BIN" slurm "$OUT/ok.yaml" --shards 1000000000 --print --out "$OUT/sl"
 hcase cli/slurm-newline 2 "line break" -- "$BIN" slurm "$OUT/ok.yaml" --shards 1 --print --out "$OUT/a"$'\n'"b"

@@ -63,7 +63,7 @@ for a in j["agreement"]:
     if {a["a"], a["b"]} == {"default", "llvmpipe-25"}:
         assert a["tau_ssim"] == 1, a        # byte-identical images: the same quality order
 front = next(iter(j["fronts"].values()))
-assert set(front) == {"default", "llvmpipe-25", "zink", "agree"}, front
+assert set(front) == {"default", "llvmpipe-25", "zink", "agree", "scene"}, front
 for a in j["agreement"]:
     print(f"{a['a']} · {a['b']}: tau of WallTime {a['tau_walltime']:.3f}, of SSIM {a['tau_ssim']:.3f}")
 print("fronts agree:", front["agree"])

@@ -38,7 +38,7 @@ set +e
 "$BIN" history --stor x 2>> "$OUT/bad.txt"; rc3=$?
 set -e
 [ "$rc1$rc2$rc3" = 222 ] || fail "history bad input: exits $rc1 $rc2 $rc3, want 2 2 2: $(cat "$OUT/bad.txt")"
-grep -q "no timed configuration of run .* matches --technique nope" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
+grep -q "history: --technique 'nope' is not in run .*; valid techniques of the run: normal" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
 grep -q "nothere.sqlite: no such store" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
 grep -q -- "--store" "$OUT/bad.txt" || fail "$(cat "$OUT/bad.txt")"
 

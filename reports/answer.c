@@ -1,0 +1,314 @@
+/* answer.c — the recommendation of each scene in words (see answer.h). */
+#include "reports/answer.h"
+#include "reports/report.h"
+#include "reports/report_internal.h"
+
+#include "core/dm_error.h"
+
+#include <math.h>
+#include <stdio.h>
+#include <stdlib.h>
+#include <string.h>
+
+int report_budget_set(dm_run_result *run, double ms)
+{
+    if (!(ms > 0) || !isfinite(ms))
+        return DM_ERR_ARG;
+    char buf[32];
+    report__fmt_num(ms, buf);
+    for (size_t i = 0; i < run->n_environment; i++)
+        if (strcmp(run->environment[i].key, REPORT_BUDGET_KEY) == 0) {
+            free(run->environment[i].value);
+            run->environment[i].value = dm_xstrdup(buf);
+            return 0;
+        }
+    dm_kv_push(&run->environment, &run->n_environment, REPORT_BUDGET_KEY, buf);
+    return 0;
+}
+
+double report_budget_ms(const dm_run_result *run)
+{
+    const char *v = dm_kv_get(run->environment, run->n_environment, REPORT_BUDGET_KEY);
+    double ms = v ? strtod(v, NULL) : 0;
+    return ms > 0 && isfinite(ms) ? ms : 0;
+}
+
+recommend_family report_family(const dm_config_result *c)
+{
+    if (dm_kv_get(c->params, c->n_params, "tess_level"))
+        return RECOMMEND_TESSELLATION;
+    if (dm_kv_get(c->params, c->n_params, "vertex_filter"))
+        return RECOMMEND_VERTEX;
+    if (!dm_kv_get(c->params, c->n_params, "lighting"))
+        return RECOMMEND_UNLIT;
+    return RECOMMEND_FRAGMENT;
+}
+
+/* The scene's points (ok configurations with a frame time) and their
+ * config indexes; returns the count.  *p and *idx are malloc'd. */
+static size_t answer__points(const dm_run_result *run, const char *scene, recommend_point **p,
+                             size_t **idx)
+{
+    size_t nr = report__scene_rows(run, scene, idx), n = 0;
+    report_metric m = report_metric_of_run(run);
+    *p = dm_xcalloc(nr + 1, sizeof **p);
+    for (size_t i = 0; i < nr; i++) {
+        const dm_config_result *c = &run->configs[(*idx)[i]];
+        const dm_counter_result *t = report__frame_time(c);
+        if (!t)
+            continue;
+        (*p)[n] = (recommend_point){t->median, t->ci_lo, t->ci_hi, report_metric_error(&c->quality, m),
+                                    report_family(c)};
+        (*idx)[n++] = (*idx)[i];
+    }
+    return n;
+}
+
+static size_t answer__map(const size_t *idx, size_t i)
+{
+    return i == RECOMMEND_NONE ? RECOMMEND_NONE : idx[i];
+}
+
+size_t report_recommend(const dm_run_result *run, const char *scene, recommend_result *out)
+{
+    recommend_point *p;
+    size_t *idx, n = answer__points(run, scene, &p, &idx);
+    recommend_desc d = {.budget = report_budget_ms(run) * 1e6,
+                        .epsilon = report_metric_epsilon(report_metric_of_run(run))};
+    recommend_scene(p, n, &d, out);
+    out->pick = answer__map(idx, out->pick);
+    out->pick_tie = answer__map(idx, out->pick_tie);
+    out->fastest = answer__map(idx, out->fastest);
+    out->knee = answer__map(idx, out->knee);
+    for (int f = 0; f < RECOMMEND_FAMILY_COUNT; f++) {
+        out->family_best[f] = answer__map(idx, out->family_best[f]);
+        out->family_fastest[f] = answer__map(idx, out->family_fastest[f]);
+    }
+    free(p);
+    free(idx);
+    return n;
+}
+
+/* A writer of one format: text is escaped for it, strong is emphasised. */
+typedef struct answer__w {
+    dm_str *s;
+    report_answer_format f;
+} answer__w;
+
+static void w_text(answer__w *w, const char *t)
+{
+    if (w->f == REPORT_ANSWER_HTML)
+        dm_str_cat_html(w->s, t);
+    else if (w->f == REPORT_ANSWER_MD)
+        dm_str_cat_md(w->s, t);
+    else
+        dm_str_cat(w->s, t);
+}
+
+static void w_strong(answer__w *w, const char *t)
+{
+    static const char *const open[] = {"", "<b>", "**"}, *const close[] = {"", "</b>", "**"};
+    dm_str_cat(w->s, open[w->f]);
+    w_text(w, t);
+    dm_str_cat(w->s, close[w->f]);
+}
+
+/* A warning mark: "⚠ noisy: CI −5%/+89%" (HTML: a span with the reason as title). */
+static void w_mark(answer__w *w, const char *mark, const char *why)
+{
+    if (w->f == REPORT_ANSWER_HTML) {
+        dm_str_cat(w->s, " <span class=\"noisy\" title=\"");
+        dm_str_cat_html(w->s, why);
+        dm_str_cat(w->s, "\">");
+        dm_str_cat_html(w->s, mark);
+        dm_str_cat(w->s, "</span>");
+    } else {
+        w_text(w, " ");
+        w_text(w, mark);
+    }
+}
+
+void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, dm_str *why)
+{
+    const dm_counter_result *t = report__frame_time(c);
+    double lo, hi;
+    size_t up = report__bimodal(t, &lo, &hi);
+    if (report__noisy(c)) {
+        dm_str_cat(mark, with_ci ? "⚠ noisy: " : "⚠ noisy");
+        if (with_ci && isfinite(report__ci_rel(t)))
+            dm_str_cat(mark, "CI ");
+        if (with_ci)
+            report__ci_text(t, mark);
+        dm_str_printf(why, "the 95%% CI of the median is wider than ±%.0f%% of it (or unknown)",
+                      REPORT__NOISY_CI_REL * 100);
+    }
+    size_t dl;
+    const char *drift = report__drift(c, &dl);
+    if (drift) {
+        dm_str_printf(mark, "%s⚠ drift %+.3g %%", mark->len ? "; " : "",
+                      strtod(drift + strlen("WallTime drifted"), NULL));
+        dm_str_cat(why, why->len ? "; " : "");
+        dm_str_catn(why, drift, dl);
+    }
+    if (up) {
+        dm_str_printf(mark, "%s⚠ bimodal: %zu of %zu samples near ", mark->len ? "; " : "", up,
+                      t->n_samples);
+        report__ms_text(hi, mark);
+        dm_str_cat(mark, " ms, the rest near ");
+        report__ms_text(lo, mark);
+        dm_str_printf(why, "%sthe samples form two groups: the machine was busy part of the time",
+                      why->len ? "; " : "");
+    }
+}
+
+/* "label (4.43 ms [4.33, 4.53], SSIM 0.927) ⚠ noisy: …" */
+static void w_config(answer__w *w, const dm_run_result *run, size_t ci, int strong)
+{
+    const dm_config_result *c = &run->configs[ci];
+    dm_str label = {0}, rest = {0}, mark = {0}, why = {0};
+    report__config_label(run, c, &label);
+    (strong ? w_strong : w_text)(w, dm_str_get(&label));
+    dm_str_cat(&rest, " (");
+    report__time_ci_text(report__frame_time(c), &rest);
+    dm_str_cat(&rest, ", ");
+    report_metric_text(&c->quality, report_metric_of_run(run), &rest);
+    dm_str_cat(&rest, ")");
+    w_text(w, dm_str_get(&rest));
+    report__timing_marks(c, 1, &mark, &why);
+    if (mark.len)
+        w_mark(w, dm_str_get(&mark), dm_str_get(&why));
+    dm_str_free(&label);
+    dm_str_free(&rest);
+    dm_str_free(&mark);
+    dm_str_free(&why);
+}
+
+/* "Under 20 ms" with how the budget was chosen. */
+static void w_budget(answer__w *w, const recommend_result *r)
+{
+    dm_str b = {0};
+    dm_str_printf(&b, "Under %g ms", r->budget / 1e6);
+    w_strong(w, dm_str_get(&b));
+    if (r->budget_default)
+        w_text(w, w->f == REPORT_ANSWER_TEXT ? " (default budget; set one with report --budget-ms)"
+                                             : " (default budget)");
+    w_text(w, ": ");
+    dm_str_free(&b);
+}
+
+static void w_pick(answer__w *w, const dm_run_result *run, const recommend_result *r)
+{
+    w_budget(w, r);
+    if (r->pick == RECOMMEND_NONE) {
+        w_text(w, "nothing fits");
+        if (r->fastest != RECOMMEND_NONE) {
+            w_text(w, "; the fastest is ");
+            w_config(w, run, r->fastest, 1);
+        }
+        w_text(w, ".");
+        return;
+    }
+    w_text(w, "pick ");
+    w_config(w, run, r->pick, 1);
+    w_text(w, ".");
+    if (r->pick_ci_over)
+        w_text(w, " Its CI reaches past the budget: it may not fit on a busier run.");
+    if (r->pick_tie != RECOMMEND_NONE) {
+        dm_str t = {0};
+        report__config_label(run, &run->configs[r->pick_tie], &t);
+        w_text(w, " It ties with ");
+        w_text(w, dm_str_get(&t));
+        w_text(w, " (the same quality within the metric's tolerance, and the time CIs overlap), "
+                  "so either will do; the lower median is named.");
+        dm_str_free(&t);
+    }
+}
+
+static void w_item(answer__w *w, int open)
+{
+    static const char *const a[] = {"\n  ", "<li>", "\n- "}, *const b[] = {"", "</li>", ""};
+    dm_str_cat(w->s, open ? a[w->f] : b[w->f]);
+}
+
+static void w_families(answer__w *w, const dm_run_result *run, const recommend_result *r)
+{
+    int first = 1;
+    for (int f = RECOMMEND_FRAGMENT; f < RECOMMEND_FAMILY_COUNT; f++) {
+        if (r->family_fastest[f] == RECOMMEND_NONE)
+            continue;
+        w_text(w, first ? "Best of each family within the budget: " : "; ");
+        first = 0;
+        w_strong(w, recommend_family_name((recommend_family)f));
+        w_text(w, " ");
+        if (r->family_best[f] != RECOMMEND_NONE) {
+            w_config(w, run, r->family_best[f], 0);
+            continue;
+        }
+        w_text(w, "none fits, the fastest is ");
+        w_config(w, run, r->family_fastest[f], 0);
+    }
+    if (!first)
+        w_text(w, ".");
+}
+
+static void w_knee(answer__w *w, const dm_run_result *run, const recommend_result *r)
+{
+    if (r->knee == RECOMMEND_NONE) {
+        w_text(w, "Knee of the front: none (fewer than three lit front members, or no bend).");
+        return;
+    }
+    w_text(w, "Knee of the front (beyond it, each millisecond buys less quality): ");
+    w_config(w, run, r->knee, 0);
+    w_text(w, ".");
+}
+
+void report_answer_scene(const dm_run_result *run, const char *scene, report_answer_format f,
+                         dm_str *out)
+{
+    answer__w w = {out, f};
+    recommend_result r;
+    report_recommend(run, scene, &r);
+    dm_str_cat(out, f == REPORT_ANSWER_HTML ? "<p class=\"pick\">" : "");
+    w_pick(&w, run, &r);
+    dm_str_cat(out, f == REPORT_ANSWER_HTML ? "</p>\n<ul class=\"rec\">" : f == REPORT_ANSWER_MD ? "\n" : "");
+    w_item(&w, 1);
+    w_knee(&w, run, &r);
+    w_item(&w, 0);
+    w_item(&w, 1);
+    w_families(&w, run, &r);
+    w_item(&w, 0);
+    if (r.lit_only && r.family_fastest[RECOMMEND_UNLIT] != RECOMMEND_NONE) {
+        dm_str t = {0};
+        report__config_label(run, &run->configs[r.family_fastest[RECOMMEND_UNLIT]], &t);
+        w_item(&w, 1);
+        w_text(&w, dm_str_get(&t));
+        w_text(&w, " is unlit: a baseline in the tables and on the front, never the pick.");
+        w_item(&w, 0);
+        dm_str_free(&t);
+    }
+    dm_str_cat(out, f == REPORT_ANSWER_HTML ? "</ul>\n" : "\n");
+}
+
+void report_answer_terminal(const dm_run_result *run, dm_str *out)
+{
+    const char **scenes;
+    size_t ns = report__scenes(run, &scenes);
+    for (size_t i = 0; i < ns; i++) {
+        dm_str one = {0};
+        answer__w w = {&one, REPORT_ANSWER_TEXT};
+        recommend_result r;
+        report_recommend(run, scenes[i], &r);
+        dm_str l = {0};
+        report_scene_label(run, scenes[i], &l);
+        w_text(&w, dm_str_get(&l));
+        dm_str_free(&l);
+        w_text(&w, ": ");
+        w_pick(&w, run, &r);
+        w_text(&w, "\n  ");
+        w_knee(&w, run, &r);
+        dm_str_cat(out, dm_str_get(&one));
+        dm_str_cat(out, "\n");
+        dm_str_free(&one);
+    }
+    free(scenes);
+}

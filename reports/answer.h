@@ -1,0 +1,50 @@
+/* answer.h — the recommendation of each scene of a run, in words.
+ *
+ * Builds reports/recommend.h points from a run (median WallTime with its CI,
+ * the run's error metric, the family from the axes the technique reads:
+ * tess_level → tessellation, vertex_filter → vertex, no `lighting` axis →
+ * unlit baseline, else fragment) and says the pick under the frame budget,
+ * the knee and the best of each family, marking noisy and bimodal timings.
+ *
+ * The budget is the run's environment entry REPORT_BUDGET_KEY (ms; the
+ * runner copies the sweep's quality.budget_ms, `dmbench report --budget-ms`
+ * overrides it); absent or 0: each scene's recommend_default_budget().
+ */
+#ifndef REPORTS_ANSWER_H
+#define REPORTS_ANSWER_H
+
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+#include "reports/recommend.h"
+
+#define REPORT_BUDGET_KEY "budget_ms"
+
+typedef enum report_answer_format {
+    REPORT_ANSWER_TEXT = 0,   /* plain, for the terminal */
+    REPORT_ANSWER_HTML,
+    REPORT_ANSWER_MD
+} report_answer_format;
+
+/* Records ms (> 0) as the run's budget, replacing any; DM_ERR_ARG otherwise. */
+int report_budget_set(dm_run_result *run, double ms);
+/* The run's budget in ms; 0 when none is recorded (per-scene default). */
+double report_budget_ms(const dm_run_result *run);
+
+/* The family of a configuration (see above). */
+recommend_family report_family(const dm_config_result *c);
+
+/* One scene's recommendation: *out gets config indexes into run (NONE where
+ * none).  Returns the number of points considered. */
+size_t report_recommend(const dm_run_result *run, const char *scene, recommend_result *out);
+
+/* The scene's answer as sentences: the pick (or that nothing fits), the
+ * tie and budget notes, the knee, the family bests and the unlit baseline
+ * note.  HTML: a <p class="pick"> and a <ul>; MD: a paragraph and a list;
+ * TEXT: a paragraph and indented lines. */
+void report_answer_scene(const dm_run_result *run, const char *scene, report_answer_format f,
+                         dm_str *out);
+
+/* Every scene's TEXT answer, for the end of `dmbench run`. */
+void report_answer_terminal(const dm_run_result *run, dm_str *out);
+
+#endif

@@ -1,0 +1,194 @@
+/* recommend.c — the pick per scene (see recommend.h for the rules). */
+#include "reports/recommend.h"
+
+#include "core/dm_util.h"
+
+#include <math.h>
+#include <stdlib.h>
+
+static int usable(const recommend_point *p)
+{
+    return isfinite(p->time) && isfinite(p->error);
+}
+
+/* 1 when a comes before b: lower median, then lower error, then index. */
+static int before(const recommend_point *p, size_t a, size_t b)
+{
+    if (p[a].time != p[b].time)
+        return p[a].time < p[b].time;
+    if (p[a].error != p[b].error)
+        return p[a].error < p[b].error;
+    return a < b;
+}
+
+/* Indices of the usable points with (family mask) fastest first into out;
+ * returns how many.  Insertion sort: a scene has tens of points. */
+static size_t sorted(const recommend_point *p, size_t n, unsigned mask, size_t *out)
+{
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (!usable(&p[i]) || !(mask & 1u << p[i].family))
+            continue;
+        size_t b = m++;
+        while (b > 0 && before(p, i, out[b - 1])) {
+            out[b] = out[b - 1];
+            b--;
+        }
+        out[b] = i;
+    }
+    return m;
+}
+
+/* The epsilon front of the points selected by mask (recommend_front). */
+static size_t front_of(const recommend_point *p, size_t n, unsigned mask, double eps, size_t *front)
+{
+    size_t m = sorted(p, n, mask, front), k = 0;
+    double best = INFINITY;
+    for (size_t i = 0; i < m; i++)
+        if (p[front[i]].error < best - eps) {
+            best = p[front[i]].error;
+            front[k++] = front[i];
+        }
+    return k;
+}
+
+size_t recommend_front(const recommend_point *p, size_t n, double epsilon, size_t *front)
+{
+    return front_of(p, n, ~0u, epsilon, front);
+}
+
+/* Families eligible for a pick: the lit ones, or all when no lit point is usable. */
+static unsigned eligible_mask(const recommend_point *p, size_t n, int *lit_only)
+{
+    unsigned lit = ~0u & ~(1u << RECOMMEND_UNLIT);
+    for (size_t i = 0; i < n; i++)
+        if (usable(&p[i]) && p[i].family != RECOMMEND_UNLIT) {
+            *lit_only = 1;
+            return lit;
+        }
+    *lit_only = 0;
+    return ~0u;
+}
+
+/* The round value (1, 2, 5 × 10^k) nearest to v on a log scale. */
+static double round_125(double v)
+{
+    static const double steps[] = {1, 2, 5, 10};
+    double decade = pow(10, floor(log10(v))), best = decade, dist = INFINITY;
+    for (size_t i = 0; i < sizeof steps / sizeof *steps; i++) {
+        double d = fabs(log(v / (steps[i] * decade)));
+        if (d < dist)
+            dist = d, best = steps[i] * decade;
+    }
+    return best;
+}
+
+/* The next round value above v. */
+static double next_125(double v)
+{
+    double decade = pow(10, floor(log10(v) + 1e-9)), m = v / decade;
+    return (m < 1.5 ? 2 : m < 3.5 ? 5 : 10) * decade;
+}
+
+double recommend_default_budget(const recommend_point *p, size_t n)
+{
+    int lit_only;
+    unsigned mask = eligible_mask(p, n, &lit_only);
+    double lo = INFINITY, hi = 0;
+    for (size_t i = 0; i < n; i++)
+        if (usable(&p[i]) && (mask & 1u << p[i].family) && p[i].time > 0)
+            lo = fmin(lo, p[i].time), hi = fmax(hi, p[i].time);
+    if (!(hi > 0))
+        return 0;
+    double b = round_125(sqrt(lo * hi));
+    return b < lo ? next_125(lo) : b;
+}
+
+static int ci_known(const recommend_point *p)
+{
+    return isfinite(p->ci_lo) && isfinite(p->ci_hi);
+}
+
+/* The best point within the budget on the epsilon front of mask (NONE). */
+static size_t best_within(const recommend_point *p, size_t n, unsigned mask, double eps,
+                          double budget, size_t *scratch)
+{
+    size_t m = front_of(p, n, mask, eps, scratch), best = RECOMMEND_NONE;
+    for (size_t i = 0; i < m && p[scratch[i]].time <= budget; i++)
+        best = scratch[i];
+    return best;
+}
+
+/* A point of equal quality (within eps) to the pick, within the budget and
+ * eligible, whose time CI overlaps the pick's: the data cannot tell which is
+ * cheaper.  NONE when there is none. */
+static size_t tie_of(const recommend_point *p, size_t n, unsigned mask, double eps, double budget,
+                     size_t pick)
+{
+    const recommend_point *a = &p[pick];
+    for (size_t i = 0; i < n && ci_known(a); i++) {
+        const recommend_point *b = &p[i];
+        if (i == pick || !usable(b) || !(mask & 1u << b->family) || b->time > budget ||
+            !ci_known(b) || fabs(b->error - a->error) >= eps)
+            continue;
+        if (before(p, pick, i) && b->ci_lo <= a->ci_hi && a->ci_lo <= b->ci_hi)
+            return i;
+    }
+    return RECOMMEND_NONE;
+}
+
+/* The knee of the eligible front (recommend.h); NONE without a bend. */
+static size_t knee_of(const recommend_point *p, const size_t *front, size_t m)
+{
+    if (m < 3 || !(p[front[0]].time > 0))
+        return RECOMMEND_NONE;
+    double x0 = log(p[front[0]].time), x1 = log(p[front[m - 1]].time);
+    double y0 = p[front[0]].error, y1 = p[front[m - 1]].error;
+    if (!(x1 > x0) || !(y0 > y1))
+        return RECOMMEND_NONE;
+    size_t knee = RECOMMEND_NONE;
+    double far = 0;
+    for (size_t i = 1; i + 1 < m; i++) {
+        double x = (log(p[front[i]].time) - x0) / (x1 - x0);
+        double y = (p[front[i]].error - y1) / (y0 - y1);
+        double below = 1 - x - y;   /* distance to the line x + y = 1, times √2 */
+        if (below > far)
+            far = below, knee = front[i];
+    }
+    return knee;
+}
+
+void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *desc,
+                     recommend_result *out)
+{
+    recommend_desc d = desc ? *desc : (recommend_desc){0};
+    size_t *scratch = dm_xcalloc(n + 1, sizeof *scratch);
+    unsigned mask = eligible_mask(p, n, &out->lit_only);
+    out->budget_default = !(d.budget > 0);
+    out->budget = out->budget_default ? recommend_default_budget(p, n) : d.budget;
+    out->pick = best_within(p, n, mask, d.epsilon, out->budget, scratch);
+    out->pick_tie = RECOMMEND_NONE;
+    out->pick_ci_over = 0;
+    if (out->pick != RECOMMEND_NONE) {
+        out->pick_tie = tie_of(p, n, mask, d.epsilon, out->budget, out->pick);
+        out->pick_ci_over = p[out->pick].ci_hi > out->budget;
+    }
+    size_t m = front_of(p, n, mask, d.epsilon, scratch);
+    out->fastest = m ? scratch[0] : RECOMMEND_NONE;
+    out->knee = knee_of(p, scratch, m);
+    for (int f = 0; f < RECOMMEND_FAMILY_COUNT; f++) {
+        unsigned one = 1u << f;
+        size_t k = sorted(p, n, one, scratch);
+        out->family_fastest[f] = k ? scratch[0] : RECOMMEND_NONE;
+        out->family_best[f] = best_within(p, n, one, d.epsilon, out->budget, scratch);
+    }
+    free(scratch);
+}
+
+const char *recommend_family_name(recommend_family f)
+{
+    static const char *const names[RECOMMEND_FAMILY_COUNT] = {
+        [RECOMMEND_UNLIT] = "unlit", [RECOMMEND_FRAGMENT] = "fragment",
+        [RECOMMEND_VERTEX] = "vertex", [RECOMMEND_TESSELLATION] = "tessellation"};
+    return (unsigned)f < RECOMMEND_FAMILY_COUNT ? names[f] : "?";
+}

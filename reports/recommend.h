@@ -1,0 +1,85 @@
+/* recommend.h — the answer per scene: which configuration to pick.
+ *
+ * Pure functions of points (median time with its 95 % CI, an error where
+ * lower is better, a technique family); no run, no I/O, so the rules are
+ * unit-tested on made-up fronts (tests/test_reports_recommend.c).
+ *
+ * The rules, as docs/reports.md states them to users:
+ *  - Equal quality: two errors closer than epsilon are the same quality, and
+ *    the cheaper (lower median) configuration wins.  The front is walked
+ *    fastest first and keeps a point only when its error beats every kept
+ *    point by more than epsilon, so duplicates collapse onto the cheapest.
+ *  - Only lit techniques are recommended: unlit (baseline-only) points stay
+ *    on the front and in the tables but are picked only when the scene has
+ *    nothing else.
+ *  - The budget pick is the best quality whose median fits the budget; when
+ *    a configuration of equal quality has an overlapping time CI the two
+ *    cost the same as far as the data can tell, and the pick says so.
+ *  - The knee is the front member farthest below the straight line from the
+ *    fastest to the best member (log time, both axes scaled to [0, 1]);
+ *    none with fewer than three members or a front without a bend.
+ *  - Per family (fragment, vertex, tessellation) the best quality within the
+ *    budget, by the same tie rule.
+ */
+#ifndef REPORTS_RECOMMEND_H
+#define REPORTS_RECOMMEND_H
+
+#include <stddef.h>
+
+/* Index meaning "none". */
+#define RECOMMEND_NONE ((size_t)-1)
+
+/* Where a technique does its surface detail; RECOMMEND_UNLIT (0) is the
+ * baseline that reads no lighting. */
+typedef enum recommend_family {
+    RECOMMEND_UNLIT = 0,
+    RECOMMEND_FRAGMENT,
+    RECOMMEND_VERTEX,
+    RECOMMEND_TESSELLATION,
+    RECOMMEND_FAMILY_COUNT
+} recommend_family;
+
+typedef struct recommend_point {
+    double time;           /* median frame time, ns */
+    double ci_lo, ci_hi;   /* 95 % CI of the median, ns; NaN when unknown */
+    double error;          /* lower is better; non-finite points are ignored */
+    recommend_family family;
+} recommend_point;
+
+typedef struct recommend_desc {
+    double budget;         /* frame budget, ns; 0 = recommend_default_budget() */
+    double epsilon;        /* errors closer than this are equal; 0 = exact */
+} recommend_desc;
+
+typedef struct recommend_result {
+    double budget;                 /* the budget used, ns */
+    int budget_default;            /* 1 when desc->budget was 0 */
+    int lit_only;                  /* 1 when unlit points were passed over */
+    size_t pick;                   /* best quality within the budget; NONE: nothing fits */
+    size_t pick_tie;               /* equal quality, overlapping time CI, a higher median; NONE */
+    int pick_ci_over;              /* 1 when the pick's CI reaches past the budget */
+    size_t fastest;                /* the fastest eligible point (shown when nothing fits) */
+    size_t knee;                   /* NONE when the front has no bend */
+    size_t family_best[RECOMMEND_FAMILY_COUNT];   /* within the budget; NONE */
+    size_t family_fastest[RECOMMEND_FAMILY_COUNT];/* NONE when the family is absent */
+} recommend_result;
+
+/* The epsilon-collapsed front of all n points (unlit included): indices into
+ * front (capacity n) fastest first, each better than all before it by more
+ * than epsilon.  Returns how many. */
+size_t recommend_front(const recommend_point *p, size_t n, double epsilon, size_t *front);
+
+/* A round budget (1, 2 or 5 × 10^k ns) nearest, on a log scale, to the middle
+ * of the eligible points' times, and never below the fastest of them; 0 when
+ * there is no finite time. */
+double recommend_default_budget(const recommend_point *p, size_t n);
+
+/* Fills *out for the n points.  desc may be NULL (defaults).  Never fails:
+ * with no usable point every index is RECOMMEND_NONE. */
+void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *desc,
+                     recommend_result *out);
+
+/* "fragment", "vertex", "tessellation" or "unlit". */
+const char *recommend_family_name(recommend_family f);
+
+#endif

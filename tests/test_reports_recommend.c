@@ -1,0 +1,208 @@
+/* test_reports_recommend.c — the pick per scene on made-up fronts whose
+ * answers are worked out by hand in the comments. */
+#include "reports/recommend.h"
+
+#include <math.h>
+#include <setjmp.h>
+#include <stdarg.h>
+#include <stddef.h>
+#include <stdint.h>
+#include <cmocka.h>
+#include "test_util.h"
+
+#define MS 1e6
+#define F RECOMMEND_FRAGMENT
+#define V RECOMMEND_VERTEX
+#define T RECOMMEND_TESSELLATION
+#define U RECOMMEND_UNLIT
+
+/* A point at t ms ± r (fraction of t) with error e. */
+static recommend_point pt(double t, double r, double e, recommend_family f)
+{
+    return (recommend_point){t * MS, t * MS * (1 - r), t * MS * (1 + r), e, f};
+}
+
+/* Epsilon 0 is the plain Pareto front (x = ms, error):
+ *   0 (1, 9) fastest · 1 (2, 5) · 2 (3, 6) dominated by 1 · 3 (4, 2)
+ *   4 (5, 2) equal error, slower than 3 · 5 (6, 1) most accurate
+ *   6 (7, 8) dominated · 7 (NaN, 0) ignored, must not knock out 5
+ *   8 (2, 5) equal to 1: one of equals stays, the lower index */
+static void test_front_known_points(void **state)
+{
+    (void)state;
+    double x[] = {1, 2, 3, 4, 5, 6, 7, NAN, 2}, y[] = {9, 5, 6, 2, 2, 1, 8, 0, 5};
+    recommend_point p[9];
+    for (int i = 0; i < 9; i++)
+        p[i] = (recommend_point){x[i], NAN, NAN, y[i], F};
+    size_t out[9], expect[] = {0, 1, 3, 5};
+    assert_int_equal(recommend_front(p, 9, 0, out), 4);
+    for (size_t i = 0; i < 4; i++)
+        assert_int_equal(out[i], expect[i]);
+    assert_int_equal(recommend_front(p, 0, 0, out), 0);
+    /* listed slowest first, a trade-off comes out fastest first */
+    recommend_point q[] = {{9, NAN, NAN, 1, F}, {5, NAN, NAN, 5, F}, {1, NAN, NAN, 9, F}};
+    assert_int_equal(recommend_front(q, 3, 0, out), 3);
+    assert_int_equal(out[0], 2);
+    assert_int_equal(out[2], 0);
+}
+
+/* Equal quality within epsilon collapses onto the cheaper point: the
+ * issue's tess_level=1 (0.126703) and vertex-displacement (0.126700) case. */
+static void test_equal_quality_cheaper_wins(void **state)
+{
+    (void)state;
+    recommend_point p[] = {
+        pt(2.0, 0.02, 0.20, F),      /* 0: fastest */
+        pt(6.0, 0.02, 0.126703, T),  /* 1: tess_level=1 */
+        pt(5.0, 0.02, 0.126700, V),  /* 2: vertex-displacement, cheaper, 3e-6 better */
+        pt(9.0, 0.02, 0.05, F),      /* 3: clearly better */
+    };
+    size_t front[4];
+    /* exact (epsilon 0): 2 beats 1 by 3e-6 and is cheaper, 1 is dominated anyway */
+    assert_int_equal(recommend_front(p, 4, 0, front), 3);
+    /* swap so the worse-by-3e-6 one is cheaper: exact keeps both, epsilon one */
+    p[1].error = 0.126700, p[2].error = 0.126703;
+    assert_int_equal(recommend_front(p, 4, 0, front), 4);
+    assert_int_equal(front[0], 0);
+    assert_int_equal(front[1], 2);
+    assert_int_equal(front[2], 1);
+    assert_int_equal(recommend_front(p, 4, 1e-3, front), 3);
+    assert_int_equal(front[0], 0);
+    assert_int_equal(front[1], 2);   /* the cheaper of the two equal ones */
+    assert_int_equal(front[2], 3);
+    /* the budget pick among them is the cheaper too */
+    recommend_desc d = {.budget = 7 * MS, .epsilon = 1e-3};
+    recommend_result r;
+    recommend_scene(p, 4, &d, &r);
+    assert_int_equal(r.pick, 2);
+    /* their CIs (4.9–5.1 and 5.88–6.12) do not overlap: no tie to report */
+    assert_int_equal(r.pick_tie, RECOMMEND_NONE);
+    /* widen the costlier one's CI to reach 5.05: same cost as far as the data tells */
+    p[1].ci_lo = 5.05 * MS;
+    recommend_scene(p, 4, &d, &r);
+    assert_int_equal(r.pick, 2);
+    assert_int_equal(r.pick_tie, 1);
+}
+
+/* The budget is respected: the pick's median is within it, and it is the
+ * best quality that is. */
+static void test_budget_respected(void **state)
+{
+    (void)state;
+    recommend_point p[] = {
+        pt(1.0, 0.01, 0.30, F), pt(3.0, 0.01, 0.20, F), pt(8.0, 0.01, 0.10, V),
+        pt(20.0, 0.01, 0.05, T), pt(50.0, 0.01, 0.04, T),
+    };
+    recommend_desc d = {.budget = 10 * MS, .epsilon = 1e-3};
+    recommend_result r;
+    recommend_scene(p, 5, &d, &r);
+    assert_int_equal(r.budget_default, 0);
+    assert_int_equal(r.pick, 2);
+    assert_int_equal(r.pick_ci_over, 0);
+    d.budget = 8.05 * MS;   /* 8 ms fits, its CI (7.92–8.08) reaches past */
+    recommend_scene(p, 5, &d, &r);
+    assert_int_equal(r.pick, 2);
+    assert_int_equal(r.pick_ci_over, 1);
+    d.budget = 7.99 * MS;
+    recommend_scene(p, 5, &d, &r);
+    assert_int_equal(r.pick, 1);
+    d.budget = 0.5 * MS;    /* nothing fits: no pick, the fastest is named */
+    recommend_scene(p, 5, &d, &r);
+    assert_int_equal(r.pick, RECOMMEND_NONE);
+    assert_int_equal(r.fastest, 0);
+    d.budget = 1000 * MS;   /* everything fits: the best */
+    recommend_scene(p, 5, &d, &r);
+    assert_int_equal(r.pick, 4);
+}
+
+/* Family bests within the budget, absent families NONE. */
+static void test_family_bests(void **state)
+{
+    (void)state;
+    recommend_point p[] = {
+        pt(1.0, 0.01, 0.50, U),   /* 0: unlit baseline, fastest */
+        pt(2.0, 0.01, 0.30, F),   /* 1 */
+        pt(4.0, 0.01, 0.12, F),   /* 2: best fragment within 10 ms */
+        pt(12.0, 0.01, 0.06, F),  /* 3: better, over budget */
+        pt(6.0, 0.01, 0.15, V),   /* 4: best vertex */
+        pt(9.0, 0.01, 0.1500004, V), /* 5: equal to 4 within epsilon, costlier */
+        pt(15.0, 0.01, 0.02, T),  /* 6: the only tessellation, over budget */
+    };
+    recommend_desc d = {.budget = 10 * MS, .epsilon = 1e-3};
+    recommend_result r;
+    recommend_scene(p, 7, &d, &r);
+    assert_int_equal(r.family_best[F], 2);
+    assert_int_equal(r.family_best[V], 4);
+    assert_int_equal(r.family_best[T], RECOMMEND_NONE);
+    assert_int_equal(r.family_fastest[T], 6);
+    assert_int_equal(r.family_best[U], 0);
+    assert_int_equal(r.pick, 2);
+    assert_int_equal(r.lit_only, 1);
+    assert_int_equal(r.fastest, 1);   /* the unlit one is not eligible */
+}
+
+/* Unlit points are picked only when nothing else exists. */
+static void test_unlit_only_when_alone(void **state)
+{
+    (void)state;
+    recommend_point p[] = {pt(1.0, 0.01, 0.01, U), pt(3.0, 0.01, 0.20, F)};
+    recommend_desc d = {.budget = 10 * MS, .epsilon = 1e-3};
+    recommend_result r;
+    recommend_scene(p, 2, &d, &r);
+    assert_int_equal(r.pick, 1);   /* worse and slower, but lit */
+    size_t front[2];
+    assert_int_equal(recommend_front(p, 2, 1e-3, front), 1);   /* the front keeps the unlit one */
+    assert_int_equal(front[0], 0);
+    p[1].error = NAN;              /* the lit one has no quality: unlit it is */
+    recommend_scene(p, 2, &d, &r);
+    assert_int_equal(r.pick, 0);
+    assert_int_equal(r.lit_only, 0);
+}
+
+/* The knee: log time and error scaled to [0, 1]; the line runs from
+ * (0, 1) to (1, 0).  Times 1, 10, 100 ms give x = 0, 0.5, 1; the errors
+ * 1.0, 0.2, 0.0 give the middle y = 0.2, so it lies 1 − 0.5 − 0.2 = 0.3
+ * below the line: the knee.  With 0.6 instead it lies above: no knee. */
+static void test_knee(void **state)
+{
+    (void)state;
+    recommend_point p[] = {pt(1, 0.01, 1.0, F), pt(10, 0.01, 0.2, F), pt(100, 0.01, 0.0, F),
+                           pt(50, 0.01, 0.5, F)};   /* dominated by 1 */
+    recommend_result r;
+    recommend_scene(p, 4, NULL, &r);
+    assert_int_equal(r.knee, 1);
+    p[1].error = 0.6;   /* y = 0.6, 1 − 0.5 − 0.6 < 0: above the line */
+    recommend_scene(p, 4, NULL, &r);
+    assert_int_equal(r.knee, RECOMMEND_NONE);
+    recommend_scene(p, 2, NULL, &r);   /* two members: no knee */
+    assert_int_equal(r.knee, RECOMMEND_NONE);
+}
+
+/* The default budget: the round number (1-2-5) nearest the geometric middle
+ * of the eligible times, never below the fastest. */
+static void test_default_budget(void **state)
+{
+    (void)state;
+    /* √(2.3 × 206) = 21.8 ms → 20 ms; the unlit 0.1 ms point is not counted */
+    recommend_point p[] = {pt(2.3, 0.01, 0.2, F), pt(206, 0.01, 0.1, T), pt(0.1, 0.01, 0.5, U)};
+    assert_true(fabs(recommend_default_budget(p, 3) - 20 * MS) < 1);
+    recommend_result r;
+    recommend_scene(p, 3, NULL, &r);
+    assert_int_equal(r.budget_default, 1);
+    assert_int_equal(r.pick, 0);
+    /* one point at 2.3 ms: nearest round value 2 ms is below it, so 5 ms */
+    assert_true(fabs(recommend_default_budget(p, 1) - 5 * MS) < 1);
+    /* √(30 × 80) = 49 ms → 50 ms */
+    recommend_point q[] = {pt(30, 0.01, 0.2, F), pt(80, 0.01, 0.1, F)};
+    assert_true(fabs(recommend_default_budget(q, 2) - 50 * MS) < 1);
+    assert_true(recommend_default_budget(q, 0) == 0);
+}
+
+DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_front_known_points),
+             cmocka_unit_test(test_equal_quality_cheaper_wins),
+             cmocka_unit_test(test_budget_respected),
+             cmocka_unit_test(test_family_bests),
+             cmocka_unit_test(test_unlit_only_when_alone),
+             cmocka_unit_test(test_knee),
+             cmocka_unit_test(test_default_budget))
