@@ -182,6 +182,17 @@ static void marks_html(dm_str *s, const dm_config_result *c)
     dm_str_free(&why);
 }
 
+/* The median and 95 % CI cells of a frame time, with the noise marks. */
+static void time_cells(dm_str *s, const dm_config_result *c, const dm_counter_result *t)
+{
+    dm_str_cat(s, "<td class=\"n\">");
+    report__ms_text(t->median, s);
+    dm_str_cat(s, "</td><td class=\"n\">");
+    report__ci_text(t, s);
+    marks_html(s, c);
+    dm_str_cat(s, "</td>");
+}
+
 /* Lists more than this many noisy configurations inside a collapsed <details>. */
 #define NOISY_OPEN_MAX 8
 
@@ -342,12 +353,7 @@ static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char
         tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
     const dm_counter_result *t = report__frame_time(c);
     if (t) {
-        dm_str_cat(s, "<td class=\"n\">");
-        report__ms_text(t->median, s);
-        dm_str_cat(s, "</td><td class=\"n\">");
-        report__ci_text(t, s);
-        marks_html(s, c);
-        dm_str_cat(s, "</td>");
+        time_cells(s, c, t);
     } else
         dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
     if (tr)
@@ -863,12 +869,7 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
         dm_str_cat(s, "</td>");
         if (with_settings)
             tagged(s, "td", dm_str_get(&set));
-        dm_str_cat(s, "<td class=\"n\">");
-        report__ms_text(t->median, s);
-        dm_str_cat(s, "</td><td class=\"n\">");
-        report__ci_text(t, s);
-        marks_html(s, c);
-        dm_str_cat(s, "</td>");
+        time_cells(s, c, t);
         num_cell(s, "%.4g", report_metric_shown(&c->quality, m));
         dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n", base ? t->median / base->median : NAN);
         dm_str_free(&set);

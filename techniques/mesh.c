@@ -281,18 +281,24 @@ static float mesh__terrain_y(float x, float z, float *dx, float *dz)
 /* Terrain over [-1,1]² (XZ) of t×t square tiles, each tile two triangle
  * patches; corners are shared between tiles so the edge midpoints that
  * neighbouring patches compute their levels from coincide. */
-static void mesh__terrain(mesh__builder *b, int t)
+/* The (c+1)² vertices of the terrain's height field, row by row. */
+static void mesh__terrain_grid(mesh__builder *b, int c)
 {
-    int n = t + 1;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            float u = (float)i / (float)t, v = (float)j / (float)t, dx, dz;
+    for (int j = 0; j <= c; j++)
+        for (int i = 0; i <= c; i++) {
+            float u = (float)i / (float)c, v = (float)j / (float)c, dx, dz;
             float p[3] = {2 * u - 1, 0, 1 - 2 * v};
             p[1] = mesh__terrain_y(p[0], p[2], &dx, &dz);
             float nr[3] = {-dx, 1, -dz};
             mesh__normalize(nr);
             mesh__vert(b, p, nr, u, v);
         }
+}
+
+static void mesh__terrain(mesh__builder *b, int t)
+{
+    int n = t + 1;
+    mesh__terrain_grid(b, t);
     for (int j = 0; j < t; j++)
         for (int i = 0; i < t; i++) {
             uint32_t a = (uint32_t)(j * n + i);
@@ -322,15 +328,7 @@ static void mesh__terrain(mesh__builder *b, int t)
 static void mesh__terrain_tiles(mesh__builder *b, int t)
 {
     int c = 2 * t, n = c + 1;
-    for (int j = 0; j < n; j++)
-        for (int i = 0; i < n; i++) {
-            float u = (float)i / (float)c, v = (float)j / (float)c, dx, dz;
-            float p[3] = {2 * u - 1, 0, 1 - 2 * v};
-            p[1] = mesh__terrain_y(p[0], p[2], &dx, &dz);
-            float nr[3] = {-dx, 1, -dz};
-            mesh__normalize(nr);
-            mesh__vert(b, p, nr, u, v);
-        }
+    mesh__terrain_grid(b, c);
     for (int tj = 0; tj < t; tj++)
         for (int ti = 0; ti < t; ti++)
             for (int k = 0; k < 4; k++) {
