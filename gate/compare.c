@@ -45,14 +45,12 @@ static void compare__push(char ***list, size_t *n, char *text)
 
 /* "k=v k=v" of the params that tell c apart within run r (all of them when
  * none do; its key when it has none). */
+/* The configuration's one label (report_config_label: "cube 480×270 ·
+ * pom steps=8"), the same as in the report; its key when it has none. */
 static char *compare__label(const dm_config_result *c, const dm_run_result *r)
 {
     dm_str s = {0};
-    for (int all = 0; all < 2 && !s.len; all++)
-        for (size_t i = 0; i < c->n_params; i++)
-            if (all || dm_run_param_varies(r, &c->params[i]))
-                dm_str_printf(&s, "%s%s=%s", s.len ? " " : "", c->params[i].key,
-                              c->params[i].value ? c->params[i].value : "");
+    report_config_label(r, c, &s);
     if (!s.len)
         dm_str_cat(&s, c->key);
     return dm_str_take(&s);

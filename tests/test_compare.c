@@ -472,9 +472,9 @@ static void test_failed_added_removed(void **state)
     assert_int_equal(item(&r, "0000000000000001")->verdict, COMPARE_REGRESSION);
     assert_string_equal(item(&r, "0000000000000001")->note, "failed on NEW: shader link failed");
     assert_int_equal(r.n_removed, 1);
-    assert_string_equal(r.removed[0], "mesh=m2 [0000000000000003]");
+    assert_string_equal(r.removed[0], "m2 · normal [0000000000000003]");   /* the one label */
     assert_int_equal(r.n_added, 1);
-    assert_string_equal(r.added[0], "mesh=m2 [00000000000000ff]");
+    assert_string_equal(r.added[0], "m2 · normal [00000000000000ff]");
     compare_result_free(&r);
     /* failed on both sides: skipped, not a regression */
     a.configs[0].ok = 0;
@@ -505,8 +505,11 @@ static void test_user_technique_source_changed(void **state)
     assert_int_equal(run_compare(&a, &b, &d, &r), 0);
     assert_int_equal(r.n_items, 3);
     assert_int_equal(r.n_removed + r.n_added, 0);
-    assert_string_equal(item(&r, "0000000000000003")->label,
-                        "mesh=m2 (technique source changed: key 0000000000000003 -> 00000000000000ff)");
+    dm_str want = {0};
+    report_config_label(&a, &a.configs[2], &want);
+    dm_str_cat(&want, " (technique source changed: key 0000000000000003 -> 00000000000000ff)");
+    assert_string_equal(item(&r, "0000000000000003")->label, dm_str_get(&want));
+    dm_str_free(&want);
     compare_result_free(&r);
     d.builtin_technique = NULL;   /* every technique built in: not paired */
     assert_int_equal(run_compare(&a, &b, &d, &r), 0);

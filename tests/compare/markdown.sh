@@ -12,8 +12,9 @@ python3 - "$OUT" <<'PY'
 import json, sys
 out = sys.argv[1]
 j = json.load(open(out + "/a.json"))
-for c in j["configs"]:
+for c in j["configs"]:   # other keys and other parameters: nothing to pair
     c["key"] = "f" + c["key"][1:]
+    c["params"]["steps"] = str(int(c["params"].get("steps", "0")) + 1)
 json.dump(j, open(out + "/other.json", "w"))
 j = json.load(open(out + "/a.json"))
 j["run"]["environment"]["cpu"] = "Another CPU"
