@@ -2,7 +2,8 @@
  * each in a fresh child as the runner does, and the spread of their
  * figures (each the shortest of 9 timings) (docs/ci-gating.md, "The calibration workload").
  *   build/bench/bench_calibrate [N]          (default 20)
- * Prints the load average, then per piece the median, min, max and the
+ * LP_NUM_THREADS is 1 unless set, as in a run.  Prints the load average,
+ * then per piece the median, min, max and the
  * largest |x / median - 1|. */
 #include "run/calibrate.h"
 #include "models/stats.h"
@@ -26,6 +27,7 @@ static void bench__piece(const char *name, const double *x, size_t n)
 int main(int argc, char **argv)
 {
     size_t n = argc > 1 ? (size_t)strtoul(argv[1], NULL, 10) : 20;
+    setenv("LP_NUM_THREADS", "1", 0);   /* as the runner measures, unless the user chose */
     n = n < 2 ? 2 : n;
     double *cpu = calloc(n, sizeof *cpu), *draw = calloc(n, sizeof *draw), load[3] = {0};
     FILE *f = fopen("/proc/loadavg", "r");

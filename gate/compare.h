@@ -87,9 +87,12 @@ typedef enum compare_verdict {
 #define COMPARE_LOAD_TOL 0.5
 /* A change of the calibration workload's time (run/calibrate.h) beyond this
  * between BASE and NEW, or between a run's start and its end, is a machine
- * that itself ran at another speed (its own spread, measured by
- * bench/calibrate.c, is in docs/ci-gating.md, "The calibration workload"). */
-#define COMPARE_CALIB_TOL 0.05
+ * that itself ran at another speed.  About twice the workload's own spread
+ * on a quiet machine (bench/calibrate.c: the largest deviation of 20
+ * calibrations from their median was 6.7 % for the kernel and 4.7 % for
+ * the draw; docs/ci-gating.md, "The calibration workload"), so that its
+ * noise alone is not named. */
+#define COMPARE_CALIB_TOL 0.15
 
 /* What one run says about the machine it ran on. */
 typedef struct compare_side_state {
