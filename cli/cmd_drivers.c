@@ -195,8 +195,10 @@ int cli_drivers_main(const char *sweep_path, const char *list, const char *out, 
         return rc;
     const char *root = a.out ? a.out : "results/drivers";
     if (dm_mkdirs(root) != 0) {
-        rc = cli_usage_error("drivers: cannot create '%s'", root);
-        n = 0;
+        for (size_t i = 0; i < n; i++)
+            free(names[i]);
+        free(names);
+        return cli_usage_error("drivers: cannot create '%s'", root);
     }
     drivers_side *sides = dm_xcalloc(n + 1, sizeof *sides);
     dm_run_result *runs = dm_xcalloc(n + 1, sizeof *runs);
