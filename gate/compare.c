@@ -130,11 +130,47 @@ static void compare__change(compare_item *it, const char *counter, double b, dou
     c->note = dm_xstrdup(note);
 }
 
-/* Counters of the Cost group (counted under Valgrind): gated by the
- * threshold, not by exact equality. */
+/* Counters of the Cost group (counted under Valgrind: Instructions, the
+ * stage counters and what is derived from them): Instructions and
+ * InstructionsPerPixel gate by the threshold, the stage counters explain
+ * its verdict (compare__stages), none by exact equality. */
 static int compare__is_cost(const char *name)
 {
-    return strcmp(name, "Instructions") == 0 || strcmp(name, "InstructionsPerPixel") == 0;
+    const counters_info *info = counters_find(name);
+    return info && info->group && strcmp(info->group, "Cost") == 0;
+}
+
+/* Where the instructions changed: each stage's count base -> new and its
+ * ratio, and the stage whose count changed most, when both runs have the
+ * stage counters (docs/counters.md, "Stage costs"); otherwise how to get
+ * them.  Appended to note. */
+static void compare__stages(const dm_config_result *b, const dm_config_result *n, dm_str *note)
+{
+    static const char *const counter[] = {"GeometryInstructions", "RasterInstructions", "FragmentInstructions"};
+    static const char *const stage[] = {"geometry", "raster", "fragment"};
+    double vb[3], vn[3];
+    for (int i = 0; i < 3; i++) {
+        const dm_counter_result *cb = dm_config_counter(b, counter[i]), *cn = dm_config_counter(n, counter[i]);
+        if (!cb || !cn || !cb->available || !cn->available) {
+            dm_str_printf(note, "; which stage changed is unknown: %s not counted in both runs (add "
+                          "GeometryInstructions, RasterInstructions, FragmentInstructions to "
+                          "measure.counters)", counter[i]);
+            return;
+        }
+        vb[i] = cb->value;
+        vn[i] = cn->value;
+    }
+    int most = 0;
+    dm_str_printf(note, "; by stage:");
+    for (int i = 0; i < 3; i++) {
+        if (fabs(vn[i] - vb[i]) > fabs(vn[most] - vb[most]))
+            most = i;
+        if (vb[i] > 0)
+            dm_str_printf(note, " %s x%.4f (%+.0f)", stage[i], vn[i] / vb[i], vn[i] - vb[i]);
+        else
+            dm_str_printf(note, " %s %.0f -> %.0f", stage[i], vb[i], vn[i]);
+    }
+    dm_str_printf(note, "; %s %s most", stage[most], vn[most] >= vb[most] ? "grew" : "shrank");
 }
 
 /* Instructions on both sides decide the verdict by the threshold (exact
@@ -156,8 +192,12 @@ static int compare__instructions(const compare_desc *d, const dm_config_result *
         fabs(pn->value / pb->value - 1) > fabs(r - 1))
         r = pn->value / pb->value;    /* the larger relative change of the two */
     it->verdict = r > 1 + t ? COMPARE_REGRESSION : r < 1 - t ? COMPARE_IMPROVEMENT : COMPARE_PASS;
-    it->note = dm_xasprintf("Instructions %+.3f%% (%.0f -> %.0f per frame; threshold %.2g%%)",
-                            (r - 1) * 100, cb->value, cn->value, t * 100);
+    dm_str note = {0};
+    dm_str_printf(&note, "Instructions %+.3f%% (%.0f -> %.0f per frame; threshold %.2g%%)", (r - 1) * 100,
+                  cb->value, cn->value, t * 100);
+    if (it->verdict != COMPARE_PASS)
+        compare__stages(b, n, &note);
+    it->note = dm_str_take(&note);
     return 1;
 }
 

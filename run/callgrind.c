@@ -18,12 +18,6 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
-int callgrind_frames(const sweep_measure *sm)
-{
-    int k = sm->frames_per_sample > 0 ? sm->frames_per_sample : 1;
-    return k < 4 ? k : 4;
-}
-
 void callgrind_mark_unavailable(callgrind_count *out, const plan_config *cs, size_t n,
                                 const char *why)
 {
@@ -88,7 +82,63 @@ char *callgrind_disagreement(const callgrind_count *c)
                         c->key, CALLGRIND_SAMPLES, (hi - lo) / lo, lo, hi, CALLGRIND_AGREE);
 }
 
-int callgrind_parse_dump(const char *text, char *name, size_t cap, double *totals)
+/* 1 when callgrind's function name fn (up to len chars; a "'N" recursion
+ * suffix ignored) is one of the C allocator's entry points. */
+static int cg__allocator_name(const char *fn, size_t len)
+{
+    static const char *const names[] = {"malloc", "free", "calloc", "realloc", "reallocarray",
+                                        "memalign", "posix_memalign", "aligned_alloc", "valloc",
+                                        "pvalloc", "malloc_usable_size"};
+    const char *q = memchr(fn, '\'', len);
+    len = q ? (size_t)(q - fn) : len;
+    for (size_t i = 0; i < sizeof names / sizeof names[0]; i++)
+        if (strlen(names[i]) == len && memcmp(names[i], fn, len) == 0)
+            return 1;
+    return 0;
+}
+
+/* The ids (callgrind's "fn=(ID) name" compression) of allocator functions. */
+typedef struct cg_ids {
+    long *id;
+    size_t n, cap;
+} cg_ids;
+
+static int cg__ids_has(const cg_ids *ids, long id)
+{
+    for (size_t i = 0; i < ids->n; i++)
+        if (ids->id[i] == id)
+            return 1;
+    return 0;
+}
+
+/* Whether the function named on a "fn=" or "cfn=" line (value v, up to the
+ * end of the line) is an allocator function; learns compressed names. */
+static int cg__fn_is_allocator(const char *v, size_t len, cg_ids *ids)
+{
+    if (len > 0 && v[0] == '(') {
+        char *end = NULL;
+        long id = strtol(v + 1, &end, 10);
+        if (!end || *end != ')')
+            return 0;
+        const char *name = end + 1;
+        if ((size_t)(name - v) < len && *name == ' ') {   /* first use: "(ID) name" */
+            name++;
+            int is = cg__allocator_name(name, len - (size_t)(name - v));
+            if (is && !cg__ids_has(ids, id)) {
+                if (ids->n == ids->cap) {
+                    ids->cap = ids->cap ? 2 * ids->cap : 16;
+                    ids->id = dm_xrealloc(ids->id, ids->cap * sizeof *ids->id);
+                }
+                ids->id[ids->n++] = id;
+            }
+            return is;
+        }
+        return cg__ids_has(ids, id);
+    }
+    return cg__allocator_name(v, len);
+}
+
+int callgrind_parse_dump(const char *text, char *name, size_t cap, double *totals, double *allocator)
 {
     static const char trig[] = "desc: Trigger: Client Request: ";
     const char *t = strstr(text, trig), *tot = strstr(text, "\ntotals: ");
@@ -102,7 +152,35 @@ int callgrind_parse_dump(const char *text, char *name, size_t cap, double *total
     name[len] = '\0';
     char *end = NULL;
     *totals = strtod(tot + 9, &end);
-    return end == tot + 9 ? DM_ERR_PARSE : 0;
+    if (end == tot + 9)
+        return DM_ERR_PARSE;
+    if (!allocator)
+        return 0;
+    /* The allocator's inclusive cost: every call from a function that is
+     * not an allocator function into one ("cfn=", "calls=N POS", then the
+     * line "POS INCLUSIVE"). */
+    cg_ids ids = {0};
+    int in_alloc = 0, to_alloc = 0, cost_next = 0;
+    double sum = 0;
+    for (const char *l = text; *l;) {
+        size_t n = strcspn(l, "\n");
+        if (cost_next) {
+            cost_next = 0;
+            const char *c = l + strcspn(l, " ");   /* after the position */
+            if (to_alloc && !in_alloc && (size_t)(c - l) < n)
+                sum += strtod(c, NULL);
+        } else if (strncmp(l, "fn=", 3) == 0) {
+            in_alloc = cg__fn_is_allocator(l + 3, n - 3, &ids);
+        } else if (strncmp(l, "cfn=", 4) == 0) {
+            to_alloc = cg__fn_is_allocator(l + 4, n - 4, &ids);
+        } else if (strncmp(l, "calls=", 6) == 0) {
+            cost_next = 1;
+        }
+        l += n + (l[n] == '\n');
+    }
+    free(ids.id);
+    *allocator = sum;
+    return 0;
 }
 
 /* ---- the parent side ------------------------------------------------------ */
@@ -163,6 +241,10 @@ static pid_t cg__spawn(cg_state *g, int *fd)
         if (lfd >= 0)
             dup2(lfd, 2);
         setenv("LP_NUM_THREADS", "0", 1);   /* rasteriser on the calling thread */
+        /* Every symbol bound at load: lazy binding resolves a library
+         * function at its first call, which a configuration pays or not
+         * depending on what ran before it (docs/counters.md). */
+        setenv("LD_BIND_NOW", "1", 1);
         execv(argv[0], argv);
         dprintf(1, "X cannot execute %s: %s\n", argv[0], strerror(errno));
         _exit(127);
@@ -299,9 +381,9 @@ static void cg__read_dumps(cg_state *g, int frames)
             continue;
         char *path = dm_xasprintf("%s/%s", g->d->work_dir, e->d_name), *text = NULL, name[64];
         size_t len = 0;
-        double totals = NAN;
+        double totals = NAN, alloc = 0;
         if (dm_read_file(path, &text, &len) == 0 &&
-            callgrind_parse_dump(text, name, sizeof name, &totals) == 0) {
+            callgrind_parse_dump(text, name, sizeof name, &totals, &alloc) == 0) {
             char *dot = strrchr(name, '.');
             int s = dot ? atoi(dot + 1) : -1, i = -1, w = CALLGRIND_FULL;
             if (dot) {
@@ -315,9 +397,11 @@ static void cg__read_dumps(cg_state *g, int frames)
                 i = w >= 0 ? cg__index(g, name) : -1;
             }
             if (i >= 0 && s >= 0 && s < CALLGRIND_SAMPLES) {
-                g->out[i].window[w][s] = totals / frames;
-                if (w == CALLGRIND_FULL)
-                    g->out[i].samples[s] = totals / frames;
+                g->out[i].window[w][s] = (totals - alloc) / frames;   /* the allocator left out */
+                if (w == CALLGRIND_FULL) {
+                    g->out[i].samples[s] = (totals - alloc) / frames;
+                    g->out[i].allocator[s] = alloc / frames;
+                }
             }
         }
         free(text);
@@ -390,7 +474,7 @@ int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, call
         if (clean)
             break;
     }
-    cg__read_dumps(&g, callgrind_frames(&d->sweep->measure));
+    cg__read_dumps(&g, CALLGRIND_FRAMES);
     cg__settle(&g);
     free(g.tried);
     free(g.done);
@@ -452,7 +536,7 @@ int callgrind_child_main(int argc, char **argv)
             if (strcmp(p.configs[i].key, argv[a]) == 0)
                 cs[n++] = p.configs[i];
     measure_job job = { .sweep = &s, .configs = cs, .n_configs = n, .report_fd = 1 };
-    rc = rc ? rc : measure_instructions(&job, callgrind_frames(&s.measure), CALLGRIND_SAMPLES, &err);
+    rc = rc ? rc : measure_instructions(&job, CALLGRIND_FRAMES, CALLGRIND_SAMPLES, &err);
     if (rc != 0)
         fprintf(stderr, "dmbench __instructions: %s\n", dm_str_get(&err));
     free(cs);

@@ -9,12 +9,14 @@
  * calling thread, so its work is inside the counted window).  The child
  * (measure_instructions) prepares and warms up each configuration with
  * collection off, then switches collection on around CALLGRIND_SAMPLES
- * samples of callgrind_frames() frames ended by glFinish and dumps each
- * sample under the name "KEY.S".  The child fixes its malloc's mmap
- * threshold first, so a count does not depend on what the child did before
- * (llvmpipe's tessellation grows arrays by realloc; docs/counters.md,
- * "Repeatability"); it gets the configurations in the --seed's order.  The parent parses the dump files
- * ("desc: Trigger: Client Request: KEY.S", "totals: N").  The timing child
+ * samples of CALLGRIND_FRAMES frames ended by glFinish and dumps each
+ * sample under the name "KEY.S"; it gets the configurations in the
+ * --seed's order.  The parent parses the dump files ("desc: Trigger: Client
+ * Request: KEY.S", "totals: N") and leaves out the instructions of the C
+ * allocator (the calls into malloc, realloc, free ...): what they cost
+ * depends on the heap's history, i.e. on what the child did before
+ * (llvmpipe's tessellation grows arrays by realloc, which copies or not
+ * depending on the heap's layout; docs/counters.md, "Repeatability").  The timing child
  * that follows records the counts next to its own WallTime.
  *
  * Failure: a configuration the child was on when Valgrind crashed or the
@@ -31,6 +33,14 @@
 
 /* Samples per configuration; they must agree (the count is deterministic). */
 #define CALLGRIND_SAMPLES 2
+/* Frames per sample, and warm-up frames before the first: every frame of a
+ * configuration does the same work once the first has compiled its shaders
+ * and touched its maps, and with the allocator left out the count repeats
+ * to the instruction, so one frame (its draws and the glFinish that
+ * completes them, as a presented frame would) is the count per frame.  At
+ * ~300x slower frames under Valgrind, every frame not counted is cost. */
+#define CALLGRIND_FRAMES 1
+#define CALLGRIND_WARMUP_FRAMES 1
 /* Samples whose counts differ by more than this relative amount are a
  * warning of the run (results.json, report) and in the configuration's log.
  * Within one child they agreed to <= 3.1e-5 everywhere measured; counts of
@@ -59,7 +69,8 @@ typedef enum callgrind_window {
 typedef struct callgrind_count {
     char key[17];
     int counted;             /* samples[] are set */
-    double samples[CALLGRIND_SAMPLES];   /* instructions per frame, one per sample */
+    double samples[CALLGRIND_SAMPLES];   /* instructions per frame, one per sample, allocator left out */
+    double allocator[CALLGRIND_SAMPLES]; /* the C allocator's instructions per frame, left out of samples */
     int staged;              /* window[] are set (stage counters) */
     double window[CALLGRIND_WINDOWS][CALLGRIND_SAMPLES];   /* per frame; [FULL] = samples */
     char *stage_reason;      /* why the stage counters are unavailable, NULL when staged */
@@ -85,10 +96,6 @@ int callgrind_wants_stages(const sweep_measure *sm);
 /* 1 when counter `name` is one of the stage counters. */
 int callgrind_is_stage_counter(const char *name);
 
-/* Frames per sample of the Instructions pass: min(K, 4).  Every frame of a
- * configuration does the same work, so a few frames give the per-frame count
- * and keep the ~300x slower frames affordable. */
-int callgrind_frames(const sweep_measure *sm);
 
 /* Counts the instructions of configurations cs[0..n) into out[0..n)
  * (zeroed by the caller; release with callgrind_counts_free).  Returns 0
@@ -103,9 +110,13 @@ void callgrind_mark_unavailable(callgrind_count *out, const plan_config *cs, siz
                                 const char *why);
 
 /* Parses one callgrind dump file's text: the client-request trigger name
- * into name (up to cap-1 chars) and the totals.  Returns 0, or
+ * into name (up to cap-1 chars) and the totals; with allocator non-NULL,
+ * also the inclusive cost of the calls into the C allocator (malloc, free,
+ * calloc, realloc, the aligned variants) from functions outside it, which
+ * Instructions leaves out: its cost depends on the heap's history, not on
+ * the frame (docs/counters.md, "Repeatability").  Returns 0, or
  * DM_ERR_PARSE when it is not a client-request dump with totals. */
-int callgrind_parse_dump(const char *text, char *name, size_t cap, double *totals);
+int callgrind_parse_dump(const char *text, char *name, size_t cap, double *totals, double *allocator);
 
 void callgrind_counts_free(callgrind_count *c, size_t n);
 

@@ -60,6 +60,21 @@ static void gl__egl_init_failure(int saved_errno, dm_str *err)
                         "(is Mesa's EGL installed? run scripts/install-deps)");
 }
 
+/* KHR_debug capture on the current context (gl_context_create). */
+static void gl__debug_output(gl_context *ctx)
+{
+    if (epoxy_has_gl_extension("GL_KHR_debug")) {
+        glEnable(GL_DEBUG_OUTPUT);
+        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
+        glDebugMessageCallback(gl__debug_cb, ctx);
+    }
+}
+
+static const EGLint gl__egl_attrs[] = {
+    EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
+    EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
+    EGL_NONE };
+
 static int gl__create_egl(gl_context *ctx, dm_str *err)
 {
     errno = 0;
@@ -80,11 +95,7 @@ static int gl__create_egl(gl_context *ctx, dm_str *err)
         dm_str_cat(err, "EGL: desktop OpenGL API not available");
         return DM_ERR_GL;
     }
-    const EGLint attrs[] = {
-        EGL_CONTEXT_MAJOR_VERSION, 4, EGL_CONTEXT_MINOR_VERSION, 5,
-        EGL_CONTEXT_OPENGL_PROFILE_MASK, EGL_CONTEXT_OPENGL_CORE_PROFILE_BIT,
-        EGL_NONE };
-    ctx->egl = eglCreateContext(ctx->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, attrs);
+    ctx->egl = eglCreateContext(ctx->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, gl__egl_attrs);
     if (ctx->egl == EGL_NO_CONTEXT ||
         !eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->egl)) {
         dm_str_printf(err, "EGL: cannot create an OpenGL 4.5 core context (EGL error 0x%x)",
@@ -140,12 +151,24 @@ int gl_context_create(const gl_context_desc *desc, gl_context **out, dm_str *err
         gl_context_destroy(ctx);
         return DM_ERR_UNSUPPORTED;
     }
-    if (d.debug == 0 && epoxy_has_gl_extension("GL_KHR_debug")) {
-        glEnable(GL_DEBUG_OUTPUT);
-        glEnable(GL_DEBUG_OUTPUT_SYNCHRONOUS);
-        glDebugMessageCallback(gl__debug_cb, ctx);
-    }
+    if (d.debug == 0)
+        gl__debug_output(ctx);
     *out = ctx;
+    return 0;
+}
+
+int gl_context_renew(gl_context *ctx)
+{
+    if (ctx->backend != GL_BACKEND_EGL)
+        return DM_ERR_UNSUPPORTED;
+    int debug = glIsEnabled(GL_DEBUG_OUTPUT);
+    eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+    eglDestroyContext(ctx->dpy, ctx->egl);
+    ctx->egl = eglCreateContext(ctx->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, gl__egl_attrs);
+    if (ctx->egl == EGL_NO_CONTEXT || !eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->egl))
+        return DM_ERR_GL;
+    if (debug)
+        gl__debug_output(ctx);
     return 0;
 }
 

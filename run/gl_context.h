@@ -30,6 +30,11 @@ typedef struct gl_context gl_context;
  * DM_ERR_UNSUPPORTED with a message in err (e.g. no display for GLFW). */
 int gl_context_create(const gl_context_desc *desc, gl_context **out, dm_str *err);
 void gl_context_destroy(gl_context *ctx);
+/* Replaces an EGL context by a fresh one on the same display (the driver's
+ * screen, its shader caches and JIT stay; every GL object, name and
+ * per-context state of the old one is gone) and makes it current.
+ * Returns 0, DM_ERR_UNSUPPORTED for a GLFW context, or DM_ERR_GL. */
+int gl_context_renew(gl_context *ctx);
 /* GLFW window handle (GLFWwindow*) or NULL for EGL. */
 void *gl_context_window(gl_context *ctx);
 /* Number of KHR_debug errors (type error or undefined behaviour) seen since

@@ -539,6 +539,10 @@ static void measure__instructions(mscene *m, mconf *c, dm_config_result *out)
         r->unavailable_reason = dm_xstrdup(k && k->reason ? k->reason : "not counted");
     } else {
         measure__counter_timed(r, k->samples, CALLGRIND_SAMPLES, m->job->seed);
+        if (k->allocator[0] > 0)
+            dm_str_printf(&c->log, "Instructions: the C allocator's %.0f instructions per frame (%.2g %% "
+                          "of the frame) left out, see docs/counters.md\n", k->allocator[0],
+                          100 * k->allocator[0] / (k->allocator[0] + k->samples[0]));
         if (r->max - r->min > CALLGRIND_AGREE * r->min)
             dm_str_printf(&c->log, "Instructions: samples disagree (%.0f .. %.0f per frame)\n", r->min, r->max);
     }
@@ -954,10 +958,13 @@ int measure_pilot(const measure_job *job, dm_str *err)
  * on the calling thread with LP_NUM_THREADS=0, is inside), then one dump
  * per sample named "KEY.S" (window CALLGRIND_FULL), "KEY.g.S" (the same
  * frames with GL_RASTERIZER_DISCARD), "KEY.r.S" (c->item is then the
- * minimal-fragment-shader item) or "KEY.m.S" (that item with discard).  Setup, JIT compilation and `warm` warm-up
- * frames happen before, with collection off.  Returns the nanoseconds of
- * the warm-up (incl. the discarded first sample) in *warm_ns and of the
- * kept samples in *count_ns (bench/instructions_split.sh). */
+ * minimal-fragment-shader item) or "KEY.m.S" (that item with discard).
+ * Setup, JIT compilation and `warm` warm-up frames happen before, with
+ * collection off.  Every sample is kept: the parent leaves the allocator's
+ * instructions out, and what remains is equal from the first sample on
+ * (docs/counters.md, "Repeatability").  Returns the nanoseconds of the
+ * warm-up in *warm_ns and of the samples in *count_ns
+ * (bench/instructions_split.sh). */
 static void measure__counted_samples(mscene *m, mconf *c, callgrind_window w, int warm, int frames,
                                      int samples, int64_t *warm_ns, int64_t *count_ns)
 {
@@ -967,11 +974,8 @@ static void measure__counted_samples(mscene *m, mconf *c, callgrind_window w, in
     measure__vt_converge(m->r, c->item, c->pc->width, c->pc->height);   /* no page generation counted */
     if (w == CALLGRIND_GEOMETRY || w == CALLGRIND_RESIDUAL)
         glEnable(GL_RASTERIZER_DISCARD);
-    /* The first sample counted after the warm-up differs from every later
-     * one (by up to 7e-4 of a 64x64 frame), the later ones are equal: a
-     * first sample is counted and dumped as KEY.-1, which the parent
-     * ignores (run/callgrind.c), before those that are kept. */
-    for (int s = -1; s < samples; s++) {
+    t1 = dm_now_ns();
+    for (int s = 0; s < samples; s++) {
         char name[40];
         snprintf(name, sizeof name, "%s%s.%d", c->pc->key, tag[w], s);
         glFinish();
@@ -980,8 +984,6 @@ static void measure__counted_samples(mscene *m, mconf *c, callgrind_window w, in
         glFinish();
         CALLGRIND_TOGGLE_COLLECT;
         CALLGRIND_DUMP_STATS_AT(name);
-        if (s < 0)
-            t1 = dm_now_ns();
     }
     glDisable(GL_RASTERIZER_DISCARD);
     *warm_ns = t1 - t0;
@@ -1025,6 +1027,31 @@ static void measure__stage_windows(mscene *m, mconf *c, int frames, int samples)
     measure__say(m->job, "S %s ok", c->pc->key);
 }
 
+/* Counts configuration c (prepare, warm-up, samples, stage windows) and
+ * says "I KEY ok" or "I KEY failed REASON". */
+static void measure__count_one(mscene *m, mconf *c, int frames, int samples, int stages)
+{
+    const measure_job *job = m->job;
+    int64_t tp = dm_now_ns(), warm_ns = 0, count_ns = 0;
+    int prc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
+    int64_t prep_ns = dm_now_ns() - tp;
+    if (gl_context_take_messages(m->gl, &c->log) > 0 || prc != 0) {
+        measure__say(job, "I %s failed %s", c->pc->key, prc == 0 ? "GL error while preparing" : dm_strerror(prc));
+        return;
+    }
+    measure__counted_samples(m, c, CALLGRIND_FULL, CALLGRIND_WARMUP_FRAMES, frames, samples, &warm_ns, &count_ns);
+    fprintf(stderr, "instructions split: %s prepare %.1f ms, warm-up %.1f ms, counted %.1f ms\n", c->pc->key,
+            (double)prep_ns / 1e6, (double)warm_ns / 1e6, (double)count_ns / 1e6);
+    if (stages) {
+        int64_t ts = dm_now_ns();
+        measure__stage_windows(m, c, frames, samples);
+        fprintf(stderr, "instructions split: %s stage windows %.1f ms\n", c->pc->key,
+                (double)(dm_now_ns() - ts) / 1e6);
+    }
+    int bad = gl_context_check_errors(&c->log) > 0;
+    measure__say(job, "I %s %s", c->pc->key, bad ? "failed GL error in the counted frames" : "ok");
+}
+
 int measure_instructions(const measure_job *job, int frames, int samples, dm_str *err)
 {
     mscene m = { .job = job };
@@ -1041,26 +1068,22 @@ int measure_instructions(const measure_job *job, int frames, int samples, dm_str
         mconf *c = &cs[i];
         c->pc = &job->configs[i];
         measure__say(job, "B %s", c->pc->key);
-        int64_t tp = dm_now_ns(), warm_ns = 0, count_ns = 0;
-        int prc = tech_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log);
-        int64_t prep_ns = dm_now_ns() - tp;
-        if (gl_context_take_messages(m.gl, &c->log) > 0 || prc != 0) {
-            measure__say(job, "I %s failed %s", c->pc->key,
-                         prc == 0 ? "GL error while preparing" : dm_strerror(prc));
-            continue;
+        if (i > 0) {
+            /* Every configuration in a fresh GL context: what the driver
+             * keeps per context (state caches, sampler views, upload
+             * buffers, the hash tables of GL names) would otherwise carry
+             * what earlier configurations left, and a count would depend on
+             * which ones ran before it (docs/counters.md, "Repeatability"). */
+            target_destroy(&m.rt);
+            tech_renderer_destroy(m.r);
+            m.r = NULL;
+            if (gl_context_renew(m.gl) != 0 || tech_renderer_create(&m.r) != 0) {
+                measure__say(job, "I %s failed cannot create a fresh GL context", c->pc->key);
+                rc = DM_ERR_GL;
+                break;
+            }
         }
-        measure__counted_samples(&m, c, CALLGRIND_FULL, job->sweep->measure.warmup_frames, frames, samples,
-                                 &warm_ns, &count_ns);
-        fprintf(stderr, "instructions split: %s prepare %.1f ms, warm-up %.1f ms, counted %.1f ms\n",
-                c->pc->key, (double)prep_ns / 1e6, (double)warm_ns / 1e6, (double)count_ns / 1e6);
-        if (stages) {
-            int64_t ts = dm_now_ns();
-            measure__stage_windows(&m, c, frames, samples);
-            fprintf(stderr, "instructions split: %s stage windows %.1f ms\n", c->pc->key,
-                    (double)(dm_now_ns() - ts) / 1e6);
-        }
-        int bad = gl_context_check_errors(&c->log) > 0;
-        measure__say(job, "I %s %s", c->pc->key, bad ? "failed GL error in the counted frames" : "ok");
+        measure__count_one(&m, c, frames, samples, stages);
     }
     for (size_t i = 0; i < job->n_configs; i++)
         dm_str_free(&cs[i].log);

@@ -438,12 +438,94 @@ static int maps__cache_write(const char *dir, const char *path, const maps_set *
     return ok ? 0 : DM_ERR_IO;
 }
 
+static int maps__get_cached(const maps_desc *desc, const char *dir, maps_set *out);
+
+/* Sets this process made or loaded, so a renderer created again (the
+ * Instructions child makes one per configuration, in a fresh GL context)
+ * does not generate them again: sets smaller than MAPS_CACHE_MIN_SIZE
+ * (larger ones have the disk cache), up to MAPS__MEMO_SETS of them, the
+ * oldest replaced first.  Prepare runs on the GL
+ * thread only, so no lock. */
+#define MAPS__MEMO_SETS 8
+#define MAPS__MEMO_BYTES ((size_t)64 << 20)
+static struct {
+    char name[64];
+    int size;
+    float normal_strength;
+    maps_set set;
+} maps__memo[MAPS__MEMO_SETS];
+static unsigned maps__memo_next;
+
+static void *maps__dup(const void *p, size_t n)
+{
+    void *q = dm_xmalloc(n ? n : 1);
+    memcpy(q, p, n);
+    return q;
+}
+
+/* Deep copy of the arrays of src (same layout) into dst. */
+static void maps__copy(const maps_set *src, maps_set *dst)
+{
+    size_t t = (size_t)src->size * (size_t)src->size;
+    *dst = *src;
+    dst->height = src->height ? maps__dup(src->height, t * sizeof(float)) : NULL;
+    dst->normal = src->normal ? maps__dup(src->normal, t * 3 * sizeof(float)) : NULL;
+    dst->albedo = src->albedo ? maps__dup(src->albedo, t * 4 * sizeof(float)) : NULL;
+    dst->specular = src->specular ? maps__dup(src->specular, t * sizeof(float)) : NULL;
+    dst->albedo8 = src->albedo8 ? maps__dup(src->albedo8, t * 4) : NULL;
+}
+
+static size_t maps__bytes(const maps_set *m)
+{
+    size_t t = (size_t)m->size * (size_t)m->size;
+    return t * ((m->height ? 4 : 0) + (m->normal ? 12 : 0) + (m->albedo ? 16 : 0) + (m->specular ? 4 : 0) +
+                (m->albedo8 ? 4 : 0));
+}
+
+static int maps__memo_find(const maps_desc *d)
+{
+    for (int i = 0; i < MAPS__MEMO_SETS; i++)
+        if (maps__memo[i].set.size == d->size && maps__memo[i].normal_strength == d->normal_strength &&
+            strcmp(maps__memo[i].name, d->name) == 0)
+            return i;
+    return -1;
+}
+
+static void maps__memo_put(const maps_desc *d, const maps_set *m)
+{
+    if (strlen(d->name) >= sizeof maps__memo[0].name || maps__bytes(m) > MAPS__MEMO_BYTES || d->size <= 0)
+        return;
+    unsigned i = maps__memo_next++ % MAPS__MEMO_SETS;
+    maps_free(&maps__memo[i].set);
+    snprintf(maps__memo[i].name, sizeof maps__memo[i].name, "%s", d->name);
+    maps__memo[i].normal_strength = d->normal_strength;
+    maps__copy(m, &maps__memo[i].set);
+}
+
 int maps_get_cached(const maps_desc *desc, const char *dir, maps_set *out)
 {
     maps_desc d = desc ? *desc : (maps_desc){0};
     d.compact = 1;
     d.name = d.name ? d.name : "bricks";
     d.size = d.size ? d.size : 512;
+    int memo = d.size < MAPS_CACHE_MIN_SIZE ? maps__memo_find(&d) : -1;
+    if (memo >= 0) {
+        int64_t t0 = dm_now_ns();
+        maps__copy(&maps__memo[memo].set, out);
+        out->from_memory = 1;
+        out->load_ns = dm_now_ns() - t0;
+        return 0;
+    }
+    int rc = maps__get_cached(&d, dir, out);
+    if (rc == 0 && d.size < MAPS_CACHE_MIN_SIZE)
+        maps__memo_put(&d, out);
+    return rc;
+}
+
+/* maps_get_cached without the memo: the disk cache, else generation. */
+static int maps__get_cached(const maps_desc *desc, const char *dir, maps_set *out)
+{
+    maps_desc d = *desc;
     if (maps_kind(d.name) < 0 || d.size < MAPS_CACHE_MIN_SIZE || d.size > MAPS_MAX_SIZE)
         return maps_generate(&d, out);
     char *own = dir ? NULL : maps_cache_dir();

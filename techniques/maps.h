@@ -41,6 +41,7 @@ typedef struct maps_set {
     int64_t gen_ns;         /* time generating (0 when loaded from the cache) */
     int64_t load_ns;        /* time reading the cache file (0 when generated) */
     int from_cache;         /* 1 when loaded from the disk cache */
+    int from_memory;        /* 1 when copied from this process's earlier set (maps_get_cached) */
 } maps_set;
 
 /* Texel counts per side accepted by maps_generate. */

@@ -351,8 +351,9 @@ static int render__maps_make(render__maps *m, const char *name, int size,
     rc = render__maps_upload(m, &s, fmt);
     dm_str_printf(log, "maps '%s' %d²: %s in %.1f ms, uploaded in %.1f ms\n", name, size,
                   maps_is_material(name) ? "read from the user's files"
+                  : s.from_memory         ? "copied from this process's earlier set"
                   : s.from_cache          ? "loaded from the disk cache" : "generated",
-                  (double)(s.from_cache ? s.load_ns : s.gen_ns) / 1e6, (double)(dm_now_ns() - t0) / 1e6);
+                  (double)(s.from_cache || s.from_memory ? s.load_ns : s.gen_ns) / 1e6, (double)(dm_now_ns() - t0) / 1e6);
     maps_free(&s);
     if (rc) {
         dm_str_printf(log, "maps '%s': the driver cannot upload formats %s/%s/%s\n", name,

@@ -24,11 +24,45 @@ static void test_parse_dump(void **state)
     char name[64];
     double t = 0;
     assert_int_equal(callgrind_parse_dump("version: 1\ndesc: Trigger: Client Request: k.1\n"
-                                          "events: Ir\ntotals: 12345\n", name, sizeof name, &t), 0);
+                                          "events: Ir\ntotals: 12345\n", name, sizeof name, &t, NULL), 0);
     assert_string_equal(name, "k.1");
     assert_true(t == 12345.0);
-    assert_int_equal(callgrind_parse_dump("desc: Trigger: Program termination\n", name, sizeof name, &t),
+    assert_int_equal(callgrind_parse_dump("desc: Trigger: Program termination\n", name, sizeof name, &t, NULL),
                      DM_ERR_PARSE);
+}
+
+/* The allocator's part of a dump is the inclusive cost of the calls into
+ * it from outside: here draw calls realloc (inclusive 700, of which its
+ * nested malloc 200 and memcpy 300 must not count twice), malloc again
+ * through the compressed id (50), and free'2 (a recursion suffix, 30);
+ * the call to memcpy from draw (1000) and realloc's own lines are not the
+ * allocator's.  The functions' names are compressed ("(ID) name" once,
+ * then "(ID)"), as callgrind writes them. */
+static void test_parse_dump_allocator(void **state)
+{
+    (void)state;
+    static const char dump[] =
+        "version: 1\ncreator: callgrind-3.19.0\n"
+        "desc: Trigger: Client Request: k.0\n"
+        "positions: line\nevents: Ir\nsummary: 10000\n\n"
+        "ob=(1) /usr/lib/x86_64-linux-gnu/dri/swrast_dri.so\nfl=(1) ???\nfn=(1) draw\n0 7920\n"
+        "cob=(2) /usr/lib/x86_64-linux-gnu/libc.so.6\ncfi=(2) ???\ncfn=(2) realloc\ncalls=3 0 \n0 700\n"
+        "cob=(2)\ncfi=(2)\ncfn=(3) memcpy\ncalls=2 0 \n0 1000\n"
+        "cob=(2)\ncfi=(2)\ncfn=(4) malloc\ncalls=1 0 \n0 50\n"
+        "cob=(2)\ncfi=(2)\ncfn=(5) free'2\ncalls=1 0 \n0 30\n\n"
+        "ob=(2)\nfl=(2)\nfn=(2)\n0 200\ncfn=(4)\ncalls=1 0 \n0 200\ncfn=(3)\ncalls=1 0 \n0 300\n\n"
+        "fn=(4)\n0 250\n\nfn=(3)\n0 1300\n\nfn=(5)\n0 30\n\n"
+        "totals: 10000\n";
+    char name[64];
+    double t = 0, alloc = -1;
+    assert_int_equal(callgrind_parse_dump(dump, name, sizeof name, &t, &alloc), 0);
+    assert_string_equal(name, "k.0");
+    assert_true(t == 10000.0);
+    assert_true(alloc == 700.0 + 50.0 + 30.0);
+    /* Without the call graph (nothing called into the allocator) the part is 0. */
+    assert_int_equal(callgrind_parse_dump("desc: Trigger: Client Request: k.1\nfn=(1) draw\n0 5\n"
+                                          "totals: 5\n", name, sizeof name, &t, &alloc), 0);
+    assert_true(alloc == 0.0);
 }
 
 /* The boundary is CALLGRIND_AGREE relative to the smaller sample, both ways. */
@@ -56,5 +90,6 @@ static void test_disagreement_not_counted(void **state)
 
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_parse_dump),
+             cmocka_unit_test(test_parse_dump_allocator),
              cmocka_unit_test(test_disagreement_boundary),
              cmocka_unit_test(test_disagreement_not_counted))

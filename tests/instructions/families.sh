@@ -5,7 +5,9 @@
 # dmbench_slowvertexshader (512 more steps per vertex in displace.vert.glsl)
 # and by dmbench_slowtessshader (64 more per evaluation in tess.tes.glsl).
 # `compare --counters-only` must call the slowed family's configuration a
-# REGRESSION (exit 1) beyond the 0.5 % threshold and the other two PASS.
+# REGRESSION (exit 1) beyond the 0.5 % threshold, name geometry as the stage
+# that grew (both slowed shaders run before rasterization), and call the
+# other two PASS.
 # Usage: families.sh SLOWVERTEX SLOWTESS  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set by ctest)
 set -euo pipefail
 SV=${1:?usage: families.sh SLOWVERTEX SLOWTESS}
@@ -28,8 +30,10 @@ for c in j["configs"]:
     ratio = c.get("instructions_ratio")
     if slowed in c["configuration"]:
         assert c["verdict"] == "REGRESSION" and ratio > 1.005, c
+        assert "; by stage: geometry x" in c["note"] and c["note"].endswith("; geometry grew most"), c["note"]
     else:
         assert c["verdict"] == "PASS", c
-    print(f"slower {slowed} stage: {c['configuration']}: {c['verdict']}, instructions x{ratio:.4f}")
+    print(f"slower {slowed} stage: {c['configuration']}: {c['verdict']}, instructions x{ratio:.4f}"
+          f"{'; ' + c['note'].split('; ', 1)[1] if c['verdict'] != 'PASS' else ''}")
 PY
 done
