@@ -40,10 +40,10 @@ for m in "pipeline-linear" "stage-instructions" "time-from-instructions"; do
   echo "== fit --model $m"
   "$B" fit "$run" --model "$m" 2>/dev/null | grep -E "^model|CV-MAPE" | sed 's/^/  /' || true
 done
-log=$(ls "$run"/callgrind/child.log 2>/dev/null | head -1)
-if [ -n "$log" ]; then
+logs=$(ls "$run"/callgrind/child*.log 2>/dev/null)   # one per counting child
+if [ -n "$logs" ]; then
   awk '/stage windows/ {s += $(NF-1)} /counted .* ms$/ {c += $(NF-1); w += $(NF-4); p += $(NF-7)}
        /context/ {x += $(NF-1)}
-       END {printf "counting child: context %.1f s, prepare %.1f s, warm-up %.1f s, counted frames %.1f s, stage windows %.1f s (%.0f %% of the child)\n",
-            x/1000, p/1000, w/1000, c/1000, s/1000, 100*s/(x+p+w+c+s)}' "$log"
+       END {printf "counting children: context %.1f s, prepare %.1f s, warm-up %.1f s, counted frames %.1f s, stage windows %.1f s (%.0f %% of the child)\n",
+            x/1000, p/1000, w/1000, c/1000, s/1000, 100*s/(x+p+w+c+s)}' $logs
 fi

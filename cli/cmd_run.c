@@ -58,6 +58,10 @@ const cli_option cli_run_options[] = {
       .help = "leave out configurations predicted to take longer than SEC seconds" },
     { .name = "seed", .kind = CLI_OPT_UINT64, .value_name = "N", .parse = run__seed,
       .help = "seed of the round order (0 = 1)" },
+    { .name = "count-jobs", .kind = CLI_OPT_INT, .offset = offsetof(run_args, o.count_jobs),
+      .value_name = "N", .min = 0, .max = 256,
+      .help = "Valgrind children counting Instructions side by side (0 = the online CPUs, "
+              "at most 8)" },
     CLI_STRING("tag", run_args, o.tag, "NAME",
                "a name stored with the run (compare --base-tag/--new-tag)"),
     CLI_BOOL("quick", run_args, quick,

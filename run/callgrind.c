@@ -193,6 +193,11 @@ typedef struct cg_state {
     int *tried, *done;
     int stages;              /* the sweep asks for the stage windows */
     char current[17];
+    char *log;               /* the children's stderr (child.log; child.K.log for group K > 0) */
+    pid_t pid;               /* the running child, or -1 */
+    int fd;                  /* its stdout */
+    dm_str buf;              /* its unfinished line */
+    int64_t last;            /* when it last said something */
 } cg_state;
 
 static int cg__index(const cg_state *g, const char *key)
@@ -230,14 +235,13 @@ static pid_t cg__spawn(cg_state *g, int *fd)
     for (size_t i = 0; i < g->n; i++)
         if (!g->tried[i])
             argv[a++] = dm_xstrdup(g->cs[i].key);
-    int fds[2];
+    int fds[2] = {-1, -1};
     pid_t pid = pipe(fds) == 0 ? (fflush(NULL), fork()) : -1;
     if (pid == 0) {
         dup2(fds[1], 1);
         close(fds[0]);
         close(fds[1]);
-        char *log = dm_xasprintf("%s/child.log", d->work_dir);
-        int lfd = open(log, O_WRONLY | O_CREAT | O_APPEND, 0644);
+        int lfd = open(g->log, O_WRONLY | O_CREAT | O_APPEND, 0644);
         if (lfd >= 0)
             dup2(lfd, 2);
         setenv("LP_NUM_THREADS", "0", 1);   /* rasteriser on the calling thread */
@@ -255,6 +259,11 @@ static pid_t cg__spawn(cg_state *g, int *fd)
     if (pid > 0) {
         close(fds[1]);
         *fd = fds[0];
+    } else if (fds[0] >= 0) {   /* the pipe, but no child */
+        int e = errno;
+        close(fds[0]);
+        close(fds[1]);
+        errno = e;
     }
     return pid;
 }
@@ -283,17 +292,15 @@ static void cg__tail(const char *path, size_t keep, dm_str *out)
     free(text);
 }
 
-/* What Valgrind (its log of process pid) and the child (its stderr) said
- * last, or NULL. */
-static char *cg__valgrind_message(const callgrind_desc *d, pid_t pid)
+/* What Valgrind (its log of process pid) and the child (its stderr, shared
+ * by its group's children) said last, or NULL. */
+static char *cg__valgrind_message(const cg_state *g, pid_t pid)
 {
     dm_str s = {0};
-    char *vlog = dm_xasprintf("%s/valgrind.%d.log", d->work_dir, (int)pid);
-    char *clog = dm_xasprintf("%s/child.log", d->work_dir);
+    char *vlog = dm_xasprintf("%s/valgrind.%d.log", g->d->work_dir, (int)pid);
     cg__tail(vlog, 5, &s);
-    cg__tail(clog, 2, &s);
+    cg__tail(g->log, 2, &s);
     free(vlog);
-    free(clog);
     return s.len ? dm_str_take(&s) : (dm_str_free(&s), NULL);
 }
 
@@ -317,46 +324,30 @@ static void cg__line(cg_state *g, char *line)
     }
 }
 
-/* Reads the child's lines until EOF or the watchdog; returns the wait
- * status, or -1 when the watchdog killed it. */
-static int cg__watch(cg_state *g, pid_t pid, int fd)
+/* Reads what child g->pid has written; returns 0 at its end of output. */
+static int cg__read_lines(cg_state *g)
 {
-    dm_str buf = {0};
-    int64_t last = dm_now_ns();
-    int killed = 0;
-    for (;;) {
-        struct pollfd pfd = { fd, POLLIN, 0 };
-        if (poll(&pfd, 1, 500) > 0) {
-            char chunk[1024];
-            ssize_t got = read(fd, chunk, sizeof chunk);
-            if (got <= 0)
-                break;
-            last = dm_now_ns();
-            for (ssize_t i = 0; i < got; i++) {
-                if (chunk[i] != '\n') {
-                    dm_str_catn(&buf, &chunk[i], 1);
-                    continue;
-                }
-                char *line = dm_str_take(&buf);
-                cg__line(g, line);
-                free(line);
-            }
-        } else if ((double)(dm_now_ns() - last) / 1e9 > g->d->timeout_s) {
-            kill(pid, SIGKILL);
-            killed = 1;
-            break;
+    char chunk[1024];
+    ssize_t got = read(g->fd, chunk, sizeof chunk);
+    if (got <= 0)
+        return 0;
+    g->last = dm_now_ns();
+    for (ssize_t i = 0; i < got; i++) {
+        if (chunk[i] != '\n') {
+            dm_str_catn(&g->buf, &chunk[i], 1);
+            continue;
         }
+        char *line = dm_str_take(&g->buf);
+        cg__line(g, line);
+        free(line);
     }
-    dm_str_free(&buf);
-    int status = 0;
-    waitpid(pid, &status, 0);
-    return killed ? -1 : status;
+    return 1;
 }
 
 /* Fails configuration i (the child was on it) with Valgrind's message. */
 static void cg__fail(cg_state *g, int i, pid_t pid, int status)
 {
-    char *vg = cg__valgrind_message(g->d, pid);
+    char *vg = cg__valgrind_message(g, pid);
     char how[96];
     if (status < 0)
         snprintf(how, sizeof how, "the Valgrind child made no progress for %.0f s (killed)", g->d->timeout_s);
@@ -437,6 +428,109 @@ static void cg__settle(cg_state *g)
     }
 }
 
+/* Starts a child for the configurations of g not tried yet; -1 when it
+ * cannot be started. */
+static int cg__start(cg_state *g)
+{
+    g->current[0] = '\0';
+    g->pid = cg__spawn(g, &g->fd);
+    g->last = dm_now_ns();
+    return g->pid < 0 ? -1 : 0;
+}
+
+/* Child g->pid has ended with wait status `status` (-1: the watchdog killed
+ * it).  Unless it exited cleanly, the configuration it was on fails, or
+ * every one not reached when it had not started one.  Returns 1 when a new
+ * child should take the configurations left. */
+static int cg__ended(cg_state *g, int status)
+{
+    int clean = status >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
+    int cur = g->current[0] ? cg__index(g, g->current) : -1;
+    if (!clean)
+        for (size_t i = 0; i < g->n; i++)   /* the one it was on, or all when it never started one */
+            if (!g->done[i] && (cur < 0 ? !g->tried[i] : (int)i == cur))
+                cg__fail(g, (int)i, g->pid, status);
+    close(g->fd);
+    g->pid = -1;
+    dm_str_free(&g->buf);
+    size_t left = 0;
+    for (size_t i = 0; i < g->n; i++)
+        left += !g->tried[i] && !g->done[i];
+    return !clean && left > 0;
+}
+
+/* Runs the groups' children side by side until every group is done: one
+ * poll over their outputs, each with its own watchdog.  Returns 0, or the
+ * errno of a child that could not be started (the others are killed). */
+static int cg__run_groups(cg_state *gs, size_t ng)
+{
+    struct pollfd *pfd = dm_xcalloc(ng, sizeof *pfd);
+    size_t *who = dm_xcalloc(ng, sizeof *who);
+    int rc = 0;
+    for (size_t k = 0; k < ng && rc == 0; k++)
+        rc = cg__start(&gs[k]) ? (errno ? errno : EAGAIN) : 0;
+    while (rc == 0) {
+        size_t nf = 0;
+        for (size_t k = 0; k < ng; k++)
+            if (gs[k].pid > 0) {
+                pfd[nf] = (struct pollfd){gs[k].fd, POLLIN, 0};
+                who[nf++] = k;
+            }
+        if (nf == 0)
+            break;
+        int ready = poll(pfd, (nfds_t)nf, 500);
+        for (size_t j = 0; j < nf && rc == 0; j++) {
+            cg_state *g = &gs[who[j]];
+            int open = ready > 0 && pfd[j].revents ? cg__read_lines(g) : 1, killed = 0;
+            if (open && (double)(dm_now_ns() - g->last) / 1e9 > g->d->timeout_s) {
+                kill(g->pid, SIGKILL);   /* no progress: the watchdog */
+                open = 0;
+                killed = 1;
+            }
+            if (open)
+                continue;
+            int status = 0;
+            waitpid(g->pid, &status, 0);
+            if (cg__ended(g, killed ? -1 : status) && cg__start(g) != 0)
+                rc = errno ? errno : EAGAIN;
+        }
+    }
+    for (size_t k = 0; k < ng; k++)   /* after a failed start: stop the rest */
+        if (gs[k].pid > 0) {
+            kill(gs[k].pid, SIGKILL);
+            waitpid(gs[k].pid, NULL, 0);
+            close(gs[k].fd);
+            dm_str_free(&gs[k].buf);
+        }
+    free(pfd);
+    free(who);
+    return rc;
+}
+
+/* MemAvailable of /proc/meminfo in GiB, or a large number when unknown. */
+static double cg__available_gib(void)
+{
+    FILE *f = fopen("/proc/meminfo", "r");
+    char line[128];
+    double kib = -1;
+    while (f && fgets(line, sizeof line, f))
+        if (sscanf(line, "MemAvailable: %lf kB", &kib) == 1)
+            break;
+    if (f)
+        fclose(f);
+    return kib > 0 ? kib / (1024.0 * 1024.0) : 1e9;
+}
+
+int callgrind_jobs(int asked, size_t n)
+{
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    long j = asked > 0 ? asked : cpus > CALLGRIND_MAX_JOBS ? CALLGRIND_MAX_JOBS : cpus;
+    if (asked <= 0 && j > cg__available_gib() / CALLGRIND_JOB_GIB)
+        j = (long)(cg__available_gib() / CALLGRIND_JOB_GIB);   /* each child's memory */
+    j = j < 1 ? 1 : j;
+    return (int)((size_t)j > n ? (n ? n : 1) : (size_t)j);
+}
+
 int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, callgrind_count *out,
                   dm_str *err)
 {
@@ -444,36 +538,47 @@ int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, call
         dm_str_printf(err, "%s: cannot create the callgrind directory", d->work_dir);
         return DM_ERR_IO;
     }
-    cg_state g = { .d = d, .cs = cs, .n = n, .out = out,
-                   .stages = callgrind_wants_stages(&d->sweep->measure) };
-    g.tried = dm_xcalloc(n + 1, sizeof *g.tried);
-    g.done = dm_xcalloc(n + 1, sizeof *g.done);
+    int stages = callgrind_wants_stages(&d->sweep->measure);
+    size_t ng = (size_t)callgrind_jobs(d->jobs, n);
+    /* Configuration i goes to group i mod ng (the --seed's order dealt
+     * round, so each group gets a like mix); a count does not depend on
+     * which child, or which others, it shares (docs/counters.md). */
+    cg_state *gs = dm_xcalloc(ng, sizeof *gs);
+    for (size_t k = 0; k < ng; k++) {
+        size_t m = n / ng + (k < n % ng);
+        plan_config *gcs = dm_xcalloc(m + 1, sizeof *gcs);
+        for (size_t j = 0; j < m; j++)
+            gcs[j] = cs[k + j * ng];   /* shallow: read only */
+        gs[k] = (cg_state){ .d = d, .cs = gcs, .n = m, .stages = stages, .pid = -1, .fd = -1,
+                            .out = dm_xcalloc(m + 1, sizeof *gs[k].out),
+                            .tried = dm_xcalloc(m + 1, sizeof *gs[k].tried),
+                            .done = dm_xcalloc(m + 1, sizeof *gs[k].done),
+                            .log = k ? dm_xasprintf("%s/child.%zu.log", d->work_dir, k)
+                                     : dm_xasprintf("%s/child.log", d->work_dir) };
+    }
+    int rc = 0, e = cg__run_groups(gs, ng);
+    if (e != 0) {
+        dm_str_printf(err, "cannot start %s: %s", d->valgrind, strerror(e));
+        rc = DM_ERR_CHILD;
+    }
+    cg_state g = { .d = d, .cs = cs, .n = n, .out = out, .stages = stages,
+                   .tried = dm_xcalloc(n + 1, sizeof *g.tried), .done = dm_xcalloc(n + 1, sizeof *g.done) };
+    for (size_t k = 0; k < ng; k++) {   /* the groups' results back in cs's order */
+        for (size_t j = 0; j < gs[k].n; j++) {
+            size_t i = k + j * ng;
+            out[i] = gs[k].out[j];
+            g.tried[i] = gs[k].tried[j];
+            g.done[i] = gs[k].done[j];
+        }
+        free((void *)gs[k].cs);
+        free(gs[k].out);
+        free(gs[k].tried);
+        free(gs[k].done);
+        free(gs[k].log);
+    }
+    free(gs);
     for (size_t i = 0; i < n; i++)
         snprintf(out[i].key, sizeof out[i].key, "%s", cs[i].key);
-    int rc = 0;
-    for (size_t left = n; left > 0;) {
-        int fd = -1;
-        pid_t pid = cg__spawn(&g, &fd);
-        if (pid < 0) {
-            dm_str_printf(err, "cannot start %s: %s", d->valgrind, strerror(errno));
-            rc = DM_ERR_CHILD;
-            break;
-        }
-        g.current[0] = '\0';
-        int status = cg__watch(&g, pid, fd);
-        close(fd);
-        int clean = status >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
-        int cur = g.current[0] ? cg__index(&g, g.current) : -1;
-        if (!clean)
-            for (size_t i = 0; i < n; i++)   /* the one it was on, or all when it never started one */
-                if (!g.done[i] && (cur < 0 ? !g.tried[i] : (int)i == cur))
-                    cg__fail(&g, (int)i, pid, status);
-        left = 0;
-        for (size_t i = 0; i < n; i++)
-            left += !g.tried[i] && !g.done[i];
-        if (clean)
-            break;
-    }
     cg__read_dumps(&g, CALLGRIND_FRAMES);
     cg__settle(&g);
     free(g.tried);

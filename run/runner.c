@@ -1081,8 +1081,8 @@ static int runner__wants_instructions(const sweep *s)
     return 0;
 }
 
-/* The Instructions pass, before any timing child: one child under Valgrind
- * counts every configuration still to do (run/callgrind.h).  Where it
+/* The Instructions pass, before any timing child: children under Valgrind,
+ * side by side, count every configuration still to do (run/callgrind.h).  Where it
  * cannot run here every configuration records Instructions as unavailable
  * with the reason; a configuration Valgrind crashed or hung on fails. */
 static void runner__instructions(runner *r)
@@ -1104,11 +1104,13 @@ static void runner__instructions(runner *r)
         r->instr_why = dm_xstrdup("valgrind not found");
     int64_t t0 = dm_now_ns();
     if (vg && nt) {
+        int jobs = callgrind_jobs(r->o->count_jobs, nt);
         if (!r->o->quiet)
             fprintf(stderr, "dmbench: counting the instructions of %zu configurations under Valgrind "
-                    "(callgrind, LP_NUM_THREADS=0; frames ~300x slower, not timed)\n", nt);
+                    "in %d process%s side by side (callgrind, LP_NUM_THREADS=0; frames ~300x slower, "
+                    "not timed; --count-jobs)\n", nt, jobs, jobs == 1 ? "" : "es");
         char *dir = dm_xasprintf("%s/callgrind", r->run_dir);
-        callgrind_desc d = { .sweep = r->s, .valgrind = vg, .work_dir = dir,
+        callgrind_desc d = { .sweep = r->s, .valgrind = vg, .work_dir = dir, .jobs = jobs,
                              .timeout_s = 10 * r->s->measure.timeout_s, .quiet = r->o->quiet };
         dm_str err = {0};
         if (callgrind_run(&d, todo, nt, r->instr, &err) != 0) {

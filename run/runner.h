@@ -28,6 +28,7 @@ typedef struct runner_opts {
     double budget_s;           /* > 0: leave out configurations predicted to take longer */
     const char *tag;           /* stored with the run */
     int dry_run;               /* print the plan (and estimates) to stdout; measure nothing */
+    int count_jobs;            /* Instructions: children side by side; 0 = callgrind_jobs' default */
     int quiet, verbose;
 } runner_opts;
 

@@ -2,6 +2,7 @@
 #include "plan.h"
 #include "core/dm_error.h"
 #include "techniques/axes.h"
+#include "techniques/mesh.h"
 #include "techniques/technique.h"
 
 #include <stdio.h>
@@ -177,6 +178,30 @@ static int plan__excluded(const sweep *s, const size_t *idx)
     return 0;
 }
 
+/* 0 when the combination's mesh_density is one its mesh accepts (0, the
+ * mesh's default, or its range; a user mesh file ignores it), else
+ * DM_ERR_RANGE with "path:line: ..." naming the valid densities in err.
+ * The axis is read per combination, so an `exclude` can drop the pair. */
+static int plan__check_density(const sweep *s, const size_t *idx, dm_str *err)
+{
+    const char *mesh = plan__value(s, idx, "mesh"), *dens = plan__value(s, idx, "mesh_density");
+    int def, lo, hi, d = dens ? atoi(dens) : 0;
+    if (d == 0 || !mesh || mesh_density_range(mesh, &def, &lo, &hi) != 0 || (d >= lo && d <= hi))
+        return 0;
+    int line = 0;
+    for (size_t i = 0; i < s->n_axes; i++)
+        if (strcmp(s->axes[i].name, "mesh_density") == 0)
+            line = s->axes[i].line;
+    dm_str_printf(err, "%s:%d: mesh_density %d is out of range for mesh '%s': ", s->path, line, d, mesh);
+    if (lo > hi)
+        dm_str_printf(err, "it takes only 0 (the scene is fixed)");
+    else
+        dm_str_printf(err, "valid are %d..%d, and 0 for its default (%d)", lo > 1 ? lo : 1, hi, def);
+    dm_str_printf(err, "; give each mesh its own sweep file or drop the pair with "
+                  "`exclude: [{mesh: [%s], mesh_density: [%d]}]`", mesh, d);
+    return DM_ERR_RANGE;
+}
+
 int plan_build_progress(const sweep *s, plan *out, dm_str *err, plan_progress_fn progress,
                         void *user)
 {
@@ -200,6 +225,11 @@ int plan_build_progress(const sweep *s, plan *out, dm_str *err, plan_progress_fn
             progress(n, total, user);
         if (plan__excluded(s, idx)) {
             out->n_excluded++;
+        } else if (plan__check_density(s, idx, err) != 0) {
+            free(idx);
+            free(ix.slot);
+            plan_free(out);
+            return DM_ERR_RANGE;
         } else {
             plan__project(s, idx, &c);
             plan__add(out, &ix, &cap, &c);

@@ -418,24 +418,46 @@ static void mesh__halves(mesh__builder *b, int q, int flat_left)
     }
 }
 
+/* Density of each single mesh of mesh__names (before the scenes): the
+ * default that 0 stands for, and the valid range of an explicit value. */
+static const int mesh__def[] = {2, 0, 0, 0, 58, 4, 16, 6, 4, 4, 2, 8},
+                 mesh__lo[] = {2, 0, 0, 0, 3, 0, 1, 0, 1, 1, 0, 1},
+                 mesh__hi[] = {1024, 1024, 1024, 1024, 1024, 7, 512, 7, 256, 256, 7, 256};
+
+/* Index of a single built-in mesh in mesh__names, or -1 (also for a scene). */
+static int mesh__kind(const char *name)
+{
+    for (int i = 0; i < (int)(sizeof mesh__def / sizeof mesh__def[0]); i++)
+        if (strcmp(name, mesh__names[i]) == 0)
+            return i;
+    return -1;
+}
+
+int mesh_density_range(const char *name, int *def, int *lo, int *hi)
+{
+    if (mesh_scene_is(name))
+        return mesh_scene_density_range(name, def, lo, hi);
+    int kind = mesh__kind(name);
+    if (kind < 0)
+        return DM_ERR_UNKNOWN;
+    *def = mesh__def[kind];
+    *lo = mesh__lo[kind];
+    *hi = mesh__hi[kind];
+    return 0;
+}
+
 int mesh_build(const mesh_desc *desc, mesh_data *out)
 {
     const char *name = desc && desc->name ? desc->name : "plane";
     int d = desc ? desc->density : 0;
     if (mesh_scene_is(name))
         return mesh_scene_build(name, d, out);   /* several objects (mesh_scene.h) */
-    int kind = -1;
-    for (int i = 0; mesh__names[i]; i++)
-        if (strcmp(name, mesh__names[i]) == 0)
-            kind = i;
+    int kind = mesh__kind(name);
     if (kind < 0)
         return DM_ERR_UNKNOWN;
-    static const int def[] = {2, 0, 0, 0, 58, 4, 16, 6, 4, 4, 2, 8},
-                     lo[] = {2, 0, 0, 0, 3, 0, 1, 0, 1, 1, 0, 1},
-                     hi[] = {1024, 1024, 1024, 1024, 1024, 7, 512, 7, 256, 256, 7, 256};
     if (d == 0)
-        d = def[kind];
-    if (d < lo[kind] || d > hi[kind])
+        d = mesh__def[kind];
+    if (d < mesh__lo[kind] || d > mesh__hi[kind])
         return DM_ERR_RANGE;
     memset(out, 0, sizeof *out);
     mesh__builder b = {out, 0, 0};

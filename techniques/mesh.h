@@ -95,6 +95,11 @@ const char *const *mesh_names(void);
  * DM_ERR_UNKNOWN for an unknown name / DM_ERR_RANGE for a bad density, with
  * out untouched. */
 int mesh_build(const mesh_desc *desc, mesh_data *out);
+/* The densities built-in mesh `name` accepts: 0 stands for *def, and an
+ * explicit density must lie in [*lo, *hi] (a scene with *lo > *hi takes
+ * only 0).  Returns 0, or DM_ERR_UNKNOWN for a name that is not built in
+ * (a user mesh file ignores its density). */
+int mesh_density_range(const char *name, int *def, int *lo, int *hi);
 /* Recomputes tangents from triangle edges and UV deltas (study S1 (docs/studies.md) formula),
  * accumulated per vertex and Gram–Schmidt orthonormalised against the
  * normal.  Degenerate UV triangles (|M| < 1e-12) add nothing; a vertex left

@@ -114,15 +114,27 @@ static int mesh_scene__s4(mesh_data *out, const char *body, int level)
     return rc;
 }
 
-int mesh_scene_build(const char *name, int density, mesh_data *out)
+int mesh_scene_density_range(const char *name, int *def, int *lo, int *hi)
 {
     if (!mesh_scene_is(name))
         return DM_ERR_UNKNOWN;
     int s2 = strcmp(name, "s2-scene1") == 0, reduced = strstr(name, "reduced") != NULL;
-    if (s2 ? density != 0 : density < 0 || density > 7)
+    *def = s2 ? 0 : reduced ? 2 : 3;   /* the asteroids' subdivision level */
+    *lo = 1;
+    *hi = s2 ? 0 : 7;                  /* s2-scene1 takes only 0 */
+    return 0;
+}
+
+int mesh_scene_build(const char *name, int density, mesh_data *out)
+{
+    int def, lo, hi;
+    if (mesh_scene_density_range(name, &def, &lo, &hi) != 0)
+        return DM_ERR_UNKNOWN;
+    if (density != 0 && (density < lo || density > hi))
         return DM_ERR_RANGE;
+    int s2 = strcmp(name, "s2-scene1") == 0, reduced = strstr(name, "reduced") != NULL;
     mesh_data m = {0};
-    int level = density ? density : reduced ? 2 : 3;
+    int level = density ? density : def;
     int rc = s2 ? mesh_scene__s2(&m) : mesh_scene__s4(&m, reduced ? "asteroid-reduced" : "asteroid", level);
     if (rc) {
         mesh_free(&m);

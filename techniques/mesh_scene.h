@@ -38,5 +38,7 @@ int mesh_scene_is(const char *name);
  * 0 (out owns its arrays), DM_ERR_UNKNOWN for a name that is no scene, or
  * DM_ERR_RANGE for a bad density, with out untouched. */
 int mesh_scene_build(const char *name, int density, mesh_data *out);
+/* mesh_density_range (mesh.h) for a scene. */
+int mesh_scene_density_range(const char *name, int *def, int *lo, int *hi);
 
 #endif

@@ -1,5 +1,6 @@
 /* test_run_callgrind.c — the Instructions pass's pure parts: a dump file's
- * trigger and totals, and the run's warning for samples that disagree. */
+ * trigger and totals, the run's warning for samples that disagree, and
+ * how many counting children run side by side. */
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -8,6 +9,7 @@
 
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #include "core/dm_error.h"
 #include "run/callgrind.h"
@@ -78,6 +80,23 @@ static void test_disagreement_boundary(void **state)
     free(w);
 }
 
+/* How many counting children: what was asked, but never more than the
+ * configurations; by default at least one and at most CALLGRIND_MAX_JOBS
+ * (and no more than this machine's online CPUs). */
+static void test_jobs(void **state)
+{
+    (void)state;
+    long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    assert_int_equal(callgrind_jobs(3, 10), 3);
+    assert_int_equal(callgrind_jobs(3, 2), 2);
+    assert_int_equal(callgrind_jobs(1, 48), 1);
+    assert_int_equal(callgrind_jobs(0, 0), 1);
+    assert_int_equal(callgrind_jobs(5, 0), 1);
+    int j = callgrind_jobs(0, 1000);
+    assert_true(j >= 1 && j <= CALLGRIND_MAX_JOBS && j <= cpus);
+    assert_int_equal(callgrind_jobs(0, 1), 1);
+}
+
 static void test_disagreement_not_counted(void **state)
 {
     (void)state;
@@ -92,4 +111,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_parse_dump),
              cmocka_unit_test(test_parse_dump_allocator),
              cmocka_unit_test(test_disagreement_boundary),
-             cmocka_unit_test(test_disagreement_not_counted))
+             cmocka_unit_test(test_disagreement_not_counted),
+             cmocka_unit_test(test_jobs))

@@ -204,6 +204,45 @@ static void test_exclude_errors(void **state)
     }
 }
 
+/* A mesh_density beyond what the combination's mesh accepts is refused at
+ * planning with the file, the axis' line and the mesh's valid densities;
+ * the same density is fine for a mesh that takes it, 0 always is, and an
+ * `exclude` of the pair plans the rest. */
+static void test_density_out_of_mesh_range(void **state)
+{
+    (void)state;
+    static const struct { const char *mesh, *dens, *msg; } bad[] = {
+        {"[plane, sphere]", "[0, 9]",
+         "t.yaml:5: mesh_density 9 is out of range for mesh 'sphere': valid are 1..7, and 0 for its default (4)"},
+        {"[plane]", "[1]", "t.yaml:5: mesh_density 1 is out of range for mesh 'plane': valid are 2..1024, and 0 for its default (2)"},
+        {"[s2-scene1]", "[2]", "mesh_density 2 is out of range for mesh 's2-scene1': it takes only 0"},
+        {"[s4-asteroids]", "[8]", "valid are 1..7, and 0 for its default (3)"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        char text[256];
+        snprintf(text, sizeof text, "name: t\nsweep:\n  technique: [phong]\n  mesh: %s\n  mesh_density: %s\n",
+                 bad[i].mesh, bad[i].dens);
+        sweep s;
+        plan p;
+        dm_str err = {0};
+        assert_int_equal(sweep_parse(text, "t.yaml", &s, &err), 0);
+        assert_int_equal(plan_build(&s, &p, &err), DM_ERR_RANGE);
+        if (!strstr(dm_str_get(&err), bad[i].msg))
+            fail_msg("case %zu: '%s' lacks '%s'", i, dm_str_get(&err), bad[i].msg);
+        assert_int_equal(p.n_configs, 0);
+        dm_str_free(&err);
+        sweep_free(&s);
+    }
+    sweep s;
+    plan p;
+    plan_text("name: t\nsweep:\n  technique: [phong]\n  mesh: [plane, sphere]\n  mesh_density: [0, 7, 9]\n"
+              "exclude:\n  - { mesh: sphere, mesh_density: 9 }\n", &s, &p);
+    assert_int_equal(p.n_excluded, 1);
+    assert_int_equal(p.n_configs, 5);   /* plane 0, 7, 9 and sphere 0, 7 */
+    plan_free(&p);
+    sweep_free(&s);
+}
+
 /* Progress of planning: nondecreasing, ending at the total. */
 typedef struct progress_log { size_t calls, last, total; int monotonic; } progress_log;
 
@@ -304,6 +343,7 @@ int main(void)
         cmocka_unit_test(test_exclude),
         cmocka_unit_test(test_conditional_axis_folds),
         cmocka_unit_test(test_exclude_errors),
+        cmocka_unit_test(test_density_out_of_mesh_range),
         cmocka_unit_test(test_keys_stable),
         cmocka_unit_test(test_shards_partition),
         cmocka_unit_test(test_shuffle_is_seeded_permutation),

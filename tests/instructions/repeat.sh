@@ -3,9 +3,12 @@
 # repeat.yaml: every technique, tessellation at two levels) counted by
 # three separate runs: two from empty caches (shader, map, reference and
 # program caches in fresh directories) and one from the first run's warm
-# caches, each with another --seed, so its Valgrind child counts the
-# configurations in another order.  With --alone, also every configuration
-# alone in a child of its own (--shard K/N, warm caches).
+# caches, each with another --seed, so its Valgrind children count the
+# configurations in another order.  The cold runs deal the configurations
+# to one child per CPU (the default); the warm run counts them all in one
+# child (--count-jobs 1), so each shares its child with other company.
+# With --alone, also every configuration alone in a child of its own
+# (--shard K/N, warm caches).
 # Prints one line per configuration: the counts' range and spread, and the
 # spread the same counts would have with the C allocator's instructions
 # kept in (what Instructions counted before it left them out; each
@@ -31,7 +34,7 @@ run() {
 t0=$(date +%s)
 run cold1 c1 1
 run cold2 c2 2 &  # two at a time at most: CI has 2 cores
-run warm c1 3     # c1's caches and program binaries, now filled
+run warm c1 3 --count-jobs 1   # c1's caches and program binaries, now filled; one child
 wait $!
 runs=("$OUT/cold1" "$OUT/cold2" "$OUT/warm")
 if [ "$ALONE" = --alone ]; then
