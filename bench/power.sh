@@ -11,6 +11,7 @@
 # dmbench_slowshader (tests/instructions.cmake; STEPS=8 makes pom about
 # +9 % and normal/parallax +25-30 % instructions per frame), e.g.
 #   cmake -S . -B /tmp/slow8 -DDM_SLOW_STEPS=8 && cmake --build /tmp/slow8 --target dmbench_slowshader
+# (the binary: /tmp/slow8/tests/dmbench_slowshader)
 # Timings are only as good as the machine was quiet: the load average is
 # printed with each comparison.  LP_NUM_THREADS=1 as in ci/perf-gate.sh.
 # Usage: bench/power.sh BASE_BIN SLOW_BIN [N] [ROUNDS] [SWEEP]
@@ -34,15 +35,14 @@ for i in $(seq 1 "$N"); do
   [ -s "$OUT/c$i.json" ] || { sed 's/^/  /' "$OUT/c$i.txt" | tail -5; }
 done
 python3 - "$OUT" "$N" <<'PY'
-import glob, json, re, statistics, sys
+import glob, json, statistics, sys
 out, n = sys.argv[1], int(sys.argv[2])
 by = {}
 for path in sorted(glob.glob(f"{out}/c*.json")):
     for c in json.load(open(path)).get("configs", []):
-        m = re.search(r"technique=([\w.-]+)", c.get("configuration", ""))
-        t = m.group(1) if m else c.get("key", "?")
+        t = c.get("configuration") or c.get("key", "?")   # the short label, e.g. "plane 160×90 · pom"
         by.setdefault(t, []).append(c)
-print(f"{'technique':16} {'REGRESSION':>11} {'INCONCLUSIVE':>13} {'PASS':>5}  median ratio  median CI")
+print(f"{'configuration':24} {'REGRESSION':>11} {'INCONCLUSIVE':>13} {'PASS':>5}  median ratio  median CI")
 for t, cs in sorted(by.items()):
     v = [c["verdict"] for c in cs]
     ratios = [c["ratio"] for c in cs if isinstance(c.get("ratio"), (int, float))]
@@ -50,6 +50,6 @@ for t, cs in sorted(by.items()):
     ci = (f"[{statistics.median(a for a, _ in cis):.3f}, {statistics.median(b for _, b in cis):.3f}]"
           if cis else "-")
     r = f"x{statistics.median(ratios):.3f}" if ratios else "-"
-    print(f"{t:16} {v.count('REGRESSION'):>4} of {len(v):<4} {v.count('INCONCLUSIVE'):>13} "
+    print(f"{t:24} {v.count('REGRESSION'):>4} of {len(v):<4} {v.count('INCONCLUSIVE'):>13} "
           f"{v.count('PASS'):>5}  {r:>12}  {ci}")
 PY

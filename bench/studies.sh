@@ -11,7 +11,11 @@
 #                                     the same scenes with exact counters
 #                                     only (pipeline statistics and the
 #                                     instructions of one frame under
-#                                     callgrind): the same on any load
+#                                     callgrind): the same on any load;
+#                                     with STAGES=1 also the stage counters
+#                                     (Geometry/Raster/FragmentInstructions:
+#                                     four counted windows a sample instead
+#                                     of one) and each row's stage shares
 #
 # NAME... limits the run to those sweeps (e.g. s4-table8-1-2), in that
 # order; by default every table sweep and s1-fig28 (S1's chart without
@@ -40,13 +44,14 @@ fi
 
 # counts mode: the sweep with one sample of exact counters and no quality pass
 counts_sweep() {   # SRC DST
-  python3 - "$1" "$2" <<'PY'
+  python3 - "$1" "$2" "${STAGES:-0}" <<'PY'
 import re, sys
 s = open(sys.argv[1]).read()
+stages = ",\n             GeometryInstructions, RasterInstructions, FragmentInstructions" if sys.argv[3] == "1" else ""
 s = re.sub(r"^measure:\n(?:  .*\n)+", "measure:\n  warmup_frames: 1\n  frames_per_sample: 1\n"
            "  samples: { min: 2, max: 2, target_ci: 50% }\n  max_seconds: 1\n"
            "  counters: [VSInvocations, TESInvocations, ClippingOutputPrimitives, SamplesPassed,\n"
-           "             Instructions]\n", s, flags=re.M)
+           "             Instructions" + stages + "]\n", s, flags=re.M)
 s = re.sub(r"^quality:.*\n", "", s, flags=re.M)
 open(sys.argv[2], "w").write(s)
 PY
@@ -76,9 +81,15 @@ import glob, json, os, sys
 root, mode = sys.argv[1], sys.argv[2]
 metric = "WallTime" if mode == "time" else "Instructions"
 
-def value(counters):
-    c = counters.get(metric) or {}
+def value(counters, name=None):
+    c = counters.get(name or metric) or {}
     return c.get("median", c.get("value"))
+
+def shares(counters):   # "geometry 9 % raster 4 % fragment 87 %", or "" without the stage counters
+    v = [value(counters, n) for n in ("GeometryInstructions", "RasterInstructions", "FragmentInstructions")]
+    if mode != "counts" or None in v or sum(v) <= 0:
+        return ""
+    return "  geometry %.1f %% raster %.1f %% fragment %.1f %%" % tuple(100 * x / sum(v) for x in v)
 
 def verdict(p, m):
     side = lambda r: 0 if abs(r - 1) <= 0.05 else (1 if r > 1 else -1)
@@ -97,8 +108,8 @@ for d in sorted(glob.glob(os.path.join(root, "s*"))):
         print("\n%s — no published values; measured by %s, %s" % (os.path.basename(d), metric, done))
         for c in res["configs"]:
             m = value(c["counters"])
-            print("  %-60s %s" % (c["label"][-60:], "%.0f" % m if m and mode == "counts"
-                                  else "%.2f ms" % (m / 1e6) if m else "—"))
+            print("  %-60s %s%s" % (c["label"][-60:], "%.0f" % m if m and mode == "counts"
+                                    else "%.2f ms" % (m / 1e6) if m else "—", shares(c["counters"])))
         continue
     pub = json.load(open(pub_f))
     inv = pub["unit"] == "fps"
@@ -115,6 +126,6 @@ for d in sorted(glob.glob(os.path.join(root, "s*"))):
         mr = m / bm if m and bm else None
         shown = "%14.0f" % m if m and mode == "counts" else ("%11.2f ms" % (m / 1e6) if m else "%14s" % "—")
         ver = "baseline" if label == pub["baseline"] else (verdict(pr, mr) if mr else "no measurement")
-        print("  %-44s %10g %8.3f %s %8s  %s" % (label[:44], v["value"], pr, shown,
-              "%.3f" % mr if mr else "—", ver))
+        print("  %-44s %10g %8.3f %s %8s  %s%s" % (label[:44], v["value"], pr, shown,
+              "%.3f" % mr if mr else "—", ver, shares(c["counters"]) if c else ""))
 PY

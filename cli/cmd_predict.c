@@ -40,11 +40,13 @@ const cli_option cli_predict_options[] = {
 /* What the fits read, by counter, and the invocation counts measured here. */
 static const char *const predict__needed[] = {"Instructions", "VSInvocations", "TESInvocations",
                                               "ClippingOutputPrimitives", "FSInvocations"};
+/* TCSPatches is read too, for stage-instructions' patches term; a fit
+ * from runs without it has dropped that term and ignores it. */
 static const char *const predict__counts[] = {"VSInvocations", "TESInvocations", "ClippingOutputPrimitives",
-                                              "FSInvocations"};
+                                              "FSInvocations", "TCSPatches"};
 static const char *const predict__stages[] = {"GeometryInstructions", "RasterInstructions",
                                               "FragmentInstructions"};
-#define PREDICT__N_COUNTS 4
+#define PREDICT__N_COUNTS 5
 
 typedef struct predict_fits {
     const dm_run_result *train;   /* the pooled runs */

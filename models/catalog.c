@@ -8,8 +8,9 @@ static const fit_bound catalog__nonneg5[] = {
     { "c_prim", 0, INFINITY }, { "c_px", 0, INFINITY } };
 
 static const fit_bound catalog__nonneg_stage[] = {
-    { "c0", 0, INFINITY }, { "c_vs", 0, INFINITY }, { "c_tes", 0, INFINITY }, { "c_prim", 0, INFINITY },
-    { "c_px", 0, INFINITY }, { "c_step", 0, INFINITY }, { "c_light", 0, INFINITY } };
+    { "c0", 0, INFINITY }, { "c_vs", 0, INFINITY }, { "c_tes", 0, INFINITY }, { "c_tp", 0, INFINITY },
+    { "c_prim", 0, INFINITY }, { "c_px", 0, INFINITY }, { "c_step", 0, INFINITY },
+    { "c_light", 0, INFINITY } };
 
 static const fit_bound catalog__nonneg2[] = { { "a", 0, INFINITY }, { "b", 0, INFINITY } };
 
@@ -24,14 +25,19 @@ static const models_builtin catalog__models[] = {
     { "resolution-linear", "a + b*SamplesPassed", "WallTime",
       "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0, NULL },
     /* one fit per shader variant: the costs per invocation are the variant's,
-     * the invocation counts the configuration's (docs/models.md) */
+     * the invocation counts the configuration's (docs/models.md).  c_tp:
+     * llvmpipe's evaluation stage costs more per invocation the more
+     * patches a draw has (each batch of evaluations walks the draw's
+     * patches: quadratic in the patches, docs/counters.md); the term is
+     * dropped where TCSPatches was not recorded. */
     { "stage-instructions",
-      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_prim*ClippingOutputPrimitives + c_px*FSInvocations"
+      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*TCSPatches"
+      " + c_prim*ClippingOutputPrimitives + c_px*FSInvocations"
       " + c_step*FSInvocations*steps + c_light*FSInvocations*light_count",
       "Instructions",
-      "instructions per frame of one shader variant: a cost per vertex, evaluation, primitive and "
-      "fragment invocation, the fragment's growing with steps and lights",
-      catalog__nonneg_stage, 7, "variant" },
+      "instructions per frame of one shader variant: a cost per vertex, evaluation (growing with the "
+      "draw's patches), primitive and fragment invocation, the fragment's growing with steps and lights",
+      catalog__nonneg_stage, 8, "variant" },
     { "time-from-instructions", "a + b*Instructions", "WallTime",
       "frame time from the frame's instructions: a fixed cost plus a time per instruction",
       catalog__nonneg2, 2, NULL },

@@ -19,7 +19,7 @@
 
 /* Known per-invocation costs of two variants. */
 enum { POM_C0 = 80000, POM_VS = 60, POM_PRIM = 40, POM_PX = 150, POM_STEP = 25 };
-enum { TESS_C0 = 120000, TESS_TES = 300, TESS_PRIM = 50, TESS_PX = 90 };
+enum { TESS_C0 = 120000, TESS_TES = 300, TESS_TP = 7, TESS_PRIM = 50, TESS_PX = 90 };
 
 static void counter(dm_config_result *c, const char *name, double v)
 {
@@ -42,7 +42,8 @@ static dm_config_result *config(dm_run_result *run, const char *technique)
 }
 
 /* pom at steps 8/16/32, mesh density 1..3, 3 resolutions; tess-displacement
- * (lod uniform) at levels 2/4/8 and the same resolutions. */
+ * (lod uniform) at levels 2/4/8, 2 and 8 patches and the same resolutions,
+ * its evaluations costing more per invocation with more patches. */
 static void synthetic_run(dm_run_result *run)
 {
     static const int res[3][2] = {{64, 64}, {128, 96}, {160, 160}};
@@ -64,22 +65,25 @@ static void synthetic_run(dm_run_result *run)
                 counter(c, "FSInvocations", fs);
                 counter(c, "Instructions", POM_C0 + POM_VS * vs + POM_PRIM * prim + POM_PX * fs + POM_STEP * fs * s);
             }
-    for (int L = 2; L <= 8; L *= 2)
-        for (int k = 0; k < 3; k++) {
-            dm_config_result *c = config(run, "tess-displacement");
-            char v[32];
-            dm_kv_push(&c->params, &c->n_params, "lod", "uniform");
-            snprintf(v, sizeof v, "%d", L);
-            dm_kv_push(&c->params, &c->n_params, "tess_level", v);
-            snprintf(v, sizeof v, "%dx%d", res[k][0], res[k][1]);
-            dm_kv_push(&c->params, &c->n_params, "resolution", v);
-            double tes = 250.0 * L * L, prim = 1.5 * tes + 100 * L, fs = res[k][0] * res[k][1] * 0.4 + 50 * L;
-            counter(c, "VSInvocations", 500);
-            counter(c, "TESInvocations", tes);
-            counter(c, "ClippingOutputPrimitives", prim);
-            counter(c, "FSInvocations", fs);
-            counter(c, "Instructions", TESS_C0 + TESS_TES * tes + TESS_PRIM * prim + TESS_PX * fs);
-        }
+    for (int P = 2; P <= 8; P *= 4)
+        for (int L = 2; L <= 8; L *= 2)
+            for (int k = 0; k < 3; k++) {
+                dm_config_result *c = config(run, "tess-displacement");
+                char v[32];
+                dm_kv_push(&c->params, &c->n_params, "lod", "uniform");
+                snprintf(v, sizeof v, "%d", L);
+                dm_kv_push(&c->params, &c->n_params, "tess_level", v);
+                snprintf(v, sizeof v, "%dx%d", res[k][0], res[k][1]);
+                dm_kv_push(&c->params, &c->n_params, "resolution", v);
+                double tes = 125.0 * L * L * P, prim = 1.5 * tes + 100 * L, fs = res[k][0] * res[k][1] * 0.4 + 50 * L;
+                counter(c, "VSInvocations", 500);
+                counter(c, "TCSPatches", P);
+                counter(c, "TESInvocations", tes);
+                counter(c, "ClippingOutputPrimitives", prim);
+                counter(c, "FSInvocations", fs);
+                counter(c, "Instructions",
+                        TESS_C0 + TESS_TES * tes + TESS_TP * tes * P + TESS_PRIM * prim + TESS_PX * fs);
+            }
 }
 
 static double param(const dm_fit_result *f, const char *name)
@@ -131,9 +135,10 @@ static void test_recovers_per_variant(void **state)
         } else {
             assert_string_equal(f->group[0].value, "tess-displacement lod=uniform");
             assert_null(strstr(f->formula, "steps"));
-            assert_int_equal(f->n_points, 9);
+            assert_int_equal(f->n_points, 18);
             assert_close(param(f, "c0"), TESS_C0);
             assert_close(param(f, "c_tes"), TESS_TES);
+            assert_close(param(f, "c_tp"), TESS_TP);
             assert_close(param(f, "c_prim"), TESS_PRIM);
             assert_close(param(f, "c_px"), TESS_PX);
         }

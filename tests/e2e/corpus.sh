@@ -109,6 +109,9 @@ f=$(sweep inf "sweep:" "  technique: [pom]" "  height_scale: [.inf]")
 hcase sweep/infinite-float 2 "inf.yaml:4" -- "$BIN" run "$f" --out "$NEVER"
 f=$(sweep badmesh "sweep:" "  technique: [normal]" "  mesh: [file:/nonexistent/x.obj]")
 hcase sweep/missing-mesh 2 "x.obj" -- "$BIN" run "$f" --out "$NEVER"
+f=$(sweep density "sweep:" "  technique: [normal]" "  mesh: [plane, sphere]" "  mesh_density: [9]")
+hcase sweep/density-range 2 "density.yaml:5: mesh_density 9 is out of range for mesh 'sphere': valid are 1..7" \
+  -- "$BIN" run "$f" --out "$NEVER"
 # ---- maps (plan time: every resource is read before anything is measured) ----
 for m in huge-png wide-png zero-png truncated-png empty-png text-png random-png truncated-exr; do
   hcase "map/$m" 2 "height map" -- "$BIN" run "$G/map-$m.yaml" --out "$NEVER"
