@@ -98,7 +98,11 @@ def verdict(p, m):
     return "agrees" if max(p, m) / min(p, m) <= 2 else "differs (x%.1f)" % (max(p, m) / min(p, m))
 
 for d in sorted(glob.glob(os.path.join(root, "s*"))):
-    pub_f, res_f = os.path.join(d, "latest/published.json"), os.path.join(d, "latest/results.json")
+    latest = os.path.join(d, "latest")
+    if not os.path.exists(latest):   # a sweep with `drivers:` runs each driver into d/DRIVER/
+        found = sorted(glob.glob(os.path.join(d, "*", "latest")))
+        latest = found[0] if found else latest
+    pub_f, res_f = os.path.join(latest, "published.json"), os.path.join(latest, "results.json")
     if not os.path.exists(res_f):
         continue
     res = json.load(open(res_f))

@@ -279,17 +279,22 @@ static int render__sparse_check(const render__cfg *c, dm_str *log)
     return DM_ERR_UNSUPPORTED;
 }
 
-/* virtual_texture=software|sparse covers the fragment-stage techniques
- * (the maps are sampled through vt.glsl in surface.frag.glsl only) with
- * the page formats of vt.h. */
+/* virtual_texture=software|sparse covers the techniques whose maps are
+ * sampled through the page table: the fragment-stage techniques
+ * (surface.vert.glsl and surface.frag.glsl, vt.glsl) and the tessellated
+ * ones (tess.vert, tess.tcs or a user's control stage, tess.tes.glsl reading
+ * the height through vt_table.glsl), with the page formats of vt.h.
+ * vertex-displacement fetches heights in the vertex stage, which has no
+ * page-table path. */
 static int render__vt_usable(const render__cfg *c, const render__format *fmt[3], dm_str *log)
 {
     const technique_desc *t = technique_find(render__get(c, "technique"));
     const char *how = render__get(c, "virtual_texture");
-    if (t && (t->tcs || t->tes || t->gs || strcmp(t->vs, "surface.vert.glsl") != 0 ||
-              strcmp(t->fs, "surface.frag.glsl") != 0)) {
-        dm_str_printf(log, "virtual_texture=%s covers the fragment-stage techniques only, not '%s'\n", how,
-                      t->name);
+    int fragment = t && !t->tcs && !t->tes && strcmp(t->vs, "surface.vert.glsl") == 0;
+    int tess = t && t->tes && strcmp(t->tes, "tess.tes.glsl") == 0 && strcmp(t->vs, "tess.vert.glsl") == 0;
+    if (t && (t->gs || !t->fs || strcmp(t->fs, "surface.frag.glsl") != 0 || !(fragment || tess))) {
+        dm_str_printf(log, "virtual_texture=%s covers the fragment-stage and tessellated techniques only, "
+                      "not '%s'\n", how, t->name);
         return DM_ERR_UNSUPPORTED;
     }
     if (fmt[0]->internal != GL_R32F || (fmt[1]->internal != GL_RGB8 && fmt[1]->internal != GL_RGBA8) ||

@@ -12,6 +12,25 @@
 // two patches interpolate the same values in either corner order.
 #include "displace.glsl"
 
+// The height at uv.  Through the virtual texture (VT_SOFTWARE, VT_SPARSE)
+// it is read from the finest resident page covering uv at level 0: what is
+// resident is decided by the fragment stage's feedback, so where the
+// fragments asked for a coarser level the surface is displaced by that
+// level's heights (docs/textures.md).  Plain: level 0 of the height map.
+#if defined(VT_SOFTWARE) || defined(VT_SPARSE)
+#include "vt_table.glsl"
+float tes_height(vec2 uv)
+{
+#ifdef VT_SPARSE
+    return textureLod(t_height, uv, vt_resident(uv, 0)).r;
+#else
+    return textureLod(t_height, vt_phys_uv(uv, 0), 0.0).r;
+#endif
+}
+#else
+float tes_height(vec2 uv) { return textureLod(t_height, uv, 0.0).r; }
+#endif
+
 // TESS_SMOOTH_PHONG: Phong tessellation (Boubekeur & Alexa 2008) of the base
 // surface before displacement: the interpolated point is projected onto the
 // tangent plane of each corner, the projections are interpolated with the
@@ -100,13 +119,13 @@ void main()
     }
     p = mix(p, q, PHONG_ALPHA);
 #endif
-    float h = textureLod(t_height, uv, 0.0).r;
+    float h = tes_height(uv);
     vec3 dn = n;
 #ifdef CRACK_FREE_ON
     if (on_edge) {
         vec2 su;
         seam_edge(w, su, dn);
-        h = textureLod(t_height, su, 0.0).r;
+        h = tes_height(su);
     }
 #endif
     displace_emit(displace_point(p, dn, h), uv, n, t);
