@@ -70,6 +70,11 @@ int cli_drivers(int argc, char **argv);
 int cli_drivers_main(const char *sweep_path, const char *list, const char *out, const char *seed,
                      int quiet);
 #define CLI_DRIVERS_CHILD "DMBENCH_DRIVERS_CHILD"
+/* `run SWEEP --dry-run` for a sweep with `drivers:`: each driver's plan, in
+ * a run under that driver (a driver not installed is printed as left out
+ * with the reason); returns the worst exit status of the plans. */
+struct sweep;
+int cli_drivers_dry_run(const char *sweep_path, const struct sweep *s, const char *out);
 int cli_view(int argc, char **argv);
 int cli_slurm(int argc, char **argv);
 int cli_export(int argc, char **argv);

@@ -31,6 +31,7 @@ typedef struct drivers_args {
     const char *out;
     const char *seed;
     int quiet;
+    int dry_run;           /* each driver's run only plans (run --dry-run) */
 } drivers_args;
 
 const cli_option cli_drivers_options[] = {
@@ -121,8 +122,12 @@ static int drivers__run(const char *driver, const char *sweep, const char *out,
     argv[k++] = "run";
     if (sweep)
         argv[k++] = sweep;
-    argv[k++] = "--out";
-    argv[k++] = out;
+    if (out) {
+        argv[k++] = "--out";
+        argv[k++] = out;
+    }
+    if (a->dry_run)
+        argv[k++] = "--dry-run";
     if (a->seed) {
         argv[k++] = "--seed";
         argv[k++] = a->seed;
@@ -173,6 +178,27 @@ int cli_drivers(int argc, char **argv)
     if (argc > 1)
         return cli_usage_error("drivers: expected at most one SWEEP (got %d arguments)", argc);
     return cli_drivers_main(argc ? argv[0] : NULL, a.drivers, a.out, a.seed, a.quiet);
+}
+
+int cli_drivers_dry_run(const char *sweep_path, const sweep *s, const char *out)
+{
+    drivers_args a = { .out = out, .dry_run = 1 };
+    int rc = 0;
+    for (size_t i = 0; i < s->n_drivers; i++) {
+        char *why = NULL;
+        const char *miss = drivers_missing(drivers_find(s->drivers[i]), &why);
+        printf("== driver %s%s%s\n", s->drivers[i], miss ? ": left out, " : "", miss ? miss : "");
+        free(why);
+        fflush(stdout);
+        if (miss)
+            continue;
+        int r = drivers__run(s->drivers[i], sweep_path, out, &a, &why);
+        if (r != 0)
+            fprintf(stderr, "dmbench: drivers: %s: %s\n", s->drivers[i], why);
+        free(why);
+        rc = r > rc ? r : rc;
+    }
+    return rc;
 }
 
 int cli_drivers_main(const char *sweep_path, const char *list, const char *out, const char *seed,

@@ -120,6 +120,11 @@ int cli_run(int argc, char **argv)
         fprintf(stderr, "dmbench: %s names drivers: one run per driver (dmbench drivers)\n", file);
         return cli_drivers_main(file, NULL, a->o.out_root, a->o.seed ? seed : NULL, a->o.quiet);
     }
+    if (s.n_drivers && !getenv(CLI_DRIVERS_CHILD)) {   /* the dry run of each driver's run */
+        rc = cli_drivers_dry_run(file, &s, a->o.out_root);
+        sweep_free(&s);
+        return rc;
+    }
     char *dir = NULL;
     rc = runner_run(&s, &a->o, &dir, &err);
     sweep_free(&s);

@@ -3,7 +3,8 @@
 # --dry-run` exits 0), and every study-table sweep (s<N>-table*.yaml,
 # s2-section*.yaml) carries a `published:` block whose labels each name one
 # planned configuration (the dry run refuses any other with exit 2), with
-# every published figure's label present in the printed plan.
+# every published figure's label present in the printed plan.  A sweep
+# with `drivers:` (s3-table7-1-sparse.yaml: zink) plans under its drivers.
 set -euo pipefail
 SRC=${DMBENCH_SOURCE_DIR:?}
 BIN=${DMBENCH_BINARY:?}
@@ -19,6 +20,13 @@ for f in "$SRC"/sweeps/*.yaml; do
     s[1-4]-table*.yaml|s2-section*.yaml) ;;
     *) continue ;;
   esac
+  # a sweep with `drivers:` plans under each of them (`== driver X` heads
+  # each plan); one whose driver is not installed here cannot be checked
+  if grep -q '^== driver .*: left out' "$TMP/plan.txt"; then
+    echo "$name: $(grep -m1 '^== driver' "$TMP/plan.txt"); its labels are not checked here"
+    n_tables=$((n_tables + 1))
+    continue
+  fi
   n_tables=$((n_tables + 1))
   python3 - "$f" "$TMP/plan.txt" <<'PY'
 import re, sys
