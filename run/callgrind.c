@@ -481,13 +481,13 @@ static int cg__run_groups(cg_state *gs, size_t ng)
         int ready = poll(pfd, (nfds_t)nf, 500);
         for (size_t j = 0; j < nf && rc == 0; j++) {
             cg_state *g = &gs[who[j]];
-            int open = ready > 0 && pfd[j].revents ? cg__read_lines(g) : 1, killed = 0;
-            if (open && (double)(dm_now_ns() - g->last) / 1e9 > g->d->timeout_s) {
+            int alive = ready > 0 && pfd[j].revents ? cg__read_lines(g) : 1, killed = 0;
+            if (alive && (double)(dm_now_ns() - g->last) / 1e9 > g->d->timeout_s) {
                 kill(g->pid, SIGKILL);   /* no progress: the watchdog */
-                open = 0;
+                alive = 0;
                 killed = 1;
             }
-            if (open)
+            if (alive)
                 continue;
             int status = 0;
             waitpid(g->pid, &status, 0);

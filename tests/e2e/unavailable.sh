@@ -47,10 +47,11 @@ for c in j["configs"]:
 assert j["passes"]["Instructions"] == "instructions" and j["passes"]["WallTime"] == "timing"
 print("Instructions unavailable ok")
 PY
-# Valgrind crashing or hanging in the Instructions child: every
-# configuration it was counting fails with Valgrind's own message (the hang
-# through the watchdog, 10 x timeout_s), Valgrind is started once (no endless
-# retry), nothing is left running, and the run finishes.
+# Valgrind crashing or hanging in the Instructions children (two side by
+# side, --count-jobs 2): every configuration they were counting fails with
+# Valgrind's own message (the hang through each child's watchdog, 10 x
+# timeout_s), Valgrind is started once per child (no endless retry),
+# nothing is left running, and the run finishes.
 cat > "$OUT/crash-valgrind" <<'SH'
 #!/bin/sh
 echo started >> "$FAKE_VG_LOG"
@@ -71,8 +72,8 @@ else
 fi
 for kind in crash hang; do
   FAKE_VG_LOG=$OUT/$kind.log DMBENCH_VALGRIND=$OUT/$kind-valgrind \
-    timeout 120 "$BIN" run "$OUT/instr.yaml" --out "$OUT/$kind" --quiet
-  [ "$(wc -l < "$OUT/$kind.log")" -eq 1 ] || { echo "FAIL: $kind: Valgrind started $(wc -l < "$OUT/$kind.log") times"; exit 1; }
+    timeout 120 "$BIN" run "$OUT/instr.yaml" --out "$OUT/$kind" --quiet --count-jobs 2
+  [ "$(wc -l < "$OUT/$kind.log")" -eq 2 ] || { echo "FAIL: $kind: Valgrind started $(wc -l < "$OUT/$kind.log") times, not once per child"; exit 1; }
   python3 - "$OUT/$kind/latest" "$kind" <<'PY'
 import json, os, sys
 j = json.load(open(os.path.join(sys.argv[1], "results.json")))
