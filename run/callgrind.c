@@ -459,11 +459,40 @@ static int cg__ended(cg_state *g, int status)
     return !clean && left > 0;
 }
 
+/* Progress on stderr (unless quiet): "k of n counted", at most once a
+ * second and when the last one is done; rewritten in place on a terminal,
+ * where `final` ends the line the children left unfinished. */
+typedef struct cg_progress { size_t shown; int64_t t0, last; int tty, open; } cg_progress;
+
+static void cg__progress(const cg_state *gs, size_t ng, cg_progress *p, int final)
+{
+    size_t done = 0, n = 0;
+    for (size_t k = 0; k < ng; k++)
+        for (size_t i = 0; i < gs[k].n; i++, n++)
+            done += gs[k].done[i] || gs[k].out[i].failed;
+    int64_t now = dm_now_ns();
+    if (gs[0].d->quiet)
+        return;
+    if (final) {
+        if (p->open)
+            fputc('\n', stderr);
+        return;
+    }
+    if (done == p->shown || (done < n && now - p->last < 1000000000))
+        return;
+    p->open = p->tty && done < n;
+    fprintf(stderr, "%sdmbench: instructions: %zu of %zu configurations counted (%.0f s)%s",
+            p->tty ? "\r\033[K" : "", done, n, (double)(now - p->t0) / 1e9, p->open ? "" : "\n");
+    p->shown = done;
+    p->last = now;
+}
+
 /* Runs the groups' children side by side until every group is done: one
  * poll over their outputs, each with its own watchdog.  Returns 0, or the
  * errno of a child that could not be started (the others are killed). */
 static int cg__run_groups(cg_state *gs, size_t ng)
 {
+    cg_progress prog = { .t0 = dm_now_ns(), .tty = isatty(2) };
     struct pollfd *pfd = dm_xcalloc(ng, sizeof *pfd);
     size_t *who = dm_xcalloc(ng, sizeof *who);
     int rc = 0;
@@ -494,7 +523,9 @@ static int cg__run_groups(cg_state *gs, size_t ng)
             if (cg__ended(g, killed ? -1 : status) && cg__start(g) != 0)
                 rc = errno ? errno : EAGAIN;
         }
+        cg__progress(gs, ng, &prog, 0);
     }
+    cg__progress(gs, ng, &prog, 1);
     for (size_t k = 0; k < ng; k++)   /* after a failed start: stop the rest */
         if (gs[k].pid > 0) {
             kill(gs[k].pid, SIGKILL);
