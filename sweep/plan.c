@@ -188,17 +188,24 @@ static int plan__check_density(const sweep *s, const size_t *idx, dm_str *err)
     int def, lo, hi, d = dens ? atoi(dens) : 0;
     if (d == 0 || !mesh || mesh_density_range(mesh, &def, &lo, &hi) != 0 || (d >= lo && d <= hi))
         return 0;
-    int line = 0;
-    for (size_t i = 0; i < s->n_axes; i++)
+    int line = 0, mesh_axis = 0;
+    for (size_t i = 0; i < s->n_axes; i++) {
         if (strcmp(s->axes[i].name, "mesh_density") == 0)
             line = s->axes[i].line;
-    dm_str_printf(err, "%s:%d: mesh_density %d is out of range for mesh '%s': ", s->path, line, d, mesh);
+        mesh_axis |= strcmp(s->axes[i].name, "mesh") == 0;
+    }
+    if (line > 0)
+        dm_str_printf(err, "%s:%d: ", s->path, line);
+    else   /* set under scene: */
+        dm_str_printf(err, "%s: scene: ", s->path);
+    dm_str_printf(err, "mesh_density %d is out of range for mesh '%s': ", d, mesh);
     if (lo > hi)
         dm_str_printf(err, "it takes only 0 (the scene is fixed)");
     else
         dm_str_printf(err, "valid are %d..%d, and 0 for its default (%d)", lo > 1 ? lo : 1, hi, def);
-    dm_str_printf(err, "; give each mesh its own sweep file or drop the pair with "
-                  "`exclude: [{mesh: [%s], mesh_density: [%d]}]`", mesh, d);
+    if (line > 0 && mesh_axis)
+        dm_str_printf(err, "; give each mesh its own sweep file or drop the pair with "
+                      "`exclude: [{mesh: [%s], mesh_density: [%d]}]`", mesh, d);
     return DM_ERR_RANGE;
 }
 

@@ -233,6 +233,16 @@ static void test_density_out_of_mesh_range(void **state)
         dm_str_free(&err);
         sweep_free(&s);
     }
+    sweep sc;   /* under scene: no line to name; the pair cannot be excluded */
+    plan pc;
+    dm_str err = {0};
+    assert_int_equal(sweep_parse("name: t\nscene:\n  mesh: sphere\n  mesh_density: 8\nsweep:\n  technique: [phong]\n",
+                                 "t.yaml", &sc, &err), 0);
+    assert_int_equal(plan_build(&sc, &pc, &err), DM_ERR_RANGE);
+    assert_string_equal(dm_str_get(&err), "t.yaml: scene: mesh_density 8 is out of range for mesh 'sphere': "
+                                          "valid are 1..7, and 0 for its default (4)");
+    dm_str_free(&err);
+    sweep_free(&sc);
     sweep s;
     plan p;
     plan_text("name: t\nsweep:\n  technique: [phong]\n  mesh: [plane, sphere]\n  mesh_density: [0, 7, 9]\n"
