@@ -183,21 +183,27 @@ int cli_drivers(int argc, char **argv)
 int cli_drivers_dry_run(const char *sweep_path, const sweep *s, const char *out)
 {
     drivers_args a = { .out = out, .dry_run = 1 };
-    int rc = 0;
-    for (size_t i = 0; i < s->n_drivers; i++) {
+    char **names = NULL;
+    size_t n = 0;
+    int rc = drivers__from_sweep(s, &names, &n);   /* an unknown name: exit 2 at its line */
+    for (size_t i = 0, known = rc == 0; known && i < n; i++) {
         char *why = NULL;
-        const char *miss = drivers_missing(drivers_find(s->drivers[i]), &why);
-        printf("== driver %s%s%s\n", s->drivers[i], miss ? ": left out, " : "", miss ? miss : "");
+        const char *miss = drivers_missing(drivers_find(names[i]), &why);
+        printf("== driver %s%s%s\n", names[i], miss ? ": left out, " : "", miss ? miss : "");
         free(why);
+        why = NULL;
         fflush(stdout);
         if (miss)
             continue;
-        int r = drivers__run(s->drivers[i], sweep_path, out, &a, &why);
+        int r = drivers__run(names[i], sweep_path, out, &a, &why);
         if (r != 0)
-            fprintf(stderr, "dmbench: drivers: %s: %s\n", s->drivers[i], why);
+            fprintf(stderr, "dmbench: drivers: %s: %s\n", names[i], why);
         free(why);
         rc = r > rc ? r : rc;
     }
+    for (size_t i = 0; i < n; i++)
+        free(names[i]);
+    free(names);
     return rc;
 }
 

@@ -33,6 +33,8 @@ expect_refused 2 "DMBENCH_DRIVER=zink is set: unset it" -- \
 printf 'name: bad\ndrivers: [llvmpipe, zinc]\n' > "$OUT/bad.yaml"
 expect_refused 2 "bad.yaml:2: drivers: unknown driver 'zinc' (did you mean 'zink'?)" -- \
   "$BIN" run "$OUT/bad.yaml" --out "$OUT/bad"
+expect_refused 2 "bad.yaml:2: drivers: unknown driver 'zinc' (did you mean 'zink'?)" -- \
+  "$BIN" run "$OUT/bad.yaml" --dry-run   # the dry run plans under each driver: the same check
 printf 'name: twice\ndrivers: [zink, llvmpipe, zink]\n' > "$OUT/twice.yaml"
 expect_refused 2 "twice.yaml:2:27: drivers: 'zink' is listed twice (line 2)" -- "$BIN" run "$OUT/twice.yaml"
 printf 'name: empty\ndrivers: []\n' > "$OUT/empty.yaml"
