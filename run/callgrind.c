@@ -466,13 +466,13 @@ typedef struct cg_progress { size_t shown; int64_t t0, last; int tty, open; } cg
 
 static void cg__progress(const cg_state *gs, size_t ng, cg_progress *p, int final)
 {
+    if (gs[0].d->quiet)
+        return;
     size_t done = 0, n = 0;
     for (size_t k = 0; k < ng; k++)
         for (size_t i = 0; i < gs[k].n; i++, n++)
             done += gs[k].done[i] || gs[k].out[i].failed;
     int64_t now = dm_now_ns();
-    if (gs[0].d->quiet)
-        return;
     if (final) {
         if (p->open)
             fputc('\n', stderr);
@@ -556,8 +556,10 @@ int callgrind_jobs(int asked, size_t n)
 {
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     long j = asked > 0 ? asked : cpus > CALLGRIND_MAX_JOBS ? CALLGRIND_MAX_JOBS : cpus;
-    if (asked <= 0 && j > cg__available_gib() / CALLGRIND_JOB_GIB)
-        j = (long)(cg__available_gib() / CALLGRIND_JOB_GIB);   /* each child's memory */
+    if (asked <= 0) {   /* no more children than the memory holds */
+        long fit = (long)(cg__available_gib() / CALLGRIND_JOB_GIB);
+        j = j > fit ? fit : j;
+    }
     j = j < 1 ? 1 : j;
     return (int)((size_t)j > n ? (n ? n : 1) : (size_t)j);
 }
