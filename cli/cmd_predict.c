@@ -12,9 +12,9 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/env.h"
-#include "run/fitting.h"
 #include "run/gl_context.h"
 #include "run/measure.h"
+#include "run/predict.h"
 #include "sweep/plan.h"
 #include "sweep/sweep.h"
 
@@ -37,44 +37,16 @@ const cli_option cli_predict_options[] = {
     CLI_OPT_END
 };
 
-/* What the fits read, by counter, and the invocation counts measured here. */
-static const char *const predict__needed[] = {"Instructions", "VSInvocations", "TESInvocations",
-                                              "ClippingOutputPrimitives", "FSInvocations"};
-/* TCSPatches is read too, for stage-instructions' patches term; a fit
- * from runs without it has dropped that term and ignores it. */
-static const char *const predict__counts[] = {"VSInvocations", "TESInvocations", "ClippingOutputPrimitives",
-                                              "FSInvocations", "TCSPatches"};
-static const char *const predict__stages[] = {"GeometryInstructions", "RasterInstructions",
-                                              "FragmentInstructions"};
-#define PREDICT__N_COUNTS 5
-
-typedef struct predict_fits {
-    const dm_run_result *train;   /* the pooled runs */
-    dm_fit_result *instr, *stage[3], *time;
-    size_t n_instr, n_stage[3], n_time;
-} predict_fits;
-
-/* 1 when some ok configuration of run has counter name available. */
-static int predict__has(const dm_run_result *run, const char *name)
-{
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_counter_result *r = run->configs[i].ok ? dm_config_counter(&run->configs[i], name) : NULL;
-        if (r && r->available)
-            return 1;
-    }
-    return 0;
-}
-
 /* Refuses (exit 2) a run without a counter the fits need, naming it and
  * the sweep option that adds it; -1 to go on. */
 static int predict__check_counters(const dm_run_result *runs, size_t n, char **dirs)
 {
     for (size_t k = 0; k < n; k++)
-        for (size_t i = 0; i < sizeof predict__needed / sizeof *predict__needed; i++)
-            if (!predict__has(&runs[k], predict__needed[i]))
+        for (size_t i = 0; i < PREDICT_N_NEEDED; i++)
+            if (!predict_run_has(&runs[k], predict_needed[i]))
                 return cli_usage_error("predict: %s has no counter '%s': add %s to measure.counters of "
                                        "its sweep and run it again (docs/models.md)", dirs[k],
-                                       predict__needed[i], predict__needed[i]);
+                                       predict_needed[i], predict_needed[i]);
     return -1;
 }
 
@@ -112,96 +84,28 @@ static int predict__check_env(const dm_run_result *runs, size_t n, char **dirs, 
     return rc;
 }
 
-/* The union of the runs' configurations (shallow: the runs own them). */
-static dm_run_result predict__union(const dm_run_result *runs, size_t n)
-{
-    dm_run_result u = runs[0];
-    u.configs = NULL;
-    u.n_configs = 0;
-    for (size_t k = 0; k < n; k++)
-        for (size_t i = 0; i < runs[k].n_configs; i++)
-            DM_VEC_PUSH(u.configs, u.n_configs, runs[k].configs[i]);
-    return u;
-}
-
-static void predict__fit(const dm_run_result *u, const char *model, const char *response, dm_fit_result **fits,
-                         size_t *n)
-{
-    fitting_spec spec = { .name = model, .response = response };
-    dm_str warn = {0}, err = {0};
-    fitting_run(&spec, u, fits, n, &warn, &err);
-    dm_str_free(&warn);
-    dm_str_free(&err);
-}
-
-/* The fit of `variant` among fits, or NULL. */
-static const dm_fit_result *predict__of(const dm_fit_result *fits, size_t n, const char *variant)
-{
-    for (size_t i = 0; i < n; i++)
-        if (fits[i].n_group == 1 && strcmp(fits[i].group[0].value, variant) == 0)
-            return &fits[i];
-    return NULL;
-}
-
-/* Predicts fit's response for configuration pc whose counts are in c
- * (train: the runs the fit was made from). */
-static int predict__one(const dm_fit_result *fit, const dm_run_result *train, const plan_config *pc,
-                        dm_config_result *c, double *v, dm_str *why)
-{
-    dm_run_result one = { .configs = c, .n_configs = 1 };
-    return fitting_predict_dropped(fit, train, pc->params, pc->n_params, pc->key, &one, 1, v, why);
-}
-
 /* One line of the table, or the reason the configuration is unpredictable. */
-static void predict__config(const predict_fits *f, const plan_config *pc, const double *counts, dm_str *unpred)
+static void predict__config(const predict_model *m, const plan_config *pc, const double *counts, dm_str *unpred)
 {
-    char *variant = fitting_variant(pc->params, pc->n_params);
-    dm_config_result c = { .key = (char *)pc->key, .ok = 1 };
-    dm_counter_result cr[PREDICT__N_COUNTS];
-    memset(cr, 0, sizeof cr);
-    for (size_t k = 0; k < PREDICT__N_COUNTS; k++)
-        cr[k] = (dm_counter_result){ .name = (char *)predict__counts[k], .available = isfinite(counts[k]),
-                                     .value = counts[k] };
-    c.counters = cr;
-    c.n_counters = PREDICT__N_COUNTS;
-    const dm_fit_result *fi = predict__of(f->instr, f->n_instr, variant);
-    double instr = NAN;
+    predict_result r;
     dm_str why = {0};
-    if (!fi)
-        dm_str_printf(&why, "variant '%s' was never measured by the runs", variant);
-    else
-        predict__one(fi, f->train, pc, &c, &instr, &why);
-    if (!isfinite(instr)) {
+    if (predict_config(m, pc, counts, &r, &why) != 0) {
         dm_str_printf(unpred, "  %s  %s: %s\n", pc->key, pc->scene, dm_str_get(&why));
-        dm_str_free(&why);
-        free(variant);
-        return;
+    } else {
+        printf("%s  %-40s %-28s %12.6g [%.6g, %.6g]", pc->key, pc->scene, r.variant, r.instr, r.instr_lo,
+               r.instr_hi);
+        double sum = r.part[0] + r.part[1] + r.part[2];
+        if (isfinite(sum) && sum > 0)
+            printf("  geometry %2.0f %% raster %2.0f %% fragment %2.0f %%", 100 * r.part[0] / sum,
+                   100 * r.part[1] / sum, 100 * r.part[2] / sum);
+        else
+            printf("  stages: unavailable (the runs lack the stage counters)");
+        if (isfinite(r.wall_ns))
+            printf("  WallTime %.3f ms [%.3f, %.3f]", r.wall_ns / 1e6, r.wall_lo / 1e6, r.wall_hi / 1e6);
+        printf("\n");
     }
-    double ei = 2 * fi->cv_mape / 100, part[3] = {NAN, NAN, NAN};
-    printf("%s  %-40s %-28s %12.6g [%.6g, %.6g]", pc->key, pc->scene, variant, instr, instr * (1 - ei),
-           instr * (1 + ei));
-    for (int s = 0; s < 3; s++) {
-        const dm_fit_result *fs = predict__of(f->stage[s], f->n_stage[s], variant);
-        if (fs)
-            predict__one(fs, f->train, pc, &c, &part[s], &why);
-    }
-    double sum = part[0] + part[1] + part[2];
-    if (isfinite(sum) && sum > 0)
-        printf("  geometry %2.0f %% raster %2.0f %% fragment %2.0f %%", 100 * part[0] / sum, 100 * part[1] / sum,
-               100 * part[2] / sum);
-    else
-        printf("  stages: unavailable (the runs lack the stage counters)");
-    if (f->n_time == 1) {
-        const dm_fit_result *t = &f->time[0];
-        double a = NAN, b = NAN;
-        for (size_t i = 0; i < t->n_params; i++)
-            *(strcmp(t->params[i].name, "a") == 0 ? &a : &b) = t->params[i].value;
-        double ms = (a + b * instr) / 1e6, et = sqrt(ei * ei + pow(2 * t->cv_mape / 100, 2));
-        printf("  WallTime %.3f ms [%.3f, %.3f]", ms, ms * (1 - et), ms * (1 + et));
-    }
-    printf("\n");
+    predict_result_free(&r);
     dm_str_free(&why);
-    free(variant);
 }
 
 /* Loads the --from runs into *runs (n of them, dirs[] their names). */
@@ -246,37 +150,20 @@ int cli_predict(int argc, char **argv)
     rc = rc < 0 ? predict__load(a.from, &runs, &dirs, &nr) : rc;
     rc = rc < 0 ? predict__check_counters(runs, nr, dirs) : rc;
     rc = rc < 0 ? predict__check_env(runs, nr, dirs, a.allow_env_mismatch) : rc;
-    double *counts = rc < 0 ? dm_xcalloc(p.n_configs * PREDICT__N_COUNTS + 1, sizeof *counts) : NULL;
-    if (rc < 0 && measure_counts(p.configs, p.n_configs, predict__counts, PREDICT__N_COUNTS, counts, &err) != 0)
+    double *counts = rc < 0 ? dm_xcalloc(p.n_configs * PREDICT_N_COUNTS + 1, sizeof *counts) : NULL;
+    if (rc < 0 && measure_counts(p.configs, p.n_configs, predict_counts, PREDICT_N_COUNTS, counts, &err) != 0)
         rc = cli_error(DM_ERR_GL, "predict: %s", dm_str_get(&err));
     if (rc < 0) {
-        dm_run_result u = predict__union(runs, nr);
-        predict_fits f = { .train = &u };
-        predict__fit(&u, "stage-instructions", "Instructions", &f.instr, &f.n_instr);
-        for (int st = 0; st < 3; st++)
-            if (predict__has(&u, predict__stages[st]))
-                predict__fit(&u, "stage-instructions", predict__stages[st], &f.stage[st], &f.n_stage[st]);
-        if (predict__has(&u, "WallTime"))
-            predict__fit(&u, "time-from-instructions", "WallTime", &f.time, &f.n_time);
+        predict_model m;
+        predict_fit(runs, nr, &m);
         printf("%-16s  %-40s %-28s %12s %s\n", "key", "scene", "variant", "Instructions", "[±2 CV-MAPE]");
         dm_str unpred = {0};
         for (size_t i = 0; i < p.n_configs; i++)
-            predict__config(&f, &p.configs[i], counts + i * PREDICT__N_COUNTS, &unpred);
+            predict__config(&m, &p.configs[i], counts + i * PREDICT_N_COUNTS, &unpred);
         if (unpred.len)
             printf("not predicted (never guessed):\n%s", dm_str_get(&unpred));
         dm_str_free(&unpred);
-        for (size_t i = 0; i < f.n_instr; i++)
-            dm_fit_result_free(&f.instr[i]);
-        for (int st = 0; st < 3; st++) {
-            for (size_t i = 0; i < f.n_stage[st]; i++)
-                dm_fit_result_free(&f.stage[st][i]);
-            free(f.stage[st]);
-        }
-        for (size_t i = 0; i < f.n_time; i++)
-            dm_fit_result_free(&f.time[i]);
-        free(f.instr);
-        free(f.time);
-        free(u.configs);
+        predict_free(&m);
         rc = DM_EXIT_OK;
     }
     free(counts);

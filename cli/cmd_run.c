@@ -60,8 +60,8 @@ const cli_option cli_run_options[] = {
       .help = "seed of the round order (0 = 1)" },
     { .name = "count-jobs", .kind = CLI_OPT_INT, .offset = offsetof(run_args, o.count_jobs),
       .value_name = "N", .min = 0, .max = 256,
-      .help = "Valgrind children counting Instructions side by side (0 = the online CPUs, "
-              "at most 8)" },
+      .help = "Valgrind children counting Instructions side by side (0 = DMBENCH_COUNT_JOBS, "
+              "else the online CPUs, at most 8)" },
     CLI_STRING("tag", run_args, o.tag, "NAME",
                "a name stored with the run (compare --base-tag/--new-tag)"),
     CLI_BOOL("quick", run_args, quick,

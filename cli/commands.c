@@ -317,6 +317,11 @@ int cli_main(int argc, char **argv)
         dm_str_free(&derr);
         return code;
     }
+    if (callgrind_env_jobs(&derr) < 0) {
+        int code = cli_error(DM_ERR_ARG, "%s", dm_str_get(&derr));
+        dm_str_free(&derr);
+        return code;
+    }
     const cli_command *c = cli_commands_find(argv[1]);
     return commands__flush(c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]));
 }

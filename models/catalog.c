@@ -26,12 +26,13 @@ static const models_builtin catalog__models[] = {
       "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0, NULL },
     /* one fit per shader variant: the costs per invocation are the variant's,
      * the invocation counts the configuration's (docs/models.md).  c_tp:
-     * llvmpipe's evaluation stage costs more per invocation the more
-     * patches a draw has (each batch of evaluations walks the draw's
-     * patches: quadratic in the patches, docs/counters.md); the term is
-     * dropped where TCSPatches was not recorded. */
+     * llvmpipe's evaluation stage costs more per invocation the more a
+     * draw's patches are tessellated in all (TCSPatches*tess_level^2
+     * triangles): measured quadratic in the draw's output, to 3.4 % on
+     * planes of 2-98 patches at levels 2-16 (docs/counters.md); the term is
+     * dropped where TCSPatches or tess_level was not recorded. */
     { "stage-instructions",
-      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*TCSPatches"
+      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*TCSPatches*tess_level^2"
       " + c_prim*ClippingOutputPrimitives + c_px*FSInvocations"
       " + c_step*FSInvocations*steps + c_light*FSInvocations*light_count",
       "Instructions",

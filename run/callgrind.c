@@ -11,10 +11,12 @@
 #include <malloc.h>
 #include <math.h>
 #include <poll.h>
+#include <pthread.h>
 #include <signal.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/random.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -552,8 +554,30 @@ static double cg__available_gib(void)
     return kib > 0 ? kib / (1024.0 * 1024.0) : 1e9;
 }
 
+int callgrind_env_jobs(dm_str *err)
+{
+    const char *v = getenv(CALLGRIND_JOBS_ENV);
+    if (!v || !*v)
+        return 0;
+    char *end = NULL;
+    errno = 0;
+    long j = strtol(v, &end, 10);
+    if (errno || end == v || *end || j < 0 || j > 256) {
+        dm_str_printf(err, "%s=%s: not a whole number of counting children in 0..256 (0 or unset: one "
+                      "per CPU; `run --count-jobs N` overrides it)", CALLGRIND_JOBS_ENV, v);
+        return -1;
+    }
+    return (int)j;
+}
+
 int callgrind_jobs(int asked, size_t n)
 {
+    if (asked <= 0) {
+        dm_str ignored = {0};
+        int env = callgrind_env_jobs(&ignored);   /* refused at start-up (cli_main) when bad */
+        dm_str_free(&ignored);
+        asked = env > 0 ? env : 0;
+    }
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
     long j = asked > 0 ? asked : cpus > CALLGRIND_MAX_JOBS ? CALLGRIND_MAX_JOBS : cpus;
     if (asked <= 0) {   /* no more children than the memory holds */
@@ -648,9 +672,88 @@ static void cg__fixed_allocator(void)
     mallopt(M_TRIM_THRESHOLD, CALLGRIND_MMAP_THRESHOLD);
 }
 
+static int cg__child(int argc, char **argv);
+
+/* Set in the counting child: arc4random_buf then returns a fixed stream. */
+static int cg__fixed_entropy;
+
+/* glibc's arc4random_buf, replaced for the whole process: the executable
+ * exports this definition (cli/CMakeLists.txt), so every library's call
+ * binds to it.  Outside the counting child it is the kernel's randomness,
+ * as glibc's.  In the child it is a fixed stream: Mesa parses its driconf
+ * files with expat when the GL context is created, and expat salts its
+ * hash tables from arc4random_buf.  A new salt per process frees the
+ * parser's blocks in another order, the driver's later blocks land at
+ * other offsets in their page, and glibc's memcmp, which takes another
+ * path when an operand is near a page end, counted up to 190 instructions
+ * a frame more or less (software virtual texturing, docs/counters.md,
+ * "Repeatability").  Nothing in the child needs unpredictable bytes. */
+void arc4random_buf(void *buf, size_t n)
+{
+    unsigned char *b = buf;
+    if (cg__fixed_entropy) {
+        uint64_t x = 0x9e3779b97f4a7c15u;
+        for (size_t i = 0; i < n; i++) {
+            x = x * 6364136223846793005u + 1442695040888963407u;
+            b[i] = (unsigned char)(x >> 56);
+        }
+        return;
+    }
+    while (n > 0) {
+        ssize_t r = getrandom(b, n, 0);
+        if (r < 0 && errno == EINTR)
+            continue;
+        if (r <= 0)
+            abort();   /* as glibc's: no randomness is not an error to return */
+        b += r;
+        n -= (size_t)r;
+    }
+}
+
+typedef struct cg_child_args {
+    int argc;
+    char **argv;
+    int rc;
+} cg_child_args;
+
+static void *cg__child_thread(void *arg)
+{
+    cg_child_args *a = arg;
+    a->rc = cg__child(a->argc, a->argv);
+    return NULL;
+}
+
+/* The counting child does all its work, GL context included, on a thread
+ * of its own.  A thread's first allocation gives it a new malloc arena,
+ * empty: what the driver allocates lands where only the counting work
+ * decides.  On the main thread it would land among the blocks the
+ * libraries' constructors left free, and one of those (the SIMD library of
+ * an image codec) times a loop at start-up and allocates as often as its
+ * timer says.  The thread's stack is likewise new, at the same offset in
+ * its page whatever the length of the arguments and environment.  Both
+ * matter for the same reason as arc4random_buf above. */
 int callgrind_child_main(int argc, char **argv)
 {
     cg__fixed_allocator();
+    cg__fixed_entropy = 1;
+    cg_child_args a = { .argc = argc, .argv = argv, .rc = 3 };
+    pthread_attr_t attr;
+    pthread_t t;
+    int e = pthread_attr_init(&attr);
+    e = e ? e : pthread_attr_setstacksize(&attr, CALLGRIND_STACK_BYTES);
+    e = e ? e : pthread_create(&t, &attr, cg__child_thread, &a);
+    if (e == 0)
+        pthread_join(t, NULL);
+    pthread_attr_destroy(&attr);
+    if (e != 0) {
+        fprintf(stderr, "dmbench __instructions: cannot start the counting thread: %s\n", strerror(e));
+        return 3;
+    }
+    return a.rc;
+}
+
+static int cg__child(int argc, char **argv)
+{
     if (argc < 3) {
         fprintf(stderr, "usage: dmbench __instructions SWEEP HASH KEY... (run by dmbench itself)\n");
         return 2;

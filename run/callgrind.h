@@ -50,6 +50,9 @@
 /* The counting child's malloc: blocks from this size up are mmapped, the
  * heap's top is neither padded nor kept (docs/counters.md, "Repeatability"). */
 #define CALLGRIND_MMAP_THRESHOLD 4096
+/* The stack of the counting child's thread (the driver's shader compiler
+ * recurses deeply; the main thread's default is 8 MiB). */
+#define CALLGRIND_STACK_BYTES (64u << 20)
 /* At most this many counting children by default, and no more than one
  * per CALLGRIND_JOB_GIB of available memory: each is a Valgrind of dmbench
  * and llvmpipe (measured: 0.5 GiB resident at 480x270). */
@@ -103,10 +106,18 @@ int callgrind_wants_stages(const sweep_measure *sm);
 int callgrind_is_stage_counter(const char *name);
 
 
+/* The environment variable that sets the default of `run --count-jobs`
+ * (the test suite sets it to 1: ctest already runs tests side by side). */
+#define CALLGRIND_JOBS_ENV "DMBENCH_COUNT_JOBS"
+
+/* The number CALLGRIND_JOBS_ENV asks for: 0 (automatic) when it is unset,
+ * empty or 0, -1 with err when it is not a whole number in 0..256. */
+int callgrind_env_jobs(dm_str *err);
+
 /* How many Valgrind children count side by side: `asked` when > 0, else
- * the online CPUs up to CALLGRIND_MAX_JOBS and the available memory's
- * share (CALLGRIND_JOB_GIB each); never more than the n
- * configurations, at least 1.  Each child is single-threaded
+ * CALLGRIND_JOBS_ENV when set, else the online CPUs up to
+ * CALLGRIND_MAX_JOBS and the available memory's share (CALLGRIND_JOB_GIB
+ * each); never more than the n configurations, at least 1.  Each child is single-threaded
  * (LP_NUM_THREADS=0) and a count does not depend on which child made it,
  * so the pass shortens with the cores; nothing is timed meanwhile. */
 int callgrind_jobs(int asked, size_t n);

@@ -4,6 +4,7 @@
 #include "counters/counters.h"
 #include "run/callgrind.h"
 #include "run/gl_context.h"
+#include "run/predict.h"
 #include "run/protocol.h"
 #include "run/refcache.h"
 #include "store/store.h"
@@ -941,13 +942,23 @@ int measure_pilot(const measure_job *job, dm_str *err)
         mconf *c = &cs[i];
         c->pc = &job->configs[i];
         measure__say(job, "B %s", c->pc->key);
-        double ns = NAN;
+        double ns = NAN, counts[PREDICT_N_COUNTS];
+        for (size_t k = 0; k < PREDICT_N_COUNTS; k++)
+            counts[k] = NAN;
         if (tech_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log) == 0) {
             measure__frames(&m, c, 2);             /* JIT and first-use costs */
             ns = measure__plain_sample(&m, c, 1);
+            /* and its invocation counts, for a prediction from the
+             * instruction models (run --budget) */
+            measure__session(&m, c, (const char **)predict_counts, PREDICT_N_COUNTS, 1, counts, NULL);
         }
         gl_context_take_messages(m.gl, NULL);
-        measure__say(job, "P %s %.0f", c->pc->key, ns);
+        dm_str line = {0};
+        dm_str_printf(&line, "P %s %.0f", c->pc->key, ns);
+        for (size_t k = 0; k < PREDICT_N_COUNTS; k++)
+            dm_str_printf(&line, " %.17g", counts[k]);
+        measure__say(job, "%s", dm_str_get(&line));
+        dm_str_free(&line);
     }
     measure__teardown(&m, cs, rc == 0 ? job->n_configs : 0);
     return rc;

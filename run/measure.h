@@ -71,8 +71,9 @@ int measure_counts(const plan_config *cs, size_t n, const char *const *names, si
                    dm_str *err);
 
 /* Pilot for --budget: prepares each configuration of the job and times one
- * warm frame (glFinish-fenced), reporting "P <key> <frame_ns>" lines (NaN
- * when it cannot be prepared).  Returns 0 or DM_ERR_* (err) on setup failure. */
+ * warm frame (glFinish-fenced), reporting "P <key> <frame_ns> <counts>"
+ * lines, the counts predict_counts' (run/predict.h) of that frame (NaN when
+ * it cannot be prepared or the driver lacks a count).  Returns 0 or DM_ERR_* (err) on setup failure. */
 int measure_pilot(const measure_job *job, dm_str *err);
 
 /* Renders one configuration into a float image (w*h*4, row 0 top);

@@ -8,6 +8,7 @@
 #include "run/fitting.h"
 #include "run/gl_context.h"
 #include "run/measure.h"
+#include "run/predict.h"
 #include "run/protocol.h"
 #include "run/trends.h"
 #include "sweep/plan.h"
@@ -501,7 +502,9 @@ typedef struct runner_budget {
     const dm_fit_result **fits;
     size_t n_fits;
     const char *fits_run;      /* run the fits come from */
-    size_t by_model, by_pilot;
+    size_t by_model, by_pilot, by_instr;
+    predict_model pm;          /* the instruction models of the stored runs (run/predict.h) */
+    size_t pm_runs;            /* how many runs they were fitted to; 0: none */
 } runner_budget;
 
 static int runner__fit_usable(const dm_fit_result *f)
@@ -566,8 +569,29 @@ static void runner__budget_load(runner *r, runner_budget *b)
     runner__budget_fits(r, b);
 }
 
+/* Fits the instruction models to the stored runs that have the counters
+ * they read and WallTime (docs/models.md, "Prediction"). */
+static void runner__budget_instr_models(runner_budget *b)
+{
+    dm_run_result *use = dm_xcalloc(b->n_runs + 1, sizeof *use);
+    size_t n = 0;
+    for (size_t k = 0; k < b->n_runs; k++) {
+        int ok = predict_run_has(&b->runs[k], "WallTime");
+        for (size_t i = 0; ok && i < PREDICT_N_NEEDED; i++)
+            ok = predict_run_has(&b->runs[k], predict_needed[i]);
+        if (ok)
+            use[n++] = b->runs[k];   /* shallow: b->runs owns them */
+    }
+    if (n)
+        predict_fit(use, n, &b->pm);
+    b->pm_runs = n;
+    free(use);
+}
+
 static void runner__budget_free(runner_budget *b)
 {
+    if (b->pm_runs)
+        predict_free(&b->pm);
     for (size_t i = 0; i < b->n_runs; i++)
         dm_run_free(&b->runs[i]);
     free(b->runs);
@@ -646,20 +670,45 @@ static void runner__budget_pilot(runner *r, runner_budget *b, const plan_config 
     close(fd);
     kill(pid, SIGKILL);
     waitpid(pid, NULL, 0);
-    b->by_pilot = n;
+    runner__budget_instr_models(b);
     char *save = NULL;
     for (char *line = strtok_r(text, "\n", &save); line; line = strtok_r(NULL, "\n", &save)) {
         char key[17];
-        double ns = NAN;
-        if (sscanf(line, "P %16s %lf", key, &ns) != 2 || !isfinite(ns))
+        int used = 0;
+        double ns = NAN, counts[PREDICT_N_COUNTS];
+        if (sscanf(line, "P %16s %lf%n", key, &ns, &used) != 2)
             continue;
-        double t = runner__predict(&r->s->measure, ns);
-        if (t <= r->o->budget_s)
-            continue;
-        char *why = dm_xasprintf("over --budget %g s: a pilot frame took %.3g ms, so measuring "
-                                 "would take about %.2g s", r->o->budget_s, ns / 1e6, t);
-        runner__leave_out_key(r, key, why);
-        free(why);
+        char *p = line + used;
+        for (size_t k = 0; k < PREDICT_N_COUNTS; k++)
+            counts[k] = strtod(p, &p);
+        /* The instruction models when they predict it (a frame time from
+         * quiet runs' fits, not one cold frame), else the pilot frame. */
+        const plan_config *pc = NULL;
+        for (size_t i = 0; i < n && !pc; i++)
+            pc = strcmp(cs[i].key, key) == 0 ? &cs[i] : NULL;
+        predict_result pr = { .wall_ns = NAN };
+        dm_str pwhy = {0};
+        int by_instr = pc && b->pm_runs && predict_config(&b->pm, pc, counts, &pr, &pwhy) == 0 &&
+                       isfinite(pr.wall_ns) && pr.wall_ns > 0;
+        if (pc && b->pm_runs && !by_instr)   /* --verbose says why the pilot frame decides */
+            dm_log(DM_LOG_DEBUG, "--budget %s: the instruction models cannot predict it: %s", key,
+                   pwhy.len ? dm_str_get(&pwhy) : "no WallTime fit");
+        dm_str_free(&pwhy);
+        double frame = by_instr ? pr.wall_ns : ns, t = runner__predict(&r->s->measure, frame);
+        b->by_instr += by_instr;
+        b->by_pilot += !by_instr;
+        if (isfinite(frame) && t > r->o->budget_s) {
+            char *why = by_instr
+                ? dm_xasprintf("over --budget %g s: the instruction models (%zu stored run%s) predict "
+                               "%.4g instructions and %.3g ms/frame [%.3g, %.3g], so measuring would take "
+                               "about %.2g s", r->o->budget_s, b->pm_runs, b->pm_runs == 1 ? "" : "s", pr.instr,
+                               frame / 1e6, pr.wall_lo / 1e6, pr.wall_hi / 1e6, t)
+                : dm_xasprintf("over --budget %g s: a pilot frame took %.3g ms, so measuring "
+                               "would take about %.2g s", r->o->budget_s, ns / 1e6, t);
+            runner__leave_out_key(r, key, why);
+            free(why);
+        }
+        predict_result_free(&pr);
     }
     free(text);
 }
@@ -680,9 +729,9 @@ static void runner__budget(runner *r)
         runner__budget_pilot(r, &b, pilot, n_pilot);
     if (!r->o->quiet)
         fprintf(stderr, "dmbench: --budget %g s: %zu configurations predicted by a cost model%s%s%s, "
-                "%zu by a pilot frame; %zu left out\n", r->o->budget_s, b.by_model,
-                b.fits_run ? " (run " : "", b.fits_run ? b.fits_run : "", b.fits_run ? ")" : "",
-                b.by_pilot, r->p.n_left_out - before);
+                "%zu by the instruction models, %zu by a pilot frame; %zu left out\n", r->o->budget_s,
+                b.by_model, b.fits_run ? " (run " : "", b.fits_run ? b.fits_run : "", b.fits_run ? ")" : "",
+                b.by_instr, b.by_pilot, r->p.n_left_out - before);
     free(pilot);
     free(over);
     free(why);

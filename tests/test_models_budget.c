@@ -55,13 +55,13 @@ static void budget_from_stored_model(void **state)
     /* A store without fits: every configuration gets a pilot frame. */
     char *err = dmbench("run '%s' --out '%s/fresh' --budget 0.000001", yaml, dir);
     assert_non_null(strstr(err, "--budget 1e-06 s: 0 configurations predicted by a cost model, "
-                           "4 by a pilot frame; 4 left out"));
+                           "0 by the instruction models, 4 by a pilot frame; 4 left out"));
     free(err);
     /* A measured run stores its fit; the next run predicts from it. */
     free(dmbench("run '%s' --out '%s/s' --quiet", yaml, dir));
     err = dmbench("run '%s' --out '%s/s' --budget 0.000001", yaml, dir);
     assert_non_null(strstr(err, "4 configurations predicted by a cost model (run "));
-    assert_non_null(strstr(err, "0 by a pilot frame; 4 left out"));
+    assert_non_null(strstr(err, "0 by the instruction models, 0 by a pilot frame; 4 left out"));
     free(err);
     char *json_path = dm_xasprintf("%s/s/latest/results.json", dir);
     char *json = test_slurp(json_path);

@@ -82,7 +82,7 @@ static void synthetic_run(dm_run_result *run)
                 counter(c, "ClippingOutputPrimitives", prim);
                 counter(c, "FSInvocations", fs);
                 counter(c, "Instructions",
-                        TESS_C0 + TESS_TES * tes + TESS_TP * tes * P + TESS_PRIM * prim + TESS_PX * fs);
+                        TESS_C0 + TESS_TES * tes + TESS_TP * tes * P * L * L + TESS_PRIM * prim + TESS_PX * fs);
             }
 }
 

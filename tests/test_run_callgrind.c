@@ -87,6 +87,7 @@ static void test_jobs(void **state)
 {
     (void)state;
     long cpus = sysconf(_SC_NPROCESSORS_ONLN);
+    unsetenv(CALLGRIND_JOBS_ENV);   /* ctest sets it for the suite */
     assert_int_equal(callgrind_jobs(3, 10), 3);
     assert_int_equal(callgrind_jobs(3, 2), 2);
     assert_int_equal(callgrind_jobs(1, 48), 1);
@@ -95,6 +96,28 @@ static void test_jobs(void **state)
     int j = callgrind_jobs(0, 1000);
     assert_true(j >= 1 && j <= CALLGRIND_MAX_JOBS && j <= cpus);
     assert_int_equal(callgrind_jobs(0, 1), 1);
+    /* the environment sets the default, never what was asked */
+    dm_str err = {0};
+    setenv(CALLGRIND_JOBS_ENV, "3", 1);
+    assert_int_equal(callgrind_env_jobs(&err), 3);
+    assert_int_equal(callgrind_jobs(0, 10), 3);
+    assert_int_equal(callgrind_jobs(2, 10), 2);
+    assert_int_equal(callgrind_jobs(0, 2), 2);
+    static const char *const bad[] = {"257", "2x", "-1", " ", "1e3"};
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        setenv(CALLGRIND_JOBS_ENV, bad[i], 1);
+        dm_str_free(&err);
+        assert_int_equal(callgrind_env_jobs(&err), -1);
+        assert_non_null(strstr(dm_str_get(&err), "0..256"));
+        assert_int_equal(callgrind_jobs(0, 1000), j);   /* a bad value is the automatic default */
+    }
+    setenv(CALLGRIND_JOBS_ENV, "", 1);
+    assert_int_equal(callgrind_env_jobs(&err), 0);
+    setenv(CALLGRIND_JOBS_ENV, "0", 1);   /* as --count-jobs 0: automatic */
+    assert_int_equal(callgrind_env_jobs(&err), 0);
+    assert_int_equal(callgrind_jobs(0, 1000), j);
+    unsetenv(CALLGRIND_JOBS_ENV);
+    dm_str_free(&err);
 }
 
 static void test_disagreement_not_counted(void **state)

@@ -268,6 +268,8 @@ hcase env/lp-text 2 "LP_NUM_THREADS='abc'" -- env LP_NUM_THREADS=abc "$BIN" run 
 hcase env/lp-huge 2 "from 0 to 32" -- env LP_NUM_THREADS=100000 "$BIN" run "$OUT/ok.yaml" --out "$NEVER"
 hcase env/lp-negative 2 "LP_NUM_THREADS='-1'" -- env LP_NUM_THREADS=-1 "$BIN" render resolution=16x16 --png "$OUT/x.png"
 hcase env/lp-empty 2 "LP_NUM_THREADS=''" -- env LP_NUM_THREADS= "$BIN" info
+hcase env/count-jobs-text 2 "DMBENCH_COUNT_JOBS=many: not a whole number of counting children in 0..256" -- env DMBENCH_COUNT_JOBS=many "$BIN" run "$OUT/ok.yaml" --out "$NEVER"
+hcase env/count-jobs-huge 2 "DMBENCH_COUNT_JOBS=300: not a whole number of counting children in 0..256" -- env DMBENCH_COUNT_JOBS=300 "$BIN" info
 hcase env/lp-zero 0 "" -- env LP_NUM_THREADS=0 "$BIN" render resolution=16x16 --png "$OUT/lp0.png"
 hcase env/ulimit-n 0 "" -- "${LIMIT[@]}" "-n 16" "$BIN" run "$OUT/ok.yaml" --out "$OUT/uln" --quiet
 hcase env/ulimit-f-run 4 "disk I/O error" -- "${LIMIT[@]}" "-f 8" "$BIN" run "$OUT/ok.yaml" --out "$OUT/ulf" --quiet

@@ -5,7 +5,7 @@
 # program caches in fresh directories) and one from the first run's warm
 # caches, each with another --seed, so its Valgrind children count the
 # configurations in another order.  The cold runs deal the configurations
-# to one child per CPU (the default); the warm run counts them all in one
+# to two children (--count-jobs 2); the warm run counts them all in one
 # child (--count-jobs 1), so each shares its child with other company.
 # With --alone, also every configuration alone in a child of its own
 # (--shard K/N, warm caches).
@@ -32,8 +32,8 @@ run() {
 }
 
 t0=$(date +%s)
-run cold1 c1 1
-run cold2 c2 2 &  # two at a time at most: CI has 2 cores
+run cold1 c1 1 --count-jobs 2
+run cold2 c2 2 --count-jobs 2 &  # two runs at a time at most: CI has 2 cores
 run warm c1 3 --count-jobs 1   # c1's caches and program binaries, now filled; one child
 wait $!
 runs=("$OUT/cold1" "$OUT/cold2" "$OUT/warm")

@@ -51,6 +51,42 @@ for b in bad:
     print("FAIL:", b)
 sys.exit(1 if bad else 0)
 PY
+# --budget uses the same models: in a copy of the fitted run's store, a
+# budget nothing meets leaves every configuration out, normal and pom by the
+# instruction models (their predicted Instructions in the reason, within
+# 5 % of those measured), phong, never measured, by a pilot frame.
+cp -r "$OUT/fit" "$OUT/budget"
+"$BIN" run "$SRC/tests/stages/predict_new.yaml" --out "$OUT/budget" --budget 0.000001 2> "$OUT/budget.err" || {
+  echo "FAIL: run --budget exited $?"; cat "$OUT/budget.err"; exit 1; }
+grep -- "--budget" "$OUT/budget.err"
+python3 - "$OUT/budget/latest/results.json" "$OUT/new/latest/results.json" "$OUT/budget.err" <<'PY' && pass=$((pass+1)) || fail=$((fail+1))
+import json, re, sys
+left = json.load(open(sys.argv[1]))["left_out"]
+meas = {(c["params"]["technique"], c["params"].get("steps")): c for c in json.load(open(sys.argv[2]))["configs"]}
+bad = []
+if len(left) != 4:
+    bad.append(f"{len(left)} configurations left out, expected 4")
+for l in left:
+    t = l["params"]["technique"]
+    m = re.search(r"the instruction models \(1 stored run\) predict (\S+) instructions", l["reason"])
+    if t == "phong":
+        if not l["reason"].startswith("over --budget 1e-06 s: a pilot frame took"):
+            bad.append(f"phong: {l['reason']}")
+        continue
+    if not m:
+        bad.append(f"{t}: {l['reason']}")
+        continue
+    c = meas[(t, l["params"].get("steps"))]["counters"]["Instructions"]
+    err = float(m.group(1)) / c.get("median", c.get("value")) - 1
+    print(f"{t} {l['params'].get('steps', '')}: --budget's Instructions {100*err:+.2f} % off the measured")
+    if abs(err) > 0.05:
+        bad.append(f"{t}: {100*err:+.2f} %")
+if "3 by the instruction models, 1 by a pilot frame; 4 left out" not in open(sys.argv[3]).read():
+    bad.append("the summary line does not count 3 by the instruction models and 1 by a pilot frame")
+for b in bad:
+    print("FAIL:", b)
+sys.exit(1 if bad else 0)
+PY
 # another machine: the fitted run's cpu changed in its store
 python3 - "$OUT/fit/dmbench.sqlite" <<'PY'
 import sqlite3, sys

@@ -1,0 +1,160 @@
+/* predict.c — per-variant costs fitted to measured runs, applied to the
+ * invocation counts of configurations never measured (predict.h). */
+#include "run/predict.h"
+#include "core/dm_error.h"
+#include "run/fitting.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+const char *const predict_counts[PREDICT_N_COUNTS] = {"VSInvocations", "TESInvocations",
+                                                      "ClippingOutputPrimitives", "FSInvocations", "TCSPatches"};
+const char *const predict_needed[PREDICT_N_NEEDED] = {"Instructions", "VSInvocations", "TESInvocations",
+                                                      "ClippingOutputPrimitives", "FSInvocations"};
+static const char *const predict__stages[3] = {"GeometryInstructions", "RasterInstructions",
+                                               "FragmentInstructions"};
+
+int predict_run_has(const dm_run_result *run, const char *name)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_counter_result *r = run->configs[i].ok ? dm_config_counter(&run->configs[i], name) : NULL;
+        if (r && r->available)
+            return 1;
+    }
+    return 0;
+}
+
+static void predict__fit(const dm_run_result *u, const char *model, const char *response,
+                         const char *const *group_by, size_t n_group_by, dm_fit_result **fits, size_t *n)
+{
+    fitting_spec spec = { .name = model, .response = response, .group_by = group_by, .n_group_by = n_group_by };
+    dm_str warn = {0}, err = {0};
+    fitting_run(&spec, u, fits, n, &warn, &err);
+    dm_str_free(&warn);
+    dm_str_free(&err);
+}
+
+void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
+{
+    memset(m, 0, sizeof *m);
+    m->train = runs[0];
+    m->train.configs = NULL;
+    m->train.n_configs = 0;
+    for (size_t k = 0; k < n; k++)
+        for (size_t i = 0; i < runs[k].n_configs; i++)
+            DM_VEC_PUSH(m->train.configs, m->train.n_configs, runs[k].configs[i]);
+    const dm_run_result *u = &m->train;
+    predict__fit(u, "stage-instructions", "Instructions", NULL, 0, &m->instr, &m->n_instr);
+    for (int st = 0; st < 3; st++)
+        if (predict_run_has(u, predict__stages[st]))
+            predict__fit(u, "stage-instructions", predict__stages[st], NULL, 0, &m->stage[st], &m->n_stage[st]);
+    if (predict_run_has(u, "WallTime"))
+        predict__fit(u, "time-from-instructions", "WallTime", NULL, 0, &m->time, &m->n_time);
+}
+
+/* The fit of `variant` among fits, or NULL. */
+static const dm_fit_result *predict__of(const dm_fit_result *fits, size_t n, const char *variant)
+{
+    for (size_t i = 0; i < n; i++)
+        if (fits[i].n_group == 1 && strcmp(fits[i].group[0].value, variant) == 0)
+            return &fits[i];
+    return NULL;
+}
+
+/* Predicts fit's response for configuration pc whose counts are in c. */
+static int predict__one(const dm_fit_result *fit, const dm_run_result *train, const plan_config *pc,
+                        dm_config_result *c, double *v, dm_str *why)
+{
+    dm_run_result one = { .configs = c, .n_configs = 1 };
+    return fitting_predict_dropped(fit, train, pc->params, pc->n_params, pc->key, &one, 1, v, why);
+}
+
+/* The first of fits whose group holds pc and that predicts it: *v, and
+ * the fit; NULL (and *v NaN) when none does. */
+static const dm_fit_result *predict__any(const dm_fit_result *fits, size_t n, const dm_run_result *train,
+                                         const plan_config *pc, dm_config_result *c, double *v)
+{
+    for (size_t i = 0; i < n; i++) {
+        dm_str why = {0};
+        int rc = predict__one(&fits[i], train, pc, c, v, &why);
+        dm_str_free(&why);
+        if (rc == 0 && isfinite(*v))
+            return &fits[i];
+    }
+    *v = NAN;
+    return NULL;
+}
+
+int predict_config(const predict_model *m, const plan_config *pc, const double *counts, predict_result *out,
+                   dm_str *why)
+{
+    *out = (predict_result){ .instr = NAN, .instr_lo = NAN, .instr_hi = NAN, .part = {NAN, NAN, NAN},
+                             .wall_ns = NAN, .wall_lo = NAN, .wall_hi = NAN };
+    out->variant = fitting_variant(pc->params, pc->n_params);
+    dm_config_result c = { .key = (char *)pc->key, .ok = 1 };
+    dm_counter_result cr[PREDICT_N_COUNTS];
+    for (size_t k = 0; k < PREDICT_N_COUNTS; k++)
+        cr[k] = (dm_counter_result){ .name = (char *)predict_counts[k], .available = isfinite(counts[k]),
+                                     .value = counts[k] };
+    c.counters = cr;
+    c.n_counters = PREDICT_N_COUNTS;
+    const dm_fit_result *fi = predict__of(m->instr, m->n_instr, out->variant);
+    double instr = NAN;
+    if (!fi)
+        dm_str_printf(why, "variant '%s' was never measured by the runs", out->variant);
+    else
+        predict__one(fi, &m->train, pc, &c, &instr, why);
+    if (!isfinite(instr))
+        return DM_ERR_UNKNOWN;
+    /* By stage when the runs have the stage counters: each stage's costs
+     * against its invocations; the frame is then their sum. */
+    double ei = 2 * fi->cv_mape / 100, spread = 0;
+    for (int s = 0; s < 3; s++) {
+        const dm_fit_result *fs = predict__any(m->stage[s], m->n_stage[s], &m->train, pc, &c, &out->part[s]);
+        spread = fs && isfinite(fs->cv_mape) && fs->cv_mape > 0 && isfinite(spread)
+                 ? spread + fabs(out->part[s]) * 2 * fs->cv_mape / 100 : NAN;
+    }
+    double sum = out->part[0] + out->part[1] + out->part[2];
+    if (isfinite(sum) && sum > 0) {
+        instr = sum;
+        ei = isfinite(spread) ? spread / sum : ei;
+    }
+    out->instr = instr;
+    out->instr_lo = instr * (1 - ei);
+    out->instr_hi = instr * (1 + ei);
+    if (m->n_time == 1) {
+        const dm_fit_result *t = &m->time[0];
+        double a = NAN, b = NAN;
+        for (size_t i = 0; i < t->n_params; i++)
+            *(strcmp(t->params[i].name, "a") == 0 ? &a : &b) = t->params[i].value;
+        double et = sqrt(ei * ei + pow(2 * t->cv_mape / 100, 2));
+        out->wall_ns = a + b * instr;
+        out->wall_lo = out->wall_ns * (1 - et);
+        out->wall_hi = out->wall_ns * (1 + et);
+    }
+    return 0;
+}
+
+void predict_result_free(predict_result *r)
+{
+    free(r->variant);
+    r->variant = NULL;
+}
+
+static void predict__free_fits(dm_fit_result *f, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        dm_fit_result_free(&f[i]);
+    free(f);
+}
+
+void predict_free(predict_model *m)
+{
+    predict__free_fits(m->instr, m->n_instr);
+    for (int st = 0; st < 3; st++)
+        predict__free_fits(m->stage[st], m->n_stage[st]);
+    predict__free_fits(m->time, m->n_time);
+    free(m->train.configs);
+    memset(m, 0, sizeof *m);
+}

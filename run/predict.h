@@ -1,0 +1,58 @@
+/* predict.h — what a configuration never measured will cost: its
+ * Instructions, stage shares and WallTime from per-variant costs fitted to
+ * measured runs and its own invocation counts (docs/models.md,
+ * "Prediction").  Used by `dmbench predict` and by `run --budget`.
+ *
+ * The costs per invocation come from the stage-instructions fits of the
+ * runs, one per shader variant and stage; frame time from the
+ * time-from-instructions fit.  A configuration
+ * of a variant the runs never measured is not predicted, never guessed.
+ */
+#ifndef RUN_PREDICT_H
+#define RUN_PREDICT_H
+
+#include <stddef.h>
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+#include "sweep/plan.h"
+
+/* The invocation counts a prediction reads, in this order (measure_counts
+ * or the pilot frame measure them for the configurations to predict). */
+#define PREDICT_N_COUNTS 5
+extern const char *const predict_counts[PREDICT_N_COUNTS];
+
+/* The counters the runs must have for any prediction (TCSPatches and the
+ * stage counters are used when present). */
+#define PREDICT_N_NEEDED 5
+extern const char *const predict_needed[PREDICT_N_NEEDED];
+
+typedef struct predict_model {
+    dm_run_result train;   /* the pooled runs (shallow: the caller's runs own the configurations) */
+    dm_fit_result *instr, *stage[3], *time;
+    size_t n_instr, n_stage[3], n_time;
+} predict_model;
+
+typedef struct predict_result {
+    char *variant;           /* "pom steps=auto ..." (fitting_variant) */
+    double instr, instr_lo, instr_hi;   /* frame Instructions, ±2 CV-MAPE */
+    double part[3];          /* geometry, raster, fragment; NaN without the stage counters */
+    double wall_ns, wall_lo, wall_hi;   /* NaN without a WallTime fit */
+} predict_result;
+
+/* 1 when some ok configuration of run has counter name available. */
+int predict_run_has(const dm_run_result *run, const char *name);
+
+/* Fits the models to runs[0..n) (kept by the caller until predict_free). */
+void predict_fit(const dm_run_result *runs, size_t n, predict_model *m);
+
+/* Predicts configuration pc, whose invocation counts are counts[0..
+ * PREDICT_N_COUNTS) (NaN: not measured).  0 with *out filled, or
+ * DM_ERR_UNKNOWN with why (the variant was never measured, or a value it
+ * needs was never varied) and out->variant still set. */
+int predict_config(const predict_model *m, const plan_config *pc, const double *counts, predict_result *out,
+                   dm_str *why);
+
+void predict_result_free(predict_result *r);
+void predict_free(predict_model *m);
+
+#endif
