@@ -50,9 +50,10 @@
 /* The counting child's malloc: blocks from this size up are mmapped, the
  * heap's top is neither padded nor kept (docs/counters.md, "Repeatability"). */
 #define CALLGRIND_MMAP_THRESHOLD 4096
-/* The stack of the counting child's thread (the driver's shader compiler
- * recurses deeply; the main thread's default is 8 MiB). */
-#define CALLGRIND_STACK_BYTES (64u << 20)
+/* The counting child's stack starts at the same offset in a page of this
+ * size in every process, whatever the length of its arguments and
+ * environment. */
+#define CALLGRIND_STACK_ALIGN 4096
 /* At most this many counting children by default, and no more than one
  * per CALLGRIND_JOB_GIB of available memory: each is a Valgrind of dmbench
  * and llvmpipe (measured: 0.5 GiB resident at 480x270). */
