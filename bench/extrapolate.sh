@@ -6,7 +6,8 @@
 # resolution, a level and a step count between and beyond, another mesh
 # density), unless both run directories are given; predicts the second from
 # the first with `dmbench predict` and prints predicted against measured
-# Instructions and WallTime per configuration, the load average with it.
+# Instructions and WallTime per configuration (and whether the measured
+# value is inside the prediction interval), the load average with it.
 # Usage: bench/extrapolate.sh [FIT_RUN NEW_RUN]   (DMBENCH: the binary)
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -39,12 +40,16 @@ for l in open(sys.argv[1]).read().splitlines():
     c = meas[f[0]]
     p = c["params"]
     name = f"{p['technique']} {p.get('resolution')} L={p.get('tess_level','-')} steps={p.get('steps','-')} d={p.get('mesh_density','0')}"
-    pi = float(re.search(r"(\S+) \[", l).group(1))
-    wt = re.search(r"WallTime (\S+) ms", l)
+    pi_ = re.search(r"(\S+) \[(\S+), (\S+)\]", l)
+    pi, ilo, ihi = (float(x) for x in pi_.groups())
+    wt = re.search(r"WallTime (\S+) ms \[(\S+), (\S+)\]", l)
     mi, mw = med(c, "Instructions"), med(c, "WallTime") / 1e6
     ei = 100 * (pi / mi - 1)
     ew = 100 * (float(wt.group(1)) / mw - 1) if wt else float("nan")
     worst = [max(worst[0], abs(ei)), max(worst[1], abs(ew))]
-    print(f"{name:44s} {pi:13.0f} / {mi:13.0f} {ei:+6.2f}% {float(wt.group(1)) if wt else float('nan'):10.3f} / {mw:10.3f} {ew:+6.1f}%")
-print(f"worst: Instructions {worst[0]:.2f} %, WallTime {worst[1]:.1f} %")
+    # "in"/"OUT": the measured value inside the prediction interval or not
+    ii = "in" if ilo <= mi <= ihi else "OUT"
+    iw = ("in" if float(wt.group(2)) <= mw <= float(wt.group(3)) else "OUT") if wt else "-"
+    print(f"{name:44s} {pi:13.0f} / {mi:13.0f} {ei:+6.2f}% {ii:3s} {float(wt.group(1)) if wt else float('nan'):10.3f} / {mw:10.3f} {ew:+6.1f}% {iw}")
+print(f"worst: Instructions {worst[0]:.2f} %, WallTime {worst[1]:.1f} % (in/OUT: the measured value inside the prediction interval)")
 PY

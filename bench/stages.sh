@@ -5,7 +5,8 @@
 # directory is given, then prints
 #  - the stage shares per technique (median over its configurations),
 #  - the models' CV-MAPE: pipeline-linear on WallTime (before), and
-#    stage-instructions on Instructions per variant and
+#    stage-instructions on Instructions per variant, the three per-stage
+#    models on their stage counters and
 #    time-from-instructions (after),
 #  - the cost of the stage windows in the counting child (its log).
 # Usage: bench/stages.sh [RUN_DIR]   (DMBENCH: the binary, default build/dmbench)
@@ -36,7 +37,8 @@ for t, s in by.items():
     m = [100 * statistics.median(x[k] for x in s) for k in range(3)]
     print(f"  {t:20s} geometry {m[0]:5.1f} %  raster {m[1]:5.1f} %  fragment {m[2]:5.1f} %  ({len(s)} configurations)")
 PY
-for m in "pipeline-linear" "stage-instructions" "time-from-instructions"; do
+for m in "pipeline-linear" "stage-instructions" "geometry-instructions" "raster-instructions" \
+         "fragment-instructions" "time-from-instructions"; do
   echo "== fit --model $m"
   "$B" fit "$run" --model "$m" 2>/dev/null | grep -E "^model|CV-MAPE" | sed 's/^/  /' || true
 done

@@ -4,10 +4,9 @@
  *
  * The invocation counts of the new configurations are read exactly, with
  * one frame each of a statistics pass in this process (no Valgrind, no
- * timing); the costs per invocation come from the stage-instructions fits
- * of the runs, one per shader variant; frame time from the
- * time-from-instructions fit.  A configuration of a variant the runs never
- * measured is listed with the reason, never guessed. */
+ * timing); the costs per invocation come from the fits of run/predict.c
+ * (per shader variant and stage).  A configuration of a variant the runs
+ * never measured is listed with the reason, never guessed. */
 #include "cli.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"

@@ -12,7 +12,21 @@ static const fit_bound catalog__nonneg_stage[] = {
     { "c_prim", 0, INFINITY }, { "c_px", 0, INFINITY }, { "c_step", 0, INFINITY },
     { "c_light", 0, INFINITY } };
 
+static const fit_bound catalog__nonneg_geometry[] = {
+    { "c0", 0, INFINITY }, { "c_vs", 0, INFINITY }, { "c_tes", 0, INFINITY }, { "c_tp", 0, INFINITY },
+    { "c_prim", 0, INFINITY } };
+
+static const fit_bound catalog__nonneg_raster[] = {
+    { "c0", 0, INFINITY }, { "c_prim", 0, INFINITY }, { "c_fs", 0, INFINITY }, { "c_px", 0, INFINITY } };
+
+static const fit_bound catalog__nonneg_fragment[] = {
+    { "c0", 0, INFINITY }, { "c_fs", 0, INFINITY }, { "c_px", 0, INFINITY }, { "c_step", 0, INFINITY },
+    { "c_pstep", 0, INFINITY }, { "c_light", 0, INFINITY } };
+
 static const fit_bound catalog__nonneg2[] = { { "a", 0, INFINITY }, { "b", 0, INFINITY } };
+
+static const fit_bound catalog__nonneg_time_stages[] = {
+    { "a", 0, INFINITY }, { "b_geo", 0, INFINITY }, { "b_raster", 0, INFINITY }, { "b_frag", 0, INFINITY } };
 
 static const models_builtin catalog__models[] = {
     { "pipeline-linear",
@@ -26,22 +40,55 @@ static const models_builtin catalog__models[] = {
       "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0, NULL },
     /* one fit per shader variant: the costs per invocation are the variant's,
      * the invocation counts the configuration's (docs/models.md).  c_tp:
-     * llvmpipe's evaluation stage costs more per invocation the more a
-     * draw's patches are tessellated in all (TCSPatches*tess_level^2
-     * triangles): measured quadratic in the draw's output, to 3.4 % on
-     * planes of 2-98 patches at levels 2-16 (docs/counters.md); the term is
-     * dropped where TCSPatches or tess_level was not recorded. */
+     * llvmpipe's draw module, each time its 4 KiB vertex buffer fills,
+     * resets the vertex ids of every vertex the draw's tessellation
+     * produced -- a cost of evaluations x primitives, measured at 0.50-0.54
+     * instructions per TESInvocations*ClippingOutputPrimitives on planes
+     * of 2-98 patches and the cube at levels 2-16 (docs/counters.md). */
     { "stage-instructions",
-      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*TCSPatches*tess_level^2"
+      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*ClippingOutputPrimitives"
       " + c_prim*ClippingOutputPrimitives + c_px*FSInvocations"
       " + c_step*FSInvocations*steps + c_light*FSInvocations*light_count",
       "Instructions",
       "instructions per frame of one shader variant: a cost per vertex, evaluation (growing with the "
       "draw's patches), primitive and fragment invocation, the fragment's growing with steps and lights",
       catalog__nonneg_stage, 8, "variant" },
+    /* The three stage counters, each with the terms of its own stage
+     * (docs/models.md, "Per-stage models"): geometry pays per vertex,
+     * evaluation and primitive; setup and rasterization per primitive,
+     * per 4x4 block run (FSInvocations counts 16 a block, once per
+     * triangle that touches it) and per covered pixel; shading per block
+     * and per covered pixel, both growing with steps. */
+    { "geometry-instructions",
+      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*ClippingOutputPrimitives"
+      " + c_prim*ClippingOutputPrimitives",
+      "GeometryInstructions",
+      "instructions of the geometry stages of one shader variant: per vertex, evaluation and primitive, "
+      "the evaluation's growing with the draw's primitives",
+      catalog__nonneg_geometry, 5, "variant" },
+    { "raster-instructions", "c0 + c_prim*ClippingOutputPrimitives + c_fs*FSInvocations + c_px*SamplesPassed",
+      "RasterInstructions",
+      "instructions of setup and rasterization of one shader variant: per primitive, fragment block "
+      "invocation and covered pixel",
+      catalog__nonneg_raster, 4, "variant" },
+    { "fragment-instructions",
+      "c0 + c_fs*FSInvocations + c_px*SamplesPassed + c_step*FSInvocations*steps + c_pstep*SamplesPassed*steps"
+      " + c_light*FSInvocations*light_count",
+      "FragmentInstructions",
+      "instructions of fragment shading of one shader variant: per fragment invocation and covered pixel, "
+      "growing with steps and lights",
+      catalog__nonneg_fragment, 6, "variant" },
     { "time-from-instructions", "a + b*Instructions", "WallTime",
       "frame time from the frame's instructions: a fixed cost plus a time per instruction",
       catalog__nonneg2, 2, NULL },
+    /* llvmpipe runs the geometry stages on the thread that draws and
+     * rasterizes and shades on all its threads, so an instruction of each
+     * stage takes another time (docs/models.md, "Prediction"). */
+    { "time-from-stages", "a + b_geo*GeometryInstructions + b_raster*RasterInstructions + b_frag*FragmentInstructions",
+      "WallTime",
+      "frame time from the instructions of each stage: a fixed cost plus a time per instruction of the "
+      "geometry, raster and fragment stages",
+      catalog__nonneg_time_stages, 4, NULL },
 };
 
 size_t models_builtin_count(void) { return sizeof catalog__models / sizeof *catalog__models; }

@@ -9,11 +9,15 @@
 #include <string.h>
 
 const char *const predict_counts[PREDICT_N_COUNTS] = {"VSInvocations", "TESInvocations",
-                                                      "ClippingOutputPrimitives", "FSInvocations", "TCSPatches"};
+                                                      "ClippingOutputPrimitives", "FSInvocations", "TCSPatches",
+                                                      "SamplesPassed"};
 const char *const predict_needed[PREDICT_N_NEEDED] = {"Instructions", "VSInvocations", "TESInvocations",
                                                       "ClippingOutputPrimitives", "FSInvocations"};
 static const char *const predict__stages[3] = {"GeometryInstructions", "RasterInstructions",
                                                "FragmentInstructions"};
+/* each stage counter's own model (models/catalog.c) */
+static const char *const predict__stage_models[3] = {"geometry-instructions", "raster-instructions",
+                                                     "fragment-instructions"};
 
 int predict_run_has(const dm_run_result *run, const char *name)
 {
@@ -47,10 +51,27 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
     const dm_run_result *u = &m->train;
     predict__fit(u, "stage-instructions", "Instructions", NULL, 0, &m->instr, &m->n_instr);
     for (int st = 0; st < 3; st++)
-        if (predict_run_has(u, predict__stages[st]))
-            predict__fit(u, "stage-instructions", predict__stages[st], NULL, 0, &m->stage[st], &m->n_stage[st]);
+        if (predict_run_has(u, predict__stages[st]) && predict_run_has(u, "SamplesPassed"))
+            predict__fit(u, predict__stage_models[st], predict__stages[st], NULL, 0, &m->stage[st], &m->n_stage[st]);
     if (predict_run_has(u, "WallTime"))
         predict__fit(u, "time-from-instructions", "WallTime", NULL, 0, &m->time, &m->n_time);
+    if (predict_run_has(u, "WallTime") && m->n_stage[0] && m->n_stage[1] && m->n_stage[2])
+        predict__fit(u, "time-from-stages", "WallTime", NULL, 0, &m->time_st, &m->n_time_st);
+}
+
+/* fit's parameter `name` (its standard error in *se when se), NaN when
+ * it has none */
+static double predict__param(const dm_fit_result *fit, const char *name, double *se)
+{
+    for (size_t i = 0; i < fit->n_params; i++)
+        if (strcmp(fit->params[i].name, name) == 0) {
+            if (se)
+                *se = fit->params[i].stderr_;
+            return fit->params[i].value;
+        }
+    if (se)
+        *se = NAN;
+    return NAN;
 }
 
 /* The fit of `variant` among fits, or NULL. */
@@ -123,13 +144,34 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
     out->instr = instr;
     out->instr_lo = instr * (1 - ei);
     out->instr_hi = instr * (1 + ei);
-    if (m->n_time == 1) {
-        const dm_fit_result *t = &m->time[0];
-        double a = NAN, b = NAN;
-        for (size_t i = 0; i < t->n_params; i++)
-            *(strcmp(t->params[i].name, "a") == 0 ? &a : &b) = t->params[i].value;
-        double et = sqrt(ei * ei + pow(2 * t->cv_mape / 100, 2));
-        out->wall_ns = a + b * instr;
+    /* Frame time from each stage's instructions when the parts are
+     * predicted (an instruction of the geometry stages, on one thread,
+     * takes longer) and that fit predicts the runs' held-out frames at
+     * least as well as the one from the frame's instructions; else from
+     * the frame's. */
+    const dm_fit_result *t = NULL;
+    double se_ns = 0;   /* what the parameters' standard errors make of it */
+    if (m->n_time_st == 1 && isfinite(sum) && sum > 0 &&
+        (m->n_time != 1 || !(m->time[0].cv_mape < m->time_st[0].cv_mape))) {
+        static const char *const b[3] = {"b_geo", "b_raster", "b_frag"};
+        t = &m->time_st[0];
+        double se = NAN;
+        out->wall_ns = predict__param(t, "a", &se);
+        se_ns = isfinite(se) ? se * se : NAN;
+        for (int s = 0; s < 3; s++) {
+            out->wall_ns += predict__param(t, b[s], &se) * out->part[s];
+            se_ns += isfinite(se) ? pow(se * out->part[s], 2) : NAN;
+        }
+        se_ns = sqrt(se_ns);
+    } else if (m->n_time == 1) {
+        t = &m->time[0];
+        out->wall_ns = predict__param(t, "a", NULL) + predict__param(t, "b", NULL) * instr;
+    }
+    if (t) {
+        /* the instructions' and the time fit's errors, and, far from the
+         * configurations fitted, its parameters' standard errors */
+        double ep = isfinite(se_ns) && out->wall_ns > 0 ? 2 * se_ns / out->wall_ns : 0;
+        double et = sqrt(ei * ei + pow(2 * t->cv_mape / 100, 2) + ep * ep);
         out->wall_lo = out->wall_ns * (1 - et);
         out->wall_hi = out->wall_ns * (1 + et);
     }
@@ -155,6 +197,7 @@ void predict_free(predict_model *m)
     for (int st = 0; st < 3; st++)
         predict__free_fits(m->stage[st], m->n_stage[st]);
     predict__free_fits(m->time, m->n_time);
+    predict__free_fits(m->time_st, m->n_time_st);
     free(m->train.configs);
     memset(m, 0, sizeof *m);
 }

@@ -3,10 +3,13 @@
  * measured runs and its own invocation counts (docs/models.md,
  * "Prediction").  Used by `dmbench predict` and by `run --budget`.
  *
- * The costs per invocation come from the stage-instructions fits of the
- * runs, one per shader variant and stage; frame time from the
- * time-from-instructions fit.  A configuration
- * of a variant the runs never measured is not predicted, never guessed.
+ * The costs per invocation come from fits per shader variant: one per
+ * stage counter with that stage's own model (geometry-, raster- and
+ * fragment-instructions) when the runs have the stage counters, else the
+ * whole-frame stage-instructions; frame time from time-from-stages or
+ * time-from-instructions, whichever has the lower CV-MAPE on the runs.  A
+ * configuration of a variant the runs never measured is not predicted,
+ * never guessed.
  */
 #ifndef RUN_PREDICT_H
 #define RUN_PREDICT_H
@@ -18,18 +21,18 @@
 
 /* The invocation counts a prediction reads, in this order (measure_counts
  * or the pilot frame measure them for the configurations to predict). */
-#define PREDICT_N_COUNTS 5
+#define PREDICT_N_COUNTS 6
 extern const char *const predict_counts[PREDICT_N_COUNTS];
 
-/* The counters the runs must have for any prediction (TCSPatches and the
- * stage counters are used when present). */
+/* The counters the runs must have for any prediction (the stage counters,
+ * with SamplesPassed, are used when present). */
 #define PREDICT_N_NEEDED 5
 extern const char *const predict_needed[PREDICT_N_NEEDED];
 
 typedef struct predict_model {
     dm_run_result train;   /* the pooled runs (shallow: the caller's runs own the configurations) */
-    dm_fit_result *instr, *stage[3], *time;
-    size_t n_instr, n_stage[3], n_time;
+    dm_fit_result *instr, *stage[3], *time, *time_st;   /* time_st: time-from-stages */
+    size_t n_instr, n_stage[3], n_time, n_time_st;
 } predict_model;
 
 typedef struct predict_result {

@@ -2,7 +2,8 @@
  * models/catalog.c) on synthetic runs with known coefficients: one fit per
  * shader variant by default, terms over variables a variant lacks dropped,
  * the coefficients recovered, and a new step count, level and resolution
- * of a measured variant predicted exactly. */
+ * of a measured variant predicted exactly; the three per-stage models
+ * recover known stage costs. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -19,7 +20,11 @@
 
 /* Known per-invocation costs of two variants. */
 enum { POM_C0 = 80000, POM_VS = 60, POM_PRIM = 40, POM_PX = 150, POM_STEP = 25 };
-enum { TESS_C0 = 120000, TESS_TES = 300, TESS_TP = 7, TESS_PRIM = 50, TESS_PX = 90 };
+/* and of pom's three stages (geometry, raster, fragment) */
+enum { G_C0 = 50000, G_VS = 60, G_PRIM = 40 };
+enum { R_C0 = 90000, R_PRIM = 30, R_FS = 20, R_PX = 10 };
+enum { F_C0 = 5000, F_FS = 100, F_PX = 60, F_STEP = 12, F_PSTEP = 8 };
+enum { TESS_C0 = 120000, TESS_TES = 300, TESS_TP = 1, TESS_PRIM = 50, TESS_PX = 90 };
 
 static void counter(dm_config_result *c, const char *name, double v)
 {
@@ -64,6 +69,13 @@ static void synthetic_run(dm_run_result *run)
                 counter(c, "ClippingOutputPrimitives", prim);
                 counter(c, "FSInvocations", fs);
                 counter(c, "Instructions", POM_C0 + POM_VS * vs + POM_PRIM * prim + POM_PX * fs + POM_STEP * fs * s);
+                /* covered pixels: fewer than the blocks' 16 a block, the
+                 * more so the more triangle edges (density) */
+                double sp = res[k][0] * res[k][1] * 0.4 - 200.0 * d;
+                counter(c, "SamplesPassed", sp);
+                counter(c, "GeometryInstructions", G_C0 + G_VS * vs + G_PRIM * prim);
+                counter(c, "RasterInstructions", R_C0 + R_PRIM * prim + R_FS * fs + R_PX * sp);
+                counter(c, "FragmentInstructions", F_C0 + F_FS * fs + F_PX * sp + F_STEP * fs * s + F_PSTEP * sp * s);
             }
     for (int P = 2; P <= 8; P *= 4)
         for (int L = 2; L <= 8; L *= 2)
@@ -82,7 +94,7 @@ static void synthetic_run(dm_run_result *run)
                 counter(c, "ClippingOutputPrimitives", prim);
                 counter(c, "FSInvocations", fs);
                 counter(c, "Instructions",
-                        TESS_C0 + TESS_TES * tes + TESS_TP * tes * P * L * L + TESS_PRIM * prim + TESS_PX * fs);
+                        TESS_C0 + TESS_TES * tes + TESS_TP * tes * prim + TESS_PRIM * prim + TESS_PX * fs);
             }
 }
 
@@ -100,6 +112,15 @@ static void assert_close(double got, double want)
         fprintf(stderr, "got %.9g, want %.9g\n", got, want);
         fail();
     }
+}
+
+static void free_fits(dm_fit_result *fits, size_t n, dm_str *warn, dm_str *err)
+{
+    for (size_t i = 0; i < n; i++)
+        dm_fit_result_free(&fits[i]);
+    free(fits);
+    dm_str_free(warn);
+    dm_str_free(err);
 }
 
 /* One fit per variant; the known coefficients come back; the terms a
@@ -167,11 +188,45 @@ static void test_recovers_per_variant(void **state)
                                             "has 100: they cannot tell the cost of 'c_tes*TESInvocations'"));
     dm_run_free(&other);
     dm_kv_free(kv, nk);
-    for (size_t i = 0; i < n; i++)
-        dm_fit_result_free(&fits[i]);
-    free(fits);
-    dm_str_free(&warn);
-    dm_str_free(&err);
+    free_fits(fits, n, &warn, &err);
+    dm_run_free(&run);
+}
+
+/* The three per-stage models (geometry-, raster-, fragment-instructions)
+ * recover pom's known stage costs, each from its own stage counter. */
+static void test_stage_models_recover(void **state)
+{
+    (void)state;
+    dm_run_result run = {0};
+    synthetic_run(&run);
+    static const struct {
+        const char *model, *response;
+        const char *names[5];
+        double want[5];
+    } cases[] = {
+        { "geometry-instructions", "GeometryInstructions", {"c0", "c_vs", "c_prim"}, {G_C0, G_VS, G_PRIM} },
+        { "raster-instructions", "RasterInstructions", {"c0", "c_prim", "c_fs", "c_px"},
+          {R_C0, R_PRIM, R_FS, R_PX} },
+        { "fragment-instructions", "FragmentInstructions", {"c0", "c_fs", "c_px", "c_step", "c_pstep"},
+          {F_C0, F_FS, F_PX, F_STEP, F_PSTEP} },
+    };
+    for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {
+        fitting_spec spec = { .name = cases[k].model };
+        dm_fit_result *fits = NULL;
+        size_t n = 0;
+        dm_str warn = {0}, err = {0};
+        assert_int_equal(fitting_run(&spec, &run, &fits, &n, &warn, &err), 0);
+        const dm_fit_result *pom = NULL;
+        for (size_t i = 0; i < n; i++)
+            pom = strcmp(fits[i].group[0].value, "pom") == 0 ? &fits[i] : pom;
+        assert_non_null(pom);
+        assert_string_equal(pom->response, cases[k].response);
+        fprintf(stderr, "%s, pom: %s; CV-MAPE %.3g %%\n", cases[k].model, pom->formula, pom->cv_mape);
+        assert_true(pom->cv_mape < 1e-6);
+        for (size_t j = 0; j < 5 && cases[k].names[j]; j++)
+            assert_close(param(pom, cases[k].names[j]), cases[k].want[j]);
+        free_fits(fits, n, &warn, &err);
+    }
     dm_run_free(&run);
 }
 
@@ -218,5 +273,6 @@ static void test_name_checks(void **state)
 
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_recovers_per_variant),
+             cmocka_unit_test(test_stage_models_recover),
              cmocka_unit_test(test_variant_names),
              cmocka_unit_test(test_name_checks))

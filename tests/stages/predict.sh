@@ -2,7 +2,8 @@
 # test_predict: `dmbench predict` (docs/models.md, "Prediction").
 #  - fitted on tests/stages/predict_fit.yaml (normal, pom at 8/16 steps,
 #    three resolutions), it predicts the held-out predict_new.yaml (160x160,
-#    pom at 24 steps) within 5 % of the Instructions measured there, and
+#    pom at 24 steps) within 5 % of the Instructions measured there, as the
+#    sum of the per-stage models (the stage shares are printed), and
 #    lists phong, a variant never measured, as not predicted;
 #  - refuses runs of another machine fingerprint naming the key (exit 2),
 #    unless --allow-env-mismatch, and a run without a needed counter.
@@ -36,6 +37,10 @@ for l in lines[1:]:
         bad.append(f"phong was predicted: {l}")
         continue
     pred = float(re.search(r"(\S+) \[", l).group(1))   # Instructions, before its interval
+    # the fitted runs have the stage counters: the sum of the stage models
+    sh = re.search(r"geometry +(\d+) % raster +(\d+) % fragment +(\d+) %", l)
+    if not sh or not 98 <= sum(int(x) for x in sh.groups()) <= 102:
+        bad.append(f"{t}: no stage shares adding up to 100 %: {l}")
     err = pred / m - 1
     print(f"{t} {c['params'].get('steps', '')} {c['params']['resolution']}: predicted {pred:.0f}, "
           f"measured {m:.0f} ({100*err:+.2f} %)")
@@ -100,7 +105,7 @@ expect_refused 2 "runs of another machine fingerprint: .*: cpu (run Another CPU"
 if "$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest" --allow-env-mismatch >/dev/null 2>&1
 then pass=$((pass+1)); else fail=$((fail+1)); echo "FAIL: --allow-env-mismatch was refused"; fi
 # a run without the stage model's counters (one configuration, no Valgrind)
-sed -e 's/counters: \[.*/counters: [WallTime]/' -e '/^             SamplesPassed, Instructions\]/d' \
+sed -e 's/counters: \[.*/counters: [WallTime]/' -e '/^             SamplesPassed, Instructions/d' \
     -e 's/technique: \[normal, pom\]/technique: [normal]/' -e 's/resolution: \[.*/resolution: ["64x64"]/' \
     "$SRC/tests/stages/predict_fit.yaml" > "$OUT/nocount.yaml"
 "$BIN" run "$OUT/nocount.yaml" --out "$OUT/nocount" --seed 1 --quiet || exit 1
