@@ -223,10 +223,13 @@ static int list__names(const char *const *names, int json)
 static int list__models(int json)
 {
     cJSON *arr = json ? cJSON_CreateArray() : NULL;
+    int w = 0;   /* the longest name */
+    for (size_t i = 0; i < models_builtin_count(); i++)
+        w = (int)strlen(models_builtin_at(i)->name) > w ? (int)strlen(models_builtin_at(i)->name) : w;
     for (size_t i = 0; i < models_builtin_count(); i++) {
         const models_builtin *m = models_builtin_at(i);
         if (!json) {
-            printf("%-18s %s = %s\n%-18s %s\n", m->name, m->response, m->formula, "", m->description);
+            printf("%-*s %s = %s\n%-*s %s\n", w, m->name, m->response, m->formula, w, "", m->description);
             continue;
         }
         cJSON *o = cJSON_CreateObject();

@@ -51,7 +51,7 @@ static const models_builtin catalog__models[] = {
       " + c_step*FSInvocations*steps + c_light*FSInvocations*light_count",
       "Instructions",
       "instructions per frame of one shader variant: a cost per vertex, evaluation (growing with the "
-      "draw's patches), primitive and fragment invocation, the fragment's growing with steps and lights",
+      "draw's primitives), primitive and fragment invocation, the fragment's growing with steps and lights",
       catalog__nonneg_stage, 8, "variant" },
     /* The three stage counters, each with the terms of its own stage
      * (docs/models.md, "Per-stage models"): geometry pays per vertex,
