@@ -3,6 +3,7 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/fitting.h"
+#include "run/predict.h"
 #include "store/store.h"
 #include "models/catalog.h"
 #include "models/fit_data.h"
@@ -155,6 +156,23 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
     fitting_spec spec = { .name = a->model ? a->model : a->formula ? "formula" : "pipeline-linear",
                           .formula = a->formula, .response = a->response,
                           .group_by = (const char *const *)groups, .n_group_by = ng, .loss = a->loss };
+    /* a response the run never recorded: nothing to fit, and the sweep
+     * option that adds it (a response that is an axis is checked by
+     * fitting_run) */
+    const models_builtin *b = models_builtin_find(a->model ? a->model : "pipeline-linear");
+    const char *resp = a->response ? a->response : a->formula ? "WallTime" : b ? b->response : NULL;
+    int axis = 0;
+    for (size_t i = 0; rc == 0 && resp && i < run.n_configs && !axis; i++)
+        for (size_t k = 0; k < run.configs[i].n_params && !axis; k++)
+            axis = strcmp(run.configs[i].params[k].key, resp) == 0;
+    if (rc == 0 && resp && !axis && !predict_run_has(&run, resp)) {
+        dm_str_printf(err, "%s has no counter '%s'", a->dir, resp);
+        if (!a->response)
+            dm_str_printf(err, a->formula ? " (a formula's response unless --response names another)"
+                                          : " (the response of model %s)", spec.name);
+        dm_str_printf(err, ": add %s to measure.counters of its sweep and run it again (docs/counters.md)", resp);
+        rc = DM_ERR_NOTFOUND;
+    }
     if (rc == 0)
         rc = fitting_run(&spec, &run, fits, n, warn, err);
     free(gb);

@@ -152,6 +152,8 @@ EOF
 hcase results/wrong-types 2 "types.json" -- "$BIN" compare "$OUT/types.json" "$R"
 hcase results/directory-not-run 2 "" -- "$BIN" compare "$G" "$R"
 hcase results/fifo 2 "" -- "$BIN" compare /dev/null "$R"
+hcase results/fit-no-response 2 "has no counter 'FragmentInstructions' (the response of model fragment-instructions)" -- \
+  "$BIN" fit "$OUT/ok/latest" --model fragment-instructions
 
 # ---- CSV tables (fit --data) ----
 hcase csv/wide 0 "" -- "$BIN" fit --data "$G/wide.csv" --formula "a*c1"

@@ -111,4 +111,6 @@ sed -e 's/counters: \[.*/counters: [WallTime]/' -e '/^             SamplesPassed
 "$BIN" run "$OUT/nocount.yaml" --out "$OUT/nocount" --seed 1 --quiet || exit 1
 expect_refused 2 "has no counter 'Instructions': add Instructions to measure.counters" -- \
   "$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest,$OUT/nocount/latest"
+expect_refused 2 "has no counter 'Instructions' (the response of model stage-instructions): add Instructions" -- \
+  "$BIN" fit "$OUT/nocount/latest" --model stage-instructions
 tally
