@@ -40,11 +40,12 @@ static const models_builtin catalog__models[] = {
       "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0, NULL },
     /* one fit per shader variant: the costs per invocation are the variant's,
      * the invocation counts the configuration's (docs/models.md).  c_tp:
-     * llvmpipe's draw module, each time its 4 KiB vertex buffer fills,
-     * resets the vertex ids of every vertex the draw's tessellation
-     * produced -- a cost of evaluations x primitives, measured at 0.50-0.54
-     * instructions per TESInvocations*ClippingOutputPrimitives on planes
-     * of 2-98 patches and the cube at levels 2-16 (docs/counters.md). */
+     * llvmpipe's draw module, each time it hands a batch of vertices on
+     * (about every 12 primitives), resets the vertex ids of every vertex
+     * the draw's tessellation produced -- a cost of evaluations x
+     * primitives, measured at 0.50-0.54 instructions per
+     * TESInvocations*ClippingOutputPrimitives on planes of 2-98 patches
+     * and the cube at levels 4-16 (docs/counters.md). */
     { "stage-instructions",
       "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*ClippingOutputPrimitives"
       " + c_prim*ClippingOutputPrimitives + c_px*FSInvocations"
@@ -81,9 +82,9 @@ static const models_builtin catalog__models[] = {
     { "time-from-instructions", "a + b*Instructions", "WallTime",
       "frame time from the frame's instructions: a fixed cost plus a time per instruction",
       catalog__nonneg2, 2, NULL },
-    /* llvmpipe runs the geometry stages on the thread that draws and
+    /* llvmpipe runs the geometry stages on the thread that draws, and
      * rasterizes and shades on all its threads, so an instruction of each
-     * stage takes another time (docs/models.md, "Prediction"). */
+     * stage takes another time (docs/models.md, "Per-stage models"). */
     { "time-from-stages", "a + b_geo*GeometryInstructions + b_raster*RasterInstructions + b_frag*FragmentInstructions",
       "WallTime",
       "frame time from the instructions of each stage: a fixed cost plus a time per instruction of the "
