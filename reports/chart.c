@@ -225,13 +225,24 @@ static void chart_tess(dm_str *s, const dm_run_result *run, const char *scene)
 /* At most this many configurations get a bar group; the fastest are left out. */
 #define CHART_MAX_BARS 24
 
-/* The stages of the pipeline-linear model: parameter, counter it multiplies
- * (NULL: the fixed cost c0), legend name. */
-static const struct { const char *param, *counter, *name; } chart_stages[] = {
+/* The models whose terms split frame time by stage: each term's parameter,
+ * the counter it multiplies (NULL: the fixed cost) and its legend name.
+ * time-from-stages (over the exact stage counters) is preferred to
+ * pipeline-linear (over invocation counts) where a configuration has both. */
+typedef struct { const char *param, *counter, *name; } chart_stage;
+typedef struct { const char *model; const chart_stage *stages; size_t n; } chart_model;
+static const chart_stage chart_stages_pl[] = {
     {"c0", NULL, "fixed"}, {"c_vs", "VSInvocations", "vertex"},
     {"c_tes", "TESInvocations", "tessellation"}, {"c_prim", "ClippingOutputPrimitives", "primitives"},
     {"c_px", "SamplesPassed", "pixels"} };
-#define CHART_N_STAGES (sizeof chart_stages / sizeof *chart_stages)
+static const chart_stage chart_stages_ts[] = {
+    {"a", NULL, "fixed"}, {"b_geo", "GeometryInstructions", "geometry"},
+    {"b_raster", "RasterInstructions", "raster"}, {"b_frag", "FragmentInstructions", "fragment"} };
+static const chart_model chart_models[] = {
+    {"time-from-stages", chart_stages_ts, sizeof chart_stages_ts / sizeof *chart_stages_ts},
+    {"pipeline-linear", chart_stages_pl, sizeof chart_stages_pl / sizeof *chart_stages_pl} };
+#define CHART_N_MODELS (sizeof chart_models / sizeof *chart_models)
+#define CHART_MAX_STAGES 5
 
 static void bar(double x0, double x1, double y0, double y1, PLINT col)
 {
@@ -255,18 +266,22 @@ static double fit_param(const dm_fit_result *f, const char *name)
     return NAN;
 }
 
-/* The pipeline-linear fit whose group matches c's params, or NULL. */
 /* A per-stage breakdown is drawn only from a fit at least this good (R²);
  * a poorer one would show invented stage times (docs/models.md). */
 #define CHART_MIN_STAGE_R2 0.8
 
-/* The pipeline-linear fit of c's group, any quality (NULL when none). */
-static const dm_fit_result *pipeline_fit_any(const dm_run_result *run, const dm_config_result *c)
+/* The fit of model m whose group matches c's params, any quality (NULL
+ * when none); a time-from-stages fit only where c has its stage counters. */
+static const dm_fit_result *model_fit_any(const dm_run_result *run, const dm_config_result *c,
+                                          const chart_model *m)
 {
+    for (size_t k = 0; k < m->n; k++)
+        if (m->stages[k].counter && strcmp(m->model, "time-from-stages") == 0 &&
+            !(det_value(c, m->stages[k].counter) > 0))
+            return NULL;
     for (size_t i = 0; i < run->n_fits; i++) {
         const dm_fit_result *f = &run->fits[i];
-        int match = f->model && strcmp(f->model, "pipeline-linear") == 0 &&
-                    isfinite(fit_param(f, "c0"));
+        int match = f->model && strcmp(f->model, m->model) == 0 && isfinite(fit_param(f, m->stages[0].param));
         for (size_t g = 0; match && g < f->n_group; g++) {
             const char *v = dm_kv_get(c->params, c->n_params, f->group[g].key);
             match = v && strcmp(v, f->group[g].value) == 0;
@@ -277,18 +292,19 @@ static const dm_fit_result *pipeline_fit_any(const dm_run_result *run, const dm_
     return NULL;
 }
 
-/* The pipeline-linear fit of c's group when it is good enough to draw. */
-static const dm_fit_result *pipeline_fit(const dm_run_result *run, const dm_config_result *c)
+/* The fit of model m for c when it is good enough to draw. */
+static const dm_fit_result *model_fit(const dm_run_result *run, const dm_config_result *c, const chart_model *m)
 {
-    const dm_fit_result *f = pipeline_fit_any(run, c);
+    const dm_fit_result *f = model_fit_any(run, c, m);
     return f && isfinite(f->r2) && f->r2 >= CHART_MIN_STAGE_R2 ? f : NULL;
 }
 
-/* Estimated ms of stage k of c under fit f (c_k · counter_k; the response is ns). */
-static double stage_ms(const dm_fit_result *f, const dm_config_result *c, size_t k)
+/* Estimated ms of stage k of c under fit f of model m (param · counter; the
+ * response is ns). */
+static double stage_ms(const chart_model *m, const dm_fit_result *f, const dm_config_result *c, size_t k)
 {
-    double v = fit_param(f, chart_stages[k].param);
-    double n = chart_stages[k].counter ? det_value(c, chart_stages[k].counter) : 1;
+    double v = fit_param(f, m->stages[k].param);
+    double n = m->stages[k].counter ? det_value(c, m->stages[k].counter) : 1;
     return isfinite(v) ? v * n / 1e6 : 0;
 }
 
@@ -313,25 +329,26 @@ static void bar_labels_and_legend(const dm_run_result *run, const size_t *rows, 
     plschr(0, 1.0);
 }
 
-/* Stacked estimated stage times (left) beside the measured median (right). */
-static void draw_stages(const dm_run_result *run, const size_t *rows, size_t n)
+/* Stacked estimated stage times of model m (left) beside the measured
+ * median (right). */
+static void draw_stages(const dm_run_result *run, const size_t *rows, size_t n, const chart_model *m)
 {
-    const char *names[CHART_N_STAGES + 1];
-    for (size_t k = 0; k < CHART_N_STAGES; k++)
-        names[k] = chart_stages[k].name;
-    names[CHART_N_STAGES] = "measured";
+    const char *names[CHART_MAX_STAGES + 1];
+    for (size_t k = 0; k < m->n; k++)
+        names[k] = m->stages[k].name;
+    names[m->n] = "measured";
     for (size_t i = 0; i < n; i++) {
         const dm_config_result *c = &run->configs[rows[i]];
-        const dm_fit_result *fit = pipeline_fit(run, c);
+        const dm_fit_result *fit = model_fit(run, c, m);
         double y = 0;
-        for (size_t k = 0; fit && k < CHART_N_STAGES; k++) {
-            double h = stage_ms(fit, c, k);
+        for (size_t k = 0; fit && k < m->n; k++) {
+            double h = stage_ms(m, fit, c, k);
             bar(i + 0.08, i + 0.5, y, y + h, CHART_SERIES_COL0 + (PLINT)k);
             y += h;
         }
-        bar(i + 0.5, i + 0.92, 0, report__frame_time(c)->median / 1e6, CHART_SERIES_COL0 + CHART_N_STAGES);
+        bar(i + 0.5, i + 0.92, 0, report__frame_time(c)->median / 1e6, CHART_SERIES_COL0 + (PLINT)m->n);
     }
-    bar_labels_and_legend(run, rows, n, names, CHART_N_STAGES + 1, CHART_SERIES_COL0);
+    bar_labels_and_legend(run, rows, n, names, m->n + 1, CHART_SERIES_COL0);
 }
 
 /* The key counters shown relative to each one's maximum over the bars. */
@@ -365,9 +382,10 @@ static void draw_counters(const dm_run_result *run, const size_t *rows, size_t n
     bar_labels_and_legend(run, rows, n, names, nk, CHART_SERIES_COL0 + 1);
 }
 
-/* Per configuration: the pipeline-linear estimate per stage next to the
- * measured median when that fit exists, else the key counters normalised
- * to their maxima.  At most CHART_MAX_BARS configurations, the slowest;
+/* Per configuration: a model's estimate per stage next to the measured
+ * median when a fit exists (time-from-stages over the exact stage counters
+ * before pipeline-linear), else the key counters normalised to their
+ * maxima.  At most CHART_MAX_BARS configurations, the slowest;
  * a note says how many were left out. */
 static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *scene)
 {
@@ -378,17 +396,27 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
     size_t skip = nr > CHART_MAX_BARS ? nr - CHART_MAX_BARS : 0, n = nr - skip, nk = 0;
     const size_t *shown = rows + skip;
     const char *names[4];
-    int fitted = 0;
+    /* the first model with a fit good enough for some configuration shown */
+    const chart_model *m = NULL, *poor = NULL;
     double hi = 0, poor_r2 = NAN;
+    for (size_t j = 0; j < CHART_N_MODELS && !m; j++)
+        for (size_t i = 0; i < n && !m; i++) {
+            const dm_config_result *c = &run->configs[shown[i]];
+            const dm_fit_result *any = model_fit_any(run, c, &chart_models[j]);
+            if (model_fit(run, c, &chart_models[j]))
+                m = &chart_models[j];
+            else if (any && !poor) {
+                poor = &chart_models[j];
+                poor_r2 = any->r2;
+            }
+        }
+    int fitted = m != NULL;
     for (size_t i = 0; i < n; i++) {
         const dm_config_result *c = &run->configs[shown[i]];
-        const dm_fit_result *f = pipeline_fit(run, c), *any = pipeline_fit_any(run, c);
-        if (any && !f)
-            poor_r2 = any->r2;
+        const dm_fit_result *f = m ? model_fit(run, c, m) : NULL;
         double sum = 0;
-        for (size_t k = 0; f && k < CHART_N_STAGES; k++)
-            sum += stage_ms(f, c, k);
-        fitted |= f != NULL;
+        for (size_t k = 0; f && k < m->n; k++)
+            sum += stage_ms(m, f, c, k);
         hi = fmax(hi, fmax(sum, report__frame_time(c)->median / 1e6));
     }
     if (!fitted)
@@ -403,21 +431,22 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
     double bottom = fmax(0.32, fmin(0.6, ((double)longest * 5.4 + 16) / 420.0));
     char *file = (fitted || nk) && n ? chart_tmpname() : NULL;
     if (file) {
-        chart_frame f = {fitted ? "Estimated time per stage (pipeline-linear fit)"
-                                : "Key counters per configuration (relative to each maximum)",
+        char title[96];
+        snprintf(title, sizeof title, "Estimated time per stage (%s fit)", m ? m->model : "");
+        chart_frame f = {fitted ? title : "Key counters per configuration (relative to each maximum)",
                          "", fitted ? "ms" : "fraction of the maximum", 0, (double)n, 0,
                          fitted ? hi * 1.08 : 1.08, bottom, 1};
         chart_open(file, &f);
         if (fitted)
-            draw_stages(run, shown, n);
+            draw_stages(run, shown, n, m);
         else
             draw_counters(run, shown, n, names, nk);
         chart_close(s, file, f.title);
-        if (!fitted && !isnan(poor_r2))
-            dm_str_printf(s, "<p class=\"const\">No per-stage breakdown: the pipeline-linear fit "
+        if (!fitted && poor)
+            dm_str_printf(s, "<p class=\"const\">No per-stage breakdown: the %s fit "
                              "explains too little of the time (R² %.2f, below %.1f), so its stage "
                              "times would be invented; the key counters are shown instead.</p>\n",
-                          poor_r2, CHART_MIN_STAGE_R2);
+                          poor->model, poor_r2, CHART_MIN_STAGE_R2);
         if (skip)
             dm_str_printf(s, "<p class=\"const\">The %zu fastest configurations are left out of this "
                              "chart (it shows the %d slowest); all are in the table.</p>\n",

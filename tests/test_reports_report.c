@@ -843,6 +843,63 @@ static void test_html_breakdown_fit_and_cap(void **state)
     rmdir(dir);
 }
 
+/* With the stage counters and a time-from-stages fit, the breakdown is that
+ * fit's time per stage over the exact stage instructions, before the
+ * pipeline-linear fit the run also has; without the stage counters, the
+ * pipeline-linear one again. */
+static void test_html_breakdown_time_from_stages(void **state)
+{
+    (void)state;
+    double rel[4] = {0.01, 0.01, 0.01, 0.01};
+    dm_run_result run;
+    noisy_run(&run, rel, 4);
+    static const char *const stage[3] = {"GeometryInstructions", "RasterInstructions", "FragmentInstructions"};
+    for (size_t i = 0; i < 4; i++) {
+        dm_config_result *c = &run.configs[i];
+        c->counters = dm_xrealloc(c->counters, 5 * sizeof *c->counters);
+        fixture_det(&c->counters[1], "SamplesPassed", 1000.0 * (double)(i + 1));
+        for (int k = 0; k < 3; k++)
+            fixture_det(&c->counters[2 + k], stage[k], 1e6 * (double)(k + 1));
+        c->n_counters = 5;
+    }
+    static const char *const model[2] = {"pipeline-linear", "time-from-stages"};
+    static const char *const pname[2][4] = {{"c0", "c_px"}, {"a", "b_geo", "b_raster", "b_frag"}};
+    static const double pval[2][4] = {{2e5, 30}, {1e4, 0.3, 0.07, 0.14}};
+    run.n_fits = 2;
+    run.fits = dm_xcalloc(2, sizeof *run.fits);
+    for (int j = 0; j < 2; j++) {
+        dm_fit_result *f = &run.fits[j];
+        f->model = dm_xstrdup(model[j]);
+        f->response = dm_xstrdup("WallTime");
+        f->n_params = j ? 4 : 2;
+        f->params = dm_xcalloc(f->n_params, sizeof *f->params);
+        for (size_t k = 0; k < f->n_params; k++) {
+            f->params[k].name = dm_xstrdup(pname[j][k]);
+            f->params[k].value = pval[j][k];
+        }
+        f->r2 = 0.95;
+    }
+    char dir[] = "/tmp/dm_reports_ts_XXXXXX", titles[8][96];
+    assert_non_null(mkdtemp(dir));
+    char *p = dm_xasprintf("%s/report.html", dir);
+    char *t = html_of(&run, p);
+    assert_int_equal(chart_titles(t, titles, 8), 2);
+    assert_string_equal(titles[1], "Estimated time per stage (time-from-stages fit)");
+    free(t);
+    for (size_t i = 0; i < 4; i++)   /* no stage counters: pipeline-linear */
+        run.configs[i].n_counters = 2;
+    t = html_of(&run, p);
+    assert_int_equal(chart_titles(t, titles, 8), 2);
+    assert_string_equal(titles[1], "Estimated time per stage (pipeline-linear fit)");
+    free(t);
+    for (size_t i = 0; i < 4; i++)
+        run.configs[i].n_counters = 5;
+    dm_run_free(&run);
+    unlink(p);
+    free(p);
+    rmdir(dir);
+}
+
 /* results.json "warnings" is the report's list word for word (summary.md's
  * "- warning:" lines, report.html's warn boxes), drift is marked in the
  * table with its reason, and read → write keeps the list as it was. */
@@ -917,4 +974,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_warnings_everywhere),
              cmocka_unit_test(test_quality_warnings),
              cmocka_unit_test(test_html_chart_set),
-             cmocka_unit_test(test_html_breakdown_fit_and_cap))
+             cmocka_unit_test(test_html_breakdown_fit_and_cap),
+             cmocka_unit_test(test_html_breakdown_time_from_stages))
