@@ -3,7 +3,6 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/fitting.h"
-#include "run/predict.h"
 #include "store/store.h"
 #include "models/catalog.h"
 #include "models/fit_data.h"
@@ -120,12 +119,19 @@ static void fit__print(const dm_fit_result *f)
         printf("  warning: %s\n", f->warnings[i]);
 }
 
+/* The response of the fit asked for: --response, else WallTime for a
+ * --formula, else the built-in model's. */
+static const char *fit__response(const fit_args *a, const models_builtin *b)
+{
+    return a->response ? a->response : a->formula ? "WallTime" : b->response;
+}
+
 static int fit__from_csv(const fit_args *a, dm_fit_result **fits, size_t *n, dm_str *err)
 {
     fit_data d = {0};
     const models_builtin *b = models_builtin_find(a->model ? a->model : "pipeline-linear");
     const char *formula = a->formula ? a->formula : b->formula;
-    const char *response = a->response ? a->response : (a->formula ? "WallTime" : b->response);
+    const char *response = fit__response(a, b);
     fit_desc desc;
     int rc = fit_data_load_csv(a->data, &d, err);
     rc = rc ? rc : fit_data_desc(&d, formula, response, &desc, err);
@@ -159,13 +165,11 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
     /* a response the run never recorded: nothing to fit, and the sweep
      * option that adds it (a response that is an axis is checked by
      * fitting_run) */
-    const models_builtin *b = models_builtin_find(a->model ? a->model : "pipeline-linear");
-    const char *resp = a->response ? a->response : a->formula ? "WallTime" : b ? b->response : NULL;
+    const char *resp = fit__response(a, models_builtin_find(a->model ? a->model : "pipeline-linear"));
     int axis = 0;
-    for (size_t i = 0; rc == 0 && resp && i < run.n_configs && !axis; i++)
-        for (size_t k = 0; k < run.configs[i].n_params && !axis; k++)
-            axis = strcmp(run.configs[i].params[k].key, resp) == 0;
-    if (rc == 0 && resp && !axis && !predict_run_has(&run, resp)) {
+    for (size_t i = 0; rc == 0 && i < run.n_configs && !axis; i++)
+        axis = dm_kv_get(run.configs[i].params, run.configs[i].n_params, resp) != NULL;
+    if (rc == 0 && !axis && !dm_run_has_counter(&run, resp)) {
         dm_str_printf(err, "%s has no counter '%s'", a->dir, resp);
         if (!a->response)
             dm_str_printf(err, a->formula ? " (a formula's response unless --response names another)"

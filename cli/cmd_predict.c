@@ -40,12 +40,12 @@ const cli_option cli_predict_options[] = {
  * the sweep option that adds it; -1 to go on. */
 static int predict__check_counters(const dm_run_result *runs, size_t n, char **dirs)
 {
-    for (size_t k = 0; k < n; k++)
-        for (size_t i = 0; i < PREDICT_N_NEEDED; i++)
-            if (!predict_run_has(&runs[k], predict_needed[i]))
-                return cli_usage_error("predict: %s has no counter '%s': add %s to measure.counters of "
-                                       "its sweep and run it again (docs/models.md)", dirs[k],
-                                       predict_needed[i], predict_needed[i]);
+    for (size_t k = 0; k < n; k++) {
+        const char *miss = predict_run_missing(&runs[k]);
+        if (miss)
+            return cli_usage_error("predict: %s has no counter '%s': add %s to measure.counters of "
+                                   "its sweep and run it again (docs/models.md)", dirs[k], miss, miss);
+    }
     return -1;
 }
 

@@ -20,6 +20,24 @@ const dm_counter_result *dm_config_counter(const dm_config_result *c, const char
     return NULL;
 }
 
+const dm_fit_param *dm_fit_param_find(const dm_fit_result *f, const char *name)
+{
+    for (size_t i = 0; i < f->n_params; i++)
+        if (strcmp(f->params[i].name, name) == 0)
+            return &f->params[i];
+    return NULL;
+}
+
+int dm_run_has_counter(const dm_run_result *run, const char *name)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_counter_result *r = run->configs[i].ok ? dm_config_counter(&run->configs[i], name) : NULL;
+        if (r && r->available)
+            return 1;
+    }
+    return 0;
+}
+
 int dm_run_param_varies(const dm_run_result *run, const dm_kv *k)
 {
     for (size_t i = 0; i < run->n_configs; i++) {

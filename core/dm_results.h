@@ -118,6 +118,9 @@ typedef struct dm_run_result {
 /* Lookup helpers; return NULL when absent. */
 const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key);
 const dm_counter_result *dm_config_counter(const dm_config_result *c, const char *name);
+const dm_fit_param *dm_fit_param_find(const dm_fit_result *f, const char *name);
+/* 1 when some ok configuration of run has counter name available. */
+int dm_run_has_counter(const dm_run_result *run, const char *name);
 /* 1 when param k has another value (or none) in some configuration of run,
  * so that it tells configurations apart; 0 when all share it. */
 int dm_run_param_varies(const dm_run_result *run, const dm_kv *k);

@@ -230,7 +230,12 @@ static void chart_tess(dm_str *s, const dm_run_result *run, const char *scene)
  * time-from-stages (over the exact stage counters) is preferred to
  * pipeline-linear (over invocation counts) where a configuration has both. */
 typedef struct { const char *param, *counter, *name; } chart_stage;
-typedef struct { const char *model; const chart_stage *stages; size_t n; } chart_model;
+typedef struct {
+    const char *model;
+    const chart_stage *stages;
+    size_t n;
+    int exact;   /* its counters are the stage counters: drawn only where a configuration has them */
+} chart_model;
 static const chart_stage chart_stages_pl[] = {
     {"c0", NULL, "fixed"}, {"c_vs", "VSInvocations", "vertex"},
     {"c_tes", "TESInvocations", "tessellation"}, {"c_prim", "ClippingOutputPrimitives", "primitives"},
@@ -239,8 +244,8 @@ static const chart_stage chart_stages_ts[] = {
     {"a", NULL, "fixed"}, {"b_geo", "GeometryInstructions", "geometry"},
     {"b_raster", "RasterInstructions", "raster"}, {"b_frag", "FragmentInstructions", "fragment"} };
 static const chart_model chart_models[] = {
-    {"time-from-stages", chart_stages_ts, sizeof chart_stages_ts / sizeof *chart_stages_ts},
-    {"pipeline-linear", chart_stages_pl, sizeof chart_stages_pl / sizeof *chart_stages_pl} };
+    {"time-from-stages", chart_stages_ts, sizeof chart_stages_ts / sizeof *chart_stages_ts, 1},
+    {"pipeline-linear", chart_stages_pl, sizeof chart_stages_pl / sizeof *chart_stages_pl, 0} };
 #define CHART_N_MODELS (sizeof chart_models / sizeof *chart_models)
 #define CHART_MAX_STAGES 5
 
@@ -260,10 +265,8 @@ static double det_value(const dm_config_result *c, const char *name)
 
 static double fit_param(const dm_fit_result *f, const char *name)
 {
-    for (size_t i = 0; i < f->n_params; i++)
-        if (strcmp(f->params[i].name, name) == 0)
-            return f->params[i].value;
-    return NAN;
+    const dm_fit_param *p = dm_fit_param_find(f, name);
+    return p ? p->value : NAN;
 }
 
 /* A per-stage breakdown is drawn only from a fit at least this good (R²);
@@ -271,13 +274,12 @@ static double fit_param(const dm_fit_result *f, const char *name)
 #define CHART_MIN_STAGE_R2 0.8
 
 /* The fit of model m whose group matches c's params, any quality (NULL
- * when none); a time-from-stages fit only where c has its stage counters. */
+ * when none); a model of the exact stage counters only where c has them. */
 static const dm_fit_result *model_fit_any(const dm_run_result *run, const dm_config_result *c,
                                           const chart_model *m)
 {
-    for (size_t k = 0; k < m->n; k++)
-        if (m->stages[k].counter && strcmp(m->model, "time-from-stages") == 0 &&
-            !(det_value(c, m->stages[k].counter) > 0))
+    for (size_t k = 0; m->exact && k < m->n; k++)
+        if (m->stages[k].counter && !(det_value(c, m->stages[k].counter) > 0))
             return NULL;
     for (size_t i = 0; i < run->n_fits; i++) {
         const dm_fit_result *f = &run->fits[i];

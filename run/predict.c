@@ -19,14 +19,12 @@ static const char *const predict__stages[3] = {"GeometryInstructions", "RasterIn
 static const char *const predict__stage_models[3] = {"geometry-instructions", "raster-instructions",
                                                      "fragment-instructions"};
 
-int predict_run_has(const dm_run_result *run, const char *name)
+const char *predict_run_missing(const dm_run_result *run)
 {
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_counter_result *r = run->configs[i].ok ? dm_config_counter(&run->configs[i], name) : NULL;
-        if (r && r->available)
-            return 1;
-    }
-    return 0;
+    for (size_t i = 0; i < PREDICT_N_NEEDED; i++)
+        if (!dm_run_has_counter(run, predict_needed[i]))
+            return predict_needed[i];
+    return NULL;
 }
 
 static void predict__fit(const dm_run_result *u, const char *model, const char *response,
@@ -51,11 +49,11 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
     const dm_run_result *u = &m->train;
     predict__fit(u, "stage-instructions", "Instructions", NULL, 0, &m->instr, &m->n_instr);
     for (int st = 0; st < 3; st++)
-        if (predict_run_has(u, predict__stages[st]) && predict_run_has(u, "SamplesPassed"))
+        if (dm_run_has_counter(u, predict__stages[st]) && dm_run_has_counter(u, "SamplesPassed"))
             predict__fit(u, predict__stage_models[st], predict__stages[st], NULL, 0, &m->stage[st], &m->n_stage[st]);
-    if (predict_run_has(u, "WallTime"))
+    if (dm_run_has_counter(u, "WallTime"))
         predict__fit(u, "time-from-instructions", "WallTime", NULL, 0, &m->time, &m->n_time);
-    if (predict_run_has(u, "WallTime") && m->n_stage[0] && m->n_stage[1] && m->n_stage[2])
+    if (dm_run_has_counter(u, "WallTime") && m->n_stage[0] && m->n_stage[1] && m->n_stage[2])
         predict__fit(u, "time-from-stages", "WallTime", NULL, 0, &m->time_st, &m->n_time_st);
 }
 
@@ -63,15 +61,10 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
  * it has none */
 static double predict__param(const dm_fit_result *fit, const char *name, double *se)
 {
-    for (size_t i = 0; i < fit->n_params; i++)
-        if (strcmp(fit->params[i].name, name) == 0) {
-            if (se)
-                *se = fit->params[i].stderr_;
-            return fit->params[i].value;
-        }
+    const dm_fit_param *p = dm_fit_param_find(fit, name);
     if (se)
-        *se = NAN;
-    return NAN;
+        *se = p ? p->stderr_ : NAN;
+    return p ? p->value : NAN;
 }
 
 /* The fit of `variant` among fits, or NULL. */

@@ -42,8 +42,8 @@ typedef struct predict_result {
     double wall_ns, wall_lo, wall_hi;   /* NaN without a WallTime fit */
 } predict_result;
 
-/* 1 when some ok configuration of run has counter name available. */
-int predict_run_has(const dm_run_result *run, const char *name);
+/* The first of predict_needed that run lacks, or NULL when it has them all. */
+const char *predict_run_missing(const dm_run_result *run);
 
 /* Fits the models to runs[0..n) (kept by the caller until predict_free). */
 void predict_fit(const dm_run_result *runs, size_t n, predict_model *m);

@@ -576,10 +576,7 @@ static void runner__budget_instr_models(runner_budget *b)
     dm_run_result *use = dm_xcalloc(b->n_runs + 1, sizeof *use);
     size_t n = 0;
     for (size_t k = 0; k < b->n_runs; k++) {
-        int ok = predict_run_has(&b->runs[k], "WallTime");
-        for (size_t i = 0; ok && i < PREDICT_N_NEEDED; i++)
-            ok = predict_run_has(&b->runs[k], predict_needed[i]);
-        if (ok)
+        if (dm_run_has_counter(&b->runs[k], "WallTime") && !predict_run_missing(&b->runs[k]))
             use[n++] = b->runs[k];   /* shallow: b->runs owns them */
     }
     if (n)
