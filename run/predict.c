@@ -55,6 +55,13 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
         predict__fit(u, "time-from-instructions", "WallTime", NULL, 0, &m->time, &m->n_time);
     if (dm_run_has_counter(u, "WallTime") && m->n_stage[0] && m->n_stage[1] && m->n_stage[2])
         predict__fit(u, "time-from-stages", "WallTime", NULL, 0, &m->time_st, &m->n_time_st);
+    for (int st = 0; st < 3; st++)
+        for (size_t i = 0; i < u->n_configs; i++) {
+            const dm_counter_result *r = u->configs[i].ok ? dm_config_counter(&u->configs[i], predict__stages[st])
+                                                          : NULL;
+            if (r && r->available && isfinite(r->value) && r->value > m->stage_max[st])
+                m->stage_max[st] = r->value;
+        }
 }
 
 /* fit's parameter `name` (its standard error in *se when se), NaN when
@@ -143,17 +150,21 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
      * least as well as the one from the frame's instructions; else from
      * the frame's. */
     const dm_fit_result *t = NULL;
-    double se_ns = 0;   /* what the parameters' standard errors make of it */
+    double se_ns = 0;   /* what the parameters' standard errors make of it beyond the runs */
     if (m->n_time_st == 1 && isfinite(sum) && sum > 0 &&
         (m->n_time != 1 || !(m->time[0].cv_mape < m->time_st[0].cv_mape))) {
         static const char *const b[3] = {"b_geo", "b_raster", "b_frag"};
         t = &m->time_st[0];
+        /* Within the runs' range the time fit's CV-MAPE says its error;
+         * a stage part beyond the largest measured adds the excess times
+         * its cost's standard error (the standard errors alone, without
+         * their covariance, overstate the error of an interpolation). */
         double se = NAN;
-        out->wall_ns = predict__param(t, "a", &se);
-        se_ns = isfinite(se) ? se * se : NAN;
+        out->wall_ns = predict__param(t, "a", NULL);
         for (int s = 0; s < 3; s++) {
             out->wall_ns += predict__param(t, b[s], &se) * out->part[s];
-            se_ns += isfinite(se) ? pow(se * out->part[s], 2) : NAN;
+            double excess = out->part[s] - m->stage_max[s];
+            se_ns += excess > 0 ? (isfinite(se) ? pow(se * excess, 2) : INFINITY) : 0;
         }
         se_ns = sqrt(se_ns);
     } else if (m->n_time == 1) {
@@ -163,9 +174,9 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
     if (t) {
         /* the instructions' and the time fit's errors, and, far from the
          * configurations fitted, its parameters' standard errors */
-        double ep = isfinite(se_ns) && out->wall_ns > 0 ? 2 * se_ns / out->wall_ns : 0;
+        double ep = out->wall_ns > 0 ? 2 * se_ns / out->wall_ns : 0;
         double et = sqrt(ei * ei + pow(2 * t->cv_mape / 100, 2) + ep * ep);
-        out->wall_lo = out->wall_ns * (1 - et);
+        out->wall_lo = fmax(0, out->wall_ns * (1 - et));   /* no frame takes less than nothing */
         out->wall_hi = out->wall_ns * (1 + et);
     }
     return 0;

@@ -33,6 +33,7 @@ typedef struct predict_model {
     dm_run_result train;   /* the pooled runs (shallow: the caller's runs own the configurations) */
     dm_fit_result *instr, *stage[3], *time, *time_st;   /* time_st: time-from-stages */
     size_t n_instr, n_stage[3], n_time, n_time_st;
+    double stage_max[3];   /* the largest value of each stage counter the runs measured */
 } predict_model;
 
 typedef struct predict_result {
