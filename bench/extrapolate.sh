@@ -31,8 +31,17 @@ def med(c, n):
     return x.get("median", x.get("value"))
 print(f"{'configuration':44s} {'Instructions pred/meas':>28s} {'err':>7s} {'WallTime pred/meas ms':>24s} {'err':>7s}")
 worst = [0, 0]
+section = "table"
+heldout = []
 for l in open(sys.argv[1]).read().splitlines():
     f = l.split()
+    if l.startswith("not predicted"):
+        section = "unpredicted"
+    elif l.startswith("held-out error"):
+        section = "heldout"
+    if section == "heldout":
+        heldout.append(l)
+        continue
     if l.startswith(" ") or not f or f[0] not in meas:
         if l.startswith(" "):
             print("not predicted:", l.strip())
@@ -52,4 +61,5 @@ for l in open(sys.argv[1]).read().splitlines():
     iw = ("in" if float(wt.group(2)) <= mw <= float(wt.group(3)) else "OUT") if wt else "-"
     print(f"{name:44s} {pi:13.0f} / {mi:13.0f} {ei:+6.2f}% {ii:3s} {float(wt.group(1)) if wt else float('nan'):10.3f} / {mw:10.3f} {ew:+6.1f}% {iw}")
 print(f"worst: Instructions {worst[0]:.2f} %, WallTime {worst[1]:.1f} % (in/OUT: the measured value inside the prediction interval)")
+print("\n".join(heldout))
 PY

@@ -7,7 +7,9 @@
 #  - the models' CV-MAPE: pipeline-linear on WallTime (before), and
 #    stage-instructions on Instructions per variant, the three per-stage
 #    models on their stage counters and
-#    time-from-instructions (after),
+#    time-from-instructions (after), and the held-out error of each
+#    variant's Instructions predicted by `dmbench predict` (the stage
+#    models summed, or stage-instructions, whichever predicted better),
 #  - the cost of the stage windows in the counting child (its log).
 # Usage: bench/stages.sh [RUN_DIR]   (DMBENCH: the binary, default build/dmbench)
 set -euo pipefail
@@ -42,6 +44,8 @@ for m in "pipeline-linear" "stage-instructions" "geometry-instructions" "raster-
   echo "== fit --model $m"
   "$B" fit "$run" --model "$m" 2>/dev/null | grep -E "^model|CV-MAPE" | sed 's/^/  /' || true
 done
+echo "== predict: held-out error of Instructions per variant"
+"$B" predict "$here/bench/stages_default.yaml" --from "$run" 2>/dev/null | sed -n '/^held-out error/,$p' || true
 logs=$(ls "$run"/callgrind/child*.log 2>/dev/null)   # one per counting child
 if [ -n "$logs" ]; then
   awk '/stage windows/ {s += $(NF-1)} /counted .* ms$/ {c += $(NF-1); w += $(NF-4); p += $(NF-7)}

@@ -107,6 +107,28 @@ static void predict__config(const predict_model *m, const plan_config *pc, const
     dm_str_free(&why);
 }
 
+/* How well each variant's Instructions predicted the runs' own
+ * configurations held out of the fits: the stage models' sum, and the
+ * one-formula stage-instructions beside it. */
+static void predict__heldout_print(const predict_model *m)
+{
+    if (m->n_heldout)
+        printf("held-out error of Instructions on the runs' configurations (k-fold CV-MAPE), per variant:\n");
+    for (size_t i = 0; i < m->n_heldout; i++) {
+        const predict_heldout *h = &m->heldout[i];
+        const dm_fit_result *one = predict_fit_of(m->instr, m->n_instr, h->variant);
+        int use_one = predict_heldout_prefers_one(m, one);
+        printf("  %s\n    stages summed ", h->variant);
+        if (isfinite(h->cv_mape))
+            printf("%5.2f %% over %d configurations%s", h->cv_mape, h->n, use_one ? "" : " (used)");
+        else
+            printf("%sunavailable: too few configurations to hold one out", use_one ? "" : "(used) ");
+        if (one && isfinite(one->cv_mape))
+            printf("; stage-instructions %5.2f %%%s", one->cv_mape, use_one ? " (used)" : "");
+        printf("\n");
+    }
+}
+
 /* Loads the --from runs into *runs (n of them, dirs[] their names). */
 static int predict__load(const char *from, dm_run_result **runs, char ***dirs, size_t *n)
 {
@@ -161,6 +183,7 @@ int cli_predict(int argc, char **argv)
             predict__config(&m, &p.configs[i], counts + i * PREDICT_N_COUNTS, &unpred);
         if (unpred.len)
             printf("not predicted (never guessed):\n%s", dm_str_get(&unpred));
+        predict__heldout_print(&m);
         dm_str_free(&unpred);
         predict_free(&m);
         rc = DM_EXIT_OK;

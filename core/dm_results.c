@@ -28,6 +28,14 @@ const dm_fit_param *dm_fit_param_find(const dm_fit_result *f, const char *name)
     return NULL;
 }
 
+const dm_config_result *dm_run_config(const dm_run_result *run, const char *key)
+{
+    for (size_t i = 0; key && i < run->n_configs; i++)
+        if (run->configs[i].key && strcmp(run->configs[i].key, key) == 0)
+            return &run->configs[i];
+    return NULL;
+}
+
 int dm_run_has_counter(const dm_run_result *run, const char *name)
 {
     for (size_t i = 0; i < run->n_configs; i++) {
@@ -112,6 +120,7 @@ void dm_fit_result_free(dm_fit_result *f)
     dm__strv_free(f->warnings, f->n_warnings);
     free(f->measured);
     free(f->predicted);
+    free(f->cv_predicted);
     if (f->point_labels)
         dm__strv_free(f->point_labels, (size_t)f->n_points);
     memset(f, 0, sizeof *f);

@@ -92,6 +92,8 @@ typedef struct dm_fit_result {
     size_t n_warnings;
     /* predicted vs measured, for plots: n_points pairs */
     double *measured, *predicted;
+    double *cv_predicted;    /* each point predicted by the cross-validation fit that held it out
+                                (NaN when none did); in memory only, not stored */
     char **point_labels;     /* config keys, may be NULL */
 } dm_fit_result;
 
@@ -119,6 +121,8 @@ typedef struct dm_run_result {
 const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key);
 const dm_counter_result *dm_config_counter(const dm_config_result *c, const char *name);
 const dm_fit_param *dm_fit_param_find(const dm_fit_result *f, const char *name);
+/* The first configuration of run with that key. */
+const dm_config_result *dm_run_config(const dm_run_result *run, const char *key);
 /* 1 when some ok configuration of run has counter name available. */
 int dm_run_has_counter(const dm_run_result *run, const char *name);
 /* 1 when param k has another value (or none) in some configuration of run,

@@ -56,14 +56,6 @@ static char *compare__label(const dm_config_result *c, const dm_run_result *r)
     return dm_str_take(&s);
 }
 
-static const dm_config_result *compare__find(const dm_run_result *r, const char *key)
-{
-    for (size_t i = 0; i < r->n_configs; i++)
-        if (r->configs[i].key && strcmp(r->configs[i].key, key) == 0)
-            return &r->configs[i];
-    return NULL;
-}
-
 static int compare__same_params(const dm_config_result *a, const dm_config_result *b)
 {
     if (a->n_params != b->n_params)
@@ -89,9 +81,9 @@ static int compare__user(const compare_desc *d, const dm_config_result *c)
 static const dm_config_result *compare__counterpart(const compare_desc *d, const dm_config_result *c,
                                                     const dm_run_result *own, const dm_run_result *other)
 {
-    const dm_config_result *n = compare__find(other, c->key);
+    const dm_config_result *n = dm_run_config(other, c->key);
     for (size_t i = 0; !n && compare__user(d, c) && i < other->n_configs; i++)
-        if (!compare__find(own, other->configs[i].key) && compare__same_params(c, &other->configs[i]))
+        if (!dm_run_config(own, other->configs[i].key) && compare__same_params(c, &other->configs[i]))
             n = &other->configs[i];
     return n;
 }

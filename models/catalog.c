@@ -17,7 +17,7 @@ static const fit_bound catalog__nonneg_geometry[] = {
     { "c_prim", 0, INFINITY } };
 
 static const fit_bound catalog__nonneg_raster[] = {
-    { "c0", 0, INFINITY }, { "c_prim", 0, INFINITY }, { "c_fs", 0, INFINITY }, { "c_px", 0, INFINITY } };
+    { "c_fb", 0, INFINITY }, { "c_fs", 0, INFINITY }, { "c_edge", 0, INFINITY }, { "c_prim", 0, INFINITY } };
 
 static const fit_bound catalog__nonneg_fragment[] = {
     { "c0", 0, INFINITY }, { "c_fs", 0, INFINITY }, { "c_px", 0, INFINITY }, { "c_step", 0, INFINITY },
@@ -56,10 +56,10 @@ static const models_builtin catalog__models[] = {
       catalog__nonneg_stage, 8, "variant" },
     /* The three stage counters, each with the terms of its own stage
      * (docs/models.md, "Per-stage models"): geometry pays per vertex,
-     * evaluation and primitive; setup and rasterization per primitive,
-     * per 4x4 block run (FSInvocations counts 16 a block, once per
-     * triangle that touches it) and per covered pixel; shading per block
-     * and per covered pixel, both growing with steps. */
+     * evaluation and primitive; setup and rasterization per framebuffer
+     * pixel, per primitive and per 4x4 block run (FSInvocations counts 16
+     * a block, once per triangle that touches it); shading per block and
+     * per covered pixel, both growing with steps. */
     { "geometry-instructions",
       "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*ClippingOutputPrimitives"
       " + c_prim*ClippingOutputPrimitives",
@@ -67,10 +67,19 @@ static const models_builtin catalog__models[] = {
       "instructions of the geometry stages of one shader variant: per vertex, evaluation and primitive, "
       "the evaluation's growing with the draw's primitives",
       catalog__nonneg_geometry, 5, "variant" },
-    { "raster-instructions", "c0 + c_prim*ClippingOutputPrimitives + c_fs*FSInvocations + c_px*SamplesPassed",
+    /* Setup and rasterization pay per framebuffer pixel (resolution is the
+     * pixel count: the frame's clear of colour and depth among it, which
+     * rasterizer discard drops from the geometry pass),
+     * per 4x4 block lane run, more per lane of a block the primitive only
+     * partly covers (FSInvocations - SamplesPassed: the per-pixel coverage
+     * masks a fully covered block skips), and per primitive.  No constant:
+     * fitted over the default sweep it is 0 ± 1e4. */
+    { "raster-instructions",
+      "c_fb*resolution + c_fs*FSInvocations + c_edge*(FSInvocations - SamplesPassed)"
+      " + c_prim*ClippingOutputPrimitives",
       "RasterInstructions",
-      "instructions of setup and rasterization of one shader variant: per primitive, fragment block "
-      "invocation and covered pixel",
+      "instructions of setup and rasterization of one shader variant: per framebuffer pixel, fragment "
+      "block lane run, lane a primitive leaves uncovered, and primitive",
       catalog__nonneg_raster, 4, "variant" },
     { "fragment-instructions",
       "c0 + c_fs*FSInvocations + c_px*SamplesPassed + c_step*FSInvocations*steps + c_pstep*SamplesPassed*steps"

@@ -369,6 +369,9 @@ static void fit__fill(fit__ctx *c, const double *p, const double *cov, int cov_o
     double rss = 0.0, tss = 0.0, ape = 0.0, mean = 0.0;
     r->measured = dm_xmalloc(m * sizeof *r->measured);
     r->predicted = dm_xmalloc(m * sizeof *r->predicted);
+    r->cv_predicted = dm_xmalloc(m * sizeof *r->cv_predicted);
+    for (size_t i = 0; i < m; i++)
+        r->cv_predicted[i] = NAN;   /* until cross-validation predicts it */
     for (size_t i = 0; i < m; i++)
         mean += d->y[c->rows[i]] / (double)m;
     for (size_t i = 0; i < m; i++) {
@@ -400,7 +403,8 @@ static void fit__fill(fit__ctx *c, const double *p, const double *cov, int cov_o
 }
 
 /* k-fold cross-validated MAPE (percent): seeded shuffle, fold = position
- * mod k, refit on the other folds from p_full, predict the held-out rows. */
+ * mod k, refit on the other folds from p_full, predict the held-out rows
+ * (each one's prediction in r->cv_predicted, in the order of rows). */
 static double fit__cv_mape(fit__ctx *c, const size_t *rows, size_t m, const double *p_full,
                            dm_fit_result *r)
 {
@@ -411,11 +415,11 @@ static double fit__cv_mape(fit__ctx *c, const size_t *rows, size_t m, const doub
         fit__warn(r, "cross-validation skipped: needs at least 2 folds");
         return NAN;
     }
-    size_t *perm = dm_xmalloc(2 * m * sizeof *perm), *train = perm + m;
+    size_t *perm = dm_xmalloc(2 * m * sizeof *perm), *train = perm + m;   /* perm: positions in rows */
     double *p = dm_xmalloc(c->P * sizeof *p), ape = 0.0;
     rng_state rng = rng_seed(d->seed);
     for (size_t i = 0; i < m; i++)
-        perm[i] = rows[i];
+        perm[i] = i;
     for (size_t i = m; i > 1; i--) {
         size_t j = rng_below(&rng, i), t = perm[i - 1];
         perm[i - 1] = perm[j];
@@ -425,7 +429,7 @@ static double fit__cv_mape(fit__ctx *c, const size_t *rows, size_t m, const doub
         size_t nt = 0;
         for (size_t i = 0; i < m; i++)
             if (i % k != fold)
-                train[nt++] = perm[i];
+                train[nt++] = rows[perm[i]];
         fit_ceres_summary sum;
         memcpy(p, p_full, c->P * sizeof *p);
         c->rows = train;
@@ -433,8 +437,9 @@ static double fit__cv_mape(fit__ctx *c, const size_t *rows, size_t m, const doub
         if (nt < c->P || !fit__solve(c, p, d->loss, NULL, &sum))
             continue;
         for (size_t i = fold; i < m; i += k) {
-            double y = d->y[perm[i]];
-            ape += fabs(formula_eval(c->f, fit__row(d, perm[i]), p, NULL) - y) / y;
+            double y = d->y[rows[perm[i]]], f = formula_eval(c->f, fit__row(d, rows[perm[i]]), p, NULL);
+            r->cv_predicted[perm[i]] = f;
+            ape += fabs(f - y) / y;
             n_pred++;
         }
     }

@@ -37,6 +37,64 @@ static void predict__fit(const dm_run_result *u, const char *model, const char *
     dm_str_free(&err);
 }
 
+const dm_fit_result *predict_fit_of(const dm_fit_result *fits, size_t n, const char *variant)
+{
+    for (size_t i = 0; i < n; i++)
+        if (fits[i].n_group == 1 && strcmp(fits[i].group[0].value, variant) == 0)
+            return &fits[i];
+    return NULL;
+}
+
+/* fit's held-out prediction of the configuration `key`, NaN when it has none. */
+static double predict__cv_of(const dm_fit_result *fit, const char *key)
+{
+    for (int i = 0; fit && fit->point_labels && fit->cv_predicted && i < fit->n_points; i++)
+        if (strcmp(fit->point_labels[i], key) == 0)
+            return fit->cv_predicted[i];
+    return NAN;
+}
+
+/* Per variant: the stage models' held-out predictions of each measured
+ * configuration, summed, against its Instructions (predict_heldout). */
+static void predict__heldout(predict_model *m)
+{
+    for (size_t i = 0; i < m->n_stage[0]; i++) {
+        const dm_fit_result *g = &m->stage[0][i];
+        if (g->n_group != 1 || !g->point_labels)
+            continue;
+        const dm_fit_result *f[3] = {g, predict_fit_of(m->stage[1], m->n_stage[1], g->group[0].value),
+                                     predict_fit_of(m->stage[2], m->n_stage[2], g->group[0].value)};
+        double ape = 0;
+        int n = 0;
+        for (int k = 0; f[1] && f[2] && k < g->n_points; k++) {
+            const char *key = g->point_labels[k];
+            double sum = predict__cv_of(f[0], key) + predict__cv_of(f[1], key) + predict__cv_of(f[2], key);
+            const dm_config_result *c = dm_run_config(&m->train, key);
+            const dm_counter_result *r = c ? dm_config_counter(c, "Instructions") : NULL;
+            if (isfinite(sum) && r && r->available && r->value > 0) {
+                ape += fabs(sum - r->value) / r->value;
+                n++;
+            }
+        }
+        predict_heldout h = { dm_xstrdup(g->group[0].value), n ? 100 * ape / n : NAN, n };
+        DM_VEC_PUSH(m->heldout, m->n_heldout, h);
+    }
+}
+
+const predict_heldout *predict_heldout_of(const predict_model *m, const char *variant)
+{
+    for (size_t i = 0; i < m->n_heldout; i++)
+        if (strcmp(m->heldout[i].variant, variant) == 0)
+            return &m->heldout[i];
+    return NULL;
+}
+
+int predict_heldout_prefers_one(const predict_model *m, const dm_fit_result *one)
+{
+    const predict_heldout *h = one && one->n_group == 1 ? predict_heldout_of(m, one->group[0].value) : NULL;
+    return h && h->n >= 3 && isfinite(h->cv_mape) && isfinite(one->cv_mape) && one->cv_mape < h->cv_mape;
+}
+
 void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
 {
     memset(m, 0, sizeof *m);
@@ -51,6 +109,7 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
     for (int st = 0; st < 3; st++)
         if (dm_run_has_counter(u, predict__stages[st]) && dm_run_has_counter(u, "SamplesPassed"))
             predict__fit(u, predict__stage_models[st], predict__stages[st], NULL, 0, &m->stage[st], &m->n_stage[st]);
+    predict__heldout(m);
     if (dm_run_has_counter(u, "WallTime"))
         predict__fit(u, "time-from-instructions", "WallTime", NULL, 0, &m->time, &m->n_time);
     if (dm_run_has_counter(u, "WallTime") && m->n_stage[0] && m->n_stage[1] && m->n_stage[2])
@@ -72,15 +131,6 @@ static double predict__param(const dm_fit_result *fit, const char *name, double 
     if (se)
         *se = p ? p->stderr_ : NAN;
     return p ? p->value : NAN;
-}
-
-/* The fit of `variant` among fits, or NULL. */
-static const dm_fit_result *predict__of(const dm_fit_result *fits, size_t n, const char *variant)
-{
-    for (size_t i = 0; i < n; i++)
-        if (fits[i].n_group == 1 && strcmp(fits[i].group[0].value, variant) == 0)
-            return &fits[i];
-    return NULL;
 }
 
 /* Predicts fit's response for configuration pc whose counts are in c. */
@@ -120,7 +170,7 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
                                      .value = counts[k] };
     c.counters = cr;
     c.n_counters = PREDICT_N_COUNTS;
-    const dm_fit_result *fi = predict__of(m->instr, m->n_instr, out->variant);
+    const dm_fit_result *fi = predict_fit_of(m->instr, m->n_instr, out->variant);
     double instr = NAN;
     if (!fi)
         dm_str_printf(why, "variant '%s' was never measured by the runs", out->variant);
@@ -137,9 +187,12 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
                  ? spread + fabs(out->part[s]) * 2 * fs->cv_mape / 100 : NAN;
     }
     double sum = out->part[0] + out->part[1] + out->part[2];
-    if (isfinite(sum) && sum > 0) {
+    if (isfinite(sum) && sum > 0 && !predict_heldout_prefers_one(m, fi)) {
+        /* the interval: how well the sum predicted the runs' own held-out
+         * configurations of the variant, else each part's own error */
+        const predict_heldout *h = predict_heldout_of(m, out->variant);
         instr = sum;
-        ei = isfinite(spread) ? spread / sum : ei;
+        ei = h && h->n >= 3 && isfinite(h->cv_mape) ? 2 * h->cv_mape / 100 : isfinite(spread) ? spread / sum : ei;
     }
     out->instr = instr;
     out->instr_lo = instr * (1 - ei);
@@ -202,6 +255,9 @@ void predict_free(predict_model *m)
         predict__free_fits(m->stage[st], m->n_stage[st]);
     predict__free_fits(m->time, m->n_time);
     predict__free_fits(m->time_st, m->n_time_st);
+    for (size_t i = 0; i < m->n_heldout; i++)
+        free(m->heldout[i].variant);
+    free(m->heldout);
     free(m->train.configs);
     memset(m, 0, sizeof *m);
 }

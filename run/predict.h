@@ -29,11 +29,22 @@ extern const char *const predict_counts[PREDICT_N_COUNTS];
 #define PREDICT_N_NEEDED 5
 extern const char *const predict_needed[PREDICT_N_NEEDED];
 
+/* How well the runs' own Instructions are predicted when held out: per
+ * variant, the k-fold held-out predictions of the three stage models
+ * (each config predicted by fits that never saw it), summed. */
+typedef struct predict_heldout {
+    char *variant;
+    double cv_mape;   /* percent; NaN when no configuration was predicted by all three */
+    int n;            /* configurations it covers */
+} predict_heldout;
+
 typedef struct predict_model {
     dm_run_result train;   /* the pooled runs (shallow: the caller's runs own the configurations) */
     dm_fit_result *instr, *stage[3], *time, *time_st;   /* time_st: time-from-stages */
     size_t n_instr, n_stage[3], n_time, n_time_st;
     double stage_max[3];   /* the largest value of each stage counter the runs measured */
+    predict_heldout *heldout;   /* per variant, when the runs have the stage counters */
+    size_t n_heldout;
 } predict_model;
 
 typedef struct predict_result {
@@ -48,6 +59,18 @@ const char *predict_run_missing(const dm_run_result *run);
 
 /* Fits the models to runs[0..n) (kept by the caller until predict_free). */
 void predict_fit(const dm_run_result *runs, size_t n, predict_model *m);
+
+/* The fit of `variant` (a one-group fit per variant) among fits, or NULL. */
+const dm_fit_result *predict_fit_of(const dm_fit_result *fits, size_t n, const char *variant);
+
+/* The held-out error of variant's Instructions (predict_heldout), or NULL. */
+const predict_heldout *predict_heldout_of(const predict_model *m, const char *variant);
+
+/* 1 when the variant's one-formula fit `one` (stage-instructions)
+ * predicted the runs' held-out Instructions better than the stage models'
+ * sum: predict_config then gives its value (the stage shares stay the
+ * stage models'). */
+int predict_heldout_prefers_one(const predict_model *m, const dm_fit_result *one);
 
 /* Predicts configuration pc, whose invocation counts are counts[0..
  * PREDICT_N_COUNTS) (NaN: not measured).  0 with *out filled, or

@@ -86,6 +86,9 @@ static void exact_recovery(void **state)
     assert_int_equal(r.n_warnings, 0);
     assert_non_null(strstr(r.termination, "CONVERGENCE"));
     assert_true(r.measured[4] == y[4] && fabs(r.predicted[4] - y[4]) < 1e-9);
+    /* every point held out once, and predicted exactly by the fit without it */
+    for (size_t i = 0; i < 20; i++)
+        assert_true(rel(r.cv_predicted[i], y[i]) < 1e-9);
     assert_string_equal(r.model, "a + b*x1 + c*x2");
     dm_fit_result_free(&r);
 }
@@ -105,6 +108,11 @@ static void noisy_within_3_stderr(void **state)
     /* slope stderr for sigma 0.3, x1 = 1..60: about 0.3/sqrt(sum (x-xbar)^2) = 0.0017 */
     assert_true(r.params[1].stderr_ > 0.001 && r.params[1].stderr_ < 0.003);
     assert_true(r.cv_mape > 0.0 && isfinite(r.cv_mape));
+    /* the held-out predictions kept are the ones CV-MAPE is made of */
+    double ape = 0;
+    for (size_t i = 0; i < 60; i++)
+        ape += fabs(r.cv_predicted[i] - y[i]) / y[i];
+    assert_true(rel(100 * ape / 60, r.cv_mape) < 1e-12);
     dm_fit_result_free(&r);
 }
 

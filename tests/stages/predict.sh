@@ -52,6 +52,12 @@ if not re.search(r"variant 'phong[^']*' was never measured by the runs", unpred)
     bad.append("phong is not listed as not predicted")
 if checked != 3:
     bad.append(f"{checked} configurations checked, expected 3")
+# the held-out error of each measured variant, and which prediction is used
+held = unpred.split("held-out error of Instructions", 1)
+rows = re.findall(r"\n    (stages summed.*)", held[1]) if len(held) == 2 else []
+errs = [float(v) for r in rows for v in re.findall(r"([\d.]+) %", r)]
+if len(rows) != 2 or not all("(used)" in r for r in rows) or not errs or max(errs) > 5:
+    bad.append(f"held-out errors of normal and pom missing, unmarked or above 5 %: {rows}")
 for b in bad:
     print("FAIL:", b)
 sys.exit(1 if bad else 0)
