@@ -45,7 +45,9 @@ typedef enum counters_backend {
     COUNTERS_BACKEND_OCCLUSION,    /* GL_SAMPLES_PASSED */
     COUNTERS_BACKEND_CPU_SIDE,     /* set by the caller (bytes, VT counters) */
     COUNTERS_BACKEND_DERIVED,      /* formula over other counters */
-    COUNTERS_BACKEND_CALLGRIND     /* instructions counted under Valgrind, own child (run/callgrind.h) */
+    COUNTERS_BACKEND_CALLGRIND,    /* instructions counted under Valgrind, own child (run/callgrind.h) */
+    COUNTERS_BACKEND_SHADER_COUNT  /* an instrumented variant of the caller's shader adds to a buffer
+                                      (counters_pass_loop_trips) */
 } counters_backend;
 
 /* Who supplies the value of a caller-fed (COUNTERS_BACKEND_CPU_SIDE)
@@ -109,12 +111,19 @@ void counters_session_destroy(counters_session *s);
 int counters_enable(counters_session *s, const char *name);        /* DM_ERR_UNKNOWN */
 int counters_enable_group(counters_session *s, const char *group);
 int counters_num_passes(counters_session *s, int *passes);
-/* Describes pass p ("timing", "geometry", "raster", "statistics"), for plans. */
+/* Describes pass p ("timing", "geometry", "raster", "statistics", "loop trips"), for plans. */
 const char *counters_pass_name(counters_session *s, int pass);
 /* 1 when, in pass p, the caller must draw the same work with a minimal
  * fragment shader (same geometry, depth state and coverage; the raster
  * pass of MinimalShadingTime, docs/counters.md "Stage costs"). */
 int counters_pass_minimal_fs(const counters_session *s, int pass);
+/* The shader storage binding the loop-trips pass binds its counter buffer
+ * to (one uint; the instrumented shader adds 1 to it per SIMD group per
+ * iteration of the parallax search loop, docs/counters.md "Loop trips"). */
+#define COUNTERS_LOOP_TRIPS_BINDING 7
+/* 1 when, in pass p, the caller must draw the same work with its loop-trip
+ * instrumented shader (LoopTrips). */
+int counters_pass_loop_trips(const counters_session *s, int pass);
 /* Appends the pass plan of the selection names[0..n) as text to out
  * ("dmbench list counters --passes A,B"): the pass count, each pass with its
  * counters, then caller-fed, derived (with formulas) and unavailable

@@ -14,6 +14,7 @@
 #define EXT_PIPESTATS "GL_ARB_pipeline_statistics_query"
 #define EXT_TIMER     "GL_ARB_timer_query"
 #define EXT_COMPUTE   "GL_ARB_compute_shader"
+#define EXT_BALLOT    "GL_ARB_shader_ballot"
 
 int counters__has_ext(const counters_context *ctx, const char *ext)
 {
@@ -42,6 +43,9 @@ static int ctx__req_ok(const counters_context *ctx, counters__req req, const cha
     case COUNTERS__REQ_CALLGRIND:
         *why = ctx->callgrind_why;
         return ctx->callgrind_why[0] == '\0';
+    case COUNTERS__REQ_BALLOT:
+        *why = "driver lacks " EXT_BALLOT " (the instrumented shader elects one fragment per SIMD group)";
+        return counters__has_ext(ctx, EXT_BALLOT);
     }
     return 0;
 }

@@ -19,6 +19,7 @@ typedef enum counters__pass {
     COUNTERS__PASS_GEOMETRY,
     COUNTERS__PASS_RASTER,      /* the caller draws with a minimal fragment shader (counters_pass_minimal_fs) */
     COUNTERS__PASS_STATS,
+    COUNTERS__PASS_LOOPS,       /* the caller draws with its loop-trip instrumented shader (counters_pass_loop_trips) */
     COUNTERS__PASS_KINDS
 } counters__pass;
 
@@ -28,7 +29,8 @@ typedef enum counters__req {
     COUNTERS__REQ_PIPESTATS,    /* GL_ARB_pipeline_statistics_query */
     COUNTERS__REQ_TIMER,        /* GL_ARB_timer_query */
     COUNTERS__REQ_COMPUTE,      /* pipeline statistics + GL_ARB_compute_shader */
-    COUNTERS__REQ_CALLGRIND     /* Valgrind installed and a CPU renderer (llvmpipe, softpipe) */
+    COUNTERS__REQ_CALLGRIND,    /* Valgrind installed and a CPU renderer (llvmpipe, softpipe) */
+    COUNTERS__REQ_BALLOT        /* GL_ARB_shader_ballot (subgroup election in the instrumented shader) */
 } counters__req;
 
 typedef struct counters__def {

@@ -79,6 +79,10 @@ static const counters__def counters__table[] = {
       ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_FRAGMENT_SHADER_INVOCATIONS_ARB, R_PS},
     {{"SamplesPassed", "Fragment", "Samples that passed the depth and stencil tests (occlusion query)",
       ITEMS, U64, B_OCC, 1, NULL, F_NO}, P_ST, GL_SAMPLES_PASSED, 0},
+    {{"LoopTrips", "Fragment", "Iterations of the parallax search loop as the fragment shader's SIMD groups "
+      "run them: per group (subgroup) as many as its slowest active fragment needs (own pass with an "
+      "instrumented shader; 0 without the loop; docs/counters.md, Loop trips)",
+      ITEMS, U64, COUNTERS_BACKEND_SHADER_COUNT, 1, NULL, F_NO}, COUNTERS__PASS_LOOPS, 0, COUNTERS__REQ_BALLOT},
     /* ---- Compute ---- */
     {{"ComputeInvocations", "Compute", "Compute shader invocations",
       ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_COMPUTE_SHADER_INVOCATIONS_ARB, COUNTERS__REQ_COMPUTE},

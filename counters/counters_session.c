@@ -3,7 +3,9 @@
  * State machine: SETUP (enable) -> passes 0..n-1 in order, each bracketing
  * the same sample ids -> ENDED (queries read, results available).  The plan
  * has at most one pass per kind (timing, geometry, statistics), in that
- * order, and only kinds with an available enabled counter.
+ * order, and only kinds with an available enabled counter.  The loop-trips
+ * pass binds a one-uint buffer at COUNTERS_LOOP_TRIPS_BINDING around each
+ * sample, zeroed at its start and read at its end.
  */
 #include "counters_internal.h"
 #include "counters_expr.h"
@@ -39,11 +41,12 @@ struct counters_session {
     size_t cursor, cur;                 /* position in this pass; current sample */
     int64_t t0, cpu0, th0;
     GLboolean discard_was;
+    GLuint trips_buf;                   /* the loop-trips pass's counter buffer, 0 = none */
     char err[512];
 };
 
 static const char *const sess__pass_names[COUNTERS__PASS_KINDS] = {
-    NULL, "timing", "geometry", "raster", "statistics"};
+    NULL, "timing", "geometry", "raster", "statistics", "loop trips"};
 
 static int sess__fail(counters_session *s, int code, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
@@ -60,6 +63,11 @@ static int sess__fail(counters_session *s, int code, const char *fmt, ...)
 int counters_pass_minimal_fs(const counters_session *s, int pass)
 {
     return pass >= 0 && pass < s->nplan && s->plan[pass] == COUNTERS__PASS_RASTER;
+}
+
+int counters_pass_loop_trips(const counters_session *s, int pass)
+{
+    return pass >= 0 && pass < s->nplan && s->plan[pass] == COUNTERS__PASS_LOOPS;
 }
 
 const char *counters_last_error(const counters_session *s)
@@ -85,6 +93,8 @@ void counters_session_destroy(counters_session *s)
             if (s->samples[i].query[c])
                 glDeleteQueries(1, &s->samples[i].query[c]);
         }
+    if (s->trips_buf)
+        glDeleteBuffers(1, &s->trips_buf);
     free(s->samples);
     free(s->order);
     free(s);
@@ -297,6 +307,15 @@ int counters_sample_begin(counters_session *s, uint32_t sample_id)
     if (rc)
         return rc;
     s->state = S_IN_SAMPLE;
+    if (s->plan[s->pass] == COUNTERS__PASS_LOOPS) {
+        static const GLuint zero = 0;
+        if (!s->trips_buf)
+            glGenBuffers(1, &s->trips_buf);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->trips_buf);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, &zero, GL_DYNAMIC_READ);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, COUNTERS_LOOP_TRIPS_BINDING, s->trips_buf);
+    }
     if (s->plan[s->pass] != COUNTERS__PASS_STATS)
         glFinish();                     /* start from an idle pipeline */
     sess__begin_queries(s, &s->samples[s->cur]);
@@ -334,6 +353,14 @@ int counters_sample_end(counters_session *s)
         sess__store(s, smp, "GeometryTime", (double)wall);
     } else if (s->plan[s->pass] == COUNTERS__PASS_RASTER) {
         sess__store(s, smp, "MinimalShadingTime", (double)wall);
+    } else if (s->plan[s->pass] == COUNTERS__PASS_LOOPS) {
+        GLuint trips = 0;
+        glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->trips_buf);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof trips, &trips);
+        glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
+        glBindBufferBase(GL_SHADER_STORAGE_BUFFER, COUNTERS_LOOP_TRIPS_BINDING, 0);
+        sess__store(s, smp, "LoopTrips", (double)trips);
     }
     s->cursor++;
     s->state = S_IN_PASS;

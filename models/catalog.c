@@ -23,6 +23,10 @@ static const fit_bound catalog__nonneg_fragment[] = {
     { "c0", 0, INFINITY }, { "c_fs", 0, INFINITY }, { "c_px", 0, INFINITY }, { "c_step", 0, INFINITY },
     { "c_pstep", 0, INFINITY }, { "c_light", 0, INFINITY } };
 
+static const fit_bound catalog__nonneg_trips[] = {
+    { "c0", 0, INFINITY }, { "c_fs", 0, INFINITY }, { "c_px", 0, INFINITY }, { "c_trip", 0, INFINITY },
+    { "c_light", 0, INFINITY } };
+
 static const fit_bound catalog__nonneg2[] = { { "a", 0, INFINITY }, { "b", 0, INFINITY } };
 
 static const fit_bound catalog__nonneg_time_stages[] = {
@@ -88,6 +92,17 @@ static const models_builtin catalog__models[] = {
       "instructions of fragment shading of one shader variant: per fragment invocation and covered pixel, "
       "growing with steps and lights",
       catalog__nonneg_fragment, 6, "variant" },
+    /* The loop's cost is what its SIMD groups run: a group iterates until
+     * its slowest fragment is done, so with the same steps a scene whose
+     * neighbouring fragments stop at more different steps (a sharp height
+     * map, a lower resolution) pays more per fragment.  LoopTrips counts
+     * exactly that (docs/counters.md, "Loop trips"). */
+    { "fragment-trips",
+      "c0 + c_fs*FSInvocations + c_px*SamplesPassed + c_trip*LoopTrips + c_light*FSInvocations*light_count",
+      "FragmentInstructions",
+      "instructions of fragment shading of one shader variant: per fragment invocation, covered pixel and "
+      "trip of the search loop (LoopTrips), growing with lights",
+      catalog__nonneg_trips, 5, "variant" },
     { "time-from-instructions", "a + b*Instructions", "WallTime",
       "frame time from the frame's instructions: a fixed cost plus a time per instruction",
       catalog__nonneg2, 2, NULL },

@@ -32,6 +32,7 @@ typedef struct mconf {
     tech_item item;
     tech_item item_min;         /* minimal-fragment-shader item for the raster pass (MinimalShadingTime), 0 = none */
     char *min_why;              /* why there is none although the sweep asks for MinimalShadingTime */
+    tech_item item_trips;       /* loop-trip counting item for the LoopTrips pass, 0 = none */
     tech_item_info info;
     int active;                 /* still sampling */
     int failed;
@@ -99,7 +100,8 @@ static void measure__classify(mscene *m)
         const counters_info *ci = counters_find(sm->counters[i]);
         if (!ci)
             continue;
-        if (ci->backend == COUNTERS_BACKEND_PIPELINE_STATS || ci->backend == COUNTERS_BACKEND_OCCLUSION)
+        if (ci->backend == COUNTERS_BACKEND_PIPELINE_STATS || ci->backend == COUNTERS_BACKEND_OCCLUSION ||
+            ci->backend == COUNTERS_BACKEND_SHADER_COUNT)
             m->statistic[m->n_statistic++] = ci->name;
         else if (ci->backend == COUNTERS_BACKEND_CLOCK || ci->backend == COUNTERS_BACKEND_TIMER_QUERY) {
             if (ci->stops_sampling && m->stop_index < 0)
@@ -162,6 +164,8 @@ static int measure__session(mscene *m, mconf *c, const char **names, size_t n, i
         tech_item full = c->item;
         if (counters_pass_minimal_fs(s, p))
             c->item = c->item_min;   /* the raster pass: the same draws, minimal fragment shading */
+        if (counters_pass_loop_trips(s, p))
+            c->item = c->item_trips;   /* the same draws, the search loop counting its trips */
         rc = counters_pass_begin(s, p);
         rc = rc ? rc : counters_sample_begin(s, 0);
         if (rc == 0 && c->item.id)
@@ -177,6 +181,11 @@ static int measure__session(mscene *m, mconf *c, const char **names, size_t n, i
         values[i] = r == 0 ? v / frames : NAN;
         if (r != 0 && reasons && !reasons[i])
             reasons[i] = dm_xstrdup(counters_last_error(s));
+        if (r == 0 && strcmp(names[i], "LoopTrips") == 0 && !c->item_trips.id) {
+            values[i] = NAN;   /* the pass drew nothing: no count, not 0 */
+            if (reasons && !reasons[i])
+                reasons[i] = dm_xstrdup("the loop-counting variant of the program could not be built (see log)");
+        }
     }
     if (rc != 0)
         dm_str_printf(&c->log, "counters: %s\n", s ? counters_last_error(s) : dm_strerror(rc));
@@ -277,6 +286,34 @@ static void measure__prepare_minimal(mscene *m, mconf *c)
     c->item = full;
 }
 
+_Static_assert(TECH_LOOP_TRIPS_BINDING == COUNTERS_LOOP_TRIPS_BINDING,
+               "the loop-trips shader and the counters library use one binding");
+
+/* The LoopTrips pass's item, when names[0..n) ask for LoopTrips: the
+ * configuration with its search loop counting trips, its first frame (the
+ * JIT) drawn.  Left 0 when it cannot be built (the log says why): the pass
+ * then draws nothing and measure__session makes LoopTrips unavailable. */
+static void measure__prepare_trips(mscene *m, mconf *c, const char *const *names, size_t n)
+{
+    int wanted = 0;
+    for (size_t i = 0; i < n; i++)
+        wanted |= strcmp(names[i], "LoopTrips") == 0;
+    if (!wanted)
+        return;
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_LOOP_TRIPS);
+    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item_trips, &c->log);
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
+    if (gl_context_take_messages(m->gl, &c->log) > 0 || rc != 0) {
+        c->item_trips.id = 0;
+        dm_str_cat(&c->log, "LoopTrips: the counting shader cannot be built (above)\n");
+        return;
+    }
+    tech_item full = c->item;
+    c->item = c->item_trips;
+    measure__frames(m, c, 1);
+    c->item = full;
+}
+
 /* Prepare + warm-up + statistics pass for one configuration. */
 static void measure__prepare(mscene *m, mconf *c)
 {
@@ -303,6 +340,7 @@ static void measure__prepare(mscene *m, mconf *c)
     }
     tech_item_get_info(m->r, c->item, &c->info);
     measure__prepare_minimal(m, c);
+    measure__prepare_trips(m, c, m->statistic, m->n_statistic);
     measure__warmup(m, c);
     c->stats = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats);
     c->stats_reason = dm_xcalloc(m->n_statistic + 1, sizeof *c->stats_reason);
@@ -948,6 +986,7 @@ int measure_pilot(const measure_job *job, dm_str *err)
         if (tech_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log) == 0) {
             measure__frames(&m, c, 2);             /* JIT and first-use costs */
             ns = measure__plain_sample(&m, c, 1);
+            measure__prepare_trips(&m, c, predict_counts, PREDICT_N_COUNTS);
             /* and its invocation counts, for a prediction from the
              * instruction models (run --budget) */
             measure__session(&m, c, (const char **)predict_counts, PREDICT_N_COUNTS, 1, counts, NULL);
@@ -1121,9 +1160,12 @@ int measure_counts(const plan_config *cs, size_t n, const char *const *names, si
         mconf c = { .pc = &cs[i] };
         if (tech_prepare(m.r, cs[i].params, cs[i].n_params, &c.item, &c.log) == 0) {
             measure__frames(&m, &c, 1);   /* first use (JIT) outside the counted frame */
+            measure__prepare_trips(&m, &c, names, n_names);
             measure__vt_converge(m.r, c.item, cs[i].width, cs[i].height);
             measure__session(&m, &c, (const char **)names, n_names, 1, values + i * n_names, NULL);
             tech_release(m.r, c.item);
+            if (c.item_trips.id)
+                tech_release(m.r, c.item_trips);
         }
         gl_context_take_messages(m.gl, NULL);
         dm_str_free(&c.log);

@@ -10,12 +10,13 @@
 
 const char *const predict_counts[PREDICT_N_COUNTS] = {"VSInvocations", "TESInvocations",
                                                       "ClippingOutputPrimitives", "FSInvocations", "TCSPatches",
-                                                      "SamplesPassed"};
+                                                      "SamplesPassed", "LoopTrips"};
 const char *const predict_needed[PREDICT_N_NEEDED] = {"Instructions", "VSInvocations", "TESInvocations",
                                                       "ClippingOutputPrimitives", "FSInvocations"};
 static const char *const predict__stages[3] = {"GeometryInstructions", "RasterInstructions",
                                                "FragmentInstructions"};
-/* each stage counter's own model (models/catalog.c) */
+/* each stage counter's own model (models/catalog.c); fragment shading
+ * from the search loop's trips when the runs counted them */
 static const char *const predict__stage_models[3] = {"geometry-instructions", "raster-instructions",
                                                      "fragment-instructions"};
 
@@ -108,7 +109,8 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
     predict__fit(u, "stage-instructions", "Instructions", NULL, 0, &m->instr, &m->n_instr);
     for (int st = 0; st < 3; st++)
         if (dm_run_has_counter(u, predict__stages[st]) && dm_run_has_counter(u, "SamplesPassed"))
-            predict__fit(u, predict__stage_models[st], predict__stages[st], NULL, 0, &m->stage[st], &m->n_stage[st]);
+            predict__fit(u, st == 2 && dm_run_has_counter(u, "LoopTrips") ? "fragment-trips" : predict__stage_models[st],
+                         predict__stages[st], NULL, 0, &m->stage[st], &m->n_stage[st]);
     predict__heldout(m);
     if (dm_run_has_counter(u, "WallTime"))
         predict__fit(u, "time-from-instructions", "WallTime", NULL, 0, &m->time, &m->n_time);

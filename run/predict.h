@@ -21,7 +21,7 @@
 
 /* The invocation counts a prediction reads, in this order (measure_counts
  * or the pilot frame measure them for the configurations to predict). */
-#define PREDICT_N_COUNTS 6
+#define PREDICT_N_COUNTS 7
 extern const char *const predict_counts[PREDICT_N_COUNTS];
 
 /* The counters the runs must have for any prediction (the stage counters,

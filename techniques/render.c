@@ -121,7 +121,8 @@ int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir)
 
 int tech_renderer_set_debug_view(tech_renderer *r, tech_debug_view view)
 {
-    if (!r || (view != TECH_DEBUG_NONE && view != TECH_DEBUG_NORMALS && view != TECH_DEBUG_MINIMAL_FS))
+    if (!r || (view != TECH_DEBUG_NONE && view != TECH_DEBUG_NORMALS && view != TECH_DEBUG_MINIMAL_FS &&
+               view != TECH_DEBUG_LOOP_TRIPS))
         return DM_ERR_ARG;
     r->debug_view = view;
     return 0;
@@ -648,6 +649,15 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
     render__fs_traits(it, dm_str_get(&defs));
     if (it->debug_view == TECH_DEBUG_MINIMAL_FS)
         dm_str_cat(&defs, FS_MINIMAL_DEFINE);
+    if (it->debug_view == TECH_DEBUG_LOOP_TRIPS) {
+        if (!epoxy_has_gl_extension("GL_ARB_shader_ballot")) {
+            dm_str_free(&defs);
+            dm_str_cat(log, "counting loop trips needs GL_ARB_shader_ballot, which this driver lacks\n");
+            return DM_ERR_UNSUPPORTED;
+        }
+        dm_str_printf(&defs, "#extension GL_ARB_shader_ballot : require\n#define COUNT_LOOP_TRIPS %d\n",
+                      TECH_LOOP_TRIPS_BINDING);
+    }
     rc = render__program_get(r, it->tech, dm_str_get(&defs), &it->prog, &cached, log);
     dm_str_free(&defs);
     if (!rc)

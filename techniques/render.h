@@ -45,10 +45,18 @@ typedef enum tech_debug_view {
     TECH_DEBUG_NONE = 0,         /* the technique's own output */
     TECH_DEBUG_NORMALS,          /* world-space shading normal (after bump, normal or
                                     parallax perturbation) as n*0.5+0.5, alpha 1 */
-    TECH_DEBUG_MINIMAL_FS        /* stage isolation: the same stages, depth state and
+    TECH_DEBUG_MINIMAL_FS,       /* stage isolation: the same stages, depth state and
                                     coverage with a minimal fragment shader
                                     (fs_minimal.h; the raster pass of docs/counters.md) */
+    TECH_DEBUG_LOOP_TRIPS        /* the technique's own shading, its parallax search loop
+                                    counting trips: one fragment of each SIMD group (the
+                                    first active one) adds 1 per iteration to the uint
+                                    at shader storage binding TECH_LOOP_TRIPS_BINDING
+                                    (LoopTrips, docs/counters.md) */
 } tech_debug_view;
+/* The binding the loop-trips view adds to; the counters library binds its
+ * buffer there (run/measure.c checks that the two agree). */
+#define TECH_LOOP_TRIPS_BINDING 7
 /* Sets the debug view of the items prepared from now on (prepared items
  * keep theirs; it selects a program variant, #define DEBUG_NORMALS, part of
  * the program key).  Returns 0, or DM_ERR_ARG for an unknown view. */

@@ -93,3 +93,10 @@ set_tests_properties(test_predict PROPERTIES TIMEOUT 1800
 # SetupRasterTime and FragmentTime (tests/stages/times.sh, no Valgrind).
 add_test(NAME test_stage_times COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/times.sh)
 set_tests_properties(test_stage_times PROPERTIES TIMEOUT 120 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e")
+
+# LoopTrips counted by hand on the full-screen quad with the flat height
+# map: steps/2 trips for every SIMD group (tests/stages/loop_trips.sh, no
+# Valgrind).
+add_test(NAME test_loop_trips COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/loop_trips.sh)
+set_tests_properties(test_loop_trips PROPERTIES TIMEOUT 120 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e"
+  SKIP_RETURN_CODE 77)

@@ -25,6 +25,9 @@ enum { POM_C0 = 80000, POM_VS = 60, POM_PRIM = 40, POM_PX = 150, POM_STEP = 25 }
 enum { G_C0 = 50000, G_VS = 60, G_PRIM = 40 };
 enum { R_FB = 21, R_FS = 70, R_EDGE = 44, R_PRIM = 30 };
 enum { F_C0 = 5000, F_FS = 100, F_PX = 60, F_STEP = 12, F_PSTEP = 8 };
+/* instructions per trip of the search loop: the loop's part of the
+ * fragment counter above is F_TRIP * LoopTrips */
+enum { F_TRIP = 4 };
 #define T_A 20000.0
 #define T_GEO 0.3
 #define T_RASTER 0.07
@@ -86,6 +89,7 @@ static void synthetic_run(dm_run_result *run)
                 counter(c, "GeometryInstructions", G_C0 + G_VS * vs + G_PRIM * prim);
                 counter(c, "RasterInstructions", raster);
                 counter(c, "FragmentInstructions", F_C0 + F_FS * fs + F_PX * sp + F_STEP * fs * s + F_PSTEP * sp * s);
+                counter(c, "LoopTrips", (F_STEP * fs * s + F_PSTEP * sp * s) / F_TRIP);
                 /* ns: a time per instruction of each stage */
                 counter(c, "WallTime", T_A + T_GEO * (G_C0 + G_VS * vs + G_PRIM * prim) +
                                            T_RASTER * raster +
@@ -225,6 +229,7 @@ static void test_stage_models_recover(void **state)
           {R_FB, R_FS, R_EDGE, R_PRIM} },
         { "fragment-instructions", "FragmentInstructions", {"c0", "c_fs", "c_px", "c_step", "c_pstep"},
           {F_C0, F_FS, F_PX, F_STEP, F_PSTEP} },
+        { "fragment-trips", "FragmentInstructions", {"c0", "c_fs", "c_px", "c_trip"}, {F_C0, F_FS, F_PX, F_TRIP} },
         { "time-from-stages", "WallTime", {"a", "b_geo", "b_raster", "b_frag"}, {T_A, T_GEO, T_RASTER, T_FRAG} },
     };
     for (size_t k = 0; k < sizeof cases / sizeof *cases; k++) {

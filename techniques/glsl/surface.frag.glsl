@@ -81,6 +81,12 @@ int search_steps(vec3 v)
 // uv + (1 - SURFACE_H0)·span and leaves its bottom at uv - SURFACE_H0·span,
 // span = V.xy/V.z·scale.  The search starts at the entry and walks layers
 // of depth 1/n toward the exit; returns the UV where the ray meets the field.
+#ifdef COUNT_LOOP_TRIPS
+// LoopTrips (docs/counters.md): the first active fragment of each SIMD
+// group adds one per iteration, so a group counts as many trips as its
+// slowest fragment runs.  Only in the counting variant of the program.
+layout(std430, binding = COUNT_LOOP_TRIPS) buffer LoopTrips { uint loop_trips; };
+#endif
 vec2 parallax_search(vec2 uv, vec3 v)
 {
     int n = search_steps(v);
@@ -92,6 +98,10 @@ vec2 parallax_search(vec2 uv, vec3 v)
     vec2 prev_uv = uv;
     float prev = 0.0, prev_map = map;
     for (int i = 0; i < n && cur < map; i++) {
+#ifdef COUNT_LOOP_TRIPS
+        if (readFirstInvocationARB(gl_SubGroupInvocationARB) == gl_SubGroupInvocationARB)
+            atomicAdd(loop_trips, 1u);
+#endif
         prev_uv = uv; prev = cur; prev_map = map;
         uv += delta;
         cur += layer;
