@@ -40,7 +40,7 @@ for t, s in by.items():
     print(f"  {t:20s} geometry {m[0]:5.1f} %  raster {m[1]:5.1f} %  fragment {m[2]:5.1f} %  ({len(s)} configurations)")
 PY
 for m in "pipeline-linear" "stage-instructions" "geometry-instructions" "raster-instructions" \
-         "fragment-instructions" "time-from-instructions"; do
+         "fragment-instructions" "fragment-trips" "time-from-instructions"; do
   echo "== fit --model $m"
   "$B" fit "$run" --model "$m" 2>/dev/null | grep -E "^model|CV-MAPE" | sed 's/^/  /' || true
 done
