@@ -29,7 +29,7 @@ meas = {c["key"]: c for c in json.load(open(sys.argv[2]))["configs"]}
 def med(c, n):
     x = c["counters"].get(n, {})
     return x.get("median", x.get("value"))
-print(f"{'configuration':44s} {'Instructions pred/meas':>28s} {'err':>7s} {'WallTime pred/meas ms':>24s} {'err':>7s}")
+print(f"{'configuration':44s} {'Instructions pred/meas':>28s} {'err':>7s} {'WallTime pred/meas ms':>24s} {'err':>7s}     beyond the fit (stage, times its largest)")
 worst = [0, 0]
 section = "table"
 heldout = []
@@ -59,7 +59,9 @@ for l in open(sys.argv[1]).read().splitlines():
     # "in"/"OUT": the measured value inside the prediction interval or not
     ii = "in" if ilo <= mi <= ihi else "OUT"
     iw = ("in" if float(wt.group(2)) <= mw <= float(wt.group(3)) else "OUT") if wt else "-"
-    print(f"{name:44s} {pi:13.0f} / {mi:13.0f} {ei:+6.2f}% {ii:3s} {float(wt.group(1)) if wt else float('nan'):10.3f} / {mw:10.3f} {ew:+6.1f}% {iw}")
+    ex = re.search(r"\(extrapolated: (\S+) (\S+) x", l)
+    beyond = f"{ex.group(1)} {float(ex.group(2)):.3g}x" if ex else ""
+    print(f"{name:44s} {pi:13.0f} / {mi:13.0f} {ei:+6.2f}% {ii:3s} {float(wt.group(1)) if wt else float('nan'):10.3f} / {mw:10.3f} {ew:+6.1f}% {iw:3s} {beyond}")
 print(f"worst: Instructions {worst[0]:.2f} %, WallTime {worst[1]:.1f} % (in/OUT: the measured value inside the prediction interval)")
 print("\n".join(heldout))
 PY

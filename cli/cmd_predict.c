@@ -101,6 +101,9 @@ static void predict__config(const predict_model *m, const plan_config *pc, const
             printf("  stages: unavailable (the runs lack the stage counters)");
         if (isfinite(r.wall_ns))
             printf("  WallTime %.3f ms [%.3f, %.3f]", r.wall_ns / 1e6, r.wall_lo / 1e6, r.wall_hi / 1e6);
+        static const char *const stage[3] = {"geometry", "raster", "fragment"};
+        if (r.beyond_stage >= 0)
+            printf("  (extrapolated: %s %.3g x the largest the runs measured)", stage[r.beyond_stage], r.beyond);
         printf("\n");
     }
     predict_result_free(&r);

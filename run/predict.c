@@ -163,7 +163,7 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
                    dm_str *why)
 {
     *out = (predict_result){ .instr = NAN, .instr_lo = NAN, .instr_hi = NAN, .part = {NAN, NAN, NAN},
-                             .wall_ns = NAN, .wall_lo = NAN, .wall_hi = NAN };
+                             .wall_ns = NAN, .wall_lo = NAN, .wall_hi = NAN, .beyond_stage = -1 };
     out->variant = fitting_variant(pc->params, pc->n_params);
     dm_config_result c = { .key = (char *)pc->key, .ok = 1 };
     dm_counter_result cr[PREDICT_N_COUNTS];
@@ -189,6 +189,13 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
                  ? spread + fabs(out->part[s]) * 2 * fs->cv_mape / 100 : NAN;
     }
     double sum = out->part[0] + out->part[1] + out->part[2];
+    for (int s = 0; s < 3; s++) {   /* how far beyond what the runs measured */
+        double r = m->stage_max[s] > 0 ? out->part[s] / m->stage_max[s] : NAN;
+        if (r > 1 && r > (out->beyond_stage < 0 ? 1 : out->beyond)) {
+            out->beyond_stage = s;
+            out->beyond = r;
+        }
+    }
     if (isfinite(sum) && sum > 0 && !predict_heldout_prefers_one(m, fi)) {
         /* the interval: how well the sum predicted the runs' own held-out
          * configurations of the variant, else each part's own error */

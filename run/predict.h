@@ -52,6 +52,8 @@ typedef struct predict_result {
     double instr, instr_lo, instr_hi;   /* frame Instructions, ±2 CV-MAPE */
     double part[3];          /* geometry, raster, fragment; NaN without the stage counters */
     double wall_ns, wall_lo, wall_hi;   /* NaN without a WallTime fit */
+    int beyond_stage;        /* the stage whose part is the most beyond the runs' largest, -1 = none is */
+    double beyond;           /* that part over the largest the runs measured (> 1) */
 } predict_result;
 
 /* The first of predict_needed that run lacks, or NULL when it has them all. */

@@ -41,6 +41,10 @@ for l in lines[1:]:
     sh = re.search(r"geometry +(\d+) % raster +(\d+) % fragment +(\d+) %", l)
     if not sh or not 98 <= sum(int(x) for x in sh.groups()) <= 102:
         bad.append(f"{t}: no stage shares adding up to 100 %: {l}")
+    # 160x160 is beyond the fitted 128x128: the line says how far, by stage
+    ex = re.search(r"\(extrapolated: (geometry|raster|fragment) ([\d.e+]+) x the largest the runs measured\)", l)
+    if not ex or not float(ex.group(2)) > 1:
+        bad.append(f"{t}: 160x160 not marked as beyond the runs: {l}")
     err = pred / m - 1
     print(f"{t} {c['params'].get('steps', '')} {c['params']['resolution']}: predicted {pred:.0f}, "
           f"measured {m:.0f} ({100*err:+.2f} %)")
