@@ -162,6 +162,14 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
     fitting_spec spec = { .name = a->model ? a->model : a->formula ? "formula" : "pipeline-linear",
                           .formula = a->formula, .response = a->response,
                           .group_by = (const char *const *)groups, .n_group_by = ng, .loss = a->loss };
+    const models_builtin *b = a->formula ? NULL : models_builtin_find(spec.name);
+    /* a counter the model is about (fragment-trips: LoopTrips) is not
+     * dropped like an axis a technique does not read: refused */
+    if (rc == 0 && b && b->requires && !dm_run_has_counter(&run, b->requires)) {
+        dm_str_printf(err, "%s has no counter '%s', which model %s is about: add %s to measure.counters of "
+                      "its sweep and run it again (docs/counters.md)", a->dir, b->requires, spec.name, b->requires);
+        rc = DM_ERR_NOTFOUND;
+    }
     /* a response the run never recorded: nothing to fit, and the sweep
      * option that adds it (a response that is an axis is checked by
      * fitting_run) */

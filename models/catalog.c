@@ -37,11 +37,11 @@ static const models_builtin catalog__models[] = {
       "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_prim*ClippingOutputPrimitives + c_px*SamplesPassed",
       "WallTime",
       "frame time as a non-negative sum of per-stage costs (vertex, tessellation, primitive, pixel)",
-      catalog__nonneg5, 5, NULL },
+      catalog__nonneg5, 5, NULL, NULL },
     { "tess-power", "a + b*tess_level^p", "WallTime",
-      "frame time against the tessellation level L: a + b*L^p", NULL, 0, NULL },
+      "frame time against the tessellation level L: a + b*L^p", NULL, 0, NULL, NULL },
     { "resolution-linear", "a + b*SamplesPassed", "WallTime",
-      "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0, NULL },
+      "frame time against covered pixels: a fixed cost plus a cost per pixel", NULL, 0, NULL, NULL },
     /* one fit per shader variant: the costs per invocation are the variant's,
      * the invocation counts the configuration's (docs/models.md).  c_tp:
      * llvmpipe's draw module, each time it hands a batch of vertices on
@@ -57,7 +57,7 @@ static const models_builtin catalog__models[] = {
       "Instructions",
       "instructions per frame of one shader variant: a cost per vertex, evaluation (growing with the "
       "draw's primitives), primitive and fragment invocation, the fragment's growing with steps and lights",
-      catalog__nonneg_stage, 8, "variant" },
+      catalog__nonneg_stage, 8, "variant", NULL },
     /* The three stage counters, each with the terms of its own stage
      * (docs/models.md, "Per-stage models"): geometry pays per vertex,
      * evaluation and primitive; setup and rasterization per framebuffer
@@ -70,7 +70,7 @@ static const models_builtin catalog__models[] = {
       "GeometryInstructions",
       "instructions of the geometry stages of one shader variant: per vertex, evaluation and primitive, "
       "the evaluation's growing with the draw's primitives",
-      catalog__nonneg_geometry, 5, "variant" },
+      catalog__nonneg_geometry, 5, "variant", NULL },
     /* Setup and rasterization pay per framebuffer pixel (resolution is the
      * pixel count: the frame's clear of colour and depth among it, which
      * rasterizer discard drops from the geometry pass),
@@ -84,14 +84,14 @@ static const models_builtin catalog__models[] = {
       "RasterInstructions",
       "instructions of setup and rasterization of one shader variant: per framebuffer pixel, fragment "
       "block lane run, lane a primitive leaves uncovered, and primitive",
-      catalog__nonneg_raster, 4, "variant" },
+      catalog__nonneg_raster, 4, "variant", NULL },
     { "fragment-instructions",
       "c0 + c_fs*FSInvocations + c_px*SamplesPassed + c_step*FSInvocations*steps + c_pstep*SamplesPassed*steps"
       " + c_light*FSInvocations*light_count",
       "FragmentInstructions",
       "instructions of fragment shading of one shader variant: per fragment invocation and covered pixel, "
       "growing with steps and lights",
-      catalog__nonneg_fragment, 6, "variant" },
+      catalog__nonneg_fragment, 6, "variant", NULL },
     /* The loop's cost is what its SIMD groups run: a group iterates until
      * its slowest fragment is done, so with the same steps a scene whose
      * neighbouring fragments stop at more different steps (a sharp height
@@ -102,10 +102,10 @@ static const models_builtin catalog__models[] = {
       "FragmentInstructions",
       "instructions of fragment shading of one shader variant: per fragment invocation, covered pixel and "
       "trip of the search loop (LoopTrips), growing with lights",
-      catalog__nonneg_trips, 5, "variant" },
+      catalog__nonneg_trips, 5, "variant", "LoopTrips" },
     { "time-from-instructions", "a + b*Instructions", "WallTime",
       "frame time from the frame's instructions: a fixed cost plus a time per instruction",
-      catalog__nonneg2, 2, NULL },
+      catalog__nonneg2, 2, NULL, NULL },
     /* llvmpipe runs the geometry stages on the thread that draws, and
      * rasterizes and shades on all its threads, so an instruction of each
      * stage takes another time (docs/models.md, "Per-stage models"). */
@@ -113,7 +113,7 @@ static const models_builtin catalog__models[] = {
       "WallTime",
       "frame time from the instructions of each stage: a fixed cost plus a time per instruction of the "
       "geometry, raster and fragment stages",
-      catalog__nonneg_time_stages, 4, NULL },
+      catalog__nonneg_time_stages, 4, NULL, NULL },
 };
 
 size_t models_builtin_count(void) { return sizeof catalog__models / sizeof *catalog__models; }

@@ -154,6 +154,8 @@ hcase results/directory-not-run 2 "" -- "$BIN" compare "$G" "$R"
 hcase results/fifo 2 "" -- "$BIN" compare /dev/null "$R"
 hcase results/fit-no-response 2 "has no counter 'FragmentInstructions' (the response of model fragment-instructions)" -- \
   "$BIN" fit "$OUT/ok/latest" --model fragment-instructions
+hcase results/fit-no-required 2 "has no counter 'LoopTrips', which model fragment-trips is about: add LoopTrips to measure.counters" -- \
+  "$BIN" fit "$OUT/ok/latest" --model fragment-trips
 
 # ---- CSV tables (fit --data) ----
 hcase csv/wide 0 "" -- "$BIN" fit --data "$G/wide.csv" --formula "a*c1"
