@@ -58,11 +58,14 @@ echo started >> "$FAKE_VG_LOG"
 echo "==1== valgrind: the 'impossible' happened (simulated)" >&2
 exit 1
 SH
-cat > "$OUT/hang-valgrind" <<'SH'
+# the hang sleeps for a duration no other process on the machine has, so
+# that the check below finds only this test's child
+nap=600.$$$RANDOM
+cat > "$OUT/hang-valgrind" <<SH
 #!/bin/sh
-echo started >> "$FAKE_VG_LOG"
+echo started >> "\$FAKE_VG_LOG"
 echo "==1== valgrind: simulated hang" >&2
-exec sleep 600
+exec sleep $nap
 SH
 chmod +x "$OUT/crash-valgrind" "$OUT/hang-valgrind"
 if grep -q '^  timeout_s:' "$OUT/instr.yaml"; then
@@ -86,5 +89,5 @@ for c in j["configs"]:
 print(sys.argv[2], "ok: every configuration failed with Valgrind's message")
 PY
 done
-pgrep -f "sleep 600" >/dev/null && { echo "FAIL: the hung Valgrind child was left running"; exit 1; }
+pgrep -f "sleep $nap" >/dev/null && { echo "FAIL: the hung Valgrind child was left running"; exit 1; }
 echo "3 passed, 0 failed"
