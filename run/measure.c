@@ -259,6 +259,25 @@ static const char *measure__isolation_problem(const tech_item_info *info)
     return NULL;
 }
 
+/* Prepares c's configuration again with debug view `view` into *item and
+ * draws `frames` frames of it (its JIT outside any sample).  Returns 0, or
+ * nonzero with item->id 0 when it cannot be built (the reason in c's log). */
+static int measure__prepare_view(mscene *m, mconf *c, tech_debug_view view, int frames, tech_item *item)
+{
+    tech_renderer_set_debug_view(m->r, view);
+    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, item, &c->log);
+    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
+    if (gl_context_take_messages(m->gl, &c->log) > 0 || rc != 0) {
+        item->id = 0;
+        return rc ? rc : DM_ERR_GL;
+    }
+    tech_item full = c->item;
+    c->item = *item;
+    measure__frames(m, c, frames);
+    c->item = full;
+    return 0;
+}
+
 /* The raster pass's item (MinimalShadingTime): the configuration with the
  * minimal fragment shader, warmed up (its JIT outside the samples); else
  * c->min_why says why there is none. */
@@ -272,18 +291,9 @@ static void measure__prepare_minimal(mscene *m, mconf *c)
         c->min_why = why ? dm_xstrdup(why) : NULL;
         return;
     }
-    tech_renderer_set_debug_view(m->r, TECH_DEBUG_MINIMAL_FS);
-    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item_min, &c->log);
-    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
-    if (gl_context_take_messages(m->gl, &c->log) > 0 || rc != 0) {
-        c->item_min.id = 0;
+    int warm = m->job->sweep->measure.warmup_frames > 0 ? m->job->sweep->measure.warmup_frames : 1;
+    if (measure__prepare_view(m, c, TECH_DEBUG_MINIMAL_FS, warm, &c->item_min) != 0)
         c->min_why = dm_xstrdup("the minimal fragment shader cannot be built (see log)");
-        return;
-    }
-    tech_item full = c->item;
-    c->item = c->item_min;
-    measure__frames(m, c, m->job->sweep->measure.warmup_frames > 0 ? m->job->sweep->measure.warmup_frames : 1);
-    c->item = full;
 }
 
 _Static_assert(TECH_LOOP_TRIPS_BINDING == COUNTERS_LOOP_TRIPS_BINDING,
@@ -300,18 +310,8 @@ static void measure__prepare_trips(mscene *m, mconf *c, const char *const *names
         wanted |= strcmp(names[i], "LoopTrips") == 0;
     if (!wanted)
         return;
-    tech_renderer_set_debug_view(m->r, TECH_DEBUG_LOOP_TRIPS);
-    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item_trips, &c->log);
-    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
-    if (gl_context_take_messages(m->gl, &c->log) > 0 || rc != 0) {
-        c->item_trips.id = 0;
+    if (measure__prepare_view(m, c, TECH_DEBUG_LOOP_TRIPS, 1, &c->item_trips) != 0)
         dm_str_cat(&c->log, "LoopTrips: the counting shader cannot be built (above)\n");
-        return;
-    }
-    tech_item full = c->item;
-    c->item = c->item_trips;
-    measure__frames(m, c, 1);
-    c->item = full;
 }
 
 /* Prepare + warm-up + statistics pass for one configuration. */
