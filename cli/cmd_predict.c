@@ -132,6 +132,29 @@ static void predict__heldout_print(const predict_model *m)
     }
 }
 
+/* How well each way of predicting WallTime did on the runs' own
+ * configurations held out of the fits, and which one is used. */
+static void predict__time_heldout_print(const predict_model *m)
+{
+    const predict_heldout *h = &m->time_heldout;
+    int stage_times = h->n >= 3 && isfinite(h->cv_mape);
+    const dm_fit_result *st = m->n_time_st == 1 ? &m->time_st[0] : NULL;
+    const dm_fit_result *ti = m->n_time == 1 ? &m->time[0] : NULL;
+    if (!ti && !st)
+        return;
+    int st_used = !stage_times && st && (!ti || !(ti->cv_mape < st->cv_mape));
+    printf("held-out error of WallTime on the runs' configurations (k-fold CV-MAPE):\n  ");
+    if (stage_times)
+        printf("stage times summed %.2f %% over %d configurations (used); ", h->cv_mape, h->n);
+    else
+        printf("stage times: unavailable (add GeometryTime and MinimalShadingTime to the runs' counters); ");
+    if (st)
+        printf("time-from-stages %.2f %%%s; ", st->cv_mape, st_used ? " (used)" : "");
+    if (ti)
+        printf("time-from-instructions %.2f %%%s", ti->cv_mape, !stage_times && !st_used ? " (used)" : "");
+    printf("\n");
+}
+
 /* Loads the --from runs into *runs (n of them, dirs[] their names). */
 static int predict__load(const char *from, dm_run_result **runs, char ***dirs, size_t *n)
 {
@@ -187,6 +210,7 @@ int cli_predict(int argc, char **argv)
         if (unpred.len)
             printf("not predicted (never guessed):\n%s", dm_str_get(&unpred));
         predict__heldout_print(&m);
+        predict__time_heldout_print(&m);
         dm_str_free(&unpred);
         predict_free(&m);
         rc = DM_EXIT_OK;

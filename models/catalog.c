@@ -103,6 +103,22 @@ static const models_builtin catalog__models[] = {
       "instructions of fragment shading of one shader variant: per fragment invocation, covered pixel and "
       "trip of the search loop (LoopTrips), growing with lights",
       catalog__nonneg_trips, 5, "variant", "LoopTrips" },
+    /* Each stage's own time, from the timed isolation passes: GeometryTime
+     * (rasterizer discard), SetupRasterTime = MinimalShadingTime -
+     * GeometryTime and FragmentTime = WallTime - MinimalShadingTime.  Each
+     * stage's price of an instruction is fitted where that stage is the
+     * whole response; fitted to WallTime instead (time-from-stages) the
+     * geometry price rests on frames it is a few per cent of and does not
+     * carry to frames it dominates (docs/models.md, "Frame time"). */
+    { "geometry-time", "a + b*GeometryInstructions", "GeometryTime",
+      "time of the geometry stages (rasterizer discard pass) from their instructions",
+      catalog__nonneg2, 2, NULL, NULL },
+    { "raster-time", "a + b*RasterInstructions", "SetupRasterTime",
+      "time of setup and rasterization (minimal-shader pass minus the geometry pass) from their instructions",
+      catalog__nonneg2, 2, NULL, "MinimalShadingTime" },
+    { "fragment-time", "a + b*FragmentInstructions", "FragmentTime",
+      "time of fragment shading (the frame minus the minimal-shader pass) from its instructions",
+      catalog__nonneg2, 2, NULL, "MinimalShadingTime" },
     { "time-from-instructions", "a + b*Instructions", "WallTime",
       "frame time from the frame's instructions: a fixed cost plus a time per instruction",
       catalog__nonneg2, 2, NULL, NULL },

@@ -20,6 +20,9 @@ static const char *const predict__stages[3] = {"GeometryInstructions", "RasterIn
 static const char *const predict__stage_models[3] = {"geometry-instructions", "raster-instructions",
                                                      "fragment-instructions"};
 
+/* each stage's time from its instructions (models/catalog.c) */
+static const char *const predict__time_models[3] = {"geometry-time", "raster-time", "fragment-time"};
+
 const char *predict_run_missing(const dm_run_result *run)
 {
     for (size_t i = 0; i < PREDICT_N_NEEDED; i++)
@@ -55,6 +58,26 @@ static double predict__cv_of(const dm_fit_result *fit, const char *key)
     return NAN;
 }
 
+/* The held-out predictions of f[0], f[1] and f[2] of each configuration
+ * f[0] was fitted to, summed, against its `counter`: their CV-MAPE. */
+static predict_heldout predict__sum_heldout(const dm_fit_result *const f[3], const dm_run_result *train,
+                                            const char *counter, const char *variant)
+{
+    double ape = 0;
+    int n = 0;
+    for (int k = 0; f[0]->point_labels && f[1] && f[2] && k < f[0]->n_points; k++) {
+        const char *key = f[0]->point_labels[k];
+        double sum = predict__cv_of(f[0], key) + predict__cv_of(f[1], key) + predict__cv_of(f[2], key);
+        const dm_config_result *c = dm_run_config(train, key);
+        const dm_counter_result *r = c ? dm_config_counter(c, counter) : NULL;
+        if (isfinite(sum) && r && r->available && r->value > 0) {
+            ape += fabs(sum - r->value) / r->value;
+            n++;
+        }
+    }
+    return (predict_heldout){ dm_xstrdup(variant), n ? 100 * ape / n : NAN, n };
+}
+
 /* Per variant: the stage models' held-out predictions of each measured
  * configuration, summed, against its Instructions (predict_heldout). */
 static void predict__heldout(predict_model *m)
@@ -65,19 +88,7 @@ static void predict__heldout(predict_model *m)
             continue;
         const dm_fit_result *f[3] = {g, predict_fit_of(m->stage[1], m->n_stage[1], g->group[0].value),
                                      predict_fit_of(m->stage[2], m->n_stage[2], g->group[0].value)};
-        double ape = 0;
-        int n = 0;
-        for (int k = 0; f[1] && f[2] && k < g->n_points; k++) {
-            const char *key = g->point_labels[k];
-            double sum = predict__cv_of(f[0], key) + predict__cv_of(f[1], key) + predict__cv_of(f[2], key);
-            const dm_config_result *c = dm_run_config(&m->train, key);
-            const dm_counter_result *r = c ? dm_config_counter(c, "Instructions") : NULL;
-            if (isfinite(sum) && r && r->available && r->value > 0) {
-                ape += fabs(sum - r->value) / r->value;
-                n++;
-            }
-        }
-        predict_heldout h = { dm_xstrdup(g->group[0].value), n ? 100 * ape / n : NAN, n };
+        predict_heldout h = predict__sum_heldout(f, &m->train, "Instructions", g->group[0].value);
         DM_VEC_PUSH(m->heldout, m->n_heldout, h);
     }
 }
@@ -116,6 +127,16 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
         predict__fit(u, "time-from-instructions", "WallTime", NULL, 0, &m->time, &m->n_time);
     if (dm_run_has_counter(u, "WallTime") && m->n_stage[0] && m->n_stage[1] && m->n_stage[2])
         predict__fit(u, "time-from-stages", "WallTime", NULL, 0, &m->time_st, &m->n_time_st);
+    /* each stage's own time, where the runs timed the isolation passes */
+    m->time_heldout.cv_mape = NAN;
+    if (m->n_time_st && dm_run_has_counter(u, "GeometryTime") && dm_run_has_counter(u, "MinimalShadingTime")) {
+        for (int st = 0; st < 3; st++)
+            predict__fit(u, predict__time_models[st], NULL, NULL, 0, &m->time_stage[st], &m->n_time_stage[st]);
+        if (m->n_time_stage[0] == 1 && m->n_time_stage[1] == 1 && m->n_time_stage[2] == 1) {
+            const dm_fit_result *f[3] = {m->time_stage[0], m->time_stage[1], m->time_stage[2]};
+            m->time_heldout = predict__sum_heldout(f, u, "WallTime", "all");
+        }
+    }
     for (int st = 0; st < 3; st++)
         for (size_t i = 0; i < u->n_configs; i++) {
             const dm_counter_result *r = u->configs[i].ok ? dm_config_counter(&u->configs[i], predict__stages[st])
@@ -206,38 +227,51 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
     out->instr = instr;
     out->instr_lo = instr * (1 - ei);
     out->instr_hi = instr * (1 + ei);
-    /* Frame time from each stage's instructions when the parts are
-     * predicted (an instruction of the geometry stages, on one thread,
-     * takes longer) and that fit predicts the runs' held-out frames at
-     * least as well as the one from the frame's instructions; else from
-     * the frame's. */
-    const dm_fit_result *t = NULL;
+    /* Frame time.  With the timed stage passes: each stage's time from
+     * its part, at the price of an instruction that stage's own pass
+     * measured.  Else from each stage's instructions fitted to the frame's
+     * time (an instruction of the geometry stages, on one thread, takes
+     * longer) when that fit predicts the runs' held-out frames at least as
+     * well as the one from the frame's instructions; else from the
+     * frame's. */
     double se_ns = 0;   /* what the parameters' standard errors make of it beyond the runs */
-    if (m->n_time_st == 1 && isfinite(sum) && sum > 0 &&
-        (m->n_time != 1 || !(m->time[0].cv_mape < m->time_st[0].cv_mape))) {
+    double et_fit = NAN;   /* the time fit's held-out error, % */
+    int by_stage_times = m->time_heldout.n >= 3 && isfinite(m->time_heldout.cv_mape);
+    if (isfinite(sum) && sum > 0 && (by_stage_times || (m->n_time_st == 1 &&
+        (m->n_time != 1 || !(m->time[0].cv_mape < m->time_st[0].cv_mape))))) {
         static const char *const b[3] = {"b_geo", "b_raster", "b_frag"};
-        t = &m->time_st[0];
-        /* Within the runs' range the time fit's CV-MAPE says its error;
-         * a stage part beyond the largest measured adds the excess times
-         * its cost's standard error (the standard errors alone, without
-         * their covariance, overstate the error of an interpolation). */
+        /* Within the runs' range the time fit's held-out error says its
+         * error; a stage part beyond the largest measured adds the excess
+         * times its cost's standard error (the standard errors alone,
+         * without their covariance, overstate the error of an
+         * interpolation). */
         double se = NAN;
-        out->wall_ns = predict__param(t, "a", NULL);
+        const dm_fit_result *t = by_stage_times ? NULL : &m->time_st[0];
+        out->wall_ns = t ? predict__param(t, "a", NULL) : 0;
         for (int s = 0; s < 3; s++) {
-            out->wall_ns += predict__param(t, b[s], &se) * out->part[s];
+            if (t)
+                out->wall_ns += predict__param(t, b[s], &se) * out->part[s];
+            else
+                out->wall_ns += predict__param(m->time_stage[s], "a", NULL) +
+                                predict__param(m->time_stage[s], "b", &se) * out->part[s];
             double excess = out->part[s] - m->stage_max[s];
             se_ns += excess > 0 ? (isfinite(se) ? pow(se * excess, 2) : INFINITY) : 0;
         }
         se_ns = sqrt(se_ns);
+        et_fit = t ? t->cv_mape : m->time_heldout.cv_mape;
+        out->wall_by = t ? "time-from-stages" : "stage times";
     } else if (m->n_time == 1) {
-        t = &m->time[0];
+        const dm_fit_result *t = &m->time[0];
         out->wall_ns = predict__param(t, "a", NULL) + predict__param(t, "b", NULL) * instr;
+        et_fit = t->cv_mape;
+        out->wall_by = "time-from-instructions";
     }
-    if (t) {
-        /* the instructions' and the time fit's errors, and, far from the
-         * configurations fitted, its parameters' standard errors */
+    if (out->wall_by) {
+        /* the instructions' and the time fit's errors, the machine's
+         * speed between runs and, far from the configurations fitted, its
+         * parameters' standard errors */
         double ep = out->wall_ns > 0 ? 2 * se_ns / out->wall_ns : 0;
-        double et = sqrt(ei * ei + pow(2 * t->cv_mape / 100, 2) + ep * ep);
+        double et = sqrt(ei * ei + pow(2 * et_fit / 100, 2) + pow(PREDICT_RUN_SPREAD, 2) + ep * ep);
         out->wall_lo = fmax(0, out->wall_ns * (1 - et));   /* no frame takes less than nothing */
         out->wall_hi = out->wall_ns * (1 + et);
     }
@@ -264,6 +298,9 @@ void predict_free(predict_model *m)
         predict__free_fits(m->stage[st], m->n_stage[st]);
     predict__free_fits(m->time, m->n_time);
     predict__free_fits(m->time_st, m->n_time_st);
+    for (int st = 0; st < 3; st++)
+        predict__free_fits(m->time_stage[st], m->n_time_stage[st]);
+    free(m->time_heldout.variant);
     for (size_t i = 0; i < m->n_heldout; i++)
         free(m->heldout[i].variant);
     free(m->heldout);

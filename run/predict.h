@@ -6,8 +6,10 @@
  * The costs per invocation come from fits per shader variant: one per
  * stage counter with that stage's own model (geometry-, raster- and
  * fragment-instructions) when the runs have the stage counters, else the
- * whole-frame stage-instructions; frame time from time-from-stages or
- * time-from-instructions, whichever has the lower CV-MAPE on the runs.  A
+ * whole-frame stage-instructions.  Frame time: the sum of each stage's
+ * time (geometry-, raster- and fragment-time) when the runs have the timed
+ * stage passes; else time-from-stages or time-from-instructions, whichever
+ * has the lower CV-MAPE on the runs.  A
  * configuration of a variant the runs never measured is not predicted,
  * never guessed.
  */
@@ -23,6 +25,12 @@
  * or the pilot frame measure them for the configurations to predict). */
 #define PREDICT_N_COUNTS 7
 extern const char *const predict_counts[PREDICT_N_COUNTS];
+
+/* How far the machine's own speed may move a frame time between two runs
+ * (the fitted runs and the one predicted): compare's --run-spread default
+ * (docs/ci-gating.md, "The machine interval").  Part of every predicted
+ * WallTime's interval; it is a time of another run being predicted. */
+#define PREDICT_RUN_SPREAD 0.10
 
 /* The counters the runs must have for any prediction (the stage counters,
  * with SamplesPassed, are used when present). */
@@ -45,6 +53,13 @@ typedef struct predict_model {
     double stage_max[3];   /* the largest value of each stage counter the runs measured */
     predict_heldout *heldout;   /* per variant, when the runs have the stage counters */
     size_t n_heldout;
+    /* geometry-, raster- and fragment-time: each stage's time from its
+     * instructions, when the runs have the timed passes (GeometryTime,
+     * MinimalShadingTime) and the stage counters; their held-out
+     * predictions summed against WallTime (CV-MAPE, %; NaN: none) */
+    dm_fit_result *time_stage[3];
+    size_t n_time_stage[3];
+    predict_heldout time_heldout;
 } predict_model;
 
 typedef struct predict_result {
@@ -52,6 +67,7 @@ typedef struct predict_result {
     double instr, instr_lo, instr_hi;   /* frame Instructions, ±2 CV-MAPE */
     double part[3];          /* geometry, raster, fragment; NaN without the stage counters */
     double wall_ns, wall_lo, wall_hi;   /* NaN without a WallTime fit */
+    const char *wall_by;     /* the way it was predicted: "stage times", "time-from-stages", ... */
     int beyond_stage;        /* the stage whose part is the most beyond the runs' largest, -1 = none is */
     double beyond;           /* that part over the largest the runs measured (> 1) */
 } predict_result;

@@ -4,7 +4,8 @@
 #    three resolutions), it predicts the held-out predict_new.yaml (160x160,
 #    pom at 24 steps) within 5 % of the Instructions measured there, as the
 #    sum of the per-stage models (the stage shares are printed), and
-#    lists phong, a variant never measured, as not predicted;
+#    lists phong, a variant never measured, as not predicted; its frame
+#    times are the sum of the timed stage passes' models;
 #  - refuses runs of another machine fingerprint naming the key (exit 2),
 #    unless --allow-env-mismatch, and a run without a needed counter.
 set -uo pipefail
@@ -62,6 +63,18 @@ rows = re.findall(r"\n    (stages summed.*)", held[1]) if len(held) == 2 else []
 errs = [float(v) for r in rows for v in re.findall(r"([\d.]+) %", r)]
 if len(rows) != 2 or not all("(used)" in r for r in rows) or not errs or max(errs) > 5:
     bad.append(f"held-out errors of normal and pom missing, unmarked or above 5 %: {rows}")
+# the runs timed the stage passes: WallTime is the stage times' sum, and
+# every predicted line has a WallTime interval around it
+wt = re.search(r"held-out error of WallTime on the runs' configurations \(k-fold CV-MAPE\):\n  stage times summed "
+               r"([\d.]+) % over (\d+) configurations \(used\); time-from-stages [\d.]+ %; "
+               r"time-from-instructions [\d.]+ %", unpred)
+if not wt or int(wt.group(2)) < 3:
+    bad.append("no WallTime held-out line with the stage times summed used")
+for l in lines[1:]:
+    w = re.search(r"WallTime (\S+) ms \[(\S+), (\S+)\]", l)
+    if l.split() and l.split()[0] in meas and "phong" not in l and not (
+            w and float(w.group(2)) < float(w.group(1)) < float(w.group(3))):
+        bad.append(f"no WallTime with its interval: {l}")
 for b in bad:
     print("FAIL:", b)
 sys.exit(1 if bad else 0)
