@@ -23,9 +23,11 @@ if [ -z "$fit" ]; then
 fi
 echo "load average: $(cut -d' ' -f1-3 /proc/loadavg)"
 "$B" predict "$here/bench/extrapolate_new.yaml" --from "$fit" > "${TMPDIR:-/tmp}/extrapolate.pred"
-python3 - "${TMPDIR:-/tmp}/extrapolate.pred" "$new/results.json" <<'PY'
-import json, re, sys
-meas = {c["key"]: c for c in json.load(open(sys.argv[2]))["configs"]}
+python3 - "${TMPDIR:-/tmp}/extrapolate.pred" "$new/results.json" "$fit/results.json" <<'PY'
+import json, re, statistics, sys
+newj, fitj = json.load(open(sys.argv[2])), json.load(open(sys.argv[3]))
+meas = {c["key"]: c for c in newj["configs"]}
+ratios = []
 def med(c, n):
     x = c["counters"].get(n, {})
     return x.get("median", x.get("value"))
@@ -56,6 +58,8 @@ for l in open(sys.argv[1]).read().splitlines():
     ei = 100 * (pi / mi - 1)
     ew = 100 * (float(wt.group(1)) / mw - 1) if wt else float("nan")
     worst = [max(worst[0], abs(ei)), max(worst[1], abs(ew))]
+    if wt:
+        ratios.append(mw / float(wt.group(1)))
     # "in"/"OUT": the measured value inside the prediction interval or not
     ii = "in" if ilo <= mi <= ihi else "OUT"
     iw = ("in" if float(wt.group(2)) <= mw <= float(wt.group(3)) else "OUT") if wt else "-"
@@ -63,5 +67,14 @@ for l in open(sys.argv[1]).read().splitlines():
     beyond = f"{ex.group(1)} {float(ex.group(2)):.3g}x" if ex else ""
     print(f"{name:44s} {pi:13.0f} / {mi:13.0f} {ei:+6.2f}% {ii:3s} {float(wt.group(1)) if wt else float('nan'):10.3f} / {mw:10.3f} {ew:+6.1f}% {iw:3s} {beyond}")
 print(f"worst: Instructions {worst[0]:.2f} %, WallTime {worst[1]:.1f} % (in/OUT: the measured value inside the prediction interval)")
+# a shift common to every configuration is the machine's speed between the
+# two runs, not the model: the calibration workload of each run beside it
+def calib(j, k):
+    e = j["run"]["environment"]
+    return (float(e[f"calibration_{k}_ns_start"]) + float(e[f"calibration_{k}_ns_end"])) / 2
+if ratios:
+    print(f"common mode: measured/predicted WallTime median x{statistics.median(ratios):.3f}; the calibration "
+          f"workload took x{calib(newj, 'cpu') / calib(fitj, 'cpu'):.3f} (CPU kernel) and "
+          f"x{calib(newj, 'draw') / calib(fitj, 'draw'):.3f} (draw) of the fitted run's time in the new one")
 print("\n".join(heldout))
 PY

@@ -7,9 +7,10 @@
 #  - the models' CV-MAPE: pipeline-linear on WallTime (before), and
 #    stage-instructions on Instructions per variant, the three per-stage
 #    models on their stage counters and
-#    time-from-instructions (after), and the held-out error of each
-#    variant's Instructions predicted by `dmbench predict` (the stage
-#    models summed, or stage-instructions, whichever predicted better),
+#    time-from-instructions, time-from-stages and the three stage-time
+#    models (after), and the held-out error of each variant's Instructions
+#    predicted by `dmbench predict` (the stage models summed, or
+#    stage-instructions, whichever predicted better) and of WallTime,
 #  - the cost of the stage windows in the counting child (its log).
 # Usage: bench/stages.sh [RUN_DIR]   (DMBENCH: the binary, default build/dmbench)
 set -euo pipefail
@@ -40,11 +41,12 @@ for t, s in by.items():
     print(f"  {t:20s} geometry {m[0]:5.1f} %  raster {m[1]:5.1f} %  fragment {m[2]:5.1f} %  ({len(s)} configurations)")
 PY
 for m in "pipeline-linear" "stage-instructions" "geometry-instructions" "raster-instructions" \
-         "fragment-instructions" "fragment-trips" "time-from-instructions"; do
+         "fragment-instructions" "fragment-trips" "time-from-instructions" "time-from-stages" \
+         "geometry-time" "raster-time" "fragment-time"; do
   echo "== fit --model $m"
   "$B" fit "$run" --model "$m" 2>/dev/null | grep -E "^model|CV-MAPE" | sed 's/^/  /' || true
 done
-echo "== predict: held-out error of Instructions per variant"
+echo "== predict: held-out error of Instructions per variant, and of WallTime"
 "$B" predict "$here/bench/stages_default.yaml" --from "$run" 2>/dev/null | sed -n '/^held-out error/,$p' || true
 logs=$(ls "$run"/callgrind/child*.log 2>/dev/null)   # one per counting child
 if [ -n "$logs" ]; then
