@@ -147,7 +147,9 @@ static void predict__time_heldout_print(const predict_model *m)
     if (stage_times)
         printf("stage times summed %.2f %% over %d configurations (used); ", h->cv_mape, h->n);
     else
-        printf("stage times: unavailable (add GeometryTime and MinimalShadingTime to the runs' counters); ");
+        printf("stage times: unavailable (%s); ", st ? "the runs lack GeometryTime or MinimalShadingTime: add both "
+                                                       "to measure.counters"
+                                                     : "the runs lack the stage counters");
     if (st)
         printf("time-from-stages %.2f %%%s; ", st->cv_mape, st_used ? " (used)" : "");
     if (ti)
