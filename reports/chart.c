@@ -310,6 +310,21 @@ static double stage_ms(const chart_model *m, const dm_fit_result *f, const dm_co
     return isfinite(v) ? v * n / 1e6 : 0;
 }
 
+/* Measured ms of stage k of c (geometry, setup and raster, fragment) from
+ * its timed isolation passes: GeometryTime, MinimalShadingTime −
+ * GeometryTime and WallTime − MinimalShadingTime (medians; a difference
+ * that noise puts below 0 is 0); NaN when c has not both passes. */
+static double measured_stage_ms(const dm_config_result *c, size_t k)
+{
+    const dm_counter_result *g = dm_config_counter(c, "GeometryTime");
+    const dm_counter_result *m = dm_config_counter(c, "MinimalShadingTime"), *w = report__frame_time(c);
+    if (!g || !m || !w || !g->available || !m->available || !isfinite(g->median) || !isfinite(m->median))
+        return NAN;
+    double v = k == 0 ? g->median : k == 1 ? m->median - g->median : w->median - m->median;
+    return fmax(0, v) / 1e6;
+}
+#define CHART_MEASURED_STAGES 3
+
 /* Labels the bar groups (vertical, small) and draws a colour legend on top. */
 static void bar_labels_and_legend(const dm_run_result *run, const size_t *rows, size_t n,
                                   const char *const *names, size_t nn, PLINT col0)
@@ -353,6 +368,26 @@ static void draw_stages(const dm_run_result *run, const size_t *rows, size_t n, 
     bar_labels_and_legend(run, rows, n, names, m->n + 1, CHART_SERIES_COL0);
 }
 
+/* Stacked measured stage times (left) beside the measured median (right). */
+static void draw_measured_stages(const dm_run_result *run, const size_t *rows, size_t n)
+{
+    static const char *const names[CHART_MEASURED_STAGES + 1] = {"geometry", "setup+raster", "fragment",
+                                                                 "frame"};
+    for (size_t i = 0; i < n; i++) {
+        const dm_config_result *c = &run->configs[rows[i]];
+        double y = 0;
+        for (size_t k = 0; k < CHART_MEASURED_STAGES; k++) {
+            double h = measured_stage_ms(c, k);
+            if (isfinite(h)) {
+                bar(i + 0.08, i + 0.5, y, y + h, CHART_SERIES_COL0 + (PLINT)k);
+                y += h;
+            }
+        }
+        bar(i + 0.5, i + 0.92, 0, report__frame_time(c)->median / 1e6, CHART_SERIES_COL0 + CHART_MEASURED_STAGES);
+    }
+    bar_labels_and_legend(run, rows, n, names, CHART_MEASURED_STAGES + 1, CHART_SERIES_COL0);
+}
+
 /* The key counters shown relative to each one's maximum over the bars. */
 static size_t key_counters(const dm_run_result *run, const size_t *rows, size_t n, const char *out[4])
 {
@@ -384,10 +419,11 @@ static void draw_counters(const dm_run_result *run, const size_t *rows, size_t n
     bar_labels_and_legend(run, rows, n, names, nk, CHART_SERIES_COL0 + 1);
 }
 
-/* Per configuration: a model's estimate per stage next to the measured
- * median when a fit exists (time-from-stages over the exact stage counters
- * before pipeline-linear), else the key counters normalised to their
- * maxima.  At most CHART_MAX_BARS configurations, the slowest;
+/* Per configuration: the stage times its timed isolation passes measured
+ * next to the frame's median, where the run has them; else a model's
+ * estimate per stage when a fit exists (time-from-stages over the exact
+ * stage counters before pipeline-linear); else the key counters
+ * normalised to their maxima.  At most CHART_MAX_BARS configurations, the slowest;
  * a note says how many were left out. */
 static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *scene)
 {
@@ -398,10 +434,13 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
     size_t skip = nr > CHART_MAX_BARS ? nr - CHART_MAX_BARS : 0, n = nr - skip, nk = 0;
     const size_t *shown = rows + skip;
     const char *names[4];
+    int measured = 0;   /* the timed passes, measured, before any fit's estimate */
+    for (size_t i = 0; i < n && !measured; i++)
+        measured = isfinite(measured_stage_ms(&run->configs[shown[i]], 0));
     /* the first model with a fit good enough for some configuration shown */
     const chart_model *m = NULL, *poor = NULL;
     double hi = 0, poor_r2 = NAN;
-    for (size_t j = 0; j < CHART_N_MODELS && !m; j++)
+    for (size_t j = 0; j < CHART_N_MODELS && !m && !measured; j++)
         for (size_t i = 0; i < n && !m; i++) {
             const dm_config_result *c = &run->configs[shown[i]];
             const dm_fit_result *any = model_fit_any(run, c, &chart_models[j]);
@@ -412,13 +451,15 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
                 poor_r2 = any->r2;
             }
         }
-    int fitted = m != NULL;
+    int fitted = m != NULL || measured;
     for (size_t i = 0; i < n; i++) {
         const dm_config_result *c = &run->configs[shown[i]];
         const dm_fit_result *f = m ? model_fit(run, c, m) : NULL;
         double sum = 0;
         for (size_t k = 0; f && k < m->n; k++)
             sum += stage_ms(m, f, c, k);
+        for (size_t k = 0; measured && k < CHART_MEASURED_STAGES; k++)
+            sum += isfinite(measured_stage_ms(c, k)) ? measured_stage_ms(c, k) : 0;
         hi = fmax(hi, fmax(sum, report__frame_time(c)->median / 1e6));
     }
     if (!fitted)
@@ -434,12 +475,17 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
     char *file = (fitted || nk) && n ? chart_tmpname() : NULL;
     if (file) {
         char title[96];
-        snprintf(title, sizeof title, "Estimated time per stage (%s fit)", m ? m->model : "");
+        if (measured)
+            snprintf(title, sizeof title, "Measured time per stage (timed isolation passes)");
+        else
+            snprintf(title, sizeof title, "Estimated time per stage (%s fit)", m ? m->model : "");
         chart_frame f = {fitted ? title : "Key counters per configuration (relative to each maximum)",
                          "", fitted ? "ms" : "fraction of the maximum", 0, (double)n, 0,
                          fitted ? hi * 1.08 : 1.08, bottom, 1};
         chart_open(file, &f);
-        if (fitted)
+        if (measured)
+            draw_measured_stages(run, shown, n);
+        else if (fitted)
             draw_stages(run, shown, n, m);
         else
             draw_counters(run, shown, n, names, nk);

@@ -846,7 +846,8 @@ static void test_html_breakdown_fit_and_cap(void **state)
 /* With the stage counters and a time-from-stages fit, the breakdown is that
  * fit's time per stage over the exact stage instructions, before the
  * pipeline-linear fit the run also has; without the stage counters, the
- * pipeline-linear one again. */
+ * pipeline-linear one again; with the timed stage passes, what they
+ * measured, before either fit. */
 static void test_html_breakdown_time_from_stages(void **state)
 {
     (void)state;
@@ -856,10 +857,13 @@ static void test_html_breakdown_time_from_stages(void **state)
     static const char *const stage[3] = {"GeometryInstructions", "RasterInstructions", "FragmentInstructions"};
     for (size_t i = 0; i < 4; i++) {
         dm_config_result *c = &run.configs[i];
-        c->counters = dm_xrealloc(c->counters, 5 * sizeof *c->counters);
+        c->counters = dm_xrealloc(c->counters, 7 * sizeof *c->counters);
         fixture_det(&c->counters[1], "SamplesPassed", 1000.0 * (double)(i + 1));
         for (int k = 0; k < 3; k++)
             fixture_det(&c->counters[2 + k], stage[k], 1e6 * (double)(k + 1));
+        /* the timed isolation passes, used from the last step on */
+        fixture_timed(&c->counters[5], "GeometryTime", 0.9e5, 1e5, 1.1e5);
+        fixture_timed(&c->counters[6], "MinimalShadingTime", 3.9e5, 4e5, 4.1e5);
         c->n_counters = 5;
     }
     static const char *const model[2] = {"pipeline-linear", "time-from-stages"};
@@ -892,8 +896,13 @@ static void test_html_breakdown_time_from_stages(void **state)
     assert_int_equal(chart_titles(t, titles, 8), 2);
     assert_string_equal(titles[1], "Estimated time per stage (pipeline-linear fit)");
     free(t);
+    /* the timed passes measured: the measured stage times, before any fit */
     for (size_t i = 0; i < 4; i++)
-        run.configs[i].n_counters = 5;
+        run.configs[i].n_counters = 7;
+    t = html_of(&run, p);
+    assert_int_equal(chart_titles(t, titles, 8), 2);
+    assert_string_equal(titles[1], "Measured time per stage (timed isolation passes)");
+    free(t);
     dm_run_free(&run);
     unlink(p);
     free(p);
