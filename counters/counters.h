@@ -124,6 +124,12 @@ int counters_pass_minimal_fs(const counters_session *s, int pass);
 /* 1 when, in pass p, the caller must draw the same work with its loop-trip
  * instrumented shader (LoopTrips). */
 int counters_pass_loop_trips(const counters_session *s, int pass);
+/* Untimed frames the caller draws in pass p after counters_pass_begin and
+ * before the pass's sample: 1 in the geometry and raster passes, whose
+ * timed frames follow a switch of state (rasterizer discard, the minimal
+ * program) that llvmpipe pays for in the first frame after it (docs/
+ * counters.md, "The same split as times"); 0 in the others. */
+int counters_pass_warm_frames(const counters_session *s, int pass);
 /* Appends the pass plan of the selection names[0..n) as text to out
  * ("dmbench list counters --passes A,B"): the pass count, each pass with its
  * counters, then caller-fed, derived (with formulas) and unavailable

@@ -70,6 +70,12 @@ int counters_pass_loop_trips(const counters_session *s, int pass)
     return pass >= 0 && pass < s->nplan && s->plan[pass] == COUNTERS__PASS_LOOPS;
 }
 
+int counters_pass_warm_frames(const counters_session *s, int pass)
+{
+    return pass >= 0 && pass < s->nplan &&
+           (s->plan[pass] == COUNTERS__PASS_GEOMETRY || s->plan[pass] == COUNTERS__PASS_RASTER);
+}
+
 const char *counters_last_error(const counters_session *s)
 {
     return s->err;

@@ -167,6 +167,8 @@ static int measure__session(mscene *m, mconf *c, const char **names, size_t n, i
         if (counters_pass_loop_trips(s, p))
             c->item = c->item_trips;   /* the same draws, the search loop counting its trips */
         rc = counters_pass_begin(s, p);
+        if (rc == 0 && c->item.id)   /* the stage passes' frames in their steady state */
+            measure__frames(m, c, counters_pass_warm_frames(s, p));
         rc = rc ? rc : counters_sample_begin(s, 0);
         if (rc == 0 && c->item.id)
             measure__frames(m, c, frames);

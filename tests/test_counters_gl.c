@@ -334,6 +334,22 @@ static void test_pass_plans(void **state)
     assert_int_equal(plan_of(b, 3, "timing,geometry,statistics"), 3);
     const char *c[] = {"RasterTime"};                /* WallTime - GeometryTime */
     assert_int_equal(plan_of(c, 1, "timing,geometry"), 2);
+    /* the stage passes, and the untimed frame each draws before its
+     * sample (the timing and statistics passes none) */
+    const char *g[] = {"WallTime", "VSInvocations", "GeometryTime", "MinimalShadingTime"};
+    assert_int_equal(plan_of(g, 4, "timing,geometry,raster,statistics"), 4);
+    counters_session *w;
+    counters_session_create(F.ctx, &w);
+    for (size_t i = 0; i < 4; i++)
+        counters_enable(w, g[i]);
+    int np;
+    counters_num_passes(w, &np);
+    for (int p = 0; p < np; p++)
+        assert_int_equal(counters_pass_warm_frames(w, p),
+                         strcmp(counters_pass_name(w, p), "geometry") == 0 ||
+                         strcmp(counters_pass_name(w, p), "raster") == 0);
+    assert_int_equal(counters_pass_warm_frames(w, np), 0);
+    counters_session_destroy(w);
     const char *d[] = {"TextureBytes", "SetupTime"}; /* caller-fed: no pass */
     assert_int_equal(plan_of(d, 2, ""), 0);
     const char *e[] = {"SamplesPassed", "FSInvocations", "PrimitivesGenerated", "GPUTime", "CPUTime"};
