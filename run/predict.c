@@ -187,7 +187,7 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
                              .wall_ns = NAN, .wall_lo = NAN, .wall_hi = NAN, .beyond_stage = -1 };
     out->variant = fitting_variant(pc->params, pc->n_params);
     dm_config_result c = { .key = (char *)pc->key, .ok = 1 };
-    dm_counter_result cr[PREDICT_N_COUNTS];
+    dm_counter_result cr[PREDICT_N_COUNTS + 3];   /* the counts, then the predicted stage parts */
     for (size_t k = 0; k < PREDICT_N_COUNTS; k++)
         cr[k] = (dm_counter_result){ .name = (char *)predict_counts[k], .available = isfinite(counts[k]),
                                      .value = counts[k] };
@@ -236,7 +236,22 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
      * frame's. */
     double se_ns = 0;   /* what the parameters' standard errors make of it beyond the runs */
     double et_fit = NAN;   /* the time fit's held-out error, % */
-    int by_stage_times = m->time_heldout.n >= 3 && isfinite(m->time_heldout.cv_mape);
+    double stage_ns = 0;   /* the stage times' sum: their formulas over the counts and the parts */
+    int by_stage_times = m->time_heldout.n >= 3 && isfinite(m->time_heldout.cv_mape) && isfinite(sum) && sum > 0;
+    if (by_stage_times) {
+        dm_config_result cp = c;
+        for (int s = 0; s < 3; s++)
+            cr[PREDICT_N_COUNTS + s] = (dm_counter_result){ .name = (char *)predict__stages[s], .available = 1,
+                                                            .value = out->part[s] };
+        cp.n_counters = PREDICT_N_COUNTS + 3;
+        for (int s = 0; s < 3 && by_stage_times; s++) {
+            double v = NAN;
+            dm_str w = {0};
+            by_stage_times = predict__one(m->time_stage[s], &m->train, pc, &cp, &v, &w) == 0 && isfinite(v);
+            stage_ns += v;
+            dm_str_free(&w);
+        }
+    }
     if (isfinite(sum) && sum > 0 && (by_stage_times || (m->n_time_st == 1 &&
         (m->n_time != 1 || !(m->time[0].cv_mape < m->time_st[0].cv_mape))))) {
         static const char *const b[3] = {"b_geo", "b_raster", "b_frag"};
@@ -247,13 +262,12 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
          * interpolation). */
         double se = NAN;
         const dm_fit_result *t = by_stage_times ? NULL : &m->time_st[0];
-        out->wall_ns = t ? predict__param(t, "a", NULL) : 0;
+        out->wall_ns = t ? predict__param(t, "a", NULL) : stage_ns;
         for (int s = 0; s < 3; s++) {
             if (t)
                 out->wall_ns += predict__param(t, b[s], &se) * out->part[s];
             else
-                out->wall_ns += predict__param(m->time_stage[s], "a", NULL) +
-                                predict__param(m->time_stage[s], "b", &se) * out->part[s];
+                predict__param(m->time_stage[s], "b", &se);
             double excess = out->part[s] - m->stage_max[s];
             se_ns += excess > 0 ? (isfinite(se) ? pow(se * excess, 2) : INFINITY) : 0;
         }
