@@ -73,8 +73,10 @@ def calib(j, k):
     e = j["run"]["environment"]
     return (float(e[f"calibration_{k}_ns_start"]) + float(e[f"calibration_{k}_ns_end"])) / 2
 if ratios:
-    print(f"common mode: measured/predicted WallTime median x{statistics.median(ratios):.3f}; the calibration "
+    cm = statistics.median(ratios)
+    print(f"common mode: measured/predicted WallTime median x{cm:.3f}; the calibration "
           f"workload took x{calib(newj, 'cpu') / calib(fitj, 'cpu'):.3f} (CPU kernel) and "
           f"x{calib(newj, 'draw') / calib(fitj, 'draw'):.3f} (draw) of the fitted run's time in the new one")
+
 print("\n".join(heldout))
 PY

@@ -32,9 +32,6 @@ static const fit_bound catalog__nonneg2[] = { { "a", 0, INFINITY }, { "b", 0, IN
 static const fit_bound catalog__nonneg_geometry_time[] = {
     { "a", 0, INFINITY }, { "b", 0, INFINITY }, { "b_walk", 0, INFINITY } };
 
-static const fit_bound catalog__nonneg_raster_time[] = {
-    { "a", 0, INFINITY }, { "b", 0, INFINITY }, { "b_prim", 0, INFINITY } };
-
 static const fit_bound catalog__nonneg_time_stages[] = {
     { "a", 0, INFINITY }, { "b_geo", 0, INFINITY }, { "b_raster", 0, INFINITY }, { "b_frag", 0, INFINITY } };
 
@@ -116,22 +113,20 @@ static const models_builtin catalog__models[] = {
      * whole response; fitted to WallTime instead (time-from-stages) the
      * geometry price rests on frames it is a few per cent of and does not
      * carry to frames it dominates (docs/models.md, "Frame time"). */
-    /* Two costs the instructions do not show, both memory: llvmpipe's draw
-     * module walks all of a tessellated draw's vertices once per batch of
-     * primitives (c_tp of geometry-instructions; a loop over a buffer that
-     * outgrows the caches), and setup bins every primitive into the
-     * scene's tiles.  Fitted without them on bench/extrapolate_fit.yaml,
-     * the 98-patch plane at level 16 came out -36 % in geometry time and
-     * -42 % in raster time (docs/models.md, "Frame time by stage"). */
+    /* A cost the instructions do not show: llvmpipe's draw module walks
+     * all of a tessellated draw's vertices once per batch of primitives
+     * (c_tp of geometry-instructions), a loop over a buffer that outgrows
+     * the caches.  Fitted without it on bench/extrapolate_fit.yaml, the
+     * 98-patch plane at level 16, 93 % walk, came out -36 % in geometry
+     * time (docs/models.md, "Frame time by stage"). */
     { "geometry-time", "a + b*GeometryInstructions + b_walk*TESInvocations*ClippingOutputPrimitives",
       "GeometryTime",
       "time of the geometry stages (rasterizer discard pass) from their instructions, and per vertex "
       "the tessellated draw's vertex walk visits",
       catalog__nonneg_geometry_time, 3, NULL, NULL },
-    { "raster-time", "a + b*RasterInstructions + b_prim*ClippingOutputPrimitives", "SetupRasterTime",
-      "time of setup and rasterization (minimal-shader pass minus the geometry pass) from their "
-      "instructions, and per primitive binned",
-      catalog__nonneg_raster_time, 3, NULL, "MinimalShadingTime" },
+    { "raster-time", "a + b*RasterInstructions", "SetupRasterTime",
+      "time of setup and rasterization (minimal-shader pass minus the geometry pass) from their instructions",
+      catalog__nonneg2, 2, NULL, "MinimalShadingTime" },
     { "fragment-time", "a + b*FragmentInstructions", "FragmentTime",
       "time of fragment shading (the frame minus the minimal-shader pass) from its instructions",
       catalog__nonneg2, 2, NULL, "MinimalShadingTime" },
