@@ -112,11 +112,11 @@ static const models_builtin catalog__models[] = {
      * stage's price of an instruction is fitted where that stage is the
      * whole response; fitted to WallTime instead (time-from-stages) the
      * geometry price rests on frames it is a few per cent of and does not
-     * carry to frames it dominates (docs/models.md, "Frame time"). */
-    /* A cost the instructions do not show: llvmpipe's draw module walks
-     * all of a tessellated draw's vertices once per batch of primitives
-     * (c_tp of geometry-instructions), a loop over a buffer that outgrows
-     * the caches.  Fitted without it on bench/extrapolate_fit.yaml, the
+     * carry to frames it dominates.  b_walk: a cost the instructions do
+     * not show, llvmpipe's draw module walking all of a tessellated draw's
+     * vertices once per batch of primitives (c_tp of
+     * geometry-instructions), a loop over a buffer that outgrows the
+     * caches; fitted without it on bench/extrapolate_fit.yaml, the
      * 98-patch plane at level 16, 93 % walk, came out -36 % in geometry
      * time (docs/models.md, "Frame time by stage"). */
     { "geometry-time", "a + b*GeometryInstructions + b_walk*TESInvocations*ClippingOutputPrimitives",
