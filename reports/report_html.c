@@ -48,7 +48,7 @@ static const char *css =
     "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}"
     ".scene-answer{flex:1 1 36em;max-width:60em;min-width:0}.scene-answer h3{margin:.6em 0 .2em}"
     "p.pick{margin:.2em 0}ul.rec{margin:.2em 0 .4em;padding-left:1.2em;font-size:13px}"
-    ".noisy{color:#a05a00;font-size:12px;white-space:nowrap}tr.pick td{background:#e3f1ff}";
+    ".noisy{color:#a05a00;font-size:12px}tr.pick td{background:#e3f1ff}";
 
 /* Click a column header to sort by it (numbers numerically); the content is
  * complete without it. */
