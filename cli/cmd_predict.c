@@ -137,12 +137,12 @@ static void predict__heldout_print(const predict_model *m)
 static void predict__time_heldout_print(const predict_model *m)
 {
     const predict_heldout *h = &m->time_heldout;
-    int stage_times = h->n >= 3 && isfinite(h->cv_mape);
+    int stage_times = predict_has_stage_times(m);
     const dm_fit_result *st = m->n_time_st == 1 ? &m->time_st[0] : NULL;
     const dm_fit_result *ti = m->n_time == 1 ? &m->time[0] : NULL;
     if (!ti && !st)
         return;
-    int st_used = !stage_times && st && (!ti || !(ti->cv_mape < st->cv_mape));
+    int st_used = !stage_times && predict_prefers_time_from_stages(m);
     printf("held-out error of WallTime on the runs' configurations (k-fold CV-MAPE):\n  ");
     if (stage_times)
         printf("stage times summed %.2f %% over %d configurations (used); ", h->cv_mape, h->n);

@@ -458,8 +458,10 @@ static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *sce
         double sum = 0;
         for (size_t k = 0; f && k < m->n; k++)
             sum += stage_ms(m, f, c, k);
-        for (size_t k = 0; measured && k < CHART_MEASURED_STAGES; k++)
-            sum += isfinite(measured_stage_ms(c, k)) ? measured_stage_ms(c, k) : 0;
+        for (size_t k = 0; measured && k < CHART_MEASURED_STAGES; k++) {
+            double h = measured_stage_ms(c, k);
+            sum += isfinite(h) ? h : 0;
+        }
         hi = fmax(hi, fmax(sum, report__frame_time(c)->median / 1e6));
     }
     if (!fitted)

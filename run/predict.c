@@ -107,6 +107,16 @@ int predict_heldout_prefers_one(const predict_model *m, const dm_fit_result *one
     return h && h->n >= 3 && isfinite(h->cv_mape) && isfinite(one->cv_mape) && one->cv_mape < h->cv_mape;
 }
 
+int predict_has_stage_times(const predict_model *m)
+{
+    return m->time_heldout.n >= 3 && isfinite(m->time_heldout.cv_mape);
+}
+
+int predict_prefers_time_from_stages(const predict_model *m)
+{
+    return m->n_time_st == 1 && (m->n_time != 1 || !(m->time[0].cv_mape < m->time_st[0].cv_mape));
+}
+
 void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
 {
     memset(m, 0, sizeof *m);
@@ -237,7 +247,7 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
     double se_ns = 0;   /* what the parameters' standard errors make of it beyond the runs */
     double et_fit = NAN;   /* the time fit's held-out error, % */
     double stage_ns = 0;   /* the stage times' sum: their formulas over the counts and the parts */
-    int by_stage_times = m->time_heldout.n >= 3 && isfinite(m->time_heldout.cv_mape) && isfinite(sum) && sum > 0;
+    int by_stage_times = predict_has_stage_times(m) && isfinite(sum) && sum > 0;
     if (by_stage_times) {
         dm_config_result cp = c;
         for (int s = 0; s < 3; s++)
@@ -252,8 +262,7 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
             dm_str_free(&w);
         }
     }
-    if (isfinite(sum) && sum > 0 && (by_stage_times || (m->n_time_st == 1 &&
-        (m->n_time != 1 || !(m->time[0].cv_mape < m->time_st[0].cv_mape))))) {
+    if (isfinite(sum) && sum > 0 && (by_stage_times || predict_prefers_time_from_stages(m))) {
         static const char *const b[3] = {"b_geo", "b_raster", "b_frag"};
         /* Within the runs' range the time fit's held-out error says its
          * error; a stage part beyond the largest measured adds the excess

@@ -90,6 +90,13 @@ const predict_heldout *predict_heldout_of(const predict_model *m, const char *va
  * stage models'). */
 int predict_heldout_prefers_one(const predict_model *m, const dm_fit_result *one);
 
+/* How predict_config prices a frame whose stage parts are predicted: by
+ * the stage times when the runs have them (1), else by time-from-stages
+ * when that fit's CV-MAPE is not above time-from-instructions' (1), else
+ * by the latter. */
+int predict_has_stage_times(const predict_model *m);
+int predict_prefers_time_from_stages(const predict_model *m);
+
 /* Predicts configuration pc, whose invocation counts are counts[0..
  * PREDICT_N_COUNTS) (NaN: not measured).  0 with *out filled, or
  * DM_ERR_UNKNOWN with why (the variant was never measured, or a value it
