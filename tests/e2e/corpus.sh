@@ -307,6 +307,13 @@ for sig in TERM INT HUP; do
 done
 hcase signal/pipe 0 "" -- bash -c 'set -o pipefail; "$0" list counters | head -c 1 >/dev/null; true' "$BIN"
 
+# ---- the classes in corpus.d/: user GLSL, images, predict and numbers read
+# back, children and signals, replicated compare (one file a class; each
+# uses hcase and the fixture above) ----
+for part in "$SRC"/tests/e2e/corpus.d/*.sh; do
+  . "$part"
+done
+
 # ---- the conditions table of docs/reliability.md, one row at a time ----
 if [ -z "${CORPUS_ONLY:-}${CORPUS_PROBE:-}" ]; then
   rows=0
