@@ -58,8 +58,10 @@ static int baseline__show(const char *store, dm_str *err)
 {
     char *id = NULL, *why = NULL;
     int rc = compare_baseline_latest(store ? store : BASELINE__DEFAULT_STORE, NULL, &id, &why, err);
-    if (rc == 0)
-        printf("%s\t%s\n", id, why ? why : "");
+    char *buf = NULL;
+    if (rc == 0)   /* the reason is user text: no control byte reaches the terminal */
+        printf("%s\t%s\n", id, dm_term_safe(why, &buf));
+    free(buf);
     free(why);
     free(id);
     return rc;

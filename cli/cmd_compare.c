@@ -201,7 +201,9 @@ static int cli__load_side(const cli_compare_opts *o, const cli_side *s, const ch
         char *id = NULL, *reason = NULL;
         int rc = compare_baseline_latest(store, sweep, &id, &reason, err);
         if (rc == 0) {
-            fprintf(stderr, "dmbench: baseline: run %s (accepted: %s)\n", id, reason ? reason : "");
+            char *buf = NULL;
+            fprintf(stderr, "dmbench: baseline: run %s (accepted: %s)\n", id, dm_term_safe(reason, &buf));
+            free(buf);
             rc = compare_load_store(store, id, NULL, out, err);
         }
         free(id);

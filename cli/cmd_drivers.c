@@ -96,11 +96,16 @@ static int drivers__names(const char *list, const sweep *s, char ***out, size_t 
     char *copy = dm_xstrdup(list), *save = NULL;
     int rc = 0;
     for (char *p = strtok_r(copy, ",", &save); p && rc == 0; p = strtok_r(NULL, ",", &save)) {
+        int twice = 0;
+        for (size_t k = 0; k < *n; k++)
+            twice |= strcmp((*out)[k], p) == 0;
         if (!drivers_find(p)) {
             dm_str e = {0};
             drivers__unknown(p, &e);
             rc = cli_usage_error("drivers: --drivers: %s", dm_str_get(&e));
             dm_str_free(&e);
+        } else if (twice) {   /* as the sweep key `drivers:` refuses: one run a driver */
+            rc = cli_usage_error("drivers: --drivers '%s' names %s twice; name each driver once", list, p);
         } else {
             DM_VEC_PUSH(*out, *n, dm_xstrdup(p));
         }

@@ -99,16 +99,30 @@ static int fit__check(fit_args *a, int argc, char **argv)
     return fit__check_names(a);
 }
 
+/* A fit statistic as printf would with fmt, or "unavailable" when it is
+ * not finite (too few points, no residual degrees of freedom): a number
+ * that is not one is never printed. */
+static const char *fit__num(char buf[32], const char *fmt, double v)
+{
+    if (!isfinite(v))
+        return "unavailable";
+    snprintf(buf, 32, fmt, v);
+    return buf;
+}
+
 static void fit__print(const dm_fit_result *f)
 {
+    char b1[32], b2[32], b3[32], b4[32];
     printf("model %s: %s = %s", f->model, f->response ? f->response : "?", f->formula ? f->formula : "");
     for (size_t i = 0; i < f->n_group; i++)
         printf("%s%s=%s", i ? ", " : "  [", f->group[i].key, f->group[i].value);
     printf("%s\n", f->n_group ? "]" : "");
     for (size_t i = 0; i < f->n_params; i++)
-        printf("  %-10s = %14.6g  ± %.3g\n", f->params[i].name, f->params[i].value, f->params[i].stderr_);
-    printf("  R² %.5f  RMSE %.4g  MAPE %.2f%%  CV-MAPE %.2f%%  points %d (excluded %d)  %s\n",
-           f->r2, f->rmse, f->mape, f->cv_mape, f->n_points, f->n_excluded,
+        printf("  %-10s = %14s  ± %s\n", f->params[i].name, fit__num(b1, "%.6g", f->params[i].value),
+               fit__num(b2, "%.3g", f->params[i].stderr_));
+    printf("  R² %s  RMSE %s  MAPE %s  CV-MAPE %s  points %d (excluded %d)  %s\n",
+           fit__num(b1, "%.5f", f->r2), fit__num(b2, "%.4g", f->rmse), fit__num(b3, "%.2f%%", f->mape),
+           fit__num(b4, "%.2f%%", f->cv_mape), f->n_points, f->n_excluded,
            f->termination ? f->termination : "");
     if (isinf(f->condition))
         printf("  condition: infinite (rank deficient)\n");

@@ -83,6 +83,30 @@ static int predict__check_env(const dm_run_result *runs, size_t n, char **dirs, 
     return rc;
 }
 
+/* "[lo, hi]" (each divided by scale, printed with fmt), or why there is no
+ * interval: a bound that is not finite is never printed. */
+static void predict__interval(const char *fmt, double lo, double hi, double scale)
+{
+    if (!isfinite(lo) || !isfinite(hi)) {
+        printf("[interval unavailable: too few configurations to hold one out]");
+        return;
+    }
+    printf("[");
+    printf(fmt, lo / scale);
+    printf(", ");
+    printf(fmt, hi / scale);
+    printf("]");
+}
+
+/* A held-out error "X.XX %", or "unavailable" when there is none. */
+static void predict__pct(double v)
+{
+    if (isfinite(v))
+        printf("%.2f %%", v);
+    else
+        printf("unavailable (too few configurations to hold one out)");
+}
+
 /* One line of the table, or the reason the configuration is unpredictable. */
 static void predict__config(const predict_model *m, const plan_config *pc, const double *counts, dm_str *unpred)
 {
@@ -91,16 +115,18 @@ static void predict__config(const predict_model *m, const plan_config *pc, const
     if (predict_config(m, pc, counts, &r, &why) != 0) {
         dm_str_printf(unpred, "  %s  %s: %s\n", pc->key, pc->scene, dm_str_get(&why));
     } else {
-        printf("%s  %-40s %-28s %12.6g [%.6g, %.6g]", pc->key, pc->scene, r.variant, r.instr, r.instr_lo,
-               r.instr_hi);
+        printf("%s  %-40s %-28s %12.6g ", pc->key, pc->scene, r.variant, r.instr);
+        predict__interval("%.6g", r.instr_lo, r.instr_hi, 1);
         double sum = r.part[0] + r.part[1] + r.part[2];
         if (isfinite(sum) && sum > 0)
             printf("  geometry %2.0f %% raster %2.0f %% fragment %2.0f %%", 100 * r.part[0] / sum,
                    100 * r.part[1] / sum, 100 * r.part[2] / sum);
         else
             printf("  stages: unavailable (the runs lack the stage counters)");
-        if (isfinite(r.wall_ns))
-            printf("  WallTime %.3f ms [%.3f, %.3f]", r.wall_ns / 1e6, r.wall_lo / 1e6, r.wall_hi / 1e6);
+        if (isfinite(r.wall_ns)) {
+            printf("  WallTime %.3f ms ", r.wall_ns / 1e6);
+            predict__interval("%.3f", r.wall_lo, r.wall_hi, 1e6);
+        }
         static const char *const stage[3] = {"geometry", "raster", "fragment"};
         if (r.beyond_stage >= 0)
             printf("  (extrapolated: %s %.3g x the largest the runs measured)", stage[r.beyond_stage], r.beyond);
@@ -145,36 +171,52 @@ static void predict__time_heldout_print(const predict_model *m)
     int st_used = !stage_times && predict_prefers_time_from_stages(m);
     printf("held-out error of WallTime on the runs' configurations (k-fold CV-MAPE):\n  ");
     if (stage_times)
-        printf("stage times summed %.2f %% over %d configurations (used); ", h->cv_mape, h->n);
+    {
+        printf("stage times summed ");
+        predict__pct(h->cv_mape);
+        printf(" over %d configurations (used); ", h->n);
+    }
     else
         printf("stage times: unavailable (%s); ", st ? "the runs lack GeometryTime or MinimalShadingTime: add both "
                                                        "to measure.counters"
                                                      : "the runs lack the stage counters");
-    if (st)
-        printf("time-from-stages %.2f %%%s; ", st->cv_mape, st_used ? " (used)" : "");
-    if (ti)
-        printf("time-from-instructions %.2f %%%s", ti->cv_mape, !stage_times && !st_used ? " (used)" : "");
+    if (st) {
+        printf("time-from-stages ");
+        predict__pct(st->cv_mape);
+        printf("%s; ", st_used ? " (used)" : "");
+    }
+    if (ti) {
+        printf("time-from-instructions ");
+        predict__pct(ti->cv_mape);
+        printf("%s", !stage_times && !st_used ? " (used)" : "");
+    }
     printf("\n");
 }
 
-/* Loads the --from runs into *runs (n of them, dirs[] their names). */
+/* Loads the --from runs into *runs (n of them, dirs[] their names); -1 when
+ * all loaded, else the exit code.  Each run once: a run named twice (also
+ * as `latest` and its id) would weigh its points double in every fit. */
 static int predict__load(const char *from, dm_run_result **runs, char ***dirs, size_t *n)
 {
-    char *list = dm_xstrdup(from), *save = NULL;
-    int rc = 0;
-    for (char *t = strtok_r(list, ",", &save); rc == 0 && t; t = strtok_r(NULL, ",", &save)) {
+    dm_str err = {0};
+    size_t np = 0;
+    int rc = dm_split_paths(from, "predict: --from", dirs, &np, &err) ? cli_usage_error("%s", dm_str_get(&err)) : 0;
+    for (size_t k = 0; rc == 0 && k < np; k++) {
         dm_run_result r = {0};
-        dm_str err = {0};
-        if (cli_load_run(t, &r, &err) != 0)
-            rc = cli_usage_error("predict: --from %s: %s", t, dm_str_get(&err));
-        else {
-            DM_VEC_PUSH(*runs, *n, r);
-            size_t nd = *n - 1;
-            DM_VEC_PUSH(*dirs, nd, dm_xstrdup(t));
+        int lrc = cli_load_run((*dirs)[k], &r, &err);
+        if (lrc != 0) {
+            rc = cli_error(lrc, "predict: --from %s", dm_str_get(&err));
+            break;
         }
-        dm_str_free(&err);
+        for (size_t j = 0; rc == 0 && j < *n; j++)
+            if (strcmp((*runs)[j].id, r.id) == 0)
+                rc = cli_usage_error("predict: --from names run %s twice (%s and %s); name each run once",
+                                     r.id, (*dirs)[j], (*dirs)[k]);
+        DM_VEC_PUSH(*runs, *n, r);
     }
-    free(list);
+    for (size_t k = *n; k < np; k++)   /* dirs[] holds one name a loaded run */
+        free((*dirs)[k]);
+    dm_str_free(&err);
     return rc ? rc : -1;
 }
 
@@ -211,6 +253,10 @@ int cli_predict(int argc, char **argv)
             predict__config(&m, &p.configs[i], counts + i * PREDICT_N_COUNTS, &unpred);
         if (unpred.len)
             printf("not predicted (never guessed):\n%s", dm_str_get(&unpred));
+        dm_str left = {0};
+        if (predict_left_out(runs, nr, &left))
+            printf("left out of the fits (a counter they need is unavailable there):\n%s", dm_str_get(&left));
+        dm_str_free(&left);
         predict__heldout_print(&m);
         predict__time_heldout_print(&m);
         dm_str_free(&unpred);

@@ -148,11 +148,16 @@ const char *cli_version(void)
 }
 
 /* "dmbench: error: " + the message + newline on stderr. */
+/* Every command's error line: user text in it (paths, names, reasons) has
+ * its control bytes shown as '?', so no ANSI escape reaches the terminal. */
 static void commands__verror(const char *fmt, va_list ap)
 {
-    fprintf(stderr, "dmbench: error: ");
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    dm_str msg = {0};
+    char *buf = NULL;
+    dm_str_vprintf(&msg, fmt, ap);
+    fprintf(stderr, "dmbench: error: %s\n", dm_term_safe(dm_str_get(&msg), &buf));
+    free(buf);
+    dm_str_free(&msg);
 }
 
 int cli_usage_error(const char *fmt, ...)

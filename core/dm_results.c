@@ -1,6 +1,8 @@
 #include "dm_results.h"
 #include "dm_util.h"
 
+#include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -34,6 +36,24 @@ const dm_config_result *dm_run_config(const dm_run_result *run, const char *key)
         if (run->configs[i].key && strcmp(run->configs[i].key, key) == 0)
             return &run->configs[i];
     return NULL;
+}
+
+int dm_counter_read_check(dm_counter_result *c, const char *source)
+{
+    double v = c->has_samples ? c->median : c->value;
+    if (!c->available || isfinite(v))
+        return 0;
+    char what[32];
+    if (isnan(v))
+        snprintf(what, sizeof what, "missing or NaN");
+    else
+        snprintf(what, sizeof what, "%s", v > 0 ? "+inf" : "-inf");
+    free(c->unavailable_reason);
+    c->unavailable_reason = dm_xasprintf("the %s read back from %s is %s, not a measured number",
+                                         c->has_samples ? "median" : "value", source, what);
+    c->available = 0;
+    c->unreadable = 1;
+    return 1;
 }
 
 int dm_run_has_counter(const dm_run_result *run, const char *name)

@@ -34,6 +34,8 @@ typedef struct dm_counter_result {
     double ci_lo, ci_hi;     /* 95% CI of the median */
     int n_outliers;          /* Tukey fences */
     int n_nonfinite;         /* non-finite samples excluded from statistics */
+    int unreadable;          /* read back missing or not finite (dm_counter_read_check): the
+                                record is damaged, so no verdict may pass over it */
 } dm_counter_result;
 
 typedef struct dm_quality {
@@ -123,6 +125,12 @@ const dm_counter_result *dm_config_counter(const dm_config_result *c, const char
 const dm_fit_param *dm_fit_param_find(const dm_fit_result *f, const char *name);
 /* The first configuration of run with that key. */
 const dm_config_result *dm_run_config(const dm_run_result *run, const char *key);
+/* The one rule for a counter read back (results store, results.json): an
+ * available counter whose value (median, for one with samples) is missing
+ * or not finite is made unavailable, its reason naming what was read and
+ * from where (source), so it is never a PASS, a fit point or a printed
+ * interval.  Returns 1 when it did so. */
+int dm_counter_read_check(dm_counter_result *c, const char *source);
 /* 1 when some ok configuration of run has counter name available. */
 int dm_run_has_counter(const dm_run_result *run, const char *name);
 /* 1 when param k has another value (or none) in some configuration of run,

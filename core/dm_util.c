@@ -309,6 +309,43 @@ void dm_str_cat_list(dm_str *s, const char *const *choices, size_t n)
         dm_str_printf(s, "%s%s", i ? ", " : "", choices[i]);
 }
 
+int dm_split_paths(const char *list, const char *what, char ***items, size_t *n, dm_str *err)
+{
+    struct stat st;
+    *items = NULL;
+    *n = 0;
+    if (list && *list && stat(list, &st) == 0) {
+        DM_VEC_PUSH(*items, *n, dm_xstrdup(list));
+        return 0;
+    }
+    const char *p = list ? list : "";
+    for (;;) {
+        size_t len = strcspn(p, ",");
+        if (len == 0) {
+            dm_str_printf(err, "%s '%s': %s; give PATH[,PATH...]",
+                          what, list ? list : "", *p || *n ? "an empty entry" : "no path");
+            dm_strv_free(*items, *n);
+            *items = NULL;
+            *n = 0;
+            return DM_ERR_ARG;
+        }
+        char *item = dm_xmalloc(len + 1);
+        memcpy(item, p, len);
+        item[len] = '\0';
+        DM_VEC_PUSH(*items, *n, item);
+        if (!p[len])
+            return 0;
+        p += len + 1;
+    }
+}
+
+void dm_strv_free(char **v, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        free(v[i]);
+    free(v);
+}
+
 void dm_str_suggest(dm_str *s, const char *word, const char *const *choices, size_t n,
                     const char *what)
 {

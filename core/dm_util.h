@@ -96,6 +96,16 @@ uint64_t dm_fnv1a64(const void *data, size_t n, uint64_t seed);
 /* 16 lowercase hex digits of h into out[17]. */
 void dm_hex64(uint64_t h, char out[17]);
 
+/* ---- lists of paths ---------------------------------------------------- */
+/* Splits list, comma-separated paths (`--from A,B`, `compare A1,A2 B1,B2`),
+ * into *items (*n of them, each malloc'd; dm_strv_free frees them).  A list
+ * that names an existing file or directory as a whole is one path, commas
+ * and all, so a run directory with a comma in its name can be given.  An
+ * empty list or an empty entry ("", ",", "a,,b") is DM_ERR_ARG with err
+ * naming the list ("what" says whose it is); *items is then NULL, *n 0. */
+int dm_split_paths(const char *list, const char *what, char ***items, size_t *n, dm_str *err);
+void dm_strv_free(char **v, size_t n);
+
 /* ---- files ------------------------------------------------------------- */
 /* Reads a whole file; returns 0 and a NUL-terminated malloc'd buffer, or a
  * negative DM_ERR_* (DM_ERR_IO) and *out untouched. */

@@ -216,6 +216,13 @@ static void compare__deterministic(const compare_desc *d, const dm_config_result
         const dm_counter_result *cn = dm_config_counter(n, cb->name);
         if (!cb->deterministic || !cn)
             continue;
+        if (cb->unreadable || cn->unreadable) {
+            char *note = dm_xasprintf("unavailable on %s: %s", cb->unreadable ? "BASE" : "NEW",
+                                      (cb->unreadable ? cb : cn)->unavailable_reason);
+            compare__change(it, cb->name, cb->value, cn->value, note);
+            free(note);
+            continue;
+        }
         if (compare__is_cost(cb->name) && ((cb->available && cn->available) || d->instr_off))
             continue;          /* exact counts with a threshold: compare__instructions */
         if (cb->available != cn->available) {

@@ -325,9 +325,10 @@ int compare_paired_run(const compare_paired_desc *d, dm_run_result *base, dm_run
 /* Pools run r (the index-th of its side; 0 takes r as it is) into *pooled,
  * one minimum per run and key, as paired mode does; r is consumed. */
 void compare_pool_run(dm_run_result *pooled, dm_run_result *r, int index);
-/* Loads a comma-separated list of paths (each as compare_load_path) and
- * pools them with compare_pool_run; *n_runs is the number of runs.  One
- * path is loaded as it is (its samples kept). */
+/* Loads a comma-separated list of paths (dm_split_paths; each as
+ * compare_load_path) and pools them with compare_pool_run; *n_runs is the
+ * number of runs.  One path is loaded as it is (its samples kept).  A run
+ * named twice (also under two names, `latest` and its id) is DM_ERR_ARG. */
 int compare_load_paths(const char *list, dm_run_result *out, size_t *n_runs, dm_str *err);
 
 #endif

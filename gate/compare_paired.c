@@ -163,24 +163,48 @@ int compare_paired_run(const compare_paired_desc *desc, dm_run_result *base, dm_
     return rc;
 }
 
+/* 0, or DM_ERR_ARG with err set when run r (from paths[k]) is one of the
+ * runs ids[0..k) already loaded from paths[0..k): a run listed twice (also
+ * as `latest` and its id) would count its samples twice and shrink the
+ * between-run spread to nothing. */
+static int compare__once(char *const *ids, char *const *paths, size_t k, const dm_run_result *r,
+                         dm_str *err)
+{
+    for (size_t j = 0; r->id && j < k; j++)
+        if (ids[j] && strcmp(ids[j], r->id) == 0) {
+            dm_str_printf(err, "compare: %s and %s are the same run (%s); name each run once",
+                          paths[j], paths[k], r->id);
+            return DM_ERR_ARG;
+        }
+    return 0;
+}
+
 int compare_load_paths(const char *list, dm_run_result *out, size_t *n_runs, dm_str *err)
 {
     memset(out, 0, sizeof *out);
     *n_runs = 0;
-    if (!strchr(list, ',')) {
-        int rc = compare_load_path(list, out, err);
-        *n_runs = rc == 0;
-        return rc;
-    }
-    char *copy = dm_xstrdup(list), *save = NULL;
-    int rc = 0;
-    for (char *p = strtok_r(copy, ",", &save); p && rc == 0; p = strtok_r(NULL, ",", &save)) {
+    char **paths = NULL;
+    size_t n = 0;
+    int rc = dm_split_paths(list, "compare: the list", &paths, &n, err);
+    char **ids = rc == 0 ? dm_xcalloc(n, sizeof *ids) : NULL;
+    for (size_t k = 0; rc == 0 && k < n; k++) {
         dm_run_result r;
-        if ((rc = compare_load_path(p, &r, err)) == 0)
-            compare_pool_run(out, &r, (int)(*n_runs)++);
+        if ((rc = compare_load_path(paths[k], &r, err)) != 0)
+            break;
+        ids[k] = dm_xstrdup(r.id);
+        if ((rc = compare__once(ids, paths, k, &r, err)) != 0)
+            dm_run_free(&r);
+        else if (n == 1)
+            *out = r;
+        else
+            compare_pool_run(out, &r, (int)k);
+        *n_runs += rc == 0;
     }
-    free(copy);
-    if (rc)
+    dm_strv_free(ids, ids ? n : 0);
+    dm_strv_free(paths, n);
+    if (rc) {
         dm_run_free(out);
+        *n_runs = 0;
+    }
     return rc;
 }

@@ -718,7 +718,10 @@ static void fit_row(dm_str *s, const dm_fit_result *f)
     dm_str_cat(s, "</td><td>");
     for (size_t k = 0; k < f->n_params; k++) {
         esc(s, f->params[k].name);
-        dm_str_printf(s, " = %.3g ± %.2g<br>", f->params[k].value, f->params[k].stderr_);
+        dm_str_printf(s, " = %.3g", f->params[k].value);
+        if (isfinite(f->params[k].stderr_))
+            dm_str_printf(s, " ± %.2g", f->params[k].stderr_);
+        dm_str_cat(s, "<br>");
     }
     dm_str_cat(s, "</td>");
     num_cell(s, "%.4f", f->r2);

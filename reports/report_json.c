@@ -443,7 +443,10 @@ static void read_config(const cJSON *o, dm_config_result *c)
     size_t n = (size_t)cJSON_GetArraySize(ctr);
     c->counters = dm_xcalloc(n ? n : 1, sizeof *c->counters);
     const cJSON *it;
-    cJSON_ArrayForEach(it, ctr) read_counter(it, &c->counters[c->n_counters++]);
+    cJSON_ArrayForEach(it, ctr) {
+        read_counter(it, &c->counters[c->n_counters]);
+        dm_counter_read_check(&c->counters[c->n_counters++], "results.json");
+    }
     read_quality(cJSON_GetObjectItemCaseSensitive(o, "quality"), &c->quality);
     const cJSON *im = cJSON_GetObjectItemCaseSensitive(o, "images");
     c->img_render = get_str(im, "render");

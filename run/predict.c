@@ -31,6 +31,26 @@ const char *predict_run_missing(const dm_run_result *run)
     return NULL;
 }
 
+size_t predict_left_out(const dm_run_result *runs, size_t n, dm_str *out)
+{
+    size_t left = 0;
+    for (size_t k = 0; k < n; k++)
+        for (size_t i = 0; i < runs[k].n_configs; i++) {
+            const dm_config_result *c = &runs[k].configs[i];
+            for (size_t j = 0; c->ok && j < PREDICT_N_NEEDED + 3; j++) {
+                const char *name = j < PREDICT_N_NEEDED ? predict_needed[j] : predict__stages[j - PREDICT_N_NEEDED];
+                const dm_counter_result *r = dm_config_counter(c, name);
+                if (r && !r->available && dm_run_has_counter(&runs[k], name)) {
+                    dm_str_printf(out, "  %s  %s: %s unavailable (%s)\n", c->key, c->scene, name,
+                                  r->unavailable_reason ? r->unavailable_reason : "no reason recorded");
+                    left++;
+                    break;
+                }
+            }
+        }
+    return left;
+}
+
 static void predict__fit(const dm_run_result *u, const char *model, const char *response,
                          const char *const *group_by, size_t n_group_by, dm_fit_result **fits, size_t *n)
 {

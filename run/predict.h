@@ -72,6 +72,12 @@ typedef struct predict_result {
     double beyond;           /* that part over the largest the runs measured (> 1) */
 } predict_result;
 
+/* Appends to out one line ("  KEY  SCENE: COUNTER unavailable (reason)")
+ * for each ok configuration of runs[0..n) the fits leave out because a
+ * counter they need (predict_needed, the stage counters) is unavailable
+ * there, such as a value read back missing or not finite; returns how many. */
+size_t predict_left_out(const dm_run_result *runs, size_t n, dm_str *out);
+
 /* The first of predict_needed that run lacks, or NULL when it has them all. */
 const char *predict_run_missing(const dm_run_result *run);
 

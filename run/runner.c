@@ -910,6 +910,8 @@ static int runner__open(runner *r, dm_str *err)
                       "run without --resume to start one", r->root);
         return DM_ERR_ARG;
     }
+    if (store_path_fits(r->store_path, err) != 0)
+        return DM_ERR_ARG;      /* before the directory and its lock are made */
     if (dm_mkdirs(r->root) != 0 || access(r->root, W_OK) != 0) {
         dm_str_printf(err, "%s: cannot create or write the output directory", r->root);
         return DM_ERR_IO;

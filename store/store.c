@@ -62,11 +62,13 @@
 
 #include <sqlite3.h>
 
+#include <limits.h>
 #include <math.h>
 #include <stdarg.h>
 #include <stdint.h>
 #include <stdlib.h>
 #include <string.h>
+#include <unistd.h>
 
 #define STORE_SCHEMA_VERSION 4
 #define STORE__XSTR(x) #x
@@ -759,6 +761,8 @@ static int store__counters_read(store *s, const store__owner *o, dm_config_resul
     for (size_t i = 0; i < c->n_counters && rc == 0; i++)
         if (c->counters[i].has_samples)
             rc = store__samples_read(s, o, &c->counters[i]);
+    for (size_t i = 0; i < c->n_counters; i++)
+        dm_counter_read_check(&c->counters[i], "the results store");
     return rc;
 }
 
@@ -1091,6 +1095,21 @@ static int store__connect(store *s)
     }
     rc = store__migrate(s);
     return rc ? rc : store__verify_schema(s);
+}
+
+int store_path_fits(const char *path, dm_str *err)
+{
+    sqlite3_vfs *vfs = sqlite3_vfs_find(NULL);
+    char cwd[PATH_MAX] = "";
+    size_t len = strlen(path);
+    if (path[0] != '/')
+        len += (getcwd(cwd, sizeof cwd) ? strlen(cwd) : 0) + 1;
+    /* its rollback journal ("-journal") must fit the limit too */
+    if (!vfs || len + 8 <= (size_t)vfs->mxPathname)
+        return 0;
+    dm_str_printf(err, "%s: the results store's path would be %zu bytes long; SQLite opens at most "
+                  "%d: give a shorter --out", path, len, vfs->mxPathname - 8);
+    return DM_ERR_ARG;
 }
 
 int store_open(const char *path, store **out, dm_str *err)

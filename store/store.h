@@ -33,6 +33,12 @@ typedef struct store store;
  * the path and SQLite's message appended to err (err may be NULL); *out is
  * then NULL. */
 int store_open(const char *path, store **out, dm_str *err);
+/* 0 when a store at path (relative to the working directory) can be opened
+ * by SQLite, whose file layer refuses an absolute path, "-journal"
+ * appended, longer than its limit (512 bytes with the unix VFS); else
+ * DM_ERR_ARG with the length and the limit in err.  For checking an --out
+ * before anything is created. */
+int store_path_fits(const char *path, dm_str *err);
 /* Checks the database's structure (PRAGMA quick_check: every page, index and
  * record readable, O(size) reads, no writes).  0 when intact; DM_ERR_STORE
  * with "damaged" and SQLite's first finding in err (and store_last_error)
