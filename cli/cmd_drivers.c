@@ -147,8 +147,8 @@ static int drivers__run(const char *driver, const char *sweep, const char *out,
         _exit(DM_EXIT_ENV);
     }
     int status = 0;
-    if (pid > 0)
-        dm_proc_wait(pid, &status);
+    if (pid > 0 && dm_proc_wait(pid, &status) < 0)
+        pid = -1;
     if (pid < 0) {
         *why = dm_xasprintf("cannot start its run: %s", strerror(errno));
         return DM_EXIT_ENV;

@@ -40,7 +40,8 @@ static int compare__spawn_run(const char *binary, const char *sweep, const char 
         _exit(127);
     }
     int status = 0;
-    dm_proc_wait(pid, &status);
+    if (dm_proc_wait(pid, &status) < 0)
+        return DM_ERR_CHILD;
     return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : DM_ERR_CHILD;
 }
 

@@ -256,7 +256,10 @@ int slurm_exec(char *const *argv, dm_str *out, dm_str *err_out)
     slurm__drain(po[0], out);   /* Slurm's commands print little: no deadlock on pe */
     slurm__drain(pe[0], err_out);
     int status = 0;
-    dm_proc_wait(pid, &status);
+    if (dm_proc_wait(pid, &status) < 0) {
+        dm_str_printf(err_out, "cannot wait for %s: %s", argv[0], strerror(errno));
+        return -1;
+    }
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }
 
