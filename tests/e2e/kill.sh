@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # No process outlives its run (docs/reliability.md, "Interruptions"): the
 # parent is killed with SIGTERM and with SIGKILL at each stage that has a
-# child — a probe child (a user shader whose compile takes seconds), the
-# timed measuring child (hung by DMBENCH_TEST_HANG), the Valgrind counting
-# child (Instructions pass) and the `dmbench run` that `drivers` starts
-# per driver — and 5 s later no process of that run may be left.  The
-# processes of a run are found by a variable set for it alone
-# (DMBENCH_KILL_TEST=<unique>, inherited by every child, Valgrind's too),
-# so no other process on the machine is matched.  Also: after SIGTERM of
-# `drivers`, `drivers` again on the same --out is not refused as "in use",
-# and no product source forks but core/dm_proc.c.
+# child — a probe child (a user shader whose compile takes seconds; zink
+# hung at start-up where Mesa 25 is installed), the timed measuring child
+# (hung by DMBENCH_TEST_HANG), the Valgrind counting child (Instructions
+# pass) and the `dmbench run` that `drivers` starts per driver — and 5 s
+# later no process of that run may be left.  The processes of a run are
+# found by a variable set for it alone (DMBENCH_KILL_TEST=<unique>,
+# inherited by every child, Valgrind's too), so no other process on the
+# machine is matched.  Also: after SIGTERM or SIGKILL of `drivers`,
+# `drivers` again on the same --out is not refused as "in use", and no
+# product source forks but core/dm_proc.c.
 set -uo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 MARK="kill-$$-$RANDOM$RANDOM"
@@ -95,12 +96,22 @@ open(sys.argv[1], "w").write("//@technique slow\n// %s\nvec3 user_surface(vec2 u
                              % (sys.argv[2], body))
 EOF
 base probe slow.glsl WallTime
+# the driver probe itself hung: zink whose Vulkan ICD names no library (a
+# broken Mesa 25 install hangs at start-up); only where Mesa 25 is installed
+M25=${DMBENCH_MESA25_PREFIX:-/opt/dmbench/mesa-25}
+if [ -e "$M25/lvp_icd.json" ]; then
+  mkdir -p "$OUT/brokenicd"; ln -sfn "$M25/usr" "$OUT/brokenicd/usr"
+  printf '{"file_format_version": "1.0.0", "ICD": {"library_path": "/nonexistent/libvulkan_lvp.so", "api_version": "1.4.0"}}\n' \
+    > "$OUT/brokenicd/lvp_icd.json"
+fi
 base timed normal WallTime
 base counting normal Instructions
 base quick normal WallTime
 
 for sig in TERM KILL; do
   stage probe $sig child_of_run "" -- env MESA_SHADER_CACHE_DISABLE=true "$BIN" run "$OUT/probe.yaml" --out "$OUT/probe-$sig" --quiet
+  [ -e "$OUT/brokenicd/lvp_icd.json" ] && stage driver-probe $sig child_of_run "" -- \
+    env DMBENCH_DRIVER=zink DMBENCH_MESA25_PREFIX="$OUT/brokenicd" "$BIN" run "$OUT/quick.yaml" --out "$OUT/dp-$sig" --quiet
   stage timed $sig measuring "$OUT/timed-$sig" -- \
     env DMBENCH_TEST_HANG=normal "$BIN" run "$OUT/timed.yaml" --out "$OUT/timed-$sig" --quiet
   stage counting $sig counting -- \
