@@ -42,6 +42,7 @@
 #include <valgrind/callgrind.h>
 
 #include "core/dm_error.h"
+#include "core/dm_proc.h"
 #include "core/dm_util.h"
 #include "counters/counters.h"
 #include "run/callgrind.h"
@@ -117,7 +118,7 @@ static double median(const double *x, size_t n)
  * status (-1 when it could not be started or was killed). */
 static int run_dmbench(const char *bin, const char *sweep, const char *out, const char *log)
 {
-    pid_t pid = fork();
+    pid_t pid = dm_proc_fork();   /* dies with this program, like every dmbench child */
     if (pid == 0) {
         int fd = open(log, O_WRONLY | O_CREAT | O_APPEND, 0644);
         if (fd >= 0) {
@@ -410,7 +411,7 @@ static int raw_instructions(const char *self, const char *dir, const ov_conf *c,
     char *vg = counters_valgrind_path();
     char *cg = dm_xasprintf("--callgrind-out-file=%s/raw-%s.cg", dir, c->technique);
     char *nf = dm_xasprintf("%d", frames);
-    pid_t pid = vg ? fork() : -1;
+    pid_t pid = vg ? dm_proc_fork() : -1;
     if (pid == 0) {
         setenv("LP_NUM_THREADS", "0", 1);
         execl(vg, vg, "--tool=callgrind", "--collect-atstart=no", "--smc-check=all-non-file", cg,

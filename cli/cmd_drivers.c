@@ -11,6 +11,7 @@
  * next driver runs. */
 #include "cli.h"
 #include "core/dm_error.h"
+#include "core/dm_proc.h"
 #include "core/dm_exit.h"
 #include "gate/compare.h"
 #include "reports/drivers_report.h"
@@ -140,8 +141,9 @@ static int drivers__run(const char *driver, const char *sweep, const char *out,
     if (a->quiet)
         argv[k++] = "--quiet";
     argv[k] = NULL;
-    fflush(NULL);
-    pid_t pid = fork();
+    /* The run dies with `drivers` (SIGTERM or SIGKILL of it): it would
+     * otherwise go on alone, holding its output's lock. */
+    pid_t pid = dm_proc_fork();
     if (pid == 0) {
         setenv("DMBENCH_DRIVER", driver, 1);
         setenv(CLI_DRIVERS_CHILD, "1", 1);   /* the run measures, it does not fan out again */
@@ -150,8 +152,8 @@ static int drivers__run(const char *driver, const char *sweep, const char *out,
         _exit(DM_EXIT_ENV);
     }
     int status = 0;
-    while (pid > 0 && waitpid(pid, &status, 0) < 0 && errno == EINTR)
-        ;
+    if (pid > 0 && dm_proc_wait(pid, &status) < 0)
+        pid = -1;
     if (pid < 0) {
         *why = dm_xasprintf("cannot start its run: %s", strerror(errno));
         return DM_EXIT_ENV;

@@ -14,6 +14,7 @@
 #include "run/gl_context.h"
 #include "run/measure.h"
 #include "run/predict.h"
+#include "run/probe.h"
 #include "sweep/plan.h"
 #include "sweep/sweep.h"
 
@@ -235,6 +236,9 @@ int cli_predict(int argc, char **argv)
     dm_str err = {0};
     if (sweep_load(argv[0], &s, &err) != 0 || plan_build(&s, &p, &err) != 0)
         rc = cli_usage_error("%s", dm_str_get(&err));
+    int prc = rc < 0 ? probe_user_techniques(&err) : 0;   /* compiled in a child: it may crash */
+    if (prc != 0)
+        rc = cli_error(prc, "predict: %s", dm_str_get(&err));
     dm_run_result *runs = NULL;
     char **dirs = NULL;
     size_t nr = 0;

@@ -7,6 +7,7 @@
 #include "run/env.h"
 #include "run/gl_context.h"
 #include "run/measure.h"
+#include "run/probe.h"
 #include "reports/image.h"
 #include "techniques/axes.h"
 #include "techniques/render.h"
@@ -57,10 +58,12 @@ int cli_render(int argc, char **argv)
     tech_renderer *r = NULL;
     dm_str err = {0};
     int e = rc < 0 ? env_check(&err) : 0;
+    if (rc < 0 && e == 0)   /* a user's GLSL that crashes or hangs the compiler: in a child */
+        e = probe_user_techniques(&err);
     if (rc < 0 && e == 0 && (e = gl_context_create(NULL, &gl, &err)) == 0 &&
         tech_renderer_create(&r) != 0)
         e = DM_ERR_GL;
-    if (rc < 0 && e != 0) {   /* no usable GL is the machine's: exit 4, as for run */
+    if (rc < 0 && e != 0) {   /* no usable GL is the machine's: exit 4, as for run; the user's GLSL: 2 */
         fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
         rc = dm_exit_from_error(e);
     }

@@ -4,6 +4,7 @@
 #include "core/dm_exit.h"
 #include "run/callgrind.h"
 #include "run/drivers.h"
+#include "run/probe.h"
 
 #include <assert.h>
 #include <errno.h>
@@ -322,7 +323,7 @@ int cli_main(int argc, char **argv)
         dm_str_free(&derr);
         return code;
     }
-    if (callgrind_env_jobs(&derr) < 0) {
+    if (callgrind_env_jobs(&derr) < 0 || probe_env_check(&derr) != 0) {
         int code = cli_error(DM_ERR_ARG, "%s", dm_str_get(&derr));
         dm_str_free(&derr);
         return code;

@@ -13,6 +13,7 @@
 #include <unistd.h>
 
 #include "core/dm_error.h"
+#include "core/dm_proc.h"
 
 static int compare__rm_entry(const char *path, const struct stat *st, int flag, struct FTW *ftw)
 {
@@ -28,8 +29,7 @@ static int compare__spawn_run(const char *binary, const char *sweep, const char 
 {
     char seed_text[16];
     snprintf(seed_text, sizeof seed_text, "%d", seed);
-    fflush(NULL);
-    pid_t pid = fork();
+    pid_t pid = dm_proc_fork();
     if (pid < 0)
         return DM_ERR_CHILD;
     if (pid == 0) {
@@ -40,8 +40,8 @@ static int compare__spawn_run(const char *binary, const char *sweep, const char 
         _exit(127);
     }
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0)
-        ;
+    if (dm_proc_wait(pid, &status) < 0)
+        return DM_ERR_CHILD;
     return WIFEXITED(status) && WEXITSTATUS(status) == 0 ? 0 : DM_ERR_CHILD;
 }
 

@@ -2,6 +2,7 @@
 #include "run/calibrate.h"
 #include "run/gl_context.h"
 #include "core/dm_error.h"
+#include "core/dm_proc.h"
 
 #include <epoxy/gl.h>
 #include <math.h>
@@ -141,8 +142,7 @@ int calibrate_in_child(calibrate_result *out)
     int fds[2];
     if (pipe(fds) != 0)
         return DM_ERR_CHILD;
-    fflush(NULL);
-    pid_t pid = fork();
+    pid_t pid = dm_proc_fork();
     if (pid < 0) {
         close(fds[0]);
         close(fds[1]);
@@ -174,9 +174,7 @@ int calibrate_in_child(calibrate_result *out)
     buf[len] = '\0';
     close(fds[0]);
     kill(pid, SIGKILL);
-    int status = 0;
-    while (waitpid(pid, &status, 0) < 0)
-        ;
+    dm_proc_wait(pid, NULL);
     double cpu = NAN, draw = NAN;
     if (sscanf(buf, "%lf %lf", &cpu, &draw) < 1)
         return DM_ERR_CHILD;

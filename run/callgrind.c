@@ -2,6 +2,7 @@
  * its watchdog, and reading callgrind's dump files (see callgrind.h). */
 #include "run/callgrind.h"
 #include "core/dm_error.h"
+#include "core/dm_proc.h"
 #include "counters/counters.h"
 #include "run/measure.h"
 
@@ -237,7 +238,9 @@ static pid_t cg__spawn(cg_state *g, int *fd)
         if (!g->tried[i])
             argv[a++] = dm_xstrdup(g->cs[i].key);
     int fds[2] = {-1, -1};
-    pid_t pid = pipe(fds) == 0 ? (fflush(NULL), fork()) : -1;
+    /* Valgrind keeps the parent-death signal across exec: the counting
+     * child dies with the run, whose loop is its watchdog. */
+    pid_t pid = pipe(fds) == 0 ? dm_proc_fork() : -1;
     if (pid == 0) {
         dup2(fds[1], 1);
         close(fds[0]);

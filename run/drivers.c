@@ -17,7 +17,11 @@ static const driver_info drivers__table[] = {
     {NULL, NULL, 0, NULL},
 };
 
-/* Set by drivers_enter in the process it re-executes: the driver applied. */
+/* Set by drivers_enter in the process it re-executes: "NAME:PID", the
+ * driver applied and the pid of the process that applied it (execv keeps
+ * the pid).  It holds in that process and in its children; anywhere else
+ * (a user's shell that exported it, a process started by a child) it is
+ * stale, and drivers_enter removes it. */
 #define DRIVERS__APPLIED "DMBENCH_DRIVER_APPLIED"
 
 const driver_info *drivers_list(void) { return drivers__table; }
@@ -66,10 +70,31 @@ const char *drivers_missing(const driver_info *d, char **why_buf)
     return *why_buf;
 }
 
+/* The driver name of the marker (static; "" when there is none), once
+ * drivers_enter has kept or removed it. */
+static char drivers__applied[64];
+
+/* Reads the marker: its name into drivers__applied when it was set by this
+ * process or its parent, else removes it from the environment. */
+static void drivers__read_marker(void)
+{
+    const char *a = getenv(DRIVERS__APPLIED);
+    const char *colon = a ? strrchr(a, ':') : NULL;
+    char *end = NULL;
+    long pid = colon ? strtol(colon + 1, &end, 10) : 0;
+    size_t len = colon ? (size_t)(colon - a) : 0;
+    drivers__applied[0] = '\0';
+    if (colon && end && !*end && (pid == (long)getpid() || pid == (long)getppid()) && len > 0 &&
+        len < sizeof drivers__applied)
+        snprintf(drivers__applied, sizeof drivers__applied, "%.*s", (int)len, a);
+    else if (a)
+        unsetenv(DRIVERS__APPLIED);   /* inherited from outside: not this process tree's driver */
+}
+
 const char *drivers_current(void)
 {
-    const char *a = getenv(DRIVERS__APPLIED), *d = getenv("DMBENCH_DRIVER");
-    return a && *a ? a : d && *d ? d : "default";
+    const char *d = getenv("DMBENCH_DRIVER");
+    return drivers__applied[0] ? drivers__applied : d && *d ? d : "default";
 }
 
 /* prepends dir to the colon-separated variable name */
@@ -83,6 +108,7 @@ static void drivers__prepend(const char *name, const char *dir)
 
 int drivers_enter(char **argv, dm_str *err)
 {
+    drivers__read_marker();
     const char *name = getenv("DMBENCH_DRIVER");
     if (!name || !*name || strcmp(name, "default") == 0)
         return 0;
@@ -96,8 +122,7 @@ int drivers_enter(char **argv, dm_str *err)
         }
         return DM_ERR_ARG;
     }
-    const char *applied = getenv(DRIVERS__APPLIED);
-    if (applied && strcmp(applied, name) == 0)
+    if (strcmp(drivers__applied, name) == 0)
         return 0;
     char *why = NULL;
     if (drivers_missing(d, &why)) {
@@ -121,14 +146,23 @@ int drivers_enter(char **argv, dm_str *err)
         free(egl);
     }
     if (strcmp(d->name, "zink") == 0) {
-        /* without lavapipe's ICD the Vulkan loader finds no device and zink
-         * hangs at start-up on some machines */
+        /* Without lavapipe's ICD the Vulkan loader finds no device and zink
+         * hangs at start-up.  The loader takes VK_DRIVER_FILES before
+         * VK_ICD_FILENAMES and lets the other variables add or filter out
+         * drivers, so all of them are set or removed: the driver named
+         * zink is zink on this lavapipe, whatever the user's shell says. */
         char *icd = dm_xasprintf("%s/lvp_icd.json", drivers_mesa25_prefix());
+        setenv("VK_DRIVER_FILES", icd, 1);
         setenv("VK_ICD_FILENAMES", icd, 1);
+        unsetenv("VK_ADD_DRIVER_FILES");
+        unsetenv("VK_LOADER_DRIVERS_SELECT");
+        unsetenv("VK_LOADER_DRIVERS_DISABLE");
         setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
         free(icd);
     }
-    setenv(DRIVERS__APPLIED, name, 1);
+    char *marker = dm_xasprintf("%s:%ld", name, (long)getpid());
+    setenv(DRIVERS__APPLIED, marker, 1);
+    free(marker);
     fflush(NULL);
     execv("/proc/self/exe", argv);
     dm_str_printf(err, "DMBENCH_DRIVER=%s: cannot re-execute dmbench: %s", name, strerror(errno));

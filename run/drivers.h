@@ -32,7 +32,10 @@ const char *drivers_mesa25_prefix(void);
 /* NULL when driver d can run here, else why not (static text or allocated
  * into *why_buf, which the caller frees). */
 const char *drivers_missing(const driver_info *d, char **why_buf);
-/* The name of the driver this process runs ("default" when none chosen). */
+/* The name of the driver this process runs ("default" when none chosen),
+ * as drivers_enter found it: the marker it sets for the re-executed process
+ * counts only in that process tree, never when inherited from a user's
+ * environment. */
 const char *drivers_current(void);
 /* Applies DMBENCH_DRIVER: 0 when nothing is to be done or the process
  * already runs under it; otherwise sets the driver's variables and

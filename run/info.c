@@ -2,14 +2,18 @@
 #include "info.h"
 #include "core/dm_exit.h"
 #include "core/dm_error.h"
+#include "core/dm_proc.h"
 #include "counters/counters.h"
 #include "run/env.h"
 #include "run/gl_context.h"
+#include "run/probe.h"
 
 #include <cjson/cJSON.h>
 #include <epoxy/gl.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
+#include <unistd.h>
 
 /* The extensions that matter to dmbench (docs/llvmpipe-findings.md). */
 static const char *const info__exts[] = {
@@ -59,53 +63,101 @@ static cJSON *info__collect(const counters_timer_calibration *cal)
     return root;
 }
 
-static void info__print_text(const cJSON *root)
+static void info__print_text(const cJSON *root, FILE *f)
 {
     const cJSON *env = cJSON_GetObjectItem(root, "environment"), *it;
-    printf("Environment\n");
-    cJSON_ArrayForEach(it, env) printf("  %-22s %s\n", it->string, it->valuestring);
-    printf("Extensions\n");
+    fprintf(f, "Environment\n");
+    cJSON_ArrayForEach(it, env) fprintf(f, "  %-22s %s\n", it->string, it->valuestring);
+    fprintf(f, "Extensions\n");
     cJSON_ArrayForEach(it, cJSON_GetObjectItem(root, "extensions"))
-        printf("  %-38s %s\n", it->string, cJSON_IsTrue(it) ? "yes" : "no");
-    printf("Limits\n");
+        fprintf(f, "  %-38s %s\n", it->string, cJSON_IsTrue(it) ? "yes" : "no");
+    fprintf(f, "Limits\n");
     cJSON_ArrayForEach(it, cJSON_GetObjectItem(root, "limits"))
-        printf("  %-42s %g\n", it->string, it->valuedouble);
+        fprintf(f, "  %-42s %g\n", it->string, it->valuedouble);
     const cJSON *t = cJSON_GetObjectItem(root, "timer");
     double cov = cJSON_GetObjectItem(t, "gpu_time_coverage")->valuedouble;
     const char *verdict = cJSON_GetObjectItem(t, "verdict")->valuestring;
-    printf("Timer calibration (GL_TIME_ELAPSED vs glFinish-fenced wall time on a heavy draw)\n");
-    printf("  gpu %.3f ms, wall %.3f ms, coverage %.4f -> %s\n",
+    fprintf(f, "Timer calibration (GL_TIME_ELAPSED vs glFinish-fenced wall time on a heavy draw)\n");
+    fprintf(f, "  gpu %.3f ms, wall %.3f ms, coverage %.4f -> %s\n",
            cJSON_GetObjectItem(t, "gpu_ns")->valuedouble / 1e6,
            cJSON_GetObjectItem(t, "wall_ns")->valuedouble / 1e6, cov, verdict);
     if (verdict[0] == 'p')
-        printf("  GPUTime is recorded but marked partial: it is never used to fit or gate.\n");
+        fprintf(f, "  GPUTime is recorded but marked partial: it is never used to fit or gate.\n");
 }
 
-int info_main(int json)
+/* The child: the context, the report formatted, sent as "O" and the text,
+ * or "F CODE\tMESSAGE" when there is no usable context. */
+static void info__child(int fd, void *arg)
 {
+    int json = *(const int *)arg;
     gl_context *gl = NULL;
     dm_str err = {0};
-    int rc = env_check(&err);
-    rc = rc ? rc : gl_context_create(NULL, &gl, &err);
-    if (rc != 0) {   /* bad LP_NUM_THREADS: 2; no usable GL: 4, as for run */
-        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+    int rc = gl_context_create(NULL, &gl, &err);
+    if (rc != 0) {
+        dprintf(fd, "F%d\t%s", rc, dm_str_get(&err));
         dm_str_free(&err);
-        return dm_exit_from_error(rc);
+        return;
     }
     counters_context *cc = NULL;
     counters_timer_calibration cal = { .verdict = "unavailable" };
     if (counters_context_create(&cc) == 0)
         counters_calibrate_timer(cc, &cal);
     cJSON *root = info__collect(&cal);
+    char *text = NULL;
+    size_t len = 0;
     if (json) {
-        char *s = cJSON_Print(root);
-        puts(s);
-        free(s);
+        text = cJSON_Print(root);
+        len = strlen(text);
     } else {
-        info__print_text(root);
+        FILE *f = open_memstream(&text, &len);
+        info__print_text(root, f);
+        fclose(f);
     }
+    dm_str out = {0};
+    dm_str_printf(&out, "O%s%s", text, json ? "\n" : "");
+    for (size_t off = 0; off < out.len;) {   /* the whole report, or the parent sees it cut */
+        ssize_t w = write(fd, out.buf + off, out.len - off);
+        if (w <= 0)
+            break;
+        off += (size_t)w;
+    }
+    dm_str_free(&out);
+    free(text);
     cJSON_Delete(root);
     counters_context_destroy(cc);
     gl_context_destroy(gl);
-    return DM_EXIT_OK;
+}
+
+int info_main(int json)
+{
+    dm_str err = {0};
+    int rc = env_check(&err);
+    if (rc != 0) {   /* bad LP_NUM_THREADS: 2 */
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        dm_str_free(&err);
+        return dm_exit_from_error(rc);
+    }
+    /* The driver is asked in a child with the probe's deadline: a driver
+     * that hangs at start-up (zink without a Vulkan device) or crashes
+     * makes `info` exit 4 with the reason, never hang. */
+    dm_proc_result res;
+    dm_proc_collect(info__child, &json, probe_timeout_s(), &res);
+    if (res.text[0] == 'O') {
+        fputs(res.text + 1, stdout);
+        rc = DM_EXIT_OK;
+    } else {
+        char *tab = res.text[0] == 'F' ? strchr(res.text, '\t') : NULL;
+        int e = tab ? (int)strtol(res.text + 1, NULL, 10) : DM_ERR_GL;
+        if (tab)   /* no usable GL: 4, as for run */
+            dm_str_cat(&err, tab + 1);
+        else if (res.started)
+            probe_no_answer("the driver", res.timed_out, res.status, res.seconds, &err);
+        else
+            dm_str_printf(&err, "cannot start a process to ask the driver: %s", strerror(res.status));
+        fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
+        rc = dm_exit_from_error(e < 0 ? e : DM_ERR_GL);
+    }
+    free(res.text);
+    dm_str_free(&err);
+    return rc;
 }

@@ -1,6 +1,7 @@
 /* runner.c — orchestration of a run in the parent process (see runner.h). */
 #include "runner.h"
 #include "core/dm_error.h"
+#include "core/dm_proc.h"
 #include "counters/counters.h"
 #include "run/calibrate.h"
 #include "run/callgrind.h"
@@ -8,6 +9,7 @@
 #include "run/fitting.h"
 #include "run/gl_context.h"
 #include "run/measure.h"
+#include "run/probe.h"
 #include "run/predict.h"
 #include "run/protocol.h"
 #include "run/trends.h"
@@ -31,7 +33,6 @@
 #include <string.h>
 #include <fcntl.h>
 #include <sys/file.h>
-#include <sys/prctl.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
 #include <time.h>
@@ -64,8 +65,9 @@ typedef struct runner {
 
 /* ---- the probe child: environment, timer calibration, extensions ------- */
 
-static void runner__probe_child(int fd)
+static void runner__probe_child(int fd, void *arg)
 {
+    (void)arg;
     gl_context *gl = NULL;
     dm_str err = {0}, out = {0};
     if (gl_context_create(NULL, &gl, &err) != 0) {
@@ -89,13 +91,6 @@ static void runner__probe_child(int fd)
             if (ext && epoxy_has_gl_extension(ext))
                 dm_str_printf(&out, "X\t%s\n", ext);
         }
-        dm_str bad = {0};   /* a user's GLSL that does not build: exit 2 before any work */
-        if (user_technique_check_programs(&bad) == DM_ERR_PARSE) {
-            for (char *c = bad.buf; c && *c; c++)
-                *c = *c == '\n' ? '\x1f' : *c == '\t' ? ' ' : *c;   /* one protocol line */
-            dm_str_printf(&out, "U\t%s\n", dm_str_get(&bad));
-        }
-        dm_str_free(&bad);
         for (size_t i = 0; axes_value_ext_at(i); i++)
             if (epoxy_has_gl_extension(axes_value_ext_at(i)))
                 dm_str_printf(&out, "X\t%s\n", axes_value_ext_at(i));
@@ -105,7 +100,8 @@ static void runner__probe_child(int fd)
     }
     ssize_t w = write(fd, out.buf, out.len);
     (void)w;
-    _exit(0);
+    dm_str_free(&err);
+    dm_str_free(&out);
 }
 
 /* Reads everything a child writes until EOF or timeout; returns the text. */
@@ -123,23 +119,15 @@ static char *runner__read_all(int fd, int timeout_ms)
     return dm_str_take(&s);
 }
 
+/* The driver probe: environment, timer calibration and extensions from a
+ * child (run/probe.h: it may hang or crash, and the run must not); then
+ * every user technique compiled in a child of its own.  Returns 0,
+ * DM_ERR_GL (no usable driver, message in err) or the user check's code. */
 static int runner__probe(runner *r, dm_str *err)
 {
-    int fds[2];
-    if (pipe(fds) != 0)
-        return DM_ERR_IO;
-    fflush(NULL);
-    pid_t pid = fork();
-    if (pid == 0) {
-        close(fds[0]);
-        runner__probe_child(fds[1]);
-    }
-    close(fds[1]);
-    char *text = runner__read_all(fds[0], 120000);
-    close(fds[0]);
-    int status = 0;
-    kill(pid, SIGKILL);
-    waitpid(pid, &status, 0);
+    dm_proc_result res;
+    dm_proc_collect(runner__probe_child, NULL, probe_timeout_s(), &res);
+    char *text = res.text;
     int rc = 0;
     r->env.timer_verdict = dm_xstrdup("unavailable");
     char *save = NULL;
@@ -160,22 +148,20 @@ static int runner__probe(runner *r, dm_str *err)
             r->env.timer_verdict = dm_xstrdup(f2);
         } else if (line[0] == 'C' && f1) {
             r->instr_why = dm_xstrdup(f1);
-        } else if (line[0] == 'U' && f1) {
-            for (char *c = f1; *c; c++)
-                *c = *c == '\x1f' ? '\n' : *c;
-            dm_str_cat(err, f1);
-            rc = DM_ERR_PARSE;
         } else if (line[0] == 'X' && f1) {
             DM_VEC_PUSH(r->exts, r->n_exts, dm_xstrdup(f1));
         }
     }
     free(text);
     if (rc == 0 && !dm_kv_get(r->env.environment, r->env.n_environment, "renderer")) {
-        dm_str_cat(err, "the driver probe produced no result (it crashed or hung)");
+        if (res.started)
+            probe_no_answer("the driver probe", res.timed_out, res.status, res.seconds, err);
+        else
+            dm_str_printf(err, "cannot start the driver probe: %s", strerror(res.status));
         rc = DM_ERR_GL;
     }
     env_fingerprint(&r->env.environment, &r->env.n_environment);
-    return rc;
+    return rc ? rc : probe_user_techniques(err);
 }
 
 static int runner__has_ext(const char *ext, void *user)
@@ -317,12 +303,8 @@ static pid_t runner__spawn(runner *r, const plan_config *cs, size_t n, int *fd, 
     int fds[2];
     if (pipe(fds) != 0)
         return -1;
-    fflush(NULL);
-    pid_t pid = fork();
+    pid_t pid = dm_proc_fork();   /* a killed runner takes its child along */
     if (pid == 0) {
-        prctl(PR_SET_PDEATHSIG, SIGKILL);   /* a killed runner takes its child along */
-        if (getppid() == 1)
-            _exit(3);
         close(fds[0]);
         measure_job job = { .sweep = r->s, .configs = cs, .n_configs = n, .run_id = r->run_id,
                             .run_dir = r->run_dir, .store_path = r->store_path,

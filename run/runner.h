@@ -1,8 +1,10 @@
 /* runner.h — running a sweep end to end (README; docs/measurement.md; docs/scale-out.md).
  *
  * The runner process never touches GL: a first child probes the driver
- * (environment, timer calibration, extensions); then each scene is measured
- * in a child process (measure.h) under a watchdog.  A crash or hang fails
+ * (environment, timer calibration, extensions) and a second compiles the
+ * user techniques, each with a deadline (probe.h); then each scene is
+ * measured in a child process (measure.h) under a watchdog.  Every child
+ * dies with the runner (core/dm_proc.h).  A crash or hang fails
  * only the configuration being worked on; a new child continues with the
  * rest.  Every finished configuration is committed to the SQLite store at
  * once and the samples of every finished round are checkpointed, so a kill

@@ -1,6 +1,7 @@
 /* slurm.c — the scripts and commands of slurm.h. */
 #include "run/slurm.h"
 #include "core/dm_error.h"
+#include "core/dm_proc.h"
 #include "store/store.h"
 
 #include <errno.h>
@@ -234,7 +235,7 @@ int slurm_exec(char *const *argv, dm_str *out, dm_str *err_out)
         dm_str_printf(err_out, "cannot run %s: %s", argv[0], strerror(errno));
         return -1;
     }
-    pid_t pid = fork();
+    pid_t pid = dm_proc_fork();
     if (pid == 0) {
         dup2(po[1], 1);
         dup2(pe[1], 2);
@@ -255,7 +256,9 @@ int slurm_exec(char *const *argv, dm_str *out, dm_str *err_out)
     slurm__drain(po[0], out);   /* Slurm's commands print little: no deadlock on pe */
     slurm__drain(pe[0], err_out);
     int status = 0;
-    while (waitpid(pid, &status, 0) < 0 && errno == EINTR) {
+    if (dm_proc_wait(pid, &status) < 0) {
+        dm_str_printf(err_out, "cannot wait for %s: %s", argv[0], strerror(errno));
+        return -1;
     }
     return WIFEXITED(status) ? WEXITSTATUS(status) : 128 + WTERMSIG(status);
 }

@@ -65,12 +65,15 @@ const technique_desc *user_technique_by_path(const char *path);
 /* The file a user technique was loaded from, or NULL for a built-in one. */
 const char *user_technique_path(const technique_desc *t);
 
-/* Compiles and links every loaded user technique in the current GL context
- * (user_technique_check.c).  Returns 0, or DM_ERR_PARSE with
- * "path: user technique 'NAME' cannot be used: ..." and the driver's log,
- * lines of the user's file as "path:line:column: ...", in err; DM_ERR_GL
- * without a usable context. */
-int user_technique_check_programs(dm_str *err);
+/* Compiles and links loaded user technique i with renderer r (a current GL
+ * context; user_technique_check.c).  Returns 0, or DM_ERR_PARSE with
+ * "path: user technique 'NAME' does not compile; the driver says:" and the
+ * driver's log, lines of the user's file as "path:line:column: ...", in
+ * err, or another code with "path: user technique 'NAME' cannot be used:".
+ * The driver's compiler may also crash or run for minutes on a user's file:
+ * callers compile in a child with a deadline (run/probe.h). */
+typedef struct tech_renderer tech_renderer;
+int user_technique_check_program(tech_renderer *r, size_t i, dm_str *err);
 
 /* Source of a virtual shader name "user:NAME" (the built-in stage of its
  * base followed by the user's file), or NULL. */

@@ -1,5 +1,5 @@
-/* user_technique_check.c — compiling every loaded user technique once, before
- * a run measures anything (see user_technique.h). */
+/* user_technique_check.c — compiling a loaded user technique once, before a
+ * run, `render` or `predict` uses it (see user_technique.h). */
 #include "techniques/user_technique.h"
 
 #include <string.h>
@@ -7,34 +7,25 @@
 #include "core/dm_error.h"
 #include "techniques/render.h"
 
-int user_technique_check_programs(dm_str *err)
+int user_technique_check_program(tech_renderer *r, size_t i, dm_str *err)
 {
-    if (user_technique_count() == 0)
-        return 0;
-    tech_renderer *r = NULL;
-    int rc = tech_renderer_create(&r);
-    if (rc)
-        return rc;
-    for (size_t i = 0; rc == 0 && i < user_technique_count(); i++) {
-        const technique_desc *t = user_technique_at(i);
-        /* the smallest scene: only the program matters */
-        dm_kv kv[] = {{(char *)"technique", (char *)t->name}, {(char *)"texture_size", (char *)"16"}};
-        tech_item item;
-        dm_str log = {0};
-        rc = tech_prepare(r, kv, sizeof kv / sizeof kv[0], &item, &log);
-        if (rc == 0)
-            tech_release(r, item);
-        else if (rc == DM_ERR_SHADER) {   /* the log's first line names the stage: said here */
-            const char *nl = strchr(dm_str_get(&log), '\n');
-            dm_str_printf(err, "%s: user technique '%s' does not %s; the driver says:\n%s",
-                          user_technique_path(t), t->name,
-                          strstr(dm_str_get(&log), "failed to link") ? "link" : "compile",
-                          nl ? nl + 1 : dm_str_get(&log));
-        } else
-            dm_str_printf(err, "%s: user technique '%s' cannot be used: %s", user_technique_path(t),
-                          t->name, dm_str_get(&log));
-        dm_str_free(&log);
-    }
-    tech_renderer_destroy(r);
+    const technique_desc *t = user_technique_at(i);
+    /* the smallest scene: only the program matters */
+    dm_kv kv[] = {{(char *)"technique", (char *)t->name}, {(char *)"texture_size", (char *)"16"}};
+    tech_item item;
+    dm_str log = {0};
+    int rc = tech_prepare(r, kv, sizeof kv / sizeof kv[0], &item, &log);
+    if (rc == 0)
+        tech_release(r, item);
+    else if (rc == DM_ERR_SHADER) {   /* the log's first line names the stage: said here */
+        const char *nl = strchr(dm_str_get(&log), '\n');
+        dm_str_printf(err, "%s: user technique '%s' does not %s; the driver says:\n%s",
+                      user_technique_path(t), t->name,
+                      strstr(dm_str_get(&log), "failed to link") ? "link" : "compile",
+                      nl ? nl + 1 : dm_str_get(&log));
+    } else
+        dm_str_printf(err, "%s: user technique '%s' cannot be used: %s", user_technique_path(t),
+                      t->name, dm_str_get(&log));
+    dm_str_free(&log);
     return rc == DM_ERR_SHADER ? DM_ERR_PARSE : rc;
 }

@@ -39,3 +39,7 @@ set_tests_properties(test_user_technique_contract PROPERTIES TIMEOUT 600 ENVIRON
 add_test(NAME test_user_technique_gate COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/user_technique/gate.sh)
 set_tests_properties(test_user_technique_gate PROPERTIES TIMEOUT 1800 ENVIRONMENT "${DM_TEST_ENV}"
   LABELS "e2e;gate;valgrind")
+# No process outlives its run: SIGTERM and SIGKILL of the parent at each
+# stage with a child (probe, measuring, Valgrind counting, drivers' run)
+# leave nothing running 5 s later (~1 min).
+dm_add_e2e(test_e2e_kill kill.sh)

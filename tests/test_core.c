@@ -1,4 +1,5 @@
-/* Unit tests of core/: error names, exit codes, "did you mean", strings, HTML escaping, hashing, files. */
+/* Unit tests of core/: error names, exit codes, "did you mean", strings, HTML escaping, hashing, files,
+ * child processes. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -13,6 +14,12 @@
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
 #include "core/dm_results.h"
+#include "core/dm_proc.h"
+
+#include <signal.h>
+#include <stdio.h>
+#include <sys/wait.h>
+#include <time.h>
 
 static void test_error_names(void **state)
 {
@@ -132,6 +139,88 @@ static void test_suggest(void **state)
     dm_str_free(&s);
 }
 
+static void proc__hello(int fd, void *arg)
+{
+    dprintf(fd, "hello %s", (const char *)arg);
+}
+
+static void proc__silent(int fd, void *arg)
+{
+    (void)fd;
+    (void)arg;
+    for (;;)
+        pause();
+}
+
+static void proc__crash(int fd, void *arg)
+{
+    (void)arg;
+    dprintf(fd, "K\n");
+    signal(SIGSEGV, SIG_DFL);   /* cmocka's handler is inherited */
+    raise(SIGSEGV);
+}
+
+/* A child of the child (both by dm_proc_fork) that reports its pid and
+ * waits; its parent then exits. */
+static void proc__orphan_maker(int fd, void *arg)
+{
+    (void)arg;
+    pid_t g = dm_proc_fork();
+    if (g == 0) {
+        for (;;)
+            pause();
+    }
+    dprintf(fd, "%ld\n", (long)g);
+}
+
+/* 1 when process pid is gone or a zombie. */
+static int proc__gone(long pid)
+{
+    char path[64], st[256] = "";
+    snprintf(path, sizeof path, "/proc/%ld/stat", pid);
+    FILE *f = fopen(path, "r");
+    if (!f)
+        return 1;
+    size_t n = fread(st, 1, sizeof st - 1, f);
+    fclose(f);
+    st[n] = '\0';
+    const char *close = strrchr(st, ')');
+    return close && close[1] == ' ' && close[2] == 'Z';
+}
+
+static void test_proc(void **state)
+{
+    (void)state;
+    dm_proc_result r;
+    /* what the child writes comes back, with its exit status */
+    assert_int_equal(dm_proc_collect(proc__hello, "world", 10, &r), 0);
+    assert_string_equal(r.text, "hello world");
+    assert_true(r.started && !r.timed_out && WIFEXITED(r.status) && WEXITSTATUS(r.status) == 0);
+    free(r.text);
+    /* a silent child is stopped at the deadline */
+    assert_int_equal(dm_proc_collect(proc__silent, NULL, 0.2, &r), -1);
+    assert_true(r.timed_out && r.seconds >= 0.2 && r.seconds < 5);
+    free(r.text);
+    /* a crash is its signal, after what it said */
+    assert_int_equal(dm_proc_collect(proc__crash, NULL, 10, &r), -1);
+    assert_string_equal(r.text, "K\n");
+    assert_true(!r.timed_out && WIFSIGNALED(r.status) && WTERMSIG(r.status) == SIGSEGV);
+    free(r.text);
+    /* a child whose parent ends dies with it (the parent-death signal) */
+    assert_int_equal(dm_proc_collect(proc__orphan_maker, NULL, 10, &r), 0);
+    long g = strtol(r.text, NULL, 10);
+    free(r.text);
+    assert_true(g > 0);
+    int gone = 0;
+    for (int i = 0; i < 200 && !(gone = proc__gone(g)); i++) {
+        struct timespec t = { 0, 10000000 };
+        nanosleep(&t, NULL);
+    }
+    if (!gone)
+        kill((pid_t)g, SIGKILL);
+    assert_true(gone);
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_error_names),
              cmocka_unit_test(test_exit_codes),
@@ -140,4 +229,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_hash),
              cmocka_unit_test(test_files),
              cmocka_unit_test(test_results_kv),
-             cmocka_unit_test(test_closest))
+             cmocka_unit_test(test_closest),
+             cmocka_unit_test(test_proc))
