@@ -64,6 +64,16 @@ typedef struct runner {
 
 /* ---- the probe child: environment, timer calibration, extensions ------- */
 
+/* The probe child's note ahead of compiling user technique t: "P\tINDEX"
+ * (its index among user_technique_at), so that the parent can name the
+ * file when the compiler crashes or never returns. */
+static void runner__probe_before(const technique_desc *t, void *user)
+{
+    for (size_t i = 0; i < user_technique_count(); i++)
+        if (user_technique_at(i) == t)
+            dprintf(*(int *)user, "P\t%zu\n", i);
+}
+
 static void runner__probe_child(int fd)
 {
     gl_context *gl = NULL;
@@ -90,12 +100,16 @@ static void runner__probe_child(int fd)
                 dm_str_printf(&out, "X\t%s\n", ext);
         }
         dm_str bad = {0};   /* a user's GLSL that does not build: exit 2 before any work */
-        if (user_technique_check_programs(&bad) == DM_ERR_PARSE) {
+        ssize_t said = write(fd, out.buf, out.len);   /* so far, in case the compiler never returns */
+        (void)said;
+        dm_str_free(&out);
+        if (user_technique_check_programs(runner__probe_before, &fd, &bad) == DM_ERR_PARSE) {
             for (char *c = bad.buf; c && *c; c++)
                 *c = *c == '\n' ? '\x1f' : *c == '\t' ? ' ' : *c;   /* one protocol line */
             dm_str_printf(&out, "U\t%s\n", dm_str_get(&bad));
         }
         dm_str_free(&bad);
+        dm_str_cat(&out, "Q\n");   /* every user technique was compiled */
         for (size_t i = 0; axes_value_ext_at(i); i++)
             if (epoxy_has_gl_extension(axes_value_ext_at(i)))
                 dm_str_printf(&out, "X\t%s\n", axes_value_ext_at(i));
@@ -108,20 +122,29 @@ static void runner__probe_child(int fd)
     _exit(0);
 }
 
-/* Reads everything a child writes until EOF or timeout; returns the text. */
-static char *runner__read_all(int fd, int timeout_ms)
+/* Reads everything a child writes until EOF or timeout_ms without output;
+ * returns the text, and in *timed_out (may be NULL) 1 when it stopped for
+ * the timeout. */
+static char *runner__read_all(int fd, int timeout_ms, int *timed_out)
 {
     dm_str s = {0};
     char buf[4096];
     struct pollfd pfd = { fd, POLLIN, 0 };
-    while (poll(&pfd, 1, timeout_ms) > 0) {
+    int ready;
+    while ((ready = poll(&pfd, 1, timeout_ms)) > 0) {
         ssize_t n = read(fd, buf, sizeof buf);
         if (n <= 0)
             break;
         dm_str_catn(&s, buf, (size_t)n);
     }
+    if (timed_out)
+        *timed_out = ready == 0;
     return dm_str_take(&s);
 }
+
+/* Seconds the driver probe may go without output (it compiles each user
+ * technique: a compile that runs past it is the user's file, exit 2). */
+#define RUNNER__PROBE_TIMEOUT_S 120
 
 static int runner__probe(runner *r, dm_str *err)
 {
@@ -135,11 +158,14 @@ static int runner__probe(runner *r, dm_str *err)
         runner__probe_child(fds[1]);
     }
     close(fds[1]);
-    char *text = runner__read_all(fds[0], 120000);
+    int64_t t0 = dm_now_ns();
+    int hung = 0, status = 0;
+    char *text = runner__read_all(fds[0], RUNNER__PROBE_TIMEOUT_S * 1000, &hung);
     close(fds[0]);
-    int status = 0;
     kill(pid, SIGKILL);
     waitpid(pid, &status, 0);
+    double took = (double)(dm_now_ns() - t0) / 1e9;
+    long compiling = -1;   /* the user technique being compiled ('P'), until all were ('Q') */
     int rc = 0;
     r->env.timer_verdict = dm_xstrdup("unavailable");
     char *save = NULL;
@@ -167,9 +193,29 @@ static int runner__probe(runner *r, dm_str *err)
             rc = DM_ERR_PARSE;
         } else if (line[0] == 'X' && f1) {
             DM_VEC_PUSH(r->exts, r->n_exts, dm_xstrdup(f1));
+        } else if (line[0] == 'P' && f1) {
+            compiling = strtol(f1, NULL, 10);
+        } else if (line[0] == 'Q') {
+            compiling = -1;
         }
     }
     free(text);
+    const technique_desc *ut = compiling >= 0 ? user_technique_at((size_t)compiling) : NULL;
+    if (rc == 0 && ut) {   /* the user's file: exit 2, naming it */
+        dm_str_printf(err, "%s: user technique '%s': ", user_technique_path(ut), ut->name);
+        if (hung)
+            dm_str_printf(err, "the driver did not finish compiling it in %.0f s (the driver probe's "
+                          "limit, %d s without progress); make the shader smaller or simpler",
+                          took, RUNNER__PROBE_TIMEOUT_S);
+        else if (WIFSIGNALED(status))
+            dm_str_printf(err, "the driver's compiler crashed on it after %.1f s (signal %d, %s); make "
+                          "the shader smaller or simpler (a very long expression can exhaust the "
+                          "compiler's stack)", took, WTERMSIG(status), strsignal(WTERMSIG(status)));
+        else
+            dm_str_printf(err, "the driver probe ended while compiling it (exit status %d, after "
+                          "%.1f s)", WIFEXITED(status) ? WEXITSTATUS(status) : -1, took);
+        rc = DM_ERR_PARSE;
+    }
     if (rc == 0 && !dm_kv_get(r->env.environment, r->env.n_environment, "renderer")) {
         dm_str_cat(err, "the driver probe produced no result (it crashed or hung)");
         rc = DM_ERR_GL;
@@ -663,7 +709,7 @@ static void runner__budget_pilot(runner *r, runner_budget *b, const plan_config 
 {
     int fd = -1;
     pid_t pid = runner__spawn(r, cs, n, &fd, 1);
-    char *text = runner__read_all(fd, (int)(r->s->measure.timeout_s * 1000));
+    char *text = runner__read_all(fd, (int)(r->s->measure.timeout_s * 1000), NULL);
     close(fd);
     kill(pid, SIGKILL);
     waitpid(pid, NULL, 0);

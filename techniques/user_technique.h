@@ -86,11 +86,14 @@ const technique_desc *user_technique_by_path(const char *path);
 const char *user_technique_path(const technique_desc *t);
 
 /* Compiles and links every loaded user technique in the current GL context
- * (user_technique_check.c).  Returns 0, or DM_ERR_PARSE with
- * "path: user technique 'NAME' cannot be used: ..." and the driver's log,
- * lines of the user's file as "path:line:column: ...", in err; DM_ERR_GL
- * without a usable context. */
-int user_technique_check_programs(dm_str *err);
+ * (user_technique_check.c), calling before(t, user) (may be NULL) ahead of
+ * each: a compiler that crashes or never returns is the user's file, and a
+ * caller watching from another process can name it.  Returns 0, or
+ * DM_ERR_PARSE with "path: user technique 'NAME' cannot be used: ..." and
+ * the driver's log, lines of the user's file as "path:line:column: ...",
+ * in err; DM_ERR_GL without a usable context. */
+int user_technique_check_programs(void (*before)(const technique_desc *t, void *user), void *user,
+                                  dm_str *err);
 
 /* Source of a virtual shader name "user:NAME" (the built-in stage of its
  * base followed by the user's file), or NULL. */

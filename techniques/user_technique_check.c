@@ -7,7 +7,8 @@
 #include "core/dm_error.h"
 #include "techniques/render.h"
 
-int user_technique_check_programs(dm_str *err)
+int user_technique_check_programs(void (*before)(const technique_desc *t, void *user), void *user,
+                                  dm_str *err)
 {
     if (user_technique_count() == 0)
         return 0;
@@ -17,6 +18,8 @@ int user_technique_check_programs(dm_str *err)
         return rc;
     for (size_t i = 0; rc == 0 && i < user_technique_count(); i++) {
         const technique_desc *t = user_technique_at(i);
+        if (before)
+            before(t, user);
         /* the smallest scene: only the program matters */
         dm_kv kv[] = {{(char *)"technique", (char *)t->name}, {(char *)"texture_size", (char *)"16"}};
         tech_item item;
