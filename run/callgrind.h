@@ -5,7 +5,7 @@
  * Frames under Valgrind run ~300x slower, so they are never timed: a run
  * that asks for Instructions (or InstructionsPerPixel) first runs one child
  * `valgrind --tool=callgrind --collect-atstart=no dmbench __instructions
- * SWEEP HASH KEY...` with LP_NUM_THREADS=0 (the rasteriser runs on the
+ * SWEEP HASH [--source PATH HASH]... KEY...` with LP_NUM_THREADS=0 (the rasteriser runs on the
  * calling thread, so its work is inside the counted window).  The child
  * (measure_instructions) prepares and warms up each configuration with
  * collection off, then switches collection on around CALLGRIND_SAMPLES
