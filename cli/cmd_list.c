@@ -76,7 +76,9 @@ static int list__techniques(void)
         const technique_desc *t = technique_at(i);
         if (t->test_only)
             continue;
-        printf("%-20s %s\n", t->name, t->summary ? t->summary : "");
+        char *b = NULL;   /* a user technique's //@summary: its control bytes as '?' */
+        printf("%-20s %s\n", t->name, dm_term_safe(t->summary ? t->summary : "", &b));
+        free(b);
         dm_str axes = {0};
         for (const char *const *a = t->axes; a && *a; a++)
             dm_str_printf(&axes, "%s%s", a == t->axes ? "" : ", ", *a);

@@ -6,6 +6,15 @@
 #include <stdlib.h>
 #include <string.h>
 
+int dm_result_column_reserved(const char *name)
+{
+    static const char *const cols[] = {DM_RESULT_LEAD_COLUMNS, DM_RESULT_TRAIL_COLUMNS};
+    for (size_t i = 0; name && i < sizeof cols / sizeof cols[0]; i++)
+        if (strcmp(cols[i], name) == 0)
+            return 1;
+    return 0;
+}
+
 const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key)
 {
     for (size_t i = 0; i < n; i++)

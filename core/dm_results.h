@@ -120,6 +120,16 @@ typedef struct dm_run_result {
 } dm_run_result;
 
 /* Lookup helpers; return NULL when absent. */
+/* The columns of a configuration's row in results.csv that are neither a
+ * parameter nor a counter: DM_RESULT_LEAD_COLUMNS come first, then the
+ * parameters and counters, then DM_RESULT_TRAIL_COLUMNS (reports/report_csv.c).
+ * A parameter by one of these names would be a second column of that name,
+ * so user techniques may not declare one (dm_result_column_reserved). */
+#define DM_RESULT_LEAD_COLUMNS "key", "scene", "status", "reason"
+#define DM_RESULT_TRAIL_COLUMNS "label", "pareto"
+/* 1 when name is one of the columns above. */
+int dm_result_column_reserved(const char *name);
+
 const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key);
 const dm_counter_result *dm_config_counter(const dm_config_result *c, const char *name);
 const dm_fit_param *dm_fit_param_find(const dm_fit_result *f, const char *name);

@@ -97,9 +97,9 @@ static void row(dm_str *s, const dm_run_result *run, const dm_config_result *c, 
 static void header(dm_str *s, const char **params, size_t np, const char **timed, size_t nt,
                    const char **det, size_t nd)
 {
-    static const char *fixed[] = {"key", "scene", "status", "reason"};
-    for (int i = 0; i < 4; i++)
-        field(s, fixed[i], i == 0);
+    static const char *lead[] = {DM_RESULT_LEAD_COLUMNS}, *trail[] = {DM_RESULT_TRAIL_COLUMNS};
+    for (size_t i = 0; i < sizeof lead / sizeof lead[0]; i++)
+        field(s, lead[i], i == 0);
     for (size_t i = 0; i < np; i++)
         field(s, params[i], 0);
     for (size_t i = 0; i < nt; i++) {
@@ -114,8 +114,8 @@ static void header(dm_str *s, const char **params, size_t np, const char **timed
         field(s, det[i], 0);
     for (size_t i = 0; i < N_QUALITY; i++)
         field(s, quality_cols[i], 0);
-    field(s, "label", 0);
-    field(s, "pareto", 0);
+    for (size_t i = 0; i < sizeof trail / sizeof trail[0]; i++)
+        field(s, trail[i], 0);
     dm_str_cat(s, "\r\n");
 }
 

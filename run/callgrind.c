@@ -5,6 +5,7 @@
 #include "core/dm_proc.h"
 #include "counters/counters.h"
 #include "run/measure.h"
+#include "techniques/user_technique.h"
 
 #include <dirent.h>
 #include <errno.h>
@@ -196,6 +197,7 @@ typedef struct cg_state {
     int stages;              /* the sweep asks for the stage windows */
     char current[17];
     char *log;               /* the children's stderr (child.log; child.K.log for group K > 0) */
+    char *changed;           /* a child found a source changed since the run started ('C') */
     pid_t pid;               /* the running child, or -1 */
     int fd;                  /* its stdout */
     dm_str buf;              /* its unfinished line */
@@ -210,12 +212,14 @@ static int cg__index(const cg_state *g, const char *key)
     return -1;
 }
 
-/* Execs Valgrind on `dmbench __instructions SWEEP HASH KEY...` for the
- * configurations not tried yet; stdout is the pipe *fd. */
+/* Execs Valgrind on `dmbench __instructions SWEEP HASH [--source PATH
+ * HASH]... KEY...` for the configurations not tried yet (a --source for
+ * each user technique's file, with the hash of the text the run measures);
+ * stdout is the pipe *fd. */
 static pid_t cg__spawn(cg_state *g, int *fd)
 {
     const callgrind_desc *d = g->d;
-    char **argv = dm_xcalloc(g->n + 16, sizeof *argv);
+    char **argv = dm_xcalloc(g->n + 16 + 3 * user_technique_count(), sizeof *argv);
     size_t a = 0;
     char hash[17];
     dm_hex64(d->sweep->hash, hash);
@@ -234,6 +238,13 @@ static pid_t cg__spawn(cg_state *g, int *fd)
     argv[a++] = dm_xstrdup("__instructions");
     argv[a++] = dm_xstrdup(d->sweep->path);
     argv[a++] = dm_xstrdup(hash);
+    for (size_t i = 0; i < user_technique_count(); i++) {
+        char source[17];
+        dm_hex64(user_technique_at(i)->source_hash, source);
+        argv[a++] = dm_xstrdup("--source");
+        argv[a++] = dm_xstrdup(user_technique_path(user_technique_at(i)));
+        argv[a++] = dm_xstrdup(source);
+    }
     for (size_t i = 0; i < g->n; i++)
         if (!g->tried[i])
             argv[a++] = dm_xstrdup(g->cs[i].key);
@@ -325,6 +336,8 @@ static void cg__line(cg_state *g, char *line)
         if (strcmp(status, "ok") != 0 && !g->out[i].reason)
             g->out[i].reason = dm_xasprintf("not counted: %s", off ? line + off : status);
         g->current[0] = '\0';
+    } else if (line[0] == 'C' && line[1] == ' ' && !g->changed) {
+        g->changed = dm_xstrdup(line + 2);
     }
 }
 
@@ -450,7 +463,7 @@ static int cg__ended(cg_state *g, int status)
 {
     int clean = status >= 0 && WIFEXITED(status) && WEXITSTATUS(status) == 0;
     int cur = g->current[0] ? cg__index(g, g->current) : -1;
-    if (!clean)
+    if (!clean && !g->changed)   /* a changed source stops the run: no configuration failed */
         for (size_t i = 0; i < g->n; i++)   /* the one it was on, or all when it never started one */
             if (!g->done[i] && (cur < 0 ? !g->tried[i] : (int)i == cur))
                 cg__fail(g, (int)i, g->pid, status);
@@ -460,7 +473,7 @@ static int cg__ended(cg_state *g, int status)
     size_t left = 0;
     for (size_t i = 0; i < g->n; i++)
         left += !g->tried[i] && !g->done[i];
-    return !clean && left > 0;
+    return !clean && !g->changed && left > 0;
 }
 
 /* Progress on stderr (unless quiet): "k of n counted", at most once a
@@ -491,6 +504,15 @@ static void cg__progress(const cg_state *gs, size_t ng, cg_progress *p, int fina
     p->last = now;
 }
 
+/* 1 when a child of a group found a source changed since the run started. */
+static int cg__changed(const cg_state *gs, size_t ng)
+{
+    for (size_t k = 0; k < ng; k++)
+        if (gs[k].changed)
+            return 1;
+    return 0;
+}
+
 /* Runs the groups' children side by side until every group is done: one
  * poll over their outputs, each with its own watchdog.  Returns 0, or the
  * errno of a child that could not be started (the others are killed). */
@@ -502,7 +524,7 @@ static int cg__run_groups(cg_state *gs, size_t ng)
     int rc = 0;
     for (size_t k = 0; k < ng && rc == 0; k++)
         rc = cg__start(&gs[k]) ? (errno ? errno : EAGAIN) : 0;
-    while (rc == 0) {
+    while (rc == 0 && !cg__changed(gs, ng)) {   /* a changed source stops every child (below) */
         size_t nf = 0;
         for (size_t k = 0; k < ng; k++)
             if (gs[k].pid > 0) {
@@ -620,6 +642,11 @@ int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, call
         dm_str_printf(err, "cannot start %s: %s", d->valgrind, strerror(e));
         rc = DM_ERR_CHILD;
     }
+    for (size_t k = 0; k < ng && rc == 0; k++)
+        if (gs[k].changed) {
+            dm_str_cat(err, gs[k].changed);
+            rc = DM_ERR_ARG;
+        }
     cg_state g = { .d = d, .cs = cs, .n = n, .out = out, .stages = stages,
                    .tried = dm_xcalloc(n + 1, sizeof *g.tried), .done = dm_xcalloc(n + 1, sizeof *g.done) };
     for (size_t k = 0; k < ng; k++) {   /* the groups' results back in cs's order */
@@ -634,6 +661,7 @@ int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, call
         free(gs[k].tried);
         free(gs[k].done);
         free(gs[k].log);
+        free(gs[k].changed);
     }
     free(gs);
     for (size_t i = 0; i < n; i++)
@@ -734,27 +762,72 @@ int callgrind_child_main(int argc, char **argv)
     return cg__child(argc, argv) + pad[off];
 }
 
+/* The child's check that it measures what the run measures: the sweep file
+ * (hash want) and each `--source PATH HASH` of argv[*a...] (advanced past
+ * them) as loaded (loaded != 0) or, when loading failed, as on disk now.
+ * Appends "FILE changed since the run started ..." to changed for each
+ * that differs. */
+static void cg__sources(const char *path, const sweep *s, int loaded, const char *want, int argc,
+                        char **argv, int *a, dm_str *changed)
+{
+    char have[17] = "";
+    char *text = NULL;
+    size_t len = 0;
+    if (loaded)
+        dm_hex64(s->hash, have);
+    else if (path[0] != '<' && dm_read_file(path, &text, &len) == 0 && text)
+        dm_hex64(dm_fnv1a64(text, strlen(text), DM_FNV_SEED), have);
+    free(text);
+    if (have[0] && strcmp(have, want) != 0)
+        dm_str_printf(changed, "%s: the sweep file changed since the run started (hash %s, now %s)",
+                      path, want, have);
+    for (; *a + 2 < argc && strcmp(argv[*a], "--source") == 0; *a += 3) {
+        const char *file = argv[*a + 1];
+        uint64_t h = strtoull(argv[*a + 2], NULL, 16);
+        const technique_desc *t = loaded ? user_technique_by_path(file) : NULL;
+        if (t && t->source_hash == h)
+            continue;
+        dm_str one = {0};
+        if (user_technique_source_check(file, h, &one) != 0)
+            dm_str_printf(changed, "%s%s", changed->len ? "; " : "", dm_str_get(&one));
+        else if (t) {   /* loaded another text than the file holds now: changed twice */
+            char now[17];
+            dm_hex64(t->source_hash, now);
+            dm_str_printf(changed, "%s%s: the user technique's file changed while the run was "
+                          "going (source hash %s, read %s)", changed->len ? "; " : "", file,
+                          argv[*a + 2], now);
+        }
+        dm_str_free(&one);
+    }
+}
+
 static int cg__child(int argc, char **argv)
 {
     if (argc < 3) {
-        fprintf(stderr, "usage: dmbench __instructions SWEEP HASH KEY... (run by dmbench itself)\n");
+        fprintf(stderr, "usage: dmbench __instructions SWEEP HASH [--source PATH HASH]... KEY... "
+                "(run by dmbench itself)\n");
         return 2;
     }
     sweep s = {0};
     plan p = {0};
-    dm_str err = {0};
-    char hash[17] = "";
-    int rc = cg__load_sweep(argv[1], &s, &err);
-    if (rc == 0)
-        dm_hex64(s.hash, hash);
-    if (rc == 0 && strcmp(hash, argv[2]) != 0) {
-        dm_str_printf(&err, "%s changed since the run started (hash %s, expected %s)", argv[1], hash, argv[2]);
-        rc = DM_ERR_ARG;
+    dm_str err = {0}, changed = {0};
+    int rc = cg__load_sweep(argv[1], &s, &err), a = 3;
+    cg__sources(argv[1], &s, rc == 0, argv[2], argc, argv, &a, &changed);
+    if (changed.len) {   /* one line: the run stops with it, nothing fails */
+        for (char *c = changed.buf; *c; c++)
+            *c = *c == '\n' ? ' ' : *c;
+        printf("C %s\n", dm_str_get(&changed));
+        fflush(stdout);
+        sweep_free(&s);
+        dm_str_free(&changed);
+        dm_str_free(&err);
+        return 3;
     }
+    dm_str_free(&changed);
     rc = rc ? rc : plan_build(&s, &p, &err);
     plan_config *cs = dm_xcalloc((size_t)argc + 1, sizeof *cs);
     size_t n = 0;
-    for (int a = 3; rc == 0 && a < argc; a++)
+    for (; rc == 0 && a < argc; a++)
         for (size_t i = 0; i < p.n_configs; i++)
             if (strcmp(p.configs[i].key, argv[a]) == 0)
                 cs[n++] = p.configs[i];

@@ -5,7 +5,7 @@
  * Frames under Valgrind run ~300x slower, so they are never timed: a run
  * that asks for Instructions (or InstructionsPerPixel) first runs one child
  * `valgrind --tool=callgrind --collect-atstart=no dmbench __instructions
- * SWEEP HASH KEY...` with LP_NUM_THREADS=0 (the rasteriser runs on the
+ * SWEEP HASH [--source PATH HASH]... KEY...` with LP_NUM_THREADS=0 (the rasteriser runs on the
  * calling thread, so its work is inside the counted window).  The child
  * (measure_instructions) prepares and warms up each configuration with
  * collection off, then switches collection on around CALLGRIND_SAMPLES
@@ -126,7 +126,10 @@ int callgrind_jobs(int asked, size_t n);
 /* Counts the instructions of configurations cs[0..n) into out[0..n)
  * (zeroed by the caller; release with callgrind_counts_free).  Returns 0
  * when the child ran (per-configuration failures are in out), DM_ERR_* with
- * err when it could not be started at all. */
+ * err when it could not be started at all, or DM_ERR_ARG with the files in
+ * err when a child found the sweep file or a user technique's source
+ * changed since the run started: every child is stopped then, and no
+ * configuration fails for it (one run measures one version of each source). */
 int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, callgrind_count *out,
                   dm_str *err);
 
@@ -151,11 +154,14 @@ void callgrind_counts_free(callgrind_count *c, size_t n);
  * naming the key and both counts; NULL when they agree or c is not counted. */
 char *callgrind_disagreement(const callgrind_count *c);
 
-/* The child: `dmbench __instructions SWEEP HASH KEY...` (argv[0] is
- * "__instructions").  Loads the sweep named by SWEEP, checks its hash,
- * measures the keys under Valgrind, writes "B KEY" / "S KEY ok|unavailable
- * REASON" (stage windows, when asked) / "I KEY ok|failed REASON" lines to
- * stdout.  Returns the process exit code. */
+/* The child: `dmbench __instructions SWEEP HASH [--source PATH HASH]...
+ * KEY...` (argv[0] is "__instructions").  Loads the sweep named by SWEEP,
+ * checks its hash and that of each user technique's file (the text it
+ * loaded, or the file on disk when loading failed), measures the keys
+ * under Valgrind, writes "B KEY" / "S KEY ok|unavailable REASON" (stage
+ * windows, when asked) / "I KEY ok|failed REASON" lines to stdout, or one
+ * "C WHAT CHANGED" line and nothing else when a file changed.  Returns the
+ * process exit code. */
 int callgrind_child_main(int argc, char **argv);
 
 #endif

@@ -854,9 +854,40 @@ static void runner__shard_text(int k, int n, char buf[32])
         snprintf(buf, 32, "none");
 }
 
+/* --resume may only continue a run whose user techniques' files are those
+ * it measured (the environment entries USER_TECHNIQUE_ENV_PREFIX NAME =
+ * "HASH PATH" that runner__begin recorded): one run measures one version of
+ * each source.  Returns 0, or DM_ERR_ARG naming the file in err. */
+static int runner__resume_sources(const runner *r, const dm_run_result *old, dm_str *err)
+{
+    size_t np = strlen(USER_TECHNIQUE_ENV_PREFIX);
+    for (size_t i = 0; i < user_technique_count(); i++) {
+        const technique_desc *t = user_technique_at(i);
+        const char *path = user_technique_path(t), *was = NULL;
+        for (size_t k = 0; k < old->n_environment && !was; k++) {   /* by name, else by path */
+            const dm_kv *e = &old->environment[k];
+            const char *sp = strchr(e->value, ' ');
+            if (strncmp(e->key, USER_TECHNIQUE_ENV_PREFIX, np) == 0 && sp &&
+                (strcmp(e->key + np, t->name) == 0 || strcmp(sp + 1, path) == 0))
+                was = e->value;
+        }
+        char now[17];
+        dm_hex64(t->source_hash, now);
+        if (!was || (strcspn(was, " ") == 16 && strncmp(was, now, 16) == 0))
+            continue;
+        dm_str_printf(err, "--resume: %s: the user technique's file changed since run %s measured it "
+                      "(source hash %.*s, now %s); one run measures one version of each source: "
+                      "restore the file to resume, or run without --resume to start a new run",
+                      path, r->run_id, (int)strcspn(was, " "), was, now);
+        return DM_ERR_ARG;
+    }
+    return 0;
+}
+
 /* --resume may only continue a run of the same sweep file and the same
- * shard: another shard's keys would be mixed into it silently.  Returns 0,
- * or DM_ERR_ARG with both shards (or the sweep mismatch) in err. */
+ * shard: another shard's keys would be mixed into it silently; and of the
+ * same user techniques' files (runner__resume_sources).  Returns 0, or
+ * DM_ERR_ARG with both shards (or the sweep or source mismatch) in err. */
 static int runner__resume_check(const runner *r, const dm_run_result *old, dm_str *err)
 {
     char hash[17], want[32];
@@ -879,7 +910,7 @@ static int runner__resume_check(const runner *r, const dm_run_result *old, dm_st
         free(how);
         return DM_ERR_ARG;
     }
-    return 0;
+    return runner__resume_sources(r, old, err);
 }
 
 static int runner__open(runner *r, dm_str *err)
@@ -966,6 +997,16 @@ static int runner__begin(runner *r)
     e->started = dm_xstrdup(now);
     dm_hex64(r->s->hash, hash);
     e->sweep_hash = dm_xstrdup(hash);
+    for (size_t i = 0; i < user_technique_count(); i++) {   /* the sources it measures */
+        const technique_desc *t = user_technique_at(i);
+        char src[17];
+        dm_hex64(t->source_hash, src);
+        char *key = dm_xasprintf("%s%s", USER_TECHNIQUE_ENV_PREFIX, t->name);
+        char *val = dm_xasprintf("%s %s", src, user_technique_path(t));
+        dm_kv_push(&e->environment, &e->n_environment, key, val);
+        free(key);
+        free(val);
+    }
     report_metric_set(e, r->s->pareto_metric);   /* so dmbench report redraws the same front */
     if (r->s->budget_ms > 0)
         report_budget_set(e, r->s->budget_ms);    /* and picks under the same budget */
@@ -1114,11 +1155,14 @@ static int runner__wants_instructions(const sweep *s)
 /* The Instructions pass, before any timing child: children under Valgrind,
  * side by side, count every configuration still to do (run/callgrind.h).  Where it
  * cannot run here every configuration records Instructions as unavailable
- * with the reason; a configuration Valgrind crashed or hung on fails. */
-static void runner__instructions(runner *r)
+ * with the reason; a configuration Valgrind crashed or hung on fails.
+ * Returns 0, or DM_ERR_ARG with the file in err when a child found the
+ * sweep file or a user technique's source changed since the run started:
+ * the run stops, and no configuration is recorded for it. */
+static int runner__instructions(runner *r, dm_str *err)
 {
     if (!runner__wants_instructions(r->s))
-        return;
+        return 0;
     plan_config *todo = dm_xcalloc(r->p.n_configs + 1, sizeof *todo);
     size_t *order = dm_xcalloc(r->p.n_configs + 1, sizeof *order), nt = 0;
     /* in the --seed's order, as the timing rounds: a count must not depend on it */
@@ -1142,13 +1186,24 @@ static void runner__instructions(runner *r)
         char *dir = dm_xasprintf("%s/callgrind", r->run_dir);
         callgrind_desc d = { .sweep = r->s, .valgrind = vg, .work_dir = dir, .jobs = jobs,
                              .timeout_s = 10 * r->s->measure.timeout_s, .quiet = r->o->quiet };
-        dm_str err = {0};
-        if (callgrind_run(&d, todo, nt, r->instr, &err) != 0) {
+        dm_str why = {0};
+        int rc = callgrind_run(&d, todo, nt, r->instr, &why);
+        if (rc == DM_ERR_ARG) {   /* a source changed: nothing is recorded, the run stops */
+            dm_str_printf(err, "%s; one run measures one version of each source: stopped the run "
+                          "before it recorded anything for it; restore the file and continue with "
+                          "--resume, or start a new run", dm_str_get(&why));
+            dm_str_free(&why);
+            free(dir);
+            free(vg);
+            free(todo);
+            return rc;
+        }
+        if (rc != 0) {
             callgrind_counts_free(r->instr, nt);
             memset(r->instr, 0, nt * sizeof *r->instr);
-            callgrind_mark_unavailable(r->instr, todo, nt, dm_str_get(&err));
+            callgrind_mark_unavailable(r->instr, todo, nt, dm_str_get(&why));
         }
-        dm_str_free(&err);
+        dm_str_free(&why);
         free(dir);
     } else {
         callgrind_mark_unavailable(r->instr, todo, nt, r->instr_why);
@@ -1168,6 +1223,7 @@ static void runner__instructions(runner *r)
         fprintf(stderr, "dmbench: instructions counted in %.1f s\n", r->instr_s);
     free(vg);
     free(todo);
+    return 0;
 }
 
 /* Runs every scene: configurations grouped by scene, in plan order, until
@@ -1304,9 +1360,9 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
                     r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
                     r.p.n_left_out, r.run_dir);
         free(name_buf);
-        runner__instructions(&r);
-        rc = runner__scenes(&r);
-        if (rc != 0)
+        int changed = runner__instructions(&r, err);
+        rc = changed ? changed : runner__scenes(&r);
+        if (rc != 0 && !changed)
             dm_str_printf(err, "%s; stopped the run: the %zu configurations committed before are "
                           "kept, continue with --resume once the cause is fixed",
                           dm_str_get(&r.stop), runner__committed(&r));

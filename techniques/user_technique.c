@@ -3,6 +3,7 @@
 
 #include <ctype.h>
 #include <errno.h>
+#include <float.h>
 #include <math.h>
 #include <pthread.h>
 #include <stdarg.h>
@@ -11,6 +12,8 @@
 #include <string.h>
 
 #include "core/dm_error.h"
+#include "core/dm_results.h"
+#include "techniques/shaders.h"
 
 /* The built-in axes a fragment-stage user technique reads: those of
  * built-in pom (lighting, maps' formats, depth, shadows) without its
@@ -31,15 +34,21 @@ static const char *const ut__tess_axes[] = {
 typedef struct ut__base {
     const char *name, *stage_file, *entry, *entry_types, *returns, *defines;
     const char *const *axes;
+    const char *const *program;  /* the built-in stages of its program (their u_ names are taken) */
 } ut__base;
+
+static const char *const ut__fragment_program[] = {"surface.vert.glsl", "surface.frag.glsl", NULL};
+static const char *const ut__tess_program[] = {"tess.vert.glsl", "tess.tcs.glsl", "tess.tes.glsl",
+                                               "surface.frag.glsl", NULL};
 
 static const ut__base ut__bases[] = {
     {"fragment", "surface.frag.glsl", "user_surface", "vec3 user_surface(vec2, vec3)",
      "vec3 user_surface(vec2 uv, vec3 v)` returning the visible point's UV (xy) and height (z)",
-     "#define SURF_NORMAL_MAP\n#define SURF_USER\n", ut__fragment_axes},
+     "#define SURF_NORMAL_MAP\n#define SURF_USER\n", ut__fragment_axes, ut__fragment_program},
     {"tess-level", "tess.tcs.glsl", "user_tess_level", "float user_tess_level(vec3, vec3)",
      "float user_tess_level(vec3 a, vec3 b)` returning the tessellation level of the patch edge "
-     "from a to b (world space)", "#define SURF_NORMAL_MAP\n#define LOD_USER\n", ut__tess_axes},
+     "from a to b (world space)", "#define SURF_NORMAL_MAP\n#define LOD_USER\n", ut__tess_axes,
+     ut__tess_program},
 };
 #define UT__N_BASES (sizeof ut__bases / sizeof ut__bases[0])
 
@@ -49,6 +58,7 @@ typedef struct ut__param {
     double min, max;
     char def[32];
     char help[160];
+    int line;                    /* of its `//@param` */
 } ut__param;
 
 typedef struct ut__tech {
@@ -137,6 +147,17 @@ static int ut__fail(ut__parse *p, const char *fmt, ...)
     return DM_ERR_PARSE;
 }
 
+/* The names a parameter may not take as results.csv's columns, "a, b, ...". */
+static const char *ut__reserved_list(void)
+{
+    static const char *const cols[] = {DM_RESULT_LEAD_COLUMNS, DM_RESULT_TRAIL_COLUMNS};
+    static char list[128];
+    if (!list[0])
+        for (size_t i = 0, off = 0; i < sizeof cols / sizeof cols[0]; i++)
+            off += (size_t)snprintf(list + off, sizeof list - off, "%s%s", i ? ", " : "", cols[i]);
+    return list;
+}
+
 /* 1 when s is a name of [a-z][a-z0-9_-]* (dash only when dash != 0). */
 static int ut__name_ok(const char *s, int dash)
 {
@@ -160,6 +181,67 @@ static int ut__number(const char *s, axis_kind kind, double *out)
     return 1;
 }
 
+/* 1 when v, a MIN, MAX or DEFAULT of a header, is a value the GLSL type of
+ * kind holds as written (int: 32-bit; float: finite and, unless 0, not below
+ * the smallest normal float, which a driver may flush to 0), so the value a
+ * configuration records is the one the shader receives. */
+static int ut__fits(axis_kind kind, double v)
+{
+    if (kind == AXIS_INT)
+        return v >= INT32_MIN && v <= INT32_MAX;
+    return fabs(v) <= FLT_MAX && (v == 0 || fabs(v) >= FLT_MIN);
+}
+
+/* The limits of the GLSL type of kind, for a message. */
+static const char *ut__limits(axis_kind kind)
+{
+    return kind == AXIS_INT ? "an int is -2147483648..2147483647"
+                            : "a float is finite, at most 3.40282347e+38 in magnitude and, other "
+                              "than 0, at least 1.17549435e-38";
+}
+
+/* 1 when the identifier "u_" name appears in a built-in stage of the
+ * program of base b (composed with its includes); the distinct names X of
+ * the identifiers u_X found go to taken (", "-separated).  The user's
+ * uniform u_NAME would be a second declaration of it. */
+static int ut__uniform_taken(const ut__base *b, const char *name, dm_str *taken)
+{
+    const char **seen = NULL;
+    size_t n_seen = 0;
+    int hit = 0;
+    char *defines = dm_xasprintf("%s#define USER_COLOR\n", b->defines);
+    for (size_t f = 0; b->program[f]; f++) {
+        dm_str text = {0}, err = {0};
+        shaders_compose(b->program[f], defines, &text, &err);
+        const char *t = dm_str_get(&text);
+        for (const char *c = strstr(t, "u_"); c; c = strstr(c + 2, "u_")) {
+            if (c > t && (isalnum((unsigned char)c[-1]) || c[-1] == '_'))
+                continue;
+            size_t len = strspn(c + 2, "abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789_");
+            if (len == 0)
+                continue;
+            char *id = dm_xasprintf("%.*s", (int)len, c + 2);
+            hit |= strcmp(id, name) == 0;
+            int dup = 0;
+            for (size_t i = 0; i < n_seen && !dup; i++)
+                dup = strcmp(seen[i], id) == 0;
+            if (dup) {
+                free(id);
+                continue;
+            }
+            DM_VEC_PUSH(seen, n_seen, id);
+            dm_str_printf(taken, "%s%s", n_seen > 1 ? ", " : "", id);
+        }
+        dm_str_free(&text);
+        dm_str_free(&err);
+    }
+    for (size_t i = 0; i < n_seen; i++)
+        free((char *)seen[i]);
+    free(seen);
+    free(defines);
+    return hit;
+}
+
 /* //@param NAME TYPE MIN MAX DEFAULT [help...] */
 static int ut__param_line(ut__parse *p, char *rest)
 {
@@ -171,6 +253,9 @@ static int ut__param_line(ut__parse *p, char *rest)
     if (!ut__name_ok(name, 0))
         return ut__fail(p, "parameter name '%s': use lower-case letters, digits and '_', starting "
                         "with a letter", name);
+    if (dm_result_column_reserved(name))
+        return ut__fail(p, "parameter '%s' would be a second '%s' column of results.csv; reserved "
+                        "names: %s", name, name, ut__reserved_list());
     if (p->t->n_params == USER_TECHNIQUE_MAX_PARAMS)
         return ut__fail(p, "more than %d parameters", USER_TECHNIQUE_MAX_PARAMS);
     for (size_t i = 0; i < p->t->n_params; i++)
@@ -197,12 +282,19 @@ static int ut__param_line(ut__parse *p, char *rest)
         !ut__number(def, q->kind, &d))
         return ut__fail(p, "parameter '%s': MIN MAX DEFAULT must be %s numbers, got '%s %s %s'", name,
                         type, lo, hi, def);
+    const char *what[] = {"MIN", "MAX", "DEFAULT"}, *text[] = {lo, hi, def};
+    double vals[] = {q->min, q->max, d};
+    for (int i = 0; i < 3; i++)
+        if (!ut__fits(q->kind, vals[i]))
+            return ut__fail(p, "parameter '%s': %s %s does not fit the GLSL type %s (%s)", name,
+                            what[i], text[i], type, ut__limits(q->kind));
     if (q->min > q->max)
         return ut__fail(p, "parameter '%s' has an empty range [%s, %s] (MIN is above MAX)", name, lo,
                         hi);
     if (d < q->min || d > q->max)
         return ut__fail(p, "parameter '%s': default %s is outside [%s, %s]", name, def, lo, hi);
     snprintf(q->name, sizeof q->name, "%s", name);
+    q->line = p->line;
     snprintf(q->def, sizeof q->def, q->kind == AXIS_INT ? "%.0f" : "%.9g", d);
     char *help = dm_xasprintf("user parameter of %s%s%s", p->t->name, rest[used] ? ": " : "",
                               rest + used);
@@ -253,6 +345,29 @@ static int ut__directive(ut__parse *p, char *d)
                     "@param", d);
 }
 
+/* Offset of the first byte of s[0..n) that is not well-formed UTF-8
+ * (overlong forms and surrogates included), or n. */
+static size_t ut__utf8_bad(const char *s, size_t n)
+{
+    const unsigned char *u = (const unsigned char *)s;
+    for (size_t i = 0; i < n;) {
+        unsigned c = u[i];
+        size_t len = c < 0x80 ? 1 : c >= 0xc2 && c <= 0xdf ? 2 : c >= 0xe0 && c <= 0xef ? 3
+                   : c >= 0xf0 && c <= 0xf4 ? 4 : 0;
+        if (len == 0 || i + len > n)
+            return i;
+        for (size_t k = 1; k < len; k++)
+            if ((u[i + k] & 0xc0) != 0x80)
+                return i;
+        unsigned c1 = len > 1 ? u[i + 1] : 0x80;
+        if ((c == 0xe0 && c1 < 0xa0) || (c == 0xed && c1 > 0x9f) || (c == 0xf0 && c1 < 0x90) ||
+            (c == 0xf4 && c1 > 0x8f))
+            return i;
+        i += len;
+    }
+    return n;
+}
+
 /* Reads every `//@` line of the text. */
 static int ut__header(ut__parse *p, const char *text)
 {
@@ -263,6 +378,10 @@ static int ut__header(ut__parse *p, const char *text)
         p->line++;
         const char *q = s + strspn(s, " \t");
         if ((size_t)(q - s) + 3 <= len && strncmp(q, "//@", 3) == 0) {
+            size_t bad = ut__utf8_bad(s, len);
+            if (bad < len)   /* a header's text is recorded (results, JSON): it must be text */
+                return ut__fail(p, "byte 0x%02x at column %zu is not UTF-8: a `//@` line is recorded "
+                                "as text; save the file as UTF-8", (unsigned char)s[bad], bad + 1);
             char *d = dm_xasprintf("%.*s", (int)(len - (size_t)(q - s) - 3), q + 3);
             int rc = ut__directive(p, d);
             free(d);
@@ -274,6 +393,19 @@ static int ut__header(ut__parse *p, const char *text)
     p->line = 0;
     if (!p->t->base)
         p->t->base = &ut__bases[0];
+    for (size_t i = 0; i < p->t->n_params; i++) {   /* the base is known now */
+        const ut__param *q = &p->t->params[i];
+        dm_str taken = {0};
+        if (ut__uniform_taken(p->t->base, q->name, &taken)) {
+            p->line = q->line;
+            ut__fail(p, "parameter '%s' would declare the uniform u_%s, which dmbench's %s stages "
+                     "already declare; the names their u_ uniforms take: %s", q->name, q->name,
+                     p->t->base->name, dm_str_get(&taken));
+        }
+        dm_str_free(&taken);
+        if (p->line)
+            return DM_ERR_PARSE;
+    }
     if (!*p->t->name)
         return ut__fail(p, "no `//@technique NAME` line: a user technique declares its name");
     return 0;
@@ -383,6 +515,20 @@ static int ut__entry(ut__parse *p, const char *text)
 {
     const ut__base *b = p->t->base;
     char *code = ut__strip_comments(text);
+    for (const char *l = code; l; l = strchr(l, '\n') ? strchr(l, '\n') + 1 : NULL) {
+        const char *c = l + strspn(l, " \t");
+        if (*c != '#')
+            continue;
+        c++;
+        c += strspn(c, " \t");
+        if (strncmp(c, "include", 7) == 0 && !(isalnum((unsigned char)c[7]) || c[7] == '_')) {
+            p->line = ut__line_of(code, l);
+            free(code);
+            return ut__fail(p, "#include is not supported in a user technique: dmbench's built-in "
+                            "%s stage has already included everything it offers "
+                            "(docs/user-techniques.md); remove the line", b->name);
+        }
+    }
     const char *found = ut__find_entry(code, b->entry);
     const char *color = b == &ut__bases[0] ? ut__find_entry(code, "user_color") : NULL;
     int rc = 0;
@@ -410,7 +556,11 @@ static char *ut__compose(const ut__tech *t)
     for (size_t i = 0; i < t->n_params; i++)
         dm_str_printf(&s, "uniform %s u_%s;\n", t->params[i].kind == AXIS_INT ? "int" : "float",
                       t->params[i].name);
-    dm_str_printf(&s, "#line %d\n%s\n", USER_TECHNIQUE_LINE_BASE + 1, t->text);
+    /* comments blanked (lines and columns kept): an `#include` line inside a
+     * block comment is the user's prose, which the composer must not expand */
+    char *code = ut__strip_comments(t->text);
+    dm_str_printf(&s, "#line %d\n%s\n", USER_TECHNIQUE_LINE_BASE + 1, code);
+    free(code);
     return dm_str_take(&s);
 }
 
@@ -565,6 +715,37 @@ int user_technique_reload(dm_str *msg)
         changed += ut__reload_one(&ut__techs[i], msg) == 1;
     pthread_mutex_unlock(&ut__lock);
     return changed;
+}
+
+int user_technique_check_text(const char *path, const char *text, dm_str *err)
+{
+    pthread_mutex_lock(&ut__lock);
+    ut__tech *t = dm_xcalloc(1, sizeof *t);
+    ut__parse p = {.path = path, .err = err, .t = t};
+    int rc = ut__header(&p, text);
+    rc = rc ? rc : ut__entry(&p, text);
+    free(t);
+    pthread_mutex_unlock(&ut__lock);
+    return rc;
+}
+
+int user_technique_source_check(const char *path, uint64_t want, dm_str *err)
+{
+    char *text = NULL, was[17], now[17];
+    dm_str why = {0};
+    int rc = ut__read(path, &text, &why);
+    uint64_t have = text ? dm_fnv1a64(text, strlen(text), DM_FNV_SEED) : 0;
+    dm_hex64(want, was);
+    dm_hex64(have, now);
+    if (rc != 0)
+        dm_str_printf(err, "%s: the user technique's file cannot be read since the run started (%s)",
+                      path, dm_str_get(&why));
+    else if (have != want)
+        dm_str_printf(err, "%s: the user technique's file changed since the run started (source hash "
+                      "%s, now %s)", path, was, now);
+    free(text);
+    dm_str_free(&why);
+    return rc ? DM_ERR_ARG : have != want ? DM_ERR_ARG : 0;
 }
 
 int user_technique_load(const char *path, const char **name, dm_str *err)

@@ -25,6 +25,7 @@
 #define TECHNIQUES_USER_TECHNIQUE_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include "core/dm_util.h"
 #include "techniques/axes.h"
 #include "techniques/technique.h"
@@ -46,6 +47,25 @@ int user_technique_is_path(const char *value);
  * file) / DM_ERR_PARSE (header, parameter or entry point) with
  * "path[:line]: message" in err; nothing is registered then. */
 int user_technique_load(const char *path, const char **name, dm_str *err);
+
+/* Checks text as the user technique file `path` without reading or
+ * registering anything: the header (parameters against the axes registered
+ * now) and the entry point, as user_technique_load does.  Returns 0, or
+ * DM_ERR_PARSE with "path[:line]: message" in err.  (The fuzzer's entry.) */
+int user_technique_check_text(const char *path, const char *text, dm_str *err);
+
+/* 0 when the file at path still has the text whose FNV-1a hash is want
+ * (technique_desc.source_hash of the technique loaded from it), else
+ * DM_ERR_ARG with "path: ... changed since the run started (source hash
+ * WANT, now HAVE)" or "... cannot be read ..." in err.  One run measures
+ * one version of each source: a child that re-reads a file checks it. */
+int user_technique_source_check(const char *path, uint64_t want, dm_str *err);
+
+/* The environment entry of a run that records the source a user technique
+ * was measured with: key USER_TECHNIQUE_ENV_PREFIX + name, value
+ * "HASH PATH" (HASH: source_hash as 16 hex digits).  `run --resume` refuses
+ * to continue a run whose recorded source no longer matches the file. */
+#define USER_TECHNIQUE_ENV_PREFIX "user_source."
 
 /* Re-reads every loaded file (the viewer's reload on change).  A file whose
  * text changed, with the same name and parameters, replaces the registered

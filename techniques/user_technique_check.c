@@ -18,11 +18,11 @@ int user_technique_check_program(tech_renderer *r, size_t i, dm_str *err)
     if (rc == 0)
         tech_release(r, item);
     else if (rc == DM_ERR_SHADER) {   /* the log's first line names the stage: said here */
-        const char *nl = strchr(dm_str_get(&log), '\n');
+        const char *all = dm_str_get(&log), *nl = strchr(all, '\n');
+        const char *says = nl && nl[1 + strspn(nl + 1, " \t\r\n")] ? nl + 1 : all;
         dm_str_printf(err, "%s: user technique '%s' does not %s; the driver says:\n%s",
-                      user_technique_path(t), t->name,
-                      strstr(dm_str_get(&log), "failed to link") ? "link" : "compile",
-                      nl ? nl + 1 : dm_str_get(&log));
+                      user_technique_path(t), t->name, strstr(all, "failed to link") ? "link" : "compile",
+                      says[strspn(says, " \t\r\n")] ? says : "(nothing: the driver's log is empty)");
     } else
         dm_str_printf(err, "%s: user technique '%s' cannot be used: %s", user_technique_path(t),
                       t->name, dm_str_get(&log));

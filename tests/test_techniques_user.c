@@ -68,7 +68,8 @@ static void test_load_example(void **state)
     assert_int_equal(shaders_compose(t->fs, t->defines, &src, &err), 0);
     assert_non_null(strstr(dm_str_get(&src), "#define SURF_USER\n"));
     assert_non_null(strstr(dm_str_get(&src), "uniform int u_relief_linear;\nuniform int u_relief_binary;\n"
-                                             "#line 100001\n// relief.glsl"));
+                                             "#line 100001\n              "));   /* comments blanked */
+    assert_non_null(strstr(dm_str_get(&src), "vec3 user_surface(vec2 uv, vec3 v)\n"));
     dm_str_free(&src);
     free(canon);
     free(text);
@@ -150,6 +151,98 @@ static void test_bad_headers(void **state)
     }
 }
 
+/* Values the shader would not receive as recorded, names that would be a
+ * second column or a second uniform, #include, and header text that is not
+ * UTF-8 are refused at the header's line (issue 43). */
+static void test_bad_headers_types_and_names(void **state)
+{
+    (void)state;
+    static const char *const entry = "vec3 user_surface(vec2 uv, vec3 v) { return vec3(uv, 0.5); }\n";
+    static const struct { const char *text, *msg; } cases[] = {
+        {"//@technique r1\n//@param bign int 0 4294967296 1\n",
+         ":2: parameter 'bign': MAX 4294967296 does not fit the GLSL type int (an int is -2147483648..2147483647)"},
+        {"//@technique r2\n//@param negn int -2147483649 0 0\n", ":2: parameter 'negn': MIN -2147483649 does not fit the GLSL type int"},
+        {"//@technique r3\n//@param bigf float 0 1e300 1\n", ":2: parameter 'bigf': MAX 1e300 does not fit the GLSL type float"},
+        {"//@technique r4\n//@param tinyf float 0 1 1e-40\n", ":2: parameter 'tinyf': DEFAULT 1e-40 does not fit the GLSL type float"},
+        {"//@technique r5\n//@param key int 0 1 0\n",
+         ":2: parameter 'key' would be a second 'key' column of results.csv; reserved names: key, scene, status, reason, label, pareto"},
+        {"//@technique r6\n//@param label float 0 1 0\n", ":2: parameter 'label' would be a second 'label' column"},
+        {"//@technique r7\n\n//@param shininess float 0 1 0.5\n",
+         ":3: parameter 'shininess' would declare the uniform u_shininess, which dmbench's fragment stages already declare"},
+        {"//@technique r8\n//@param tess_level_x int 1 4 2\n//@param camera_pos float 0 1 0\n//@base tess-level\n"
+         "float user_tess_level(vec3 a, vec3 b) { return 1.0; }\n",
+         ":3: parameter 'camera_pos' would declare the uniform u_camera_pos, which dmbench's tess-level stages"},
+        {"//@technique r9\n#include \"lighting.glsl\"\n", ":2: #include is not supported in a user technique"},
+        {"//@technique r10\n  #  include <x>\n", ":2: #include is not supported"},
+        {"//@technique r11\n//@summary caf\xe9\n", ":2: byte 0xe9 at column 15 is not UTF-8"},
+        {"//@technique r12\n//@summary \xed\xa0\x80\n", ":2: byte 0xed at column 12 is not UTF-8"},
+    };
+    size_t n_tech = technique_count(), n_axes = axes_count();
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        dm_str err = {0};
+        char *path = NULL, *text = dm_xasprintf("%s%s", cases[i].text, strstr(cases[i].text, "user_") ? "" : entry);
+        assert_int_equal(load_text(text, &err, &path), DM_ERR_PARSE);
+        char *want = dm_xasprintf("%s%s", path, cases[i].msg);
+        if (strncmp(dm_str_get(&err), want, strlen(want)) != 0)
+            fail_msg("case %zu: got '%s', want '%s...'", i, dm_str_get(&err), want);
+        dm_str again = {0};   /* the check without a file says the same */
+        assert_int_equal(user_technique_check_text(path, text, &again), DM_ERR_PARSE);
+        assert_string_equal(dm_str_get(&again), dm_str_get(&err));
+        assert_int_equal(technique_count(), n_tech);   /* nothing registered */
+        assert_int_equal(axes_count(), n_axes);
+        unlink(path);
+        dm_str_free(&again);
+        free(want);
+        free(text);
+        free(path);
+        dm_str_free(&err);
+    }
+    /* at the limits of the types, and UTF-8 text, it loads */
+    dm_str err = {0};
+    char *path = NULL, *ok = dm_xasprintf("//@technique limits\n//@summary caf\xc3\xa9 \xf0\x9f\x98\x80\n"
+                                          "//@param lim_i int -2147483648 2147483647 0\n"
+                                          "//@param lim_f float -3.4e38 3.4e38 1.2e-38\n%s", entry);
+    assert_int_equal(load_text(ok, &err, &path), 0);
+    unlink(path);
+    free(path);
+    free(ok);
+    dm_str_free(&err);
+}
+
+/* An #include inside a comment is prose: the file loads, and the composed
+ * stage has the comment blanked, so the composer does not expand it. */
+static void test_include_in_comment(void **state)
+{
+    (void)state;
+    dm_str err = {0}, src = {0};
+    char *path = NULL;
+    const char *text = "//@technique incomment\n/* how it was:\n#include \"nowhere.glsl\"\n*/\n"
+                       "vec3 user_surface(vec2 uv, vec3 v) { return vec3(uv, 0.5); }\n";
+    assert_int_equal(load_text(text, &err, &path), 0);
+    const technique_desc *t = technique_find("incomment");
+    assert_int_equal(shaders_compose(t->fs, t->defines, &src, &err), 0);
+    assert_null(strstr(dm_str_get(&src), "nowhere.glsl"));
+    assert_non_null(strstr(dm_str_get(&src), "#line 100001\n                      \n"));   /* lines kept */
+    /* the hash is still the file's, comments included */
+    assert_true(t->source_hash == dm_fnv1a64(text, strlen(text), DM_FNV_SEED));
+    /* user_technique_source_check: the same text passes, an edit is named */
+    dm_str why = {0};
+    assert_int_equal(user_technique_source_check(path, t->source_hash, &why), 0);
+    assert_int_equal(dm_write_file(path, "edited\n", 7), 0);
+    assert_int_equal(user_technique_source_check(path, t->source_hash, &why), DM_ERR_ARG);
+    char *want = dm_xasprintf("%s: the user technique's file changed since the run started", path);
+    assert_non_null(strstr(dm_str_get(&why), want));
+    unlink(path);
+    dm_str_free(&why);
+    assert_int_equal(user_technique_source_check(path, t->source_hash, &why), DM_ERR_ARG);
+    assert_non_null(strstr(dm_str_get(&why), "cannot be read since the run started"));
+    free(want);
+    free(path);
+    dm_str_free(&why);
+    dm_str_free(&src);
+    dm_str_free(&err);
+}
+
 /* The viewer's reload: a changed body is taken, a changed parameter is not. */
 static void test_reload(void **state)
 {
@@ -188,4 +281,6 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_reload),
              cmocka_unit_test(test_load_example),
              cmocka_unit_test(test_map_log),
-             cmocka_unit_test(test_bad_headers))
+             cmocka_unit_test(test_bad_headers),
+             cmocka_unit_test(test_bad_headers_types_and_names),
+             cmocka_unit_test(test_include_in_comment))

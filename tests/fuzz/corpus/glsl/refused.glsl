@@ -1,0 +1,3 @@
+//@technique b
+//@param key int 0 4294967296 1
+#include "a"
