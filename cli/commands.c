@@ -147,12 +147,16 @@ const char *cli_version(void)
     return "dmbench " DM_VERSION " (git " DM_GIT_REV ")";
 }
 
-/* "dmbench: error: " + the message + newline on stderr. */
+/* "dmbench: error: " + the message + newline on stderr, control bytes of
+ * the message (a path or a value the user gave) shown as '?'. */
 static void commands__verror(const char *fmt, va_list ap)
 {
-    fprintf(stderr, "dmbench: error: ");
-    vfprintf(stderr, fmt, ap);
-    fputc('\n', stderr);
+    dm_str msg = {0}, safe = {0};
+    dm_str_vprintf(&msg, fmt, ap);
+    dm_str_cat_term(&safe, dm_str_get(&msg));
+    fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&safe));
+    dm_str_free(&msg);
+    dm_str_free(&safe);
 }
 
 int cli_usage_error(const char *fmt, ...)
@@ -170,7 +174,8 @@ int cli_error(int err, const char *fmt, ...)
     va_start(ap, fmt);
     commands__verror(fmt, ap);
     va_end(ap);
-    return err == DM_ERR_STORE || err == DM_ERR_BUSY ? DM_EXIT_ENV : DM_EXIT_USAGE;
+    return err == DM_ERR_STORE || err == DM_ERR_BUSY || err == DM_ERR_DISK || err == DM_ERR_NOMEM
+               ? DM_EXIT_ENV : DM_EXIT_USAGE;
 }
 
 /* "usage: dmbench NAME SYNOPSIS [OPTIONS]", one line per form. */
