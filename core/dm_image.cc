@@ -74,6 +74,11 @@ int img_save(const img *im, const char *path, char *err, size_t errlen)
     // errno (which OIIO's own writer loses) tells a full disk from a bad path.
     std::vector<unsigned char> bytes;
     try {
+        if (!ImageOutput::create(path)) {   // the format comes from the name
+            OIIO::geterror();   // cleared: said here in the user's terms
+            set_err(err, errlen, path, "no image format for this file name; end it in .png, .exr or .tif");
+            return DM_ERR_IO;
+        }
         ImageBuf src = wrap(im);
         ImageBuf clamped;
         ImageBuf *out = &src;
