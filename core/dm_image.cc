@@ -170,8 +170,8 @@ int img_load(const char *path, img *out, char *err, size_t errlen)
         }
         if ((double)w * h > IMG_MAX_PIXELS) {
             char m[160];
-            std::snprintf(m, sizeof m, "%dx%d pixels: more than the 16384x16384 an image may have",
-                          w, h);
+            std::snprintf(m, sizeof m, "%dx%d pixels: more than the %.0f an image may have "
+                          "(16384x16384)", w, h, (double)IMG_MAX_PIXELS);
             set_err(err, errlen, path, m);
             return DM_ERR_IO;
         }

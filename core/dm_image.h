@@ -28,8 +28,12 @@ void img_free(img *im);
  * DM_ERR_NOMEM, with "path: reason" (strerror for a write) in err. */
 int img_save(const img *im, const char *path, char *err, size_t errlen);
 /* The most pixels img_load reads: 16384x16384, the largest map (4 GB as
- * float RGBA); a header claiming more is refused before any allocation. */
+ * float RGBA); a header claiming more is refused before any allocation.  A
+ * build may lower it (the fuzz target of the reader does, so that a header
+ * claiming a large image does not count as a runaway allocation). */
+#ifndef IMG_MAX_PIXELS
 #define IMG_MAX_PIXELS ((size_t)16384 * 16384)
+#endif
 /* Loads any format OpenImageIO reads, converted to RGBA float: grey to RGB
  * with alpha 1, grey+alpha to RGB and A, RGB with alpha 1, the first four
  * channels of more.  The path passes dm_input_file first (a FIFO or a device
