@@ -170,8 +170,9 @@ int img_load(const char *path, img *out, char *err, size_t errlen)
         }
         if ((double)w * h > IMG_MAX_PIXELS) {
             char m[160];
-            std::snprintf(m, sizeof m, "%dx%d pixels: more than the %.0f an image may have "
-                          "(16384x16384)", w, h, (double)IMG_MAX_PIXELS);
+            double side = std::floor(std::sqrt((double)IMG_MAX_PIXELS));
+            std::snprintf(m, sizeof m, "%dx%d pixels: more than an image may have (%.0fx%.0f)", w, h,
+                          side, side);
             set_err(err, errlen, path, m);
             return DM_ERR_IO;
         }

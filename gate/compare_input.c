@@ -172,9 +172,9 @@ int compare_baseline_accept(const char *store_path, const char *run_id, const ch
         cJSON_AddStringToObject(e, "accepted", now);
         cJSON_AddItemToArray(cJSON_GetObjectItemCaseSensitive(root, "baselines"), e);
         char *text = cJSON_Print(root);
-        rc = text && dm_write_file(path, text, strlen(text)) == 0 ? 0 : DM_ERR_IO;
+        rc = text ? dm_write_file(path, text, strlen(text)) : DM_ERR_NOMEM;
         if (rc)
-            dm_str_printf(err, "%s: cannot write", path);
+            dm_str_printf(err, "%s: cannot write: %s", path, strerror(errno));
         free(text);
     }
     cJSON_Delete(root);

@@ -67,6 +67,10 @@ hcase images/ulimit-f-report 4 "report.html: cannot write: File too large" -- \
 nothing_left images/ulimit-f-report "$IM/ulf-rep/report.html"
 hcase images/ulimit-f-diff-map 4 "File too large" -- "${LIMIT[@]}" "-f 4" "$BIN" diff "$P" "$P2" -o "$IM/ulf-map.png"
 nothing_left images/ulimit-f-diff-map "$IM/ulf-map.png"
+R1="$OUT/ok/latest/results.json"
+hcase images/ulimit-f-compare-json 4 "compare: cannot write $IM/ulf-c.json: File too large" -- \
+  "${LIMIT[@]}" "-f 1" "$BIN" compare "$R1" "$R1" --json "$IM/ulf-c.json"
+nothing_left images/ulimit-f-compare-json "$IM/ulf-c.json"
 hcase images/diff-map-no-dir 2 "cannot write the map $IM/none/m.png: No such file or directory" -- \
   "$BIN" diff "$P" "$P" -o "$IM/none/m.png"
 hcase images/diff-map-format 2 "end it in .png, .exr or .tif" -- "$BIN" diff "$P" "$P" -o "$IM/m.bogus"
