@@ -108,12 +108,13 @@ void cli_gen_man(FILE *f);
 /* shell: "bash" or "zsh"; DM_ERR_ARG for another. */
 int cli_gen_completion(const char *shell, FILE *f);
 
-/* Prints "dmbench: error: <msg>" and returns DM_EXIT_USAGE. */
+/* Prints "dmbench: error: <msg>" (control bytes as '?') and returns DM_EXIT_USAGE. */
 int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Prints "dmbench: error: <msg>" and returns the exit code of a failure
  * that err (a DM_ERR_* code) caused: DM_EXIT_ENV for a store that is
- * damaged, from a newer dmbench or full (DM_ERR_STORE) and for DM_ERR_BUSY,
- * DM_EXIT_USAGE for everything else, so one condition has one exit code
+ * damaged, from a newer dmbench or full (DM_ERR_STORE), for DM_ERR_BUSY, a
+ * write the disk refused (DM_ERR_DISK) and an allocation that failed
+ * (DM_ERR_NOMEM), DM_EXIT_USAGE for everything else, so one condition has one exit code
  * whichever command meets it (docs/reliability.md). */
 int cli_error(int err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 

@@ -18,6 +18,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
 
 #include "core/dm_error.h"
@@ -258,13 +259,14 @@ static int cli__load_sides(cli_compare_opts *o, dm_run_result *base, dm_run_resu
 static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
 {
     compare_md_desc md = { .only_changed = o->only_changed };
-    if (o->markdown && compare_write_markdown_ex(r, &md, o->markdown) != 0)
-        return cli_usage_error("compare: cannot write %s", o->markdown);
+    int e = o->markdown ? compare_write_markdown_ex(r, &md, o->markdown) : 0;
+    if (e)   /* 4 when the disk refused it (full, ulimit -f), else 2 */
+        return cli_error(e, "compare: cannot write %s: %s", o->markdown, strerror(errno));
     struct { const char *path; int (*fn)(const compare_result *, const char *); } w[] = {
         { o->junit, compare_write_junit }, { o->json, compare_write_json } };
     for (size_t i = 0; i < sizeof w / sizeof *w; i++)
-        if (w[i].path && w[i].fn(r, w[i].path) != 0)
-            return cli_usage_error("compare: cannot write %s", w[i].path);
+        if (w[i].path && (e = w[i].fn(r, w[i].path)) != 0)
+            return cli_error(e, "compare: cannot write %s: %s", w[i].path, strerror(errno));
     return 0;
 }
 

@@ -3,6 +3,7 @@
 #include "cli.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
+#include "core/dm_util.h"
 #include "reports/flip.h"
 #include "reports/image.h"
 #include "reports/quality.h"
@@ -98,7 +99,10 @@ static void diff__print_json(const char *a, const char *b, const img *im, double
 
 static void diff__print_text(const char *a, const char *b, const img *im, double ppd, const diff__result *r)
 {
-    printf("%s vs %s (%dx%d)\n", a, b, im->w, im->h);
+    char *ba = NULL, *bb = NULL;   /* paths as typed: control bytes shown as '?' */
+    printf("%s vs %s (%dx%d)\n", dm_term_safe(a, &ba), dm_term_safe(b, &bb), im->w, im->h);
+    free(ba);
+    free(bb);
     printf("  RMSE        %.6g\n", r->m.rmse);
     if (isinf(r->m.psnr))
         printf("  PSNR        inf dB (identical)\n");
@@ -111,20 +115,22 @@ static void diff__print_text(const char *a, const char *b, const img *im, double
            "pixels per degree\n", r->flip.mean, r->flip.max, r->flip.q1, r->flip.median, r->flip.q3, ppd);
 }
 
-/* Loads path into im; prints the reason and returns DM_EXIT_USAGE when it
- * cannot. */
+/* Loads path into im; prints the reason and returns the exit code when it
+ * cannot: 2 for what the user named (missing, not a regular file, not an
+ * image), 4 when the machine could not hold its pixels (DM_ERR_NOMEM). */
 static int diff__load(const char *path, img *im)
 {
     char err[512];
-    if (img_load(path, im, err, sizeof err) == 0)
-        return 0;
-    fprintf(stderr, "dmbench: error: diff: cannot read '%s': %s\n", path, err);
-    return DM_EXIT_USAGE;
+    int e = img_load(path, im, err, sizeof err);
+    return e == 0 ? 0 : cli_error(e, "diff: cannot read %s", err);
 }
 
-/* `dmbench diff REF TEST [-o MAP.png] [--ppd N] [--json]`: exit 0, or 2
- * for bad input: a file that cannot be read as an image, images of
- * different sizes (both named), a map path that cannot be written. */
+/* `dmbench diff REF TEST [-o MAP.png] [--ppd N] [--json]`: exit 0; 2 for
+ * bad input: a file that cannot be read as an image, images of different
+ * sizes (both named), a map path that cannot be written (with the reason);
+ * 4 for the machine: images too large for the memory it may use, a disk
+ * that refuses the map (full, ulimit -f), which is never left half written.
+ * Paths reach the terminal with their control bytes as '?'. */
 int cli_diff(int argc, char **argv)
 {
     diff_args a = {0};
@@ -145,20 +151,26 @@ int cli_diff(int argc, char **argv)
     if (rc == 0) {
         map = malloc((size_t)ref.w * (size_t)ref.h * sizeof *map);
         int e = map ? diff__compute(&ref, &test, a.ppd, map, &r) : DM_ERR_NOMEM;
-        if (e != 0) {
-            fprintf(stderr, "dmbench: error: diff: %s\n", dm_strerror(e));
+        char why[160];
+        if (e == DM_ERR_NOMEM)
+            rc = cli_error(e, "diff: %s", dm_nomem_reason(why, sizeof why));
+        else if (e != 0) {
+            cli_error(e, "diff: %s", dm_strerror(e));
             rc = (int)dm_exit_from_error(e);
         }
     }
-    if (rc == 0 && (r.nonfinite_ref || r.nonfinite_test))
+    if (rc == 0 && (r.nonfinite_ref || r.nonfinite_test)) {
+        char *ba = NULL, *bb = NULL;
         fprintf(stderr, "dmbench: warning: diff: non-finite (NaN/Inf) pixels: %ld in '%s', %ld in '%s'; "
-                        "they count as 0 in every metric\n", r.nonfinite_ref, argv[0], r.nonfinite_test,
-                argv[1]);
-    char err[512];
-    if (rc == 0 && a.map && flip_map_save(map, ref.w, ref.h, a.map, err, sizeof err) != 0) {
-        fprintf(stderr, "dmbench: error: diff: cannot write '%s': %s\n", a.map, err);
-        rc = DM_EXIT_USAGE;
+                        "they count as 0 in every metric\n", r.nonfinite_ref, dm_term_safe(argv[0], &ba),
+                r.nonfinite_test, dm_term_safe(argv[1], &bb));
+        free(ba);
+        free(bb);
     }
+    char err[512];
+    int e = rc == 0 && a.map ? flip_map_save(map, ref.w, ref.h, a.map, err, sizeof err) : 0;
+    if (e)
+        rc = cli_error(e, "diff: cannot write the map %s", err);
     if (rc == 0 && a.json)
         diff__print_json(argv[0], argv[1], &ref, a.ppd, &r);
     else if (rc == 0)

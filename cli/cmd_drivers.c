@@ -278,11 +278,12 @@ int cli_drivers_main(const char *sweep_path, const char *list, const char *out, 
         sides[i].why = whys[i];
     }
     dm_str err = {0};
+    int we = 0;   /* drivers.md / drivers.json not written: 4 for the disk */
     if (rc == 0 && ran == 0 && failed == 0)
         rc = cli_usage_error("drivers: none of the drivers asked for is installed here "
                              "(scripts/install-mesa25 installs Mesa 25's llvmpipe and zink)");
-    else if (rc == 0 && drivers_report_write(sides, n, root, &err) != 0)
-        rc = cli_error(DM_ERR_IO, "drivers: %s", dm_str_get(&err));
+    else if (rc == 0 && (we = drivers_report_write(sides, n, root, &err)) != 0)
+        rc = cli_error(we, "drivers: %s", dm_str_get(&err));
     else if (rc == 0) {
         printf("%zu driver%s ran, %zu left out, %zu failed; side by side: %s/drivers.md\n", ran,
                ran == 1 ? "" : "s", missing, failed, root);

@@ -66,7 +66,8 @@ static void merge__copy_images(const char *src_run, const char *dst_run)
         char *to = dm_xasprintf("%s/img/%s", dst_run, e->d_name);
         char *data = NULL;
         size_t len = 0;
-        if (!dm_file_exists(to) && dm_read_file(from, &data, &len) == 0)
+        if (!dm_file_exists(to) && dm_input_file(from, NULL, 0) == 0 &&
+            dm_read_file(from, &data, &len) == 0)
             dm_write_file(to, data, len);
         free(data);
         free(from);
@@ -105,13 +106,14 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
     for (int i = 0; rc < 0 && i < n; i++)
         merge__copy_images(dirs[i], run_dir);
     char *pub = dm_xasprintf("%s/published.json", run_dir);   /* the same sweep: the first shard's */
-    for (int i = 0; rc < 0 && i < n && !dm_file_exists(pub); i++)
-        if (report_published_copy(dirs[i], run_dir) != 0)
-            dm_log(DM_LOG_WARN, "%s/published.json: cannot copy; the report has no published section", dirs[i]);
-    free(pub);
     char e[512] = "";
-    if (rc < 0 && report_write_all(m, run_dir, e, sizeof e) != 0)
-        rc = cli_usage_error("merge: report: %s", e);
+    for (int i = 0; rc < 0 && i < n && !dm_file_exists(pub); i++)
+        if (report_published_copy(dirs[i], run_dir, e, sizeof e) != 0)
+            dm_log(DM_LOG_WARN, "%s; the report has no published section", e);
+    free(pub);
+    int we = rc < 0 ? report_write_all(m, run_dir, e, sizeof e) : 0;
+    if (we)
+        rc = cli_error(we, "merge: report: %s", e);
     if (rc < 0) {
         char *link = dm_xasprintf("%s/latest", out);
         unlink(link);

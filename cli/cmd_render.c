@@ -77,7 +77,8 @@ int cli_render(int argc, char **argv)
     if (rc < 0) {
         img im = { w, h, rgba };
         char e[512];
-        rc = img_save(&im, out, e, sizeof e) == 0 ? DM_EXIT_OK : cli_usage_error("render: %s", e);
+        int se = img_save(&im, out, e, sizeof e);   /* a full disk or ulimit -f: 4 */
+        rc = se == 0 ? DM_EXIT_OK : cli_error(se, "render: %s", e);
         if (rc == 0)
             printf("%s (%dx%d)\n", out, w, h);
     }

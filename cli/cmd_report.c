@@ -112,8 +112,9 @@ int cli_report(int argc, char **argv)
     report_trends tr = {0};
     if (rc < 0)
         run_trends(st, &run, &tr);   /* none on a store failure: the report goes on */
-    if (rc < 0 && report_write_all_trends(&run, dir, out ? out : dir, &tr, e, sizeof e) != 0)
-        rc = cli_usage_error("report: %s", e);
+    int we = rc < 0 ? report_write_all_trends(&run, dir, out ? out : dir, &tr, e, sizeof e) : 0;
+    if (we)   /* a full disk or ulimit -f is 4, as for `run` */
+        rc = cli_error(we, "report: %s", e);
     report_trends_free(&tr);
     if (rc < 0) {
         printf("report: %s/report.html\n", out ? out : dir);

@@ -101,12 +101,10 @@ int cli_run(int argc, char **argv)
     rc = file ? sweep_load(file, &s, &err)
                   : sweep_parse(sweep_default_text(a->quick), a->quick ? "<default --quick>" : "<default>",
                                 &s, &err);
-    if (rc != 0) {
-        char *b;
-        fprintf(stderr, "dmbench: error: %s\n", dm_term_safe(dm_str_get(&err), &b));
-        free(b);
+    if (rc != 0) {   /* 2, or 4 for a map too large for the memory (DM_ERR_NOMEM) */
+        rc = cli_error(rc, "%s", dm_str_get(&err));
         dm_str_free(&err);
-        return DM_EXIT_USAGE;
+        return rc;
     }
     if (s.n_drivers && !getenv(CLI_DRIVERS_CHILD) && !a->o.dry_run) {   /* one run per driver */
         sweep_free(&s);

@@ -148,17 +148,16 @@ const char *cli_version(void)
     return "dmbench " DM_VERSION " (git " DM_GIT_REV ")";
 }
 
-/* "dmbench: error: " + the message + newline on stderr. */
-/* Every command's error line: user text in it (paths, names, reasons) has
- * its control bytes shown as '?', so no ANSI escape reaches the terminal. */
+/* "dmbench: error: " + the message + newline on stderr, control bytes of
+ * the message (a path or a value the user gave) shown as '?'. */
 static void commands__verror(const char *fmt, va_list ap)
 {
-    dm_str msg = {0};
-    char *buf = NULL;
+    dm_str msg = {0}, safe = {0};
     dm_str_vprintf(&msg, fmt, ap);
-    fprintf(stderr, "dmbench: error: %s\n", dm_term_safe(dm_str_get(&msg), &buf));
-    free(buf);
+    dm_str_cat_term(&safe, dm_str_get(&msg));
+    fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&safe));
     dm_str_free(&msg);
+    dm_str_free(&safe);
 }
 
 int cli_usage_error(const char *fmt, ...)
@@ -176,7 +175,8 @@ int cli_error(int err, const char *fmt, ...)
     va_start(ap, fmt);
     commands__verror(fmt, ap);
     va_end(ap);
-    return err == DM_ERR_STORE || err == DM_ERR_BUSY ? DM_EXIT_ENV : DM_EXIT_USAGE;
+    return err == DM_ERR_STORE || err == DM_ERR_BUSY || err == DM_ERR_DISK || err == DM_ERR_NOMEM
+               ? DM_EXIT_ENV : DM_EXIT_USAGE;
 }
 
 /* "usage: dmbench NAME SYNOPSIS [OPTIONS]", one line per form. */

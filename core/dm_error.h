@@ -27,7 +27,8 @@
     X(STORE,       -15, "results store error")                              \
     X(RANGE,       -16, "value out of range")                               \
     X(EXISTS,      -17, "already exists")                                 \
-    X(BUSY,        -18, "in use by another process")
+    X(BUSY,        -18, "in use by another process")                        \
+    X(DISK,        -19, "the disk refused the write (full, quota or file-size limit)")
 
 enum dm_error {
 #define DM__ENUM(name, code, msg) DM_ERR_##name = (code),

@@ -21,6 +21,8 @@ dm_exit dm_exit_from_error(int err)
     case DM_ERR_BUSY:            /* the output is in use by another run */
     case DM_ERR_CHILD:           /* measuring processes that keep dying */
     case DM_ERR_GL:              /* no usable GL context */
+    case DM_ERR_DISK:            /* a disk full, over quota or past ulimit -f */
+    case DM_ERR_NOMEM:           /* an allocation the machine refused */
         return DM_EXIT_ENV;
     default:
         return DM_EXIT_FAILED;

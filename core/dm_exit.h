@@ -26,7 +26,8 @@ typedef enum dm_exit {
  * (ARG, PARSE, RANGE, UNKNOWN, NOTFOUND, EXISTS, IO, UNSUPPORTED) →
  * DM_EXIT_USAGE; the machine rather than the input (STORE: a damaged,
  * locked or full store; BUSY: the output in use by another run; CHILD:
- * measuring processes that keep dying; GL: no usable context) →
+ * measuring processes that keep dying; GL: no usable context; DISK: a
+ * write the disk refused; NOMEM: an allocation the machine refused) →
  * DM_EXIT_ENV; everything else (a shader, numeric or timeout failure) →
  * DM_EXIT_FAILED.  docs/reliability.md lists which failure gets which code. */
 dm_exit dm_exit_from_error(int err);

@@ -6,6 +6,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <sys/stat.h>
 #include <time.h>
 #include <unistd.h>
@@ -214,28 +215,41 @@ int dm_read_file(const char *path, char **out, size_t *len)
     return 0;
 }
 
+int dm_disk_errno(int e)
+{
+    return e == ENOSPC || e == EFBIG || e == EIO
+#ifdef EDQUOT
+           || e == EDQUOT
+#endif
+        ;
+}
+
 int dm_write_file(const char *path, const void *data, size_t len)
 {
     char *tmp = dm_xasprintf("%s.tmp.%ld", path, (long)getpid());
     FILE *f = fopen(tmp, "wb");
-    int rc = DM_ERR_IO;
-    if (!f)
+    int e = 0;
+    if (!f) {
+        e = errno;
         goto err;
-    if (fwrite(data, 1, len, f) != len) {
+    }
+    if (fwrite(data, 1, len, f) != len || fflush(f) != 0) {
+        e = errno;
         fclose(f);
         goto err_unlink;
     }
-    if (fclose(f) != 0)
+    if (fclose(f) != 0 || rename(tmp, path) != 0) {
+        e = errno;
         goto err_unlink;
-    if (rename(tmp, path) != 0)
-        goto err_unlink;
+    }
     free(tmp);
     return 0;
 err_unlink:
     unlink(tmp);
 err:
     free(tmp);
-    return rc;
+    errno = e ? e : EIO;
+    return dm_disk_errno(errno) ? DM_ERR_DISK : DM_ERR_IO;
 }
 
 int dm_mkdirs(const char *path)
@@ -367,10 +381,35 @@ void dm_str_expected(dm_str *s, const char *value, const char *const *choices, s
         dm_str_printf(s, " (did you mean '%s'?)", close);
 }
 
-int dm_regular_file(const char *path)
+int dm_input_file(const char *path, char *why, size_t whylen)
 {
     struct stat st;
-    return path && stat(path, &st) == 0 && S_ISREG(st.st_mode);
+    const char *reason = NULL;
+    int rc = 0;
+    if (!path || !*path) {
+        reason = "no file named (an empty path)";
+        rc = DM_ERR_NOTFOUND;
+    } else if (stat(path, &st) != 0) {
+        reason = strerror(errno);
+        rc = errno == ENOENT || errno == ENOTDIR ? DM_ERR_NOTFOUND : DM_ERR_IO;
+    } else if (!S_ISREG(st.st_mode)) {
+        reason = "not a regular file (a directory, FIFO or device)";
+        rc = DM_ERR_ARG;
+    }
+    if (rc && why && whylen)
+        snprintf(why, whylen, "%s", reason);
+    return rc;
+}
+
+const char *dm_nomem_reason(char *buf, size_t len)
+{
+    struct rlimit as;
+    if (getrlimit(RLIMIT_AS, &as) == 0 && as.rlim_cur != RLIM_INFINITY)
+        snprintf(buf, len, "out of memory under the address-space limit of %llu MB (ulimit -v %llu)",
+                 (unsigned long long)(as.rlim_cur >> 20), (unsigned long long)(as.rlim_cur >> 10));
+    else
+        snprintf(buf, len, "out of memory");
+    return buf;
 }
 
 void dm_str_cat_md(dm_str *s, const char *text)

@@ -113,14 +113,30 @@ int dm_read_file(const char *path, char **out, size_t *len);
 /* Appends all that is left to read from f (a file or a pipe) to out; returns
  * 0, or DM_ERR_IO on a read error with what was read before it in out. */
 int dm_read_stream(FILE *f, dm_str *out);
-/* Writes atomically (temp file + rename); DM_ERR_IO on failure, the old file
- * (if any) is left as it was. */
+/* Writes atomically: a temp file beside path, then rename; on failure the
+ * temp file is removed and the old file (if any) is left as it was.
+ * Returns 0, DM_ERR_DISK when the disk refused the write (dm_disk_errno),
+ * or DM_ERR_IO (no such directory, permission, ...); errno says why. */
 int dm_write_file(const char *path, const void *data, size_t len);
+/* 1 for the errno values of a disk that refused a write: full (ENOSPC),
+ * over quota (EDQUOT), past a file-size limit (EFBIG: ulimit -f) or failing
+ * (EIO).  Such a failure is the machine's (exit 4), not the input's. */
+int dm_disk_errno(int e);
 /* mkdir -p; 0 if it exists or was made. */
 int dm_mkdirs(const char *path);
 int dm_file_exists(const char *path);
-/* 1 when path names a regular file (after symlinks): input files must be,
- * since reading a FIFO or a device such as /dev/zero never ends. */
-int dm_regular_file(const char *path);
+/* The one check every input file passes before it is opened (sweep files,
+ * maps, meshes, user GLSL, images for `diff`, results files, CSV tables):
+ * 0 when path names a regular file (after symlinks).  Else, without opening
+ * it, DM_ERR_NOTFOUND (no such file), DM_ERR_ARG (a directory, FIFO, socket
+ * or device: reading /dev/zero or a pipe never ends) or DM_ERR_IO (stat
+ * failed otherwise: permission, a name too long), with the reason ("not a
+ * regular file (a directory, FIFO or device)", or strerror) in why when
+ * why is not NULL. */
+int dm_input_file(const char *path, char *why, size_t whylen);
+/* Why a large allocation failed, into buf (returned): "out of memory under
+ * the address-space limit of N MB (ulimit -v K)" when such a limit is set,
+ * else "out of memory"; for the message of a DM_ERR_NOMEM (exit 4). */
+const char *dm_nomem_reason(char *buf, size_t len);
 
 #endif

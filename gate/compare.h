@@ -252,7 +252,8 @@ void compare_write_text(const compare_result *r, FILE *f);
 /* Markdown summary + table; JUnit XML (one testcase per configuration:
  * <failure> for REGRESSION, <skipped> for INCONCLUSIVE and SKIPPED, the
  * verdict in system-out); JSON (everything in compare_result).  Each returns
- * 0 or DM_ERR_IO and writes atomically. */
+ * 0 or dm_write_file's DM_ERR_IO / DM_ERR_DISK (errno says why) and writes
+ * atomically. */
 int compare_write_markdown(const compare_result *r, const char *path);
 /* Markdown for a pull-request comment:
  *   a headline: the verdict in words with the counts;
@@ -262,7 +263,7 @@ int compare_write_markdown(const compare_result *r, const char *path);
  *   the PASS rows in a <details> block (none with only_changed);
  *   at most COMPARE_MD_MAX characters: rows that do not fit are cut, PASS
  *   rows first, with a line saying how many and where the rest is.
- * The same options; 0 or DM_ERR_IO. */
+ * The same options; 0, DM_ERR_IO or DM_ERR_DISK. */
 #define COMPARE_MD_MAX 60000
 typedef struct compare_md_desc {
     int only_changed;
@@ -272,7 +273,7 @@ int compare_write_markdown_ex(const compare_result *r, const compare_md_desc *d,
 /* The Markdown of a comparison that did not happen (no configuration in
  * common, environments differ, a side could not be read): the headline
  * says so and why (reason), so the CI step that posts it always has a
- * file.  0 or DM_ERR_IO. */
+ * file.  0, DM_ERR_IO or DM_ERR_DISK. */
 int compare_write_markdown_none(const char *reason, const compare_result *r, const char *path);
 int compare_write_junit(const compare_result *r, const char *path);
 int compare_write_json(const compare_result *r, const char *path);

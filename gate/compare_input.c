@@ -3,6 +3,7 @@
 #include "gate/compare.h"
 
 #include <cjson/cJSON.h>
+#include <errno.h>
 #include <libgen.h>
 #include <limits.h>
 #include <stdlib.h>
@@ -11,6 +12,7 @@
 #include <sys/stat.h>
 
 #include "core/dm_error.h"
+#include "core/dm_util.h"
 #include "store/store.h"
 #include "reports/report.h"
 
@@ -131,8 +133,9 @@ static int compare__baselines_read(const char *path, cJSON **root, dm_str *err)
         cJSON_AddArrayToObject(*root, "baselines");
         return 0;
     }
-    if (dm_read_file(path, &text, NULL) != 0) {
-        dm_str_printf(err, "%s: cannot read", path);
+    char why[256] = "";
+    if (dm_input_file(path, why, sizeof why) != 0 || dm_read_file(path, &text, NULL) != 0) {
+        dm_str_printf(err, "%s: cannot read: %s", path, why[0] ? why : strerror(errno));
         return DM_ERR_IO;
     }
     *root = cJSON_Parse(text);
@@ -169,9 +172,9 @@ int compare_baseline_accept(const char *store_path, const char *run_id, const ch
         cJSON_AddStringToObject(e, "accepted", now);
         cJSON_AddItemToArray(cJSON_GetObjectItemCaseSensitive(root, "baselines"), e);
         char *text = cJSON_Print(root);
-        rc = text && dm_write_file(path, text, strlen(text)) == 0 ? 0 : DM_ERR_IO;
+        rc = text ? dm_write_file(path, text, strlen(text)) : DM_ERR_NOMEM;
         if (rc)
-            dm_str_printf(err, "%s: cannot write", path);
+            dm_str_printf(err, "%s: cannot write: %s", path, strerror(errno));
         free(text);
     }
     cJSON_Delete(root);

@@ -169,7 +169,7 @@ void compare_write_text(const compare_result *r, FILE *f)
 
 static int compare__write(dm_str *s, const char *path)
 {
-    int rc = dm_write_file(path, dm_str_get(s), s->len) == 0 ? 0 : DM_ERR_IO;
+    int rc = dm_write_file(path, dm_str_get(s), s->len);   /* DM_ERR_DISK or IO, errno says why */
     dm_str_free(s);
     return rc;
 }

@@ -4,6 +4,7 @@
 #include <ctype.h>
 #include <math.h>
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
 
 #include "core/dm_error.h"
@@ -171,13 +172,13 @@ int fit_data_load_csv(const char *path, fit_data *out, dm_str *err)
     size_t len = 0, pos = 0, line = 1;
     int rc = 0;
     memset(out, 0, sizeof *out);
-    if (dm_file_exists(path) && !dm_regular_file(path)) {
-        dm_str_printf(err, "%s: cannot read the file: not a regular file (a directory, FIFO or "
-                      "device)", path);
+    char why[256];
+    if (dm_input_file(path, why, sizeof why) != 0) {
+        dm_str_printf(err, "%s: cannot read the file: %s", path, why);
         return DM_ERR_IO;
     }
     if (dm_read_file(path, &text, &len) != 0) {
-        dm_str_printf(err, "%s: cannot read the file", path);
+        dm_str_printf(err, "%s: cannot read the file: %s", path, strerror(errno));
         return DM_ERR_IO;
     }
     if (memchr(text, '\0', len)) {

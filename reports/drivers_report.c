@@ -9,6 +9,7 @@
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
 
 double drivers_kendall_tau(const double *x, const double *y, size_t n)
@@ -340,10 +341,10 @@ int drivers_report_write(const drivers_side *sides, size_t n, const char *dir, d
     char *json = cJSON_Print(root);
     char *pm = dm_xasprintf("%s/drivers.md", dir), *pj = dm_xasprintf("%s/drivers.json", dir);
     int rc = 0;
-    if (dm_write_file(pm, md.buf, md.len) != 0)
-        rc = DM_ERR_IO, dm_str_printf(err, "%s: cannot write", pm);
-    else if (dm_write_file(pj, json, strlen(json)) != 0)
-        rc = DM_ERR_IO, dm_str_printf(err, "%s: cannot write", pj);
+    if ((rc = dm_write_file(pm, md.buf, md.len)) != 0)   /* DM_ERR_DISK: the machine's */
+        dm_str_printf(err, "%s: cannot write: %s", pm, strerror(errno));
+    else if ((rc = dm_write_file(pj, json, strlen(json))) != 0)
+        dm_str_printf(err, "%s: cannot write: %s", pj, strerror(errno));
     free(pm);
     free(pj);
     free(json);

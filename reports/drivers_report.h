@@ -27,8 +27,8 @@ typedef struct drivers_side {
  * side is constant. */
 double drivers_kendall_tau(const double *x, const double *y, size_t n);
 
-/* Writes DIR/drivers.md and DIR/drivers.json.  0, or DM_ERR_IO with the
- * path in err. */
+/* Writes DIR/drivers.md and DIR/drivers.json.  0, or DM_ERR_IO /
+ * DM_ERR_DISK (the disk refused the write) with the path and why in err. */
 int drivers_report_write(const drivers_side *sides, size_t n, const char *dir, dm_str *err);
 
 #endif

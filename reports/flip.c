@@ -544,8 +544,11 @@ int flip_map_save(const float *map, int w, int h, const char *path, char *err, s
     if (!map || w < 1 || h < 1 || !path)
         return DM_ERR_ARG;
     img im = {0};
-    if (img_alloc(&im, w, h) != 0)
+    if (img_alloc(&im, w, h) != 0) {
+        char why[160];
+        snprintf(err, errlen, "%s: %s", path, dm_nomem_reason(why, sizeof why));
         return DM_ERR_NOMEM;
+    }
     for (size_t i = 0; i < (size_t)w * h; i++) {
         flip_colormap(map[i], im.px + i * 4);
         im.px[i * 4 + 3] = 1;

@@ -68,7 +68,8 @@ void flip_colormap(double v, float rgb[3]);
 /* Writes map (w*h values in [0,1]) through flip_colormap as an image
  * (format by extension, as img_save): the same colour means the same error
  * in every map, so maps of two techniques compare side by side.  0,
- * DM_ERR_ARG, DM_ERR_NOMEM, or DM_ERR_IO with the reason in err. */
+ * DM_ERR_ARG, DM_ERR_NOMEM, or img_save's DM_ERR_DISK / DM_ERR_IO with the
+ * reason in err; no partial file is left at path. */
 int flip_map_save(const float *map, int w, int h, const char *path, char *err, size_t errlen);
 
 /* FLIP of every configuration of run again at ppd, from the render and

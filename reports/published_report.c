@@ -3,6 +3,7 @@
 #include "reports/published_report.h"
 #include "reports/report_internal.h"
 #include "core/dm_error.h"
+#include "core/dm_util.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>
@@ -175,7 +176,7 @@ void report_published_section(dm_str *s, const dm_run_result *run, const char *d
                        : dm_xstrdup("published.json");
     char *text = NULL;
     size_t len = 0;
-    if (!dm_file_exists(path) || dm_read_file(path, &text, &len) != 0) {
+    if (dm_input_file(path, NULL, 0) != 0 || dm_read_file(path, &text, &len) != 0) {
         free(path);
         return;
     }
@@ -194,12 +195,12 @@ void report_published_section(dm_str *s, const dm_run_result *run, const char *d
     free(path);
 }
 
-int report_published_copy(const char *dir, const char *out)
+int report_published_copy(const char *dir, const char *out, char *err, size_t errlen)
 {
     char *from = dm_xasprintf("%s/published.json", dir), *to = dm_xasprintf("%s/published.json", out);
     int rc = 0;
     if (strcmp(dir, out) != 0 && dm_file_exists(from))
-        rc = report__copy_file(from, to);
+        rc = report__copy_file(from, to, err, errlen);
     free(from);
     free(to);
     return rc;

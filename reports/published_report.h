@@ -41,7 +41,8 @@ report_pub_verdict report_pub_judge(double published_ratio, double measured_rati
 void report_published_section(dm_str *s, const dm_run_result *run, const char *dir,
                               const char *beside, int html);
 /* Copies dir/published.json to out/published.json when it exists (a report
- * written elsewhere keeps its section).  0, or DM_ERR_IO. */
-int report_published_copy(const char *dir, const char *out);
+ * written elsewhere keeps its section).  0, or report__copy_file's code
+ * (DM_ERR_DISK for a disk that refused the write) with the reason in err. */
+int report_published_copy(const char *dir, const char *out, char *err, size_t errlen);
 
 #endif

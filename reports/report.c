@@ -4,7 +4,9 @@
 #include "reports/published_report.h"
 
 #include "core/dm_error.h"
+#include "core/dm_util.h"
 
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -464,14 +466,26 @@ void report_trends_free(report_trends *t)
         free(t->items);
 }
 
-int report__copy_file(const char *from, const char *to)
+int report__copy_file(const char *from, const char *to, char *err, size_t errlen)
 {
     char *text = NULL, *parent = dm_xstrdup(to), *slash = strrchr(parent, '/');
     size_t len = 0;
+    char why[256];
+    int rc = dm_input_file(from, why, sizeof why);
+    if (rc)
+        snprintf(err, errlen, "%s: cannot copy: %s", from, why);
     if (slash)
         *slash = 0;
-    int rc = (!slash || dm_mkdirs(parent) == 0) && dm_read_file(from, &text, &len) == 0 &&
-             dm_write_file(to, text, len) == 0 ? 0 : DM_ERR_IO;
+    if (!rc && slash && dm_mkdirs(parent) != 0) {
+        snprintf(err, errlen, "%s: cannot create the directory: %s", parent, strerror(errno));
+        rc = dm_disk_errno(errno) ? DM_ERR_DISK : DM_ERR_IO;
+    }
+    if (!rc && dm_read_file(from, &text, &len) != 0) {
+        snprintf(err, errlen, "%s: cannot read: %s", from, strerror(errno));
+        rc = DM_ERR_IO;
+    }
+    if (!rc && (rc = dm_write_file(to, text, len)) != 0)
+        snprintf(err, errlen, "%s: cannot write: %s", to, strerror(errno));
     free(text);
     free(parent);
     return rc;
@@ -490,9 +504,8 @@ static int report__copy_images(const dm_run_result *run, const char *dir, const 
             if (!imgs[k] || !report__safe_relpath(imgs[k]))
                 continue;
             char *from = dm_xasprintf("%s/%s", dir, imgs[k]), *to = dm_xasprintf("%s/%s", out, imgs[k]);
-            int rc = dm_file_exists(from) && !dm_file_exists(to) ? report__copy_file(from, to) : 0;
-            if (rc)
-                snprintf(err, errlen, "%s: cannot copy the image", to);
+            int rc = dm_file_exists(from) && !dm_file_exists(to)
+                         ? report__copy_file(from, to, err, errlen) : 0;
             free(from);
             free(to);
             if (rc)
@@ -511,9 +524,7 @@ int report_write_all_trends(const dm_run_result *run, const char *dir, const cha
         return DM_ERR_ARG;
     }
     /* written elsewhere: the images come along, so the folder stands alone */
-    int rc = report_published_copy(dir, out);   /* summary.md reads it beside itself */
-    if (rc)
-        snprintf(err, errlen, "%s/published.json: cannot copy", out);
+    int rc = report_published_copy(dir, out, err, errlen);   /* summary.md reads it beside itself */
     if (!rc && strcmp(dir, out) != 0)
         rc = report__copy_images(run, dir, out, err, errlen);
     for (int i = 0; i < 4 && !rc; i++) {
@@ -522,8 +533,9 @@ int report_write_all_trends(const dm_run_result *run, const char *dir, const cha
            : i == 1 ? report_write_csv(run, path)
            : i == 2 ? report_write_markdown(run, path)
                     : report_write_html_trends(run, dir, path, "", t);
-        if (rc)
-            snprintf(err, errlen, "%s: cannot write (%s)", path, dm_strerror(rc));
+        if (rc)   /* errno of the failed write (dm_write_file) */
+            snprintf(err, errlen, "%s: cannot write: %s", path,
+                     rc == DM_ERR_DISK || rc == DM_ERR_IO ? strerror(errno) : dm_strerror(rc));
         free(path);
     }
     return rc;

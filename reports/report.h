@@ -133,8 +133,9 @@ void report_json_exact_numbers(struct cJSON *node);
 /* One fit as its results.json "fits" entry (cJSON; the caller deletes it). */
 struct cJSON *report_fit_to_json(const dm_fit_result *f);
 /* Reads a results.json back (for compare/merge) into *out (zeroed first;
- * release with dm_run_free).  DM_ERR_IO when unreadable, DM_ERR_PARSE when
- * malformed or without "run"/"configs"/config keys; err names the path. */
+ * release with dm_run_free).  DM_ERR_ARG when not a regular file (never
+ * opened: dm_input_file), DM_ERR_IO when missing or unreadable, DM_ERR_PARSE when malformed or without "run"/"configs"/config
+ * keys; err names the path and why. */
 int report_read_json(const char *path, dm_run_result *out, char *err, size_t errlen);
 
 #endif

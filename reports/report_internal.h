@@ -133,10 +133,13 @@ void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *
  * percent of the measured value vs predicted), nothing without points. */
 void report__html_charts_fit(dm_str *s, const dm_run_result *run, const dm_fit_result *f);
 
-/* Copies the file from → to, creating to's directory; 0 or DM_ERR_IO. */
-int report__copy_file(const char *from, const char *to);
+/* Copies the file from (a regular file: dm_input_file) → to, creating to's
+ * directory; 0, or DM_ERR_ARG / DM_ERR_IO / DM_ERR_DISK (the disk refused
+ * the write) with the file and the reason in err. */
+int report__copy_file(const char *from, const char *to, char *err, size_t errlen);
 
-/* Writes s to path (atomically); DM_ERR_IO. */
+/* Writes s to path (atomically, dm_write_file): 0, DM_ERR_DISK or DM_ERR_IO
+ * with errno saying why; no partial file is left. */
 int report__save(const dm_str *s, const char *path);
 
 #endif

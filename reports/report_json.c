@@ -22,8 +22,10 @@
 #include "reports/report_internal.h"
 
 #include "core/dm_error.h"
+#include "core/dm_util.h"
 
 #include <cjson/cJSON.h>
+#include <errno.h>
 #include <limits.h>
 #include <math.h>
 #include <stdio.h>
@@ -571,8 +573,14 @@ int report_read_json(const char *path, dm_run_result *out, char *err, size_t err
     size_t len = 0;
     if (!path || !out)
         return DM_ERR_ARG;
+    char reason[256];
+    int rc = dm_input_file(path, reason, sizeof reason);   /* never read a FIFO or /dev/zero */
+    if (rc) {
+        snprintf(err, errlen, "%s: cannot read: %s", path, reason);
+        return rc == DM_ERR_ARG ? rc : DM_ERR_IO;
+    }
     if (dm_read_file(path, &text, &len)) {
-        snprintf(err, errlen, "%s: cannot read", path);
+        snprintf(err, errlen, "%s: cannot read: %s", path, strerror(errno));
         return DM_ERR_IO;
     }
     const char *end = NULL;

@@ -62,11 +62,12 @@ int slurm_check_dir(const char *dir, dm_str *err)
 
 static int slurm__save(const char *path, const dm_str *text, dm_str *err)
 {
-    if (dm_write_file(path, dm_str_get(text), text->len) != 0 || chmod(path, 0755) != 0) {
-        dm_str_printf(err, "%s: cannot write the job script", path);
-        return DM_ERR_IO;
-    }
-    return 0;
+    int rc = dm_write_file(path, dm_str_get(text), text->len);
+    if (rc == 0 && chmod(path, 0755) != 0)
+        rc = DM_ERR_IO;
+    if (rc)
+        dm_str_printf(err, "%s: cannot write the job script: %s", path, strerror(errno));
+    return rc;
 }
 
 /* The array script: task K runs shard K/N into DIR/shards/sK, continuing

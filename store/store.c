@@ -285,6 +285,10 @@ static int store__fail(store *s, const char *what)
         return store__failf(s, DM_ERR_STORE, "the results store is damaged (%s: %s, SQLite code "
                             "%d); restore dmbench.sqlite from a backup, or give another --out",
                             what, sqlite3_errmsg(s->db), code);
+    int os = sqlite3_system_errno(s->db);   /* the file system's reason: "File too large" */
+    if (os && (prim == SQLITE_IOERR || prim == SQLITE_FULL || prim == SQLITE_CANTOPEN))
+        return store__failf(s, DM_ERR_STORE, "%s: %s (%s; SQLite code %d)", what, sqlite3_errmsg(s->db),
+                            strerror(os), code);
     return store__failf(s, DM_ERR_STORE, "%s: %s (SQLite code %d)", what, sqlite3_errmsg(s->db),
                         code);
 }
@@ -1069,11 +1073,14 @@ static int store__verify_schema(store *s)
     return rc == SQLITE_OK ? 0 : store__fail(s, "checking the schema");
 }
 
-/* Opening failures caused by the file system are I/O errors; the rest (not
- * a database, corrupt, out of memory) are store errors. */
-static int store__open_code(int rc)
+/* Opening failures caused by the path are I/O errors (the user's); a disk
+ * that refuses the write (full, ulimit -f: dm_disk_errno) is DM_ERR_DISK; the
+ * rest (not a database, corrupt, out of memory) are store errors. */
+static int store__open_code(store *s, int rc)
 {
     int prim = rc & 0xff;
+    if (prim == SQLITE_FULL || (prim == SQLITE_IOERR && s->db && dm_disk_errno(sqlite3_system_errno(s->db))))
+        return DM_ERR_DISK;
     return prim == SQLITE_CANTOPEN || prim == SQLITE_READONLY ||
            prim == SQLITE_PERM || prim == SQLITE_IOERR ? DM_ERR_IO : DM_ERR_STORE;
 }
@@ -1089,7 +1096,7 @@ static int store__connect(store *s)
                           "PRAGMA journal_mode=WAL;PRAGMA synchronous=FULL",
                           NULL, NULL, NULL);
     if (rc != SQLITE_OK) {
-        int code = store__open_code(s->db ? sqlite3_extended_errcode(s->db) : rc);
+        int code = store__open_code(s, s->db ? sqlite3_extended_errcode(s->db) : rc);
         store__fail(s, "cannot open the results store");
         return code;
     }

@@ -340,7 +340,7 @@ int published_write_json(const published *p, const char *path)
     for (size_t i = 0; i < p->n_values; i++)
         cJSON_AddItemToArray(vals, pub__json_value(&p->values[i]));
     char *text = cJSON_Print(root);
-    int rc = text && dm_write_file(path, text, strlen(text)) == 0 ? 0 : DM_ERR_IO;
+    int rc = text ? dm_write_file(path, text, strlen(text)) : DM_ERR_NOMEM;   /* DISK: exit 4 */
     cJSON_free(text);
     cJSON_Delete(root);
     return rc;

@@ -52,7 +52,8 @@ int published_resolve(published *p, const struct plan *pl, const char *path, dm_
  * plan.  Appends to out. */
 void published_plan_label(const struct plan *pl, size_t i, dm_str *out);
 /* Writes the resolved block as JSON (the run directory's published.json,
- * read by reports/published_report.h).  0 or DM_ERR_IO. */
+ * read by reports/published_report.h).  0 or dm_write_file's DM_ERR_IO /
+ * DM_ERR_DISK (errno says why). */
 int published_write_json(const published *p, const char *path);
 void published_free(published *p);
 

@@ -19,6 +19,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <errno.h>
 #include <string.h>
 #include <yaml.h>
 
@@ -34,6 +35,8 @@ typedef struct pctx {
     size_t *n_axes;
     sweep_model *model;         /* the models[] entry being read */
     unsigned char seen[64];     /* rows of the key table the file gave */
+    int env;                    /* DM_ERR_NOMEM met checking a value (a map too large for
+                                 * the memory): the machine's, returned instead of PARSE */
 } pctx;
 
 #define P__FOREACH_PAIR(c, map, pair)                                           \
@@ -113,6 +116,7 @@ static char *p__axis_value(pctx *c, const char *axis, yaml_node_t *n)
     dm_str msg = {0};
     int rc = axes_check(axis, text, &msg);
     if (rc != 0) {
+        c->env = rc == DM_ERR_NOMEM ? rc : c->env;
         p__fail(c, n, "%s", dm_str_get(&msg));
         dm_str_free(&msg);
         free(text);
@@ -190,6 +194,7 @@ static int p__user_maps(pctx *c, yaml_node_t *map)
         return 0;
     dm_str msg = {0};
     int rc = axes_check("maps", dm_str_get(&v), &msg);
+    c->env = rc == DM_ERR_NOMEM ? rc : c->env;
     if (rc)
         p__fail(c, first, "%s", dm_str_get(&msg));
     else
@@ -983,7 +988,7 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
         rc = sweep__check_excludes(out, err);
     if (rc) {
         sweep_free(out);
-        return rc;
+        return c.env ? c.env : rc;
     }
     p__numeric_defaults(&c);
     sweep__defaults(out);
@@ -996,13 +1001,13 @@ int sweep_load(const char *path, sweep *out, dm_str *err)
     char *text = NULL;
     size_t len = 0;
     memset(out, 0, sizeof *out);
-    if (dm_file_exists(path) && !dm_regular_file(path)) {
-        dm_str_printf(err, "%s: cannot read the sweep file: not a regular file (a directory, "
-                      "FIFO or device)", path);
+    char why[256];
+    if (dm_input_file(path, why, sizeof why) != 0) {
+        dm_str_printf(err, "%s: cannot read the sweep file: %s", path, why);
         return DM_ERR_IO;
     }
     if (dm_read_file(path, &text, &len) != 0) {
-        dm_str_printf(err, "%s: cannot read the sweep file", path);
+        dm_str_printf(err, "%s: cannot read the sweep file: %s", path, strerror(errno));
         return DM_ERR_IO;
     }
     const char *nul = memchr(text, '\0', len);

@@ -84,9 +84,12 @@ typedef struct sweep {
 } sweep;
 
 /* Parses and validates a sweep from text; `path` names it in messages.
- * Returns 0, or DM_ERR_PARSE with "path:line:col: ..." in err (out zeroed). */
+ * Returns 0, or DM_ERR_PARSE with "path:line:col: ..." in err (out zeroed);
+ * DM_ERR_NOMEM (same message) when a map it names is too large for the
+ * memory the process may use: the machine's failure, exit 4. */
 int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err);
-/* Reads and parses a file; DM_ERR_IO with the path when unreadable. */
+/* Reads and parses a file; DM_ERR_IO with the path and why when it cannot
+ * be read (missing, or not a regular file: dm_input_file). */
 int sweep_load(const char *path, sweep *out, dm_str *err);
 /* The embedded default sweep (README); quick = the short version for tests. */
 const char *sweep_default_text(int quick);

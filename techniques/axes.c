@@ -214,11 +214,6 @@ int axes_parse_size2(const char *s, int *w, int *h)
  * through Assimp, so a missing or corrupt file stops the run before any work. */
 static int axes__check_user_mesh(const char *path, dm_str *err)
 {
-    if (dm_file_exists(path) && !dm_regular_file(path)) {
-        dm_str_printf(err, "mesh file '%s' cannot be used: not a regular file (a directory, FIFO "
-                      "or device)", path);
-        return DM_ERR_ARG;
-    }
     dm_str why = {0};
     int rc = user_mesh_check(path, &why);
     if (rc)
@@ -259,7 +254,10 @@ int axes_check(const char *name, const char *value, dm_str *err)
     switch (a->kind) {
     case AXIS_ENUM:
         if (strcmp(a->name, "maps") == 0 && maps_is_material(value))
-            return maps_material_check(value, err) ? DM_ERR_ARG : 0;   /* user maps (maps.h) */
+        {
+            int rc = maps_material_check(value, err);   /* user maps (maps.h) */
+            return rc == DM_ERR_NOMEM ? rc : rc ? DM_ERR_ARG : 0;
+        }
         if (strcmp(a->name, "mesh") == 0 && strncmp(value, USER_MESH_PREFIX, strlen(USER_MESH_PREFIX)) == 0)
             return axes__check_user_mesh(value + strlen(USER_MESH_PREFIX), err);
         if (strcmp(a->name, "technique") == 0 && user_technique_is_path(value))

@@ -619,14 +619,14 @@ static int maps__material_split(const char *value, char *paths[3], dm_str *err)
 static int maps__material_file(int key, const char *path, int *size, img *out, dm_str *err)
 {
     char why[256] = "";
-    if (dm_file_exists(path) && !dm_regular_file(path)) {
-        dm_str_printf(err, "material %s map '%s' is not a regular file (a directory, FIFO or "
-                      "device cannot be read as an image)", maps__material_keys[key], path);
+    if (dm_input_file(path, why, sizeof why) == DM_ERR_ARG) {
+        dm_str_printf(err, "material %s map '%s' is %s", maps__material_keys[key], path, why);
         return DM_ERR_IO;
     }
-    if (img_load(path, out, why, sizeof why) != 0) {
+    int rc = img_load(path, out, why, sizeof why);
+    if (rc != 0) {   /* NOMEM: a map the machine cannot hold (exit 4), else the user's file */
         dm_str_printf(err, "material %s map '%s' cannot be read: %s", maps__material_keys[key], path, why);
-        return DM_ERR_IO;
+        return rc == DM_ERR_NOMEM ? rc : DM_ERR_IO;
     }
     int pow2 = out->w > 0 && (out->w & (out->w - 1)) == 0;
     const char *bad = out->w != out->h || !pow2 || out->w < MAPS_MIN_SIZE || out->w > MAPS_MAX_SIZE

@@ -101,7 +101,8 @@ void maps_normal_from_height(const float *height, int size, float strength, floa
  * albedo files are sRGB-encoded unless they are .exr (linear). */
 int maps_is_material(const char *value);
 /* Validates a material value; 0, or DM_ERR_ARG / DM_ERR_IO with a message
- * naming the key and the file appended to err. */
+ * naming the key and the file appended to err (DM_ERR_NOMEM when a file's
+ * pixels cannot be allocated: the machine's, not the file's). */
 int maps_material_check(const char *value, dm_str *err);
 /* Loads a material into a full-layout set; same codes and messages. */
 int maps_material_load(const char *value, maps_set *out, dm_str *err);

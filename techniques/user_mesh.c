@@ -10,6 +10,7 @@
 #include <string.h>
 
 #include "core/dm_error.h"
+#include "core/dm_util.h"
 
 /* Appends the triangles of one Assimp mesh; returns 1 when it supplied its
  * own tangents. */
@@ -93,6 +94,11 @@ static const char *user_mesh__missing(const struct aiScene *sc, unsigned *which)
 
 int user_mesh_check(const char *path, dm_str *err)
 {
+    char why[256];
+    if (dm_input_file(path, why, sizeof why) != 0) {   /* never open a FIFO or /dev/zero */
+        dm_str_cat(err, why);
+        return DM_ERR_IO;
+    }
     const struct aiScene *sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_SortByPType);
     if (!sc) {
         dm_str_printf(err, "Assimp cannot read it: %s", aiGetErrorString());
@@ -115,6 +121,12 @@ int user_mesh_load(const char *path, mesh_data *out, int *had_tangents, dm_str *
 {
     if (!path || !out)
         return DM_ERR_ARG;
+    char why[256];
+    if (dm_input_file(path, why, sizeof why) != 0) {
+        if (err)
+            dm_str_printf(err, "cannot load mesh '%s': %s\n", path, why);
+        return DM_ERR_IO;
+    }
     const struct aiScene *sc = aiImportFile(path, aiProcess_Triangulate | aiProcess_SortByPType |
                                                       aiProcess_PreTransformVertices |
                                                       aiProcess_GenSmoothNormals);

@@ -29,8 +29,9 @@ int user_mesh_load(const char *path, mesh_data *out, int *had_tangents, dm_str *
 /* The plan-time check of a mesh-axis file: Assimp reads it, it holds
  * triangles, and every triangle mesh has its own normals and texture
  * coordinates (user_mesh_load would make up normals and zero UVs, which no
- * technique of the axis can use).  Returns 0, DM_ERR_IO (Assimp's message in
- * err, without the path) or DM_ERR_PARSE (which mesh lacks what, in err). */
+ * technique of the axis can use).  Returns 0, DM_ERR_IO (not a regular
+ * file, dm_input_file, or Assimp's message in err, without the path) or
+ * DM_ERR_PARSE (which mesh lacks what, in err). */
 int user_mesh_check(const char *path, dm_str *err);
 
 #endif

@@ -567,13 +567,14 @@ static char *ut__compose(const ut__tech *t)
 static int ut__read(const char *path, char **text, dm_str *err)
 {
     size_t len = 0;
-    if (!dm_file_exists(path)) {
+    char why[256];
+    int rc = dm_input_file(path, why, sizeof why);
+    if (rc == DM_ERR_NOTFOUND) {
         dm_str_printf(err, "%s: technique file not found", path);
         return DM_ERR_IO;
     }
-    if (!dm_regular_file(path)) {
-        dm_str_printf(err, "%s: technique file is not a regular file (a directory, FIFO or device)",
-                      path);
+    if (rc) {
+        dm_str_printf(err, "%s: technique file is %s", path, why);
         return DM_ERR_IO;
     }
     if (dm_read_file(path, text, &len) != 0) {

@@ -8,6 +8,11 @@
 #include "test_util.h"
 #include <stdlib.h>
 #include <string.h>
+#include <dirent.h>
+#include <errno.h>
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include "core/dm_error.h"
@@ -75,6 +80,83 @@ static void test_files(void **state)
     free(sub);
 }
 
+/* dm_write_file past a file-size limit (ulimit -f; SIGXFSZ ignored, as
+ * dmbench does): DM_ERR_DISK with errno EFBIG, the old file kept as it was
+ * and no temp file left beside it. */
+static void test_write_file_disk(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dmcoreXXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char *f = dm_xasprintf("%s/out.html", dir);
+    assert_int_equal(dm_write_file(f, "old", 3), 0);
+    static char big[65536];
+    struct rlimit old, lim;
+    assert_int_equal(getrlimit(RLIMIT_FSIZE, &old), 0);
+    lim = old;
+    lim.rlim_cur = 4096;
+    void (*prev)(int) = signal(SIGXFSZ, SIG_IGN);
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &lim), 0);
+    int rc = dm_write_file(f, big, sizeof big), e = errno;
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &old), 0);
+    signal(SIGXFSZ, prev);
+    assert_int_equal(rc, DM_ERR_DISK);
+    assert_int_equal(e, EFBIG);
+    assert_int_equal(dm_exit_from_error(rc), DM_EXIT_ENV);
+    char *buf = NULL;
+    assert_int_equal(dm_read_file(f, &buf, NULL), 0);
+    assert_string_equal(buf, "old");
+    DIR *d = opendir(dir);
+    int n = 0;
+    for (struct dirent *de; (de = readdir(d)) != NULL;)
+        n += de->d_name[0] != '.';
+    closedir(d);
+    assert_int_equal(n, 1);   /* out.html only: the temp file is gone */
+    assert_int_equal(dm_write_file("/nonexistent/dir/x", "a", 1), DM_ERR_IO);
+    assert_int_equal(errno, ENOENT);
+    unlink(f);
+    rmdir(dir);
+    free(buf);
+    free(f);
+}
+
+/* dm_input_file: a regular file (also through a symlink) passes; a
+ * directory, a device, a symlink to /dev/zero, a FIFO are refused without
+ * being opened (a FIFO with no writer would block an open); a missing file
+ * is DM_ERR_NOTFOUND; every refusal says why. */
+static void test_input_file(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dmcoreXXXXXX", why[256];
+    assert_non_null(mkdtemp(dir));
+    char *f = dm_xasprintf("%s/a.png", dir), *ln = dm_xasprintf("%s/l.png", dir),
+         *zero = dm_xasprintf("%s/z.exr", dir), *fifo = dm_xasprintf("%s/p.png", dir);
+    assert_int_equal(dm_write_file(f, "x", 1), 0);
+    assert_int_equal(symlink(f, ln), 0);
+    assert_int_equal(symlink("/dev/zero", zero), 0);
+    assert_int_equal(mkfifo(fifo, 0600), 0);
+    assert_int_equal(dm_input_file(f, why, sizeof why), 0);
+    assert_int_equal(dm_input_file(ln, why, sizeof why), 0);
+    const char *bad[] = { dir, "/dev/zero", zero, fifo };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        why[0] = 0;
+        assert_int_equal(dm_input_file(bad[i], why, sizeof why), DM_ERR_ARG);
+        assert_non_null(strstr(why, "not a regular file"));
+    }
+    assert_int_equal(dm_input_file("/nonexistent/x.png", why, sizeof why), DM_ERR_NOTFOUND);
+    assert_string_equal(why, "No such file or directory");
+    assert_int_equal(dm_input_file("", NULL, 0), DM_ERR_NOTFOUND);
+    unlink(f);
+    unlink(ln);
+    unlink(zero);
+    unlink(fifo);
+    rmdir(dir);
+    free(f);
+    free(ln);
+    free(zero);
+    free(fifo);
+}
+
 static void test_results_kv(void **state)
 {
     (void)state;
@@ -116,10 +198,11 @@ static void test_exit_codes(void **state)
                                  DM_ERR_EXISTS, DM_ERR_IO, DM_ERR_UNSUPPORTED };
     for (size_t i = 0; i < sizeof usage / sizeof *usage; i++)
         assert_int_equal(dm_exit_from_error(usage[i]), DM_EXIT_USAGE);
-    static const int failed[] = { DM_ERR_NOMEM, DM_ERR_SHADER, DM_ERR_NUMERIC, DM_ERR_TIMEOUT };
+    static const int failed[] = { DM_ERR_SHADER, DM_ERR_NUMERIC, DM_ERR_TIMEOUT };
     for (size_t i = 0; i < sizeof failed / sizeof *failed; i++)
         assert_int_equal(dm_exit_from_error(failed[i]), DM_EXIT_FAILED);
-    static const int env[] = { DM_ERR_STORE, DM_ERR_BUSY, DM_ERR_CHILD, DM_ERR_GL };
+    static const int env[] = { DM_ERR_STORE, DM_ERR_BUSY, DM_ERR_CHILD, DM_ERR_GL, DM_ERR_DISK,
+                               DM_ERR_NOMEM };
     for (size_t i = 0; i < sizeof env / sizeof *env; i++)
         assert_int_equal(dm_exit_from_error(env[i]), DM_EXIT_ENV);
 }
@@ -228,6 +311,8 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_str_and_html),
              cmocka_unit_test(test_hash),
              cmocka_unit_test(test_files),
+             cmocka_unit_test(test_write_file_disk),
+             cmocka_unit_test(test_input_file),
              cmocka_unit_test(test_results_kv),
              cmocka_unit_test(test_closest),
              cmocka_unit_test(test_proc))

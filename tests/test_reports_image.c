@@ -1,8 +1,10 @@
 /* test_reports_image.c — the OpenImageIO bridge (reports/image.h). */
 #include "reports/image.h"
 #include "core/dm_error.h"
+#include "reports/quality.h"
 
 #include <math.h>
+#include <signal.h>
 #include <setjmp.h>
 #include <stdarg.h>
 #include <stddef.h>
@@ -10,6 +12,7 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+#include <sys/resource.h>
 #include <unistd.h>
 #include <cmocka.h>
 #include "test_util.h"
@@ -144,7 +147,122 @@ static void test_heatmap_inferno(void **state)
     img_free(&h);
 }
 
+/* The same pixels in two channel layouts (tests/data/images, written by
+ * oiiotool): grey+alpha and RGBA, 8 and 16 bits; grey, RGB and opaque RGBA.
+ * Each pair loads to the same RGBA floats, so RMSE and the silhouette error
+ * are exactly 0 (grey+alpha was once read as (Y, A, Y, 1)). */
+static void test_load_channel_layouts(void **state)
+{
+    (void)state;
+    static const char *pairs[][2] = {
+        { "grey-alpha.png", "rgba.png" }, { "grey-alpha16.png", "rgba16.png" },
+        { "grey.png", "rgb.png" }, { "rgb.png", "rgba-opaque.png" }, { "grey.png", "rgba-opaque.png" },
+    };
+    const char *src = getenv("DMBENCH_SOURCE_DIR");
+    assert_non_null(src);
+    for (size_t i = 0; i < sizeof pairs / sizeof *pairs; i++) {
+        img a = {0}, b = {0};
+        char err[512];
+        char *pa = dm_xasprintf("%s/tests/data/images/%s", src, pairs[i][0]);
+        char *pb = dm_xasprintf("%s/tests/data/images/%s", src, pairs[i][1]);
+        assert_int_equal(img_load(pa, &a, err, sizeof err), 0);
+        assert_int_equal(img_load(pb, &b, err, sizeof err), 0);
+        assert_int_equal(a.w, 4);
+        assert_int_equal(b.h, 4);
+        assert_memory_equal(a.px, b.px, 4 * 4 * 4 * sizeof(float));
+        img_metrics m;
+        assert_int_equal(img_compare(&a, &b, 0.05, &m), 0);
+        assert_true(m.rmse == 0.0);
+        unsigned char ma[16], mb[16];
+        quality_coverage(&a, ma);
+        quality_coverage(&b, mb);
+        assert_true(quality_silhouette_error(ma, mb, 16) == 0.0);
+        if (i < 2) {   /* grey+alpha: alpha 0 on half the pixels, 0.6 on the others */
+            assert_true(a.px[3] == 0.0f);
+            assert_float_equal(a.px[2 * 4 + 3], 0.6, 0.002);
+            assert_true(a.px[2 * 4 + 0] == a.px[2 * 4 + 1] && a.px[2 * 4 + 1] == a.px[2 * 4 + 2]);
+        }
+        img_free(&a);
+        img_free(&b);
+        free(pa);
+        free(pb);
+    }
+}
+
+/* What img_load refuses, at once and without reading: a device, a
+ * symlink to /dev/zero (DM_ERR_ARG), a header claiming more than
+ * IMG_MAX_PIXELS (DM_ERR_IO, before any allocation). */
+static void test_load_refused(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_img_XXXXXX", err[512];
+    assert_non_null(mkdtemp(dir));
+    char *ln = dm_xasprintf("%s/zero.png", dir), *huge = dm_xasprintf("%s/huge.png", dir);
+    assert_int_equal(symlink("/dev/zero", ln), 0);
+    img l = {0};
+    assert_int_equal(img_load("/dev/zero", &l, err, sizeof err), DM_ERR_ARG);
+    assert_non_null(strstr(err, "not a regular file"));
+    assert_int_equal(img_load(ln, &l, err, sizeof err), DM_ERR_ARG);
+    /* a PNG of 20000 x 20000 grey pixels with an empty IDAT */
+    static const unsigned char hdr[] = {
+        0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n', 0, 0, 0, 13, 'I', 'H', 'D', 'R',
+        0, 0, 0x4e, 0x20, 0, 0, 0x4e, 0x20, 8, 0, 0, 0, 0, 0xc6, 0x1b, 0x19, 0xe5,
+        0, 0, 0, 0, 'I', 'D', 'A', 'T', 0x35, 0xaf, 0x06, 0x1e,
+        0, 0, 0, 0, 'I', 'E', 'N', 'D', 0xae, 0x42, 0x60, 0x82 };
+    assert_int_equal(dm_write_file(huge, hdr, sizeof hdr), 0);
+    assert_int_equal(img_load(huge, &l, err, sizeof err), DM_ERR_IO);
+    assert_non_null(strstr(err, "20000x20000"));
+    assert_null(l.px);
+    unlink(ln);
+    unlink(huge);
+    rmdir(dir);
+    free(ln);
+    free(huge);
+}
+
+/* img_save past a file-size limit (ulimit -f, SIGXFSZ ignored as dmbench
+ * does): DM_ERR_DISK naming the path and why, the old file kept and no
+ * temp file left; to a directory that does not exist: DM_ERR_IO with the
+ * reason, never an empty one. */
+static void test_save_disk_refused(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_img_XXXXXX", err[512] = "";
+    assert_non_null(mkdtemp(dir));
+    char *path = dm_xasprintf("%s/m.exr", dir);
+    img a = {0};
+    assert_int_equal(img_alloc(&a, 64, 64), 0);
+    for (size_t i = 0; i < 64 * 64 * 4; i++)   /* noise: it does not compress below 4 KB */
+        a.px[i] = (float)((i * 2654435761u) % 1000003u) / 1000003.0f;
+    assert_int_equal(dm_write_file(path, "old", 3), 0);
+    struct rlimit old, lim;
+    assert_int_equal(getrlimit(RLIMIT_FSIZE, &old), 0);
+    lim = old;
+    lim.rlim_cur = 4096;   /* the EXR holds 64 KB of floats */
+    void (*prev)(int) = signal(SIGXFSZ, SIG_IGN);
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &lim), 0);
+    int rc = img_save(&a, path, err, sizeof err);
+    assert_int_equal(setrlimit(RLIMIT_FSIZE, &old), 0);
+    signal(SIGXFSZ, prev);
+    assert_int_equal(rc, DM_ERR_DISK);
+    assert_non_null(strstr(err, "File too large"));
+    char *text = test_slurp(path);
+    assert_string_equal(text, "old");
+    free(text);
+    char *cmd = dm_xasprintf("test $(ls -A '%s' | wc -l) = 1", dir);
+    assert_int_equal(system(cmd), 0);   /* m.exr only: no temp file */
+    free(cmd);
+    assert_int_equal(img_save(&a, "/nonexistent-dir/m.png", err, sizeof err), DM_ERR_IO);
+    assert_non_null(strstr(err, "/nonexistent-dir/m.png: No such file or directory"));
+    test_rm_rf(dir);
+    img_free(&a);
+    free(path);
+}
+
 DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_load_channel_layouts),
+             cmocka_unit_test(test_load_refused),
+             cmocka_unit_test(test_save_disk_refused),
              cmocka_unit_test(test_downsample_block_means),
              cmocka_unit_test(test_compare_identical_and_offset),
              cmocka_unit_test(test_save_load_png_exr),
