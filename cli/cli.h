@@ -111,11 +111,12 @@ int cli_gen_completion(const char *shell, FILE *f);
 /* Prints "dmbench: error: <msg>" (control bytes as '?') and returns DM_EXIT_USAGE. */
 int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));
 /* Prints "dmbench: error: <msg>" and returns the exit code of a failure
- * that err (a DM_ERR_* code) caused: DM_EXIT_ENV for a store that is
- * damaged, from a newer dmbench or full (DM_ERR_STORE), for DM_ERR_BUSY, a
- * write the disk refused (DM_ERR_DISK) and an allocation that failed
- * (DM_ERR_NOMEM), DM_EXIT_USAGE for everything else, so one condition has one exit code
- * whichever command meets it (docs/reliability.md). */
+ * that err (a DM_ERR_* code) caused: DM_EXIT_ENV for what
+ * dm_exit_from_error calls the machine's (a damaged, newer or full store,
+ * an output in use, a disk full, an allocation refused, no usable GL,
+ * children that keep dying), DM_EXIT_USAGE for everything else, so one
+ * condition has one exit code whichever command meets it
+ * (docs/reliability.md). */
 int cli_error(int err, const char *fmt, ...) __attribute__((format(printf, 2, 3)));
 
 /* Loads the run of a run directory (the store in the directory above it)

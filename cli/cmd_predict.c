@@ -171,16 +171,15 @@ static void predict__time_heldout_print(const predict_model *m)
         return;
     int st_used = !stage_times && predict_prefers_time_from_stages(m);
     printf("held-out error of WallTime on the runs' configurations (k-fold CV-MAPE):\n  ");
-    if (stage_times)
-    {
+    if (stage_times) {
         printf("stage times summed ");
         predict__pct(h->cv_mape);
         printf(" over %d configurations (used); ", h->n);
-    }
-    else
+    } else {
         printf("stage times: unavailable (%s); ", st ? "the runs lack GeometryTime or MinimalShadingTime: add both "
                                                        "to measure.counters"
                                                      : "the runs lack the stage counters");
+    }
     if (st) {
         printf("time-from-stages ");
         predict__pct(st->cv_mape);

@@ -175,8 +175,7 @@ int cli_error(int err, const char *fmt, ...)
     va_start(ap, fmt);
     commands__verror(fmt, ap);
     va_end(ap);
-    return err == DM_ERR_STORE || err == DM_ERR_BUSY || err == DM_ERR_DISK || err == DM_ERR_NOMEM
-               ? DM_EXIT_ENV : DM_EXIT_USAGE;
+    return dm_exit_from_error(err) == DM_EXIT_ENV ? DM_EXIT_ENV : DM_EXIT_USAGE;
 }
 
 /* "usage: dmbench NAME SYNOPSIS [OPTIONS]", one line per form. */
