@@ -75,3 +75,51 @@ if wanted baseline/reason; then
   elif grep -qF "ok ?]0;pwned? ?[31mred" <<<"$o"; then pass=$((pass+1))
   else echo "FAIL: baseline reason not shown: $o"; fail=$((fail+1)); fi
 fi
+
+# ---- predict over a store with one count read back missing: the fits leave
+# that configuration out and say so; an interval they cannot make is
+# "unavailable", never [nan, nan] (the counts a predict needs are written
+# into a small timed run's store: the cube's exact counts, Instructions a
+# known linear cost of the fragments) ----
+if wanted predict/unreadable; then
+  cat > "$OUT/pr.yaml" <<'YAML'
+name: corpus-predict
+measure:
+  warmup_frames: 1
+  frames_per_sample: 1
+  samples: { min: 3, max: 3 }
+  max_seconds: 1
+  counters: [WallTime, SamplesPassed]
+scene:
+  mesh: cube
+sweep:
+  technique: [normal]
+  resolution: ["16x16", "24x24", "32x32"]
+YAML
+  "$BIN" run "$OUT/pr.yaml" --out "$OUT/pr" --quiet >/dev/null 2>&1
+  python3 - "$OUT/pr/dmbench.sqlite" <<'PY'
+import sqlite3, sys
+c = sqlite3.connect(sys.argv[1])
+run = c.execute("select id from runs").fetchone()[0]
+keys = [r[0] for r in c.execute("select key from configs order by seq")]
+for k in keys:
+    fs = c.execute("select value from counters where key=? and name='SamplesPassed'", (k,)).fetchone()[0]
+    vals = {"VSInvocations": 24, "TESInvocations": 0, "ClippingOutputPrimitives": 16, "FSInvocations": fs,
+            "Instructions": 1000 * fs + 50 * 24 + 7}
+    for n, v in vals.items():
+        c.execute("insert or replace into counters(run,key,name,unit,available,deterministic,partial,value,has_samples)"
+                  " values(?,?,?,'items',1,1,0,?,0)", (run, k, n, v))
+c.execute("update counters set value = NULL where name = 'Instructions' and key = ?", (keys[0],))
+c.commit()
+PY
+fi
+hcase predict/unreadable 0 "" -- "$BIN" predict "$OUT/pr.yaml" --from "$OUT/pr/latest"
+if wanted predict/unreadable; then
+  po=$("$BIN" predict "$OUT/pr.yaml" --from "$OUT/pr/latest" 2>&1)
+  k0=$(python3 -c "import sqlite3,sys; print(sqlite3.connect(sys.argv[1]).execute('select key from configs order by seq').fetchone()[0])" "$OUT/pr/dmbench.sqlite")
+  if grep -q "^left out of the fits" <<<"$po" &&
+     grep -qF "$k0  cube@16x16: Instructions unavailable (the value read back from the results store is missing or NaN" <<<"$po" &&
+     grep -q "interval unavailable: too few configurations" <<<"$po" &&
+     ! grep -qE "(\[| )(nan|-?inf)(,|\]| |%|$)" <<<"$po"; then pass=$((pass+1))
+  else echo "FAIL: predict/unreadable: $po"; fail=$((fail+1)); fi
+fi
