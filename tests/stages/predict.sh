@@ -87,9 +87,17 @@ cp -r "$OUT/fit" "$OUT/budget"
 "$BIN" run "$SRC/tests/stages/predict_new.yaml" --out "$OUT/budget" --budget 0.000001 2> "$OUT/budget.err" || {
   echo "FAIL: run --budget exited $?"; cat "$OUT/budget.err"; exit 1; }
 grep -- "--budget" "$OUT/budget.err"
-python3 - "$OUT/budget/latest/results.json" "$OUT/new/latest/results.json" "$OUT/budget.err" <<'PY' && pass=$((pass+1)) || fail=$((fail+1))
+python3 - "$OUT/budget/latest/results.json" "$OUT/new/latest/results.json" "$OUT/budget.err" "$OUT/pred.txt" <<'PY' && pass=$((pass+1)) || fail=$((fail+1))
 import json, re, sys
 left = json.load(open(sys.argv[1]))["left_out"]
+# the interval is +-2 held-out errors of the way used: past 50 % its lower
+# bound is 0 by construction, and the runs' timings were too noisy to say
+# more than that it holds the prediction and never goes below 0
+used = re.search(r"(\S+) %[^;]*\(used\)", open(sys.argv[4]).read().split("held-out error of WallTime")[-1])
+noisy = not used or float(used.group(1)) >= 50
+if noisy:
+    print(f"the runs' held-out WallTime error is {used.group(1) if used else 'unknown'} %: too noisy to "
+          "require the frame time's interval to stay above 0; checking 0 <= low < predicted < high")
 meas = {(c["params"]["technique"], c["params"].get("steps")): c for c in json.load(open(sys.argv[2]))["configs"]}
 bad = []
 if len(left) != 4:
@@ -101,7 +109,8 @@ for l in left:
     # (the parameters' standard errors alone, without their covariance,
     # once made it [-13.2, 16.6] ms around 1.71 ms)
     w = re.search(r"and (\S+) ms/frame \[(\S+), (\S+)\]", l["reason"])
-    if t != "phong" and not (w and 0 < float(w.group(2)) < float(w.group(1)) < float(w.group(3))):
+    lo_ok = w and (0 <= float(w.group(2)) if noisy else 0 < float(w.group(2)))
+    if t != "phong" and not (lo_ok and float(w.group(2)) < float(w.group(1)) < float(w.group(3))):
         bad.append(f"{t}: frame time interval {w.groups() if w else None}")
     if t == "phong":
         if not l["reason"].startswith("over --budget 1e-06 s: a pilot frame took"):
