@@ -4,6 +4,7 @@
 #include "counters/counters.h"
 #include "run/callgrind.h"
 #include "run/gl_context.h"
+#include "run/inputs.h"
 #include "run/predict.h"
 #include "run/protocol.h"
 #include "run/refcache.h"
@@ -881,7 +882,9 @@ static void measure__quality(mscene *m, mconf *c, dm_config_result *out)
 /* Builds the result of a configuration and commits it in one transaction.
  * Returns 0, or DM_ERR_STORE (message in err) when the store cannot take it
  * (disk full, damaged database): the caller stops, as no later
- * configuration could be saved either. */
+ * configuration could be saved either; or DM_ERR_ARG, with a 'C' line to
+ * the runner, when a user map or mesh file changed since the run started
+ * (run/inputs.h): nothing is recorded for it, and the run stops. */
 static int measure__commit(mscene *m, mconf *c, dm_str *err)
 {
     dm_config_result out = {0};
@@ -906,6 +909,17 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
     out.ok = !c->failed;
     out.reason = dm_xstrdup(c->reason);
     out.log = c->log.len ? dm_xstrdup(dm_str_get(&c->log)) : NULL;
+    dm_str changed = {0};
+    if (inputs_check(&changed) != 0) {   /* measured from another version: record nothing */
+        for (char *p = changed.buf; *p; p++)
+            if (*p == '\n' || *p == '\r')
+                *p = ' ';
+        measure__say(m->job, "C %s", dm_str_get(&changed));
+        dm_str_cat(err, dm_str_get(&changed));
+        dm_str_free(&changed);
+        dm_config_result_free(&out);
+        return DM_ERR_ARG;
+    }
     int rc = store_config_put(m->st, m->job->run_id, &out);
     const dm_counter_result *wt = m->stop_index >= 0 ? dm_config_counter(&out, m->timing[m->stop_index]) : NULL;
     double ci = wt && wt->median > 0 ? (wt->ci_hi - wt->ci_lo) / 2 / wt->median : NAN;

@@ -8,6 +8,7 @@
 #include "run/env.h"
 #include "run/fitting.h"
 #include "run/gl_context.h"
+#include "run/inputs.h"
 #include "run/measure.h"
 #include "run/probe.h"
 #include "run/predict.h"
@@ -346,7 +347,7 @@ static int runner__watch(runner *r, child_watch *w, const plan_config *cs, size_
                     continue;
                 }
                 char *line = dm_str_take(&w->line);
-                if ((line[0] == 'F' || line[0] == 'S') && line[1] && !*fatal)
+                if ((line[0] == 'F' || line[0] == 'S' || line[0] == 'C') && line[1] && !*fatal)
                     *fatal = dm_xstrdup(line);
                 runner__child_line(r, w, cs, n, line, done_flags);
                 free(line);
@@ -381,11 +382,16 @@ static char *runner__child_why(const runner *r, int status, const char *fatal)
     return NULL;
 }
 
-/* Accounts one ended child: a store failure stops the run at once; a child
- * that finished nothing counts towards RUNNER__MAX_FUTILE.  Returns 0 to go
- * on, DM_ERR_STORE / DM_ERR_CHILD (reason in r->stop) to stop. */
+/* Accounts one ended child: a store failure or a changed user file ('C')
+ * stops the run at once; a child that finished nothing counts towards
+ * RUNNER__MAX_FUTILE.  Returns 0 to go on, DM_ERR_STORE / DM_ERR_ARG /
+ * DM_ERR_CHILD (reason in r->stop) to stop. */
 static int runner__child_end(runner *r, const char *fatal, const char *why, size_t finished)
 {
+    if (fatal && fatal[0] == 'C') {   /* a user file changed: nothing was recorded for it */
+        dm_str_cat(&r->stop, fatal + 2);
+        return DM_ERR_ARG;
+    }
     if (fatal && fatal[0] == 'S') {
         dm_str_printf(&r->stop, "the measuring process cannot save results: %s", fatal + 2);
         return DM_ERR_STORE;
@@ -886,7 +892,8 @@ static int runner__resume_sources(const runner *r, const dm_run_result *old, dm_
 
 /* --resume may only continue a run of the same sweep file and the same
  * shard: another shard's keys would be mixed into it silently; and of the
- * same user techniques' files (runner__resume_sources).  Returns 0, or
+ * same user techniques' files (runner__resume_sources) and user map and
+ * mesh files (inputs_resume_check).  Returns 0, or
  * DM_ERR_ARG with both shards (or the sweep or source mismatch) in err. */
 static int runner__resume_check(const runner *r, const dm_run_result *old, dm_str *err)
 {
@@ -910,7 +917,8 @@ static int runner__resume_check(const runner *r, const dm_run_result *old, dm_st
         free(how);
         return DM_ERR_ARG;
     }
-    return runner__resume_sources(r, old, err);
+    int rc = runner__resume_sources(r, old, err);
+    return rc ? rc : inputs_resume_check(old->environment, old->n_environment, r->run_id, err);
 }
 
 static int runner__open(runner *r, dm_str *err)
@@ -1007,6 +1015,7 @@ static int runner__begin(runner *r)
         free(key);
         free(val);
     }
+    inputs_record(&e->environment, &e->n_environment);   /* and the maps and meshes it reads */
     report_metric_set(e, r->s->pareto_metric);   /* so dmbench report redraws the same front */
     if (r->s->budget_ms > 0)
         report_budget_set(e, r->s->budget_ms);    /* and picks under the same budget */
@@ -1112,6 +1121,7 @@ static void runner__free(runner *r)
     if (r->lock_fd >= 0)
         close(r->lock_fd);
     dm_str_free(&r->stop);
+    inputs_clear();
     plan_free(&r->p);
     store_close(r->st);
     free(r->root);
@@ -1157,7 +1167,8 @@ static int runner__wants_instructions(const sweep *s)
  * cannot run here every configuration records Instructions as unavailable
  * with the reason; a configuration Valgrind crashed or hung on fails.
  * Returns 0, or DM_ERR_ARG with the file in err when a child found the
- * sweep file or a user technique's source changed since the run started:
+ * sweep file or a user technique's source changed since the run started, or
+ * the runner found a user map or mesh changed after the pass (run/inputs.h):
  * the run stops, and no configuration is recorded for it. */
 static int runner__instructions(runner *r, dm_str *err)
 {
@@ -1188,6 +1199,14 @@ static int runner__instructions(runner *r, dm_str *err)
                              .timeout_s = 10 * r->s->measure.timeout_s, .quiet = r->o->quiet };
         dm_str why = {0};
         int rc = callgrind_run(&d, todo, nt, r->instr, &why);
+        dm_str changed = {0};
+        if (rc != DM_ERR_ARG && inputs_check(&changed) != 0) {   /* a map or mesh the children read */
+            dm_str_free(&why);
+            why = changed;
+            rc = DM_ERR_ARG;
+        } else {
+            dm_str_free(&changed);
+        }
         if (rc == DM_ERR_ARG) {   /* a source changed: nothing is recorded, the run stops */
             dm_str_printf(err, "%s; one run measures one version of each source: stopped the run "
                           "before it recorded anything for it; restore the file and continue with "
@@ -1344,6 +1363,8 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
         runner__free(&r);
         return 0;
     }
+    inputs_clear();
+    rc = rc ? rc : inputs_collect(&r.p, err);     /* the maps and meshes: one version a run */
     rc = rc ? rc : runner__open(&r, err);
     if (rc == 0 && o->budget_s > 0 && !o->resume)
         runner__budget(&r);
@@ -1362,7 +1383,12 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
         free(name_buf);
         int changed = runner__instructions(&r, err);
         rc = changed ? changed : runner__scenes(&r);
-        if (rc != 0 && !changed)
+        if (rc == DM_ERR_ARG && !changed)   /* a measuring child found a user file changed */
+            dm_str_printf(err, "%s; one run measures one version of each file: stopped the run "
+                          "before it recorded anything for it; the %zu configurations committed "
+                          "before are kept: restore the file and continue with --resume, or start "
+                          "a new run", dm_str_get(&r.stop), runner__committed(&r));
+        else if (rc != 0 && !changed)
             dm_str_printf(err, "%s; stopped the run: the %zu configurations committed before are "
                           "kept, continue with --resume once the cause is fixed",
                           dm_str_get(&r.stop), runner__committed(&r));
