@@ -12,7 +12,7 @@
 #include "core/dm_exit.h"
 #include "run/env.h"
 #include "run/gl_context.h"
-#include "run/measure.h"
+#include "run/inproc.h"
 #include "run/predict.h"
 #include "run/probe.h"
 #include "sweep/plan.h"
@@ -245,7 +245,7 @@ int cli_predict(int argc, char **argv)
     rc = rc < 0 ? predict__check_counters(runs, nr, dirs) : rc;
     rc = rc < 0 ? predict__check_env(runs, nr, dirs, a.allow_env_mismatch) : rc;
     double *counts = rc < 0 ? dm_xcalloc(p.n_configs * PREDICT_N_COUNTS + 1, sizeof *counts) : NULL;
-    if (rc < 0 && measure_counts(p.configs, p.n_configs, predict_counts, PREDICT_N_COUNTS, counts, &err) != 0)
+    if (rc < 0 && inproc_counts(p.configs, p.n_configs, predict_counts, PREDICT_N_COUNTS, counts, &err) != 0)
         rc = cli_error(DM_ERR_GL, "predict: %s", dm_str_get(&err));
     if (rc < 0) {
         predict_model m;

@@ -3,6 +3,7 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/callgrind.h"
+#include "run/count_child.h"
 #include "run/drivers.h"
 #include "run/probe.h"
 
@@ -120,7 +121,7 @@ static const cli_command commands[] = {
                      "Esc quit; left drag orbits, right drag pans, wheel zooms (docs/viewer.md)." },
     { .name = "help", .fn = commands__help, .synopsis = "[COMMAND]",
       .summary = "this overview, or the help of one command" },
-    { .name = "__instructions", .fn = callgrind_child_main, .flags = CLI_CMD_HIDDEN,
+    { .name = "__instructions", .fn = count_child_main, .flags = CLI_CMD_HIDDEN,
       .synopsis = "SWEEP HASH KEY...",
       .summary = "the Instructions pass's child, started under Valgrind by the runner" },
     { .name = "__gen-man", .fn = commands__gen_man, .flags = CLI_CMD_HIDDEN,

@@ -21,7 +21,7 @@
 #include "core/dm_util.h"
 #include "sweep/plan.h"
 
-/* The invocation counts a prediction reads, in this order (measure_counts
+/* The invocation counts a prediction reads, in this order (inproc_counts
  * or the pilot frame measure them for the configurations to predict). */
 #define PREDICT_N_COUNTS 7
 extern const char *const predict_counts[PREDICT_N_COUNTS];
