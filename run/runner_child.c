@@ -183,7 +183,10 @@ static void runner_child__progress(runner *r, const plan_config *c, const char *
     runner_child__eta(r, eta, sizeof eta);
     dm_str label = {0}, line = {0};
     runner_child__label(r, c, &label);
-    if (strcmp(status, "ok") == 0)
+    if (strcmp(status, "ok") == 0 && !isfinite(median_ns))   /* a counters-only sweep: nothing timed */
+        dm_str_printf(&line, "[%zu/%zu] %-44s counted (no timing counter)%s", r->done, r->total,
+                      dm_str_get(&label), eta);
+    else if (strcmp(status, "ok") == 0)
         dm_str_printf(&line, "[%zu/%zu] %-44s %9.3f ms ±%4.1f%%%s", r->done, r->total,
                       dm_str_get(&label), median_ns / 1e6, ci_rel * 100, eta);
     else
