@@ -10,7 +10,9 @@ void dm_table_row(dm_table *t)
 {
     t->rows = dm_xrealloc(t->rows, (t->n_rows + 1) * sizeof *t->rows);
     t->n_cells = dm_xrealloc(t->n_cells, (t->n_rows + 1) * sizeof *t->n_cells);
+    t->notes = dm_xrealloc(t->notes, (t->n_rows + 1) * sizeof *t->notes);
     t->rows[t->n_rows] = NULL;
+    t->notes[t->n_rows] = NULL;
     t->n_cells[t->n_rows++] = 0;
 }
 
@@ -23,15 +25,25 @@ void dm_table_cell(dm_table *t, const char *text)
     t->rows[r][t->n_cells[r]++] = dm_xstrdup(text ? text : "");
 }
 
+void dm_table_note(dm_table *t, const char *text)
+{
+    if (!t->n_rows)
+        dm_table_row(t);
+    free(t->notes[t->n_rows - 1]);
+    t->notes[t->n_rows - 1] = text && *text ? dm_xstrdup(text) : NULL;
+}
+
 void dm_table_free(dm_table *t)
 {
     for (size_t r = 0; r < t->n_rows; r++) {
+        free(t->notes[r]);
         for (size_t c = 0; c < t->n_cells[r]; c++)
             free(t->rows[r][c]);
         free(t->rows[r]);
     }
     free(t->rows);
     free(t->n_cells);
+    free(t->notes);
     memset(t, 0, sizeof *t);
 }
 
@@ -54,9 +66,47 @@ static void table__pad(dm_str *out, size_t n)
         dm_str_cat(out, " ");
 }
 
-/* One block: the label column and columns [from, to). */
+void dm_wrap(const char *text, const char *first, const char *indent, size_t width, dm_str *out)
+{
+    dm_str line = {0};
+    dm_str_cat(&line, first);
+    size_t lead = dm_text_width(first), col = lead;
+    const char *p = text ? text : "";
+    while (*p) {
+        while (*p == ' ')
+            p++;
+        size_t n = strcspn(p, " ");
+        if (!n)
+            break;
+        char *word = dm_xstrdup(p);
+        word[n] = '\0';
+        size_t ww = dm_text_width(word);
+        if (col > lead && col + 1 + ww > width) {   /* the word goes on a new line */
+            dm_str_cat(out, dm_str_get(&line));
+            dm_str_cat(out, "\n");
+            line.len = 0;
+            line.buf[0] = '\0';
+            dm_str_cat(&line, indent);
+            col = lead = dm_text_width(indent);
+        }
+        if (col > lead) {
+            dm_str_cat(&line, " ");
+            col++;
+        }
+        dm_str_cat(&line, word);
+        col += ww;
+        free(word);
+        p += n;
+    }
+    dm_str_cat(out, dm_str_get(&line));
+    dm_str_cat(out, "\n");
+    dm_str_free(&line);
+}
+
+/* One block: the label column and columns [from, to); the notes in the
+ * first block. */
 static void table__block(const dm_table *t, const size_t *w, size_t from, size_t to, const char *indent,
-                         dm_str *out)
+                         size_t width, dm_str *out)
 {
     for (size_t r = 0; r < t->n_rows; r++) {
         dm_str line = {0};
@@ -66,14 +116,24 @@ static void table__block(const dm_table *t, const size_t *w, size_t from, size_t
         table__pad(&line, w[0] - dm_text_width(label));
         for (size_t c = from; c < to; c++) {
             const char *v = table__cell(t, r, c);
-            table__pad(&line, 2 + w[c] - dm_text_width(v));
+            int left = c < t->n_left;
+            table__pad(&line, left ? 2 : 2 + w[c] - dm_text_width(v));
             dm_str_cat(&line, v);
+            if (left)
+                table__pad(&line, w[c] - dm_text_width(v));
         }
         while (line.len && line.buf[line.len - 1] == ' ')   /* no trailing blanks */
             line.buf[--line.len] = '\0';
         dm_str_cat(out, dm_str_get(&line));
         dm_str_cat(out, "\n");
         dm_str_free(&line);
+        if (from == 1 && t->notes[r]) {
+            dm_str pad = {0};
+            dm_str_cat(&pad, indent);
+            table__pad(&pad, w[0] + 2);
+            dm_wrap(t->notes[r], dm_str_get(&pad), dm_str_get(&pad), width, out);
+            dm_str_free(&pad);
+        }
         if (r == 0) {   /* the rule under the header */
             size_t total = w[0];
             for (size_t c = from; c < to; c++)
@@ -106,7 +166,7 @@ void dm_table_text(const dm_table *t, const char *indent, size_t width, dm_str *
             used += 2 + w[to++];
         if (from > 1)
             dm_str_cat(out, "\n");
-        table__block(t, w, from, to, indent, out);
+        table__block(t, w, from, to, indent, width, out);
         from = to;
     } while (from < nc);
     free(w);
