@@ -301,13 +301,15 @@ static void compare__md_head(const compare_result *r, dm_str *s)
     size_t held = 0;
     for (size_t i = 0; i < r->n_items; i++)
         held += (size_t)r->items[i].machine_held;
-    if (held)
-        dm_str_printf(s, "\n> Machine: %s. Between two runs the machine alone may move times by "
+    if (held) {
+        dm_str_cat(s, "\n> Machine: ");
+        compare__md_cell(s, r->machine.reason ? r->machine.reason : "no change seen, but one run per "
+                         "side cannot tell the machine's between-run spread from the code");
+        dm_str_printf(s, ". Between two runs the machine alone may move times by "
                       "×%.2f..×%.2f, so %zu timing verdict%s stay INCONCLUSIVE: run "
                       "`dmbench compare --paired BASE_BIN NEW_BIN SWEEP` to decide them.\n",
-                      r->machine.reason ? r->machine.reason : "no change seen, but one run per "
-                      "side cannot tell the machine's between-run spread from the code",
                       r->machine.lo, r->machine.hi, held, held == 1 ? "" : "s");
+    }
 }
 
 /* "- added: ..." lines, at most 20 of a list. */

@@ -81,7 +81,7 @@ for name, want in (("slow", "REGRESSION"), ("ab", "any")):
     if want == "REGRESSION":   # 1.5x slower: a regression, or (noisy) undecided, never a pass
         assert "REGRESSION" in verdicts and set(verdicts) <= {"REGRESSION", "INCONCLUSIVE"}, verdicts
 md = open(f"{out}/slow.md").read()
-assert "| Configuration | Base | New | Ratio | 95% CI | Verdict | Note |" in md and md.count(" REGRESSION |") >= 1, md
+assert "| Configuration | Base | New | Ratio | Change | 95% CI of ratio | Verdict | Note |" in md and md.count(" REGRESSION |") >= 1, md
 j = json.load(open(f"{out}/aa.json"))
 assert j["summary"]["REGRESSION"] == 0 and len(j["configs"]) == n, j["summary"]
 assert j["summary"]["exit_code"] == 0 and j["summary"]["PASS"] == n, j["summary"]
