@@ -237,9 +237,25 @@ static char *predict__part_why(const predict_model *m, const char *variant)
         if (!dm_run_has_counter(&m->train, predict__stages[s]) || !dm_run_has_counter(&m->train, "SamplesPassed"))
             return dm_xasprintf("the runs lack the stage counters (%s, %s, %s and SamplesPassed in "
                                 "measure.counters)", predict__stages[0], predict__stages[1], predict__stages[2]);
+    size_t with = 0;   /* configurations of the variant with all three stage counters */
+    for (size_t i = 0; i < m->train.n_configs; i++) {
+        const dm_config_result *c = &m->train.configs[i];
+        char *v = c->ok ? fitting_variant(c->params, c->n_params) : NULL;
+        int all = v && strcmp(v, variant) == 0;
+        for (int k = 0; k < 3 && all; k++) {
+            const dm_counter_result *r = dm_config_counter(c, predict__stages[k]);
+            all = r && r->available && isfinite(r->value);
+        }
+        with += (size_t)all;
+        free(v);
+    }
+    if (!with)
+        return dm_xasprintf("the runs have no stage counters for variant '%s' (their runs lack %s, %s "
+                            "and %s)", variant, predict__stages[0], predict__stages[1], predict__stages[2]);
     for (int s = 0; s < 3; s++)
         if (!predict_fit_of(m->stage[s], m->n_stage[s], variant))
-            return predict__too_few(m, variant, "fit its stage models");
+            return dm_xasprintf("the runs measured the stage counters of %zu configuration%s of variant "
+                                "'%s', too few to fit its stage models", with, with == 1 ? "" : "s", variant);
     return dm_xstrdup("the stage models of the variant do not cover this configuration (an axis or count "
                       "they never saw vary)");
 }

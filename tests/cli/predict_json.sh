@@ -36,6 +36,21 @@ for r in fit two; do
   "$BIN" run "$OUT/$r.yaml" --out "$OUT/$r" --quiet
   python3 "$SRC/tests/cli/predict_fixture.py" "$OUT/$r/dmbench.sqlite" >/dev/null
 done
+# the same two runs, phong's with the stage counters: phong then has stage
+# parts, and normal's and pom's stage shares say their variants' runs have
+# none (not "the runs lack the stage counters": these runs have them)
+cp -r "$OUT/two" "$OUT/two_st"
+python3 "$SRC/tests/cli/predict_fixture.py" "$OUT/two_st/dmbench.sqlite" --stages >/dev/null
+"$BIN" predict "$OUT/new.yaml" --from "$OUT/fit/latest,$OUT/two_st/latest" --json > "$OUT/stages.json"
+python3 - "$OUT/stages.json" <<'PY' && pass=$((pass+1)) || fail=$((fail+1))
+import json, sys
+p = {x["label"]: x for x in json.load(open(sys.argv[1]))["predictions"]}
+ph = p["cube 96×96 · phong"]["counters"]["GeometryInstructions"]
+no = p["cube 96×96 · normal"]["counters"]["GeometryInstructions"].get("unavailable", "")
+ok = "value" in ph and "the runs have no stage counters for variant 'normal" in no
+print("stage shares:", ph, "/", no)
+sys.exit(0 if ok else 1)
+PY
 from="$OUT/fit/latest,$OUT/two/latest"
 "$BIN" predict "$OUT/new.yaml" --from "$from" > "$OUT/table.txt"
 "$BIN" predict "$OUT/new.yaml" --from "$from" --json > "$OUT/pred.json"
