@@ -463,14 +463,17 @@ static char *render__mesh_key(const technique_desc *t, const render__cfg *c)
 
 /* The reference mesh: `base` split k² per triangle (about
  * RENDER__REFERENCE_TRIANGLES in all) and displaced by the CPU height map
- * of the configuration's maps; replaces *base. */
-static int render__mesh_displace(const render__cfg *c, mesh_data *base)
+ * of the configuration's maps (generated, or the user's material files);
+ * replaces *base.  A map that cannot be had says why in log. */
+static int render__mesh_displace(const render__cfg *c, mesh_data *base, dm_str *log)
 {
     maps_set ms;
     maps_desc md = {.name = render__get(c, "maps"), .size = atoi(render__get(c, "texture_size"))};
-    int rc = maps_generate(&md, &ms);
-    if (rc)
+    int rc = maps_is_material(md.name) ? maps_material_load(md.name, &ms, log) : maps_generate(&md, &ms);
+    if (rc) {
+        dm_str_printf(log, "the reference's height map '%s': %s\n", md.name, dm_strerror(rc));
         return rc;
+    }
     size_t tris = base->n_indices / 3 ? base->n_indices / 3 : 1;
     int k = (int)floor(sqrt((double)RENDER__REFERENCE_TRIANGLES / (double)tris));
     k = k < 1 ? 1 : k > 512 ? 512 : k;
@@ -526,13 +529,13 @@ static int render__mesh_get(tech_renderer *r, const technique_desc *t, const ren
         rc = user_mesh_load(d.name + strlen(USER_MESH_PREFIX), &md, &had_tangents, log);
     else
         rc = mesh_build(&d, &md);
-    if (!rc && t->cpu_displace) {
-        rc = render__mesh_displace(c, &md);
-        if (rc)
-            mesh_free(&md);
-    }
     if (rc) {
         dm_str_printf(log, "mesh '%s' with density %d: %s\n", d.name, d.density, dm_strerror(rc));
+        free(key);
+        return rc;
+    }
+    if (t->cpu_displace && (rc = render__mesh_displace(c, &md, log)) != 0) {
+        mesh_free(&md);
         free(key);
         return rc;
     }

@@ -59,6 +59,10 @@ check "mesh/edited-while-timed: configurations recorded" "$(configs "$D/timed/dm
 cp "$D/m-orig.obj" "$D/m.obj"
 hcase mesh/restored-resume 0 "" -- "$BIN" run "$s" --out "$D/timed" --quiet --resume
 check "mesh/restored-resume: configurations" "$(configs "$D/timed/dmbench.sqlite")" "4 4"
+# the reference of a user height map is displaced by that map: every
+# configuration, the built-in cube's too, has its quality against it
+check "mesh/restored-resume: configurations with a quality" \
+  "$(python3 -c "import sqlite3,sys; print(sqlite3.connect(sys.argv[1]).execute('select count(*) from configs where q_present=1').fetchone()[0])" "$D/timed/dmbench.sqlite")" 4
 # edited after the run: --resume refuses to add another version
 echo "# edited" >> "$D/m.obj"
 hcase mesh/edited-resume 2 "--resume: $D/m.obj: the file changed since run" \
