@@ -199,6 +199,15 @@ static void w_budget(answer__w *w, const recommend_result *r)
 
 static void w_pick(answer__w *w, const dm_run_result *run, const recommend_result *r)
 {
+    if (!(r->budget > 0)) {   /* no point with both a time and an error: no scale for a budget */
+        dm_str t = {0};
+        dm_str_printf(&t, "no configuration has both a frame time and a quality figure (%s) against the reference: "
+                      "no budget or pick (each configuration's log says why its reference or "
+                      "image is missing).", report_metric_name(report_metric_of_run(run)));
+        w_text(w, dm_str_get(&t));
+        dm_str_free(&t);
+        return;
+    }
     w_budget(w, r);
     if (r->pick == RECOMMEND_NONE) {
         w_text(w, "nothing fits");

@@ -2,6 +2,7 @@
 #include "reports/report.h"
 #include "reports/report_internal.h"
 #include "reports/metric.h"
+#include "reports/answer.h"
 #include "reports/image.h"
 #include "core/dm_error.h"
 #include "core/dm_util.h"
@@ -967,7 +968,28 @@ static void test_warnings_everywhere(void **state)
     free(html);
 }
 
+/* A timed run whose configurations have no quality (no reference could be
+ * compared): the answer says so, never "Under 0 ms: nothing fits". */
+static void test_answer_without_quality(void **state)
+{
+    (void)state;
+    dm_run_result run = {0};
+    fixture_run(&run);
+    for (size_t i = 0; i < run.n_configs; i++) {
+        memset(&run.configs[i].quality, 0, sizeof run.configs[i].quality);
+        run.configs[i].quality.psnr = run.configs[i].quality.ssim = run.configs[i].quality.rmse = NAN;
+    }
+    dm_str t = {0};
+    report_answer_terminal(&run, &t);
+    assert_non_null(strstr(dm_str_get(&t), "no configuration has both a frame time and a quality "
+                                           "figure (ssim) against the reference: no budget or pick"));
+    assert_null(strstr(dm_str_get(&t), "Under 0 ms"));
+    dm_str_free(&t);
+    dm_run_free(&run);
+}
+
 DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_answer_without_quality),
              cmocka_unit_test(test_json_round_trip),
              cmocka_unit_test(test_json_read_errors),
              cmocka_unit_test(test_csv_shape),
