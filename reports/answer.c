@@ -162,7 +162,25 @@ void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, 
     }
 }
 
-/* "label (4.43 ms [4.33, 4.53], SSIM 0.927) ⚠ noisy: …" */
+/* The defects of a configuration's image as one mark ("⚠ 128 crack
+ * pixels; ⚠ 3 NaN pixels") and the reasons in words; nothing when the
+ * image has none. */
+static void answer__defects(const dm_config_result *c, dm_str *mark, dm_str *why)
+{
+    const dm_quality *q = &c->quality;
+    if (q->present && q->crack_pixels > 0) {
+        dm_str_printf(mark, "⚠ %ld crack pixel%s", q->crack_pixels, q->crack_pixels == 1 ? "" : "s");
+        dm_str_cat(why, "background shows through the surface inside its silhouette (cracks between "
+                        "patches or triangles)");
+    }
+    if (q->present && q->nonfinite_pixels > 0) {
+        dm_str_printf(mark, "%s⚠ %ld NaN pixel%s", mark->len ? "; " : "", q->nonfinite_pixels,
+                      q->nonfinite_pixels == 1 ? "" : "s");
+        dm_str_printf(why, "%sthe shader wrote NaN or infinite values", why->len ? "; " : "");
+    }
+}
+
+/* "label (4.43 ms [4.33, 4.53], SSIM 0.927) ⚠ noisy: … ⚠ 128 crack pixels" */
 static void w_config(answer__w *w, const dm_run_result *run, size_t ci, int strong)
 {
     const dm_config_result *c = &run->configs[ci];
@@ -176,6 +194,11 @@ static void w_config(answer__w *w, const dm_run_result *run, size_t ci, int stro
     dm_str_cat(&rest, ")");
     w_text(w, dm_str_get(&rest));
     report__timing_marks(c, 1, &mark, &why);
+    if (mark.len)
+        w_mark(w, dm_str_get(&mark), dm_str_get(&why));
+    dm_str_free(&mark);
+    dm_str_free(&why);
+    answer__defects(c, &mark, &why);   /* its image's defects beside it, not only in the warnings */
     if (mark.len)
         w_mark(w, dm_str_get(&mark), dm_str_get(&why));
     dm_str_free(&label);

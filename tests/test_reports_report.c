@@ -988,7 +988,26 @@ static void test_answer_without_quality(void **state)
     dm_run_free(&run);
 }
 
+/* A pick with cracks and NaN pixels carries them beside the answer. */
+static void test_answer_defects(void **state)
+{
+    (void)state;
+    dm_run_result run = {0};
+    fixture_run(&run);
+    for (size_t i = 0; i < run.n_configs; i++) {
+        run.configs[i].quality.crack_pixels = 128;
+        run.configs[i].quality.nonfinite_pixels = 1;
+    }
+    dm_str t = {0};
+    report_answer_terminal(&run, &t);
+    assert_non_null(strstr(dm_str_get(&t), "pick "));
+    assert_non_null(strstr(dm_str_get(&t), "⚠ 128 crack pixels; ⚠ 1 NaN pixel"));
+    dm_str_free(&t);
+    dm_run_free(&run);
+}
+
 DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_answer_defects),
              cmocka_unit_test(test_answer_without_quality),
              cmocka_unit_test(test_json_round_trip),
              cmocka_unit_test(test_json_read_errors),
