@@ -239,11 +239,21 @@ static void w_pick(answer__w *w, const dm_run_result *run, const recommend_resul
             w_config(w, run, r->fastest, 1);
         }
         w_text(w, ".");
+        if (r->near_miss != RECOMMEND_NONE) {
+            w_text(w, " May fit: ");
+            w_config(w, run, r->near_miss, 0);
+            w_text(w, ": its CI reaches under the budget.");
+        }
         return;
     }
     w_text(w, "pick ");
     w_config(w, run, r->pick, 1);
     w_text(w, ".");
+    if (r->near_miss != RECOMMEND_NONE) {
+        w_text(w, " May also fit: ");
+        w_config(w, run, r->near_miss, 0);
+        w_text(w, ": clearly better quality, and its CI reaches under the budget.");
+    }
     if (r->pick_ci_over)
         w_text(w, " Its CI reaches past the budget: it may not fit on a busier run.");
     if (r->pick_tie != RECOMMEND_NONE) {

@@ -158,6 +158,27 @@ static size_t knee_of(const recommend_point *p, const size_t *front, size_t m)
     return knee;
 }
 
+/* The near miss (recommend.h): eligible, median over the budget, CI low
+ * end within it, error below the pick's by more than eps; the best error,
+ * then the lower median.  NONE when there is none. */
+static size_t near_miss_of(const recommend_point *p, size_t n, unsigned mask, double eps, double budget,
+                           size_t pick)
+{
+    size_t best = RECOMMEND_NONE;
+    for (size_t i = 0; i < n; i++) {
+        const recommend_point *q = &p[i];
+        if (!usable(q) || !(mask & 1u << q->family) || !(q->time > budget) || !ci_known(q) ||
+            !(q->ci_lo <= budget))
+            continue;
+        if (pick != RECOMMEND_NONE && !(q->error < p[pick].error - eps))
+            continue;
+        if (best == RECOMMEND_NONE || q->error < p[best].error ||
+            (q->error == p[best].error && q->time < p[best].time))
+            best = i;
+    }
+    return best;
+}
+
 void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *desc,
                      recommend_result *out)
 {
@@ -173,6 +194,7 @@ void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *d
         out->pick_tie = tie_of(p, n, mask, d.epsilon, out->budget, out->pick);
         out->pick_ci_over = p[out->pick].ci_hi > out->budget;
     }
+    out->near_miss = near_miss_of(p, n, mask, d.epsilon, out->budget, out->pick);
     size_t m = front_of(p, n, mask, d.epsilon, scratch);
     out->fastest = m ? scratch[0] : RECOMMEND_NONE;
     out->knee = knee_of(p, scratch, m);

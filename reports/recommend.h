@@ -20,6 +20,10 @@
  *    none with fewer than three members or a front without a bend.
  *  - Per family (fragment, vertex, tessellation) the best quality within the
  *    budget, by the same tie rule.
+ *  - A near miss: the best-quality eligible point whose median is over the
+ *    budget but whose CI reaches under it, when its error beats the pick's
+ *    by more than epsilon (any such point when nothing fits): it may also
+ *    fit, and the answer names it beside the pick.
  */
 #ifndef REPORTS_RECOMMEND_H
 #define REPORTS_RECOMMEND_H
@@ -58,6 +62,8 @@ typedef struct recommend_result {
     size_t pick;                   /* best quality within the budget; NONE: nothing fits */
     size_t pick_tie;               /* equal quality, overlapping time CI, a higher median; NONE */
     int pick_ci_over;              /* 1 when the pick's CI reaches past the budget */
+    size_t near_miss;              /* clearly better quality than the pick, median over the budget,
+                                      CI reaching under it ("may also fit"); NONE */
     size_t fastest;                /* the fastest eligible point (shown when nothing fits) */
     size_t knee;                   /* NONE when the front has no bend */
     size_t family_best[RECOMMEND_FAMILY_COUNT];   /* within the budget; NONE */

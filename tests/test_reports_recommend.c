@@ -113,6 +113,32 @@ static void test_budget_respected(void **state)
     d.budget = 1000 * MS;   /* everything fits: the best */
     recommend_scene(p, 5, &d, &r);
     assert_int_equal(r.pick, 4);
+    assert_int_equal(r.near_miss, RECOMMEND_NONE);
+}
+
+/* A near miss: median over the budget, CI under it, clearly better than
+ * the pick; not when only as good, not when its CI stays above. */
+static void test_near_miss(void **state)
+{
+    (void)state;
+    recommend_point p[] = {
+        pt(4.06, 0.01, 0.127, F),   /* the pick under 5 ms */
+        pt(5.03, 0.03, 0.102, F),   /* CI 4.88..5.18: reaches under 5 ms, clearly better */
+        pt(5.50, 0.05, 0.050, T),   /* CI 5.23..5.78: stays above */
+    };
+    recommend_desc d = {.budget = 5 * MS, .epsilon = 1e-3};
+    recommend_result r;
+    recommend_scene(p, 3, &d, &r);
+    assert_int_equal(r.pick, 0);
+    assert_int_equal(r.near_miss, 1);
+    p[1].error = 0.1268;            /* as good as the pick within epsilon: no near miss */
+    recommend_scene(p, 3, &d, &r);
+    assert_int_equal(r.near_miss, RECOMMEND_NONE);
+    d.budget = 4.0 * MS;            /* nothing fits: the one whose CI reaches under it may fit */
+    p[0].ci_lo = 3.98 * MS;
+    recommend_scene(p, 3, &d, &r);
+    assert_int_equal(r.pick, RECOMMEND_NONE);
+    assert_int_equal(r.near_miss, 0);
 }
 
 /* Family bests within the budget, absent families NONE. */
@@ -202,6 +228,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_front_known_points),
              cmocka_unit_test(test_equal_quality_cheaper_wins),
              cmocka_unit_test(test_budget_respected),
+             cmocka_unit_test(test_near_miss),
              cmocka_unit_test(test_family_bests),
              cmocka_unit_test(test_unlit_only_when_alone),
              cmocka_unit_test(test_knee),
