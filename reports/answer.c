@@ -162,6 +162,28 @@ void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, 
     }
 }
 
+/* "Provisional: 17 of 18 timings are noisy. " before a scene's pick when
+ * more than half of its timed configurations are noisy (report__noisy):
+ * the pick may change on a quieter run. */
+static void answer__provisional(answer__w *w, const dm_run_result *run, const char *scene)
+{
+    size_t *rows, nr = report__scene_rows(run, scene, &rows), timed = 0, noisy = 0;
+    for (size_t i = 0; i < nr; i++) {
+        const dm_config_result *c = &run->configs[rows[i]];
+        if (!report__frame_time(c))
+            continue;
+        timed++;
+        noisy += report__noisy(c) != 0;
+    }
+    free(rows);
+    if (timed < 2 || 2 * noisy <= timed)
+        return;
+    dm_str t = {0};
+    dm_str_printf(&t, "Provisional: %zu of %zu timings are noisy (the machine was busy); ", noisy, timed);
+    w_strong(w, dm_str_get(&t));
+    dm_str_free(&t);
+}
+
 /* The defects of a configuration's image as one mark ("⚠ 128 crack
  * pixels; ⚠ 3 NaN pixels") and the reasons in words; nothing when the
  * image has none. */
@@ -329,6 +351,7 @@ void report_answer_scene(const dm_run_result *run, const char *scene, report_ans
     recommend_result r;
     report_recommend(run, scene, &r);
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "<p class=\"pick\">" : "");
+    answer__provisional(&w, run, scene);
     w_pick(&w, run, &r);
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "</p>\n<ul class=\"rec\">" : f == REPORT_ANSWER_MD ? "\n" : "");
     w_item(&w, 1);
@@ -372,6 +395,7 @@ void report_answer_terminal(const dm_run_result *run, dm_str *out)
             dm_str_free(&one);
             continue;
         }
+        answer__provisional(&w, run, scenes[i]);
         w_pick(&w, run, &r);
         w_text(&w, "\n  ");
         w_knee(&w, run, &r);

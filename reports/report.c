@@ -335,6 +335,25 @@ static int report__has_warning(const dm_run_result *run, const char *w)
     return 0;
 }
 
+/* The run-level warning when most timed configurations are noisy: the
+ * machine was busy, with the load the run recorded and what to do. */
+static void report__busy_warning(const dm_run_result *run, size_t noisy, dm_str *out)
+{
+    size_t timed = 0;
+    for (size_t i = 0; i < run->n_configs; i++)
+        timed += run->configs[i].ok && report__frame_time(&run->configs[i]) != NULL;
+    if (timed < 2 || 2 * noisy <= timed)
+        return;
+    const char *load = dm_kv_get(run->environment, run->n_environment, "load_average");
+    const char *cpus = dm_kv_get(run->environment, run->n_environment, "cpu_count");
+    dm_str_printf(out, "The machine was busy: %zu of %zu timings are noisy", noisy, timed);
+    if (load)
+        dm_str_printf(out, " (load average %.*s at the start%s%s%s)", (int)strcspn(load, " "), load,
+                      cpus ? " on " : "", cpus ? cpus : "", cpus ? " CPUs" : "");
+    dm_str_cat(out, "; every pick is provisional: run again on a quieter machine, or give the "
+                    "samples more time (measure.max_seconds, measure.samples.max).\n");
+}
+
 size_t report__warnings(const dm_run_result *run, char ***out)
 {
     dm_str all = {0};
@@ -347,6 +366,7 @@ size_t report__warnings(const dm_run_result *run, char ***out)
         dm_str_printf(&all, "%zu noisy configuration%s: the 95%% CI of the median frame time is wider "
                             "than ±%.0f%% of the median (or unknown); compare their times with care.\n",
                       nn, nn == 1 ? "" : "s", REPORT__NOISY_CI_REL * 100);
+    report__busy_warning(run, nn, &all);
     report__drift_warning(run, &all);
     report__quality_warnings(run, &all);
     size_t n = 0;

@@ -1006,7 +1006,43 @@ static void test_answer_defects(void **state)
     dm_run_free(&run);
 }
 
+/* Most timings noisy: a run-level warning with the load, and each scene's
+ * pick marked provisional; not when only some are. */
+static void test_busy_machine(void **state)
+{
+    (void)state;
+    static const double most[] = {0.20, 0.30, 0.01, 0.40}, few[] = {0.20, 0.01, 0.01, 0.01};
+    dm_run_result run;
+    noisy_run(&run, most, 4);
+    dm_kv_push(&run.environment, &run.n_environment, "load_average", "3.10 2.50 1.00");
+    dm_kv_push(&run.environment, &run.n_environment, "cpu_count", "2");
+    char **w;
+    size_t nw = report__warnings(&run, &w), found = 0;
+    for (size_t i = 0; i < nw; i++)
+        found += strcmp(w[i], "The machine was busy: 3 of 4 timings are noisy (load average 3.10 at "
+                              "the start on 2 CPUs); every pick is provisional: run again on a quieter "
+                              "machine, or give the samples more time (measure.max_seconds, "
+                              "measure.samples.max).") == 0;
+    assert_int_equal(found, 1);
+    report__warnings_free(w, nw);
+    dm_str t = {0};
+    report_answer_scene(&run, "s", REPORT_ANSWER_MD, &t);
+    assert_non_null(strstr(dm_str_get(&t), "Provisional: 3 of 4 timings are noisy"));
+    dm_str_free(&t);
+    dm_run_free(&run);
+    noisy_run(&run, few, 4);
+    nw = report__warnings(&run, &w);
+    for (size_t i = 0; i < nw; i++)
+        assert_null(strstr(w[i], "The machine was busy"));
+    report__warnings_free(w, nw);
+    report_answer_scene(&run, "s", REPORT_ANSWER_MD, &t);
+    assert_null(strstr(dm_str_get(&t), "Provisional"));
+    dm_str_free(&t);
+    dm_run_free(&run);
+}
+
 DM_TEST_MAIN(NULL, NULL,
+             cmocka_unit_test(test_busy_machine),
              cmocka_unit_test(test_answer_defects),
              cmocka_unit_test(test_answer_without_quality),
              cmocka_unit_test(test_json_round_trip),
