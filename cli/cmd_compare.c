@@ -287,10 +287,10 @@ static int cli__builtin_technique(const char *name) { return technique_find(name
 
 /* `dmbench compare`: both sides, the comparison, its text and files;
  * the exit code of the verdicts (compare_exit_code). */
-int cli_compare(int argc, char **argv)
+int cli_compare(const cli_command *self, int argc, char **argv)
 {
     cli_compare_opts o = {0};
-    int rc = cli_parse(argc, argv, &o, &argc);
+    int rc = cli_parse(self, argc, argv, &o, &argc);
     o.positional = argv;
     o.n_positional = argc;
     o.d.paired = o.paired[0] != NULL;   /* pooled minimum times (compare.h) */
