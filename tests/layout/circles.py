@@ -29,13 +29,17 @@ checks, both from what the build says rather than from a list kept here:
    two files that call each other compute something that deserves a file of
    its own.
 
+3. Header guards.  Every header of a room guards with ROOM_FILE_H (run/measure.h:
+   RUN_MEASURE_H, core/dm_util.h: CORE_DM_UTIL_H), so no name from before a
+   folder was split or renamed is left behind.
+
 A circle fails the check unless it lies wholly inside one entry of ALLOWED
 below: the circles known when the check was written, each to be removed as
 its room is cut along its seams.  An entry that no longer covers any circle
 fails too ("remove it"), so the list can only shrink.
 
 Prints the layout summary (rooms, files, lines, files over 800 lines,
-circles with the names that close them) and exits 0 when both checks pass,
+circles with the names that close them) and exits 0 when the checks pass,
 1 when one fails, 2 on a usage or build-tree error.
 """
 import os
@@ -256,6 +260,24 @@ def room_circles(symbols):
     return out
 
 
+GUARD = re.compile(r"^#ifndef\s+(\w+)\s*\n#define\s+\1\b", re.M)
+
+
+def check_guards(src, rooms):
+    """Returns the headers whose include guard is not ROOM_FILE_H, one string each."""
+    problems = []
+    for room in rooms:
+        for name in sorted(os.listdir(os.path.join(src, room))):
+            if not name.endswith((".h", ".hh")):
+                continue
+            want = (room + "_" + name).upper().replace(".", "_")
+            m = GUARD.search(open(os.path.join(src, room, name), errors="replace").read())
+            if not m or m.group(1) != want:
+                problems.append("%s/%s guards with %s, not %s"
+                                % (room, name, m.group(1) if m else "nothing", want))
+    return problems
+
+
 def allowed_entry(room, files):
     for i, (r, allowed, _) in enumerate(ALLOWED):
         if r == room and (allowed is None or set(files) <= allowed):
@@ -329,6 +351,11 @@ def main(argv):
     for p in include_problems:
         print("  FAIL: " + p)
     failed = failed or bool(include_problems)
+    guard_problems = check_guards(src, rooms)
+    print("headers without their room's include guard (%d):" % len(guard_problems))
+    for p in guard_problems:
+        print("  FAIL: " + p)
+    failed = failed or bool(guard_problems)
     print("layout check: %s" % ("FAILED" if failed else "passed"))
     return 1 if failed else 0
 
