@@ -58,8 +58,6 @@ ALLOWED = [
      "the counting child's entry point in callgrind.c calls back into measure.c"),
     ("techniques", {"render.c", "render_textures.c"},
      "render_textures.c calls back into render.c through render__get"),
-    ("techniques", {"axes.c", "shaders.c", "technique.c", "user_technique.c"},
-     "checking an axis value loads (and registers) a user technique"),
     ("techniques", {"mesh.c", "mesh_scene.c"},
      "parallel arrays and a switch on mesh indices across two files"),
 ]
