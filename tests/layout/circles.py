@@ -58,8 +58,6 @@ ALLOWED = [
      "the counting child's entry point in callgrind.c calls back into measure.c"),
     ("techniques", {"render.c", "render_textures.c"},
      "render_textures.c calls back into render.c through render__get"),
-    ("techniques", {"mesh.c", "mesh_scene.c"},
-     "parallel arrays and a switch on mesh indices across two files"),
 ]
 
 NOT_ROOMS = {"tests", "bench", "build", "cmake", "scripts", "docs", "ci", "examples"}
