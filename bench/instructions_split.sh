@@ -5,7 +5,7 @@
 # Instructions, and prints both wall times and their ratio.  The pass's own
 # wall time is the run's "instructions counted in" line.  Each counting
 # child (`run --count-jobs`; one per CPU by default) logs its split
-# (run/measure.c, "instructions split:" lines in <run>/callgrind/child*.log):
+# (run/count_child.c, "instructions split:" lines in <run>/callgrind/child*.log):
 # GL context, then per configuration prepare (maps, meshes, program link),
 # warm-up (llvmpipe's JIT at the first draw) and the counted frames; the
 # rest of the children's time is Valgrind's start-up and exit, the

@@ -184,7 +184,8 @@ const cli_option cli_compare_options[] = {
       .value_name = "BASE_BINARY NEW_BINARY SWEEP",
       .help = "run both binaries on SWEEP in alternating rounds and compare" },
     { .name = "rounds", .kind = CLI_OPT_INT, .offset = COMPARE__OFF(rounds), .value_name = "N",
-      .min = 0, .max = 1000000, .help = "--paired: rounds per binary" },
+      .min = 1, .max = 1000000,
+      .help = "--paired: rounds per binary (default 6; at least 5 at --alpha 0.01 unless --counters-only)" },
     CLI_BOOL("quiet", cli_compare_opts, quiet,
              "no text report on stdout (files and exit code only)"),
     CLI_OPT_END
@@ -283,6 +284,24 @@ static int compare__compare_fail(const cli_compare_opts *o, const compare_result
     return rc;
 }
 
+/* --rounds that can reach a timing verdict (compare_paired_min_rounds at
+ * the --alpha given), unless --counters-only; and the default raised to
+ * that minimum.  -1 to go on, else the exit code (2). */
+static int compare__check_rounds(cli_compare_opts *o)
+{
+    int min = compare_paired_min_rounds(o->d.alpha);
+    if (o->rounds && !o->paired[0])
+        return cli_usage_error("compare: --rounds %d: rounds are for --paired only", o->rounds);
+    if (o->rounds && o->rounds < min && !o->d.counters_only)
+        return cli_usage_error("compare: --rounds %d: too few to reach a verdict: the paired test "
+                               "(Mann-Whitney, exact, two-sided) cannot get under --alpha %g with "
+                               "fewer than %d rounds per binary; give --rounds %d or more (or "
+                               "--counters-only)", o->rounds, o->d.alpha > 0 ? o->d.alpha : 0.01, min, min);
+    if (!o->rounds && o->paired[0])
+        o->rounds = min > COMPARE_PAIRED_ROUNDS ? min : COMPARE_PAIRED_ROUNDS;
+    return -1;
+}
+
 static int compare__builtin_technique(const char *name) { return technique_find(name) != NULL; }
 
 /* `dmbench compare`: both sides, the comparison, its text and files;
@@ -302,6 +321,7 @@ int cli_compare(const cli_command *self, int argc, char **argv)
     dm_str err = {0};
     if (rc < 0 && o.paired[0] && o.n_positional)
         rc = cli_usage_error("compare: --paired takes no BASE/NEW paths ('%s')", o.positional[0]);
+    rc = rc < 0 ? compare__check_rounds(&o) : rc;
     int e = 0;
     if (rc < 0 && (e = compare__load_sides(&o, &base, &new_, &err)) != 0)
         rc = compare__compare_fail(&o, NULL, e, &err);

@@ -10,14 +10,18 @@
 #include "cli.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
+#include "core/dm_table.h"
+#include "reports/answer.h"
+#include "reports/report.h"
 #include "run/env.h"
 #include "run/gl_context.h"
-#include "run/measure.h"
+#include "run/inproc.h"
 #include "run/predict.h"
 #include "run/probe.h"
 #include "sweep/plan.h"
 #include "sweep/sweep.h"
 
+#include <cjson/cJSON.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
@@ -27,6 +31,7 @@
 typedef struct predict_args {
     const char *from;
     int allow_env_mismatch;
+    int json, csv;
 } predict_args;
 
 const cli_option cli_predict_options[] = {
@@ -34,6 +39,10 @@ const cli_option cli_predict_options[] = {
                "run directories whose configurations the models are fitted to (required)"),
     CLI_BOOL("allow-env-mismatch", predict_args, allow_env_mismatch,
              "use runs of another machine fingerprint (their instruction counts may not hold here)"),
+    CLI_BOOL("json", predict_args, json,
+             "print the predictions as JSON on stdout: per configuration its key, label, each predicted "
+             "counter with its interval or why there is none, the model and whether it extrapolates"),
+    CLI_BOOL("csv", predict_args, csv, "print the same fields as CSV on stdout, one line per configuration"),
     CLI_OPT_END
 };
 
@@ -84,84 +93,401 @@ static int predict__check_env(const dm_run_result *runs, size_t n, char **dirs, 
     return rc;
 }
 
-/* "[lo, hi]" (each divided by scale, printed with fmt), or why there is no
- * interval: a bound that is not finite is never printed. */
-static void predict__interval(const char *fmt, double lo, double hi, double scale)
+/* One configuration to predict: its label (the one label form), and its
+ * prediction or why there is none. */
+typedef struct predict__row {
+    const plan_config *pc;
+    char *label;
+    int ok;
+    predict_result r;
+    dm_str why;        /* not predicted: why (never guessed) */
+} predict__row;
+
+static const char *const predict__stage_names[3] = {"geometry", "raster", "fragment"};
+static const char *const predict__part_counters[3] = {"GeometryInstructions", "RasterInstructions",
+                                                      "FragmentInstructions"};
+
+/* Predicts every configuration of p; labels as report_config_label gives
+ * them over the plan's configurations (the scene, then the technique and
+ * the axes that vary in its scene). */
+static predict__row *predict__rows(const predict_model *m, const plan *p, const double *counts)
 {
-    if (!isfinite(lo) || !isfinite(hi)) {
-        printf("[interval unavailable: too few configurations to hold one out]");
+    predict__row *rows = dm_xcalloc(p->n_configs + 1, sizeof *rows);
+    dm_run_result shallow = { .configs = dm_xcalloc(p->n_configs + 1, sizeof *shallow.configs),
+                              .n_configs = p->n_configs };
+    for (size_t i = 0; i < p->n_configs; i++)
+        shallow.configs[i] = (dm_config_result){ .key = p->configs[i].key, .scene = p->configs[i].scene,
+                                                 .params = p->configs[i].params,
+                                                 .n_params = p->configs[i].n_params, .ok = 1 };
+    for (size_t i = 0; i < p->n_configs; i++) {
+        predict__row *w = &rows[i];
+        dm_str l = {0};
+        report_config_label(&shallow, &shallow.configs[i], &l);
+        w->label = dm_str_take(&l);
+        w->pc = &p->configs[i];
+        w->ok = predict_config(m, w->pc, counts + i * PREDICT_N_COUNTS, &w->r, &w->why) == 0;
+    }
+    free(shallow.configs);
+    return rows;
+}
+
+static void predict__rows_free(predict__row *rows, size_t n)
+{
+    for (size_t i = 0; i < n; i++) {
+        free(rows[i].label);
+        predict_result_free(&rows[i].r);
+        dm_str_free(&rows[i].why);
+    }
+    free(rows);
+}
+
+static int predict__has_interval(double lo, double hi)
+{
+    return isfinite(lo) && isfinite(hi);
+}
+
+/* What every predicted row shares, said once under the table. */
+typedef struct predict__common {
+    const char *part_why;   /* the same reason for no stage shares, or NULL */
+    dm_str models;          /* "Instructions by X, WallTime by Y" */
+    int same_models;
+} predict__common;
+
+static void predict__models(const predict_result *r, dm_str *out)
+{
+    dm_str_printf(out, "Instructions by %s", r->instr_by);
+    if (r->wall_by)
+        dm_str_printf(out, ", WallTime by %s", r->wall_by);
+}
+
+static void predict__common_of(const predict__row *rows, size_t n, predict__common *c)
+{
+    memset(c, 0, sizeof *c);
+    int first = 1, same_part = 1;
+    c->same_models = 1;
+    for (size_t i = 0; i < n; i++) {
+        if (!rows[i].ok)
+            continue;
+        const predict_result *r = &rows[i].r;
+        dm_str m = {0};
+        predict__models(r, &m);
+        if (first) {
+            c->part_why = r->part_why;
+            dm_str_cat(&c->models, dm_str_get(&m));
+        } else {
+            same_part = same_part && c->part_why && r->part_why && strcmp(c->part_why, r->part_why) == 0;
+            c->same_models = c->same_models && strcmp(dm_str_get(&c->models), dm_str_get(&m)) == 0;
+        }
+        first = 0;
+        dm_str_free(&m);
+    }
+    if (!same_part)
+        c->part_why = NULL;
+}
+
+/* The note under a row: stage shares, the models used, how far beyond the
+ * runs, and why a value or an interval is unavailable (what every row
+ * shares is left to the line under the table). */
+static void predict__note(const predict_result *r, const predict__common *c, dm_str *note)
+{
+    double sum = r->part[0] + r->part[1] + r->part[2];
+    if (isfinite(sum) && sum > 0)
+        dm_str_printf(note, "Stages: geometry %.0f %%, raster %.0f %%, fragment %.0f %%. ", 100 * r->part[0] / sum,
+                      100 * r->part[1] / sum, 100 * r->part[2] / sum);
+    else if (!c->part_why)
+        dm_str_printf(note, "Stages unavailable: %s. ", r->part_why ? r->part_why : "no reason recorded");
+    if (!c->same_models) {
+        predict__models(r, note);
+        dm_str_cat(note, ". ");
+    }
+    if (r->beyond_stage >= 0)
+        dm_str_printf(note, "Extrapolated: %s %.2f × the largest the runs measured. ",
+                      predict__stage_names[r->beyond_stage], r->beyond);
+    if (r->instr_why)
+        dm_str_printf(note, "Instructions interval unavailable: %s. ", r->instr_why);
+    if (r->wall_why)
+        dm_str_printf(note, "WallTime %sunavailable: %s.", r->wall_by ? "interval " : "", r->wall_why);
+    while (note->len && note->buf[note->len - 1] == ' ')
+        note->buf[--note->len] = '\0';
+}
+
+/* The table on stdout (the terminal): at most REPORT_TERMINAL_WIDTH
+ * columns, the notes wrapped under each row; then what was not predicted. */
+static void predict__print_table(const predict__row *rows, size_t n)
+{
+    dm_table t = {0};
+    dm_table_row(&t);
+    static const char *const head[] = {"key", "configuration", "Instructions", "±2 CV-MAPE",
+                                       "WallTime ms [interval]"};
+    for (size_t k = 0; k < sizeof head / sizeof *head; k++)
+        dm_table_cell(&t, head[k]);
+    t.n_left = 2;
+    predict__common common;
+    predict__common_of(rows, n, &common);
+    dm_str unpred = {0};
+    for (size_t i = 0; i < n; i++) {
+        const predict__row *w = &rows[i];
+        if (!w->ok) {
+            dm_str line = {0};
+            dm_str_printf(&line, "%s  %s: %s", w->pc->key, w->label, dm_str_get(&w->why));
+            dm_wrap(dm_str_get(&line), "  ", "      ", REPORT_TERMINAL_WIDTH, &unpred);
+            dm_str_free(&line);
+            continue;
+        }
+        const predict_result *r = &w->r;
+        dm_str c = {0}, note = {0};
+        dm_table_row(&t);
+        dm_table_cell(&t, w->pc->key);
+        dm_table_cell(&t, w->label);
+        dm_str_cat_count(&c, r->instr);
+        dm_table_cell(&t, dm_str_get(&c));
+        c.len = 0;
+        if (predict__has_interval(r->instr_lo, r->instr_hi))
+            dm_str_printf(&c, "±%.1f %%", 100 * (r->instr_hi - r->instr) / r->instr);
+        dm_table_cell(&t, c.len ? dm_str_get(&c) : "unavailable");
+        c.len = 0;
+        if (isfinite(r->wall_ns) && predict__has_interval(r->wall_lo, r->wall_hi))
+            dm_str_printf(&c, "%.3f [%.3f, %.3f]", r->wall_ns / 1e6, r->wall_lo / 1e6, r->wall_hi / 1e6);
+        else if (isfinite(r->wall_ns))
+            dm_str_printf(&c, "%.3f [unavailable]", r->wall_ns / 1e6);
+        dm_table_cell(&t, c.len ? dm_str_get(&c) : "unavailable");
+        predict__note(r, &common, &note);
+        dm_table_note(&t, dm_str_get(&note));
+        dm_str_free(&c);
+        dm_str_free(&note);
+    }
+    dm_str out = {0};
+    if (t.n_rows > 1)
+        dm_table_text(&t, "", REPORT_TERMINAL_WIDTH, &out);
+    else
+        dm_str_cat(&out, "no configuration could be predicted\n");
+    if (t.n_rows > 1) {   /* what every row shares */
+        dm_str all = {0};
+        dm_str_cat(&all, "Every configuration: ");
+        if (common.same_models)
+            dm_str_printf(&all, "%s%s", dm_str_get(&common.models), common.part_why ? "; " : ".");
+        if (common.part_why)
+            dm_str_printf(&all, "stage shares unavailable: %s.", common.part_why);
+        if (common.same_models || common.part_why)
+            dm_wrap(dm_str_get(&all), "", "  ", REPORT_TERMINAL_WIDTH, &out);
+        dm_str_free(&all);
+    }
+    if (unpred.len) {
+        dm_str_cat(&out, "not predicted (never guessed):\n");
+        dm_str_cat(&out, dm_str_get(&unpred));
+    }
+    char *b;
+    fputs(dm_term_safe(dm_str_get(&out), &b), stdout);
+    free(b);
+    dm_str_free(&out);
+    dm_str_free(&unpred);
+    dm_str_free(&common.models);
+    dm_table_free(&t);
+}
+
+/* {"value": v, "interval": [lo, hi] | "unavailable", "interval_reason": why, "model": by} */
+static cJSON *predict__json_value(double v, double lo, double hi, const char *why, const char *by,
+                                  const char *unit)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "unit", unit);
+    if (!isfinite(v)) {
+        cJSON_AddStringToObject(o, "unavailable", why ? why : "no reason recorded");
+        return o;
+    }
+    cJSON_AddNumberToObject(o, "value", v);
+    if (predict__has_interval(lo, hi)) {
+        cJSON *iv = cJSON_AddArrayToObject(o, "interval");
+        cJSON_AddItemToArray(iv, cJSON_CreateNumber(lo));
+        cJSON_AddItemToArray(iv, cJSON_CreateNumber(hi));
+    } else {
+        cJSON_AddStringToObject(o, "interval", "unavailable");
+        cJSON_AddStringToObject(o, "interval_reason", why ? why : "no reason recorded");
+    }
+    if (by)
+        cJSON_AddStringToObject(o, "model", by);
+    return o;
+}
+
+static cJSON *predict__json_row(const predict__row *w)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddStringToObject(o, "key", w->pc->key);
+    cJSON_AddStringToObject(o, "label", w->label);
+    cJSON_AddStringToObject(o, "scene", w->pc->scene);
+    cJSON *params = cJSON_AddObjectToObject(o, "params");
+    for (size_t k = 0; k < w->pc->n_params; k++)
+        cJSON_AddStringToObject(params, w->pc->params[k].key, w->pc->params[k].value);
+    cJSON_AddStringToObject(o, "variant", w->r.variant ? w->r.variant : "");
+    cJSON_AddBoolToObject(o, "predicted", w->ok);
+    if (!w->ok) {
+        cJSON_AddStringToObject(o, "reason", dm_str_get(&w->why));
+        return o;
+    }
+    const predict_result *r = &w->r;
+    cJSON *cs = cJSON_AddObjectToObject(o, "counters");
+    cJSON_AddItemToObject(cs, "Instructions", predict__json_value(r->instr, r->instr_lo, r->instr_hi, r->instr_why,
+                                                                  r->instr_by, "instructions"));
+    for (int s = 0; s < 3; s++) {
+        cJSON *p = cJSON_CreateObject();
+        cJSON_AddStringToObject(p, "unit", "instructions");
+        if (isfinite(r->part[s]))
+            cJSON_AddNumberToObject(p, "value", r->part[s]);
+        else
+            cJSON_AddStringToObject(p, "unavailable", r->part_why ? r->part_why : "no reason recorded");
+        cJSON_AddItemToObject(cs, predict__part_counters[s], p);
+    }
+    cJSON_AddItemToObject(cs, "WallTime", predict__json_value(r->wall_ns, r->wall_lo, r->wall_hi, r->wall_why,
+                                                              r->wall_by, "ns"));
+    if (isfinite(r->part[0] + r->part[1] + r->part[2]))
+        cJSON_AddBoolToObject(o, "extrapolates", r->beyond_stage >= 0);
+    else   /* how far beyond the runs is known from the stage parts alone */
+        cJSON_AddNullToObject(o, "extrapolates");
+    if (r->beyond_stage >= 0) {
+        cJSON *e = cJSON_AddObjectToObject(o, "extrapolation");
+        cJSON_AddStringToObject(e, "stage", predict__stage_names[r->beyond_stage]);
+        cJSON_AddNumberToObject(e, "factor", r->beyond);
+    }
+    return o;
+}
+
+/* The JSON document on stdout: {"predictions": [...], "left_out": [...]}. */
+static void predict__print_json(const predict__row *rows, size_t n, const char *left)
+{
+    cJSON *root = cJSON_CreateObject(), *a = cJSON_AddArrayToObject(root, "predictions");
+    for (size_t i = 0; i < n; i++)
+        cJSON_AddItemToArray(a, predict__json_row(&rows[i]));
+    cJSON *lo = cJSON_AddArrayToObject(root, "left_out");
+    for (const char *p = left; p && *p;) {
+        size_t len = strcspn(p, "\n");
+        char *line = dm_xstrdup(p + strspn(p, " "));
+        line[len - (size_t)(strspn(p, " "))] = '\0';
+        cJSON_AddItemToArray(lo, cJSON_CreateString(line));
+        free(line);
+        p += len + (p[len] == '\n');
+    }
+    char *text = cJSON_Print(root);
+    printf("%s\n", text);
+    free(text);
+    cJSON_Delete(root);
+}
+
+/* A CSV field (RFC 4180: quoted when it holds a comma, a quote or a line break). */
+static void predict__csv_field(dm_str *s, const char *text, int first)
+{
+    if (!first)
+        dm_str_cat(s, ",");
+    if (!text || !text[strcspn(text, ",\"\r\n")]) {
+        dm_str_cat(s, text ? text : "");
         return;
     }
-    printf("[");
-    printf(fmt, lo / scale);
-    printf(", ");
-    printf(fmt, hi / scale);
-    printf("]");
+    dm_str_cat(s, "\"");
+    for (const char *p = text; *p; p++)
+        dm_str_catn(s, *p == '"' ? "\"\"" : p, *p == '"' ? 2 : 1);
+    dm_str_cat(s, "\"");
+}
+
+static void predict__csv_num(dm_str *s, double v)
+{
+    char buf[40] = "";
+    if (isfinite(v))
+        snprintf(buf, sizeof buf, "%.17g", v);
+    predict__csv_field(s, buf, 0);
+}
+
+/* One line per configuration, the JSON's fields flattened. */
+static void predict__print_csv(const predict__row *rows, size_t n)
+{
+    dm_str s = {0};
+    dm_str_cat(&s, "key,label,predicted,reason,Instructions,Instructions_lo,Instructions_hi,Instructions_model,"
+                   "Instructions_unavailable,GeometryInstructions,RasterInstructions,FragmentInstructions,"
+                   "stages_unavailable,WallTime_ns,WallTime_lo_ns,WallTime_hi_ns,WallTime_model,"
+                   "WallTime_unavailable,extrapolates,extrapolated_stage,extrapolated_factor\n");
+    for (size_t i = 0; i < n; i++) {
+        const predict__row *w = &rows[i];
+        const predict_result *r = &w->r;
+        int iv = predict__has_interval(r->instr_lo, r->instr_hi), wv = predict__has_interval(r->wall_lo, r->wall_hi);
+        predict__csv_field(&s, w->pc->key, 1);
+        predict__csv_field(&s, w->label, 0);
+        predict__csv_field(&s, w->ok ? "yes" : "no", 0);
+        predict__csv_field(&s, w->ok ? "" : dm_str_get(&w->why), 0);
+        predict__csv_num(&s, w->ok ? r->instr : NAN);
+        predict__csv_num(&s, w->ok && iv ? r->instr_lo : NAN);
+        predict__csv_num(&s, w->ok && iv ? r->instr_hi : NAN);
+        predict__csv_field(&s, w->ok ? r->instr_by : "", 0);
+        predict__csv_field(&s, w->ok && r->instr_why ? r->instr_why : "", 0);
+        for (int k = 0; k < 3; k++)
+            predict__csv_num(&s, w->ok ? r->part[k] : NAN);
+        predict__csv_field(&s, w->ok && r->part_why ? r->part_why : "", 0);
+        predict__csv_num(&s, w->ok ? r->wall_ns : NAN);
+        predict__csv_num(&s, w->ok && wv ? r->wall_lo : NAN);
+        predict__csv_num(&s, w->ok && wv ? r->wall_hi : NAN);
+        predict__csv_field(&s, w->ok && r->wall_by ? r->wall_by : "", 0);
+        predict__csv_field(&s, w->ok && r->wall_why ? r->wall_why : "", 0);
+        int known = w->ok && isfinite(r->part[0] + r->part[1] + r->part[2]);
+        predict__csv_field(&s, !w->ok ? "" : !known ? "unknown" : r->beyond_stage >= 0 ? "yes" : "no", 0);
+        predict__csv_field(&s, w->ok && r->beyond_stage >= 0 ? predict__stage_names[r->beyond_stage] : "", 0);
+        predict__csv_num(&s, w->ok && r->beyond_stage >= 0 ? r->beyond : NAN);
+        dm_str_cat(&s, "\n");
+    }
+    fputs(dm_str_get(&s), stdout);
+    dm_str_free(&s);
 }
 
 /* A held-out error "X.XX %", or "unavailable" when there is none. */
-static void predict__pct(double v)
+static void predict__pct(dm_str *s, double v)
 {
     if (isfinite(v))
-        printf("%.2f %%", v);
+        dm_str_printf(s, "%.2f %%", v);
     else
-        printf("unavailable (too few configurations to hold one out)");
-}
-
-/* One line of the table, or the reason the configuration is unpredictable. */
-static void predict__config(const predict_model *m, const plan_config *pc, const double *counts, dm_str *unpred)
-{
-    predict_result r;
-    dm_str why = {0};
-    if (predict_config(m, pc, counts, &r, &why) != 0) {
-        dm_str_printf(unpred, "  %s  %s: %s\n", pc->key, pc->scene, dm_str_get(&why));
-    } else {
-        printf("%s  %-40s %-28s %12.6g ", pc->key, pc->scene, r.variant, r.instr);
-        predict__interval("%.6g", r.instr_lo, r.instr_hi, 1);
-        double sum = r.part[0] + r.part[1] + r.part[2];
-        if (isfinite(sum) && sum > 0)
-            printf("  geometry %2.0f %% raster %2.0f %% fragment %2.0f %%", 100 * r.part[0] / sum,
-                   100 * r.part[1] / sum, 100 * r.part[2] / sum);
-        else
-            printf("  stages: unavailable (the runs lack the stage counters)");
-        if (isfinite(r.wall_ns)) {
-            printf("  WallTime %.3f ms ", r.wall_ns / 1e6);
-            predict__interval("%.3f", r.wall_lo, r.wall_hi, 1e6);
-        }
-        static const char *const stage[3] = {"geometry", "raster", "fragment"};
-        if (r.beyond_stage >= 0)
-            printf("  (extrapolated: %s %.3g x the largest the runs measured)", stage[r.beyond_stage], r.beyond);
-        printf("\n");
-    }
-    predict_result_free(&r);
-    dm_str_free(&why);
+        dm_str_cat(s, "unavailable (too few configurations to hold one out)");
 }
 
 /* How well each variant's Instructions predicted the runs' own
  * configurations held out of the fits: the stage models' sum, and the
  * one-formula stage-instructions beside it. */
-static void predict__heldout_print(const predict_model *m)
+static void predict__heldout_text(const predict_model *m, dm_str *out)
 {
     if (m->n_heldout)
-        printf("held-out error of Instructions on the runs' configurations (k-fold CV-MAPE), per variant:\n");
+        dm_str_cat(out, "held-out error of Instructions on the runs' configurations (k-fold CV-MAPE), per variant:\n");
     for (size_t i = 0; i < m->n_heldout; i++) {
         const predict_heldout *h = &m->heldout[i];
         const dm_fit_result *one = predict_fit_of(m->instr, m->n_instr, h->variant);
         int use_one = predict_heldout_prefers_one(m, one);
-        printf("  %s\n    stages summed ", h->variant);
+        dm_str l = {0};
+        dm_wrap(h->variant, "  ", "      ", REPORT_TERMINAL_WIDTH, out);
+        dm_str_cat(&l, "stages summed ");
         if (isfinite(h->cv_mape))
-            printf("%5.2f %% over %d configurations%s", h->cv_mape, h->n, use_one ? "" : " (used)");
+            dm_str_printf(&l, "%5.2f %% over %d configurations%s", h->cv_mape, h->n, use_one ? "" : " (used)");
         else
-            printf("%sunavailable: too few configurations to hold one out", use_one ? "" : "(used) ");
+            dm_str_printf(&l, "%sunavailable: too few configurations to hold one out (%zu measured)",
+                          use_one ? "" : "(used) ", predict_variant_count(m, h->variant));
         if (one && isfinite(one->cv_mape))
-            printf("; stage-instructions %5.2f %%%s", one->cv_mape, use_one ? " (used)" : "");
-        printf("\n");
+            dm_str_printf(&l, "; stage-instructions %5.2f %%%s", one->cv_mape, use_one ? " (used)" : "");
+        dm_wrap(dm_str_get(&l), "    ", "      ", REPORT_TERMINAL_WIDTH, out);
+        dm_str_free(&l);
     }
+}
+
+/* Why the timed stage passes are not used for WallTime. */
+static const char *predict__stage_times_why(const predict_model *m, const dm_fit_result *st)
+{
+    int stage_counters = dm_run_has_counter(&m->train, "GeometryInstructions") &&
+                         dm_run_has_counter(&m->train, "RasterInstructions") &&
+                         dm_run_has_counter(&m->train, "FragmentInstructions");
+    int passes = dm_run_has_counter(&m->train, "GeometryTime") && dm_run_has_counter(&m->train, "MinimalShadingTime");
+    if (!stage_counters)
+        return "the runs lack the stage counters (GeometryInstructions, RasterInstructions, FragmentInstructions)";
+    if (!passes)
+        return "the runs lack GeometryTime or MinimalShadingTime: add both to measure.counters";
+    if (!st)
+        return "too few configurations to fit the stage models";
+    return "too few configurations to hold three out";
 }
 
 /* How well each way of predicting WallTime did on the runs' own
  * configurations held out of the fits, and which one is used. */
-static void predict__time_heldout_print(const predict_model *m)
+static void predict__time_heldout_text(const predict_model *m, dm_str *out)
 {
     const predict_heldout *h = &m->time_heldout;
     int stage_times = predict_has_stage_times(m);
@@ -170,27 +496,27 @@ static void predict__time_heldout_print(const predict_model *m)
     if (!ti && !st)
         return;
     int st_used = !stage_times && predict_prefers_time_from_stages(m);
-    printf("held-out error of WallTime on the runs' configurations (k-fold CV-MAPE):\n  ");
+    dm_str l = {0};
+    dm_str_cat(out, "held-out error of WallTime on the runs' configurations (k-fold CV-MAPE):\n");
     if (stage_times) {
-        printf("stage times summed ");
-        predict__pct(h->cv_mape);
-        printf(" over %d configurations (used); ", h->n);
+        dm_str_cat(&l, "stage times summed ");
+        predict__pct(&l, h->cv_mape);
+        dm_str_printf(&l, " over %d configurations (used); ", h->n);
     } else {
-        printf("stage times: unavailable (%s); ", st ? "the runs lack GeometryTime or MinimalShadingTime: add both "
-                                                       "to measure.counters"
-                                                     : "the runs lack the stage counters");
+        dm_str_printf(&l, "stage times unavailable: %s; ", predict__stage_times_why(m, st));
     }
     if (st) {
-        printf("time-from-stages ");
-        predict__pct(st->cv_mape);
-        printf("%s; ", st_used ? " (used)" : "");
+        dm_str_cat(&l, "time-from-stages ");
+        predict__pct(&l, st->cv_mape);
+        dm_str_printf(&l, "%s; ", st_used ? " (used)" : "");
     }
     if (ti) {
-        printf("time-from-instructions ");
-        predict__pct(ti->cv_mape);
-        printf("%s", !stage_times && !st_used ? " (used)" : "");
+        dm_str_cat(&l, "time-from-instructions ");
+        predict__pct(&l, ti->cv_mape);
+        dm_str_printf(&l, "%s", !stage_times && !st_used ? " (used)" : "");
     }
-    printf("\n");
+    dm_wrap(dm_str_get(&l), "  ", "    ", REPORT_TERMINAL_WIDTH, out);
+    dm_str_free(&l);
 }
 
 /* Loads the --from runs into *runs (n of them, dirs[] their names); -1 when
@@ -226,6 +552,8 @@ int cli_predict(const cli_command *self, int argc, char **argv)
     int rc = cli_parse(self, argc, argv, &a, &argc);
     if (rc < 0 && argc != 1)
         rc = cli_usage_error("predict: give one sweep file (the configurations to predict)");
+    if (rc < 0 && a.json && a.csv)
+        rc = cli_usage_error("predict: --json and --csv both given; choose one output");
     if (rc < 0 && !a.from)
         rc = cli_usage_error("predict: --from RUN[,RUN...] is required (the measured runs)");
     if (rc >= 0)
@@ -245,24 +573,33 @@ int cli_predict(const cli_command *self, int argc, char **argv)
     rc = rc < 0 ? predict__check_counters(runs, nr, dirs) : rc;
     rc = rc < 0 ? predict__check_env(runs, nr, dirs, a.allow_env_mismatch) : rc;
     double *counts = rc < 0 ? dm_xcalloc(p.n_configs * PREDICT_N_COUNTS + 1, sizeof *counts) : NULL;
-    if (rc < 0 && measure_counts(p.configs, p.n_configs, predict_counts, PREDICT_N_COUNTS, counts, &err) != 0)
+    if (rc < 0 && inproc_counts(p.configs, p.n_configs, predict_counts, PREDICT_N_COUNTS, counts, &err) != 0)
         rc = cli_error(DM_ERR_GL, "predict: %s", dm_str_get(&err));
     if (rc < 0) {
         predict_model m;
         predict_fit(runs, nr, &m);
-        printf("%-16s  %-40s %-28s %12s %s\n", "key", "scene", "variant", "Instructions", "[±2 CV-MAPE]");
-        dm_str unpred = {0};
-        for (size_t i = 0; i < p.n_configs; i++)
-            predict__config(&m, &p.configs[i], counts + i * PREDICT_N_COUNTS, &unpred);
-        if (unpred.len)
-            printf("not predicted (never guessed):\n%s", dm_str_get(&unpred));
-        dm_str left = {0};
-        if (predict_left_out(runs, nr, &left))
-            printf("left out of the fits (a counter they need is unavailable there):\n%s", dm_str_get(&left));
+        predict__row *rows = predict__rows(&m, &p, counts);
+        dm_str left = {0}, tail = {0};
+        predict_left_out(runs, nr, &left);
+        if (a.json) {
+            predict__print_json(rows, p.n_configs, dm_str_get(&left));
+        } else if (a.csv) {
+            predict__print_csv(rows, p.n_configs);
+        } else {
+            predict__print_table(rows, p.n_configs);
+            if (left.len) {
+                dm_str_cat(&tail, "left out of the fits (a counter they need is unavailable there):\n");
+                dm_str_cat(&tail, dm_str_get(&left));
+            }
+            predict__heldout_text(&m, &tail);
+            predict__time_heldout_text(&m, &tail);
+            char *b;
+            fputs(dm_term_safe(dm_str_get(&tail), &b), stdout);
+            free(b);
+        }
         dm_str_free(&left);
-        predict__heldout_print(&m);
-        predict__time_heldout_print(&m);
-        dm_str_free(&unpred);
+        dm_str_free(&tail);
+        predict__rows_free(rows, p.n_configs);
         predict_free(&m);
         rc = DM_EXIT_OK;
     }

@@ -6,7 +6,7 @@
 #include "core/dm_exit.h"
 #include "run/env.h"
 #include "run/gl_context.h"
-#include "run/measure.h"
+#include "run/mscene.h"
 #include "run/probe.h"
 #include "reports/image.h"
 #include "techniques/axes.h"
@@ -70,7 +70,7 @@ int cli_render(const cli_command *self, int argc, char **argv)
     if (rc < 0)
         tech_renderer_set_debug_view(r, dbg);
     float *rgba = NULL;
-    if (rc < 0 && measure_render_image(r, kv, n, w, h, ss, &rgba, NULL, &err) != 0) {
+    if (rc < 0 && mscene_render_image(r, kv, n, w, h, ss, &rgba, NULL, &err) != 0) {
         fprintf(stderr, "dmbench: error: render failed:\n%s\n", dm_str_get(&err));
         rc = DM_EXIT_FAILED;
     }

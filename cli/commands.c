@@ -7,6 +7,7 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/callgrind.h"
+#include "run/count_child.h"
 #include "run/drivers.h"
 #include "run/probe.h"
 
@@ -189,12 +190,12 @@ static int commands__help(const cli_command *self, int argc, char **argv)
     return DM_EXIT_OK;
 }
 
-/* The Instructions pass's child (run/callgrind.h), which parses its own
+/* The Instructions pass's child (run/count_child.h), which parses its own
  * arguments. */
 static int commands__instructions(const cli_command *self, int argc, char **argv)
 {
     (void)self;
-    return callgrind_child_main(argc, argv);
+    return count_child_main(argc, argv);
 }
 
 static int commands__gen_man(const cli_command *self, int argc, char **argv)

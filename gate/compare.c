@@ -440,7 +440,11 @@ static void compare__time_verdict(const compare_desc *d, const compare_machine *
                                     it->extra_samples, unit);
         } else {
             it->extra_samples = compare__extra_samples(t, it);
-            it->note = it->extra_samples < 0
+            it->note = it->extra_samples > COMPARE_ADVICE_MAX
+                           ? dm_xasprintf("%s; CI %.3f..%.3f: more than %d %s: the difference is below "
+                                          "what this machine can resolve", head, it->lo, it->hi,
+                                          COMPARE_ADVICE_MAX, unit)
+                       : it->extra_samples < 0
                            ? dm_xasprintf("%s; CI %.3f..%.3f straddles %.3f; more %s will not "
                                           "decide it", head, it->lo, it->hi,
                                           it->ratio > 1 ? 1 + t : 1 - t, unit)

@@ -305,9 +305,23 @@ int compare_baseline_latest(const char *store_path, const char *sweep, char **ru
                             char **reason, dm_str *err);
 
 /* ---- paired mode (compare_paired.c) ----------------------------------- */
+/* The fewest rounds per binary with which a paired timing verdict can be
+ * reached at significance alpha: each round is one sample a side, and the
+ * smallest two-sided p of the exact Mann-Whitney test with n a side is
+ * 2 / C(2n, n) (every NEW sample above every BASE sample), which must fall
+ * under alpha: 5 at the default 0.01 (2/252), 4 at 0.05.  Fewer can never
+ * decide (only --counters-only can).  alpha outside (0, 1): the default. */
+int compare_paired_min_rounds(double alpha);
+/* Rounds when --rounds is not given: COMPARE_PAIRED_ROUNDS, or the
+ * minimum above when that is more. */
+#define COMPARE_PAIRED_ROUNDS 6
+/* An INCONCLUSIVE note advises at most this many more samples or rounds;
+ * past it the difference is below what the machine can resolve. */
+#define COMPARE_ADVICE_MAX 100
+
 typedef struct compare_paired_desc {
     const char *base_binary, *new_binary, *sweep_path;
-    int rounds;              /* 0 -> 6; round r runs A,B when r is even, B,A when odd (ABBA) */
+    int rounds;              /* 0 -> COMPARE_PAIRED_ROUNDS; round r runs A,B when r is even, B,A when odd (ABBA) */
     int quiet;
 } compare_paired_desc;
 /* Runs the sweep `rounds` times with each binary, each run a fresh process

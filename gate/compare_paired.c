@@ -97,6 +97,15 @@ static void compare__run_minima(dm_run_result *r)
         }
 }
 
+int compare_paired_min_rounds(double alpha)
+{
+    double a = alpha > 0 && alpha < 1 ? alpha : 0.01, c = 2;   /* C(2n, n) for n = 1 */
+    int n = 1;
+    while (2 / c >= a && n < 1000)
+        c = c * (2 * n + 1) * (2 * n + 2) / ((double)(n + 1) * (n + 1)), n++;
+    return n;
+}
+
 void compare_pool_run(dm_run_result *pooled, dm_run_result *r, int round)
 {
     compare__run_minima(r);
@@ -137,7 +146,7 @@ int compare_paired_run(const compare_paired_desc *desc, dm_run_result *base, dm_
                        dm_str *err)
 {
     compare_paired_desc d = *desc;
-    d.rounds = d.rounds > 0 ? d.rounds : 6;   /* 6 runs a side: the fewest for which Mann-Whitney can reach p < 0.01 */
+    d.rounds = d.rounds > 0 ? d.rounds : COMPARE_PAIRED_ROUNDS;   /* one past compare_paired_min_rounds(0.01) */
     memset(base, 0, sizeof *base);
     memset(new_, 0, sizeof *new_);
     const char *tmpdir = getenv("TMPDIR");

@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/dm_error.h"
+#include "core/dm_table.h"
 
 /* The ratio and q columns of an item, as the text, Markdown and JUnit
  * outputs print them. */
@@ -174,40 +175,60 @@ static int compare__write(dm_str *s, const char *path)
     return rc;
 }
 
-/* Markdown table cell text: plain text only (a PR comment must not get raw
- * HTML from a sweep name or a map path; see dm_str_cat_md). */
+/* Markdown text as plain text that reads the same raw and rendered: no
+ * HTML entities; "->", ">=" and "<=" as arrows and signs, any other '<'
+ * and the characters Markdown would act on inside a line ('|' ends a cell,
+ * '*' '_' '`' '[' ']' '\' '&') escaped with a backslash, line breaks as
+ * spaces, other control bytes as '?'.  A sweep name or a map path can then
+ * neither break the table nor bring raw HTML into a PR comment. */
 static void compare__md_cell(dm_str *s, const char *text)
 {
-    dm_str_cat_md(s, text);
+    for (const char *p = text ? text : ""; *p; p++) {
+        unsigned char ch = (unsigned char)*p;
+        if (p[0] == '-' && p[1] == '>')
+            dm_str_cat(s, "→"), p++;
+        else if (p[0] == '>' && p[1] == '=')
+            dm_str_cat(s, "≥"), p++;
+        else if (p[0] == '<' && p[1] == '=')
+            dm_str_cat(s, "≤"), p++;
+        else if (ch == '\n' || ch == '\r' || ch == '\t')
+            dm_str_cat(s, " ");
+        else if (ch < 0x20 || ch == 0x7f)
+            dm_str_cat(s, "?");
+        else if (strchr("|*_`[]\\&<>", ch)) {
+            char e[3] = {'\\', (char)ch, 0};
+            dm_str_cat(s, e);
+        } else
+            dm_str_catn(s, p, 1);
+    }
 }
 
-/* "1.234 ms" of a time in ns, "12.35 M" of an instruction count. */
+/* Base and New of a row, one precision per kind: a time in ms to three
+ * decimals, an instruction count in plain grouped digits. */
 static void compare__md_value(dm_str *s, double v, int instr)
 {
     if (!(v > 0))
-        dm_str_cat(s, "-");
-    else if (instr)
-        dm_str_printf(s, "%.4g M instr", v / 1e6);
-    else
-        dm_str_printf(s, "%.4g ms", v / 1e6);
+        dm_str_cat(s, "–");
+    else if (instr) {
+        dm_str_cat_count(s, v);
+        dm_str_cat(s, " instr");
+    } else
+        dm_str_printf(s, "%.3f ms", v / 1e6);
 }
 
-/* The note of a changed row: short (the machine's line says the rest). */
+/* The note of a changed row, whole (the row budget cuts rows, never words). */
 static void compare__md_note(dm_str *s, const compare_item *it)
 {
     if (it->machine_held) {
         dm_str_cat(s, "within what the machine may do between runs (see above)");
         return;
     }
-    if (!it->note)
-        return;
-    size_t n = strlen(it->note);
-    char *cut = n > 200 ? dm_xasprintf("%.197s...", it->note) : NULL;
-    compare__md_cell(s, cut ? cut : it->note);
-    free(cut);
+    if (it->note)
+        compare__md_cell(s, it->note);
 }
 
-/* One table row; changed rows carry verdict and note. */
+/* One table row; changed rows carry verdict and note.  Ratio to four
+ * decimals, the signed change in percent to two, the CI to three. */
 static void compare__md_row(dm_str *s, const compare_item *it, int changed)
 {
     dm_str_cat(s, "| ");
@@ -216,18 +237,42 @@ static void compare__md_row(dm_str *s, const compare_item *it, int changed)
     compare__md_value(s, it->instr ? it->instr_base : it->median_base, it->instr);
     dm_str_cat(s, " | ");
     compare__md_value(s, it->instr ? it->instr_new : it->median_new, it->instr);
-    if (it->instr)
-        dm_str_printf(s, " | %.5f | - |", it->instr_new / it->instr_base);
-    else if (it->timed)
-        dm_str_printf(s, " | %.3f | %.3f–%.3f |", it->ratio, it->lo, it->hi);
+    double ratio = it->instr ? it->instr_new / it->instr_base : it->timed ? it->ratio : NAN;
+    if (isfinite(ratio))
+        dm_str_printf(s, " | %.4f | %s%.2f %% |", ratio, ratio >= 1 ? "+" : "−", fabs(ratio - 1) * 100);
     else
-        dm_str_cat(s, " | - | - |");
+        dm_str_cat(s, " | – | – |");
+    if (it->timed && !it->instr)
+        dm_str_printf(s, " %.3f–%.3f |", it->lo, it->hi);
+    else
+        dm_str_cat(s, " – |");
     if (changed) {
         dm_str_printf(s, " %s | ", compare_verdict_name(it->verdict));
         compare__md_note(s, it);
         dm_str_cat(s, " |");
     }
     dm_str_cat(s, "\n");
+}
+
+/* The load and precision lines stdout prints, as a list (nothing without
+ * timing verdicts). */
+static void compare__md_machine(const compare_result *r, dm_str *s)
+{
+    dm_str mt = {0};
+    compare__machine_text(r, &mt);
+    if (mt.len)
+        dm_str_cat(s, "\n");
+    for (const char *p = dm_str_get(&mt); *p;) {
+        size_t len = strcspn(p, "\n");
+        char *line = dm_xstrdup(p);
+        line[len] = '\0';
+        dm_str_cat(s, "- ");
+        compare__md_cell(s, line);
+        dm_str_cat(s, "\n");
+        free(line);
+        p += len + (p[len] == '\n');
+    }
+    dm_str_free(&mt);
 }
 
 static const char *compare__md_verdict(const compare_result *r)
@@ -256,13 +301,15 @@ static void compare__md_head(const compare_result *r, dm_str *s)
     size_t held = 0;
     for (size_t i = 0; i < r->n_items; i++)
         held += (size_t)r->items[i].machine_held;
-    if (held)
-        dm_str_printf(s, "\n> Machine: %s. Between two runs the machine alone may move times by "
+    if (held) {
+        dm_str_cat(s, "\n> Machine: ");
+        compare__md_cell(s, r->machine.reason ? r->machine.reason : "no change seen, but one run per "
+                         "side cannot tell the machine's between-run spread from the code");
+        dm_str_printf(s, ". Between two runs the machine alone may move times by "
                       "×%.2f..×%.2f, so %zu timing verdict%s stay INCONCLUSIVE: run "
                       "`dmbench compare --paired BASE_BIN NEW_BIN SWEEP` to decide them.\n",
-                      r->machine.reason ? r->machine.reason : "no change seen, but one run per "
-                      "side cannot tell the machine's between-run spread from the code",
                       r->machine.lo, r->machine.hi, held, held == 1 ? "" : "s");
+    }
 }
 
 /* "- added: ..." lines, at most 20 of a list. */
@@ -316,19 +363,25 @@ int compare_write_markdown_ex(const compare_result *r, const compare_md_desc *d,
 {
     size_t max = d->max_chars ? d->max_chars : COMPARE_MD_MAX;
     dm_str s = {0}, tail = {0};
+    dm_str machine = {0};
     compare__md_head(r, &s);
     compare__md_tail(r, &tail);
+    compare__md_machine(r, &machine);
+    if (s.len + machine.len + tail.len + 400 <= max)   /* under a tiny limit the rows come first */
+        dm_str_cat(&s, dm_str_get(&machine));
+    dm_str_free(&machine);
     size_t reserve = tail.len + 400, budget = max > reserve ? max - reserve : 0, n = 0, cut = 0;
     size_t n_pass = r->count[COMPARE_PASS], n_changed = r->n_items - n_pass;
     if (n_changed) {
-        dm_str_cat(&s, "\n| Configuration | Base | New | Ratio | 95% CI | Verdict | Note |\n"
-                       "|---|---|---|---|---|---|---|\n");
+        dm_str_cat(&s, "\n| Configuration | Base | New | Ratio | Change | 95% CI of ratio | Verdict | Note |\n"
+                       "|---|---:|---:|---:|---:|---:|---|---|\n");
         cut += compare__md_rows(r, 1, budget, &s, &n);
     } else if (r->n_items)
         dm_str_cat(&s, "\nNothing changed.\n");
     if (n_pass && !d->only_changed) {
         dm_str_printf(&s, "\n<details><summary>%zu PASS</summary>\n\n"
-                          "| Configuration | Base | New | Ratio | 95%% CI |\n|---|---|---|---|---|\n",
+                          "| Configuration | Base | New | Ratio | Change | 95%% CI of ratio |\n"
+                          "|---|---:|---:|---:|---:|---:|\n",
                       n_pass);
         cut += compare__md_rows(r, 0, budget, &s, &n);
         dm_str_cat(&s, "\n</details>\n");

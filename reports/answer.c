@@ -5,6 +5,7 @@
 
 #include "core/dm_error.h"
 
+#include <ctype.h>
 #include <math.h>
 #include <stdio.h>
 #include <stdlib.h>
@@ -262,10 +263,27 @@ static void w_knee(answer__w *w, const dm_run_result *run, const recommend_resul
     w_text(w, ".");
 }
 
+/* A scene without a frame time: why there is no answer, then its counters. */
+static void answer__untimed(answer__w *w, const dm_run_result *run, const char *scene, const char *why)
+{
+    dm_str s = {0};
+    dm_str_printf(&s, "%c%s.", toupper((unsigned char)why[0]), why + 1);
+    dm_str_cat(w->s, w->f == REPORT_ANSWER_HTML ? "<p class=\"pick\">" : "");
+    w_text(w, dm_str_get(&s));
+    dm_str_cat(w->s, w->f == REPORT_ANSWER_HTML ? "</p>\n" : "\n\n");
+    dm_str_free(&s);
+    report_counter_table(run, scene, w->f, w->s);
+}
+
 void report_answer_scene(const dm_run_result *run, const char *scene, report_answer_format f,
                          dm_str *out)
 {
     answer__w w = {out, f};
+    const char *why = report_untimed_reason(run, scene);
+    if (why) {
+        answer__untimed(&w, run, scene, why);
+        return;
+    }
     recommend_result r;
     report_recommend(run, scene, &r);
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "<p class=\"pick\">" : "");
@@ -303,6 +321,15 @@ void report_answer_terminal(const dm_run_result *run, dm_str *out)
         w_text(&w, dm_str_get(&l));
         dm_str_free(&l);
         w_text(&w, ": ");
+        const char *why = report_untimed_reason(run, scenes[i]);
+        if (why) {
+            w_text(&w, why);
+            w_text(&w, ".\n");
+            report_counter_table(run, scenes[i], REPORT_ANSWER_TEXT, &one);
+            dm_str_cat(out, dm_str_get(&one));
+            dm_str_free(&one);
+            continue;
+        }
         w_pick(&w, run, &r);
         w_text(&w, "\n  ");
         w_knee(&w, run, &r);

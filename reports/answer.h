@@ -6,6 +6,9 @@
  * unlit baseline, else fragment) and says the pick under the frame budget,
  * the knee and the best of each family, marking noisy and bimodal timings.
  *
+ * A scene without a frame time (a counters-only sweep) has no budget and no
+ * pick: its answer says why and shows its counters (report_counter_table).
+ *
  * The budget is the run's environment entry REPORT_BUDGET_KEY (ms; the
  * runner copies the sweep's quality.budget_ms, `dmbench report --budget-ms`
  * overrides it); absent or 0: each scene's recommend_default_budget().
@@ -44,7 +47,24 @@ size_t report_recommend(const dm_run_result *run, const char *scene, recommend_r
 void report_answer_scene(const dm_run_result *run, const char *scene, report_answer_format f,
                          dm_str *out);
 
-/* Every scene's TEXT answer, for the end of `dmbench run`. */
+/* Why the scene has no budget and no pick, as a sentence ending ": no budget
+ * or pick" ("no timing counter measured: …" for a counters-only run); NULL
+ * when one of its ok configurations has a frame time. */
+const char *report_untimed_reason(const dm_run_result *run, const char *scene);
+/* 1 when some scene of the run has a frame time (a budget and a pick). */
+int report_run_timed(const dm_run_result *run);
+
+/* Terminal tables are cut into blocks of at most this many columns. */
+#define REPORT_TERMINAL_WIDTH 100
+/* The scene's counters (deterministic ones: counts, instructions, ratios),
+ * a row per ok configuration labelled as in the scene's table, counts in
+ * grouped digits: an HTML table, a Markdown table or indented text that
+ * fits REPORT_TERMINAL_WIDTH.  Nothing when the scene has no such counter. */
+void report_counter_table(const dm_run_result *run, const char *scene, report_answer_format f,
+                          dm_str *out);
+
+/* Every scene's TEXT answer, for the end of `dmbench run`; a scene without
+ * a frame time says why and shows its counters instead. */
 void report_answer_terminal(const dm_run_result *run, dm_str *out);
 
 #endif

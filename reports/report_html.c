@@ -850,6 +850,11 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
     scene_name(s, run, scene);
     dm_str_cat(s, "</h3>\n");
     report_answer_scene(run, scene, REPORT_ANSWER_HTML, s);
+    if (report_untimed_reason(run, scene)) {   /* counters only: no front, the counters instead */
+        dm_str_cat(s, "</section>\n");
+        free(front);
+        return;
+    }
     dm_str_printf(s, "<div class=\"scroll\"><table class=\"answer front\" id=\"front-%zu\"><caption>"
                      "Front: best quality for its cost</caption><thead><tr><th>technique</th>%s"
                      "<th>median ms</th><th>95%% CI</th><th>%s</th><th>cost vs fastest lit</th>"
@@ -886,6 +891,17 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
 static void answer(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
 {
     report_metric m = report_metric_of_run(run);
+    if (!report_run_timed(run)) {
+        dm_str_cat(s, "<h2 id=\"answer\">Answer: what was measured</h2>\n<p class=\"const\">No timing "
+                      "counter was measured (the sweep's <code>counters:</code> have no WallTime), so "
+                      "there is no frame budget and no pick: each scene shows the counters it measured, "
+                      "per frame.</p>\n");
+        dm_str_cat(s, "<div class=\"answers\">\n");
+        for (size_t i = 0; i < ns; i++)
+            answer_table(s, run, scenes[i], i);
+        dm_str_cat(s, "</div>\n");
+        return;
+    }
     dm_str_printf(s, "<h2 id=\"answer\">Answer: what to use</h2>\n<p class=\"const\">Quality is "
                      "<b>%s</b> (%s) against the reference; two values closer than %g are the "
                      "same quality and the cheaper configuration wins.  Times are the median frame "

@@ -58,15 +58,19 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
     dm_str_cat(s, "\n\n");
     dm_str_free(&l);
     report_answer_scene(run, scene, REPORT_ANSWER_MD, s);
-    dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ",
-                  report_metric_label(report_metric_of_run(run)));
-    dm_str front = {0};
-    report__pareto_text(run, scene, &front);
-    cell(s, dm_str_get(&front));
-    dm_str_free(&front);
     report_metric m = report_metric_of_run(run);
-    dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI | PSNR | SSIM | %s | key |\n"
-                     "|---|---|---|---|---|---|---|\n", report_metric_label(m));
+    int timed = report_untimed_reason(run, scene) == NULL;
+    if (timed) {
+        dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ", report_metric_label(m));
+        dm_str front = {0};
+        report__pareto_text(run, scene, &front);
+        cell(s, dm_str_get(&front));
+        dm_str_free(&front);
+        dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI | PSNR | SSIM | %s | key |\n"
+                         "|---|---|---|---|---|---|---|\n", report_metric_label(m));
+    } else   /* counters only: the counters are above; quality and keys here */
+        dm_str_printf(s, "\nQuality against the reference:\n\n| configuration | PSNR | SSIM | %s | key |\n"
+                         "|---|---|---|---|---|\n", report_metric_label(m));
     size_t *rows, nr = report__scene_rows(run, scene, &rows);
     for (size_t i = 0; i < nr; i++) {
         const dm_config_result *c = &run->configs[rows[i]];
@@ -76,7 +80,9 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
         dm_str_cat(s, "| ");
         cell(s, dm_str_get(&label));
         dm_str_free(&label);
-        if (t) {
+        if (!timed) {
+            dm_str_cat(s, " |");
+        } else if (t) {
             dm_str mark = {0}, why = {0};
             dm_str_cat(s, " | ");
             report__ms_text(t->median, s);
@@ -188,7 +194,10 @@ int report_write_markdown(const dm_run_result *run, const char *path)
     dm_str_printf(&s, "\n- Pareto metric: %s (%s)", report_metric_name(report_metric_of_run(run)),
                   report_metric_label(report_metric_of_run(run)));
     dm_str_cat(&s, "\n- budget: ");
-    if (report_budget_ms(run) > 0)
+    if (!report_run_timed(run))
+        dm_str_cat(&s, "none: no timing counter measured, so no budget or pick (the counters are in "
+                       "each scene's table)");
+    else if (report_budget_ms(run) > 0)
         dm_str_printf(&s, "%g ms", report_budget_ms(run));
     else
         dm_str_cat(&s, "default per scene, a round number midway (log scale) between its fastest and "

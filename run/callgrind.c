@@ -4,22 +4,16 @@
 #include "core/dm_error.h"
 #include "core/dm_proc.h"
 #include "counters/counters.h"
-#include "run/measure.h"
 #include "techniques/user_technique.h"
 
 #include <dirent.h>
 #include <errno.h>
 #include <fcntl.h>
-#include <malloc.h>
 #include <math.h>
 #include <poll.h>
-#include <signal.h>
-#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-#include <sys/random.h>
 #include <sys/wait.h>
-#include <unistd.h>
 
 void callgrind_mark_unavailable(callgrind_count *out, const plan_config *cs, size_t n,
                                 const char *why)
@@ -671,173 +665,4 @@ int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, call
     free(g.tried);
     free(g.done);
     return rc;
-}
-
-/* ---- the child side --------------------------------------------------------- */
-
-static int cg__load_sweep(const char *source, sweep *s, dm_str *err)
-{
-    if (strcmp(source, "<default>") == 0 || strcmp(source, "<default --quick>") == 0) {
-        int quick = strcmp(source, "<default>") != 0;
-        return sweep_parse(sweep_default_text(quick), source, s, err);
-    }
-    return sweep_load(source, s, err);
-}
-
-/* Puts this process's malloc in a mode whose work does not depend on what
- * the process did before.  llvmpipe's tessellation path (Mesa 22.3) grows
- * its output arrays with one realloc per patch; on the brk heap a realloc
- * copies the block whenever its neighbour is in use, so how much a frame
- * copies depended on the heap's history (earlier configurations, a cold or
- * warm shader and map cache): 12-25 % spread in a frame's count.  From
- * CALLGRIND_MMAP_THRESHOLD up a block is mmapped and grows by mremap
- * (kernel work, not counted), and a heap top that is never padded or kept
- * leaves no spare room that would put a large block on the heap instead.
- * Fixing the threshold also stops glibc from raising it as blocks are
- * freed.  Measured in docs/counters.md ("Repeatability"). */
-static void cg__fixed_allocator(void)
-{
-    mallopt(M_MMAP_THRESHOLD, CALLGRIND_MMAP_THRESHOLD);
-    mallopt(M_TOP_PAD, 0);
-    mallopt(M_TRIM_THRESHOLD, CALLGRIND_MMAP_THRESHOLD);
-}
-
-static int cg__child(int argc, char **argv) __attribute__((noinline));
-
-/* Set in the counting child: arc4random_buf then returns a fixed stream. */
-static int cg__fixed_entropy;
-
-/* glibc's arc4random_buf, replaced for the whole process: the executable
- * exports this definition (cli/CMakeLists.txt), so every library's call
- * binds to it.  Outside the counting child it is the kernel's randomness,
- * as glibc's.  In the child it is a fixed stream: Mesa parses its driconf
- * files with expat when the GL context is created, and expat salts its
- * hash tables from arc4random_buf.  A new salt per process frees the
- * parser's blocks in another order, the driver's later blocks land at
- * other offsets in their page, and glibc's memcmp, which takes another
- * path when an operand is near a page end, counted up to 190 instructions
- * a frame more or less (software virtual texturing, docs/counters.md,
- * "Repeatability").  Nothing in the child needs unpredictable bytes. */
-void arc4random_buf(void *buf, size_t n)
-{
-    unsigned char *b = buf;
-    if (cg__fixed_entropy) {
-        uint64_t x = 0x9e3779b97f4a7c15u;
-        for (size_t i = 0; i < n; i++) {
-            x = x * 6364136223846793005u + 1442695040888963407u;
-            b[i] = (unsigned char)(x >> 56);
-        }
-        return;
-    }
-    while (n > 0) {
-        ssize_t r = getrandom(b, n, 0);
-        if (r < 0 && errno == EINTR)
-            continue;
-        if (r <= 0)
-            abort();   /* as glibc's: no randomness is not an error to return */
-        b += r;
-        n -= (size_t)r;
-    }
-}
-
-/* The counting child works on a stack that starts at the same offset in
- * its page in every process.  The stack main is handed starts below the
- * arguments and the environment, so it moves with their length (a longer
- * run directory, another key count, one more variable), and with it every
- * structure the driver compares on the stack: 1 670 115 and 1 670 171
- * instructions for one frame with environments 13 and 26 bytes apart
- * (docs/counters.md, "Repeatability").  Giving up the bytes above the next
- * page boundary puts every deeper frame at a fixed offset.  (A thread of
- * its own, with a new stack and malloc arena, was tried: the driver's
- * shader-cache thread then frees into that arena at its own pace, and
- * cold-cache counts spread more.) */
-int callgrind_child_main(int argc, char **argv)
-{
-    cg__fixed_allocator();
-    cg__fixed_entropy = 1;
-    char here = 0;
-    size_t off = (size_t)((uintptr_t)&here % CALLGRIND_STACK_ALIGN);
-    volatile char pad[off + 1];
-    pad[off] = here;
-    return cg__child(argc, argv) + pad[off];
-}
-
-/* The child's check that it measures what the run measures: the sweep file
- * (hash want) and each `--source PATH HASH` of argv[*a...] (advanced past
- * them) as loaded (loaded != 0) or, when loading failed, as on disk now.
- * Appends "FILE changed since the run started ..." to changed for each
- * that differs. */
-static void cg__sources(const char *path, const sweep *s, int loaded, const char *want, int argc,
-                        char **argv, int *a, dm_str *changed)
-{
-    char have[17] = "";
-    char *text = NULL;
-    size_t len = 0;
-    if (loaded)
-        dm_hex64(s->hash, have);
-    else if (path[0] != '<' && dm_read_file(path, &text, &len) == 0 && text)
-        dm_hex64(dm_fnv1a64(text, strlen(text), DM_FNV_SEED), have);
-    free(text);
-    if (have[0] && strcmp(have, want) != 0)
-        dm_str_printf(changed, "%s: the sweep file changed since the run started (hash %s, now %s)",
-                      path, want, have);
-    for (; *a + 2 < argc && strcmp(argv[*a], "--source") == 0; *a += 3) {
-        const char *file = argv[*a + 1];
-        uint64_t h = strtoull(argv[*a + 2], NULL, 16);
-        const technique_desc *t = loaded ? user_technique_by_path(file) : NULL;
-        if (t && t->source_hash == h)
-            continue;
-        dm_str one = {0};
-        if (user_technique_source_check(file, h, &one) != 0)
-            dm_str_printf(changed, "%s%s", changed->len ? "; " : "", dm_str_get(&one));
-        else if (t) {   /* loaded another text than the file holds now: changed twice */
-            char now[17];
-            dm_hex64(t->source_hash, now);
-            dm_str_printf(changed, "%s%s: the user technique's file changed while the run was "
-                          "going (source hash %s, read %s)", changed->len ? "; " : "", file,
-                          argv[*a + 2], now);
-        }
-        dm_str_free(&one);
-    }
-}
-
-static int cg__child(int argc, char **argv)
-{
-    if (argc < 3) {
-        fprintf(stderr, "usage: dmbench __instructions SWEEP HASH [--source PATH HASH]... KEY... "
-                "(run by dmbench itself)\n");
-        return 2;
-    }
-    sweep s = {0};
-    plan p = {0};
-    dm_str err = {0}, changed = {0};
-    int rc = cg__load_sweep(argv[1], &s, &err), a = 3;
-    cg__sources(argv[1], &s, rc == 0, argv[2], argc, argv, &a, &changed);
-    if (changed.len) {   /* one line: the run stops with it, nothing fails */
-        for (char *c = changed.buf; *c; c++)
-            *c = *c == '\n' ? ' ' : *c;
-        printf("C %s\n", dm_str_get(&changed));
-        fflush(stdout);
-        sweep_free(&s);
-        dm_str_free(&changed);
-        dm_str_free(&err);
-        return 3;
-    }
-    dm_str_free(&changed);
-    rc = rc ? rc : plan_build(&s, &p, &err);
-    plan_config *cs = dm_xcalloc((size_t)argc + 1, sizeof *cs);
-    size_t n = 0;
-    for (; rc == 0 && a < argc; a++)
-        for (size_t i = 0; i < p.n_configs; i++)
-            if (strcmp(p.configs[i].key, argv[a]) == 0)
-                cs[n++] = p.configs[i];
-    measure_job job = { .sweep = &s, .configs = cs, .n_configs = n, .report_fd = 1 };
-    rc = rc ? rc : measure_instructions(&job, CALLGRIND_FRAMES, CALLGRIND_SAMPLES, &err);
-    if (rc != 0)
-        fprintf(stderr, "dmbench __instructions: %s\n", dm_str_get(&err));
-    free(cs);
-    plan_free(&p);
-    sweep_free(&s);
-    dm_str_free(&err);
-    return rc ? 3 : 0;
 }

@@ -24,10 +24,10 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include "run/callgrind_count.h"
 #include "sweep/plan.h"
 #include "sweep/sweep.h"
 
-struct callgrind_count;
 
 typedef struct measure_job {
     const sweep *sweep;
@@ -40,7 +40,7 @@ typedef struct measure_job {
     uint64_t seed;
     int timer_partial;            /* GPUTime covers only part of the work */
     int report_fd;                /* -1: no progress lines */
-    const struct callgrind_count *instructions;   /* the Instructions pass (run/callgrind.h) */
+    const callgrind_count *instructions;   /* the Instructions pass (run/callgrind.h) */
     size_t n_instructions;        /* 0: Instructions not asked for */
 } measure_job;
 
@@ -48,42 +48,15 @@ typedef struct measure_job {
  * that fails (shader, GL error, unsupported) is committed as failed with its
  * reason; the function returns 0 unless the context, store or target could
  * not be set up (DM_ERR_*, message in err) or the store refuses a write
- * (DM_ERR_STORE: it stops at once, nothing later could be saved). */
+ * (DM_ERR_STORE: it stops at once, nothing later could be saved), or a
+ * user map or mesh changed since the run started (DM_ERR_ARG, after a
+ * "C WHAT CHANGED" line: run/inputs.h). */
 int measure_scene(const measure_job *job, dm_str *err);
-
-/* The Instructions pass (run/callgrind.h), run under Valgrind callgrind
- * started with --collect-atstart=no: per configuration prepare, warm up
- * (warmup_frames), then `samples` samples of `frames` frames, collection
- * on only around each sample and its closing glFinish, one dump "KEY.S"
- * per sample.  Reports "B KEY" and "I KEY ok|failed REASON" lines.  No
- * store, no timing, no images.  Returns 0 or DM_ERR_* (err) when the
- * context cannot be set up. */
-int measure_instructions(const measure_job *job, int frames, int samples, dm_str *err);
-
-/* The deterministic counters names[0..n_names) of configurations
- * cs[0..n) over one frame each (after one uncounted frame), in this
- * process (it creates and destroys its own GL context): the invocation
- * counts `dmbench predict` multiplies by per-invocation costs.  values is
- * n x n_names, row-major; NaN where a configuration cannot be prepared or
- * a counter is unavailable.  Returns 0 or DM_ERR_* (err) when the context
- * cannot be set up. */
-int measure_counts(const plan_config *cs, size_t n, const char *const *names, size_t n_names, double *values,
-                   dm_str *err);
 
 /* Pilot for --budget: prepares each configuration of the job and times one
  * warm frame (glFinish-fenced), reporting "P <key> <frame_ns> <counts>"
  * lines, the counts predict_counts' (run/predict.h) of that frame (NaN when
  * it cannot be prepared or the driver lacks a count).  Returns 0 or DM_ERR_* (err) on setup failure. */
 int measure_pilot(const measure_job *job, dm_str *err);
-
-/* Renders one configuration into a float image (w*h*4, row 0 top);
- * supersample >= 1 renders at that multiple and box-filters down.  A
- * virtual-textured configuration is first drawn until a frame loads no
- * page (at most 64 frames), so its image does not depend on earlier draws.
- * Used for quality references and `dmbench render`. */
-struct tech_renderer;
-int measure_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_params,
-                         int w, int h, int supersample, float **rgba, float **depth,
-                         dm_str *log);
 
 #endif

@@ -210,6 +210,58 @@ static const dm_fit_result *predict__any(const dm_fit_result *fits, size_t n, co
     return NULL;
 }
 
+size_t predict_variant_count(const predict_model *m, const char *variant)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < m->train.n_configs; i++) {
+        const dm_config_result *c = &m->train.configs[i];
+        char *v = c->ok ? fitting_variant(c->params, c->n_params) : NULL;
+        n += v && strcmp(v, variant) == 0;
+        free(v);
+    }
+    return n;
+}
+
+/* "the runs measured N configurations of variant 'v', too few to WHAT". */
+static char *predict__too_few(const predict_model *m, const char *variant, const char *what)
+{
+    size_t n = predict_variant_count(m, variant);
+    return dm_xasprintf("the runs measured %zu configuration%s of variant '%s', too few to %s", n,
+                        n == 1 ? "" : "s", variant, what);
+}
+
+/* Why the stage shares are missing (predict_result.part_why). */
+static char *predict__part_why(const predict_model *m, const char *variant)
+{
+    for (int s = 0; s < 3; s++)
+        if (!dm_run_has_counter(&m->train, predict__stages[s]) || !dm_run_has_counter(&m->train, "SamplesPassed"))
+            return dm_xasprintf("the runs lack the stage counters (%s, %s, %s and SamplesPassed in "
+                                "measure.counters)", predict__stages[0], predict__stages[1], predict__stages[2]);
+    for (int s = 0; s < 3; s++)
+        if (!predict_fit_of(m->stage[s], m->n_stage[s], variant))
+            return predict__too_few(m, variant, "fit its stage models");
+    return dm_xstrdup("the stage models of the variant do not cover this configuration (an axis or count "
+                      "they never saw vary)");
+}
+
+/* Why out has no WallTime or no interval around it (wall_why); et_fit is the
+ * time fit's held-out error, ei the Instructions' relative half-width. */
+static char *predict__wall_why(const predict_model *m, const predict_result *out, double et_fit, double ei)
+{
+    if (!out->wall_by)
+        return dm_run_has_counter(&m->train, "WallTime")
+               ? dm_xstrdup("no time fit: the runs' WallTime could not be fitted to their instructions")
+               : dm_xstrdup("the runs have no WallTime (add it to measure.counters)");
+    if (isfinite(out->wall_lo) && isfinite(out->wall_hi))
+        return NULL;
+    if (!isfinite(et_fit))
+        return dm_xasprintf("the %s fit has no held-out error (too few configurations to hold one out)",
+                            out->wall_by);
+    if (!isfinite(ei))
+        return dm_xstrdup("the Instructions have no interval");
+    return dm_xstrdup("a stage beyond the runs has a cost without a standard error");
+}
+
 int predict_config(const predict_model *m, const plan_config *pc, const double *counts, predict_result *out,
                    dm_str *why)
 {
@@ -231,6 +283,7 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
         predict__one(fi, &m->train, pc, &c, &instr, why);
     if (!isfinite(instr))
         return DM_ERR_UNKNOWN;
+    out->instr_by = "stage-instructions";
     /* By stage when the runs have the stage counters: each stage's costs
      * against its invocations; the frame is then their sum. */
     double ei = 2 * fi->cv_mape / 100, spread = 0;
@@ -252,11 +305,16 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
          * configurations of the variant, else each part's own error */
         const predict_heldout *h = predict_heldout_of(m, out->variant);
         instr = sum;
+        out->instr_by = "stage models summed";
         ei = h && h->n >= 3 && isfinite(h->cv_mape) ? 2 * h->cv_mape / 100 : isfinite(spread) ? spread / sum : ei;
     }
     out->instr = instr;
     out->instr_lo = instr * (1 - ei);
     out->instr_hi = instr * (1 + ei);
+    if (!isfinite(ei))
+        out->instr_why = predict__too_few(m, out->variant, "hold one out for an interval");
+    if (!(isfinite(sum) && sum > 0))
+        out->part_why = predict__part_why(m, out->variant);
     /* Frame time.  With the timed stage passes: each stage's time from
      * its part, at the price of an instruction that stage's own pass
      * measured.  Else from each stage's instructions fitted to the frame's
@@ -317,14 +375,20 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
         double et = sqrt(ei * ei + pow(2 * et_fit / 100, 2) + pow(PREDICT_RUN_SPREAD, 2) + ep * ep);
         out->wall_lo = fmax(0, out->wall_ns * (1 - et));   /* no frame takes less than nothing */
         out->wall_hi = out->wall_ns * (1 + et);
+        if (!isfinite(out->wall_hi))
+            out->wall_lo = NAN;   /* no half-known interval */
     }
+    out->wall_why = predict__wall_why(m, out, et_fit, ei);
     return 0;
 }
 
 void predict_result_free(predict_result *r)
 {
     free(r->variant);
-    r->variant = NULL;
+    free(r->instr_why);
+    free(r->part_why);
+    free(r->wall_why);
+    r->variant = r->instr_why = r->part_why = r->wall_why = NULL;
 }
 
 static void predict__free_fits(dm_fit_result *f, size_t n)

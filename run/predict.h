@@ -21,7 +21,7 @@
 #include "core/dm_util.h"
 #include "sweep/plan.h"
 
-/* The invocation counts a prediction reads, in this order (measure_counts
+/* The invocation counts a prediction reads, in this order (inproc_counts
  * or the pilot frame measure them for the configurations to predict). */
 #define PREDICT_N_COUNTS 7
 extern const char *const predict_counts[PREDICT_N_COUNTS];
@@ -70,6 +70,13 @@ typedef struct predict_result {
     const char *wall_by;     /* the way it was predicted: "stage times", "time-from-stages", ... */
     int beyond_stage;        /* the stage whose part is the most beyond the runs' largest, -1 = none is */
     double beyond;           /* that part over the largest the runs measured (> 1) */
+    /* For the writers: where the Instructions come from ("stage models
+     * summed" or "stage-instructions"), and in words why a value or an
+     * interval is missing (NULL: it is there; owned, predict_result_free). */
+    const char *instr_by;
+    char *instr_why;         /* no Instructions interval */
+    char *part_why;          /* no stage shares */
+    char *wall_why;          /* no WallTime (wall_by NULL), or no interval around it */
 } predict_result;
 
 /* Appends to out one line ("  KEY  SCENE: COUNTER unavailable (reason)")
@@ -103,10 +110,14 @@ int predict_heldout_prefers_one(const predict_model *m, const dm_fit_result *one
 int predict_has_stage_times(const predict_model *m);
 int predict_prefers_time_from_stages(const predict_model *m);
 
+/* How many ok configurations of the runs are of variant (fitting_variant). */
+size_t predict_variant_count(const predict_model *m, const char *variant);
+
 /* Predicts configuration pc, whose invocation counts are counts[0..
  * PREDICT_N_COUNTS) (NaN: not measured).  0 with *out filled, or
  * DM_ERR_UNKNOWN with why (the variant was never measured, or a value it
- * needs was never varied) and out->variant still set. */
+ * needs was never varied) and out->variant still set.  A bound that cannot
+ * be computed is NaN, with the reason in out->instr_why / wall_why. */
 int predict_config(const predict_model *m, const plan_config *pc, const double *counts, predict_result *out,
                    dm_str *why);
 

@@ -17,7 +17,7 @@ static const char *const axes__on_off[] = {"on", "off", NULL};
 static const char *const axes__dnormals[] = {"map", "height", NULL};
 static const char *const axes__spacing[] = {"equal", "fractional_even", "fractional_odd", NULL};
 static const char *const axes__lod[] = {"uniform", "distance", "cpu-per-patch", "object-points",
-                                        "object-cpu", "screen-edge", "flatness", NULL};
+                                        "object-cpu", "screen-edge", "flatness", "constant", NULL};
 static const char *const axes__cull[] = {"back", "off", NULL};
 static const char *const axes__atten[] = {"inverse-quadratic", "s1", "none", NULL};
 static const char *const axes__smooth[] = {"off", "phong", NULL};

@@ -688,6 +688,11 @@ static int maps__material(const char *value, maps_set *out, dm_str *err)
 
 int maps_material_check(const char *value, dm_str *err) { return maps__material(value, NULL, err); }
 
+int maps_material_paths(const char *value, char *paths[3], dm_str *err)
+{
+    return maps__material_split(value, paths, err);
+}
+
 int maps_material_load(const char *value, maps_set *out, dm_str *err)
 {
     return maps__material(value, out, err);

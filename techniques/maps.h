@@ -104,6 +104,10 @@ int maps_is_material(const char *value);
  * naming the key and the file appended to err (DM_ERR_NOMEM when a file's
  * pixels cannot be allocated: the machine's, not the file's). */
 int maps_material_check(const char *value, dm_str *err);
+/* The files of a material value: paths[0..2] = height, normal, albedo
+ * (malloc'd, NULL where absent).  Returns 0, or DM_ERR_ARG with why in err
+ * (every paths[k] NULL then). */
+int maps_material_paths(const char *value, char *paths[3], dm_str *err);
 /* Loads a material into a full-layout set; same codes and messages. */
 int maps_material_load(const char *value, maps_set *out, dm_str *err);
 /* sRGB transfer functions on [0,1]. */

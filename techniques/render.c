@@ -130,16 +130,6 @@ int tech_renderer_set_debug_view(tech_renderer *r, tech_debug_view view)
 
 /* ---- parameters --------------------------------------------------------- */
 
-/* Value of axis `name`: the given parameter, else the axis default. */
-const char *render__get(const render__cfg *c, const char *name)
-{
-    for (size_t i = 0; i < c->n; i++)
-        if (c->kv[i].key && strcmp(c->kv[i].key, name) == 0)
-            return c->kv[i].value;
-    const axis_info *a = axes_find(name);
-    return a ? a->def : NULL;
-}
-
 /* Validates every parameter; the technique may be a test-only one. */
 static int render__validate(const render__cfg *c, const technique_desc **tech, dm_str *log)
 {

@@ -55,7 +55,7 @@ typedef enum tech_debug_view {
                                     (LoopTrips, docs/counters.md) */
 } tech_debug_view;
 /* The binding the loop-trips view adds to; the counters library binds its
- * buffer there (run/measure.c checks that the two agree). */
+ * buffer there (run/mscene.c checks that the two agree). */
 #define TECH_LOOP_TRIPS_BINDING 7
 /* Sets the debug view of the items prepared from now on (prepared items
  * keep theirs; it selects a program variant, #define DEBUG_NORMALS, part of

@@ -11,6 +11,7 @@
 #include <string.h>
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+#include "techniques/axes.h"
 #include "techniques/cull.h"
 #include "techniques/lod_cpu.h"
 #include "techniques/render.h"
@@ -110,7 +111,16 @@ typedef struct render__cfg {
     ((arr) = dm_xrealloc((arr), ((n) + 1) * sizeof *(arr)), \
      memset(&(arr)[(n)], 0, sizeof *(arr)), (n)++)
 
-/* Value of axis `name`: the given parameter, else the axis default. */
-const char *render__get(const render__cfg *c, const char *name);
+/* Value of axis `name`: the given parameter, else the axis default.  Inline
+ * here, so render_textures.c reads parameters without calling back into
+ * render.c (no circle of files). */
+static inline const char *render__get(const render__cfg *c, const char *name)
+{
+    for (size_t i = 0; i < c->n; i++)
+        if (c->kv[i].key && strcmp(c->kv[i].key, name) == 0)
+            return c->kv[i].value;
+    const axis_info *a = axes_find(name);
+    return a ? a->def : NULL;
+}
 
 #endif

@@ -10,3 +10,7 @@ foreach(t options completion lists keys diff didyoumean)
 endforeach()
 add_test(NAME test_cli_install COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/install.sh ${CMAKE_BINARY_DIR})
 set_tests_properties(test_cli_install PROPERTIES TIMEOUT 300 LABELS cli)
+# `dmbench predict`'s table, --json and --csv on runs given exact
+# Instructions without Valgrind (tests/cli/predict_fixture.py; ~30 s).
+add_test(NAME test_cli_predict_json COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/cli/predict_json.sh)
+set_tests_properties(test_cli_predict_json PROPERTIES TIMEOUT 600 LABELS e2e ENVIRONMENT "${DM_TEST_ENV}")

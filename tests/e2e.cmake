@@ -43,3 +43,4 @@ set_tests_properties(test_user_technique_gate PROPERTIES TIMEOUT 1800 ENVIRONMEN
 # stage with a child (probe, measuring, Valgrind counting, drivers' run)
 # leave nothing running 5 s later (~1 min).
 dm_add_e2e(test_e2e_kill kill.sh)
+dm_add_e2e(test_e2e_counters_only counters_only.sh)

@@ -7,3 +7,6 @@ dm_add_unit(test_run_protocol test_run_protocol.c LIBS dm_protocol)
 # The Instructions pass's pure parts (run/callgrind.c): dump parsing and
 # the run's warning when a configuration's samples disagree.
 dm_add_unit(test_run_callgrind test_run_callgrind.c LIBS dm_run)
+# The user's map and mesh files held to one version a run (run/inputs.c):
+# collected once, touched passes, edited or removed named, --resume.
+dm_add_unit(test_run_inputs test_run_inputs.c LIBS dm_run)

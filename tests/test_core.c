@@ -18,6 +18,9 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
+#include "core/dm_table.h"
+
+#include <math.h>
 #include "core/dm_results.h"
 #include "core/dm_proc.h"
 
@@ -304,6 +307,39 @@ static void test_proc(void **state)
     assert_true(gone);
 }
 
+/* Grouped counts and a table that wraps at its width, repeating the labels. */
+static void test_table(void **state)
+{
+    (void)state;
+    static const struct { double v; const char *want; } counts[] = {
+        {0, "0"}, {640, "640"}, {999.6, "1\u202f000"}, {6144, "6\u202f144"},
+        {3169024, "3\u202f169\u202f024"}, {-12345, "\u221212\u202f345"}, {NAN, "\u2013"}};
+    for (size_t i = 0; i < sizeof counts / sizeof *counts; i++) {
+        dm_str s = {0};
+        dm_str_cat_count(&s, counts[i].v);
+        assert_string_equal(dm_str_get(&s), counts[i].want);
+        dm_str_free(&s);
+    }
+    assert_int_equal(dm_text_width("cube 480\u00d7270 \u00b7 pom"), 18);
+    dm_table t = {0};
+    dm_table_cell(&t, "cfg");
+    dm_table_cell(&t, "AAAA");
+    dm_table_cell(&t, "BBBB");
+    dm_table_row(&t);
+    dm_table_cell(&t, "p\u00d7");
+    dm_table_cell(&t, "1");
+    dm_table_cell(&t, "22");
+    dm_str s = {0};
+    dm_table_text(&t, "  ", 14, &s);   /* "  cfg  AAAA" is 11: BBBB goes to a second block */
+    assert_string_equal(dm_str_get(&s), "  cfg  AAAA\n  ---------\n  p\u00d7      1\n"
+                                        "\n  cfg  BBBB\n  ---------\n  p\u00d7     22\n");
+    dm_str_free(&s);
+    dm_table_text(&t, "", 100, &s);
+    assert_string_equal(dm_str_get(&s), "cfg  AAAA  BBBB\n---------------\np\u00d7      1    22\n");
+    dm_str_free(&s);
+    dm_table_free(&t);
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_error_names),
              cmocka_unit_test(test_exit_codes),
@@ -315,4 +351,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_input_file),
              cmocka_unit_test(test_results_kv),
              cmocka_unit_test(test_closest),
-             cmocka_unit_test(test_proc))
+             cmocka_unit_test(test_proc),
+             cmocka_unit_test(test_table))

@@ -175,7 +175,7 @@ static void test_experiment_axes(void **state)
     static const char *const check[][3] = {
         {"cull", "front", "invalid value 'front' for cull; expected one of: back, off"},
         {"lod", "cpu-per-patch", NULL},
-        {"lod", "cpu", "uniform, distance, cpu-per-patch, object-points, object-cpu, screen-edge, flatness"},
+        {"lod", "cpu", "uniform, distance, cpu-per-patch, object-points, object-cpu, screen-edge, flatness, constant"},
         {"tess_inner", "auto", NULL},
         {"tess_outer", "64", NULL},
         {"tess_outer", "0", "expected an integer in [1, 64] or 'auto'"},

@@ -22,6 +22,8 @@
 //                          at most u_tess_level
 //   LOD_FLATNESS           u_tess_level where the height sampled at a few
 //                          points varies by more than FLAT_EPS, else 1
+//   LOD_CONSTANT           every outer and inner level = u_tess_level, no
+//                          long-edge factor: S3's control stage, as S3 set it
 // LOD_UNIFORM: u_tess_outer / u_tess_inner replace the outer / inner
 // levels, S4's separate levels, unless TESS_OUTER_AUTO / TESS_INNER_AUTO
 // (their axis is 'auto': u_tess_level) compiles that out.
@@ -103,11 +105,16 @@ float range_along(vec2 a, vec2 b, int n)
     return (hi - lo) * abs(u_height_scale);
 }
 
-// Long-edge factor of the edge a-b (see the top comment).
+// Long-edge factor of the edge a-b (see the top comment); 1 under
+// LOD_CONSTANT, which takes u_tess_level as it is.
 float edge_factor(int a, int b)
 {
+#ifdef LOD_CONSTANT
+    return 1.0;
+#else
     float f = u_tess_edge_ref > 0.0 ? floor(distance(gi[a].pos, gi[b].pos) / u_tess_edge_ref + 0.01) : 1.0;
     return clamp(f, 1.0, 64.0);
+#endif
 }
 
 #ifdef LOD_USER

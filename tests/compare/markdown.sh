@@ -35,7 +35,7 @@ md_case() {
 }
 md_case 0 "^## dmbench compare: PASS — 0 regressed, 0 inconclusive, 0 improved, 6 passed of 6 configurations" "$OUT/a.json" "$OUT/b.json"
 md_case 0 "<details><summary>6 PASS</summary>" "$OUT/a.json" "$OUT/b.json"
-md_case 1 "| REGRESSION | SamplesPassed changed 2115 -&gt; 2116 |" "$OUT/a.json" "$OUT/changed.json"
+md_case 1 "| REGRESSION | SamplesPassed changed 2115 → 2116 |" "$OUT/a.json" "$OUT/changed.json"
 md_case 1 "<details><summary>5 PASS" "$OUT/a.json" "$OUT/changed.json"
 md_case 2 "^## dmbench compare: nothing compared" "$OUT/a.json" "$OUT/other.json"
 md_case 2 "no configuration in common" "$OUT/a.json" "$OUT/other.json"

@@ -54,10 +54,6 @@ ALLOWED = [
     ("reports", None,
      "report.c's report__* helpers are called by every writer, which report.c calls; "
      "to go with the one report model"),
-    ("run", {"callgrind.c", "measure.c"},
-     "the counting child's entry point in callgrind.c calls back into measure.c"),
-    ("techniques", {"render.c", "render_textures.c"},
-     "render_textures.c calls back into render.c through render__get"),
 ]
 
 NOT_ROOMS = {"tests", "bench", "build", "cmake", "scripts", "docs", "ci", "examples"}

@@ -20,41 +20,59 @@ else
 fi
 "$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest" > "$OUT/pred.txt" || {
   echo "FAIL: predict exited $?"; cat "$OUT/pred.txt"; exit 1; }
+"$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest" --json > "$OUT/pred.json" || {
+  echo "FAIL: predict --json exited $?"; exit 1; }
 cat "$OUT/pred.txt"
-python3 - "$OUT/pred.txt" "$OUT/new/latest/results.json" <<'PY' && pass=$((pass+1)) || fail=$((fail+1))
+# the table wraps at 100 columns: its continuation lines joined back
+python3 - "$OUT/pred.txt" <<'PY'
+import re, sys
+t = open(sys.argv[1]).read()
+t = re.sub(r"\n {6}(?=\S)", " ", t)                 # a variant's held-out line
+t = re.sub(r"\n {4}(?!stages summed)(?=\S)", " ", t)  # the WallTime held-out line
+open(sys.argv[1] + ".joined", "w").write(t)
+PY
+python3 - "$OUT/pred.json" "$OUT/new/latest/results.json" "$OUT/pred.txt.joined" <<'PY' && pass=$((pass+1)) || fail=$((fail+1))
 import json, re, sys
-lines = open(sys.argv[1]).read().splitlines()
+preds = json.load(open(sys.argv[1]))["predictions"]
 meas = {c["key"]: c for c in json.load(open(sys.argv[2]))["configs"]}
+unpred = open(sys.argv[3]).read()
 checked, bad = 0, []
-for l in lines[1:]:
-    f = l.split()
-    if l.startswith(" ") or len(f) < 4 or f[0] not in meas:
-        continue
-    c = meas[f[0]]
+for p in preds:
+    c = meas[p["key"]]
     t = c["params"]["technique"]
     m = c["counters"]["Instructions"]
     m = m.get("median", m.get("value"))
     if t == "phong":
-        bad.append(f"phong was predicted: {l}")
+        if p["predicted"] or "was never measured by the runs" not in p["reason"]:
+            bad.append(f"phong was predicted: {p}")
         continue
-    pred = float(re.search(r"(\S+) \[", l).group(1))   # Instructions, before its interval
+    if not p["predicted"]:
+        bad.append(f"{t}: not predicted: {p['reason']}")
+        continue
+    cs = p["counters"]
+    pred = cs["Instructions"]["value"]
     # the fitted runs have the stage counters: the sum of the stage models
-    sh = re.search(r"geometry +(\d+) % raster +(\d+) % fragment +(\d+) %", l)
-    if not sh or not 98 <= sum(int(x) for x in sh.groups()) <= 102:
-        bad.append(f"{t}: no stage shares adding up to 100 %: {l}")
-    # 160x160 is beyond the fitted 128x128: the line says how far, by stage
-    ex = re.search(r"\(extrapolated: (geometry|raster|fragment) ([\d.e+]+) x the largest the runs measured\)", l)
-    if not ex or not float(ex.group(2)) > 1:
-        bad.append(f"{t}: 160x160 not marked as beyond the runs: {l}")
+    parts = [cs[s].get("value") for s in ("GeometryInstructions", "RasterInstructions", "FragmentInstructions")]
+    if None in parts or cs["Instructions"]["model"] != "stage models summed" or abs(sum(parts) / pred - 1) > 1e-9:
+        bad.append(f"{t}: not the sum of the stage models: {cs}")
+    # 160x160 is beyond the fitted 128x128: the prediction says how far, by stage
+    ex = p.get("extrapolation")
+    if p["extrapolates"] is not True or not ex or not ex["factor"] > 1:
+        bad.append(f"{t}: 160x160 not marked as beyond the runs: {p}")
     err = pred / m - 1
     print(f"{t} {c['params'].get('steps', '')} {c['params']['resolution']}: predicted {pred:.0f}, "
           f"measured {m:.0f} ({100*err:+.2f} %)")
     checked += 1
     if abs(err) > 0.05:
         bad.append(f"{t}: {100*err:+.2f} % off")
-unpred = "\n".join(lines)
+    # the runs timed the stage passes: WallTime is the stage times' sum,
+    # with an interval around it
+    w = cs["WallTime"]
+    if w.get("model") != "stage times" or not isinstance(w.get("interval"), list) or \
+            not w["interval"][0] < w["value"] < w["interval"][1]:
+        bad.append(f"{t}: no WallTime by the stage times with its interval: {w}")
 if not re.search(r"variant 'phong[^']*' was never measured by the runs", unpred):
-    bad.append("phong is not listed as not predicted")
+    bad.append("the table does not list phong as not predicted")
 if checked != 3:
     bad.append(f"{checked} configurations checked, expected 3")
 # the held-out error of each measured variant, and which prediction is used
@@ -63,18 +81,14 @@ rows = re.findall(r"\n    (stages summed.*)", held[1]) if len(held) == 2 else []
 errs = [float(v) for r in rows for v in re.findall(r"([\d.]+) %", r)]
 if len(rows) != 2 or not all("(used)" in r for r in rows) or not errs or max(errs) > 5:
     bad.append(f"held-out errors of normal and pom missing, unmarked or above 5 %: {rows}")
-# the runs timed the stage passes: WallTime is the stage times' sum, and
-# every predicted line has a WallTime interval around it
 wt = re.search(r"held-out error of WallTime on the runs' configurations \(k-fold CV-MAPE\):\n  stage times summed "
                r"([\d.]+) % over (\d+) configurations \(used\); time-from-stages [\d.]+ %; "
                r"time-from-instructions [\d.]+ %", unpred)
 if not wt or int(wt.group(2)) < 3:
     bad.append("no WallTime held-out line with the stage times summed used")
-for l in lines[1:]:
-    w = re.search(r"WallTime (\S+) ms \[(\S+), (\S+)\]", l)
-    if l.split() and l.split()[0] in meas and "phong" not in l and not (
-            w and float(w.group(2)) < float(w.group(1)) < float(w.group(3))):
-        bad.append(f"no WallTime with its interval: {l}")
+for l in open(sys.argv[3].replace(".joined", "")).read().splitlines():
+    if len(l) > 100:
+        bad.append(f"a line over 100 columns: {l!r}")
 for b in bad:
     print("FAIL:", b)
 sys.exit(1 if bad else 0)
@@ -93,7 +107,7 @@ left = json.load(open(sys.argv[1]))["left_out"]
 # the interval is +-2 held-out errors of the way used: past 50 % its lower
 # bound is 0 by construction, and the runs' timings were too noisy to say
 # more than that it holds the prediction and never goes below 0
-used = re.search(r"(\S+) %[^;]*\(used\)", open(sys.argv[4]).read().split("held-out error of WallTime")[-1])
+used = re.search(r"(\S+) %[^;]*\(used\)", open(sys.argv[4] + ".joined").read().split("held-out error of WallTime")[-1])
 noisy = not used or float(used.group(1)) >= 50
 if noisy:
     print(f"the runs' held-out WallTime error is {used.group(1) if used else 'unknown'} %: too noisy to "

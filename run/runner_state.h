@@ -1,0 +1,86 @@
+/* runner_state.h — the state of one run in the parent process, shared by
+ * the files of the runner and by nothing else:
+ *
+ *   runner.c        the outline of a run (runner_run), its directory,
+ *                   store, environment record and end (fits, report);
+ *   runner_plan.c   what is decided before measuring: --budget (a stored
+ *                   cost model, else a pilot child) and --dry-run;
+ *   runner_child.c  the children and their supervision: the driver probe,
+ *                   the Instructions pass, the measuring children of each
+ *                   scene with their watchdog, and the progress lines.
+ *
+ * runner.c calls the other two, runner_plan.c calls runner_child.c, and
+ * runner_child.c calls neither.
+ */
+#ifndef RUN_RUNNER_STATE_H
+#define RUN_RUNNER_STATE_H
+
+#include <stddef.h>
+#include <stdint.h>
+#include <sys/types.h>
+
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+#include "run/callgrind.h"
+#include "run/runner.h"
+#include "store/store.h"
+#include "sweep/plan.h"
+#include "sweep/sweep.h"
+
+typedef struct runner {
+    const sweep *s;
+    const runner_opts *o;
+    plan p;
+    store *st;
+    char *root, *run_id, *run_dir, *store_path, *cache_dir;
+    dm_run_result env;         /* environment + timer of the run */
+    char **exts;               /* extensions the driver has (of those techniques need) */
+    size_t n_exts;
+    size_t done, total, failed;
+    int64_t t_start;
+    int64_t t_last;            /* the last progress line (ns) */
+    size_t eta_done;           /* configurations done at the end of the last burst, */
+    double eta_el;             /* and the seconds it took: the ETA's rate */
+    int64_t measured_ns;       /* time inside timed samples, all configurations */
+    int tty;
+    char *instr_why;           /* why Instructions cannot be counted here; NULL = it can */
+    callgrind_count *instr;    /* the Instructions pass (run/callgrind.h) */
+    size_t n_instr;
+    double instr_s;            /* wall time of that pass */
+    int lock_fd;               /* flock on <out>/dmbench.lock, -1 when none */
+    int futile;                /* measuring processes in a row that finished nothing */
+    dm_str stop;               /* why the run stopped before its end (store failure, ...) */
+} runner;
+
+/* ---- runner_child.c -------------------------------------------------------- */
+
+/* Runs the driver probe in a child: the environment record, the timer's
+ * calibration and the extensions techniques need, into r.  Returns 0, or
+ * DM_ERR_* with the reason in err. */
+int runner_child_probe(runner *r, dm_str *err);
+/* plan_filter_capabilities' callback: 1 when the probe found extension ext. */
+int runner_child_has_ext(const char *ext, void *user);
+/* Everything a child writes to fd until it closes or timeout_ms pass
+ * without a byte (caller frees). */
+char *runner_child_read_all(int fd, int timeout_ms);
+/* Forks a measuring child on configurations cs[0..n) (the --budget pilot
+ * when pilot != 0); its progress lines come on *fd.  Returns its pid, or
+ * -1. */
+pid_t runner_child_spawn(runner *r, const plan_config *cs, size_t n, int *fd, int pilot);
+/* The Instructions pass: counting children under Valgrind for every
+ * configuration still to do.  Returns 0, or DM_ERR_ARG with the file in
+ * err when a source, map or mesh changed since the run started. */
+int runner_child_instructions(runner *r, dm_str *err);
+/* Measures every scene, a child at a time with its watchdog, until one
+ * stops the run (0, or its code with the reason in r->stop). */
+int runner_child_scenes(runner *r);
+
+/* ---- runner_plan.c ---------------------------------------------------------- */
+
+/* --budget: leaves out the configurations a stored cost model (else a
+ * pilot frame) predicts would not fit in the time budget. */
+void runner_plan_budget(runner *r);
+/* --dry-run: prints the plan, its predicted time, and measures nothing. */
+void runner_plan_dry_run(runner *r);
+
+#endif
