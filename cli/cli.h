@@ -1,27 +1,29 @@
-/* cli.h — the commands of the dmbench command line.
+/* cli.h — what every command of the dmbench command line shares: the
+ * command row, the option parser driven by it, help and error messages.
  *
- * The command table of cli/commands.c lists every command: its name, its
- * function, a one-line summary, the positional synopsis, a description and
- * its option table (options.h).  main() dispatches through it, and help,
- * `dmbench help CMD`, the man page and the bash/zsh completions are
- * generated from it, so none of them can drift from what the parser takes.
- * Each command lives in its own cli/cmd_<name>.c with its option table and
- * begins by calling cli_parse, which fills its args struct from the table.
+ * The command table (commands.h, commands.c) lists every command: its name,
+ * its function, a one-line summary, the positional synopsis, a description
+ * and its option table (options.h).  main() dispatches through it, and
+ * help, `dmbench help CMD`, the man page and the bash/zsh completions
+ * (gen.h) are generated from it, so none of them can drift from what the
+ * parser takes.  The table calls the commands and the commands call only
+ * this header's functions (cli.c), never the table: a command gets its own
+ * row as `self` and hands it to cli_parse.
  *
  * Adding a command `dmbench foo`:
  *   1. cli/cmd_foo.c: `typedef struct foo_args {...} foo_args;`, the table
  *      `const cli_option cli_foo_options[] = { { .name = "out", .kind =
  *      CLI_OPT_STRING, .offset = offsetof(foo_args, out), .value_name =
  *      "DIR", .help = "..." }, ..., CLI_OPT_END };` and
- *          int cli_foo(int argc, char **argv)
+ *          int cli_foo(const cli_command *self, int argc, char **argv)
  *          {
  *              foo_args a = {0};
- *              int rc = cli_parse(argc, argv, &a, &argc);
+ *              int rc = cli_parse(self, argc, argv, &a, &argc);
  *              if (rc >= 0)
  *                  return rc;
  *              ... argv[0..argc) are now the positional arguments ...
- *   2. Its declarations below, a row in the table of cli/commands.c, and
- *      cmd_foo.c in cli/CMakeLists.txt.
+ *   2. Its declarations in commands.h, a row in the table of
+ *      cli/commands.c, and cmd_foo.c in cli/CMakeLists.txt.
  *   3. Its options in the expected lists of tests/cli/options.sh.
  * Value checks beyond the kinds go in a cli_opt_parse_fn beside the table.
  * A command returns a dm_exit code (core/dm_exit.h); errors are printed as
@@ -33,12 +35,15 @@
 #include <stddef.h>
 #include "cli/options.h"
 
-/* argv[0] is the command name.  Returns a dm_exit code. */
-typedef int (*cli_command_fn)(int argc, char **argv);
+typedef struct cli_command cli_command;
+
+/* self is the command's row of the table; argv[0] is the command name.
+ * Returns a dm_exit code. */
+typedef int (*cli_command_fn)(const cli_command *self, int argc, char **argv);
 
 enum { CLI_CMD_HIDDEN = 1 };   /* not in help, man page or completion */
 
-typedef struct cli_command {
+struct cli_command {
     const char *name;
     cli_command_fn fn;
     const cli_option *options;    /* ends with CLI_OPT_END; NULL for none */
@@ -47,23 +52,10 @@ typedef struct cli_command {
     const char *description;      /* more text for help and the man page, or NULL */
     const char *const *pos_choices;/* first positional's choices (completion), or NULL */
     unsigned flags;
-} cli_command;
+};
 
 #include "core/dm_util.h"
 
-int cli_run(int argc, char **argv);
-int cli_report(int argc, char **argv);
-int cli_fit(int argc, char **argv);
-int cli_predict(int argc, char **argv);
-extern const cli_option cli_predict_options[];
-int cli_compare(int argc, char **argv);
-int cli_baseline(int argc, char **argv);
-int cli_merge(int argc, char **argv);
-int cli_list(int argc, char **argv);
-int cli_info(int argc, char **argv);
-int cli_render(int argc, char **argv);
-int cli_diff(int argc, char **argv);
-int cli_drivers(int argc, char **argv);
 /* `dmbench drivers` on sweep_path (NULL: the default sweep) with --drivers
  * list (NULL: the sweep's `drivers:`, else every installed driver); `run`
  * calls it for a sweep with `drivers:`.  Its runs have CLI_DRIVERS_CHILD set. */
@@ -75,38 +67,21 @@ int cli_drivers_main(const char *sweep_path, const char *list, const char *out, 
  * with the reason); returns the worst exit status of the plans. */
 struct sweep;
 int cli_drivers_dry_run(const char *sweep_path, const struct sweep *s, const char *out);
-int cli_view(int argc, char **argv);
-int cli_slurm(int argc, char **argv);
-int cli_export(int argc, char **argv);
-int cli_history(int argc, char **argv);
-extern const cli_option cli_run_options[], cli_report_options[], cli_fit_options[],
-    cli_compare_options[], cli_baseline_options[], cli_list_options[], cli_info_options[],
-    cli_render_options[], cli_diff_options[], cli_drivers_options[], cli_view_options[], cli_merge_options[], cli_slurm_options[],
-    cli_export_options[], cli_history_options[];
-extern const char *const cli_list_lists[], *const cli_baseline_actions[], *const cli_export_formats[];
+/* `dmbench merge OUT DIR...` (slurm --collect calls it too): merges the
+ * runs of the n run directories dirs into OUT; allow_missing as
+ * --allow-missing.  Returns a dm_exit code. */
+int cli_merge_dirs(const char *out, char **dirs, int n, int allow_missing);
 
-/* Parses the options of command argv[0] (from its table) into args, which
- * the caller zeroed.  Returns -1 to go on, with the positional arguments
- * moved to argv[0..*n_pos); DM_EXIT_OK after printing --help; DM_EXIT_USAGE
- * after printing an error. */
-int cli_parse(int argc, char **argv, void *args, int *n_pos);
+/* Parses the options of command self (from its table) into args, which
+ * the caller zeroed; argv[0] is the command's name.  Returns -1 to go on,
+ * with the positional arguments moved to argv[0..*n_pos); DM_EXIT_OK after
+ * printing --help; DM_EXIT_USAGE after printing an error. */
+int cli_parse(const cli_command *self, int argc, char **argv, void *args, int *n_pos);
 
-/* The command table (commands.c), in help order, hidden ones included. */
-size_t cli_commands_count(void);
-const cli_command *cli_commands_at(size_t i);
-/* The command called name, or NULL. */
-const cli_command *cli_commands_find(const char *name);
-/* Runs `dmbench argv[1] ...`; returns the process exit code. */
-int cli_main(int argc, char **argv);
 /* `dmbench CMD --help` of one command, to f. */
 void cli_command_help(const cli_command *c, FILE *f);
 /* The version line: "dmbench 0.1.0 (git <rev>)". */
 const char *cli_version(void);
-
-/* Generated documents (gen.c): the man page and completion scripts. */
-void cli_gen_man(FILE *f);
-/* shell: "bash" or "zsh"; DM_ERR_ARG for another. */
-int cli_gen_completion(const char *shell, FILE *f);
 
 /* Prints "dmbench: error: <msg>" (control bytes as '?') and returns DM_EXIT_USAGE. */
 int cli_usage_error(const char *fmt, ...) __attribute__((format(printf, 1, 2)));

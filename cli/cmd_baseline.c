@@ -69,10 +69,10 @@ static int baseline__show(const char *store, dm_str *err)
 
 /* `dmbench baseline accept RUN --reason TEXT | show`.  Exit 2 when the
  * store or the run cannot be used, 4 when the store is damaged or newer. */
-int cli_baseline(int argc, char **argv)
+int cli_baseline(const cli_command *self, int argc, char **argv)
 {
     baseline_args args = {0}, *a = &args;
-    int rc = cli_parse(argc, argv, a, &argc);
+    int rc = cli_parse(self, argc, argv, a, &argc);
     if (rc < 0 && argc < 1)
         rc = cli_usage_error("usage: dmbench baseline accept RUN --reason TEXT [--store FILE] | "
                              "baseline show [--store FILE]");

@@ -191,11 +191,11 @@ const cli_option cli_compare_options[] = {
     CLI_OPT_END
 };
 
-static int cli__from_store(const cli_side *s) { return s->baseline || s->run || s->tag; }
+static int compare__from_store(const cli_side *s) { return s->baseline || s->run || s->tag; }
 
 /* Loads one side from its store options or from path (a comma-separated
  * list pools several runs; their number into *n_runs). */
-static int cli__load_side(const cli_compare_opts *o, const cli_side *s, const char *path,
+static int compare__load_side(const cli_compare_opts *o, const cli_side *s, const char *path,
                           const char *sweep, dm_run_result *out, size_t *n_runs, dm_str *err)
 {
     const char *store = s->store ? s->store : o->store ? o->store : CLI_DEFAULT_STORE;
@@ -220,7 +220,7 @@ static int cli__load_side(const cli_compare_opts *o, const cli_side *s, const ch
 /* Several runs on one side only: the other side's between-run spread
  * cannot be estimated, so the comparison could not say more than one run
  * a side does. */
-static int cli__check_replicas(cli_compare_opts *o, dm_str *err)
+static int compare__check_replicas(cli_compare_opts *o, dm_str *err)
 {
     size_t b = o->n_runs[0] ? o->n_runs[0] : 1, n = o->n_runs[1] ? o->n_runs[1] : 1;
     if ((b > 1) != (n > 1)) {
@@ -234,14 +234,14 @@ static int cli__check_replicas(cli_compare_opts *o, dm_str *err)
 
 /* Both sides (NEW first: --baseline picks the baseline of NEW's sweep);
  * each side not taken from a store takes the next positional path. */
-static int cli__load_sides(cli_compare_opts *o, dm_run_result *base, dm_run_result *new_, dm_str *err)
+static int compare__load_sides(cli_compare_opts *o, dm_run_result *base, dm_run_result *new_, dm_str *err)
 {
     if (o->paired[0]) {
         compare_paired_desc pd = { .base_binary = o->paired[0], .new_binary = o->paired[1],
                                    .sweep_path = o->paired[2], .rounds = o->rounds, .quiet = o->quiet };
         return compare_paired_run(&pd, base, new_, err);
     }
-    int base_pos = !cli__from_store(&o->base), new_pos = !cli__from_store(&o->new_);
+    int base_pos = !compare__from_store(&o->base), new_pos = !compare__from_store(&o->new_);
     if (o->n_positional != base_pos + new_pos) {
         dm_str_printf(err, "compare: expected %d path%s (BASE from %s, NEW from %s), got %d; "
                       "usage: dmbench compare BASE NEW", base_pos + new_pos,
@@ -249,15 +249,15 @@ static int cli__load_sides(cli_compare_opts *o, dm_run_result *base, dm_run_resu
                       new_pos ? "a path" : "the store", o->n_positional);
         return DM_ERR_ARG;
     }
-    int rc = cli__load_side(o, &o->new_, new_pos ? o->positional[base_pos] : NULL, NULL, new_,
+    int rc = compare__load_side(o, &o->new_, new_pos ? o->positional[base_pos] : NULL, NULL, new_,
                             &o->n_runs[1], err);
     if (rc == 0)
-        rc = cli__load_side(o, &o->base, base_pos ? o->positional[0] : NULL, new_->sweep, base,
+        rc = compare__load_side(o, &o->base, base_pos ? o->positional[0] : NULL, new_->sweep, base,
                             &o->n_runs[0], err);
-    return rc ? rc : cli__check_replicas(o, err);
+    return rc ? rc : compare__check_replicas(o, err);
 }
 
-static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
+static int compare__outputs(const cli_compare_opts *o, const compare_result *r)
 {
     compare_md_desc md = { .only_changed = o->only_changed };
     int e = o->markdown ? compare_write_markdown_ex(r, &md, o->markdown) : 0;
@@ -274,7 +274,7 @@ static int cli__outputs(const cli_compare_opts *o, const compare_result *r)
 /* Prints the error (and writes it as the Markdown report, so a CI step
  * that posts the file always finds one), frees err, returns the exit code
  * of e (cli_error): 4 for a damaged or newer store, 2 otherwise. */
-static int cli__compare_fail(const cli_compare_opts *o, const compare_result *r, int e,
+static int compare__compare_fail(const cli_compare_opts *o, const compare_result *r, int e,
                              dm_str *err)
 {
     int rc = cli_error(e, "%s", dm_str_get(err));
@@ -287,7 +287,7 @@ static int cli__compare_fail(const cli_compare_opts *o, const compare_result *r,
 /* --rounds that can reach a timing verdict (compare_paired_min_rounds at
  * the --alpha given), unless --counters-only; and the default raised to
  * that minimum.  -1 to go on, else the exit code (2). */
-static int cli__check_rounds(cli_compare_opts *o)
+static int compare__check_rounds(cli_compare_opts *o)
 {
     int min = compare_paired_min_rounds(o->d.alpha);
     if (o->rounds && !o->paired[0])
@@ -302,18 +302,18 @@ static int cli__check_rounds(cli_compare_opts *o)
     return -1;
 }
 
-static int cli__builtin_technique(const char *name) { return technique_find(name) != NULL; }
+static int compare__builtin_technique(const char *name) { return technique_find(name) != NULL; }
 
 /* `dmbench compare`: both sides, the comparison, its text and files;
  * the exit code of the verdicts (compare_exit_code). */
-int cli_compare(int argc, char **argv)
+int cli_compare(const cli_command *self, int argc, char **argv)
 {
     cli_compare_opts o = {0};
-    int rc = cli_parse(argc, argv, &o, &argc);
+    int rc = cli_parse(self, argc, argv, &o, &argc);
     o.positional = argv;
     o.n_positional = argc;
     o.d.paired = o.paired[0] != NULL;   /* pooled minimum times (compare.h) */
-    o.d.builtin_technique = cli__builtin_technique;   /* a user's edited GLSL file: paired */
+    o.d.builtin_technique = compare__builtin_technique;   /* a user's edited GLSL file: paired */
     if (rc < 0 && argc > 2)
         rc = cli_usage_error("compare: too many arguments ('%s'): expected BASE NEW", argv[2]);
     dm_run_result base = {0}, new_ = {0};
@@ -321,10 +321,10 @@ int cli_compare(int argc, char **argv)
     dm_str err = {0};
     if (rc < 0 && o.paired[0] && o.n_positional)
         rc = cli_usage_error("compare: --paired takes no BASE/NEW paths ('%s')", o.positional[0]);
-    rc = rc < 0 ? cli__check_rounds(&o) : rc;
+    rc = rc < 0 ? compare__check_rounds(&o) : rc;
     int e = 0;
-    if (rc < 0 && (e = cli__load_sides(&o, &base, &new_, &err)) != 0)
-        rc = cli__compare_fail(&o, NULL, e, &err);
+    if (rc < 0 && (e = compare__load_sides(&o, &base, &new_, &err)) != 0)
+        rc = compare__compare_fail(&o, NULL, e, &err);
     if (rc < 0) {
         int c = compare_runs(&base, &new_, &o.d, &r, &err);
         for (size_t i = 0; i < base.n_warnings + new_.n_warnings && o.paired[0]; i++)
@@ -335,13 +335,13 @@ int cli_compare(int argc, char **argv)
         if (c != 0) {
             for (size_t i = 0; i < r.n_env_diffs; i++)
                 fprintf(stderr, "  %s\n", r.env_diffs[i]);
-            rc = cli__compare_fail(&o, &r, c, &err);
+            rc = compare__compare_fail(&o, &r, c, &err);
         } else {
             for (size_t i = 0; i < r.n_warnings; i++)
                 fprintf(stderr, "dmbench: warning: %s\n", r.warnings[i]);
             if (!o.quiet)
                 compare_write_text(&r, stdout);
-            rc = cli__outputs(&o, &r);
+            rc = compare__outputs(&o, &r);
             rc = rc ? rc : compare_exit_code(&r);
         }
     }

@@ -131,10 +131,10 @@ static int diff__load(const char *path, img *im)
  * 4 for the machine: images too large for the memory it may use, a disk
  * that refuses the map (full, ulimit -f), which is never left half written.
  * Paths reach the terminal with their control bytes as '?'. */
-int cli_diff(int argc, char **argv)
+int cli_diff(const cli_command *self, int argc, char **argv)
 {
     diff_args a = {0};
-    int rc = cli_parse(argc, argv, &a, &argc);
+    int rc = cli_parse(self, argc, argv, &a, &argc);
     if (rc >= 0)
         return rc;
     if (argc != 2)

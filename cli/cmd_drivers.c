@@ -176,10 +176,10 @@ static int drivers__sweep(const char *path, sweep *s)
     return rc;
 }
 
-int cli_drivers(int argc, char **argv)
+int cli_drivers(const cli_command *self, int argc, char **argv)
 {
     drivers_args a = {0};
-    int rc = cli_parse(argc, argv, &a, &argc);
+    int rc = cli_parse(self, argc, argv, &a, &argc);
     if (rc >= 0)
         return rc;
     if (argc > 1)

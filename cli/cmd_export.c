@@ -34,9 +34,9 @@ const cli_option cli_export_options[] = {
 };
 
 /* Positional RUN and the required --format; returns -1 to go on or an exit code. */
-static int export__options(int argc, char **argv, export__opts *o)
+static int export__options(const cli_command *self, int argc, char **argv, export__opts *o)
 {
-    int rc = cli_parse(argc, argv, o, &argc);
+    int rc = cli_parse(self, argc, argv, o, &argc);
     if (rc >= 0)
         return rc;
     if (argc > 1)
@@ -67,10 +67,10 @@ static int export__bad_format(const char *name)
     return rc;
 }
 
-int cli_export(int argc, char **argv)
+int cli_export(const cli_command *self, int argc, char **argv)
 {
     export__opts o = {0};
-    int rc = export__options(argc, argv, &o);
+    int rc = export__options(self, argc, argv, &o);
     const export_format *f = rc < 0 ? export_find(o.format) : NULL;
     if (rc < 0 && !f)
         rc = export__bad_format(o.format);

@@ -206,10 +206,10 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
     return rc;
 }
 
-int cli_fit(int argc, char **argv)
+int cli_fit(const cli_command *self, int argc, char **argv)
 {
     fit_args a = {0};
-    int rc = cli_parse(argc, argv, &a, &argc);
+    int rc = cli_parse(self, argc, argv, &a, &argc);
     if (rc < 0)
         rc = fit__check(&a, argc, argv);
     if (rc >= 0)

@@ -38,9 +38,9 @@ const cli_option cli_history_options[] = {
 };
 
 /* Options, then the KEYs; returns -1 to go on or an exit code. */
-static int history__options(int argc, char **argv, history__opts *o)
+static int history__options(const cli_command *self, int argc, char **argv, history__opts *o)
 {
-    int rc = cli_parse(argc, argv, o, &argc);
+    int rc = cli_parse(self, argc, argv, o, &argc);
     if (rc >= 0)
         return rc;
     if (argc > HISTORY_MAX_KEYS)
@@ -154,10 +154,10 @@ static int history__known(const dm_run_result *run, const char *opt, const char 
     return rc;
 }
 
-int cli_history(int argc, char **argv)
+int cli_history(const cli_command *self, int argc, char **argv)
 {
     history__opts o = {0};
-    int rc = history__options(argc, argv, &o);
+    int rc = history__options(self, argc, argv, &o);
     store *st = NULL;
     dm_run_result run = {0};
     char *fp = NULL;

@@ -328,10 +328,10 @@ static int list__user_techniques(int argc, char **argv)
 }
 
 /* `dmbench list WHAT`: one registry's list as text or JSON. */
-int cli_list(int argc, char **argv)
+int cli_list(const cli_command *self, int argc, char **argv)
 {
     list_args args = {0}, *a = &args;
-    int rc = cli_parse(argc, argv, a, &argc);
+    int rc = cli_parse(self, argc, argv, a, &argc);
     if (rc < 0 && argc == 0) {
         dm_str msg = {0};
         dm_str_cat(&msg, "list: which list? ");

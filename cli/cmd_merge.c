@@ -163,18 +163,21 @@ static int merge__check_missing(merge_state *m, int allow_missing)
     return rc;
 }
 
-int cli_merge(int argc, char **argv)
+int cli_merge(const cli_command *self, int argc, char **argv)
 {
     merge_args args = {0};
-    int rc = cli_parse(argc, argv, &args, &argc);
+    int rc = cli_parse(self, argc, argv, &args, &argc);
     if (rc >= 0)
         return rc;
     if (argc < 2)
         return cli_usage_error("usage: dmbench merge OUT DIR... [--allow-missing]   (DIR: run "
                                "directories of shards, e.g. results/s1/latest)");
-    const char *out = argv[0];
-    char **dirs = argv + 1;
-    int n = argc - 1, allow_missing = args.allow_missing;
+    return cli_merge_dirs(argv[0], argv + 1, argc - 1, args.allow_missing);
+}
+
+int cli_merge_dirs(const char *out, char **dirs, int n, int allow_missing)
+{
+    int rc = -1;
     merge_state m = {0};
     for (int i = 0; rc < 0 && i < n; i++) {
         dm_run_result r = {0};

@@ -546,10 +546,10 @@ static int predict__load(const char *from, dm_run_result **runs, char ***dirs, s
     return rc ? rc : -1;
 }
 
-int cli_predict(int argc, char **argv)
+int cli_predict(const cli_command *self, int argc, char **argv)
 {
     predict_args a = {0};
-    int rc = cli_parse(argc, argv, &a, &argc);
+    int rc = cli_parse(self, argc, argv, &a, &argc);
     if (rc < 0 && argc != 1)
         rc = cli_usage_error("predict: give one sweep file (the configurations to predict)");
     if (rc < 0 && a.json && a.csv)

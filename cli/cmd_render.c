@@ -38,10 +38,10 @@ const cli_option cli_render_options[] = {
 
 /* `dmbench render KEY=VALUE... --png FILE`: one image of one
  * configuration; exit 1 when it cannot be drawn, 2 for bad input. */
-int cli_render(int argc, char **argv)
+int cli_render(const cli_command *self, int argc, char **argv)
 {
     render_args args = {0}, *a = &args;
-    int rc = cli_parse(argc, argv, a, &argc);
+    int rc = cli_parse(self, argc, argv, a, &argc);
     dm_kv *kv = NULL;
     size_t n = 0;
     const char *out = a->out;

@@ -72,10 +72,10 @@ static int report__locate_run(const char *dir, char **store_path, char **run_id)
  * Pareto metric the run recorded (for these files only; the store keeps it);
  * --flip-ppd recomputes FLIP at another viewing condition (likewise);
  * --out writes them into another directory (created) instead of the run's. */
-int cli_report(int argc, char **argv)
+int cli_report(const cli_command *self, int argc, char **argv)
 {
     report_args args = {0};
-    int rc = cli_parse(argc, argv, &args, &argc);
+    int rc = cli_parse(self, argc, argv, &args, &argc);
     if (rc >= 0)
         return rc;
     const char *metric = args.metric, *out = args.out;

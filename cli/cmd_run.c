@@ -81,10 +81,10 @@ const cli_option cli_run_options[] = {
 /* `dmbench run [SWEEP.yaml]`: loads the sweep (or the embedded default),
  * runs it and prints where the report is.  Exit 2 for a bad sweep or
  * option, else the runner's error mapped by dm_exit_from_error. */
-int cli_run(int argc, char **argv)
+int cli_run(const cli_command *self, int argc, char **argv)
 {
     run_args args = {0}, *a = &args;
-    int rc = cli_parse(argc, argv, a, &argc);
+    int rc = cli_parse(self, argc, argv, a, &argc);
     if (rc < 0 && argc > 1)
         rc = cli_usage_error("run: only one sweep file may be given ('%s' and '%s')", argv[0], argv[1]);
     if (rc >= 0)

@@ -45,9 +45,9 @@ const cli_option cli_slurm_options[] = {
     CLI_OPT_END
 };
 
-/* Parses slurm's options into a: options, then [SWEEP], then "--" and the
+/* Parses slurm's options (self: its row of the command table) into a: options, then [SWEEP], then "--" and the
  * arguments for sbatch as they are.  Returns -1 to go on or an exit code. */
-static int slurm__args(int argc, char **argv, slurm_args *a)
+static int slurm__args(const cli_command *self, int argc, char **argv, slurm_args *a)
 {
     int d = 1;
     while (d < argc && strcmp(argv[d], "--") != 0)
@@ -56,7 +56,7 @@ static int slurm__args(int argc, char **argv, slurm_args *a)
         a->extra = argv + d + 1;
         a->n_extra = argc - d - 1;
     }
-    int n = d, rc = cli_parse(d, argv, a, &n);
+    int n = d, rc = cli_parse(self, d, argv, a, &n);
     if (rc >= 0)
         return rc;
     if (n > 1)
@@ -310,29 +310,22 @@ static int slurm__collect(const slurm_args *a)
         dm_str_free(&state);
     }
     int rc = 1;
-    if (failed)
-        argv[argc++] = "--allow-missing";
-    /* cli_merge's parser reorders its argv: it gets a copy, ours is freed */
-    char **margv = dm_xcalloc((size_t)argc + 1, sizeof *margv);
-    memcpy(margv, argv, (size_t)argc * sizeof *argv);
     if (failed < a->shards)
-        rc = cli_merge(argc, margv);
-    free(margv);
+        rc = cli_merge_dirs(argv[1], argv + 2, argc - 2, failed > 0);
     if (failed)
         fprintf(stderr, "dmbench: slurm: %d of %d shards failed%s; re-submit them with the same "
                 "dmbench slurm command plus --resume\n", failed, a->shards,
                 failed < a->shards ? " (merged the others)" : "");
     for (int i = 1; i < argc; i++)
-        if (strcmp(argv[i], "--allow-missing") != 0)
-            free(argv[i]);
+        free(argv[i]);
     free(argv);
     return failed ? 1 : rc;
 }
 
-int cli_slurm(int argc, char **argv)
+int cli_slurm(const cli_command *self, int argc, char **argv)
 {
     slurm_args a = {0};
-    int rc = slurm__args(argc, argv, &a);
+    int rc = slurm__args(self, argc, argv, &a);
     if (rc >= 0)
         return rc;
     return a.collect ? slurm__collect(&a) : slurm__main(&a);

@@ -100,10 +100,10 @@ static int view__setup(view_args *a, int argc, char **argv, dm_kv **kv, size_t *
 
 /* `dmbench view`: the options into a viewer_desc, then the window loop;
  * the loop's DM_ERR_* mapped by dm_exit_from_error. */
-int cli_view(int argc, char **argv)
+int cli_view(const cli_command *self, int argc, char **argv)
 {
     view_args args = {0}, *a = &args;
-    int rc = cli_parse(argc, argv, a, &argc);
+    int rc = cli_parse(self, argc, argv, a, &argc);
     dm_kv *kv = NULL;
     size_t n = 0, n_ev = 0;
     viewer_event *ev = NULL;

@@ -1,5 +1,9 @@
-/* commands.c — the command table, dispatch, help and --version. */
-#include "cli.h"
+/* commands.c — the command table, dispatch, the overview (help) and
+ * --version, and the build steps that print the man page and completions
+ * (gen.h) from the table.  No command calls back here: each gets its row
+ * as `self` (cli.h). */
+#include "commands.h"
+#include "gen.h"
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "run/callgrind.h"
@@ -7,28 +11,20 @@
 #include "run/drivers.h"
 #include "run/probe.h"
 
-#include <assert.h>
 #include <errno.h>
 #include <signal.h>
-#include <stdarg.h>
 #include <stdlib.h>
 #include <string.h>
 
-#ifndef DM_GIT_REV
-#define DM_GIT_REV "unknown"
-#endif
-#ifndef DM_VERSION
-#define DM_VERSION "0.0.0"
-#endif
-
-static int commands__help(int argc, char **argv);
-static int commands__gen_man(int argc, char **argv);
-static int commands__gen_completion(int argc, char **argv);
+static int commands__help(const cli_command *self, int argc, char **argv);
+static int commands__gen_man(const cli_command *self, int argc, char **argv);
+static int commands__gen_completion(const cli_command *self, int argc, char **argv);
+static int commands__instructions(const cli_command *self, int argc, char **argv);
 
 static const char *const commands__shells[] = { "bash", "zsh", NULL };
 
 /* The one list of commands, in the order help shows them. */
-static const cli_command commands[] = {
+static const cli_command commands__table[] = {
     { .name = "run", .fn = cli_run, .options = cli_run_options,
       .summary = "measure a sweep: every configuration, its counters, images and quality",
       .synopsis = "[SWEEP.yaml]",
@@ -121,7 +117,7 @@ static const cli_command commands[] = {
                      "Esc quit; left drag orbits, right drag pans, wheel zooms (docs/viewer.md)." },
     { .name = "help", .fn = commands__help, .synopsis = "[COMMAND]",
       .summary = "this overview, or the help of one command" },
-    { .name = "__instructions", .fn = count_child_main, .flags = CLI_CMD_HIDDEN,
+    { .name = "__instructions", .fn = commands__instructions, .flags = CLI_CMD_HIDDEN,
       .synopsis = "SWEEP HASH KEY...",
       .summary = "the Instructions pass's child, started under Valgrind by the runner" },
     { .name = "__gen-man", .fn = commands__gen_man, .flags = CLI_CMD_HIDDEN,
@@ -130,78 +126,18 @@ static const cli_command commands[] = {
       .pos_choices = commands__shells, .flags = CLI_CMD_HIDDEN,
       .summary = "print a completion script (build step)" },
 };
-#define COMMANDS__N (sizeof commands / sizeof *commands)
+#define COMMANDS__N (sizeof commands__table / sizeof *commands__table)
 
 size_t cli_commands_count(void) { return COMMANDS__N; }
 
-const cli_command *cli_commands_at(size_t i) { return i < COMMANDS__N ? &commands[i] : NULL; }
+const cli_command *cli_commands_at(size_t i) { return i < COMMANDS__N ? &commands__table[i] : NULL; }
 
 const cli_command *cli_commands_find(const char *name)
 {
     for (size_t i = 0; i < COMMANDS__N; i++)
-        if (strcmp(commands[i].name, name) == 0)
-            return &commands[i];
+        if (strcmp(commands__table[i].name, name) == 0)
+            return &commands__table[i];
     return NULL;
-}
-
-const char *cli_version(void)
-{
-    return "dmbench " DM_VERSION " (git " DM_GIT_REV ")";
-}
-
-/* "dmbench: error: " + the message + newline on stderr, control bytes of
- * the message (a path or a value the user gave) shown as '?'. */
-static void commands__verror(const char *fmt, va_list ap)
-{
-    dm_str msg = {0}, safe = {0};
-    dm_str_vprintf(&msg, fmt, ap);
-    dm_str_cat_term(&safe, dm_str_get(&msg));
-    fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&safe));
-    dm_str_free(&msg);
-    dm_str_free(&safe);
-}
-
-int cli_usage_error(const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    commands__verror(fmt, ap);
-    va_end(ap);
-    return DM_EXIT_USAGE;
-}
-
-int cli_error(int err, const char *fmt, ...)
-{
-    va_list ap;
-    va_start(ap, fmt);
-    commands__verror(fmt, ap);
-    va_end(ap);
-    return dm_exit_from_error(err) == DM_EXIT_ENV ? DM_EXIT_ENV : DM_EXIT_USAGE;
-}
-
-/* "usage: dmbench NAME SYNOPSIS [OPTIONS]", one line per form. */
-static void commands__usage(const cli_command *c, FILE *f)
-{
-    const char *s = c->synopsis ? c->synopsis : "";
-    int has_opts = cli_options_count(c->options) > 0;
-    for (int first = 1;; first = 0) {
-        size_t len = strcspn(s, "\n");
-        fprintf(f, "%s dmbench %s%s%.*s%s\n", first ? "usage:" : "   or:", c->name,
-                len ? " " : "", (int)len, s, first && has_opts ? " [OPTIONS]" : "");
-        if (!s[len])
-            break;
-        s += len + 1;
-    }
-}
-
-void cli_command_help(const cli_command *c, FILE *f)
-{
-    commands__usage(c, f);
-    fprintf(f, "\n%s.\n", c->summary);
-    if (c->description)
-        fprintf(f, "\n%s\n", c->description);
-    fprintf(f, "\noptions:\n");
-    cli_options_print(c->options, f);
 }
 
 /* The overview: commands, exit codes, where to read more. */
@@ -212,8 +148,8 @@ static void commands__overview(FILE *f)
                "       dmbench COMMAND --help | dmbench help COMMAND | dmbench --version\n\n"
                "commands:\n", cli_version());
     for (size_t i = 0; i < COMMANDS__N; i++)
-        if (!(commands[i].flags & CLI_CMD_HIDDEN))
-            fprintf(f, "  %-10s %s\n", commands[i].name, commands[i].summary);
+        if (!(commands__table[i].flags & CLI_CMD_HIDDEN))
+            fprintf(f, "  %-10s %s\n", commands__table[i].name, commands__table[i].summary);
     fprintf(f, "\nexit codes:\n");
     for (int code = 0; dm_exit_meaning(code); code++)
         fprintf(f, "  %d  %s\n", code, dm_exit_meaning(code));
@@ -226,8 +162,8 @@ static int commands__unknown(const char *name)
     const char *names[COMMANDS__N];
     size_t n = 0;
     for (size_t i = 0; i < COMMANDS__N; i++)
-        if (!(commands[i].flags & CLI_CMD_HIDDEN))
-            names[n++] = commands[i].name;
+        if (!(commands__table[i].flags & CLI_CMD_HIDDEN))
+            names[n++] = commands__table[i].name;
     dm_str msg = {0};
     dm_str_printf(&msg, "unknown command '%s'", name);
     dm_str_suggest(&msg, name, names, n, "commands");
@@ -236,9 +172,9 @@ static int commands__unknown(const char *name)
     return rc;
 }
 
-static int commands__help(int argc, char **argv)
+static int commands__help(const cli_command *self, int argc, char **argv)
 {
-    int rc = cli_parse(argc, argv, NULL, &argc);
+    int rc = cli_parse(self, argc, argv, NULL, &argc);
     if (rc >= 0)
         return rc;
     if (argc > 1)
@@ -254,34 +190,31 @@ static int commands__help(int argc, char **argv)
     return DM_EXIT_OK;
 }
 
-static int commands__gen_man(int argc, char **argv)
+/* The Instructions pass's child (run/count_child.h), which parses its own
+ * arguments. */
+static int commands__instructions(const cli_command *self, int argc, char **argv)
 {
-    int rc = cli_parse(argc, argv, NULL, &argc);
+    (void)self;
+    return count_child_main(argc, argv);
+}
+
+static int commands__gen_man(const cli_command *self, int argc, char **argv)
+{
+    int rc = cli_parse(self, argc, argv, NULL, &argc);
     if (rc < 0 && argc)
         rc = cli_usage_error("__gen-man takes no arguments");
     if (rc >= 0)
         return rc;
-    cli_gen_man(stdout);
+    cli_gen_man(commands__table, COMMANDS__N, stdout);
     return DM_EXIT_OK;
 }
 
-static int commands__gen_completion(int argc, char **argv)
+static int commands__gen_completion(const cli_command *self, int argc, char **argv)
 {
-    int rc = cli_parse(argc, argv, NULL, &argc);
-    if (rc < 0 && (argc != 1 || cli_gen_completion(argv[0], stdout) != 0))
+    int rc = cli_parse(self, argc, argv, NULL, &argc);
+    if (rc < 0 && (argc != 1 || cli_gen_completion(argv[0], commands__table, COMMANDS__N, stdout) != 0))
         rc = cli_usage_error("__gen-completion: expected one of: bash, zsh");
     return rc >= 0 ? rc : DM_EXIT_OK;
-}
-
-int cli_parse(int argc, char **argv, void *args, int *n_pos)
-{
-    const cli_command *c = cli_commands_find(argv[0]);
-    int want_help = 0;
-    assert(c);
-    int rc = cli_options_parse(c->name, c->options, argc, argv, args, n_pos, &want_help);
-    if (rc == 0 && want_help)
-        cli_command_help(c, stdout);
-    return rc != 0 || want_help ? rc : -1;
 }
 
 /* The exit code rc, unless what the command printed could not be written
@@ -329,5 +262,5 @@ int cli_main(int argc, char **argv)
         return code;
     }
     const cli_command *c = cli_commands_find(argv[1]);
-    return commands__flush(c ? c->fn(argc - 1, argv + 1) : commands__unknown(argv[1]));
+    return commands__flush(c ? c->fn(c, argc - 1, argv + 1) : commands__unknown(argv[1]));
 }

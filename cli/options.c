@@ -44,7 +44,7 @@ void cli_option_label(const cli_option *opt, dm_str *s)
 
 /* A number (a whole one for INT), within [min, max] when min < max.
  * 0 and *out, or DM_ERR_ARG with "--name 'v': expected ..." in err. */
-static int opt__number(const cli_option *o, const char *v, double *out, dm_str *err)
+static int options__number(const cli_option *o, const char *v, double *out, dm_str *err)
 {
     int whole = o->kind == CLI_OPT_INT, ranged = o->min < o->max;
     char *end = NULL;
@@ -63,7 +63,7 @@ static int opt__number(const cli_option *o, const char *v, double *out, dm_str *
     return 0;
 }
 
-static int opt__uint64(const cli_option *o, const char *v, void *dst, dm_str *err)
+static int options__uint64(const cli_option *o, const char *v, void *dst, dm_str *err)
 {
     char *end = NULL;
     errno = 0;
@@ -90,7 +90,7 @@ int cli_option_choice(const cli_option *o, const char *v, int *dst, dm_str *err)
 }
 
 /* Stores the value(s) of one option; 0 or DM_ERR_* with the message in err. */
-static int opt__store(const cli_option *o, const char *const *v, void *args, dm_str *err)
+static int options__store(const cli_option *o, const char *const *v, void *args, dm_str *err)
 {
     void *dst = (char *)args + o->offset;
     if (o->parse)
@@ -106,14 +106,14 @@ static int opt__store(const cli_option *o, const char *const *v, void *args, dm_
     case CLI_OPT_INT:
     case CLI_OPT_DOUBLE: {
         double x = 0;
-        int rc = opt__number(o, v[0], &x, err);
+        int rc = options__number(o, v[0], &x, err);
         if (rc == 0 && o->kind == CLI_OPT_INT)
             *(int *)dst = (int)x;
         else if (rc == 0)
             *(double *)dst = x;
         return rc;
     }
-    case CLI_OPT_UINT64: return opt__uint64(o, v[0], dst, err);
+    case CLI_OPT_UINT64: return options__uint64(o, v[0], dst, err);
     case CLI_OPT_CHOICE: return cli_option_choice(o, v[0], dst, err);
     case CLI_OPT__END: break;
     }
@@ -121,14 +121,14 @@ static int opt__store(const cli_option *o, const char *const *v, void *args, dm_
 }
 
 /* Prints "dmbench: error: <cmd>: <msg>"; returns DM_EXIT_USAGE. */
-static int opt__fail(const char *cmd, const dm_str *msg)
+static int options__fail(const char *cmd, const dm_str *msg)
 {
     fprintf(stderr, "dmbench: error: %s: %s\n", cmd, dm_str_get(msg));
     return DM_EXIT_USAGE;
 }
 
 /* The "unknown option" error: did you mean, and every valid option. */
-static int opt__unknown(const char *cmd, const cli_option *opts, const char *arg)
+static int options__unknown(const char *cmd, const cli_option *opts, const char *arg)
 {
     size_t n = cli_options_count(opts);
     const char **names = dm_xcalloc(n + 1, sizeof *names);
@@ -141,7 +141,7 @@ static int opt__unknown(const char *cmd, const cli_option *opts, const char *arg
     char *word = eq ? dm_xasprintf("%.*s", (int)(eq - arg), arg) : dm_xstrdup(arg);
     dm_str_printf(&msg, "unknown option '%s'", word);
     dm_str_suggest(&msg, word, names, n + 1, "options");
-    int rc = opt__fail(cmd, &msg);
+    int rc = options__fail(cmd, &msg);
     dm_str_free(&msg);
     free(word);
     for (size_t i = 0; i < n; i++)
@@ -153,16 +153,16 @@ static int opt__unknown(const char *cmd, const cli_option *opts, const char *arg
 
 /* Fills in every default; the table's defaults must convert (asserted by
  * the option tests, which parse no arguments for every command). */
-static int opt__defaults(const char *cmd, const cli_option *opts, void *args)
+static int options__defaults(const char *cmd, const cli_option *opts, void *args)
 {
     for (size_t i = 0; opts && opts[i].kind != CLI_OPT__END; i++) {
         if (!opts[i].def)
             continue;
         dm_str err = {0};
         const char *v[1] = { opts[i].def };
-        int rc = opt__store(&opts[i], v, args, &err);
+        int rc = options__store(&opts[i], v, args, &err);
         if (rc != 0) {
-            opt__fail(cmd, &err);
+            options__fail(cmd, &err);
             dm_str_free(&err);
             return DM_EXIT_USAGE;
         }
@@ -172,7 +172,7 @@ static int opt__defaults(const char *cmd, const cli_option *opts, void *args)
 
 /* One option at argv[*i] (value after '=' or in the next arguments);
  * advances *i past its values.  0 or DM_EXIT_USAGE (printed). */
-static int opt__one(const char *cmd, const cli_option *o, int argc, char **argv, int *i, void *args)
+static int options__one(const char *cmd, const cli_option *o, int argc, char **argv, int *i, void *args)
 {
     const char *eq = strchr(argv[*i], '=');
     int nargs = o->kind == CLI_OPT_STRING && o->nargs > 1 ? o->nargs : 1;
@@ -192,9 +192,9 @@ static int opt__one(const char *cmd, const cli_option *o, int argc, char **argv,
         for (int k = 0; !err.len && k < nargs; k++)
             vals[k] = argv[++*i];
     }
-    int rc = err.len ? DM_ERR_ARG : opt__store(o, vals, args, &err);
+    int rc = err.len ? DM_ERR_ARG : options__store(o, vals, args, &err);
     if (rc != 0)
-        rc = opt__fail(cmd, &err);
+        rc = options__fail(cmd, &err);
     dm_str_free(&err);
     return rc;
 }
@@ -202,7 +202,7 @@ static int opt__one(const char *cmd, const cli_option *o, int argc, char **argv,
 int cli_options_parse(const char *cmd, const cli_option *opts, int argc, char **argv, void *args,
                       int *n_pos, int *want_help)
 {
-    int rc = opt__defaults(cmd, opts, args), only_pos = 0;
+    int rc = options__defaults(cmd, opts, args), only_pos = 0;
     *n_pos = 0;
     for (int i = 1; rc == 0 && i < argc; i++) {
         char *a = argv[i];
@@ -221,7 +221,7 @@ int cli_options_parse(const char *cmd, const cli_option *opts, int argc, char **
         char name[128];
         snprintf(name, sizeof name, "%.*s", (int)strcspn(a, "="), a);
         const cli_option *o = cli_options_find(opts, name);
-        rc = o ? opt__one(cmd, o, argc, argv, &i, args) : opt__unknown(cmd, opts, a);
+        rc = o ? options__one(cmd, o, argc, argv, &i, args) : options__unknown(cmd, opts, a);
     }
     return rc;
 }

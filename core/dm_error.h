@@ -5,8 +5,8 @@
  * user is built by the caller and names the file, line, value and the valid
  * choices; the code only says what kind of failure it was.
  */
-#ifndef DM_ERROR_H
-#define DM_ERROR_H
+#ifndef CORE_DM_ERROR_H
+#define CORE_DM_ERROR_H
 
 #define DM_ERRORS(X)                                                        \
     X(OK,          0,   "success")                                          \

@@ -6,8 +6,8 @@
  * the machine rather than of the input (disk full, a damaged results store):
  * a retry elsewhere may succeed, so scripts can tell it from bad input.
  */
-#ifndef DM_EXIT_H
-#define DM_EXIT_H
+#ifndef CORE_DM_EXIT_H
+#define CORE_DM_EXIT_H
 
 #define DM_EXITS(X)                                                               \
     X(OK,           0, "success")                                                 \

@@ -15,8 +15,8 @@
  * waits for a child with a deadline (dm_proc_collect) is the child's
  * watchdog, and the child cannot outlive it.
  */
-#ifndef DM_PROC_H
-#define DM_PROC_H
+#ifndef CORE_DM_PROC_H
+#define CORE_DM_PROC_H
 
 #include <sys/types.h>
 

@@ -5,8 +5,8 @@
  * plain data: every string and array is owned by the structure and released
  * by dm_run_free().  Field names follow the results.json contract (docs/exports.md).
  */
-#ifndef DM_RESULTS_H
-#define DM_RESULTS_H
+#ifndef CORE_DM_RESULTS_H
+#define CORE_DM_RESULTS_H
 
 #include <stddef.h>
 

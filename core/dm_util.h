@@ -4,8 +4,8 @@
  * every folder may depend on core/ without breaking the one-way flow of
  * README, Layout.
  */
-#ifndef DM_UTIL_H
-#define DM_UTIL_H
+#ifndef CORE_DM_UTIL_H
+#define CORE_DM_UTIL_H
 
 #include <stddef.h>
 #include <stdio.h>

@@ -47,8 +47,8 @@
  * Exit code of a comparison: 1 if any REGRESSION, else 3 if any
  * INCONCLUSIVE, else 0 (improvements pass).
  */
-#ifndef HARNESS_COMPARE_H
-#define HARNESS_COMPARE_H
+#ifndef GATE_COMPARE_H
+#define GATE_COMPARE_H
 
 #include <stddef.h>
 #include <stdint.h>

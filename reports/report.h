@@ -18,8 +18,9 @@
  *    single value {unit, deterministic+, partial+, value}; unavailable
  *    {unit, deterministic+, unavailable: "reason"} (never a 0).
  *  - added: run.finished, run.sweep_hash, quality.MaxError,
- *    quality.PctOverThreshold, quality.reference, images.reference,
- *    config.log, fit.formula/response/rmse/mape/n_points/n_excluded/
+ *    quality.PctOverThreshold, quality.FLIP/FLIPQ1/FLIPMedian/FLIPQ3/
+ *    FLIPMax/FLIPPixelsPerDegree (null when not computed),
+ *    quality.reference, images.reference, images.flip, config.log, fit.formula/response/rmse/mape/n_points/n_excluded/
  *    termination/measured/predicted/point_labels, top-level warnings[],
  *    top-level schema_version, per config label and pareto (derived, not
  *    read back); the shape is docs/results.schema.json.
@@ -28,8 +29,8 @@
  * columns key, scene, status, reason, the union of params, per timing
  * counter <name>_median_ms/_ci_lo_ms/_ci_hi_ms, each deterministic counter,
  * then RMSE, PSNR_dB ("inf" when infinite), SSIM, MaxError, SilhouetteError,
- * DepthRMSE, CrackPixels, NonFinitePixels, label, pareto (0/1); unavailable
- * = empty field.
+ * DepthRMSE, CrackPixels, NonFinitePixels, FLIP, FLIPMedian, FLIPMax, label,
+ * pareto (0/1); unavailable = empty field.
  *
  * report.html opens with the answer: per scene the Pareto front as a
  * compact table (technique, varying axes, ms ± CI, the error metric, cost

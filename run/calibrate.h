@@ -9,8 +9,8 @@
  * 256x256 framebuffer, finished.  Each is timed CALIBRATE_REPS times after
  * CALIBRATE_WARMUP untimed repetitions; the shortest is kept (noise only
  * adds time). */
-#ifndef DM_RUN_CALIBRATE_H
-#define DM_RUN_CALIBRATE_H
+#ifndef RUN_CALIBRATE_H
+#define RUN_CALIBRATE_H
 
 #include "core/dm_util.h"
 

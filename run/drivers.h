@@ -10,8 +10,8 @@
  * variables and re-executes the program once; the measuring children, the
  * Valgrind child and the viewer inherit them.
  */
-#ifndef DM_DRIVERS_H
-#define DM_DRIVERS_H
+#ifndef RUN_DRIVERS_H
+#define RUN_DRIVERS_H
 
 #include <stddef.h>
 #include "core/dm_util.h"

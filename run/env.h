@@ -7,8 +7,8 @@
  * comparable: renderer (incl. LLVM), GL version string, LP_NUM_THREADS and
  * CPU model and count.
  */
-#ifndef HARNESS_ENV_H
-#define HARNESS_ENV_H
+#ifndef RUN_ENV_H
+#define RUN_ENV_H
 
 #include <stddef.h>
 #include "core/dm_results.h"

@@ -7,8 +7,8 @@
  * GPUTime is never used when the timer is partial (docs/counters.md).  Failed
  * configurations are not used.
  */
-#ifndef HARNESS_FITTING_H
-#define HARNESS_FITTING_H
+#ifndef RUN_FITTING_H
+#define RUN_FITTING_H
 
 #include <stddef.h>
 #include "core/dm_results.h"

@@ -5,8 +5,8 @@
  * a display exists.  KHR_debug messages are captured into a buffer the
  * caller drains per configuration (gl_context_take_messages).
  */
-#ifndef HARNESS_GL_CONTEXT_H
-#define HARNESS_GL_CONTEXT_H
+#ifndef RUN_GL_CONTEXT_H
+#define RUN_GL_CONTEXT_H
 
 #include "core/dm_util.h"
 

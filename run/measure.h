@@ -19,8 +19,8 @@
  * The measuring decisions (warm-up, frames per sample, when to stop, drift)
  * are asked of run/protocol.h; this file renders, reads clocks and stores.
  */
-#ifndef HARNESS_MEASURE_H
-#define HARNESS_MEASURE_H
+#ifndef RUN_MEASURE_H
+#define RUN_MEASURE_H
 
 #include <stddef.h>
 #include <stdint.h>

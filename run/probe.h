@@ -9,8 +9,8 @@
  * probe_timeout_s() seconds without an answer, and what went wrong is said
  * with the right exit code: the user's file (2) or the machine (4).
  */
-#ifndef DM_RUN_PROBE_H
-#define DM_RUN_PROBE_H
+#ifndef RUN_PROBE_H
+#define RUN_PROBE_H
 
 #include "core/dm_util.h"
 

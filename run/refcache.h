@@ -17,8 +17,8 @@
  * File: magic "DMREF001", uint32 key length, key text, int32 w, int32 h,
  * w*h*4 float colour, w*h float depth; native byte order (per machine).
  */
-#ifndef HARNESS_REFCACHE_H
-#define HARNESS_REFCACHE_H
+#ifndef RUN_REFCACHE_H
+#define RUN_REFCACHE_H
 
 #include <stddef.h>
 #include "core/dm_results.h"

@@ -15,8 +15,8 @@
  * planning; at the end they are fitted and the report files are written
  * into the run directory.  docs/reliability.md has the promises.
  */
-#ifndef HARNESS_RUNNER_H
-#define HARNESS_RUNNER_H
+#ifndef RUN_RUNNER_H
+#define RUN_RUNNER_H
 
 #include <stdint.h>
 #include "core/dm_util.h"

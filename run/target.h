@@ -4,8 +4,8 @@
  * (and the quality reference at a multiple of it).  Read-back flips GL's
  * bottom-up rows so row 0 is the top of the image, as reports/ expects.
  */
-#ifndef HARNESS_TARGET_H
-#define HARNESS_TARGET_H
+#ifndef RUN_TARGET_H
+#define RUN_TARGET_H
 
 #include <stdint.h>
 

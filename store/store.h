@@ -13,8 +13,8 @@
  * SQLite's own message in store_last_error().  A store handle is used by one
  * thread at a time.
  */
-#ifndef DM_STORE_H
-#define DM_STORE_H
+#ifndef STORE_STORE_H
+#define STORE_STORE_H
 
 #include <stddef.h>
 

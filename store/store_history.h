@@ -5,8 +5,8 @@
  * parameters it reads); timings are comparable only on the same machine, so
  * a history is restricted to runs whose environment "fingerprint" matches.
  */
-#ifndef DM_STORE_HISTORY_H
-#define DM_STORE_HISTORY_H
+#ifndef STORE_STORE_HISTORY_H
+#define STORE_STORE_HISTORY_H
 
 #include <stddef.h>
 

@@ -7,8 +7,8 @@
  * a hash of the technique's name, version and projected parameters, so the
  * same configuration has the same key on every machine and run.
  */
-#ifndef HARNESS_PLAN_H
-#define HARNESS_PLAN_H
+#ifndef SWEEP_PLAN_H
+#define SWEEP_PLAN_H
 
 #include <stddef.h>
 #include <stdint.h>

@@ -12,8 +12,8 @@
  * A label is a technique name and/or axis=value words; it names the one
  * planned configuration whose technique and parameters all match.
  */
-#ifndef HARNESS_PUBLISHED_H
-#define HARNESS_PUBLISHED_H
+#ifndef SWEEP_PUBLISHED_H
+#define SWEEP_PUBLISHED_H
 
 #include <stddef.h>
 #include <yaml.h>

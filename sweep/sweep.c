@@ -7,7 +7,6 @@
  */
 #include "sweep.h"
 #include "published.h"
-#include "published.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
 #include "techniques/axes.h"
@@ -43,11 +42,11 @@ typedef struct pctx {
     for (yaml_node_pair_t *pair = (map)->data.mapping.pairs.start;               \
          pair < (map)->data.mapping.pairs.top; pair++)
 
-static int p__fail(pctx *c, const yaml_node_t *n, const char *fmt, ...)
+static int sweep__fail(pctx *c, const yaml_node_t *n, const char *fmt, ...)
     __attribute__((format(printf, 3, 4)));
 
 /* Writes "path:line:col: message" into the error buffer; returns DM_ERR_PARSE. */
-static int p__fail(pctx *c, const yaml_node_t *n, const char *fmt, ...)
+static int sweep__fail(pctx *c, const yaml_node_t *n, const char *fmt, ...)
 {
     dm_str_printf(c->err, "%s:%zu:%zu: ", c->path, n ? n->start_mark.line + 1 : 1,
                   n ? n->start_mark.column + 1 : 1);
@@ -58,58 +57,58 @@ static int p__fail(pctx *c, const yaml_node_t *n, const char *fmt, ...)
     return DM_ERR_PARSE;
 }
 
-static const char *p__scalar(const yaml_node_t *n)
+static const char *sweep__scalar(const yaml_node_t *n)
 {
     return n && n->type == YAML_SCALAR_NODE ? (const char *)n->data.scalar.value : NULL;
 }
 
-static yaml_node_t *p__node(pctx *c, int id) { return yaml_document_get_node(c->doc, id); }
+static yaml_node_t *sweep__node(pctx *c, int id) { return yaml_document_get_node(c->doc, id); }
 
-static int p__int(pctx *c, yaml_node_t *n, const char *what, long lo, long hi, int *out)
+static int sweep__int(pctx *c, yaml_node_t *n, const char *what, long lo, long hi, int *out)
 {
-    const char *v = p__scalar(n);
+    const char *v = sweep__scalar(n);
     char *end = NULL;
     long x = v ? strtol(v, &end, 10) : 0;
     if (!v || end == v || *end || x < lo || x > hi)
-        return p__fail(c, n, "%s: expected an integer in [%ld, %ld], got '%s'", what, lo, hi,
+        return sweep__fail(c, n, "%s: expected an integer in [%ld, %ld], got '%s'", what, lo, hi,
                        v ? v : "(not a scalar)");
     *out = (int)x;
     return 0;
 }
 
-static int p__real(pctx *c, yaml_node_t *n, const char *what, double lo, double hi, double *out)
+static int sweep__real(pctx *c, yaml_node_t *n, const char *what, double lo, double hi, double *out)
 {
-    const char *v = p__scalar(n);
+    const char *v = sweep__scalar(n);
     char *end = NULL;
     double x = v ? strtod(v, &end) : 0;
     if (!v || end == v || *end || !isfinite(x) || x < lo || x > hi)
-        return p__fail(c, n, "%s: expected a number in [%g, %g], got '%s'", what, lo, hi,
+        return sweep__fail(c, n, "%s: expected a number in [%g, %g], got '%s'", what, lo, hi,
                        v ? v : "(not a scalar)");
     *out = x;
     return 0;
 }
 
 /* Text of an axis value node: a scalar, or a [W, H] pair for resolution. */
-static char *p__value_text(pctx *c, yaml_node_t *n)
+static char *sweep__value_text(pctx *c, yaml_node_t *n)
 {
     if (n->type == YAML_SCALAR_NODE)
-        return dm_xstrdup(p__scalar(n));
+        return dm_xstrdup(sweep__scalar(n));
     if (n->type != YAML_SEQUENCE_NODE)
         return NULL;
     yaml_node_item_t *it = n->data.sequence.items.start;
     size_t len = (size_t)(n->data.sequence.items.top - it);
-    if (len != 2 || !p__scalar(p__node(c, it[0])) || !p__scalar(p__node(c, it[1])))
+    if (len != 2 || !sweep__scalar(sweep__node(c, it[0])) || !sweep__scalar(sweep__node(c, it[1])))
         return NULL;
-    return dm_xasprintf("%sx%s", p__scalar(p__node(c, it[0])), p__scalar(p__node(c, it[1])));
+    return dm_xasprintf("%sx%s", sweep__scalar(sweep__node(c, it[0])), sweep__scalar(sweep__node(c, it[1])));
 }
 
 /* Validates axis=value and returns its canonical text (caller frees), or NULL
  * after writing the error. */
-static char *p__axis_value(pctx *c, const char *axis, yaml_node_t *n)
+static char *sweep__axis_value(pctx *c, const char *axis, yaml_node_t *n)
 {
-    char *text = sweep_paths_resolve(c->path, axis, p__value_text(c, n));
+    char *text = sweep_paths_resolve(c->path, axis, sweep__value_text(c, n));
     if (!text) {
-        p__fail(c, n, "%s: expected a single value%s", axis,
+        sweep__fail(c, n, "%s: expected a single value%s", axis,
                 strcmp(axis, "resolution") == 0 ? " or a [width, height] pair" : "");
         return NULL;
     }
@@ -117,7 +116,7 @@ static char *p__axis_value(pctx *c, const char *axis, yaml_node_t *n)
     int rc = axes_check(axis, text, &msg);
     if (rc != 0) {
         c->env = rc == DM_ERR_NOMEM ? rc : c->env;
-        p__fail(c, n, "%s", dm_str_get(&msg));
+        sweep__fail(c, n, "%s", dm_str_get(&msg));
         dm_str_free(&msg);
         free(text);
         return NULL;
@@ -129,7 +128,7 @@ static char *p__axis_value(pctx *c, const char *axis, yaml_node_t *n)
 }
 
 /* Sets scene default axis=v (canonical text, owned by the callee). */
-static int p__put_scene(pctx *c, const char *axis, char *v)
+static int sweep__put_scene(pctx *c, const char *axis, char *v)
 {
     for (size_t i = 0; i < c->s->n_scene; i++) {
         if (strcmp(c->s->scene[i].key, axis) == 0) {
@@ -143,21 +142,21 @@ static int p__put_scene(pctx *c, const char *axis, char *v)
     return 0;
 }
 
-static int p__set_scene(pctx *c, const char *axis, yaml_node_t *key, yaml_node_t *val)
+static int sweep__set_scene(pctx *c, const char *axis, yaml_node_t *key, yaml_node_t *val)
 {
     if (!axes_find(axis)) {
         dm_str msg = {0};
         axes_check(axis, "", &msg);
-        p__fail(c, key, "%s", dm_str_get(&msg));
+        sweep__fail(c, key, "%s", dm_str_get(&msg));
         dm_str_free(&msg);
         return DM_ERR_PARSE;
     }
-    char *v = p__axis_value(c, axis, val);
-    return v ? p__put_scene(c, axis, v) : DM_ERR_PARSE;
+    char *v = sweep__axis_value(c, axis, val);
+    return v ? sweep__put_scene(c, axis, v) : DM_ERR_PARSE;
 }
 
 /* A user map path, made relative to the sweep file's directory. */
-static char *p__map_path(pctx *c, const char *path)
+static char *sweep__map_path(pctx *c, const char *path)
 {
     const char *slash = strrchr(c->path, '/');
     if (path[0] == '/' || !slash)
@@ -168,21 +167,21 @@ static char *p__map_path(pctx *c, const char *path)
 /* material: { height: P, normal: P, albedo: P } -> the maps axis value
  * "height=P;normal=P;albedo=P", validated (file exists, decodes, square
  * power of two, same sizes, finite) by the axis check at plan time. */
-static int p__user_maps(pctx *c, yaml_node_t *map)
+static int sweep__user_maps(pctx *c, yaml_node_t *map)
 {
     static const char *const kinds[] = { "height", "normal", "albedo" };
     dm_str v = {0};
     yaml_node_t *first = NULL;
     for (int k = 0; k < 3; k++) {
         P__FOREACH_PAIR(c, map, pr) {
-            yaml_node_t *key = p__node(c, pr->key), *val = p__node(c, pr->value);
-            if (!p__scalar(key) || strcmp(p__scalar(key), kinds[k]) != 0)
+            yaml_node_t *key = sweep__node(c, pr->key), *val = sweep__node(c, pr->value);
+            if (!sweep__scalar(key) || strcmp(sweep__scalar(key), kinds[k]) != 0)
                 continue;
-            if (!p__scalar(val) || !*p__scalar(val)) {
+            if (!sweep__scalar(val) || !*sweep__scalar(val)) {
                 dm_str_free(&v);
-                return p__fail(c, val, "scene.material.%s: expected a file path", kinds[k]);
+                return sweep__fail(c, val, "scene.material.%s: expected a file path", kinds[k]);
             }
-            char *path = p__map_path(c, p__scalar(val));
+            char *path = sweep__map_path(c, sweep__scalar(val));
             dm_str_printf(&v, "%s%s=", v.len ? ";" : "", kinds[k]);
             for (const char *p = path; *p; p++)   /* a ';' in the path is written ";;" */
                 dm_str_cat(&v, *p == ';' ? ";;" : (char[2]){ *p, 0 });
@@ -196,9 +195,9 @@ static int p__user_maps(pctx *c, yaml_node_t *map)
     int rc = axes_check("maps", dm_str_get(&v), &msg);
     c->env = rc == DM_ERR_NOMEM ? rc : c->env;
     if (rc)
-        p__fail(c, first, "%s", dm_str_get(&msg));
+        sweep__fail(c, first, "%s", dm_str_get(&msg));
     else
-        rc = p__put_scene(c, "maps", dm_str_take(&v));
+        rc = sweep__put_scene(c, "maps", dm_str_take(&v));
     dm_str_free(&msg);
     dm_str_free(&v);
     return rc;
@@ -207,17 +206,17 @@ static int p__user_maps(pctx *c, yaml_node_t *map)
 
 /* Mappings must be mappings, and YAML keys are unique: a repeated key would
  * silently win over the first, so it is an error naming both lines. */
-static int p__expect_map(pctx *c, yaml_node_t *n, const char *what)
+static int sweep__expect_map(pctx *c, yaml_node_t *n, const char *what)
 {
     if (!n || n->type != YAML_MAPPING_NODE)
-        return p__fail(c, n, "%s: expected a mapping (key: value lines)", what);
+        return sweep__fail(c, n, "%s: expected a mapping (key: value lines)", what);
     P__FOREACH_PAIR(c, n, a) {
-        const char *ka = p__scalar(p__node(c, a->key));
+        const char *ka = sweep__scalar(sweep__node(c, a->key));
         for (yaml_node_pair_t *b = n->data.mapping.pairs.start; ka && b < a; b++) {
-            const char *kb = p__scalar(p__node(c, b->key));
+            const char *kb = sweep__scalar(sweep__node(c, b->key));
             if (kb && strcmp(ka, kb) == 0)
-                return p__fail(c, p__node(c, a->key), "%s: key '%s' is given twice (first on line %zu)",
-                               what, ka, p__node(c, b->key)->start_mark.line + 1);
+                return sweep__fail(c, sweep__node(c, a->key), "%s: key '%s' is given twice (first on line %zu)",
+                               what, ka, sweep__node(c, b->key)->start_mark.line + 1);
         }
     }
     return 0;
@@ -227,17 +226,18 @@ static int p__expect_map(pctx *c, yaml_node_t *n, const char *what)
  *
  * Every key a sweep file may hold is one row below: where it stands, what
  * parses it, its range and default, and what the docs say of it.  The
- * parser walks a mapping by looking each key up here (p__section), the
+ * parser walks a mapping by looking each key up here (sweep__section), the
  * defaults are filled in from here, and docs/sweep-files.md's key reference
- * is generated from here (`dmbench __gen-sweep-keys`; a test keeps the two
+ * is generated from here (`dmbench list keys`, which
+ * scripts/update-key-reference copies in; tests/cli/keys.sh keeps the two
  * equal), so the parser and the docs cannot drift apart. */
 
-typedef struct p__key p__key;
-typedef int (*p__fn)(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v);
+typedef struct sweep__key sweep__key;
+typedef int (*sweep__fn)(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v);
 
-struct p__key {
+struct sweep__key {
     sweep_key doc;           /* section, name, type, default, meaning, example */
-    p__fn fn;
+    sweep__fn fn;
     const char *arg;         /* the axis a scene key sets, the section a key opens, or what a
                                 list holds (for the message when it is not a list) */
     int (*entry)(pctx *c, yaml_node_t *e);   /* lists: reads one entry */
@@ -245,98 +245,98 @@ struct p__key {
     double lo, hi, def;      /* numeric keys: range and default */
 };
 
-static int p__section(pctx *c, yaml_node_t *map, const char *section);
+static int sweep__section(pctx *c, yaml_node_t *map, const char *section);
 
 /* "section.name" of a row, for messages. */
-static const char *p__what(const p__key *row, char *buf, size_t size)
+static const char *sweep__what(const sweep__key *row, char *buf, size_t size)
 {
     snprintf(buf, size, "%s%s%s", row->doc.section, *row->doc.section ? "." : "", row->doc.name);
     return buf;
 }
 
-static int p__k_int(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_int(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)k;
     char what[64];
-    return p__int(c, v, p__what(row, what, sizeof what), (long)row->lo, (long)row->hi,
+    return sweep__int(c, v, sweep__what(row, what, sizeof what), (long)row->lo, (long)row->hi,
                   (int *)(void *)((char *)c->s + row->off));
 }
 
-static int p__k_real(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_real(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)k;
     char what[64];
-    return p__real(c, v, p__what(row, what, sizeof what), row->lo, row->hi,
+    return sweep__real(c, v, sweep__what(row, what, sizeof what), row->lo, row->hi,
                    (double *)(void *)((char *)c->s + row->off));
 }
 
 /* A fraction key: the one grammar of flags and keys (sweep/fraction.h). */
-static int p__k_frac(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_frac(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)k;
     char what[64];
     dm_str msg = {0};
     fraction_range range = { row->lo, row->hi, 0, 0 };
-    int rc = fraction_parse(p__scalar(v), p__what(row, what, sizeof what), &range,
+    int rc = fraction_parse(sweep__scalar(v), sweep__what(row, what, sizeof what), &range,
                             (double *)(void *)((char *)c->s + row->off), &msg);
     if (rc)
-        rc = p__fail(c, v, "%s", dm_str_get(&msg));
+        rc = sweep__fail(c, v, "%s", dm_str_get(&msg));
     dm_str_free(&msg);
     return rc;
 }
 
 /* A nested mapping: its keys are the rows of section `arg`. */
-static int p__k_section(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_section(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)k;
-    return p__section(c, v, row->arg);
+    return sweep__section(c, v, row->arg);
 }
 
 /* A scene default: the axis `arg`, or the key itself when arg is NULL. */
-static int p__k_scene_axis(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_scene_axis(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
-    return p__set_scene(c, row->arg ? row->arg : p__scalar(k), k, v);
+    return sweep__set_scene(c, row->arg ? row->arg : sweep__scalar(k), k, v);
 }
 
-static int p__k_name(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_name(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)row, (void)k;
-    if (!p__scalar(v) || !*p__scalar(v))
-        return p__fail(c, v, "name: expected a non-empty string");
-    if (strlen(p__scalar(v)) > SWEEP_NAME_MAX)   /* it titles reports, jobs and terminal lines */
-        return p__fail(c, v, "name: %zu bytes long; at most %d", strlen(p__scalar(v)),
+    if (!sweep__scalar(v) || !*sweep__scalar(v))
+        return sweep__fail(c, v, "name: expected a non-empty string");
+    if (strlen(sweep__scalar(v)) > SWEEP_NAME_MAX)   /* it titles reports, jobs and terminal lines */
+        return sweep__fail(c, v, "name: %zu bytes long; at most %d", strlen(sweep__scalar(v)),
                        SWEEP_NAME_MAX);
     free(c->s->name);
-    c->s->name = dm_xstrdup(p__scalar(v));
+    c->s->name = dm_xstrdup(sweep__scalar(v));
     return 0;
 }
 
 /* measure.samples: max may not be below min when both are given. */
-static int p__k_samples(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_samples(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     const sweep_measure *m = &c->s->measure;
-    int rc = p__k_section(c, row, k, v);
+    int rc = sweep__k_section(c, row, k, v);
     if (rc == 0 && m->samples_min && m->samples_max && m->samples_max < m->samples_min)
-        rc = p__fail(c, v, "measure.samples: max (%d) is less than min (%d)", m->samples_max,
+        rc = sweep__fail(c, v, "measure.samples: max (%d) is less than min (%d)", m->samples_max,
                      m->samples_min);
     return rc;
 }
 
-static int p__k_counters(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_counters(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)row, (void)k;
     if (v->type != YAML_SEQUENCE_NODE)
-        return p__fail(c, v, "measure.counters: expected a list of counter names");
+        return sweep__fail(c, v, "measure.counters: expected a list of counter names");
     sweep_measure *m = &c->s->measure;
     for (yaml_node_item_t *it = v->data.sequence.items.start; it < v->data.sequence.items.top; it++) {
-        yaml_node_t *n = p__node(c, *it);
-        const char *name = p__scalar(n);
+        yaml_node_t *n = sweep__node(c, *it);
+        const char *name = sweep__scalar(n);
         if (!name || !counters_find(name)) {
             size_t nc = counters_count();
             const char **names = dm_xmalloc(nc * sizeof *names);
             for (size_t i = 0; i < nc; i++)
                 names[i] = counters_info_at(i)->name;
-            p__fail(c, n, "unknown counter '%s'", name ? name : "?");
+            sweep__fail(c, n, "unknown counter '%s'", name ? name : "?");
             dm_str_suggest(c->err, name, names, nc, "counters");
             free(names);
             return DM_ERR_PARSE;
@@ -348,21 +348,21 @@ static int p__k_counters(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t
 
 /* drivers: a list of names; which exist is run/drivers.h's to say, so the
  * names are kept with their lines for `dmbench drivers` to check. */
-static int p__k_drivers(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_drivers(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)row, (void)k;
     if (v->type != YAML_SEQUENCE_NODE || v->data.sequence.items.start == v->data.sequence.items.top)
-        return p__fail(c, v, "drivers: expected a non-empty list of driver names, e.g. "
+        return sweep__fail(c, v, "drivers: expected a non-empty list of driver names, e.g. "
                              "[llvmpipe, zink] (docs/drivers.md)");
     sweep *s = c->s;
     for (yaml_node_item_t *it = v->data.sequence.items.start; it < v->data.sequence.items.top; it++) {
-        yaml_node_t *n = p__node(c, *it);
-        const char *name = p__scalar(n);
+        yaml_node_t *n = sweep__node(c, *it);
+        const char *name = sweep__scalar(n);
         if (!name || !*name)
-            return p__fail(c, n, "drivers: expected a driver name");
+            return sweep__fail(c, n, "drivers: expected a driver name");
         for (size_t i = 0; i < s->n_drivers; i++)
             if (strcmp(s->drivers[i], name) == 0)
-                return p__fail(c, n, "drivers: '%s' is listed twice (line %d)", name,
+                return sweep__fail(c, n, "drivers: '%s' is listed twice (line %d)", name,
                                s->driver_lines[i]);
         s->driver_lines = dm_xrealloc(s->driver_lines, (s->n_drivers + 1) * sizeof *s->driver_lines);
         s->driver_lines[s->n_drivers] = (int)n->start_mark.line + 1;
@@ -372,80 +372,80 @@ static int p__k_drivers(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t 
 }
 
 /* scene.material: its keys, then the user's map files as one `maps` value. */
-static int p__k_material(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_material(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
-    int rc = p__k_section(c, row, k, v);
-    return rc ? rc : p__user_maps(c, v) ? DM_ERR_PARSE : 0;   /* an unreadable map is bad input */
+    int rc = sweep__k_section(c, row, k, v);
+    return rc ? rc : sweep__user_maps(c, v) ? DM_ERR_PARSE : 0;   /* an unreadable map is bad input */
 }
 
-/* scene.material.height|normal|albedo: a file path (read by p__user_maps). */
-static int p__k_map_file(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+/* scene.material.height|normal|albedo: a file path (read by sweep__user_maps). */
+static int sweep__k_map_file(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)k;
-    if (!p__scalar(v) || !*p__scalar(v))
-        return p__fail(c, v, "scene.material.%s: expected a file path", row->doc.name);
+    if (!sweep__scalar(v) || !*sweep__scalar(v))
+        return sweep__fail(c, v, "scene.material.%s: expected a file path", row->doc.name);
     return 0;
 }
 
 /* One axis of the `sweep` block or of an `exclude` entry: a value or a list
  * of values appended to the block being read (c->axes). */
-static int p__k_axis_values(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_axis_values(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)row;
-    const char *name = p__scalar(k) ? p__scalar(k) : "";
+    const char *name = sweep__scalar(k) ? sweep__scalar(k) : "";
     if (!axes_find(name))
-        return p__set_scene(c, name, k, v);   /* reports the unknown axis */
+        return sweep__set_scene(c, name, k, v);   /* reports the unknown axis */
     sweep_axis ax = { .name = dm_xstrdup(name), .line = (int)k->start_mark.line + 1 };
     /* resolution: [1280, 720] is one value; [[640, 360], "1280x720"] is a list. */
     int is_pair = 0, rc = 0;
     if (v->type == YAML_SEQUENCE_NODE && strcmp(name, "resolution") == 0 &&
         v->data.sequence.items.top - v->data.sequence.items.start == 2) {
-        const char *first = p__scalar(p__node(c, v->data.sequence.items.start[0]));
+        const char *first = sweep__scalar(sweep__node(c, v->data.sequence.items.start[0]));
         is_pair = first && !strchr(first, 'x');
     }
     yaml_node_item_t one = 0, *it = &one, *top = &one + 1;
     if (v->type == YAML_SEQUENCE_NODE && !is_pair)
         it = v->data.sequence.items.start, top = v->data.sequence.items.top;
     for (; it < top && rc == 0; it++) {
-        char *val = p__axis_value(c, name, it == &one ? v : p__node(c, *it));
+        char *val = sweep__axis_value(c, name, it == &one ? v : sweep__node(c, *it));
         if (!val)
             rc = DM_ERR_PARSE;
         else
             dm_vec_push(&ax.values, &ax.n_values, &val, sizeof val);
     }
     if (rc == 0 && ax.n_values == 0)
-        rc = p__fail(c, v, "axis '%s' has no values (an empty list would plan nothing)", name);
+        rc = sweep__fail(c, v, "axis '%s' has no values (an empty list would plan nothing)", name);
     dm_vec_push(c->axes, c->n_axes, &ax, sizeof ax);
     return rc;
 }
 
-static int p__k_sweep(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_sweep(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     c->axes = &c->s->axes, c->n_axes = &c->s->n_axes;
-    return p__k_section(c, row, k, v);
+    return sweep__k_section(c, row, k, v);
 }
 
 /* A list whose entries the row's `entry` reads, stopping at the first
  * error. */
-static int p__k_list(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_list(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)k;
     if (v->type != YAML_SEQUENCE_NODE)
-        return p__fail(c, v, "%s: expected a list of %s", row->doc.name, row->arg);
+        return sweep__fail(c, v, "%s: expected a list of %s", row->doc.name, row->arg);
     int rc = 0;
     for (yaml_node_item_t *it = v->data.sequence.items.start; rc == 0 && it < v->data.sequence.items.top; it++)
-        rc = row->entry(c, p__node(c, *it));
+        rc = row->entry(c, sweep__node(c, *it));
     return rc;
 }
 
 /* One `exclude` entry: {axis: value | [values], ...}. */
-static int p__exclude_entry(pctx *c, yaml_node_t *e)
+static int sweep__exclude_entry(pctx *c, yaml_node_t *e)
 {
     sweep_exclude ex = {.line = (int)e->start_mark.line + 1};
     c->axes = &ex.axes, c->n_axes = &ex.n_axes;
-    int rc = p__section(c, e, "exclude[]");
+    int rc = sweep__section(c, e, "exclude[]");
     if (rc == 0 && ex.n_axes == 0)
-        rc = p__fail(c, e, "exclude[]: an empty entry would exclude everything");
+        rc = sweep__fail(c, e, "exclude[]: an empty entry would exclude everything");
     dm_vec_push(&c->s->excludes, &c->s->n_excludes, &ex, sizeof ex);
     return rc;
 }
@@ -453,31 +453,31 @@ static int p__exclude_entry(pctx *c, yaml_node_t *e)
 /* Every override of quality.reference must be read by the reference
  * technique (checked once the map is read, as `technique` may come last);
  * with technique `same` each configuration's own technique applies. */
-static int p__reference_readable(pctx *c, yaml_node_t *v)
+static int sweep__reference_readable(pctx *c, yaml_node_t *v)
 {
     const char *name = c->s->ref_technique ? c->s->ref_technique : "reference-mesh";
     const technique_desc *t = strcmp(name, "same") == 0 ? NULL : technique_find(name);
     P__FOREACH_PAIR(c, v, rp) {
-        yaml_node_t *rk = p__node(c, rp->key);
-        const char *axis = p__scalar(rk) ? p__scalar(rk) : "";
+        yaml_node_t *rk = sweep__node(c, rp->key);
+        const char *axis = sweep__scalar(rk) ? sweep__scalar(rk) : "";
         if (t && axes_find(axis) && strcmp(axis, "technique") != 0 && !technique_reads_axis(t, axis))
-            return p__fail(c, rk, "quality.reference: technique '%s' does not read axis '%s', so it "
+            return sweep__fail(c, rk, "quality.reference: technique '%s' does not read axis '%s', so it "
                            "cannot set the reference's %s", name, axis, axis);
     }
     return 0;
 }
 
-static int p__k_reference(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_reference(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
-    int rc = p__k_section(c, row, k, v);
-    return rc ? rc : p__reference_readable(c, v);
+    int rc = sweep__k_section(c, row, k, v);
+    return rc ? rc : sweep__reference_readable(c, v);
 }
 
-static int p__k_ref_technique(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_ref_technique(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)row, (void)k;
-    int same = p__scalar(v) && strcmp(p__scalar(v), "same") == 0;
-    char *t = same ? dm_xstrdup("same") : p__axis_value(c, "technique", v);
+    int same = sweep__scalar(v) && strcmp(sweep__scalar(v), "same") == 0;
+    char *t = same ? dm_xstrdup("same") : sweep__axis_value(c, "technique", v);
     if (!t)
         return DM_ERR_PARSE;
     free(c->s->ref_technique);
@@ -485,15 +485,15 @@ static int p__k_ref_technique(pctx *c, const p__key *row, yaml_node_t *k, yaml_n
     return 0;
 }
 
-static int p__unknown_key(pctx *c, yaml_node_t *k, const char *section);
+static int sweep__unknown_key(pctx *c, yaml_node_t *k, const char *section);
 
 /* quality.reference.<axis>: an axis value set on the reference only. */
-static int p__k_ref_axis(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_ref_axis(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
-    const char *name = p__scalar(k) ? p__scalar(k) : "";
+    const char *name = sweep__scalar(k) ? sweep__scalar(k) : "";
     if (!axes_find(name))
-        return p__unknown_key(c, k, row->doc.section);
-    char *val = p__axis_value(c, name, v);
+        return sweep__unknown_key(c, k, row->doc.section);
+    char *val = sweep__axis_value(c, name, v);
     if (!val)
         return DM_ERR_PARSE;
     dm_kv_push(&c->s->ref_params, &c->s->n_ref_params, name, val);
@@ -503,7 +503,7 @@ static int p__k_ref_axis(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t
 
 /* quality.pareto_metric: one of reports/metric.h's names (the list is an
  * X-macro, so no link to reports/ is needed). */
-static int p__k_pareto(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_pareto(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)row, (void)k;
     static const char *const names[] = {
@@ -512,40 +512,40 @@ static int p__k_pareto(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *
 #undef P__METRIC_NAME
     };
     const size_t n = sizeof names / sizeof *names;
-    const char *m = p__scalar(v);
+    const char *m = sweep__scalar(v);
     for (size_t i = 0; m && i < n; i++)
         if (strcmp(m, names[i]) == 0) {
             free(c->s->pareto_metric);
             c->s->pareto_metric = dm_xstrdup(m);
             return 0;
         }
-    p__fail(c, v, "quality.pareto_metric: unknown metric '%s'", m ? m : "(not a scalar)");
+    sweep__fail(c, v, "quality.pareto_metric: unknown metric '%s'", m ? m : "(not a scalar)");
     dm_str_suggest(c->err, m, names, n, "metrics");
     return DM_ERR_PARSE;
 }
 
 /* One `models` entry: {name, formula, response, group_by}. */
-static int p__model_entry(pctx *c, yaml_node_t *e)
+static int sweep__model_entry(pctx *c, yaml_node_t *e)
 {
     sweep_model md = { .line = (int)e->start_mark.line + 1 };
     c->model = &md;
-    int rc = p__section(c, e, "models[]");
+    int rc = sweep__section(c, e, "models[]");
     if (rc == 0 && !md.name)
-        rc = p__fail(c, e, "models[]: every model needs a name");
+        rc = sweep__fail(c, e, "models[]: every model needs a name");
     c->model = NULL;
     dm_vec_push(&c->s->models, &c->s->n_models, &md, sizeof md);
     return rc;
 }
 
 /* models[].name|formula|response: a string (a response must be a counter). */
-static int p__k_model_text(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_model_text(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)k;
-    const char *name = row->doc.name, *text = p__scalar(v);
+    const char *name = row->doc.name, *text = sweep__scalar(v);
     if (!text || !*text)
-        return p__fail(c, v, "models[].%s: expected a non-empty string", name);
+        return sweep__fail(c, v, "models[].%s: expected a non-empty string", name);
     if (strcmp(name, "response") == 0 && !counters_find(text))
-        return p__fail(c, v, "models: response '%s' is not a counter", text);
+        return sweep__fail(c, v, "models: response '%s' is not a counter", text);
     char **field = strcmp(name, "name") == 0 ? &c->model->name
                  : strcmp(name, "formula") == 0 ? &c->model->formula : &c->model->response;
     free(*field);
@@ -553,16 +553,16 @@ static int p__k_model_text(pctx *c, const p__key *row, yaml_node_t *k, yaml_node
     return 0;
 }
 
-static int p__k_group_by(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_group_by(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)row, (void)k;
     if (v->type != YAML_SEQUENCE_NODE)
-        return p__fail(c, v, "models[].group_by: expected a list of axis names");
+        return sweep__fail(c, v, "models[].group_by: expected a list of axis names");
     sweep_model *md = c->model;
     for (yaml_node_item_t *it = v->data.sequence.items.start; it < v->data.sequence.items.top; it++) {
-        const char *g = p__scalar(p__node(c, *it));
+        const char *g = sweep__scalar(sweep__node(c, *it));
         if (!g || !axes_find(g))
-            return p__fail(c, p__node(c, *it), "models: group_by: '%s' is not an axis", g ? g : "?");
+            return sweep__fail(c, sweep__node(c, *it), "models: group_by: '%s' is not an axis", g ? g : "?");
         char *copy = dm_xstrdup(g);
         dm_vec_push(&md->group_by, &md->n_group_by, &copy, sizeof copy);
     }
@@ -570,48 +570,48 @@ static int p__k_group_by(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t
 }
 
 /* published: a study's figures (sweep/published.c reads the block). */
-static int p__k_published(pctx *c, const p__key *row, yaml_node_t *k, yaml_node_t *v)
+static int sweep__k_published(pctx *c, const sweep__key *row, yaml_node_t *k, yaml_node_t *v)
 {
     (void)row, (void)k;
     return published_parse(c->doc, v, c->path, &c->s->published, c->err);
 }
 
 #define P__INT(sec, key, field, lo, hi, def, doc, ex) \
-    { { sec, key, "integer " #lo "–" #hi, #def, doc, ex }, p__k_int, NULL, NULL, offsetof(sweep, field), lo, hi, def }
+    { { sec, key, "integer " #lo "–" #hi, #def, doc, ex }, sweep__k_int, NULL, NULL, offsetof(sweep, field), lo, hi, def }
 #define P__REAL(sec, key, field, lo, hi, def, doc, ex) \
-    { { sec, key, "number " #lo "–" #hi, #def, doc, ex }, p__k_real, NULL, NULL, offsetof(sweep, field), lo, hi, def }
+    { { sec, key, "number " #lo "–" #hi, #def, doc, ex }, sweep__k_real, NULL, NULL, offsetof(sweep, field), lo, hi, def }
 /* A fraction (sweep/fraction.h): "3%" or 0.03; a bare number above 1 is refused. */
 #define P__FRAC(sec, key, field, lo, hi, def, def_text, doc, ex) \
-    { { sec, key, "fraction: `3%` or `0.03`", def_text, doc, ex }, p__k_frac, NULL, NULL, \
+    { { sec, key, "fraction: `3%` or `0.03`", def_text, doc, ex }, sweep__k_frac, NULL, NULL, \
       offsetof(sweep, field), lo, hi, def }
 #define P__ROW(sec, key, fn, arg, type, deflt, doc, ex) { { sec, key, type, deflt, doc, ex }, fn, arg, NULL, 0, 0, 0, 0 }
 #define P__AXIS(sec, key, axis, ex) { { sec, key, "a value of `" axis "`", "the axis' default", \
-    "sets the `" axis "` axis", ex }, p__k_scene_axis, axis, NULL, 0, 0, 0, 0 }
+    "sets the `" axis "` axis", ex }, sweep__k_scene_axis, axis, NULL, 0, 0, 0, 0 }
 #define P__FILE(key, doc) { { "scene.material", key, "file path", "procedural", doc, \
-    "maps/" key ".png" }, p__k_map_file, NULL, NULL, 0, 0, 0, 0 }
+    "maps/" key ".png" }, sweep__k_map_file, NULL, NULL, 0, 0, 0, 0 }
 #define P__MAP(sec, key, fn, opens, doc) \
     { { sec, key, "mapping", "see `" opens "`", doc, NULL }, fn, opens, NULL, 0, 0, 0, 0 }
 #define P__LIST(sec, key, entry, holds, deflt, doc) \
-    { { sec, key, "list of mappings", deflt, doc, NULL }, p__k_list, holds, entry, 0, 0, 0, 0 }
+    { { sec, key, "list of mappings", deflt, doc, NULL }, sweep__k_list, holds, entry, 0, 0, 0, 0 }
 
-static const p__key p__keys[] = {
-    P__ROW("", "name", p__k_name, NULL, "string", "`unnamed`",
+static const sweep__key sweep__keys[] = {
+    P__ROW("", "name", sweep__k_name, NULL, "string", "`unnamed`",
            "name of the sweep, shown in reports and stored with the run", "tess-study"),
-    P__ROW("", "resolution", p__k_scene_axis, "resolution", "`[W, H]` or `\"WxH\"`", "the axis' default",
+    P__ROW("", "resolution", sweep__k_scene_axis, "resolution", "`[W, H]` or `\"WxH\"`", "the axis' default",
            "default render size (the `resolution` axis)", "[480, 270]"),
-    P__MAP("", "measure", p__k_section, "measure", "how each configuration is measured"),
-    P__ROW("", "scene", p__k_section, "scene", "mapping", "catalog defaults",
+    P__MAP("", "measure", sweep__k_section, "measure", "how each configuration is measured"),
+    P__ROW("", "scene", sweep__k_section, "scene", "mapping", "catalog defaults",
            "defaults for every configuration", NULL),
-    P__ROW("", "sweep", p__k_sweep, "sweep", "mapping", "no axes: one configuration",
+    P__ROW("", "sweep", sweep__k_sweep, "sweep", "mapping", "no axes: one configuration",
            "the axes; their cartesian product is planned", NULL),
-    P__LIST("", "exclude", p__exclude_entry, "{axis: value or [values], ...} entries", "none",
+    P__LIST("", "exclude", sweep__exclude_entry, "{axis: value or [values], ...} entries", "none",
             "combinations of sweep values not to plan"),
-    P__MAP("", "quality", p__k_section, "quality", "what images are compared with"),
-    P__LIST("", "models", p__model_entry, "{name, formula, group_by, response}", "none",
+    P__MAP("", "quality", sweep__k_section, "quality", "what images are compared with"),
+    P__LIST("", "models", sweep__model_entry, "{name, formula, group_by, response}", "none",
             "cost models fitted after the run"),
-    P__ROW("", "published", p__k_published, NULL, "mapping (see `published`)", "none",
+    P__ROW("", "published", sweep__k_published, NULL, "mapping (see `published`)", "none",
            "a study's figures, set beside the measured ones in the report", NULL),
-    P__ROW("", "drivers", p__k_drivers, NULL, "list of driver names", "none: the run's own driver",
+    P__ROW("", "drivers", sweep__k_drivers, NULL, "list of driver names", "none: the run's own driver",
            "measure the sweep once per driver, each in its own run, and set them side by side "
            "(`dmbench drivers`, docs/drivers.md)", "[llvmpipe, zink]"),
 
@@ -622,13 +622,13 @@ static const p__key p__keys[] = {
            "K: one sample is K frames fenced by `glFinish`; frame time = sample / K", "8"),
     P__REAL("measure", "min_sample_ms", measure.min_sample_ms, 0, 10000, 20,
             "K is raised per configuration until a sample lasts this long (0: K exactly)", "20"),
-    P__MAP("measure", "samples", p__k_samples, "measure.samples", "how many samples"),
+    P__MAP("measure", "samples", sweep__k_samples, "measure.samples", "how many samples"),
     P__REAL("measure", "max_seconds", measure.max_seconds, 0.01, 86400, 10,
             "time cap on sampling one configuration (after `samples.min`)", "6"),
     P__REAL("measure", "timeout_s", measure.timeout_s, 1, 86400, 120,
             "watchdog: a configuration without progress for this long is killed and recorded "
             "as failed", "60"),
-    P__ROW("measure", "counters", p__k_counters, NULL, "list of counter names",
+    P__ROW("measure", "counters", sweep__k_counters, NULL, "list of counter names",
            "WallTime, CPUTime, SubmitTime, GPUTime, the pipeline statistics, SamplesPassed, "
            "TextureBytes, MeshBytes, MeshTriangles",
            "the counters read per configuration (`dmbench list counters`)", "[WallTime, FSInvocations]"),
@@ -640,10 +640,10 @@ static const p__key p__keys[] = {
     P__FRAC("measure.samples", "target_ci", measure.target_ci, 0, 1, 0.03, "3%",
             "stop once the 95 % CI of the median is within ± this fraction of it", "3%"),
 
-    P__MAP("scene", "camera", p__k_section, "scene.camera", "where the camera is"),
-    P__MAP("scene", "lights", p__k_section, "scene.lights", "how the scene is lit"),
-    P__MAP("scene", "material", p__k_material, "scene.material", "the surface's maps"),
-    P__ROW("scene", "*", p__k_scene_axis, NULL, "a value of that axis", "the axis' default",
+    P__MAP("scene", "camera", sweep__k_section, "scene.camera", "where the camera is"),
+    P__MAP("scene", "lights", sweep__k_section, "scene.lights", "how the scene is lit"),
+    P__MAP("scene", "material", sweep__k_material, "scene.material", "the surface's maps"),
+    P__ROW("scene", "*", sweep__k_scene_axis, NULL, "a value of that axis", "the axis' default",
            "any axis (`dmbench list axes`): its value for every configuration", "mesh: cube"),
 
     P__AXIS("scene.camera", "distance", "camera.distance", "3.0"),
@@ -661,15 +661,15 @@ static const p__key p__keys[] = {
     P__FILE("normal", "the user's normal map"),
     P__FILE("albedo", "the user's albedo map"),
 
-    P__ROW("sweep", "*", p__k_axis_values, NULL, "a value or a list of values", "—",
+    P__ROW("sweep", "*", sweep__k_axis_values, NULL, "a value or a list of values", "—",
            "an axis (`dmbench list axes`) and the values it takes", "tess_level: [1, 16, 64]"),
-    P__ROW("exclude[]", "*", p__k_axis_values, NULL, "a value or a list of values", "—",
+    P__ROW("exclude[]", "*", sweep__k_axis_values, NULL, "a value or a list of values", "—",
            "a sweep axis; the entry drops combinations with one of these values on every "
            "axis it names", "technique: phong"),
 
-    P__ROW("quality", "reference", p__k_reference, "quality.reference", "mapping",
+    P__ROW("quality", "reference", sweep__k_reference, "quality.reference", "mapping",
            "see `quality.reference`", "the image every configuration is compared with", NULL),
-    P__ROW("quality", "pareto_metric", p__k_pareto, NULL,
+    P__ROW("quality", "pareto_metric", sweep__k_pareto, NULL,
            "`ssim`, `psnr`, `rmse`, `max-error`, `silhouette`, `depth-rmse` or `flip`", "`ssim`",
            "the error the report's Pareto front uses", "psnr"),
     P__REAL("quality", "budget_ms", budget_ms, 0.001, 1e6, 0,
@@ -679,83 +679,83 @@ static const p__key p__keys[] = {
             "pixels per degree of visual angle FLIP assumes (docs/flip.md); the default is "
             "FLIP's own, a 0.7 m wide 3840-pixel monitor seen from 0.7 m", "30"),
 
-    P__ROW("quality.reference", "technique", p__k_ref_technique, NULL, "a technique or `same`",
+    P__ROW("quality.reference", "technique", sweep__k_ref_technique, NULL, "a technique or `same`",
            "`reference-mesh`", "the reference's technique; `same`: each configuration "
            "supersampled", "normal"),
     P__INT("quality.reference", "supersample", supersample, 1, 8, 4,
            "the reference is rendered this many times larger per axis, then reduced", "4"),
-    P__ROW("quality.reference", "*", p__k_ref_axis, NULL, "a value of that axis",
+    P__ROW("quality.reference", "*", sweep__k_ref_axis, NULL, "a value of that axis",
            "the configuration's", "any axis the reference technique reads, set on the "
            "reference only", "maps: stones"),
 
-    P__ROW("models[]", "name", p__k_model_text, NULL, "string", "— (required)",
+    P__ROW("models[]", "name", sweep__k_model_text, NULL, "string", "— (required)",
            "the model's name; without `formula` a built-in model (`dmbench list models`)",
            "pixel-cost"),
-    P__ROW("models[]", "formula", p__k_model_text, NULL, "formula", "the built-in's",
+    P__ROW("models[]", "formula", sweep__k_model_text, NULL, "formula", "the built-in's",
            "expression and bounds (see `models`)", "\"a + b*SamplesPassed\""),
-    P__ROW("models[]", "response", p__k_model_text, NULL, "counter name", "`WallTime`",
+    P__ROW("models[]", "response", sweep__k_model_text, NULL, "counter name", "`WallTime`",
            "the counter the formula predicts", "WallTime"),
-    P__ROW("models[]", "group_by", p__k_group_by, NULL, "list of axes", "none",
+    P__ROW("models[]", "group_by", sweep__k_group_by, NULL, "list of axes", "none",
            "one fit per distinct value of these axes", "[technique]"),
 };
-#define P__N_KEYS (sizeof p__keys / sizeof p__keys[0])
+#define P__N_KEYS (sizeof sweep__keys / sizeof sweep__keys[0])
 _Static_assert(P__N_KEYS <= sizeof ((pctx *)0)->seen, "pctx.seen is too small for the key table");
 
 size_t sweep_keys_count(void) { return P__N_KEYS; }
-const sweep_key *sweep_keys_at(size_t i) { return i < P__N_KEYS ? &p__keys[i].doc : NULL; }
+const sweep_key *sweep_keys_at(size_t i) { return i < P__N_KEYS ? &sweep__keys[i].doc : NULL; }
 
 /* The row of `name` in `section`, else the section's "*" row, else NULL. */
-static const p__key *p__lookup(const char *section, const char *name)
+static const sweep__key *sweep__lookup(const char *section, const char *name)
 {
-    const p__key *any = NULL;
+    const sweep__key *any = NULL;
     for (size_t i = 0; i < P__N_KEYS; i++) {
-        if (strcmp(p__keys[i].doc.section, section) != 0)
+        if (strcmp(sweep__keys[i].doc.section, section) != 0)
             continue;
-        if (strcmp(p__keys[i].doc.name, name) == 0)
-            return &p__keys[i];
-        if (strcmp(p__keys[i].doc.name, "*") == 0)
-            any = &p__keys[i];
+        if (strcmp(sweep__keys[i].doc.name, name) == 0)
+            return &sweep__keys[i];
+        if (strcmp(sweep__keys[i].doc.name, "*") == 0)
+            any = &sweep__keys[i];
     }
     return any;
 }
 
 /* Rejects a key that is no row of `section` (nor an axis where the section
  * takes axes), listing the valid ones and the closest match. */
-static int p__unknown_key(pctx *c, yaml_node_t *k, const char *section)
+static int sweep__unknown_key(pctx *c, yaml_node_t *k, const char *section)
 {
-    const char *key = p__scalar(k) ? p__scalar(k) : "?";
+    const char *key = sweep__scalar(k) ? sweep__scalar(k) : "?";
     size_t n = 0;
     const char **valid = dm_xmalloc((P__N_KEYS + axes_count()) * sizeof *valid);
     for (size_t i = 0; i < P__N_KEYS; i++)
-        if (strcmp(p__keys[i].doc.section, section) == 0 && strcmp(p__keys[i].doc.name, "*") != 0)
-            valid[n++] = p__keys[i].doc.name;
-    for (size_t i = 0; p__lookup(section, "\x01") && i < axes_count(); i++)
+        if (strcmp(sweep__keys[i].doc.section, section) == 0 && strcmp(sweep__keys[i].doc.name, "*") != 0)
+            valid[n++] = sweep__keys[i].doc.name;
+    for (size_t i = 0; sweep__lookup(section, "\x01") && i < axes_count(); i++)
         valid[n++] = axes_at(i)->name;
-    p__fail(c, k, "unknown key '%s' in %s", key, *section ? section : "the sweep file");
+    sweep__fail(c, k, "unknown key '%s' in %s", key, *section ? section : "the sweep file");
     dm_str_suggest(c->err, key, valid, n, "keys");
     free(valid);
     return DM_ERR_PARSE;
 }
 
 /* Reads a mapping whose keys are the rows of `section`. */
-static int p__section(pctx *c, yaml_node_t *map, const char *section)
+static int sweep__section(pctx *c, yaml_node_t *map, const char *section)
 {
-    int rc = p__expect_map(c, map, *section ? section : "sweep file");
+    int rc = sweep__expect_map(c, map, *section ? section : "sweep file");
     P__FOREACH_PAIR(c, map, pr) {
         if (rc)
             break;
-        yaml_node_t *k = p__node(c, pr->key), *v = p__node(c, pr->value);
-        const p__key *row = p__lookup(section, p__scalar(k) ? p__scalar(k) : "");
+        yaml_node_t *k = sweep__node(c, pr->key), *v = sweep__node(c, pr->value);
+        const sweep__key *row = sweep__lookup(section, sweep__scalar(k) ? sweep__scalar(k) : "");
         if (!row)
-            return p__unknown_key(c, k, section);
-        c->seen[row - p__keys] = 1;
+            return sweep__unknown_key(c, k, section);
+        c->seen[row - sweep__keys] = 1;
         rc = row->fn(c, row, k, v);
     }
     return rc;
 }
 
 /* A Markdown table cell: '|' escaped, so a type such as "a | b" stays one cell. */
-static void p__md_cell(dm_str *out, const char *text)
+static void sweep__md_cell(dm_str *out, const char *text)
 {
     dm_str_cat(out, " ");
     for (const char *p = text; *p; p++)
@@ -767,7 +767,7 @@ void sweep_keys_markdown(dm_str *out)
 {
     const char *section = NULL;
     for (size_t i = 0; i < P__N_KEYS; i++) {
-        const p__key *row = &p__keys[i];
+        const sweep__key *row = &sweep__keys[i];
         if (!section || strcmp(section, row->doc.section) != 0) {
             section = row->doc.section;
             dm_str_printf(out, "%s### %s%s%s\n\n| key | value | default | meaning |\n|---|---|---|---|\n",
@@ -780,30 +780,30 @@ void sweep_keys_markdown(dm_str *out)
         else
             snprintf(key, sizeof key, "`%s`", row->doc.name);
         dm_str_cat(out, "|");
-        p__md_cell(out, key);
-        p__md_cell(out, row->doc.type);
-        p__md_cell(out, row->doc.deflt);
+        sweep__md_cell(out, key);
+        sweep__md_cell(out, row->doc.type);
+        sweep__md_cell(out, row->doc.deflt);
         dm_str doc = {0};
         dm_str_cat(&doc, row->doc.doc);
         if (row->doc.example && strcmp(row->doc.name, "*") == 0)
             dm_str_printf(&doc, "; e.g. `%s`", row->doc.example);
         else if (row->doc.example)
             dm_str_printf(&doc, "; e.g. `%s: %s`", row->doc.name, row->doc.example);
-        p__md_cell(out, dm_str_get(&doc));
+        sweep__md_cell(out, dm_str_get(&doc));
         dm_str_free(&doc);
         dm_str_cat(out, "\n");
     }
 }
 
 /* Numeric keys the file did not give take the table's default. */
-static void p__numeric_defaults(pctx *c)
+static void sweep__numeric_defaults(pctx *c)
 {
     for (size_t i = 0; i < P__N_KEYS; i++) {
-        const p__key *row = &p__keys[i];
+        const sweep__key *row = &sweep__keys[i];
         char *field = (char *)c->s + row->off;
-        if (c->seen[i] || (row->fn != p__k_int && row->fn != p__k_real && row->fn != p__k_frac))
+        if (c->seen[i] || (row->fn != sweep__k_int && row->fn != sweep__k_real && row->fn != sweep__k_frac))
             continue;
-        if (row->fn == p__k_int)
+        if (row->fn == sweep__k_int)
             *(int *)(void *)field = (int)row->def;
         else
             *(double *)(void *)field = row->def;
@@ -881,13 +881,13 @@ static void sweep__defaults(sweep *s)
 }
 
 /* The child of mapping n under key `name`, or NULL. */
-static yaml_node_t *p__child(pctx *c, yaml_node_t *n, const char *name)
+static yaml_node_t *sweep__child(pctx *c, yaml_node_t *n, const char *name)
 {
     for (yaml_node_pair_t *p = n && n->type == YAML_MAPPING_NODE ? n->data.mapping.pairs.start : NULL;
          p && p < n->data.mapping.pairs.top; p++) {
-        const char *k = p__scalar(p__node(c, p->key));
+        const char *k = sweep__scalar(sweep__node(c, p->key));
         if (k && strcmp(k, name) == 0)
-            return p__node(c, p->value);
+            return sweep__node(c, p->value);
     }
     return NULL;
 }
@@ -896,16 +896,16 @@ static yaml_node_t *p__child(pctx *c, yaml_node_t *n, const char *name)
  * `scene:` name before anything else is read, so their parameters are axes
  * wherever the file puts them.  Errors are left to the regular pass, which
  * reports them at their line. */
-static void p__preload_techniques(pctx *c, yaml_node_t *root)
+static void sweep__preload_techniques(pctx *c, yaml_node_t *root)
 {
     static const char *const sections[] = {"sweep", "scene"};
     for (size_t s = 0; s < 2; s++) {
-        yaml_node_t *t = p__child(c, p__child(c, root, sections[s]), "technique");
+        yaml_node_t *t = sweep__child(c, sweep__child(c, root, sections[s]), "technique");
         size_t n = t && t->type == YAML_SEQUENCE_NODE
                        ? (size_t)(t->data.sequence.items.top - t->data.sequence.items.start) : 1;
         for (size_t i = 0; t && i < n; i++) {
-            yaml_node_t *v = t->type == YAML_SEQUENCE_NODE ? p__node(c, t->data.sequence.items.start[i]) : t;
-            char *path = p__scalar(v) ? sweep_paths_resolve(c->path, "technique", dm_xstrdup(p__scalar(v))) : NULL;
+            yaml_node_t *v = t->type == YAML_SEQUENCE_NODE ? sweep__node(c, t->data.sequence.items.start[i]) : t;
+            char *path = sweep__scalar(v) ? sweep_paths_resolve(c->path, "technique", dm_xstrdup(sweep__scalar(v))) : NULL;
             dm_str ignored = {0};
             if (path && user_technique_is_path(path))
                 user_technique_load(path, NULL, &ignored);
@@ -978,10 +978,10 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
     int rc = sweep__depth_check(&doc, path, err);
     yaml_node_t *root = yaml_document_get_root_node(&doc);
     if (rc == 0 && !root)
-        rc = p__fail(&c, NULL, "empty sweep file (expected keys: name, sweep, ...)");
+        rc = sweep__fail(&c, NULL, "empty sweep file (expected keys: name, sweep, ...)");
     if (rc == 0)
-        p__preload_techniques(&c, root);
-    rc = rc ? rc : p__section(&c, root, "");
+        sweep__preload_techniques(&c, root);
+    rc = rc ? rc : sweep__section(&c, root, "");
     yaml_document_delete(&doc);
     yaml_parser_delete(&parser);
     if (rc == 0)
@@ -990,7 +990,7 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
         sweep_free(out);
         return c.env ? c.env : rc;
     }
-    p__numeric_defaults(&c);
+    sweep__numeric_defaults(&c);
     sweep__defaults(out);
     out->hash = dm_fnv1a64(text, strlen(text), DM_FNV_SEED);
     return 0;

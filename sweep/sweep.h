@@ -6,8 +6,8 @@
  * unknown key, axis, value, technique or counter is DM_ERR_PARSE with
  * "file:line:column: message" in err, listing the valid choices.
  */
-#ifndef HARNESS_SWEEP_H
-#define HARNESS_SWEEP_H
+#ifndef SWEEP_SWEEP_H
+#define SWEEP_SWEEP_H
 
 #include <stddef.h>
 #include <stdint.h>

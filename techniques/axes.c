@@ -1,20 +1,17 @@
-/* axes.c — the catalog of sweep axes (see axes.h). */
+/* axes.c — the built-in rows of the sweep axes and the checks of their
+ * values (see axes.h); the registry of all axes is the catalog's. */
 #include "techniques/axes.h"
 #include "techniques/user_mesh.h"
 
 #include <ctype.h>
 #include <errno.h>
 #include <math.h>
-#include <pthread.h>
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
 #include "core/dm_error.h"
 #include "techniques/maps.h"
-#include "techniques/mesh.h"
-#include "techniques/technique.h"
-#include "techniques/user_technique.h"
 
 static const char *const axes__on_off[] = {"on", "off", NULL};
 static const char *const axes__dnormals[] = {"map", "height", NULL};
@@ -37,81 +34,86 @@ static const char *const axes__afmt[] = {"rgba8", "srgb8_a8", "rgba16f", "rgba32
                                          "bc1", "bc3", "bc7", NULL};
 static const char *const axes__vt[] = {"off", "software", "sparse", NULL};
 
+static int axes__check_mesh(const axis_info *a, const char *value, dm_str *err);
+static int axes__check_maps(const axis_info *a, const char *value, dm_str *err);
+static int axes__check_enum(const axis_info *a, const char *value, dm_str *err);
+
 #define E AXIS_ENUM
 #define I AXIS_INT
 #define F AXIS_FLOAT
-/* choices of technique, mesh and maps come from their registries (axes__init);
- * technique and mesh stay first and maps last. */
-static axis_info axes__table[] = {
-    {"technique", E, NULL, 0, 0, "normal", 1, "surface-detail technique to render"},
-    {"mesh", E, NULL, 0, 0, "plane", 1, "built-in mesh"},
+/* choices of technique, mesh and maps come from their registries (the
+ * catalog fills them in, and the technique row's check); technique and mesh
+ * stay first and maps last. */
+static const axis_info axes__table[] = {
+    {"technique", E, NULL, 0, 0, "normal", 1, "surface-detail technique to render", NULL},
+    {"mesh", E, NULL, 0, 0, "plane", 1, "built-in mesh", axes__check_mesh},
     {"mesh_density", I, NULL, 0, 1024, "0", 1,
-     "mesh resolution (plane: vertices per side, sphere: subdivision level, cylinder: segments); 0 = mesh default"},
-    {"resolution", AXIS_SIZE2, NULL, 1, 8192, "640x360", 1, "render target size WxH"},
+     "mesh resolution (plane: vertices per side, sphere: subdivision level, cylinder: segments); 0 = mesh default", NULL},
+    {"resolution", AXIS_SIZE2, NULL, 1, 8192, "640x360", 1, "render target size WxH", NULL},
     {"cull", E, axes__cull, 0, 0, "back", 1,
-     "rasteriser face culling: back (back faces dropped) or off (both sides drawn)"},
-    {"tess_level", I, NULL, 1, 64, "1", 0, "tessellation level (inner = outer)"},
+     "rasteriser face culling: back (back faces dropped) or off (both sides drawn)", NULL},
+    {"tess_level", I, NULL, 1, 64, "1", 0, "tessellation level (inner = outer)", NULL},
     {"tess_inner", I, NULL, 1, 64, "auto", 0,
-     "inner tessellation level with lod=uniform, or 'auto' (= tess_level)"},
+     "inner tessellation level with lod=uniform, or 'auto' (= tess_level)", NULL},
     {"tess_outer", I, NULL, 1, 64, "auto", 0,
-     "every outer tessellation level with lod=uniform, or 'auto' (= tess_level)"},
-    {"tess_spacing", E, axes__spacing, 0, 0, "equal", 0, "tessellation spacing"},
-    {"lod", E, axes__lod, 0, 0, "uniform", 0, "how the tessellation level is chosen per patch"},
-    {"patch_cull", E, axes__on_off, 0, 0, "off", 0, "cull back-facing/off-screen patches in the control stage"},
-    {"crack_free", E, axes__on_off, 0, 0, "off", 0, "per-edge levels from edge midpoints so neighbours agree"},
+     "every outer tessellation level with lod=uniform, or 'auto' (= tess_level)", NULL},
+    {"tess_spacing", E, axes__spacing, 0, 0, "equal", 0, "tessellation spacing", NULL},
+    {"lod", E, axes__lod, 0, 0, "uniform", 0, "how the tessellation level is chosen per patch", NULL},
+    {"patch_cull", E, axes__on_off, 0, 0, "off", 0, "cull back-facing/off-screen patches in the control stage", NULL},
+    {"crack_free", E, axes__on_off, 0, 0, "off", 0, "per-edge levels from edge midpoints so neighbours agree", NULL},
     {"tess_smooth", E, axes__smooth, 0, 0, "off", 0,
-     "smooth base surface of tess-displacement: phong = Phong tessellation (alpha 0.75)"},
-    {"height_scale", F, NULL, -1, 1, "0.06", 0, "displacement / parallax depth in world units per height unit"},
+     "smooth base surface of tess-displacement: phong = Phong tessellation (alpha 0.75)", NULL},
+    {"height_scale", F, NULL, -1, 1, "0.06", 0, "displacement / parallax depth in world units per height unit", NULL},
     {"parallax_bias", F, NULL, -1, 2, "0.5", 0,
-     "plain parallax bias as a fraction of the depth: h' = (h - bias)·scale (0.5 = Kaneko's scale/2)"},
-    {"offset_limit", E, axes__on_off, 0, 0, "off", 0, "parallax offset limiting (Welsh): drop the division by V.z"},
-    {"steps", I, NULL, 1, 512, "32", 0, "parallax search steps, or 'auto' (min_steps..max_steps by view angle)"},
-    {"min_steps", I, NULL, 1, 512, "8", 0, "fewest steps of steps=auto (view along the normal)"},
-    {"max_steps", I, NULL, 1, 512, "64", 0, "most steps of steps=auto (grazing view)"},
-    {"shadow", E, axes__shadow, 0, 0, "none", 0, "self-shadowing from the height map"},
-    {"lighting", E, axes__lighting, 0, 0, "blinn-phong", 0, "lighting model"},
-    {"light_count", I, NULL, 1, 8, "1", 0, "number of point lights"},
+     "plain parallax bias as a fraction of the depth: h' = (h - bias)·scale (0.5 = Kaneko's scale/2)", NULL},
+    {"offset_limit", E, axes__on_off, 0, 0, "off", 0, "parallax offset limiting (Welsh): drop the division by V.z", NULL},
+    {"steps", I, NULL, 1, 512, "32", 0, "parallax search steps, or 'auto' (min_steps..max_steps by view angle)", NULL},
+    {"min_steps", I, NULL, 1, 512, "8", 0, "fewest steps of steps=auto (view along the normal)", NULL},
+    {"max_steps", I, NULL, 1, 512, "64", 0, "most steps of steps=auto (grazing view)", NULL},
+    {"shadow", E, axes__shadow, 0, 0, "none", 0, "self-shadowing from the height map", NULL},
+    {"lighting", E, axes__lighting, 0, 0, "blinn-phong", 0, "lighting model", NULL},
+    {"light_count", I, NULL, 1, 8, "1", 0, "number of point lights", NULL},
     {"attenuation", E, axes__atten, 0, 0, "inverse-quadratic", 0,
-     "light falloff with distance d: 1/(1 + 0.1d + 0.05d²), s1 = max(0, 1 - d²/r²), or none"},
+     "light falloff with distance d: 1/(1 + 0.1d + 0.05d²), s1 = max(0, 1 - d²/r²), or none", NULL},
     {"light_radius", F, NULL, 0.01, 1000, "10", 0,
-     "r of attenuation=s1: the distance at which a light's contribution reaches 0"},
+     "r of attenuation=s1: the distance at which a light's contribution reaches 0", NULL},
     {"roughness", F, NULL, 0.01, 1, "0.35", 0,
-     "Cook-Torrance Beckmann roughness m (read with lighting=cook-torrance only)"},
-    {"filter", E, axes__filter, 0, 0, "trilinear", 1, "texture filtering of the material maps"},
-    {"vertex_filter", E, axes__vfilter, 0, 0, "nearest", 0, "height-map filtering in the vertex stage"},
-    {"visibility_test", E, axes__on_off, 0, 0, "off", 0, "skip displacement of vertices outside the widened view volume"},
-    {"height_format", E, axes__hfmt, 0, 0, "r32f", 0, "internal format of the height map"},
-    {"normal_format", E, axes__nfmt, 0, 0, "rgb8", 0, "internal format of the normal map"},
-    {"albedo_format", E, axes__afmt, 0, 0, "rgba8", 1, "internal format of the albedo map"},
+     "Cook-Torrance Beckmann roughness m (read with lighting=cook-torrance only)", NULL},
+    {"filter", E, axes__filter, 0, 0, "trilinear", 1, "texture filtering of the material maps", NULL},
+    {"vertex_filter", E, axes__vfilter, 0, 0, "nearest", 0, "height-map filtering in the vertex stage", NULL},
+    {"visibility_test", E, axes__on_off, 0, 0, "off", 0, "skip displacement of vertices outside the widened view volume", NULL},
+    {"height_format", E, axes__hfmt, 0, 0, "r32f", 0, "internal format of the height map", NULL},
+    {"normal_format", E, axes__nfmt, 0, 0, "rgb8", 0, "internal format of the normal map", NULL},
+    {"albedo_format", E, axes__afmt, 0, 0, "rgba8", 1, "internal format of the albedo map", NULL},
     {"texture_size", I, NULL, 16, 65536, "512", 1,
-     "texels per side of the material maps (above 16384 only with virtual_texture=software)"},
-    {"virtual_texture", E, axes__vt, 0, 0, "off", 1, "virtual texturing of the material maps"},
-    {"vt_page_size", I, NULL, 16, 1024, "128", 1, "virtual texture page size in texels"},
-    {"vt_cache_pages", I, NULL, 1, 65536, "256", 1, "pages in the physical page cache"},
-    {"toksvig", E, axes__on_off, 0, 0, "off", 0, "Toksvig specular anti-aliasing from the filtered normal length"},
+     "texels per side of the material maps (above 16384 only with virtual_texture=software)", NULL},
+    {"virtual_texture", E, axes__vt, 0, 0, "off", 1, "virtual texturing of the material maps", NULL},
+    {"vt_page_size", I, NULL, 16, 1024, "128", 1, "virtual texture page size in texels", NULL},
+    {"vt_cache_pages", I, NULL, 1, 65536, "256", 1, "pages in the physical page cache", NULL},
+    {"toksvig", E, axes__on_off, 0, 0, "off", 0, "Toksvig specular anti-aliasing from the filtered normal length", NULL},
     {"specular_map", E, axes__on_off, 0, 0, "off", 0,
-     "scale the specular term by the material's specular map (albedo alpha), as S3 does"},
+     "scale the specular term by the material's specular map (albedo alpha), as S3 does", NULL},
     {"displaced_normals", E, axes__dnormals, 0, 0, "map", 0,
-     "shading normals of a displacing technique: the normal map, or rebuilt from the height map (S3)"},
-    {"camera.distance", F, NULL, 0.1, 100, "3.0", 1, "orbit camera distance from its target (camera.target_*)"},
-    {"camera.azimuth", F, NULL, -360, 360, "30", 1, "orbit azimuth in degrees (0 = camera on +Z)"},
-    {"camera.elevation", F, NULL, -89.9, 89.9, "20", 1, "orbit elevation in degrees toward +Y"},
-    {"camera.fov", F, NULL, 1, 179, "45", 1, "vertical field of view in degrees"},
-    {"camera.target_x", F, NULL, -100, 100, "0", 1, "x of the point the camera orbits and looks at"},
-    {"camera.target_y", F, NULL, -100, 100, "0", 1, "y of the point the camera orbits and looks at"},
-    {"camera.target_z", F, NULL, -100, 100, "0", 1, "z of the point the camera orbits and looks at"},
+     "shading normals of a displacing technique: the normal map, or rebuilt from the height map (S3)", NULL},
+    {"camera.distance", F, NULL, 0.1, 100, "3.0", 1, "orbit camera distance from its target (camera.target_*)", NULL},
+    {"camera.azimuth", F, NULL, -360, 360, "30", 1, "orbit azimuth in degrees (0 = camera on +Z)", NULL},
+    {"camera.elevation", F, NULL, -89.9, 89.9, "20", 1, "orbit elevation in degrees toward +Y", NULL},
+    {"camera.fov", F, NULL, 1, 179, "45", 1, "vertical field of view in degrees", NULL},
+    {"camera.target_x", F, NULL, -100, 100, "0", 1, "x of the point the camera orbits and looks at", NULL},
+    {"camera.target_y", F, NULL, -100, 100, "0", 1, "y of the point the camera orbits and looks at", NULL},
+    {"camera.target_z", F, NULL, -100, 100, "0", 1, "z of the point the camera orbits and looks at", NULL},
     {"light.azimuth", F, NULL, -360, 360, "45", 1,
-     "degrees added to the camera azimuth for light 0 (light i adds i*45 more)"},
+     "degrees added to the camera azimuth for light 0 (light i adds i*45 more)", NULL},
     {"light.elevation", F, NULL, -180, 180, "35", 1,
-     "degrees added to the camera elevation (light i: min(cam + this - 10*(i mod 3), 80))"},
+     "degrees added to the camera elevation (light i: min(cam + this - 10*(i mod 3), 80))", NULL},
     {"light.distance", F, NULL, 0, 100, "1.2", 1,
-     "light distance from the camera target as a multiple of camera.distance (0 = at the target)"},
+     "light distance from the camera target as a multiple of camera.distance (0 = at the target)", NULL},
     {"camera.orbit_deg_per_frame", F, NULL, -360, 360, "0", 1,
-     "degrees the camera azimuth turns per frame of a sample (0 = still; lights follow it)"},
+     "degrees the camera azimuth turns per frame of a sample (0 = still; lights follow it)", NULL},
     {"light.orbit_deg_per_frame", F, NULL, -360, 360, "0", 1,
-     "degrees the lights' azimuth turns per frame of a sample on top of the camera's (S2's light circles)"},
+     "degrees the lights' azimuth turns per frame of a sample on top of the camera's (S2's light circles)", NULL},
     {"maps", E, NULL, 0, 0, "bricks", 1,
-     "procedural material maps, or user maps: height=PATH;normal=PATH;albedo=PATH"},
+     "procedural material maps, or user maps: height=PATH;normal=PATH;albedo=PATH", axes__check_maps},
 };
 #undef E
 #undef I
@@ -119,40 +121,19 @@ static axis_info axes__table[] = {
 
 #define AXES__N (sizeof axes__table / sizeof axes__table[0])
 
-static pthread_once_t axes__once = PTHREAD_ONCE_INIT;
-
-static void axes__init(void)
+const axis_info *axes_builtin(size_t *n)
 {
-    axes__table[0].choices = technique_names();
-    axes__table[1].choices = mesh_names();
-    axes__table[AXES__N - 1].choices = maps_names();
+    *n = AXES__N;
+    return axes__table;
 }
 
-/* The catalog, then the parameters of the user techniques loaded so far. */
-size_t axes_count(void) { return AXES__N + user_technique_axis_count(); }
-
-const axis_info *axes_at(size_t i)
+/* The built-in row called name, or NULL. */
+static const axis_info *axes__builtin_find(const char *name)
 {
-    pthread_once(&axes__once, axes__init);
-    return i < AXES__N ? &axes__table[i] : user_technique_axis_at(i - AXES__N);
-}
-
-const axis_info *axes_find(const char *name)
-{
-    for (size_t i = 0; name && i < axes_count(); i++)
-        if (strcmp(axes_at(i)->name, name) == 0)
-            return axes_at(i);
-    return NULL;
-}
-
-static int axes__unknown(const char *name, dm_str *err)
-{
-    const char *names[AXES__N];
     for (size_t i = 0; i < AXES__N; i++)
-        names[i] = axes_at(i)->name;
-    dm_str_printf(err, "unknown axis '%s'", name);
-    dm_str_suggest(err, name, names, AXES__N, "axes");
-    return DM_ERR_UNKNOWN;
+        if (strcmp(axes__table[i].name, name) == 0)
+            return &axes__table[i];
+    return NULL;
 }
 
 /* Parses a whole string as an integer / a finite real. */
@@ -210,16 +191,29 @@ int axes_parse_size2(const char *s, int *w, int *h)
     return 0;
 }
 
-/* A user mesh (mesh: "file:PATH"): validated at plan time by loading it
- * through Assimp, so a missing or corrupt file stops the run before any work. */
-static int axes__check_user_mesh(const char *path, dm_str *err)
+/* The mesh row: a built-in mesh, or a user mesh (mesh: "file:PATH")
+ * validated at plan time by loading it through Assimp, so a missing or
+ * corrupt file stops the run before any work. */
+static int axes__check_mesh(const axis_info *a, const char *value, dm_str *err)
 {
+    if (strncmp(value, USER_MESH_PREFIX, strlen(USER_MESH_PREFIX)) != 0)
+        return axes__check_enum(a, value, err);
+    const char *path = value + strlen(USER_MESH_PREFIX);
     dm_str why = {0};
     int rc = user_mesh_check(path, &why);
     if (rc)
         dm_str_printf(err, "mesh file '%s' cannot be used: %s", path, dm_str_get(&why));
     dm_str_free(&why);
     return rc ? DM_ERR_ARG : 0;
+}
+
+/* The maps row: procedural maps, or user maps (maps.h). */
+static int axes__check_maps(const axis_info *a, const char *value, dm_str *err)
+{
+    if (!maps_is_material(value))
+        return axes__check_enum(a, value, err);
+    int rc = maps_material_check(value, err);
+    return rc == DM_ERR_NOMEM ? rc : rc ? DM_ERR_ARG : 0;
 }
 
 /* 1 for the integer axes that also take the word 'auto' (steps: chosen by
@@ -242,26 +236,18 @@ static int axes__check_enum(const axis_info *a, const char *value, dm_str *err)
     return DM_ERR_ARG;
 }
 
-int axes_check(const char *name, const char *value, dm_str *err)
+int axes_value_check(const axis_info *a, const char *value, dm_str *err)
 {
-    const axis_info *a = axes_find(name);
-    if (!a)
-        return axes__unknown(name ? name : "", err);
-    value = value ? value : "";
+    return a->check ? a->check(a, value, err) : axes_kind_check(a, value, err);
+}
+
+int axes_kind_check(const axis_info *a, const char *value, dm_str *err)
+{
     long iv;
     double fv;
     int w, h;
     switch (a->kind) {
     case AXIS_ENUM:
-        if (strcmp(a->name, "maps") == 0 && maps_is_material(value))
-        {
-            int rc = maps_material_check(value, err);   /* user maps (maps.h) */
-            return rc == DM_ERR_NOMEM ? rc : rc ? DM_ERR_ARG : 0;
-        }
-        if (strcmp(a->name, "mesh") == 0 && strncmp(value, USER_MESH_PREFIX, strlen(USER_MESH_PREFIX)) == 0)
-            return axes__check_user_mesh(value + strlen(USER_MESH_PREFIX), err);
-        if (strcmp(a->name, "technique") == 0 && user_technique_is_path(value))
-            return user_technique_load(value, NULL, err);   /* registers it (user_technique.h) */
         return axes__check_enum(a, value, err);
     case AXIS_INT:
         if (axes__takes_auto(a) && strcmp(value, "auto") == 0)
@@ -287,14 +273,8 @@ int axes_check(const char *name, const char *value, dm_str *err)
     return DM_ERR_ARG;
 }
 
-char *axes_canonical(const char *name, const char *value)
+char *axes_value_canonical(const axis_info *a, const char *value)
 {
-    dm_str scratch = {0};
-    int rc = axes_check(name, value, &scratch);
-    dm_str_free(&scratch);
-    if (rc)
-        return NULL;
-    const axis_info *a = axes_find(name);
     long iv;
     double fv;
     int w, h;
@@ -304,9 +284,7 @@ char *axes_canonical(const char *name, const char *value)
         return dm_xasprintf("%.9g", fv);
     if (a->kind == AXIS_SIZE2 && axes_parse_size2(value, &w, &h) == 0)
         return dm_xasprintf("%dx%d", w, h);
-    if (a->kind == AXIS_ENUM && user_technique_by_path(value))
-        return dm_xstrdup(user_technique_by_path(value)->name);   /* a user file: its name */
-    return dm_xstrdup(value);
+    return NULL;
 }
 
 /* Axes that matter only when another axis has one value (axes.h). */
@@ -337,9 +315,12 @@ static const struct {
 static int axes__condition_row(size_t i, const char *(*value)(const char *axis, void *ctx),
                                void *ctx)
 {
-    const char *v = value ? value(axes__conditions[i].when_axis, ctx) : NULL;
-    v = v ? v : axes_find(axes__conditions[i].when_axis)->def;
-    char *cv = axes_canonical(axes__conditions[i].when_axis, v);
+    const axis_info *when = axes__builtin_find(axes__conditions[i].when_axis);
+    const char *v = value ? value(when->name, ctx) : NULL;
+    v = v ? v : when->def;
+    dm_str scratch = {0};
+    char *cv = axes_value_check(when, v, &scratch) == 0 ? axes_value_canonical(when, v) : NULL;
+    dm_str_free(&scratch);
     const char *want = axes__conditions[i].when_value;
     int neg = want[0] == '!';
     int equal = strcmp(cv ? cv : v, want + neg) == 0;
@@ -347,11 +328,9 @@ static int axes__condition_row(size_t i, const char *(*value)(const char *axis, 
     return equal != neg;
 }
 
-int axes_condition_holds(const char *name, const char *(*value)(const char *axis, void *ctx),
+int axes_conditions_hold(const char *name, const char *(*value)(const char *axis, void *ctx),
                          void *ctx)
 {
-    if (!axes_find(name))
-        return 0;
     for (size_t i = 0; i < sizeof axes__conditions / sizeof axes__conditions[0]; i++)
         if (strcmp(axes__conditions[i].axis, name) == 0 && !axes__condition_row(i, value, ctx))
             return 0;   /* every row of the axis must hold */

@@ -1,9 +1,13 @@
-/* axes.h — the catalog of sweep axes: names, kinds, valid values, defaults.
+/* axes.h — sweep axes: their rows (names, kinds, valid values, defaults,
+ * checks) and the lookups of the catalog.
  *
- * A configuration is a set of (axis, value) strings.  This catalog is the one
- * place that says which names and values exist, so the sweep parser can
- * reject bad input with the valid choices and the planner can project a
- * combination onto the axes a technique reads (technique.h).
+ * A configuration is a set of (axis, value) strings.  The built-in rows are
+ * axes.c's table; the catalog (catalog.h) owns the registry of all axes,
+ * built-in and user parameters, and answers the lookups below (axes_count,
+ * axes_at, axes_find, axes_check, axes_canonical, axes_condition_holds), so
+ * the sweep parser can reject bad input with the valid choices and the
+ * planner can project a combination onto the axes a technique reads
+ * (technique.h).  A row checks its own values: its `check`, or by kind.
  */
 #ifndef TECHNIQUES_AXES_H
 #define TECHNIQUES_AXES_H
@@ -23,7 +27,13 @@ typedef enum axis_kind {
  * (light placement), maps, texture_size, filter, albedo_format (and
  * technique itself).  Every other axis is declared by the techniques that
  * read it (technique_desc.axes). */
-typedef struct axis_info {
+typedef struct axis_info axis_info;
+/* Checks value (not NULL) against row a: 0, or DM_ERR_ARG (DM_ERR_NOMEM,
+ * DM_ERR_IO, DM_ERR_PARSE, DM_ERR_RANGE for a file the value names) with
+ * what was expected in err.  The caller adds file:line. */
+typedef int (*axis_check_fn)(const axis_info *a, const char *value, dm_str *err);
+
+struct axis_info {
     const char *name;
     axis_kind kind;
     const char *const *choices;   /* AXIS_ENUM: NULL-terminated */
@@ -31,8 +41,29 @@ typedef struct axis_info {
     const char *def;              /* default value as text */
     int scene;                    /* 1: read by every technique (scene axis) */
     const char *help;
-} axis_info;
+    axis_check_fn check;          /* NULL: by kind (axes_value_check) */
+};
 
+/* The built-in rows, in listing order (technique, mesh first, maps last);
+ * *n gets their number.  The choices of technique, mesh and maps are NULL
+ * here: the catalog fills them from their registries. */
+const axis_info *axes_builtin(size_t *n);
+/* Checks value against row a: a->check, else by kind (enum choices, integer
+ * or real range, WxH; steps, tess_inner and tess_outer take 'auto'). */
+int axes_value_check(const axis_info *a, const char *value, dm_str *err);
+/* The check by kind alone (what a row's own check falls back to). */
+int axes_kind_check(const axis_info *a, const char *value, dm_str *err);
+/* The canonical text of a valid INT, FLOAT or SIZE2 value of row a
+ * (malloc'd), or NULL for any other value (the value is then its own
+ * canonical text, but for a user technique's file: catalog). */
+char *axes_value_canonical(const axis_info *a, const char *value);
+/* The built-in conditions of axis name hold (axes_condition_holds, without
+ * the registry lookup of name). */
+int axes_conditions_hold(const char *name, const char *(*value)(const char *axis, void *ctx),
+                         void *ctx);
+
+/* The catalog's lookups (catalog.c): the built-in rows, then the
+ * parameters of the user techniques loaded so far. */
 size_t axes_count(void);
 const axis_info *axes_at(size_t i);
 const axis_info *axes_find(const char *name);

@@ -7,17 +7,10 @@
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
-#include "techniques/mesh_scene.h"
+#include "techniques/mesh_internal.h"
 
 #define MESH__PI 3.14159265358979323846f
 #define MESH__CYL_STACKS 12
-
-static const char *const mesh__names[] = {
-    "plane", "cube", "triangle", "fullscreen", "cylinder", "sphere", "terrain", "asteroid",
-    "seam", "halfflat", "asteroid-reduced", "terrain-tiles", "s2-scene1", "s4-asteroids", "s4-asteroids-reduced", NULL
-};
-
-const char *const *mesh_names(void) { return mesh__names; }
 
 /* Growable builder: vertices and indices appended in order. */
 typedef struct mesh__builder {
@@ -78,8 +71,9 @@ static void mesh__plane(mesh__builder *b, int n)
 }
 
 /* Cube [-1,1]³: 6 faces × 4 vertices with per-face UVs 0..1. */
-static void mesh__cube(mesh__builder *b)
+static void mesh__cube(mesh__builder *b, int d)
 {
+    (void)d;   /* accepted and ignored (mesh.h) */
     /* Per face: normal, tangent (u axis), bitangent (v axis). */
     static const float f[6][3][3] = {
         {{0, 0, 1}, {1, 0, 0}, {0, 1, 0}},   {{0, 0, -1}, {-1, 0, 0}, {0, 1, 0}},
@@ -101,16 +95,18 @@ static void mesh__cube(mesh__builder *b)
     }
 }
 
-static void mesh__triangle(mesh__builder *b)
+static void mesh__triangle(mesh__builder *b, int d)
 {
+    (void)d;   /* accepted and ignored (mesh.h) */
     static const float n[3] = {0, 0, 1};
     static const float p[3][3] = {{-1, -1, 0}, {1, -1, 0}, {0, 1, 0}};
     mesh__tri(b, mesh__vert(b, p[0], n, 0, 0), mesh__vert(b, p[1], n, 1, 0),
               mesh__vert(b, p[2], n, 0.5f, 1));
 }
 
-static void mesh__fullscreen(mesh__builder *b)
+static void mesh__fullscreen(mesh__builder *b, int d)
 {
+    (void)d;   /* accepted and ignored (mesh.h) */
     static const float n[3] = {0, 0, 1};
     static const float p[4][3] = {{-1, -1, 0}, {1, -1, 0}, {1, 1, 0}, {-1, 1, 0}};
     uint32_t a = mesh__vert(b, p[0], n, 0, 0);
@@ -418,65 +414,32 @@ static void mesh__halves(mesh__builder *b, int q, int flat_left)
     }
 }
 
-/* Density of each single mesh of mesh__names (before the scenes): the
- * default that 0 stands for, and the valid range of an explicit value. */
-static const int mesh__def[] = {2, 0, 0, 0, 58, 4, 16, 6, 4, 4, 2, 8},
-                 mesh__lo[] = {2, 0, 0, 0, 3, 0, 1, 0, 1, 1, 0, 1},
-                 mesh__hi[] = {1024, 1024, 1024, 1024, 1024, 7, 512, 7, 256, 256, 7, 256};
+static void mesh__seam(mesh__builder *b, int q) { mesh__halves(b, q, 0); }
+static void mesh__halfflat(mesh__builder *b, int q) { mesh__halves(b, q, 1); }
 
-/* Index of a single built-in mesh in mesh__names, or -1 (also for a scene). */
-static int mesh__kind(const char *name)
+/* Builds one single mesh into out with fn at density d (in its range, not
+ * 0: mesh_list.c checks), then its tangents.  Always 0. */
+static int mesh__object(mesh_data *out, int d, void (*fn)(mesh__builder *b, int d))
 {
-    for (int i = 0; i < (int)(sizeof mesh__def / sizeof mesh__def[0]); i++)
-        if (strcmp(name, mesh__names[i]) == 0)
-            return i;
-    return -1;
-}
-
-int mesh_density_range(const char *name, int *def, int *lo, int *hi)
-{
-    if (mesh_scene_is(name))
-        return mesh_scene_density_range(name, def, lo, hi);
-    int kind = mesh__kind(name);
-    if (kind < 0)
-        return DM_ERR_UNKNOWN;
-    *def = mesh__def[kind];
-    *lo = mesh__lo[kind];
-    *hi = mesh__hi[kind];
-    return 0;
-}
-
-int mesh_build(const mesh_desc *desc, mesh_data *out)
-{
-    const char *name = desc && desc->name ? desc->name : "plane";
-    int d = desc ? desc->density : 0;
-    if (mesh_scene_is(name))
-        return mesh_scene_build(name, d, out);   /* several objects (mesh_scene.h) */
-    int kind = mesh__kind(name);
-    if (kind < 0)
-        return DM_ERR_UNKNOWN;
-    if (d == 0)
-        d = mesh__def[kind];
-    if (d < mesh__lo[kind] || d > mesh__hi[kind])
-        return DM_ERR_RANGE;
     memset(out, 0, sizeof *out);
     mesh__builder b = {out, 0, 0};
-    switch (kind) {
-    case 0: mesh__plane(&b, d); break;
-    case 1: mesh__cube(&b); break;
-    case 2: mesh__triangle(&b); break;
-    case 3: mesh__fullscreen(&b); break;
-    case 4: mesh__cylinder(&b, d); break;
-    case 5: mesh__sphere(&b, d); break;
-    case 6: mesh__terrain(&b, d); break;
-    case 7: mesh__asteroid(&b, d); break;
-    case 10: mesh__asteroid_reduced(&b, d); break;
-    case 11: mesh__terrain_tiles(&b, d); break;
-    default: mesh__halves(&b, d, kind == 9); break;
-    }
+    fn(&b, d);
     mesh_generate_tangents(out);
     return 0;
 }
+
+int mesh__build_plane(int d, mesh_data *out) { return mesh__object(out, d, mesh__plane); }
+int mesh__build_cube(int d, mesh_data *out) { return mesh__object(out, d, mesh__cube); }
+int mesh__build_triangle(int d, mesh_data *out) { return mesh__object(out, d, mesh__triangle); }
+int mesh__build_fullscreen(int d, mesh_data *out) { return mesh__object(out, d, mesh__fullscreen); }
+int mesh__build_cylinder(int d, mesh_data *out) { return mesh__object(out, d, mesh__cylinder); }
+int mesh__build_sphere(int d, mesh_data *out) { return mesh__object(out, d, mesh__sphere); }
+int mesh__build_terrain(int d, mesh_data *out) { return mesh__object(out, d, mesh__terrain); }
+int mesh__build_asteroid(int d, mesh_data *out) { return mesh__object(out, d, mesh__asteroid); }
+int mesh__build_seam(int d, mesh_data *out) { return mesh__object(out, d, mesh__seam); }
+int mesh__build_halfflat(int d, mesh_data *out) { return mesh__object(out, d, mesh__halfflat); }
+int mesh__build_asteroid_reduced(int d, mesh_data *out) { return mesh__object(out, d, mesh__asteroid_reduced); }
+int mesh__build_terrain_tiles(int d, mesh_data *out) { return mesh__object(out, d, mesh__terrain_tiles); }
 
 /* ---- icosphere ---------------------------------------------------------- */
 
@@ -668,7 +631,7 @@ void mesh_free(mesh_data *m)
     memset(m, 0, sizeof *m);
 }
 
-/* ---- CPU subdivision and displacement (reference-mesh) ------------------- */
+/* ---- height map sampling (the reference-mesh displacement) ----------------- */
 
 /* Bilinear sample of a size×size height map with wrap-around, texel centres
  * at (i + 0.5)/size as GL's REPEAT sampling. */

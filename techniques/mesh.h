@@ -88,7 +88,8 @@ typedef struct mesh_desc {
     int density;            /* 0 = mesh default; see above */
 } mesh_desc;
 
-/* Names of the built-in meshes, NULL-terminated. */
+/* Names of the built-in meshes, NULL-terminated, in the order of the row
+ * table of mesh_list.c (which mesh_build and mesh_density_range read). */
 const char *const *mesh_names(void);
 /* Builds a built-in mesh (NULL desc or name = "plane") with tangents
  * generated.  Returns 0 and out owns its arrays (mesh_free), or

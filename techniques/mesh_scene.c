@@ -1,5 +1,6 @@
 /* mesh_scene.c — built-in scenes of several objects (see mesh_scene.h). */
 #include "techniques/mesh_scene.h"
+#include "techniques/mesh_internal.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -10,18 +11,6 @@
 
 #define MESH_SCENE__PI 3.14159265358979323846f
 
-static const char *const mesh_scene__names[] = {"s2-scene1", "s4-asteroids", "s4-asteroids-reduced", NULL};
-
-int mesh_scene_is(const char *name)
-{
-    for (int i = 0; name && mesh_scene__names[i]; i++)
-        if (strcmp(name, mesh_scene__names[i]) == 0)
-            return 1;
-    return 0;
-}
-
-/* Appends src to dst with positions p·scale + off; `inward` negates the
- * normals and reverses the winding (a box seen from inside). */
 static void mesh_scene__append(mesh_data *dst, const mesh_data *src, float scale, const float off[3],
                                int inward)
 {
@@ -44,13 +33,12 @@ static void mesh_scene__append(mesh_data *dst, const mesh_data *src, float scale
     dst->n_indices += src->n_indices;
 }
 
-/* Builds built-in mesh `name` at density and appends it placed. */
-static int mesh_scene__object(mesh_data *dst, const char *name, int density, float scale,
+/* Builds a single mesh with build at density and appends it placed. */
+static int mesh_scene__object(mesh_data *dst, mesh__build_fn build, int density, float scale,
                               const float off[3], int inward)
 {
-    mesh_desc d = {name, density};
-    mesh_data m;
-    int rc = mesh_build(&d, &m);
+    mesh_data m = {0};
+    int rc = build(density, &m);
     if (rc == 0)
         mesh_scene__append(dst, &m, scale, off, inward);
     mesh_free(&m);
@@ -95,52 +83,52 @@ static int mesh_scene__s2(mesh_data *out)
 {
     static const float ground[3] = {0, -0.6f, 0}, ball[3] = {-0.42f, -0.28f, -0.3f},
                        ring[3] = {0.45f, -0.49f, 0.38f};
-    int rc = mesh_scene__object(out, "plane", 65, 1.0f, ground, 0);
-    rc = rc ? rc : mesh_scene__object(out, "sphere", 4, 0.32f, ball, 0);
+    int rc = mesh_scene__object(out, mesh__build_plane, 65, 1.0f, ground, 0);
+    rc = rc ? rc : mesh_scene__object(out, mesh__build_sphere, 4, 0.32f, ball, 0);
     if (rc == 0)
         mesh_scene__torus(out, 0.3f, 0.11f, 107, 41, ring);
     return rc;
 }
 
 /* S4's scene: the inward skybox first, then the asteroids. */
-static int mesh_scene__s4(mesh_data *out, const char *body, int level)
+static int mesh_scene__s4(mesh_data *out, mesh__build_fn body, int level)
 {
     static const float at[MESH_SCENE_ASTEROIDS][3] = {
         {-0.6f, 0.1f, -0.3f}, {0.55f, -0.2f, 0.2f}, {0.05f, 0.5f, 0.5f},
         {-0.25f, -0.55f, 0.45f}, {0.5f, 0.55f, -0.5f}};
-    int rc = mesh_scene__object(out, "cube", 0, MESH_SCENE_SKYBOX, (const float[3]){0, 0, 0}, 1);
+    int rc = mesh_scene__object(out, mesh__build_cube, 0, MESH_SCENE_SKYBOX, (const float[3]){0, 0, 0}, 1);
     for (int i = 0; rc == 0 && i < MESH_SCENE_ASTEROIDS; i++)
         rc = mesh_scene__object(out, body, level, MESH_SCENE_ASTEROID_SCALE, at[i], 0);
     return rc;
 }
 
-int mesh_scene_density_range(const char *name, int *def, int *lo, int *hi)
+/* Tangents of a scene built into m, then out takes it; on failure m is freed. */
+static int mesh_scene__finish(int rc, mesh_data *m, mesh_data *out)
 {
-    if (!mesh_scene_is(name))
-        return DM_ERR_UNKNOWN;
-    int s2 = strcmp(name, "s2-scene1") == 0, reduced = strstr(name, "reduced") != NULL;
-    *def = s2 ? 0 : reduced ? 2 : 3;   /* the asteroids' subdivision level */
-    *lo = 1;
-    *hi = s2 ? 0 : 7;                  /* s2-scene1 takes only 0 */
+    if (rc) {
+        mesh_free(m);
+        return rc;
+    }
+    mesh_generate_tangents(m);
+    *out = *m;
     return 0;
 }
 
-int mesh_scene_build(const char *name, int density, mesh_data *out)
+int mesh_scene_build_s2(int d, mesh_data *out)
 {
-    int def, lo, hi;
-    if (mesh_scene_density_range(name, &def, &lo, &hi) != 0)
-        return DM_ERR_UNKNOWN;
-    if (density != 0 && (density < lo || density > hi))
-        return DM_ERR_RANGE;
-    int s2 = strcmp(name, "s2-scene1") == 0, reduced = strstr(name, "reduced") != NULL;
+    (void)d;   /* s2-scene1 takes only 0 */
     mesh_data m = {0};
-    int level = density ? density : def;
-    int rc = s2 ? mesh_scene__s2(&m) : mesh_scene__s4(&m, reduced ? "asteroid-reduced" : "asteroid", level);
-    if (rc) {
-        mesh_free(&m);
-        return rc;
-    }
-    mesh_generate_tangents(&m);
-    *out = m;
-    return 0;
+    return mesh_scene__finish(mesh_scene__s2(&m), &m, out);
+}
+
+int mesh_scene_build_s4(int d, mesh_data *out)
+{
+    mesh_data m = {0};
+    return mesh_scene__finish(mesh_scene__s4(&m, mesh__build_asteroid, d), &m, out);
+}
+
+int mesh_scene_build_s4_reduced(int d, mesh_data *out)
+{
+    mesh_data m = {0};
+    return mesh_scene__finish(mesh_scene__s4(&m, mesh__build_asteroid_reduced, d), &m, out);
 }

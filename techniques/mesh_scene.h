@@ -32,13 +32,11 @@
 #define MESH_SCENE_ASTEROIDS 5
 #define MESH_SCENE_ASTEROID_SCALE 0.3f
 
-/* 1 when name is one of the scenes above. */
-int mesh_scene_is(const char *name);
-/* Builds scene `name` at density (0 = its default) with tangents.  Returns
- * 0 (out owns its arrays), DM_ERR_UNKNOWN for a name that is no scene, or
- * DM_ERR_RANGE for a bad density, with out untouched. */
-int mesh_scene_build(const char *name, int density, mesh_data *out);
-/* mesh_density_range (mesh.h) for a scene. */
-int mesh_scene_density_range(const char *name, int *def, int *lo, int *hi);
+/* The scenes above at density d (checked, 0 replaced by the default:
+ * mesh_list.c's rows), with tangents; 0 and out owns its arrays, or a
+ * DM_ERR_* with out untouched.  mesh_build (mesh.h) reaches them by name. */
+int mesh_scene_build_s2(int d, mesh_data *out);
+int mesh_scene_build_s4(int d, mesh_data *out);
+int mesh_scene_build_s4_reduced(int d, mesh_data *out);
 
 #endif

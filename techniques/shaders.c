@@ -1,23 +1,44 @@
-/* shaders.c — embedded GLSL lookup and #include composition (see shaders.h). */
+/* shaders.c — GLSL sources by name (embedded, and added at run time) and
+ * #include composition (see shaders.h). */
 #include "techniques/shaders.h"
 
 #include <string.h>
 
 #include "core/dm_error.h"
-#include "techniques/user_technique.h"
 
 struct shaders__entry { const char *name; const char *source; };
 extern const struct shaders__entry shaders__table[];
 
 #define SHADERS__MAX_DEPTH 8
 #define SHADERS__MAX_FILES 32
+#define SHADERS__MAX_ADDED 32
+
+/* Sources added at run time (shaders_add): the user techniques' stages. */
+static struct shaders__entry shaders__added[SHADERS__MAX_ADDED];
+static size_t shaders__n_added;
 
 const char *shaders_source(const char *name)
 {
     for (size_t i = 0; name && shaders__table[i].name; i++)
         if (strcmp(shaders__table[i].name, name) == 0)
             return shaders__table[i].source;
-    return user_technique_shader_source(name);   /* "user:NAME" */
+    for (size_t i = 0; name && i < shaders__n_added; i++)
+        if (strcmp(shaders__added[i].name, name) == 0)
+            return shaders__added[i].source;
+    return NULL;
+}
+
+int shaders_add(const char *name, const char *source)
+{
+    for (size_t i = 0; i < shaders__n_added; i++)
+        if (strcmp(shaders__added[i].name, name) == 0) {
+            shaders__added[i].source = source;
+            return 0;
+        }
+    if (shaders__n_added == SHADERS__MAX_ADDED)
+        return DM_ERR_RANGE;
+    shaders__added[shaders__n_added++] = (struct shaders__entry){name, source};
+    return 0;
 }
 
 typedef struct shaders__ctx {

@@ -11,8 +11,14 @@
 
 #include "core/dm_util.h"
 
-/* Embedded source of `name` ("lighting.glsl"), or NULL when absent. */
+/* Source of `name`: an embedded file ("lighting.glsl") or one added with
+ * shaders_add ("user:NAME"); NULL when absent. */
 const char *shaders_source(const char *name);
+/* Adds (or, for a name added before, replaces) the source of name.  Both
+ * strings are the caller's and must outlive their use; the catalog adds
+ * each user technique's composed stage (catalog.h).  0, or DM_ERR_RANGE
+ * past 32 names. */
+int shaders_add(const char *name, const char *source);
 /* Composes the full text of one stage into out.  Returns 0, or
  * DM_ERR_NOTFOUND with the missing file named in err. */
 int shaders_compose(const char *name, const char *defines, dm_str *out, dm_str *err);

@@ -35,7 +35,8 @@ typedef struct technique_desc {
                                     the configuration key (user_technique.h); 0 built-in */
 } technique_desc;
 
-/* All registered techniques, test-only ones included (check test_only):
+/* The catalog's lookups (catalog.h, catalog.c).
+ * All registered techniques, test-only ones included (check test_only):
  * the built-in list, then the user techniques loaded so far
  * (user_technique.h). */
 size_t technique_count(void);

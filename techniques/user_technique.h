@@ -18,7 +18,8 @@
  * A sweep names the file as a value of the technique axis
  * (`technique: [pom, examples/relief.glsl]`, relative to the sweep file);
  * loading registers it under its declared name, which is the value that
- * configurations, keys and labels carry.  The configuration key includes a
+ * configurations, keys and labels carry: user_technique.c parses the file
+ * into a value, the catalog (catalog.h) registers it.  The configuration key includes a
  * hash of the file's text (technique_desc.source_hash).
  */
 #ifndef TECHNIQUES_USER_TECHNIQUE_H

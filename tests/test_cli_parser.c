@@ -11,7 +11,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#include "cli/cli.h"
+#include "cli/commands.h"
 #include "cli/options.h"
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
@@ -180,7 +180,7 @@ static void test_help(void **state)
     int saved = dup(1);
     FILE *tmp = tmpfile();
     dup2(fileno(tmp), 1);
-    int n = 0, rc = cli_parse(2, argv, args, &n);
+    int n = 0, rc = cli_parse(cli_commands_find("run"), 2, argv, args, &n);
     fflush(stdout);
     dup2(saved, 1);
     close(saved);

@@ -5,8 +5,8 @@
  * glFinish-fenced wall time per frame (ns, as `dmbench run` reports it), the
  * others are pipeline-statistics / occlusion totals per frame.
  */
-#ifndef HARNESS_VIEWER_MEASURE_H
-#define HARNESS_VIEWER_MEASURE_H
+#ifndef VIEWER_VIEWER_MEASURE_H
+#define VIEWER_VIEWER_MEASURE_H
 
 #include "core/dm_util.h"
 #include "counters/counters.h"

@@ -6,8 +6,8 @@
  * texture and blitted to the top-left corner of framebuffer 0.  No shaders,
  * so it cannot disturb the techniques' GL state.
  */
-#ifndef HARNESS_VIEWER_OVERLAY_H
-#define HARNESS_VIEWER_OVERLAY_H
+#ifndef VIEWER_VIEWER_OVERLAY_H
+#define VIEWER_VIEWER_OVERLAY_H
 
 #include <stdint.h>
 

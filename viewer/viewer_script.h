@@ -12,8 +12,8 @@
  *   {space}, {dot}, {lbrace}  the characters ' ', '.', '{'
  * Whitespace between events is ignored; names are case-insensitive.
  */
-#ifndef HARNESS_VIEWER_SCRIPT_H
-#define HARNESS_VIEWER_SCRIPT_H
+#ifndef VIEWER_VIEWER_SCRIPT_H
+#define VIEWER_VIEWER_SCRIPT_H
 
 #include <stddef.h>
 #include "core/dm_util.h"

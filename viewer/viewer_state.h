@@ -11,8 +11,8 @@
  * VIEWER_LIGHT_ORBIT_DEG once per frame (viewer_state_tick), so a --frames /
  * --keys run is deterministic.
  */
-#ifndef HARNESS_VIEWER_STATE_H
-#define HARNESS_VIEWER_STATE_H
+#ifndef VIEWER_VIEWER_STATE_H
+#define VIEWER_VIEWER_STATE_H
 
 #include <stddef.h>
 #include "core/dm_results.h"
