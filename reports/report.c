@@ -1,7 +1,8 @@
-/* report.c — report_write_all and the helpers shared by the writers. */
+/* report.c — the helpers shared by the report writers (report_internal.h)
+ * and the one label of a configuration (report.h); the writers are called
+ * by report_write.c, never from here. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
-#include "reports/published_report.h"
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
@@ -52,30 +53,40 @@ static int report__param_varies_all(const dm_run_result *run, const char *scene,
     return 0;
 }
 
-static const dm_run_result *report__sort_run;   /* qsort has no user pointer */
+/* A row of a scene's table before sorting: its frame time (+inf when it has
+ * none) and its index, which breaks ties so the order is the run's. */
+typedef struct report__row {
+    double time;
+    size_t index;
+} report__row;
 
 static int report__by_time(const void *a, const void *b)
 {
-    const dm_counter_result *x = report__frame_time(&report__sort_run->configs[*(const size_t *)a]);
-    const dm_counter_result *y = report__frame_time(&report__sort_run->configs[*(const size_t *)b]);
-    double tx = x ? x->median : INFINITY, ty = y ? y->median : INFINITY;
-    return (tx > ty) - (tx < ty);
+    const report__row *x = a, *y = b;
+    if (x->time != y->time)
+        return (x->time > y->time) - (x->time < y->time);
+    return (x->index > y->index) - (x->index < y->index);
 }
 
 size_t report__scene_rows(const dm_run_result *run, const char *scene, size_t **out)
 {
-    size_t *rows = dm_xcalloc(run->n_configs + 1, sizeof *rows), n = 0;
+    report__row *rows = dm_xcalloc(run->n_configs + 1, sizeof *rows);
+    size_t n = 0;
     for (size_t i = 0; i < run->n_configs; i++) {
         const dm_config_result *c = &run->configs[i];
-        if (c->ok && strcmp(c->scene ? c->scene : "", scene) == 0)
-            rows[n++] = i;
+        if (!c->ok || strcmp(c->scene ? c->scene : "", scene) != 0)
+            continue;
+        const dm_counter_result *t = report__frame_time(c);
+        rows[n++] = (report__row){.time = t ? t->median : INFINITY, .index = i};
     }
-    report__sort_run = run;
     qsort(rows, n, sizeof *rows, report__by_time);
-    *out = rows;
+    size_t *idx = dm_xcalloc(n + 1, sizeof *idx);
+    for (size_t i = 0; i < n; i++)
+        idx[i] = rows[i].index;
+    free(rows);
+    *out = idx;
     return n;
 }
-
 
 size_t report__pareto_points(const dm_run_result *run, const char *scene, report_metric m,
                              size_t *idx, double *x, double *y)
@@ -469,13 +480,6 @@ int report__save(const dm_str *s, const char *path)
     return dm_write_file(path, s->buf ? s->buf : "", s->len);
 }
 
-/* Writes the four files; stops at the first failure and names that file. */
-int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
-                        size_t errlen)
-{
-    return report_write_all_trends(run, dir, out, NULL, err, errlen);
-}
-
 void report_trends_free(report_trends *t)
 {
     for (size_t i = 0; t && i < t->n; i++) {
@@ -511,60 +515,6 @@ int report__copy_file(const char *from, const char *to, char *err, size_t errlen
     return rc;
 }
 
-/* Copies every image the run names (safe relative paths that exist) from
- * dir to the same relative path under out, so out is self-contained.  0,
- * or DM_ERR_IO with err naming the file. */
-static int report__copy_images(const dm_run_result *run, const char *dir, const char *out, char *err,
-                               size_t errlen)
-{
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        const char *imgs[] = {c->img_reference, c->img_render, c->img_heatmap, c->img_flip};
-        for (size_t k = 0; k < sizeof imgs / sizeof *imgs; k++) {
-            if (!imgs[k] || !report__safe_relpath(imgs[k]))
-                continue;
-            char *from = dm_xasprintf("%s/%s", dir, imgs[k]), *to = dm_xasprintf("%s/%s", out, imgs[k]);
-            int rc = dm_file_exists(from) && !dm_file_exists(to)
-                         ? report__copy_file(from, to, err, errlen) : 0;
-            free(from);
-            free(to);
-            if (rc)
-                return rc;
-        }
-    }
-    return 0;
-}
-
-int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
-                            const report_trends *t, char *err, size_t errlen)
-{
-    static const char *names[] = {"results.json", "results.csv", "summary.md", "report.html"};
-    if (!run || !dir || !out) {
-        snprintf(err, errlen, "report_write_all: no run or no directory");
-        return DM_ERR_ARG;
-    }
-    /* written elsewhere: the images come along, so the folder stands alone */
-    int rc = report_published_copy(dir, out, err, errlen);   /* summary.md reads it beside itself */
-    if (!rc && strcmp(dir, out) != 0)
-        rc = report__copy_images(run, dir, out, err, errlen);
-    for (int i = 0; i < 4 && !rc; i++) {
-        char *path = dm_xasprintf("%s/%s", out, names[i]);
-        rc = i == 0 ? report_write_json(run, path)
-           : i == 1 ? report_write_csv(run, path)
-           : i == 2 ? report_write_markdown(run, path)
-                    : report_write_html_trends(run, dir, path, "", t);
-        if (rc)   /* errno of the failed write (dm_write_file) */
-            snprintf(err, errlen, "%s: cannot write: %s", path,
-                     rc == DM_ERR_DISK || rc == DM_ERR_IO ? strerror(errno) : dm_strerror(rc));
-        free(path);
-    }
-    return rc;
-}
-
-int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen)
-{
-    return report_write_all_to(run, dir, dir, err, errlen);
-}
 
 void report__config_label(const dm_run_result *run, const dm_config_result *c, dm_str *out)
 {
