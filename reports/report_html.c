@@ -1,6 +1,8 @@
 /* report_html.c — report.html: one self-contained file that opens offline.
  *
- * Inline CSS, no external URL, no script needed to read it.  Every string
+ * Inline CSS, no external URL, no script needed to read it; the style
+ * sheet and the script (sorting, filtering, image flips) are report.css and
+ * report.js, embedded at build time (report_assets.h).  Every string
  * that comes from the data (sweep, params, environment, reasons, logs) goes
  * through dm_str_cat_html.  Image paths must be relative and free of "..";
  * others are refused and shown as such, missing files are shown as missing.
@@ -11,6 +13,7 @@
 #include "reports/published_report.h"
 #include "reports/proxy.h"
 #include "reports/answer.h"
+#include "reports/report_assets.h"
 
 #include "core/dm_error.h"
 #include "reports/flip.h"
@@ -21,56 +24,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-static const char *css =
-    "body{font:14px/1.4 system-ui,sans-serif;margin:1.5em;color:#222;background:#fff}"
-    "table{border-collapse:collapse;margin:.5em 0 1.5em}"
-    "th,td{border:1px solid #ccc;padding:3px 7px;text-align:left;vertical-align:top}"
-    "th{background:#f0f0f0}td.n{text-align:right;font-variant-numeric:tabular-nums}"
-    ".warn{background:#fff3cd;border:1px solid #e0b000;padding:.6em;margin:.6em 0}"
-    ".fail{color:#a00}.missing{color:#888;font-style:italic}"
-    "pre{background:#f6f6f6;padding:.5em;overflow:auto;max-height:20em}"
-    "figure{display:inline-block;margin:0 1em 1em 0}figure img{width:192px;image-rendering:pixelated;border:1px solid #ccc}"
-    ".gal{margin-bottom:1em}.chart svg{max-width:100%;height:auto}"
-    ".const{color:#555}td.key{font:11px monospace;color:#777}"
-    "table.sortable th{cursor:pointer}table.sortable th:hover{background:#e4e4e4}"
-    ".scroll{overflow-x:auto;max-width:100%}.scroll table{margin-top:.3em}"
-    "table.hide-more .more{display:none}tr.front td{background:#eef7ee}"
-    "table.answer{margin:.2em 0 .8em}table.answer caption{text-align:left;font-weight:bold;padding:.2em 0}"
-    "nav.toc{font-size:13px;margin:.3em 0 .8em;display:flex;flex-wrap:wrap;gap:0 .9em}"
-    ".tied{color:#946200;font-size:12px}.tools{margin:.3em 0}.tools input{width:16em}"
-    ".grid{display:flex;flex-wrap:wrap;gap:.8em;align-items:flex-start}.grid figure{margin:0;width:240px}"
-    ".grid figcaption{font-size:11px;word-break:break-word}.grid img{width:240px;cursor:pointer}"
-    ".charts{display:flex;flex-wrap:wrap;gap:1em;align-items:flex-start}.charts .chart{max-width:100%}"
-    ".pair{display:flex;flex-wrap:wrap;gap:.3em;border:1px solid #ddd;padding:.3em;max-width:100%}"
-    ".pair .cap{flex-basis:100%;margin:0;font-size:12px;max-width:490px}"
-    ".scale{display:inline-block;width:160px;height:10px;vertical-align:middle;border:1px solid #999;"
-    "background:linear-gradient(90deg,#000004,#420a68,#932667,#dd513a,#fca50a,#fcffa4)}"
-    "details.env{margin:.5em 0}.answers{display:flex;flex-wrap:wrap;gap:0 2em;align-items:flex-start}"
-    ".scene-answer{flex:1 1 36em;max-width:60em;min-width:0}.scene-answer h3{margin:.6em 0 .2em}"
-    "p.pick{margin:.2em 0}ul.rec{margin:.2em 0 .4em;padding-left:1.2em;font-size:13px}"
-    ".noisy{color:#a05a00;font-size:12px}tr.pick td{background:#e3f1ff}";
 
-/* Click a column header to sort by it (numbers numerically); the content is
- * complete without it. */
-static const char *sort_js =
-    "document.querySelectorAll('table.sortable th').forEach(function(th,i){"
-    "th.title='click to sort';th.onclick=function(){var tb=th.closest('table').tBodies[0];"
-    "var rows=Array.from(tb.rows),up=th.dataset.up!=='1';th.dataset.up=up?'1':'0';"
-    "rows.sort(function(a,b){var x=a.cells[i].textContent,y=b.cells[i].textContent,"
-    "p=parseFloat(x.replace(/[^0-9.eE+-]/g,'')),q=parseFloat(y.replace(/[^0-9.eE+-]/g,''));"
-    "var r=(!isNaN(p)&&!isNaN(q))?p-q:x.localeCompare(y);return up?r:-r;});"
-    "rows.forEach(function(r){tb.appendChild(r);});};});"
-    "document.querySelectorAll('input.filter').forEach(function(f){f.oninput=function(){"
-    "var t=document.getElementById(f.dataset.table),q=f.value.toLowerCase();"
-    "Array.from(t.tBodies[0].rows).forEach(function(r){"
-    "r.style.display=r.textContent.toLowerCase().indexOf(q)<0?'none':'';});};});"
-    "document.querySelectorAll('button.more').forEach(function(b){b.onclick=function(){"
-    "var t=document.getElementById(b.dataset.table);t.classList.toggle('hide-more');"
-    "b.textContent=t.classList.contains('hide-more')?'show all columns':'key columns only';};});"
-    "document.querySelectorAll('img.flip').forEach(function(im){im.title='click: flip to the reference';"
-    "im.onclick=function(){var r=document.getElementById(im.dataset.ref);if(!r)return;"
-    "if(!im.dataset.own){im.dataset.own=im.src;im.src=r.src;im.title='reference; click: back';}"
-    "else{im.src=im.dataset.own;delete im.dataset.own;im.title='click: flip to the reference';}};});";
 
 static void esc(dm_str *s, const char *text)
 {
@@ -109,7 +63,7 @@ static void header(dm_str *s, const dm_run_result *run)
     dm_str_cat(s, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                   "<meta name=\"viewport\" content=\"width=device-width\"><title>dmbench: ");
     esc(s, run->sweep);
-    dm_str_printf(s, "</title><style>%s</style></head>\n<body>\n<h1>dmbench report: ", css);
+    dm_str_printf(s, "</title><style>\n%s</style></head>\n<body>\n<h1>dmbench report: ", report_assets_css);
     esc(s, run->sweep);
     dm_str_cat(s, "</h1>\n<p>Run ");
     esc(s, run->id);
@@ -948,7 +902,7 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
     report_published_section(&s, run, dir, path, 1);
     proxy_section(&s, run);
     environment(&s, run);
-    dm_str_printf(&s, "<script>%s</script>\n</body></html>\n", sort_js);
+    dm_str_printf(&s, "<script>\n%s</script>\n</body></html>\n", report_assets_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     return rc;
