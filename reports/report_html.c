@@ -26,59 +26,59 @@
 
 
 
-static void esc(dm_str *s, const char *text)
+static void html__esc(dm_str *s, const char *text)
 {
     dm_str_cat_html(s, text ? text : "");
 }
 
 /* <tag>escaped text</tag> */
-static void tagged(dm_str *s, const char *tag, const char *text)
+static void html__tagged(dm_str *s, const char *tag, const char *text)
 {
     dm_str_printf(s, "<%s>", tag);
-    esc(s, text);
+    html__esc(s, text);
     dm_str_printf(s, "</%s>", tag);
 }
 
 /* The scene's label (report_scene_label), escaped. */
-static void scene_name(dm_str *s, const dm_run_result *run, const char *scene)
+static void html__scene_name(dm_str *s, const dm_run_result *run, const char *scene)
 {
     dm_str l = {0};
     report_scene_label(run, scene, &l);
-    esc(s, dm_str_get(&l));
+    html__esc(s, dm_str_get(&l));
     dm_str_free(&l);
 }
 
-static void params_inline(dm_str *s, const dm_kv *kv, size_t n)
+static void html__params_inline(dm_str *s, const dm_kv *kv, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
         dm_str_cat(s, i ? ", " : "");
-        esc(s, kv[i].key);
+        html__esc(s, kv[i].key);
         dm_str_cat(s, "=");
-        esc(s, kv[i].value);
+        html__esc(s, kv[i].value);
     }
 }
 
-static void header(dm_str *s, const dm_run_result *run)
+static void html__header(dm_str *s, const dm_run_result *run)
 {
     dm_str_cat(s, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                   "<meta name=\"viewport\" content=\"width=device-width\"><title>dmbench: ");
-    esc(s, run->sweep);
+    html__esc(s, run->sweep);
     dm_str_printf(s, "</title><style>\n%s</style></head>\n<body>\n<h1>dmbench report: ", report_assets_css);
-    esc(s, run->sweep);
+    html__esc(s, run->sweep);
     dm_str_cat(s, "</h1>\n<p>Run ");
-    esc(s, run->id);
+    html__esc(s, run->id);
     dm_str_cat(s, ", started ");
-    esc(s, run->started);
+    html__esc(s, run->started);
     if (run->finished) {
         dm_str_cat(s, ", finished ");
-        esc(s, run->finished);
+        html__esc(s, run->finished);
     }
     dm_str_cat(s, ".");
     dm_str k = {0};
     report_scene_constants(run, &k);
     if (k.len) {
         dm_str_cat(s, " Every scene: ");
-        esc(s, dm_str_get(&k));
+        html__esc(s, dm_str_get(&k));
         dm_str_cat(s, ".");
     }
     dm_str_free(&k);
@@ -86,31 +86,31 @@ static void header(dm_str *s, const dm_run_result *run)
 }
 
 /* The environment, folded: the summary names the renderer and the load. */
-static void environment(dm_str *s, const dm_run_result *run)
+static void html__environment(dm_str *s, const dm_run_result *run)
 {
     const char *r = dm_kv_get(run->environment, run->n_environment, "renderer");
     const char *l = dm_kv_get(run->environment, run->n_environment, "load_average");
     dm_str_cat(s, "<details class=\"env\" id=\"environment\"><summary><b>Environment</b>: ");
-    esc(s, r ? r : "renderer unknown");
+    html__esc(s, r ? r : "renderer unknown");
     dm_str_cat(s, ", load average ");
-    esc(s, l ? l : "unknown");
+    html__esc(s, l ? l : "unknown");
     dm_str_cat(s, "</summary>\n<table>");
     for (size_t i = 0; i < run->n_environment; i++) {
         dm_str_cat(s, "<tr>");
-        tagged(s, "th", run->environment[i].key);
-        tagged(s, "td", run->environment[i].value);
+        html__tagged(s, "th", run->environment[i].key);
+        html__tagged(s, "td", run->environment[i].value);
         dm_str_cat(s, "</tr>");
     }
     dm_str_cat(s, "</table></details>\n");
 }
 
 /* Table of contents: the answer, each scene, gallery, failures, fits. */
-static void toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
+static void html__toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
 {
     dm_str_cat(s, "<nav class=\"toc\"><b>Contents:</b> <a href=\"#answer\">Answer</a>");
     for (size_t i = 0; i < ns; i++) {
         dm_str_printf(s, "<a href=\"#scene-%zu\">", i);
-        scene_name(s, run, scenes[i]);
+        html__scene_name(s, run, scenes[i]);
         dm_str_cat(s, "</a>");
     }
     dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#warnings\">Warnings</a>"
@@ -121,15 +121,15 @@ static void toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t
 }
 
 /* The timing marks of a row (noisy, bimodal) as a span with the reason. */
-static void marks_html(dm_str *s, const dm_config_result *c)
+static void html__marks_html(dm_str *s, const dm_config_result *c)
 {
     dm_str mark = {0}, why = {0};
     report__timing_marks(c, 0, &mark, &why);
     if (mark.len) {
         dm_str_cat(s, " <span class=\"noisy\" title=\"");
-        esc(s, dm_str_get(&why));
+        html__esc(s, dm_str_get(&why));
         dm_str_cat(s, "\">");
-        esc(s, dm_str_get(&mark));
+        html__esc(s, dm_str_get(&mark));
         dm_str_cat(s, "</span>");
     }
     dm_str_free(&mark);
@@ -137,13 +137,13 @@ static void marks_html(dm_str *s, const dm_config_result *c)
 }
 
 /* The median and 95 % CI cells of a frame time, with the noise marks. */
-static void time_cells(dm_str *s, const dm_config_result *c, const dm_counter_result *t)
+static void html__time_cells(dm_str *s, const dm_config_result *c, const dm_counter_result *t)
 {
     dm_str_cat(s, "<td class=\"n\">");
     report__ms_text(t->median, s);
     dm_str_cat(s, "</td><td class=\"n\">");
     report__ci_text(t, s);
-    marks_html(s, c);
+    html__marks_html(s, c);
     dm_str_cat(s, "</td>");
 }
 
@@ -152,7 +152,7 @@ static void time_cells(dm_str *s, const dm_config_result *c, const dm_counter_re
 
 /* The noisy configurations by label with their CI and marks, folded when
  * there are many; nothing when there is none. */
-static void noisy_warning(dm_str *s, const dm_run_result *run)
+static void html__noisy_warning(dm_str *s, const dm_run_result *run)
 {
     size_t *idx, n = report__noisy_configs(run, &idx);
     if (n) {
@@ -163,10 +163,10 @@ static void noisy_warning(dm_str *s, const dm_run_result *run)
             dm_str label = {0};
             report_config_label(run, c, &label);
             dm_str_cat(s, "<li>");
-            esc(s, dm_str_get(&label));
+            html__esc(s, dm_str_get(&label));
             dm_str_cat(s, " ");
             report__ci_text(report__frame_time(c), s);
-            marks_html(s, c);
+            html__marks_html(s, c);
             dm_str_cat(s, "</li>");
             dm_str_free(&label);
         }
@@ -177,25 +177,25 @@ static void noisy_warning(dm_str *s, const dm_run_result *run)
 
 /* The timer verdict, then every warning (report__warnings, the list of
  * results.json), the noisy configurations listed under theirs. */
-static void timer_and_warnings(dm_str *s, const dm_run_result *run)
+static void html__timer_and_warnings(dm_str *s, const dm_run_result *run)
 {
     const char *v = run->timer_verdict ? run->timer_verdict : "unknown";
     dm_str_cat(s, "<h2 id=\"warnings\">Warnings</h2>\n<p>Timer verdict: <b>");
-    esc(s, v);
+    html__esc(s, v);
     dm_str_printf(s, "</b> (GPUTime covers %.1f%% of fenced wall time).</p>\n",
                   run->gpu_time_coverage * 100);
     char **w;
     size_t nw = report__warnings(run, &w);
     for (size_t i = 0; i < nw; i++) {
         dm_str_cat(s, "<div class=\"warn\">");
-        esc(s, w[i]);
+        html__esc(s, w[i]);
         dm_str_cat(s, "</div>\n");
     }
     report__warnings_free(w, nw);
-    noisy_warning(s, run);
+    html__noisy_warning(s, run);
 }
 
-static void num_cell(dm_str *s, const char *fmt, double v)
+static void html__num_cell(dm_str *s, const char *fmt, double v)
 {
     if (isnan(v))
         dm_str_cat(s, "<td class=\"n\">–</td>");
@@ -215,18 +215,18 @@ typedef struct html_images {
     const char *href;
 } html_images;
 
-static void gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
+static void html__gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
                            const char *caption, long ref);
-static void scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
+static void html__scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
                               const html_images *im);
 
 /* Counters worth a column in the scene tables (the rest are in the CSV/JSON). */
-static const char *const key_counters[] = {
+static const char *const html__key_counters[] = {
     "VSInvocations", "TESInvocations", "ClippingOutputPrimitives", "SamplesPassed",
     "FSInvocations", "TextureBytes", "MeshTriangles" };
 
 /* 1 when config index i is one of the nf front members. */
-static int on_front(const size_t *front, size_t nf, size_t i)
+static int html__on_front(const size_t *front, size_t nf, size_t i)
 {
     for (size_t k = 0; k < nf; k++)
         if (front[k] == i)
@@ -235,7 +235,7 @@ static int on_front(const size_t *front, size_t nf, size_t i)
 }
 
 /* The trend of configuration key (NULL when it has fewer than two runs). */
-static const report_trend *trend_of(const report_trends *t, const char *key)
+static const report_trend *html__trend_of(const report_trends *t, const char *key)
 {
     for (size_t i = 0; t && key && i < t->n; i++)
         if (t->items[i].key && strcmp(t->items[i].key, key) == 0 && t->items[i].n >= 2)
@@ -244,18 +244,18 @@ static const report_trend *trend_of(const report_trends *t, const char *key)
 }
 
 /* 1 when a configuration of the scene has a trend (the column is shown). */
-static int scene_has_trends(const dm_run_result *run, const char *scene, const report_trends *t)
+static int html__scene_has_trends(const dm_run_result *run, const char *scene, const report_trends *t)
 {
     for (size_t i = 0; t && i < run->n_configs; i++)
         if (run->configs[i].ok && strcmp(run->configs[i].scene ? run->configs[i].scene : "", scene) == 0 &&
-            trend_of(t, run->configs[i].key))
+            html__trend_of(t, run->configs[i].key))
             return 1;
     return 0;
 }
 
 /* A sparkline of the medians (80 × 18 px, y from the series' min to max,
  * this run as a dot; the values in its hover title). */
-static void trend_cell(dm_str *s, const report_trend *tr)
+static void html__trend_cell(dm_str *s, const report_trend *tr)
 {
     if (!tr) {
         dm_str_cat(s, "<td></td>");
@@ -282,13 +282,13 @@ static void trend_cell(dm_str *s, const report_trend *tr)
 }
 
 /* A counter cell behind the "show all columns" toggle (class "more"). */
-static void more_cell(dm_str *s, const dm_counter_result *c)
+static void html__more_cell(dm_str *s, const dm_counter_result *c)
 {
     if (!c) {
         dm_str_cat(s, "<td class=\"more\"></td>");
     } else if (!c->available) {
         dm_str_cat(s, "<td class=\"more missing\" title=\"");
-        esc(s, c->unavailable_reason);
+        html__esc(s, c->unavailable_reason);
         dm_str_cat(s, "\">unavailable</td>");
     } else {
         dm_str_printf(s, "<td class=\"n more\">%.0f</td>", c->value);
@@ -297,39 +297,39 @@ static void more_cell(dm_str *s, const dm_counter_result *c)
 
 /* Key columns first (technique, varying axes, time, CI, errors, front),
  * then the counters, crack pixels and key (class "more"). */
-static void scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char **params,
+static void html__scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char **params,
                       size_t np, const char **det, size_t nd, int front, const report_trends *tr)
 {
     const dm_config_result *c = &run->configs[ci];
     dm_str_printf(s, "<tr%s>", front ? " class=\"front\"" : "");
-    tagged(s, "td", dm_kv_get(c->params, c->n_params, "technique"));
+    html__tagged(s, "td", dm_kv_get(c->params, c->n_params, "technique"));
     for (size_t i = 0; i < np; i++)
-        tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
+        html__tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
     const dm_counter_result *t = report__frame_time(c);
     if (t) {
-        time_cells(s, c, t);
+        html__time_cells(s, c, t);
     } else
         dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
     if (tr)
-        trend_cell(s, trend_of(tr, c->key));
+        html__trend_cell(s, html__trend_of(tr, c->key));
     const dm_quality *q = &c->quality;
-    num_cell(s, "%.4g", report_metric_shown(q, report_metric_of_run(run)));
-    num_cell(s, "%.4f", q->present ? q->ssim : NAN);
-    num_cell(s, "%.2f", q->present ? q->psnr : NAN);
+    html__num_cell(s, "%.4g", report_metric_shown(q, report_metric_of_run(run)));
+    html__num_cell(s, "%.4f", q->present ? q->ssim : NAN);
+    html__num_cell(s, "%.2f", q->present ? q->psnr : NAN);
     dm_str_cat(s, front ? "<td>★ front</td>" : "<td></td>");
     for (size_t i = 0; i < nd; i++)
-        more_cell(s, dm_config_counter(c, det[i]));
+        html__more_cell(s, dm_config_counter(c, det[i]));
     if (q->present)
         dm_str_printf(s, "<td class=\"n more\">%ld</td>", q->crack_pixels);
     else
         dm_str_cat(s, "<td class=\"n more\">–</td>");
     dm_str_cat(s, "<td class=\"key more\">");
-    esc(s, c->key);
+    html__esc(s, c->key);
     dm_str_cat(s, "</td></tr>\n");
 }
 
 /* Filter box and column toggle above scene table si. */
-static void table_tools(dm_str *s, size_t si)
+static void html__table_tools(dm_str *s, size_t si)
 {
     dm_str_printf(s, "<div class=\"tools\"><input class=\"filter\" data-table=\"tbl-%zu\" "
                      "placeholder=\"filter rows (e.g. pom)\" aria-label=\"filter rows\"> "
@@ -337,15 +337,15 @@ static void table_tools(dm_str *s, size_t si)
                      "<span class=\"const\">click a header to sort</span></div>\n", si, si);
 }
 
-static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si,
+static void html__scene_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si,
                         const report_trends *t, const html_images *im)
 {
-    int trends = scene_has_trends(run, scene, t);
+    int trends = html__scene_has_trends(run, scene, t);
     const char **params;
     size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
     const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
     dm_str_printf(s, "<h2 id=\"scene-%zu\">Scene ", si);
-    scene_name(s, run, scene);
+    html__scene_name(s, run, scene);
     dm_str_cat(s, "</h2>\n<p class=\"const\">Same for every row: ");
     for (size_t i = 0; i < np; i++) {
         if (strcmp(params[i], "technique") == 0)
@@ -360,42 +360,42 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
                 v = dm_kv_get(run->configs[k].params, run->configs[k].n_params, params[i]);
         if (!v)
             continue;
-        esc(s, params[i]);
+        html__esc(s, params[i]);
         dm_str_cat(s, "=");
-        esc(s, v);
+        html__esc(s, v);
         dm_str_cat(s, " ");
     }
     dm_str_cat(s, "(where the technique reads it; a blank cell below: the technique does not read that axis)</p>\n");
-    for (size_t k = 0; k < sizeof key_counters / sizeof *key_counters; k++)
+    for (size_t k = 0; k < sizeof html__key_counters / sizeof *html__key_counters; k++)
         for (size_t i = 0; i < run->n_configs; i++)
             if (strcmp(run->configs[i].scene ? run->configs[i].scene : "", scene) == 0 &&
-                dm_config_counter(&run->configs[i], key_counters[k])) {
-                det[nd++] = key_counters[k];
+                dm_config_counter(&run->configs[i], html__key_counters[k])) {
+                det[nd++] = html__key_counters[k];
                 break;
             }
-    table_tools(s, si);
+    html__table_tools(s, si);
     dm_str_printf(s, "<div class=\"scroll\"><table class=\"sortable hide-more\" id=\"tbl-%zu\"><thead>"
                      "<tr><th>technique</th>", si);
     for (size_t i = 0; i < nv; i++)
-        tagged(s, "th", varying[i]);
+        html__tagged(s, "th", varying[i]);
     dm_str_printf(s, "<th>median ms</th><th>95%% CI</th>%s<th>%s</th><th>SSIM</th><th>PSNR dB</th>"
                      "<th>Pareto</th>", trends ? "<th title=\"median ms in the earlier runs of this "
                      "configuration on this machine, this run last\">trend</th>" : "",
                   report_metric_label(report_metric_of_run(run)));
     for (size_t i = 0; i < nd; i++) {
         dm_str_cat(s, "<th class=\"more\">");
-        esc(s, det[i]);
+        html__esc(s, det[i]);
         dm_str_cat(s, "</th>");
     }
     dm_str_cat(s, "<th class=\"more\">CrackPixels</th><th class=\"more\">key</th></tr></thead><tbody>\n");
     size_t *rows, nr = report__scene_rows(run, scene, &rows), *front;
     size_t nf = report__pareto(run, scene, &front);
     for (size_t i = 0; i < nr; i++)
-        scene_row(s, run, rows[i], varying, nv, det, nd, on_front(front, nf, rows[i]),
+        html__scene_row(s, run, rows[i], varying, nv, det, nd, html__on_front(front, nf, rows[i]),
                   trends ? t : NULL);
     dm_str_cat(s, "</tbody></table></div>\n");
     dm_str_cat(s, "<div class=\"charts\">\n");   /* side by side where the window is wide enough */
-    scene_pick_images(s, run, scene, im);
+    html__scene_pick_images(s, run, scene, im);
     report__svg_scene(s, run, scene);
     report__html_charts_scene(s, run, scene);
     dm_str_cat(s, "</div>\n");
@@ -407,7 +407,7 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene, 
 
 #define THUMB_MAX_DIM 240
 
-static void base64(dm_str *s, const unsigned char *d, size_t n)
+static void html__base64(dm_str *s, const unsigned char *d, size_t n)
 {
     static const char tab[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
     for (size_t i = 0; i < n; i += 3) {
@@ -420,25 +420,25 @@ static void base64(dm_str *s, const unsigned char *d, size_t n)
 }
 
 /* An embedded PNG thumbnail of a readable file, else the link. */
-static void image_src(dm_str *s, const html_images *im, const char *full, const char *rel)
+static void html__image_src(dm_str *s, const html_images *im, const char *full, const char *rel)
 {
     unsigned char *png = NULL;
     size_t len = 0;
     char err[256];
     if (full && img_thumbnail_png(full, THUMB_MAX_DIM, &png, &len, err, sizeof err) == 0) {
         dm_str_cat(s, "data:image/png;base64,");
-        base64(s, png, len);
+        html__base64(s, png, len);
         free(png);
         return;
     }
     if (full)
         dm_log(DM_LOG_WARN, "report.html: no thumbnail, linking the file: %s", err);
-    esc(s, im->href);
-    esc(s, rel);
+    html__esc(s, im->href);
+    html__esc(s, rel);
 }
 
 /* 1 when rel can be shown; else a "missing"/"refused" figure is written. */
-static int gallery_usable(dm_str *s, const html_images *im, const char *rel, const char *label)
+static int html__gallery_usable(dm_str *s, const html_images *im, const char *rel, const char *label)
 {
     const char *why = !rel ? " image: none" : !report__safe_relpath(rel) ? " path refused: " : NULL;
     char *full = !why && im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
@@ -448,50 +448,50 @@ static int gallery_usable(dm_str *s, const html_images *im, const char *rel, con
     if (!why)
         return 1;
     dm_str_printf(s, "<figure><span class=\"missing\">%s%s", label, why);
-    esc(s, rel ? rel : "");
+    html__esc(s, rel ? rel : "");
     dm_str_printf(s, "</span><figcaption>%s</figcaption></figure>", label);
     return 0;
 }
 
 /* A scene's reference, embedded once (id refs[k] = "ref-K"). */
-static void gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k)
+static void html__gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k)
 {
-    if (!gallery_usable(s, im, rel, "reference"))
+    if (!html__gallery_usable(s, im, rel, "reference"))
         return;
     char *full = im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
     dm_str_printf(s, "<figure><a href=\"");
-    esc(s, im->href);
-    esc(s, rel);
+    html__esc(s, im->href);
+    html__esc(s, rel);
     dm_str_printf(s, "\"><img id=\"ref-%zu\" src=\"", k);
-    image_src(s, im, full, rel);
+    html__image_src(s, im, full, rel);
     dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b></figcaption></figure>");
     free(full);
 }
 
 /* A render or heatmap, linked (loaded from img/ beside the report, lazily);
  * a render flips to its reference on click. */
-static void gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
+static void html__gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
                            const char *caption, long ref)
 {
-    if (!gallery_usable(s, im, rel, label))
+    if (!html__gallery_usable(s, im, rel, label))
         return;
     dm_str_cat(s, "<figure><img loading=\"lazy\" src=\"");
-    esc(s, im->href);
-    esc(s, rel);
+    html__esc(s, im->href);
+    html__esc(s, rel);
     if (ref >= 0)
         dm_str_printf(s, "\" class=\"flip\" data-ref=\"ref-%ld", ref);
     dm_str_printf(s, "\" alt=\"%s: ", label);
-    esc(s, caption);
+    html__esc(s, caption);
     dm_str_printf(s, "\"><figcaption>%s · <a class=\"full\" href=\"", label);
-    esc(s, im->href);
-    esc(s, rel);
+    html__esc(s, im->href);
+    html__esc(s, rel);
     dm_str_cat(s, "\">full size</a></figcaption></figure>");
 }
 
 /* The scene's pick (reports/answer.h) as its render and heatmap beside the
  * charts, so the answer's image is next to its numbers; nothing without a
  * pick. */
-static void scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
+static void html__scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
                               const html_images *im)
 {
     recommend_result r;
@@ -502,12 +502,12 @@ static void scene_pick_images(dm_str *s, const dm_run_result *run, const char *s
     dm_str label = {0}, cap = {0};
     report__config_label(run, c, &label);
     dm_str_cat(s, "<div class=\"pair pick-images\">");
-    gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), -1);
-    gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
+    html__gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), -1);
+    html__gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
     dm_str_printf(&cap, "The pick: %s, ", dm_str_get(&label));
     report_metric_text(&c->quality, report_metric_of_run(run), &cap);
     dm_str_cat(s, "<p class=\"cap\">");
-    esc(s, dm_str_get(&cap));
+    html__esc(s, dm_str_get(&cap));
     dm_str_cat(s, "</p></div>\n");
     dm_str_free(&label);
     dm_str_free(&cap);
@@ -515,7 +515,7 @@ static void scene_pick_images(dm_str *s, const dm_run_result *run, const char *s
 
 /* FLIP's fixed colour scale as a CSS gradient, from flip_colormap itself so
  * the legend cannot drift from the maps. */
-static void flip_scale(dm_str *s)
+static void html__flip_scale(dm_str *s)
 {
     dm_str_cat(s, "<span class=\"scale\" style=\"background:linear-gradient(90deg");
     for (int i = 0; i <= 8; i++) {
@@ -528,7 +528,7 @@ static void flip_scale(dm_str *s)
 }
 
 /* Index of rel in refs (appended when new); *fresh = 1 when appended. */
-static size_t gallery_ref_index(const char ***refs, size_t *n, const char *rel, int *fresh)
+static size_t html__gallery_ref_index(const char ***refs, size_t *n, const char *rel, int *fresh)
 {
     for (size_t i = 0; i < *n; i++)
         if (strcmp((*refs)[i], rel) == 0) {
@@ -543,33 +543,33 @@ static size_t gallery_ref_index(const char ***refs, size_t *n, const char *rel, 
 
 /* One scene's grid: its reference(s) once, then render and heatmap of each
  * configuration, fastest first. */
-static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images *im,
+static void html__gallery_scene(dm_str *s, const dm_run_result *run, const html_images *im,
                           const char *scene, const char ***refs, size_t *nrefs)
 {
     size_t *rows, nr = report__scene_rows(run, scene, &rows);
     double top = 0, ppd = NAN;
     int flips = 0;
     dm_str_cat(s, "<h3>");
-    scene_name(s, run, scene);
+    html__scene_name(s, run, scene);
     dm_str_cat(s, "</h3>\n<div class=\"grid\">");
     for (size_t i = 0; i < nr; i++) {
         const dm_config_result *c = &run->configs[rows[i]];
         long ref = -1;
         int fresh = 0;
         if (c->img_reference && report__safe_relpath(c->img_reference)) {
-            ref = (long)gallery_ref_index(refs, nrefs, c->img_reference, &fresh);
+            ref = (long)html__gallery_ref_index(refs, nrefs, c->img_reference, &fresh);
             if (fresh)
-                gallery_reference(s, im, c->img_reference, (size_t)ref);
+                html__gallery_reference(s, im, c->img_reference, (size_t)ref);
         } else if (c->img_reference) {
-            gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
+            html__gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
         }
         dm_str label = {0};
         report__config_label(run, c, &label);
         dm_str_cat(s, "<div class=\"pair\">");
-        gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), ref);
-        gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
+        html__gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), ref);
+        html__gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
         if (c->img_flip) {
-            gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&label), -1);
+            html__gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&label), -1);
             flips = 1;
             ppd = c->quality.flip_ppd;
         }
@@ -581,7 +581,7 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
         if (c->img_flip)
             dm_str_printf(&cap, ", FLIP %.4f (max %.3f)", c->quality.flip, c->quality.flip_max);
         dm_str_cat(s, "<p class=\"cap\">");
-        esc(s, dm_str_get(&cap));
+        html__esc(s, dm_str_get(&cap));
         dm_str_cat(s, "</p></div>");
         dm_str_free(&cap);
         if (c->quality.present && isfinite(c->quality.max_error))
@@ -597,13 +597,13 @@ static void gallery_scene(dm_str *s, const dm_run_result *run, const html_images
         dm_str_printf(s, "<p class=\"const\">FLIP map: LDR-FLIP error per pixel at %.3g pixels per "
                          "degree, on one fixed scale for every map, so maps compare side by side: "
                          "0 ", ppd);
-        flip_scale(s);
+        html__flip_scale(s);
         dm_str_cat(s, " 1 (docs/flip.md).</p>\n");
     }
     free(rows);
 }
 
-static void gallery(dm_str *s, const dm_run_result *run, const html_images *im)
+static void html__gallery(dm_str *s, const dm_run_result *run, const html_images *im)
 {
     const char **scenes, **refs = NULL;
     size_t ns = report__scenes(run, &scenes), nrefs = 0;
@@ -611,12 +611,12 @@ static void gallery(dm_str *s, const dm_run_result *run, const html_images *im)
                   "then each configuration's render and heatmap side by side, fastest first, with "
                   "their values (files in img/ beside this report; \"full size\" opens one).</p>\n");
     for (size_t i = 0; i < ns; i++)
-        gallery_scene(s, run, im, scenes[i], &refs, &nrefs);
+        html__gallery_scene(s, run, im, scenes[i], &refs, &nrefs);
     free(refs);
     free(scenes);
 }
 
-static void failed_and_left_out(dm_str *s, const dm_run_result *run)
+static void html__failed_and_left_out(dm_str *s, const dm_run_result *run)
 {
     dm_str_cat(s, "<h2 id=\"failed\">Failed configurations</h2>\n");
     for (size_t i = 0; i < run->n_configs; i++) {
@@ -624,94 +624,94 @@ static void failed_and_left_out(dm_str *s, const dm_run_result *run)
         if (c->ok)
             continue;
         dm_str_cat(s, "<div class=\"fail\"><p><b>");
-        esc(s, c->key);
+        html__esc(s, c->key);
         dm_str_cat(s, "</b> ");
-        params_inline(s, c->params, c->n_params);
+        html__params_inline(s, c->params, c->n_params);
         dm_str_cat(s, ": ");
-        esc(s, c->reason ? c->reason : "no reason recorded");
+        html__esc(s, c->reason ? c->reason : "no reason recorded");
         dm_str_cat(s, "</p>");
         if (c->log)
-            tagged(s, "pre", c->log);
+            html__tagged(s, "pre", c->log);
         dm_str_cat(s, "</div>\n");
     }
     dm_str_cat(s, "<h2>Left out</h2>\n<table><tr><th>params</th><th>reason</th></tr>\n");
     for (size_t i = 0; i < run->n_left_out; i++) {
         dm_str_cat(s, "<tr><td>");
-        params_inline(s, run->left_out[i].params, run->left_out[i].n_params);
+        html__params_inline(s, run->left_out[i].params, run->left_out[i].n_params);
         dm_str_cat(s, "</td>");
-        tagged(s, "td", run->left_out[i].reason);
+        html__tagged(s, "td", run->left_out[i].reason);
         dm_str_cat(s, "</tr>\n");
     }
     dm_str_cat(s, "</table>\n");
 }
 
 /* Condition number: 0 = not computed (blank), ∞ = rank deficient. */
-static void condition_cell(dm_str *s, double v)
+static void html__condition_cell(dm_str *s, double v)
 {
     if (v == 0 || isnan(v))
         dm_str_cat(s, "<td class=\"missing\">not computed</td>");
     else if (isinf(v))
         dm_str_cat(s, "<td class=\"n fail\">∞ (rank deficient)</td>");
     else
-        num_cell(s, "%.3g", v);
+        html__num_cell(s, "%.3g", v);
 }
 
 /* A fit worth its table row and plots: R² >= FIT_USABLE_R2 and full rank. */
 #define FIT_USABLE_R2 0.8
-static int fit_usable(const dm_fit_result *f)
+static int html__fit_usable(const dm_fit_result *f)
 {
     return isfinite(f->r2) && f->r2 >= FIT_USABLE_R2 && !isinf(f->condition) && f->n_params > 0;
 }
 
-static void fit_row(dm_str *s, const dm_fit_result *f)
+static void html__fit_row(dm_str *s, const dm_fit_result *f)
 {
     dm_str_cat(s, "<tr>");
-    tagged(s, "td", f->model);
+    html__tagged(s, "td", f->model);
     dm_str_cat(s, "<td>");
-    params_inline(s, f->group, f->n_group);
+    html__params_inline(s, f->group, f->n_group);
     dm_str_cat(s, "</td><td>");
     for (size_t k = 0; k < f->n_params; k++) {
-        esc(s, f->params[k].name);
+        html__esc(s, f->params[k].name);
         dm_str_printf(s, " = %.3g", f->params[k].value);
         if (isfinite(f->params[k].stderr_))
             dm_str_printf(s, " ± %.2g", f->params[k].stderr_);
         dm_str_cat(s, "<br>");
     }
     dm_str_cat(s, "</td>");
-    num_cell(s, "%.4f", f->r2);
-    num_cell(s, "%.4f", f->cv_mape);
-    condition_cell(s, f->condition);
+    html__num_cell(s, "%.4f", f->r2);
+    html__num_cell(s, "%.4f", f->cv_mape);
+    html__condition_cell(s, f->condition);
     dm_str_printf(s, "<td class=\"n\">%d</td><td>", f->n_points);
     for (size_t k = 0; k < f->n_warnings; k++) {
-        esc(s, f->warnings[k]);
+        html__esc(s, f->warnings[k]);
         dm_str_cat(s, "<br>");
     }
     dm_str_cat(s, "</td></tr>\n");
 }
 
 /* One line for a fit that did not work: model, group, R² and its first warning. */
-static void fit_line(dm_str *s, const dm_fit_result *f)
+static void html__fit_line(dm_str *s, const dm_fit_result *f)
 {
     dm_str_cat(s, "<li>");
-    esc(s, f->model);
+    html__esc(s, f->model);
     dm_str_cat(s, " (");
-    params_inline(s, f->group, f->n_group);
+    html__params_inline(s, f->group, f->n_group);
     dm_str_printf(s, "): R² %.2f over %d points", f->r2, f->n_points);
     if (f->n_warnings) {
         dm_str_cat(s, "; ");
-        esc(s, f->warnings[0]);
+        html__esc(s, f->warnings[0]);
     }
     dm_str_cat(s, "</li>\n");
 }
 
 /* Usable fits with their table and plots; the others folded, one line each. */
-static void fits(dm_str *s, const dm_run_result *run)
+static void html__fits(dm_str *s, const dm_run_result *run)
 {
     if (!run->n_fits)
         return;
     size_t bad = 0;
     for (size_t i = 0; i < run->n_fits; i++)
-        bad += !fit_usable(&run->fits[i]);
+        bad += !html__fit_usable(&run->fits[i]);
     dm_str_cat(s, "<h2 id=\"fits\">Model fits</h2>\n");
     if (bad < run->n_fits) {
         dm_str_cat(s, "<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
@@ -719,15 +719,15 @@ static void fits(dm_str *s, const dm_run_result *run)
                       "Jacobian; large means the parameters are poorly determined\">condition</th>"
                       "<th>points</th><th>warnings</th></tr>\n");
         for (size_t i = 0; i < run->n_fits; i++)
-            if (fit_usable(&run->fits[i]))
-                fit_row(s, &run->fits[i]);
+            if (html__fit_usable(&run->fits[i]))
+                html__fit_row(s, &run->fits[i]);
         dm_str_cat(s, "</table>\n");
         for (size_t i = 0; i < run->n_fits; i++)   /* plots on demand: two per fit */
-            if (fit_usable(&run->fits[i])) {
+            if (html__fit_usable(&run->fits[i])) {
                 dm_str_cat(s, "<details class=\"fit-plots\"><summary>Plots: ");
-                esc(s, run->fits[i].model);
+                html__esc(s, run->fits[i].model);
                 dm_str_cat(s, " ");
-                params_inline(s, run->fits[i].group, run->fits[i].n_group);
+                html__params_inline(s, run->fits[i].group, run->fits[i].n_group);
                 dm_str_cat(s, "</summary>\n");
                 report__html_charts_fit(s, run, &run->fits[i]);
                 dm_str_cat(s, "</details>\n");
@@ -739,14 +739,14 @@ static void fits(dm_str *s, const dm_run_result *run)
                      "rank deficient): one line each</summary><ul>\n", bad, bad == 1 ? "" : "s",
                   FIT_USABLE_R2);
     for (size_t i = 0; i < run->n_fits; i++)
-        if (!fit_usable(&run->fits[i]))
-            fit_line(s, &run->fits[i]);
+        if (!html__fit_usable(&run->fits[i]))
+            html__fit_line(s, &run->fits[i]);
     dm_str_cat(s, "</ul></details>\n");
 }
 
 /* Instructions as a proxy for frame time (reports/proxy.h) and which
  * pass each counter came from. */
-static void proxy_section(dm_str *s, const dm_run_result *run)
+static void html__proxy_section(dm_str *s, const dm_run_result *run)
 {
     report_proxy p;
     if (report_proxy_fit(run, &p) == 0) {
@@ -756,7 +756,7 @@ static void proxy_section(dm_str *s, const dm_run_result *run)
                       "<th>residual</th></tr>\n", p.a_ns, p.ns_per_instruction, p.n, p.r2);
         for (size_t i = 0; i < p.n_strays; i++) {
             dm_str_cat(s, "<tr>");
-            tagged(s, "td", p.strays[i].label);
+            html__tagged(s, "td", p.strays[i].label);
             dm_str_printf(s, "<td class=\"n\">%.3f ms</td><td class=\"n\">%.3f ms</td>"
                           "<td class=\"n\">%+.1f%%</td></tr>\n", p.strays[i].wall_ns / 1e6,
                           p.strays[i].predicted_ns / 1e6, p.strays[i].residual_rel * 100);
@@ -768,13 +768,13 @@ static void proxy_section(dm_str *s, const dm_run_result *run)
     dm_str_cat(s, "<h2 id=\"passes\">Counters by pass</h2>\n<ul>\n");
     char *save = NULL;
     for (char *l = passes.buf ? strtok_r(passes.buf, "\n", &save) : NULL; l; l = strtok_r(NULL, "\n", &save))
-        tagged(s, "li", l);
+        html__tagged(s, "li", l);
     dm_str_cat(s, "</ul>\n");
     dm_str_free(&passes);
 }
 
 /* "steps=32 filter=aniso" — the axes that vary in the scene, without technique. */
-static void settings_text(const dm_run_result *run, const dm_config_result *c, dm_str *out)
+static void html__settings_text(const dm_run_result *run, const dm_config_result *c, dm_str *out)
 {
     dm_str label = {0};
     report__config_label(run, c, &label);
@@ -786,7 +786,7 @@ static void settings_text(const dm_run_result *run, const dm_config_result *c, d
 /* One scene's answer: the recommendation in words, then its front as a
  * compact table, fastest first (the pick marked, cost relative to the
  * fastest lit configuration). */
-static void answer_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si)
+static void html__answer_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si)
 {
     size_t *front, nf = report__pareto(run, scene, &front);
     recommend_result r;
@@ -796,12 +796,12 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
     int with_settings = 0;
     for (size_t i = 0; i < nf && !with_settings; i++) {
         dm_str set = {0};
-        settings_text(run, &run->configs[front[i]], &set);
+        html__settings_text(run, &run->configs[front[i]], &set);
         with_settings = *dm_str_get(&set) != 0;
         dm_str_free(&set);
     }
     dm_str_printf(s, "<section class=\"scene-answer\" id=\"answer-%zu\"><h3>", si);
-    scene_name(s, run, scene);
+    html__scene_name(s, run, scene);
     dm_str_cat(s, "</h3>\n");
     report_answer_scene(run, scene, REPORT_ANSWER_HTML, s);
     if (report_untimed_reason(run, scene)) {   /* counters only: no front, the counters instead */
@@ -821,18 +821,18 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
         const dm_config_result *c = &run->configs[front[i]];
         const dm_counter_result *t = report__frame_time(c);
         dm_str set = {0};
-        settings_text(run, c, &set);
+        html__settings_text(run, c, &set);
         dm_str_printf(s, "<tr%s><td>", front[i] == r.pick ? " class=\"pick\"" : "");
-        esc(s, report__technique(c));
+        html__esc(s, report__technique(c));
         if (front[i] == r.pick)
             dm_str_cat(s, " <b>← pick</b>");
         if (report_family(c) == RECOMMEND_UNLIT)
             dm_str_cat(s, " <span class=\"const\">(unlit baseline)</span>");
         dm_str_cat(s, "</td>");
         if (with_settings)
-            tagged(s, "td", dm_str_get(&set));
-        time_cells(s, c, t);
-        num_cell(s, "%.4g", report_metric_shown(&c->quality, m));
+            html__tagged(s, "td", dm_str_get(&set));
+        html__time_cells(s, c, t);
+        html__num_cell(s, "%.4g", report_metric_shown(&c->quality, m));
         dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n", base ? t->median / base->median : NAN);
         dm_str_free(&set);
     }
@@ -842,7 +842,7 @@ static void answer_table(dm_str *s, const dm_run_result *run, const char *scene,
 
 /* The answer first: per scene, the recommendation in words and the front
  * (the run's metric against median time). */
-static void answer(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
+static void html__answer(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
 {
     report_metric m = report_metric_of_run(run);
     if (!report_run_timed(run)) {
@@ -852,7 +852,7 @@ static void answer(dm_str *s, const dm_run_result *run, const char **scenes, siz
                       "per frame.</p>\n");
         dm_str_cat(s, "<div class=\"answers\">\n");
         for (size_t i = 0; i < ns; i++)
-            answer_table(s, run, scenes[i], i);
+            html__answer_table(s, run, scenes[i], i);
         dm_str_cat(s, "</div>\n");
         return;
     }
@@ -867,7 +867,7 @@ static void answer(dm_str *s, const dm_run_result *run, const char **scenes, siz
                   report_metric_name(m), report_metric_label(m), report_metric_epsilon(m));
     dm_str_cat(s, "<div class=\"answers\">\n");
     for (size_t i = 0; i < ns; i++)
-        answer_table(s, run, scenes[i], i);
+        html__answer_table(s, run, scenes[i], i);
     dm_str_cat(s, "</div>\n");
 }
 
@@ -888,20 +888,20 @@ int report_write_html_trends(const dm_run_result *run, const char *dir, const ch
     size_t ns = report__scenes(run, &scenes);
     /* by value: the answer, each scene's table and charts, the images, then
      * the diagnostics, and what only a maintainer reads at the end */
-    header(&s, run);
-    toc(&s, run, scenes, ns);
-    answer(&s, run, scenes, ns);
+    html__header(&s, run);
+    html__toc(&s, run, scenes, ns);
+    html__answer(&s, run, scenes, ns);
     for (size_t i = 0; i < ns; i++)
-        scene_table(&s, run, scenes[i], i, t, &im);
+        html__scene_table(&s, run, scenes[i], i, t, &im);
     free(scenes);
-    gallery(&s, run, &im);
+    html__gallery(&s, run, &im);
     report_stage_bars(&s, run);   /* where each configuration's cost goes (stage_bar.c) */
-    timer_and_warnings(&s, run);
-    failed_and_left_out(&s, run);
-    fits(&s, run);
+    html__timer_and_warnings(&s, run);
+    html__failed_and_left_out(&s, run);
+    html__fits(&s, run);
     report_published_section(&s, run, dir, path, 1);
-    proxy_section(&s, run);
-    environment(&s, run);
+    html__proxy_section(&s, run);
+    html__environment(&s, run);
     dm_str_printf(&s, "<script>\n%s</script>\n</body></html>\n", report_assets_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);
