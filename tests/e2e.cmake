@@ -1,9 +1,9 @@
 # End-to-end CLI tests: the real binary on llvmpipe, a tiny sweep, bad input.
-# dm_add_e2e(name script [LABELS ...]): `quick` among the labels puts it in
-# the quick tier (tests/CMakeLists.txt).
+# dm_add_e2e(name script [ARGS ...] [LABELS ...]): `quick` among the labels
+# puts it in the quick tier (tests/CMakeLists.txt).
 function(dm_add_e2e name script)
-  cmake_parse_arguments(A "" "" "LABELS" ${ARGN})
-  add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${script})
+  cmake_parse_arguments(A "" "" "ARGS;LABELS" ${ARGN})
+  add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${script} ${A_ARGS})
   set_tests_properties(${name} PROPERTIES TIMEOUT 600 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;${A_LABELS}")
 endfunction()
 dm_add_e2e(test_e2e_run_tiny run_tiny.sh LABELS quick)
@@ -47,19 +47,19 @@ while(corpus_shares)
   list(POP_FRONT corpus_shares share classes)
   string(APPEND corpus_named "${classes} ")
   list(APPEND corpus_files "${CMAKE_BINARY_DIR}/corpus-ran/${share}")
-  dm_add_e2e(test_e2e_corpus_${share} corpus.sh)
+  dm_add_e2e(test_e2e_corpus_${share} corpus.sh ARGS ${share})   # the argument names the share in its output
   set_property(TEST test_e2e_corpus_${share} APPEND PROPERTY ENVIRONMENT
     "CORPUS_CLASSES=${classes}" "CORPUS_RAN=${CMAKE_BINARY_DIR}/corpus-ran/${share}")
   set_tests_properties(test_e2e_corpus_${share} PROPERTIES FIXTURES_SETUP dm_corpus_ran)
 endwhile()
 set_property(TEST test_e2e_corpus_sweep APPEND PROPERTY LABELS quick)
-dm_add_e2e(test_e2e_corpus_numbers corpus.sh)   # gate/ predict/ compare/ drivers/ baseline/ and any new class
+dm_add_e2e(test_e2e_corpus_numbers corpus.sh ARGS numbers)   # gate/ predict/ compare/ drivers/ baseline/ and any new class
 list(APPEND corpus_files "${CMAKE_BINARY_DIR}/corpus-ran/numbers")
 set_property(TEST test_e2e_corpus_numbers APPEND PROPERTY ENVIRONMENT
   "CORPUS_EXCEPT=${corpus_named}" "CORPUS_RAN=${CMAKE_BINARY_DIR}/corpus-ran/numbers")
 set_tests_properties(test_e2e_corpus_numbers PROPERTIES FIXTURES_SETUP dm_corpus_ran)
 string(REPLACE ";" " " corpus_files "${corpus_files}")
-dm_add_e2e(test_e2e_corpus_table corpus.sh)
+dm_add_e2e(test_e2e_corpus_table corpus.sh ARGS table)
 set_property(TEST test_e2e_corpus_table APPEND PROPERTY ENVIRONMENT "CORPUS_TABLE=${corpus_files}")
 set_tests_properties(test_e2e_corpus_table PROPERTIES FIXTURES_REQUIRED dm_corpus_ran TIMEOUT 60)
 # docs/ci-gating.md's recipe, run as written (ci/perf-gate.sh, baselines).

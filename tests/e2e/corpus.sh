@@ -24,6 +24,7 @@
 #                                     and exit code
 #   CORPUS_TABLE='FILE...'            no cases: the table check, on the
 #                                     cases the shares' FILEs say ran
+# The share's name is the script's argument (for its output only).
 set -uo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 declare -A RAN=()           # id -> exit code seen
@@ -376,7 +377,7 @@ done
 if [ -z "${CORPUS_ONLY:-}${CORPUS_PROBE:-}${CORPUS_CLASSES:-}${CORPUS_EXCEPT:-}" ]; then
   table_check
 else
-  echo "$n_cases cases"
+  echo "$n_cases cases${1:+ in share $1}"
   [ "$n_cases" -ge 1 ] || { echo "FAIL: no case selected"; fail=$((fail+1)); }
 fi
 tally
