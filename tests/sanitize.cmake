@@ -1,9 +1,10 @@
 # ASan + UBSan build of the unit and GL integration tests (tests/sanitize.sh),
 # unless this build is itself the sanitizer build: one test builds the tree
-# (build/asan, reused by the next run) and three run its tests in shares that
-# ctest can run side by side.  The shares: the unit tests, the GL tests of
-# the techniques layer, the other GL tests; together every unit and GL test
-# that is not `slow`, each once.
+# (build/asan, reused by the next run) and four run its tests in shares that
+# ctest can run side by side.  The shares: the unit tests, the quality
+# truth (test_techniques_quality, the longest), the other GL tests of the
+# techniques layer, the other GL tests; together every unit and GL test that
+# is not `slow`, each once.
 if(NOT DM_SANITIZE)
   set(san_env "DMBENCH_SOURCE_DIR=${CMAKE_SOURCE_DIR}" "SANITIZE_BUILD=${CMAKE_BINARY_DIR}/asan"
       "SANITIZE_LAUNCHER=${CMAKE_C_COMPILER_LAUNCHER}")
@@ -16,6 +17,7 @@ if(NOT DM_SANITIZE)
       ENVIRONMENT "${san_env}" FIXTURES_REQUIRED dm_asan_tree)
   endfunction()
   dm_sanitize_share(unit -L ^unit$)
-  dm_sanitize_share(gl_techniques -L ^gl$ -R ^test_techniques_)
+  dm_sanitize_share(gl_quality -L ^gl$ -R ^test_techniques_quality$)
+  dm_sanitize_share(gl_techniques -L ^gl$ -R ^test_techniques_ -E ^test_techniques_quality$)
   dm_sanitize_share(gl_other -L ^gl$ -E ^test_techniques_)
 endif()
