@@ -1,13 +1,16 @@
 # The two commands of the README.  Everything else is CMake + ctest.
 #   make run   install deps, build, run the default sweep (results/latest/report.html)
-#   make test  install deps, build, run every test through ctest
+#   make test  install deps, build, run every test through ctest (what CI runs)
+#   make check install deps, build, run the quick tier (ctest -L quick: unit
+#              tests and fast end-to-end checks, no Valgrind, no sanitizer
+#              build, no fuzzing; <= 3 min on two cores): the inner loop
 #   make install [PREFIX=/usr/local]  binary, man page, bash/zsh completions
 BUILD ?= build
 JOBS  ?= $(shell nproc)
 CTEST_ARGS ?=
 PREFIX ?= /usr/local
 
-.PHONY: all deps build run test install clean
+.PHONY: all deps build run test check install clean
 
 all: build
 
@@ -24,6 +27,9 @@ run: build
 
 test: build
 	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) $(CTEST_ARGS)
+
+check: build
+	@cd $(BUILD) && ctest --output-on-failure -j $(JOBS) -L quick $(CTEST_ARGS)
 
 install: build
 	@cmake --install $(BUILD) --prefix $(PREFIX)

@@ -1,33 +1,67 @@
 # End-to-end CLI tests: the real binary on llvmpipe, a tiny sweep, bad input.
+# dm_add_e2e(name script [ARGS ...] [LABELS ...]): `quick` among the labels
+# puts it in the quick tier (tests/CMakeLists.txt).
 function(dm_add_e2e name script)
-  add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${script})
-  set_tests_properties(${name} PROPERTIES TIMEOUT 600 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e")
+  cmake_parse_arguments(A "" "" "ARGS;LABELS" ${ARGN})
+  add_test(NAME ${name} COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/${script} ${A_ARGS})
+  set_tests_properties(${name} PROPERTIES TIMEOUT 600 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;${A_LABELS}")
 endfunction()
-dm_add_e2e(test_e2e_run_tiny run_tiny.sh)
-dm_add_e2e(test_e2e_bad_input bad_input.sh)
+dm_add_e2e(test_e2e_run_tiny run_tiny.sh LABELS quick)
+dm_add_e2e(test_e2e_bad_input bad_input.sh LABELS quick)
 dm_add_e2e(test_e2e_unavailable unavailable.sh)
 dm_add_e2e(test_e2e_resume resume.sh)
-dm_add_e2e(test_e2e_watchdog watchdog.sh)
+dm_add_e2e(test_e2e_watchdog watchdog.sh LABELS quick)
 # The project's own regression gate: the deterministic counters of
 # ci/gate.yaml must equal ci/baseline.json (no timing, so no noise), and
 # its Instructions (one Valgrind child: ~1 min quiet, more under load) too.
 add_test(NAME test_ci_gate COMMAND bash ${CMAKE_SOURCE_DIR}/ci/gate.sh $<TARGET_FILE:dmbench>)
 set_tests_properties(test_ci_gate PROPERTIES TIMEOUT 1200 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")
-dm_add_e2e(test_e2e_quick quick.sh)
+dm_add_e2e(test_e2e_quick quick.sh LABELS quick)
 dm_add_e2e(test_e2e_exchange exchange.sh)
 dm_add_e2e(test_e2e_faults faults.sh)
 dm_add_e2e(test_e2e_hostile hostile.sh)
-dm_add_e2e(test_e2e_dry_run dry_run.sh)
+dm_add_e2e(test_e2e_dry_run dry_run.sh LABELS quick)
 dm_add_e2e(test_e2e_user_mesh user_mesh.sh)
 dm_add_e2e(test_e2e_published published.sh)
 dm_add_e2e(test_e2e_study_sweeps study_sweeps.sh)
 dm_add_e2e(test_e2e_vt_quality vt_quality.sh)
 dm_add_e2e(test_e2e_drivers drivers.sh)
 set_tests_properties(test_e2e_drivers PROPERTIES SKIP_RETURN_CODE 77)
-# The hostile corpus: >= 100 cases over every command, each with its exit
-# code and first words, and the conditions table of docs/reliability.md
-# checked row by row (about 2-3 min on 2 cores; nothing renders above 16x16).
-dm_add_e2e(test_e2e_corpus corpus.sh)
+# The hostile corpus (tests/e2e/corpus.sh): >= 100 cases over every
+# command, each with its exit code and first words; nothing renders above
+# 16x16.  It runs in seven shares by case class, side by side, each writing
+# the cases it ran to build/corpus-ran/; the last share takes every class
+# the others do not name.  test_e2e_corpus_table then checks the conditions
+# table of docs/reliability.md row by row against all of them (the shares
+# are its fixture: ctest -R test_e2e_corpus_table runs them first).
+set(corpus_shares
+  sweep    "sweep/"                           # refused at parse time: in the quick tier
+  input    "map/ mesh/ results/ csv/"
+  store    "store/ cli/ slurm/"
+  env      "env/ signal/"
+  children "children/ glsl/"
+  images   "images/")
+set(corpus_named "")
+set(corpus_files "")
+while(corpus_shares)
+  list(POP_FRONT corpus_shares share classes)
+  string(APPEND corpus_named "${classes} ")
+  list(APPEND corpus_files "${CMAKE_BINARY_DIR}/corpus-ran/${share}")
+  dm_add_e2e(test_e2e_corpus_${share} corpus.sh ARGS ${share})   # the argument names the share in its output
+  set_property(TEST test_e2e_corpus_${share} APPEND PROPERTY ENVIRONMENT
+    "CORPUS_CLASSES=${classes}" "CORPUS_RAN=${CMAKE_BINARY_DIR}/corpus-ran/${share}")
+  set_tests_properties(test_e2e_corpus_${share} PROPERTIES FIXTURES_SETUP dm_corpus_ran)
+endwhile()
+set_property(TEST test_e2e_corpus_sweep APPEND PROPERTY LABELS quick)
+dm_add_e2e(test_e2e_corpus_numbers corpus.sh ARGS numbers)   # gate/ predict/ compare/ drivers/ baseline/ and any new class
+list(APPEND corpus_files "${CMAKE_BINARY_DIR}/corpus-ran/numbers")
+set_property(TEST test_e2e_corpus_numbers APPEND PROPERTY ENVIRONMENT
+  "CORPUS_EXCEPT=${corpus_named}" "CORPUS_RAN=${CMAKE_BINARY_DIR}/corpus-ran/numbers")
+set_tests_properties(test_e2e_corpus_numbers PROPERTIES FIXTURES_SETUP dm_corpus_ran)
+string(REPLACE ";" " " corpus_files "${corpus_files}")
+dm_add_e2e(test_e2e_corpus_table corpus.sh ARGS table)
+set_property(TEST test_e2e_corpus_table APPEND PROPERTY ENVIRONMENT "CORPUS_TABLE=${corpus_files}")
+set_tests_properties(test_e2e_corpus_table PROPERTIES FIXTURES_REQUIRED dm_corpus_ran TIMEOUT 60)
 # docs/ci-gating.md's recipe, run as written (ci/perf-gate.sh, baselines).
 add_test(NAME test_ci_recipe COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/e2e/ci_recipe.sh)
 set_tests_properties(test_ci_recipe PROPERTIES TIMEOUT 1800 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")

@@ -11,29 +11,81 @@
 # Large or binary inputs are written at test time by corpus_gen.py.  Cases
 # refused at parse or plan time never render; the few that render use 16x16
 # images.  CORPUS_PROBE=1 prints what each case did instead of judging it
-# (for writing new cases).  CORPUS_ONLY=ID runs the cases whose id starts
-# with ID.  At the end the conditions table of docs/reliability.md is
-# checked row by row: each row names a case, which must have run here with
-# the code the row gives.
+# (for writing new cases).  CORPUS_ONLY='ID...' runs the cases whose id
+# starts with one of the IDs.  Run alone, the script runs every case and
+# then checks the conditions table of docs/reliability.md row by row: each
+# row names a case, which must have run with the code the row gives.
+#
+# ctest runs it in shares (tests/e2e.cmake), side by side:
+#   CORPUS_CLASSES='sweep/ map/ ...'  this share's classes (id prefixes), or
+#   CORPUS_EXCEPT='sweep/ map/ ...'   every class but these (the last share,
+#                                     so a new class always runs somewhere)
+#   CORPUS_RAN=FILE                   where the share writes each case's id
+#                                     and exit code
+#   CORPUS_TABLE='FILE...'            no cases: the table check, on the
+#                                     cases the shares' FILEs say ran
+# The share's name is the script's argument (for its output only).
 set -uo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
+declare -A RAN=()           # id -> exit code seen
+n_cases=0
+
+# table_check: the conditions table of docs/reliability.md, one row at a
+# time, against RAN; and the corpus as a whole has >= 100 cases.
+table_check() {
+  local rows=0 _ cond code id
+  while IFS='|' read -r _ cond code id _; do
+    id=$(sed 's/[` ]//g' <<<"$id"); code=$(tr -d ' ' <<<"$code")
+    rows=$((rows+1))
+    if [ -z "${RAN[$id]+x}" ]; then echo "FAIL: docs row '$cond': case '$id' is not in the corpus"; fail=$((fail+1))
+    elif [ "${RAN[$id]}" != "$code" ]; then echo "FAIL: docs row '$cond': case $id exited ${RAN[$id]}, the table says $code"; fail=$((fail+1))
+    else pass=$((pass+1)); fi
+  done < <(sed -n '/^<!-- corpus-table -->/,/^<!-- \/corpus-table -->/p' "$SRC/docs/reliability.md" | grep '^| ' | tail -n +2 | grep -v '^|---')
+  [ "$rows" -ge 20 ] || { echo "FAIL: the conditions table of docs/reliability.md has $rows rows"; fail=$((fail+1)); }
+  echo "$n_cases cases"
+  [ "$n_cases" -ge 100 ] || { echo "FAIL: only $n_cases cases (want >= 100)"; fail=$((fail+1)); }
+}
+
+# The table check over the shares' cases: each share's FILE must exist, and
+# no case id may have run in two shares.
+if [ -n "${CORPUS_TABLE:-}" ]; then
+  for f in $CORPUS_TABLE; do
+    [ -s "$f" ] || { echo "FAIL: $f: no cases recorded (did its share run?)"; fail=$((fail+1)); continue; }
+    while read -r id rc; do
+      if [ -n "${RAN[$id]+x}" ]; then echo "FAIL: case id $id ran in two shares"; fail=$((fail+1)); fi
+      RAN[$id]=$rc; n_cases=$((n_cases+1))
+    done < "$f"
+  done
+  table_check
+  tally
+  exit
+fi
 G="$OUT/gen"
 mkdir -p "$G"
 python3 "$SRC/tests/e2e/corpus_gen.py" "$G" || { echo "corpus_gen.py failed"; exit 1; }
 NEVER="$OUT/never"          # refused runs must not create their --out
-declare -A RAN=()           # id -> exit code seen
-n_cases=0
+[ -z "${CORPUS_RAN:-}" ] || { mkdir -p "$(dirname "$CORPUS_RAN")"; rm -f "$CORPUS_RAN"; }
+
+# in_list ID 'PREFIX...': ID starts with one of the prefixes.
+in_list() { local p; for p in $2; do [[ $1 == "$p"* ]] && return 0; done; return 1; }
+# selected ID: case ID is to run here (CORPUS_CLASSES, CORPUS_EXCEPT, CORPUS_ONLY).
+selected() {
+  { [ -z "${CORPUS_CLASSES:-}" ] || in_list "$1" "$CORPUS_CLASSES"; } &&
+  { [ -z "${CORPUS_EXCEPT:-}" ] || ! in_list "$1" "$CORPUS_EXCEPT"; } &&
+  { [ -z "${CORPUS_ONLY:-}" ] || in_list "$1" "$CORPUS_ONLY"; }
+}
 
 # hcase ID CODE WORDS -- COMMAND...
 hcase() {
   local id=$1 code=$2 words=$3; shift 4
   case_ok=0
-  if [ -n "${CORPUS_ONLY:-}" ] && [[ $id != "$CORPUS_ONLY"* ]]; then case_ok=1; return; fi
+  if ! selected "$id"; then case_ok=1; return; fi
   if [ -n "${RAN[$id]+x}" ]; then echo "FAIL: case id $id used twice"; fail=$((fail+1)); return; fi
   n_cases=$((n_cases+1))
   local err rc=0 t0=$SECONDS
   err=$(timeout -k 5 60 "$@" 2>&1 >/dev/null) || rc=$?
   RAN[$id]=$rc
+  [ -z "${CORPUS_RAN:-}" ] || echo "$id $rc" >> "$CORPUS_RAN"
   local line; line=$(grep -m1 "^dmbench: error: " <<<"$err")
   if [ -n "${CORPUS_PROBE:-}" ]; then
     printf '%s\t%s\t%ss\t%s\n' "$id" "$rc" "$((SECONDS-t0))" "$(head -c 300 <<<"${line:-$err}")"; return
@@ -47,8 +99,14 @@ hcase() {
   pass=$((pass+1)); case_ok=1
 }
 
-# wanted PREFIX: the cases of PREFIX are to run (CORPUS_ONLY).
-wanted() { [ -z "${CORPUS_ONLY:-}" ] || [[ $1 == "$CORPUS_ONLY"* ]] || [[ $CORPUS_ONLY == "$1"* ]]; }
+# wanted PREFIX: some cases of PREFIX are to run here (a block of cases
+# that share a set-up is skipped as a whole otherwise).
+overlaps() { local p; for p in $2; do [[ $1 == "$p"* || $p == "$1"* ]] && return 0; done; return 1; }
+wanted() {
+  { [ -z "${CORPUS_CLASSES:-}" ] || overlaps "$1" "$CORPUS_CLASSES"; } &&
+  { [ -z "${CORPUS_EXCEPT:-}" ] || ! in_list "$1/" "$CORPUS_EXCEPT"; } &&
+  { [ -z "${CORPUS_ONLY:-}" ] || overlaps "$1" "$CORPUS_ONLY"; }
+}
 
 # unchanged FILE SUM: a refused command left FILE as it was (data kept).
 unchanged() {
@@ -314,18 +372,12 @@ for part in "$SRC"/tests/e2e/corpus.d/*.sh; do
   . "$part"
 done
 
-# ---- the conditions table of docs/reliability.md, one row at a time ----
-if [ -z "${CORPUS_ONLY:-}${CORPUS_PROBE:-}" ]; then
-  rows=0
-  while IFS='|' read -r _ cond code id _; do
-    id=$(sed 's/[` ]//g' <<<"$id"); code=$(tr -d ' ' <<<"$code")
-    rows=$((rows+1))
-    if [ -z "${RAN[$id]+x}" ]; then echo "FAIL: docs row '$cond': case '$id' is not in the corpus"; fail=$((fail+1))
-    elif [ "${RAN[$id]}" != "$code" ]; then echo "FAIL: docs row '$cond': case $id exited ${RAN[$id]}, the table says $code"; fail=$((fail+1))
-    else pass=$((pass+1)); fi
-  done < <(sed -n '/^<!-- corpus-table -->/,/^<!-- \/corpus-table -->/p' "$SRC/docs/reliability.md" | grep '^| ' | tail -n +2 | grep -v '^|---')
-  [ "$rows" -ge 20 ] || { echo "FAIL: the conditions table of docs/reliability.md has $rows rows"; fail=$((fail+1)); }
+# ---- the conditions table of docs/reliability.md (a share leaves it to
+# the table check, which reads what every share ran) ----
+if [ -z "${CORPUS_ONLY:-}${CORPUS_PROBE:-}${CORPUS_CLASSES:-}${CORPUS_EXCEPT:-}" ]; then
+  table_check
+else
+  echo "$n_cases cases${1:+ in share $1}"
+  [ "$n_cases" -ge 1 ] || { echo "FAIL: no case selected"; fail=$((fail+1)); }
 fi
-echo "$n_cases cases"
-[ -n "${CORPUS_ONLY:-}" ] || [ "$n_cases" -ge 100 ] || { echo "FAIL: only $n_cases cases (want >= 100)"; fail=$((fail+1)); }
 tally
