@@ -51,7 +51,7 @@ dm_glsl_variant(slowtess ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmak
 set(DM_TEST_RUNS ${CMAKE_BINARY_DIR}/test-runs)
 add_test(NAME test_ci_gate_run
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/gate_run.sh ${DM_TEST_RUNS}/ci-gate)
-set_tests_properties(test_ci_gate_run PROPERTIES TIMEOUT 1200 FIXTURES_SETUP ci_gate_run
+set_tests_properties(test_ci_gate_run PROPERTIES TIMEOUT 1800 FIXTURES_SETUP ci_gate_run
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
 foreach(part cube fullscreen)
   if(part STREQUAL cube)
@@ -61,7 +61,7 @@ foreach(part cube fullscreen)
   endif()
   add_test(NAME test_stage_run_${part}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/fixture_run.sh ${DM_TEST_RUNS}/stages-${part} ${sweep})
-  set_tests_properties(test_stage_run_${part} PROPERTIES TIMEOUT 1200 FIXTURES_SETUP stage_run_${part}
+  set_tests_properties(test_stage_run_${part} PROPERTIES TIMEOUT 1800 FIXTURES_SETUP stage_run_${part}
     ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
 endforeach()
 
@@ -96,7 +96,7 @@ set(repeat_dir ${DM_TEST_RUNS}/repeat)
 foreach(step cold1 cold2 warm)
   add_test(NAME test_instructions_repeat_${step}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/repeat.sh --run ${step} ${repeat_dir})
-  set_tests_properties(test_instructions_repeat_${step} PROPERTIES TIMEOUT 1200
+  set_tests_properties(test_instructions_repeat_${step} PROPERTIES TIMEOUT 1800
     ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
 endforeach()
 set_tests_properties(test_instructions_repeat_cold1 PROPERTIES FIXTURES_SETUP repeat_cold1)
@@ -135,7 +135,7 @@ foreach(part fit new)
   add_test(NAME test_predict_run_${part}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/fixture_run.sh ${DM_TEST_RUNS}/predict/${part}
             ${CMAKE_CURRENT_SOURCE_DIR}/stages/predict_${part}.yaml)
-  set_tests_properties(test_predict_run_${part} PROPERTIES TIMEOUT 1200 FIXTURES_SETUP predict_run_${part}
+  set_tests_properties(test_predict_run_${part} PROPERTIES TIMEOUT 1800 FIXTURES_SETUP predict_run_${part}
     ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
 endforeach()
 add_test(NAME test_predict COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/predict.sh)
