@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# The project's CI gate: runs ci/gate.yaml (normal on four meshes) and
+# The project's CI gate: runs ci/gate.yaml (normal on three meshes) and
 # ci/gate-techniques.yaml (every technique with the axes that change its
 # shaders or work) with the given dmbench binary and compares their
 # deterministic counters with ci/baseline.json and ci/baseline-techniques.json

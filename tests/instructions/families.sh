@@ -1,24 +1,28 @@
 #!/usr/bin/env bash
 # A regression in any stage family fails the instruction gate, and only
 # where it is: tests/instructions/families.yaml (normal, vertex-
-# displacement, tess-displacement on the cube) counted by dmbench, by
+# displacement, tess-displacement on the cube) counted by dmbench (the stage
+# counters' run of tests/stages/techniques.yaml, STAGERUN, made once for the
+# suite by test_stage_run_cube: the same configurations key for key), by
 # dmbench_slowvertexshader (512 more steps per vertex in displace.vert.glsl)
 # and by dmbench_slowtessshader (64 more per evaluation in tess.tes.glsl).
 # `compare --counters-only` must call the slowed family's configuration a
 # REGRESSION (exit 1) beyond the 0.5 % threshold, name geometry as the stage
 # that grew (both slowed shaders run before rasterization), and call the
 # other two PASS.
-# Usage: families.sh SLOWVERTEX SLOWTESS  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set by ctest)
+# Usage: families.sh SLOWVERTEX SLOWTESS STAGERUN  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set by ctest)
 set -euo pipefail
-SV=${1:?usage: families.sh SLOWVERTEX SLOWTESS}
-ST=${2:?usage: families.sh SLOWVERTEX SLOWTESS}
+SV=${1:?usage: families.sh SLOWVERTEX SLOWTESS STAGERUN}
+ST=${2:?usage: families.sh SLOWVERTEX SLOWTESS STAGERUN}
+STAGERUN=${3:?usage: families.sh SLOWVERTEX SLOWTESS STAGERUN}
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 SWEEP="$SRC/tests/instructions/families.yaml"
+[ -f "$STAGERUN/latest/results.json" ] || { echo "no stage run in $STAGERUN (fixture test_stage_run_cube)"; exit 1; }
+ln -s "$(readlink -f "$STAGERUN")" "$OUT/a"
 t0=$(date +%s)
-"$BIN" run "$SWEEP" --out "$OUT/a" --seed 1 --quiet
 "$SV" run "$SWEEP" --out "$OUT/v" --seed 1 --quiet
 "$ST" run "$SWEEP" --out "$OUT/t" --seed 1 --quiet
-echo "three runs: $(( $(date +%s) - t0 )) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
+echo "two runs: $(( $(date +%s) - t0 )) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
 for fam in v t; do
   expect_compare 1 "$OUT/a/latest" "$OUT/$fam/latest" --counters-only --json "$OUT/$fam.json"
   python3 - "$OUT/$fam.json" "$fam" <<'PY'

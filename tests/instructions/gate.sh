@@ -1,17 +1,28 @@
 #!/usr/bin/env bash
-# The Instructions gate end to end, under Valgrind: ci/gate.yaml run twice
-# with dmbench and once with dmbench_slowshader (a fragment shader with a
-# few more steps per fragment).  Asserts: every configuration has
+# The Instructions gate end to end, under Valgrind: normal on the four
+# meshes triangle, plane, cube and fullscreen counted twice with dmbench
+# and once with dmbench_slowshader (a fragment shader with a few more steps
+# per fragment).  The first dmbench run is the CI gate's own (RUNS, made
+# once for the suite by test_ci_gate_run with --seed 1): ci/gate.yaml's three
+# meshes in RUNS/baseline, the cube's normal in RUNS/baseline-techniques
+# (ci/gate-techniques.yaml counts it; the same configuration).  This test
+# counts the second (ci/gate.yaml with the cube, --seed 2, another order)
+# and the slower shader's.  Asserts: every configuration has
 # Instructions; the two samples of a run agree within 0.01 % and the two
 # runs within 0.05 %; `compare` of the two runs exits 0 (PASS everywhere, also without
 # --counters-only); the slower shader is a REGRESSION on every
 # configuration (exit 1) by more than the 0.5 % threshold; the original
 # binary against it passes again (IMPROVEMENT, exit 0).
-# Usage: gate.sh DMBENCH_SLOWSHADER  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set by ctest)
+# Usage: gate.sh DMBENCH_SLOWSHADER RUNS  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set by ctest)
 set -euo pipefail
-SLOW=${1:?usage: gate.sh DMBENCH_SLOWSHADER}
+SLOW=${1:?usage: gate.sh DMBENCH_SLOWSHADER RUNS}
+RUNS=${2:?usage: gate.sh DMBENCH_SLOWSHADER RUNS}
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
-SWEEP="$SRC/ci/gate.yaml"
+# ci/gate.yaml with the cube: the four meshes of the runs counted here
+SWEEP="$OUT/gate4.yaml"
+sed 's/^  mesh: \[triangle, plane, fullscreen\]$/  mesh: [triangle, plane, cube, fullscreen]/' "$SRC/ci/gate.yaml" > "$SWEEP"
+grep -q '^  mesh: \[triangle, plane, cube, fullscreen\]$' "$SWEEP" ||
+  { echo "ci/gate.yaml's meshes changed: update tests/instructions/gate.sh"; exit 1; }
 
 # expect CODE ARGS...: expect_compare, with the verdicts in the test log.
 expect() {
@@ -19,17 +30,22 @@ expect() {
   cat "$OUT/stdout"
 }
 
+for r in baseline baseline-techniques; do
+  [ -f "$RUNS/$r/latest/results.json" ] || { echo "no gate run $RUNS/$r (fixture test_ci_gate_run)"; exit 1; }
+done
+A1="$RUNS/baseline/latest" A2="$RUNS/baseline-techniques/latest"   # the first dmbench run, in two parts
 t0=$(date +%s)
-"$BIN" run "$SWEEP" --out "$OUT/a" --seed 1 --quiet
-t1=$(date +%s)
 "$BIN" run "$SWEEP" --out "$OUT/b" --seed 2 --quiet
+t1=$(date +%s)
 "$SLOW" run "$SWEEP" --out "$OUT/s" --seed 1 --quiet
 t2=$(date +%s)
-echo "one gate run: $((t1 - t0)) s; three: $((t2 - t0)) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
+echo "one gate run: $((t1 - t0)) s; two: $((t2 - t0)) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
 
-python3 - "$OUT/a/latest/results.json" "$OUT/b/latest/results.json" <<'PY'
+python3 - "$A1/results.json" "$A2/results.json" "$OUT/b/latest/results.json" <<'PY'
 import json, sys
-runs = [{c["key"]: c for c in json.load(open(p))["configs"]} for p in sys.argv[1:]]
+a1, a2, b = [{c["key"]: c for c in json.load(open(p))["configs"]} for p in sys.argv[1:]]
+# the first run: gate.yaml's three meshes, and the cube from gate-techniques.yaml
+runs = [{**a1, **{k: c for k, c in a2.items() if k in b and k not in a1}}, b]
 assert runs[0].keys() == runs[1].keys() and len(runs[0]) == 4, (runs[0].keys(), runs[1].keys())
 for key, a in runs[0].items():
     b = runs[1][key]
@@ -49,18 +65,23 @@ for key, a in runs[0].items():
     print(f"{key}: {ia['median']:.0f} vs {ib['median']:.0f} instructions/frame (spread {rel:.2e})")
 PY
 
-expect 0 "$OUT/a/latest" "$OUT/b/latest"
-expect 0 "$OUT/a/latest" "$OUT/b/latest" --counters-only
-expect 1 "$OUT/a/latest" "$OUT/s/latest" --counters-only --json "$OUT/slow.json"
-python3 - "$OUT/slow.json" <<'PY'
+# against each part of the first run (the other part's configurations are
+# listed as added or removed, which passes)
+for A in "$A1" "$A2"; do
+  expect 0 "$A" "$OUT/b/latest"
+  expect 0 "$A" "$OUT/b/latest" --counters-only
+done
+expect 1 "$A1" "$OUT/s/latest" --counters-only --json "$OUT/slow1.json"
+expect 1 "$A2" "$OUT/s/latest" --counters-only --json "$OUT/slow2.json"
+python3 - "$OUT/slow1.json" "$OUT/slow2.json" <<'PY'
 import json, sys
-j = json.load(open(sys.argv[1]))
-assert len(j["configs"]) == 4
-for c in j["configs"]:
+configs = [c for p in sys.argv[1:] for c in json.load(open(p))["configs"]]
+assert len(configs) == 4, configs   # the four meshes
+for c in configs:
     assert c["verdict"] == "REGRESSION", c
     assert c["instructions_ratio"] > 1.005, c
     print(f"slower shader detected on {c['configuration']}: +{(c['instructions_ratio'] - 1) * 100:.2f} % instructions")
 PY
-expect 0 "$OUT/s/latest" "$OUT/b/latest" --counters-only   # restored: faster again, passes
+expect 0 "$OUT/s/latest" "$OUT/b/latest" --counters-only   # restored: faster again, passes (all four)
 grep -q "IMPROVEMENT" "$OUT/stdout"
 echo "instructions gate: all passed"

@@ -16,9 +16,22 @@
 # Asserts: every configuration counted in each run; all its counts (two
 # samples a run) within 1e-4 (0.01 %); no run warns about Instructions.
 # Usage: repeat.sh [SWEEP] [--alone]  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set
-# by ctest or bench/repeat.sh)
+# by ctest or bench/repeat.sh): the three runs, then the check.
+# The suite runs the same in steps, each a ctest test, so the two cold runs
+# go side by side (tests/instructions.cmake; the runs stay in DIR):
+#   repeat.sh --run cold1|cold2|warm DIR   one run (warm: after cold1)
+#   repeat.sh --check DIR                  the check of the three
 set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
+STEP="" DIR=""
+case "${1:-}" in
+  --run) STEP=${2:?usage: repeat.sh --run cold1|cold2|warm DIR}; DIR=${3:?usage: repeat.sh --run STEP DIR}; set -- ;;
+  --check) STEP=check; DIR=${2:?usage: repeat.sh --check DIR}; set -- ;;
+esac
+if [ -n "$DIR" ]; then   # the runs stay in DIR for the next step: not lib.sh's scratch OUT
+  rm -rf "$OUT"; trap - EXIT
+  OUT=$DIR; mkdir -p "$OUT"
+fi
 SWEEP=${1:-$SRC/tests/instructions/repeat.yaml}
 ALONE=${2:-}
 
@@ -31,12 +44,33 @@ run() {
   ln -s "$(readlink -f "$OUT/$name.root/latest")" "$OUT/$name"
 }
 
+# The runs: cold1 and cold2 from empty caches, two children each; warm from
+# cold1's caches and program binaries, now filled, in one child.
 t0=$(date +%s)
-run cold1 c1 1 --count-jobs 2
-run cold2 c2 2 --count-jobs 2 &  # two runs at a time at most: CI has 2 cores
-run warm c1 3 --count-jobs 1   # c1's caches and program binaries, now filled; one child
-wait $!
+case $STEP in
+  cold1|cold2)
+    n=${STEP#cold}
+    rm -rf "${OUT:?}/$STEP" "$OUT/$STEP.root" "$OUT/c$n"
+    run "$STEP" "c$n" "$n" --count-jobs 2
+    echo "$STEP: $(( $(date +%s) - t0 )) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
+    exit 0 ;;
+  warm)
+    [ -d "$OUT/c1" ] && [ -e "$OUT/cold1" ] || { echo "no cold1 run in $OUT (test_instructions_repeat_cold1)"; exit 1; }
+    rm -rf "$OUT/warm" "$OUT/warm.root"
+    run warm c1 3 --count-jobs 1
+    echo "warm: $(( $(date +%s) - t0 )) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
+    exit 0 ;;
+  check) ;;
+  *)
+    run cold1 c1 1 --count-jobs 2
+    run cold2 c2 2 --count-jobs 2 &  # two runs at a time at most: CI has 2 cores
+    run warm c1 3 --count-jobs 1
+    wait $! ;;
+esac
 runs=("$OUT/cold1" "$OUT/cold2" "$OUT/warm")
+for r in "${runs[@]}"; do
+  [ -f "$r/results.json" ] || { echo "no run $r (tests test_instructions_repeat_cold1, _cold2, _warm)"; exit 1; }
+done
 if [ "$ALONE" = --alone ]; then
   n=$(python3 -c 'import json,sys; print(len(json.load(open(sys.argv[1]))["configs"]))' "$OUT/cold1/results.json")
   for k in $(seq 1 "$n"); do

@@ -10,7 +10,13 @@
 #    unless --allow-env-mismatch, and a run without a needed counter.
 set -uo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
-if [ -n "${PREDICT_RUNS:-}" ]; then   # reuse two runs made by hand: DIR with fit/ and new/
+# PREDICT_RUNS: a DIR with the two runs' output roots fit/ and new/ (the
+# suite's fixtures test_predict_run_fit and _new, or runs made by hand),
+# copied: this test changes the fitted run's store.
+if [ -n "${PREDICT_RUNS:-}" ]; then
+  for r in fit new; do
+    [ -f "$PREDICT_RUNS/$r/latest/results.json" ] || { echo "FAIL: no run $PREDICT_RUNS/$r"; exit 1; }
+  done
   cp -r "$PREDICT_RUNS/fit" "$OUT/fit"; cp -r "$PREDICT_RUNS/new" "$OUT/new"
 else
   t0=$(date +%s)

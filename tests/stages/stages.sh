@@ -1,6 +1,9 @@
 #!/usr/bin/env bash
 # test_stage_instructions: the stage counters of the Instructions pass
-# (docs/counters.md, "Stage costs") on tests/stages/techniques.yaml.
+# (docs/counters.md, "Stage costs") on tests/stages/techniques.yaml (the
+# cube) and tests/stages/fullscreen.yaml, each run once for the suite by
+# test_stage_run_cube and test_stage_run_fullscreen (CUBE and FULL, their
+# output roots; the cube's run is also test_instructions_families').
 #  - every technique: geometry, raster and fragment are positive, they add
 #    up to Instructions within 1 %, and the residual (geometry work the
 #    minimal fragment shader changed, which does not enter the parts) is
@@ -12,15 +15,16 @@
 #    and fragment instructions are F0 + f x pixels: the cost per added
 #    pixel is equal between the sizes within 2 % and F0 (per-draw state of
 #    the fragment stage) is under 5 % of the 64x64 fragment count.
+# Usage: stages.sh CUBE FULL  (DMBENCH_SOURCE_DIR set by ctest)
 set -euo pipefail
-. "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
-t0=$(date +%s)
-"$BIN" run "$SRC/tests/stages/techniques.yaml" --out "$OUT/r" --seed 1 --quiet
-[ -n "${STAGES_KEEP:-}" ] && cp -r "$OUT/r" "$STAGES_KEEP"
-echo "run: $(( $(date +%s) - t0 )) s (load: $(cut -d' ' -f1-3 /proc/loadavg))"
-python3 - "$OUT/r/latest/results.json" <<'PY'
+CUBE=${1:?usage: stages.sh CUBE FULL}
+FULL=${2:?usage: stages.sh CUBE FULL}
+for d in "$CUBE" "$FULL"; do
+  [ -f "$d/latest/results.json" ] || { echo "no stage run in $d (fixtures test_stage_run_*)"; exit 1; }
+done
+python3 - "$CUBE/latest/results.json" "$FULL/latest/results.json" <<'PY'
 import json, sys
-j = json.load(open(sys.argv[1]))
+j = {"configs": [c for p in sys.argv[1:] for c in json.load(open(p))["configs"]]}
 fails = []
 def val(c, n):
     x = c["counters"].get(n)
