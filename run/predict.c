@@ -3,6 +3,7 @@
 #include "run/predict.h"
 #include "core/dm_error.h"
 #include "run/fitting.h"
+#include "reports/report.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -41,8 +42,11 @@ size_t predict_left_out(const dm_run_result *runs, size_t n, dm_str *out)
                 const char *name = j < PREDICT_N_NEEDED ? predict_needed[j] : predict__stages[j - PREDICT_N_NEEDED];
                 const dm_counter_result *r = dm_config_counter(c, name);
                 if (r && !r->available && dm_run_has_counter(&runs[k], name)) {
-                    dm_str_printf(out, "  %s  %s: %s unavailable (%s)\n", c->key, c->scene, name,
+                    dm_str label = {0};
+                    report_config_label(&runs[k], c, &label);   /* the one label form */
+                    dm_str_printf(out, "  %s  %s: %s unavailable (%s)\n", c->key, dm_str_get(&label), name,
                                   r->unavailable_reason ? r->unavailable_reason : "no reason recorded");
+                    dm_str_free(&label);
                     left++;
                     break;
                 }

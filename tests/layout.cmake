@@ -8,4 +8,4 @@ find_package(Python3 REQUIRED COMPONENTS Interpreter)
 add_test(NAME test_layout_circles
   COMMAND ${Python3_EXECUTABLE} ${CMAKE_CURRENT_SOURCE_DIR}/layout/circles.py
           ${CMAKE_SOURCE_DIR} ${CMAKE_BINARY_DIR})
-set_tests_properties(test_layout_circles PROPERTIES TIMEOUT 120 LABELS "unit;quick")
+set_tests_properties(test_layout_circles PROPERTIES TIMEOUT 120 LABELS "layout;quick")

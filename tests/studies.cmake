@@ -5,7 +5,7 @@ find_program(DM_PYTHON3 python3)
 if(DM_PYTHON3)
   add_test(NAME test_study_claims
     COMMAND ${DM_PYTHON3} ${PROJECT_SOURCE_DIR}/bench/study_claims.py ${PROJECT_SOURCE_DIR})
-  set_tests_properties(test_study_claims PROPERTIES TIMEOUT 30 LABELS "unit;quick")
+  set_tests_properties(test_study_claims PROPERTIES TIMEOUT 30 LABELS "docs;quick")
 else()
   message(STATUS "python3 not found: test_study_claims not registered")
 endif()

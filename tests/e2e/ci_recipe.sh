@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # docs/ci-gating.md's recipe runs as written: every `ci/perf-gate.sh` and
 # `dmbench` command line of the page's ```sh and ```yaml blocks is run
-# with the built binary as both BASE and NEW (ROUNDS=2) in a scratch
+# with the built binary as both BASE and NEW (ROUNDS=5, the fewest the paired test can decide with at --alpha 0.01) in a scratch
 # checkout layout (repo/{ci,sweeps,build/dmbench}, base/build/dmbench,
 # dmbench on PATH) and must exit 0, or 3 (inconclusive timing, which the
 # recipe lets pass); and every ci/ or sweeps/ file the page names exists.
@@ -55,7 +55,7 @@ esac
 [ -s "$OUT/part" ] && pass=$((pass+1)) || { fail=$((fail+1)); echo "FAIL: no $PART command in $DOC"; }
 while IFS= read -r cmd; do
   rc=0
-  (cd "$W/repo" && PATH="$W/bin:$PATH" ROUNDS=2 timeout 900 bash -c "$cmd") >"$OUT/cmd.log" 2>&1 </dev/null || rc=$?
+  (cd "$W/repo" && PATH="$W/bin:$PATH" ROUNDS=5 timeout 900 bash -c "$cmd") >"$OUT/cmd.log" 2>&1 </dev/null || rc=$?
   if [ "$rc" = 0 ] || [ "$rc" = 3 ]; then pass=$((pass+1)); echo "ok (exit $rc): $cmd"
   else fail=$((fail+1)); echo "FAIL (exit $rc): $cmd"; tail -5 "$OUT/cmd.log"; fi
 done < "$OUT/part"

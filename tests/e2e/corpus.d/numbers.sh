@@ -118,8 +118,9 @@ if wanted predict/unreadable; then
   po=$("$BIN" predict "$OUT/pr.yaml" --from "$OUT/pr/latest" 2>&1)
   k0=$(python3 -c "import sqlite3,sys; print(sqlite3.connect(sys.argv[1]).execute('select key from configs order by seq').fetchone()[0])" "$OUT/pr/dmbench.sqlite")
   if grep -q "^left out of the fits" <<<"$po" &&
-     grep -qF "$k0  cube@16x16: Instructions unavailable (the value read back from the results store is missing or NaN" <<<"$po" &&
-     grep -q "interval unavailable: too few configurations" <<<"$po" &&
+     grep -qF "$k0  cube 16×16 · normal: Instructions unavailable (the value read back from the results store is missing or NaN" <<<"$po" &&
+     grep -q "Instructions interval unavailable: the runs measured 3 configurations of variant" <<<"$po" &&
+     grep -q "WallTime interval unavailable" <<<"$po" &&
      ! grep -qE "(\[| )(nan|-?inf)(,|\]| |%|$)" <<<"$po"; then pass=$((pass+1))
   else echo "FAIL: predict/unreadable: $po"; fail=$((fail+1)); fi
 fi
