@@ -465,13 +465,13 @@ int runner_child_instructions(runner *r, dm_str *err)
 {
     if (!runner_child__wants_instructions(r->s))
         return 0;
-    plan_config *todo = dm_xcalloc(r->p.n_configs + 1, sizeof *todo);
+    plan_config *uncounted = dm_xcalloc(r->p.n_configs + 1, sizeof *uncounted);
     size_t *order = dm_xcalloc(r->p.n_configs + 1, sizeof *order), nt = 0;
     /* in the --seed's order, as the timing rounds: a count must not depend on it */
     plan_shuffle(order, r->p.n_configs, r->o->seed ? r->o->seed : 1);
     for (size_t k = 0; k < r->p.n_configs; k++)
         if (store_config_done(r->st, r->run_id, r->p.configs[order[k]].key) != 1)
-            todo[nt++] = r->p.configs[order[k]];
+            uncounted[nt++] = r->p.configs[order[k]];
     free(order);
     r->instr = dm_xcalloc(nt + 1, sizeof *r->instr);
     r->n_instr = nt;
@@ -489,7 +489,7 @@ int runner_child_instructions(runner *r, dm_str *err)
         callgrind_desc d = { .sweep = r->s, .valgrind = vg, .work_dir = dir, .jobs = jobs,
                              .timeout_s = 10 * r->s->measure.timeout_s, .quiet = r->o->quiet };
         dm_str why = {0};
-        int rc = callgrind_run(&d, todo, nt, r->instr, &why);
+        int rc = callgrind_run(&d, uncounted, nt, r->instr, &why);
         dm_str changed = {0};
         if (rc != DM_ERR_ARG && inputs_check(&changed) != 0) {   /* a map or mesh the children read */
             dm_str_free(&why);
@@ -505,23 +505,23 @@ int runner_child_instructions(runner *r, dm_str *err)
             dm_str_free(&why);
             free(dir);
             free(vg);
-            free(todo);
+            free(uncounted);
             return rc;
         }
         if (rc != 0) {
             callgrind_counts_free(r->instr, nt);
             memset(r->instr, 0, nt * sizeof *r->instr);
-            callgrind_mark_unavailable(r->instr, todo, nt, dm_str_get(&why));
+            callgrind_mark_unavailable(r->instr, uncounted, nt, dm_str_get(&why));
         }
         dm_str_free(&why);
         free(dir);
     } else {
-        callgrind_mark_unavailable(r->instr, todo, nt, r->instr_why);
+        callgrind_mark_unavailable(r->instr, uncounted, nt, r->instr_why);
     }
     r->instr_s = (double)(dm_now_ns() - t0) / 1e9;
     for (size_t i = 0; i < nt; i++) {
         if (r->instr[i].failed)
-            runner_child__fail_config(r, &todo[i], r->instr[i].reason);
+            runner_child__fail_config(r, &uncounted[i], r->instr[i].reason);
         char *w = callgrind_disagreement(&r->instr[i]);   /* a count that does not repeat */
         if (w) {
             dm_log(DM_LOG_WARN, "%s", w);
@@ -532,7 +532,7 @@ int runner_child_instructions(runner *r, dm_str *err)
     if (vg && nt && !r->o->quiet)
         fprintf(stderr, "dmbench: instructions counted in %.1f s\n", r->instr_s);
     free(vg);
-    free(todo);
+    free(uncounted);
     return 0;
 }
 
