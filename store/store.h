@@ -6,7 +6,7 @@
  * reports reload a whole run with store_run_load(); `dmbench merge` uses
  * store_copy_run().  The store persists and reloads exactly the model of
  * core/dm_results.h (NaN and ±Inf included).  The schema is documented at the
- * top of store.c.
+ * top of store_schema.c.
  *
  * Errors: every function returns 0 or a negative DM_ERR_* code.  Every SQLite
  * failure is DM_ERR_STORE, with a message naming the database path and
