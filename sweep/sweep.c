@@ -5,25 +5,25 @@
  * checked against the catalog in techniques/axes.h, counter names against
  * the registry in counters/counters.h.
  */
-#include "sweep.h"
-#include "published.h"
+#include "sweep/sweep.h"
+#include "sweep/fraction.h"
+#include "sweep/published.h"
+#include "sweep/sweep_paths.h"
+#include "sweep/sweep_yaml.h"
 #include "core/dm_error.h"
 #include "counters/counters.h"
-#include "techniques/axes.h"
 #include "reports/metric.h"
-#include "sweep/sweep_paths.h"
-#include "sweep/fraction.h"
+#include "techniques/axes.h"
+#include "techniques/technique.h"
+#include "techniques/user_technique.h"
 
+#include <errno.h>
 #include <math.h>
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
-#include <errno.h>
 #include <string.h>
 #include <yaml.h>
-
-#include "techniques/technique.h"
-#include "techniques/user_technique.h"
 
 typedef struct pctx {
     yaml_document_t *doc;
@@ -155,54 +155,39 @@ static int sweep__set_scene(pctx *c, const char *axis, yaml_node_t *key, yaml_no
     return v ? sweep__put_scene(c, axis, v) : DM_ERR_PARSE;
 }
 
-/* A user map path, made relative to the sweep file's directory. */
-static char *sweep__map_path(pctx *c, const char *path)
-{
-    const char *slash = strrchr(c->path, '/');
-    if (path[0] == '/' || !slash)
-        return dm_xstrdup(path);
-    return dm_xasprintf("%.*s/%s", (int)(slash - c->path), c->path, path);
-}
-
 /* material: { height: P, normal: P, albedo: P } -> the maps axis value
- * "height=P;normal=P;albedo=P", validated (file exists, decodes, square
- * power of two, same sizes, finite) by the axis check at plan time. */
+ * (sweep_paths_maps), validated (file exists, decodes, square power of two,
+ * same sizes, finite) by the axis check at plan time. */
 static int sweep__user_maps(pctx *c, yaml_node_t *map)
 {
-    static const char *const kinds[] = { "height", "normal", "albedo" };
-    dm_str v = {0};
+    const char *paths[SWEEP_PATHS_MAPS] = {0};
     yaml_node_t *first = NULL;
-    for (int k = 0; k < 3; k++) {
+    for (int k = 0; k < SWEEP_PATHS_MAPS; k++) {
         P__FOREACH_PAIR(c, map, pr) {
             yaml_node_t *key = sweep__node(c, pr->key), *val = sweep__node(c, pr->value);
-            if (!sweep__scalar(key) || strcmp(sweep__scalar(key), kinds[k]) != 0)
+            if (!sweep__scalar(key) || strcmp(sweep__scalar(key), sweep_paths_map_kinds[k]) != 0)
                 continue;
-            if (!sweep__scalar(val) || !*sweep__scalar(val)) {
-                dm_str_free(&v);
-                return sweep__fail(c, val, "scene.material.%s: expected a file path", kinds[k]);
-            }
-            char *path = sweep__map_path(c, sweep__scalar(val));
-            dm_str_printf(&v, "%s%s=", v.len ? ";" : "", kinds[k]);
-            for (const char *p = path; *p; p++)   /* a ';' in the path is written ";;" */
-                dm_str_cat(&v, *p == ';' ? ";;" : (char[2]){ *p, 0 });
-            free(path);
+            if (!sweep__scalar(val) || !*sweep__scalar(val))
+                return sweep__fail(c, val, "scene.material.%s: expected a file path", sweep_paths_map_kinds[k]);
+            paths[k] = sweep__scalar(val);
             first = first ? first : val;
         }
     }
     if (!first)
         return 0;
+    char *v = sweep_paths_maps(c->path, paths);
     dm_str msg = {0};
-    int rc = axes_check("maps", dm_str_get(&v), &msg);
+    int rc = axes_check("maps", v, &msg);
     c->env = rc == DM_ERR_NOMEM ? rc : c->env;
-    if (rc)
+    if (rc) {
         sweep__fail(c, first, "%s", dm_str_get(&msg));
-    else
-        rc = sweep__put_scene(c, "maps", dm_str_take(&v));
+        free(v);
+    } else {
+        rc = sweep__put_scene(c, "maps", v);
+    }
     dm_str_free(&msg);
-    dm_str_free(&v);
     return rc;
 }
-
 
 /* Mappings must be mappings, and YAML keys are unique: a repeated key would
  * silently win over the first, so it is an error naming both lines. */
@@ -754,47 +739,6 @@ static int sweep__section(pctx *c, yaml_node_t *map, const char *section)
     return rc;
 }
 
-/* A Markdown table cell: '|' escaped, so a type such as "a | b" stays one cell. */
-static void sweep__md_cell(dm_str *out, const char *text)
-{
-    dm_str_cat(out, " ");
-    for (const char *p = text; *p; p++)
-        dm_str_cat(out, *p == '|' ? "\\|" : (char[2]){ *p, 0 });
-    dm_str_cat(out, " |");
-}
-
-void sweep_keys_markdown(dm_str *out)
-{
-    const char *section = NULL;
-    for (size_t i = 0; i < P__N_KEYS; i++) {
-        const sweep__key *row = &sweep__keys[i];
-        if (!section || strcmp(section, row->doc.section) != 0) {
-            section = row->doc.section;
-            dm_str_printf(out, "%s### %s%s%s\n\n| key | value | default | meaning |\n|---|---|---|---|\n",
-                          i ? "\n" : "", *section ? "`" : "", *section ? section : "Top level",
-                          *section ? "`" : "");
-        }
-        char key[64];
-        if (strcmp(row->doc.name, "*") == 0)
-            snprintf(key, sizeof key, "*AXIS*");
-        else
-            snprintf(key, sizeof key, "`%s`", row->doc.name);
-        dm_str_cat(out, "|");
-        sweep__md_cell(out, key);
-        sweep__md_cell(out, row->doc.type);
-        sweep__md_cell(out, row->doc.deflt);
-        dm_str doc = {0};
-        dm_str_cat(&doc, row->doc.doc);
-        if (row->doc.example && strcmp(row->doc.name, "*") == 0)
-            dm_str_printf(&doc, "; e.g. `%s`", row->doc.example);
-        else if (row->doc.example)
-            dm_str_printf(&doc, "; e.g. `%s: %s`", row->doc.name, row->doc.example);
-        sweep__md_cell(out, dm_str_get(&doc));
-        dm_str_free(&doc);
-        dm_str_cat(out, "\n");
-    }
-}
-
 /* Numeric keys the file did not give take the table's default. */
 static void sweep__numeric_defaults(pctx *c)
 {
@@ -915,47 +859,6 @@ static void sweep__preload_techniques(pctx *c, yaml_node_t *root)
     }
 }
 
-/* Deepest nesting of YAML collections a sweep file may have (the deepest
- * real one is 4: models, a model, group_by, ...). */
-#define SWEEP__MAX_DEPTH 16
-
-/* Refuses a document nested deeper than SWEEP__MAX_DEPTH, without
- * recursion: libyaml numbers a collection before its children, so one pass
- * in node order gives every node its depth. */
-static int sweep__depth_check(yaml_document_t *doc, const char *path, dm_str *err)
-{
-    size_t n = (size_t)(doc->nodes.top - doc->nodes.start);
-    int *depth = dm_xcalloc(n + 2, sizeof *depth), rc = 0;
-    for (size_t i = 0; i < n && rc == 0; i++) {
-        yaml_node_t *nd = &doc->nodes.start[i];
-        int kids[2];
-        for (size_t j = 0; ; j++) {
-            size_t nk = 0;
-            if (nd->type == YAML_SEQUENCE_NODE &&
-                nd->data.sequence.items.start + j < nd->data.sequence.items.top)
-                kids[nk++] = nd->data.sequence.items.start[j];
-            if (nd->type == YAML_MAPPING_NODE &&
-                nd->data.mapping.pairs.start + j < nd->data.mapping.pairs.top) {
-                kids[nk++] = nd->data.mapping.pairs.start[j].key;
-                kids[nk++] = nd->data.mapping.pairs.start[j].value;
-            }
-            if (nk == 0)
-                break;
-            for (size_t k = 0; k < nk; k++)
-                if (kids[k] >= 1 && (size_t)kids[k] <= n && depth[kids[k] - 1] < depth[i] + 1)
-                    depth[kids[k] - 1] = depth[i] + 1;
-        }
-        if (depth[i] > SWEEP__MAX_DEPTH) {
-            dm_str_printf(err, "%s:%zu:%zu: nested deeper than %d levels; a sweep file is "
-                          "never that deep", path, nd->start_mark.line + 1,
-                          nd->start_mark.column + 1, SWEEP__MAX_DEPTH);
-            rc = DM_ERR_PARSE;
-        }
-    }
-    free(depth);
-    return rc;
-}
-
 int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
 {
     memset(out, 0, sizeof *out);
@@ -975,7 +878,7 @@ int sweep_parse(const char *text, const char *path, sweep *out, dm_str *err)
     }
     pctx c = { .doc = &doc, .path = path, .err = err, .s = out };
     out->path = dm_xstrdup(path);
-    int rc = sweep__depth_check(&doc, path, err);
+    int rc = sweep_yaml_depth_check(&doc, path, err);
     yaml_node_t *root = yaml_document_get_root_node(&doc);
     if (rc == 0 && !root)
         rc = sweep__fail(&c, NULL, "empty sweep file (expected keys: name, sweep, ...)");
@@ -1029,57 +932,6 @@ int sweep_load(const char *path, sweep *out, dm_str *err)
     int rc = sweep_parse(text, path, out, err);
     free(text);
     return rc;
-}
-
-/* The embedded default sweep: every technique that exists (registry order)
- * on a small grid of axes, the built-in procedural scene and maps; no files,
- * no network, no display.  %s is replaced by the technique list. */
-static const char sweep__default_yaml[] =
-    "name: default\n"
-    "resolution: [480, 270]\n"
-    "measure:\n"
-    "  warmup_frames: 4\n"
-    "  frames_per_sample: 8\n"
-    "  samples: { min: 5, max: 30, target_ci: 0.03 }\n"
-    "  max_seconds: 6\n"
-    "scene:\n"
-    "  camera: { distance: 3.0, azimuth: 30, elevation: 35, fov: 45 }\n"
-    "  material: { maps: bricks, height_scale: 0.06 }\n"
-    "sweep:\n"
-    "  mesh: [plane, cube]\n"
-    "  technique: [%s]\n"
-    "  tess_level: [1, 16]\n"
-    "  steps: [8, 32]\n"
-    "  resolution: [[240, 135], [480, 270]]\n"
-    "models:\n"
-    "  - { name: pixel-cost, formula: \"a + b*SamplesPassed\", response: WallTime, group_by: [technique] }\n"
-    "  - { name: pipeline-linear }\n";
-
-static const char sweep__quick_yaml[] =
-    "name: quick\n"
-    "resolution: [160, 90]\n"
-    "measure:\n"
-    "  warmup_frames: 2\n"
-    "  frames_per_sample: 4\n"
-    "  samples: { min: 5, max: 8, target_ci: 0.05 }\n"
-    "  max_seconds: 1\n"
-    "sweep:\n"
-    "  mesh: [plane]\n"
-    "  technique: [%s]\n"
-    "  resolution: [[80, 45], [160, 90]]\n";
-
-const char *sweep_default_text(int quick)
-{
-    static char *text[2];
-    if (!text[quick]) {
-        dm_str list = {0};
-        for (const char *const *t = technique_names(); *t; t++)   /* the reference is not measured */
-            if (strcmp(*t, "reference-mesh") != 0)
-                dm_str_printf(&list, "%s%s", list.len ? ", " : "", *t);
-        text[quick] = dm_xasprintf(quick ? sweep__quick_yaml : sweep__default_yaml, dm_str_get(&list));
-        dm_str_free(&list);
-    }
-    return text[quick];
 }
 
 void sweep_free(sweep *s)

@@ -26,3 +26,29 @@ char *sweep_paths_resolve(const char *sweep_path, const char *axis, char *text)
     free(text);
     return out;
 }
+
+const char *const sweep_paths_map_kinds[SWEEP_PATHS_MAPS] = { "height", "normal", "albedo" };
+
+/* A user map path, made relative to the sweep file's directory. */
+static char *sweep_paths__map(const char *sweep_path, const char *path)
+{
+    const char *slash = strrchr(sweep_path, '/');
+    if (path[0] == '/' || !slash)
+        return dm_xstrdup(path);
+    return dm_xasprintf("%.*s/%s", (int)(slash - sweep_path), sweep_path, path);
+}
+
+char *sweep_paths_maps(const char *sweep_path, const char *const paths[SWEEP_PATHS_MAPS])
+{
+    dm_str v = {0};
+    for (int k = 0; k < SWEEP_PATHS_MAPS; k++) {
+        if (!paths[k])
+            continue;
+        char *path = sweep_paths__map(sweep_path, paths[k]);
+        dm_str_printf(&v, "%s%s=", v.len ? ";" : "", sweep_paths_map_kinds[k]);
+        for (const char *q = path; *q; q++)   /* a ';' in the path is written ";;" */
+            dm_str_cat(&v, *q == ';' ? ";;" : (char[2]){ *q, 0 });
+        free(path);
+    }
+    return v.len ? dm_str_take(&v) : NULL;
+}

@@ -14,4 +14,14 @@
  * frees it and returns a new heap string. */
 char *sweep_paths_resolve(const char *sweep_path, const char *axis, char *text);
 
+/* The maps a scene.material block may name, in the order of the maps
+ * value: height, normal, albedo. */
+#define SWEEP_PATHS_MAPS 3
+extern const char *const sweep_paths_map_kinds[SWEEP_PATHS_MAPS];
+/* The maps axis value "height=P;normal=P;albedo=P" of the user's map files
+ * paths[k] (NULL: not given; kinds in sweep_paths_map_kinds), each relative
+ * path made relative to the directory of sweep_path and each ';' in a path
+ * written ";;".  Heap string; NULL when no path is given. */
+char *sweep_paths_maps(const char *sweep_path, const char *const paths[SWEEP_PATHS_MAPS]);
+
 #endif
