@@ -260,7 +260,7 @@ static int compare__load_sides(cli_compare_opts *o, dm_run_result *base, dm_run_
 static int compare__outputs(const cli_compare_opts *o, const compare_result *r)
 {
     compare_md_desc md = { .only_changed = o->only_changed };
-    int e = o->markdown ? compare_write_markdown_ex(r, &md, o->markdown) : 0;
+    int e = o->markdown ? compare_write_markdown(r, &md, o->markdown) : 0;
     if (e)   /* 4 when the disk refused it (full, ulimit -f), else 2 */
         return cli_error(e, "compare: cannot write %s: %s", o->markdown, strerror(errno));
     struct { const char *path; int (*fn)(const compare_result *, const char *); } w[] = {
@@ -278,7 +278,7 @@ static int compare__compare_fail(const cli_compare_opts *o, const compare_result
                              dm_str *err)
 {
     int rc = cli_error(e, "%s", dm_str_get(err));
-    if (o->markdown && compare_write_markdown_none(dm_str_get(err), r, o->markdown) != 0)
+    if (o->markdown && compare_write_markdown(r, &(compare_md_desc){ .none = 1, .reason = dm_str_get(err) }, o->markdown) != 0)
         fprintf(stderr, "dmbench: error: compare: cannot write %s\n", o->markdown);
     dm_str_free(err);
     return rc;

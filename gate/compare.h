@@ -249,32 +249,32 @@ void compare_result_free(compare_result *r);
 /* ---- outputs (compare_write.c) ---------------------------------------- */
 /* Terminal table, worst first, then added/removed, warnings and a summary. */
 void compare_write_text(const compare_result *r, FILE *f);
-/* Markdown summary + table; JUnit XML (one testcase per configuration:
- * <failure> for REGRESSION, <skipped> for INCONCLUSIVE and SKIPPED, the
- * verdict in system-out); JSON (everything in compare_result).  Each returns
- * 0 or dm_write_file's DM_ERR_IO / DM_ERR_DISK (errno says why) and writes
- * atomically. */
-int compare_write_markdown(const compare_result *r, const char *path);
-/* Markdown for a pull-request comment:
+/* Markdown for a pull-request comment (compare_write_markdown):
  *   a headline: the verdict in words with the counts;
  *   the machine checks in one line when they held verdicts;
  *   a table of what changed only (not PASS): configuration (short name),
  *   base, new, ratio, CI, verdict, note;
  *   the PASS rows in a <details> block (none with only_changed);
- *   at most COMPARE_MD_MAX characters: rows that do not fit are cut, PASS
- *   rows first, with a line saying how many and where the rest is.
- * The same options; 0, DM_ERR_IO or DM_ERR_DISK. */
+ *   at most max_chars characters: rows that do not fit are cut, PASS rows
+ *   first, with a line saying how many and where the rest is.
+ * With none set, the Markdown of a comparison that did not happen (no
+ * configuration in common, environments differ, a side could not be read):
+ * the headline says so and why (reason; NULL: "no reason given"), with r's
+ * environment differences and added/removed counts when r is not NULL, so
+ * the CI step that posts it always has a file. */
 #define COMPARE_MD_MAX 60000
 typedef struct compare_md_desc {
     int only_changed;
     size_t max_chars;        /* 0 -> COMPARE_MD_MAX */
+    int none;                /* nothing was compared, for `reason` */
+    const char *reason;
 } compare_md_desc;
-int compare_write_markdown_ex(const compare_result *r, const compare_md_desc *d, const char *path);
-/* The Markdown of a comparison that did not happen (no configuration in
- * common, environments differ, a side could not be read): the headline
- * says so and why (reason), so the CI step that posts it always has a
- * file.  0, DM_ERR_IO or DM_ERR_DISK. */
-int compare_write_markdown_none(const char *reason, const compare_result *r, const char *path);
+/* Writes the Markdown d describes (NULL: every default) of r to path; JUnit
+ * XML (one testcase per configuration: <failure> for REGRESSION, <skipped>
+ * for INCONCLUSIVE and SKIPPED, the verdict in system-out); JSON
+ * (everything in compare_result).  Each returns 0 or dm_write_file's
+ * DM_ERR_IO / DM_ERR_DISK (errno says why) and writes atomically. */
+int compare_write_markdown(const compare_result *r, const compare_md_desc *d, const char *path);
 int compare_write_junit(const compare_result *r, const char *path);
 int compare_write_json(const compare_result *r, const char *path);
 

@@ -359,7 +359,8 @@ static size_t compare__md_rows(const compare_result *r, int changed, size_t budg
     return cut;
 }
 
-int compare_write_markdown_ex(const compare_result *r, const compare_md_desc *d, const char *path)
+/* The Markdown of a comparison that happened. */
+static int compare__md_compared(const compare_result *r, const compare_md_desc *d, const char *path)
 {
     size_t max = d->max_chars ? d->max_chars : COMPARE_MD_MAX;
     dm_str s = {0}, tail = {0};
@@ -395,12 +396,8 @@ int compare_write_markdown_ex(const compare_result *r, const compare_md_desc *d,
     return compare__write(&s, path);
 }
 
-int compare_write_markdown(const compare_result *r, const char *path)
-{
-    return compare_write_markdown_ex(r, &(compare_md_desc){ 0 }, path);
-}
-
-int compare_write_markdown_none(const char *reason, const compare_result *r, const char *path)
+/* The Markdown of a comparison that did not happen, for reason. */
+static int compare__md_none(const char *reason, const compare_result *r, const char *path)
 {
     dm_str s = {0};
     dm_str_cat(&s, "## dmbench compare: nothing compared\n\n");
@@ -415,6 +412,13 @@ int compare_write_markdown_none(const char *reason, const compare_result *r, con
         dm_str_printf(&s, "\n%zu configuration%s only in BASE, %zu only in NEW.\n", r->n_removed,
                       r->n_removed == 1 ? "" : "s", r->n_added);
     return compare__write(&s, path);
+}
+
+int compare_write_markdown(const compare_result *r, const compare_md_desc *d, const char *path)
+{
+    static const compare_md_desc defaults = {0};
+    d = d ? d : &defaults;
+    return d->none ? compare__md_none(d->reason, r, path) : compare__md_compared(r, d, path);
 }
 
 int compare_write_junit(const compare_result *r, const char *path)

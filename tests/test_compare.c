@@ -647,7 +647,7 @@ static void test_json_roundtrip_and_outputs(void **state)
     assert_string_equal(r.items[0].note, "TESInvocations changed 3169 -> 6144");
     char *md = dm_xasprintf("%s/c.md", t->dir), *ju = dm_xasprintf("%s/c.xml", t->dir);
     char *js = dm_xasprintf("%s/c.json", t->dir);
-    assert_int_equal(compare_write_markdown(&r, md), 0);
+    assert_int_equal(compare_write_markdown(&r, NULL, md), 0);
     assert_int_equal(compare_write_junit(&r, ju), 0);
     assert_int_equal(compare_write_json(&r, js), 0);
     char *text = test_slurp(md);
@@ -1206,7 +1206,7 @@ static void test_markdown_pr_comment(void **state)
     compare_result r;
     assert_int_equal(run_compare(&a, &b, &d, &r), 0);
     char *md = dm_xasprintf("%s/pr.md", t->dir);
-    assert_int_equal(compare_write_markdown(&r, md), 0);
+    assert_int_equal(compare_write_markdown(&r, NULL, md), 0);
     char *text = test_slurp(md);
     assert_true(strlen(text) <= COMPARE_MD_MAX);
     const char *head = "## dmbench compare: REGRESSION — 1 regressed, 0 inconclusive, 0 "
@@ -1224,22 +1224,26 @@ static void test_markdown_pr_comment(void **state)
     assert_non_null(strstr(text, "</details>"));
     free(text);
     compare_md_desc only = { .only_changed = 1 };
-    assert_int_equal(compare_write_markdown_ex(&r, &only, md), 0);
+    assert_int_equal(compare_write_markdown(&r, &only, md), 0);
     text = test_slurp(md);
     assert_null(strstr(text, "<details>"));
     assert_null(strstr(text, "rows cut"));
     assert_true(strlen(text) < 2000);   /* the head, the machine's lines and one row */
     free(text);
     compare_md_desc tiny = { .max_chars = 1200 };
-    assert_int_equal(compare_write_markdown_ex(&r, &tiny, md), 0);
+    assert_int_equal(compare_write_markdown(&r, &tiny, md), 0);
     text = test_slurp(md);
     assert_true(strlen(text) <= 1200);
     assert_non_null(strstr(text, "rows cut to stay under 1200 characters"));
     free(text);
-    assert_int_equal(compare_write_markdown_none("the runs have no configuration in common", &r, md), 0);
+    assert_int_equal(compare_write_markdown(&r, &(compare_md_desc){ .none = 1, .reason = "the runs have no configuration in common" }, md), 0);
     text = test_slurp(md);
     assert_non_null(strstr(text, "## dmbench compare: nothing compared\n\nthe runs have no "
                                  "configuration in common\n"));
+    free(text);
+    assert_int_equal(compare_write_markdown(NULL, &(compare_md_desc){ .none = 1 }, md), 0);
+    text = test_slurp(md);   /* without a result or a reason: the headline alone */
+    assert_string_equal(text, "## dmbench compare: nothing compared\n\nno reason given\n");
     free(text);
     free(md);
     compare_result_free(&r);
