@@ -19,7 +19,7 @@ int main(int argc, char **argv)
             return 2;
         }
         int64_t t1 = dm_now_ns();
-        int rc = plan_build(&s, &p, &err);
+        int rc = plan_build(&s, NULL, &p, &err);
         int64_t t2 = dm_now_ns();
         printf("%s: parse %.2f s, plan %.2f s: %zu combinations -> %zu configurations%s%s\n",
                argv[i], (t1 - t0) / 1e9, (t2 - t1) / 1e9, p.n_combinations, p.n_configs,

@@ -561,7 +561,7 @@ int cli_predict(const cli_command *self, int argc, char **argv)
     sweep s = {0};
     plan p = {0};
     dm_str err = {0};
-    if (sweep_load(argv[0], &s, &err) != 0 || plan_build(&s, &p, &err) != 0)
+    if (sweep_load(argv[0], &s, &err) != 0 || plan_build(&s, NULL, &p, &err) != 0)
         rc = cli_usage_error("%s", dm_str_get(&err));
     int prc = rc < 0 ? probe_user_techniques(&err) : 0;   /* compiled in a child: it may crash */
     if (prc != 0)

@@ -84,7 +84,7 @@ static int slurm__plan(const slurm_args *a, char **name)
         dm_str_free(&err);
         return rc;
     }
-    rc = plan_build(&s, &p, &err) != 0 ? cli_usage_error("%s", dm_str_get(&err)) : -1;
+    rc = plan_build(&s, NULL, &p, &err) != 0 ? cli_usage_error("%s", dm_str_get(&err)) : -1;
     if (rc < 0 && (size_t)a->shards > p.n_configs)
         rc = cli_usage_error("slurm: --shards %d: %s plans only %zu configurations; use at most "
                               "%zu shards", a->shards, s.path, p.n_configs, p.n_configs);

@@ -312,7 +312,7 @@ static int count_child__run(int argc, char **argv)
         return 3;
     }
     dm_str_free(&changed);
-    rc = rc ? rc : plan_build(&s, &p, &err);
+    rc = rc ? rc : plan_build(&s, NULL, &p, &err);
     plan_config *cs = dm_xcalloc((size_t)argc + 1, sizeof *cs);
     size_t n = 0;
     for (; rc == 0 && a < argc; a++)

@@ -374,7 +374,8 @@ static int runner__plan(runner *r, dm_str *err)
 {
     runner__plan_tick t = { .r = r, .t0 = dm_now_ns() };
     t.last = t.t0;
-    return plan_build_progress(r->s, &r->p, err, runner__plan_progress, &t);
+    plan_build_desc d = { .progress = runner__plan_progress, .user = &t };
+    return plan_build(r->s, &d, &r->p, err);
 }
 
 /* A decimal number in [lo, hi] spanning exactly [text, text+len): no sign,

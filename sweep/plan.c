@@ -209,9 +209,12 @@ static int plan__check_density(const sweep *s, const size_t *idx, dm_str *err)
     return DM_ERR_RANGE;
 }
 
-int plan_build_progress(const sweep *s, plan *out, dm_str *err, plan_progress_fn progress,
-                        void *user)
+int plan_build(const sweep *s, const plan_build_desc *d, plan *out, dm_str *err)
 {
+    static const plan_build_desc defaults = {0};
+    d = d ? d : &defaults;
+    plan_progress_fn progress = d->progress;
+    void *user = d->user;
     memset(out, 0, sizeof *out);
     size_t total = 1;
     for (size_t i = 0; i < s->n_axes; i++) {
@@ -253,11 +256,6 @@ int plan_build_progress(const sweep *s, plan *out, dm_str *err, plan_progress_fn
         progress(total, total, user);
     out->n_combinations = total;
     return 0;
-}
-
-int plan_build(const sweep *s, plan *out, dm_str *err)
-{
-    return plan_build_progress(s, out, err, NULL, NULL);
 }
 
 /* Moves configuration i to left_out without closing the gap (the caller

@@ -35,15 +35,18 @@ typedef struct plan {
     size_t n_left_out;
 } plan;
 
-/* Plans a sweep.  Returns 0, or DM_ERR_RANGE when the product is larger
- * than 1e6 combinations (err says so). */
-int plan_build(const sweep *s, plan *out, dm_str *err);
 /* Called every few thousand combinations and once at the end (done == total). */
 typedef void (*plan_progress_fn)(size_t done, size_t total, void *user);
-/* plan_build with progress reports (progress may be NULL).  Linear in the
- * number of combinations (configurations are found by key in a hash index). */
-int plan_build_progress(const sweep *s, plan *out, dm_str *err, plan_progress_fn progress,
-                        void *user);
+/* How to plan; zero (or a NULL desc) is the default. */
+typedef struct plan_build_desc {
+    plan_progress_fn progress;   /* NULL: no progress reports */
+    void *user;                  /* progress's last argument */
+} plan_build_desc;
+/* Plans a sweep as d says (NULL: the default).  Returns 0, or DM_ERR_RANGE
+ * when the product is larger than 1e6 combinations (err says so).  Linear in
+ * the number of combinations (configurations are found by key in a hash
+ * index). */
+int plan_build(const sweep *s, const plan_build_desc *d, plan *out, dm_str *err);
 /* Leaves out configurations whose technique needs an extension the driver
  * lacks (has_ext(name) == 0), and those with an axis value the driver or
  * dmbench cannot measure (axes_value_refusal), recording the reason. */

@@ -19,7 +19,7 @@ static void plan_text(const char *text, sweep *s, plan *p)
     int rc = sweep_parse(text, "t.yaml", s, &err);
     if (rc)
         fail_msg("%s", dm_str_get(&err));
-    assert_int_equal(plan_build(s, p, &err), 0);
+    assert_int_equal(plan_build(s, NULL, p, &err), 0);
     dm_str_free(&err);
 }
 
@@ -98,7 +98,7 @@ static void test_shards_partition(void **state)
     for (int k = 1; k <= 3; k++) {
         plan part;
         dm_str err = {0};
-        assert_int_equal(plan_build(&s, &part, &err), 0);
+        assert_int_equal(plan_build(&s, NULL, &part, &err), 0);
         assert_int_equal(plan_shard(&part, k, 3), 0);
         total += part.n_configs;
         for (size_t i = 0; i < part.n_configs; i++)
@@ -112,7 +112,7 @@ static void test_shards_partition(void **state)
         assert_int_equal(seen[j], 1);
     plan part;
     dm_str err = {0};
-    assert_int_equal(plan_build(&s, &part, &err), 0);
+    assert_int_equal(plan_build(&s, NULL, &part, &err), 0);
     assert_int_equal(plan_shard(&part, 4, 3), DM_ERR_ARG);
     plan_free(&part);
     free(seen);
@@ -226,7 +226,7 @@ static void test_density_out_of_mesh_range(void **state)
         plan p;
         dm_str err = {0};
         assert_int_equal(sweep_parse(text, "t.yaml", &s, &err), 0);
-        assert_int_equal(plan_build(&s, &p, &err), DM_ERR_RANGE);
+        assert_int_equal(plan_build(&s, NULL, &p, &err), DM_ERR_RANGE);
         if (!strstr(dm_str_get(&err), bad[i].msg))
             fail_msg("case %zu: '%s' lacks '%s'", i, dm_str_get(&err), bad[i].msg);
         assert_int_equal(p.n_configs, 0);
@@ -238,7 +238,7 @@ static void test_density_out_of_mesh_range(void **state)
     dm_str err = {0};
     assert_int_equal(sweep_parse("name: t\nscene:\n  mesh: sphere\n  mesh_density: 8\nsweep:\n  technique: [phong]\n",
                                  "t.yaml", &sc, &err), 0);
-    assert_int_equal(plan_build(&sc, &pc, &err), DM_ERR_RANGE);
+    assert_int_equal(plan_build(&sc, NULL, &pc, &err), DM_ERR_RANGE);
     assert_string_equal(dm_str_get(&err), "t.yaml: scene: mesh_density 8 is out of range for mesh 'sphere': "
                                           "valid are 1..7, and 0 for its default (4)");
     dm_str_free(&err);
@@ -283,7 +283,8 @@ static void test_large_sweep_index(void **state)
     plan p;
     assert_int_equal(sweep_parse(dm_str_get(&t), "t.yaml", &s, &err), 0);
     progress_log l = { .monotonic = 1 };
-    assert_int_equal(plan_build_progress(&s, &p, &err, on_progress, &l), 0);
+    plan_build_desc d = { .progress = on_progress, .user = &l };
+    assert_int_equal(plan_build(&s, &d, &p, &err), 0);
     assert_int_equal(p.n_configs, 22500);
     assert_true(l.monotonic && l.calls >= 5);
     assert_int_equal(l.last, 22500);
@@ -297,7 +298,7 @@ static void test_large_sweep_index(void **state)
         dm_str_cat(&t, i ? ",3" : "3");
     dm_str_cat(&t, "]\n");
     assert_int_equal(sweep_parse(dm_str_get(&t), "t.yaml", &s, &err), 0);
-    assert_int_equal(plan_build(&s, &p, &err), 0);
+    assert_int_equal(plan_build(&s, NULL, &p, &err), 0);
     assert_int_equal(p.n_configs, 1);
     assert_int_equal(p.configs[0].folded, 6000);
     plan_free(&p);

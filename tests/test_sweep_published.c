@@ -40,7 +40,7 @@ static int resolve(const char *extra, sweep *s, plan *p, dm_str *err)
     dm_str perr = {0};
     assert_int_equal(sweep_parse(text, "pub.yaml", s, &perr), 0);
     free(text);
-    assert_int_equal(plan_build(s, p, &perr), 0);
+    assert_int_equal(plan_build(s, NULL, p, &perr), 0);
     dm_str_free(&perr);
     return published_resolve(s->published, p, s->path, err);
 }
