@@ -1,6 +1,6 @@
 /* dm_image.h — float RGBA images and their files (OpenImageIO behind a C header).
  *
- * An img is RGBA32F, row-major, row 0 at the top (the harness flips GL's
+ * An img is RGBA32F, row-major, row 0 at the top (run/target.c flips GL's
  * bottom-up rows when reading back).  PNG output is 8-bit with values
  * clamped to [0,1]; EXR keeps floats.  Layer-neutral: techniques/ reads and
  * caches maps with it, reports/ writes renders and heatmaps.

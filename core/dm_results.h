@@ -1,6 +1,6 @@
 /* dm_results.h — the in-memory model of one run's results.
  *
- * The harness fills it (from the SQLite store, the single source of truth);
+ * store/ fills it (store_run_load: the SQLite store is the single source of truth);
  * models/ adds fits; reports/ renders it to HTML/JSON/CSV/Markdown.  It is
  * plain data: every string and array is owned by the structure and released
  * by dm_run_free().  Field names follow the results.json contract (docs/exports.md).

@@ -1,7 +1,7 @@
 /* counters_derive.c — derived counters over values supplied by the caller
  * (counters.h: counters_derive).  The session path evaluates derived
  * counters over one sample; this one evaluates them over summaries the
- * harness computes across samples (e.g. medians). */
+ * the caller computes across samples (e.g. medians: run/measure.c). */
 #include "counters/counters.h"
 #include "core/dm_error.h"
 #include "counters/counters_expr.h"
