@@ -13,6 +13,7 @@
 
 #include "core/dm_error.h"
 #include "sweep/sweep.h"
+#include "sweep/sweep_paths.h"
 #include "test_util.h"
 
 static const char *src_dir(void)
@@ -300,6 +301,24 @@ static void test_target_ci_percent(void **state)
     dm_str_free(&err);
 }
 
+/* scene.material's files as one maps value: relative paths follow the sweep
+ * file, absolute ones stay, a ';' is doubled, kinds in height/normal/albedo
+ * order whatever is given. */
+static void test_user_maps_value(void **state)
+{
+    (void)state;
+    const char *some[SWEEP_PATHS_MAPS] = { "h.png", NULL, "/abs/a;b.png" };
+    char *v = sweep_paths_maps("studies/s.yaml", some);
+    assert_string_equal(v, "height=studies/h.png;albedo=/abs/a;;b.png");
+    free(v);
+    const char *normal_only[SWEEP_PATHS_MAPS] = { NULL, "n.png", NULL };
+    v = sweep_paths_maps("s.yaml", normal_only);   /* no directory: the path as given */
+    assert_string_equal(v, "normal=n.png");
+    free(v);
+    const char *none[SWEEP_PATHS_MAPS] = { NULL, NULL, NULL };
+    assert_null(sweep_paths_maps("studies/s.yaml", none));
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_defaults_and_scene),
              cmocka_unit_test(test_default_sweeps_parse),
@@ -309,4 +328,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_bad_corpus),
              cmocka_unit_test(test_key_table),
              cmocka_unit_test(test_numeric_defaults),
-             cmocka_unit_test(test_target_ci_percent))
+             cmocka_unit_test(test_target_ci_percent),
+             cmocka_unit_test(test_user_maps_value))
