@@ -4,6 +4,8 @@ prose from the tables beside them, so prose and tables cannot drift apart.
 
 Usage: bench/study_claims.py [REPO]     (REPO: the repository root; default:
        this file's parent's parent)
+       bench/study_claims.py --self-test [REPO]   (each drift in DRIFTS, applied
+       to a copy of the pages, must be caught)
 
 What it checks (every check prints one line; a failure names the section,
 the figure the tables give and the text it expected):
@@ -21,14 +23,25 @@ the figure the tables give and the text it expected):
      tables (or the tessellation ring rule) and required, as written, in
      the section's prose.
 
+  5. docs/displacement.md (S3's and S4's tables on llvmpipe: level 1
+     against normal mapping, S3's own range from the s3-table7-1 sweep, the
+     exact evaluation counts by the ring rule, the cylinder against the
+     sphere per vertex, the distance LOD's cuts, S4's 1.25× and 1.7 % from
+     the s4 sweeps), docs/textures.md (S1's ranking of bc1 > bc3nm > bc5 in
+     error, every "×" of the virtual texture's cost table) and
+     docs/studies.md (which draws no conclusion from a table: a ratio or a
+     direction in its prose fails until a check is added here).
+
 Exit status: 0 all hold, 1 a figure disagrees, 2 the document could not be
 read (a table or a section the checks need is missing).
 """
+import math
 import os
 import re
 import sys
 
-ROOT = sys.argv[1] if len(sys.argv) > 1 else os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
+ARGS = [a for a in sys.argv[1:] if a != "--self-test"]
+ROOT = ARGS[0] if ARGS else os.path.dirname(os.path.dirname(os.path.abspath(__file__)))
 DOC = os.path.join(ROOT, "docs", "reproductions.md")
 
 failures = []
@@ -405,6 +418,116 @@ def claims_s4(tabs):
     yield f"the geometry stages are {rng(shares, 2)}× S4's shares"
 
 
+# ---- the other pages: docs/displacement.md, docs/textures.md, docs/studies.md
+
+def subsection(text, title):
+    """The body of the '### title' (or '## title') section of a page."""
+    m = re.search(r"^#{2,3} " + re.escape(title) + r"\s*$", text, flags=re.M)
+    if not m:
+        raise ParseError(f"no section '{title}'")
+    rest = text[m.end():]
+    end = re.search(r"^#{2,3} ", rest, flags=re.M)
+    return rest[:end.start()] if end else rest
+
+
+def published_ratio(sweep, num, den):
+    """num / den of a sweep's published values, as times (a frame rate
+    inverted)."""
+    pub = sweep_published(sweep)
+    if not pub:
+        raise ParseError(f"sweeps/{sweep}.yaml has no published values")
+    vals, unit = pub
+    return vals[den] / vals[num] if unit == "fps" else vals[num] / vals[den]
+
+
+def claims_displacement(text):
+    """docs/displacement.md: S3's table on llvmpipe and S4 on llvmpipe."""
+    body = subsection(text, "S3's table on llvmpipe")
+    h, t = rows_of(tables(body), "mesh", "normal", "tess 1", "tess 64")
+    ms = {r[0].split()[0]: {c: number(r[col(h, c)]) for c in ("normal", "tess 1", "tess 32", "tess 64")}
+          for r in t}
+    yield body, f"({rng([m['tess 1'] / m['normal'] for m in ms.values()], 2)}×;"
+    s3 = [published_ratio("s3-table7-1", f"tess-displacement mesh={m} tess_level=1", f"normal mesh={m}")
+          for m in ("cube", "cylinder", "sphere")]
+    yield body, f"S3 measured {rng(s3, 2)}× on its GTX 660 Ti"
+    patches = {"cube": 12, "cylinder": 1508, "sphere": 5120}
+    tes = {m: [n * ring(L) for L in (1, 32, 64)] for m, n in patches.items()}
+    yield body, ", ".join(f"{m} " + " / ".join(thousands(v) for v in tes[m]) for m in patches)
+    cyl, sph = ms["cylinder"]["tess 64"], ms["sphere"]["tess 64"]
+    vert = tes["cylinder"][2] / tes["sphere"][2]
+    yield body, (f"costs {fmt(cyl / sph, 1)}× the sphere with {fmt(vert, 2)}× its vertices, "
+                 f"{fmt(cyl / sph / vert, 0)}× per vertex")
+
+    body = subsection(text, "S4 on llvmpipe")
+    h, t = rows_of(tables(body), "configuration", "ms", "TESInvocations")
+    mc, vc, tc = col(h, "ms"), col(h, "VSInvocations"), col(h, "TESInvocations")
+
+    def row(prefix):
+        for r in t:
+            if r[0].startswith(prefix):
+                return r
+        raise ParseError(f"S4 on llvmpipe: no row '{prefix}'")
+
+    orig, l12 = row("original asteroid"), row("reduced, level 12 uniform")
+    work = (number(l12[vc]) + number(l12[tc])) / number(orig[vc])
+    ok(f"{fmt(work, 3)} of the original's vertex work" in l12[0], "displacement.md",
+       f"row '{l12[0]}': (VS + TES) / the original's VS gives {work:.4f}")
+    yield body, f"the reduced body cost about {fmt(number(l12[mc]) / number(orig[mc]), 0)}× the original"
+    pairs = [(l12[mc], row("reduced, level 12, lod distance")[mc], l12[tc], row("reduced, level 12, lod distance")[tc]),
+             (row("terrain 16")[mc], row("terrain, level 12, lod distance")[mc],
+              row("terrain 16")[tc], row("terrain, level 12, lod distance")[tc])]
+    t32 = row("terrain, level 32")
+    pairs.append(tuple(x for c in (mc, tc) for x in t32[c].split(" / ")))
+    tes_cut = [number(p[2]) / number(p[3]) for p in pairs]
+    ms_cut = [number(p[0]) / number(p[1]) for p in pairs]
+    yield body, (f"cuts TESInvocations {math.floor(min(tes_cut))}–{math.ceil(max(tes_cut))}× and time "
+                 f"{rng(ms_cut, 1)}×")
+    yield body, f"about {fmt(published_ratio('s4-table8-1-2', 'tess-displacement', 'phong'), 2)}×"
+    yield body, f"differed by {fmt((published_ratio('s4-table8-3-4', 'lod=object-cpu', 'lod=object-points') - 1) * 100, 1)} %"
+
+
+def claims_textures(text):
+    """docs/textures.md: the normal formats' ranking and the virtual
+    texture's cost table."""
+    m = re.search(r"\*\*bc1 (\d+\.\d+)°, bc3nm (\d+\.\d+)°, bc5 (\d+\.\d+)°\*\* — S1's ranking", text)
+    if not m:
+        raise ParseError("textures.md: the bc1/bc3nm/bc5 figures are missing")
+    bc1, bc3nm, bc5 = (float(x) for x in m.groups())
+    ok(bc1 > bc3nm > bc5, "textures.md", f"S1's ranking (bc1 worst, bc5 best) against {bc1}°, {bc3nm}°, {bc5}°")
+    h, t = rows_of(tables(text), "technique", "instructions, off")
+    for r in t:
+        for j in (1, 3):
+            a, b = (number(x) for x in r[j].split("→"))
+            printed = number(r[j + 1])
+            want = b / a
+            slack = 0.5 * 10 ** -decimals(r[j + 1]) + want * 0.5 * 10 ** -decimals(r[j]) * (1 / a + 1 / b)
+            ok(abs(printed - want) <= slack + 1e-9, "textures.md",
+               f"row '{r[0]}': × {r[j + 1]} beside {r[j]}, which gives {want:.3f}")
+    return iter(())
+
+
+def claims_studies(text):
+    """docs/studies.md draws no conclusion from a table: a ratio or a
+    direction in its prose needs a check here first."""
+    prose = " ".join(l for l in text.split("\n") if not l.startswith("|"))
+    found = re.findall(r"\d(?:\.\d+)?×(?!\d)|\b(?:faster|slower|cheaper|dearer)\b", prose)
+    ok(not found, "studies.md", f"a conclusion without a check in bench/study_claims.py: {found}")
+    return iter(())
+
+
+PAGES = {"displacement.md": claims_displacement, "textures.md": claims_textures,
+         "studies.md": claims_studies}
+
+
+def check_pages():
+    for name, fn in PAGES.items():
+        path = os.path.join(ROOT, "docs", name)
+        text = open(path, encoding="utf-8").read()
+        for where, want in fn(text):
+            ok(re.sub(r"\s+", " ", want) in prose_of(where), name,
+               f"the tables give '{want}', which the prose does not say")
+
+
 CLAIMS = {"S1": claims_s1, "S2": claims_s2, "S3": claims_s3, "S4": claims_s4}
 
 
@@ -432,8 +555,12 @@ def main():
         missing = [k for k in CLAIMS if not any(h.startswith(k) for h, _ in secs)]
         if missing:
             raise ParseError(f"no section {missing}")
-    except (ParseError, IndexError, KeyError, AttributeError, ZeroDivisionError) as e:
-        print(f"study_claims: {DOC}: cannot read the tables the checks need: {e!r}", file=sys.stderr)
+        check_pages()
+    except (ParseError, IndexError, KeyError, AttributeError, ZeroDivisionError, ValueError) as e:
+        print(f"study_claims: cannot read the tables the checks need: {e!r}", file=sys.stderr)
+        return 2
+    except OSError as e:
+        print(f"study_claims: {e}", file=sys.stderr)
         return 2
     for f in failures:
         print("MISMATCH " + f)
@@ -441,5 +568,40 @@ def main():
     return 1 if failures else 0
 
 
+# One edit of a page per drift the checks must catch: (page, text, replacement).
+DRIFTS = [("reproductions.md", "1 : 2.621 : 3.142", "1 : 2.621 : 3.412"),
+          ("displacement.md", "costs 3.3× the sphere", "costs 3× the sphere"),
+          ("displacement.md", "| 130.8 | 151.3 |", "| 130.8 | 171.3 |"),
+          ("textures.md", "| 3.41 M → 6.74 M | 1.97 |", "| 3.41 M → 6.74 M | 1.87 |"),
+          ("studies.md", "llvmpipe.", "llvmpipe; S1 was 2× faster.")]
+
+
+def self_test():
+    """Runs the checks on copies of the pages with each of DRIFTS applied:
+    each must be caught (exit 1).  0 when all are, 1 otherwise."""
+    import shutil
+    import subprocess
+    import tempfile
+    missed = 0
+    for page, old, new in DRIFTS:
+        with tempfile.TemporaryDirectory() as tmp:
+            shutil.copytree(os.path.join(ROOT, "docs"), os.path.join(tmp, "docs"))
+            shutil.copytree(os.path.join(ROOT, "sweeps"), os.path.join(tmp, "sweeps"))
+            path = os.path.join(tmp, "docs", page)
+            text = open(path, encoding="utf-8").read()
+            if old not in text:
+                print(f"self-test: docs/{page} no longer holds '{old}': update DRIFTS")
+                missed += 1
+                continue
+            open(path, "w", encoding="utf-8").write(text.replace(old, new, 1))
+            rc = subprocess.run([sys.executable, os.path.abspath(__file__), tmp],
+                                capture_output=True).returncode
+            print(f"self-test: docs/{page}: '{old}' -> '{new}': exit {rc} (want 1)")
+            missed += rc != 1
+    return 1 if missed else 0
+
+
 if __name__ == "__main__":
+    if "--self-test" in sys.argv[1:]:
+        sys.exit(self_test())
     sys.exit(main())
