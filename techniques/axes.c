@@ -92,7 +92,8 @@ static const axis_info axes__table[] = {
     {"vt_cache_pages", I, NULL, 1, 65536, "256", 1, "pages in the physical page cache", NULL},
     {"toksvig", E, axes__on_off, 0, 0, "off", 0, "Toksvig specular anti-aliasing from the filtered normal length", NULL},
     {"specular_map", E, axes__on_off, 0, 0, "off", 0,
-     "scale the specular term by the material's specular map (albedo alpha), as S3 does", NULL},
+     "scale the specular term by the material's specular map (kept in the albedo's alpha), as S3 "
+     "scales it by a specular texture", NULL},
     {"displaced_normals", E, axes__dnormals, 0, 0, "map", 0,
      "shading normals of a displacing technique: the normal map, or rebuilt from the height map (S3)", NULL},
     {"camera.distance", F, NULL, 0.1, 100, "3.0", 1, "orbit camera distance from its target (camera.target_*)", NULL},

@@ -23,7 +23,8 @@
  * border where the software path copies it into a slot, and uncommit the
  * victim.  Without ARB_sparse_texture2 the shader cannot ask whether a
  * texel is resident, so it samples the level the page table names (the
- * finest resident ancestor), as S3 did; pages must be at least the
+ * finest resident ancestor; this scheme is ours: S3 states none and reads
+ * its sparse textures with plain texture()); pages must be at least the
  * driver's virtual page size of each format.
  */
 #ifndef TECHNIQUES_VT_H
