@@ -1,6 +1,6 @@
 /* store.c — the results store on SQLite.
  *
- * Schema (version 4, kept in PRAGMA user_version; store__migrations[i] takes a
+ * Schema (version 5, kept in PRAGMA user_version; store__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -33,6 +33,14 @@
  *        predicted BLOB, condition)  PK (run, seq), UNIQUE (run, model,
  *        group_key); condition came with version 2 (a version-1 store gets
  *        the column with 0, "not computed", for its fits)
+ *   rounds(run, scene, seq, keys, calib_ns) PK (run, scene, seq): each
+ *           round of a scene's timing samples, its configurations in the
+ *           order sampled and the calibration kernel's time (version 5)
+ *   scene_precision(run, scene, corrected, reason, predictor, n_rounds,
+ *           machine_spread, raw_noise, loo_noise, calib_noise, resolvable)
+ *           PK (run, scene): the drift removed per scene (version 5); the
+ *           counters' corrected, corr_median, corr_ci_lo, corr_ci_hi came
+ *           with it (0 and NULL for older runs)
  *   fit_group(run, seq, key, value), fit_params(run, seq, name, value,
  *        stderr), fit_warnings(run, seq, text), fit_labels(run, seq, idx,
  *        label)
@@ -70,7 +78,7 @@
 #include <string.h>
 #include <unistd.h>
 
-#define STORE_SCHEMA_VERSION 4
+#define STORE_SCHEMA_VERSION 5
 #define STORE__XSTR(x) #x
 #define STORE__STR(x) STORE__XSTR(x)
 
@@ -146,6 +154,21 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
     "ALTER TABLE configs ADD COLUMN q_flip_max REAL;"
     "ALTER TABLE configs ADD COLUMN q_flip_ppd REAL;"
     "ALTER TABLE configs ADD COLUMN img_flip TEXT;",
+    /* 4 -> 5: figures with the machine's drift removed (models/drift.h),
+     * the rounds' order and calibration, each scene's precision; a counter
+     * of an older run is not corrected (0) */
+    "ALTER TABLE counters ADD COLUMN corrected INTEGER DEFAULT 0;"
+    "ALTER TABLE counters ADD COLUMN corr_median REAL;"
+    "ALTER TABLE counters ADD COLUMN corr_ci_lo REAL;"
+    "ALTER TABLE counters ADD COLUMN corr_ci_hi REAL;"
+    "CREATE TABLE rounds(run TEXT NOT NULL REFERENCES runs(id) ON DELETE"
+    " CASCADE, scene TEXT NOT NULL, seq INTEGER NOT NULL, keys TEXT,"
+    " calib_ns REAL, PRIMARY KEY(run, scene, seq));"
+    "CREATE TABLE scene_precision(run TEXT NOT NULL REFERENCES runs(id) ON"
+    " DELETE CASCADE, scene TEXT NOT NULL, corrected INTEGER, reason TEXT,"
+    " predictor TEXT, n_rounds INTEGER, machine_spread REAL, raw_noise REAL,"
+    " loo_noise REAL, calib_noise REAL, resolvable REAL,"
+    " PRIMARY KEY(run, scene));",
 };
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
@@ -154,7 +177,9 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
     "q_flip,q_flip_q1,q_flip_median,q_flip_q3,q_flip_max,q_flip_ppd,img_flip"
 #define STORE__CTR_COLS "unit,available,unavailable_reason,deterministic," \
     "partial,value,has_samples,median,mean,min,max,stddev,mad,cv,ci_lo," \
-    "ci_hi,n_outliers,n_nonfinite"
+    "ci_hi,n_outliers,n_nonfinite,corrected,corr_median,corr_ci_lo,corr_ci_hi"
+#define STORE__PREC_COLS "corrected,reason,predictor,n_rounds,machine_spread," \
+    "raw_noise,loo_noise,calib_noise,resolvable"
 #define STORE__FIT_COLS "formula,response,r2,rmse,mape,cv_mape,n_points," \
     "n_excluded,termination,measured,predicted,condition"
 
@@ -192,7 +217,18 @@ static const char *const store__migrations[STORE_SCHEMA_VERSION] = {
       " key=?2 ORDER BY rowid")                                               \
     X(CTR_INS, "INSERT INTO counters(run,key,name," STORE__CTR_COLS ") VALUES"\
       "(?1,?2,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20," \
-      "?21,?22)")                                                             \
+      "?21,?22,?23,?24,?25,?26)")                                             \
+    X(CTR_CORR, "UPDATE counters SET corrected=?5,corr_median=?6,"            \
+      "corr_ci_lo=?7,corr_ci_hi=?8 WHERE run=?1 AND key=?2 AND name=?4")      \
+    X(ROUND_INS, "INSERT INTO rounds(run,scene,seq,keys,calib_ns) VALUES(?1," \
+      "?4,(SELECT IFNULL(MAX(seq),-1)+1 FROM rounds WHERE run=?1 AND"         \
+      " scene=?4),?5,?6)")                                                    \
+    X(ROUND_SEL, "SELECT scene,seq,keys,calib_ns FROM rounds WHERE run=?1"    \
+      " ORDER BY scene,seq")                                                  \
+    X(PREC_INS, "INSERT OR REPLACE INTO scene_precision(run,scene,"           \
+      STORE__PREC_COLS ") VALUES(?1,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13)")      \
+    X(PREC_SEL, "SELECT scene," STORE__PREC_COLS " FROM scene_precision"      \
+      " WHERE run=?1 ORDER BY rowid")                                         \
     X(CTR_SEL, "SELECT name," STORE__CTR_COLS " FROM counters WHERE run=?1"   \
       " AND key=?2 ORDER BY rowid")                                           \
     X(SMP_INS, "INSERT INTO samples(run,key,counter,data) VALUES(?1,?2,?4,?5)")\
@@ -551,11 +587,12 @@ static int store__strv_write(store *s, enum store_sql id, const store__owner *o,
 static int store__counter_write(store *s, const store__owner *o,
                                 const dm_counter_result *k)
 {
-    int rc = store__exec(s, STORE_SQL_CTR_INS, o, "ttitiidi" "ddddddddd" "ii",
+    int rc = store__exec(s, STORE_SQL_CTR_INS, o, "ttitiidi" "ddddddddd" "ii" "iddd",
         k->name, k->unit, k->available, k->unavailable_reason, k->deterministic,
         k->partial, k->value, k->has_samples,
         k->median, k->mean, k->min, k->max, k->stddev, k->mad, k->cv, k->ci_lo,
-        k->ci_hi, k->n_outliers, k->n_nonfinite);
+        k->ci_hi, k->n_outliers, k->n_nonfinite, k->corrected, k->corr_median,
+        k->corr_ci_lo, k->corr_ci_hi);
     if (rc == 0 && k->has_samples && k->samples)
         rc = store__exec(s, STORE_SQL_SMP_INS, o, "tb", k->name, k->samples,
                          k->n_samples);
@@ -741,6 +778,10 @@ static void store__counter_cols(sqlite3_stmt *st, dm_counter_result *k)
         *stats[i] = store__col_double(st, 8 + i);
     k->n_outliers = sqlite3_column_int(st, 17);
     k->n_nonfinite = sqlite3_column_int(st, 18);
+    k->corrected = sqlite3_column_int(st, 19);
+    k->corr_median = store__col_double(st, 20);
+    k->corr_ci_lo = store__col_double(st, 21);
+    k->corr_ci_hi = store__col_double(st, 22);
 }
 
 static int store__samples_read(store *s, const store__owner *o, dm_counter_result *k)
@@ -947,6 +988,40 @@ static int store__run_row(store *s, dm_run_result *r)
 }
 
 /* Reads everything of run r->id into r = c->out (in a read transaction). */
+static int store__rounds_read(store *s, dm_run_result *r)
+{
+    store__owner o = { r->id, NULL, 0 };
+    sqlite3_stmt *st = store__query(s, STORE_SQL_ROUND_SEL, &o, "");
+    int rc = st ? 1 : DM_ERR_STORE;
+    while (rc == 1 && (rc = store__row(s, st)) == 1) {
+        dm_round *d = dm_vec_push(&r->rounds, &r->n_rounds, NULL, sizeof *d);
+        d->scene = store__col_str(st, 0);
+        d->seq = (long)sqlite3_column_int64(st, 1);
+        d->keys = store__col_str(st, 2);
+        d->calib_ns = store__col_double(st, 3);
+    }
+    return rc;
+}
+
+static int store__precision_read(store *s, dm_run_result *r)
+{
+    store__owner o = { r->id, NULL, 0 };
+    sqlite3_stmt *st = store__query(s, STORE_SQL_PREC_SEL, &o, "");
+    int rc = st ? 1 : DM_ERR_STORE;
+    while (rc == 1 && (rc = store__row(s, st)) == 1) {
+        dm_scene_precision *p = dm_vec_push(&r->precision, &r->n_precision, NULL, sizeof *p);
+        p->scene = store__col_str(st, 0);
+        p->corrected = sqlite3_column_int(st, 1);
+        p->reason = store__col_str(st, 2);
+        p->predictor = store__col_str(st, 3);
+        p->n_rounds = sqlite3_column_int(st, 4);
+        double *f[] = { &p->machine_spread, &p->raw_noise, &p->loo_noise, &p->calib_noise, &p->resolvable };
+        for (int i = 0; i < 5; i++)
+            *f[i] = store__col_double(st, 5 + i);
+    }
+    return rc;
+}
+
 static int store__run_read(store *s, const store__call *c)
 {
     dm_run_result *r = c->out;
@@ -964,6 +1039,10 @@ static int store__run_read(store *s, const store__call *c)
         rc = store__left_out_read(s, r);
     if (rc == 0)
         rc = store__fits_read(s, r);
+    if (rc == 0)
+        rc = store__rounds_read(s, r);
+    if (rc == 0)
+        rc = store__precision_read(s, r);
     return rc;
 }
 
@@ -1267,6 +1346,51 @@ int store_partial_get(store *s, const char *run_id, const char *key, const char 
     return 0;
 }
 
+static int store__round_write(store *s, const char *run, const void *item)
+{
+    const dm_round *d = item;
+    store__owner o = { run, NULL, 0 };
+    return store__exec(s, STORE_SQL_ROUND_INS, &o, "ttd", d->scene, d->keys, d->calib_ns);
+}
+
+int store_round_put(store *s, const char *run_id, const dm_round *r)
+{
+    return store__put(s, run_id, r, store__round_write);
+}
+
+static int store__precision_row(store *s, const char *run, const dm_scene_precision *p)
+{
+    store__owner o = { run, NULL, 0 };
+    return store__exec(s, STORE_SQL_PREC_INS, &o, "tittiddddd", p->scene, p->corrected, p->reason,
+                       p->predictor, p->n_rounds, p->machine_spread, p->raw_noise, p->loo_noise,
+                       p->calib_noise, p->resolvable);
+}
+
+/* Every scene's precision row and every corrected counter of the run
+ * (a dm_run_result). */
+static int store__precision_write(store *s, const char *run, const void *item)
+{
+    const dm_run_result *r = item;
+    int rc = 0;
+    for (size_t i = 0; i < r->n_precision && rc == 0; i++)
+        rc = store__precision_row(s, run, &r->precision[i]);
+    for (size_t i = 0; i < r->n_configs && rc == 0; i++) {
+        store__owner o = { run, r->configs[i].key, 0 };
+        for (size_t k = 0; k < r->configs[i].n_counters && rc == 0; k++) {
+            const dm_counter_result *c = &r->configs[i].counters[k];
+            if (c->corrected)
+                rc = store__exec(s, STORE_SQL_CTR_CORR, &o, "tiddd", c->name, c->corrected,
+                                 c->corr_median, c->corr_ci_lo, c->corr_ci_hi);
+        }
+    }
+    return rc;
+}
+
+int store_precision_put(store *s, const char *run_id, const dm_run_result *run)
+{
+    return store__put(s, run_id, run, store__precision_write);
+}
+
 int store_left_out_put(store *s, const char *run_id, const dm_left_out *l)
 {
     return store__put(s, run_id, l, store__left_out_write);
@@ -1377,6 +1501,10 @@ static int store__copy_fn(store *s, const store__call *c)
         rc = store__left_out_write(s, r->id, &r->left_out[i]);
     for (size_t i = 0; i < r->n_fits && rc == 0; i++)
         rc = store__fit_write(s, r->id, &r->fits[i]);
+    for (size_t i = 0; i < r->n_rounds && rc == 0; i++)
+        rc = store__round_write(s, r->id, &r->rounds[i]);
+    for (size_t i = 0; i < r->n_precision && rc == 0; i++)
+        rc = store__precision_row(s, r->id, &r->precision[i]);
     return rc;
 }
 
