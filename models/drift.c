@@ -48,6 +48,21 @@ double drift_robust_sd(const double *v, size_t n)
     return sd;
 }
 
+/* Root mean square of the finite values (the round effects are centred on
+ * median 0): not robust on purpose, as a slow spell in fewer than half
+ * the rounds is a drift, not an outlier.  NaN when none. */
+static double drift__rms(const double *v, size_t n)
+{
+    double ss = 0;
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(v[i])) {
+            ss += v[i] * v[i];
+            m++;
+        }
+    return m ? sqrt(ss / (double)m) : NAN;
+}
+
 static double drift__cell(const drift__fit *f, size_t c, size_t r)
 {
     return f->lx[c * f->nr + r];
@@ -232,7 +247,20 @@ static void drift__noise(const drift_desc *d, const drift__fit *f, drift_result 
     out->loo_noise = drift_robust_sd(loo, m);
     out->calib_noise = mc >= 2 ? drift_robust_sd(cal, mc) : NAN;
     out->calib_spread = drift_robust_sd(lc, nr);
-    out->helps = isfinite(out->loo_noise) && out->loo_noise < DRIFT_HELPS * out->raw_noise;
+    double *per = dm_xcalloc(nr + 1, sizeof *per);   /* configurations in each round with an effect */
+    size_t np = 0;
+    for (size_t r = 0; r < nr; r++) {
+        size_t k = 0;
+        for (size_t c = 0; c < nc; c++)
+            k += isfinite(drift__cell(f, c, r));
+        if (isfinite(f->b[r]))
+            per[np++] = (double)k;
+    }
+    double per_round = drift__median(per, np);
+    /* a median of k values of SD s has SD about sqrt(pi/2) s / sqrt(k) */
+    out->factor_noise = per_round > 0 ? sqrt(M_PI / 2) * out->loo_noise / sqrt(per_round) : NAN;
+    out->helps = out->machine_spread > DRIFT_HELPS * out->factor_noise;
+    free(per);
     free(raw);
     free(loo);
     free(cal);
@@ -307,7 +335,7 @@ int drift_correct(const drift_desc *d, drift_result *out)
     else if (out->n_rounds_used < DRIFT_MIN_ROUNDS)
         out->why = "fewer than 3 rounds with 3 configurations sampled: too few to measure the common mode";
     if (!out->why) {
-        out->machine_spread = drift_robust_sd(f.b, nr);
+        out->machine_spread = drift__rms(f.b, nr);
         drift__noise(d, &f, out);
         drift__point(d, &f, lx, out);
         out->corrected = 1;

@@ -51,7 +51,7 @@
 #define DRIFT_MIN_ROUNDS   3      /* rounds with a common mode */
 #define DRIFT_BOOTSTRAP_B  400    /* replicates of the whole procedure */
 #define DRIFT_POLISH_ITERS 20
-#define DRIFT_HELPS        0.9    /* the common mode helps: it leaves under 90 % of the raw spread */
+#define DRIFT_HELPS        2.0    /* a drift: the round factors spread over twice what noise alone gives */
 
 /* One scene's samples: x[c * n_rounds + r] (NaN: c had no sample in r). */
 typedef struct drift_desc {
@@ -72,16 +72,22 @@ typedef struct drift_config {
 typedef struct drift_result {
     int corrected;           /* 1: the corrected figures are computed */
     const char *why;         /* when not: why (static text) */
-    int helps;               /* 1: the common mode explains part of the spread (loo_noise < DRIFT_HELPS raw_noise) */
+    int helps;               /* 1: there is a drift to remove: the round factors spread more than
+                                DRIFT_HELPS x factor_noise */
     double *round_factor;    /* n_rounds: exp(b[r]); NaN for a round without a common mode */
     drift_config *configs;   /* n_configs */
     size_t n_rounds_used;    /* rounds with a common mode */
-    /* Robust SDs (1.4826 MAD) of log residuals, relative (0.01 = 1 %): */
-    double machine_spread;   /* of b[r]: how far the machine's speed moved between rounds */
+    /* Spreads of log figures, relative (0.01 = 1 %); robust SDs (1.4826 MAD)
+     * except machine_spread: */
+    double machine_spread;   /* root mean square of b[r] (not robust: a slow spell in a few
+                                rounds is the drift): how far the machine's speed moved */
     double raw_noise;        /* of log x - a: the samples around their level, uncorrected */
     double loo_noise;        /* after the leave-one-out common mode */
     double calib_noise;      /* after the calibration ratio; NaN without calibration */
     double calib_spread;     /* of the log calibration ratio; NaN without */
+    double factor_noise;     /* the spread round factors would have from the configurations'
+                                own noise alone: sqrt(pi/2) loo_noise / sqrt(configurations
+                                per round, median) */
 } drift_result;
 
 /* Fits, corrects and bootstraps one scene.  Always fills out (caller frees

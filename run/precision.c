@@ -163,11 +163,11 @@ static double precision__median(double *v, size_t n)
 }
 
 /* Which figure predicted the drift better: the one that leaves the least
- * spread, when it leaves under DRIFT_HELPS of the raw spread. */
+ * spread, when it leaves less than the raw samples have. */
 static const char *precision__predictor(const drift_result *d)
 {
     double best = fmin(d->loo_noise, isfinite(d->calib_noise) ? d->calib_noise : INFINITY);
-    if (!(best < DRIFT_HELPS * d->raw_noise))
+    if (!(best < d->raw_noise))
         return "neither";
     return best == d->loo_noise ? "common mode" : "calibration";
 }
@@ -183,9 +183,9 @@ static void precision__entry(const dm_run_result *run, const precision__scene *s
     if (!d->corrected)
         p->reason = dm_xasprintf("%s; raw figures only", d->why);
     else if (!keep)
-        p->reason = dm_xasprintf("the rounds' common mode explains none of the spread (it leaves "
-                                 "%.2f %% of %.2f %%): no drift to remove; raw figures only",
-                                 100 * d->loo_noise, 100 * d->raw_noise);
+        p->reason = dm_xasprintf("no drift to remove: the rounds' common mode moved ±%.2f %%, no more "
+                                 "than twice the ±%.2f %% the configurations' own noise gives it; raw "
+                                 "figures only", 100 * d->machine_spread, 100 * d->factor_noise);
     else if (!s->aligned)
         p->reason = dm_xstrdup("rounds not recorded for every sample (a run from before they were, or "
                                "an interrupted measuring process): samples aligned by their index");

@@ -10,7 +10,8 @@
  * models/drift.h for the corrected median and CI of each configuration.
  * The scene's WallTime decides whether the correction is kept: when the
  * common mode cannot be measured (fewer than 3 configurations or rounds)
- * or explains none of the spread (it leaves 90 % of it or more), the
+ * or finds no drift to remove (models/drift.h: the round factors spread
+ * no more than twice what the configurations' own noise gives them), the
  * configurations keep their raw figures only, and the scene's
  * dm_scene_precision says why.  The raw figures are never changed.
  *
