@@ -240,6 +240,9 @@ static int runner__begin(runner *r)
         snprintf(buf, sizeof buf, "%zu", r->p.n_configs);
         dm_kv_push(&e->environment, &e->n_environment, "shard_configs", buf);
     }
+    char seed[32];   /* the rounds' order (run/measure.c): a run's order can be replayed */
+    snprintf(seed, sizeof seed, "%llu", (unsigned long long)(r->o->seed ? r->o->seed : 1));
+    dm_kv_push(&e->environment, &e->n_environment, "seed", seed);
     runner__calibrate(&e->environment, &e->n_environment, "start");
     char *pub = dm_xasprintf("%s/published.json", r->run_dir);   /* for the report's section */
     int rc = r->s->published ? published_write_json(r->s->published, pub) : 0;
