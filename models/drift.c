@@ -15,8 +15,22 @@ typedef struct drift__fit {
     size_t nc, nr;
     const double *lx;        /* log samples, nc × nr, NaN = none */
     double *a, *b;           /* row levels (nc), round effects (nr; NaN = none) */
-    double *tmp;             /* max(nc, nr) + 1 values */
+    double *tmp;             /* nc + nr + 1 values */
+    double *loo;             /* nc × nr: the round's common mode without c (NaN: none) */
+    struct drift__item *items;   /* nc + 1: a round's residuals, sorted */
 } drift__fit;
+
+/* A residual of a round and whose it is. */
+typedef struct drift__item {
+    double v;
+    size_t c;
+} drift__item;
+
+static int drift__cmp_item(const void *pa, const void *pb)
+{
+    double a = ((const drift__item *)pa)->v, b = ((const drift__item *)pb)->v;
+    return (a > b) - (a < b);
+}
 
 static int drift__cmp(const void *pa, const void *pb)
 {
@@ -90,6 +104,30 @@ static double drift__level(const drift__fit *f, size_t c)
     return drift__median(f->tmp, m);
 }
 
+/* Every configuration's leave-one-out common mode of round r into
+ * f->loo: the round's residuals sorted once, then the median of the other
+ * m - 1 of them for each by index arithmetic (the drift__round with skip =
+ * c of each, in O(m log m) for the round instead of O(m^2 log m)). */
+static void drift__loo_round(drift__fit *f, size_t r)
+{
+    size_t m = 0;
+    for (size_t c = 0; c < f->nc; c++) {
+        f->loo[c * f->nr + r] = NAN;
+        if (isfinite(drift__cell(f, c, r)) && isfinite(f->a[c]))
+            f->items[m++] = (drift__item){ drift__cell(f, c, r) - f->a[c], c };
+    }
+    if (m < DRIFT_MIN_OTHERS + 1)
+        return;
+    qsort(f->items, m, sizeof *f->items, drift__cmp_item);
+    size_t k = m - 1;   /* the others */
+    for (size_t p = 0; p < m; p++) {
+        /* t[i] = items[i] for i < p, items[i + 1] from p on */
+        size_t i1 = (k - 1) / 2, i2 = k / 2;
+        double v1 = f->items[i1 < p ? i1 : i1 + 1].v, v2 = f->items[i2 < p ? i2 : i2 + 1].v;
+        f->loo[f->items[p].c * f->nr + r] = (v1 + v2) / 2;
+    }
+}
+
 /* Median polish of log x = a[c] + b[r] + e by alternating medians, the
  * round effects centred on median 0 (so a is the level at the run's
  * median speed); stops when no effect moves by 1e-9 in log.  Returns the
@@ -121,6 +159,8 @@ static size_t drift__polish(drift__fit *f)
         if (it > 0 && moved < 1e-9)
             break;
     }
+    for (size_t r = 0; r < f->nr; r++)
+        drift__loo_round(f, r);
     return used;
 }
 
@@ -130,6 +170,8 @@ static void drift__fit_init(drift__fit *f, const double *lx, size_t nc, size_t n
     f->a = dm_xcalloc(nc + 1, sizeof *f->a);
     f->b = dm_xcalloc(nr + 1, sizeof *f->b);
     f->tmp = dm_xcalloc(nc + nr + 1, sizeof *f->tmp);
+    f->loo = dm_xcalloc(nc * nr + 1, sizeof *f->loo);
+    f->items = dm_xcalloc(nc + 1, sizeof *f->items);
 }
 
 static void drift__fit_free(drift__fit *f)
@@ -137,6 +179,8 @@ static void drift__fit_free(drift__fit *f)
     free(f->a);
     free(f->b);
     free(f->tmp);
+    free(f->loo);
+    free(f->items);
 }
 
 /* The corrected log samples of configuration c into y[0..nr) (NaN where c
@@ -148,7 +192,7 @@ static void drift__corrected(const drift__fit *f, size_t c, double *y, size_t *n
     for (size_t r = 0; r < f->nr; r++) {
         double v = drift__cell(f, c, r), loo = NAN;
         if (isfinite(v))
-            loo = drift__round(f, r, c, DRIFT_MIN_OTHERS);
+            loo = f->loo[c * f->nr + r];
         y[r] = isfinite(loo) ? v - loo : v;
         *n_corr += isfinite(loo);
     }
@@ -235,7 +279,7 @@ static void drift__noise(const drift_desc *d, const drift__fit *f, drift_result 
     for (size_t c = 0; c < nc; c++)
         for (size_t r = 0; r < nr; r++) {
             double v = drift__cell(f, c, r);
-            double b = isfinite(v) ? drift__round(f, r, c, DRIFT_MIN_OTHERS) : NAN;
+            double b = isfinite(v) ? f->loo[c * nr + r] : NAN;
             if (!isfinite(b) || !isfinite(f->a[c]))
                 continue;
             raw[m] = v - f->a[c];
