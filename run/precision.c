@@ -236,6 +236,12 @@ size_t precision_apply(dm_run_result *run, uint64_t seed)
     free(run->precision);
     run->precision = NULL;
     run->n_precision = 0;
+    for (size_t i = 0; i < run->n_configs; i++)   /* a merged run's shards corrected alone */
+        for (size_t k = 0; k < run->configs[i].n_counters; k++) {
+            dm_counter_result *c = &run->configs[i].counters[k];
+            c->corrected = 0;
+            c->corr_median = c->corr_ci_lo = c->corr_ci_hi = 0;
+        }
     size_t corrected = 0;
     for (size_t i = 0; i < run->n_configs; i++) {
         const dm_config_result *c = &run->configs[i];

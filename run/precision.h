@@ -31,7 +31,8 @@
 
 /* Fills run->precision (one entry per scene with timed samples, replacing
  * any) and the corrected figures of the timed counters of run's
- * configurations.  seed: of the bootstrap.  Returns the number of scenes
+ * configurations (every earlier correction is cleared first: `merge`
+ * computes it again over the union of its shards' rounds).  seed: of the bootstrap.  Returns the number of scenes
  * corrected. */
 size_t precision_apply(dm_run_result *run, uint64_t seed);
 
