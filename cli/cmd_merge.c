@@ -14,6 +14,7 @@
 #include "store/merge.h"
 #include "store/store.h"
 #include "reports/report.h"
+#include "run/precision.h"
 
 #include <dirent.h>
 #include <libgen.h>
@@ -103,6 +104,10 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
             rc = cli_usage_error("merge: %s", store_last_error(st));
     for (size_t i = 0; rc < 0 && i < m->n_left_out; i++)
         store_left_out_put(st, m->id, &m->left_out[i]);
+    for (size_t i = 0; rc < 0 && i < m->n_rounds; i++)
+        store_round_put(st, m->id, &m->rounds[i]);
+    if (rc < 0 && store_precision_put(st, m->id, m) != 0)
+        rc = cli_usage_error("merge: %s", store_last_error(st));
     for (int i = 0; rc < 0 && i < n; i++)
         merge__copy_images(dirs[i], run_dir);
     char *pub = dm_xasprintf("%s/published.json", run_dir);   /* the same sweep: the first shard's */
@@ -191,6 +196,7 @@ int cli_merge_dirs(const char *out, char **dirs, int n, int allow_missing)
     rc = rc < 0 ? merge__check_missing(&m, allow_missing) : rc;
     if (rc < 0) {
         merge_finish(&m);
+        precision_apply(&m.out, 1);   /* the drift removed again, over the union's rounds */
         if (merge_machines(&m) > 1)
             fprintf(stderr, "dmbench: merge: %zu machines (environment fingerprints differ): "
                     "configurations are kept apart by machine, never pooled\n", merge_machines(&m));

@@ -155,6 +155,35 @@ void dm_fit_result_free(dm_fit_result *f)
     memset(f, 0, sizeof *f);
 }
 
+static int dm__cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+size_t dm_run_noise_floor(const dm_run_result *run, double *floor, double *resolvable)
+{
+    double *v = calloc(run->n_configs + 1, sizeof *v);
+    size_t m = 0;
+    for (size_t i = 0; v && i < run->n_configs; i++) {
+        const dm_counter_result *w = run->configs[i].ok ? dm_config_counter(&run->configs[i], "WallTime") : NULL;
+        if (!w || !w->available)
+            continue;
+        double med = w->corrected ? w->corr_median : w->median;
+        double hw = w->corrected ? (w->corr_ci_hi - w->corr_ci_lo) / 2 : (w->ci_hi - w->ci_lo) / 2;
+        if (isfinite(hw) && med > 0)
+            v[m++] = hw / med;
+    }
+    *floor = *resolvable = NAN;
+    if (m) {
+        qsort(v, m, sizeof *v, dm__cmp_double);
+        *floor = m % 2 ? v[m / 2] : (v[m / 2 - 1] + v[m / 2]) / 2;
+        *resolvable = sqrt(2.0) * *floor;
+    }
+    free(v);
+    return m;
+}
+
 void dm_run_free(dm_run_result *run)
 {
     free(run->id);
@@ -176,5 +205,16 @@ void dm_run_free(dm_run_result *run)
         dm_fit_result_free(&run->fits[i]);
     free(run->fits);
     dm__strv_free(run->warnings, run->n_warnings);
+    for (size_t i = 0; i < run->n_rounds; i++) {
+        free(run->rounds[i].scene);
+        free(run->rounds[i].keys);
+    }
+    free(run->rounds);
+    for (size_t i = 0; i < run->n_precision; i++) {
+        free(run->precision[i].scene);
+        free(run->precision[i].reason);
+        free(run->precision[i].predictor);
+    }
+    free(run->precision);
     memset(run, 0, sizeof *run);
 }

@@ -36,6 +36,12 @@ typedef struct dm_counter_result {
     int n_nonfinite;         /* non-finite samples excluded from statistics */
     int unreadable;          /* read back missing or not finite (dm_counter_read_check): the
                                 record is damaged, so no verdict may pass over it */
+    /* With the machine's drift removed (models/drift.h; docs/measurement.md,
+     * "Drift removed"): corrected 1 when the figures below are set, 0 when
+     * only the raw figures above exist (the scene's dm_scene_precision
+     * says why).  The raw median and CI above are never replaced. */
+    int corrected;
+    double corr_median, corr_ci_lo, corr_ci_hi;
 } dm_counter_result;
 
 typedef struct dm_quality {
@@ -99,6 +105,33 @@ typedef struct dm_fit_result {
     char **point_labels;     /* config keys, may be NULL */
 } dm_fit_result;
 
+/* One round of a scene's timing samples (run/measure.c): the
+ * configurations in the order it sampled them, so a run's order is on
+ * record and can be checked, and the calibration kernel timed with it. */
+typedef struct dm_round {
+    char *scene;
+    long seq;                /* 0, 1, ... within the scene, in the order measured */
+    char *keys;              /* configuration keys, space-separated, in sampling order */
+    double calib_ns;         /* the calibration kernel's time in this round; NaN: not measured */
+} dm_round;
+
+/* The drift of one scene and what removing it left (models/drift.h):
+ * relative robust SDs (0.01 = 1 %). */
+typedef struct dm_scene_precision {
+    char *scene;
+    int corrected;           /* 1: its configurations have corrected figures */
+    char *reason;            /* when not, why (raw figures only); may be NULL */
+    char *predictor;         /* the better predictor of the drift on this run: "common mode",
+                                "calibration" or "neither"; NULL when not measured */
+    int n_rounds;            /* rounds with a common mode */
+    double machine_spread;   /* how far the machine's speed moved between rounds */
+    double raw_noise;        /* spread of the samples, uncorrected */
+    double loo_noise;        /* after the round's common mode */
+    double calib_noise;      /* after the calibration workload's ratio; NaN: not measured */
+    double resolvable;       /* smallest relative difference between two of its configurations
+                                the run resolves: sqrt(2) x the median CI half-width used */
+} dm_scene_precision;
+
 typedef struct dm_run_result {
     char *id;
     char *sweep;             /* sweep name */
@@ -117,6 +150,10 @@ typedef struct dm_run_result {
     size_t n_fits;
     char **warnings;
     size_t n_warnings;
+    dm_round *rounds;        /* by scene, then seq */
+    size_t n_rounds;
+    dm_scene_precision *precision;   /* one per scene measured, after the run's end */
+    size_t n_precision;
 } dm_run_result;
 
 /* Lookup helpers; return NULL when absent. */
@@ -149,6 +186,13 @@ int dm_run_param_varies(const dm_run_result *run, const dm_kv *k);
 /* Appends a copy of key/value to a kv array (realloc'd). */
 void dm_kv_push(dm_kv **kv, size_t *n, const char *key, const char *value);
 void dm_kv_free(dm_kv *kv, size_t n);
+
+/* The run's noise floor: the median over configurations with WallTime of
+ * its relative CI half-width (corrected where corrected, else raw) into
+ * *floor, and sqrt(2) times it, the smallest relative difference between two
+ * configurations the run resolves, into *resolvable.  Returns the number
+ * of configurations used (0: both NaN). */
+size_t dm_run_noise_floor(const dm_run_result *run, double *floor, double *resolvable);
 
 void dm_counter_result_free(dm_counter_result *c);
 void dm_config_result_free(dm_config_result *c);

@@ -2,6 +2,7 @@
  * configurations, their counters and their commit (see measure.h). */
 #include "measure.h"
 #include "core/dm_error.h"
+#include "run/calibrate.h"
 #include "run/callgrind.h"
 #include "run/inputs.h"
 #include "run/mquality.h"
@@ -125,6 +126,22 @@ static int measure__checkpoint(mscene *m, mconf *cs, size_t n, dm_str *err)
     if (rc != 0)
         dm_str_printf(err, "cannot checkpoint the samples of a round: %s", store_last_error(m->st));
     free(items);
+    return rc ? DM_ERR_STORE : 0;
+}
+
+/* Records a finished round of the scene: the configurations it sampled in
+ * their order, and the calibration kernel's time around it (the drift's
+ * second predictor, models/drift.h).  A round that sampled nothing is not
+ * recorded.  Returns 0 or DM_ERR_STORE (message in err). */
+static int measure__round(mscene *m, const dm_str *keys, double calib_ns, dm_str *err)
+{
+    if (!keys->len || !m->job->n_configs)
+        return 0;
+    dm_round r = { .scene = (char *)m->job->configs[0].scene, .keys = (char *)dm_str_get(keys),
+                   .calib_ns = calib_ns };
+    int rc = store_round_put(m->st, m->job->run_id, &r);
+    if (rc != 0)
+        dm_str_printf(err, "cannot record a round: %s", store_last_error(m->st));
     return rc ? DM_ERR_STORE : 0;
 }
 
@@ -483,10 +500,13 @@ int measure_scene(const measure_job *job, dm_str *err)
     for (uint64_t round = 0, active = 1; rc == 0 && active; round++) {
         active = 0;
         plan_shuffle(order, job->n_configs, job->seed + round);
+        dm_str keys = {0};
+        double cal0 = calibrate_cpu_once();   /* the machine's speed around the round */
         for (size_t k = 0; k < job->n_configs; k++) {
             mconf *c = &cs[order[k]];
             if (!c->active)
                 continue;
+            dm_str_printf(&keys, "%s%s", keys.len ? " " : "", c->pc->key);
             measure__timing_sample(&m, c);
             if (!c->active)
                 rc = measure__commit(&m, c, err);
@@ -495,6 +515,8 @@ int measure_scene(const measure_job *job, dm_str *err)
             if (rc != 0)
                 break;
         }
+        rc = rc ? rc : measure__round(&m, &keys, (cal0 + calibrate_cpu_once()) / 2, err);
+        dm_str_free(&keys);
         if (rc == 0 && active)
             rc = measure__checkpoint(&m, cs, job->n_configs, err);
     }

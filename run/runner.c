@@ -8,6 +8,7 @@
 #include "run/env.h"
 #include "run/fitting.h"
 #include "run/inputs.h"
+#include "run/precision.h"
 #include "run/trends.h"
 #include "sweep/published.h"
 #include "reports/answer.h"
@@ -239,6 +240,9 @@ static int runner__begin(runner *r)
         snprintf(buf, sizeof buf, "%zu", r->p.n_configs);
         dm_kv_push(&e->environment, &e->n_environment, "shard_configs", buf);
     }
+    char seed[32];   /* the rounds' order (run/measure.c): a run's order can be replayed */
+    snprintf(seed, sizeof seed, "%llu", (unsigned long long)(r->o->seed ? r->o->seed : 1));
+    dm_kv_push(&e->environment, &e->n_environment, "seed", seed);
     runner__calibrate(&e->environment, &e->n_environment, "start");
     char *pub = dm_xasprintf("%s/published.json", r->run_dir);   /* for the report's section */
     int rc = r->s->published ? published_write_json(r->s->published, pub) : 0;
@@ -309,6 +313,12 @@ static int runner__finish(runner *r, dm_str *err)
             store_run_env_put(r->st, r->run_id, run.environment[i].key, run.environment[i].value);
     }
     if (rc == 0) {
+        precision_apply(&run, r->o->seed ? r->o->seed : 1);   /* the drift removed, raw kept */
+        if (store_precision_put(r->st, r->run_id, &run) != 0)
+            dm_log(DM_LOG_WARN, "cannot store the figures with the drift removed: %s",
+                   store_last_error(r->st));
+        if (!r->o->quiet)
+            precision_print(&run, r->s->measure.target_ci, stderr);
         runner__fit(r, &run);
         char e[512] = "";
         report_trends tr;

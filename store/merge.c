@@ -81,6 +81,13 @@ static void merge__take(merge_state *m, dm_run_result *run, size_t src)
         memcpy(d->left_out + d->n_left_out, run->left_out, run->n_left_out * sizeof *run->left_out);
     d->n_left_out += run->n_left_out;
     run->n_left_out = 0;
+    d->rounds = dm_xrealloc(d->rounds, (d->n_rounds + run->n_rounds + 1) * sizeof *d->rounds);
+    m->round_src = dm_xrealloc(m->round_src, (d->n_rounds + run->n_rounds + 1) * sizeof *m->round_src);
+    for (size_t i = 0; i < run->n_rounds; i++) {
+        m->round_src[d->n_rounds] = src;
+        d->rounds[d->n_rounds++] = run->rounds[i];
+    }
+    run->n_rounds = 0;
     d->warnings = dm_xrealloc(d->warnings, (d->n_warnings + run->n_warnings + 1) * sizeof *d->warnings);
     for (size_t i = 0; i < run->n_warnings; i++)
         d->warnings[d->n_warnings++] = dm_xasprintf("%s: %s", m->inputs[src].dir, run->warnings[i]);
@@ -203,6 +210,11 @@ void merge_finish(merge_state *m)
     merge__describe_machines(m);
     for (size_t i = 0; i < m->out.n_configs; i++)
         merge__tag(&m->out.configs[i], m->inputs[m->config_src[i]].fingerprint);
+    for (size_t i = 0; i < m->out.n_rounds; i++) {
+        char *scene = dm_xasprintf("%s @ %s", m->out.rounds[i].scene, m->inputs[m->round_src[i]].fingerprint);
+        free(m->out.rounds[i].scene);
+        m->out.rounds[i].scene = scene;
+    }
     m->out.warnings = dm_xrealloc(m->out.warnings, (m->out.n_warnings + 1) * sizeof *m->out.warnings);
     m->out.warnings[m->out.n_warnings++] =
         dm_xasprintf("merged from %zu machines (environment fingerprints differ; see the "
@@ -221,6 +233,7 @@ void merge_free(merge_state *m)
     }
     free(m->inputs);
     free(m->config_src);
+    free(m->round_src);
     dm_run_free(&m->out);
     memset(m, 0, sizeof *m);
 }

@@ -17,7 +17,11 @@
  *    "machine" = its fingerprint and appends " @ <fingerprint>" to its scene,
  *    so every per-scene table, Pareto front and chart of the report is per
  *    machine; it records "machine <fingerprint>" entries (CPU, renderer,
- *    shards) in the environment and a run warning that says so.
+ *    shards) in the environment and a run warning that says so;
+ *  - the rounds of every run are kept (their scenes tagged like the
+ *    configurations'), each scene's precision entries dropped: a
+ *    correction of one shard does not describe the union, and the caller
+ *    computes it again over the merged rounds (run/precision.h).
  *
  * Errors: DM_ERR_ARG with a message naming the directories and values.
  */
@@ -42,6 +46,7 @@ typedef struct merge_shard {
 typedef struct merge_state {
     dm_run_result out;         /* the merged run (environment of the first input) */
     size_t *config_src;        /* input (index) each of out.configs came from */
+    size_t *round_src;         /* and each of out.rounds (their scenes are tagged alike) */
     merge_shard *inputs;
     size_t n_inputs;
 } merge_state;

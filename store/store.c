@@ -98,11 +98,12 @@ static int store__strv_write(store *s, enum store_sql id, const store_sql_owner 
 static int store__counter_write(store *s, const store_sql_owner *o,
                                 const dm_counter_result *k)
 {
-    int rc = store_sql_exec(s, STORE_SQL_CTR_INS, o, "ttitiidi" "ddddddddd" "ii",
+    int rc = store_sql_exec(s, STORE_SQL_CTR_INS, o, "ttitiidi" "ddddddddd" "ii" "iddd",
         k->name, k->unit, k->available, k->unavailable_reason, k->deterministic,
         k->partial, k->value, k->has_samples,
         k->median, k->mean, k->min, k->max, k->stddev, k->mad, k->cv, k->ci_lo,
-        k->ci_hi, k->n_outliers, k->n_nonfinite);
+        k->ci_hi, k->n_outliers, k->n_nonfinite, k->corrected, k->corr_median,
+        k->corr_ci_lo, k->corr_ci_hi);
     if (rc == 0 && k->has_samples && k->samples)
         rc = store_sql_exec(s, STORE_SQL_SMP_INS, o, "tb", k->name, k->samples,
                          k->n_samples);
@@ -288,6 +289,10 @@ static void store__counter_cols(sqlite3_stmt *st, dm_counter_result *k)
         *stats[i] = store_sql_col_double(st, 8 + i);
     k->n_outliers = sqlite3_column_int(st, 17);
     k->n_nonfinite = sqlite3_column_int(st, 18);
+    k->corrected = sqlite3_column_int(st, 19);
+    k->corr_median = store_sql_col_double(st, 20);
+    k->corr_ci_lo = store_sql_col_double(st, 21);
+    k->corr_ci_hi = store_sql_col_double(st, 22);
 }
 
 static int store__samples_read(store *s, const store_sql_owner *o, dm_counter_result *k)
@@ -494,6 +499,40 @@ static int store__run_row(store *s, dm_run_result *r)
 }
 
 /* Reads everything of run r->id into r = c->out (in a read transaction). */
+static int store__rounds_read(store *s, dm_run_result *r)
+{
+    store_sql_owner o = { r->id, NULL, 0 };
+    sqlite3_stmt *st = store_sql_query(s, STORE_SQL_ROUND_SEL, &o, "");
+    int rc = st ? 1 : DM_ERR_STORE;
+    while (rc == 1 && (rc = store_sql_row(s, st)) == 1) {
+        dm_round *d = dm_vec_push(&r->rounds, &r->n_rounds, NULL, sizeof *d);
+        d->scene = store_sql_col_str(st, 0);
+        d->seq = (long)sqlite3_column_int64(st, 1);
+        d->keys = store_sql_col_str(st, 2);
+        d->calib_ns = store_sql_col_double(st, 3);
+    }
+    return rc;
+}
+
+static int store__precision_read(store *s, dm_run_result *r)
+{
+    store_sql_owner o = { r->id, NULL, 0 };
+    sqlite3_stmt *st = store_sql_query(s, STORE_SQL_PREC_SEL, &o, "");
+    int rc = st ? 1 : DM_ERR_STORE;
+    while (rc == 1 && (rc = store_sql_row(s, st)) == 1) {
+        dm_scene_precision *p = dm_vec_push(&r->precision, &r->n_precision, NULL, sizeof *p);
+        p->scene = store_sql_col_str(st, 0);
+        p->corrected = sqlite3_column_int(st, 1);
+        p->reason = store_sql_col_str(st, 2);
+        p->predictor = store_sql_col_str(st, 3);
+        p->n_rounds = sqlite3_column_int(st, 4);
+        double *f[] = { &p->machine_spread, &p->raw_noise, &p->loo_noise, &p->calib_noise, &p->resolvable };
+        for (int i = 0; i < 5; i++)
+            *f[i] = store_sql_col_double(st, 5 + i);
+    }
+    return rc;
+}
+
 static int store__run_read(store *s, const store__call *c)
 {
     dm_run_result *r = c->out;
@@ -511,6 +550,10 @@ static int store__run_read(store *s, const store__call *c)
         rc = store__left_out_read(s, r);
     if (rc == 0)
         rc = store__fits_read(s, r);
+    if (rc == 0)
+        rc = store__rounds_read(s, r);
+    if (rc == 0)
+        rc = store__precision_read(s, r);
     return rc;
 }
 
@@ -751,6 +794,51 @@ int store_partial_get(store *s, const char *run_id, const char *key, const char 
     return 0;
 }
 
+static int store__round_write(store *s, const char *run, const void *item)
+{
+    const dm_round *d = item;
+    store_sql_owner o = { run, NULL, 0 };
+    return store_sql_exec(s, STORE_SQL_ROUND_INS, &o, "ttd", d->scene, d->keys, d->calib_ns);
+}
+
+int store_round_put(store *s, const char *run_id, const dm_round *r)
+{
+    return store__put(s, run_id, r, store__round_write);
+}
+
+static int store__precision_row(store *s, const char *run, const dm_scene_precision *p)
+{
+    store_sql_owner o = { run, NULL, 0 };
+    return store_sql_exec(s, STORE_SQL_PREC_INS, &o, "tittiddddd", p->scene, p->corrected,
+                          p->reason, p->predictor, p->n_rounds, p->machine_spread,
+                          p->raw_noise, p->loo_noise, p->calib_noise, p->resolvable);
+}
+
+/* Every scene's precision row and every corrected counter of the run
+ * (a dm_run_result). */
+static int store__precision_write(store *s, const char *run, const void *item)
+{
+    const dm_run_result *r = item;
+    int rc = 0;
+    for (size_t i = 0; i < r->n_precision && rc == 0; i++)
+        rc = store__precision_row(s, run, &r->precision[i]);
+    for (size_t i = 0; i < r->n_configs && rc == 0; i++) {
+        store_sql_owner o = { run, r->configs[i].key, 0 };
+        for (size_t k = 0; k < r->configs[i].n_counters && rc == 0; k++) {
+            const dm_counter_result *c = &r->configs[i].counters[k];
+            if (c->corrected)
+                rc = store_sql_exec(s, STORE_SQL_CTR_CORR, &o, "tiddd", c->name, c->corrected,
+                                    c->corr_median, c->corr_ci_lo, c->corr_ci_hi);
+        }
+    }
+    return rc;
+}
+
+int store_precision_put(store *s, const char *run_id, const dm_run_result *run)
+{
+    return store__put(s, run_id, run, store__precision_write);
+}
+
 int store_left_out_put(store *s, const char *run_id, const dm_left_out *l)
 {
     return store__put(s, run_id, l, store__left_out_write);
@@ -861,6 +949,10 @@ static int store__copy_fn(store *s, const store__call *c)
         rc = store__left_out_write(s, r->id, &r->left_out[i]);
     for (size_t i = 0; i < r->n_fits && rc == 0; i++)
         rc = store__fit_write(s, r->id, &r->fits[i]);
+    for (size_t i = 0; i < r->n_rounds && rc == 0; i++)
+        rc = store__round_write(s, r->id, &r->rounds[i]);
+    for (size_t i = 0; i < r->n_precision && rc == 0; i++)
+        rc = store__precision_row(s, r->id, &r->precision[i]);
     return rc;
 }
 

@@ -85,6 +85,13 @@ int store_partial_put(store *s, const char *run_id, const store_partial *items, 
  * *n values) and the sampling time.  DM_ERR_NOTFOUND when there are none. */
 int store_partial_get(store *s, const char *run_id, const char *key, const char *counter,
                       double **v, size_t *n, long *sampling_ns);
+/* Appends one round of a scene (r->seq is ignored: the next of that scene
+ * is taken), in one transaction. */
+int store_round_put(store *s, const char *run_id, const dm_round *r);
+/* Writes run->precision (replacing a scene's row) and the corrected
+ * figures of every counter with corrected set, in one transaction; the
+ * raw figures are not touched. */
+int store_precision_put(store *s, const char *run_id, const dm_run_result *run);
 /* Appends one left-out configuration (params + reason), in one transaction. */
 int store_left_out_put(store *s, const char *run_id, const dm_left_out *l);
 /* Writes one fit (params, warnings, predicted/measured, point labels) in one

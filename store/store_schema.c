@@ -1,7 +1,7 @@
 /* store_schema.c — the results store's schema: the migrations that create
  * it and the check that a file has all of it (store_sql.h).
  *
- * Schema (version 4, kept in PRAGMA user_version; store_schema__migrations[i] takes a
+ * Schema (version 5, kept in PRAGMA user_version; store_schema__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -20,7 +20,9 @@
  *   config_params(run, key, name, value)     → configs
  *   counters(run, key, name, unit, available, unavailable_reason,
  *            deterministic, partial, value, has_samples, median, mean, min,
- *            max, stddev, mad, cv, ci_lo, ci_hi, n_outliers, n_nonfinite)
+ *            max, stddev, mad, cv, ci_lo, ci_hi, n_outliers, n_nonfinite,
+ *            corrected, corr_median, corr_ci_lo, corr_ci_hi (version 5: 0
+ *            and NULL for older runs))
  *            PK (run, key, name)             → configs
  *   samples(run, key, counter, data BLOB)    → counters
  *   partial_samples(run, key, counter, data BLOB, sampling_ns)  PK (run,
@@ -34,6 +36,12 @@
  *        predicted BLOB, condition)  PK (run, seq), UNIQUE (run, model,
  *        group_key); condition came with version 2 (a version-1 store gets
  *        the column with 0, "not computed", for its fits)
+ *   rounds(run, scene, seq, keys, calib_ns) PK (run, scene, seq): each
+ *           round of a scene's timing samples, its configurations in the
+ *           order sampled and the calibration kernel's time (version 5)
+ *   scene_precision(run, scene, corrected, reason, predictor, n_rounds,
+ *           machine_spread, raw_noise, loo_noise, calib_noise, resolvable)
+ *           PK (run, scene): the drift removed per scene (version 5)
  *   fit_group(run, seq, key, value), fit_params(run, seq, name, value,
  *        stderr), fit_warnings(run, seq, text), fit_labels(run, seq, idx,
  *        label)
@@ -120,6 +128,21 @@ static const char *const store_schema__migrations[STORE_SCHEMA_VERSION] = {
     "ALTER TABLE configs ADD COLUMN q_flip_max REAL;"
     "ALTER TABLE configs ADD COLUMN q_flip_ppd REAL;"
     "ALTER TABLE configs ADD COLUMN img_flip TEXT;",
+    /* 4 -> 5: figures with the machine's drift removed (models/drift.h),
+     * the rounds' order and calibration, each scene's precision; a counter
+     * of an older run is not corrected (0) */
+    "ALTER TABLE counters ADD COLUMN corrected INTEGER DEFAULT 0;"
+    "ALTER TABLE counters ADD COLUMN corr_median REAL;"
+    "ALTER TABLE counters ADD COLUMN corr_ci_lo REAL;"
+    "ALTER TABLE counters ADD COLUMN corr_ci_hi REAL;"
+    "CREATE TABLE rounds(run TEXT NOT NULL REFERENCES runs(id) ON DELETE"
+    " CASCADE, scene TEXT NOT NULL, seq INTEGER NOT NULL, keys TEXT,"
+    " calib_ns REAL, PRIMARY KEY(run, scene, seq));"
+    "CREATE TABLE scene_precision(run TEXT NOT NULL REFERENCES runs(id) ON"
+    " DELETE CASCADE, scene TEXT NOT NULL, corrected INTEGER, reason TEXT,"
+    " predictor TEXT, n_rounds INTEGER, machine_spread REAL, raw_noise REAL,"
+    " loo_noise REAL, calib_noise REAL, resolvable REAL,"
+    " PRIMARY KEY(run, scene));",
 };
 
 int store_schema_migrate(sqlite3 *db, long *found)

@@ -18,7 +18,7 @@
 
 #include <stddef.h>
 
-#define STORE_SCHEMA_VERSION 4
+#define STORE_SCHEMA_VERSION 5
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
     "q_ssim,q_max_error,q_pct_over,q_silhouette,q_depth_rmse,q_crack_pixels," \
@@ -26,7 +26,9 @@
     "q_flip,q_flip_q1,q_flip_median,q_flip_q3,q_flip_max,q_flip_ppd,img_flip"
 #define STORE__CTR_COLS "unit,available,unavailable_reason,deterministic," \
     "partial,value,has_samples,median,mean,min,max,stddev,mad,cv,ci_lo," \
-    "ci_hi,n_outliers,n_nonfinite"
+    "ci_hi,n_outliers,n_nonfinite,corrected,corr_median,corr_ci_lo,corr_ci_hi"
+#define STORE__PREC_COLS "corrected,reason,predictor,n_rounds,machine_spread," \
+    "raw_noise,loo_noise,calib_noise,resolvable"
 #define STORE__FIT_COLS "formula,response,r2,rmse,mape,cv_mape,n_points," \
     "n_excluded,termination,measured,predicted,condition"
 
@@ -64,7 +66,18 @@
       " key=?2 ORDER BY rowid")                                               \
     X(CTR_INS, "INSERT INTO counters(run,key,name," STORE__CTR_COLS ") VALUES"\
       "(?1,?2,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14,?15,?16,?17,?18,?19,?20," \
-      "?21,?22)")                                                             \
+      "?21,?22,?23,?24,?25,?26)")                                             \
+    X(CTR_CORR, "UPDATE counters SET corrected=?5,corr_median=?6,"            \
+      "corr_ci_lo=?7,corr_ci_hi=?8 WHERE run=?1 AND key=?2 AND name=?4")      \
+    X(ROUND_INS, "INSERT INTO rounds(run,scene,seq,keys,calib_ns) VALUES(?1," \
+      "?4,(SELECT IFNULL(MAX(seq),-1)+1 FROM rounds WHERE run=?1 AND"         \
+      " scene=?4),?5,?6)")                                                    \
+    X(ROUND_SEL, "SELECT scene,seq,keys,calib_ns FROM rounds WHERE run=?1"    \
+      " ORDER BY scene,seq")                                                  \
+    X(PREC_INS, "INSERT OR REPLACE INTO scene_precision(run,scene,"           \
+      STORE__PREC_COLS ") VALUES(?1,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13)")      \
+    X(PREC_SEL, "SELECT scene," STORE__PREC_COLS " FROM scene_precision"      \
+      " WHERE run=?1 ORDER BY rowid")                                         \
     X(CTR_SEL, "SELECT name," STORE__CTR_COLS " FROM counters WHERE run=?1"   \
       " AND key=?2 ORDER BY rowid")                                           \
     X(SMP_INS, "INSERT INTO samples(run,key,counter,data) VALUES(?1,?2,?4,?5)")\

@@ -22,6 +22,7 @@ add_test(NAME test_ci_gate COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions
 set_tests_properties(test_ci_gate PROPERTIES TIMEOUT 120 FIXTURES_REQUIRED ci_gate_run
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")
 dm_add_e2e(test_e2e_quick quick.sh LABELS quick)
+dm_add_e2e(test_e2e_precision precision.sh)
 dm_add_e2e(test_e2e_exchange exchange.sh)
 dm_add_e2e(test_e2e_faults faults.sh)
 dm_add_e2e(test_e2e_hostile hostile.sh)

@@ -4,6 +4,7 @@ dm_add_gl(test_run_refcache test_run_refcache.c LIBS dm_run)
 add_dependencies(test_run_refcache dmbench)
 # The measuring decisions (run/protocol.c), pure: synthetic sample streams.
 dm_add_unit(test_run_protocol test_run_protocol.c LIBS dm_protocol)
+dm_add_unit(test_run_precision test_run_precision.c LIBS dm_protocol)
 # The Instructions pass's pure parts (run/callgrind.c): dump parsing and
 # the run's warning when a configuration's samples disagree.
 dm_add_unit(test_run_callgrind test_run_callgrind.c LIBS dm_run)

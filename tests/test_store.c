@@ -265,6 +265,26 @@ static void run_full(dm_run_result *r, const char *id)
     r->n_fits = 1;
     r->fits = dm_xcalloc(1, sizeof *r->fits);
     fit_fill(&r->fits[0], 0.99);
+    /* two rounds of the sampled configuration's scene (one without a
+     * calibration time), its precision, and its counter corrected */
+    r->n_rounds = 2;
+    r->rounds = dm_xcalloc(2, sizeof *r->rounds);
+    for (long i = 0; i < 2; i++)
+        r->rounds[i] = (dm_round){ .scene = dm_xstrdup(r->configs[2].scene), .seq = i,
+                                   .keys = dm_xstrdup(i ? "00000000000000cc 00000000000000bb"
+                                                        : "00000000000000bb 00000000000000cc"),
+                                   .calib_ns = i ? NAN : 8123456.5 };
+    r->n_precision = 1;
+    r->precision = dm_xcalloc(1, sizeof *r->precision);
+    r->precision[0] = (dm_scene_precision){ .scene = dm_xstrdup(r->configs[2].scene), .corrected = 1,
+                                            .predictor = dm_xstrdup("common mode"), .n_rounds = 2,
+                                            .machine_spread = 0.041, .raw_noise = 0.05, .loo_noise = 0.01,
+                                            .calib_noise = NAN, .resolvable = 0.0123 };
+    dm_counter_result *k = &r->configs[2].counters[0];
+    k->corrected = 1;
+    k->corr_median = k->median * 1.01;
+    k->corr_ci_lo = k->median * 0.99;
+    k->corr_ci_hi = INFINITY;
 }
 
 /* Writes run r through the public calls; the run is left not finished. */
@@ -277,6 +297,10 @@ static void store_put_all(store *s, const dm_run_result *r, const char *tag)
         assert_int_equal(store_left_out_put(s, r->id, &r->left_out[i]), 0);
     for (size_t i = 0; i < r->n_fits; i++)
         assert_int_equal(store_fit_put(s, r->id, &r->fits[i]), 0);
+    for (size_t i = 0; i < r->n_rounds; i++)
+        assert_int_equal(store_round_put(s, r->id, &r->rounds[i]), 0);
+    if (r->n_precision)
+        assert_int_equal(store_precision_put(s, r->id, r), 0);
 }
 
 /* ---- field-by-field comparison --------------------------------------------- */
@@ -341,6 +365,12 @@ static void eq_counter(const dm_counter_result *a, const dm_counter_result *b)
     eq_doubles(sa, sb, 10, "counter statistic");
     assert_int_equal(a->n_outliers, b->n_outliers);
     assert_int_equal(a->n_nonfinite, b->n_nonfinite);
+    assert_int_equal(a->corrected, b->corrected);
+    if (a->corrected) {
+        const double ca[] = { a->corr_median, a->corr_ci_lo, a->corr_ci_hi };
+        const double cb[] = { b->corr_median, b->corr_ci_lo, b->corr_ci_hi };
+        eq_doubles(ca, cb, 3, "corrected figure");
+    }
 }
 
 static void eq_quality(const dm_quality *a, const dm_quality *b)
@@ -426,6 +456,25 @@ static void eq_run(const dm_run_result *a, const dm_run_result *b)
     for (size_t i = 0; i < a->n_fits; i++)
         eq_fit(&a->fits[i], &b->fits[i]);
     eq_strv(a->warnings, a->n_warnings, b->warnings, b->n_warnings);
+    assert_int_equal(a->n_rounds, b->n_rounds);
+    for (size_t i = 0; i < a->n_rounds; i++) {
+        EQ_STR(a->rounds[i].scene, b->rounds[i].scene, "round scene");
+        EQ_STR(a->rounds[i].keys, b->rounds[i].keys, "round keys");
+        assert_int_equal(a->rounds[i].seq, b->rounds[i].seq);
+        eq_dbl(a->rounds[i].calib_ns, b->rounds[i].calib_ns, "round calibration");
+    }
+    assert_int_equal(a->n_precision, b->n_precision);
+    for (size_t i = 0; i < a->n_precision; i++) {
+        const dm_scene_precision *p = &a->precision[i], *q = &b->precision[i];
+        EQ_STR(p->scene, q->scene, "precision scene");
+        EQ_STR(p->reason, q->reason, "precision reason");
+        EQ_STR(p->predictor, q->predictor, "precision predictor");
+        assert_int_equal(p->corrected, q->corrected);
+        assert_int_equal(p->n_rounds, q->n_rounds);
+        const double pa[] = { p->machine_spread, p->raw_noise, p->loo_noise, p->calib_noise, p->resolvable };
+        const double pb[] = { q->machine_spread, q->raw_noise, q->loo_noise, q->calib_noise, q->resolvable };
+        eq_doubles(pa, pb, 5, "precision figure");
+    }
 }
 
 /* ---- tests ------------------------------------------------------------------ */
@@ -447,7 +496,7 @@ static void test_round_trip(void **state)
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
     assert_int_equal(sql_long(s, "SELECT length(data) FROM samples"), 400);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 4);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 5);
     dm_run_free(&got);
     store_close(s);
     /* ...and again from a fresh connection. */
@@ -689,6 +738,32 @@ static void test_missing_table_or_column(void **state)
  * migrated to the current version, its fits read back with condition 0 ("not
  * computed") and everything else intact; new fits keep their condition,
  * infinity included. */
+/* SQL that takes the store back to before version 5. */
+#define PRECISION_DROPPED                                                      \
+    "ALTER TABLE counters DROP COLUMN corrected; ALTER TABLE counters DROP COLUMN corr_median;" \
+    "ALTER TABLE counters DROP COLUMN corr_ci_lo; ALTER TABLE counters DROP COLUMN corr_ci_hi;" \
+    "DROP TABLE rounds; DROP TABLE scene_precision;"
+
+/* What a store from before version 5 reads back: no correction, no rounds. */
+static void precision_not_computed(dm_run_result *run)
+{
+    for (size_t i = 0; i < run->n_configs; i++)
+        for (size_t k = 0; k < run->configs[i].n_counters; k++)
+            run->configs[i].counters[k].corrected = 0;
+    dm_run_result keep = *run;
+    run->n_rounds = run->n_precision = 0;
+    run->rounds = NULL;
+    run->precision = NULL;
+    keep.n_configs = keep.n_left_out = keep.n_fits = keep.n_environment = keep.n_warnings = 0;
+    keep.configs = NULL;
+    keep.left_out = NULL;
+    keep.fits = NULL;
+    keep.environment = NULL;
+    keep.warnings = NULL;
+    keep.id = keep.sweep = keep.started = keep.finished = keep.sweep_hash = keep.timer_verdict = NULL;
+    dm_run_free(&keep);   /* frees the rounds and precision only */
+}
+
 /* SQL that takes the configs table back to before version 4. */
 #define FLIP_COLUMNS_DROPPED                                                   \
     "ALTER TABLE configs DROP COLUMN q_flip; ALTER TABLE configs DROP COLUMN q_flip_q1;"  \
@@ -719,15 +794,16 @@ static void test_fit_condition_migration(void **state)
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
     assert_int_equal(sqlite3_exec(db, "ALTER TABLE fits DROP COLUMN condition;"
                                   "DROP TABLE partial_samples;"   /* came with version 3 */
-                                  FLIP_COLUMNS_DROPPED
+                                  FLIP_COLUMNS_DROPPED PRECISION_DROPPED
                                   "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 4);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 5);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_true(got.fits[0].condition == 0.0);
     run.fits[0].condition = 0.0;
     flip_not_computed(&run);
+    precision_not_computed(&run);
     eq_run(&run, &got);
     dm_run_free(&got);
     run.fits[0].condition = INFINITY;
@@ -753,16 +829,53 @@ static void test_flip_migration(void **state)
     store_close(s);
     sqlite3 *db;
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, FLIP_COLUMNS_DROPPED "PRAGMA user_version=3",
+    assert_int_equal(sqlite3_exec(db, FLIP_COLUMNS_DROPPED PRECISION_DROPPED "PRAGMA user_version=3",
                                   NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 4);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 5);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     flip_not_computed(&run);
+    precision_not_computed(&run);
     eq_run(&run, &got);
     assert_integrity_ok(s);
     dm_run_free(&got);
+    dm_run_free(&run);
+    store_close(s);
+}
+
+/* A version-4 store (before the drift correction) opens migrated: its
+ * counters read back uncorrected (their raw figures intact), without rounds
+ * or precision; a correction written afterwards reads back. */
+static void test_precision_migration(void **state)
+{
+    tmp *t = *state;
+    dm_run_result run, got;
+    run_full(&run, "old");
+    store *s = open_ok(t->db);
+    store_put_all(s, &run, NULL);
+    store_close(s);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, PRECISION_DROPPED "PRAGMA user_version=4", NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    s = open_ok(t->db);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 5);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    dm_run_result want;
+    run_full(&want, "old");
+    precision_not_computed(&want);
+    eq_run(&want, &got);
+    dm_run_free(&got);
+    assert_int_equal(store_precision_put(s, "old", &run), 0);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    assert_int_equal(got.n_precision, 1);
+    assert_true(got.configs[2].counters[0].corrected == 1);
+    assert_true(isinf(got.configs[2].counters[0].corr_ci_hi));
+    assert_int_equal(store_precision_put(s, "no-such-run", &run), DM_ERR_NOTFOUND);
+    assert_integrity_ok(s);
+    dm_run_free(&got);
+    dm_run_free(&want);
     dm_run_free(&run);
     store_close(s);
 }
@@ -975,7 +1088,7 @@ static void test_open_alloc_faults(void **state)
         dm_str_free(&err);
         s = open_ok(t->db);
         assert_integrity_ok(s);
-        assert_int_equal(sql_long(s, "PRAGMA user_version"), 4);
+        assert_int_equal(sql_long(s, "PRAGMA user_version"), 5);
         store_close(s);
         if (!reached)
             break;
@@ -1072,6 +1185,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_fit_replace, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_fit_condition_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_flip_migration, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_precision_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_partial_samples, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_copy_run, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_latest_and_list, tmp_setup, tmp_teardown),

@@ -47,6 +47,18 @@ static dm_run_result mk_run(const char *fp, const char *shard, int planned, cons
         dm_kv_push(&r.configs[i].params, &r.configs[i].n_params, "technique", "normal");
     }
     r.n_configs = n;
+    /* one round naming every configuration, and a precision entry merge drops */
+    r.rounds = dm_xcalloc(1, sizeof *r.rounds);
+    dm_str named = {0};
+    for (size_t i = 0; i < n; i++)
+        dm_str_printf(&named, "%s%s", i ? " " : "", keys[i]);
+    r.rounds[0] = (dm_round){ .scene = dm_xstrdup("plane@64x36"), .keys = dm_xstrdup(dm_str_get(&named)),
+                              .calib_ns = 1e7 };
+    dm_str_free(&named);
+    r.n_rounds = 1;
+    r.precision = dm_xcalloc(1, sizeof *r.precision);
+    r.precision[0] = (dm_scene_precision){ .scene = dm_xstrdup("plane@64x36"), .corrected = 1 };
+    r.n_precision = 1;
     return r;
 }
 
@@ -142,6 +154,13 @@ static void test_machines_kept_apart(void **state)
                         "2 x CPU A, ?, LP_NUM_THREADS=?; runs: s1");
     assert_string_equal(dm_kv_get(m.out.environment, m.out.n_environment, "machine bbbb"),
                         "2 x CPU B, ?, LP_NUM_THREADS=?; runs: s2");
+    /* the rounds kept, their scenes tagged like the configurations'; the
+     * shards' precision entries dropped (computed again over the union) */
+    assert_int_equal(m.out.n_rounds, 2);
+    assert_string_equal(m.out.rounds[0].scene, "plane@64x36 @ aaaa");
+    assert_string_equal(m.out.rounds[0].keys, "01 02");
+    assert_string_equal(m.out.rounds[1].scene, "plane@64x36 @ bbbb");
+    assert_int_equal(m.out.n_precision, 0);
     assert_int_equal(m.out.n_warnings, 1);
     assert_non_null(strstr(m.out.warnings[0], "merged from 2 machines"));
     assert_non_null(strstr(m.out.warnings[0], "no samples are pooled across machines"));
@@ -162,6 +181,9 @@ static void test_one_machine_untouched(void **state)
         assert_null(dm_kv_get(m.out.configs[i].params, m.out.configs[i].n_params, "machine"));
         assert_string_equal(m.out.configs[i].scene, "plane@64x36");
     }
+    assert_int_equal(m.out.n_rounds, 2);
+    assert_string_equal(m.out.rounds[1].scene, "plane@64x36");
+    assert_string_equal(m.out.rounds[1].keys, "02");
     assert_int_equal(m.out.n_warnings, 0);
     dm_str miss = {0};
     assert_int_equal(merge_missing(&m, &miss), 0);

@@ -1,0 +1,397 @@
+/* drift.c — the machine's drift removed from one scene's rounds (see drift.h). */
+#include "models/drift.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+#include "core/dm_util.h"
+#include "models/rng.h"
+#include "models/stats.h"
+
+/* Scratch of one fit: the fitted effects and a buffer for medians. */
+typedef struct drift__fit {
+    size_t nc, nr;
+    const double *lx;        /* log samples, nc × nr, NaN = none */
+    double *a, *b;           /* row levels (nc), round effects (nr; NaN = none) */
+    double *tmp;             /* nc + nr + 1 values */
+    double *loo;             /* nc × nr: the round's common mode without c (NaN: none) */
+    struct drift__item *items;   /* nc + 1: a round's residuals, sorted */
+} drift__fit;
+
+/* A residual of a round and whose it is. */
+typedef struct drift__item {
+    double v;
+    size_t c;
+} drift__item;
+
+static int drift__cmp_item(const void *pa, const void *pb)
+{
+    double a = ((const drift__item *)pa)->v, b = ((const drift__item *)pb)->v;
+    return (a > b) - (a < b);
+}
+
+static int drift__cmp(const void *pa, const void *pb)
+{
+    double a = *(const double *)pa, b = *(const double *)pb;
+    return (a > b) - (a < b);
+}
+
+/* Median of v[0..m) (reorders v); NaN when m is 0. */
+static double drift__median(double *v, size_t m)
+{
+    if (m == 0)
+        return NAN;
+    qsort(v, m, sizeof *v, drift__cmp);
+    return m % 2 ? v[m / 2] : (v[m / 2 - 1] + v[m / 2]) / 2;
+}
+
+double drift_robust_sd(const double *v, size_t n)
+{
+    double *t = dm_xcalloc(n + 1, sizeof *t);
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(v[i]))
+            t[m++] = v[i];
+    double med = drift__median(t, m);
+    for (size_t i = 0; i < m; i++)
+        t[i] = fabs(t[i] - med);
+    double sd = m >= 2 ? 1.4826 * drift__median(t, m) : NAN;
+    free(t);
+    return sd;
+}
+
+/* Root mean square of the finite values (the round effects are centred on
+ * median 0): not robust on purpose, as a slow spell in fewer than half
+ * the rounds is a drift, not an outlier.  NaN when none. */
+static double drift__rms(const double *v, size_t n)
+{
+    double ss = 0;
+    size_t m = 0;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(v[i])) {
+            ss += v[i] * v[i];
+            m++;
+        }
+    return m ? sqrt(ss / (double)m) : NAN;
+}
+
+static double drift__cell(const drift__fit *f, size_t c, size_t r)
+{
+    return f->lx[c * f->nr + r];
+}
+
+/* Round effect b[r]: the median of log x - a over the round's configurations
+ * other than skip ((size_t)-1: none), NaN with fewer than need of them. */
+static double drift__round(const drift__fit *f, size_t r, size_t skip, size_t need)
+{
+    size_t m = 0;
+    for (size_t c = 0; c < f->nc; c++)
+        if (c != skip && isfinite(drift__cell(f, c, r)) && isfinite(f->a[c]))
+            f->tmp[m++] = drift__cell(f, c, r) - f->a[c];
+    return m >= need ? drift__median(f->tmp, m) : NAN;
+}
+
+/* Row level a[c]: the median over rounds of log x - b (0 for a round
+ * without an effect). */
+static double drift__level(const drift__fit *f, size_t c)
+{
+    size_t m = 0;
+    for (size_t r = 0; r < f->nr; r++)
+        if (isfinite(drift__cell(f, c, r)))
+            f->tmp[m++] = drift__cell(f, c, r) - (isfinite(f->b[r]) ? f->b[r] : 0);
+    return drift__median(f->tmp, m);
+}
+
+/* Every configuration's leave-one-out common mode of round r into
+ * f->loo: the round's residuals sorted once, then the median of the other
+ * m - 1 of them for each by index arithmetic (the drift__round with skip =
+ * c of each, in O(m log m) for the round instead of O(m^2 log m)). */
+static void drift__loo_round(drift__fit *f, size_t r)
+{
+    size_t m = 0;
+    for (size_t c = 0; c < f->nc; c++) {
+        f->loo[c * f->nr + r] = NAN;
+        if (isfinite(drift__cell(f, c, r)) && isfinite(f->a[c]))
+            f->items[m++] = (drift__item){ drift__cell(f, c, r) - f->a[c], c };
+    }
+    if (m < DRIFT_MIN_OTHERS + 1)
+        return;
+    qsort(f->items, m, sizeof *f->items, drift__cmp_item);
+    size_t k = m - 1;   /* the others */
+    for (size_t p = 0; p < m; p++) {
+        /* t[i] = items[i] for i < p, items[i + 1] from p on */
+        size_t i1 = (k - 1) / 2, i2 = k / 2;
+        double v1 = f->items[i1 < p ? i1 : i1 + 1].v, v2 = f->items[i2 < p ? i2 : i2 + 1].v;
+        f->loo[f->items[p].c * f->nr + r] = (v1 + v2) / 2;
+    }
+}
+
+/* Median polish of log x = a[c] + b[r] + e by alternating medians, the
+ * round effects centred on median 0 (so a is the level at the run's
+ * median speed); stops when no effect moves by 1e-9 in log.  Returns the
+ * number of rounds with an effect. */
+static size_t drift__polish(drift__fit *f)
+{
+    for (size_t c = 0; c < f->nc; c++)
+        f->a[c] = drift__level(f, c);
+    size_t used = 0;
+    for (int it = 0; it < DRIFT_POLISH_ITERS; it++) {
+        double moved = 0;
+        used = 0;
+        for (size_t r = 0; r < f->nr; r++) {
+            double nb = drift__round(f, r, (size_t)-1, DRIFT_MIN_CONFIGS);
+            if (isfinite(nb))
+                f->tmp[f->nc + used++] = nb;   /* tmp is large enough: see drift__fit_init */
+            f->b[r] = nb;
+        }
+        double centre = drift__median(f->tmp + f->nc, used);
+        for (size_t r = 0; r < f->nr; r++)
+            if (isfinite(f->b[r]))
+                f->b[r] -= centre;
+        for (size_t c = 0; c < f->nc; c++) {
+            double na = drift__level(f, c);
+            if (isfinite(na) && isfinite(f->a[c]))
+                moved = fmax(moved, fabs(na - f->a[c]));
+            f->a[c] = na;
+        }
+        if (it > 0 && moved < 1e-9)
+            break;
+    }
+    for (size_t r = 0; r < f->nr; r++)
+        drift__loo_round(f, r);
+    return used;
+}
+
+static void drift__fit_init(drift__fit *f, const double *lx, size_t nc, size_t nr)
+{
+    *f = (drift__fit){ .nc = nc, .nr = nr, .lx = lx };
+    f->a = dm_xcalloc(nc + 1, sizeof *f->a);
+    f->b = dm_xcalloc(nr + 1, sizeof *f->b);
+    f->tmp = dm_xcalloc(nc + nr + 1, sizeof *f->tmp);
+    f->loo = dm_xcalloc(nc * nr + 1, sizeof *f->loo);
+    f->items = dm_xcalloc(nc + 1, sizeof *f->items);
+}
+
+static void drift__fit_free(drift__fit *f)
+{
+    free(f->a);
+    free(f->b);
+    free(f->tmp);
+    free(f->loo);
+    free(f->items);
+}
+
+/* The corrected log samples of configuration c into y[0..nr) (NaN where c
+ * has none): log x less the round's common mode without c, where the
+ * round has DRIFT_MIN_OTHERS other configurations; *n_corr counts those. */
+static void drift__corrected(const drift__fit *f, size_t c, double *y, size_t *n_corr)
+{
+    *n_corr = 0;
+    for (size_t r = 0; r < f->nr; r++) {
+        double v = drift__cell(f, c, r), loo = NAN;
+        if (isfinite(v))
+            loo = f->loo[c * f->nr + r];
+        y[r] = isfinite(loo) ? v - loo : v;
+        *n_corr += isfinite(loo);
+    }
+}
+
+/* The whole procedure on log samples lx: polish, correct, and each
+ * configuration's corrected median (log) into med[c] (NaN: no sample).
+ * Returns the rounds with a common mode. */
+static size_t drift__procedure(const double *lx, size_t nc, size_t nr, double *med, double *y)
+{
+    drift__fit f;
+    drift__fit_init(&f, lx, nc, nr);
+    size_t used = drift__polish(&f);
+    for (size_t c = 0; c < nc; c++) {
+        size_t k, m = 0;
+        drift__corrected(&f, c, y, &k);
+        for (size_t r = 0; r < nr; r++)
+            if (isfinite(y[r]))
+                y[m++] = y[r];
+        med[c] = drift__median(y, m);
+    }
+    drift__fit_free(&f);
+    return used;
+}
+
+/* Percentile interval (2.5 %, 97.5 %) of each configuration's bootstrap
+ * corrected medians: replicates of the whole procedure on rounds drawn
+ * with replacement.  Each replicate is first shifted by the median over
+ * configurations of its change from the point estimates pm (log): where
+ * the run's median speed lies moves every configuration of the scene
+ * alike, cancels in every comparison within the run, and is the machine's
+ * variation between runs (docs/measurement.md), not this configuration's
+ * uncertainty.  lo/hi NaN for a configuration with fewer than half the
+ * replicates finite. */
+static void drift__bootstrap(const drift_desc *d, const double *lx, const double *pm, double *lo, double *hi)
+{
+    size_t nc = d->n_configs, nr = d->n_rounds, B = d->bootstrap > 0 ? (size_t)d->bootstrap : DRIFT_BOOTSTRAP_B;
+    double *xs = dm_xcalloc(nc * nr + 1, sizeof *xs), *rep = dm_xcalloc(nc * B + 1, sizeof *rep);
+    double *med = dm_xcalloc(nc + 1, sizeof *med), *y = dm_xcalloc(nr + nc + 1, sizeof *y);
+    rng_state g = rng_seed(d->seed);
+    for (size_t b = 0; b < B; b++) {
+        for (size_t j = 0; j < nr; j++) {
+            size_t r = rng_below(&g, nr);
+            for (size_t c = 0; c < nc; c++)
+                xs[c * nr + j] = lx[c * nr + r];
+        }
+        drift__procedure(xs, nc, nr, med, y);
+        size_t m = 0;
+        for (size_t c = 0; c < nc; c++)
+            if (isfinite(med[c]) && isfinite(pm[c]))
+                y[m++] = med[c] - pm[c];
+        double shift = drift__median(y, m);
+        for (size_t c = 0; c < nc; c++)
+            rep[c * B + b] = med[c] - shift;
+    }
+    for (size_t c = 0; c < nc; c++) {
+        size_t m = 0;
+        for (size_t b = 0; b < B; b++)
+            m += isfinite(rep[c * B + b]);
+        lo[c] = m * 2 >= B ? exp(stats_quantile(rep + c * B, B, 0.025)) : NAN;
+        hi[c] = m * 2 >= B ? exp(stats_quantile(rep + c * B, B, 0.975)) : NAN;
+    }
+    free(xs);
+    free(rep);
+    free(med);
+    free(y);
+}
+
+/* The noise figures of drift_result on the cells whose round has a common
+ * mode without the configuration: raw, after that common mode, after the
+ * calibration ratio. */
+static void drift__noise(const drift_desc *d, const drift__fit *f, drift_result *out)
+{
+    size_t nc = f->nc, nr = f->nr, m = 0, mc = 0;
+    double *raw = dm_xcalloc(nc * nr + 1, sizeof *raw), *loo = dm_xcalloc(nc * nr + 1, sizeof *loo);
+    double *cal = dm_xcalloc(nc * nr + 1, sizeof *cal), *lc = dm_xcalloc(nr + 1, sizeof *lc);
+    size_t nlc = 0;
+    for (size_t r = 0; d->calib && r < nr; r++)
+        if (isfinite(d->calib[r]) && d->calib[r] > 0)
+            cal[nlc++] = log(d->calib[r]);
+    double centre = drift__median(cal, nlc);
+    for (size_t r = 0; r < nr; r++)
+        lc[r] = d->calib && isfinite(d->calib[r]) && d->calib[r] > 0 ? log(d->calib[r]) - centre : NAN;
+    for (size_t c = 0; c < nc; c++)
+        for (size_t r = 0; r < nr; r++) {
+            double v = drift__cell(f, c, r);
+            double b = isfinite(v) ? f->loo[c * nr + r] : NAN;
+            if (!isfinite(b) || !isfinite(f->a[c]))
+                continue;
+            raw[m] = v - f->a[c];
+            loo[m++] = v - f->a[c] - b;
+            if (isfinite(lc[r]))
+                cal[mc++] = v - f->a[c] - lc[r];
+        }
+    out->raw_noise = drift_robust_sd(raw, m);
+    out->loo_noise = drift_robust_sd(loo, m);
+    out->calib_noise = mc >= 2 ? drift_robust_sd(cal, mc) : NAN;
+    out->calib_spread = drift_robust_sd(lc, nr);
+    double *per = dm_xcalloc(nr + 1, sizeof *per);   /* configurations in each round with an effect */
+    size_t np = 0;
+    for (size_t r = 0; r < nr; r++) {
+        size_t k = 0;
+        for (size_t c = 0; c < nc; c++)
+            k += isfinite(drift__cell(f, c, r));
+        if (isfinite(f->b[r]))
+            per[np++] = (double)k;
+    }
+    double per_round = drift__median(per, np);
+    /* a median of k values of SD s has SD about sqrt(pi/2) s / sqrt(k) */
+    out->factor_noise = per_round > 0 ? sqrt(M_PI / 2) * out->loo_noise / sqrt(per_round) : NAN;
+    out->helps = out->machine_spread > DRIFT_HELPS * out->factor_noise;
+    free(per);
+    free(raw);
+    free(loo);
+    free(cal);
+    free(lc);
+}
+
+/* The raw figures of every configuration (models/stats.h). */
+static void drift__raw(const drift_desc *d, drift_result *out, size_t *with_samples)
+{
+    *with_samples = 0;
+    for (size_t c = 0; c < d->n_configs; c++) {
+        drift_config *k = &out->configs[c];
+        stats_summary su;
+        *k = (drift_config){ .raw_median = NAN, .raw_lo = NAN, .raw_hi = NAN,
+                             .median = NAN, .lo = NAN, .hi = NAN };
+        if (stats_summarize(d->x + c * d->n_rounds, d->n_rounds, d->seed + c, &su) == 0) {
+            k->n = su.n;
+            k->raw_median = su.median;
+            k->raw_lo = su.ci_lo;
+            k->raw_hi = su.ci_hi;
+            (*with_samples)++;
+        }
+    }
+}
+
+/* The corrected figures of every configuration from the point fit f. */
+static void drift__point(const drift_desc *d, const drift__fit *f, const double *lx, drift_result *out)
+{
+    size_t nc = d->n_configs, nr = d->n_rounds;
+    double *lo = dm_xcalloc(nc + 1, sizeof *lo), *hi = dm_xcalloc(nc + 1, sizeof *hi);
+    double *y = dm_xcalloc(nr + 1, sizeof *y), *pm = dm_xcalloc(nc + 1, sizeof *pm);
+    drift__procedure(lx, nc, nr, pm, y);
+    drift__bootstrap(d, lx, pm, lo, hi);
+    for (size_t c = 0; c < nc; c++) {
+        drift_config *k = &out->configs[c];
+        drift__corrected(f, c, y, &k->n_corrected);
+        for (size_t r = 0; r < nr; r++)
+            y[r] = exp(y[r]);   /* NaN stays NaN */
+        stats_summary su;
+        if (k->n == 0 || stats_summarize(y, nr, d->seed + c, &su) != 0)
+            continue;
+        k->median = su.median;
+        k->lo = isfinite(lo[c]) ? fmin(su.ci_lo, lo[c]) : NAN;
+        k->hi = isfinite(hi[c]) ? fmax(su.ci_hi, hi[c]) : NAN;
+    }
+    free(lo);
+    free(hi);
+    free(y);
+    free(pm);
+}
+
+int drift_correct(const drift_desc *d, drift_result *out)
+{
+    memset(out, 0, sizeof *out);
+    if (!d->x || d->n_configs == 0 || d->n_rounds == 0)
+        return DM_ERR_ARG;
+    size_t nc = d->n_configs, nr = d->n_rounds, with = 0;
+    out->configs = dm_xcalloc(nc + 1, sizeof *out->configs);
+    out->round_factor = dm_xcalloc(nr + 1, sizeof *out->round_factor);
+    out->machine_spread = out->raw_noise = out->loo_noise = out->calib_noise = out->calib_spread = NAN;
+    drift__raw(d, out, &with);
+    double *lx = dm_xcalloc(nc * nr + 1, sizeof *lx);
+    for (size_t i = 0; i < nc * nr; i++)
+        lx[i] = isfinite(d->x[i]) && d->x[i] > 0 ? log(d->x[i]) : NAN;
+    drift__fit f;
+    drift__fit_init(&f, lx, nc, nr);
+    out->n_rounds_used = with >= DRIFT_MIN_CONFIGS ? drift__polish(&f) : 0;
+    for (size_t r = 0; r < nr; r++)
+        out->round_factor[r] = out->n_rounds_used ? exp(f.b[r]) : NAN;
+    if (with < DRIFT_MIN_CONFIGS)
+        out->why = "fewer than 3 configurations with samples in the scene: no common mode to measure";
+    else if (out->n_rounds_used < DRIFT_MIN_ROUNDS)
+        out->why = "fewer than 3 rounds with 3 configurations sampled: too few to measure the common mode";
+    if (!out->why) {
+        out->machine_spread = drift__rms(f.b, nr);
+        drift__noise(d, &f, out);
+        drift__point(d, &f, lx, out);
+        out->corrected = 1;
+    }
+    drift__fit_free(&f);
+    free(lx);
+    return 0;
+}
+
+void drift_result_free(drift_result *r)
+{
+    free(r->round_factor);
+    free(r->configs);
+    memset(r, 0, sizeof *r);
+}
