@@ -387,8 +387,11 @@ static void test_html_charts_and_front(void **state)
     assert_true(ol < strstr(t, "<svg") && ol < strstr(t, "id=\"tbl-0\"") && ol < strstr(t, "id=\"environment\""));
     const char *end = strstr(ol, "</table>");
     /* ms ± CI and the cost relative to the fastest; L=2 and L=4 CIs (±10 %)
-     * do not overlap their predecessor's, so nothing is marked tied */
-    assert_non_null(strstr(ol, "<td>tessdisp</td><td>tess_level=4</td><td class=\"n\">4.00</td><td class=\"n\">±10%"));
+     * do not overlap their predecessor's, so nothing is marked tied.  The
+     * default budget is 5 ms (the round value farthest from 1, 2, 4 and 8
+     * ms), so L=4 is the pick and L=2 a plain row */
+    assert_non_null(strstr(ol, "<td>tessdisp</td><td>tess_level=2</td><td class=\"n\">2.00</td><td class=\"n\">±10%"));
+    assert_non_null(strstr(ol, "<tr class=\"pick\"><td>tessdisp <b>← pick</b></td><td>tess_level=4</td>"));
     assert_non_null(strstr(ol, "×4.00</td>"));
     assert_true(!strstr(ol, "tied with") || strstr(ol, "tied with") > end);
     const char *k0 = strstr(ol, "tess_level=1<"), *k1 = strstr(ol, "tess_level=2<");
