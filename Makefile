@@ -19,8 +19,11 @@ deps:
 
 build: deps
 	@cmake -S . -B $(BUILD) -DCMAKE_BUILD_TYPE=RelWithDebInfo > $(BUILD).cmake.log 2>&1 || (cat $(BUILD).cmake.log; exit 1)
-	@# progress lines only: no "Entering directory" from the generated sub-makes
-	@MAKEFLAGS=--no-print-directory cmake --build $(BUILD) -j $(JOBS)
+	@# quiet when nothing failed: the log holds the progress lines, and a
+	@# failed build prints its last 60 lines (the compiler's error is there)
+	@echo "building $(BUILD)/ (log: $(BUILD).build.log)"
+	@MAKEFLAGS=--no-print-directory cmake --build $(BUILD) -j $(JOBS) > $(BUILD).build.log 2>&1 || \
+	  (tail -n 60 $(BUILD).build.log; echo "build failed: the whole log is $(BUILD).build.log"; exit 1)
 
 run: build
 	@./$(BUILD)/dmbench run
@@ -35,4 +38,4 @@ install: build
 	@cmake --install $(BUILD) --prefix $(PREFIX)
 
 clean:
-	rm -rf $(BUILD) $(BUILD).cmake.log
+	rm -rf $(BUILD) $(BUILD).cmake.log $(BUILD).build.log

@@ -13,6 +13,7 @@
 #include <stddef.h>
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 typedef struct diff_args {
     const char *map;           /* -o / --heatmap: the FLIP map */
@@ -22,7 +23,8 @@ typedef struct diff_args {
 
 const cli_option cli_diff_options[] = {
     { .name = "heatmap", .short_name = 'o', .kind = CLI_OPT_STRING, .offset = offsetof(diff_args, map),
-      .value_name = "MAP.png", .help = "write the FLIP error map (fixed scale 0..1, docs/flip.md) to MAP.png" },
+      .value_name = "MAP.png", .help = "write the FLIP error map (fixed scale 0..1, docs/flip.md) to MAP.png "
+      "[default: beside TEST, its name with .flip.png]" },
     { .name = "ppd", .kind = CLI_OPT_DOUBLE, .offset = offsetof(diff_args, ppd), .value_name = "N",
       .def = "67.0206", .min = 1, .max = 600,
       .help = "pixels per degree FLIP assumes (FLIP's: 0.7 m from a 0.7 m wide 3840-pixel monitor)" },
@@ -30,12 +32,41 @@ const cli_option cli_diff_options[] = {
     CLI_OPT_END
 };
 
+/* Bins of the FLIP histogram: [0, 0.1), [0.1, 0.2), ... [0.9, 1]. */
+#define DIFF__BINS 10
+
 typedef struct diff__result {
     img_metrics m;
     double ssim, silhouette;
+    int opaque;                /* both images opaque everywhere: no silhouette */
     flip_stats flip;
+    size_t hist[DIFF__BINS];   /* FLIP values per bin */
+    size_t n;                  /* pixels */
     long nonfinite_ref, nonfinite_test;
 } diff__result;
+
+/* 1 when every alpha of im is 1: no alpha channel (img_load gives 1) or a
+ * fully opaque one, so its coverage is the whole image. */
+static int diff__opaque(const img *im)
+{
+    for (size_t i = 3; i < (size_t)im->w * im->h * 4; i += 4)
+        if (im->px[i] != 1.0f)
+            return 0;
+    return 1;
+}
+
+/* Counts the n FLIP values of map into DIFF__BINS bins of width 0.1 (1
+ * itself in the last). */
+static void diff__histogram(const float *map, size_t n, size_t *hist)
+{
+    for (size_t b = 0; b < DIFF__BINS; b++)
+        hist[b] = 0;
+    for (size_t i = 0; i < n; i++) {
+        double v = map[i] < 0 ? 0 : map[i];
+        size_t b = (size_t)(v * DIFF__BINS);
+        hist[b < DIFF__BINS ? b : DIFF__BINS - 1]++;
+    }
+}
 
 /* Replaces NaN/Inf values of im by 0 (alpha by 1) and returns how many
  * pixels had one: they are reported, not carried into every metric. */
@@ -62,14 +93,21 @@ static int diff__compute(img *ref, img *test, double ppd, float *map, diff__resu
     if (rc == 0) {
         quality_coverage(ref, ma);
         quality_coverage(test, mb);
-        r->silhouette = quality_silhouette_error(ma, mb, n);
+        r->opaque = diff__opaque(ref) && diff__opaque(test);
+        r->silhouette = r->opaque ? NAN : quality_silhouette_error(ma, mb, n);
+        r->n = n;
+        diff__histogram(map, n, r->hist);
     }
     free(ma);
     free(mb);
     return rc;
 }
 
-static void diff__print_json(const char *a, const char *b, const img *im, double ppd, const diff__result *r)
+#define DIFF__OPAQUE_WHY "both images are opaque everywhere (no alpha channel, or alpha 1): " \
+                         "coverage is the whole image in both, so 1 - IoU would be 0 by construction"
+
+static void diff__print_json(const char *a, const char *b, const img *im, double ppd,
+                             const diff__result *r, const char *map_path)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddStringToObject(o, "reference", a);
@@ -82,13 +120,20 @@ static void diff__print_json(const char *a, const char *b, const img *im, double
     cJSON_AddNumberToObject(o, "SSIM", r->ssim);
     cJSON_AddNumberToObject(o, "MaxError", r->m.max_error);
     cJSON_AddNumberToObject(o, "PctOverThreshold", r->m.pct_over);
-    cJSON_AddNumberToObject(o, "SilhouetteError", r->silhouette);
+    if (r->opaque)
+        cJSON_AddStringToObject(o, "SilhouetteErrorLeftOut", DIFF__OPAQUE_WHY);
+    else
+        cJSON_AddNumberToObject(o, "SilhouetteError", r->silhouette);
     cJSON_AddNumberToObject(o, "FLIP", r->flip.mean);
     cJSON_AddNumberToObject(o, "FLIPQ1", r->flip.q1);
     cJSON_AddNumberToObject(o, "FLIPMedian", r->flip.median);
     cJSON_AddNumberToObject(o, "FLIPQ3", r->flip.q3);
     cJSON_AddNumberToObject(o, "FLIPMax", r->flip.max);
     cJSON_AddNumberToObject(o, "FLIPPixelsPerDegree", ppd);
+    cJSON *h = cJSON_AddArrayToObject(o, "FLIPHistogram");   /* pixels per 0.1-wide bin */
+    for (size_t b = 0; b < DIFF__BINS; b++)
+        cJSON_AddItemToArray(h, cJSON_CreateNumber((double)r->hist[b]));
+    cJSON_AddStringToObject(o, "FLIPMap", map_path ? map_path : "");
     cJSON_AddNumberToObject(o, "NonFinitePixelsReference", (double)r->nonfinite_ref);
     cJSON_AddNumberToObject(o, "NonFinitePixels", (double)r->nonfinite_test);
     char *text = cJSON_Print(o);
@@ -97,7 +142,8 @@ static void diff__print_json(const char *a, const char *b, const img *im, double
     cJSON_Delete(o);
 }
 
-static void diff__print_text(const char *a, const char *b, const img *im, double ppd, const diff__result *r)
+static void diff__print_text(const char *a, const char *b, const img *im, double ppd,
+                             const diff__result *r, const char *map_path)
 {
     char *ba = NULL, *bb = NULL;   /* paths as typed: control bytes shown as '?' */
     printf("%s vs %s (%dx%d)\n", dm_term_safe(a, &ba), dm_term_safe(b, &bb), im->w, im->h);
@@ -110,9 +156,33 @@ static void diff__print_text(const char *a, const char *b, const img *im, double
         printf("  PSNR        %.2f dB\n", r->m.psnr);
     printf("  SSIM        %.6f\n", r->ssim);
     printf("  MaxError    %.6g  (%.3g %% of pixels over 0.05)\n", r->m.max_error, r->m.pct_over);
-    printf("  silhouette  %.6g  (1 - IoU of alpha coverage)\n", r->silhouette);
-    printf("  FLIP        %.6f mean, %.6f max; weighted quartiles %.4f %.4f %.4f; at %.4g "
-           "pixels per degree\n", r->flip.mean, r->flip.max, r->flip.q1, r->flip.median, r->flip.q3, ppd);
+    if (r->opaque)
+        printf("  silhouette  left out: %s\n", DIFF__OPAQUE_WHY);
+    else
+        printf("  silhouette  %.6g  (1 - IoU of alpha coverage)\n", r->silhouette);
+    printf("  FLIP        mean %.6f, max %.6f, at %.4g pixels per degree\n", r->flip.mean,
+           r->flip.max, ppd);
+    printf("              weighted quartiles (by error, as FLIP pools them): Q1 %.4f, median "
+           "%.4f, Q3 %.4f\n", r->flip.q1, r->flip.median, r->flip.q3);
+    printf("  FLIP histogram (pixels per bin of 0.1; # = share of the pixels, 40 columns = all):\n");
+    for (size_t b = 0; b < DIFF__BINS; b++) {
+        double share = r->n ? (double)r->hist[b] / (double)r->n : 0;
+        int bar = (int)lround(share * 40);
+        printf("    [%.1f, %.1f%s %9zu %6.2f %%  %.*s\n", (double)b / DIFF__BINS,
+               (double)(b + 1) / DIFF__BINS, b + 1 == DIFF__BINS ? "]" : ")", r->hist[b],
+               share * 100, bar, "########################################");
+    }
+    if (map_path)
+        printf("  map         %s (FLIP per pixel, fixed scale 0..1, docs/flip.md)\n", map_path);
+}
+
+/* The map's path when -o is not given: TEST's path with its extension
+ * replaced by ".flip.png" ("out/b.pfm" -> "out/b.flip.png"); caller frees. */
+static char *diff__default_map(const char *test)
+{
+    const char *slash = strrchr(test, '/'), *dot = strrchr(test, '.');
+    size_t stem = dot && (!slash || dot > slash + 1) ? (size_t)(dot - test) : strlen(test);
+    return dm_xasprintf("%.*s.flip.png", (int)stem, test);
 }
 
 /* Loads path into im; prints the reason and returns the exit code when it
@@ -168,13 +238,23 @@ int cli_diff(const cli_command *self, int argc, char **argv)
         free(bb);
     }
     char err[512];
-    int e = rc == 0 && a.map ? flip_map_save(map, ref.w, ref.h, a.map, err, sizeof err) : 0;
-    if (e)
+    char *path = rc == 0 ? (a.map ? dm_xstrdup(a.map) : diff__default_map(argv[1])) : NULL;
+    int e = path ? flip_map_save(map, ref.w, ref.h, path, err, sizeof err) : 0;
+    if (e && a.map) {
         rc = cli_error(e, "diff: cannot write the map %s", err);
+    } else if (e) {   /* the default place refused it: the figures still stand */
+        char *bp = NULL;
+        fprintf(stderr, "dmbench: warning: diff: the FLIP map was not written (%s); name a "
+                        "place with -o MAP.png\n", dm_term_safe(err, &bp));
+        free(bp);
+        free(path);
+        path = NULL;
+    }
     if (rc == 0 && a.json)
-        diff__print_json(argv[0], argv[1], &ref, a.ppd, &r);
+        diff__print_json(argv[0], argv[1], &ref, a.ppd, &r, path);
     else if (rc == 0)
-        diff__print_text(argv[0], argv[1], &ref, a.ppd, &r);
+        diff__print_text(argv[0], argv[1], &ref, a.ppd, &r, path);
+    free(path);
     free(map);
     img_free(&ref);
     img_free(&test);

@@ -124,11 +124,35 @@ static void compare__machine_text(const compare_result *r, dm_str *s)
     compare__precision_text("NEW", &m->new_, s);
 }
 
+/* The text output's lines are at most this many columns (issue 46: lines
+ * of up to 374 characters). */
+#define COMPARE__COLUMNS 100
+
+/* Writes each line of text to f word-wrapped to COMPARE__COLUMNS after
+ * first (a fixed-width prefix kept as it is), the continuations indented
+ * by four columns (a script joins them back on a newline and four spaces). */
+static void compare__put(FILE *f, const char *first, const char *text)
+{
+    dm_str s = {0};
+    while (*text) {
+        size_t len = strcspn(text, "\n");
+        char *line = dm_xasprintf("%.*s", (int)len, text);
+        dm_wrap(line, first, "    ", COMPARE__COLUMNS, &s);
+        free(line);
+        first = "";
+        text += len + (text[len] == '\n');
+    }
+    fputs(dm_str_get(&s), f);
+    dm_str_free(&s);
+}
+
 static void compare__text_list(FILE *f, const char *title, char **list, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
         char *b;
-        fprintf(f, "%s: %s\n", title, dm_term_safe(list[i], &b));
+        char *line = dm_xasprintf("%s: %s", title, dm_term_safe(list[i], &b));
+        compare__put(f, "", line);
+        free(line);
         free(b);
     }
 }
@@ -136,12 +160,15 @@ static void compare__text_list(FILE *f, const char *title, char **list, size_t n
 void compare_write_text(const compare_result *r, FILE *f)
 {
     char *b1, *b2, *b3;
-    fprintf(f, "compare BASE %s -> NEW %s (%s; instructions threshold %.2g%%, time threshold %.1f%%, alpha %.3g%s)\n",
-            dm_term_safe(r->base_id ? r->base_id : "?", &b1),
-            dm_term_safe(r->new_id ? r->new_id : "?", &b2),
-            dm_term_safe(r->sweep ? r->sweep : "?", &b3),
-            r->desc.threshold * 100, r->desc.time_threshold * 100, r->desc.alpha,
-            r->desc.counters_only ? ", counters only" : "");
+    char *head = dm_xasprintf("compare BASE %s -> NEW %s (%s; instructions threshold %.2g%%, time "
+                              "threshold %.1f%%, alpha %.3g%s)",
+                              dm_term_safe(r->base_id ? r->base_id : "?", &b1),
+                              dm_term_safe(r->new_id ? r->new_id : "?", &b2),
+                              dm_term_safe(r->sweep ? r->sweep : "?", &b3),
+                              r->desc.threshold * 100, r->desc.time_threshold * 100, r->desc.alpha,
+                              r->desc.counters_only ? ", counters only" : "");
+    compare__put(f, "", head);
+    free(head);
     free(b1);
     free(b2);
     free(b3);
@@ -151,9 +178,13 @@ void compare_write_text(const compare_result *r, FILE *f)
         const compare_item *it = &r->items[i];
         compare__cells cell = compare__item_cells(it);
         char *b1, *b2;
-        fprintf(f, "%-12s  %-26s  %-8s  %-16s  %s%s%s\n", compare_verdict_name(it->verdict),
-                cell.ratio, cell.q, it->key, dm_term_safe(it->label, &b1), it->note ? " — " : "",
-                it->note ? dm_term_safe(it->note, &b2) : (b2 = NULL, ""));
+        char *cols = dm_xasprintf("%-12s  %-26s  %-8s  %-16s  ", compare_verdict_name(it->verdict),
+                                  cell.ratio, cell.q, it->key);
+        char *rest = dm_xasprintf("%s%s%s", dm_term_safe(it->label, &b1), it->note ? " — " : "",
+                                  it->note ? dm_term_safe(it->note, &b2) : (b2 = NULL, ""));
+        compare__put(f, cols, rest);
+        free(cols);
+        free(rest);
         free(b1);
         free(b2);
     }
@@ -164,7 +195,7 @@ void compare_write_text(const compare_result *r, FILE *f)
     dm_str s = {0};
     compare__machine_text(r, &s);
     compare__summary(r, &s);
-    fprintf(f, "%s\n", dm_str_get(&s));
+    compare__put(f, "", dm_str_get(&s));
     dm_str_free(&s);
 }
 

@@ -4,6 +4,7 @@
 #include "reports/report_internal.h"
 
 #include "core/dm_error.h"
+#include "core/dm_table.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -372,6 +373,34 @@ void report_answer_scene(const dm_run_result *run, const char *scene, report_ans
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "</ul>\n" : "\n");
 }
 
+/* Terminal lines are at most this many columns (issue 46: answers of
+ * 305-322 characters). */
+#define ANSWER__COLUMNS 100
+
+/* Appends text to out with each of its lines word-wrapped to
+ * ANSWER__COLUMNS; a wrapped line goes on four columns deeper than it
+ * started (deeper than the knee's two), so a scene's answer reads as one
+ * paragraph and a script can join it back. */
+static void answer__wrap(const char *text, dm_str *out)
+{
+    while (*text) {
+        const char *nl = strchr(text, '\n');
+        size_t len = nl ? (size_t)(nl - text) : strlen(text), lead = 0;
+        while (lead < len && text[lead] == ' ')
+            lead++;
+        char *line = dm_xasprintf("%.*s", (int)(len - lead), text + lead);
+        char *first = dm_xasprintf("%*s", (int)lead, ""), *indent = dm_xasprintf("%*s", (int)lead + 4, "");
+        if (*line)
+            dm_wrap(line, first, indent, ANSWER__COLUMNS, out);
+        else
+            dm_str_cat(out, "\n");
+        free(line);
+        free(first);
+        free(indent);
+        text += len + (nl != NULL);
+    }
+}
+
 void report_answer_terminal(const dm_run_result *run, dm_str *out)
 {
     const char **scenes;
@@ -390,6 +419,8 @@ void report_answer_terminal(const dm_run_result *run, dm_str *out)
         if (why) {
             w_text(&w, why);
             w_text(&w, ".\n");
+            answer__wrap(dm_str_get(&one), out);
+            dm_str_free(&one);
             report_counter_table(run, scenes[i], REPORT_ANSWER_TEXT, &one);
             dm_str_cat(out, dm_str_get(&one));
             dm_str_free(&one);
@@ -399,8 +430,7 @@ void report_answer_terminal(const dm_run_result *run, dm_str *out)
         w_pick(&w, run, &r);
         w_text(&w, "\n  ");
         w_knee(&w, run, &r);
-        dm_str_cat(out, dm_str_get(&one));
-        dm_str_cat(out, "\n");
+        answer__wrap(dm_str_get(&one), out);
         dm_str_free(&one);
     }
     free(scenes);

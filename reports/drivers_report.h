@@ -13,6 +13,7 @@
 #define REPORTS_DRIVERS_REPORT_H
 
 #include <stddef.h>
+#include <stdint.h>
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 
@@ -26,6 +27,32 @@ typedef struct drivers_side {
  * counted as tau-b does); NaN with fewer than 2 such pairs or when either
  * side is constant. */
 double drivers_kendall_tau(const double *x, const double *y, size_t n);
+
+/* Resamplings of the bootstrap interval of tau in the report. */
+#define DRIVERS_TAU_REPS 2000
+
+/* Kendall's tau-b of the finite pairs of x and y (drivers_kendall_tau) and
+ * its 95 % percentile bootstrap interval: the pairs resampled with
+ * replacement reps times from seed (the same seed, the same interval),
+ * *lo and *hi the 2.5th and 97.5th percentiles of the resampled taus that
+ * are defined.  lo and hi are NaN when tau is, with fewer than 3 finite
+ * pairs, or when fewer than half of the resamplings give a tau. */
+double drivers_kendall_tau_ci(const double *x, const double *y, size_t n, size_t reps,
+                              uint64_t seed, double *lo, double *hi);
+
+/* Below this the calibration's movement counts as noise in the drift
+ * check, however still each run was. */
+#define DRIVERS_DRIFT_FLOOR 0.05
+
+/* The drift check between the drivers' runs, from the CPU calibration
+ * kernel each run times at its start and its end (start[k], end[k], ns; a
+ * pure CPU workload, so any driver's run measures the same machine).  *moved
+ * gets the largest run mean over the smallest, minus 1; *noise the largest
+ * relative move within a run (|end - start| / mean), at least
+ * DRIVERS_DRIFT_FLOOR.  Returns 1 when the machine's speed moved between
+ * runs more than within one (moved > noise), 0 when not, -1 (moved and noise
+ * NaN) with fewer than 2 runs that have both figures. */
+int drivers_drift(const double *start, const double *end, size_t n, double *moved, double *noise);
 
 /* Writes DIR/drivers.md and DIR/drivers.json.  0, or DM_ERR_IO /
  * DM_ERR_DISK (the disk refused the write) with the path and why in err. */

@@ -70,38 +70,85 @@ static unsigned eligible_mask(const recommend_point *p, size_t n, int *lit_only)
     return ~0u;
 }
 
-/* The round value (1, 2, 5 × 10^k) nearest to v on a log scale. */
-static double round_125(double v)
+/* The smallest round value (1, 2, 5 × 10^k) at or above v. */
+static double recommend__round_up(double v)
 {
-    static const double steps[] = {1, 2, 5, 10};
-    double decade = pow(10, floor(log10(v))), best = decade, dist = INFINITY;
-    for (size_t i = 0; i < sizeof steps / sizeof *steps; i++) {
-        double d = fabs(log(v / (steps[i] * decade)));
-        if (d < dist)
-            dist = d, best = steps[i] * decade;
-    }
-    return best;
+    double decade = pow(10, floor(log10(v))), m = v / decade;
+    if (m > 5 * (1 + 1e-12))
+        return 10 * decade;
+    return (m <= 1 * (1 + 1e-12) ? 1 : m <= 2 * (1 + 1e-12) ? 2 : 5) * decade;
 }
 
-/* The next round value above v. */
-static double next_125(double v)
+/* The next round value above the round value r. */
+static double recommend__next_round(double r)
 {
-    double decade = pow(10, floor(log10(v) + 1e-9)), m = v / decade;
-    return (m < 1.5 ? 2 : m < 3.5 ? 5 : 10) * decade;
+    return recommend__round_up(r * 1.5);
+}
+
+/* The eligible times of a scene: the points' median times, usable, of the
+ * families in mask, positive. */
+typedef struct recommend__times {
+    const recommend_point *p;
+    size_t n;
+    unsigned mask;
+} recommend__times;
+
+static int recommend__counts(const recommend__times *t, size_t i)
+{
+    const recommend_point *q = &t->p[i];
+    return usable(q) && (t->mask & 1u << q->family) && q->time > 0;
+}
+
+/* Log distance from c to the nearest eligible time, and in *under how many
+ * eligible times are at or under c. */
+static double recommend__margin(const recommend__times *t, double c, size_t *under)
+{
+    double m = INFINITY;
+    *under = 0;
+    for (size_t i = 0; i < t->n; i++)
+        if (recommend__counts(t, i)) {
+            m = fmin(m, fabs(log(t->p[i].time / c)));
+            *under += t->p[i].time <= c;
+        }
+    return m;
+}
+
+/* The default budget from the eligible times, fastest lo, slowest hi, count
+ * k (recommend.h states the rule): of the round values between lo and hi,
+ * the one that stands farthest (log scale) from every time, so that noise
+ * moves no time across it; equal margins go to the value whose count under
+ * it is nearest half, then to the lower.  Admitting every time competes with
+ * the margin log RECOMMEND_NOISE and wins when no value between stands
+ * farther than that (or there is none between). */
+static double recommend__budget_of(const recommend__times *t, double lo, double hi, size_t k)
+{
+    double best = recommend__round_up(hi * RECOMMEND_NOISE), best_m = log(RECOMMEND_NOISE);
+    double best_split = INFINITY, half = (double)k / 2;
+    for (double c = recommend__round_up(lo); c < hi; c = recommend__next_round(c)) {
+        size_t under;
+        double m = recommend__margin(t, c, &under);
+        double split = fabs((double)under - half);
+        if (m > best_m + 1e-9 || (fabs(m - best_m) <= 1e-9 && split < best_split)) {
+            best = c;
+            best_m = m;
+            best_split = split;
+        }
+    }
+    return best;
 }
 
 double recommend_default_budget(const recommend_point *p, size_t n)
 {
     int lit_only;
-    unsigned mask = eligible_mask(p, n, &lit_only);
+    recommend__times t = {p, n, eligible_mask(p, n, &lit_only)};
     double lo = INFINITY, hi = 0;
+    size_t k = 0;
     for (size_t i = 0; i < n; i++)
-        if (usable(&p[i]) && (mask & 1u << p[i].family) && p[i].time > 0)
+        if (recommend__counts(&t, i)) {
             lo = fmin(lo, p[i].time), hi = fmax(hi, p[i].time);
-    if (!(hi > 0))
-        return 0;
-    double b = round_125(sqrt(lo * hi));
-    return b < lo ? next_125(lo) : b;
+            k++;
+        }
+    return k > 0 ? recommend__budget_of(&t, lo, hi, k) : 0;
 }
 
 static int ci_known(const recommend_point *p)

@@ -75,9 +75,25 @@ typedef struct recommend_result {
  * than epsilon.  Returns how many. */
 size_t recommend_front(const recommend_point *p, size_t n, double epsilon, size_t *front);
 
-/* A round budget (1, 2 or 5 × 10^k ns) nearest, on a log scale, to the middle
- * of the eligible points' times, and never below the fastest of them; 0 when
- * there is no finite time. */
+/* The noise the default budget is built to stand still under: a factor
+ * 1.1 (±10 %) on any median. */
+#define RECOMMEND_NOISE 1.1
+/* The default budget: a round value (1, 2 or 5 × 10^k ns) chosen so that
+ * the noise of a run does not move it.  Of the round values between the
+ * fastest and the slowest eligible time (the lit points, or all when none is
+ * lit), the one whose log distance to the nearest time (its margin) is
+ * largest: it sits in the widest gap of the scene's times.  Equal margins go
+ * to the value whose count of times at or under it is nearest half, then to
+ * the lower.  When no value between has a margin above log RECOMMEND_NOISE
+ * (or there is none), the budget admits every point: the round value at or
+ * above the slowest × RECOMMEND_NOISE.
+ * Why it holds still: a change of each median by a factor within
+ * 1/RECOMMEND_NOISE .. RECOMMEND_NOISE moves each margin by at most
+ * log RECOMMEND_NOISE, so the budget is unchanged whenever the chosen margin
+ * beats every other candidate's (the admitting-all one's is fixed) by more
+ * than twice that.  No rule that reads the times can hold for every scene:
+ * scale every time up and the budget must step somewhere.
+ * 0 when there is no finite positive time. */
 double recommend_default_budget(const recommend_point *p, size_t n);
 
 /* Fills *out for the n points.  desc may be NULL (defaults).  Never fails:

@@ -193,3 +193,13 @@ double protocol_predict_s(const protocol_desc *d, double frame_ns)
         sampling = d->max_seconds;
     return sampling + frame_ns * (d->warmup_frames + 12.0 * d->frames_per_sample + 20) / 1e9;
 }
+
+double protocol_eta_s(double prior_s, size_t done, double elapsed_s, size_t left, size_t total)
+{
+    if (done == 0 || left == 0 || (double)done < 0.1 * (double)total ||
+        !(elapsed_s >= PROTOCOL_ETA_MIN_S))
+        return NAN;
+    double k = prior_s > 0 && isfinite(prior_s) ? PROTOCOL_ETA_PRIOR : 0;
+    double rate = (elapsed_s + k * (k > 0 ? prior_s : 0)) / ((double)done + k);
+    return rate * (double)left;
+}

@@ -139,4 +139,22 @@ size_t protocol_resume_limit(const protocol_desc *d);
  * the sampling capped at max_seconds, plus the image renders. */
 double protocol_predict_s(const protocol_desc *d, double frame_ns);
 
+/* ---- progress ------------------------------------------------------------------ */
+
+/* Configurations' worth of weight the prior carries in the ETA's rate. */
+#define PROTOCOL_ETA_PRIOR 2.0
+/* Seconds of measuring before an ETA is printed. */
+#define PROTOCOL_ETA_MIN_S 2.0
+
+/* The seconds left that the progress line prints.  done configurations
+ * took elapsed_s (from the first measuring process's start); left are
+ * still to do, of total; prior_s is the plan's cost of one
+ * configuration (protocol_predict_s), 0 when unknown.  The rate is
+ * (elapsed_s + PROTOCOL_ETA_PRIOR × prior_s) / (done + PROTOCOL_ETA_PRIOR):
+ * the measured rate, pulled toward the prior while little is done.  Returns
+ * NaN, "print nothing", until it is credible: no configuration done, fewer
+ * than a tenth of total done, under PROTOCOL_ETA_MIN_S measured, or nothing
+ * left. */
+double protocol_eta_s(double prior_s, size_t done, double elapsed_s, size_t left, size_t total);
+
 #endif

@@ -4,6 +4,7 @@
 #include "runner.h"
 #include "run/runner_state.h"
 #include "core/dm_error.h"
+#include "core/dm_table.h"
 #include "run/calibrate.h"
 #include "run/env.h"
 #include "run/fitting.h"
@@ -430,6 +431,17 @@ int runner_parse_seed(const char *text, uint64_t *seed, dm_str *err)
     return 0;
 }
 
+/* A line for the user on stderr, word-wrapped to RUNNER__COLUMNS (the
+ * continuation indented four columns, as the answer). */
+#define RUNNER__COLUMNS 100
+static void runner__say(const char *text)
+{
+    dm_str s = {0};
+    dm_wrap(text, "", "    ", RUNNER__COLUMNS, &s);
+    fputs(dm_str_get(&s), stderr);
+    dm_str_free(&s);
+}
+
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err)
 {
     runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns(), .lock_fd = -1 };
@@ -461,14 +473,18 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
     if (rc == 0) {
         r.total = r.p.n_configs;
         char *name_buf = NULL;
-        if (!o->quiet)
-            fprintf(stderr, "dmbench: %s: %zu combinations -> %zu configurations "
-                    "(%zu excluded by the sweep, %zu folded: axes the technique does not read), "
-                    "%zu left out; run %s\n",
-                    dm_term_safe(s->name, &name_buf), r.p.n_combinations,
-                    r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
-                    r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
-                    r.p.n_left_out, r.run_dir);
+        if (!o->quiet) {
+            dm_str line = {0};
+            dm_str_printf(&line, "dmbench: %s: %zu combinations -> %zu configurations "
+                          "(%zu excluded by the sweep, %zu folded: axes the technique does not "
+                          "read), %zu left out; run %s",
+                          dm_term_safe(s->name, &name_buf), r.p.n_combinations,
+                          r.p.n_configs + r.p.n_left_out, r.p.n_excluded,
+                          r.p.n_combinations - r.p.n_excluded - r.p.n_configs - r.p.n_left_out,
+                          r.p.n_left_out, r.run_dir);
+            runner__say(dm_str_get(&line));
+            dm_str_free(&line);
+        }
         free(name_buf);
         int changed = runner_child_instructions(&r, err);
         rc = changed ? changed : runner_child_scenes(&r);
@@ -483,10 +499,15 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
                           dm_str_get(&r.stop), runner__committed(&r));
         rc = rc ? rc : runner__finish(&r, err);
         double wall = (double)(dm_now_ns() - r.t_start) / 1e9, meas = (double)r.measured_ns / 1e9;
-        if (!o->quiet)
-            fprintf(stderr, "dmbench: %zu configurations (%zu failed) in %.1f s; %.1f s in measured "
-                    "frames, %.0f%% of the time outside them (setup, warm-up, statistics, images)\n",
-                    r.done, r.failed, wall, meas, wall > 0 ? 100 * (1 - meas / wall) : 0);
+        if (!o->quiet) {
+            dm_str line = {0};
+            dm_str_printf(&line, "dmbench: %zu configurations (%zu failed) in %.1f s; %.1f s in "
+                          "measured frames, %.0f%% of the time outside them (setup, warm-up, "
+                          "statistics, images)", r.done, r.failed, wall, meas,
+                          wall > 0 ? 100 * (1 - meas / wall) : 0);
+            runner__say(dm_str_get(&line));
+            dm_str_free(&line);
+        }
     }
     if (rc == 0 && run_dir)
         *run_dir = dm_xstrdup(r.run_dir);

@@ -10,6 +10,7 @@
 #include "run/inputs.h"
 #include "run/measure.h"
 #include "run/probe.h"
+#include "run/protocol.h"
 #include "run/trends.h"
 #include "techniques/axes.h"
 #include "techniques/technique.h"
@@ -158,18 +159,25 @@ static void runner_child__label(const runner *r, const plan_config *c, dm_str *o
     }
 }
 
-/* "  ETA 42s" from the rate of the finished bursts (a scene's configurations
- * finish together after its rounds), so the estimate never extrapolates
- * from the first, slowest moments; "" until a burst has finished. */
+/* "  ETA 42s" from the measured progress (run/protocol.h: protocol_eta_s).
+ * A scene's configurations finish together after its rounds, so when its
+ * first line comes the whole scene is done: the estimate counts the
+ * configurations up to the scene's end as done in the time from the first
+ * measuring process's start (the probe and the Instructions pass are not
+ * progress), and the ones after it as left; "" until it is credible, and
+ * on the last scene, where nothing is left. */
 static void runner_child__eta(runner *r, char *buf, size_t len)
 {
-    int64_t now = dm_now_ns();
-    if (r->done > 1 && now - r->t_last > 500000000)   /* a new burst: the previous one ended at t_last */
-        r->eta_done = r->done - 1, r->eta_el = (double)(r->t_last - r->t_start) / 1e9;
+    int64_t now = dm_now_ns(), from = r->t_measure ? r->t_measure : r->t_start;
+    size_t done = r->scene_end > r->done ? r->scene_end : r->done;
     r->t_last = now;
     buf[0] = 0;
-    if (r->eta_done && r->done < r->total)
-        snprintf(buf, len, "  ETA %.0fs", r->eta_el / (double)r->eta_done * (double)(r->total - r->done));
+    protocol_desc d;
+    protocol_desc_from_measure(&d, &r->s->measure, 0);
+    double left = protocol_eta_s(protocol_predict_s(&d, 0), done, (double)(now - from) / 1e9,
+                                 r->total > done ? r->total - done : 0, r->total);
+    if (isfinite(left))
+        snprintf(buf, len, "  ETA %.0fs", left);
 }
 
 static void runner_child__progress(runner *r, const plan_config *c, const char *status,
@@ -545,6 +553,7 @@ int runner_child_scenes(runner *r)
     int *taken = dm_xcalloc(n + 1, sizeof *taken);
     plan_config *group = dm_xcalloc(n + 1, sizeof *group);
     int rc = 0;
+    r->t_measure = r->t_last = dm_now_ns();
     for (size_t i = 0; rc == 0 && i < n; i++) {
         if (taken[i])
             continue;
@@ -554,6 +563,7 @@ int runner_child_scenes(runner *r)
                 taken[j] = 1;
                 group[ng++] = cs[j];
             }
+        r->scene_end = r->done + ng;
         rc = runner_child__scene(r, group, ng);
     }
     free(group);

@@ -38,9 +38,9 @@ typedef struct runner {
     size_t n_exts;
     size_t done, total, failed;
     int64_t t_start;
+    int64_t t_measure;         /* the first measuring process's start (ns); 0 before */
     int64_t t_last;            /* the last progress line (ns) */
-    size_t eta_done;           /* configurations done at the end of the last burst, */
-    double eta_el;             /* and the seconds it took: the ETA's rate */
+    size_t scene_end;          /* configurations done once the scene being measured is */
     int64_t measured_ns;       /* time inside timed samples, all configurations */
     int tty;
     char *instr_why;           /* why Instructions cannot be counted here; NULL = it can */

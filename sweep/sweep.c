@@ -659,7 +659,8 @@ static const sweep__key sweep__keys[] = {
            "the error the report's Pareto front uses", "psnr"),
     P__REAL("quality", "budget_ms", budget_ms, 0.001, 1e6, 0,
             "the frame budget (ms) the report's recommendation picks under; 0 or absent: per "
-            "scene, a round number midway between its fastest and slowest lit times", "16.7"),
+            "scene, the round number (1, 2, 5 × 10ᵏ ms) farthest from its lit times, in the widest "
+            "gap between its fastest and slowest (docs/reports.md)", "16.7"),
     P__REAL("quality", "flip_ppd", flip_ppd, 1, 600, 67.0206,
             "pixels per degree of visual angle FLIP assumes (docs/flip.md); the default is "
             "FLIP's own, a 0.7 m wide 3840-pixel monitor seen from 0.7 m", "30"),

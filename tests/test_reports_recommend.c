@@ -204,24 +204,100 @@ static void test_knee(void **state)
     assert_int_equal(r.knee, RECOMMEND_NONE);
 }
 
-/* The default budget: the round number (1-2-5) nearest the geometric middle
- * of the eligible times, never below the fastest. */
+/* The default budget: of the round values (1-2-5) between the fastest and
+ * the slowest eligible time, the one farthest (log scale) from every time. */
 static void test_default_budget(void **state)
 {
     (void)state;
-    /* √(2.3 × 206) = 21.8 ms → 20 ms; the unlit 0.1 ms point is not counted */
+    /* 2.3 and 206 ms (the unlit 0.1 ms point is not counted): candidates 5,
+     * 10, 20, 50, 100, 200 ms; 20 ms stands 8.7× above 2.3 and 10.3× below
+     * 206, the largest margin */
     recommend_point p[] = {pt(2.3, 0.01, 0.2, F), pt(206, 0.01, 0.1, T), pt(0.1, 0.01, 0.5, U)};
     assert_true(fabs(recommend_default_budget(p, 3) - 20 * MS) < 1);
     recommend_result r;
     recommend_scene(p, 3, NULL, &r);
     assert_int_equal(r.budget_default, 1);
     assert_int_equal(r.pick, 0);
-    /* one point at 2.3 ms: nearest round value 2 ms is below it, so 5 ms */
+    /* one point at 2.3 ms: no round value between, so all are admitted: the
+     * round value at or above 2.3 × 1.1 = 2.53 ms is 5 ms */
     assert_true(fabs(recommend_default_budget(p, 1) - 5 * MS) < 1);
-    /* √(30 × 80) = 49 ms → 50 ms */
+    /* 30 and 80 ms: 50 ms is the one candidate (margin log 1.6) */
     recommend_point q[] = {pt(30, 0.01, 0.2, F), pt(80, 0.01, 0.1, F)};
     assert_true(fabs(recommend_default_budget(q, 2) - 50 * MS) < 1);
     assert_true(recommend_default_budget(q, 0) == 0);
+    /* every candidate within 10 % of a time: 0.5 (0.54 is 1.08× it), 1 (0.95,
+     * 1.05), 2 (1.9, 2.1): all admitted, round up of 2.1 × 1.1 = 2.31 → 5 ms */
+    recommend_point a[] = {pt(0.45, 0.01, 0.6, F), pt(0.54, 0.01, 0.5, F), pt(0.95, 0.01, 0.4, F),
+                           pt(1.05, 0.01, 0.3, F), pt(1.9, 0.01, 0.2, F), pt(2.1, 0.01, 0.1, F)};
+    assert_true(fabs(recommend_default_budget(a, 6) - 5 * MS) < 1);
+    /* equal margins (each a factor 2 exactly): 2.5, 10, 40 ms give 5 and 20
+     * ms with 1 and 2 times under them, both 0.5 from half of 3: the lower,
+     * 5 ms; with an 80 ms point half is 2 and 20 ms splits it exactly */
+    recommend_point e[] = {pt(2.5, 0.01, 0.3, F), pt(10, 0.01, 0.2, F), pt(40, 0.01, 0.1, F),
+                           pt(80, 0.01, 0.05, F)};
+    assert_true(fabs(recommend_default_budget(e, 3) - 5 * MS) < 1);
+    assert_true(fabs(recommend_default_budget(e, 4) - 20 * MS) < 1);
+}
+
+/* A fixed linear congruential stream in [0, 1), so the test is repeatable. */
+static double next_unit(uint64_t *s)
+{
+    *s = *s * 6364136223846793005u + 1442695040888963407u;
+    return (double)(*s >> 11) / 9007199254740992.0;
+}
+
+/* The budget of the n lit times (ms) t, each times its factor f. */
+static double budget_scaled(const double *t, const double *f, size_t n)
+{
+    recommend_point p[16];
+    for (size_t i = 0; i < n; i++)
+        p[i] = pt(t[i] * f[i], 0.1, 0.1 * (double)i, F);
+    return recommend_default_budget(p, n);
+}
+
+/* The budget of t under every corner of ±10 % (each median ×0.9 or ×1.1)
+ * and under 2000 random factors in [0.9, 1.1] must be want (ms). */
+static void assert_budget_holds(const double *t, size_t n, double want)
+{
+    double f[16];
+    for (size_t i = 0; i < n; i++)
+        f[i] = 1;
+    assert_true(fabs(budget_scaled(t, f, n) - want * MS) < 1);
+    for (unsigned corner = 0; corner < 1u << n; corner++) {
+        for (size_t i = 0; i < n; i++)
+            f[i] = corner >> i & 1 ? 1.1 : 0.9;
+        assert_true(fabs(budget_scaled(t, f, n) - want * MS) < 1);
+    }
+    uint64_t seed = 46;
+    for (int k = 0; k < 2000; k++) {
+        for (size_t i = 0; i < n; i++)
+            f[i] = 0.9 + 0.2 * next_unit(&seed);
+        assert_true(fabs(budget_scaled(t, f, n) - want * MS) < 1);
+    }
+}
+
+/* Issue 46, item 3: two identical --quick runs chose 0.5 ms, then 1 ms, for
+ * one scene.  The old rule rounded √(fastest × slowest), which steps at
+ * 0.707 ms; the scenes below are perturbed by ±10 % and keep one budget. */
+static void test_default_budget_holds_still(void **state)
+{
+    (void)state;
+    /* The lit medians (ms) of `run --quick` on 2026-11-29 (llvmpipe, load
+     * average 11.7 from other builds), plane 80×45: 0.5 ms is the only round
+     * value between 0.205 and 0.718 and stands 1.53× above 0.327, 1.42×
+     * below 0.711 */
+    const double q80[] = {0.242, 0.327, 0.718, 0.237, 0.269, 0.711, 0.205, 0.326};
+    assert_budget_holds(q80, 8, 0.5);
+    /* plane 160×90: 1 ms sits 1.04× from 0.965; 2 ms stands 1.77× above 1.130
+     * and 1.32× below 2.647 */
+    const double q160[] = {0.965, 1.130, 3.151, 0.781, 0.796, 2.647, 0.749, 1.064};
+    assert_budget_holds(q160, 8, 2);
+    /* √(0.22 × 2.3) = 0.711 ms: the old rule gave 1 ms here and 0.5 ms with
+     * the fastest 10 % faster.  Now 0.5 ms (margin log(0.5 / 0.36) = 0.33)
+     * beats 1 ms (log(1 / 0.9) = 0.105) and 2 ms (log(2.2 / 2) = 0.095) by
+     * more than 2 log 1.1 = 0.19 */
+    const double edge[] = {0.22, 0.25, 0.30, 0.33, 0.36, 0.9, 2.2, 2.3};
+    assert_budget_holds(edge, 8, 0.5);
 }
 
 DM_TEST_MAIN(NULL, NULL,
@@ -232,4 +308,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_family_bests),
              cmocka_unit_test(test_unlit_only_when_alone),
              cmocka_unit_test(test_knee),
-             cmocka_unit_test(test_default_budget))
+             cmocka_unit_test(test_default_budget),
+             cmocka_unit_test(test_default_budget_holds_still))

@@ -387,8 +387,11 @@ static void test_html_charts_and_front(void **state)
     assert_true(ol < strstr(t, "<svg") && ol < strstr(t, "id=\"tbl-0\"") && ol < strstr(t, "id=\"environment\""));
     const char *end = strstr(ol, "</table>");
     /* ms ± CI and the cost relative to the fastest; L=2 and L=4 CIs (±10 %)
-     * do not overlap their predecessor's, so nothing is marked tied */
-    assert_non_null(strstr(ol, "<td>tessdisp</td><td>tess_level=4</td><td class=\"n\">4.00</td><td class=\"n\">±10%"));
+     * do not overlap their predecessor's, so nothing is marked tied.  The
+     * default budget is 5 ms (the round value farthest from 1, 2, 4 and 8
+     * ms), so L=4 is the pick and L=2 a plain row */
+    assert_non_null(strstr(ol, "<td>tessdisp</td><td>tess_level=2</td><td class=\"n\">2.00</td><td class=\"n\">±10%"));
+    assert_non_null(strstr(ol, "<tr class=\"pick\"><td>tessdisp <b>← pick</b></td><td>tess_level=4</td>"));
     assert_non_null(strstr(ol, "×4.00</td>"));
     assert_true(!strstr(ol, "tied with") || strstr(ol, "tied with") > end);
     const char *k0 = strstr(ol, "tess_level=1<"), *k1 = strstr(ol, "tess_level=2<");
@@ -968,6 +971,29 @@ static void test_warnings_everywhere(void **state)
     free(html);
 }
 
+/* The terminal answer joined back into one line per paragraph: a wrapped
+ * line goes on four or more columns deeper (answer.c), and the join puts
+ * back the one space the wrap took.  Also asserts every line fits 100
+ * columns (code points: the answer uses no wide characters). */
+static char *answer_joined(const char *text)
+{
+    dm_str out = {0};
+    size_t col = 0;
+    for (const char *p = text; *p; p++) {
+        if (*p == '\n' && strncmp(p + 1, "    ", 4) == 0) {
+            while (p[1] == ' ')
+                p++;
+            dm_str_cat(&out, " ");
+            col = 0;
+            continue;
+        }
+        col = *p == '\n' ? 0 : col + ((*p & 0xC0) != 0x80);
+        assert_true(col <= 100);
+        dm_str_catn(&out, p, 1);
+    }
+    return dm_str_take(&out);
+}
+
 /* A timed run whose configurations have no quality (no reference could be
  * compared): the answer says so, never "Under 0 ms: nothing fits". */
 static void test_answer_without_quality(void **state)
@@ -982,9 +1008,11 @@ static void test_answer_without_quality(void **state)
     }
     dm_str t = {0};
     report_answer_terminal(&run, &t);
-    assert_non_null(strstr(dm_str_get(&t), "no configuration has both a frame time and a quality "
-                                           "figure (ssim) against the reference: no budget or pick"));
-    assert_null(strstr(dm_str_get(&t), "Under 0 ms"));
+    char *j = answer_joined(dm_str_get(&t));
+    assert_non_null(strstr(j, "no configuration has both a frame time and a quality "
+                              "figure (ssim) against the reference: no budget or pick"));
+    assert_null(strstr(j, "Under 0 ms"));
+    free(j);
     dm_str_free(&t);
     dm_run_free(&run);
 }
@@ -1001,8 +1029,11 @@ static void test_answer_defects(void **state)
     }
     dm_str t = {0};
     report_answer_terminal(&run, &t);
-    assert_non_null(strstr(dm_str_get(&t), "pick "));
-    assert_non_null(strstr(dm_str_get(&t), "⚠ 128 crack pixels; ⚠ 1 NaN pixel"));
+    assert_true(strstr(dm_str_get(&t), "\n    "));   /* the answer is long enough to be wrapped */
+    char *j = answer_joined(dm_str_get(&t));
+    assert_non_null(strstr(j, "pick "));
+    assert_non_null(strstr(j, "⚠ 128 crack pixels; ⚠ 1 NaN pixel"));
+    free(j);
     dm_str_free(&t);
     dm_run_free(&run);
 }

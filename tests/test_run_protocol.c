@@ -327,6 +327,25 @@ static void desc_from_measure(void **state)
     assert_true(d.max_frames == PROTOCOL_MAX_FRAMES && d.drift_limit == PROTOCOL_DRIFT_LIMIT);
 }
 
+/* The ETA: nothing until credible, then the measured rate pulled toward
+ * the prior by PROTOCOL_ETA_PRIOR configurations' worth. */
+static void eta_from_measured_progress(void **state)
+{
+    (void)state;
+    /* nothing done, under a tenth done, under 2 s measured, nothing left */
+    assert_true(isnan(protocol_eta_s(0.5, 0, 10, 18, 18)));
+    assert_true(isnan(protocol_eta_s(0.5, 9, 30, 91, 100)));
+    assert_true(isnan(protocol_eta_s(0.5, 9, 1.9, 9, 18)));
+    assert_true(isnan(protocol_eta_s(0.5, 18, 12, 0, 18)));
+    /* 9 of 18 done in 6 s, prior 0.5 s: (6 + 2 × 0.5) / (9 + 2) = 7/11 s
+     * each, 9 left: 63/11 = 5.727 s */
+    assert_true(fabs(protocol_eta_s(0.5, 9, 6, 9, 18) - 63.0 / 11) < 1e-12);
+    /* no prior: the measured rate alone, 6/9 × 9 = 6 s */
+    assert_true(fabs(protocol_eta_s(0, 9, 6, 9, 18) - 6) < 1e-12);
+    /* the prior's pull fades: 90 done in 60 s, prior 5 s: (60 + 10) / 92 × 10 */
+    assert_true(fabs(protocol_eta_s(5, 90, 60, 10, 100) - 700.0 / 92) < 1e-12);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -341,6 +360,7 @@ int main(void)
         cmocka_unit_test(frames_per_sample),
         cmocka_unit_test(budget_prediction),
         cmocka_unit_test(desc_from_measure),
+        cmocka_unit_test(eta_from_measured_progress),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -12,12 +12,20 @@ work=$(mktemp -d /tmp/dm_didyoumean_XXXXXX)
 trap 'rm -rf "$work"' EXIT INT TERM
 
 "$BIN" run --quick --out "$work/res" >"$work/run.out" 2>"$work/run.log" || { cat "$work/run.log"; exit 1; }
-# the run ends with each scene's answer: the pick under the budget and the knee
+# the run ends with each scene's answer: the pick under the budget and the
+# knee, word-wrapped to 100 columns (a continuation is indented four more)
+sed -e ':a;N;$!ba;s/\n     */ /g' "$work/run.out" >"$work/run.joined"
 for scene in "plane 80×45" "plane 160×90"; do
-  grep -qE "^$scene: (Provisional: [0-9]+ of [0-9]+ timings are noisy \(the machine was busy\); )?Under [0-9.]+ ms \(default budget; set one with report --budget-ms\): (pick|nothing fits)" "$work/run.out" \
+  grep -qE "^$scene: (Provisional: [0-9]+ of [0-9]+ timings are noisy \(the machine was busy\); )?Under [0-9.]+ ms \(default budget; set one with report --budget-ms\): (pick|nothing fits)" "$work/run.joined" \
     && ok || bad "no answer for $scene at the end of run: $(cat "$work/run.out")"
 done
-[ "$(grep -c '^  Knee of the front' "$work/run.out")" = 2 ] && ok || bad "not one knee line per scene: $(cat "$work/run.out")"
+[ "$(grep -c '^  Knee of the front' "$work/run.joined")" = 2 ] && ok || bad "not one knee line per scene: $(cat "$work/run.out")"
+# every line the run prints fits 100 columns (the answer was 305-322)
+for f in run.out run.log; do
+  wide=$(python3 -c 'import sys; [print(l, end="") for l in open(sys.argv[1], encoding="utf-8") if len(l.rstrip("\n")) > 100]' "$work/$f")
+  [ -z "$wide" ] && ok || bad "$f has lines over 100 columns: $wide"
+done
+[ "$(wc -l <"$work/run.out")" -gt "$(wc -l <"$work/run.joined")" ] && ok || bad "no answer line was wrapped (the test would not see a long one): $(cat "$work/run.out")"
 run="$work/res/latest"
 store="$work/res/dmbench.sqlite"
 

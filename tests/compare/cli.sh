@@ -30,6 +30,19 @@ PY
 expect_compare 0 "$A" "$A" --json "$OUT/aa.json"
 grep -q "^REGRESSION" "$OUT/stdout" && { echo "self-compare reported a regression"; exit 1; }
 expect_compare "0 1 3" "$A" "$B" --junit "$OUT/ab.xml" --markdown "$OUT/ab.md" --json "$OUT/ab.json"
+# the text output fits 100 columns (its lines were up to 374); a wrapped line
+# goes on four columns in, and every configuration still has its row
+python3 - "$OUT/stdout" "$OUT/ab.json" <<'PY'
+import json, sys
+lines = open(sys.argv[1], encoding="utf-8").read().splitlines()
+wide = [l for l in lines if len(l) > 100]
+assert not wide, "lines over 100 columns:\n" + "\n".join(wide)
+keys = [c["key"] for c in json.load(open(sys.argv[2]))["configs"]]
+rows = [l for l in lines if l.split(" ")[0] in ("REGRESSION", "INCONCLUSIVE", "IMPROVEMENT", "PASS", "SKIPPED")]
+assert len(rows) == len(keys), (len(rows), len(keys))
+for k in keys:
+    assert any(k in r for r in rows), k
+PY
 expect_compare 0 "$A" "$B" --counters-only
 expect_compare 0 "$A/results.json" "$OUT/b" --counters-only       # a file and an output root
 
@@ -54,7 +67,7 @@ PY
 expect_compare 1 "$A" "$OUT/slow.json" --junit "$OUT/slow.xml" --markdown "$OUT/slow.md"
 grep -q "^REGRESSION" "$OUT/stdout"
 expect_compare 1 "$A" "$OUT/counter.json" --counters-only
-grep -q "SamplesPassed changed" "$OUT/stdout"
+sed -e ':a;N;$!ba;s/\n    / /g' "$OUT/stdout" | grep -q "SamplesPassed changed"   # wrapped lines joined
 expect_compare 2 "$A" "$OUT/env.json"
 grep -q "cpu: " "$OUT/stderr"
 expect_compare "0 3" "$A" "$OUT/env.json" --allow-env-mismatch
@@ -107,6 +120,6 @@ expect_compare 0 "$A" "$A" --threshold 0.1%
 expect_compare 2 "$A,$B" "$B"
 grep -q "BASE has 2 runs and NEW 1: give both sides several runs" "$OUT/stderr" || { cat "$OUT/stderr"; exit 1; }
 expect_compare "0 3" "$A,$B" "$B,$A"
-grep -q "several separate runs per side, each one sample" "$OUT/stdout" || { cat "$OUT/stdout"; exit 1; }
+sed -e ':a;N;$!ba;s/\n    / /g' "$OUT/stdout" | grep -q "several separate runs per side, each one sample" || { cat "$OUT/stdout"; exit 1; }
 expect_compare 0 --paired "$BIN" "$BIN" "$SRC/tests/e2e/tiny.yaml" --rounds 2 --counters-only --quiet
 echo "compare cli: all passed"

@@ -62,13 +62,37 @@ assert len(j["configs"]) == 5 and all(len(c["drivers"]) == 3 for c in j["configs
 assert len(j["agreement"]) == 3, j["agreement"]
 for a in j["agreement"]:
     assert a["configs"] == 5 and -1 <= a["tau_walltime"] <= 1, a
+    # tau's bootstrap interval holds tau (5 configurations: 3 or more, so there is one)
+    assert a["tau_walltime_lo"] <= a["tau_walltime"] <= a["tau_walltime_hi"], a
     if {a["a"], a["b"]} == {"default", "llvmpipe-25"}:
         assert a["tau_ssim"] == 1, a        # byte-identical images: the same quality order
+        assert a["tau_ssim_lo"] == 1 and a["tau_ssim_hi"] == 1, a
+for c in j["configs"]:                      # each median with its CI around it
+    for d, v in c["drivers"].items():
+        assert v["WallTime_ci_lo_ms"] <= v["WallTime_ms"] <= v["WallTime_ci_hi_ms"], (c["key"], d, v)
 front = next(iter(j["fronts"].values()))
-assert set(front) == {"default", "llvmpipe-25", "zink", "agree", "scene"}, front
+assert set(front) - {"differences"} == {"default", "llvmpipe-25", "zink", "agree", "scene"}, front
+# fronts that differ say what differs: each member off a front, with the
+# configuration that beats it there and whether the time CIs say so clearly
+assert front["agree"] == ("differences" not in front), front
+for d in front.get("differences", []):
+    assert d["on"] != d["off"] and d["key"] in front[d["on"]] and d["key"] not in front[d["off"]], d
+    assert "why" in d or ("dominated_by" in d and isinstance(d["clear"], bool)), d
+# the drift check between the drivers' runs: each run times the CPU
+# calibration kernel at its start and end, so it has figures, and says
+# whether the runs' means moved more than within a run
+dr = j["drift"]
+assert set(dr) == {"moved", "noise", "drifted"} and dr["noise"] >= 0.05, dr
+assert dr["drifted"] == (dr["moved"] > dr["noise"]), dr
+md = open(sys.argv[1] + "/drivers.md").read()
+assert "## Did the machine's speed move between the drivers' runs?" in md, md
+assert "The fronts differ." not in md, md
+assert front["agree"] == ("What differs:" not in md), md
 for a in j["agreement"]:
-    print(f"{a['a']} · {a['b']}: tau of WallTime {a['tau_walltime']:.3f}, of SSIM {a['tau_ssim']:.3f}")
-print("fronts agree:", front["agree"])
+    print(f"{a['a']} · {a['b']}: tau of WallTime {a['tau_walltime']:.3f} "
+          f"[{a['tau_walltime_lo']:.3f}, {a['tau_walltime_hi']:.3f}], of SSIM {a['tau_ssim']:.3f}")
+print("fronts agree:", front["agree"], front.get("differences", []))
+print("drift:", dr)
 PY
 python3 - "$OUT" <<'PY'
 import json, subprocess, sys

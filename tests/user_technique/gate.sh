@@ -39,7 +39,7 @@ sed -i 's/technique: \[normal, normal-user.glsl, relief.glsl\]/technique: [relie
 "$BIN" run "$OUT/gate.yaml" --out "$OUT/b" --quiet
 expect_compare 1 "$OUT/a/latest" "$OUT/b/latest" --counters-only --json "$OUT/cmp.json"
 cat "$OUT/stdout"
-grep -q "technique source changed: key" "$OUT/stdout"
+sed -e ':a;N;$!ba;s/\n    / /g' "$OUT/stdout" | grep -q "technique source changed: key"   # wrapped lines joined
 python3 - "$OUT/cmp.json" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1]))

@@ -18,7 +18,7 @@ gate_unreadable() {
   local id=$1 words=$2; shift 2
   hcase "$id" 1 "" -- "$BIN" compare "$@"
   [ "$case_ok" = 1 ] || return
-  local out; out=$("$BIN" compare "$@" 2>&1)
+  local out; out=$("$BIN" compare "$@" 2>&1 | sed -e ':a;N;$!ba;s/\n    / /g')   # joins the wrapped lines
   if grep -qF -- "$words" <<<"$out" && ! grep -qE -- "(^| |\+|-> )(nan|inf)( |%|$)" <<<"$out"; then pass=$((pass+1))
   else echo "FAIL: $id: report lacks '$words' or prints a non-number: $out"; fail=$((fail+1)); fi
 }
