@@ -2,9 +2,12 @@
 #include "run/precision.h"
 
 #include <math.h>
+#include <stdarg.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
+#include "core/dm_table.h"
 #include "core/dm_util.h"
 #include "models/drift.h"
 
@@ -267,6 +270,24 @@ static const char *precision__pct(double v, char buf[32])
     return buf;
 }
 
+/* One line for the user, word-wrapped to 100 columns with continuations
+ * four columns in (as the runner's own lines). */
+__attribute__((format(printf, 2, 3)))
+static void precision__say(FILE *f, const char *fmt, ...)
+{
+    dm_str line = {0}, wrapped = {0};
+    va_list ap;
+    va_start(ap, fmt);
+    dm_str_vprintf(&line, fmt, ap);
+    va_end(ap);
+    if (line.len && line.buf[line.len - 1] == '\n')
+        line.buf[--line.len] = '\0';
+    dm_wrap(dm_str_get(&line), "", "    ", 100, &wrapped);
+    fputs(dm_str_get(&wrapped), f);
+    dm_str_free(&line);
+    dm_str_free(&wrapped);
+}
+
 void precision_print(const dm_run_result *run, double target_ci, FILE *f)
 {
     size_t n = 0, raw_in = 0, corr_in = 0, n_corr_scenes = 0;
@@ -297,12 +318,12 @@ void precision_print(const dm_run_result *run, double target_ci, FILE *f)
     double floor, resolvable;
     dm_run_noise_floor(run, &floor, &resolvable);
     char b[5][32];
-    fprintf(f, "dmbench: precision (WallTime, 95 %% CI within ±%g %%): %zu of %zu raw, %zu of %zu with "
+    precision__say(f, "dmbench: precision (WallTime, 95 %% CI within ±%g %%): %zu of %zu raw, %zu of %zu with "
             "the machine's drift removed (%zu of %zu scenes corrected)\n", 100 * target_ci, raw_in, n,
             corr_in, n, n_corr_scenes, run->n_precision);
-    fprintf(f, "dmbench: noise floor ±%s (median CI half-width); the smallest difference this run "
+    precision__say(f, "dmbench: noise floor ±%s (median CI half-width); the smallest difference this run "
             "resolves: %s\n", precision__pct(floor, b[0]), precision__pct(resolvable, b[1]));
-    fprintf(f, "dmbench: the machine's speed moved ±%s between rounds; the samples' spread: %s raw, "
+    precision__say(f, "dmbench: the machine's speed moved ±%s between rounds; the samples' spread: %s raw, "
             "%s after the rounds' common mode, %s after the calibration workload%s (medians over scenes)\n",
             precision__pct(precision__median(v[0], run->n_precision), b[2]),
             precision__pct(precision__median(v[1], run->n_precision), b[3]),
@@ -311,7 +332,7 @@ void precision_print(const dm_run_result *run, double target_ci, FILE *f)
             any_calib ? "" : " (not timed in the rounds)");
     for (size_t i = 0; i < run->n_precision; i++)
         if (run->precision[i].reason)
-            fprintf(f, "dmbench: scene %s: %s\n", run->precision[i].scene, run->precision[i].reason);
+            precision__say(f, "dmbench: scene %s: %s\n", run->precision[i].scene, run->precision[i].reason);
     for (int k = 0; k < 4; k++)
         free(v[k]);
 }
