@@ -355,12 +355,35 @@ static cJSON *predict__json_row(const predict__row *w)
     return o;
 }
 
-/* The JSON document on stdout: {"predictions": [...], "left_out": [...]}. */
-static void predict__print_json(const predict__row *rows, size_t n, const char *left)
+/* Each way of predicting WallTime: its held-out error, whether used, or
+ * why the runs do not allow it. */
+static void predict__json_ways(const predict_model *m, cJSON *root)
+{
+    cJSON *ways = cJSON_AddArrayToObject(root, "wall_time_ways");
+    for (int w = 0; w < PREDICT_N_WAYS; w++) {
+        const predict_way_score *x = &m->way[w];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "way", predict_way_names[w]);
+        if (x->why)
+            cJSON_AddStringToObject(o, "unavailable", x->why);
+        else if (isfinite(x->cv_mape))
+            cJSON_AddNumberToObject(o, "heldout_mape", x->cv_mape);
+        cJSON_AddNumberToObject(o, "heldout_n", x->n);
+        if (isfinite(x->q))
+            cJSON_AddNumberToObject(o, "heldout_log_bound_90", x->q);
+        cJSON_AddBoolToObject(o, "used", m->way_used == w);
+        cJSON_AddItemToArray(ways, o);
+    }
+}
+
+/* The JSON document on stdout: {"predictions": [...], "left_out": [...],
+ * "wall_time_ways": [...]}. */
+static void predict__print_json(const predict_model *m, const predict__row *rows, size_t n, const char *left)
 {
     cJSON *root = cJSON_CreateObject(), *a = cJSON_AddArrayToObject(root, "predictions");
     for (size_t i = 0; i < n; i++)
         cJSON_AddItemToArray(a, predict__json_row(&rows[i]));
+    predict__json_ways(m, root);
     cJSON *lo = cJSON_AddArrayToObject(root, "left_out");
     for (const char *p = left; p && *p;) {
         size_t len = strcspn(p, "\n");
@@ -559,7 +582,7 @@ int cli_predict(const cli_command *self, int argc, char **argv)
         dm_str left = {0}, tail = {0};
         predict_left_out(runs, nr, &left);
         if (a.json) {
-            predict__print_json(rows, p.n_configs, dm_str_get(&left));
+            predict__print_json(&m, rows, p.n_configs, dm_str_get(&left));
         } else if (a.csv) {
             predict__print_csv(rows, p.n_configs);
         } else {

@@ -88,10 +88,28 @@ static double predict__cv_of(const dm_fit_result *fit, const char *key)
     return NAN;
 }
 
+static int predict__dcmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The PREDICT_COVERAGE conformal bound of the n values e[] (sorted here):
+ * the ceil((n + 1) * PREDICT_COVERAGE)-th smallest, NaN when n is too
+ * small to have one. */
+static double predict__bound(double *e, size_t n)
+{
+    qsort(e, n, sizeof *e, predict__dcmp);
+    size_t rank = (size_t)ceil((double)(n + 1) * PREDICT_COVERAGE);   /* 1-based */
+    return n >= PREDICT_MIN_HELDOUT && rank <= n ? e[rank - 1] : NAN;
+}
+
 /* The held-out predictions of f[0], f[1] and f[2] of each configuration
- * f[0] was fitted to, summed, against its `counter`: their CV-MAPE. */
+ * f[0] was fitted to, summed, against its `counter`: their CV-MAPE; each
+ * |ln(sum / measured)| appended to logs (n_logs) when logs. */
 static predict_heldout predict__sum_heldout(const dm_fit_result *const f[3], const dm_run_result *train,
-                                            const char *counter, const char *variant)
+                                            const char *counter, const char *variant, double **logs,
+                                            size_t *n_logs)
 {
     double ape = 0;
     int n = 0;
@@ -100,27 +118,36 @@ static predict_heldout predict__sum_heldout(const dm_fit_result *const f[3], con
         double sum = predict__cv_of(f[0], key) + predict__cv_of(f[1], key) + predict__cv_of(f[2], key);
         const dm_config_result *c = dm_run_config(train, key);
         const dm_counter_result *r = c ? dm_config_counter(c, counter) : NULL;
-        if (isfinite(sum) && r && r->available && r->value > 0) {
+        if (isfinite(sum) && sum > 0 && r && r->available && r->value > 0) {
             ape += fabs(sum - r->value) / r->value;
             n++;
+            if (logs) {
+                double e = fabs(log(sum / r->value));
+                DM_VEC_PUSH(*logs, *n_logs, e);
+            }
         }
     }
     return (predict_heldout){ dm_xstrdup(variant), n ? 100 * ape / n : NAN, n };
 }
 
 /* Per variant: the stage models' held-out predictions of each measured
- * configuration, summed, against its Instructions (predict_heldout). */
+ * configuration, summed, against its Instructions (predict_heldout); over
+ * all variants, the conformal bound of their errors (m->instr_q). */
 static void predict__heldout(predict_model *m)
 {
+    double *logs = NULL;
+    size_t n_logs = 0;
     for (size_t i = 0; i < m->n_stage[0]; i++) {
         const dm_fit_result *g = &m->stage[0][i];
         if (g->n_group != 1 || !g->point_labels)
             continue;
         const dm_fit_result *f[3] = {g, predict_fit_of(m->stage[1], m->n_stage[1], g->group[0].value),
                                      predict_fit_of(m->stage[2], m->n_stage[2], g->group[0].value)};
-        predict_heldout h = predict__sum_heldout(f, &m->train, "Instructions", g->group[0].value);
+        predict_heldout h = predict__sum_heldout(f, &m->train, "Instructions", g->group[0].value, &logs, &n_logs);
         DM_VEC_PUSH(m->heldout, m->n_heldout, h);
     }
+    m->instr_q = predict__bound(logs, n_logs);
+    free(logs);
 }
 
 const predict_heldout *predict_heldout_of(const predict_model *m, const char *variant)
@@ -143,12 +170,6 @@ int predict_way_usable(const predict_model *m, predict_way way)
     return !w->why && isfinite(w->cv_mape) && w->cv_mape <= PREDICT_MAX_HELDOUT;
 }
 
-static int predict__dcmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Scores held-out predictions pred[i] of measured meas[i] (i < n; pairs
  * not both positive and finite are skipped): their MAPE and the
  * PREDICT_COVERAGE conformal bound of |ln(pred / meas)|. */
@@ -161,11 +182,9 @@ static void predict__score(const double *pred, const double *meas, size_t n, pre
             ape += fabs(pred[i] - meas[i]) / meas[i];
             e[k++] = fabs(log(pred[i] / meas[i]));
         }
-    qsort(e, k, sizeof *e, predict__dcmp);
-    size_t rank = (size_t)ceil((double)(k + 1) * PREDICT_COVERAGE);   /* 1-based */
     w->n = (int)k;
     w->cv_mape = k ? 100 * ape / (double)k : NAN;
-    w->q = k >= PREDICT_MIN_HELDOUT && rank <= k ? e[rank - 1] : NAN;
+    w->q = predict__bound(e, k);
     free(e);
 }
 
@@ -595,6 +614,9 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
         instr = sum;
         out->instr_by = "stage models summed";
         ei = h && h->n >= 3 && isfinite(h->cv_mape) ? 2 * h->cv_mape / 100 : isfinite(spread) ? spread / sum : ei;
+        /* no narrower than the bound of every variant's held-out errors */
+        if (isfinite(ei) && isfinite(m->instr_q))
+            ei = fmax(ei, expm1(m->instr_q));
     }
     out->instr = instr;
     out->instr_lo = instr / (1 + ei);   /* a ratio either way: never below 0 */

@@ -83,6 +83,7 @@ typedef struct predict_model {
     double instr_max;      /* and of Instructions */
     predict_heldout *heldout;   /* per variant, when the runs have the stage counters */
     size_t n_heldout;
+    double instr_q;   /* their PREDICT_COVERAGE conformal bound of |ln(sum / Instructions)|, pooled; NaN: too few */
     /* geometry-, raster- and fragment-time: each stage's time from its
      * instructions, when the runs have the timed passes (GeometryTime,
      * MinimalShadingTime) and the stage counters; summed, their constants
@@ -98,7 +99,7 @@ typedef struct predict_model {
 
 typedef struct predict_result {
     char *variant;           /* "pom steps=auto ..." (fitting_variant) */
-    double instr, instr_lo, instr_hi;   /* frame Instructions, ±2 CV-MAPE */
+    double instr, instr_lo, instr_hi;   /* frame Instructions, ×/÷ (1 + 2 CV-MAPE), at least the pooled bound */
     double part[3];          /* geometry, raster, fragment; NaN without the stage counters */
     double wall_ns, wall_lo, wall_hi;   /* NaN without a WallTime fit */
     const char *wall_by;     /* the way it was predicted: "stage times", "time-from-stages", ... */
