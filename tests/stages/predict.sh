@@ -110,7 +110,7 @@ else:
     for w in walls:
         if w.get("model") != name and not w.get("model_override"):
             bad.append(f"WallTime by {w.get('model')}, not {name}, without an override: {w}")
-if not re.search(r"used: \S+, the lowest held-out error", unpred):
+if not re.search(r"used: [a-z -]+, the lowest held-out error", unpred):
     bad.append("predict does not say which way it used and why")
 for l in open(sys.argv[3].replace(".joined", "")).read().splitlines():
     if len(l) > 100:
