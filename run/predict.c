@@ -483,7 +483,8 @@ static int predict__wall_by(const predict_model *m, predict_way w, dm_config_res
     static const char *const b[3] = {"b_geo", "b_raster", "b_frag"};
     double parts = out->part[0] + out->part[1] + out->part[2], se2 = 0, se = NAN;
     *ns = NAN;
-    if (!predict_way_usable(m, w) || (w != PREDICT_WAY_TIME_FROM_INSTRUCTIONS && !(isfinite(parts) && parts > 0)))
+    int held = predict_way_usable(m, w) || (!m->way[w].why && !isfinite(m->way[w].cv_mape));
+    if (!held || (w != PREDICT_WAY_TIME_FROM_INSTRUCTIONS && !(isfinite(parts) && parts > 0)))
         return -1;
     if (w == PREDICT_WAY_TIME_FROM_INSTRUCTIONS) {
         const dm_fit_result *t = &m->time[0];
@@ -538,6 +539,12 @@ static void predict__wall(const predict_model *m, dm_config_result *c, double ei
         out->wall_override = "time-from-stages had the lower held-out error, but this configuration's geometry "
                              "lies beyond the runs', where its price of a geometry instruction does not carry";
     }
+    /* no way held out at all (too few configurations): the first the runs
+     * allow gives the value, its interval unavailable with that reason;
+     * one held out above PREDICT_MAX_HELDOUT never does */
+    for (int w = 0; n == 0 && w < PREDICT_N_WAYS; w++)
+        if (!m->way[w].why && !isfinite(m->way[w].cv_mape))
+            order[n++] = w;
     double se_ns = 0;
     int used = -1;
     for (int j = 0; j < n && used < 0; j++)
