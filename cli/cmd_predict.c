@@ -200,9 +200,11 @@ static void predict__note(const predict_result *r, const predict__common *c, dm_
         predict__models(r, note);
         dm_str_cat(note, ". ");
     }
+    if (r->wall_override)
+        dm_str_printf(note, "WallTime by %s: %s. ", r->wall_by, r->wall_override);
     if (r->beyond_stage >= 0)
-        dm_str_printf(note, "Extrapolated: %s %.2f × the largest the runs measured. ",
-                      predict__stage_names[r->beyond_stage], r->beyond);
+        dm_str_printf(note, "Extrapolated %.2f×: the %s part beyond the largest the runs measured. ",
+                      r->beyond, predict__stage_names[r->beyond_stage]);
     if (r->instr_why)
         dm_str_printf(note, "Instructions interval unavailable: %s. ", r->instr_why);
     if (r->wall_why)
@@ -337,8 +339,10 @@ static cJSON *predict__json_row(const predict__row *w)
             cJSON_AddStringToObject(p, "unavailable", r->part_why ? r->part_why : "no reason recorded");
         cJSON_AddItemToObject(cs, predict__part_counters[s], p);
     }
-    cJSON_AddItemToObject(cs, "WallTime", predict__json_value(r->wall_ns, r->wall_lo, r->wall_hi, r->wall_why,
-                                                              r->wall_by, "ns"));
+    cJSON *wt = predict__json_value(r->wall_ns, r->wall_lo, r->wall_hi, r->wall_why, r->wall_by, "ns");
+    if (r->wall_override)
+        cJSON_AddStringToObject(wt, "model_override", r->wall_override);
+    cJSON_AddItemToObject(cs, "WallTime", wt);
     if (isfinite(r->part[0] + r->part[1] + r->part[2]))
         cJSON_AddBoolToObject(o, "extrapolates", r->beyond_stage >= 0);
     else   /* how far beyond the runs is known from the stage parts alone */
@@ -351,12 +355,35 @@ static cJSON *predict__json_row(const predict__row *w)
     return o;
 }
 
-/* The JSON document on stdout: {"predictions": [...], "left_out": [...]}. */
-static void predict__print_json(const predict__row *rows, size_t n, const char *left)
+/* Each way of predicting WallTime: its held-out error, whether used, or
+ * why the runs do not allow it. */
+static void predict__json_ways(const predict_model *m, cJSON *root)
+{
+    cJSON *ways = cJSON_AddArrayToObject(root, "wall_time_ways");
+    for (int w = 0; w < PREDICT_N_WAYS; w++) {
+        const predict_way_score *x = &m->way[w];
+        cJSON *o = cJSON_CreateObject();
+        cJSON_AddStringToObject(o, "way", predict_way_names[w]);
+        if (x->why)
+            cJSON_AddStringToObject(o, "unavailable", x->why);
+        else if (isfinite(x->cv_mape))
+            cJSON_AddNumberToObject(o, "heldout_mape", x->cv_mape);
+        cJSON_AddNumberToObject(o, "heldout_n", x->n);
+        if (isfinite(x->q))
+            cJSON_AddNumberToObject(o, "heldout_log_bound_90", x->q);
+        cJSON_AddBoolToObject(o, "used", m->way_used == w);
+        cJSON_AddItemToArray(ways, o);
+    }
+}
+
+/* The JSON document on stdout: {"predictions": [...], "left_out": [...],
+ * "wall_time_ways": [...]}. */
+static void predict__print_json(const predict_model *m, const predict__row *rows, size_t n, const char *left)
 {
     cJSON *root = cJSON_CreateObject(), *a = cJSON_AddArrayToObject(root, "predictions");
     for (size_t i = 0; i < n; i++)
         cJSON_AddItemToArray(a, predict__json_row(&rows[i]));
+    predict__json_ways(m, root);
     cJSON *lo = cJSON_AddArrayToObject(root, "left_out");
     for (const char *p = left; p && *p;) {
         size_t len = strcspn(p, "\n");
@@ -434,15 +461,6 @@ static void predict__print_csv(const predict__row *rows, size_t n)
     dm_str_free(&s);
 }
 
-/* A held-out error "X.XX %", or "unavailable" when there is none. */
-static void predict__pct(dm_str *s, double v)
-{
-    if (isfinite(v))
-        dm_str_printf(s, "%.2f %%", v);
-    else
-        dm_str_cat(s, "unavailable (too few configurations to hold one out)");
-}
-
 /* How well each variant's Instructions predicted the runs' own
  * configurations held out of the fits: the stage models' sum, and the
  * one-formula stage-instructions beside it. */
@@ -469,52 +487,34 @@ static void predict__heldout_text(const predict_model *m, dm_str *out)
     }
 }
 
-/* Why the timed stage passes are not used for WallTime. */
-static const char *predict__stage_times_why(const predict_model *m, const dm_fit_result *st)
-{
-    int stage_counters = dm_run_has_counter(&m->train, "GeometryInstructions") &&
-                         dm_run_has_counter(&m->train, "RasterInstructions") &&
-                         dm_run_has_counter(&m->train, "FragmentInstructions");
-    int passes = dm_run_has_counter(&m->train, "GeometryTime") && dm_run_has_counter(&m->train, "MinimalShadingTime");
-    if (!stage_counters)
-        return "the runs lack the stage counters (GeometryInstructions, RasterInstructions, FragmentInstructions)";
-    if (!passes)
-        return "the runs lack GeometryTime or MinimalShadingTime: add both to measure.counters";
-    if (!st)
-        return "too few configurations to fit the stage models";
-    return "too few configurations to hold three out";
-}
-
 /* How well each way of predicting WallTime did on the runs' own
- * configurations held out of the fits, and which one is used. */
+ * configurations held out of its fits, and which one is used: the lowest,
+ * never one above PREDICT_MAX_HELDOUT (docs/models.md, "Prediction"). */
 static void predict__time_heldout_text(const predict_model *m, dm_str *out)
 {
-    const predict_heldout *h = &m->time_heldout;
-    int stage_times = predict_has_stage_times(m);
-    const dm_fit_result *st = m->n_time_st == 1 ? &m->time_st[0] : NULL;
-    const dm_fit_result *ti = m->n_time == 1 ? &m->time[0] : NULL;
-    if (!ti && !st)
-        return;
-    int st_used = !stage_times && predict_prefers_time_from_stages(m);
     dm_str l = {0};
+    for (int w = 0; w < PREDICT_N_WAYS; w++) {
+        const predict_way_score *x = &m->way[w];
+        dm_str_printf(&l, "%s%s", w ? "; " : "", w == PREDICT_WAY_STAGE_TIMES ? "stage times summed" : predict_way_names[w]);
+        if (x->why)
+            dm_str_printf(&l, " unavailable: %s", x->why);
+        else if (!isfinite(x->cv_mape))
+            dm_str_cat(&l, " unavailable (too few configurations to hold one out)");
+        else
+            dm_str_printf(&l, " %.2f %% over %d configurations%s", x->cv_mape, x->n,
+                          m->way_used == w ? " (used)" : x->cv_mape > PREDICT_MAX_HELDOUT ? " (over 50 %: never used)" : "");
+    }
     dm_str_cat(out, "held-out error of WallTime on the runs' configurations (k-fold CV-MAPE):\n");
-    if (stage_times) {
-        dm_str_cat(&l, "stage times summed ");
-        predict__pct(&l, h->cv_mape);
-        dm_str_printf(&l, " over %d configurations (used); ", h->n);
-    } else {
-        dm_str_printf(&l, "stage times unavailable: %s; ", predict__stage_times_why(m, st));
-    }
-    if (st) {
-        dm_str_cat(&l, "time-from-stages ");
-        predict__pct(&l, st->cv_mape);
-        dm_str_printf(&l, "%s; ", st_used ? " (used)" : "");
-    }
-    if (ti) {
-        dm_str_cat(&l, "time-from-instructions ");
-        predict__pct(&l, ti->cv_mape);
-        dm_str_printf(&l, "%s", !stage_times && !st_used ? " (used)" : "");
-    }
+    dm_wrap(dm_str_get(&l), "  ", "    ", REPORT_TERMINAL_WIDTH, out);
+    l.len = 0;
+    if (m->way_used >= 0)
+        dm_str_printf(&l, "used: %s, the lowest held-out error; an interval holds %.0f %% of held-out frames "
+                      "when at least %d were held out", predict_way_names[m->way_used], 100 * PREDICT_COVERAGE,
+                      PREDICT_MIN_HELDOUT);
+    else if (m->way[0].why && m->way[1].why && m->way[2].why)
+        dm_str_cat(&l, "WallTime not predicted: no way is available");
+    else
+        dm_str_printf(&l, "WallTime not predicted: no way held out within %.0f %%", PREDICT_MAX_HELDOUT);
     dm_wrap(dm_str_get(&l), "  ", "    ", REPORT_TERMINAL_WIDTH, out);
     dm_str_free(&l);
 }
@@ -582,7 +582,7 @@ int cli_predict(const cli_command *self, int argc, char **argv)
         dm_str left = {0}, tail = {0};
         predict_left_out(runs, nr, &left);
         if (a.json) {
-            predict__print_json(rows, p.n_configs, dm_str_get(&left));
+            predict__print_json(&m, rows, p.n_configs, dm_str_get(&left));
         } else if (a.csv) {
             predict__print_csv(rows, p.n_configs);
         } else {

@@ -22,6 +22,7 @@ typedef struct fit__ctx {
     const size_t *rows;             /* rows of the current solve */
     size_t m;
     double s_y;                     /* response scale: max y over the rows */
+    int relative;                   /* each residual over its own y (fit_desc.relative) */
     double *scale;                  /* P: parameter p_j = theta_j * scale_j */
     double *p, *grad;               /* P scratch */
     double *weak;                   /* P: weakest direction of the covariance pass */
@@ -48,7 +49,14 @@ static const double *fit__row(const fit_desc *d, size_t row)
 
 /* ---- residuals in scaled space ------------------------------------------- */
 
-/* r_i = (f(x_i; p) - y_i) / s_y with p = theta * scale (element-wise). */
+/* What a residual of row is divided by: its own response for a relative
+ * fit (weights 1/y^2), else the rows' largest response. */
+static double fit__yscale(const fit__ctx *c, size_t row)
+{
+    return c->relative ? c->d->y[row] : c->s_y;
+}
+
+/* r_i = (f(x_i; p) - y_i) / fit__yscale with p = theta * scale (element-wise). */
 static int fit__residual(void *user, size_t i, const double *theta, double *r, double *jac)
 {
     fit__ctx *c = user;
@@ -56,11 +64,12 @@ static int fit__residual(void *user, size_t i, const double *theta, double *r, d
     for (size_t j = 0; j < c->P; j++)
         c->p[j] = theta[j] * c->scale[j];
     double v = formula_eval(c->f, fit__row(c->d, row), c->p, jac ? c->grad : NULL);
-    *r = (v - c->d->y[row]) / c->s_y;
+    double sy = fit__yscale(c, row);
+    *r = (v - c->d->y[row]) / sy;
     if (!isfinite(*r))
         return -1;
     for (size_t j = 0; jac && j < c->P; j++) {
-        jac[j] = c->grad[j] * c->scale[j] / c->s_y;
+        jac[j] = c->grad[j] * c->scale[j] / sy;
         if (!isfinite(jac[j]))
             return -1;
     }
@@ -74,8 +83,9 @@ static void fit__column_scales(fit__ctx *c, const double *p)
     double *ss = dm_xcalloc(c->P, sizeof *ss);
     for (size_t i = 0; i < c->m; i++) {
         formula_eval(c->f, fit__row(c->d, c->rows[i]), p, c->grad);
+        double sy = fit__yscale(c, c->rows[i]);
         for (size_t j = 0; j < c->P; j++)
-            ss[j] += (c->grad[j] / c->s_y) * (c->grad[j] / c->s_y);
+            ss[j] += (c->grad[j] / sy) * (c->grad[j] / sy);
     }
     for (size_t j = 0; j < c->P; j++)
         c->scale[j] = (ss[j] > 0.0 && isfinite(ss[j])) ? 1.0 / sqrt(ss[j]) : 1.0;
@@ -87,7 +97,7 @@ static void fit__residuals(fit__ctx *c, const double *p, double *r)
 {
     for (size_t i = 0; i < c->m; i++) {
         size_t row = c->rows[i];
-        r[i] = (formula_eval(c->f, fit__row(c->d, row), p, NULL) - c->d->y[row]) / c->s_y;
+        r[i] = (formula_eval(c->f, fit__row(c->d, row), p, NULL) - c->d->y[row]) / fit__yscale(c, row);
     }
 }
 
@@ -341,22 +351,22 @@ static int fit__dcmp(const void *a, const void *b)
  * errors.  Least squares: RSS / (m - P).  A robust loss: the square of the
  * residuals' normalised MAD (1.4826 * MAD) times m / (m - P), so outliers
  * the loss discounts do not inflate the errors of the inliers' fit. */
-static double fit__residual_var(const fit__ctx *c, const dm_fit_result *r, double rss)
+static double fit__residual_var(const fit__ctx *c, const dm_fit_result *r, double rss_scaled)
 {
     size_t m = c->m, P = c->P;
     if (m <= P)
         return NAN;
     if (c->d->loss != FIT_LOSS_HUBER && c->d->loss != FIT_LOSS_CAUCHY)
-        return rss / (c->s_y * c->s_y) / (double)(m - P);
+        return rss_scaled / (double)(m - P);
     double *e = dm_xmalloc(m * sizeof *e);
     for (size_t i = 0; i < m; i++)
-        e[i] = r->predicted[i] - r->measured[i];
+        e[i] = (r->predicted[i] - r->measured[i]) / (c->relative ? r->measured[i] : c->s_y);
     qsort(e, m, sizeof *e, fit__dcmp);
     double med = e[m / 2];
     for (size_t i = 0; i < m; i++)
         e[i] = fabs(e[i] - med);
     qsort(e, m, sizeof *e, fit__dcmp);
-    double sigma = 1.4826 * e[m / 2] / c->s_y;
+    double sigma = 1.4826 * e[m / 2];
     free(e);
     return sigma * sigma * (double)m / (double)(m - P);
 }
@@ -366,7 +376,7 @@ static void fit__fill(fit__ctx *c, const double *p, const double *cov, int cov_o
 {
     const fit_desc *d = c->d;
     size_t m = c->m, P = c->P;
-    double rss = 0.0, tss = 0.0, ape = 0.0, mean = 0.0;
+    double rss = 0.0, rss_scaled = 0.0, tss = 0.0, ape = 0.0, mean = 0.0;
     r->measured = dm_xmalloc(m * sizeof *r->measured);
     r->predicted = dm_xmalloc(m * sizeof *r->predicted);
     r->cv_predicted = dm_xmalloc(m * sizeof *r->cv_predicted);
@@ -380,6 +390,7 @@ static void fit__fill(fit__ctx *c, const double *p, const double *cov, int cov_o
         r->measured[i] = y;
         r->predicted[i] = f;
         rss += (f - y) * (f - y);
+        rss_scaled += pow((f - y) / fit__yscale(c, c->rows[i]), 2);
         tss += (y - mean) * (y - mean);
         ape += fabs(f - y) / y;
     }
@@ -387,7 +398,7 @@ static void fit__fill(fit__ctx *c, const double *p, const double *cov, int cov_o
     r->r2 = tss > 0.0 ? 1.0 - rss / tss : NAN;
     r->rmse = sqrt(rss / (double)m);
     r->mape = 100.0 * ape / (double)m;
-    double s2 = fit__residual_var(c, r, rss);
+    double s2 = fit__residual_var(c, r, rss_scaled);
     r->params = dm_xcalloc(P, sizeof *r->params);
     r->n_params = P;
     for (size_t j = 0; j < P; j++) {
@@ -560,7 +571,7 @@ static int fit__run(const fit_desc *desc, const char *full, dm_fit_result *out, 
         goto out;
     }
     fit__warn_collinear(desc, f, rows, m, &r);
-    fit__ctx c = { .d = desc, .f = f, .P = P };
+    fit__ctx c = { .d = desc, .f = f, .P = P, .relative = desc->relative };
     c.scale = dm_xmalloc(4 * P * sizeof *c.scale);
     c.p = c.scale + P;
     c.grad = c.p + P;

@@ -16,7 +16,8 @@
  *    warning naming the variable, its value and the term ("c*x2"); if no
  *    parameter is left the fit is refused (DM_ERR_ARG).
  *  - Near-collinear used variables (|corr| > 0.9999): warning naming both.
- *  - Scaling: residuals are r_i = (f(x_i) - y_i) / s_y with s_y = max y,
+ *  - Scaling: residuals are r_i = (f(x_i) - y_i) / s_y with s_y = max y
+ *    (desc.relative: s_y = y_i, each point's error in proportion to it),
  *    and Ceres solves for theta_j = p_j / s_j where s_j = 1/||dr/dp_j||
  *    (Jacobian column norm, recomputed at the start of every solve pass).
  *    This is feature scaling done in parameter space, so it works for any
@@ -92,6 +93,9 @@ typedef struct fit_desc {
     size_t n_bounds;
     fit_loss loss;                     /* default: none */
     int folds;                         /* k-fold CV; 0 = min(5, n_points) */
+    int relative;                      /* 1: least squares of relative errors, (f - y) / y (weights
+                                        * 1/y^2), so responses spanning orders of magnitude are fitted
+                                        * in proportion; 0: of (f - y) / max y */
     uint64_t seed;                     /* fold assignment */
 } fit_desc;
 

@@ -217,7 +217,8 @@ static void fitting__group(const fitting_spec *s, const models_builtin *b, const
     fit_desc d = { .model = s->name, .formula = gf && *gf ? gf : s->formula, .response = s->response,
                    .variables = names, .n_vars = nv, .x = x, .y = y, .n_points = np,
                    .point_labels = labels, .bounds = gf && *gf ? gb : b ? b->bounds : NULL,
-                   .n_bounds = gf && *gf ? ngb : b ? b->n_bounds : 0, .loss = s->loss, .seed = 1 };
+                   .n_bounds = gf && *gf ? ngb : b ? b->n_bounds : 0, .loss = s->loss, .seed = 1,
+                   .relative = s->relative };
     dm_fit_result fr = {0};
     dm_str err = {0};
     if (fit_run(&d, &fr, &err) == 0) {

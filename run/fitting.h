@@ -21,6 +21,7 @@ typedef struct fitting_spec {
     const char *const *group_by; /* one fit per distinct value of these axes */
     size_t n_group_by;
     fit_loss loss;
+    int relative;                /* fit relative errors (fit_desc.relative) */
 } fitting_spec;
 
 /* The group key that is not an axis: a configuration's shader variant,

@@ -24,6 +24,9 @@ static const char *const predict__stage_models[3] = {"geometry-instructions", "r
 /* each stage's time from its instructions (models/catalog.c) */
 static const char *const predict__time_models[3] = {"geometry-time", "raster-time", "fragment-time"};
 
+const char *const predict_way_names[PREDICT_N_WAYS] = {"stage times", "time-from-stages",
+                                                       "time-from-instructions"};
+
 const char *predict_run_missing(const dm_run_result *run)
 {
     for (size_t i = 0; i < PREDICT_N_NEEDED; i++)
@@ -58,7 +61,10 @@ size_t predict_left_out(const dm_run_result *runs, size_t n, dm_str *out)
 static void predict__fit(const dm_run_result *u, const char *model, const char *response,
                          const char *const *group_by, size_t n_group_by, dm_fit_result **fits, size_t *n)
 {
-    fitting_spec spec = { .name = model, .response = response, .group_by = group_by, .n_group_by = n_group_by };
+    /* relative error: one sweep's frames span orders of magnitude, and an
+     * absolute fit lets its largest decide the smallest's costs */
+    fitting_spec spec = { .name = model, .response = response, .group_by = group_by, .n_group_by = n_group_by,
+                          .relative = 1 };
     dm_str warn = {0}, err = {0};
     fitting_run(&spec, u, fits, n, &warn, &err);
     dm_str_free(&warn);
@@ -82,10 +88,28 @@ static double predict__cv_of(const dm_fit_result *fit, const char *key)
     return NAN;
 }
 
+static int predict__dcmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The PREDICT_COVERAGE conformal bound of the n values e[] (sorted here):
+ * the ceil((n + 1) * PREDICT_COVERAGE)-th smallest, NaN when n is too
+ * small to have one. */
+static double predict__bound(double *e, size_t n)
+{
+    qsort(e, n, sizeof *e, predict__dcmp);
+    size_t rank = (size_t)ceil((double)(n + 1) * PREDICT_COVERAGE);   /* 1-based */
+    return n >= PREDICT_MIN_HELDOUT && rank <= n ? e[rank - 1] : NAN;
+}
+
 /* The held-out predictions of f[0], f[1] and f[2] of each configuration
- * f[0] was fitted to, summed, against its `counter`: their CV-MAPE. */
+ * f[0] was fitted to, summed, against its `counter`: their CV-MAPE; each
+ * |ln(sum / measured)| appended to logs (n_logs) when logs. */
 static predict_heldout predict__sum_heldout(const dm_fit_result *const f[3], const dm_run_result *train,
-                                            const char *counter, const char *variant)
+                                            const char *counter, const char *variant, double **logs,
+                                            size_t *n_logs)
 {
     double ape = 0;
     int n = 0;
@@ -94,27 +118,36 @@ static predict_heldout predict__sum_heldout(const dm_fit_result *const f[3], con
         double sum = predict__cv_of(f[0], key) + predict__cv_of(f[1], key) + predict__cv_of(f[2], key);
         const dm_config_result *c = dm_run_config(train, key);
         const dm_counter_result *r = c ? dm_config_counter(c, counter) : NULL;
-        if (isfinite(sum) && r && r->available && r->value > 0) {
+        if (isfinite(sum) && sum > 0 && r && r->available && r->value > 0) {
             ape += fabs(sum - r->value) / r->value;
             n++;
+            if (logs) {
+                double e = fabs(log(sum / r->value));
+                DM_VEC_PUSH(*logs, *n_logs, e);
+            }
         }
     }
     return (predict_heldout){ dm_xstrdup(variant), n ? 100 * ape / n : NAN, n };
 }
 
 /* Per variant: the stage models' held-out predictions of each measured
- * configuration, summed, against its Instructions (predict_heldout). */
+ * configuration, summed, against its Instructions (predict_heldout); over
+ * all variants, the conformal bound of their errors (m->instr_q). */
 static void predict__heldout(predict_model *m)
 {
+    double *logs = NULL;
+    size_t n_logs = 0;
     for (size_t i = 0; i < m->n_stage[0]; i++) {
         const dm_fit_result *g = &m->stage[0][i];
         if (g->n_group != 1 || !g->point_labels)
             continue;
         const dm_fit_result *f[3] = {g, predict_fit_of(m->stage[1], m->n_stage[1], g->group[0].value),
                                      predict_fit_of(m->stage[2], m->n_stage[2], g->group[0].value)};
-        predict_heldout h = predict__sum_heldout(f, &m->train, "Instructions", g->group[0].value);
+        predict_heldout h = predict__sum_heldout(f, &m->train, "Instructions", g->group[0].value, &logs, &n_logs);
         DM_VEC_PUSH(m->heldout, m->n_heldout, h);
     }
+    m->instr_q = predict__bound(logs, n_logs);
+    free(logs);
 }
 
 const predict_heldout *predict_heldout_of(const predict_model *m, const char *variant)
@@ -131,14 +164,165 @@ int predict_heldout_prefers_one(const predict_model *m, const dm_fit_result *one
     return h && h->n >= 3 && isfinite(h->cv_mape) && isfinite(one->cv_mape) && one->cv_mape < h->cv_mape;
 }
 
-int predict_has_stage_times(const predict_model *m)
+int predict_way_usable(const predict_model *m, predict_way way)
 {
-    return m->time_heldout.n >= 3 && isfinite(m->time_heldout.cv_mape);
+    const predict_way_score *w = &m->way[way];
+    return !w->why && isfinite(w->cv_mape) && w->cv_mape <= PREDICT_MAX_HELDOUT;
 }
 
-int predict_prefers_time_from_stages(const predict_model *m)
+/* Scores held-out predictions pred[i] of measured meas[i] (i < n; pairs
+ * not both positive and finite are skipped): their MAPE and the
+ * PREDICT_COVERAGE conformal bound of |ln(pred / meas)|. */
+static void predict__score(const double *pred, const double *meas, size_t n, predict_way_score *w)
 {
-    return m->n_time_st == 1 && (m->n_time != 1 || !(m->time[0].cv_mape < m->time_st[0].cv_mape));
+    double *e = dm_xcalloc(n + 1, sizeof *e), ape = 0;
+    size_t k = 0;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(pred[i]) && pred[i] > 0 && isfinite(meas[i]) && meas[i] > 0) {
+            ape += fabs(pred[i] - meas[i]) / meas[i];
+            e[k++] = fabs(log(pred[i] / meas[i]));
+        }
+    w->n = (int)k;
+    w->cv_mape = k ? 100 * ape / (double)k : NAN;
+    w->q = predict__bound(e, k);
+    free(e);
+}
+
+/* A one-formula time fit's score: its own k-fold held-out predictions. */
+static void predict__score_fit(const dm_fit_result *f, predict_way_score *w)
+{
+    predict__score(f->cv_predicted, f->measured, f->cv_predicted ? (size_t)f->n_points : 0, w);
+}
+
+/* The part of fit's prediction for configuration c (whose counters hold
+ * every variable) beyond its constant `a`; NaN when it predicts none. */
+static double predict__variable_part(const dm_fit_result *fit, const dm_run_result *train, dm_config_result *c)
+{
+    dm_run_result one = { .configs = c, .n_configs = 1 };
+    double v = NAN;
+    dm_str why = {0};
+    int rc = fitting_predict_dropped(fit, train, c->params, c->n_params, c->key, &one, 1, &v, &why);
+    dm_str_free(&why);
+    const dm_fit_param *a = dm_fit_param_find(fit, "a");
+    return rc == 0 ? v - (a ? a->value : 0) : NAN;
+}
+
+/* The stage times' one fixed cost over the configurations of u with the
+ * three stage-time fits ts: the frame's time less the fits' variable
+ * parts, least squares of relative error (weights 1/WallTime^2); never
+ * below 0.  NaN when no configuration has them all. */
+static double predict__shared_a(const dm_fit_result *const ts[3], const dm_run_result *u)
+{
+    double sw = 0, sr = 0;
+    for (size_t i = 0; i < u->n_configs; i++) {
+        dm_config_result *c = &u->configs[i];
+        const dm_counter_result *w = c->ok ? dm_config_counter(c, "WallTime") : NULL;
+        double var = 0;
+        for (int s = 0; s < 3 && w; s++)
+            var += predict__variable_part(ts[s], u, c);
+        if (w && w->available && w->value > 0 && isfinite(var)) {
+            sw += 1 / (w->value * w->value);
+            sr += (w->value - var) / (w->value * w->value);
+        }
+    }
+    return sw > 0 ? fmax(0, sr / sw) : NAN;
+}
+
+/* Fits the three stage-time models to u (fits[s], one each, else 0). */
+static int predict__fit_stage_times(const dm_run_result *u, dm_fit_result *fits[3], size_t n[3])
+{
+    int all = 1;
+    for (int st = 0; st < 3; st++) {
+        fits[st] = NULL;
+        n[st] = 0;
+        predict__fit(u, predict__time_models[st], NULL, NULL, 0, &fits[st], &n[st]);
+        all = all && n[st] == 1;
+    }
+    return all;
+}
+
+/* The stage times' held-out predictions: k-fold over the configurations
+ * that have the timed passes, each fold's frames predicted by the three
+ * stage-time fits and the shared fixed cost of the other folds. */
+static void predict__score_stage_times(const predict_model *m, predict_way_score *w)
+{
+    const dm_run_result *u = &m->train;
+    size_t n = u->n_configs, k = n < 5 ? n : 5;
+    double *pred = dm_xcalloc(n + 1, sizeof *pred), *meas = dm_xcalloc(n + 1, sizeof *meas);
+    dm_run_result sub = *u;
+    sub.configs = dm_xcalloc(n + 1, sizeof *sub.configs);
+    for (size_t i = 0; i < n; i++) {
+        const dm_counter_result *r = u->configs[i].ok ? dm_config_counter(&u->configs[i], "WallTime") : NULL;
+        pred[i] = NAN;
+        meas[i] = r && r->available ? r->value : NAN;
+    }
+    for (size_t fold = 0; fold < k; fold++) {
+        sub.n_configs = 0;
+        for (size_t i = 0; i < n; i++)
+            if (i % k != fold)
+                sub.configs[sub.n_configs++] = u->configs[i];
+        dm_fit_result *ts[3];
+        size_t nts[3];
+        if (predict__fit_stage_times(&sub, ts, nts)) {
+            const dm_fit_result *f[3] = {ts[0], ts[1], ts[2]};
+            double a = predict__shared_a(f, &sub);
+            for (size_t i = fold; i < n; i += k) {
+                double v = a;
+                for (int s = 0; s < 3; s++)
+                    v += predict__variable_part(ts[s], &sub, &u->configs[i]);
+                pred[i] = v;
+            }
+        }
+        for (int s = 0; s < 3; s++) {
+            for (size_t j = 0; j < nts[s]; j++)
+                dm_fit_result_free(&ts[s][j]);
+            free(ts[s]);
+        }
+    }
+    predict__score(pred, meas, n, w);
+    free(sub.configs);
+    free(pred);
+    free(meas);
+}
+
+/* Scores every way of predicting WallTime the runs allow and chooses the
+ * one of the lowest held-out error (m->way_used). */
+static void predict__choose_way(predict_model *m)
+{
+    const dm_run_result *u = &m->train;
+    int stage_counters = m->n_stage[0] && m->n_stage[1] && m->n_stage[2];
+    for (int w = 0; w < PREDICT_N_WAYS; w++)
+        m->way[w] = (predict_way_score){ .cv_mape = NAN, .q = NAN };
+    if (!dm_run_has_counter(u, "WallTime"))
+        for (int w = 0; w < PREDICT_N_WAYS; w++)
+            m->way[w].why = dm_xstrdup("the runs have no WallTime (add it to measure.counters)");
+    else {
+        if (!stage_counters)
+            m->way[PREDICT_WAY_STAGE_TIMES].why = dm_xstrdup("the runs lack the stage counters "
+                "(GeometryInstructions, RasterInstructions, FragmentInstructions)");
+        else if (!dm_run_has_counter(u, "GeometryTime") || !dm_run_has_counter(u, "MinimalShadingTime"))
+            m->way[PREDICT_WAY_STAGE_TIMES].why = dm_xstrdup("the runs lack GeometryTime or "
+                                                             "MinimalShadingTime: add both to measure.counters");
+        else if (!(m->n_time_stage[0] == 1 && m->n_time_stage[1] == 1 && m->n_time_stage[2] == 1))
+            m->way[PREDICT_WAY_STAGE_TIMES].why = dm_xstrdup("too few configurations to fit the stage-time models");
+        else
+            predict__score_stage_times(m, &m->way[PREDICT_WAY_STAGE_TIMES]);
+        if (m->n_time_st == 1)
+            predict__score_fit(&m->time_st[0], &m->way[PREDICT_WAY_TIME_FROM_STAGES]);
+        else
+            m->way[PREDICT_WAY_TIME_FROM_STAGES].why = dm_xstrdup(stage_counters
+                ? "too few configurations to fit time-from-stages" : "needs the stage counters too");
+        if (m->n_time == 1)
+            predict__score_fit(&m->time[0], &m->way[PREDICT_WAY_TIME_FROM_INSTRUCTIONS]);
+        else
+            m->way[PREDICT_WAY_TIME_FROM_INSTRUCTIONS].why =
+                dm_xstrdup("too few configurations to fit time-from-instructions");
+    }
+    m->way_used = -1;
+    for (int w = 0; w < PREDICT_N_WAYS; w++)
+        if (predict_way_usable(m, (predict_way)w) &&
+            (m->way_used < 0 || m->way[w].cv_mape < m->way[m->way_used].cv_mape))
+            m->way_used = w;
 }
 
 void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
@@ -162,14 +346,16 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
     if (dm_run_has_counter(u, "WallTime") && m->n_stage[0] && m->n_stage[1] && m->n_stage[2])
         predict__fit(u, "time-from-stages", "WallTime", NULL, 0, &m->time_st, &m->n_time_st);
     /* each stage's own time, where the runs timed the isolation passes */
-    m->time_heldout.cv_mape = NAN;
-    if (m->n_time_st && dm_run_has_counter(u, "GeometryTime") && dm_run_has_counter(u, "MinimalShadingTime")) {
-        for (int st = 0; st < 3; st++)
-            predict__fit(u, predict__time_models[st], NULL, NULL, 0, &m->time_stage[st], &m->n_time_stage[st]);
-        if (m->n_time_stage[0] == 1 && m->n_time_stage[1] == 1 && m->n_time_stage[2] == 1) {
-            const dm_fit_result *f[3] = {m->time_stage[0], m->time_stage[1], m->time_stage[2]};
-            m->time_heldout = predict__sum_heldout(f, u, "WallTime", "all");
-        }
+    if (m->n_time_st && dm_run_has_counter(u, "GeometryTime") && dm_run_has_counter(u, "MinimalShadingTime") &&
+        predict__fit_stage_times(u, m->time_stage, m->n_time_stage)) {
+        const dm_fit_result *f[3] = {m->time_stage[0], m->time_stage[1], m->time_stage[2]};
+        m->shared_a = predict__shared_a(f, u);
+    }
+    predict__choose_way(m);
+    for (size_t i = 0; i < u->n_configs; i++) {
+        const dm_counter_result *r = u->configs[i].ok ? dm_config_counter(&u->configs[i], "Instructions") : NULL;
+        if (r && r->available && isfinite(r->value) && r->value > m->instr_max)
+            m->instr_max = r->value;
     }
     for (int st = 0; st < 3; st++)
         for (size_t i = 0; i < u->n_configs; i++) {
@@ -264,22 +450,130 @@ static char *predict__part_why(const predict_model *m, const char *variant)
                       "they never saw vary)");
 }
 
-/* Why out has no WallTime or no interval around it (wall_why); et_fit is the
- * time fit's held-out error, ei the Instructions' relative half-width. */
-static char *predict__wall_why(const predict_model *m, const predict_result *out, double et_fit, double ei)
+/* Why no way of predicting WallTime is usable: each way's reason or
+ * held-out error. */
+static char *predict__no_way_why(const predict_model *m)
 {
-    if (!out->wall_by)
-        return dm_run_has_counter(&m->train, "WallTime")
-               ? dm_xstrdup("no time fit: the runs' WallTime could not be fitted to their instructions")
-               : dm_xstrdup("the runs have no WallTime (add it to measure.counters)");
-    if (isfinite(out->wall_lo) && isfinite(out->wall_hi))
-        return NULL;
-    if (!isfinite(et_fit))
-        return dm_xasprintf("the %s fit has no held-out error (too few configurations to hold one out)",
-                            out->wall_by);
-    if (!isfinite(ei))
-        return dm_xstrdup("the Instructions have no interval");
-    return dm_xstrdup("a stage beyond the runs has a cost without a standard error");
+    if (m->way[0].why && m->way[1].why && m->way[2].why && strstr(m->way[0].why, "no WallTime"))
+        return dm_xstrdup(m->way[0].why);
+    dm_str s = {0};
+    dm_str_printf(&s, "no way of predicting it held out within %.0f %% on the runs (", PREDICT_MAX_HELDOUT);
+    for (int w = 0; w < PREDICT_N_WAYS; w++) {
+        const predict_way_score *x = &m->way[w];
+        dm_str_printf(&s, "%s%s ", w ? "; " : "", predict_way_names[w]);
+        if (x->why)
+            dm_str_printf(&s, "unavailable: %s", x->why);
+        else if (isfinite(x->cv_mape))
+            dm_str_printf(&s, "%.1f %%", x->cv_mape);
+        else
+            dm_str_cat(&s, "without a held-out error");
+    }
+    dm_str_cat(&s, ")");
+    return dm_str_take(&s);
+}
+
+/* The frame time of the configuration c (its counts and predicted stage
+ * parts among its counters; out's Instructions and parts filled) by way
+ * w: *ns, and in *se_ns the spread the parameters' standard errors give
+ * the parts beyond the largest the runs measured (INFINITY: such a part's
+ * cost has none).  0 when w prices it. */
+static int predict__wall_by(const predict_model *m, predict_way w, dm_config_result *c, const predict_result *out,
+                            double *ns, double *se_ns)
+{
+    static const char *const b[3] = {"b_geo", "b_raster", "b_frag"};
+    double parts = out->part[0] + out->part[1] + out->part[2], se2 = 0, se = NAN;
+    *ns = NAN;
+    int held = predict_way_usable(m, w) || (!m->way[w].why && !isfinite(m->way[w].cv_mape));
+    if (!held || (w != PREDICT_WAY_TIME_FROM_INSTRUCTIONS && !(isfinite(parts) && parts > 0)))
+        return -1;
+    if (w == PREDICT_WAY_TIME_FROM_INSTRUCTIONS) {
+        const dm_fit_result *t = &m->time[0];
+        *ns = predict__param(t, "a", NULL) + predict__param(t, "b", &se) * out->instr;
+        double excess = out->instr - m->instr_max;
+        se2 = excess > 0 ? pow(se * excess, 2) : 0;
+    } else {
+        const dm_fit_result *t = w == PREDICT_WAY_TIME_FROM_STAGES ? &m->time_st[0] : NULL;
+        *ns = t ? predict__param(t, "a", NULL) : m->shared_a;
+        for (int s = 0; s < 3; s++) {
+            if (t)
+                *ns += predict__param(t, b[s], &se) * out->part[s];
+            else {
+                *ns += predict__variable_part(m->time_stage[s], &m->train, c);
+                predict__param(m->time_stage[s], "b", &se);
+            }
+            double excess = out->part[s] - m->stage_max[s];
+            se2 += excess > 0 ? pow(se * excess, 2) : 0;
+        }
+    }
+    *se_ns = isfinite(se2) ? sqrt(se2) : INFINITY;
+    return isfinite(*ns) && *ns > 0 ? 0 : -1;
+}
+
+/* out's WallTime: by the way of the lowest held-out error on the runs
+ * (m->way_used), unless a documented reason overrides it (out->
+ * wall_override says which), else the next that prices it; its interval
+ * from that way's held-out errors (the PREDICT_COVERAGE conformal bound),
+ * the Instructions' relative half-width ei, the machine's speed between
+ * runs and the parameters' standard errors beyond the runs, combined as
+ * ratios (root of the sum of the squared logarithms): never below 0. */
+static void predict__wall(const predict_model *m, dm_config_result *c, double ei, predict_result *out)
+{
+    int order[PREDICT_N_WAYS], n = 0;
+    if (m->way_used >= 0)
+        order[n++] = m->way_used;
+    for (int w = 0; w < PREDICT_N_WAYS; w++)   /* the rest by their held-out error */
+        if (w != m->way_used && predict_way_usable(m, (predict_way)w)) {
+            int j = n++;
+            for (; j > 0 && j > (m->way_used >= 0) && m->way[order[j - 1]].cv_mape > m->way[w].cv_mape; j--)
+                order[j] = order[j - 1];
+            order[j] = w;
+        }
+    /* time-from-stages prices a geometry instruction from frames it is a
+     * few per cent of: beyond the runs' geometry it does not carry
+     * (docs/models.md, "Frame time by stage") */
+    if (n > 1 && order[0] == PREDICT_WAY_TIME_FROM_STAGES && out->part[0] > m->stage_max[0] &&
+        predict_way_usable(m, PREDICT_WAY_STAGE_TIMES)) {
+        for (int j = 0; j < n; j++)
+            order[j] = j == 0 ? PREDICT_WAY_STAGE_TIMES : order[j] == PREDICT_WAY_STAGE_TIMES ? PREDICT_WAY_TIME_FROM_STAGES
+                                                                                              : order[j];
+        out->wall_override = "time-from-stages had the lower held-out error, but this configuration's geometry "
+                             "lies beyond the runs', where its price of a geometry instruction does not carry";
+    }
+    /* no way held out at all (too few configurations): the first the runs
+     * allow gives the value, its interval unavailable with that reason;
+     * one held out above PREDICT_MAX_HELDOUT never does */
+    for (int w = 0; n == 0 && w < PREDICT_N_WAYS; w++)
+        if (!m->way[w].why && !isfinite(m->way[w].cv_mape))
+            order[n++] = w;
+    double se_ns = 0;
+    int used = -1;
+    for (int j = 0; j < n && used < 0; j++)
+        if (predict__wall_by(m, (predict_way)order[j], c, out, &out->wall_ns, &se_ns) == 0)
+            used = order[j];
+    if (used < 0) {
+        out->wall_ns = NAN;
+        out->wall_override = NULL;
+        out->wall_why = predict__no_way_why(m);
+        return;
+    }
+    if (used != order[0])
+        out->wall_override = "the way of the lowest held-out error needs stage parts this configuration lacks";
+    out->wall_by = predict_way_names[used];
+    const predict_way_score *w = &m->way[used];
+    double h = sqrt(pow(w->q, 2) + pow(log1p(ei), 2) + pow(log1p(PREDICT_RUN_SPREAD), 2) +
+                    pow(log1p(2 * se_ns / out->wall_ns), 2));
+    if (!isfinite(w->q))
+        out->wall_why = dm_xasprintf("%s held out %d configuration%s of the runs; a %.0f %% interval needs %d",
+                                     out->wall_by, w->n, w->n == 1 ? "" : "s", 100 * PREDICT_COVERAGE,
+                                     PREDICT_MIN_HELDOUT);
+    else if (!isfinite(ei))
+        out->wall_why = dm_xstrdup("the Instructions have no interval");
+    else if (!isfinite(h))
+        out->wall_why = dm_xstrdup("a stage beyond the runs has a cost without a standard error");
+    else {
+        out->wall_lo = out->wall_ns * exp(-h);
+        out->wall_hi = out->wall_ns * exp(h);
+    }
 }
 
 int predict_config(const predict_model *m, const plan_config *pc, const double *counts, predict_result *out,
@@ -288,7 +582,7 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
     *out = (predict_result){ .instr = NAN, .instr_lo = NAN, .instr_hi = NAN, .part = {NAN, NAN, NAN},
                              .wall_ns = NAN, .wall_lo = NAN, .wall_hi = NAN, .beyond_stage = -1 };
     out->variant = fitting_variant(pc->params, pc->n_params);
-    dm_config_result c = { .key = (char *)pc->key, .ok = 1 };
+    dm_config_result c = { .key = (char *)pc->key, .ok = 1, .params = pc->params, .n_params = pc->n_params };
     dm_counter_result cr[PREDICT_N_COUNTS + 3];   /* the counts, then the predicted stage parts */
     for (size_t k = 0; k < PREDICT_N_COUNTS; k++)
         cr[k] = (dm_counter_result){ .name = (char *)predict_counts[k], .available = isfinite(counts[k]),
@@ -327,78 +621,22 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
         instr = sum;
         out->instr_by = "stage models summed";
         ei = h && h->n >= 3 && isfinite(h->cv_mape) ? 2 * h->cv_mape / 100 : isfinite(spread) ? spread / sum : ei;
+        /* no narrower than the bound of every variant's held-out errors */
+        if (isfinite(ei) && isfinite(m->instr_q))
+            ei = fmax(ei, expm1(m->instr_q));
     }
     out->instr = instr;
-    out->instr_lo = instr * (1 - ei);
+    out->instr_lo = instr / (1 + ei);   /* a ratio either way: never below 0 */
     out->instr_hi = instr * (1 + ei);
     if (!isfinite(ei))
         out->instr_why = predict__too_few(m, out->variant, "hold one out for an interval");
     if (!(isfinite(sum) && sum > 0))
         out->part_why = predict__part_why(m, out->variant);
-    /* Frame time.  With the timed stage passes: each stage's time from
-     * its part, at the price of an instruction that stage's own pass
-     * measured.  Else from each stage's instructions fitted to the frame's
-     * time (an instruction of the geometry stages, on one thread, takes
-     * longer) when that fit predicts the runs' held-out frames at least as
-     * well as the one from the frame's instructions; else from the
-     * frame's. */
-    double se_ns = 0;   /* what the parameters' standard errors make of it beyond the runs */
-    double et_fit = NAN;   /* the time fit's held-out error, % */
-    double stage_ns = 0;   /* the stage times' sum: their formulas over the counts and the parts */
-    int by_stage_times = predict_has_stage_times(m) && isfinite(sum) && sum > 0;
-    if (by_stage_times) {
-        dm_config_result cp = c;
-        for (int s = 0; s < 3; s++)
-            cr[PREDICT_N_COUNTS + s] = (dm_counter_result){ .name = (char *)predict__stages[s], .available = 1,
-                                                            .value = out->part[s] };
-        cp.n_counters = PREDICT_N_COUNTS + 3;
-        for (int s = 0; s < 3 && by_stage_times; s++) {
-            double v = NAN;
-            dm_str w = {0};
-            by_stage_times = predict__one(m->time_stage[s], &m->train, pc, &cp, &v, &w) == 0 && isfinite(v);
-            stage_ns += v;
-            dm_str_free(&w);
-        }
-    }
-    if (isfinite(sum) && sum > 0 && (by_stage_times || predict_prefers_time_from_stages(m))) {
-        static const char *const b[3] = {"b_geo", "b_raster", "b_frag"};
-        /* Within the runs' range the time fit's held-out error says its
-         * error; a stage part beyond the largest measured adds the excess
-         * times its cost's standard error (the standard errors alone,
-         * without their covariance, overstate the error of an
-         * interpolation). */
-        double se = NAN;
-        const dm_fit_result *t = by_stage_times ? NULL : &m->time_st[0];
-        out->wall_ns = t ? predict__param(t, "a", NULL) : stage_ns;
-        for (int s = 0; s < 3; s++) {
-            if (t)
-                out->wall_ns += predict__param(t, b[s], &se) * out->part[s];
-            else
-                predict__param(m->time_stage[s], "b", &se);
-            double excess = out->part[s] - m->stage_max[s];
-            se_ns += excess > 0 ? (isfinite(se) ? pow(se * excess, 2) : INFINITY) : 0;
-        }
-        se_ns = sqrt(se_ns);
-        et_fit = t ? t->cv_mape : m->time_heldout.cv_mape;
-        out->wall_by = t ? "time-from-stages" : "stage times";
-    } else if (m->n_time == 1) {
-        const dm_fit_result *t = &m->time[0];
-        out->wall_ns = predict__param(t, "a", NULL) + predict__param(t, "b", NULL) * instr;
-        et_fit = t->cv_mape;
-        out->wall_by = "time-from-instructions";
-    }
-    if (out->wall_by) {
-        /* the instructions' and the time fit's errors, the machine's
-         * speed between runs and, far from the configurations fitted, its
-         * parameters' standard errors */
-        double ep = out->wall_ns > 0 ? 2 * se_ns / out->wall_ns : 0;
-        double et = sqrt(ei * ei + pow(2 * et_fit / 100, 2) + pow(PREDICT_RUN_SPREAD, 2) + ep * ep);
-        out->wall_lo = fmax(0, out->wall_ns * (1 - et));   /* no frame takes less than nothing */
-        out->wall_hi = out->wall_ns * (1 + et);
-        if (!isfinite(out->wall_hi))
-            out->wall_lo = NAN;   /* no half-known interval */
-    }
-    out->wall_why = predict__wall_why(m, out, et_fit, ei);
+    for (int s = 0; s < 3; s++)   /* the stage parts, for the stage-time fits */
+        cr[PREDICT_N_COUNTS + s] = (dm_counter_result){ .name = (char *)predict__stages[s],
+                                                        .available = isfinite(out->part[s]), .value = out->part[s] };
+    c.n_counters = PREDICT_N_COUNTS + 3;
+    predict__wall(m, &c, ei, out);
     return 0;
 }
 
@@ -427,7 +665,8 @@ void predict_free(predict_model *m)
     predict__free_fits(m->time_st, m->n_time_st);
     for (int st = 0; st < 3; st++)
         predict__free_fits(m->time_stage[st], m->n_time_stage[st]);
-    free(m->time_heldout.variant);
+    for (int w = 0; w < PREDICT_N_WAYS; w++)
+        free(m->way[w].why);
     for (size_t i = 0; i < m->n_heldout; i++)
         free(m->heldout[i].variant);
     free(m->heldout);

@@ -6,10 +6,11 @@
  * The costs per invocation come from fits per shader variant: one per
  * stage counter with that stage's own model (geometry-, raster- and
  * fragment-instructions) when the runs have the stage counters, else the
- * whole-frame stage-instructions.  Frame time: the sum of each stage's
- * time (geometry-, raster- and fragment-time) when the runs have the timed
- * stage passes; else time-from-stages or time-from-instructions, whichever
- * has the lower CV-MAPE on the runs.  A
+ * whole-frame stage-instructions.  Frame time: of the ways the runs allow
+ * (the stage times summed with one shared fixed cost, time-from-stages,
+ * time-from-instructions; every time fit of relative error), the one with
+ * the lowest held-out error on the runs' own configurations, never one
+ * above PREDICT_MAX_HELDOUT; its interval from those held-out errors.  A
  * configuration of a variant the runs never measured is not predicted,
  * never guessed.
  */
@@ -32,6 +33,34 @@ extern const char *const predict_counts[PREDICT_N_COUNTS];
  * WallTime's interval; it is a time of another run being predicted. */
 #define PREDICT_RUN_SPREAD 0.10
 
+/* A way of predicting WallTime whose held-out error on the runs is above
+ * this (percent) is never used for a value. */
+#define PREDICT_MAX_HELDOUT 50.0
+/* The coverage a WallTime interval aims at, and the configurations held
+ * out it needs: the ceil((n + 1) * 0.9)-th smallest of n held-out errors
+ * bounds a new one with probability >= 0.9 (split conformal), which needs
+ * n >= 9. */
+#define PREDICT_COVERAGE 0.9
+#define PREDICT_MIN_HELDOUT 9
+
+/* The ways of predicting WallTime, in the order printed. */
+typedef enum predict_way {
+    PREDICT_WAY_STAGE_TIMES,         /* geometry-, raster-, fragment-time, one shared fixed cost */
+    PREDICT_WAY_TIME_FROM_STAGES,
+    PREDICT_WAY_TIME_FROM_INSTRUCTIONS,
+    PREDICT_N_WAYS
+} predict_way;
+extern const char *const predict_way_names[PREDICT_N_WAYS];
+
+/* How well a way predicted the runs' own frames held out of its fits. */
+typedef struct predict_way_score {
+    double cv_mape;   /* percent; NaN: none held out */
+    int n;            /* configurations held out */
+    double q;         /* the PREDICT_COVERAGE conformal bound of |ln(predicted / measured)|; NaN when
+                       * n < PREDICT_MIN_HELDOUT */
+    char *why;        /* NULL: available; else why the runs do not allow it */
+} predict_way_score;
+
 /* The counters the runs must have for any prediction (the stage counters,
  * with SamplesPassed, are used when present). */
 #define PREDICT_N_NEEDED 5
@@ -51,23 +80,30 @@ typedef struct predict_model {
     dm_fit_result *instr, *stage[3], *time, *time_st;   /* time_st: time-from-stages */
     size_t n_instr, n_stage[3], n_time, n_time_st;
     double stage_max[3];   /* the largest value of each stage counter the runs measured */
+    double instr_max;      /* and of Instructions */
     predict_heldout *heldout;   /* per variant, when the runs have the stage counters */
     size_t n_heldout;
+    double instr_q;   /* their PREDICT_COVERAGE conformal bound of |ln(sum / Instructions)|, pooled; NaN: too few */
     /* geometry-, raster- and fragment-time: each stage's time from its
      * instructions, when the runs have the timed passes (GeometryTime,
-     * MinimalShadingTime) and the stage counters; their held-out
-     * predictions summed against WallTime (CV-MAPE, %; NaN: none) */
+     * MinimalShadingTime) and the stage counters; summed, their constants
+     * give way to shared_a, the one fixed cost of a frame (each pass's
+     * sample ends in one glFinish, which the passes' differences cancel
+     * only as far as the fits' constants happen to) */
     dm_fit_result *time_stage[3];
     size_t n_time_stage[3];
-    predict_heldout time_heldout;
+    double shared_a;
+    predict_way_score way[PREDICT_N_WAYS];
+    int way_used;      /* the way of the lowest held-out error at most PREDICT_MAX_HELDOUT, -1: none */
 } predict_model;
 
 typedef struct predict_result {
     char *variant;           /* "pom steps=auto ..." (fitting_variant) */
-    double instr, instr_lo, instr_hi;   /* frame Instructions, ±2 CV-MAPE */
+    double instr, instr_lo, instr_hi;   /* frame Instructions, ×/÷ (1 + 2 CV-MAPE), at least the pooled bound */
     double part[3];          /* geometry, raster, fragment; NaN without the stage counters */
     double wall_ns, wall_lo, wall_hi;   /* NaN without a WallTime fit */
     const char *wall_by;     /* the way it was predicted: "stage times", "time-from-stages", ... */
+    const char *wall_override;   /* why wall_by is not the way of the lowest held-out error (NULL: it is) */
     int beyond_stage;        /* the stage whose part is the most beyond the runs' largest, -1 = none is */
     double beyond;           /* that part over the largest the runs measured (> 1) */
     /* For the writers: where the Instructions come from ("stage models
@@ -103,12 +139,9 @@ const predict_heldout *predict_heldout_of(const predict_model *m, const char *va
  * stage models'). */
 int predict_heldout_prefers_one(const predict_model *m, const dm_fit_result *one);
 
-/* How predict_config prices a frame whose stage parts are predicted: by
- * the stage times when the runs have them (1), else by time-from-stages
- * when that fit's CV-MAPE is not above time-from-instructions' (1), else
- * by the latter. */
-int predict_has_stage_times(const predict_model *m);
-int predict_prefers_time_from_stages(const predict_model *m);
+/* 1 when way is usable for a value: the runs allow it and its held-out
+ * error is known and at most PREDICT_MAX_HELDOUT. */
+int predict_way_usable(const predict_model *m, predict_way way);
 
 /* How many ok configurations of the runs are of variant (fitting_variant). */
 size_t predict_variant_count(const predict_model *m, const char *variant);

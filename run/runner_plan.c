@@ -225,11 +225,14 @@ static void runner_plan__budget_pilot(runner *r, runner_plan__known *b, const pl
         b->by_instr += by_instr;
         b->by_pilot += !by_instr;
         if (isfinite(frame) && t > r->o->budget_s) {
+            char iv[64] = "[interval unavailable]";   /* never "[nan, nan]" (predict_result.wall_why) */
+            if (by_instr && isfinite(pr.wall_lo) && isfinite(pr.wall_hi))
+                snprintf(iv, sizeof iv, "[%.3g, %.3g]", pr.wall_lo / 1e6, pr.wall_hi / 1e6);
             char *why = by_instr
                 ? dm_xasprintf("over --budget %g s: the instruction models (%zu stored run%s) predict "
-                               "%.4g instructions and %.3g ms/frame [%.3g, %.3g], so measuring would take "
+                               "%.4g instructions and %.3g ms/frame %s, so measuring would take "
                                "about %.2g s", r->o->budget_s, b->pm_runs, b->pm_runs == 1 ? "" : "s", pr.instr,
-                               frame / 1e6, pr.wall_lo / 1e6, pr.wall_hi / 1e6, t)
+                               frame / 1e6, iv, t)
                 : dm_xasprintf("over --budget %g s: a pilot frame took %.3g ms, so measuring "
                                "would take about %.2g s", r->o->budget_s, ns / 1e6, t);
             runner_plan__leave_out_key(r, key, why);

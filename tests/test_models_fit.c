@@ -432,6 +432,51 @@ static void condition_near_collinear(void **state)
     dm_fit_result_free(&r);
 }
 
+/* y = 50 + 2 x over x = 1..1000 (three orders of magnitude) with 5 %
+ * multiplicative noise.  desc.relative minimises sum ((f - y) / y)^2: its
+ * parameters are the weighted least squares with weights 1/y^2, computed
+ * here by the normal equations; the small points are then predicted in
+ * proportion, where the absolute fit lets the largest decide. */
+static void relative_weights(void **state)
+{
+    (void)state;
+    enum { N = 60 };
+    double x[N], y[N];
+    static const char *const V1[] = { "x" };
+    rng_state g = rng_seed(5);
+    for (size_t i = 0; i < N; i++) {
+        x[i] = pow(10.0, 3.0 * (double)i / (N - 1));   /* 1 .. 1000 */
+        y[i] = (50.0 + 2.0 * x[i]) * (1.0 + 0.05 * gauss(&g));
+    }
+    /* weighted normal equations for a + b x, w = 1/y^2 */
+    double sw = 0, sx = 0, sxx = 0, sy = 0, sxy = 0;
+    for (size_t i = 0; i < N; i++) {
+        double w = 1.0 / (y[i] * y[i]);
+        sw += w, sx += w * x[i], sxx += w * x[i] * x[i], sy += w * y[i], sxy += w * x[i] * y[i];
+    }
+    double det = sw * sxx - sx * sx, a = (sxx * sy - sx * sxy) / det, b = (sw * sxy - sx * sy) / det;
+    fit_desc d = { .formula = "a + b*x", .response = "t", .variables = V1, .n_vars = 1, .x = x, .y = y,
+                   .n_points = N, .seed = 7, .relative = 1 };
+    dm_fit_result r = run_ok(&d);
+    assert_true(rel(r.params[0].value, a) < 1e-7);
+    assert_true(rel(r.params[1].value, b) < 1e-7);
+    /* the known parameters within 3 standard errors */
+    assert_true(fabs(r.params[0].value - 50.0) < 3 * r.params[0].stderr_);
+    assert_true(fabs(r.params[1].value - 2.0) < 3 * r.params[1].stderr_);
+    d.relative = 0;
+    dm_fit_result ab = run_ok(&d);
+    /* the ten smallest points: the relative fit's error is the smaller */
+    double er = 0, ea = 0;
+    for (size_t i = 0; i < 10; i++) {
+        er += fabs(r.predicted[i] / y[i] - 1);
+        ea += fabs(ab.predicted[i] / y[i] - 1);
+    }
+    assert_true(er < ea);
+    assert_true(r.mape < ab.mape);
+    dm_fit_result_free(&r);
+    dm_fit_result_free(&ab);
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(exact_recovery),
              cmocka_unit_test(noisy_within_3_stderr),
@@ -446,4 +491,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(bounds_and_errors),
              cmocka_unit_test(bounds_in_formula),
              cmocka_unit_test(condition_well_conditioned),
-             cmocka_unit_test(condition_near_collinear))
+             cmocka_unit_test(condition_near_collinear),
+             cmocka_unit_test(relative_weights))

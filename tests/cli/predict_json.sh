@@ -9,6 +9,8 @@
 #    the stage shares name the missing stage counters once;
 #  - --json and --csv carry the same fields: key, label, each counter with
 #    its interval or the reason, the model, whether it extrapolates;
+#  - --json's wall_time_ways: the way used has the lowest held-out error
+#    (at most 50 %), every WallTime interval is a ratio around its value;
 #  - --json with --csv is refused (exit 2).
 set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
@@ -128,6 +130,28 @@ for p, r in zip(P, rows):
     for s in ("GeometryInstructions", "RasterInstructions", "FragmentInstructions"):
         check("the runs lack the stage counters" in c[s].get("unavailable", ""), "%s of %s" % (s, p["label"]))
     check(r["stages_unavailable"] == c["GeometryInstructions"]["unavailable"], "CSV stages of %s" % p["label"])
+# each way of predicting WallTime with its held-out error: the one used is
+# the lowest at most 50 %, the others say why not (these runs lack the
+# stage counters); every WallTime interval a ratio around its value
+W = j["wall_time_ways"]
+check([w["way"] for w in W] == ["stage times", "time-from-stages", "time-from-instructions"], "ways: %s" % W)
+used = [w for w in W if w["used"]]
+scored = [w for w in W if "heldout_mape" in w]
+check(all("unavailable" in w for w in W if "heldout_mape" not in w), "a way with neither error nor reason: %s" % W)
+check("the runs lack the stage counters" in W[0].get("unavailable", ""), "stage times: %s" % W[0])
+if used:
+    check(len(used) == 1 and used[0]["heldout_mape"] <= 50 and
+          used[0]["heldout_mape"] == min(w["heldout_mape"] for w in scored), "the way used: %s" % W)
+else:
+    check(all(w["heldout_mape"] > 50 for w in scored), "no way used though one held out within 50 %%: %s" % W)
+for p in P:
+    w = p.get("counters", {}).get("WallTime", {})
+    if isinstance(w.get("interval"), list):
+        lo, hi = w["interval"]
+        check(0 < lo < w["value"] < hi and abs(lo * hi / w["value"] ** 2 - 1) < 1e-9,
+              "WallTime interval of %s not a ratio around its value: %s" % (p["label"], w))
+    if p["predicted"] and "value" in w:
+        check(w["model"] == used[0]["way"] if used else False, "WallTime of %s by %s" % (p["label"], w.get("model")))
 if fails:
     print("\n".join("FAIL: " + f for f in fails)); sys.exit(1)
 print("predict table, --json and --csv ok")

@@ -5,7 +5,9 @@
 #    pom at 24 steps) within 5 % of the Instructions measured there, as the
 #    sum of the per-stage models (the stage shares are printed), and
 #    lists phong, a variant never measured, as not predicted; its frame
-#    times are the sum of the timed stage passes' models;
+#    times by the way of the lowest held-out error on the runs (the timed
+#    stage passes', time-from-stages or time-from-instructions), each in
+#    an interval above 0, the note saying "Extrapolated N×";
 #  - refuses runs of another machine fingerprint naming the key (exit 2),
 #    unless --allow-env-mismatch, and a run without a needed counter.
 set -uo pipefail
@@ -42,7 +44,7 @@ import json, re, sys
 preds = json.load(open(sys.argv[1]))["predictions"]
 meas = {c["key"]: c for c in json.load(open(sys.argv[2]))["configs"]}
 unpred = open(sys.argv[3]).read()
-checked, bad = 0, []
+checked, bad, walls = 0, [], []
 for p in preds:
     c = meas[p["key"]]
     t = c["params"]["technique"]
@@ -71,12 +73,17 @@ for p in preds:
     checked += 1
     if abs(err) > 0.05:
         bad.append(f"{t}: {100*err:+.2f} % off")
-    # the runs timed the stage passes: WallTime is the stage times' sum,
-    # with an interval around it
+    # WallTime by the way of the lowest held-out error (below), unless an
+    # override says why not, with an interval that is a ratio around it:
+    # above 0, never NaN
     w = cs["WallTime"]
-    if w.get("model") != "stage times" or not isinstance(w.get("interval"), list) or \
-            not w["interval"][0] < w["value"] < w["interval"][1]:
-        bad.append(f"{t}: no WallTime by the stage times with its interval: {w}")
+    walls.append(w)
+    if not isinstance(w.get("interval"), list) or not 0 < w["interval"][0] < w["value"] < w["interval"][1]:
+        bad.append(f"{t}: no WallTime interval above 0 around the value: {w}")
+    # the held-out configurations lie beyond the runs: the note says how far
+    if not re.search(r"Extrapolated\s+%.2f×:\s+the\s+\w+\s+part\s+beyond" % ex["factor"],
+                     unpred):
+        bad.append(f"{t}: the table does not say 'Extrapolated {ex['factor']:.2f}×'")
 if not re.search(r"variant 'phong[^']*' was never measured by the runs", unpred):
     bad.append("the table does not list phong as not predicted")
 if checked != 3:
@@ -87,11 +94,24 @@ rows = re.findall(r"\n    (stages summed.*)", held[1]) if len(held) == 2 else []
 errs = [float(v) for r in rows for v in re.findall(r"([\d.]+) %", r)]
 if len(rows) != 2 or not all("(used)" in r for r in rows) or not errs or max(errs) > 5:
     bad.append(f"held-out errors of normal and pom missing, unmarked or above 5 %: {rows}")
-wt = re.search(r"held-out error of WallTime on the runs' configurations \(k-fold CV-MAPE\):\n  stage times summed "
-               r"([\d.]+) % over (\d+) configurations \(used\); time-from-stages [\d.]+ %; "
-               r"time-from-instructions [\d.]+ %", unpred)
-if not wt or int(wt.group(2)) < 3:
-    bad.append("no WallTime held-out line with the stage times summed used")
+# each way of predicting WallTime scored by its held-out error; the lowest
+# is used, never one above 50 %
+wl = unpred.split("held-out error of WallTime on the runs' configurations (k-fold CV-MAPE):\n", 1)
+ways = re.findall(r"(stage times summed|time-from-stages|time-from-instructions) ([\d.]+) % over (\d+) "
+                  r"configurations( \(used\))?", wl[1] if len(wl) == 2 else "")
+used = [w for w in ways if w[3]]
+print("WallTime ways held out:", [(w[0], w[1], w[2], bool(w[3])) for w in ways])
+if len(ways) != 3 or len(used) != 1:
+    bad.append(f"not three ways with their held-out errors and one used: {ways}")
+elif float(used[0][1]) > 50 or float(used[0][1]) > min(float(w[1]) for w in ways):
+    bad.append(f"the way used is not the lowest held-out error at most 50 %: {ways}")
+else:
+    name = used[0][0].replace("stage times summed", "stage times")
+    for w in walls:
+        if w.get("model") != name and not w.get("model_override"):
+            bad.append(f"WallTime by {w.get('model')}, not {name}, without an override: {w}")
+if not re.search(r"used: [a-z -]+, the lowest held-out error", unpred):
+    bad.append("predict does not say which way it used and why")
 for l in open(sys.argv[3].replace(".joined", "")).read().splitlines():
     if len(l) > 100:
         bad.append(f"a line over 100 columns: {l!r}")

@@ -1,0 +1,112 @@
+#!/usr/bin/env bash
+# bench/predict_holdout.sh: `dmbench predict` on sweeps it was not fitted
+# on (docs/models.md, "Prediction: held-out sweeps").  Each pair of
+# bench/holdout/ is a training sweep NAME_fit.yaml and a target
+# NAME_new.yaml with other resolutions, step counts and tessellation levels
+# (up to 1.5x the highest fitted).  Measures both (RUNS times each,
+# alternating; default 1) unless HOLDOUT_RUNS names a directory that holds
+# them (NAME_fit/ and NAME_new/ output roots, NAME_fit2/ ... for more runs),
+# predicts each target from its training runs pooled, and prints per
+# configuration the Instructions and WallTime errors against the target's
+# measured values (WallTime: the mean of its runs), whether the measured
+# value lies in the prediction interval, the way predict chose, and per
+# pair and over all: the worst errors and the interval coverage.
+# Usage: bench/predict_holdout.sh [PAIR...]   (default: every pair; DMBENCH: the binary)
+set -euo pipefail
+here=$(cd "$(dirname "$0")/.." && pwd)
+B=${DMBENCH:-$here/build/dmbench}
+runs=${RUNS:-1}
+dir=${HOLDOUT_RUNS:-}
+pairs=("$@")
+[ ${#pairs[@]} -gt 0 ] || pairs=($(cd "$here/bench/holdout" && ls *_fit.yaml | sed 's/_fit.yaml$//'))
+if [ -z "$dir" ]; then
+  dir=$(mktemp -d)
+  for p in "${pairs[@]}"; do
+    for i in $(seq 1 "$runs"); do
+      sfx=$([ "$i" = 1 ] && echo "" || echo "$i")
+      for s in fit new; do
+        t0=$(date +%s)
+        "$B" run "$here/bench/holdout/${p}_$s.yaml" --out "$dir/${p}_$s$sfx" --seed "$i" --quiet
+        echo "measured $p $s run $i: $(( $(date +%s) - t0 )) s, load $(cut -d' ' -f1-3 /proc/loadavg)"
+      done
+    done
+  done
+fi
+echo "load average: $(cut -d' ' -f1-3 /proc/loadavg); runs in $dir"
+summary=$(mktemp)
+for p in "${pairs[@]}"; do
+  fit=$(ls -d "$dir/${p}_fit"*/latest | paste -sd,); new=$(ls -d "$dir/${p}_new"*/latest | paste -sd,)
+  "$B" predict "$here/bench/holdout/${p}_new.yaml" --from "$fit" --json > "$dir/$p.json"
+  "$B" predict "$here/bench/holdout/${p}_new.yaml" --from "$fit" > "$dir/$p.txt"
+  echo; echo "== pair $p: fitted on $fit"
+  sed -n '/^held-out error of WallTime/,$p' "$dir/$p.txt"
+  python3 - "$dir/$p.json" "$new" "$p" "$summary" <<'PY'
+import json, math, statistics, sys
+pred = json.load(open(sys.argv[1]))["predictions"]
+news = [json.load(open(d + "/results.json")) for d in sys.argv[2].split(",")]
+pair, summary = sys.argv[3], sys.argv[4]
+def val(c, n):
+    x = c["counters"].get(n, {})
+    return x.get("median", x.get("value"))
+meas = {}
+for j in news:
+    for c in j["configs"]:
+        if c.get("status", "ok") == "ok":
+            meas.setdefault(c["key"], []).append(c)
+rows, worst_i, worst_w, cov, tot, ratios = [], 0.0, 0.0, [0, 0], [0, 0], []
+print(f"| configuration | Instructions error | in | WallTime predicted / measured ms | error | in | way |")
+print("|---|---|---|---|---|---|---|")
+for p in pred:
+    cs = meas.get(p["key"])
+    if not p["predicted"] or not cs:
+        print(f"| {p['label']} | not predicted: {p.get('reason', 'not measured')} |||||")
+        continue
+    ins, wt = p["counters"]["Instructions"], p["counters"]["WallTime"]
+    mi = val(cs[0], "Instructions")
+    mw = statistics.mean(val(c, "WallTime") for c in cs)
+    ei = 100 * (ins["value"] / mi - 1)
+    worst_i = max(worst_i, abs(ei))
+    def inside(v, m):
+        iv = v.get("interval")
+        return "-" if not isinstance(iv, list) else ("in" if iv[0] <= m <= iv[1] else "OUT")
+    ii = inside(ins, mi)
+    if "value" in wt:
+        ew = 100 * (wt["value"] / mw - 1)
+        ratios.append((mw / wt["value"], wt["value"], mw))
+        worst_w = max(worst_w, abs(ew))
+        iw = inside(wt, mw)
+        wtext = f"{wt['value'] / 1e6:.2f} / {mw / 1e6:.2f} | {ew:+.1f} % | {iw}"
+        way = wt.get("model", "") + (" (override)" if wt.get("model_override") else "")
+    else:
+        iw, wtext, way = "-", f"unavailable / {mw / 1e6:.2f} | - | -", "unavailable: " + wt.get("unavailable", "")
+    for k, x in enumerate((ii, iw)):
+        tot[k] += x != "-"
+        cov[k] += x == "in"
+    ex = p.get("extrapolation")
+    label = p["label"] + (f" (extrapolated {ex['factor']:.1f}x {ex['stage']})" if ex else "")
+    print(f"| {label} | {ei:+.2f} % | {ii} | {wtext} | {way} |")
+print(f"pair {pair}: worst Instructions {worst_i:.2f} %, worst WallTime {worst_w:.1f} %, "
+      f"intervals holding the measured value: Instructions {cov[0]}/{tot[0]}, WallTime {cov[1]}/{tot[1]}")
+# The common mode: the median configuration's measured over predicted
+# WallTime.  A whole run moves against another with the machine's load
+# (every configuration alike); the errors with it divided out are the
+# model's share.
+if ratios:
+    cm = statistics.median(r[0] for r in ratios)
+    rest = max(abs(100 * (p * cm / m - 1)) for _, p, m in ratios)
+    print(f"pair {pair}: common mode x{cm:.3f} (measured / predicted, median configuration); "
+          f"with it divided out the worst WallTime error is {rest:.1f} %")
+with open(summary, "a") as f:
+    f.write(f"{pair} {worst_i} {worst_w} {cov[0]} {tot[0]} {cov[1]} {tot[1]}\n")
+PY
+done
+python3 - "$summary" <<'PY'
+import sys
+rows = [l.split() for l in open(sys.argv[1])]
+def cov(i):
+    c, t = sum(int(r[i]) for r in rows), sum(int(r[i + 1]) for r in rows)
+    return f"{c}/{t}" + (f" = {100 * c / t:.0f} %" if t else "")
+print(f"\nall pairs: worst Instructions {max(float(r[1]) for r in rows):.2f} %, worst WallTime "
+      f"{max(float(r[2]) for r in rows):.1f} %; interval coverage: Instructions {cov(3)}, WallTime {cov(5)}")
+PY
+rm -f "$summary"
