@@ -57,6 +57,34 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 
+/* What report_write writes and where (report_model.h builds what it shows).
+ * dir: the run directory image paths are relative to (thumbnails embedded,
+ * missing files marked; NULL links images without checking them); out: the
+ * folder the files go into, which must exist (NULL: dir), the images the
+ * run names and published.json being copied there from dir so out opens on
+ * its own; href: prefixed to every image link of report.html (NULL: "");
+ * trends: the trend lines of the store (NULL: none); file: the name of one
+ * row of the writer table ("results.json", "front.tex") to write only that
+ * file (NULL: every row, and nothing copied); path: with file, where it
+ * goes (NULL: out/file). */
+struct report_model;
+typedef struct report_trends report_trends;
+typedef struct report_desc {
+    const char *dir;
+    const char *out;
+    const char *href;
+    const report_trends *trends;
+    const char *file;
+    const char *path;
+} report_desc;
+/* Writes the files of the writer table (report_write.c) from the model m
+ * (built with the same desc).  Returns 0 or the writer's code (DM_ERR_IO:
+ * err names the file); stops at the first failure; DM_ERR_ARG for a file
+ * name that is no row (err lists the rows). */
+int report_write(const struct report_model *m, const report_desc *d, char *err, size_t errlen);
+/* report_model_build, report_write and report_model_free in one call. */
+int report_write_run(const dm_run_result *run, const report_desc *d, char *err, size_t errlen);
+
 /* Writes all four files into dir (which must exist).  Returns 0 or the
  * writer's code (DM_ERR_IO: err names the file); stops at the first failure. */
 int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen);
@@ -84,10 +112,10 @@ typedef struct report_trend {
     double *median_ns;
     size_t n;
 } report_trend;
-typedef struct report_trends {
+struct report_trends {
     report_trend *items;
     size_t n;
-} report_trends;
+};
 void report_trends_free(report_trends *t);
 /* report_write_all_to with trend lines (t may be NULL: none). */
 int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
