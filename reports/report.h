@@ -85,24 +85,6 @@ int report_write(const struct report_model *m, const report_desc *d, char *err, 
 /* report_model_build, report_write and report_model_free in one call. */
 int report_write_run(const dm_run_result *run, const report_desc *d, char *err, size_t errlen);
 
-/* Writes all four files into dir (which must exist).  Returns 0 or the
- * writer's code (DM_ERR_IO: err names the file); stops at the first failure. */
-int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen);
-int report_write_json(const dm_run_result *run, const char *path);
-int report_write_csv(const dm_run_result *run, const char *path);
-int report_write_markdown(const dm_run_result *run, const char *path);
-int report_write_html(const dm_run_result *run, const char *dir, const char *path);
-/* As report_write_html, with href prefixed to every image link (so a report
- * written outside the run directory still finds its images); NULL = "". */
-int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
-                         const char *href);
-/* As report_write_all, the files going into out (which must exist), and
- * the images the run names copied from the run directory dir to the same
- * relative paths under out, so out opens on its own when moved or
- * published (`dmbench report DIR --out OUT`). */
-int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
-                        size_t errlen);
-
 /* A configuration's median WallTime (ns) in the runs of the store on the
  * same machine fingerprint, oldest first, this run last (run/trends.h
  * builds them from the store).  report.html draws a small trend line per
@@ -117,14 +99,6 @@ struct report_trends {
     size_t n;
 };
 void report_trends_free(report_trends *t);
-/* report_write_all_to with trend lines (t may be NULL: none). */
-int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
-                            const report_trends *t, char *err, size_t errlen);
-int report_write_html_trends(const dm_run_result *run, const char *dir, const char *path,
-                             const char *href, const report_trends *t);
-/* report_write_html: dir is the run directory image paths are relative to
- * (used to embed thumbnails and to mark missing files); NULL links images
- * without checking them. */
 
 /* The one label of a configuration, the same in every file and on the
  * terminal: the scene (mesh, resolution with ×, and only the scene settings

@@ -1,8 +1,8 @@
-/* report_write.c — the four files of a report as rows of one table, and
- * the folder they go into (report.h: report_write_all and its variants).
+/* report_write.c — the files of a report as rows of one table, and the
+ * folder they go into (report.h: report_write, report_write_run).
  * The writers (report_json.c, report_csv.c, report_md.c, report_html.c)
- * read the run and the shared helpers of report.c; only this file calls
- * them, so the writers and their helpers form no circle. */
+ * read the report model (report_model.h); only this file calls them, so
+ * the writers, the model and their helpers form no circle. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
 #include "reports/published_report.h"
@@ -120,70 +120,4 @@ int report_write_run(const dm_run_result *run, const report_desc *d, char *err, 
     rc = report_write(&m, d, err, errlen);
     report_model_free(&m);
     return rc;
-}
-
-/* ---- the entry points before report_desc, until their callers move ---- */
-
-int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
-                            const report_trends *t, char *err, size_t errlen)
-{
-    if (!run || !dir || !out) {
-        snprintf(err, errlen, "report_write_all: no run or no directory");
-        return DM_ERR_ARG;
-    }
-    report_desc d = {.dir = dir, .out = out, .trends = t};
-    return report_write_run(run, &d, err, errlen);
-}
-
-int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
-                        size_t errlen)
-{
-    return report_write_all_trends(run, dir, out, NULL, err, errlen);
-}
-
-int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen)
-{
-    return report_write_all_to(run, dir, dir, err, errlen);
-}
-
-/* One file to path; the code of its writer. */
-static int report_write__legacy(const dm_run_result *run, const report_desc *d)
-{
-    if (!run || !d->path)
-        return DM_ERR_ARG;
-    char err[512];
-    return report_write_run(run, d, err, sizeof err);
-}
-
-int report_write_json(const dm_run_result *run, const char *path)
-{
-    return report_write__legacy(run, &(report_desc){.file = "results.json", .path = path});
-}
-
-int report_write_csv(const dm_run_result *run, const char *path)
-{
-    return report_write__legacy(run, &(report_desc){.file = "results.csv", .path = path});
-}
-
-int report_write_markdown(const dm_run_result *run, const char *path)
-{
-    return report_write__legacy(run, &(report_desc){.file = "summary.md", .path = path});
-}
-
-int report_write_html_trends(const dm_run_result *run, const char *dir, const char *path,
-                             const char *href, const report_trends *t)
-{
-    return report_write__legacy(run, &(report_desc){.dir = dir, .href = href, .trends = t,
-                                                     .file = "report.html", .path = path});
-}
-
-int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
-                         const char *href)
-{
-    return report_write_html_trends(run, dir, path, href, NULL);
-}
-
-int report_write_html(const dm_run_result *run, const char *dir, const char *path)
-{
-    return report_write_html_to(run, dir, path, NULL);
 }
