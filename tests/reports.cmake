@@ -24,3 +24,4 @@ add_test(NAME test_reports_quick_browser
 set_tests_properties(test_reports_quick_browser PROPERTIES TIMEOUT 300 LABELS "browser;e2e"
   ENVIRONMENT "${DM_TEST_ENV}")
 dm_add_unit(test_reports_published test_reports_published.c LIBS dm_reports)
+dm_add_unit(test_reports_model test_reports_model.c LIBS dm_reports)
