@@ -17,6 +17,7 @@ int report__write_json(const report_model *m, const report_desc *d, const char *
 int report__write_csv(const report_model *m, const report_desc *d, const char *path);
 int report__write_md(const report_model *m, const report_desc *d, const char *path);
 int report__write_html(const report_model *m, const report_desc *d, const char *path);
+int report__write_tex(const report_model *m, const report_desc *d, const char *path);
 
 /* 1 when p is a usable image path: non-empty, relative, without "..". */
 int report__safe_relpath(const char *p);

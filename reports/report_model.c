@@ -50,6 +50,7 @@ static void report_model__row(report_model *m, report_model_row *r, const dm_con
     dm_str_free(&why);
     r->noisy = report__noisy(c);
     r->error = c->quality.present ? report_metric_error(&c->quality, m->metric) : NAN;
+    r->shown = report_metric_shown(&c->quality, m->metric);
     r->trend = report_model__trend(m->trends, c->key);
     r->nonfinite_pixels = c->quality.present ? c->quality.nonfinite_pixels : 0;
     r->crack_pixels = c->quality.present ? c->quality.crack_pixels : 0;

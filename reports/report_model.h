@@ -43,6 +43,7 @@ typedef struct report_model_row {
     int noisy;            /* report__noisy */
     int front;            /* on its scene's Pareto front under the run's metric */
     double error;         /* its error under the run's metric; NaN when none */
+    double shown;         /* the metric as shown (SSIM: 1 − SSIM, PSNR in dB); NaN when none */
     const report_trend *trend;   /* this configuration's trend line, or NULL */
     long nonfinite_pixels, crack_pixels;   /* image defects (0 without quality) */
 } report_model_row;

@@ -29,6 +29,7 @@ static const report_write__file report_write__files[] = {
     {"results.csv", report__write_csv},
     {"summary.md", report__write_md},
     {"report.html", report__write_html},
+    {"front.tex", report__write_tex},
 };
 #define REPORT_WRITE__N (sizeof report_write__files / sizeof *report_write__files)
 

@@ -18,6 +18,7 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 #include "reports/answer.h"
+#include "reports/report.h"
 #include "reports/report_model.h"
 #include "test_util.h"
 
@@ -271,6 +272,48 @@ static void test_model_published(void **state)
     test_rm_rf(dir);
 }
 
+/* front.tex, a row of the writer table: each timed scene's front as a
+ * booktabs table, fastest first, the pick marked; the untimed scene a
+ * comment.  SSIM's shown metric is 1 − SSIM: 0.2, 0.05, 0.01 and 0.1. */
+static void test_model_front_tex(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/test_reports_model.XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char *path = dm_xasprintf("%s/front.tex", dir), err[256] = "";
+    dm_run_result run;
+    model_run(&run);
+    report_desc d = {.file = "front.tex", .path = path};
+    assert_int_equal(report_write_run(&run, &d, err, sizeof err), 0);
+    char *tex = test_slurp(path);
+    assert_string_equal(tex,
+        "% front.tex: each scene's Pareto front, written by dmbench from run 20261129-000000.\n"
+        "% \\input it; needs \\usepackage{booktabs}.\n\n"
+        "\\begin{table}[htbp]\n\\centering\n"
+        "\\caption{plane 160$\\times$90: the Pareto front (1 - SSIM against median frame time), fastest first}\n"
+        "\\begin{tabular}{lrrr}\n\\toprule\n"
+        "Configuration & Median (ms) & 95\\,\\% CI & 1 - SSIM \\\\\n\\midrule\n"
+        "normal & 1.00 & $\\pm$1.0\\% & 0.2 \\\\\n"
+        "pom steps=8 (pick) & 2.00 & $\\pm$2.5\\% & 0.05 \\\\\n"
+        "pom steps=32 & 4.00 & $\\pm$25\\% & 0.01 \\\\\n"
+        "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n"
+        "\\begin{table}[htbp]\n\\centering\n"
+        "\\caption{cube 160$\\times$90: the Pareto front (1 - SSIM against median frame time), fastest first}\n"
+        "\\begin{tabular}{lrrr}\n\\toprule\n"
+        "Configuration & Median (ms) & 95\\,\\% CI & 1 - SSIM \\\\\n\\midrule\n"
+        "pom (pick) & 1.00 & $\\pm$1.0\\% & 0.1 \\\\\n"
+        "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n"
+        "% sphere 160×90: no frame time, no front\n\n");
+    free(tex);
+    /* a name that is no row of the table is refused, the rows listed */
+    d.file = "front.pdf";
+    assert_int_equal(report_write_run(&run, &d, err, sizeof err), DM_ERR_ARG);
+    assert_non_null(strstr(err, "front.tex"));
+    dm_run_free(&run);
+    free(path);
+    test_rm_rf(dir);
+}
+
 static void test_model_no_run(void **state)
 {
     (void)state;
@@ -280,4 +323,5 @@ static void test_model_no_run(void **state)
 }
 
 DM_TEST_MAIN(NULL, NULL, cmocka_unit_test(test_model_rows), cmocka_unit_test(test_model_scenes),
-             cmocka_unit_test(test_model_published), cmocka_unit_test(test_model_no_run))
+             cmocka_unit_test(test_model_published), cmocka_unit_test(test_model_front_tex),
+             cmocka_unit_test(test_model_no_run))
