@@ -4,7 +4,7 @@
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
 #include "store/store.h"
-#include "reports/flip.h"
+#include "reports/flip_run.h"
 #include "reports/answer.h"
 #include "reports/metric.h"
 #include "reports/report.h"

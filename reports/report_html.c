@@ -16,8 +16,8 @@
 #include "reports/report_assets.h"
 
 #include "core/dm_error.h"
-#include "reports/flip.h"
-#include "reports/image.h"
+#include "imaging/flip.h"
+#include "imaging/image.h"
 
 #include <math.h>
 #include <stdio.h>

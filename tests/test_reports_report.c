@@ -3,7 +3,7 @@
 #include "reports/report_internal.h"
 #include "reports/metric.h"
 #include "reports/answer.h"
-#include "reports/image.h"
+#include "imaging/image.h"
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 
