@@ -15,7 +15,7 @@
 # check.
 set -eu
 
-FILES="report.html summary.md results.json results.csv"
+FILES="report.html summary.md results.json results.csv front.tex"
 FORMATS="gbench bmf gab-smaller gab-bigger"
 
 usage() {

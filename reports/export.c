@@ -1,4 +1,6 @@
-/* export.c — gbench, bmf, gab-smaller and gab-bigger reporters (export.h). */
+/* export.c — gbench, bmf, gab-smaller and gab-bigger reporters (export.h),
+ * reading the report model's rows (names, frame times) and the run's
+ * environment and counters through it. */
 #include "reports/export.h"
 #include "reports/report.h"
 #include "reports/report_internal.h"

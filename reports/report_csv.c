@@ -1,4 +1,5 @@
-/* report_csv.c — results.csv: one row per configuration (RFC 4180).
+/* report_csv.c — results.csv: one row per configuration (RFC 4180),
+ * written from the report model alone (report_model.h).
  *
  * Columns: key, scene, status, reason, every param (union over configs, in
  * first-appearance order), for each timing counter <name>_median_ms,

@@ -1,4 +1,8 @@
 /* report_html.c — report.html: one self-contained file that opens offline.
+ * A row of the writer table (report_write.c): labels, times, marks, rows,
+ * fronts, picks, trends, warnings and the published section come from the
+ * report model (report_model.h); the gallery, charts, fits and the answer's
+ * sentences still read the run.
  *
  * Inline CSS, no external URL, no script needed to read it; the style
  * sheet and the script (sorting, filtering, image flips) are report.css and

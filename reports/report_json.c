@@ -16,6 +16,8 @@
  *    readable "label" (report_config_name) and "pareto" (on its scene's
  *    front); both are derived, so reading ignores them.  The whole shape is
  *    docs/results.schema.json.
+ * Written from the report model (report_model.h: names, front flags,
+ * warnings); reading builds a dm_run_result.
  */
 #include "reports/report.h"
 #include "reports/proxy.h"

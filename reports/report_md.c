@@ -1,5 +1,8 @@
 /* report_md.c — summary.md for CI logs: run header, a table per scene,
- * failures and left-out configurations with their reasons. */
+ * failures and left-out configurations with their reasons.  A row of the
+ * writer table (report_write.c): labels, times, fronts, warnings and the
+ * published section come from the report model (report_model.h); the
+ * answer, the counters and the proxy section still read the run. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
 #include "reports/published_report.h"
