@@ -118,9 +118,6 @@ void report_scene_constants(const dm_run_result *run, dm_str *out);
  * would otherwise share it.  Used as results.json "label" and as the
  * benchmark name of every export. */
 void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_str *out);
-/* Per configuration (run order): 1 when it is on its scene's Pareto front
- * under the run's metric.  malloc'd, n_configs bytes (caller frees). */
-unsigned char *report_pareto_flags(const dm_run_result *run);
 /* results.json "schema_version": the major version of docs/results.schema.json;
  * raised only when a field changes meaning or goes away (additions keep it). */
 #define REPORT_SCHEMA_VERSION 1
