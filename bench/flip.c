@@ -1,8 +1,8 @@
-/* bench_flip — time of LDR-FLIP (reports/flip.h) on a synthetic W×H pair
+/* bench_flip — time of LDR-FLIP (imaging/flip.h) on a synthetic W×H pair
  * (smooth gradient vs the same with noise), one thread, best of N runs.
  * Usage: bench_flip [W H [RUNS]] (default 1920 1080 3).  Figures only. */
 #include "core/dm_util.h"
-#include "reports/flip.h"
+#include "imaging/flip.h"
 
 #include <stdio.h>
 #include <stdlib.h>

@@ -4,9 +4,9 @@
 #include "core/dm_error.h"
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
-#include "reports/flip.h"
-#include "reports/image.h"
-#include "reports/quality.h"
+#include "imaging/flip.h"
+#include "imaging/image.h"
+#include "imaging/quality.h"
 
 #include <cjson/cJSON.h>
 #include <math.h>

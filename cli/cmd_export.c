@@ -9,6 +9,7 @@
 #include "core/dm_error.h"
 #include "gate/compare.h"
 #include "reports/export.h"
+#include "reports/report_model.h"
 
 #include <stddef.h>
 #include <stdio.h>
@@ -80,8 +81,12 @@ int cli_export(const cli_command *self, int argc, char **argv)
     if (rc < 0 && (e = o.store ? compare_load_store(o.store, o.run, NULL, &run, &err)
                                : compare_load_path(o.run, &run, &err)) != 0)
         rc = cli_error(e, "export: %s", dm_str_get(&err));
-    if (rc < 0 && export_write(&run, f, o.out) != 0)
+    report_model m = {0};
+    if (rc < 0 && report_model_build(&m, &run, NULL) != 0)
+        rc = cli_error(DM_ERR_ARG, "export: no run");
+    if (rc < 0 && export_write(&m, f, o.out) != 0)
         rc = cli_usage_error("export: cannot write %s", o.out ? o.out : "stdout");
+    report_model_free(&m);
     if (rc < 0 && o.out && strcmp(o.out, "-") != 0)
         fprintf(stderr, "export: %s (%s) written to %s\n", f->name, f->what, o.out);
     dm_run_free(&run);

@@ -116,7 +116,7 @@ static int merge__write(dm_run_result *m, const char *out, char **dirs, int n)
         if (report_published_copy(dirs[i], run_dir, e, sizeof e) != 0)
             dm_log(DM_LOG_WARN, "%s; the report has no published section", e);
     free(pub);
-    int we = rc < 0 ? report_write_all(m, run_dir, e, sizeof e) : 0;
+    int we = rc < 0 ? report_write_run(m, &(report_desc){.dir = run_dir}, e, sizeof e) : 0;
     if (we)
         rc = cli_error(we, "merge: report: %s", e);
     if (rc < 0) {

@@ -8,7 +8,7 @@
 #include "run/gl_context.h"
 #include "run/mscene.h"
 #include "run/probe.h"
-#include "reports/image.h"
+#include "imaging/image.h"
 #include "techniques/axes.h"
 #include "techniques/render.h"
 

@@ -4,7 +4,7 @@
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
 #include "store/store.h"
-#include "reports/flip.h"
+#include "reports/flip_run.h"
 #include "reports/answer.h"
 #include "reports/metric.h"
 #include "reports/report.h"
@@ -112,7 +112,8 @@ int cli_report(const cli_command *self, int argc, char **argv)
     report_trends tr = {0};
     if (rc < 0)
         run_trends(st, &run, &tr);   /* none on a store failure: the report goes on */
-    int we = rc < 0 ? report_write_all_trends(&run, dir, out ? out : dir, &tr, e, sizeof e) : 0;
+    report_desc d = {.dir = dir, .out = out, .trends = &tr};
+    int we = rc < 0 ? report_write_run(&run, &d, e, sizeof e) : 0;
     if (we)   /* a full disk or ulimit -f is 4, as for `run` */
         rc = cli_error(we, "report: %s", e);
     report_trends_free(&tr);

@@ -1,5 +1,5 @@
 // dm_image_oiio.hh — helpers shared by the two OpenImageIO bridges
-// (core/dm_image.cc and reports/oiio_bridge.cc).  C++ only, internal.
+// (core/dm_image.cc and imaging/oiio_bridge.cc).  C++ only, internal.
 #ifndef CORE_DM_IMAGE_OIIO_HH
 #define CORE_DM_IMAGE_OIIO_HH
 

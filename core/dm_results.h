@@ -49,7 +49,7 @@ typedef struct dm_quality {
     double rmse, psnr, ssim, max_error, pct_over_threshold;
     double silhouette_error, depth_rmse;
     long crack_pixels, nonfinite_pixels;
-    /* LDR-FLIP (reports/flip.h): mean, error-weighted quartiles, maximum,
+    /* LDR-FLIP (imaging/flip.h): mean, error-weighted quartiles, maximum,
      * and the pixels per degree it was computed for; NaN when not computed
      * (results from before FLIP). */
     double flip, flip_q1, flip_median, flip_q3, flip_max, flip_ppd;

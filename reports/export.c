@@ -1,7 +1,10 @@
-/* export.c — gbench, bmf, gab-smaller and gab-bigger reporters (export.h). */
+/* export.c — gbench, bmf, gab-smaller and gab-bigger reporters (export.h),
+ * reading the report model's rows (names, frame times) and the run's
+ * environment and counters through it. */
 #include "reports/export.h"
 #include "reports/report.h"
 #include "reports/report_internal.h"
+#include "reports/report_model.h"
 
 #include "core/dm_error.h"
 
@@ -11,12 +14,6 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
-
-/* The timed WallTime of an ok configuration, else NULL (left out). */
-static const dm_counter_result *export__time(const dm_config_result *c)
-{
-    return c->ok ? report__frame_time(c) : NULL;
-}
 
 static void export__num(cJSON *o, const char *name, double v)
 {
@@ -39,19 +36,15 @@ typedef void (*export__add_fn)(cJSON *out, const export__config *e);
 
 /* Calls add for each configuration of run that has a time, in run order
  * (the others are left out of every format). */
-static void export__each(const dm_run_result *run, cJSON *out, int bigger, export__add_fn add)
+static void export__each(const report_model *m, cJSON *out, int bigger, export__add_fn add)
 {
     size_t index = 0;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        const dm_counter_result *t = export__time(c);
-        if (!t)
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const report_model_row *r = &m->rows[i];
+        if (!r->config->ok || !r->frame_time)   /* the timed WallTime of an ok configuration */
             continue;
-        dm_str name = {0};
-        report_config_name(run, c, &name);
-        export__config e = { c, t, dm_str_get(&name), index++, bigger };
+        export__config e = { r->config, r->frame_time, r->name, index++, bigger };
         add(out, &e);
-        dm_str_free(&name);
     }
 }
 
@@ -122,11 +115,12 @@ static void export__gbench_add(cJSON *list, const export__config *e)
     cJSON_AddItemToArray(list, b);
 }
 
-static cJSON *export__gbench(const dm_run_result *run)
+static cJSON *export__gbench(const report_model *m)
 {
+    const dm_run_result *run = m->run;
     cJSON *root = cJSON_CreateObject();
     cJSON_AddItemToObject(root, "context", export__gbench_context(run));
-    export__each(run, cJSON_AddArrayToObject(root, "benchmarks"), 0, export__gbench_add);
+    export__each(m, cJSON_AddArrayToObject(root, "benchmarks"), 0, export__gbench_add);
     return root;
 }
 
@@ -182,10 +176,10 @@ static void export__bmf_add(cJSON *root, const export__config *e)
     }
 }
 
-static cJSON *export__bmf(const dm_run_result *run)
+static cJSON *export__bmf(const report_model *m)
 {
     cJSON *root = cJSON_CreateObject();
-    export__each(run, root, 0, export__bmf_add);
+    export__each(m, root, 0, export__bmf_add);
     return root;
 }
 
@@ -233,15 +227,15 @@ static void export__gab_add(cJSON *list, const export__config *e)
     free(range);
 }
 
-static cJSON *export__gab(const dm_run_result *run, int bigger)
+static cJSON *export__gab(const report_model *m, int bigger)
 {
     cJSON *list = cJSON_CreateArray();
-    export__each(run, list, bigger, export__gab_add);
+    export__each(m, list, bigger, export__gab_add);
     return list;
 }
 
-static cJSON *export__gab_smaller(const dm_run_result *run) { return export__gab(run, 0); }
-static cJSON *export__gab_bigger(const dm_run_result *run) { return export__gab(run, 1); }
+static cJSON *export__gab_smaller(const report_model *m) { return export__gab(m, 0); }
+static cJSON *export__gab_bigger(const report_model *m) { return export__gab(m, 1); }
 
 /* ---- the table --------------------------------------------------------- */
 
@@ -266,9 +260,9 @@ const export_format *export_find(const char *name)
     return NULL;
 }
 
-int export_write(const dm_run_result *run, const export_format *f, const char *path)
+int export_write(const report_model *m, const export_format *f, const char *path)
 {
-    cJSON *root = f->build(run);
+    cJSON *root = f->build(m);
     report_json_exact_numbers(root);
     int rc = 0;
     if (path && strcmp(path, "-") != 0) {

@@ -15,7 +15,8 @@
  *  - gab-smaller  github-action-benchmark customSmallerIsBetter: [{name, unit,
  *                 value, range, extra}], the median WallTime in ms and RMSE.
  *  - gab-bigger   customBiggerIsBetter: SSIM and PSNR (dB).
- * Benchmark names are report_config_name(), e.g. "plane@480x270/pom steps=32"
+ * The formats read only the report model; benchmark names are its rows'
+ * names (report_config_name), e.g. "plane@480x270/pom steps=32"
  * (a metric other than the time gets " (SSIM)" etc. in the gab forms).
  * Failed configurations, configurations without a WallTime and non-finite
  * values (JSON cannot hold them, e.g. PSNR of identical images) are left out.
@@ -26,19 +27,22 @@
 #include "core/dm_results.h"
 
 struct cJSON;
+struct report_model;
 
 typedef struct export_format {
     const char *name;        /* --format value */
     const char *what;        /* one line for usage and errors */
-    struct cJSON *(*build)(const dm_run_result *run);   /* caller deletes */
+    struct cJSON *(*build)(const struct report_model *m);   /* caller deletes */
 } export_format;
 
 /* The format called name, or NULL. */
 const export_format *export_find(const char *name);
 /* All formats, *n of them (for usage and "valid choices"). */
 const export_format *export_formats(size_t *n);
-/* Writes run in format f to path (atomically; "-" or NULL: stdout), pretty
- * printed with a final newline.  0, DM_ERR_NOMEM or DM_ERR_IO. */
-int export_write(const dm_run_result *run, const export_format *f, const char *path);
+/* Writes the run of the report model m (report_model.h: the names, times
+ * and fronts the report shows) in format f to path (atomically; "-" or
+ * NULL: stdout), pretty printed with a final newline.  0, DM_ERR_NOMEM or
+ * DM_ERR_IO. */
+int export_write(const struct report_model *m, const export_format *f, const char *path);
 
 #endif

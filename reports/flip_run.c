@@ -1,6 +1,7 @@
 /* flip_run.c — FLIP of a stored run again at another viewing condition
  * (`dmbench report DIR --flip-ppd N`; see flip.h). */
-#include "reports/flip.h"
+#include "imaging/flip.h"
+#include "reports/flip_run.h"
 #include "reports/report_internal.h"
 
 #include "core/dm_error.h"

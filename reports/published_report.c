@@ -167,31 +167,49 @@ static void pub__emit(dm_str *s, const pub_table *t, int html)
     dm_str_cat(s, html ? "</table>\n" : "");
 }
 
-void report_published_section(dm_str *s, const dm_run_result *run, const char *dir,
-                              const char *beside, int html)
+/* The section of one published.json into md (Markdown) and html (either
+ * may be NULL), the file read once; nothing when it is absent. */
+void report_published_sections(const dm_run_result *run, const char *path, dm_str *md,
+                               dm_str *html)
 {
-    const char *slash = beside ? strrchr(beside, '/') : NULL;
-    char *path = dir ? dm_xasprintf("%s/published.json", dir)
-               : slash ? dm_xasprintf("%.*s/published.json", (int)(slash - beside), beside)
-                       : dm_xstrdup("published.json");
     char *text = NULL;
     size_t len = 0;
-    if (dm_input_file(path, NULL, 0) != 0 || dm_read_file(path, &text, &len) != 0) {
-        free(path);
+    if (dm_input_file(path, NULL, 0) != 0 || dm_read_file(path, &text, &len) != 0)
         return;
-    }
     cJSON *root = cJSON_ParseWithLength(text, len);
     pub_table t = {0};
-    if (pub__table(&t, run, root) == 0) {
-        pub__emit(s, &t, html);
-    } else {
-        dm_str_cat(s, html ? "<h2 id=\"published\">Published figures beside ours</h2>\n<p>" : "\n## Published figures beside ours\n\n");
-        (html ? dm_str_cat_html : dm_str_cat_md)(s, path);
-        dm_str_cat(s, html ? ": not a published.json this version writes</p>\n" : ": not a published.json this version writes\n");
+    int ok = pub__table(&t, run, root) == 0;
+    dm_str *out[2] = {md, html};
+    for (int h = 0; h < 2; h++) {
+        dm_str *s = out[h];
+        if (!s)
+            continue;
+        if (ok) {
+            pub__emit(s, &t, h);
+            continue;
+        }
+        dm_str_cat(s, h ? "<h2 id=\"published\">Published figures beside ours</h2>\n<p>" : "\n## Published figures beside ours\n\n");
+        (h ? dm_str_cat_html : dm_str_cat_md)(s, path);
+        dm_str_cat(s, h ? ": not a published.json this version writes</p>\n" : ": not a published.json this version writes\n");
     }
     pub__table_free(&t);
     cJSON_Delete(root);
     free(text);
+}
+
+char *report_published_path(const char *dir, const char *beside)
+{
+    const char *slash = beside ? strrchr(beside, '/') : NULL;
+    return dir ? dm_xasprintf("%s/published.json", dir)
+         : slash ? dm_xasprintf("%.*s/published.json", (int)(slash - beside), beside)
+                 : dm_xstrdup("published.json");
+}
+
+void report_published_section(dm_str *s, const dm_run_result *run, const char *dir,
+                              const char *beside, int html)
+{
+    char *path = report_published_path(dir, beside);
+    report_published_sections(run, path, html ? NULL : s, html ? s : NULL);
     free(path);
 }
 

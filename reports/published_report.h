@@ -40,6 +40,13 @@ report_pub_verdict report_pub_judge(double published_ratio, double measured_rati
  * line saying why when it cannot be read), as Markdown (html = 0) or HTML. */
 void report_published_section(dm_str *s, const dm_run_result *run, const char *dir,
                               const char *beside, int html);
+/* The same for the file at path, read once, into md (Markdown) and html
+ * (either may be NULL): report_model.c keeps both. */
+void report_published_sections(const dm_run_result *run, const char *path, dm_str *md,
+                               dm_str *html);
+/* dir/published.json, or published.json in the directory of the file
+ * beside when dir is NULL (malloc'd). */
+char *report_published_path(const char *dir, const char *beside);
 /* Copies dir/published.json to out/published.json when it exists (a report
  * written elsewhere keeps its section).  0, or report__copy_file's code
  * (DM_ERR_DISK for a disk that refused the write) with the reason in err. */

@@ -621,21 +621,6 @@ void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_
     dm_str_free(&mine);
 }
 
-unsigned char *report_pareto_flags(const dm_run_result *run)
-{
-    unsigned char *flags = dm_xcalloc(run->n_configs + 1, 1);
-    const char **scenes;
-    size_t ns = report__scenes(run, &scenes);
-    for (size_t i = 0; i < ns; i++) {
-        size_t *front, nf = report__pareto(run, scenes[i], &front);
-        for (size_t k = 0; k < nf; k++)
-            flags[front[k]] = 1;
-        free(front);
-    }
-    free(scenes);
-    return flags;
-}
-
 int report__tied(const dm_counter_result *a, const dm_counter_result *b)
 {
     if (!a || !b || isnan(a->ci_lo) || isnan(a->ci_hi) || isnan(b->ci_lo) || isnan(b->ci_hi))

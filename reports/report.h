@@ -57,23 +57,33 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 
-/* Writes all four files into dir (which must exist).  Returns 0 or the
- * writer's code (DM_ERR_IO: err names the file); stops at the first failure. */
-int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen);
-int report_write_json(const dm_run_result *run, const char *path);
-int report_write_csv(const dm_run_result *run, const char *path);
-int report_write_markdown(const dm_run_result *run, const char *path);
-int report_write_html(const dm_run_result *run, const char *dir, const char *path);
-/* As report_write_html, with href prefixed to every image link (so a report
- * written outside the run directory still finds its images); NULL = "". */
-int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
-                         const char *href);
-/* As report_write_all, the files going into out (which must exist), and
- * the images the run names copied from the run directory dir to the same
- * relative paths under out, so out opens on its own when moved or
- * published (`dmbench report DIR --out OUT`). */
-int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
-                        size_t errlen);
+/* What report_write writes and where (report_model.h builds what it shows).
+ * dir: the run directory image paths are relative to (thumbnails embedded,
+ * missing files marked; NULL links images without checking them); out: the
+ * folder the files go into, which must exist (NULL: dir), the images the
+ * run names and published.json being copied there from dir so out opens on
+ * its own; href: prefixed to every image link of report.html (NULL: "");
+ * trends: the trend lines of the store (NULL: none); file: the name of one
+ * row of the writer table ("results.json", "front.tex") to write only that
+ * file (NULL: every row, and nothing copied); path: with file, where it
+ * goes (NULL: out/file). */
+struct report_model;
+typedef struct report_trends report_trends;
+typedef struct report_desc {
+    const char *dir;
+    const char *out;
+    const char *href;
+    const report_trends *trends;
+    const char *file;
+    const char *path;
+} report_desc;
+/* Writes the files of the writer table (report_write.c) from the model m
+ * (built with the same desc).  Returns 0 or the writer's code (DM_ERR_IO:
+ * err names the file); stops at the first failure; DM_ERR_ARG for a file
+ * name that is no row (err lists the rows). */
+int report_write(const struct report_model *m, const report_desc *d, char *err, size_t errlen);
+/* report_model_build, report_write and report_model_free in one call. */
+int report_write_run(const dm_run_result *run, const report_desc *d, char *err, size_t errlen);
 
 /* A configuration's median WallTime (ns) in the runs of the store on the
  * same machine fingerprint, oldest first, this run last (run/trends.h
@@ -84,19 +94,11 @@ typedef struct report_trend {
     double *median_ns;
     size_t n;
 } report_trend;
-typedef struct report_trends {
+struct report_trends {
     report_trend *items;
     size_t n;
-} report_trends;
+};
 void report_trends_free(report_trends *t);
-/* report_write_all_to with trend lines (t may be NULL: none). */
-int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
-                            const report_trends *t, char *err, size_t errlen);
-int report_write_html_trends(const dm_run_result *run, const char *dir, const char *path,
-                             const char *href, const report_trends *t);
-/* report_write_html: dir is the run directory image paths are relative to
- * (used to embed thumbnails and to mark missing files); NULL links images
- * without checking them. */
 
 /* The one label of a configuration, the same in every file and on the
  * terminal: the scene (mesh, resolution with ×, and only the scene settings
@@ -116,9 +118,6 @@ void report_scene_constants(const dm_run_result *run, dm_str *out);
  * would otherwise share it.  Used as results.json "label" and as the
  * benchmark name of every export. */
 void report_config_name(const dm_run_result *run, const dm_config_result *c, dm_str *out);
-/* Per configuration (run order): 1 when it is on its scene's Pareto front
- * under the run's metric.  malloc'd, n_configs bytes (caller frees). */
-unsigned char *report_pareto_flags(const dm_run_result *run);
 /* results.json "schema_version": the major version of docs/results.schema.json;
  * raised only when a field changes meaning or goes away (additions keep it). */
 #define REPORT_SCHEMA_VERSION 1

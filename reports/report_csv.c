@@ -1,4 +1,5 @@
-/* report_csv.c — results.csv: one row per configuration (RFC 4180).
+/* report_csv.c — results.csv: one row per configuration (RFC 4180),
+ * written from the report model alone (report_model.h).
  *
  * Columns: key, scene, status, reason, every param (union over configs, in
  * first-appearance order), for each timing counter <name>_median_ms,
@@ -64,10 +65,10 @@ static void quality_fields(dm_str *s, const dm_quality *q)
         num_field(s, v[i], q->present);
 }
 
-static void row(dm_str *s, const dm_run_result *run, const dm_config_result *c, int pareto,
-                const char **params, size_t np, const char **timed, size_t nt, const char **det,
-                size_t nd)
+static void row(dm_str *s, const report_model_row *r, const char **params, size_t np,
+                const char **timed, size_t nt, const char **det, size_t nd)
 {
+    const dm_config_result *c = r->config;
     field(s, c->key, 1);
     field(s, c->scene, 0);
     field(s, c->ok ? "ok" : "failed", 0);
@@ -86,11 +87,8 @@ static void row(dm_str *s, const dm_run_result *run, const dm_config_result *c, 
         num_field(s, d ? d->value : 0, d && d->available);
     }
     quality_fields(s, &c->quality);
-    dm_str label = {0};
-    report_config_name(run, c, &label);
-    field(s, dm_str_get(&label), 0);
-    field(s, pareto ? "1" : "0", 0);
-    dm_str_free(&label);
+    field(s, r->name, 0);
+    field(s, r->front ? "1" : "0", 0);
     dm_str_cat(s, "\r\n");
 }
 
@@ -119,24 +117,14 @@ static void header(dm_str *s, const char **params, size_t np, const char **timed
     dm_str_cat(s, "\r\n");
 }
 
-int report_write_csv(const dm_run_result *run, const char *path)
+int report__write_csv(const report_model *m, const report_desc *d, const char *path)
 {
-    if (!run || !path)
-        return DM_ERR_ARG;
-    const char **params, **timed, **det;
-    size_t np = report__param_names(run, NULL, &params);
-    size_t nt = report__counter_names(run, NULL, REPORT__TIMED, &timed);
-    size_t nd = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &det);
+    (void)d;
     dm_str s = {0};
-    header(&s, params, np, timed, nt, det, nd);
-    unsigned char *front = report_pareto_flags(run);
-    for (size_t i = 0; i < run->n_configs; i++)
-        row(&s, run, &run->configs[i], front[i], params, np, timed, nt, det, nd);
-    free(front);
+    header(&s, m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
+    for (size_t i = 0; i < m->n_rows; i++)
+        row(&s, &m->rows[i], m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
     int rc = report__save(&s, path);
     dm_str_free(&s);
-    free(params);
-    free(timed);
-    free(det);
     return rc;
 }

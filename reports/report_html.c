@@ -1,4 +1,8 @@
 /* report_html.c — report.html: one self-contained file that opens offline.
+ * A row of the writer table (report_write.c): labels, times, marks, rows,
+ * fronts, picks, trends, warnings and the published section come from the
+ * report model (report_model.h); the gallery, charts, fits and the answer's
+ * sentences still read the run.
  *
  * Inline CSS, no external URL, no script needed to read it; the style
  * sheet and the script (sorting, filtering, image flips) are report.css and
@@ -16,8 +20,8 @@
 #include "reports/report_assets.h"
 
 #include "core/dm_error.h"
-#include "reports/flip.h"
-#include "reports/image.h"
+#include "imaging/flip.h"
+#include "imaging/image.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -121,29 +125,22 @@ static void html__toc(dm_str *s, const dm_run_result *run, const char **scenes, 
 }
 
 /* The timing marks of a row (noisy, bimodal) as a span with the reason. */
-static void html__marks_html(dm_str *s, const dm_config_result *c)
+static void html__marks_html(dm_str *s, const report_model_row *r)
 {
-    dm_str mark = {0}, why = {0};
-    report__timing_marks(c, 0, &mark, &why);
-    if (mark.len) {
+    if (*r->marks_short) {
         dm_str_cat(s, " <span class=\"noisy\" title=\"");
-        html__esc(s, dm_str_get(&why));
+        html__esc(s, r->why);
         dm_str_cat(s, "\">");
-        html__esc(s, dm_str_get(&mark));
+        html__esc(s, r->marks_short);
         dm_str_cat(s, "</span>");
     }
-    dm_str_free(&mark);
-    dm_str_free(&why);
 }
 
 /* The median and 95 % CI cells of a frame time, with the noise marks. */
-static void html__time_cells(dm_str *s, const dm_config_result *c, const dm_counter_result *t)
+static void html__time_cells(dm_str *s, const report_model_row *r)
 {
-    dm_str_cat(s, "<td class=\"n\">");
-    report__ms_text(t->median, s);
-    dm_str_cat(s, "</td><td class=\"n\">");
-    report__ci_text(t, s);
-    html__marks_html(s, c);
+    dm_str_printf(s, "<td class=\"n\">%s</td><td class=\"n\">%s", r->ms_text, r->ci_text);
+    html__marks_html(s, r);
     dm_str_cat(s, "</td>");
 }
 
@@ -152,47 +149,40 @@ static void html__time_cells(dm_str *s, const dm_config_result *c, const dm_coun
 
 /* The noisy configurations by label with their CI and marks, folded when
  * there are many; nothing when there is none. */
-static void html__noisy_warning(dm_str *s, const dm_run_result *run)
+static void html__noisy_warning(dm_str *s, const report_model *m)
 {
-    size_t *idx, n = report__noisy_configs(run, &idx);
+    size_t n = m->n_noisy;
     if (n) {
         dm_str_printf(s, "<div class=\"warn noisy\"><details%s><summary><b>%zu noisy configuration%s</b> "
                          "by label</summary><ul>", n > NOISY_OPEN_MAX ? "" : " open", n, n == 1 ? "" : "s");
         for (size_t i = 0; i < n; i++) {
-            const dm_config_result *c = &run->configs[idx[i]];
-            dm_str label = {0};
-            report_config_label(run, c, &label);
+            const report_model_row *r = &m->rows[m->noisy[i]];
             dm_str_cat(s, "<li>");
-            html__esc(s, dm_str_get(&label));
-            dm_str_cat(s, " ");
-            report__ci_text(report__frame_time(c), s);
-            html__marks_html(s, c);
+            html__esc(s, r->full_label);
+            dm_str_printf(s, " %s", r->ci_text ? r->ci_text : "CI unknown");
+            html__marks_html(s, r);
             dm_str_cat(s, "</li>");
-            dm_str_free(&label);
         }
         dm_str_cat(s, "</ul></details></div>\n");
     }
-    free(idx);
 }
 
 /* The timer verdict, then every warning (report__warnings, the list of
  * results.json), the noisy configurations listed under theirs. */
-static void html__timer_and_warnings(dm_str *s, const dm_run_result *run)
+static void html__timer_and_warnings(dm_str *s, const report_model *m)
 {
+    const dm_run_result *run = m->run;
     const char *v = run->timer_verdict ? run->timer_verdict : "unknown";
     dm_str_cat(s, "<h2 id=\"warnings\">Warnings</h2>\n<p>Timer verdict: <b>");
     html__esc(s, v);
     dm_str_printf(s, "</b> (GPUTime covers %.1f%% of fenced wall time).</p>\n",
                   run->gpu_time_coverage * 100);
-    char **w;
-    size_t nw = report__warnings(run, &w);
-    for (size_t i = 0; i < nw; i++) {
+    for (size_t i = 0; i < m->n_warnings; i++) {
         dm_str_cat(s, "<div class=\"warn\">");
-        html__esc(s, w[i]);
+        html__esc(s, m->warnings[i]);
         dm_str_cat(s, "</div>\n");
     }
-    report__warnings_free(w, nw);
-    html__noisy_warning(s, run);
+    html__noisy_warning(s, m);
 }
 
 static void html__num_cell(dm_str *s, const char *fmt, double v)
@@ -225,30 +215,11 @@ static const char *const html__key_counters[] = {
     "VSInvocations", "TESInvocations", "ClippingOutputPrimitives", "SamplesPassed",
     "FSInvocations", "TextureBytes", "MeshTriangles" };
 
-/* 1 when config index i is one of the nf front members. */
-static int html__on_front(const size_t *front, size_t nf, size_t i)
-{
-    for (size_t k = 0; k < nf; k++)
-        if (front[k] == i)
-            return 1;
-    return 0;
-}
-
-/* The trend of configuration key (NULL when it has fewer than two runs). */
-static const report_trend *html__trend_of(const report_trends *t, const char *key)
-{
-    for (size_t i = 0; t && key && i < t->n; i++)
-        if (t->items[i].key && strcmp(t->items[i].key, key) == 0 && t->items[i].n >= 2)
-            return &t->items[i];
-    return NULL;
-}
-
 /* 1 when a configuration of the scene has a trend (the column is shown). */
-static int html__scene_has_trends(const dm_run_result *run, const char *scene, const report_trends *t)
+static int html__scene_has_trends(const report_model *m, const report_model_scene *sc)
 {
-    for (size_t i = 0; t && i < run->n_configs; i++)
-        if (run->configs[i].ok && strcmp(run->configs[i].scene ? run->configs[i].scene : "", scene) == 0 &&
-            html__trend_of(t, run->configs[i].key))
+    for (size_t i = 0; i < sc->n_rows; i++)
+        if (m->rows[sc->rows[i]].trend)
             return 1;
     return 0;
 }
@@ -297,23 +268,23 @@ static void html__more_cell(dm_str *s, const dm_counter_result *c)
 
 /* Key columns first (technique, varying axes, time, CI, errors, front),
  * then the counters, crack pixels and key (class "more"). */
-static void html__scene_row(dm_str *s, const dm_run_result *run, size_t ci, const char **params,
-                      size_t np, const char **det, size_t nd, int front, const report_trends *tr)
+static void html__scene_row(dm_str *s, const report_model *m, const report_model_row *r,
+                            const char **params, size_t np, const char **det, size_t nd, int trends)
 {
-    const dm_config_result *c = &run->configs[ci];
+    const dm_config_result *c = r->config;
+    int front = r->front;
     dm_str_printf(s, "<tr%s>", front ? " class=\"front\"" : "");
     html__tagged(s, "td", dm_kv_get(c->params, c->n_params, "technique"));
     for (size_t i = 0; i < np; i++)
         html__tagged(s, "td", dm_kv_get(c->params, c->n_params, params[i]));
-    const dm_counter_result *t = report__frame_time(c);
-    if (t) {
-        html__time_cells(s, c, t);
+    if (r->frame_time) {
+        html__time_cells(s, r);
     } else
         dm_str_cat(s, "<td class=\"missing\">unavailable</td><td></td>");
-    if (tr)
-        html__trend_cell(s, html__trend_of(tr, c->key));
+    if (trends)
+        html__trend_cell(s, r->trend);
     const dm_quality *q = &c->quality;
-    html__num_cell(s, "%.4g", report_metric_shown(q, report_metric_of_run(run)));
+    html__num_cell(s, "%.4g", report_metric_shown(q, m->metric));
     html__num_cell(s, "%.4f", q->present ? q->ssim : NAN);
     html__num_cell(s, "%.2f", q->present ? q->psnr : NAN);
     dm_str_cat(s, front ? "<td>★ front</td>" : "<td></td>");
@@ -328,6 +299,15 @@ static void html__scene_row(dm_str *s, const dm_run_result *run, size_t ci, cons
     dm_str_cat(s, "</td></tr>\n");
 }
 
+/* 1 when name is one of the scene's varying axes. */
+static int html__varies(const report_model_scene *sc, const char *name)
+{
+    for (size_t i = 0; i < sc->n_varying; i++)
+        if (strcmp(sc->varying[i], name) == 0)
+            return 1;
+    return 0;
+}
+
 /* Filter box and column toggle above scene table si. */
 static void html__table_tools(dm_str *s, size_t si)
 {
@@ -337,20 +317,22 @@ static void html__table_tools(dm_str *s, size_t si)
                      "<span class=\"const\">click a header to sort</span></div>\n", si, si);
 }
 
-static void html__scene_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si,
-                        const report_trends *t, const html_images *im)
+static void html__scene_table(dm_str *s, const report_model *m, size_t si, const html_images *im)
 {
-    int trends = html__scene_has_trends(run, scene, t);
+    const dm_run_result *run = m->run;
+    const report_model_scene *sc = &m->scenes[si];
+    const char *scene = sc->name;
+    int trends = html__scene_has_trends(m, sc);
     const char **params;
     size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
     const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
     dm_str_printf(s, "<h2 id=\"scene-%zu\">Scene ", si);
-    html__scene_name(s, run, scene);
+    html__esc(s, sc->label);
     dm_str_cat(s, "</h2>\n<p class=\"const\">Same for every row: ");
     for (size_t i = 0; i < np; i++) {
         if (strcmp(params[i], "technique") == 0)
             continue;
-        if (report__param_varies(run, scene, params[i])) {
+        if (html__varies(sc, params[i])) {
             varying[nv++] = params[i];
             continue;
         }
@@ -381,26 +363,21 @@ static void html__scene_table(dm_str *s, const dm_run_result *run, const char *s
     dm_str_printf(s, "<th>median ms</th><th>95%% CI</th>%s<th>%s</th><th>SSIM</th><th>PSNR dB</th>"
                      "<th>Pareto</th>", trends ? "<th title=\"median ms in the earlier runs of this "
                      "configuration on this machine, this run last\">trend</th>" : "",
-                  report_metric_label(report_metric_of_run(run)));
+                  report_metric_label(m->metric));
     for (size_t i = 0; i < nd; i++) {
         dm_str_cat(s, "<th class=\"more\">");
         html__esc(s, det[i]);
         dm_str_cat(s, "</th>");
     }
     dm_str_cat(s, "<th class=\"more\">CrackPixels</th><th class=\"more\">key</th></tr></thead><tbody>\n");
-    size_t *rows, nr = report__scene_rows(run, scene, &rows), *front;
-    size_t nf = report__pareto(run, scene, &front);
-    for (size_t i = 0; i < nr; i++)
-        html__scene_row(s, run, rows[i], varying, nv, det, nd, html__on_front(front, nf, rows[i]),
-                  trends ? t : NULL);
+    for (size_t i = 0; i < sc->n_rows; i++)
+        html__scene_row(s, m, &m->rows[sc->rows[i]], varying, nv, det, nd, trends);
     dm_str_cat(s, "</tbody></table></div>\n");
     dm_str_cat(s, "<div class=\"charts\">\n");   /* side by side where the window is wide enough */
     html__scene_pick_images(s, run, scene, im);
     report__svg_scene(s, run, scene);
     report__html_charts_scene(s, run, scene);
     dm_str_cat(s, "</div>\n");
-    free(front);
-    free(rows);
     free(varying);
     free(params);
 }
@@ -774,85 +751,74 @@ static void html__proxy_section(dm_str *s, const dm_run_result *run)
 }
 
 /* "steps=32 filter=aniso" — the axes that vary in the scene, without technique. */
-static void html__settings_text(const dm_run_result *run, const dm_config_result *c, dm_str *out)
+static const char *html__settings_text(const report_model_row *r)
 {
-    dm_str label = {0};
-    report__config_label(run, c, &label);
-    const char *sp = strchr(dm_str_get(&label), ' ');
-    dm_str_cat(out, sp ? sp + 1 : "");
-    dm_str_free(&label);
+    const char *sp = strchr(r->label, ' ');
+    return sp ? sp + 1 : "";
 }
 
 /* One scene's answer: the recommendation in words, then its front as a
  * compact table, fastest first (the pick marked, cost relative to the
  * fastest lit configuration). */
-static void html__answer_table(dm_str *s, const dm_run_result *run, const char *scene, size_t si)
+static void html__answer_table(dm_str *s, const report_model *m, size_t si)
 {
-    size_t *front, nf = report__pareto(run, scene, &front);
-    recommend_result r;
-    report_recommend(run, scene, &r);
-    report_metric m = report_metric_of_run(run);
-    const dm_counter_result *base = r.fastest != RECOMMEND_NONE ? report__frame_time(&run->configs[r.fastest]) : NULL;
+    const dm_run_result *run = m->run;
+    const report_model_scene *sc = &m->scenes[si];
+    const size_t *front = sc->front, nf = sc->n_front;
+    const recommend_result *r = &sc->rec;
+    const dm_counter_result *base = r->fastest != RECOMMEND_NONE ? m->rows[r->fastest].frame_time : NULL;
     int with_settings = 0;
-    for (size_t i = 0; i < nf && !with_settings; i++) {
-        dm_str set = {0};
-        html__settings_text(run, &run->configs[front[i]], &set);
-        with_settings = *dm_str_get(&set) != 0;
-        dm_str_free(&set);
-    }
+    for (size_t i = 0; i < nf && !with_settings; i++)
+        with_settings = *html__settings_text(&m->rows[front[i]]) != 0;
     dm_str_printf(s, "<section class=\"scene-answer\" id=\"answer-%zu\"><h3>", si);
-    html__scene_name(s, run, scene);
+    html__esc(s, sc->label);
     dm_str_cat(s, "</h3>\n");
-    report_answer_scene(run, scene, REPORT_ANSWER_HTML, s);
-    if (report_untimed_reason(run, scene)) {   /* counters only: no front, the counters instead */
+    report_answer_scene(run, sc->name, REPORT_ANSWER_HTML, s);
+    if (sc->untimed) {   /* counters only: no front, the counters instead */
         dm_str_cat(s, "</section>\n");
-        free(front);
         return;
     }
     dm_str_printf(s, "<div class=\"scroll\"><table class=\"answer front\" id=\"front-%zu\"><caption>"
                      "Front: best quality for its cost</caption><thead><tr><th>technique</th>%s"
                      "<th>median ms</th><th>95%% CI</th><th>%s</th><th>cost vs fastest lit</th>"
                      "</tr></thead><tbody>\n", si, with_settings ? "<th>settings</th>" : "",
-                  report_metric_label(m));
+                  report_metric_label(m->metric));
     if (!nf)
         dm_str_printf(s, "<tr><td colspan=\"6\" class=\"missing\">no configuration has both a time "
-                         "and a %s measurement</td></tr>\n", report_metric_label(m));
+                         "and a %s measurement</td></tr>\n", report_metric_label(m->metric));
     for (size_t i = 0; i < nf; i++) {
-        const dm_config_result *c = &run->configs[front[i]];
-        const dm_counter_result *t = report__frame_time(c);
-        dm_str set = {0};
-        html__settings_text(run, c, &set);
-        dm_str_printf(s, "<tr%s><td>", front[i] == r.pick ? " class=\"pick\"" : "");
+        const report_model_row *row = &m->rows[front[i]];
+        const dm_config_result *c = row->config;
+        dm_str_printf(s, "<tr%s><td>", front[i] == r->pick ? " class=\"pick\"" : "");
         html__esc(s, report__technique(c));
-        if (front[i] == r.pick)
+        if (front[i] == r->pick)
             dm_str_cat(s, " <b>← pick</b>");
         if (report_family(c) == RECOMMEND_UNLIT)
             dm_str_cat(s, " <span class=\"const\">(unlit baseline)</span>");
         dm_str_cat(s, "</td>");
         if (with_settings)
-            html__tagged(s, "td", dm_str_get(&set));
-        html__time_cells(s, c, t);
-        html__num_cell(s, "%.4g", report_metric_shown(&c->quality, m));
-        dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n", base ? t->median / base->median : NAN);
-        dm_str_free(&set);
+            html__tagged(s, "td", html__settings_text(row));
+        html__time_cells(s, row);
+        html__num_cell(s, "%.4g", report_metric_shown(&c->quality, m->metric));
+        dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n",
+                      base ? row->frame_time->median / base->median : NAN);
     }
     dm_str_cat(s, "</tbody></table></div></section>\n");
-    free(front);
 }
 
 /* The answer first: per scene, the recommendation in words and the front
  * (the run's metric against median time). */
-static void html__answer(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
+static void html__answer(dm_str *s, const report_model *model)
 {
-    report_metric m = report_metric_of_run(run);
-    if (!report_run_timed(run)) {
+    report_metric m = model->metric;
+    if (!report_run_timed(model->run)) {
         dm_str_cat(s, "<h2 id=\"answer\">Answer: what was measured</h2>\n<p class=\"const\">No timing "
                       "counter was measured (the sweep's <code>counters:</code> have no WallTime), so "
                       "there is no frame budget and no pick: each scene shows the counters it measured, "
                       "per frame.</p>\n");
         dm_str_cat(s, "<div class=\"answers\">\n");
-        for (size_t i = 0; i < ns; i++)
-            html__answer_table(s, run, scenes[i], i);
+        for (size_t i = 0; i < model->n_scenes; i++)
+            html__answer_table(s, model, i);
         dm_str_cat(s, "</div>\n");
         return;
     }
@@ -866,49 +832,37 @@ static void html__answer(dm_str *s, const dm_run_result *run, const char **scene
                      "sweep key <code>quality.budget_ms</code>.</p>\n",
                   report_metric_name(m), report_metric_label(m), report_metric_epsilon(m));
     dm_str_cat(s, "<div class=\"answers\">\n");
-    for (size_t i = 0; i < ns; i++)
-        html__answer_table(s, run, scenes[i], i);
+    for (size_t i = 0; i < model->n_scenes; i++)
+        html__answer_table(s, model, i);
     dm_str_cat(s, "</div>\n");
 }
 
-int report_write_html_to(const dm_run_result *run, const char *dir, const char *path,
-                         const char *href)
+int report__write_html(const report_model *m, const report_desc *d, const char *path)
 {
-    return report_write_html_trends(run, dir, path, href, NULL);
-}
-
-int report_write_html_trends(const dm_run_result *run, const char *dir, const char *path,
-                             const char *href, const report_trends *t)
-{
-    if (!run || !path)
-        return DM_ERR_ARG;
-    html_images im = { dir, href ? href : "" };
+    const dm_run_result *run = m->run;
+    html_images im = { m->dir, d && d->href ? d->href : "" };
     dm_str s = {0};
-    const char **scenes;
-    size_t ns = report__scenes(run, &scenes);
+    const char **scenes = dm_xcalloc(m->n_scenes + 1, sizeof *scenes);
+    for (size_t i = 0; i < m->n_scenes; i++)
+        scenes[i] = m->scenes[i].name;
     /* by value: the answer, each scene's table and charts, the images, then
      * the diagnostics, and what only a maintainer reads at the end */
     html__header(&s, run);
-    html__toc(&s, run, scenes, ns);
-    html__answer(&s, run, scenes, ns);
-    for (size_t i = 0; i < ns; i++)
-        html__scene_table(&s, run, scenes[i], i, t, &im);
+    html__toc(&s, run, scenes, m->n_scenes);
+    html__answer(&s, m);
+    for (size_t i = 0; i < m->n_scenes; i++)
+        html__scene_table(&s, m, i, &im);
     free(scenes);
     html__gallery(&s, run, &im);
     report_stage_bars(&s, run);   /* where each configuration's cost goes (stage_bar.c) */
-    html__timer_and_warnings(&s, run);
+    html__timer_and_warnings(&s, m);
     html__failed_and_left_out(&s, run);
     html__fits(&s, run);
-    report_published_section(&s, run, dir, path, 1);
+    dm_str_cat(&s, m->published_html);
     html__proxy_section(&s, run);
     html__environment(&s, run);
     dm_str_printf(&s, "<script>\n%s</script>\n</body></html>\n", report_assets_js);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     return rc;
-}
-
-int report_write_html(const dm_run_result *run, const char *dir, const char *path)
-{
-    return report_write_html_to(run, dir, path, NULL);
 }

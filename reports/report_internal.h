@@ -8,6 +8,16 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 #include "reports/metric.h"
+#include "reports/report.h"
+#include "reports/report_model.h"
+
+/* The writers of the report table (report_write.c, the only caller): each
+ * writes one file at path from the model alone. */
+int report__write_json(const report_model *m, const report_desc *d, const char *path);
+int report__write_csv(const report_model *m, const report_desc *d, const char *path);
+int report__write_md(const report_model *m, const report_desc *d, const char *path);
+int report__write_html(const report_model *m, const report_desc *d, const char *path);
+int report__write_tex(const report_model *m, const report_desc *d, const char *path);
 
 /* 1 when p is a usable image path: non-empty, relative, without "..". */
 int report__safe_relpath(const char *p);

@@ -16,6 +16,8 @@
  *    readable "label" (report_config_name) and "pareto" (on its scene's
  *    front); both are derived, so reading ignores them.  The whole shape is
  *    docs/results.schema.json.
+ * Written from the report model (report_model.h: names, front flags,
+ * warnings); reading builds a dm_run_result.
  */
 #include "reports/report.h"
 #include "reports/proxy.h"
@@ -129,15 +131,13 @@ static cJSON *quality_json(const dm_quality *q)
     return o;
 }
 
-static cJSON *config_json(const dm_run_result *r, const dm_config_result *c, int pareto)
+static cJSON *config_json(const report_model_row *row)
 {
+    const dm_config_result *c = row->config;
     cJSON *o = cJSON_CreateObject();
     add_str(o, "key", c->key);
-    dm_str label = {0};
-    report_config_name(r, c, &label);
-    add_str(o, "label", dm_str_get(&label));
-    dm_str_free(&label);
-    cJSON_AddBoolToObject(o, "pareto", pareto);
+    add_str(o, "label", row->name);
+    cJSON_AddBoolToObject(o, "pareto", row->front);
     add_str(o, "scene", c->scene);
     cJSON_AddItemToObject(o, "params", kv_object(c->params, c->n_params, 1));
     cJSON_AddStringToObject(o, "status", c->ok ? "ok" : "failed");
@@ -218,8 +218,9 @@ static void proxy_json(cJSON *root, const dm_run_result *r)
         }
 }
 
-static cJSON *run_json(const dm_run_result *r)
+static cJSON *run_json(const report_model *m)
 {
+    const dm_run_result *r = m->run;
     cJSON *root = cJSON_CreateObject();
     cJSON_AddNumberToObject(root, "schema_version", REPORT_SCHEMA_VERSION);
     cJSON *run = cJSON_AddObjectToObject(root, "run");
@@ -233,10 +234,8 @@ static cJSON *run_json(const dm_run_result *r)
     cJSON_AddNumberToObject(t, "gpu_time_coverage", r->gpu_time_coverage);
     add_str(t, "verdict", r->timer_verdict);
     cJSON *a = cJSON_AddArrayToObject(root, "configs");
-    unsigned char *front = report_pareto_flags(r);
-    for (size_t i = 0; i < r->n_configs; i++)
-        cJSON_AddItemToArray(a, config_json(r, &r->configs[i], front[i]));
-    free(front);
+    for (size_t i = 0; i < m->n_rows; i++)
+        cJSON_AddItemToArray(a, config_json(&m->rows[i]));
     a = cJSON_AddArrayToObject(root, "left_out");
     for (size_t i = 0; i < r->n_left_out; i++) {
         cJSON *l = cJSON_CreateObject();
@@ -247,10 +246,8 @@ static cJSON *run_json(const dm_run_result *r)
     a = cJSON_AddArrayToObject(root, "fits");
     for (size_t i = 0; i < r->n_fits; i++)
         cJSON_AddItemToArray(a, report_fit_to_json(&r->fits[i]));
-    char **w;
-    size_t nw = report__warnings(r, &w);   /* the report's list, word for word */
-    cJSON_AddItemToObject(root, "warnings", str_array(w, nw));
-    report__warnings_free(w, nw);
+    /* the report's list, word for word */
+    cJSON_AddItemToObject(root, "warnings", str_array(m->warnings, m->n_warnings));
     proxy_json(root, r);
     return root;
 }
@@ -297,11 +294,10 @@ void report_json_exact_numbers(cJSON *node)
     }
 }
 
-int report_write_json(const dm_run_result *run, const char *path)
+int report__write_json(const report_model *m, const report_desc *d, const char *path)
 {
-    if (!run || !path)
-        return DM_ERR_ARG;
-    cJSON *root = run_json(run);
+    (void)d;
+    cJSON *root = run_json(m);
     report_json_exact_numbers(root);
     int rc = report_write_cjson(root, path);
     cJSON_Delete(root);

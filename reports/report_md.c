@@ -1,5 +1,8 @@
 /* report_md.c — summary.md for CI logs: run header, a table per scene,
- * failures and left-out configurations with their reasons. */
+ * failures and left-out configurations with their reasons.  A row of the
+ * writer table (report_write.c): labels, times, fronts, warnings and the
+ * published section come from the report model (report_model.h); the
+ * answer, the counters and the proxy section still read the run. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
 #include "reports/published_report.h"
@@ -49,59 +52,40 @@ static void quality_cells(dm_str *s, const dm_quality *q, report_metric m)
         dm_str_printf(s, " %.4g |", v);
 }
 
-static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
+static void scene_table(dm_str *s, const report_model *m, const report_model_scene *sc)
 {
-    dm_str l = {0};
-    report_scene_label(run, scene, &l);
+    const dm_run_result *run = m->run;
     dm_str_cat(s, "\n## ");
-    cell(s, dm_str_get(&l));
+    cell(s, sc->label);
     dm_str_cat(s, "\n\n");
-    dm_str_free(&l);
-    report_answer_scene(run, scene, REPORT_ANSWER_MD, s);
-    report_metric m = report_metric_of_run(run);
-    int timed = report_untimed_reason(run, scene) == NULL;
+    report_answer_scene(run, sc->name, REPORT_ANSWER_MD, s);
+    int timed = sc->untimed == NULL;
     if (timed) {
-        dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ", report_metric_label(m));
-        dm_str front = {0};
-        report__pareto_text(run, scene, &front);
-        cell(s, dm_str_get(&front));
-        dm_str_free(&front);
+        dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ", report_metric_label(m->metric));
+        cell(s, sc->front_text);
         dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI | PSNR | SSIM | %s | key |\n"
-                         "|---|---|---|---|---|---|---|\n", report_metric_label(m));
+                         "|---|---|---|---|---|---|---|\n", report_metric_label(m->metric));
     } else   /* counters only: the counters are above; quality and keys here */
         dm_str_printf(s, "\nQuality against the reference:\n\n| configuration | PSNR | SSIM | %s | key |\n"
-                         "|---|---|---|---|---|\n", report_metric_label(m));
-    size_t *rows, nr = report__scene_rows(run, scene, &rows);
-    for (size_t i = 0; i < nr; i++) {
-        const dm_config_result *c = &run->configs[rows[i]];
-        const dm_counter_result *t = report__frame_time(c);
-        dm_str label = {0};
-        report__config_label(run, c, &label);
+                         "|---|---|---|---|---|\n", report_metric_label(m->metric));
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const report_model_row *r = &m->rows[sc->rows[i]];
         dm_str_cat(s, "| ");
-        cell(s, dm_str_get(&label));
-        dm_str_free(&label);
+        cell(s, r->label);
         if (!timed) {
             dm_str_cat(s, " |");
-        } else if (t) {
-            dm_str mark = {0}, why = {0};
-            dm_str_cat(s, " | ");
-            report__ms_text(t->median, s);
-            dm_str_cat(s, " | ");
-            report__ci_text(t, s);
-            report__timing_marks(c, 0, &mark, &why);
-            if (mark.len) {
+        } else if (r->frame_time) {
+            dm_str_printf(s, " | %s | %s", r->ms_text, r->ci_text);
+            if (*r->marks_short) {
                 dm_str_cat(s, " ");
-                cell(s, dm_str_get(&mark));
+                cell(s, r->marks_short);
             }
             dm_str_cat(s, " |");
-            dm_str_free(&mark);
-            dm_str_free(&why);
         } else
             dm_str_cat(s, " | unavailable | |");
-        quality_cells(s, &c->quality, m);
-        dm_str_printf(s, " `%s` |\n", c->key);
+        quality_cells(s, &r->config->quality, m->metric);
+        dm_str_printf(s, " `%s` |\n", r->config->key);
     }
-    free(rows);
 }
 
 /* Noisy configurations listed this many to a line. */
@@ -109,25 +93,17 @@ static void scene_table(dm_str *s, const dm_run_result *run, const char *scene)
 
 /* The noisy configurations by label with their CI and marks, a few per
  * indented line (under their warning). */
-static void noisy_list(dm_str *s, const dm_run_result *run)
+static void noisy_list(dm_str *s, const report_model *m)
 {
-    size_t *idx, n = report__noisy_configs(run, &idx);
-    for (size_t i = 0; i < n; i++) {
-        const dm_config_result *c = &run->configs[idx[i]];
-        dm_str label = {0}, mark = {0}, why = {0};
-        report_config_label(run, c, &label);
+    for (size_t i = 0; i < m->n_noisy; i++) {
+        const report_model_row *r = &m->rows[m->noisy[i]];
         dm_str_cat(s, i % NOISY_PER_LINE ? "; " : "  - ");
-        cell(s, dm_str_get(&label));
-        report__timing_marks(c, 1, &mark, &why);
+        cell(s, r->full_label);
         dm_str_cat(s, " (");
-        cell(s, dm_str_get(&mark) + strlen("⚠ noisy: "));
+        cell(s, r->marks + strlen("⚠ noisy: "));
         dm_str_cat(s, ")");
-        dm_str_cat(s, i % NOISY_PER_LINE == NOISY_PER_LINE - 1 || i + 1 == n ? "\n" : "");
-        dm_str_free(&label);
-        dm_str_free(&mark);
-        dm_str_free(&why);
+        dm_str_cat(s, i % NOISY_PER_LINE == NOISY_PER_LINE - 1 || i + 1 == m->n_noisy ? "\n" : "");
     }
-    free(idx);
 }
 
 static void failures(dm_str *s, const dm_run_result *run)
@@ -178,10 +154,10 @@ static void proxy_section(dm_str *s, const dm_run_result *run)
     report_proxy_passes_text(run, "\n\n", s);
 }
 
-int report_write_markdown(const dm_run_result *run, const char *path)
+int report__write_md(const report_model *m, const report_desc *d, const char *path)
 {
-    if (!run || !path)
-        return DM_ERR_ARG;
+    (void)d;
+    const dm_run_result *run = m->run;
     dm_str s = {0};
     dm_str_cat(&s, "# dmbench run ");
     cell(&s, run->id);
@@ -191,8 +167,8 @@ int report_write_markdown(const dm_run_result *run, const char *path)
     cell(&s, run->started);
     dm_str_cat(&s, "\n- renderer: ");
     cell(&s, dm_kv_get(run->environment, run->n_environment, "renderer"));
-    dm_str_printf(&s, "\n- Pareto metric: %s (%s)", report_metric_name(report_metric_of_run(run)),
-                  report_metric_label(report_metric_of_run(run)));
+    dm_str_printf(&s, "\n- Pareto metric: %s (%s)", report_metric_name(m->metric),
+                  report_metric_label(m->metric));
     dm_str_cat(&s, "\n- budget: ");
     if (!report_run_timed(run))
         dm_str_cat(&s, "none: no timing counter measured, so no budget or pick (the counters are in "
@@ -204,31 +180,23 @@ int report_write_markdown(const dm_run_result *run, const char *path)
                        "slowest lit times (set one with report --budget-ms or quality.budget_ms)");
     dm_str_printf(&s, "\n- timer: %s (GPUTime covers %.1f%% of fenced wall time)\n",
                   run->timer_verdict ? run->timer_verdict : "unknown", run->gpu_time_coverage * 100);
-    dm_str k = {0};
-    report_scene_constants(run, &k);
-    if (k.len) {
+    if (*m->constants) {
         dm_str_cat(&s, "- every scene: ");
-        cell(&s, dm_str_get(&k));
+        cell(&s, m->constants);
         dm_str_cat(&s, "\n");
     }
-    dm_str_free(&k);
-    char **w;
-    size_t nw = report__warnings(run, &w);   /* the list of results.json */
-    for (size_t i = 0; i < nw; i++) {
+    char *const *w = m->warnings;   /* the list of results.json */
+    for (size_t i = 0; i < m->n_warnings; i++) {
         dm_str_cat(&s, "- warning: ");
         cell(&s, w[i]);
         dm_str_cat(&s, "\n");
         if (strstr(w[i], " noisy configuration") && strstr(w[i], "compare their times with care"))
-            noisy_list(&s, run);
+            noisy_list(&s, m);
     }
-    report__warnings_free(w, nw);
-    const char **scenes;
-    size_t ns = report__scenes(run, &scenes);
-    for (size_t i = 0; i < ns; i++)
-        scene_table(&s, run, scenes[i]);
-    free(scenes);
+    for (size_t i = 0; i < m->n_scenes; i++)
+        scene_table(&s, m, &m->scenes[i]);
     failures(&s, run);
-    report_published_section(&s, run, NULL, path, 0);
+    dm_str_cat(&s, m->published_md);
     proxy_section(&s, run);
     int rc = report__save(&s, path);
     dm_str_free(&s);

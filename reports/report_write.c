@@ -1,11 +1,12 @@
-/* report_write.c — the four files of a report as rows of one table, and
- * the folder they go into (report.h: report_write_all and its variants).
+/* report_write.c — the files of a report as rows of one table, and the
+ * folder they go into (report.h: report_write, report_write_run).
  * The writers (report_json.c, report_csv.c, report_md.c, report_html.c)
- * read the run and the shared helpers of report.c; only this file calls
- * them, so the writers and their helpers form no circle. */
+ * read the report model (report_model.h); only this file calls them, so
+ * the writers, the model and their helpers form no circle. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
 #include "reports/published_report.h"
+#include "reports/report_model.h"
 
 #include <errno.h>
 #include <stdio.h>
@@ -15,55 +16,22 @@
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 
-/* One file of a report: its name in the folder and its writer (dir: the
- * run directory the images are relative to; t: trend lines or NULL). */
+/* One file of a report: its name in the folder and its writer, which reads
+ * only the model (and the desc for where the images are linked). */
 typedef struct report_write__file {
     const char *name;
-    int (*write)(const dm_run_result *run, const char *dir, const char *path, const report_trends *t);
+    int (*write)(const report_model *m, const report_desc *d, const char *path);
 } report_write__file;
-
-static int report_write__json(const dm_run_result *run, const char *dir, const char *path,
-                              const report_trends *t)
-{
-    (void)dir, (void)t;
-    return report_write_json(run, path);
-}
-
-static int report_write__csv(const dm_run_result *run, const char *dir, const char *path,
-                             const report_trends *t)
-{
-    (void)dir, (void)t;
-    return report_write_csv(run, path);
-}
-
-static int report_write__md(const dm_run_result *run, const char *dir, const char *path,
-                            const report_trends *t)
-{
-    (void)dir, (void)t;
-    return report_write_markdown(run, path);
-}
-
-static int report_write__html(const dm_run_result *run, const char *dir, const char *path,
-                              const report_trends *t)
-{
-    return report_write_html_trends(run, dir, path, "", t);
-}
 
 /* In the order they are written; a new kind of file is one more row. */
 static const report_write__file report_write__files[] = {
-    {"results.json", report_write__json},
-    {"results.csv", report_write__csv},
-    {"summary.md", report_write__md},
-    {"report.html", report_write__html},
+    {"results.json", report__write_json},
+    {"results.csv", report__write_csv},
+    {"summary.md", report__write_md},
+    {"report.html", report__write_html},
+    {"front.tex", report__write_tex},
 };
-
-/* Writes the four files; stops at the first failure and names that file. */
-int report_write_all_to(const dm_run_result *run, const char *dir, const char *out, char *err,
-                        size_t errlen)
-{
-    return report_write_all_trends(run, dir, out, NULL, err, errlen);
-}
-
+#define REPORT_WRITE__N (sizeof report_write__files / sizeof *report_write__files)
 
 /* Copies every image the run names (safe relative paths that exist) from
  * dir to the same relative path under out, so out is self-contained.  0,
@@ -89,30 +57,68 @@ static int report_write__copy_images(const dm_run_result *run, const char *dir, 
     return 0;
 }
 
-int report_write_all_trends(const dm_run_result *run, const char *dir, const char *out,
-                            const report_trends *t, char *err, size_t errlen)
+/* Writes one row of the table to path; err names the file when it fails. */
+static int report_write__one(const report_model *m, const report_desc *d, const report_write__file *w,
+                             const char *path, char *err, size_t errlen)
 {
-    if (!run || !dir || !out) {
-        snprintf(err, errlen, "report_write_all: no run or no directory");
+    int rc = w->write(m, d, path);
+    if (rc)   /* errno of the failed write (dm_write_file) */
+        snprintf(err, errlen, "%s: cannot write: %s", path,
+                 rc == DM_ERR_DISK || rc == DM_ERR_IO ? strerror(errno) : dm_strerror(rc));
+    return rc;
+}
+
+/* One file of the table by name (d->file), to d->path or out/name. */
+static int report_write__file_named(const report_model *m, const report_desc *d, const char *out,
+                                    char *err, size_t errlen)
+{
+    for (size_t i = 0; i < REPORT_WRITE__N; i++) {
+        const report_write__file *w = &report_write__files[i];
+        if (strcmp(w->name, d->file) != 0)
+            continue;
+        char *path = d->path ? dm_xstrdup(d->path) : dm_xasprintf("%s/%s", out ? out : ".", w->name);
+        int rc = report_write__one(m, d, w, path, err, errlen);
+        free(path);
+        return rc;
+    }
+    dm_str rows = {0};
+    for (size_t i = 0; i < REPORT_WRITE__N; i++)
+        dm_str_printf(&rows, "%s%s", i ? ", " : "", report_write__files[i].name);
+    snprintf(err, errlen, "report_write: no file '%s' (valid: %s)", d->file, dm_str_get(&rows));
+    dm_str_free(&rows);
+    return DM_ERR_ARG;
+}
+
+int report_write(const report_model *m, const report_desc *d, char *err, size_t errlen)
+{
+    const char *out = d && d->out ? d->out : d ? d->dir : NULL;
+    if (!m || !m->run || !d || (!out && !(d->file && d->path))) {
+        snprintf(err, errlen, "report_write: no run or no directory");
         return DM_ERR_ARG;
     }
+    if (d->file)
+        return report_write__file_named(m, d, out, err, errlen);
     /* written elsewhere: the images come along, so the folder stands alone */
-    int rc = report_published_copy(dir, out, err, errlen);   /* summary.md reads it beside itself */
-    if (!rc && strcmp(dir, out) != 0)
-        rc = report_write__copy_images(run, dir, out, err, errlen);
-    for (size_t i = 0; i < sizeof report_write__files / sizeof *report_write__files && !rc; i++) {
-        const report_write__file *w = &report_write__files[i];
-        char *path = dm_xasprintf("%s/%s", out, w->name);
-        rc = w->write(run, dir, path, t);
-        if (rc)   /* errno of the failed write (dm_write_file) */
-            snprintf(err, errlen, "%s: cannot write: %s", path,
-                     rc == DM_ERR_DISK || rc == DM_ERR_IO ? strerror(errno) : dm_strerror(rc));
+    int rc = d->dir ? report_published_copy(d->dir, out, err, errlen) : 0;
+    if (!rc && d->dir && strcmp(d->dir, out) != 0)
+        rc = report_write__copy_images(m->run, d->dir, out, err, errlen);
+    for (size_t i = 0; i < REPORT_WRITE__N && !rc; i++) {
+        char *path = dm_xasprintf("%s/%s", out, report_write__files[i].name);
+        rc = report_write__one(m, d, &report_write__files[i], path, err, errlen);
         free(path);
     }
     return rc;
 }
 
-int report_write_all(const dm_run_result *run, const char *dir, char *err, size_t errlen)
+int report_write_run(const dm_run_result *run, const report_desc *d, char *err, size_t errlen)
 {
-    return report_write_all_to(run, dir, dir, err, errlen);
+    report_model m;
+    int rc = report_model_build(&m, run, d);
+    if (rc) {
+        snprintf(err, errlen, "report_write: no run");
+        return rc;
+    }
+    rc = report_write(&m, d, err, errlen);
+    report_model_free(&m);
+    return rc;
 }

@@ -7,9 +7,9 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "reports/flip.h"
-#include "reports/image.h"
-#include "reports/quality.h"
+#include "imaging/flip.h"
+#include "imaging/image.h"
+#include "imaging/quality.h"
 #include "run/refcache.h"
 
 /* The reference image of parameters p at c's resolution into m->ref_*:

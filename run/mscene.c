@@ -9,7 +9,7 @@
 #include <unistd.h>
 
 #include "core/dm_error.h"
-#include "reports/image.h"
+#include "imaging/image.h"
 
 /* Draws at most this many frames to converge a virtual texture before an image. */
 #define MSCENE_VT_CONVERGE_MAX 64

@@ -324,7 +324,7 @@ static int runner__finish(runner *r, dm_str *err)
         char e[512] = "";
         report_trends tr;
         run_trends(r->st, &run, &tr);   /* none on a store failure: the report goes on */
-        rc = report_write_all_trends(&run, r->run_dir, r->run_dir, &tr, e, sizeof e);
+        rc = report_write_run(&run, &(report_desc){.dir = r->run_dir, .trends = &tr}, e, sizeof e);
         report_trends_free(&tr);
         if (rc)
             dm_str_printf(err, "report: %s", e);

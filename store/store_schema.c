@@ -120,7 +120,7 @@ static const char *const store_schema__migrations[STORE_SCHEMA_VERSION] = {
     "CREATE TABLE partial_samples(run TEXT NOT NULL REFERENCES runs(id) ON DELETE"
     " CASCADE, key TEXT NOT NULL, counter TEXT NOT NULL, data BLOB,"
     " sampling_ns INTEGER, PRIMARY KEY(run, key, counter));",
-    /* 3 -> 4: LDR-FLIP (reports/flip.h) and its error map; NULL before */
+    /* 3 -> 4: LDR-FLIP (imaging/flip.h) and its error map; NULL before */
     "ALTER TABLE configs ADD COLUMN q_flip REAL;"
     "ALTER TABLE configs ADD COLUMN q_flip_q1 REAL;"
     "ALTER TABLE configs ADD COLUMN q_flip_median REAL;"

@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """flip_reference.py - LDR-FLIP transcribed from the paper (Andersson et
 al., HPG 2020) in plain Python, with full 2-D kernels, as a check on
-reports/flip.c that shares no code with it.  Prints the values that
+imaging/flip.c that shares no code with it.  Prints the values that
 tests/test_reports_flip.c asserts (run: python3 tests/flip_reference.py).
 Slow on purpose: direct 2-D convolution, small images only."""
 import math

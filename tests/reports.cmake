@@ -1,7 +1,7 @@
 # Reports layer tests (reports/): image bridge, quality metrics, report files.
-dm_add_unit(test_reports_image test_reports_image.c LIBS dm_reports)
-dm_add_unit(test_reports_quality test_reports_quality.c LIBS dm_reports)
-dm_add_unit(test_reports_flip test_reports_flip.c LIBS dm_reports)
+dm_add_unit(test_reports_image test_reports_image.c LIBS dm_imaging)
+dm_add_unit(test_reports_quality test_reports_quality.c LIBS dm_imaging)
+dm_add_unit(test_reports_flip test_reports_flip.c LIBS dm_reports dm_imaging)
 dm_add_unit(test_reports_report test_reports_report.c LIBS dm_reports)
 dm_add_unit(test_reports_recommend test_reports_recommend.c LIBS dm_reports)
 dm_add_unit(test_reports_proxy test_reports_proxy.c LIBS dm_reports)
@@ -24,3 +24,4 @@ add_test(NAME test_reports_quick_browser
 set_tests_properties(test_reports_quick_browser PROPERTIES TIMEOUT 300 LABELS "browser;e2e"
   ENVIRONMENT "${DM_TEST_ENV}")
 dm_add_unit(test_reports_published test_reports_published.c LIBS dm_reports)
+dm_add_unit(test_reports_model test_reports_model.c LIBS dm_reports)

@@ -7,7 +7,7 @@
 
 #include "core/dm_results.h"
 #include "core/dm_util.h"
-#include "reports/image.h"
+#include "imaging/image.h"
 
 #include <math.h>
 #include <stdio.h>

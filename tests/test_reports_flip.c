@@ -1,10 +1,11 @@
-/* test_reports_flip.c — LDR-FLIP (reports/flip.h).
+/* test_reports_flip.c — LDR-FLIP (imaging/flip.h).
  *
  * Expected values are computed here, by hand from the paper's formulas
  * (hand_* below, written apart from flip.c), or were printed by
  * tests/flip_reference.py, a pure-Python transcription of the paper run
  * once: python3 tests/flip_reference.py. */
-#include "reports/flip.h"
+#include "imaging/flip.h"
+#include "reports/flip_run.h"
 #include "core/dm_error.h"
 
 #include <math.h>

@@ -1,7 +1,7 @@
-/* test_reports_image.c — the OpenImageIO bridge (reports/image.h). */
-#include "reports/image.h"
+/* test_reports_image.c — the OpenImageIO bridge (imaging/image.h). */
+#include "imaging/image.h"
 #include "core/dm_error.h"
-#include "reports/quality.h"
+#include "imaging/quality.h"
 
 #include <math.h>
 #include <signal.h>

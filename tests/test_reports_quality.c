@@ -1,5 +1,5 @@
 /* test_reports_quality.c — SSIM, silhouette, depth, non-finite, crack metrics. */
-#include "reports/quality.h"
+#include "imaging/quality.h"
 #include "core/dm_error.h"
 
 #include <math.h>

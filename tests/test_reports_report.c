@@ -3,7 +3,7 @@
 #include "reports/report_internal.h"
 #include "reports/metric.h"
 #include "reports/answer.h"
-#include "reports/image.h"
+#include "imaging/image.h"
 #include "core/dm_error.h"
 #include "core/dm_util.h"
 
@@ -23,6 +23,15 @@
 
 #include "test_reports_fixture.h"
 
+/* One file of the report writer table to path (report_write_run). */
+static int write_report_file(const dm_run_result *run, const char *file, const char *dir,
+                             const char *path, const char *href)
+{
+    char err[512];
+    report_desc d = {.dir = dir, .href = href, .file = file, .path = path};
+    return report_write_run(run, &d, err, sizeof err);
+}
+
 static void test_json_round_trip(void **state)
 {
     (void)state;
@@ -31,9 +40,9 @@ static void test_json_round_trip(void **state)
     char *p1 = dm_xasprintf("%s/a.json", dir), *p2 = dm_xasprintf("%s/b.json", dir);
     dm_run_result run, back;
     fixture_run(&run);
-    assert_int_equal(report_write_json(&run, p1), 0);
+    assert_int_equal(write_report_file(&run, "results.json", NULL, p1, NULL), 0);
     assert_int_equal(report_read_json(p1, &back, err, sizeof err), 0);
-    assert_int_equal(report_write_json(&back, p2), 0);
+    assert_int_equal(write_report_file(&back, "results.json", NULL, p2, NULL), 0);
     char *t1 = test_slurp(p1), *t2 = test_slurp(p2);
     assert_string_equal(t1, t2);
     /* the contract's shapes */
@@ -133,7 +142,7 @@ static void test_csv_shape(void **state)
     char *p = dm_xasprintf("%s/r.csv", dir);
     dm_run_result run;
     fixture_run(&run);
-    assert_int_equal(report_write_csv(&run, p), 0);
+    assert_int_equal(write_report_file(&run, "results.csv", NULL, p, NULL), 0);
     char *t = test_slurp(p);
     size_t cols;
     char cell[64][64];
@@ -165,7 +174,7 @@ static void test_markdown(void **state)
     char *p = dm_xasprintf("%s/s.md", dir);
     dm_run_result run;
     fixture_run(&run);
-    assert_int_equal(report_write_markdown(&run, p), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, p, NULL), 0);
     char *t = test_slurp(p);
     assert_non_null(strstr(t, "## " FIXTURE_SCENE "\n"));
     /* rows sorted by time; CI as a relative half-width: 0.1/1.1 = 9.1 %, 0.05/2 = 2.5 % */
@@ -236,7 +245,7 @@ static void test_html_flip_maps(void **state)
     c->quality.flip = 0.04521;
     c->quality.flip_max = 0.5192;
     c->quality.flip_ppd = 67.0206;
-    assert_int_equal(report_write_html(&run, dir, p), 0);
+    assert_int_equal(write_report_file(&run, "report.html", dir, p, NULL), 0);
     char *t = test_slurp(p);
     assert_non_null(strstr(t, "src=\"img/c0_heat.png\" alt=\"FLIP: "));
     assert_non_null(strstr(t, ", FLIP 0.0452 (max 0.519)</p>"));
@@ -260,7 +269,7 @@ static void test_html_escaping_and_images(void **state)
     char *p = dm_xasprintf("%s/report.html", dir);
     dm_run_result run;
     fixture_run(&run);
-    assert_int_equal(report_write_html(&run, dir, p), 0);
+    assert_int_equal(write_report_file(&run, "report.html", dir, p, NULL), 0);
     char *t = test_slurp(p);
     assert_non_null(strstr(t, "&lt;script&gt;alert(1)&lt;/script&gt;"));
     assert_null(strstr(t, "<script>alert"));
@@ -293,7 +302,7 @@ static void test_html_escaping_and_images(void **state)
     assert_non_null(strstr(t, "<span class=\"scale\"></span>"));
     /* written elsewhere (report --out): links go to the run directory */
     char *other = dm_xasprintf("%s/other.html", dir);
-    assert_int_equal(report_write_html_to(&run, dir, other, "/abs/run/"), 0);
+    assert_int_equal(write_report_file(&run, "report.html", dir, other, "/abs/run/"), 0);
     char *o = test_slurp(other);
     assert_non_null(strstr(o, "<a href=\"/abs/run/img/c0_ref.png\">"));
     assert_non_null(strstr(o, "src=\"/abs/run/img/c0_heat.png\""));
@@ -318,7 +327,7 @@ static void test_write_all(void **state)
     assert_non_null(mkdtemp(dir));
     dm_run_result run;
     fixture_run(&run);
-    assert_int_equal(report_write_all(&run, dir, err, sizeof err), 0);
+    assert_int_equal(report_write_run(&run, &(report_desc){.dir = dir}, err, sizeof err), 0);
     for (int i = 0; i < 4; i++) {
         char *p = dm_xasprintf("%s/%s", dir, names[i]);
         assert_true(dm_file_exists(p));
@@ -326,7 +335,7 @@ static void test_write_all(void **state)
         free(p);
     }
     char *missing = dm_xasprintf("%s/no/such/dir", dir);
-    assert_int_equal(report_write_all(&run, missing, err, sizeof err), DM_ERR_IO);
+    assert_int_equal(report_write_run(&run, &(report_desc){.dir = missing}, err, sizeof err), DM_ERR_IO);
     assert_non_null(strstr(err, "results.json"));
     free(missing);
     dm_run_free(&run);
@@ -373,7 +382,7 @@ static void test_html_charts_and_front(void **state)
     tess_run(&run);
     /* 40 reports × 3 charts: more than PLplot's 100 streams, so streams must be released */
     for (int i = 0; i < 40; i++)
-        assert_int_equal(report_write_html(&run, NULL, p), 0);
+        assert_int_equal(write_report_file(&run, "report.html", NULL, p, NULL), 0);
     char *t = test_slurp(p);
     int svgs = 0;
     for (const char *q = strstr(t, "<svg"); q; q = strstr(q + 1, "<svg"))
@@ -404,7 +413,7 @@ static void test_html_charts_and_front(void **state)
     /* L=2's CI reaching down into L=1's: of different quality, so no tie is
      * said (times are tied only between equal qualities); one pick */
     run.configs[1].counters[0].ci_lo = 1.0e6;
-    assert_int_equal(report_write_html(&run, NULL, p), 0);
+    assert_int_equal(write_report_file(&run, "report.html", NULL, p, NULL), 0);
     t = test_slurp(p);
     ol = strstr(t, "id=\"front-0\"");
     assert_null(strstr(t, "≈ tied"));
@@ -524,8 +533,8 @@ static void test_metric_in_files(void **state)
     dm_run_result run;
     metric_run(&run);
     assert_int_equal(report_metric_set(&run, "rmse"), 0);
-    assert_int_equal(report_write_markdown(&run, md), 0);
-    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    assert_int_equal(write_report_file(&run, "report.html", NULL, html, NULL), 0);
     char *t = test_slurp(md);
     assert_non_null(strstr(t, "- Pareto metric: rmse (RMSE)\n"));
     assert_non_null(strstr(t, "Front (best RMSE for its cost, fastest first): "
@@ -599,8 +608,8 @@ static void test_noisy_warning(void **state)
     run.configs[5].counters[0].ci_lo = run.configs[5].counters[0].ci_hi = NAN;
     free(run.configs[6].counters[0].name);
     run.configs[6].counters[0].name = dm_xstrdup("CPUTime");
-    assert_int_equal(report_write_markdown(&run, md), 0);
-    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    assert_int_equal(write_report_file(&run, "report.html", NULL, html, NULL), 0);
     char *t = test_slurp(md);
     char *line = between(t, "- warning: ", "\n");
     assert_string_equal(line, "- warning: 3 noisy configurations: the 95% CI of the median frame time "
@@ -632,7 +641,7 @@ static void test_noisy_warning(void **state)
     for (int i = 0; i < 12; i++)
         many[i] = 0.1;
     noisy_run(&run, many, 12);
-    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    assert_int_equal(write_report_file(&run, "report.html", NULL, html, NULL), 0);
     t = test_slurp(html);
     assert_non_null(strstr(t, "<div class=\"warn noisy\"><details><summary><b>12 noisy configurations</b>"));
     free(t);
@@ -640,8 +649,8 @@ static void test_noisy_warning(void **state)
     noisy_run(&run, many, 1);
     run.configs[0].counters[0].ci_lo = 0.99e6;
     run.configs[0].counters[0].ci_hi = 1.01e6;
-    assert_int_equal(report_write_html(&run, NULL, html), 0);
-    assert_int_equal(report_write_markdown(&run, md), 0);
+    assert_int_equal(write_report_file(&run, "report.html", NULL, html, NULL), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
     t = test_slurp(html);
     assert_null(strstr(t, "warn noisy"));
     assert_null(strstr(t, "⚠ noisy"));
@@ -674,8 +683,8 @@ static void test_quality_warnings(void **state)
     run.configs[2].quality.present = run.configs[3].quality.present = run.configs[0].quality.present = 1;
     run.configs[2].quality.nonfinite_pixels = 3;
     run.configs[3].quality.crack_pixels = 5;
-    assert_int_equal(report_write_markdown(&run, md), 0);
-    assert_int_equal(report_write_html(&run, NULL, html), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    assert_int_equal(write_report_file(&run, "report.html", NULL, html, NULL), 0);
     char *t = test_slurp(md);
     assert_non_null(strstr(t, "- warning: 1 configuration failed (see Failed configurations, with the reasons)\n"));
     assert_non_null(strstr(t, "- warning: 1 configuration with non-finite pixels: s · pom steps=2 "
@@ -691,7 +700,7 @@ static void test_quality_warnings(void **state)
     free(t);
     dm_run_free(&run);
     noisy_run(&run, rel, 2);
-    assert_int_equal(report_write_markdown(&run, md), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
     t = test_slurp(md);
     assert_null(strstr(t, "- warning:"));
     free(t);
@@ -737,7 +746,7 @@ static size_t chart_titles(const char *html, char titles[][96], size_t max)
 
 static char *html_of(const dm_run_result *run, const char *path)
 {
-    assert_int_equal(report_write_html(run, NULL, path), 0);
+    assert_int_equal(write_report_file(run, "report.html", NULL, path, NULL), 0);
     return test_slurp(path);
 }
 
@@ -928,7 +937,7 @@ static void test_warnings_everywhere(void **state)
     run.timer_verdict = dm_xstrdup("partial");
     run.gpu_time_coverage = 0.015;
     char e[256];
-    assert_int_equal(report_write_all(&run, dir, e, sizeof e), 0);
+    assert_int_equal(report_write_run(&run, &(report_desc){.dir = dir}, e, sizeof e), 0);
     char *jp = dm_xasprintf("%s/results.json", dir), *md = dm_xasprintf("%s/summary.md", dir);
     char *html = dm_xasprintf("%s/report.html", dir);
     assert_int_equal(report_read_json(jp, &back, e, sizeof e), 0);
@@ -957,7 +966,7 @@ static void test_warnings_everywhere(void **state)
     assert_non_null(strstr(h, "title=\"WallTime drifted -9.9 % over its 15 samples (a trend, not noise)\">⚠ drift -9.9 %</span>"));
     assert_non_null(strstr(m, "⚠ drift -9.9 %"));
     /* read → write: the same list, not doubled */
-    assert_int_equal(report_write_json(&back, jp), 0);
+    assert_int_equal(write_report_file(&back, "results.json", NULL, jp, NULL), 0);
     dm_run_result again;
     assert_int_equal(report_read_json(jp, &again, e, sizeof e), 0);
     assert_int_equal(again.n_warnings, 3);

@@ -19,8 +19,8 @@
 #include <string.h>
 
 #include "tests/tech_fixture.h"
-#include "reports/image.h"
-#include "reports/quality.h"
+#include "imaging/image.h"
+#include "imaging/quality.h"
 #include "techniques/render.h"
 
 /* PSNR at level 16 against the reference (384×216, bricks, 50°), before →

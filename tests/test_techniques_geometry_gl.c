@@ -17,8 +17,8 @@
 #include "core/dm_util.h"
 #include "run/gl_context.h"
 #include "tests/tech_fixture.h"
-#include "reports/image.h"
-#include "reports/quality.h"
+#include "imaging/image.h"
+#include "imaging/quality.h"
 #include "techniques/mesh.h"
 #include "techniques/render.h"
 

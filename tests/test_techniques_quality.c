@@ -4,7 +4,7 @@
  * they really differ.
  *
  * Every image is compared with the real reference-mesh render of its scene
- * (2× supersampled, box-filtered down), with the SSIM of reports/quality.h
+ * (2× supersampled, box-filtered down), with the SSIM of imaging/quality.h
  * and PSNR over RGB.  When a check fails, the images it compared are written
  * as PNG to TECHQ_IMG_DIR (in the build tree) and the message names them.
  * Small resolutions keep the whole file to well under a minute.
@@ -21,7 +21,7 @@
 #include <sys/stat.h>
 
 #include "core/dm_image.h"
-#include "reports/quality.h"
+#include "imaging/quality.h"
 #include "tests/tech_fixture.h"
 
 #define W 320

@@ -6,7 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
-#include "reports/image.h"
+#include "imaging/image.h"
 
 /* 1 when every pixel of im has the RGB of the first one. */
 static int uniform(const img *im)

@@ -2,7 +2,7 @@
 # GL; the real binary in a virtual X server (tests/test_viewer.sh).
 dm_add_unit(test_viewer_state test_viewer_state.c LIBS dm_viewer LABELS viewer)
 add_executable(test_viewer_imgcmp test_viewer_imgcmp.c)
-target_link_libraries(test_viewer_imgcmp PRIVATE dm_reports dm_core m)
+target_link_libraries(test_viewer_imgcmp PRIVATE dm_imaging dm_core m)
 set(viewer_env ${DM_TEST_ENV} "VIEWER_IMGCMP=$<TARGET_FILE:test_viewer_imgcmp>")
 if(DM_SANITIZE)
   # llvmpipe's first-draw JIT leak (see dm_add_gl): leak checks off for GL runs.

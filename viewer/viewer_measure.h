@@ -10,7 +10,7 @@
 
 #include "core/dm_util.h"
 #include "counters/counters.h"
-#include "reports/image.h"
+#include "imaging/image.h"
 #include "techniques/render.h"
 
 #define VIEWER_N_COUNTERS 5

@@ -16,7 +16,7 @@ int main(int argc, char **argv)
     fixture_run(&run);
     int rc = fixture_images(argv[1], err, sizeof err);
     if (!rc)
-        rc = report_write_all(&run, argv[1], err, sizeof err);
+        rc = report_write_run(&run, &(report_desc){.dir = argv[1]}, err, sizeof err);
     dm_run_free(&run);
     if (rc) {
         fprintf(stderr, "gen_report: %s\n", err);

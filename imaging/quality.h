@@ -3,10 +3,10 @@
  * Pure C over the float RGBA images of image.h; no OpenImageIO needed.
  * Coverage masks are one byte per pixel, 1 = covered, row-major like img.
  */
-#ifndef REPORTS_QUALITY_H
-#define REPORTS_QUALITY_H
+#ifndef IMAGING_QUALITY_H
+#define IMAGING_QUALITY_H
 
-#include "reports/image.h"
+#include "imaging/image.h"
 
 /* Mean SSIM of the luma (Y = 0.2126 R + 0.7152 G + 0.0722 B) of a and b:
  * Gaussian 11×11 window, sigma 1.5, K1 = 0.01, K2 = 0.03, L = 1, averaged

@@ -19,8 +19,8 @@
  * filters to itself.  Every stage is a function so the tests can check it on
  * its own.
  */
-#ifndef REPORTS_FLIP_H
-#define REPORTS_FLIP_H
+#ifndef IMAGING_FLIP_H
+#define IMAGING_FLIP_H
 
 #include <stddef.h>
 #include "core/dm_image.h"
@@ -71,15 +71,6 @@ void flip_colormap(double v, float rgb[3]);
  * DM_ERR_ARG, DM_ERR_NOMEM, or img_save's DM_ERR_DISK / DM_ERR_IO with the
  * reason in err; no partial file is left at path. */
 int flip_map_save(const float *map, int w, int h, const char *path, char *err, size_t errlen);
-
-/* FLIP of every configuration of run again at ppd, from the render and
- * reference files under the run directory dir (8-bit PNGs, so values
- * differ slightly from the run's, computed on float images); the maps are
- * written as dir/img/<key>-flip-ppd<N>.png and the configurations point to
- * them.  Configurations without both images keep their values.  0,
- * DM_ERR_ARG (ppd < 1), or the first failure (DM_ERR_IO ...) with the
- * configuration and reason in err. */
-int flip_run_recompute(dm_run_result *run, const char *dir, double ppd, dm_str *err);
 
 /* ---- Stages (exposed for tests) ---- */
 

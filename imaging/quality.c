@@ -1,5 +1,5 @@
 /* quality.c — SSIM, silhouette, depth, non-finite and crack metrics. */
-#include "reports/quality.h"
+#include "imaging/quality.h"
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"

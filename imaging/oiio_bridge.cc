@@ -1,10 +1,10 @@
-// oiio_bridge.cc — the only C++ of reports/: OpenImageIO comparisons, heatmaps
+// oiio_bridge.cc — the only C++ of imaging/: OpenImageIO comparisons, heatmaps
 // and thumbnails behind image.h (buffers and files are in core/dm_image.cc).
 //
 // Every function catches all exceptions (none may cross into C) and turns
 // OIIO failures into DM_ERR_* codes with OIIO's message and the path in err.
 
-#include "reports/image.h"
+#include "imaging/image.h"
 
 extern "C" {
 #include "core/dm_error.h"

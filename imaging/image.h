@@ -5,8 +5,8 @@
  * bottom-up rows when reading back).  PNG output is 8-bit with values
  * clamped to [0,1]; EXR keeps floats.
  */
-#ifndef REPORTS_IMAGE_H
-#define REPORTS_IMAGE_H
+#ifndef IMAGING_IMAGE_H
+#define IMAGING_IMAGE_H
 
 #include <stddef.h>
 #include "core/dm_image.h"

@@ -2,7 +2,7 @@
  * al., HPG 2020; "§n" its section.  The colour pipeline (§4.1) and the
  * feature pipeline (§4.2) are separate stages; flip_map() combines them
  * (§4.3). */
-#include "reports/flip.h"
+#include "imaging/flip.h"
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"

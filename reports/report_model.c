@@ -1,0 +1,169 @@
+/* report_model.c — the report model of one run (report_model.h), derived
+ * once with the helpers of report.c, answer.c and published_report.c; the
+ * writers read it and call none of those derivations again. */
+#include "reports/report_model.h"
+#include "reports/report_internal.h"
+#include "reports/answer.h"
+#include "reports/published_report.h"
+
+#include <math.h>
+#include <stdlib.h>
+#include <string.h>
+
+#include "core/dm_error.h"
+
+/* The trend of configuration key (NULL when it has fewer than two runs). */
+static const report_trend *report_model__trend(const report_trends *t, const char *key)
+{
+    for (size_t i = 0; t && key && i < t->n; i++)
+        if (t->items[i].key && strcmp(t->items[i].key, key) == 0 && t->items[i].n >= 2)
+            return &t->items[i];
+    return NULL;
+}
+
+static void report_model__row(report_model *m, report_model_row *r, const dm_config_result *c)
+{
+    const dm_run_result *run = m->run;
+    dm_str s = {0};
+    r->config = c;
+    report__config_label(run, c, &s);
+    r->label = dm_str_take(&s);
+    report_config_label(run, c, &s);
+    r->full_label = dm_str_take(&s);
+    report_config_name(run, c, &s);
+    r->name = dm_str_take(&s);
+    r->frame_time = report__frame_time(c);
+    if (r->frame_time) {
+        report__ms_text(r->frame_time->median, &s);
+        r->ms_text = dm_str_take(&s);
+        report__ci_text(r->frame_time, &s);
+        r->ci_text = dm_str_take(&s);
+        report__time_ci_text(r->frame_time, &s);
+        r->time_ci_text = dm_str_take(&s);
+    }
+    dm_str why = {0};
+    report__timing_marks(c, 1, &s, &why);
+    r->marks = dm_str_take(&s);
+    r->why = dm_str_take(&why);
+    report__timing_marks(c, 0, &s, &why);
+    r->marks_short = dm_str_take(&s);
+    dm_str_free(&why);
+    r->noisy = report__noisy(c);
+    r->error = c->quality.present ? report_metric_error(&c->quality, m->metric) : NAN;
+    r->shown = report_metric_shown(&c->quality, m->metric);
+    r->trend = report_model__trend(m->trends, c->key);
+    r->nonfinite_pixels = c->quality.present ? c->quality.nonfinite_pixels : 0;
+    r->crack_pixels = c->quality.present ? c->quality.crack_pixels : 0;
+}
+
+static void report_model__scene(report_model *m, report_model_scene *sc, const char *name)
+{
+    const dm_run_result *run = m->run;
+    dm_str s = {0};
+    sc->name = name;
+    report_scene_label(run, name, &s);
+    sc->label = dm_str_take(&s);
+    sc->n_rows = report__scene_rows(run, name, &sc->rows);
+    const char **params;
+    size_t np = report__param_names(run, name, &params);
+    sc->varying = dm_xcalloc(np + 1, sizeof *sc->varying);
+    for (size_t i = 0; i < np; i++)
+        if (report__param_varies(run, name, params[i]))
+            sc->varying[sc->n_varying++] = params[i];
+    free(params);
+    sc->n_front = report__pareto(run, name, &sc->front);
+    report__pareto_text(run, name, &s);
+    sc->front_text = dm_str_take(&s);
+    sc->untimed = report_untimed_reason(run, name);
+    sc->n_points = report_recommend(run, name, &sc->rec);
+}
+
+int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d)
+{
+    memset(m, 0, sizeof *m);
+    if (!run)
+        return DM_ERR_ARG;
+    m->run = run;
+    m->dir = d ? d->dir : NULL;
+    m->trends = d ? d->trends : NULL;
+    m->metric = report_metric_of_run(run);
+    dm_str k = {0};
+    report_scene_constants(run, &k);
+    m->constants = dm_str_take(&k);
+    const char **names;
+    m->n_scenes = report__scenes(run, &names);
+    m->scenes = dm_xcalloc(m->n_scenes + 1, sizeof *m->scenes);
+    for (size_t i = 0; i < m->n_scenes; i++)
+        report_model__scene(m, &m->scenes[i], names[i]);
+    m->n_rows = run->n_configs;
+    m->rows = dm_xcalloc(m->n_rows + 1, sizeof *m->rows);
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const dm_config_result *c = &run->configs[i];
+        report_model__row(m, &m->rows[i], c);
+        for (size_t k = 0; k < m->n_scenes; k++)
+            if (strcmp(c->scene ? c->scene : "", names[k]) == 0)
+                m->rows[i].scene = k;
+    }
+    free(names);
+    for (size_t k = 0; k < m->n_scenes; k++)
+        for (size_t f = 0; f < m->scenes[k].n_front; f++)
+            m->rows[m->scenes[k].front[f]].front = 1;
+    m->n_params = report__param_names(run, NULL, &m->params);
+    m->n_timed = report__counter_names(run, NULL, REPORT__TIMED, &m->timed);
+    m->n_det = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &m->det);
+    m->n_warnings = report__warnings(run, &m->warnings);
+    m->n_noisy = report__noisy_configs(run, &m->noisy);
+    /* published.json, once: the run directory's, or beside the one file written */
+    dm_str md = {0}, html = {0};
+    if (d && (d->dir || d->path)) {
+        char *path = report_published_path(d->dir, d->path);
+        report_published_sections(run, path, &md, &html);
+        free(path);
+    }
+    m->published_md = dm_str_take(&md);
+    m->published_html = dm_str_take(&html);
+    return 0;
+}
+
+void report_model_free(report_model *m)
+{
+    for (size_t i = 0; m->rows && i < m->n_rows; i++) {
+        report_model_row *r = &m->rows[i];
+        free(r->label);
+        free(r->full_label);
+        free(r->name);
+        free(r->ms_text);
+        free(r->ci_text);
+        free(r->time_ci_text);
+        free(r->marks);
+        free(r->marks_short);
+        free(r->why);
+    }
+    free(m->rows);
+    for (size_t i = 0; m->scenes && i < m->n_scenes; i++) {
+        report_model_scene *sc = &m->scenes[i];
+        free(sc->label);
+        free(sc->rows);
+        free(sc->varying);
+        free(sc->front);
+        free(sc->front_text);
+    }
+    free(m->scenes);
+    free(m->params);
+    free(m->timed);
+    free(m->det);
+    report__warnings_free(m->warnings, m->n_warnings);
+    free(m->noisy);
+    free(m->constants);
+    free(m->published_md);
+    free(m->published_html);
+    memset(m, 0, sizeof *m);
+}
+
+const report_model_row *report_model_find(const report_model *m, const char *key)
+{
+    for (size_t i = 0; key && i < m->n_rows; i++)
+        if (m->rows[i].config->key && strcmp(m->rows[i].config->key, key) == 0)
+            return &m->rows[i];
+    return NULL;
+}

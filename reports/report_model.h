@@ -1,0 +1,101 @@
+/* report_model.h — what a report shows of one run, derived once.
+ *
+ * Built from a dm_run_result (and the run directory, the trend lines of the
+ * store) before any file is written; every writer of the report table
+ * (report_write.c: results.json, results.csv, summary.md, report.html,
+ * front.tex) reads it instead of deriving labels, frame times, fronts and
+ * warnings again, so the files cannot disagree.  The model borrows the run,
+ * the directory and the trends (they must outlive it) and owns everything
+ * else; it is read-only once built.
+ *
+ * Per configuration (run order): its labels, frame time and the text of its
+ * CI, the noise marks, whether it is on its scene's front, its trend line
+ * and its image defects.  Per scene (first-appearance order): its label, the
+ * ok configurations fastest first, the axes that vary, the front, the
+ * recommendation (pick, knee, best per family) and whether the counter
+ * breakdown or the untimed note is drawn.  Once for the run: the error
+ * metric, the warnings list (results.json, summary.md and report.html say
+ * the same words) and the published figures, read from published.json once.
+ */
+#ifndef REPORTS_REPORT_MODEL_H
+#define REPORTS_REPORT_MODEL_H
+
+#include "core/dm_results.h"
+#include "core/dm_util.h"
+#include "reports/metric.h"
+#include "reports/recommend.h"
+#include "reports/report.h"
+
+/* One configuration as every file shows it. */
+typedef struct report_model_row {
+    const dm_config_result *config;     /* borrowed from the run */
+    size_t scene;                       /* index into report_model.scenes */
+    char *label;          /* technique and the axes varying in its scene ("pom steps=8") */
+    char *full_label;     /* report_config_label: "cube 480×270 · pom steps=8" */
+    char *name;           /* report_config_name: full_label, " [key]" when not unique */
+    const dm_counter_result *frame_time;   /* WallTime with samples, or NULL */
+    char *ms_text;        /* median in ms, three significant digits; NULL without frame time */
+    char *ci_text;        /* "±9.1%", "−5.0%/+89%" or "CI unknown"; NULL without frame time */
+    char *time_ci_text;   /* "4.43 ms [4.33, 4.53]"; NULL without frame time */
+    char *marks;          /* noise, drift and bimodal marks with the CI ("" when sound) */
+    char *marks_short;    /* the same for a table that shows the CI beside it */
+    char *why;            /* the marks' reasons in words ("" when sound) */
+    int noisy;            /* report__noisy */
+    int front;            /* on its scene's Pareto front under the run's metric */
+    double error;         /* its error under the run's metric; NaN when none */
+    double shown;         /* the metric as shown (SSIM: 1 − SSIM, PSNR in dB); NaN when none */
+    const report_trend *trend;   /* this configuration's trend line, or NULL */
+    long nonfinite_pixels, crack_pixels;   /* image defects (0 without quality) */
+} report_model_row;
+
+/* One scene of the run. */
+typedef struct report_model_scene {
+    const char *name;     /* the scene id, borrowed from the run */
+    char *label;          /* report_scene_label: "cube 480×270" */
+    size_t *rows;         /* ok configurations, fastest first (ties in run order) */
+    size_t n_rows;
+    const char **varying; /* the param names that take two or more values */
+    size_t n_varying;
+    size_t *front;        /* the Pareto front, fastest first (config indexes) */
+    size_t n_front;
+    char *front_text;     /* the front as one sentence */
+    const char *untimed;  /* report_untimed_reason, or NULL when timed */
+    recommend_result rec; /* pick, knee, best per family (config indexes) */
+    size_t n_points;      /* points the recommendation considered */
+} report_model_scene;
+
+typedef struct report_model {
+    const dm_run_result *run;     /* borrowed */
+    const char *dir;              /* run directory images are relative to; NULL */
+    const report_trends *trends;  /* borrowed; NULL: none */
+    report_metric metric;         /* the run's Pareto error metric */
+    char *constants;              /* report_scene_constants: settings every scene shares ("") */
+    report_model_row *rows;       /* one per configuration, run order */
+    size_t n_rows;
+    report_model_scene *scenes;
+    size_t n_scenes;
+    const char **params;          /* param names over the run, first appearance */
+    size_t n_params;
+    const char **timed;           /* timing counters with samples (results.csv's columns) */
+    size_t n_timed;
+    const char **det;             /* deterministic counters */
+    size_t n_det;
+    char **warnings;              /* report__warnings, in its order */
+    size_t n_warnings;
+    size_t *noisy;                /* indexes of the noisy configurations */
+    size_t n_noisy;
+    char *published_md;           /* the published section, read once; "" when none */
+    char *published_html;
+} report_model;
+
+/* Builds the model of run for the files d describes (report.h): d->dir
+ * (or, without it, the directory of d->path) holds published.json, d->trends
+ * the trend lines; d may be NULL (no directory, no trends).  Zeroes *m first;
+ * release with report_model_free.  0 or DM_ERR_ARG (no run). */
+int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d);
+void report_model_free(report_model *m);
+
+/* The row of the configuration with this key, or NULL. */
+const report_model_row *report_model_find(const report_model *m, const char *key);
+
+#endif
