@@ -83,8 +83,8 @@ static void *dm_image__module(const char *module, char *why, size_t whylen)
     char *slash = n > 0 ? (exe[n] = '\0', strrchr(exe, '/')) : NULL;
     if (slash) {
         *slash = '\0';
-        dirs[nd++] = dm_xstrdup(exe);
-        dirs[nd++] = dm_xasprintf("%s/../lib", exe);
+        dirs[nd++] = dm_xasprintf("%s/lib", exe);              /* build/dmbench: build/lib */
+        dirs[nd++] = dm_xasprintf("%s/../lib/dmbench", exe);   /* PREFIX/bin: PREFIX/lib/dmbench */
     }
 #ifdef DM_OIIO_INSTALL_DIR
     dirs[nd++] = dm_xstrdup(DM_OIIO_INSTALL_DIR);

@@ -44,8 +44,9 @@ dm_oiio_load_fn dm_oiio_load;
  * DM_OIIO_REPORTS_MODULE), loaded at the first call and kept; NULL when it
  * cannot be loaded, with "OpenImageIO bridge unavailable: why" in err.  The
  * module is looked for in the build tree's lib/ (the path this build was
- * configured with), beside the program, in ../lib/ next to it, and in the
- * installed lib/dmbench/. */
+ * configured with), in lib/ beside the program (a moved build tree), in
+ * ../lib/dmbench/ from it (an install under another prefix), and in the
+ * lib/dmbench/ of the prefix configured. */
 void *dm_image_bridge(const char *module, const char *name, char *err, size_t errlen);
 
 /* Entry point fn (of type fn_fn) of module: from dm_image_bridge, or its
