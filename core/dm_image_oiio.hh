@@ -1,9 +1,9 @@
 // dm_image_oiio.hh — helpers shared by the two OpenImageIO bridges
-// (core/dm_image.cc and imaging/oiio_bridge.cc).  C++ only, internal.
+// (core/dm_image_oiio.cc and imaging/oiio_bridge.cc, the two modules).  C++ only, internal.
 #ifndef CORE_DM_IMAGE_OIIO_HH
 #define CORE_DM_IMAGE_OIIO_HH
 
-#include "core/dm_image.h"
+#include "core/dm_image_bridge.h"   /* img, through the one header the modules share */
 
 #include <OpenImageIO/imagebuf.h>
 #include <cstdio>

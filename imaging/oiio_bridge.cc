@@ -1,10 +1,12 @@
 // oiio_bridge.cc — the only C++ of imaging/: OpenImageIO comparisons, heatmaps
-// and thumbnails behind image.h (buffers and files are in core/dm_image.cc).
+// and thumbnails behind image.h, built as the module dmbench_oiio_imaging.so
+// that imaging/image.c loads on first use (core/dm_image_bridge.h says why;
+// buffers and files are core/dm_image.c's).  It calls nothing of the program.
 //
 // Every function catches all exceptions (none may cross into C) and turns
 // OIIO failures into DM_ERR_* codes with OIIO's message and the path in err.
 
-#include "imaging/image.h"
+#include "imaging/image_bridge.h"
 
 extern "C" {
 #include "core/dm_error.h"
@@ -49,7 +51,7 @@ int same_size(const img *a, const img *b)
 // double, and every output pixel is exactly sum/factor² rounded once.
 // RMSE/max error/over-threshold come from ImageBufAlgo::compare on the RGB
 // channels; PSNR uses peak 1.0.  Non-finite values of b are counted here.
-int img_compare(const img *a, const img *b, double threshold, img_metrics *out)
+extern "C" int dm_oiio_compare(const img *a, const img *b, double threshold, img_metrics *out)
 {
     if (!same_size(a, b) || !out)
         return DM_ERR_ARG;
@@ -74,8 +76,8 @@ int img_compare(const img *a, const img *b, double threshold, img_metrics *out)
     return 0;
 }
 
-int img_heatmap(const img *a, const img *b, double scale, const char *path,
-                           char *err, size_t errlen)
+extern "C" int dm_oiio_heatmap(const img *a, const img *b, double scale, const char *path,
+                               char *err, size_t errlen)
 {
     if (!same_size(a, b) || !path) {
         set_err(err, errlen, path, "images missing or of different sizes");
@@ -116,8 +118,8 @@ int img_heatmap(const img *a, const img *b, double scale, const char *path,
     return rc;
 }
 
-int img_thumbnail_png(const char *path, int max_dim, unsigned char **png, size_t *len,
-                      char *err, size_t errlen)
+extern "C" int dm_oiio_thumbnail_png(const char *path, int max_dim, unsigned char **png, size_t *len,
+                                      char *err, size_t errlen)
 {
     if (!path || !png || !len || max_dim <= 0) {
         set_err(err, errlen, path, "bad thumbnail arguments");
