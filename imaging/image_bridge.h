@@ -3,8 +3,8 @@
  * first compared, mapped or shrunk (core/dm_image_bridge.h says why).  Each
  * does what the function of image.h of the same name without the dm_oiio_
  * prefix says, and is named in the module by its own name. */
-#ifndef REPORTS_IMAGE_BRIDGE_H
-#define REPORTS_IMAGE_BRIDGE_H
+#ifndef IMAGING_IMAGE_BRIDGE_H
+#define IMAGING_IMAGE_BRIDGE_H
 
 #include "imaging/image.h"
 
