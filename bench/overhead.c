@@ -8,7 +8,7 @@
  * Raw side, in this process: its own EGL context, its own RGBA32F + depth32F
  * FBO, its own VAO built from mesh_build, and the program object and bound
  * map textures that techniques/render.c made for exactly the parameters
- * dmbench recorded (one tech_draw sets the program's uniforms and binds the
+ * dmbench recorded (one render_draw sets the program's uniforms and binds the
  * maps; they persist).  A frame is glClear + glDrawElements; a sample is K
  * frames between two glFinish, K chosen as the harness does (at least
  * frames_per_sample, enough to last min_sample_ms) after the same warm-up.
@@ -64,7 +64,7 @@ typedef struct ov_conf {
     const char *technique, *mesh, *axis;
     dm_kv *params;              /* as dmbench recorded them */
     size_t n_params;
-    tech_item item;             /* the renderer's item: binds the maps before raw frames */
+    render_item item;             /* the renderer's item: binds the maps before raw frames */
     GLuint prog, vao;
     GLsizei n_indices;
     int frames;                 /* frames per raw sample */
@@ -236,11 +236,11 @@ static double raw_sample(const ov_conf *c, int frames)
 
 /* Frame of the renderer and of the raw loop read back from the bound FBO;
  * returns 1 when they are bit-identical and not empty. */
-static int raw_same_image(tech_renderer *r, tech_item it, const ov_conf *c)
+static int raw_same_image(render_ctx *r, render_item it, const ov_conf *c)
 {
     size_t n = (size_t)W * H * 4;
     float *a = dm_xcalloc(n, sizeof *a), *b = dm_xcalloc(n, sizeof *b);
-    tech_draw(r, it, W, H);
+    render_draw(r, it, W, H);
     glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, a);
     raw_frames(c, 1);
     glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, b);
@@ -255,12 +255,12 @@ static int raw_same_image(tech_renderer *r, tech_item it, const ov_conf *c)
 
 /* Prepares the raw loop of c from the parameters dmbench recorded; warms up
  * as the harness does and picks the frames per sample. */
-static int raw_prepare(tech_renderer *r, ov_conf *c)
+static int raw_prepare(render_ctx *r, ov_conf *c)
 {
     dm_str log = {0};
-    int rc = tech_prepare(r, c->params, c->n_params, &c->item, &log);
+    int rc = render_prepare(r, c->params, c->n_params, &c->item, &log);
     if (rc == 0)
-        rc = tech_draw(r, c->item, W, H);
+        rc = render_draw(r, c->item, W, H);
     GLint prog = 0;
     glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
     c->prog = (GLuint)prog;
@@ -290,10 +290,10 @@ static int raw_prepare(tech_renderer *r, ov_conf *c)
 
 /* Median of RAW_SAMPLES raw samples; one untimed renderer frame first so
  * the maps of this configuration are the ones bound. */
-static double raw_measure(tech_renderer *r, const ov_conf *c)
+static double raw_measure(render_ctx *r, const ov_conf *c)
 {
     double s[RAW_SAMPLES];
-    tech_draw(r, c->item, W, H);
+    render_draw(r, c->item, W, H);
     raw_frames(c, 1);
     for (int i = 0; i < RAW_SAMPLES; i++)
         s[i] = raw_sample(c, c->frames);
@@ -371,17 +371,17 @@ static int raw_instructions_child(const char *dir, const char *tech, int frames)
     for (size_t i = 0; i < N_CONFS; i++)
         c = strcmp(confs[i].technique, tech) == 0 ? &confs[i] : c;
     gl_context *gl = NULL;
-    tech_renderer *r = NULL;
+    render_ctx *r = NULL;
     dm_str err = {0};
     char *out = dm_xasprintf("%s/out-%s", dir, tech);
     double ignored;
-    int rc = c && gl_context_create(NULL, &gl, &err) == 0 && tech_renderer_create(&r) == 0 ? 0 : DM_ERR_ARG;
+    int rc = c && gl_context_create(NULL, &gl, &err) == 0 && render_create(&r) == 0 ? 0 : DM_ERR_ARG;
     rc = rc ? rc : read_result(out, &ignored, &c->params, &c->n_params);
     if (rc == 0) {
         raw_target();
         dm_str log = {0};
-        rc = tech_prepare(r, c->params, c->n_params, &c->item, &log);
-        rc = rc ? rc : tech_draw(r, c->item, W, H);
+        rc = render_prepare(r, c->params, c->n_params, &c->item, &log);
+        rc = rc ? rc : render_draw(r, c->item, W, H);
         GLint prog = 0;
         glGetIntegerv(GL_CURRENT_PROGRAM, &prog);
         c->prog = (GLuint)prog;
@@ -399,7 +399,7 @@ static int raw_instructions_child(const char *dir, const char *tech, int frames)
         CALLGRIND_DUMP_STATS_AT("raw");
     }
     free(out);
-    tech_renderer_destroy(r);
+    render_destroy(r);
     gl_context_destroy(gl);
     return rc == 0 ? 0 : 1;
 }
@@ -485,9 +485,9 @@ int main(int argc, char **argv)
     setenv("LP_NUM_THREADS", "1", 0);   /* as run/runner.c */
     char dir[] = "/tmp/dmbench-overhead-XXXXXX";
     gl_context *gl = NULL;
-    tech_renderer *r = NULL;
+    render_ctx *r = NULL;
     dm_str err = {0};
-    if (!mkdtemp(dir) || gl_context_create(NULL, &gl, &err) != 0 || tech_renderer_create(&r) != 0) {
+    if (!mkdtemp(dir) || gl_context_create(NULL, &gl, &err) != 0 || render_create(&r) != 0) {
         fprintf(stderr, "bench_overhead: cannot set up: %s\n", dm_str_get(&err));
         return 1;
     }
@@ -518,7 +518,7 @@ int main(int argc, char **argv)
     }
     for (size_t i = 0; i < N_CONFS; i++)
         dm_kv_free(confs[i].params, confs[i].n_params);
-    tech_renderer_destroy(r);
+    render_destroy(r);
     gl_context_destroy(gl);
     dm_str_free(&err);
     return rc == 0 ? 0 : 1;

@@ -1,5 +1,5 @@
 /* cmd_render.c — `dmbench render KEY=VALUE... --png out.png`: one image.
- * `--debug normals` renders the normals view (render.h, tech_debug_view). */
+ * `--debug normals` renders the normals view (render.h, render_debug_view). */
 #include "cli.h"
 #include "cli/params.h"
 #include "core/dm_error.h"
@@ -46,7 +46,7 @@ int cli_render(const cli_command *self, int argc, char **argv)
     size_t n = 0;
     const char *out = a->out;
     int ss = a->supersample, w = 0, h = 0;
-    tech_debug_view dbg = a->debug ? TECH_DEBUG_NORMALS : TECH_DEBUG_NONE;
+    render_debug_view dbg = a->debug ? RENDER_DEBUG_NORMALS : RENDER_DEBUG_NONE;
     if (rc < 0)
         rc = cli_params_parse("render", argc, argv, &kv, &n);
     if (rc < 0 && !out)
@@ -55,20 +55,20 @@ int cli_render(const cli_command *self, int argc, char **argv)
     if (rc < 0 && sscanf(res ? res : axes_find("resolution")->def, "%dx%d", &w, &h) != 2)
         rc = cli_usage_error("render: bad resolution");
     gl_context *gl = NULL;
-    tech_renderer *r = NULL;
+    render_ctx *r = NULL;
     dm_str err = {0};
     int e = rc < 0 ? env_check(&err) : 0;
     if (rc < 0 && e == 0)   /* a user's GLSL that crashes or hangs the compiler: in a child */
         e = probe_user_techniques(&err);
     if (rc < 0 && e == 0 && (e = gl_context_create(NULL, &gl, &err)) == 0 &&
-        tech_renderer_create(&r) != 0)
+        render_create(&r) != 0)
         e = DM_ERR_GL;
     if (rc < 0 && e != 0) {   /* no usable GL is the machine's: exit 4, as for run; the user's GLSL: 2 */
         fprintf(stderr, "dmbench: error: %s\n", dm_str_get(&err));
         rc = dm_exit_from_error(e);
     }
     if (rc < 0)
-        tech_renderer_set_debug_view(r, dbg);
+        render_set_debug_view(r, dbg);
     float *rgba = NULL;
     if (rc < 0 && mscene_render_image(r, kv, n, w, h, ss, &rgba, NULL, &err) != 0) {
         fprintf(stderr, "dmbench: error: render failed:\n%s\n", dm_str_get(&err));
@@ -85,7 +85,7 @@ int cli_render(const cli_command *self, int argc, char **argv)
     free(rgba);
     dm_str_free(&err);
     dm_kv_free(kv, n);
-    tech_renderer_destroy(r);
+    render_destroy(r);
     gl_context_destroy(gl);
     return rc;
 }

@@ -827,8 +827,9 @@ static void html__answer(dm_str *s, const report_model *model)
                      "same quality and the cheaper configuration wins.  Times are the median frame "
                      "time with its 95%% CI; ⚠ marks a timing too noisy or bimodal to trust "
                      "(hover for the reason).  Unlit techniques are baselines, never the pick.  The default "
-                     "budget is a round number midway (on a log scale) between a scene's fastest and "
-                     "slowest lit times; set yours with <code>dmbench report --budget-ms</code> or the "
+                     "budget is the round number (1, 2, 5 × 10ⁿ ms) between a scene's fastest and "
+                     "slowest lit times that lies farthest, on a log scale, from every lit time, so "
+                     "a little noise cannot move it; set yours with <code>dmbench report --budget-ms</code> or the "
                      "sweep key <code>quality.budget_ms</code>.</p>\n",
                   report_metric_name(m), report_metric_label(m), report_metric_epsilon(m));
     dm_str_cat(s, "<div class=\"answers\">\n");

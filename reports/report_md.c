@@ -176,8 +176,8 @@ int report__write_md(const report_model *m, const report_desc *d, const char *pa
     else if (report_budget_ms(run) > 0)
         dm_str_printf(&s, "%g ms", report_budget_ms(run));
     else
-        dm_str_cat(&s, "default per scene, a round number midway (log scale) between its fastest and "
-                       "slowest lit times (set one with report --budget-ms or quality.budget_ms)");
+        dm_str_cat(&s, "default per scene, the round number (1, 2, 5 x 10^n ms) between its fastest and "
+                       "slowest lit times farthest (log scale) from every lit time (set one with report --budget-ms or quality.budget_ms)");
     dm_str_printf(&s, "\n- timer: %s (GPUTime covers %.1f%% of fenced wall time)\n",
                   run->timer_verdict ? run->timer_verdict : "unknown", run->gpu_time_coverage * 100);
     if (*m->constants) {

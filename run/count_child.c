@@ -62,8 +62,8 @@ static void count_child__counted_samples(mscene *m, mconf *c, callgrind_window w
  * as "S KEY ok" or "S KEY unavailable REASON". */
 static void count_child__stage_windows(mscene *m, mconf *c, int frames, int samples)
 {
-    tech_item_info info = {0};
-    tech_item_get_info(m->r, c->item, &info);
+    render_item_info info = {0};
+    render_get_info(m->r, c->item, &info);
     const char *why = mscene_isolation_problem(&info);
     if (why) {
         mscene_say(m->job, "S %s unavailable %s", c->pc->key, why);
@@ -71,11 +71,11 @@ static void count_child__stage_windows(mscene *m, mconf *c, int frames, int samp
     }
     int64_t warm_ns = 0, count_ns = 0;
     count_child__counted_samples(m, c, CALLGRIND_GEOMETRY, 1, frames, samples, &warm_ns, &count_ns);
-    tech_item full = c->item, minimal = {0};
+    render_item full = c->item, minimal = {0};
     dm_str log = {0};
-    tech_renderer_set_debug_view(m->r, TECH_DEBUG_MINIMAL_FS);
-    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &minimal, &log);
-    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
+    render_set_debug_view(m->r, RENDER_DEBUG_MINIMAL_FS);
+    int rc = render_prepare(m->r, c->pc->params, c->pc->n_params, &minimal, &log);
+    render_set_debug_view(m->r, RENDER_DEBUG_NONE);
     if (gl_context_take_messages(m->gl, &log) > 0 || rc != 0) {
         for (char *nl = strchr(log.buf ? log.buf : "", '\n'); nl; nl = strchr(nl, '\n'))
             *nl = ' ';   /* one protocol line */
@@ -89,7 +89,7 @@ static void count_child__stage_windows(mscene *m, mconf *c, int frames, int samp
     count_child__counted_samples(m, c, CALLGRIND_RASTER, 1, frames, samples, &warm_ns, &count_ns);
     count_child__counted_samples(m, c, CALLGRIND_RESIDUAL, 1, frames, samples, &warm_ns, &count_ns);
     c->item = full;
-    tech_release(m->r, minimal);
+    render_release(m->r, minimal);
     mscene_say(m->job, "S %s ok", c->pc->key);
 }
 
@@ -99,7 +99,7 @@ static void count_child__count_one(mscene *m, mconf *c, int frames, int samples,
 {
     const measure_job *job = m->job;
     int64_t tp = dm_now_ns(), warm_ns = 0, count_ns = 0;
-    int prc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
+    int prc = render_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
     int64_t prep_ns = dm_now_ns() - tp;
     if (gl_context_take_messages(m->gl, &c->log) > 0 || prc != 0) {
         mscene_say(job, "I %s failed %s", c->pc->key, prc == 0 ? "GL error while preparing" : dm_strerror(prc));
@@ -124,7 +124,7 @@ static int count_child__instructions(const measure_job *job, int frames, int sam
     int64_t t0 = dm_now_ns();
     int stages = callgrind_wants_stages(&job->sweep->measure);
     int rc = gl_context_create(NULL, &m.gl, err);
-    rc = rc ? rc : tech_renderer_create(&m.r);
+    rc = rc ? rc : render_create(&m.r);
     /* where the child's time goes, in its log (bench/instructions_split.sh) */
     fprintf(stderr, "instructions split: context %.1f ms\n", (double)(dm_now_ns() - t0) / 1e6);
     if (rc == 0 && !RUNNING_ON_VALGRIND)
@@ -141,9 +141,9 @@ static int count_child__instructions(const measure_job *job, int frames, int sam
              * what earlier configurations left, and a count would depend on
              * which ones ran before it (docs/counters.md, "Repeatability"). */
             target_destroy(&m.rt);
-            tech_renderer_destroy(m.r);
+            render_destroy(m.r);
             m.r = NULL;
-            if (gl_context_renew(m.gl) != 0 || tech_renderer_create(&m.r) != 0) {
+            if (gl_context_renew(m.gl) != 0 || render_create(&m.r) != 0) {
                 mscene_say(job, "I %s failed cannot create a fresh GL context", c->pc->key);
                 rc = DM_ERR_GL;
                 break;
@@ -156,7 +156,7 @@ static int count_child__instructions(const measure_job *job, int frames, int sam
     free(cs);
     if (m.gl)
         target_destroy(&m.rt);
-    tech_renderer_destroy(m.r);
+    render_destroy(m.r);
     gl_context_destroy(m.gl);
     return rc;
 }

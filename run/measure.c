@@ -80,7 +80,7 @@ static void measure__prepare(mscene *m, mconf *c)
     if (hang && strcmp(hang, dm_kv_get(c->pc->params, c->pc->n_params, "technique")) == 0)
         for (;;)
             pause();
-    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
+    int rc = render_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
     /* compiler warnings and errors of this configuration's programs go to its own log */
     if (gl_context_take_messages(m->gl, &c->log) > 0 && rc == 0) {
         mscene_fail(c, "GL error while preparing the configuration (see log)");
@@ -92,7 +92,7 @@ static void measure__prepare(mscene *m, mconf *c)
                                                     : "could not prepare the configuration (see log)");
         return;
     }
-    tech_item_get_info(m->r, c->item, &c->info);
+    render_get_info(m->r, c->item, &c->info);
     mscene_prepare_minimal(m, c);
     mscene_prepare_trips(m, c, m->statistic, m->n_statistic);
     measure__warmup(m, c);
@@ -152,14 +152,14 @@ static void measure__timing_sample(mscene *m, mconf *c)
     double *vals = dm_xcalloc(m->n_timing + 1, sizeof *vals);
     mscene_say(m->job, "B %s", c->pc->key);
     int64_t t0 = dm_now_ns();
-    tech_vt_stats v0, v1;
-    int vt = tech_item_vt_stats(m->r, c->item, &v0) == 0;
+    render_vt_stats v0, v1;
+    int vt = render_get_vt_stats(m->r, c->item, &v0) == 0;
     if (mscene_session(m, c, m->timing, m->n_timing, c->frames, vals, NULL) != 0) {
         mscene_fail(c, "counter session failed (see log)");
         free(vals);
         return;
     }
-    if (vt && tech_item_vt_stats(m->r, c->item, &v1) == 0) {   /* the VT may be shared: its own deltas */
+    if (vt && render_get_vt_stats(m->r, c->item, &v1) == 0) {   /* the VT may be shared: its own deltas */
         c->has_vt = 1;
         c->vt.page_misses += v1.page_misses - v0.page_misses;
         c->vt.upload_bytes += v1.upload_bytes - v0.upload_bytes;
@@ -465,7 +465,7 @@ int measure_pilot(const measure_job *job, dm_str *err)
         double ns = NAN, counts[PREDICT_N_COUNTS];
         for (size_t k = 0; k < PREDICT_N_COUNTS; k++)
             counts[k] = NAN;
-        if (tech_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log) == 0) {
+        if (render_prepare(m.r, c->pc->params, c->pc->n_params, &c->item, &c->log) == 0) {
             mscene_frames(&m, c, 2);             /* JIT and first-use costs */
             ns = mscene_plain_sample(&m, c, 1);
             mscene_prepare_trips(&m, c, predict_counts, PREDICT_N_COUNTS);

@@ -76,8 +76,8 @@ void mscene_frames(mscene *m, mconf *c, int frames)
     }
     target_bind(&m->rt);
     for (int f = 0; f < frames; f++) {
-        tech_set_frame(m->r, c->item, (uint64_t)f);   /* orbits: frame f of every sample */
-        tech_draw(m->r, c->item, c->pc->width, c->pc->height);
+        render_set_frame(m->r, c->item, (uint64_t)f);   /* orbits: frame f of every sample */
+        render_draw(m->r, c->item, c->pc->width, c->pc->height);
     }
 }
 
@@ -104,7 +104,7 @@ int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames
     if (rc == 0)
         rc = counters_num_passes(s, &passes);
     for (int p = 0; rc == 0 && p < passes; p++) {
-        tech_item full = c->item;
+        render_item full = c->item;
         if (counters_pass_minimal_fs(s, p))
             c->item = c->item_min;   /* the raster pass: the same draws, minimal fragment shading */
         if (counters_pass_loop_trips(s, p))
@@ -140,7 +140,7 @@ int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames
 
 /* Why the stages of item `info` cannot be isolated, or NULL (docs/counters.md,
  * "Stage costs": what isolation changes). */
-const char *mscene_isolation_problem(const tech_item_info *info)
+const char *mscene_isolation_problem(const render_item_info *info)
 {
     if (!info->has_fs)
         return "no fragment stage: nothing to isolate";
@@ -153,16 +153,16 @@ const char *mscene_isolation_problem(const tech_item_info *info)
 /* Prepares c's configuration again with debug view `view` into *item and
  * draws `frames` frames of it (its JIT outside any sample).  Returns 0, or
  * nonzero with item->id 0 when it cannot be built (the reason in c's log). */
-static int mscene__prepare_view(mscene *m, mconf *c, tech_debug_view view, int frames, tech_item *item)
+static int mscene__prepare_view(mscene *m, mconf *c, render_debug_view view, int frames, render_item *item)
 {
-    tech_renderer_set_debug_view(m->r, view);
-    int rc = tech_prepare(m->r, c->pc->params, c->pc->n_params, item, &c->log);
-    tech_renderer_set_debug_view(m->r, TECH_DEBUG_NONE);
+    render_set_debug_view(m->r, view);
+    int rc = render_prepare(m->r, c->pc->params, c->pc->n_params, item, &c->log);
+    render_set_debug_view(m->r, RENDER_DEBUG_NONE);
     if (gl_context_take_messages(m->gl, &c->log) > 0 || rc != 0) {
         item->id = 0;
         return rc ? rc : DM_ERR_GL;
     }
-    tech_item full = c->item;
+    render_item full = c->item;
     c->item = *item;
     mscene_frames(m, c, frames);
     c->item = full;
@@ -183,11 +183,11 @@ void mscene_prepare_minimal(mscene *m, mconf *c)
         return;
     }
     int warm = m->job->sweep->measure.warmup_frames > 0 ? m->job->sweep->measure.warmup_frames : 1;
-    if (mscene__prepare_view(m, c, TECH_DEBUG_MINIMAL_FS, warm, &c->item_min) != 0)
+    if (mscene__prepare_view(m, c, RENDER_DEBUG_MINIMAL_FS, warm, &c->item_min) != 0)
         c->min_why = dm_xstrdup("the minimal fragment shader cannot be built (see log)");
 }
 
-_Static_assert(TECH_LOOP_TRIPS_BINDING == COUNTERS_LOOP_TRIPS_BINDING,
+_Static_assert(RENDER_LOOP_TRIPS_BINDING == COUNTERS_LOOP_TRIPS_BINDING,
                "the loop-trips shader and the counters library use one binding");
 
 /* The LoopTrips pass's item, when names[0..n) ask for LoopTrips: the
@@ -201,7 +201,7 @@ void mscene_prepare_trips(mscene *m, mconf *c, const char *const *names, size_t 
         wanted |= strcmp(names[i], "LoopTrips") == 0;
     if (!wanted)
         return;
-    if (mscene__prepare_view(m, c, TECH_DEBUG_LOOP_TRIPS, 1, &c->item_trips) != 0)
+    if (mscene__prepare_view(m, c, RENDER_DEBUG_LOOP_TRIPS, 1, &c->item_trips) != 0)
         dm_str_cat(&c->log, "LoopTrips: the counting shader cannot be built (above)\n");
 }
 
@@ -215,25 +215,25 @@ char *mscene_img_path(const measure_job *job, const char *name)
  * no page (at most MSCENE_VT_CONVERGE_MAX), so what follows — an image,
  * counted frames — sees the pages this view converges to, whatever was
  * drawn before.  Nothing for an item without a virtual texture. */
-void mscene_vt_converge(struct tech_renderer *r, tech_item item, int w, int h)
+void mscene_vt_converge(struct render_ctx *r, render_item item, int w, int h)
 {
-    tech_vt_stats vs0, vs1;
-    if (tech_item_vt_stats(r, item, &vs0) != 0)
+    render_vt_stats vs0, vs1;
+    if (render_get_vt_stats(r, item, &vs0) != 0)
         return;
     for (int f = 0; f < MSCENE_VT_CONVERGE_MAX; f++) {
-        tech_draw(r, item, w, h);
-        tech_item_vt_stats(r, item, &vs1);
+        render_draw(r, item, w, h);
+        render_get_vt_stats(r, item, &vs1);
         if (f > 0 && vs1.page_misses == vs0.page_misses)
             break;
         vs0 = vs1;
     }
 }
 
-int mscene_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_params,
+int mscene_render_image(struct render_ctx *r, const dm_kv *params, size_t n_params,
                          int w, int h, int supersample, float **rgba, float **depth, dm_str *log)
 {
-    tech_item item;
-    int rc = tech_prepare(r, params, n_params, &item, log);
+    render_item item;
+    int rc = render_prepare(r, params, n_params, &item, log);
     if (rc != 0)
         return rc;
     int ss = supersample > 1 ? supersample : 1;
@@ -243,7 +243,7 @@ int mscene_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_p
         return rc;
     }
     mscene_vt_converge(r, item, w * ss, h * ss);
-    tech_draw(r, item, w * ss, h * ss);
+    render_draw(r, item, w * ss, h * ss);
     img big = {0}, small = {0};
     img_alloc(&big, w * ss, h * ss);
     float *d = depth ? dm_xmalloc((size_t)w * (size_t)h * ss * ss * sizeof *d) : NULL;
@@ -268,9 +268,9 @@ int mscene_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_p
 int mscene_setup(mscene *m, dm_str *err)
 {
     int rc = gl_context_create(NULL, &m->gl, err);
-    rc = rc ? rc : tech_renderer_create(&m->r);
+    rc = rc ? rc : render_create(&m->r);
     if (rc == 0 && m->job->cache_dir && dm_mkdirs(m->job->cache_dir) == 0 &&
-        tech_renderer_set_cache_dir(m->r, m->job->cache_dir) != 0)
+        render_set_cache_dir(m->r, m->job->cache_dir) != 0)
         dm_log(DM_LOG_DEBUG, "program binaries cannot be cached on this driver");
     rc = rc ? rc : counters_context_create(&m->cc);
     /* DMBENCH_HIDE_EXTENSIONS=GL_A,GL_B makes the counters behave as on a
@@ -315,7 +315,7 @@ void mscene_teardown(mscene *m, mconf *cs, size_t n)
         target_destroy(&m->rt);
     store_close(m->st);
     counters_context_destroy(m->cc);
-    tech_renderer_destroy(m->r);
+    render_destroy(m->r);
     gl_context_destroy(m->gl);
 }
 

@@ -31,11 +31,11 @@
 /* State of one configuration while its scene is measured. */
 typedef struct mconf {
     const plan_config *pc;
-    tech_item item;
-    tech_item item_min;         /* minimal-fragment-shader item for the raster pass (MinimalShadingTime), 0 = none */
+    render_item item;
+    render_item item_min;         /* minimal-fragment-shader item for the raster pass (MinimalShadingTime), 0 = none */
     char *min_why;              /* why there is none although the sweep asks for MinimalShadingTime */
-    tech_item item_trips;       /* loop-trip counting item for the LoopTrips pass, 0 = none */
-    tech_item_info info;
+    render_item item_trips;       /* loop-trip counting item for the LoopTrips pass, 0 = none */
+    render_item_info info;
     int active;                 /* still sampling */
     int failed;
     char *reason;
@@ -50,13 +50,13 @@ typedef struct mconf {
     double *stats;              /* per statistics counter: per-frame value (NAN = unavailable) */
     char **stats_reason;
     int has_vt;                 /* virtual-textured: vt holds its samples' figures */
-    tech_vt_stats vt;           /* misses and upload bytes summed over its samples, the rest at the last */
+    render_vt_stats vt;           /* misses and upload bytes summed over its samples, the rest at the last */
 } mconf;
 
 typedef struct mscene {
     const measure_job *job;
     gl_context *gl;
-    tech_renderer *r;
+    render_ctx *r;
     counters_context *cc;
     store *st;
     const char **timing;        /* enabled counters by kind */
@@ -93,7 +93,7 @@ int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames
                    char **reasons);
 
 /* Why the stages of an item cannot be isolated (docs/counters.md), or NULL. */
-const char *mscene_isolation_problem(const tech_item_info *info);
+const char *mscene_isolation_problem(const render_item_info *info);
 /* The raster pass's item (MinimalShadingTime) when the sweep asks for it;
  * else c->min_why says why there is none. */
 void mscene_prepare_minimal(mscene *m, mconf *c);
@@ -104,13 +104,13 @@ void mscene_prepare_trips(mscene *m, mconf *c, const char *const *names, size_t 
 char *mscene_img_path(const measure_job *job, const char *name);
 /* Draws a virtual-textured item until a frame loads no page (at most 64
  * frames); nothing for an item without a virtual texture. */
-void mscene_vt_converge(struct tech_renderer *r, tech_item item, int w, int h);
+void mscene_vt_converge(struct render_ctx *r, render_item item, int w, int h);
 /* Renders one configuration into a float image (w*h*4, row 0 top);
  * supersample >= 1 renders at that multiple and box-filters down.  A
  * virtual-textured configuration is first converged (mscene_vt_converge),
  * so its image does not depend on earlier draws.  Used for quality
  * references and images, and `dmbench render`. */
-int mscene_render_image(struct tech_renderer *r, const dm_kv *params, size_t n_params, int w, int h,
+int mscene_render_image(struct render_ctx *r, const dm_kv *params, size_t n_params, int w, int h,
                         int supersample, float **rgba, float **depth, dm_str *log);
 
 #endif

@@ -84,13 +84,13 @@ static void probe__user_child(int fd, void *arg)
 {
     (void)arg;
     gl_context *gl = NULL;
-    tech_renderer *r = NULL;
+    render_ctx *r = NULL;
     dm_str err = {0};
     if (gl_context_create(NULL, &gl, &err) != 0) {
         probe__line(fd, "F", dm_str_get(&err));
         return;
     }
-    if (tech_renderer_create(&r) != 0) {
+    if (render_create(&r) != 0) {
         probe__line(fd, "F", "cannot set up the renderer in a fresh context");
         return;
     }
@@ -107,7 +107,7 @@ static void probe__user_child(int fd, void *arg)
         dprintf(fd, "D\t%zu\n", i);
     }
     dm_str_free(&err);
-    tech_renderer_destroy(r);
+    render_destroy(r);
     gl_context_destroy(gl);
 }
 

@@ -16,7 +16,7 @@
  *    by default, S1's max(0, 1 − d²/r²) with r = light_radius, or none;
  *    ambient 0.08; shininess 48; Cook-Torrance f0 0.04, roughness = the
  *    roughness axis (u_roughness, default 0.35);
- *  - debug view normals (tech_renderer_set_debug_view): light slots 0..3
+ *  - debug view normals (render_set_debug_view): light slots 0..3
  *    carry the origin and the world unit vectors, so the fragment stage
  *    recovers its tangent frame from their tangent-space images
  *    (surface.frag.glsl, DEBUG_NORMALS);
@@ -56,14 +56,14 @@ static const char *const render__uniform_names[RU_COUNT] = {
     "u_lod_tile", "u_lod_tiled"
 };
 
-int tech_renderer_create(tech_renderer **out)
+int render_create(render_ctx **out)
 {
     /* glGetString returns NULL when no context is current. */
     const char *ren = (const char *)glGetString(GL_RENDERER);
     const char *ver = ren ? (const char *)glGetString(GL_VERSION) : NULL;
     if (!ren || !ver || epoxy_gl_version() < 45)
         return DM_ERR_GL;
-    tech_renderer *r = dm_xcalloc(1, sizeof *r);
+    render_ctx *r = dm_xcalloc(1, sizeof *r);
     r->driver = dm_xasprintf("%s | %s", ren, ver);
     if (epoxy_has_gl_extension("GL_ARB_texture_filter_anisotropic") ||
         epoxy_has_gl_extension("GL_EXT_texture_filter_anisotropic"))
@@ -72,7 +72,7 @@ int tech_renderer_create(tech_renderer **out)
     return 0;
 }
 
-void tech_renderer_destroy(tech_renderer *r)
+void render_destroy(render_ctx *r)
 {
     if (!r)
         return;
@@ -105,7 +105,7 @@ void tech_renderer_destroy(tech_renderer *r)
     free(r);
 }
 
-int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir)
+int render_set_cache_dir(render_ctx *r, const char *dir)
 {
     GLint formats = 0;
     glGetIntegerv(GL_NUM_PROGRAM_BINARY_FORMATS, &formats);
@@ -119,10 +119,10 @@ int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir)
     return 0;
 }
 
-int tech_renderer_set_debug_view(tech_renderer *r, tech_debug_view view)
+int render_set_debug_view(render_ctx *r, render_debug_view view)
 {
-    if (!r || (view != TECH_DEBUG_NONE && view != TECH_DEBUG_NORMALS && view != TECH_DEBUG_MINIMAL_FS &&
-               view != TECH_DEBUG_LOOP_TRIPS))
+    if (!r || (view != RENDER_DEBUG_NONE && view != RENDER_DEBUG_NORMALS && view != RENDER_DEBUG_MINIMAL_FS &&
+               view != RENDER_DEBUG_LOOP_TRIPS))
         return DM_ERR_ARG;
     r->debug_view = view;
     return 0;
@@ -320,7 +320,7 @@ static GLuint render__link(const technique_desc *t, const char *defines, int ret
 
 /* File of a program key in the binary cache: "<dir>/<fnv64 of key>.glbin"
  * holding key, NUL, the GLenum binary format, then the binary. */
-static char *render__binary_path(const tech_renderer *r, const char *key)
+static char *render__binary_path(const render_ctx *r, const char *key)
 {
     char hex[17];
     dm_hex64(dm_fnv1a64(key, strlen(key), DM_FNV_SEED), hex);
@@ -328,7 +328,7 @@ static char *render__binary_path(const tech_renderer *r, const char *key)
 }
 
 /* Program from the on-disk cache, or 0 when absent, foreign or rejected. */
-static GLuint render__binary_load(const tech_renderer *r, const char *key)
+static GLuint render__binary_load(const render_ctx *r, const char *key)
 {
     char *path = render__binary_path(r, key), *buf = NULL;
     size_t len = 0, klen = strlen(key) + 1;
@@ -354,7 +354,7 @@ static GLuint render__binary_load(const tech_renderer *r, const char *key)
 }
 
 /* Stores a linked program's binary; failures only cost the next compile. */
-static void render__binary_save(const tech_renderer *r, const char *key, GLuint prog)
+static void render__binary_save(const render_ctx *r, const char *key, GLuint prog)
 {
     GLint blen = 0;
     glGetProgramiv(prog, GL_PROGRAM_BINARY_LENGTH, &blen);
@@ -375,7 +375,7 @@ static void render__binary_save(const tech_renderer *r, const char *key, GLuint 
 }
 
 /* Program of key from disk or compiled (and then stored); *from_disk set. */
-static GLuint render__program_make(tech_renderer *r, const technique_desc *t, const char *defines,
+static GLuint render__program_make(render_ctx *r, const technique_desc *t, const char *defines,
                                    const char *key, int *from_disk, dm_str *log)
 {
     GLuint id = r->cache_dir ? render__binary_load(r, key) : 0;
@@ -408,7 +408,7 @@ static uint64_t render__source_hash(const technique_desc *t, const char *defines
     return h;
 }
 
-static int render__program_get(tech_renderer *r, const technique_desc *t, const char *defines,
+static int render__program_get(render_ctx *r, const technique_desc *t, const char *defines,
                                size_t *idx, int *cached, dm_str *log)
 {
     char hash[17];
@@ -512,7 +512,7 @@ static void render__mesh_seams(render__mesh *m, const mesh_data *md)
     free(buf);
 }
 
-static int render__mesh_get(tech_renderer *r, const technique_desc *t, const render__cfg *c,
+static int render__mesh_get(render_ctx *r, const technique_desc *t, const render__cfg *c,
                             size_t *idx, dm_str *log)
 {
     char *key = render__mesh_key(t, c);
@@ -612,7 +612,7 @@ static void render__item_values(render__item *it, const render__cfg *c)
 }
 
 /* What the item's fragment shader does that stage isolation must know
- * (tech_item_info: has_fs, fs_discards, fs_writes_depth). */
+ * (render_item_info: has_fs, fs_discards, fs_writes_depth). */
 static void render__fs_traits(render__item *it, const char *defines)
 {
     dm_str src = {0}, err = {0};
@@ -626,7 +626,7 @@ static void render__fs_traits(render__item *it, const char *defines)
     dm_str_free(&err);
 }
 
-static int render__prepare_resources(tech_renderer *r, render__item *it, const render__cfg *c,
+static int render__prepare_resources(render_ctx *r, render__item *it, const render__cfg *c,
                                      dm_str *log)
 {
     int cached = 0, rc;
@@ -637,19 +637,19 @@ static int render__prepare_resources(tech_renderer *r, render__item *it, const r
         return DM_ERR_UNSUPPORTED;
     }
     render__defines(it->tech, c, &defs);
-    if (it->debug_view == TECH_DEBUG_NORMALS)
+    if (it->debug_view == RENDER_DEBUG_NORMALS)
         dm_str_cat(&defs, "#define DEBUG_NORMALS\n");
     render__fs_traits(it, dm_str_get(&defs));
-    if (it->debug_view == TECH_DEBUG_MINIMAL_FS)
+    if (it->debug_view == RENDER_DEBUG_MINIMAL_FS)
         dm_str_cat(&defs, FS_MINIMAL_DEFINE);
-    if (it->debug_view == TECH_DEBUG_LOOP_TRIPS) {
+    if (it->debug_view == RENDER_DEBUG_LOOP_TRIPS) {
         if (!epoxy_has_gl_extension("GL_ARB_shader_ballot")) {
             dm_str_free(&defs);
             dm_str_cat(log, "counting loop trips needs GL_ARB_shader_ballot, which this driver lacks\n");
             return DM_ERR_UNSUPPORTED;
         }
         dm_str_printf(&defs, "#extension GL_ARB_shader_ballot : require\n#define COUNT_LOOP_TRIPS %d\n",
-                      TECH_LOOP_TRIPS_BINDING);
+                      RENDER_LOOP_TRIPS_BINDING);
     }
     rc = render__program_get(r, it->tech, dm_str_get(&defs), &it->prog, &cached, log);
     dm_str_free(&defs);
@@ -688,7 +688,7 @@ static size_t render__patch_chunk(const render__cfg *c, int quads, int edge_fact
 /* visibility_test on: the item draws only the chunks of its triangle list
  * that can be seen (cull.h), each box padded by the largest displacement
  * |height_scale| · max(|h − 0.5|) of its height map. */
-static void render__cull_setup(const tech_renderer *r, render__item *it, const render__cfg *c)
+static void render__cull_setup(const render_ctx *r, render__item *it, const render__cfg *c)
 {
     if (!technique_reads_axis(it->tech, "visibility_test") ||
         strcmp(render__get(c, "visibility_test"), "on") != 0 || !r->meshes[it->mesh].cull.n)
@@ -702,7 +702,7 @@ static void render__cull_setup(const tech_renderer *r, render__item *it, const r
 /* lod=object-points / object-cpu: the mesh's objects (lod_cpu.h), each
  * drawn by its own call with its own uniforms (a mesh of quad patches has
  * no object_triangles: it is one object). */
-static void render__lod_objects_setup(const tech_renderer *r, render__item *it, const char *lod)
+static void render__lod_objects_setup(const render_ctx *r, render__item *it, const char *lod)
 {
     const render__mesh *m = &r->meshes[it->mesh];
     size_t n_tris = m->n_indices / 3, per = m->object_tris ? m->object_tris : n_tris;
@@ -715,7 +715,7 @@ static void render__lod_objects_setup(const tech_renderer *r, render__item *it, 
 /* lod=cpu-per-patch: the item's per-patch level buffer (filled every draw by
  * render__lod_upload) and whether levels are per edge (crack_free);
  * object-points / object-cpu: the objects. */
-static void render__lod_setup(const tech_renderer *r, render__item *it, const render__cfg *c)
+static void render__lod_setup(const render_ctx *r, render__item *it, const render__cfg *c)
 {
     const char *lod = render__get(c, "lod");
     if (it->tech->tcs && strncmp(lod, "object-", 7) == 0)
@@ -731,7 +731,7 @@ static void render__lod_setup(const tech_renderer *r, render__item *it, const re
                          GL_DYNAMIC_STORAGE_BIT);
 }
 
-static void render__item_info(tech_renderer *r, render__item *it)
+static void render__item_info(render_ctx *r, render__item *it)
 {
     const render__mesh *m = &r->meshes[it->mesh];
     it->info.mesh_vertices = m->n_vertices;
@@ -740,7 +740,7 @@ static void render__item_info(tech_renderer *r, render__item *it)
     it->info.texture_bytes = render__maps_bytes(r, it);
 }
 
-int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_item *out,
+int render_prepare(render_ctx *r, const dm_kv *params, size_t n_params, render_item *out,
                  dm_str *log)
 {
     int64_t t0 = dm_now_ns();
@@ -772,7 +772,7 @@ int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params, tech_it
     return 0;
 }
 
-static render__item *render__item_of(tech_renderer *r, tech_item item)
+static render__item *render__item_of(render_ctx *r, render_item item)
 {
     if (!r || item.id == 0 || item.id > r->n_items || !r->items[item.id - 1].used)
         return NULL;
@@ -818,7 +818,7 @@ static void render__debug_lights(float lp[][3])
 /* Sets every uniform the program has (locations of -1 are ignored by GL). */
 /* The orbit camera of the item: eye position and view-projection matrix
  * (identity for clip-space meshes).  The model matrix is the identity. */
-static void render__camera(const tech_renderer *r, const render__item *it, const float viewport[2],
+static void render__camera(const render_ctx *r, const render__item *it, const float viewport[2],
                            vec3 eye, mat4 vp)
 {
     float az = glm_rad(render__cam_azimuth(it)), el = glm_rad(it->cam[2]), d = it->cam[0];
@@ -837,7 +837,7 @@ static void render__camera(const tech_renderer *r, const render__item *it, const
 
 /* The factor on the normal map's x and y that makes it match the item's
  * height_scale (render__normal_height_scale; 1 for a user's normal file). */
-static float render__normal_xy_scale(const tech_renderer *r, const render__item *it)
+static float render__normal_xy_scale(const render_ctx *r, const render__item *it)
 {
     float made_for = r->maps[it->maps].normal_height_scale;
     const axis_info *hs = axes_find("height_scale");
@@ -846,7 +846,7 @@ static float render__normal_xy_scale(const tech_renderer *r, const render__item 
     return (float)it->axis_val[hs - axes_at(0)] / made_for;
 }
 
-static void render__uniforms(tech_renderer *r, const render__item *it, const float viewport[2])
+static void render__uniforms(render_ctx *r, const render__item *it, const float viewport[2])
 {
     const render__program *p = &r->progs[it->prog];
     const GLint *L = p->loc;
@@ -857,7 +857,7 @@ static void render__uniforms(tech_renderer *r, const render__item *it, const flo
     float lp[RENDER__MAX_LIGHTS][3] = {{0}}, lc[RENDER__MAX_LIGHTS][3] = {{0}};
     for (int i = 0; i < it->light_count && i < RENDER__MAX_LIGHTS; i++)
         render__light(it, i, lp[i], lc[i]);
-    if (it->debug_view == TECH_DEBUG_NORMALS)
+    if (it->debug_view == RENDER_DEBUG_NORMALS)
         render__debug_lights(lp);
     glUniformMatrix4fv(L[RU_MODEL], 1, GL_FALSE, (const float *)model);
     glUniformMatrix4fv(L[RU_VIEW_PROJ], 1, GL_FALSE, (const float *)vp);
@@ -886,7 +886,7 @@ static void render__uniforms(tech_renderer *r, const render__item *it, const flo
 /* lod=cpu-per-patch: the levels of every patch for this draw's camera,
  * computed on the CPU (lod_cpu.h) and uploaded to the buffer the control
  * stage reads (binding 3). */
-static void render__lod_upload(tech_renderer *r, const render__item *it, const float viewport[2])
+static void render__lod_upload(render_ctx *r, const render__item *it, const float viewport[2])
 {
     const render__mesh *m = &r->meshes[it->mesh];
     int pn = it->patch_vertices;
@@ -904,7 +904,7 @@ static void render__lod_upload(tech_renderer *r, const render__item *it, const f
 
 /* Patches first .. first + n − 1 (indices, from base) in calls of at most
  * it->patch_chunk patches; u_lod_base = the first patch of each call. */
-static void render__draw_patches(tech_renderer *r, const render__item *it, size_t base,
+static void render__draw_patches(render_ctx *r, const render__item *it, size_t base,
                                  size_t first, size_t n)
 {
     size_t pv = (size_t)it->patch_vertices, step = pv * it->patch_chunk;
@@ -919,7 +919,7 @@ static void render__draw_patches(tech_renderer *r, const render__item *it, size_
 /* lod=object-points / object-cpu: one call per object with its tile, its
  * origin and (object-cpu) its distance from the eye, computed now on the
  * CPU as S4 did at every frame. */
-static void render__draw_objects(tech_renderer *r, const render__item *it, const float viewport[2])
+static void render__draw_objects(render_ctx *r, const render__item *it, const float viewport[2])
 {
     const GLint *L = r->progs[it->prog].loc;
     const render__mesh *m = &r->meshes[it->mesh];
@@ -943,7 +943,7 @@ static void render__draw_objects(tech_renderer *r, const render__item *it, const
 
 /* The triangle list, or with it->cull only the chunks not culled under the
  * item's camera (the margin is the vertex stage's VISIBILITY_MARGIN). */
-static void render__draw_triangles(tech_renderer *r, const render__item *it, int width, int height)
+static void render__draw_triangles(render_ctx *r, const render__item *it, int width, int height)
 {
     const render__mesh *m = &r->meshes[it->mesh];
     if (!it->cull) {
@@ -962,7 +962,7 @@ static void render__draw_triangles(tech_renderer *r, const render__item *it, int
     free(first);
 }
 
-int tech_set_frame(tech_renderer *r, tech_item item, uint64_t frame)
+int render_set_frame(render_ctx *r, render_item item, uint64_t frame)
 {
     render__item *it = render__item_of(r, item);
     if (!it)
@@ -971,7 +971,7 @@ int tech_set_frame(tech_renderer *r, tech_item item, uint64_t frame)
     return 0;
 }
 
-int tech_draw(tech_renderer *r, tech_item item, int width, int height)
+int render_draw(render_ctx *r, render_item item, int width, int height)
 {
     render__item *it = render__item_of(r, item);
     if (!it || width < 1 || height < 1)
@@ -1014,7 +1014,7 @@ int tech_draw(tech_renderer *r, tech_item item, int width, int height)
     return 0;
 }
 
-int tech_item_get_info(tech_renderer *r, tech_item item, tech_item_info *out)
+int render_get_info(render_ctx *r, render_item item, render_item_info *out)
 {
     render__item *it = render__item_of(r, item);
     if (!it)
@@ -1023,7 +1023,7 @@ int tech_item_get_info(tech_renderer *r, tech_item item, tech_item_info *out)
     return 0;
 }
 
-void tech_release(tech_renderer *r, tech_item item)
+void render_release(render_ctx *r, render_item item)
 {
     render__item *it = render__item_of(r, item);
     if (!it)

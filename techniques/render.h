@@ -14,10 +14,10 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 
-typedef struct tech_renderer tech_renderer;
-typedef struct tech_item { uint32_t id; } tech_item;   /* 0 = invalid */
+typedef struct render_ctx render_ctx;
+typedef struct render_item { uint32_t id; } render_item;   /* 0 = invalid */
 
-typedef struct tech_item_info {
+typedef struct render_item_info {
     size_t mesh_vertices, mesh_triangles;
     size_t mesh_bytes, texture_bytes;
     int64_t setup_ns;            /* compile/link/upload time spent preparing it */
@@ -26,11 +26,11 @@ typedef struct tech_item_info {
     int has_fs;                  /* the program has a fragment stage */
     int fs_discards;             /* its fragment shader can `discard` (fs_minimal.h) */
     int fs_writes_depth;         /* its fragment shader writes gl_FragDepth */
-} tech_item_info;
+} render_item_info;
 
 /* Returns 0 and a renderer, or DM_ERR_GL when no usable context is current. */
-int tech_renderer_create(tech_renderer **out);
-void tech_renderer_destroy(tech_renderer *r);
+int render_create(render_ctx **out);
+void render_destroy(render_ctx *r);
 /* Enables the on-disk program-binary cache (ARB_get_program_binary) in
  * directory `dir` (created when first written; NULL disables).  Each program
  * is stored under a hash of its key (technique, defines, GL_RENDERER +
@@ -38,59 +38,59 @@ void tech_renderer_destroy(tech_renderer *r);
  * loads a stale binary; a binary the driver rejects is recompiled and
  * rewritten.  Returns 0, or DM_ERR_UNSUPPORTED when the driver offers no
  * binary format (the cache then stays off). */
-int tech_renderer_set_cache_dir(tech_renderer *r, const char *dir);
+int render_set_cache_dir(render_ctx *r, const char *dir);
 
 /* Debug views: every technique's fragment output replaced by a diagnostic. */
-typedef enum tech_debug_view {
-    TECH_DEBUG_NONE = 0,         /* the technique's own output */
-    TECH_DEBUG_NORMALS,          /* world-space shading normal (after bump, normal or
+typedef enum render_debug_view {
+    RENDER_DEBUG_NONE = 0,         /* the technique's own output */
+    RENDER_DEBUG_NORMALS,          /* world-space shading normal (after bump, normal or
                                     parallax perturbation) as n*0.5+0.5, alpha 1 */
-    TECH_DEBUG_MINIMAL_FS,       /* stage isolation: the same stages, depth state and
+    RENDER_DEBUG_MINIMAL_FS,       /* stage isolation: the same stages, depth state and
                                     coverage with a minimal fragment shader
                                     (fs_minimal.h; the raster pass of docs/counters.md) */
-    TECH_DEBUG_LOOP_TRIPS        /* the technique's own shading, its parallax search loop
+    RENDER_DEBUG_LOOP_TRIPS        /* the technique's own shading, its parallax search loop
                                     counting trips: one fragment of each SIMD group (the
                                     first active one) adds 1 per iteration to the uint
-                                    at shader storage binding TECH_LOOP_TRIPS_BINDING
+                                    at shader storage binding RENDER_LOOP_TRIPS_BINDING
                                     (LoopTrips, docs/counters.md) */
-} tech_debug_view;
+} render_debug_view;
 /* The binding the loop-trips view adds to; the counters library binds its
  * buffer there (run/mscene.c checks that the two agree). */
-#define TECH_LOOP_TRIPS_BINDING 7
+#define RENDER_LOOP_TRIPS_BINDING 7
 /* Sets the debug view of the items prepared from now on (prepared items
  * keep theirs; it selects a program variant, #define DEBUG_NORMALS, part of
  * the program key).  Returns 0, or DM_ERR_ARG for an unknown view. */
-int tech_renderer_set_debug_view(tech_renderer *r, tech_debug_view view);
+int render_set_debug_view(render_ctx *r, render_debug_view view);
 
 /* Prepares one configuration (params: axis → value; missing axes take their
  * defaults).  Returns 0 and a handle; DM_ERR_ARG/DM_ERR_UNKNOWN for bad
  * params (log says which); DM_ERR_SHADER with the driver's full info log
  * appended to `log`; DM_ERR_UNSUPPORTED when the driver lacks a feature. */
-int tech_prepare(tech_renderer *r, const dm_kv *params, size_t n_params,
-                 tech_item *out, dm_str *log);
+int render_prepare(render_ctx *r, const dm_kv *params, size_t n_params,
+                 render_item *out, dm_str *log);
 /* Draws one frame of the item into the bound framebuffer (viewport w×h,
  * clears colour to 0 and depth to 1 first).  Does not glFinish. */
-int tech_draw(tech_renderer *r, tech_item item, int width, int height);
+int render_draw(render_ctx *r, render_item item, int width, int height);
 /* Sets the frame index the item's moving camera and lights follow
  * (camera.orbit_deg_per_frame, light.orbit_deg_per_frame: azimuths turned
  * by frame × degrees); 0 when prepared.  The runner sets the index of the
  * frame within its sample, so every sample, pass, reference and quality
  * image (frame 0) sees the same path.  Returns 0 or DM_ERR_ARG. */
-int tech_set_frame(tech_renderer *r, tech_item item, uint64_t frame);
-int tech_item_get_info(tech_renderer *r, tech_item item, tech_item_info *out);
-void tech_release(tech_renderer *r, tech_item item);
+int render_set_frame(render_ctx *r, render_item item, uint64_t frame);
+int render_get_info(render_ctx *r, render_item item, render_item_info *out);
+void render_release(render_ctx *r, render_item item);
 
 /* Virtual-texture statistics of an item, cumulative since it was prepared
  * (render_textures.c).  DM_ERR_UNAVAILABLE when the item does not use a
  * virtual texture. */
-typedef struct tech_vt_stats {
+typedef struct render_vt_stats {
     uint64_t frames;
     uint64_t pages_resident;     /* now */
     uint64_t page_misses;        /* requested pages that were not resident */
     uint64_t upload_bytes;       /* bytes uploaded into the page cache */
     int64_t feedback_ns;         /* time spent in feedback passes and readback */
     uint64_t committed_bytes;    /* page storage now: committed pages (sparse), the cache (software) */
-} tech_vt_stats;
-int tech_item_vt_stats(tech_renderer *r, tech_item item, tech_vt_stats *out);
+} render_vt_stats;
+int render_get_vt_stats(render_ctx *r, render_item item, render_vt_stats *out);
 
 #endif

@@ -66,8 +66,8 @@ typedef struct render__item {
     float target[3];             /* camera.target_x/y/z: orbit centre */
     float light[3];              /* light.azimuth, light.elevation, light.distance */
     float orbit[2];              /* camera/light.orbit_deg_per_frame */
-    uint64_t frame;              /* frame index the orbits turn by (tech_set_frame) */
-    int debug_view;              /* tech_debug_view it was prepared with */
+    uint64_t frame;              /* frame index the orbits turn by (render_set_frame) */
+    int debug_view;              /* render_debug_view it was prepared with */
     double *axis_val;            /* per axis index: numeric value (steps auto = 0) */
     int light_count;
     size_t patch_chunk;          /* patches per draw call (0 = one call), see render.c */
@@ -81,14 +81,14 @@ typedef struct render__item {
     lod_object *lod_objects;     /* lod=object-points / object-cpu: one draw each, else NULL */
     size_t n_lod_objects;
     int lod_object_cpu;          /* object-cpu: the distance comes from the CPU */
-    tech_item_info info;
+    render_item_info info;
 } render__item;
 
-struct tech_renderer {
+struct render_ctx {
     char *driver;                /* GL_RENDERER + GL_VERSION, part of program keys */
     char *cache_dir;             /* on-disk program binaries, NULL = off */
     float max_aniso;             /* 0 when anisotropic filtering is absent */
-    int debug_view;              /* tech_debug_view of the next prepared items */
+    int debug_view;              /* render_debug_view of the next prepared items */
     render__program *progs;
     size_t n_progs;
     render__mesh *meshes;

@@ -248,7 +248,7 @@ static int render__maps_upload(render__maps *m, const maps_set *s, const render_
 }
 
 /* Logs an anisotropy request above the driver's maximum (it is clamped). */
-static void render__note_clamp(const tech_renderer *r, const char *filter, dm_str *log)
+static void render__note_clamp(const render_ctx *r, const char *filter, dm_str *log)
 {
     if (strncmp(filter, "aniso", 5) != 0)
         return;
@@ -368,7 +368,7 @@ static int render__maps_make(render__maps *m, const char *name, int size,
     return rc;
 }
 
-int render__maps_get(tech_renderer *r, const render__cfg *c, size_t *idx, dm_str *log)
+int render__maps_get(render_ctx *r, const render__cfg *c, size_t *idx, dm_str *log)
 {
     const char *name = render__get(c, "maps");
     int size = atoi(render__get(c, "texture_size"));
@@ -408,7 +408,7 @@ int render__maps_get(tech_renderer *r, const render__cfg *c, size_t *idx, dm_str
     return 0;
 }
 
-size_t render__sampler_get(tech_renderer *r, const char *filter)
+size_t render__sampler_get(render_ctx *r, const char *filter)
 {
     for (size_t i = 0; i < r->n_samplers; i++)
         if (strcmp(r->samplers[i].key, filter) == 0)
@@ -441,7 +441,7 @@ int render__vt_filter(const char *filter)
     return strcmp(filter, "nearest") == 0 ? 0 : strcmp(filter, "bilinear") == 0 ? 1 : 2;
 }
 
-void render__maps_bind(tech_renderer *r, const render__item *it)
+void render__maps_bind(render_ctx *r, const render__item *it)
 {
     const render__maps *m = &r->maps[it->maps];
     GLint prog = 0, vp[4];
@@ -457,7 +457,7 @@ void render__maps_bind(tech_renderer *r, const render__item *it)
     }
 }
 
-size_t render__maps_bytes(tech_renderer *r, const render__item *it)
+size_t render__maps_bytes(render_ctx *r, const render__item *it)
 {
     const render__maps *m = &r->maps[it->maps];
     if (m->vt)
@@ -469,7 +469,7 @@ size_t render__maps_bytes(tech_renderer *r, const render__item *it)
     return total;
 }
 
-void render__maps_destroy(tech_renderer *r)
+void render__maps_destroy(render_ctx *r)
 {
     for (size_t i = 0; i < r->n_maps; i++) {
         glDeleteTextures(3, r->maps[i].tex);
@@ -487,7 +487,7 @@ void render__maps_destroy(tech_renderer *r)
     r->n_maps = r->n_samplers = 0;
 }
 
-int tech_item_vt_stats(tech_renderer *r, tech_item item, tech_vt_stats *out)
+int render_get_vt_stats(render_ctx *r, render_item item, render_vt_stats *out)
 {
     if (!r || !out || item.id == 0 || item.id > r->n_items || !r->items[item.id - 1].used)
         return DM_ERR_ARG;

@@ -11,7 +11,7 @@
 #include <stddef.h>
 #include "core/dm_util.h"
 
-struct tech_renderer;
+struct render_ctx;
 struct render__item;
 struct render__cfg;
 
@@ -40,17 +40,17 @@ typedef struct render__sampler {
 float render__normal_height_scale(const char *maps);
 /* Finds or creates the textures of the configuration's (maps, size,
  * formats); *idx indexes r->maps.  DM_ERR_* with a message in log. */
-int render__maps_get(struct tech_renderer *r, const struct render__cfg *c, size_t *idx, dm_str *log);
+int render__maps_get(struct render_ctx *r, const struct render__cfg *c, size_t *idx, dm_str *log);
 /* Finds or creates the sampler of a `filter` value; returns its index. */
-size_t render__sampler_get(struct tech_renderer *r, const char *filter);
+size_t render__sampler_get(struct render_ctx *r, const char *filter);
 /* Binds the item's maps and sampler to units 0 (height), 1 (normal), 2 (albedo). */
-void render__maps_bind(struct tech_renderer *r, const struct render__item *it);
+void render__maps_bind(struct render_ctx *r, const struct render__item *it);
 /* vt.glsl filter class of a `filter` value: 0 nearest, 1 bilinear, 2
  * trilinear or anisotropic (VT_FILTER_TRILINEAR). */
 int render__vt_filter(const char *filter);
 /* Bytes of the maps the item's technique samples. */
-size_t render__maps_bytes(struct tech_renderer *r, const struct render__item *it);
+size_t render__maps_bytes(struct render_ctx *r, const struct render__item *it);
 /* Releases every map and sampler of the renderer. */
-void render__maps_destroy(struct tech_renderer *r);
+void render__maps_destroy(struct render_ctx *r);
 
 #endif

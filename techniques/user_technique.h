@@ -93,8 +93,8 @@ const char *user_technique_path(const technique_desc *t);
  * err, or another code with "path: user technique 'NAME' cannot be used:".
  * The driver's compiler may also crash or run for minutes on a user's file:
  * callers compile in a child with a deadline (run/probe.h). */
-typedef struct tech_renderer tech_renderer;
-int user_technique_check_program(tech_renderer *r, size_t i, dm_str *err);
+typedef struct render_ctx render_ctx;
+int user_technique_check_program(render_ctx *r, size_t i, dm_str *err);
 
 /* Source of a virtual shader name "user:NAME" (the built-in stage of its
  * base followed by the user's file), or NULL. */

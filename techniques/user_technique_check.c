@@ -7,16 +7,16 @@
 #include "core/dm_error.h"
 #include "techniques/render.h"
 
-int user_technique_check_program(tech_renderer *r, size_t i, dm_str *err)
+int user_technique_check_program(render_ctx *r, size_t i, dm_str *err)
 {
     const technique_desc *t = user_technique_at(i);
     /* the smallest scene: only the program matters */
     dm_kv kv[] = {{(char *)"technique", (char *)t->name}, {(char *)"texture_size", (char *)"16"}};
-    tech_item item;
+    render_item item;
     dm_str log = {0};
-    int rc = tech_prepare(r, kv, sizeof kv / sizeof kv[0], &item, &log);
+    int rc = render_prepare(r, kv, sizeof kv / sizeof kv[0], &item, &log);
     if (rc == 0)
-        tech_release(r, item);
+        render_release(r, item);
     else if (rc == DM_ERR_SHADER) {   /* the log's first line names the stage: said here */
         const char *all = dm_str_get(&log), *nl = strchr(all, '\n');
         const char *says = nl && nl[1 + strspn(nl + 1, " \t\r\n")] ? nl + 1 : all;

@@ -28,7 +28,7 @@ struct vt {
     uint16_t **tab;            /* per level: pages² × (slot, level) */
     int *dirty;                /* per level: x0, y0, x1, y1 (x1 <= x0: clean) */
     uint64_t frame;
-    tech_vt_stats st;
+    render_vt_stats st;
 };
 
 static uint32_t vt__id(int m, int x, int y) { return (uint32_t)m << 28 | (uint32_t)y << 14 | (uint32_t)x; }
@@ -567,7 +567,7 @@ size_t vt_bytes(const vt *v)
     return total;
 }
 
-void vt_get_stats(const vt *v, tech_vt_stats *out)
+void vt_get_stats(const vt *v, render_vt_stats *out)
 {
     *out = v->st;
     size_t phys = (size_t)v->per_row * (size_t)v->slot;

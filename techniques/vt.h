@@ -67,6 +67,6 @@ void vt_destroy(vt *v);
 void vt_frame(vt *v, GLuint program, int filter, int width, int height);
 /* Bytes of the physical textures and the page table (from their formats). */
 size_t vt_bytes(const vt *v);
-void vt_get_stats(const vt *v, tech_vt_stats *out);
+void vt_get_stats(const vt *v, render_vt_stats *out);
 
 #endif

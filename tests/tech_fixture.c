@@ -46,7 +46,7 @@ int techfix_setup(void **state, int w, int h)
         return -1;
     }
     dm_str_free(&e);
-    if (tech_renderer_create(&F.r) != 0)
+    if (render_create(&F.r) != 0)
         return -1;
     target(w, h);
     return 0;
@@ -59,7 +59,7 @@ int teardown(void **state)
     glDeleteFramebuffers(1, &F.fbo);
     glDeleteRenderbuffers(1, &F.color);
     glDeleteRenderbuffers(1, &F.depth);
-    tech_renderer_destroy(F.r);
+    render_destroy(F.r);
     gl_context_destroy(F.ctx);
     return 0;
 }
@@ -68,12 +68,12 @@ int teardown(void **state)
 /* Renders spec at the current target into a malloc'd RGBA float image. */
 float *render(const char *spec)
 {
-    tech_item it = spec_prepare(F.r, spec, 0, NULL);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    render_item it = spec_prepare(F.r, spec, 0, NULL);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     float *px = malloc((size_t)F.w * (size_t)F.h * 4 * sizeof(float));
     glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, px);
     assert_int_equal(glGetError(), GL_NO_ERROR);
-    tech_release(F.r, it);
+    render_release(F.r, it);
     return px;
 }
 
@@ -132,17 +132,17 @@ void render_expect_in_range(const char *spec)
 void draw_queried(const char *spec, const GLenum *targets, int n, GLuint64 *out)
 {
     assert_true(n >= 1 && n <= 8);
-    tech_item it = spec_prepare(F.r, spec, 0, NULL);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    render_item it = spec_prepare(F.r, spec, 0, NULL);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     GLuint q[8];
     glGenQueries(n, q);
     for (int i = 0; i < n; i++)
         glBeginQuery(targets[i], q[i]);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     for (int i = 0; i < n; i++)
         glEndQuery(targets[i]);
     for (int i = 0; i < n; i++)
         glGetQueryObjectui64v(q[i], GL_QUERY_RESULT, &out[i]);
     glDeleteQueries(n, q);
-    tech_release(F.r, it);
+    render_release(F.r, it);
 }

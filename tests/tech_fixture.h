@@ -9,7 +9,7 @@
 
 typedef struct fixture {
     gl_context *ctx;
-    tech_renderer *r;
+    render_ctx *r;
     GLuint fbo, color, depth;
     int w, h;
 } fixture;

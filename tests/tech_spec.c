@@ -24,14 +24,14 @@ size_t parse(const char *spec, dm_kv kv[TECHFIX_MAX_PARAMS], char *buf, size_t c
     return n;
 }
 
-tech_item spec_prepare(tech_renderer *r, const char *spec, int want, dm_str *log)
+render_item spec_prepare(render_ctx *r, const char *spec, int want, dm_str *log)
 {
     char buf[1024];
     dm_kv kv[TECHFIX_MAX_PARAMS];
     size_t n = parse(spec, kv, buf, sizeof buf);
-    tech_item it = {0};
+    render_item it = {0};
     dm_str scratch = {0};
-    int rc = tech_prepare(r, kv, n, &it, log ? log : &scratch);
+    int rc = render_prepare(r, kv, n, &it, log ? log : &scratch);
     if (rc != want)
         fprintf(stderr, "%s: %s\n", spec, dm_str_get(log ? log : &scratch));
     dm_str_free(&scratch);

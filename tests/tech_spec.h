@@ -12,9 +12,9 @@
 #define TECHFIX_MAX_PARAMS 24
 /* "k=v k=v ..." (at most TECHFIX_MAX_PARAMS pairs) into kv, using buf as storage. */
 size_t parse(const char *spec, dm_kv kv[TECHFIX_MAX_PARAMS], char *buf, size_t cap);
-/* Prepares spec on r and asserts tech_prepare returned want (0 or a
+/* Prepares spec on r and asserts render_prepare returned want (0 or a
  * DM_ERR_*); the driver's log goes to log (may be NULL) and to stderr when
  * the code differs. */
-tech_item spec_prepare(tech_renderer *r, const char *spec, int want, dm_str *log);
+render_item spec_prepare(render_ctx *r, const char *spec, int want, dm_str *log);
 
 #endif

@@ -49,9 +49,9 @@ static void render_img(const char *spec, img *im)
  * shrunk by `erode` pixels so the rim and silhouette stay out. */
 static unsigned char *view_mask(int erode, int cap_only)
 {
-    assert_int_equal(tech_renderer_set_debug_view(F.r, TECH_DEBUG_NORMALS), 0);
+    assert_int_equal(render_set_debug_view(F.r, RENDER_DEBUG_NORMALS), 0);
     float *px = render("technique=normal maps=flat " CAPS_VIEW);
-    assert_int_equal(tech_renderer_set_debug_view(F.r, TECH_DEBUG_NONE), 0);
+    assert_int_equal(render_set_debug_view(F.r, RENDER_DEBUG_NONE), 0);
     int w = F.w, h = F.h;
     unsigned char *m = calloc((size_t)w * h, 1), *tmp = calloc((size_t)w * h, 1);
     for (size_t i = 0; i < (size_t)w * h; i++)

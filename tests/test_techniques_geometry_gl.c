@@ -24,7 +24,7 @@
 
 static int setup(void **state) { return techfix_setup(state, 256, 192); }
 
-static tech_item prepare(const char *spec) { return spec_prepare(F.r, spec, 0, NULL); }
+static render_item prepare(const char *spec) { return spec_prepare(F.r, spec, 0, NULL); }
 
 /* Pipeline statistics of one draw of spec. */
 typedef struct stats { GLuint64 tes, clip_out, patches; } stats;
@@ -41,29 +41,29 @@ static stats count(const char *spec)
 /* Primitives submitted by one draw of spec (the pipeline statistic). */
 static GLuint64 submitted(const char *spec)
 {
-    tech_item it = prepare(spec);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    render_item it = prepare(spec);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     GLuint q;
     GLuint64 n = 0;
     glGenQueries(1, &q);
     glBeginQuery(GL_PRIMITIVES_SUBMITTED_ARB, q);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     glEndQuery(GL_PRIMITIVES_SUBMITTED_ARB);
     glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
     glDeleteQueries(1, &q);
-    tech_release(F.r, it);
+    render_release(F.r, it);
     return n;
 }
 
 /* Renders spec into im (allocated, row 0 = GL's bottom row). */
 static void render_img(const char *spec, img *im)
 {
-    tech_item it = prepare(spec);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    render_item it = prepare(spec);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     assert_int_equal(img_alloc(im, F.w, F.h), 0);
     glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, im->px);
     assert_int_equal(glGetError(), GL_NO_ERROR);
-    tech_release(F.r, it);
+    render_release(F.r, it);
 }
 
 static double psnr_of(const char *ref, const char *test)
@@ -188,7 +188,7 @@ static void test_lod_distance_monotonic(void **state)
     }
 }
 
-/* Crack pixels of spec with back faces culled (tech_draw culls them). */
+/* Crack pixels of spec with back faces culled (render_draw culls them). */
 static long cracks(const char *spec)
 {
     img im;
@@ -392,13 +392,13 @@ static int64_t thread_ns(void)
 /* Median calling-thread CPU time of 5 draws (+ glFinish) of spec. */
 static double draw_ms(const char *spec)
 {
-    tech_item it = prepare(spec);
+    render_item it = prepare(spec);
     double t[5];
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     glFinish();
     for (int i = 0; i < 5; i++) {
         int64_t t0 = thread_ns();
-        assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+        assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
         glFinish();
         t[i] = (double)(thread_ns() - t0) / 1e6;
     }
@@ -408,23 +408,23 @@ static double draw_ms(const char *spec)
             t[j] = t[j - 1];
             t[j - 1] = x;
         }
-    tech_release(F.r, it);
+    render_release(F.r, it);
     return t[2];
 }
 
 /* Vertex-shader invocations of one draw of spec. */
 static GLuint64 vs_invocations(const char *spec)
 {
-    tech_item it = prepare(spec);
+    render_item it = prepare(spec);
     GLuint q;
     glGenQueries(1, &q);
     glBeginQuery(GL_VERTEX_SHADER_INVOCATIONS_ARB, q);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     glEndQuery(GL_VERTEX_SHADER_INVOCATIONS_ARB);
     GLuint64 n;
     glGetQueryObjectui64v(q, GL_QUERY_RESULT, &n);
     glDeleteQueries(1, &q);
-    tech_release(F.r, it);
+    render_release(F.r, it);
     return n;
 }
 

@@ -348,8 +348,8 @@ static size_t off_colour(const float *px, double r, double g, double b, double t
 static void test_normals_view(void **state)
 {
     (void)state;
-    assert_int_equal(tech_renderer_set_debug_view(F.r, (tech_debug_view)7), DM_ERR_ARG);
-    assert_int_equal(tech_renderer_set_debug_view(F.r, TECH_DEBUG_NORMALS), 0);
+    assert_int_equal(render_set_debug_view(F.r, (render_debug_view)7), DM_ERR_ARG);
+    assert_int_equal(render_set_debug_view(F.r, RENDER_DEBUG_NORMALS), 0);
     static const char *const flat[] = {"technique=phong mesh=plane maps=flat",
                                        "technique=normal mesh=plane maps=flat"};
     for (int i = 0; i < 2; i++) {
@@ -379,18 +379,18 @@ static void test_normals_view(void **state)
                      bad, cov);
         free(px);
     }
-    assert_int_equal(tech_renderer_set_debug_view(F.r, TECH_DEBUG_NONE), 0);
+    assert_int_equal(render_set_debug_view(F.r, RENDER_DEBUG_NONE), 0);
 }
 
 /* Renders frame `frame` of spec (its orbits turned by frame × degrees). */
 static float *render_frame(const char *spec, uint64_t frame)
 {
-    tech_item it = spec_prepare(F.r, spec, 0, NULL);
-    assert_int_equal(tech_set_frame(F.r, it, frame), 0);
-    assert_int_equal(tech_draw(F.r, it, F.w, F.h), 0);
+    render_item it = spec_prepare(F.r, spec, 0, NULL);
+    assert_int_equal(render_set_frame(F.r, it, frame), 0);
+    assert_int_equal(render_draw(F.r, it, F.w, F.h), 0);
     float *px = malloc((size_t)F.w * (size_t)F.h * 4 * sizeof(float));
     glReadPixels(0, 0, F.w, F.h, GL_RGBA, GL_FLOAT, px);
-    tech_release(F.r, it);
+    render_release(F.r, it);
     return px;
 }
 

@@ -50,35 +50,35 @@ static void test_fullscreen_coverage(void **state)
 static void test_program_cache(void **state)
 {
     (void)state;
-    tech_renderer *r;
-    assert_int_equal(tech_renderer_create(&r), 0);
+    render_ctx *r;
+    assert_int_equal(render_create(&r), 0);
     dm_kv kv[2] = {{"technique", "normal"}, {"lighting", "lambert"}};
-    tech_item a, b;
-    tech_item_info ia, ib;
-    assert_int_equal(tech_prepare(r, kv, 2, &a, NULL), 0);
-    assert_int_equal(tech_prepare(r, kv, 2, &b, NULL), 0);
-    assert_int_equal(tech_item_get_info(r, a, &ia), 0);
-    assert_int_equal(tech_item_get_info(r, b, &ib), 0);
+    render_item a, b;
+    render_item_info ia, ib;
+    assert_int_equal(render_prepare(r, kv, 2, &a, NULL), 0);
+    assert_int_equal(render_prepare(r, kv, 2, &b, NULL), 0);
+    assert_int_equal(render_get_info(r, a, &ia), 0);
+    assert_int_equal(render_get_info(r, b, &ib), 0);
     assert_int_equal(ia.program_cached, 0);
     assert_int_equal(ib.program_cached, 1);
     assert_true(ia.setup_ns > 0);
     /* A different lighting define is a different program. */
     dm_kv kv2[2] = {{"technique", "normal"}, {"lighting", "phong"}};
-    assert_int_equal(tech_prepare(r, kv2, 2, &b, NULL), 0);
-    assert_int_equal(tech_item_get_info(r, b, &ib), 0);
+    assert_int_equal(render_prepare(r, kv2, 2, &b, NULL), 0);
+    assert_int_equal(render_get_info(r, b, &ib), 0);
     assert_int_equal(ib.program_cached, 0);
-    tech_release(r, a);
-    assert_int_equal(tech_item_get_info(r, a, &ia), DM_ERR_ARG);
-    tech_renderer_destroy(r);
+    render_release(r, a);
+    assert_int_equal(render_get_info(r, a, &ia), DM_ERR_ARG);
+    render_destroy(r);
 }
 
 static void test_broken_shader(void **state)
 {
     (void)state;
     dm_kv kv[1] = {{"technique", "debug-broken-shader"}};
-    tech_item it = {0};
+    render_item it = {0};
     dm_str log = {0};
-    assert_int_equal(tech_prepare(F.r, kv, 1, &it, &log), DM_ERR_SHADER);
+    assert_int_equal(render_prepare(F.r, kv, 1, &it, &log), DM_ERR_SHADER);
     assert_int_equal(it.id, 0);
     assert_non_null(strstr(dm_str_get(&log), "error"));
     assert_non_null(strstr(dm_str_get(&log), "broken.frag.glsl"));
@@ -88,14 +88,14 @@ static void test_broken_shader(void **state)
 static void test_bad_params(void **state)
 {
     (void)state;
-    tech_item it;
+    render_item it;
     dm_str log = {0};
     dm_kv a[1] = {{"tess_levle", "4"}};
-    assert_int_equal(tech_prepare(F.r, a, 1, &it, &log), DM_ERR_UNKNOWN);
+    assert_int_equal(render_prepare(F.r, a, 1, &it, &log), DM_ERR_UNKNOWN);
     assert_non_null(strstr(dm_str_get(&log), "did you mean 'tess_level'?"));
     dm_str_free(&log);
     dm_kv b[1] = {{"technique", "nromal"}};
-    assert_int_equal(tech_prepare(F.r, b, 1, &it, &log), DM_ERR_ARG);
+    assert_int_equal(render_prepare(F.r, b, 1, &it, &log), DM_ERR_ARG);
     assert_non_null(strstr(dm_str_get(&log), "expected one of"));
     dm_str_free(&log);
 }
@@ -113,16 +113,16 @@ static void test_item_info(void **state)
 {
     (void)state;
     dm_kv kv[3] = {{"technique", "normal"}, {"mesh", "cylinder"}, {"texture_size", "64"}};
-    tech_item it;
-    tech_item_info info;
-    assert_int_equal(tech_prepare(F.r, kv, 3, &it, NULL), 0);
-    assert_int_equal(tech_item_get_info(F.r, it, &info), 0);
+    render_item it;
+    render_item_info info;
+    assert_int_equal(render_prepare(F.r, kv, 3, &it, NULL), 0);
+    assert_int_equal(render_get_info(F.r, it, &info), 0);
     assert_int_equal(info.mesh_triangles, 1508);
     assert_int_equal(info.mesh_vertices, 59 * 13 + 2 * 59);
     assert_int_equal(info.mesh_bytes, info.mesh_vertices * 48 + 1508 * 3 * 4);
     /* normal map RGB8 (3 bytes) + albedo RGBA8 (4 bytes); height not sampled. */
     assert_int_equal(info.texture_bytes, chain_bytes(64, 3) + chain_bytes(64, 4));
-    tech_release(F.r, it);
+    render_release(F.r, it);
 }
 
 /* Second renderer on the same cache dir loads the binary from disk; a
@@ -133,23 +133,23 @@ static void test_disk_cache(void **state)
     char dir[] = "/tmp/dm_tech_cacheXXXXXX";
     assert_non_null(mkdtemp(dir));
     dm_kv kv[2] = {{"technique", "normal"}, {"lighting", "cook-torrance"}};
-    tech_item it;
-    tech_item_info info;
+    render_item it;
+    render_item_info info;
     for (int round = 0; round < 3; round++) {
-        tech_renderer *r;
-        assert_int_equal(tech_renderer_create(&r), 0);
-        int rc = tech_renderer_set_cache_dir(r, dir);
+        render_ctx *r;
+        assert_int_equal(render_create(&r), 0);
+        int rc = render_set_cache_dir(r, dir);
         if (rc == DM_ERR_UNSUPPORTED) {      /* driver without binary formats */
-            tech_renderer_destroy(r);
+            render_destroy(r);
             skip();
         }
         assert_int_equal(rc, 0);
-        assert_int_equal(tech_prepare(r, kv, 2, &it, NULL), 0);
-        assert_int_equal(tech_item_get_info(r, it, &info), 0);
+        assert_int_equal(render_prepare(r, kv, 2, &it, NULL), 0);
+        assert_int_equal(render_get_info(r, it, &info), 0);
         assert_int_equal(info.program_cached, round == 1 ? 2 : 0);
-        assert_int_equal(tech_draw(r, it, F.w, F.h), 0);
+        assert_int_equal(render_draw(r, it, F.w, F.h), 0);
         assert_int_equal(glGetError(), GL_NO_ERROR);
-        tech_renderer_destroy(r);
+        render_destroy(r);
         if (round == 1) {                    /* corrupt every cached file */
             char cmd[128];
             snprintf(cmd, sizeof cmd, "for f in %s/*.glbin; do printf garbage > $f; done", dir);
@@ -165,12 +165,12 @@ static void test_compressed_bytes(void **state)
 {
     (void)state;
     dm_kv kv[3] = {{"technique", "texture"}, {"albedo_format", "bc1"}, {"texture_size", "64"}};
-    tech_item it;
-    tech_item_info info;
-    assert_int_equal(tech_prepare(F.r, kv, 3, &it, NULL), 0);
-    assert_int_equal(tech_item_get_info(F.r, it, &info), 0);
+    render_item it;
+    render_item_info info;
+    assert_int_equal(render_prepare(F.r, kv, 3, &it, NULL), 0);
+    assert_int_equal(render_get_info(F.r, it, &info), 0);
     assert_int_equal(info.texture_bytes, (256 + 64 + 16 + 4 + 1 + 1 + 1) * 8);
-    tech_release(F.r, it);
+    render_release(F.r, it);
 }
 
 /* Every user-visible technique renders a non-trivial, finite image. */

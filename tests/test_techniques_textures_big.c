@@ -26,19 +26,19 @@ static void test_16k(void **state)
     assert_non_null(mkdtemp(dir));
     setenv("DMBENCH_CACHE_DIR", dir, 1);
     gl_context *ctx;
-    tech_renderer *r;
+    render_ctx *r;
     dm_str e = {0};
     assert_int_equal(gl_context_create(NULL, &ctx, &e), 0);
-    assert_int_equal(tech_renderer_create(&r), 0);
+    assert_int_equal(render_create(&r), 0);
     dm_kv kv[] = {{"technique", "normal"}, {"maps", "checker"}, {"texture_size", "16384"},
                   {"resolution", "64x64"}};
-    tech_item it;
+    render_item it;
     int64_t t0 = dm_now_ns();
-    assert_int_equal(tech_prepare(r, kv, 4, &it, &e), 0);
+    assert_int_equal(render_prepare(r, kv, 4, &it, &e), 0);
     printf("prepare %.1f s: %s", (double)(dm_now_ns() - t0) / 1e9, dm_str_get(&e));
     assert_non_null(strstr(dm_str_get(&e), "maps 'checker' 16384²: generated in"));
-    tech_item_info info;
-    assert_int_equal(tech_item_get_info(r, it, &info), 0);
+    render_item_info info;
+    assert_int_equal(render_get_info(r, it, &info), 0);
     /* normal rgb8 + albedo rgba8 chains: (3 + 4) bytes · 16384² · (1 + 1/4 + ...) */
     size_t want = 0;
     for (size_t s = 16384; s >= 1; s /= 2)
@@ -50,7 +50,7 @@ static void test_16k(void **state)
     glNamedRenderbufferStorage(rb, GL_RGBA8, 64, 64);
     glNamedFramebufferRenderbuffer(fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    assert_int_equal(tech_draw(r, it, 64, 64), 0);
+    assert_int_equal(render_draw(r, it, 64, 64), 0);
     glFinish();
     assert_int_equal(glGetError(), GL_NO_ERROR);
     struct rusage ru;
@@ -58,7 +58,7 @@ static void test_16k(void **state)
     printf("peak resident %.2f GiB\n", (double)ru.ru_maxrss / (1024.0 * 1024.0));
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(1, &rb);
-    tech_renderer_destroy(r);
+    render_destroy(r);
     gl_context_destroy(ctx);
     char *path = dm_xasprintf("%s/maps/checker-16384.dmmaps", dir), *sub = dm_xasprintf("%s/maps", dir);
     assert_true(dm_file_exists(path));

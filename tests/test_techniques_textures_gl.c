@@ -24,7 +24,7 @@
 #include "tests/tech_spec.h"   /* white-box: the item's texture names */
 
 static gl_context *ctx;
-static tech_renderer *R;
+static render_ctx *R;
 
 static int setup(void **state)
 {
@@ -32,22 +32,22 @@ static int setup(void **state)
     dm_str e = {0};
     int rc = gl_context_create(NULL, &ctx, &e);
     dm_str_free(&e);
-    return rc || tech_renderer_create(&R) ? -1 : 0;
+    return rc || render_create(&R) ? -1 : 0;
 }
 
 static int teardown(void **state)
 {
     (void)state;
-    tech_renderer_destroy(R);
+    render_destroy(R);
     gl_context_destroy(ctx);
     return 0;
 }
 
 /* Prepares "k=v ..." on R and asserts the return code (tech_spec.h). */
-static tech_item prepare(const char *spec, int want, dm_str *log) { return spec_prepare(R, spec, want, log); }
+static render_item prepare(const char *spec, int want, dm_str *log) { return spec_prepare(R, spec, want, log); }
 
 /* Level-0 texels of map `which` (0 height, 1 normal, 2 albedo) as RGBA floats. */
-static float *read_map(tech_item it, int which, int size)
+static float *read_map(render_item it, int which, int size)
 {
     GLuint tex = R->maps[R->items[it.id - 1].maps].tex[which];
     size_t n = (size_t)size * (size_t)size * 4;
@@ -63,7 +63,7 @@ static double normal_error(const char *fmt, const float *ref, int size)
 {
     char spec[160];
     snprintf(spec, sizeof spec, "technique=normal maps=terrain texture_size=%d normal_format=%s", size, fmt);
-    tech_item it = prepare(spec, 0, NULL);
+    render_item it = prepare(spec, 0, NULL);
     float *px = read_map(it, 1, size);
     int two = strcmp(fmt, "rg8") == 0 || strcmp(fmt, "bc5") == 0, xa = strcmp(fmt, "bc3nm") == 0;
     double sum = 0;
@@ -77,7 +77,7 @@ static double normal_error(const char *fmt, const float *ref, int size)
         sum += acos(fmin(1, c)) * 180 / 3.14159265358979323846;
     }
     free(px);
-    tech_release(R, it);
+    render_release(R, it);
     return sum / ((double)size * size);
 }
 
@@ -119,7 +119,7 @@ static void test_height_formats(void **state)
     for (size_t k = 0; k < sizeof cases / sizeof cases[0]; k++) {
         char spec[128];
         snprintf(spec, sizeof spec, "technique=bump maps=sine texture_size=%d height_format=%s", S, cases[k].fmt);
-        tech_item it = prepare(spec, 0, NULL);
+        render_item it = prepare(spec, 0, NULL);
         float *px = read_map(it, 0, S);
         double worst = 0;
         for (size_t i = 0; i < S * S; i++)
@@ -127,7 +127,7 @@ static void test_height_formats(void **state)
         printf("height %s: max error %.3g\n", cases[k].fmt, worst);
         assert_true(worst <= cases[k].tol);
         free(px);
-        tech_release(R, it);
+        render_release(R, it);
     }
     maps_free(&m);
 }
@@ -142,15 +142,15 @@ static void test_texture_bytes(void **state)
         bc1 += (size_t)((s + 3) / 4) * (size_t)((s + 3) / 4) * 8;
         rgba8 += (size_t)s * (size_t)s * 4;
     }
-    tech_item_info info;
-    tech_item a = prepare("technique=texture maps=checker texture_size=256 albedo_format=bc1", 0, NULL);
-    assert_int_equal(tech_item_get_info(R, a, &info), 0);
+    render_item_info info;
+    render_item a = prepare("technique=texture maps=checker texture_size=256 albedo_format=bc1", 0, NULL);
+    assert_int_equal(render_get_info(R, a, &info), 0);
     assert_int_equal(info.texture_bytes, bc1);
-    tech_item b = prepare("technique=texture maps=checker texture_size=256 albedo_format=rgba8", 0, NULL);
-    assert_int_equal(tech_item_get_info(R, b, &info), 0);
+    render_item b = prepare("technique=texture maps=checker texture_size=256 albedo_format=rgba8", 0, NULL);
+    assert_int_equal(render_get_info(R, b, &info), 0);
     assert_int_equal(info.texture_bytes, rgba8);
-    tech_release(R, a);
-    tech_release(R, b);
+    render_release(R, a);
+    render_release(R, b);
 }
 
 /* The normal mip chain is the unnormalised mean: level 1 of the stored map
@@ -160,7 +160,7 @@ static void test_normal_mips(void **state)
 {
     (void)state;
     enum { S = 64 };
-    tech_item it = prepare("technique=normal maps=stones texture_size=64 normal_format=rgba16f", 0, NULL);
+    render_item it = prepare("technique=normal maps=stones texture_size=64 normal_format=rgba16f", 0, NULL);
     GLuint tex = R->maps[R->items[it.id - 1].maps].tex[1];
     float *l0 = read_map(it, 1, S), *l1 = dm_xmalloc(32 * 32 * 4 * sizeof(float));
     glGetTextureImage(tex, 1, GL_RGBA, GL_FLOAT, 32 * 32 * 4 * sizeof(float), l1);
@@ -180,7 +180,7 @@ static void test_normal_mips(void **state)
     assert_true(shortest < 0.97);
     free(l0);
     free(l1);
-    tech_release(R, it);
+    render_release(R, it);
 }
 
 /* Renders spec at w×h into a float target; returns the image. */
@@ -194,15 +194,15 @@ static img render(const char *spec, int w, int h)
     glNamedFramebufferRenderbuffer(fbo, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, rb[0]);
     glNamedFramebufferRenderbuffer(fbo, GL_DEPTH_ATTACHMENT, GL_RENDERBUFFER, rb[1]);
     glBindFramebuffer(GL_FRAMEBUFFER, fbo);
-    tech_item it = prepare(spec, 0, NULL);
-    assert_int_equal(tech_draw(R, it, w, h), 0);
+    render_item it = prepare(spec, 0, NULL);
+    assert_int_equal(render_draw(R, it, w, h), 0);
     img im;
     assert_int_equal(img_alloc(&im, w, h), 0);
     glReadPixels(0, 0, w, h, GL_RGBA, GL_FLOAT, im.px);
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(2, rb);
-    tech_release(R, it);
+    render_release(R, it);
     return im;
 }
 
@@ -249,10 +249,10 @@ static void test_clamp_and_sparse(void **state)
     dm_str log = {0};
     float saved = R->max_aniso;
     R->max_aniso = 4;   /* pretend a driver with a lower maximum */
-    tech_item it = prepare("technique=texture filter=aniso16 texture_size=64", 0, &log);
+    render_item it = prepare("technique=texture filter=aniso16 texture_size=64", 0, &log);
     R->max_aniso = saved;
     assert_non_null(strstr(dm_str_get(&log), "filter aniso16 clamped to anisotropy 4"));
-    tech_release(R, it);
+    render_release(R, it);
     dm_str_free(&log);
     if (epoxy_has_gl_extension("GL_ARB_sparse_texture"))
         return;

@@ -24,7 +24,7 @@
 
 enum { W = 192, H = 108 };
 static gl_context *ctx;
-static tech_renderer *R;
+static render_ctx *R;
 static GLuint fbo, rb[2];
 
 static int setup(void **state)
@@ -33,7 +33,7 @@ static int setup(void **state)
     dm_str e = {0};
     int rc = gl_context_create(NULL, &ctx, &e);
     dm_str_free(&e);
-    if (rc || tech_renderer_create(&R))
+    if (rc || render_create(&R))
         return -1;
     glCreateFramebuffers(1, &fbo);
     glCreateRenderbuffers(2, rb);
@@ -51,18 +51,18 @@ static int teardown(void **state)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     glDeleteFramebuffers(1, &fbo);
     glDeleteRenderbuffers(2, rb);
-    tech_renderer_destroy(R);
+    render_destroy(R);
     gl_context_destroy(ctx);
     return 0;
 }
 
 /* Prepares "k=v ..." on R and asserts the return code (tech_spec.h). */
-static tech_item prepare(const char *spec, int want, dm_str *log) { return spec_prepare(R, spec, want, log); }
+static render_item prepare(const char *spec, int want, dm_str *log) { return spec_prepare(R, spec, want, log); }
 
 /* Draws one frame of it and reads it back into im (allocated by the caller). */
-static void frame(tech_item it, img *im)
+static void frame(render_item it, img *im)
 {
-    assert_int_equal(tech_draw(R, it, W, H), 0);
+    assert_int_equal(render_draw(R, it, W, H), 0);
     glReadPixels(0, 0, W, H, GL_RGBA, GL_FLOAT, im->px);
     assert_int_equal(glGetError(), GL_NO_ERROR);
 }
@@ -82,12 +82,12 @@ static double psnr(const img *a, const img *b)
 
 /* Draws frames until a frame has no page miss (at most max); returns the
  * number of frames drawn, the stats and the last image. */
-static int converge(tech_item it, int max, img *im, tech_vt_stats *st)
+static int converge(render_item it, int max, img *im, render_vt_stats *st)
 {
     uint64_t before = 0;
     for (int f = 1; f <= max; f++) {
         frame(it, im);
-        assert_int_equal(tech_item_vt_stats(R, it, st), 0);
+        assert_int_equal(render_get_vt_stats(R, it, st), 0);
         if (f > 1 && st->page_misses == before)
             return f;
         before = st->page_misses;
@@ -127,9 +127,9 @@ static void test_converges_to_plain(void **state)
         img a, b;
         assert_int_equal(img_alloc(&a, W, H), 0);
         assert_int_equal(img_alloc(&b, W, H), 0);
-        tech_item io = prepare(off, 0, NULL), is = prepare(soft, 0, NULL);
-        tech_vt_stats st;
-        assert_int_equal(tech_item_vt_stats(R, io, &st), DM_ERR_UNAVAILABLE);
+        render_item io = prepare(off, 0, NULL), is = prepare(soft, 0, NULL);
+        render_vt_stats st;
+        assert_int_equal(render_get_vt_stats(R, io, &st), DM_ERR_UNAVAILABLE);
         frame(io, &a);
         int frames = converge(is, 40, &b, &st);
         double p = psnr(&a, &b);
@@ -144,8 +144,8 @@ static void test_converges_to_plain(void **state)
         assert_int_equal(st.upload_bytes % (36 * 36 * 12), 0);
         assert_true(st.upload_bytes / (36 * 36 * 12) >= st.pages_resident);
         assert_true(st.feedback_ns > 0);
-        tech_release(R, io);
-        tech_release(R, is);
+        render_release(R, io);
+        render_release(R, is);
         img_free(&a);
         img_free(&b);
     }
@@ -160,11 +160,11 @@ static void test_small_cache_degrades(void **state)
     img a, b;
     assert_int_equal(img_alloc(&a, W, H), 0);
     assert_int_equal(img_alloc(&b, W, H), 0);
-    tech_item io = prepare("technique=texture maps=bricks " SCENE, 0, NULL);
-    tech_item is = prepare("technique=texture maps=bricks " SCENE
+    render_item io = prepare("technique=texture maps=bricks " SCENE, 0, NULL);
+    render_item is = prepare("technique=texture maps=bricks " SCENE
                            " virtual_texture=software vt_page_size=32 vt_cache_pages=6", 0, NULL);
     frame(io, &a);
-    tech_vt_stats st;
+    render_vt_stats st;
     int frames = converge(is, 12, &b, &st);
     double p = psnr(&a, &b);
     printf("cache of 6: PSNR %.2f dB after %d frames, %llu misses\n", p, frames,
@@ -172,8 +172,8 @@ static void test_small_cache_degrades(void **state)
     assert_int_equal(frames, 13);   /* never converges */
     assert_int_equal(st.pages_resident, 6);
     assert_true(p > 18 && p < 40);
-    tech_release(R, io);
-    tech_release(R, is);
+    render_release(R, io);
+    render_release(R, is);
     img_free(&a);
     img_free(&b);
 }
@@ -185,24 +185,24 @@ static void test_huge(void **state)
     (void)state;
     img b;
     assert_int_equal(img_alloc(&b, W, H), 0);
-    tech_item is = prepare("technique=normal maps=terrain mesh=plane texture_size=65536 camera.distance=1.0 "
+    render_item is = prepare("technique=normal maps=terrain mesh=plane texture_size=65536 camera.distance=1.0 "
                            "camera.elevation=60 virtual_texture=software vt_page_size=128 vt_cache_pages=64",
                            0, NULL);
-    tech_item_info info;
-    assert_int_equal(tech_item_get_info(R, is, &info), 0);
+    render_item_info info;
+    assert_int_equal(render_get_info(R, is, &info), 0);
     /* 8×8 slots of 132² texels × 12 bytes + RG16UI table levels 512² .. 1² */
     size_t want = (size_t)(8 * 132) * (8 * 132) * 12;
     for (size_t n = 512; n >= 1; n /= 2)
         want += n * n * 4;
     assert_int_equal(info.texture_bytes, want);
-    tech_vt_stats st;
+    render_vt_stats st;
     for (int f = 0; f < 4; f++)
         frame(is, &b);
-    assert_int_equal(tech_item_vt_stats(R, is, &st), 0);
+    assert_int_equal(render_get_vt_stats(R, is, &st), 0);
     assert_true(psnr(&b, &b) == 99);   /* every value finite */
     assert_int_equal(st.frames, 4);
     assert_true(st.pages_resident > 1 && st.pages_resident <= 64);
-    tech_release(R, is);
+    render_release(R, is);
     img_free(&b);
 }
 

@@ -31,9 +31,9 @@ typedef struct viewer {
     viewer_desc d;               /* filled in: viewer_desc_defaults */
     viewer_state st;
     gl_context *gl;
-    tech_renderer *r;
+    render_ctx *r;
     counters_context *cc;
-    tech_item item;              /* the last configuration that prepared */
+    render_item item;              /* the last configuration that prepared */
     dm_kv *good;                 /* its params, restored when a change fails */
     size_t n_good;
     viewer_counters live;
@@ -117,10 +117,10 @@ static int viewer__prepare(viewer *v)
     if (!v->st.dirty)
         return 0;
     v->st.dirty = 0;
-    tech_item item;
+    render_item item;
     dm_str log = {0};
-    tech_renderer_set_debug_view(v->r, v->st.normals ? TECH_DEBUG_NORMALS : TECH_DEBUG_NONE);
-    int rc = tech_prepare(v->r, v->st.params, v->st.n_params, &item, &log);
+    render_set_debug_view(v->r, v->st.normals ? RENDER_DEBUG_NORMALS : RENDER_DEBUG_NONE);
+    int rc = render_prepare(v->r, v->st.params, v->st.n_params, &item, &log);
     if (rc != 0) {
         fprintf(stderr, "dmbench: view: cannot prepare this configuration (%s):\n%s",
                 dm_strerror(rc), dm_str_get(&log));
@@ -132,7 +132,7 @@ static int viewer__prepare(viewer *v)
     }
     dm_str_free(&log);
     if (v->item.id)
-        tech_release(v->r, v->item);
+        render_release(v->r, v->item);
     v->item = item;
     dm_kv_free(v->good, v->n_good);
     v->good = NULL;
@@ -305,7 +305,7 @@ static int viewer__open(viewer *v)
         dm_str_free(&err);
         return rc;
     }
-    if (tech_renderer_create(&v->r) != 0 || counters_context_create(&v->cc) != 0) {
+    if (render_create(&v->r) != 0 || counters_context_create(&v->cc) != 0) {
         fprintf(stderr, "dmbench: error: view: no usable OpenGL 4.5 context for the renderer\n");
         return DM_ERR_GL;
     }
@@ -323,7 +323,7 @@ static void viewer__close(viewer *v)
 {
     viewer_overlay_destroy(v->ov);
     counters_context_destroy(v->cc);
-    tech_renderer_destroy(v->r);
+    render_destroy(v->r);
     gl_context_destroy(v->gl);
     viewer_state_free(&v->st);
     dm_kv_free(v->good, v->n_good);

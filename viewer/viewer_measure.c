@@ -21,7 +21,7 @@ void viewer_draw(const viewer_frame *f)
     glBindFramebuffer(GL_FRAMEBUFFER, 0);
     if (f->wireframe)
         glPolygonMode(GL_FRONT_AND_BACK, GL_LINE);
-    tech_draw(f->r, f->item, f->w, f->h);
+    render_draw(f->r, f->item, f->w, f->h);
     if (f->wireframe)
         glPolygonMode(GL_FRONT_AND_BACK, GL_FILL);
 }

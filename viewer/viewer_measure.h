@@ -24,8 +24,8 @@ typedef struct viewer_counters {
 
 /* What the viewer draws: the item at w×h into framebuffer 0. */
 typedef struct viewer_frame {
-    tech_renderer *r;
-    tech_item item;
+    render_ctx *r;
+    render_item item;
     int w, h;
     int wireframe;
 } viewer_frame;
