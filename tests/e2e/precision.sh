@@ -13,6 +13,8 @@ set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 
 "$BIN" run --quick --seed 7 --out "$OUT/a" 2> "$OUT/a.log" > /dev/null
+# lines wrap at 100 columns with continuations four columns in: join them
+sed -i ':a;N;$!ba;s/\n    */ /g' "$OUT/a.log"
 grep -q "^dmbench: precision (WallTime, 95 % CI within ±5 %): [0-9]* of [0-9]* raw, [0-9]* of [0-9]* with the machine's drift removed" "$OUT/a.log"
 grep -q "^dmbench: noise floor ±[0-9.]* %" "$OUT/a.log"
 grep -q "^dmbench: the machine's speed moved ±" "$OUT/a.log"
