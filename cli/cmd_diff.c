@@ -172,8 +172,12 @@ static void diff__print_text(const char *a, const char *b, const img *im, double
                (double)(b + 1) / DIFF__BINS, b + 1 == DIFF__BINS ? "]" : ")", r->hist[b],
                share * 100, bar, "########################################");
     }
-    if (map_path)
-        printf("  map         %s (FLIP per pixel, fixed scale 0..1, docs/flip.md)\n", map_path);
+    if (map_path) {
+        char *bm = NULL;
+        printf("  map         %s (FLIP per pixel, fixed scale 0..1, docs/flip.md)\n",
+               dm_term_safe(map_path, &bm));
+        free(bm);
+    }
 }
 
 /* The map's path when -o is not given: TEST's path with its extension

@@ -51,6 +51,14 @@ static void dm_image__err(char *err, size_t errlen, const char *fmt, ...)
 
 /* ---- the modules ---------------------------------------------------------- */
 
+/* What the calling thread's last failed dm_image_bridge was (see there). */
+static _Thread_local int dm_image__failure = DM_ERR_IO;
+
+int dm_image_bridge_failure(void)
+{
+    return dm_image__failure;
+}
+
 #ifndef DM_OIIO_STATIC
 static pthread_mutex_t dm_image__lock = PTHREAD_MUTEX_INITIALIZER;
 static struct { const char *module; void *handle; } dm_image__loaded[2];
@@ -115,8 +123,18 @@ void *dm_image_bridge(const char *module, const char *name, char *err, size_t er
     if (h && !sym)
         snprintf(why, sizeof why, "%s has no %s", module, name);
     pthread_mutex_unlock(&dm_image__lock);
-    if (!sym)
-        dm_image__err(err, errlen, "OpenImageIO bridge unavailable: %s", why);
+    if (!sym) {
+        /* the file is there but its libraries cannot be mapped: memory, not
+         * the installation (dlerror has no errno; its text names the cause) */
+        int nomem = h == NULL && (strstr(why, "failed to map segment") ||
+                                  strstr(why, "annot allocate memory"));
+        dm_image__failure = nomem ? DM_ERR_NOMEM : DM_ERR_IO;
+        char r[160] = "";
+        if (nomem)
+            dm_nomem_reason(r, sizeof r);
+        dm_image__err(err, errlen, "OpenImageIO bridge unavailable: %s%s%s", why,
+                      nomem ? ": " : "", r);
+    }
     return sym;
 }
 #endif
@@ -131,7 +149,7 @@ int img_save(const img *im, const char *path, char *err, size_t errlen)
     dm_oiio_encode_fn *encode = DM_OIIO_FN(DM_OIIO_CORE_MODULE, dm_oiio_encode, why, sizeof why);
     if (!encode) {
         dm_image__err(err, errlen, "%s: %s", path, why);
-        return DM_ERR_IO;
+        return dm_image_bridge_failure();
     }
     /* Encoded in memory, then written by dm_write_file: a temp file beside
      * path renamed over it, so a failed write leaves no partial file, and
@@ -167,7 +185,7 @@ int img_load(const char *path, img *out, char *err, size_t errlen)
     dm_oiio_load_fn *load = DM_OIIO_FN(DM_OIIO_CORE_MODULE, dm_oiio_load, why, sizeof why);
     if (!load) {
         dm_image__err(err, errlen, "%s: %s", path, why);
-        return DM_ERR_IO;
+        return dm_image_bridge_failure();
     }
     int w = 0, h = 0;
     img tmp = {0, 0, NULL};

@@ -48,6 +48,11 @@ dm_oiio_load_fn dm_oiio_load;
  * ../lib/dmbench/ from it (an install under another prefix), and in the
  * lib/dmbench/ of the prefix configured. */
 void *dm_image_bridge(const char *module, const char *name, char *err, size_t errlen);
+/* The error code of the calling thread's last failed dm_image_bridge:
+ * DM_ERR_NOMEM when the module was there but its libraries could not be
+ * mapped (an address-space limit, ulimit -v: exit 4, and err then says
+ * so), else DM_ERR_IO (a module missing or damaged). */
+int dm_image_bridge_failure(void);
 
 /* Entry point fn (of type fn_fn) of module: from dm_image_bridge, or its
  * address in a DM_OIIO_STATIC build. */

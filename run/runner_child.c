@@ -3,6 +3,7 @@
  * their watchdog, and the progress lines (see runner_state.h). */
 #include "run/runner_state.h"
 #include "core/dm_error.h"
+#include "core/dm_image_bridge.h"
 #include "core/dm_proc.h"
 #include "counters/counters.h"
 #include "run/env.h"
@@ -24,13 +25,34 @@
 
 /* ---- the probe child: environment, timer calibration, extensions ------- */
 
+/* Loads the OpenImageIO modules as a measuring process would (after its GL
+ * context); 1, or 0 with the reason in why. */
+static int runner_child__images_load(char *why, size_t whylen)
+{
+#ifdef DM_OIIO_STATIC
+    (void)why;
+    (void)whylen;
+    return 1;
+#else
+    return dm_image_bridge(DM_OIIO_CORE_MODULE, "dm_oiio_encode", why, whylen) &&
+           dm_image_bridge(DM_OIIO_IMAGING_MODULE, "dm_oiio_compare", why, whylen);
+#endif
+}
+
 static void runner_child__probe_child(int fd, void *arg)
 {
     (void)arg;
     gl_context *gl = NULL;
     dm_str err = {0}, out = {0};
+    char why[1024];
     if (gl_context_create(NULL, &gl, &err) != 0) {
         dm_str_printf(&out, "F\t%s\n", dm_str_get(&err));
+    } else if (!runner_child__images_load(why, sizeof why)) {
+        /* every measuring process writes images beside its GL context: a
+         * module that cannot load (missing, or its libraries past ulimit -v)
+         * stops the run now, not as images silently missing */
+        dm_str_printf(&out, "M\t%d\t%s\n", dm_image_bridge_failure(), why);
+        gl_context_destroy(gl);
     } else {
         dm_kv *kv = NULL;
         size_t n = 0;
@@ -81,7 +103,9 @@ char *runner_child_read_all(int fd, int timeout_ms)
 /* The driver probe: environment, timer calibration and extensions from a
  * child (run/probe.h: it may hang or crash, and the run must not); then
  * every user technique compiled in a child of its own.  Returns 0,
- * DM_ERR_GL (no usable driver, message in err) or the user check's code. */
+ * DM_ERR_GL (no usable driver, message in err), DM_ERR_NOMEM / DM_ERR_IO
+ * (the OpenImageIO modules do not load: past an address-space limit, or
+ * missing) or the user check's code. */
 int runner_child_probe(runner *r, dm_str *err)
 {
     dm_proc_result res;
@@ -99,6 +123,10 @@ int runner_child_probe(runner *r, dm_str *err)
         if (line[0] == 'F' && f1) {
             dm_str_cat(err, f1);
             rc = DM_ERR_GL;
+        } else if (line[0] == 'M' && f2) {   /* the image modules: DM_ERR_NOMEM or DM_ERR_IO */
+            dm_str_cat(err, f2);
+            rc = (int)strtol(f1, NULL, 10);
+            rc = rc == DM_ERR_NOMEM ? rc : DM_ERR_IO;
         } else if (line[0] == 'E' && f2) {
             dm_kv_push(&r->env.environment, &r->env.n_environment, f1, f2);
         } else if (line[0] == 'T' && f2) {

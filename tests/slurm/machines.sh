@@ -74,7 +74,9 @@ grep "Time per configuration: " "$OUT/report.txt" | grep -v " @ $fp1\| @ $fp2" |
 rc=0
 "$BIN" compare "$OUT/full/latest" "$OUT/m/latest" --time-threshold 400% --json "$OUT/cmp.json" > "$OUT/cmp.out" 2>&1 || rc=$?
 [ "$rc" -eq 3 ] || fail "compare exit $rc, expected 3 (inconclusive): $(cat "$OUT/cmp.out")"
-other=$(grep -c "measured on machine $fp1 in BASE and $fp2 in NEW: not compared" "$OUT/cmp.out" || true)
+# compare's lines wrap at 100 columns, continuations four columns in: join them
+sed -i ':a;N;$!ba;s/\n    */ /g' "$OUT/cmp.out"
+other=$(grep -o "measured on machine $fp1 in BASE and $fp2 in NEW: not compared" "$OUT/cmp.out" | wc -l)
 [ "$other" -eq $((12 - n1)) ] || fail "$other configurations marked as other-machine, expected $((12 - n1))"
 items=$(grep -Ec "^[A-Z]+ +.* [0-9a-f]{16}  " "$OUT/cmp.out" || true)
 [ "$((items - other))" -eq "$n1" ] || fail "$((items - other)) configurations of machine 1 compared, expected $n1"
