@@ -9,8 +9,8 @@
 # counts the second (ci/gate.yaml with the cube, --seed 2, another order)
 # and the slower shader's.  Asserts: every configuration has
 # Instructions; the two samples of a run agree within 0.01 % and the two
-# runs within 0.05 %; `compare` of the two runs exits 0 (PASS everywhere, also without
-# --counters-only); the slower shader is a REGRESSION on every
+# runs within 0.01 % or 200 instructions a frame; `compare` of the two runs
+# exits 0 (PASS everywhere, also without --counters-only); the slower shader is a REGRESSION on every
 # configuration (exit 1) by more than the 0.5 % threshold; the original
 # binary against it passes again (IMPROVEMENT, exit 0).
 # Usage: gate.sh DMBENCH_SLOWSHADER RUNS  (DMBENCH_BINARY, DMBENCH_SOURCE_DIR set by ctest)
@@ -55,10 +55,15 @@ for key, a in runs[0].items():
     for s in (ia["samples"], ib["samples"]):          # repeated samples of one run: within 0.01 %
         assert len(s) == 2 and abs(s[1] - s[0]) <= 1e-4 * s[0], (key, s)
     rel = abs(ib["median"] - ia["median"]) / ia["median"]
-    # two runs in other orders and cache states: within 0.01 %, fifty times
-    # below the gate's threshold (docs/counters.md, "Repeatability of
-    # Instructions": a few instructions apart)
-    assert rel <= 1e-4, (key, ia["median"], ib["median"], rel)
+    # two runs in other orders and cache states: within 0.01 % or 200
+    # instructions a frame, whichever is larger (docs/counters.md,
+    # "Repeatability of Instructions": what a child counted before moves a
+    # frame by 10-180 instructions, more than 0.01 % of the triangle's
+    # 654 k; CI 2026-11-29 saw 72).  Both stay at least 16 times below the
+    # gate's 0.5 % on these frames.
+    assert abs(ib["median"] - ia["median"]) <= max(1e-4 * ia["median"], 200), \
+        (key, ia["median"], ib["median"], rel)
+    assert 200 <= 0.005 * ia["median"] / 16, (key, ia["median"])
     ipp = a["counters"]["InstructionsPerPixel"]["value"]
     sp = a["counters"]["SamplesPassed"]["value"]
     assert abs(ipp - ia["median"] / sp) <= 1e-9 * ipp, (key, ipp, ia["median"], sp)
