@@ -1,7 +1,8 @@
 /* render_internal.h — the renderer's shared internals (techniques/ only).
  *
- * render.c owns programs, meshes, items and drawing; render_textures.c owns
- * the maps and samplers (render_textures.h).  Both see the renderer struct.
+ * render.c owns programs, items and drawing; render_meshes.c the meshes
+ * (render_meshes.h); render_textures.c the maps and samplers
+ * (render_textures.h).  All three see the renderer struct.
  */
 #ifndef TECHNIQUES_RENDER_INTERNAL_H
 #define TECHNIQUES_RENDER_INTERNAL_H
