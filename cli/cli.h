@@ -57,10 +57,11 @@ struct cli_command {
 #include "core/dm_util.h"
 
 /* `dmbench drivers` on sweep_path (NULL: the default sweep) with --drivers
- * list (NULL: the sweep's `drivers:`, else every installed driver); `run`
- * calls it for a sweep with `drivers:`.  Its runs have CLI_DRIVERS_CHILD set. */
+ * list (NULL: the sweep's `drivers:`, else every installed driver) and
+ * --interleave shards (0: the default); `run` calls it for a sweep with
+ * `drivers:`.  Its runs have CLI_DRIVERS_CHILD set. */
 int cli_drivers_main(const char *sweep_path, const char *list, const char *out, const char *seed,
-                     int quiet);
+                     int quiet, int interleave);
 #define CLI_DRIVERS_CHILD "DMBENCH_DRIVERS_CHILD"
 /* `run SWEEP --dry-run` for a sweep with `drivers:`: each driver's plan, in
  * a run under that driver (a driver not installed is printed as left out

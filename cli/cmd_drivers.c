@@ -5,10 +5,16 @@
  *
  * Each driver's run is `dmbench run SWEEP --out OUT/DRIVER` started with
  * DMBENCH_DRIVER=DRIVER, so it re-executes under that driver's libraries
- * exactly as a user's run would.  A driver that is not installed is left
- * out with the reason; one whose run fails (a driver that hangs at start-up
- * is killed by the run's probe watchdog) is recorded as failed and the
- * next driver runs. */
+ * exactly as a user's run would.  With two or more drivers the runs are
+ * interleaved: the sweep is cut into N shards (`run --shard K/N`, by
+ * configuration key, so shard K holds the same configurations on every
+ * driver) and the drivers take turns shard by shard, each shard's run in
+ * OUT/DRIVER/shard-K-of-N; each driver's shards are then merged into
+ * OUT/DRIVER (cli_merge_dirs).  A configuration is so measured on every
+ * driver within one turn, not a whole run apart.  A driver that is not
+ * installed is left out with the reason; one whose run fails (a driver that
+ * hangs at start-up is killed by the run's probe watchdog) is recorded as
+ * failed, runs no further shard, and the other drivers go on. */
 #include "cli.h"
 #include "core/dm_error.h"
 #include "core/dm_proc.h"
@@ -32,8 +38,16 @@ typedef struct drivers_args {
     const char *out;
     const char *seed;
     int quiet;
+    int interleave;        /* shards the drivers take turns on; 0 = DRIVERS__SHARDS with 2+ drivers */
     int dry_run;           /* each driver's run only plans (run --dry-run) */
+    const char *shard;     /* "K/N" of the run started, or NULL (a whole run) */
 } drivers_args;
+
+/* Shards of an interleaved comparison by default: three turns per driver
+ * keep each configuration's measurements on the drivers minutes, not a
+ * whole run, apart, for about 2 s more per shard run (its probe and
+ * calibration: docs/drivers.md). */
+#define DRIVERS__SHARDS 3
 
 const cli_option cli_drivers_options[] = {
     CLI_STRING("drivers", drivers_args, drivers, "LIST",
@@ -44,6 +58,10 @@ const cli_option cli_drivers_options[] = {
                "results/drivers]"),
     CLI_STRING("seed", drivers_args, seed, "N", "passed to every run (the same rounds on each driver)"),
     CLI_BOOL("quiet", drivers_args, quiet, "no progress from the runs"),
+    { .name = "interleave", .kind = CLI_OPT_INT, .offset = offsetof(drivers_args, interleave),
+      .value_name = "N", .min = 1, .max = 64,
+      .help = "the drivers take turns on N shards of the sweep, each merged after (1 = one whole run "
+              "after another) [default 3 with two or more drivers]" },
     CLI_OPT_END
 };
 
@@ -122,7 +140,7 @@ static int drivers__names(const char *list, const sweep *s, char ***out, size_t 
 static int drivers__run(const char *driver, const char *sweep, const char *out,
                         const drivers_args *a, char **why)
 {
-    const char *argv[12];
+    const char *argv[14];
     size_t k = 0;
     argv[k++] = "dmbench";
     argv[k++] = "run";
@@ -134,6 +152,10 @@ static int drivers__run(const char *driver, const char *sweep, const char *out,
     }
     if (a->dry_run)
         argv[k++] = "--dry-run";
+    if (a->shard) {
+        argv[k++] = "--shard";
+        argv[k++] = a->shard;
+    }
     if (a->seed) {
         argv[k++] = "--seed";
         argv[k++] = a->seed;
@@ -184,7 +206,7 @@ int cli_drivers(const cli_command *self, int argc, char **argv)
         return rc;
     if (argc > 1)
         return cli_usage_error("drivers: expected at most one SWEEP (got %d arguments)", argc);
-    return cli_drivers_main(argc ? argv[0] : NULL, a.drivers, a.out, a.seed, a.quiet);
+    return cli_drivers_main(argc ? argv[0] : NULL, a.drivers, a.out, a.seed, a.quiet, a.interleave);
 }
 
 int cli_drivers_dry_run(const char *sweep_path, const sweep *s, const char *out)
@@ -214,12 +236,57 @@ int cli_drivers_dry_run(const char *sweep_path, const sweep *s, const char *out)
     return rc;
 }
 
+/* Runs shard k of shards (0: the whole sweep) on driver i, unless it has
+ * failed; a failure is recorded in whys[i].  Returns 1 when it failed now. */
+static int drivers__turn(const char *driver, const char *sweep_path, const char *root, int k, int shards,
+                         drivers_args *a, char **why_out)
+{
+    char *out = shards > 1 ? dm_xasprintf("%s/%s/shard-%d-of-%d", root, driver, k, shards)
+                           : dm_xasprintf("%s/%s", root, driver);
+    char shard[32];
+    snprintf(shard, sizeof shard, "%d/%d", k, shards);
+    a->shard = shards > 1 ? shard : NULL;
+    if (shards > 1)
+        fprintf(stderr, "dmbench: drivers: %s, turn %d of %d: dmbench run %s --shard %s --out %s\n", driver, k,
+                shards, sweep_path ? sweep_path : "(the default sweep)", shard, out);
+    else
+        fprintf(stderr, "dmbench: drivers: %s: dmbench run %s --out %s\n", driver,
+                sweep_path ? sweep_path : "(the default sweep)", out);
+    char *why = NULL;
+    int failed = drivers__run(driver, sweep_path, out, a, &why) != 0;
+    if (failed) {
+        *why_out = shards > 1 ? dm_xasprintf("failed in turn %d of %d: %s", k, shards, why)
+                              : dm_xasprintf("failed: %s", why);
+        fprintf(stderr, "dmbench: drivers: %s %s; going on without it\n", driver, *why_out);
+    }
+    a->shard = NULL;
+    free(why);
+    free(out);
+    return failed;
+}
+
+/* Merges driver's shard runs into root/driver; 0, or 1 with *why_out. */
+static int drivers__merge(const char *driver, const char *root, int shards, char **why_out)
+{
+    char **dirs = dm_xcalloc((size_t)shards, sizeof *dirs);
+    for (int k = 0; k < shards; k++)
+        dirs[k] = dm_xasprintf("%s/%s/shard-%d-of-%d/latest", root, driver, k + 1, shards);
+    char *out = dm_xasprintf("%s/%s", root, driver);
+    int rc = cli_merge_dirs(out, dirs, shards, 0);
+    if (rc != 0)
+        *why_out = dm_xasprintf("failed: its %d shard runs could not be merged into %s (the reason is above)",
+                                shards, out);
+    for (int k = 0; k < shards; k++)
+        free(dirs[k]);
+    free(dirs);
+    free(out);
+    return rc != 0;
+}
+
 int cli_drivers_main(const char *sweep_path, const char *list, const char *out, const char *seed,
-                     int quiet)
+                     int quiet, int interleave)
 {
     drivers_args a = { .drivers = list, .out = out, .seed = seed, .quiet = quiet };
-    int argc = sweep_path ? 1 : 0;
-    const char *argv[1] = { sweep_path };
     const char *applied = getenv("DMBENCH_DRIVER");
     if (applied && *applied && strcmp(applied, "default") != 0)
         return cli_usage_error("drivers: DMBENCH_DRIVER=%s is set: unset it; `dmbench drivers` "
@@ -242,38 +309,41 @@ int cli_drivers_main(const char *sweep_path, const char *list, const char *out, 
     drivers_side *sides = dm_xcalloc(n + 1, sizeof *sides);
     dm_run_result *runs = dm_xcalloc(n + 1, sizeof *runs);
     char **whys = dm_xcalloc(n + 1, sizeof *whys);
-    size_t ran = 0, missing = 0, failed = 0;
+    size_t ran = 0, missing = 0, failed = 0, runnable = 0;
     for (size_t i = 0; i < n; i++) {
         sides[i].driver = names[i];
         char *why = NULL;
         const char *miss = drivers_missing(drivers_find(names[i]), &why);
         if (miss) {
             whys[i] = dm_xasprintf("left out: %s", miss);
-            free(why);
             fprintf(stderr, "dmbench: drivers: %s %s\n", names[i], whys[i]);
             missing++;
         } else {
-            char *out = dm_xasprintf("%s/%s", root, names[i]);
-            fprintf(stderr, "dmbench: drivers: %s: dmbench run %s --out %s\n", names[i],
-                    argc ? argv[0] : "(the default sweep)", out);
-            if (drivers__run(names[i], argc ? argv[0] : NULL, out, &a, &why) != 0) {
-                whys[i] = dm_xasprintf("failed: %s", why);
-                fprintf(stderr, "dmbench: drivers: %s %s; going on with the next driver\n", names[i],
-                        whys[i]);
+            runnable++;
+        }
+        free(why);
+    }
+    /* the turns: every driver still standing runs shard k before any runs k + 1 */
+    int shards = interleave > 0 ? interleave : runnable >= 2 ? DRIVERS__SHARDS : 1;
+    for (int k = 1; k <= shards; k++)
+        for (size_t i = 0; i < n; i++)
+            if (!whys[i] && drivers__turn(names[i], sweep_path, root, k, shards, &a, &whys[i]))
                 failed++;
+    for (size_t i = 0; i < n; i++) {
+        if (!whys[i] && shards > 1 && drivers__merge(names[i], root, shards, &whys[i]))
+            failed++;
+        if (!whys[i]) {
+            char *dir = dm_xasprintf("%s/%s", root, names[i]);
+            dm_str err = {0};
+            if (compare_load_path(dir, &runs[i], &err) == 0) {
+                sides[i].run = &runs[i];
+                ran++;
             } else {
-                dm_str err = {0};
-                if (compare_load_path(out, &runs[i], &err) == 0) {
-                    sides[i].run = &runs[i];
-                    ran++;
-                } else {
-                    whys[i] = dm_xasprintf("failed: %s", dm_str_get(&err));
-                    failed++;
-                }
-                dm_str_free(&err);
+                whys[i] = dm_xasprintf("failed: %s", dm_str_get(&err));
+                failed++;
             }
-            free(why);
-            free(out);
+            dm_str_free(&err);
+            free(dir);
         }
         sides[i].why = whys[i];
     }

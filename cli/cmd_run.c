@@ -116,7 +116,7 @@ int cli_run(const cli_command *self, int argc, char **argv)
         if (a->o.seed)
             snprintf(seed, sizeof seed, "%llu", (unsigned long long)a->o.seed);
         fprintf(stderr, "dmbench: %s names drivers: one run per driver (dmbench drivers)\n", file);
-        return cli_drivers_main(file, NULL, a->o.out_root, a->o.seed ? seed : NULL, a->o.quiet);
+        return cli_drivers_main(file, NULL, a->o.out_root, a->o.seed ? seed : NULL, a->o.quiet, 0);
     }
     if (s.n_drivers && !getenv(CLI_DRIVERS_CHILD)) {   /* the dry run of each driver's run */
         rc = cli_drivers_dry_run(file, &s, a->o.out_root);

@@ -13,7 +13,8 @@
 # - an unknown driver and a missing Mesa 25 exit 2 with the reason;
 # - `dmbench drivers` runs the three and sets them side by side
 #   (drivers.md/json: every configuration on each driver, Kendall's tau of
-#   the times and qualities per pair, each scene's front per driver).
+#   the times and qualities per pair, each scene's front per driver),
+#   the drivers taking turns on three shards, each driver's merged after;
 # - virtual_texture: sparse on zink against software (below).
 # Skipped (77) when Mesa 25 is not installed.
 set -euo pipefail
@@ -51,8 +52,17 @@ if ! DMBENCH_DRIVER=zink "$BIN" info >/dev/null 2>&1; then
   exit 77
 fi
 timeout 1800 "$BIN" drivers "$SRC/tests/e2e/drivers.yaml" --drivers default,llvmpipe-25,zink \
-  --out "$OUT" --seed 1 --quiet > "$OUT/drivers.txt"
+  --out "$OUT" --seed 1 --quiet > "$OUT/drivers.txt" 2> "$OUT/drivers.err" || { cat "$OUT/drivers.err"; exit 1; }
 grep -q "^3 drivers ran, 0 left out, 0 failed; side by side: $OUT/drivers.md" "$OUT/drivers.txt"
+# the drivers take turns on three shards (docs/drivers.md): every driver runs
+# shard K before any runs K + 1, and each driver's shards are merged
+turns=$(sed -n 's/^dmbench: drivers: \([a-z0-9-]*\), turn \([0-9]\) of 3: .*--shard \([0-9]\)\/3 .*/\1 \2 \3/p' "$OUT/drivers.err" | tr '\n' ,)
+[ "$turns" = "default 1 1,llvmpipe-25 1 1,zink 1 1,default 2 2,llvmpipe-25 2 2,zink 2 2,default 3 3,llvmpipe-25 3 3,zink 3 3," ] ||
+  { echo "turns: $turns"; cat "$OUT/drivers.err"; exit 1; }
+for d in default llvmpipe-25 zink; do
+  for k in 1 2 3; do test -s "$OUT/$d/shard-$k-of-3/latest/results.json"; done
+  grep -q "^merged 3 runs, 5 configurations: $OUT/$d/" "$OUT/drivers.txt"
+done
 python3 - "$OUT" <<'PY'
 import json, sys
 j = json.load(open(sys.argv[1] + "/drivers.json"))
