@@ -14,6 +14,8 @@ dm_add_gl(test_models_budget test_models_budget.c LIBS dm_core LABELS e2e)
 add_dependencies(test_models_budget dmbench)
 dm_add_unit(test_models_blocking test_models_blocking.c LIBS dm_models)
 dm_add_unit(test_models_drift test_models_drift.c LIBS dm_models)
+# Frame times along a path: percentiles, 1 % lows, stutters (models/frame_series.h).
+dm_add_unit(test_models_frame_series test_models_frame_series.c LIBS dm_models)
 # fit's name checks end to end (exit 2 with a suggestion).
 add_test(NAME test_fit_names COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/fit_names.sh)
 set_tests_properties(test_fit_names PROPERTIES TIMEOUT 60 ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;quick")

@@ -1,6 +1,8 @@
 # Reports layer tests (reports/): image bridge, quality metrics, report files.
 dm_add_unit(test_reports_image test_reports_image.c LIBS dm_imaging)
 dm_add_unit(test_reports_quality test_reports_quality.c LIBS dm_imaging)
+# Temporal stability of a sequence against its reference (imaging/temporal.h).
+dm_add_unit(test_imaging_temporal test_imaging_temporal.c LIBS dm_imaging)
 dm_add_unit(test_reports_flip test_reports_flip.c LIBS dm_reports dm_imaging)
 dm_add_unit(test_reports_report test_reports_report.c LIBS dm_reports)
 dm_add_unit(test_reports_recommend test_reports_recommend.c LIBS dm_reports)
