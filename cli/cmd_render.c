@@ -19,7 +19,7 @@
 
 typedef struct render_args {
     const char *out;           /* --png or --exr: the format follows the file's extension */
-    int supersample, debug;
+    int supersample, debug, frame;
 } render_args;
 
 static const char *const render__debug_views[] = { "none", "normals", NULL };
@@ -33,6 +33,9 @@ const cli_option cli_render_options[] = {
     { .name = "debug", .kind = CLI_OPT_CHOICE, .offset = offsetof(render_args, debug),
       .value_name = "VIEW", .choices = render__debug_views, .def = "none",
       .help = "a debug view instead of the shading (normals: world-space normal·0.5+0.5)" },
+    { .name = "frame", .kind = CLI_OPT_INT, .offset = offsetof(render_args, frame), .value_name = "N",
+      .def = "0", .min = 0, .max = 1000000000,
+      .help = "draw frame N: orbits turned and camera.path followed to it (docs/motion.md)" },
     CLI_OPT_END
 };
 
@@ -70,7 +73,7 @@ int cli_render(const cli_command *self, int argc, char **argv)
     if (rc < 0)
         render_set_debug_view(r, dbg);
     float *rgba = NULL;
-    if (rc < 0 && mscene_render_image(r, kv, n, w, h, ss, &rgba, NULL, &err) != 0) {
+    if (rc < 0 && mscene_render_frame(r, kv, n, w, h, ss, (uint64_t)a->frame, &rgba, NULL, &err) != 0) {
         fprintf(stderr, "dmbench: error: render failed:\n%s\n", dm_str_get(&err));
         rc = DM_EXIT_FAILED;
     }

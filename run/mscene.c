@@ -232,10 +232,17 @@ void mscene_vt_converge(struct render_ctx *r, render_item item, int w, int h)
 int mscene_render_image(struct render_ctx *r, const dm_kv *params, size_t n_params,
                          int w, int h, int supersample, float **rgba, float **depth, dm_str *log)
 {
+    return mscene_render_frame(r, params, n_params, w, h, supersample, 0, rgba, depth, log);
+}
+
+int mscene_render_frame(struct render_ctx *r, const dm_kv *params, size_t n_params, int w, int h,
+                        int supersample, uint64_t frame, float **rgba, float **depth, dm_str *log)
+{
     render_item item;
     int rc = render_prepare(r, params, n_params, &item, log);
     if (rc != 0)
         return rc;
+    render_set_frame(r, item, frame);
     int ss = supersample > 1 ? supersample : 1;
     target t;
     if ((rc = target_create(&t, w * ss, h * ss)) != 0) {

@@ -112,5 +112,9 @@ void mscene_vt_converge(struct render_ctx *r, render_item item, int w, int h);
  * references and images, and `dmbench render`. */
 int mscene_render_image(struct render_ctx *r, const dm_kv *params, size_t n_params, int w, int h,
                         int supersample, float **rgba, float **depth, dm_str *log);
+/* mscene_render_image of frame `frame` of the configuration (its orbits
+ * turned and its camera.path followed to that frame; render_set_frame). */
+int mscene_render_frame(struct render_ctx *r, const dm_kv *params, size_t n_params, int w, int h,
+                        int supersample, uint64_t frame, float **rgba, float **depth, dm_str *log);
 
 #endif

@@ -33,6 +33,7 @@ static const char *const axes__nfmt[] = {"rgb8", "rgba8", "rg8", "rgb16f", "rgba
 static const char *const axes__afmt[] = {"rgba8", "srgb8_a8", "rgba16f", "rgba32f",
                                          "bc1", "bc3", "bc7", NULL};
 static const char *const axes__vt[] = {"off", "software", "sparse", NULL};
+static const char *const axes__path[] = {"still", "orbit", "dolly", "flyover", NULL};
 
 static int axes__check_mesh(const axis_info *a, const char *value, dm_str *err);
 static int axes__check_maps(const axis_info *a, const char *value, dm_str *err);
@@ -113,6 +114,14 @@ static const axis_info axes__table[] = {
      "degrees the camera azimuth turns per frame of a sample (0 = still; lights follow it)", NULL},
     {"light.orbit_deg_per_frame", F, NULL, -360, 360, "0", 1,
      "degrees the lights' azimuth turns per frame of a sample on top of the camera's (S2's light circles)", NULL},
+    {"camera.path", E, axes__path, 0, 0, "still", 1,
+     "the camera's path over camera.path_frames frames: orbit = one circle round the target, dolly = "
+     "from camera.distance to camera.dolly_to, flyover = a straight line at camera.flyover_height "
+     "(docs/motion.md)", NULL},
+    {"camera.path_frames", I, NULL, 2, 100000, "60", 1, "frames of one pass along camera.path", NULL},
+    {"camera.dolly_to", F, NULL, 0.1, 100, "1.0", 1, "camera distance at the end of a dolly", NULL},
+    {"camera.flyover_height", F, NULL, 0.01, 100, "0.5", 1,
+     "height of a flyover's line above the camera target", NULL},
     {"maps", E, NULL, 0, 0, "bricks", 1,
      "procedural material maps, or user maps: height=PATH;normal=PATH;albedo=PATH", axes__check_maps},
 };
@@ -296,6 +305,10 @@ static const struct {
     /* still scenes keep the keys they had before the orbit axes existed */
     {"camera.orbit_deg_per_frame", "camera.orbit_deg_per_frame", "!0"},
     {"light.orbit_deg_per_frame", "light.orbit_deg_per_frame", "!0"},
+    {"camera.path", "camera.path", "!still"},
+    {"camera.path_frames", "camera.path", "!still"},
+    {"camera.dolly_to", "camera.path", "dolly"},
+    {"camera.flyover_height", "camera.path", "flyover"},
     {"specular_map", "specular_map", "!off"},
     {"displaced_normals", "displaced_normals", "!map"},
     {"light_radius", "attenuation", "s1"},
@@ -354,6 +367,10 @@ const char *axes_value_ext_at(size_t i)
 char *axes_value_refusal(const char *axis, const char *value,
                          int (*has_ext)(const char *ext, void *user), void *user)
 {
+    if (strcmp(axis, "camera.path") == 0 && strcmp(value, "still") != 0)
+        return dm_xasprintf("camera.path=%s: runs do not yet time or compare frames along a path "
+                            "(`dmbench render camera.path=%s --frame N` draws frame N; docs/motion.md)",
+                            value, value);
     for (size_t i = 0; i < sizeof axes__needs / sizeof axes__needs[0]; i++) {
         if (strcmp(axes__needs[i].axis, axis) != 0 || strcmp(axes__needs[i].value, value) != 0)
             continue;

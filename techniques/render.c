@@ -470,6 +470,14 @@ static void render__item_values(render__item *it, const render__cfg *c)
     }
     it->light_count = technique_reads_axis(it->tech, "light_count")
                           ? atoi(render__get(c, "light_count")) : 1;
+    static const char *const paths[] = {"still", "orbit", "dolly", "flyover"};
+    const char *path = render__get(c, "camera.path");
+    for (int k = 0; k < 4; k++)
+        if (path && strcmp(path, paths[k]) == 0)
+            it->path_kind = k;
+    it->path[0] = (float)atof(render__get(c, "camera.path_frames"));
+    it->path[1] = (float)atof(render__get(c, "camera.dolly_to"));
+    it->path[2] = (float)atof(render__get(c, "camera.flyover_height"));
 }
 
 /* What the item's fragment shader does that stage isolation must know
@@ -650,9 +658,30 @@ static float render__orbit(const render__item *it, int k)
     return (float)fmod((double)it->frame * (double)it->orbit[k], 360.0);
 }
 
+/* Frames of one pass along the item's camera path (camera.path_frames). */
+static uint64_t render__path_frames(const render__item *it)
+{
+    return it->path[0] >= 2 ? (uint64_t)it->path[0] : 2;
+}
+
+/* The item's frame as a position along its camera path: *f = frame mod F,
+ * returned as u = *f / (F − 1) in [0, 1]. */
+static float render__path_u(const render__item *it, float *f)
+{
+    uint64_t n = render__path_frames(it);
+    *f = (float)(it->frame % n);
+    return *f / (float)(n - 1);
+}
+
+/* Camera azimuth in degrees: the camera.azimuth axis, turned by
+ * camera.orbit_deg_per_frame and, on an orbit path, by 360°/F a frame (one
+ * circle per pass).  The lights follow it. */
 static float render__cam_azimuth(const render__item *it)
 {
-    return it->cam[1] + render__orbit(it, 0);
+    float f = 0;
+    render__path_u(it, &f);
+    float turn = it->path_kind == RENDER__PATH_ORBIT ? 360.0f * f / (float)render__path_frames(it) : 0.0f;
+    return it->cam[1] + render__orbit(it, 0) + turn;
 }
 
 static void render__light(const render__item *it, int i, float pos[3], float col[3])
@@ -682,11 +711,26 @@ static void render__debug_lights(float lp[][3])
 static void render__camera(const render_ctx *r, const render__item *it, const float viewport[2],
                            vec3 eye, mat4 vp)
 {
+    float f = 0, u = render__path_u(it, &f);
     float az = glm_rad(render__cam_azimuth(it)), el = glm_rad(it->cam[2]), d = it->cam[0];
+    if (it->path_kind == RENDER__PATH_DOLLY)   /* the distance from camera.distance to camera.dolly_to */
+        d += (it->path[1] - d) * u;
     eye[0] = it->target[0] + d * cosf(el) * sinf(az);
     eye[1] = it->target[1] + d * sinf(el);
     eye[2] = it->target[2] + d * cosf(el) * cosf(az);
     vec3 centre = {it->target[0], it->target[1], it->target[2]};
+    if (it->path_kind == RENDER__PATH_FLYOVER) {
+        /* along the horizontal line through the target toward the camera's
+         * azimuth, from camera.distance before it to as far beyond, at
+         * camera.flyover_height h, looking at the ground 2h ahead */
+        float hx = sinf(az), hz = cosf(az), s = d * (1.0f - 2.0f * u), h = it->path[2];
+        eye[0] = it->target[0] + hx * s;
+        eye[1] = it->target[1] + h;
+        eye[2] = it->target[2] + hz * s;
+        centre[0] = eye[0] - hx * 2.0f * h;
+        centre[1] = it->target[1];
+        centre[2] = eye[2] - hz * 2.0f * h;
+    }
     mat4 view, proj;
     glm_mat4_identity(vp);
     if (!r->meshes[it->mesh].clip_space) {

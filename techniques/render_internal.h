@@ -29,6 +29,9 @@
 #define RENDER__CULL_CHUNK 2048
 #define RENDER__VISIBILITY_MARGIN 0.1f
 
+/* camera.path values, in the axis's order (axes.c). */
+enum { RENDER__PATH_STILL, RENDER__PATH_ORBIT, RENDER__PATH_DOLLY, RENDER__PATH_FLYOVER };
+
 /* u_roughness is the roughness axis's uniform (set with every numeric axis). */
 enum render__uniform {
     RU_MODEL, RU_VIEW_PROJ, RU_NORMAL_MAT, RU_CAMERA_POS, RU_LIGHT_POS, RU_LIGHT_COLOR,
@@ -68,6 +71,8 @@ typedef struct render__item {
     float light[3];              /* light.azimuth, light.elevation, light.distance */
     float orbit[2];              /* camera/light.orbit_deg_per_frame */
     uint64_t frame;              /* frame index the orbits turn by (render_set_frame) */
+    int path_kind;               /* camera.path: RENDER__PATH_* */
+    float path[3];               /* camera.path_frames, camera.dolly_to, camera.flyover_height */
     int debug_view;              /* render_debug_view it was prepared with */
     double *axis_val;            /* per axis index: numeric value (steps auto = 0) */
     int light_count;

@@ -27,7 +27,7 @@ declare -A expected=(
   [history]="--help --run --scene --store --technique"
   [list]="--help --json --passes"
   [info]="--help --json"
-  [render]="--debug --exr --help --png --supersample"
+  [render]="--debug --exr --frame --help --png --supersample"
   [diff]="--heatmap --help --json --ppd"
   [drivers]="--drivers --help --interleave --out --quiet --seed"
   [view]="--config --frames --help --keys --results --screenshot --timed-seconds"
@@ -37,7 +37,7 @@ declare -A expected=(
 declare -A value=(
   [--shard]=1/2 [--budget]=1 [--seed]=1 [--metric]=rmse [--loss]=huber [--passes]=WallTime
   [--time-threshold]=5% [--threshold]=1% [--alpha]=0.1 [--psnr-drop]=1 [--ssim-drop]=0.1 [--flip-rise]=0.01 [--tolerance]=FSInvocations=1 [--run-spread]=10%
-  [--rounds]=1 [--interleave]=2 [--count-jobs]=1 [--supersample]=2 [--debug]=normals [--frames]=1 [--timed-seconds]=1
+  [--rounds]=1 [--interleave]=2 [--count-jobs]=1 [--supersample]=2 [--debug]=normals [--frames]=1 [--frame]=0 [--timed-seconds]=1
   [--paired]="a b c" [--budget-ms]=16 [--shards]=2 [--format]=gbench [--ppd]=30 [--flip-ppd]=30
 )
 
