@@ -20,27 +20,12 @@
 #include "reports/answer.h"
 #include "reports/report.h"
 #include "reports/report_model.h"
+#include "test_reports_fixture.h"
 #include "test_util.h"
 
 #define SCENE_A "plane@160x90,light=sun"
 #define SCENE_B "cube@160x90,light=sun"
 #define SCENE_C "sphere@160x90,light=sun"
-
-/* WallTime with three samples lo, med, hi (the CI is [lo, hi]). */
-static void model_wall(dm_counter_result *c, double lo, double med, double hi)
-{
-    c->name = dm_xstrdup("WallTime");
-    c->unit = dm_xstrdup("ns");
-    c->available = c->has_samples = 1;
-    c->n_samples = 3;
-    c->samples = dm_xcalloc(3, sizeof(double));
-    c->samples[0] = lo;
-    c->samples[1] = med;
-    c->samples[2] = hi;
-    c->value = c->median = c->mean = med;
-    c->min = c->ci_lo = lo;
-    c->max = c->ci_hi = hi;
-}
 
 /* Configuration i: key "k<i>", the scene, technique, lighting, and steps
  * when not NULL; ok with WallTime [lo, med, hi] and SSIM ssim when med > 0. */
@@ -63,7 +48,7 @@ static void model_config(dm_run_result *run, size_t i, const char *scene, const 
     }
     c->n_counters = 1;
     c->counters = dm_xcalloc(1, sizeof *c->counters);
-    model_wall(&c->counters[0], lo, med, hi);
+    fixture_timed(&c->counters[0], "WallTime", lo, med, hi);
     c->quality.present = 1;
     c->quality.ssim = ssim;
     c->quality.psnr = 30;
@@ -97,10 +82,7 @@ static void model_run(dm_run_result *run)
     c6->ok = 1;
     c6->n_counters = 1;
     c6->counters = dm_xcalloc(1, sizeof *c6->counters);
-    c6->counters[0].name = dm_xstrdup("VSInvocations");
-    c6->counters[0].unit = dm_xstrdup("items");
-    c6->counters[0].available = c6->counters[0].deterministic = 1;
-    c6->counters[0].value = 4;
+    fixture_det(&c6->counters[0], "VSInvocations", 4);
     run->configs[2].quality.nonfinite_pixels = 3;
     run->configs[2].quality.crack_pixels = 7;
     run->n_warnings = 1;
