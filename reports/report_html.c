@@ -762,7 +762,6 @@ static const char *html__settings_text(const report_model_row *r)
  * fastest lit configuration). */
 static void html__answer_table(dm_str *s, const report_model *m, size_t si)
 {
-    const dm_run_result *run = m->run;
     const report_model_scene *sc = &m->scenes[si];
     const size_t *front = sc->front, nf = sc->n_front;
     const recommend_result *r = &sc->rec;
@@ -773,7 +772,7 @@ static void html__answer_table(dm_str *s, const report_model *m, size_t si)
     dm_str_printf(s, "<section class=\"scene-answer\" id=\"answer-%zu\"><h3>", si);
     html__esc(s, sc->label);
     dm_str_cat(s, "</h3>\n");
-    report_answer_scene(run, sc->name, REPORT_ANSWER_HTML, s);
+    report_answer_scene(m, si, REPORT_ANSWER_HTML, s);
     if (sc->untimed) {   /* counters only: no front, the counters instead */
         dm_str_cat(s, "</section>\n");
         return;
@@ -788,18 +787,17 @@ static void html__answer_table(dm_str *s, const report_model *m, size_t si)
                          "and a %s measurement</td></tr>\n", report_metric_label(m->metric));
     for (size_t i = 0; i < nf; i++) {
         const report_model_row *row = &m->rows[front[i]];
-        const dm_config_result *c = row->config;
         dm_str_printf(s, "<tr%s><td>", front[i] == r->pick ? " class=\"pick\"" : "");
-        html__esc(s, report__technique(c));
+        html__esc(s, row->technique);
         if (front[i] == r->pick)
             dm_str_cat(s, " <b>← pick</b>");
-        if (report_family(c) == RECOMMEND_UNLIT)
+        if (row->family == RECOMMEND_UNLIT)
             dm_str_cat(s, " <span class=\"const\">(unlit baseline)</span>");
         dm_str_cat(s, "</td>");
         if (with_settings)
             html__tagged(s, "td", html__settings_text(row));
         html__time_cells(s, row);
-        html__num_cell(s, "%.4g", report_metric_shown(&c->quality, m->metric));
+        html__num_cell(s, "%.4g", row->shown);
         dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n",
                       base ? row->frame_time->median / base->median : NAN);
     }
@@ -811,7 +809,7 @@ static void html__answer_table(dm_str *s, const report_model *m, size_t si)
 static void html__answer(dm_str *s, const report_model *model)
 {
     report_metric m = model->metric;
-    if (!report_run_timed(model->run)) {
+    if (!model->any_timed) {
         dm_str_cat(s, "<h2 id=\"answer\">Answer: what was measured</h2>\n<p class=\"const\">No timing "
                       "counter was measured (the sweep's <code>counters:</code> have no WallTime), so "
                       "there is no frame budget and no pick: each scene shows the counters it measured, "

@@ -60,6 +60,11 @@ size_t report__bimodal(const dm_counter_result *t, double *low, double *high);
  * the CI beside it) the noisy mark is just "⚠ noisy". */
 void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, dm_str *why);
 
+/* The defects of a configuration's image as one mark ("⚠ 128 crack
+ * pixels; ⚠ 3 NaN pixels") into mark and the reasons in words into why;
+ * both left unchanged when the image has none. */
+void report__defects(const dm_config_result *c, dm_str *mark, dm_str *why);
+
 /* A configuration's timing is "noisy" (too noisy to trust) when it is ok
  * and the 95 % CI of its median frame time is wider than ± this fraction of
  * the median, or unknown (docs/measurement.md). */

@@ -3,7 +3,7 @@
  * writers read it and call none of those derivations again. */
 #include "reports/report_model.h"
 #include "reports/report_internal.h"
-#include "reports/answer.h"
+#include "reports/recommend_run.h"
 #include "reports/published_report.h"
 
 #include <math.h>
@@ -47,13 +47,20 @@ static void report_model__row(report_model *m, report_model_row *r, const dm_con
     r->why = dm_str_take(&why);
     report__timing_marks(c, 0, &s, &why);
     r->marks_short = dm_str_take(&s);
-    dm_str_free(&why);
+    dm_str_free(&why);   /* the same reasons again */
     r->noisy = report__noisy(c);
     r->error = c->quality.present ? report_metric_error(&c->quality, m->metric) : NAN;
     r->shown = report_metric_shown(&c->quality, m->metric);
     r->trend = report_model__trend(m->trends, c->key);
     r->nonfinite_pixels = c->quality.present ? c->quality.nonfinite_pixels : 0;
     r->crack_pixels = c->quality.present ? c->quality.crack_pixels : 0;
+    r->technique = report__technique(c);
+    r->family = report_family(c);
+    report_metric_text(&c->quality, m->metric, &s);
+    r->metric_text = dm_str_take(&s);
+    report__defects(c, &s, &why);
+    r->defects = dm_str_take(&s);
+    r->defects_why = dm_str_take(&why);
 }
 
 static void report_model__scene(report_model *m, report_model_scene *sc, const char *name)
@@ -76,6 +83,13 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
     sc->front_text = dm_str_take(&s);
     sc->untimed = report_untimed_reason(run, name);
     sc->n_points = report_recommend(run, name, &sc->rec);
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const dm_config_result *c = &run->configs[sc->rows[i]];
+        sc->n_timed += report__frame_time(c) != NULL;
+        sc->n_noisy += report__frame_time(c) && report__noisy(c);
+    }
+    sc->provisional = sc->n_timed >= 2 && 2 * sc->n_noisy > sc->n_timed;
+    sc->n_det = report__counter_names(run, name, REPORT__DETERMINISTIC, &sc->det);
 }
 
 int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d)
@@ -87,14 +101,17 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     m->dir = d ? d->dir : NULL;
     m->trends = d ? d->trends : NULL;
     m->metric = report_metric_of_run(run);
+    m->budget_ms = report_budget_ms(run);
     dm_str k = {0};
     report_scene_constants(run, &k);
     m->constants = dm_str_take(&k);
     const char **names;
     m->n_scenes = report__scenes(run, &names);
     m->scenes = dm_xcalloc(m->n_scenes + 1, sizeof *m->scenes);
-    for (size_t i = 0; i < m->n_scenes; i++)
+    for (size_t i = 0; i < m->n_scenes; i++) {
         report_model__scene(m, &m->scenes[i], names[i]);
+        m->any_timed |= m->scenes[i].untimed == NULL;
+    }
     m->n_rows = run->n_configs;
     m->rows = dm_xcalloc(m->n_rows + 1, sizeof *m->rows);
     for (size_t i = 0; i < m->n_rows; i++) {
@@ -138,6 +155,9 @@ void report_model_free(report_model *m)
         free(r->marks);
         free(r->marks_short);
         free(r->why);
+        free(r->metric_text);
+        free(r->defects);
+        free(r->defects_why);
     }
     free(m->rows);
     for (size_t i = 0; m->scenes && i < m->n_scenes; i++) {
@@ -147,6 +167,7 @@ void report_model_free(report_model *m)
         free(sc->varying);
         free(sc->front);
         free(sc->front_text);
+        free(sc->det);
     }
     free(m->scenes);
     free(m->params);

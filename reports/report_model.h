@@ -24,6 +24,7 @@
 #include "core/dm_util.h"
 #include "reports/metric.h"
 #include "reports/recommend.h"
+#include "reports/recommend_run.h"
 #include "reports/report.h"
 
 /* One configuration as every file shows it. */
@@ -46,6 +47,12 @@ typedef struct report_model_row {
     double shown;         /* the metric as shown (SSIM: 1 − SSIM, PSNR in dB); NaN when none */
     const report_trend *trend;   /* this configuration's trend line, or NULL */
     long nonfinite_pixels, crack_pixels;   /* image defects (0 without quality) */
+    /* what the answer's sentences, the charts, the gallery and the stage bars read */
+    const char *technique;   /* its technique param, "?" without one */
+    recommend_family family; /* report_family */
+    char *metric_text;       /* its quality for a sentence: "SSIM 0.950" (report_metric_text) */
+    char *defects;           /* "⚠ 7 crack pixels; ⚠ 3 NaN pixels", "" when none */
+    char *defects_why;       /* the defects' reasons in words, "" when none */
 } report_model_row;
 
 /* One scene of the run. */
@@ -62,6 +69,12 @@ typedef struct report_model_scene {
     const char *untimed;  /* report_untimed_reason, or NULL when timed */
     recommend_result rec; /* pick, knee, best per family (config indexes) */
     size_t n_points;      /* points the recommendation considered */
+    /* what the answer's sentences and the counter table read */
+    size_t n_timed;       /* rows with a frame time */
+    size_t n_noisy;       /* of those, the noisy ones */
+    int provisional;      /* two or more timed and most of them noisy: the pick may move */
+    const char **det;     /* the scene's deterministic counters, first appearance */
+    size_t n_det;
 } report_model_scene;
 
 typedef struct report_model {
@@ -86,6 +99,9 @@ typedef struct report_model {
     size_t n_noisy;
     char *published_md;           /* the published section, read once; "" when none */
     char *published_html;
+    /* what the answer's sentences and summary.md's header read */
+    double budget_ms;             /* report_budget_ms: 0 = each scene's default */
+    int any_timed;                /* some scene has a frame time (a budget and a pick) */
 } report_model;
 
 /* Builds the model of run for the files d describes (report.h): d->dir

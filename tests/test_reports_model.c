@@ -161,6 +161,21 @@ static void test_model_rows(void **state)
     assert_null(r[6].frame_time);
     assert_int_equal(r[6].scene, 2);
 
+    /* what the answer's sentences, the charts and the gallery read */
+    assert_string_equal(r[0].technique, "pom");
+    assert_int_equal(r[0].family, RECOMMEND_FRAGMENT);    /* lit, no tess_level or vertex_filter */
+    assert_string_equal(r[0].metric_text, "SSIM 0.950");
+    assert_string_equal(r[0].defects, "");
+    assert_string_equal(r[0].defects_why, "");
+    assert_string_equal(r[2].defects, "⚠ 7 crack pixels; ⚠ 3 NaN pixels");
+    assert_non_null(strstr(r[2].defects_why, "background shows through"));
+    assert_non_null(strstr(r[2].defects_why, "; the shader wrote NaN"));
+    assert_string_equal(r[5].technique, "parallax");
+    assert_string_equal(r[5].metric_text, "SSIM 0.900");
+    assert_int_equal(r[6].family, RECOMMEND_UNLIT);      /* no lighting axis: a baseline */
+    assert_near(m.budget_ms, 2.5);
+    assert_int_equal(m.any_timed, 1);
+
     assert_ptr_equal(report_model_find(&m, "k5"), &r[5]);
     assert_null(report_model_find(&m, "nope"));
     report_model_free(&m);
@@ -205,6 +220,15 @@ static void test_model_scenes(void **state)
     assert_int_equal(c->n_rows, 1);
     assert_int_equal(c->n_front, 0);
     assert_string_equal(c->untimed, "no timing counter measured: no budget or pick");
+    /* the provisional flag and the counter table's columns */
+    assert_int_equal(a->n_timed, 4);
+    assert_int_equal(a->n_noisy, 1);                      /* k1 */
+    assert_int_equal(a->provisional, 0);                  /* 1 of 4 is not most */
+    assert_int_equal(a->n_det, 0);
+    assert_int_equal(b->n_timed, 1);
+    assert_int_equal(c->n_timed, 0);
+    assert_int_equal(c->n_det, 1);
+    assert_string_equal(c->det[0], "VSInvocations");
 
     /* warnings: one noisy configuration, one failure, then the stored line last */
     assert_int_equal(m.n_noisy, 1);
@@ -296,6 +320,42 @@ static void test_model_front_tex(void **state)
     test_rm_rf(dir);
 }
 
+/* The answer's sentences and the terminal's lines come from the model
+ * alone: a label changed in the model is the label they say, and a scene
+ * whose timings are mostly noisy is provisional in both. */
+static void test_model_answer(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    model_run(&run);
+    run.configs[5].counters[0].ci_lo = 1.0e6;             /* k5 noisy too: 2 of 4 is not most */
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_int_equal(m.scenes[0].n_noisy, 2);
+    assert_int_equal(m.scenes[0].provisional, 0);
+    free(m.rows[0].label);
+    m.rows[0].label = dm_xstrdup("THE PICK");
+    dm_str s = {0};
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &s);
+    assert_non_null(strstr(dm_str_get(&s), "pick **THE PICK** (2.00 ms [1.95, 2.05], SSIM 0.950)."));
+    assert_null(strstr(dm_str_get(&s), "Provisional"));
+    dm_str_free(&s);
+    m.scenes[0].provisional = 1;                          /* what the model says is what is written */
+    m.scenes[0].n_noisy = 3;
+    report_answer_terminal_model(&m, &s);
+    assert_non_null(strstr(dm_str_get(&s), "plane 160×90: Provisional: 3 of 4 timings are noisy"));
+    assert_non_null(strstr(dm_str_get(&s), "THE PICK"));
+    /* the untimed scene: its reason, then its counters from the scene's columns */
+    assert_non_null(strstr(dm_str_get(&s), "sphere 160×90: no timing counter measured: no budget or pick.\n"));
+    assert_non_null(strstr(dm_str_get(&s), "VSInvocations"));
+    dm_str_free(&s);
+    report_counter_table(&m, 2, REPORT_ANSWER_MD, &s);
+    assert_string_equal(dm_str_get(&s), "| configuration | VSInvocations |\n|---|---:|\n| pom | 4 |\n");
+    dm_str_free(&s);
+    report_model_free(&m);
+    dm_run_free(&run);
+}
+
 static void test_model_no_run(void **state)
 {
     (void)state;
@@ -306,4 +366,5 @@ static void test_model_no_run(void **state)
 
 DM_TEST_MAIN(NULL, NULL, cmocka_unit_test(test_model_rows), cmocka_unit_test(test_model_scenes),
              cmocka_unit_test(test_model_published), cmocka_unit_test(test_model_front_tex),
+             cmocka_unit_test(test_model_answer),
              cmocka_unit_test(test_model_no_run))

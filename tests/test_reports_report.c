@@ -3,6 +3,7 @@
 #include "reports/report_internal.h"
 #include "reports/metric.h"
 #include "reports/answer.h"
+#include "reports/report_model.h"
 #include "imaging/image.h"
 #include "core/dm_error.h"
 #include "core/dm_util.h"
@@ -1067,7 +1068,10 @@ static void test_busy_machine(void **state)
     assert_int_equal(found, 1);
     report__warnings_free(w, nw);
     dm_str t = {0};
-    report_answer_scene(&run, "s", REPORT_ANSWER_MD, &t);
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &t);
+    report_model_free(&m);
     assert_non_null(strstr(dm_str_get(&t), "Provisional: 3 of 4 timings are noisy"));
     dm_str_free(&t);
     dm_run_free(&run);
@@ -1076,7 +1080,9 @@ static void test_busy_machine(void **state)
     for (size_t i = 0; i < nw; i++)
         assert_null(strstr(w[i], "The machine was busy"));
     report__warnings_free(w, nw);
-    report_answer_scene(&run, "s", REPORT_ANSWER_MD, &t);
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &t);
+    report_model_free(&m);
     assert_null(strstr(dm_str_get(&t), "Provisional"));
     dm_str_free(&t);
     dm_run_free(&run);
