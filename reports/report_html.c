@@ -43,15 +43,6 @@ static void html__tagged(dm_str *s, const char *tag, const char *text)
     dm_str_printf(s, "</%s>", tag);
 }
 
-/* The scene's label (report_scene_label), escaped. */
-static void html__scene_name(dm_str *s, const dm_run_result *run, const char *scene)
-{
-    dm_str l = {0};
-    report_scene_label(run, scene, &l);
-    html__esc(s, dm_str_get(&l));
-    dm_str_free(&l);
-}
-
 static void html__params_inline(dm_str *s, const dm_kv *kv, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
@@ -62,8 +53,9 @@ static void html__params_inline(dm_str *s, const dm_kv *kv, size_t n)
     }
 }
 
-static void html__header(dm_str *s, const dm_run_result *run)
+static void html__header(dm_str *s, const report_model *m)
 {
+    const dm_run_result *run = m->run;
     dm_str_cat(s, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                   "<meta name=\"viewport\" content=\"width=device-width\"><title>dmbench: ");
     html__esc(s, run->sweep);
@@ -78,14 +70,11 @@ static void html__header(dm_str *s, const dm_run_result *run)
         html__esc(s, run->finished);
     }
     dm_str_cat(s, ".");
-    dm_str k = {0};
-    report_scene_constants(run, &k);
-    if (k.len) {
+    if (*m->constants) {
         dm_str_cat(s, " Every scene: ");
-        html__esc(s, dm_str_get(&k));
+        html__esc(s, m->constants);
         dm_str_cat(s, ".");
     }
-    dm_str_free(&k);
     dm_str_cat(s, "</p>\n");
 }
 
@@ -109,12 +98,13 @@ static void html__environment(dm_str *s, const dm_run_result *run)
 }
 
 /* Table of contents: the answer, each scene, gallery, failures, fits. */
-static void html__toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
+static void html__toc(dm_str *s, const report_model *m)
 {
+    const dm_run_result *run = m->run;
     dm_str_cat(s, "<nav class=\"toc\"><b>Contents:</b> <a href=\"#answer\">Answer</a>");
-    for (size_t i = 0; i < ns; i++) {
+    for (size_t i = 0; i < m->n_scenes; i++) {
         dm_str_printf(s, "<a href=\"#scene-%zu\">", i);
-        html__scene_name(s, run, scenes[i]);
+        html__esc(s, m->scenes[i].label);
         dm_str_cat(s, "</a>");
     }
     dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#warnings\">Warnings</a>"
@@ -207,8 +197,8 @@ typedef struct html_images {
 
 static void html__gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
                            const char *caption, long ref);
-static void html__scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
-                              const html_images *im);
+static void html__scene_pick_images(dm_str *s, const report_model *m, const report_model_scene *sc,
+                                    const html_images *im);
 
 /* Counters worth a column in the scene tables (the rest are in the CSV/JSON). */
 static const char *const html__key_counters[] = {
@@ -374,8 +364,8 @@ static void html__scene_table(dm_str *s, const report_model *m, size_t si, const
         html__scene_row(s, m, &m->rows[sc->rows[i]], varying, nv, det, nd, trends);
     dm_str_cat(s, "</tbody></table></div>\n");
     dm_str_cat(s, "<div class=\"charts\">\n");   /* side by side where the window is wide enough */
-    html__scene_pick_images(s, run, scene, im);
-    report__svg_scene(s, run, scene);
+    html__scene_pick_images(s, m, sc, im);
+    report__svg_scene(s, m, si);
     report__html_charts_scene(s, run, scene);
     dm_str_cat(s, "</div>\n");
     free(varying);
@@ -465,28 +455,24 @@ static void html__gallery_linked(dm_str *s, const html_images *im, const char *r
     dm_str_cat(s, "\">full size</a></figcaption></figure>");
 }
 
-/* The scene's pick (reports/answer.h) as its render and heatmap beside the
- * charts, so the answer's image is next to its numbers; nothing without a
- * pick. */
-static void html__scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
-                              const html_images *im)
+/* The scene's pick (the model's recommendation) as its render and heatmap
+ * beside the charts, so the answer's image is next to its numbers; nothing
+ * without a pick. */
+static void html__scene_pick_images(dm_str *s, const report_model *m, const report_model_scene *sc,
+                                    const html_images *im)
 {
-    recommend_result r;
-    report_recommend(run, scene, &r);
-    if (r.pick == RECOMMEND_NONE)
+    if (sc->rec.pick == RECOMMEND_NONE)
         return;
-    const dm_config_result *c = &run->configs[r.pick];
-    dm_str label = {0}, cap = {0};
-    report__config_label(run, c, &label);
+    const report_model_row *r = &m->rows[sc->rec.pick];
+    const dm_config_result *c = r->config;
+    dm_str cap = {0};
     dm_str_cat(s, "<div class=\"pair pick-images\">");
-    html__gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), -1);
-    html__gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
-    dm_str_printf(&cap, "The pick: %s, ", dm_str_get(&label));
-    report_metric_text(&c->quality, report_metric_of_run(run), &cap);
+    html__gallery_linked(s, im, c->img_render, "render", r->label, -1);
+    html__gallery_linked(s, im, c->img_heatmap, "heatmap", r->label, -1);
+    dm_str_printf(&cap, "The pick: %s, %s", r->label, r->metric_text);
     dm_str_cat(s, "<p class=\"cap\">");
     html__esc(s, dm_str_get(&cap));
     dm_str_cat(s, "</p></div>\n");
-    dm_str_free(&label);
     dm_str_free(&cap);
 }
 
@@ -520,17 +506,17 @@ static size_t html__gallery_ref_index(const char ***refs, size_t *n, const char 
 
 /* One scene's grid: its reference(s) once, then render and heatmap of each
  * configuration, fastest first. */
-static void html__gallery_scene(dm_str *s, const dm_run_result *run, const html_images *im,
-                          const char *scene, const char ***refs, size_t *nrefs)
+static void html__gallery_scene(dm_str *s, const report_model *m, const report_model_scene *sc,
+                                const html_images *im, const char ***refs, size_t *nrefs)
 {
-    size_t *rows, nr = report__scene_rows(run, scene, &rows);
     double top = 0, ppd = NAN;
     int flips = 0;
     dm_str_cat(s, "<h3>");
-    html__scene_name(s, run, scene);
+    html__esc(s, sc->label);
     dm_str_cat(s, "</h3>\n<div class=\"grid\">");
-    for (size_t i = 0; i < nr; i++) {
-        const dm_config_result *c = &run->configs[rows[i]];
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const report_model_row *r = &m->rows[sc->rows[i]];
+        const dm_config_result *c = r->config;
         long ref = -1;
         int fresh = 0;
         if (c->img_reference && report__safe_relpath(c->img_reference)) {
@@ -540,20 +526,18 @@ static void html__gallery_scene(dm_str *s, const dm_run_result *run, const html_
         } else if (c->img_reference) {
             html__gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
         }
-        dm_str label = {0};
-        report__config_label(run, c, &label);
+        const char *label = r->label;
         dm_str_cat(s, "<div class=\"pair\">");
-        html__gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), ref);
-        html__gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
+        html__gallery_linked(s, im, c->img_render, "render", label, ref);
+        html__gallery_linked(s, im, c->img_heatmap, "heatmap", label, -1);
         if (c->img_flip) {
-            html__gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&label), -1);
+            html__gallery_linked(s, im, c->img_flip, "FLIP", label, -1);
             flips = 1;
             ppd = c->quality.flip_ppd;
         }
         /* the caption of the pair carries its values */
         dm_str cap = {0};
-        dm_str_printf(&cap, "%s: ", dm_str_get(&label));
-        report_metric_text(&c->quality, report_metric_of_run(run), &cap);
+        dm_str_printf(&cap, "%s: %s", label, r->metric_text);
         dm_str_printf(&cap, ", MaxError %.3g", c->quality.max_error);
         if (c->img_flip)
             dm_str_printf(&cap, ", FLIP %.4f (max %.3f)", c->quality.flip, c->quality.flip_max);
@@ -563,7 +547,6 @@ static void html__gallery_scene(dm_str *s, const dm_run_result *run, const html_
         dm_str_free(&cap);
         if (c->quality.present && isfinite(c->quality.max_error))
             top = fmax(top, c->quality.max_error);
-        dm_str_free(&label);
     }
     dm_str_printf(s, "</div>\n<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
                      "channel) on one absolute scale for every map, so maps compare side by side: "
@@ -577,20 +560,18 @@ static void html__gallery_scene(dm_str *s, const dm_run_result *run, const html_
         html__flip_scale(s);
         dm_str_cat(s, " 1 (docs/flip.md).</p>\n");
     }
-    free(rows);
 }
 
-static void html__gallery(dm_str *s, const dm_run_result *run, const html_images *im)
+static void html__gallery(dm_str *s, const report_model *m, const html_images *im)
 {
-    const char **scenes, **refs = NULL;
-    size_t ns = report__scenes(run, &scenes), nrefs = 0;
+    const char **refs = NULL;
+    size_t nrefs = 0;
     dm_str_cat(s, "<h2 id=\"gallery\">Gallery</h2>\n<p>Per scene: the reference once (embedded), "
                   "then each configuration's render and heatmap side by side, fastest first, with "
                   "their values (files in img/ beside this report; \"full size\" opens one).</p>\n");
-    for (size_t i = 0; i < ns; i++)
-        html__gallery_scene(s, run, im, scenes[i], &refs, &nrefs);
+    for (size_t i = 0; i < m->n_scenes; i++)
+        html__gallery_scene(s, m, &m->scenes[i], im, &refs, &nrefs);
     free(refs);
-    free(scenes);
 }
 
 static void html__failed_and_left_out(dm_str *s, const dm_run_result *run)
@@ -841,19 +822,15 @@ int report__write_html(const report_model *m, const report_desc *d, const char *
     const dm_run_result *run = m->run;
     html_images im = { m->dir, d && d->href ? d->href : "" };
     dm_str s = {0};
-    const char **scenes = dm_xcalloc(m->n_scenes + 1, sizeof *scenes);
-    for (size_t i = 0; i < m->n_scenes; i++)
-        scenes[i] = m->scenes[i].name;
     /* by value: the answer, each scene's table and charts, the images, then
      * the diagnostics, and what only a maintainer reads at the end */
-    html__header(&s, run);
-    html__toc(&s, run, scenes, m->n_scenes);
+    html__header(&s, m);
+    html__toc(&s, m);
     html__answer(&s, m);
     for (size_t i = 0; i < m->n_scenes; i++)
         html__scene_table(&s, m, i, &im);
-    free(scenes);
-    html__gallery(&s, run, &im);
-    report_stage_bars(&s, run);   /* where each configuration's cost goes (stage_bar.c) */
+    html__gallery(&s, m, &im);
+    report_stage_bars(&s, m);   /* where each configuration's cost goes (stage_bar.c) */
     html__timer_and_warnings(&s, m);
     html__failed_and_left_out(&s, run);
     html__fits(&s, run);

@@ -133,10 +133,11 @@ void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *ou
  * tied); 0 when either CI is unknown. */
 int report__tied(const dm_counter_result *a, const dm_counter_result *b);
 
-/* Hand-written SVG charts of one scene (svg_chart.c): error vs time with CI
- * whiskers and numbered points (legend below), and time per configuration
- * of this scene only.  Nothing when the scene has no timed configuration. */
-void report__svg_scene(dm_str *s, const dm_run_result *run, const char *scene);
+/* Hand-written SVG charts of scene si of the model (svg_chart.c): error vs
+ * time with CI whiskers, labelled points and the family legend, and time
+ * per configuration of this scene only.  Nothing when the scene has no
+ * timed configuration. */
+void report__svg_scene(dm_str *s, const report_model *m, size_t si);
 
 /* Charts (chart.c): inline SVG appended to an HTML document, each in a
  * <div class="chart" aria-label="title">.  The per-scene PLplot charts (time
