@@ -366,7 +366,7 @@ static void html__scene_table(dm_str *s, const report_model *m, size_t si, const
     dm_str_cat(s, "<div class=\"charts\">\n");   /* side by side where the window is wide enough */
     html__scene_pick_images(s, m, sc, im);
     report__svg_scene(s, m, si);
-    report__html_charts_scene(s, run, scene);
+    report__html_charts_scene(s, m, si);
     dm_str_cat(s, "</div>\n");
     free(varying);
     free(params);

@@ -140,11 +140,12 @@ int report__tied(const dm_counter_result *a, const dm_counter_result *b);
 void report__svg_scene(dm_str *s, const report_model *m, size_t si);
 
 /* Charts (chart.c): inline SVG appended to an HTML document, each in a
- * <div class="chart" aria-label="title">.  The per-scene PLplot charts (time
- * vs tess_level per mesh, counter breakdown per configuration: per-stage
- * times only from a pipeline-linear fit with R² >= 0.8, else the key
- * counters with a note) and the fit plots.  Nothing is appended when there is nothing to plot. */
-void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *scene);
+ * <div class="chart" aria-label="title">.  Scene si's PLplot charts from the
+ * model: time vs tess_level per mesh and technique, and the counter
+ * breakdown the model chose (report_model_scene.breakdown: measured stage
+ * times, a fit's estimate, or the key counters, with their notes).
+ * Nothing is appended when there is nothing to plot. */
+void report__html_charts_scene(dm_str *s, const report_model *m, size_t si);
 /* The two plots of one fit (predicted vs measured with y = x; residuals in
  * percent of the measured value vs predicted), nothing without points. */
 void report__html_charts_fit(dm_str *s, const dm_run_result *run, const dm_fit_result *f);

@@ -90,6 +90,12 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
     }
     sc->provisional = sc->n_timed >= 2 && 2 * sc->n_noisy > sc->n_timed;
     sc->n_det = report__counter_names(run, name, REPORT__DETERMINISTIC, &sc->det);
+    size_t *timed = dm_xcalloc(sc->n_rows + 1, sizeof *timed), nt = 0;
+    for (size_t i = 0; i < sc->n_rows; i++)   /* still fastest first */
+        if (report__frame_time(&run->configs[sc->rows[i]]))
+            timed[nt++] = sc->rows[i];
+    breakdown_choose(run, timed, nt, &sc->breakdown);
+    free(timed);
 }
 
 int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d)
@@ -168,6 +174,7 @@ void report_model_free(report_model *m)
         free(sc->front);
         free(sc->front_text);
         free(sc->det);
+        breakdown_free(&sc->breakdown);
     }
     free(m->scenes);
     free(m->params);

@@ -22,6 +22,7 @@
 
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+#include "reports/breakdown.h"
 #include "reports/metric.h"
 #include "reports/recommend.h"
 #include "reports/recommend_run.h"
@@ -75,6 +76,8 @@ typedef struct report_model_scene {
     int provisional;      /* two or more timed and most of them noisy: the pick may move */
     const char **det;     /* the scene's deterministic counters, first appearance */
     size_t n_det;
+    /* what chart.c draws */
+    breakdown breakdown;  /* the counter breakdown chosen for its timed rows (breakdown.h) */
 } report_model_scene;
 
 typedef struct report_model {

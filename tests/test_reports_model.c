@@ -356,6 +356,103 @@ static void test_model_answer(void **state)
     dm_run_free(&run);
 }
 
+/* A run of n timed configurations of one scene, medians 1, 2, … ms, each
+ * with VSInvocations 100 × its rank. */
+static void breakdown_run(dm_run_result *run, size_t n)
+{
+    memset(run, 0, sizeof *run);
+    run->id = dm_xstrdup("b");
+    run->n_configs = n;
+    run->configs = dm_xcalloc(n, sizeof *run->configs);
+    for (size_t i = 0; i < n; i++) {
+        char key[16];
+        snprintf(key, sizeof key, "k%zu", i);
+        fixture_config(&run->configs[i], key, "pom", "plane", 4);
+        double ms = (double)(i + 1) * 1e6;
+        fixture_timed(&run->configs[i].counters[0], "WallTime", ms * 0.99, ms, ms * 1.01);
+        fixture_det(&run->configs[i].counters[1], "VSInvocations", 100.0 * (double)(i + 1));
+        run->configs[i].n_counters = 2;   /* room for the two timed passes */
+    }
+}
+
+/* A pipeline-linear fit over every configuration: 0.1 ms fixed plus
+ * 20 µs per vertex shader invocation, with R² r2. */
+static void breakdown_fit_add(dm_run_result *run, double r2)
+{
+    run->n_fits = 1;
+    run->fits = dm_xcalloc(1, sizeof *run->fits);
+    dm_fit_result *f = run->fits;
+    f->model = dm_xstrdup("pipeline-linear");
+    f->n_params = 2;
+    f->params = dm_xcalloc(2, sizeof *f->params);
+    f->params[0].name = dm_xstrdup("c0");
+    f->params[0].value = 1e5;
+    f->params[1].name = dm_xstrdup("c_vs");
+    f->params[1].value = 2e4;
+    f->r2 = r2;
+}
+
+/* The counter breakdown each scene's chart draws is chosen in the model:
+ * the key counters without a fit (naming a poor one), a good fit's stage
+ * estimate, the measured passes before any fit, at most 24 bars. */
+static void test_model_breakdown(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    breakdown_run(&run, 3);
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    const breakdown *b = &m.scenes[0].breakdown;
+    assert_int_equal(b->kind, BREAKDOWN_COUNTERS);
+    assert_int_equal(b->n_counters, 1);
+    assert_string_equal(b->counters[0], "VSInvocations");
+    size_t bars[] = {0, 1, 2};
+    assert_int_equal(b->n_bars, 3);
+    assert_memory_equal(b->bars, bars, sizeof bars);
+    assert_int_equal(b->skipped, 0);
+    assert_null(b->poor);
+    report_model_free(&m);
+
+    breakdown_fit_add(&run, 0.5);                         /* too poor to draw: named */
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    b = &m.scenes[0].breakdown;
+    assert_int_equal(b->kind, BREAKDOWN_COUNTERS);
+    assert_string_equal(b->poor->model, "pipeline-linear");
+    assert_near(b->poor_r2, 0.5);
+    report_model_free(&m);
+
+    run.fits[0].r2 = 0.9;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    b = &m.scenes[0].breakdown;
+    assert_int_equal(b->kind, BREAKDOWN_FIT);
+    assert_string_equal(b->fit->model, "pipeline-linear");
+    assert_null(b->poor);
+    assert_near(b->hi_ms, 0.1 + 300 * 0.02);              /* k2's stack over its 3 ms median */
+    report_model_free(&m);
+
+    dm_config_result *c = &run.configs[0];                /* k0's timed passes: measured first */
+    c->n_counters = 4;
+    fixture_timed(&c->counters[2], "GeometryTime", 0.9e5, 1e5, 1.1e5);
+    fixture_timed(&c->counters[3], "MinimalShadingTime", 3.9e5, 4e5, 4.1e5);
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    b = &m.scenes[0].breakdown;
+    assert_int_equal(b->kind, BREAKDOWN_MEASURED);
+    assert_null(b->fit);
+    assert_near(b->hi_ms, 3.0);                           /* k2's median: no stack is taller */
+    assert_near(breakdown_measured_ms(c, 1), 0.3);        /* setup and raster: 0.4 − 0.1 ms */
+    report_model_free(&m);
+    dm_run_free(&run);
+
+    breakdown_run(&run, BREAKDOWN_MAX_BARS + 2);         /* the two fastest left out */
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    b = &m.scenes[0].breakdown;
+    assert_int_equal(b->skipped, 2);
+    assert_int_equal(b->n_bars, BREAKDOWN_MAX_BARS);
+    assert_int_equal(b->bars[0], 2);
+    report_model_free(&m);
+    dm_run_free(&run);
+}
+
 static void test_model_no_run(void **state)
 {
     (void)state;
@@ -367,4 +464,5 @@ static void test_model_no_run(void **state)
 DM_TEST_MAIN(NULL, NULL, cmocka_unit_test(test_model_rows), cmocka_unit_test(test_model_scenes),
              cmocka_unit_test(test_model_published), cmocka_unit_test(test_model_front_tex),
              cmocka_unit_test(test_model_answer),
+             cmocka_unit_test(test_model_breakdown),
              cmocka_unit_test(test_model_no_run))
