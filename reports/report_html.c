@@ -1,8 +1,11 @@
 /* report_html.c — report.html: one self-contained file that opens offline.
  * A row of the writer table (report_write.c): labels, times, marks, rows,
- * fronts, picks, trends, warnings and the published section come from the
- * report model (report_model.h); the gallery, charts, fits and the answer's
- * sentences still read the run.
+ * fronts, picks, trends, warnings, the answer's sentences (answer.c), the
+ * charts (svg_chart.c, chart.c), the stage bars, the gallery and the
+ * published section come from the report model (report_model.h).  What is
+ * not derived is read from the run as stored: its header and environment,
+ * each configuration's params, counters and image paths, the failed and
+ * left-out configurations, the fits and the proxy section.
  *
  * Inline CSS, no external URL, no script needed to read it; the style
  * sheet and the script (sorting, filtering, image flips) are report.css and

@@ -1,6 +1,7 @@
 /* report_model.c — the report model of one run (report_model.h), derived
- * once with the helpers of report.c, answer.c and published_report.c; the
- * writers read it and call none of those derivations again. */
+ * once with the helpers of report.c, recommend_run.c, breakdown.c and
+ * published_report.c; the writers read it and call none of those
+ * derivations again. */
 #include "reports/report_model.h"
 #include "reports/report_internal.h"
 #include "reports/recommend_run.h"

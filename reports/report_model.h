@@ -3,19 +3,27 @@
  * Built from a dm_run_result (and the run directory, the trend lines of the
  * store) before any file is written; every writer of the report table
  * (report_write.c: results.json, results.csv, summary.md, report.html,
- * front.tex) reads it instead of deriving labels, frame times, fronts and
- * warnings again, so the files cannot disagree.  The model borrows the run,
- * the directory and the trends (they must outlive it) and owns everything
+ * front.tex), the answer in words (answer.c, also the terminal's), the
+ * charts (svg_chart.c, chart.c), the stage bars and the drivers report
+ * read it instead of deriving labels, frame times, fronts, picks and
+ * warnings again, so they cannot disagree.  The model borrows the run, the
+ * directory and the trends (they must outlive it) and owns everything
  * else; it is read-only once built.
  *
- * Per configuration (run order): its labels, frame time and the text of its
- * CI, the noise marks, whether it is on its scene's front, its trend line
- * and its image defects.  Per scene (first-appearance order): its label, the
- * ok configurations fastest first, the axes that vary, the front, the
- * recommendation (pick, knee, best per family) and whether the counter
- * breakdown or the untimed note is drawn.  Once for the run: the error
- * metric, the warnings list (results.json, summary.md and report.html say
- * the same words) and the published figures, read from published.json once.
+ * Per configuration (run order): its labels, technique and family, frame
+ * time and the text of its CI, the noise marks, whether it is on its
+ * scene's front, its quality as a sentence says it, its trend line and its
+ * image defects with their marks.  Per scene (first-appearance order): its
+ * label, the ok configurations fastest first, the axes that vary, the
+ * front, the recommendation (pick, knee, best per family), whether the
+ * pick is provisional, its counter table's counters, the counter breakdown
+ * its chart draws (breakdown.h) and the untimed note.  Once for the run:
+ * the error metric, the budget, whether any scene is timed, the warnings
+ * list (results.json, summary.md and report.html say the same words) and
+ * the published figures, read from published.json once.
+ *
+ * Fields are grouped by who reads them; a group added for a new reader
+ * goes at the end of its struct.
  */
 #ifndef REPORTS_REPORT_MODEL_H
 #define REPORTS_REPORT_MODEL_H
