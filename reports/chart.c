@@ -93,6 +93,28 @@ static void chart_open(const char *file, const chart_frame *f)
     pllab(f->xlabel, f->ylabel, t);
 }
 
+/* The number of charts already in the document s: this chart's ordinal. */
+static size_t chart_ordinal(const dm_str *s)
+{
+    size_t n = 0;
+    for (const char *p = s->buf; p && (p = strstr(p, "<div class=\"chart\"")) != NULL; p++)
+        n++;
+    return n;
+}
+
+/* Appends svg with its ids made unique in the document: PLplot names the
+ * clip path of every chart "text-clipping0", so each id and its url(#…)
+ * references get the chart's ordinal k ("c3-text-clipping0"). */
+static void chart_cat_ids(dm_str *s, const char *svg, size_t k)
+{
+    static const char id[] = "text-clipping";
+    for (const char *p; (p = strstr(svg, id)) != NULL; svg = p + strlen(id)) {
+        dm_str_catn(s, svg, (size_t)(p - svg));
+        dm_str_printf(s, "c%zu-%s", k, id);
+    }
+    dm_str_cat(s, svg);
+}
+
 /* Ends the stream and appends its SVG (without prolog/namespaces) to s,
  * in a <div> whose aria-label is the chart's title as drawn. */
 static void chart_close(dm_str *s, const char *file, const char *title)
@@ -118,8 +140,9 @@ static void chart_close(dm_str *s, const char *file, const char *title)
     }
     char t[CHART_MAX_LABEL];
     safe_label(title, t);
+    size_t k = chart_ordinal(s);
     dm_str_printf(s, "<div class=\"chart\" role=\"img\" aria-label=\"%s\">", t);
-    dm_str_cat(s, start);
+    chart_cat_ids(s, start, k);
     dm_str_cat(s, "</div>\n");
     free(svg);
 }
@@ -148,9 +171,10 @@ static const char *tess_level(const report_model_row *r, size_t si)
 }
 
 /* Points of one (mesh, technique) series of scene si sorted by tess_level
- * (ties in run order). */
+ * (ties in run order): x, the median y and its 95 % CI [lo, hi] in ms (the
+ * median where the CI is unknown). */
 static size_t tess_series(const report_model *m, size_t si, const char *mesh, const char *tech,
-                          double *x, double *y)
+                          double *x, double *y, double *lo, double *hi)
 {
     size_t n = 0;
     for (size_t i = 0; i < m->n_rows; i++) {
@@ -161,9 +185,12 @@ static size_t tess_series(const report_model *m, size_t si, const char *mesh, co
             continue;
         size_t k = n++;
         for (; k > 0 && x[k - 1] > strtod(L, NULL); k--)
-            x[k] = x[k - 1], y[k] = y[k - 1];
+            x[k] = x[k - 1], y[k] = y[k - 1], lo[k] = lo[k - 1], hi[k] = hi[k - 1];
+        const dm_counter_result *t = r->frame_time;
         x[k] = strtod(L, NULL);
-        y[k] = r->frame_time->median / 1e6;
+        y[k] = t->median / 1e6;
+        lo[k] = (isfinite(t->ci_lo) ? t->ci_lo : t->median) / 1e6;
+        hi[k] = (isfinite(t->ci_hi) ? t->ci_hi : t->median) / 1e6;
     }
     return n;
 }
@@ -198,17 +225,23 @@ static int tess_first_of_series(const report_model *m, size_t i)
 static void chart_tess(dm_str *s, const report_model *m, size_t si)
 {
     size_t n = m->n_rows;
-    double *ax = dm_xcalloc(n + 1, sizeof *ax), *ay = dm_xcalloc(n + 1, sizeof *ay);
+    double *ax = dm_xcalloc(2 * n + 1, sizeof *ax), *ay = dm_xcalloc(2 * n + 1, sizeof *ay);   /* median and CI top */
     double *x = dm_xcalloc(n + 1, sizeof *x), *y = dm_xcalloc(n + 1, sizeof *y);
+    double *lo = dm_xcalloc(n + 1, sizeof *lo), *hi = dm_xcalloc(n + 1, sizeof *hi);
     size_t na = 0;
-    for (size_t i = 0; i < n; i++) {   /* axis ranges over every series */
+    for (size_t i = 0; i < n; i++) {   /* axis ranges over every series and its whiskers */
         const char *L = tess_level(&m->rows[i], si);
-        if (L)
-            ax[na] = strtod(L, NULL), ay[na++] = m->rows[i].frame_time->median / 1e6;
+        const dm_counter_result *t = m->rows[i].frame_time;
+        if (!L)
+            continue;
+        ax[na] = strtod(L, NULL), ay[na++] = t->median / 1e6;
+        if (isfinite(t->ci_hi))
+            ax[na] = ax[na - 1], ay[na] = t->ci_hi / 1e6, na++;
     }
     char *file = chart_tmpname();
     if (file) {
-        chart_frame f = {"Time vs tessellation level", "tess_level", "ms", 0, 0, 0, 0, 0.15, 0};
+        chart_frame f = {"Time vs tessellation level (whiskers: CI of the median)", "tess_level", "median ms", 0, 0, 0,
+                         0, 0.15, 0};
         padded_range(ax, na, &f.x0, &f.x1, 0);
         padded_range(ay, na, &f.y0, &f.y1, 1);
         chart_open(file, &f);
@@ -216,15 +249,15 @@ static void chart_tess(dm_str *s, const report_model *m, size_t si)
             const dm_config_result *c = m->rows[i].config;
             const char *mesh = dm_kv_get(c->params, c->n_params, "mesh");
             const char *tech = m->rows[i].technique;
-            size_t k = tess_first_of_series(m, i) ? tess_series(m, si, mesh ? mesh : "", tech, x, y) : 0;
+            size_t k = tess_first_of_series(m, i) ? tess_series(m, si, mesh ? mesh : "", tech, x, y, lo, hi) : 0;
             if (!k)
                 continue;
-            char lab[CHART_MAX_LABEL], raw[2 * CHART_MAX_LABEL];
-            snprintf(raw, sizeof raw, "%s/%s", mesh ? mesh : "", tech);
-            safe_label(raw, lab);
+            char lab[CHART_MAX_LABEL];
+            safe_label(tech, lab);   /* the mesh is the scene's, in the title of its section */
             plcol0(2 + (PLINT)(i % 2));
             plline((PLINT)k, x, y);
             plpoin((PLINT)k, x, y, 4);
+            plerry((PLINT)k, x, lo, hi);
             plptex(x[k - 1], y[k - 1], 1, 0, 1.05, lab);
         }
         chart_close(s, file, f.title);
@@ -234,6 +267,8 @@ static void chart_tess(dm_str *s, const report_model *m, size_t si)
     free(ay);
     free(x);
     free(y);
+    free(lo);
+    free(hi);
 }
 
 /* ---- per scene: the counter breakdown the model chose (breakdown.h) ------- */

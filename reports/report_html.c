@@ -277,9 +277,10 @@ static void html__scene_row(dm_str *s, const report_model *m, const report_model
     if (trends)
         html__trend_cell(s, r->trend);
     const dm_quality *q = &c->quality;
-    html__num_cell(s, "%.4g", report_metric_shown(q, m->metric));
+    html__num_cell(s, report_metric_format(m->metric), r->shown);
     html__num_cell(s, "%.4f", q->present ? q->ssim : NAN);
-    html__num_cell(s, "%.2f", q->present ? q->psnr : NAN);
+    if (m->metric != REPORT_METRIC_PSNR)   /* else the metric's column is the PSNR */
+        html__num_cell(s, "%.2f", q->present ? q->psnr : NAN);
     dm_str_cat(s, front ? "<td>★ front</td>" : "<td></td>");
     for (size_t i = 0; i < nd; i++)
         html__more_cell(s, dm_config_counter(c, det[i]));
@@ -353,10 +354,10 @@ static void html__scene_table(dm_str *s, const report_model *m, size_t si, const
                      "<tr><th>technique</th>", si);
     for (size_t i = 0; i < nv; i++)
         html__tagged(s, "th", varying[i]);
-    dm_str_printf(s, "<th>median ms</th><th>95%% CI</th>%s<th>%s</th><th>SSIM</th><th>PSNR dB</th>"
+    dm_str_printf(s, "<th>median ms</th><th>95%% CI</th>%s<th>%s</th><th>SSIM</th>%s"
                      "<th>Pareto</th>", trends ? "<th title=\"median ms in the earlier runs of this "
                      "configuration on this machine, this run last\">trend</th>" : "",
-                  report_metric_label(m->metric));
+                  report_metric_label(m->metric), m->metric == REPORT_METRIC_PSNR ? "" : "<th>PSNR dB</th>");
     for (size_t i = 0; i < nd; i++) {
         dm_str_cat(s, "<th class=\"more\">");
         html__esc(s, det[i]);
@@ -423,19 +424,27 @@ static int html__gallery_usable(dm_str *s, const html_images *im, const char *re
     return 0;
 }
 
-/* A scene's reference, embedded once (id refs[k] = "ref-K"). */
+/* A scene's reference, embedded once as a thumbnail (id refs[k] = "ref-K")
+ * on a card of its own; data-full names the file, so a render flips to the
+ * reference at the render's own size, not to the thumbnail. */
 static void html__gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k)
 {
-    if (!html__gallery_usable(s, im, rel, "reference"))
-        return;
-    char *full = im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
-    dm_str_printf(s, "<figure><a href=\"");
-    html__esc(s, im->href);
-    html__esc(s, rel);
-    dm_str_printf(s, "\"><img id=\"ref-%zu\" src=\"", k);
-    html__image_src(s, im, full, rel);
-    dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b></figcaption></figure>");
-    free(full);
+    dm_str_cat(s, "<div class=\"pair ref\">");
+    if (html__gallery_usable(s, im, rel, "reference")) {
+        char *full = im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
+        dm_str_printf(s, "<figure><a href=\"");
+        html__esc(s, im->href);
+        html__esc(s, rel);
+        dm_str_printf(s, "\"><img id=\"ref-%zu\" data-full=\"", k);
+        html__esc(s, im->href);
+        html__esc(s, rel);
+        dm_str_cat(s, "\" src=\"");
+        html__image_src(s, im, full, rel);
+        dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b></figcaption></figure>");
+        free(full);
+    }
+    dm_str_cat(s, "<p class=\"cap\">The reference the cards that follow are compared with; click a "
+                  "render to flip it with the reference, full size.</p></div>");
 }
 
 /* A render or heatmap, linked (loaded from img/ beside the report, lazily);
@@ -507,16 +516,37 @@ static size_t html__gallery_ref_index(const char ***refs, size_t *n, const char 
     return (*n)++;
 }
 
-/* One scene's grid: its reference(s) once, then render and heatmap of each
- * configuration, fastest first. */
+/* The legends of a scene's maps, before its cards: the heatmap's one
+ * absolute scale, with what saturates it (a difference of a channel's whole
+ * range or more: lit values may pass 1), and FLIP's fixed scale. */
+static void html__gallery_legend(dm_str *s, const report_model_scene *sc)
+{
+    dm_str_printf(s, "<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
+                     "channel) on one absolute scale for every map, so maps compare side by side: "
+                     "0 <span class=\"scale\"></span> 1, a channel's whole range; a larger "
+                     "difference shows as 1. The largest difference in this scene (MaxError) is "
+                     "%.3g%s. Click a render to flip it with the reference.</p>\n", sc->max_error,
+                  sc->max_error > 1 ? ": its hottest pixels saturate the map" : "");
+    if (sc->flips) {
+        dm_str_printf(s, "<p class=\"const\">FLIP map: LDR-FLIP error per pixel at %.3g pixels per "
+                         "degree, on one fixed scale for every map, so maps compare side by side: "
+                         "0 ", sc->flip_ppd);
+        html__flip_scale(s);
+        dm_str_cat(s, " 1 (docs/flip.md).</p>\n");
+    }
+}
+
+/* One scene's grid, its legends first: its reference(s) once, then render
+ * and heatmap of each configuration, fastest first, each a card of one
+ * width with its values below. */
 static void html__gallery_scene(dm_str *s, const report_model *m, const report_model_scene *sc,
                                 const html_images *im, const char ***refs, size_t *nrefs)
 {
-    double top = 0, ppd = NAN;
-    int flips = 0;
     dm_str_cat(s, "<h3>");
     html__esc(s, sc->label);
-    dm_str_cat(s, "</h3>\n<div class=\"grid\">");
+    dm_str_cat(s, "</h3>\n");
+    html__gallery_legend(s, sc);
+    dm_str_cat(s, "<div class=\"grid\">");
     for (size_t i = 0; i < sc->n_rows; i++) {
         const report_model_row *r = &m->rows[sc->rows[i]];
         const dm_config_result *c = r->config;
@@ -526,43 +556,29 @@ static void html__gallery_scene(dm_str *s, const report_model *m, const report_m
             ref = (long)html__gallery_ref_index(refs, nrefs, c->img_reference, &fresh);
             if (fresh)
                 html__gallery_reference(s, im, c->img_reference, (size_t)ref);
-        } else if (c->img_reference) {
-            html__gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
+        } else if (c->img_reference) {   /* a card that says it is refused */
+            dm_str_cat(s, "<div class=\"pair ref\">");
+            html__gallery_usable(s, im, c->img_reference, "reference");
+            dm_str_cat(s, "</div>");
         }
         const char *label = r->label;
         dm_str_cat(s, "<div class=\"pair\">");
         html__gallery_linked(s, im, c->img_render, "render", label, ref);
         html__gallery_linked(s, im, c->img_heatmap, "heatmap", label, -1);
-        if (c->img_flip) {
+        if (c->img_flip)
             html__gallery_linked(s, im, c->img_flip, "FLIP", label, -1);
-            flips = 1;
-            ppd = c->quality.flip_ppd;
-        }
-        /* the caption of the pair carries its values */
+        /* the caption of the pair carries its values, on the legend's scale */
         dm_str cap = {0};
-        dm_str_printf(&cap, "%s: %s", label, r->metric_text);
-        dm_str_printf(&cap, ", MaxError %.3g", c->quality.max_error);
+        dm_str_printf(&cap, "%s: %s, MaxError %.3g%s", label, r->metric_text, c->quality.max_error,
+                      c->quality.max_error > 1 ? " (saturates the heatmap)" : "");
         if (c->img_flip)
             dm_str_printf(&cap, ", FLIP %.4f (max %.3f)", c->quality.flip, c->quality.flip_max);
         dm_str_cat(s, "<p class=\"cap\">");
         html__esc(s, dm_str_get(&cap));
         dm_str_cat(s, "</p></div>");
         dm_str_free(&cap);
-        if (c->quality.present && isfinite(c->quality.max_error))
-            top = fmax(top, c->quality.max_error);
     }
-    dm_str_printf(s, "</div>\n<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
-                     "channel) on one absolute scale for every map, so maps compare side by side: "
-                     "0 <span class=\"scale\"></span> 1, a channel's whole range (the largest "
-                     "difference in this scene is %.3g). Click a render to flip it with the "
-                     "reference.</p>\n", top);
-    if (flips) {
-        dm_str_printf(s, "<p class=\"const\">FLIP map: LDR-FLIP error per pixel at %.3g pixels per "
-                         "degree, on one fixed scale for every map, so maps compare side by side: "
-                         "0 ", ppd);
-        html__flip_scale(s);
-        dm_str_cat(s, " 1 (docs/flip.md).</p>\n");
-    }
+    dm_str_cat(s, "</div>\n");
 }
 
 static void html__gallery(dm_str *s, const report_model *m, const html_images *im)
@@ -577,13 +593,18 @@ static void html__gallery(dm_str *s, const report_model *m, const html_images *i
     free(refs);
 }
 
+/* The failed configurations with their reasons and logs, then the
+ * combinations the planner left out; each says "None." when it has none
+ * (as summary.md does) instead of an empty heading or a header-only table. */
 static void html__failed_and_left_out(dm_str *s, const dm_run_result *run)
 {
+    size_t failed = 0;
     dm_str_cat(s, "<h2 id=\"failed\">Failed configurations</h2>\n");
     for (size_t i = 0; i < run->n_configs; i++) {
         const dm_config_result *c = &run->configs[i];
         if (c->ok)
             continue;
+        failed++;
         dm_str_cat(s, "<div class=\"fail\"><p><b>");
         html__esc(s, c->key);
         dm_str_cat(s, "</b> ");
@@ -595,7 +616,14 @@ static void html__failed_and_left_out(dm_str *s, const dm_run_result *run)
             html__tagged(s, "pre", c->log);
         dm_str_cat(s, "</div>\n");
     }
-    dm_str_cat(s, "<h2>Left out</h2>\n<table><tr><th>params</th><th>reason</th></tr>\n");
+    if (!failed)
+        dm_str_cat(s, "<p class=\"const\">None.</p>\n");
+    dm_str_cat(s, "<h2>Left out</h2>\n");
+    if (!run->n_left_out) {
+        dm_str_cat(s, "<p class=\"const\">None.</p>\n");
+        return;
+    }
+    dm_str_cat(s, "<table><tr><th>params</th><th>reason</th></tr>\n");
     for (size_t i = 0; i < run->n_left_out; i++) {
         dm_str_cat(s, "<tr><td>");
         html__params_inline(s, run->left_out[i].params, run->left_out[i].n_params);
@@ -781,7 +809,7 @@ static void html__answer_table(dm_str *s, const report_model *m, size_t si)
         if (with_settings)
             html__tagged(s, "td", html__settings_text(row));
         html__time_cells(s, row);
-        html__num_cell(s, "%.4g", row->shown);
+        html__num_cell(s, report_metric_format(m->metric), row->shown);
         dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n",
                       base ? row->frame_time->median / base->median : NAN);
     }

@@ -1,6 +1,10 @@
-/* report_internal.h — helpers shared by the report writers (not public).
+/* report_internal.h — what reports/ shares inside itself (not public):
+ * the writers of the report table, and the helpers the report model
+ * (report_model.c) derives with: labels, CIs, marks, rows, fronts,
+ * warnings (report.c), the charts' drawing entry points.
  *
- * All names carry the report__ prefix; they read the results model only.
+ * All names carry the report__ prefix.  The derivations read the run
+ * (dm_results.h); the writers and charts read the report model.
  */
 #ifndef REPORTS_REPORT_INTERNAL_H
 #define REPORTS_REPORT_INTERNAL_H

@@ -34,23 +34,28 @@ static void params_text(dm_str *s, const dm_kv *kv, size_t n)
     }
 }
 
-/* PSNR, SSIM and the Pareto metric's shown value. */
+/* PSNR (unless it is the Pareto metric, whose column says it), SSIM and
+ * the Pareto metric's shown value at its column's one precision. */
 static void quality_cells(dm_str *s, const dm_quality *q, report_metric m)
 {
+    int psnr = m != REPORT_METRIC_PSNR;
     if (!q->present) {
-        dm_str_cat(s, " – | – | – |");
+        dm_str_cat(s, psnr ? " – | – | – |" : " – | – |");
         return;
     }
-    if (isinf(q->psnr))
+    if (psnr && isinf(q->psnr))
         dm_str_cat(s, " ∞ |");
-    else
+    else if (psnr)
         dm_str_printf(s, " %.2f dB |", q->psnr);
     dm_str_printf(s, " %.4f |", q->ssim);
     double v = report_metric_shown(q, m);
-    if (isinf(v))
+    if (isinf(v)) {
         dm_str_cat(s, " ∞ |");
-    else
-        dm_str_printf(s, " %.4g |", v);
+        return;
+    }
+    dm_str_cat(s, " ");
+    dm_str_printf(s, report_metric_format(m), v);
+    dm_str_cat(s, " |");
 }
 
 static void scene_table(dm_str *s, const report_model *m, const report_model_scene *sc)
@@ -59,15 +64,17 @@ static void scene_table(dm_str *s, const report_model *m, const report_model_sce
     cell(s, sc->label);
     dm_str_cat(s, "\n\n");
     report_answer_scene(m, (size_t)(sc - m->scenes), REPORT_ANSWER_MD, s);
-    int timed = sc->untimed == NULL;
+    int timed = sc->untimed == NULL, psnr = m->metric != REPORT_METRIC_PSNR;   /* else one PSNR column */
     if (timed) {
         dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ", report_metric_label(m->metric));
         cell(s, sc->front_text);
-        dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI | PSNR | SSIM | %s | key |\n"
-                         "|---|---|---|---|---|---|---|\n", report_metric_label(m->metric));
+        dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI |%s SSIM | %s | key |\n"
+                         "|---|---|---|%s---|---|---|\n", psnr ? " PSNR |" : "", report_metric_label(m->metric),
+                      psnr ? "---|" : "");
     } else   /* counters only: the counters are above; quality and keys here */
-        dm_str_printf(s, "\nQuality against the reference:\n\n| configuration | PSNR | SSIM | %s | key |\n"
-                         "|---|---|---|---|---|\n", report_metric_label(m->metric));
+        dm_str_printf(s, "\nQuality against the reference:\n\n| configuration |%s SSIM | %s | key |\n"
+                         "|---|%s---|---|---|\n", psnr ? " PSNR |" : "", report_metric_label(m->metric),
+                      psnr ? "---|" : "");
     for (size_t i = 0; i < sc->n_rows; i++) {
         const report_model_row *r = &m->rows[sc->rows[i]];
         dm_str_cat(s, "| ");

@@ -97,6 +97,14 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
             timed[nt++] = sc->rows[i];
     breakdown_choose(run, timed, nt, &sc->breakdown);
     free(timed);
+    sc->flip_ppd = NAN;
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const dm_config_result *c = &run->configs[sc->rows[i]];
+        if (c->quality.present && isfinite(c->quality.max_error))
+            sc->max_error = fmax(sc->max_error, c->quality.max_error);
+        if (c->img_flip)
+            sc->flips = 1, sc->flip_ppd = c->quality.flip_ppd;
+    }
 }
 
 int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d)

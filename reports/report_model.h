@@ -86,6 +86,10 @@ typedef struct report_model_scene {
     size_t n_det;
     /* what chart.c draws */
     breakdown breakdown;  /* the counter breakdown chosen for its timed rows (breakdown.h) */
+    /* what the gallery's legends say */
+    double max_error;     /* the largest MaxError of its rows with quality (0 without) */
+    int flips;            /* some row has a FLIP map */
+    double flip_ppd;      /* the pixels per degree of its FLIP maps (the last row's); NaN without */
 } report_model_scene;
 
 typedef struct report_model {
