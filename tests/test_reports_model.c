@@ -220,6 +220,10 @@ static void test_model_scenes(void **state)
     assert_int_equal(c->n_rows, 1);
     assert_int_equal(c->n_front, 0);
     assert_string_equal(c->untimed, "no timing counter measured: no budget or pick");
+    /* the gallery's legend: no MaxError or FLIP map in this run */
+    assert_near(a->max_error, 0);
+    assert_int_equal(a->flips, 0);
+    assert_true(isnan(a->flip_ppd));
     /* the provisional flag and the counter table's columns */
     assert_int_equal(a->n_timed, 4);
     assert_int_equal(a->n_noisy, 1);                      /* k1 */
@@ -249,6 +253,18 @@ static void test_model_scenes(void **state)
     assert_int_equal(m.n_det, 1);
     assert_string_equal(m.det[0], "VSInvocations");
     assert_string_equal(m.published_md, "");              /* no directory: none */
+    report_model_free(&m);
+    /* the largest MaxError over the scene's ok rows, and its FLIP maps' ppd */
+    run.configs[0].quality.max_error = 1.25;
+    run.configs[5].quality.max_error = 0.5;
+    run.configs[3].quality.max_error = 9;                 /* failed: not a row */
+    run.configs[5].img_flip = dm_xstrdup("img/k5_flip.png");
+    run.configs[5].quality.flip_ppd = 67;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_near(m.scenes[0].max_error, 1.25);
+    assert_int_equal(m.scenes[0].flips, 1);
+    assert_near(m.scenes[0].flip_ppd, 67);
+    assert_int_equal(m.scenes[1].flips, 0);
     report_model_free(&m);
     dm_run_free(&run);
 }
