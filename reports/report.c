@@ -678,3 +678,37 @@ int report__tied(const dm_counter_result *a, const dm_counter_result *b)
         return 0;
     return a->ci_lo <= b->ci_hi && b->ci_lo <= a->ci_hi;
 }
+
+/* The unit of the response counter: the first unit the run records for it,
+ * else "units of <name>". */
+static void report__response_unit(const dm_run_result *run, const char *response, dm_str *out)
+{
+    for (size_t i = 0; response && i < run->n_configs; i++) {
+        const dm_counter_result *k = dm_config_counter(&run->configs[i], response);
+        if (k && k->unit && *k->unit) {
+            dm_str_cat(out, k->unit);
+            return;
+        }
+    }
+    dm_str_printf(out, "units of %s", response ? response : "the response");
+}
+
+void report__fit_unit(const dm_run_result *run, const dm_fit_result *f, const char *param, dm_str *out)
+{
+    const char *t = f->formula;
+    size_t len = strlen(param);
+    while (t && *t) {   /* each term of the sum: "param" or "param*rest" */
+        t += strspn(t, " ");
+        size_t n = strcspn(t, "+");
+        while (n && t[n - 1] == ' ')
+            n--;
+        if (strncmp(t, param, len) == 0 && (n == len || t[len] == '*') && !memchr(t, '(', n)) {
+            report__response_unit(run, f->response, out);
+            if (n > len)
+                dm_str_printf(out, " per %.*s", (int)(n - len - 1), t + len + 1);
+            return;
+        }
+        t = strchr(t, '+');
+        t = t ? t + 1 : NULL;
+    }
+}

@@ -652,7 +652,9 @@ static int html__fit_usable(const dm_fit_result *f)
     return isfinite(f->r2) && f->r2 >= FIT_USABLE_R2 && !isinf(f->condition) && f->n_params > 0;
 }
 
-static void html__fit_row(dm_str *s, const dm_fit_result *f)
+/* A usable fit's row: model, group, each parameter with its stderr and
+ * unit (the model's fit_units), R², CV MAPE, condition, points, warnings. */
+static void html__fit_row(dm_str *s, const dm_fit_result *f, char *const *units)
 {
     dm_str_cat(s, "<tr>");
     html__tagged(s, "td", f->model);
@@ -664,6 +666,10 @@ static void html__fit_row(dm_str *s, const dm_fit_result *f)
         dm_str_printf(s, " = %.3g", f->params[k].value);
         if (isfinite(f->params[k].stderr_))
             dm_str_printf(s, " ± %.2g", f->params[k].stderr_);
+        if (*units[k]) {
+            dm_str_cat(s, " ");
+            html__esc(s, units[k]);
+        }
         dm_str_cat(s, "<br>");
     }
     dm_str_cat(s, "</td>");
@@ -694,8 +700,9 @@ static void html__fit_line(dm_str *s, const dm_fit_result *f)
 }
 
 /* Usable fits with their table and plots; the others folded, one line each. */
-static void html__fits(dm_str *s, const dm_run_result *run)
+static void html__fits(dm_str *s, const report_model *m)
 {
+    const dm_run_result *run = m->run;
     if (!run->n_fits)
         return;
     size_t bad = 0;
@@ -703,13 +710,13 @@ static void html__fits(dm_str *s, const dm_run_result *run)
         bad += !html__fit_usable(&run->fits[i]);
     dm_str_cat(s, "<h2 id=\"fits\">Model fits</h2>\n");
     if (bad < run->n_fits) {
-        dm_str_cat(s, "<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
+        dm_str_cat(s, "<table><tr><th>model</th><th>group</th><th>parameters ± stderr, unit</th>"
                       "<th>R²</th><th>CV MAPE</th><th title=\"2-norm condition number of the scaled "
                       "Jacobian; large means the parameters are poorly determined\">condition</th>"
                       "<th>points</th><th>warnings</th></tr>\n");
         for (size_t i = 0; i < run->n_fits; i++)
             if (html__fit_usable(&run->fits[i]))
-                html__fit_row(s, &run->fits[i]);
+                html__fit_row(s, &run->fits[i], m->fit_units[i]);
         dm_str_cat(s, "</table>\n");
         for (size_t i = 0; i < run->n_fits; i++)   /* plots on demand: two per fit */
             if (html__fit_usable(&run->fits[i])) {
@@ -864,7 +871,7 @@ int report__write_html(const report_model *m, const report_desc *d, const char *
     report_stage_bars(&s, m);   /* where each configuration's cost goes (stage_bar.c) */
     html__timer_and_warnings(&s, m);
     html__failed_and_left_out(&s, run);
-    html__fits(&s, run);
+    html__fits(&s, m);
     dm_str_cat(&s, m->published_html);
     html__proxy_section(&s, run);
     html__environment(&s, run);

@@ -133,6 +133,14 @@ size_t report__pareto_points(const dm_run_result *run, const char *scene, report
 size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out);
 void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *out);
 
+/* The unit of fit parameter param, from the fit's formula and the unit of
+ * its response counter in the run: "ns" for a term that is the parameter
+ * alone, "ns per VSInvocations" for "param*VSInvocations" (the rest of the
+ * term after the first '*', as written: "ns per tess_level^p").  Appends
+ * nothing when the parameter leads no term of a plain sum (an exponent, a
+ * parenthesis). */
+void report__fit_unit(const dm_run_result *run, const dm_fit_result *f, const char *param, dm_str *out);
+
 /* 1 when the 95 % CIs of the two timings' medians overlap (statistically
  * tied); 0 when either CI is unknown. */
 int report__tied(const dm_counter_result *a, const dm_counter_result *b);

@@ -143,6 +143,16 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     m->n_params = report__param_names(run, NULL, &m->params);
     m->n_timed = report__counter_names(run, NULL, REPORT__TIMED, &m->timed);
     m->n_det = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &m->det);
+    m->fit_units = dm_xcalloc(run->n_fits + 1, sizeof *m->fit_units);
+    for (size_t i = 0; i < run->n_fits; i++) {
+        const dm_fit_result *f = &run->fits[i];
+        m->fit_units[i] = dm_xcalloc(f->n_params + 1, sizeof **m->fit_units);
+        for (size_t k = 0; k < f->n_params; k++) {
+            dm_str u = {0};
+            report__fit_unit(run, f, f->params[k].name, &u);
+            m->fit_units[i][k] = dm_str_take(&u);
+        }
+    }
     m->n_warnings = report__warnings(run, &m->warnings);
     m->n_noisy = report__noisy_configs(run, &m->noisy);
     /* published.json, once: the run directory's, or beside the one file written */
@@ -194,6 +204,12 @@ void report_model_free(report_model *m)
     free(m->constants);
     free(m->published_md);
     free(m->published_html);
+    for (size_t i = 0; m->fit_units && i < m->run->n_fits; i++) {
+        for (size_t k = 0; k < m->run->fits[i].n_params; k++)
+            free(m->fit_units[i][k]);
+        free(m->fit_units[i]);
+    }
+    free(m->fit_units);
     memset(m, 0, sizeof *m);
 }
 

@@ -18,7 +18,8 @@
  * front, the recommendation (pick, knee, best per family), whether the
  * pick is provisional, its counter table's counters, the counter breakdown
  * its chart draws (breakdown.h) and the untimed note.  Once for the run:
- * the error metric, the budget, whether any scene is timed, the warnings
+ * the error metric, the budget, whether any scene is timed, the units of
+ * each fit's parameters, the warnings
  * list (results.json, summary.md and report.html say the same words) and
  * the published figures, read from published.json once.
  *
@@ -117,6 +118,8 @@ typedef struct report_model {
     /* what the answer's sentences and summary.md's header read */
     double budget_ms;             /* report_budget_ms: 0 = each scene's default */
     int any_timed;                /* some scene has a frame time (a budget and a pick) */
+    /* what the fits table reads */
+    char ***fit_units;            /* [fit][param]: "ns per VSInvocations"; "" when unknown */
 } report_model;
 
 /* Builds the model of run for the files d describes (report.h): d->dir

@@ -156,6 +156,25 @@ __attribute__((unused)) static void fixture_fit(dm_run_result *r)
     f->warnings[0] = dm_xstrdup("only 2 points for 3 parameters");
 }
 
+/* Makes a fit of model on WallTime with two parameters (p0 = v0, p1 = v1)
+ * and R² r2 the run's one fit (over no group: every configuration). */
+__attribute__((unused)) static void fixture_fit2(dm_run_result *r, const char *model, const char *p0, double v0,
+                                                 const char *p1, double v1, double r2)
+{
+    r->n_fits = 1;
+    r->fits = dm_xcalloc(1, sizeof *r->fits);
+    dm_fit_result *f = r->fits;
+    f->model = dm_xstrdup(model);
+    f->response = dm_xstrdup("WallTime");
+    f->n_params = 2;
+    f->params = dm_xcalloc(2, sizeof *f->params);
+    f->params[0].name = dm_xstrdup(p0);
+    f->params[0].value = v0;
+    f->params[1].name = dm_xstrdup(p1);
+    f->params[1].value = v1;
+    f->r2 = r2;
+}
+
 __attribute__((unused)) static void fixture_run(dm_run_result *r)
 {
     memset(r, 0, sizeof *r);

@@ -391,23 +391,6 @@ static void breakdown_run(dm_run_result *run, size_t n)
     }
 }
 
-/* A pipeline-linear fit over every configuration: 0.1 ms fixed plus
- * 20 µs per vertex shader invocation, with R² r2. */
-static void breakdown_fit_add(dm_run_result *run, double r2)
-{
-    run->n_fits = 1;
-    run->fits = dm_xcalloc(1, sizeof *run->fits);
-    dm_fit_result *f = run->fits;
-    f->model = dm_xstrdup("pipeline-linear");
-    f->n_params = 2;
-    f->params = dm_xcalloc(2, sizeof *f->params);
-    f->params[0].name = dm_xstrdup("c0");
-    f->params[0].value = 1e5;
-    f->params[1].name = dm_xstrdup("c_vs");
-    f->params[1].value = 2e4;
-    f->r2 = r2;
-}
-
 /* The counter breakdown each scene's chart draws is chosen in the model:
  * the key counters without a fit (naming a poor one), a good fit's stage
  * estimate, the measured passes before any fit, at most 24 bars. */
@@ -429,7 +412,8 @@ static void test_model_breakdown(void **state)
     assert_null(b->poor);
     report_model_free(&m);
 
-    breakdown_fit_add(&run, 0.5);                         /* too poor to draw: named */
+    /* 0.1 ms + 20 µs per vertex shader invocation, too poor to draw: named */
+    fixture_fit2(&run, "pipeline-linear", "c0", 1e5, "c_vs", 2e4, 0.5);
     assert_int_equal(report_model_build(&m, &run, NULL), 0);
     b = &m.scenes[0].breakdown;
     assert_int_equal(b->kind, BREAKDOWN_COUNTERS);
@@ -469,6 +453,40 @@ static void test_model_breakdown(void **state)
     dm_run_free(&run);
 }
 
+/* The units of fit parameters come from the formula and the response
+ * counter's unit: a constant term has the response's unit, a factor of a
+ * term the response's unit per the rest of the term; a parameter that leads
+ * no term (an exponent) has none. */
+static void test_model_fit_units(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    fixture_run(&run);                                    /* WallTime in ns; fit "a + b*tess_level^p" */
+    dm_fit_result *f = &run.fits[0];
+    f->n_params = 3;
+    f->params = dm_xrealloc(f->params, 3 * sizeof *f->params);
+    f->params[2] = (dm_fit_param){.name = dm_xstrdup("p"), .value = 1.5, .stderr_ = NAN};
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_string_equal(m.fit_units[0][0], "ns");
+    assert_string_equal(m.fit_units[0][1], "ns per tess_level^p");
+    assert_string_equal(m.fit_units[0][2], "");
+    report_model_free(&m);
+    free(f->formula);                                     /* a plain sum, a product, a name that only begins another */
+    f->formula = dm_xstrdup("c0 + c_vs*VSInvocations + c_tp*TESInvocations*ClippingOutputPrimitives");
+    free(f->params[0].name);
+    f->params[0].name = dm_xstrdup("c");
+    free(f->params[1].name);
+    f->params[1].name = dm_xstrdup("c_tp");
+    free(f->response);
+    f->response = dm_xstrdup("Instructions");             /* no such counter in the run */
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_string_equal(m.fit_units[0][0], "");
+    assert_string_equal(m.fit_units[0][1], "units of Instructions per TESInvocations*ClippingOutputPrimitives");
+    report_model_free(&m);
+    dm_run_free(&run);
+}
+
 static void test_model_no_run(void **state)
 {
     (void)state;
@@ -481,4 +499,5 @@ DM_TEST_MAIN(NULL, NULL, cmocka_unit_test(test_model_rows), cmocka_unit_test(tes
              cmocka_unit_test(test_model_published), cmocka_unit_test(test_model_front_tex),
              cmocka_unit_test(test_model_answer),
              cmocka_unit_test(test_model_breakdown),
+             cmocka_unit_test(test_model_fit_units),
              cmocka_unit_test(test_model_no_run))

@@ -315,6 +315,9 @@ static void test_html_escaping_and_images(void **state)
     free(other);
     assert_non_null(strstr(t, "path refused: /etc/passwd"));
     assert_non_null(strstr(t, "path refused: ../outside.png"));
+    /* the fit's parameters with their units (ns: WallTime's) */
+    assert_non_null(strstr(t, "<th>parameters ± stderr, unit</th>"));
+    assert_non_null(strstr(t, "<td>a = 1 ± 0.5 ns<br>b = 2 ± 0.25 ns per tess_level^p<br></td>"));
     /* the legend before the cards, its scale stated with the largest
      * difference: c1's MaxError, 4 × RMSE 0.0122 */
     assert_true(strstr(t, "Heatmap: |render − reference|") < strstr(t, "<div class=\"grid\">"));
@@ -851,18 +854,8 @@ static void test_html_breakdown_fit_and_cap(void **state)
         fixture_det(&c->counters[1], "SamplesPassed", 1000.0 * (double)(i + 1));
         c->n_counters = 2;
     }
-    run.n_fits = 1;
-    run.fits = dm_xcalloc(1, sizeof *run.fits);
+    fixture_fit2(&run, "pipeline-linear", "c0", 2e5, "c_px", 30, 0.95);
     dm_fit_result *f = run.fits;
-    f->model = dm_xstrdup("pipeline-linear");
-    f->response = dm_xstrdup("WallTime");
-    f->n_params = 2;
-    f->params = dm_xcalloc(2, sizeof *f->params);
-    f->params[0].name = dm_xstrdup("c0");
-    f->params[0].value = 2e5;
-    f->params[1].name = dm_xstrdup("c_px");
-    f->params[1].value = 30;
-    f->r2 = 0.95;
     char dir[] = "/tmp/dm_reports_bd_XXXXXX", titles[8][96];
     assert_non_null(mkdtemp(dir));
     char *p = dm_xasprintf("%s/report.html", dir);
