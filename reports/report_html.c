@@ -293,15 +293,6 @@ static void html__scene_row(dm_str *s, const report_model *m, const report_model
     dm_str_cat(s, "</td></tr>\n");
 }
 
-/* 1 when name is one of the scene's varying axes. */
-static int html__varies(const report_model_scene *sc, const char *name)
-{
-    for (size_t i = 0; i < sc->n_varying; i++)
-        if (strcmp(sc->varying[i], name) == 0)
-            return 1;
-    return 0;
-}
-
 /* Filter box and column toggle above scene table si. */
 static void html__table_tools(dm_str *s, size_t si)
 {
@@ -313,39 +304,21 @@ static void html__table_tools(dm_str *s, size_t si)
 
 static void html__scene_table(dm_str *s, const report_model *m, size_t si, const html_images *im)
 {
-    const dm_run_result *run = m->run;
     const report_model_scene *sc = &m->scenes[si];
-    const char *scene = sc->name;
     int trends = html__scene_has_trends(m, sc);
-    const char **params;
-    size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
-    const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
+    size_t nv = 0, nd = 0;
+    const char **varying = dm_xcalloc(sc->n_varying + 1, sizeof *varying), *det[8];
+    for (size_t i = 0; i < sc->n_varying; i++)   /* the technique has its own column */
+        if (strcmp(sc->varying[i], "technique") != 0)
+            varying[nv++] = sc->varying[i];
     dm_str_printf(s, "<h2 id=\"scene-%zu\">Scene ", si);
     html__esc(s, sc->label);
     dm_str_cat(s, "</h2>\n<p class=\"const\">Same for every row: ");
-    for (size_t i = 0; i < np; i++) {
-        if (strcmp(params[i], "technique") == 0)
-            continue;
-        if (html__varies(sc, params[i])) {
-            varying[nv++] = params[i];
-            continue;
-        }
-        const char *v = NULL;
-        for (size_t k = 0; k < run->n_configs && !v; k++)
-            if (run->configs[k].ok && strcmp(run->configs[k].scene ? run->configs[k].scene : "", scene) == 0)
-                v = dm_kv_get(run->configs[k].params, run->configs[k].n_params, params[i]);
-        if (!v)
-            continue;
-        html__esc(s, params[i]);
-        dm_str_cat(s, "=");
-        html__esc(s, v);
-        dm_str_cat(s, " ");
-    }
+    html__esc(s, sc->same);
     dm_str_cat(s, "(where the technique reads it; a blank cell below: the technique does not read that axis)</p>\n");
     for (size_t k = 0; k < sizeof html__key_counters / sizeof *html__key_counters; k++)
-        for (size_t i = 0; i < run->n_configs; i++)
-            if (strcmp(run->configs[i].scene ? run->configs[i].scene : "", scene) == 0 &&
-                dm_config_counter(&run->configs[i], html__key_counters[k])) {
+        for (size_t i = 0; i < m->n_rows; i++)   /* failed configurations too: every row of the scene */
+            if (m->rows[i].scene == si && dm_config_counter(m->rows[i].config, html__key_counters[k])) {
                 det[nd++] = html__key_counters[k];
                 break;
             }
@@ -373,7 +346,6 @@ static void html__scene_table(dm_str *s, const report_model *m, size_t si, const
     report__html_charts_scene(s, m, si);
     dm_str_cat(s, "</div>\n");
     free(varying);
-    free(params);
 }
 
 #define THUMB_MAX_DIM 240

@@ -75,9 +75,21 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
     const char **params;
     size_t np = report__param_names(run, name, &params);
     sc->varying = dm_xcalloc(np + 1, sizeof *sc->varying);
-    for (size_t i = 0; i < np; i++)
-        if (report__param_varies(run, name, params[i]))
+    dm_str same = {0};
+    for (size_t i = 0; i < np; i++) {
+        if (report__param_varies(run, name, params[i])) {
             sc->varying[sc->n_varying++] = params[i];
+            continue;
+        }
+        const char *v = NULL;   /* one value over the ok rows that have it */
+        for (size_t k = 0; k < sc->n_rows && !v; k++) {
+            const dm_config_result *c = &run->configs[sc->rows[k]];
+            v = dm_kv_get(c->params, c->n_params, params[i]);
+        }
+        if (v && strcmp(params[i], "technique") != 0)
+            dm_str_printf(&same, "%s=%s ", params[i], v);
+    }
+    sc->same = dm_str_take(&same);
     free(params);
     sc->n_front = report__pareto(run, name, &sc->front);
     report__pareto_text(run, name, &s);
@@ -190,6 +202,7 @@ void report_model_free(report_model *m)
         free(sc->label);
         free(sc->rows);
         free(sc->varying);
+        free(sc->same);
         free(sc->front);
         free(sc->front_text);
         free(sc->det);

@@ -73,6 +73,7 @@ typedef struct report_model_scene {
     size_t n_rows;
     const char **varying; /* the param names that take two or more values */
     size_t n_varying;
+    char *same;           /* the others with their one value: "mesh=plane steps=8 " ("" when none) */
     size_t *front;        /* the Pareto front, fastest first (config indexes) */
     size_t n_front;
     char *front_text;     /* the front as one sentence */

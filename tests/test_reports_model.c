@@ -199,6 +199,7 @@ static void test_model_scenes(void **state)
     assert_int_equal(a->n_varying, 2);                    /* lighting is the same everywhere */
     assert_string_equal(a->varying[0], "technique");
     assert_string_equal(a->varying[1], "steps");
+    assert_string_equal(a->same, "lighting=blinn-phong ");   /* the technique has its own column */
     size_t front[] = {2, 0, 1};
     assert_int_equal(a->n_front, 3);
     assert_memory_equal(a->front, front, sizeof front);
@@ -216,6 +217,8 @@ static void test_model_scenes(void **state)
     assert_int_equal(b->n_front, 1);
     assert_int_equal(b->front[0], 4);
     assert_int_equal(b->n_varying, 0);
+    assert_string_equal(b->same, "lighting=blinn-phong steps=8 ");
+    assert_string_equal(c->same, "");
 
     assert_int_equal(c->n_rows, 1);
     assert_int_equal(c->n_front, 0);
