@@ -1,17 +1,14 @@
 /* answer.h — the recommendation of each scene of a run, in words.
  *
- * Builds reports/recommend.h points from a run (median WallTime with its CI,
- * the run's error metric, the family from the axes the technique reads:
- * tess_level → tessellation, vertex_filter → vertex, no `lighting` axis →
- * unlit baseline, else fragment) and says the pick under the frame budget,
- * the knee and the best of each family, marking noisy and bimodal timings.
+ * Written from the report model (report_model.h), which holds what the
+ * sentences say: each scene's recommendation (recommend_run.h: the points,
+ * the budget, the families), the labels, times with their CIs, the noise
+ * marks and image defects of each configuration, and whether the pick is
+ * provisional.  The pick under the frame budget, the knee and the best of
+ * each family are said with their marks.
  *
  * A scene without a frame time (a counters-only sweep) has no budget and no
  * pick: its answer says why and shows its counters (report_counter_table).
- *
- * The budget is the run's environment entry REPORT_BUDGET_KEY (ms; the
- * runner copies the sweep's quality.budget_ms, `dmbench report --budget-ms`
- * overrides it); absent or 0: each scene's recommend_default_budget().
  */
 #ifndef REPORTS_ANSWER_H
 #define REPORTS_ANSWER_H
@@ -19,8 +16,8 @@
 #include "core/dm_results.h"
 #include "core/dm_util.h"
 #include "reports/recommend.h"
-
-#define REPORT_BUDGET_KEY "budget_ms"
+#include "reports/recommend_run.h"
+#include "reports/report_model.h"
 
 typedef enum report_answer_format {
     REPORT_ANSWER_TEXT = 0,   /* plain, for the terminal */
@@ -28,43 +25,25 @@ typedef enum report_answer_format {
     REPORT_ANSWER_MD
 } report_answer_format;
 
-/* Records ms (> 0) as the run's budget, replacing any; DM_ERR_ARG otherwise. */
-int report_budget_set(dm_run_result *run, double ms);
-/* The run's budget in ms; 0 when none is recorded (per-scene default). */
-double report_budget_ms(const dm_run_result *run);
-
-/* The family of a configuration (see above). */
-recommend_family report_family(const dm_config_result *c);
-
-/* One scene's recommendation: *out gets config indexes into run (NONE where
- * none).  Returns the number of points considered. */
-size_t report_recommend(const dm_run_result *run, const char *scene, recommend_result *out);
-
-/* The scene's answer as sentences: the pick (or that nothing fits), the
+/* Scene si's answer as sentences: the pick (or that nothing fits), the
  * tie and budget notes, the knee, the family bests and the unlit baseline
  * note.  HTML: a <p class="pick"> and a <ul>; MD: a paragraph and a list;
  * TEXT: a paragraph and indented lines. */
-void report_answer_scene(const dm_run_result *run, const char *scene, report_answer_format f,
-                         dm_str *out);
-
-/* Why the scene has no budget and no pick, as a sentence ending ": no budget
- * or pick" ("no timing counter measured: …" for a counters-only run); NULL
- * when one of its ok configurations has a frame time. */
-const char *report_untimed_reason(const dm_run_result *run, const char *scene);
-/* 1 when some scene of the run has a frame time (a budget and a pick). */
-int report_run_timed(const dm_run_result *run);
+void report_answer_scene(const report_model *m, size_t si, report_answer_format f, dm_str *out);
 
 /* Terminal tables are cut into blocks of at most this many columns. */
 #define REPORT_TERMINAL_WIDTH 100
-/* The scene's counters (deterministic ones: counts, instructions, ratios),
+/* Scene si's counters (deterministic ones: counts, instructions, ratios),
  * a row per ok configuration labelled as in the scene's table, counts in
  * grouped digits: an HTML table, a Markdown table or indented text that
  * fits REPORT_TERMINAL_WIDTH.  Nothing when the scene has no such counter. */
-void report_counter_table(const dm_run_result *run, const char *scene, report_answer_format f,
-                          dm_str *out);
+void report_counter_table(const report_model *m, size_t si, report_answer_format f, dm_str *out);
 
-/* Every scene's TEXT answer, for the end of `dmbench run`; a scene without
- * a frame time says why and shows its counters instead. */
+/* Every scene's TEXT answer, for the end of `dmbench run`, each line
+ * word-wrapped to 100 columns; a scene without a frame time says why and
+ * shows its counters instead.  report_answer_terminal builds the run's
+ * model (no directory, no trends) for it and frees it (report_write.c). */
+void report_answer_terminal_model(const report_model *m, dm_str *out);
 void report_answer_terminal(const dm_run_result *run, dm_str *out);
 
 #endif

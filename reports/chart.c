@@ -8,8 +8,14 @@
  * set before PLplot sees them (PLplot treats '#' as an escape; its SVG
  * driver already writes text as character references).  Charts are
  * decoration: if PLplot cannot write one, a note replaces it.
+ *
+ * The per-scene charts read the report model only: its rows (run order,
+ * labels, techniques, frame times) and the breakdown it chose for the
+ * scene (breakdown.h); the fit plots read the run's fits.
  */
+#include "reports/breakdown.h"
 #include "reports/report_internal.h"
+#include "reports/report_model.h"
 
 #include <math.h>
 #include <plplot/plplot.h>
@@ -87,6 +93,28 @@ static void chart_open(const char *file, const chart_frame *f)
     pllab(f->xlabel, f->ylabel, t);
 }
 
+/* The number of charts already in the document s: this chart's ordinal. */
+static size_t chart_ordinal(const dm_str *s)
+{
+    size_t n = 0;
+    for (const char *p = s->buf; p && (p = strstr(p, "<div class=\"chart\"")) != NULL; p++)
+        n++;
+    return n;
+}
+
+/* Appends svg with its ids made unique in the document: PLplot names the
+ * clip path of every chart "text-clipping0", so each id and its url(#…)
+ * references get the chart's ordinal k ("c3-text-clipping0"). */
+static void chart_cat_ids(dm_str *s, const char *svg, size_t k)
+{
+    static const char id[] = "text-clipping";
+    for (const char *p; (p = strstr(svg, id)) != NULL; svg = p + strlen(id)) {
+        dm_str_catn(s, svg, (size_t)(p - svg));
+        dm_str_printf(s, "c%zu-%s", k, id);
+    }
+    dm_str_cat(s, svg);
+}
+
 /* Ends the stream and appends its SVG (without prolog/namespaces) to s,
  * in a <div> whose aria-label is the chart's title as drawn. */
 static void chart_close(dm_str *s, const char *file, const char *title)
@@ -112,8 +140,9 @@ static void chart_close(dm_str *s, const char *file, const char *title)
     }
     char t[CHART_MAX_LABEL];
     safe_label(title, t);
+    size_t k = chart_ordinal(s);
     dm_str_printf(s, "<div class=\"chart\" role=\"img\" aria-label=\"%s\">", t);
-    dm_str_cat(s, start);
+    chart_cat_ids(s, start, k);
     dm_str_cat(s, "</div>\n");
     free(svg);
 }
@@ -133,83 +162,103 @@ static char *chart_tmpname(void)
 
 /* ---- per scene: time vs tess_level, one line per mesh/technique ---------- */
 
-/* Points of one (mesh, technique) series sorted by tess_level. */
-static size_t tess_series(const dm_run_result *run, const char *scene, const char *mesh,
-                          const char *tech, double *x, double *y)
+/* The tess_level of row r when it is a timed configuration of scene si, else NULL. */
+static const char *tess_level(const report_model_row *r, size_t si)
+{
+    const dm_config_result *c = r->config;
+    const char *L = dm_kv_get(c->params, c->n_params, "tess_level");
+    return L && c->ok && r->frame_time && r->scene == si ? L : NULL;
+}
+
+/* Points of one (mesh, technique) series of scene si sorted by tess_level
+ * (ties in run order): x, the median y and its 95 % CI [lo, hi] in ms (the
+ * median where the CI is unknown). */
+static size_t tess_series(const report_model *m, size_t si, const char *mesh, const char *tech,
+                          double *x, double *y, double *lo, double *hi)
 {
     size_t n = 0;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        const char *L = dm_kv_get(c->params, c->n_params, "tess_level");
-        const char *m = dm_kv_get(c->params, c->n_params, "mesh");
-        const dm_counter_result *t = report__frame_time(c);
-        if (!c->ok || !t || !L || strcmp(c->scene ? c->scene : "", scene) != 0 ||
-            strcmp(m ? m : "", mesh) != 0 || strcmp(report__technique(c), tech) != 0)
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const report_model_row *r = &m->rows[i];
+        const char *L = tess_level(r, si);
+        const char *me = dm_kv_get(r->config->params, r->config->n_params, "mesh");
+        if (!L || strcmp(me ? me : "", mesh) != 0 || strcmp(r->technique, tech) != 0)
             continue;
         size_t k = n++;
         for (; k > 0 && x[k - 1] > strtod(L, NULL); k--)
-            x[k] = x[k - 1], y[k] = y[k - 1];
+            x[k] = x[k - 1], y[k] = y[k - 1], lo[k] = lo[k - 1], hi[k] = hi[k - 1];
+        const dm_counter_result *t = r->frame_time;
         x[k] = strtod(L, NULL);
         y[k] = t->median / 1e6;
+        lo[k] = (isfinite(t->ci_lo) ? t->ci_lo : t->median) / 1e6;
+        hi[k] = (isfinite(t->ci_hi) ? t->ci_hi : t->median) / 1e6;
     }
     return n;
 }
 
 /* 1 when the scene has at least two distinct tess_level values. */
-static int tess_varies(const dm_run_result *run, const char *scene)
+static int tess_varies(const report_model *m, size_t si)
 {
     const char *first = NULL;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
-        const char *L = dm_kv_get(c->params, c->n_params, "tess_level");
-        if (!L || !c->ok || !report__frame_time(c) || strcmp(c->scene ? c->scene : "", scene) != 0)
-            continue;
-        if (first && strcmp(first, L) != 0)
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const char *L = tess_level(&m->rows[i], si);
+        if (L && first && strcmp(first, L) != 0)
             return 1;
-        first = L;
+        first = L ? L : first;
     }
     return 0;
 }
 
-static void chart_tess(dm_str *s, const dm_run_result *run, const char *scene)
+/* 1 when row i is the first of its (mesh, technique) series in the run. */
+static int tess_first_of_series(const report_model *m, size_t i)
 {
-    size_t n = run->n_configs;
-    double *ax = dm_xcalloc(n + 1, sizeof *ax), *ay = dm_xcalloc(n + 1, sizeof *ay);
+    const dm_config_result *c = m->rows[i].config;
+    const char *mesh = dm_kv_get(c->params, c->n_params, "mesh");
+    for (size_t j = 0; j < i; j++) {
+        const dm_config_result *d = m->rows[j].config;
+        const char *mj = dm_kv_get(d->params, d->n_params, "mesh");
+        if (strcmp(mj ? mj : "", mesh ? mesh : "") == 0 && strcmp(m->rows[j].technique, m->rows[i].technique) == 0)
+            return 0;
+    }
+    return 1;
+}
+
+static void chart_tess(dm_str *s, const report_model *m, size_t si)
+{
+    size_t n = m->n_rows;
+    double *ax = dm_xcalloc(2 * n + 1, sizeof *ax), *ay = dm_xcalloc(2 * n + 1, sizeof *ay);   /* median and CI top */
     double *x = dm_xcalloc(n + 1, sizeof *x), *y = dm_xcalloc(n + 1, sizeof *y);
+    double *lo = dm_xcalloc(n + 1, sizeof *lo), *hi = dm_xcalloc(n + 1, sizeof *hi);
     size_t na = 0;
-    for (size_t i = 0; i < n; i++) {   /* axis ranges over every series */
-        const dm_config_result *c = &run->configs[i];
-        const char *L = dm_kv_get(c->params, c->n_params, "tess_level");
-        const dm_counter_result *t = report__frame_time(c);
-        if (L && t && c->ok && strcmp(c->scene ? c->scene : "", scene) == 0)
-            ax[na] = strtod(L, NULL), ay[na++] = t->median / 1e6;
+    for (size_t i = 0; i < n; i++) {   /* axis ranges over every series and its whiskers */
+        const char *L = tess_level(&m->rows[i], si);
+        const dm_counter_result *t = m->rows[i].frame_time;
+        if (!L)
+            continue;
+        ax[na] = strtod(L, NULL), ay[na++] = t->median / 1e6;
+        if (isfinite(t->ci_hi))
+            ax[na] = ax[na - 1], ay[na] = t->ci_hi / 1e6, na++;
     }
     char *file = chart_tmpname();
     if (file) {
-        chart_frame f = {"Time vs tessellation level", "tess_level", "ms", 0, 0, 0, 0, 0.15, 0};
+        chart_frame f = {"Time vs tessellation level (whiskers: CI of the median)", "tess_level", "median ms", 0, 0, 0,
+                         0, 0.15, 0};
         padded_range(ax, na, &f.x0, &f.x1, 0);
         padded_range(ay, na, &f.y0, &f.y1, 1);
         chart_open(file, &f);
         for (size_t i = 0; i < n; i++) {   /* each series drawn once, at its first config */
-            const dm_config_result *c = &run->configs[i];
+            const dm_config_result *c = m->rows[i].config;
             const char *mesh = dm_kv_get(c->params, c->n_params, "mesh");
-            const char *tech = report__technique(c);
-            int first = 1;
-            for (size_t j = 0; j < i && first; j++) {
-                const char *mj = dm_kv_get(run->configs[j].params, run->configs[j].n_params, "mesh");
-                first = !(strcmp(mj ? mj : "", mesh ? mesh : "") == 0 &&
-                          strcmp(report__technique(&run->configs[j]), tech) == 0);
-            }
-            size_t m = first ? tess_series(run, scene, mesh ? mesh : "", tech, x, y) : 0;
-            if (!m)
+            const char *tech = m->rows[i].technique;
+            size_t k = tess_first_of_series(m, i) ? tess_series(m, si, mesh ? mesh : "", tech, x, y, lo, hi) : 0;
+            if (!k)
                 continue;
-            char lab[CHART_MAX_LABEL], raw[2 * CHART_MAX_LABEL];
-            snprintf(raw, sizeof raw, "%s/%s", mesh ? mesh : "", tech);
-            safe_label(raw, lab);
+            char lab[CHART_MAX_LABEL];
+            safe_label(tech, lab);   /* the mesh is the scene's, in the title of its section */
             plcol0(2 + (PLINT)(i % 2));
-            plline((PLINT)m, x, y);
-            plpoin((PLINT)m, x, y, 4);
-            plptex(x[m - 1], y[m - 1], 1, 0, 1.05, lab);
+            plline((PLINT)k, x, y);
+            plpoin((PLINT)k, x, y, 4);
+            plerry((PLINT)k, x, lo, hi);
+            plptex(x[k - 1], y[k - 1], 1, 0, 1.05, lab);
         }
         chart_close(s, file, f.title);
         free(file);
@@ -218,36 +267,11 @@ static void chart_tess(dm_str *s, const dm_run_result *run, const char *scene)
     free(ay);
     free(x);
     free(y);
+    free(lo);
+    free(hi);
 }
 
-/* ---- per scene: counter breakdown per configuration ----------------------- */
-
-/* At most this many configurations get a bar group; the fastest are left out. */
-#define CHART_MAX_BARS 24
-
-/* The models whose terms split frame time by stage: each term's parameter,
- * the counter it multiplies (NULL: the fixed cost) and its legend name.
- * time-from-stages (over the exact stage counters) is preferred to
- * pipeline-linear (over invocation counts) where a configuration has both. */
-typedef struct { const char *param, *counter, *name; } chart_stage;
-typedef struct {
-    const char *model;
-    const chart_stage *stages;
-    size_t n;
-    int exact;   /* its counters are the stage counters: drawn only where a configuration has them */
-} chart_model;
-static const chart_stage chart_stages_pl[] = {
-    {"c0", NULL, "fixed"}, {"c_vs", "VSInvocations", "vertex"},
-    {"c_tes", "TESInvocations", "tessellation"}, {"c_prim", "ClippingOutputPrimitives", "primitives"},
-    {"c_px", "SamplesPassed", "pixels"} };
-static const chart_stage chart_stages_ts[] = {
-    {"a", NULL, "fixed"}, {"b_geo", "GeometryInstructions", "geometry"},
-    {"b_raster", "RasterInstructions", "raster"}, {"b_frag", "FragmentInstructions", "fragment"} };
-static const chart_model chart_models[] = {
-    {"time-from-stages", chart_stages_ts, sizeof chart_stages_ts / sizeof *chart_stages_ts, 1},
-    {"pipeline-linear", chart_stages_pl, sizeof chart_stages_pl / sizeof *chart_stages_pl, 0} };
-#define CHART_N_MODELS (sizeof chart_models / sizeof *chart_models)
-#define CHART_MAX_STAGES 5
+/* ---- per scene: the counter breakdown the model chose (breakdown.h) ------- */
 
 static void bar(double x0, double x1, double y0, double y1, PLINT col)
 {
@@ -256,88 +280,16 @@ static void bar(double x0, double x1, double y0, double y1, PLINT col)
     plfill(4, bx, by);
 }
 
-/* Value of an available deterministic counter, else 0 (absent work). */
-static double det_value(const dm_config_result *c, const char *name)
-{
-    const dm_counter_result *k = name ? dm_config_counter(c, name) : NULL;
-    return k && k->available && k->deterministic && isfinite(k->value) ? k->value : 0;
-}
-
-static double fit_param(const dm_fit_result *f, const char *name)
-{
-    const dm_fit_param *p = dm_fit_param_find(f, name);
-    return p ? p->value : NAN;
-}
-
-/* A per-stage breakdown is drawn only from a fit at least this good (R²);
- * a poorer one would show invented stage times (docs/models.md). */
-#define CHART_MIN_STAGE_R2 0.8
-
-/* The fit of model m whose group matches c's params, any quality (NULL
- * when none); a model of the exact stage counters only where c has them. */
-static const dm_fit_result *model_fit_any(const dm_run_result *run, const dm_config_result *c,
-                                          const chart_model *m)
-{
-    for (size_t k = 0; m->exact && k < m->n; k++)
-        if (m->stages[k].counter && !(det_value(c, m->stages[k].counter) > 0))
-            return NULL;
-    for (size_t i = 0; i < run->n_fits; i++) {
-        const dm_fit_result *f = &run->fits[i];
-        int match = f->model && strcmp(f->model, m->model) == 0 && isfinite(fit_param(f, m->stages[0].param));
-        for (size_t g = 0; match && g < f->n_group; g++) {
-            const char *v = dm_kv_get(c->params, c->n_params, f->group[g].key);
-            match = v && strcmp(v, f->group[g].value) == 0;
-        }
-        if (match)
-            return f;
-    }
-    return NULL;
-}
-
-/* The fit of model m for c when it is good enough to draw. */
-static const dm_fit_result *model_fit(const dm_run_result *run, const dm_config_result *c, const chart_model *m)
-{
-    const dm_fit_result *f = model_fit_any(run, c, m);
-    return f && isfinite(f->r2) && f->r2 >= CHART_MIN_STAGE_R2 ? f : NULL;
-}
-
-/* Estimated ms of stage k of c under fit f of model m (param · counter; the
- * response is ns). */
-static double stage_ms(const chart_model *m, const dm_fit_result *f, const dm_config_result *c, size_t k)
-{
-    double v = fit_param(f, m->stages[k].param);
-    double n = m->stages[k].counter ? det_value(c, m->stages[k].counter) : 1;
-    return isfinite(v) ? v * n / 1e6 : 0;
-}
-
-/* Measured ms of stage k of c (geometry, setup and raster, fragment) from
- * its timed isolation passes: GeometryTime, MinimalShadingTime −
- * GeometryTime and WallTime − MinimalShadingTime (medians; a difference
- * that noise puts below 0 is 0); NaN when c has not both passes. */
-static double measured_stage_ms(const dm_config_result *c, size_t k)
-{
-    const dm_counter_result *g = dm_config_counter(c, "GeometryTime");
-    const dm_counter_result *m = dm_config_counter(c, "MinimalShadingTime"), *w = report__frame_time(c);
-    if (!g || !m || !w || !g->available || !m->available || !isfinite(g->median) || !isfinite(m->median))
-        return NAN;
-    double v = k == 0 ? g->median : k == 1 ? m->median - g->median : w->median - m->median;
-    return fmax(0, v) / 1e6;
-}
-#define CHART_MEASURED_STAGES 3
-
 /* Labels the bar groups (vertical, small) and draws a colour legend on top. */
-static void bar_labels_and_legend(const dm_run_result *run, const size_t *rows, size_t n,
-                                  const char *const *names, size_t nn, PLINT col0)
+static void bar_labels_and_legend(const report_model *m, const breakdown *b, const char *const *names,
+                                  size_t nn, PLINT col0)
 {
     plschr(0, 0.65);
-    for (size_t k = 0; k < n; k++) {
-        dm_str label = {0};
+    for (size_t k = 0; k < b->n_bars; k++) {
         char lab[CHART_MAX_LABEL];
-        report__config_label(run, &run->configs[rows[k]], &label);
-        safe_label(dm_str_get(&label), lab);
+        safe_label(m->rows[b->bars[k]].label, lab);
         plcol0(1);
-        plmtex("bv", 0.5, (k + 0.5) / (double)n, 1.0, lab);
-        dm_str_free(&label);
+        plmtex("bv", 0.5, (k + 0.5) / (double)b->n_bars, 1.0, lab);
     }
     for (size_t i = 0; i < nn; i++) {
         plcol0(col0 + (PLINT)i);
@@ -346,171 +298,116 @@ static void bar_labels_and_legend(const dm_run_result *run, const size_t *rows, 
     plschr(0, 1.0);
 }
 
-/* Stacked estimated stage times of model m (left) beside the measured
- * median (right). */
-static void draw_stages(const dm_run_result *run, const size_t *rows, size_t n, const chart_model *m)
+/* Stacked estimated stage times of the fitted model (left) beside the
+ * measured median (right). */
+static void draw_stages(const report_model *m, const breakdown *b)
 {
-    const char *names[CHART_MAX_STAGES + 1];
-    for (size_t k = 0; k < m->n; k++)
-        names[k] = m->stages[k].name;
-    names[m->n] = "measured";
-    for (size_t i = 0; i < n; i++) {
-        const dm_config_result *c = &run->configs[rows[i]];
-        const dm_fit_result *fit = model_fit(run, c, m);
+    const breakdown_model *fm = b->fit;
+    const char *names[BREAKDOWN_MAX_STAGES + 1];
+    for (size_t k = 0; k < fm->n; k++)
+        names[k] = fm->stages[k].name;
+    names[fm->n] = "measured";
+    for (size_t i = 0; i < b->n_bars; i++) {
+        const report_model_row *r = &m->rows[b->bars[i]];
+        const dm_fit_result *fit = breakdown_fit(m->run, r->config, fm);
         double y = 0;
-        for (size_t k = 0; fit && k < m->n; k++) {
-            double h = stage_ms(m, fit, c, k);
+        for (size_t k = 0; fit && k < fm->n; k++) {
+            double h = breakdown_stage_ms(fm, fit, r->config, k);
             bar(i + 0.08, i + 0.5, y, y + h, CHART_SERIES_COL0 + (PLINT)k);
             y += h;
         }
-        bar(i + 0.5, i + 0.92, 0, report__frame_time(c)->median / 1e6, CHART_SERIES_COL0 + (PLINT)m->n);
+        bar(i + 0.5, i + 0.92, 0, r->frame_time->median / 1e6, CHART_SERIES_COL0 + (PLINT)fm->n);
     }
-    bar_labels_and_legend(run, rows, n, names, m->n + 1, CHART_SERIES_COL0);
+    bar_labels_and_legend(m, b, names, fm->n + 1, CHART_SERIES_COL0);
 }
 
 /* Stacked measured stage times (left) beside the measured median (right). */
-static void draw_measured_stages(const dm_run_result *run, const size_t *rows, size_t n)
+static void draw_measured_stages(const report_model *m, const breakdown *b)
 {
-    static const char *const names[CHART_MEASURED_STAGES + 1] = {"geometry", "setup+raster", "fragment",
-                                                                 "frame"};
-    for (size_t i = 0; i < n; i++) {
-        const dm_config_result *c = &run->configs[rows[i]];
+    static const char *const names[BREAKDOWN_MEASURED_STAGES + 1] = {"geometry", "setup+raster",
+                                                                     "fragment", "frame"};
+    for (size_t i = 0; i < b->n_bars; i++) {
+        const report_model_row *r = &m->rows[b->bars[i]];
         double y = 0;
-        for (size_t k = 0; k < CHART_MEASURED_STAGES; k++) {
-            double h = measured_stage_ms(c, k);
+        for (size_t k = 0; k < BREAKDOWN_MEASURED_STAGES; k++) {
+            double h = breakdown_measured_ms(r->config, k);
             if (isfinite(h)) {
                 bar(i + 0.08, i + 0.5, y, y + h, CHART_SERIES_COL0 + (PLINT)k);
                 y += h;
             }
         }
-        bar(i + 0.5, i + 0.92, 0, report__frame_time(c)->median / 1e6, CHART_SERIES_COL0 + CHART_MEASURED_STAGES);
+        bar(i + 0.5, i + 0.92, 0, r->frame_time->median / 1e6,
+            CHART_SERIES_COL0 + BREAKDOWN_MEASURED_STAGES);
     }
-    bar_labels_and_legend(run, rows, n, names, CHART_MEASURED_STAGES + 1, CHART_SERIES_COL0);
+    bar_labels_and_legend(m, b, names, BREAKDOWN_MEASURED_STAGES + 1, CHART_SERIES_COL0);
 }
 
-/* The key counters shown relative to each one's maximum over the bars. */
-static size_t key_counters(const dm_run_result *run, const size_t *rows, size_t n, const char *out[4])
+/* The key counters, each relative to its maximum over the bars. */
+static void draw_counters(const report_model *m, const breakdown *b)
 {
-    static const char *const want[] = {"VSInvocations", "TESInvocations", "ClippingOutputPrimitives",
-                                       "FSInvocations", "SamplesPassed"};
-    size_t m = 0;
-    for (size_t k = 0; k < 5; k++) {
-        int have = 0;
-        for (size_t i = 0; i < n && !have; i++)
-            have = det_value(&run->configs[rows[i]], want[k]) > 0;
-        if (have && !(k == 4 && m && strcmp(out[m - 1], "FSInvocations") == 0))
-            out[m++] = want[k];   /* SamplesPassed only when FSInvocations is missing */
-    }
-    return m;
-}
-
-static void draw_counters(const dm_run_result *run, const size_t *rows, size_t n,
-                          const char *const *names, size_t nk)
-{
+    size_t nk = b->n_counters;
     for (size_t k = 0; k < nk; k++) {
         double max = 0;
-        for (size_t i = 0; i < n; i++)
-            max = fmax(max, det_value(&run->configs[rows[i]], names[k]));
+        for (size_t i = 0; i < b->n_bars; i++)
+            max = fmax(max, breakdown_det_value(m->rows[b->bars[i]].config, b->counters[k]));
         double w = 0.84 / (double)nk;
-        for (size_t i = 0; i < n; i++)
+        for (size_t i = 0; i < b->n_bars; i++)
             bar(i + 0.08 + k * w, i + 0.08 + (k + 1) * w, 0,
-                det_value(&run->configs[rows[i]], names[k]) / max, CHART_SERIES_COL0 + 1 + (PLINT)k);
+                breakdown_det_value(m->rows[b->bars[i]].config, b->counters[k]) / max,
+                CHART_SERIES_COL0 + 1 + (PLINT)k);
     }
-    bar_labels_and_legend(run, rows, n, names, nk, CHART_SERIES_COL0 + 1);
+    bar_labels_and_legend(m, b, b->counters, nk, CHART_SERIES_COL0 + 1);
 }
 
-/* Per configuration: the stage times its timed isolation passes measured
- * next to the frame's median, where the run has them; else a model's
- * estimate per stage when a fit exists (time-from-stages over the exact
- * stage counters before pipeline-linear); else the key counters
- * normalised to their maxima.  At most CHART_MAX_BARS configurations, the slowest;
- * a note says how many were left out. */
-static void chart_breakdown(dm_str *s, const dm_run_result *run, const char *scene)
+/* The breakdown of scene si as the model chose it, with a note when a fit
+ * was too poor to draw and when the fastest configurations are left out. */
+static void chart_breakdown(dm_str *s, const report_model *m, const report_model_scene *sc)
 {
-    size_t *rows, nr = 0, nall = report__scene_rows(run, scene, &rows);
-    for (size_t i = 0; i < nall; i++)   /* keep the timed ones, still fastest first */
-        if (report__frame_time(&run->configs[rows[i]]))
-            rows[nr++] = rows[i];
-    size_t skip = nr > CHART_MAX_BARS ? nr - CHART_MAX_BARS : 0, n = nr - skip, nk = 0;
-    const size_t *shown = rows + skip;
-    const char *names[4];
-    int measured = 0;   /* the timed passes, measured, before any fit's estimate */
-    for (size_t i = 0; i < n && !measured; i++)
-        measured = isfinite(measured_stage_ms(&run->configs[shown[i]], 0));
-    /* the first model with a fit good enough for some configuration shown */
-    const chart_model *m = NULL, *poor = NULL;
-    double hi = 0, poor_r2 = NAN;
-    for (size_t j = 0; j < CHART_N_MODELS && !m && !measured; j++)
-        for (size_t i = 0; i < n && !m; i++) {
-            const dm_config_result *c = &run->configs[shown[i]];
-            const dm_fit_result *any = model_fit_any(run, c, &chart_models[j]);
-            if (model_fit(run, c, &chart_models[j]))
-                m = &chart_models[j];
-            else if (any && !poor) {
-                poor = &chart_models[j];
-                poor_r2 = any->r2;
-            }
-        }
-    int fitted = m != NULL || measured;
-    for (size_t i = 0; i < n; i++) {
-        const dm_config_result *c = &run->configs[shown[i]];
-        const dm_fit_result *f = m ? model_fit(run, c, m) : NULL;
-        double sum = 0;
-        for (size_t k = 0; f && k < m->n; k++)
-            sum += stage_ms(m, f, c, k);
-        for (size_t k = 0; measured && k < CHART_MEASURED_STAGES; k++) {
-            double h = measured_stage_ms(c, k);
-            sum += isfinite(h) ? h : 0;
-        }
-        hi = fmax(hi, fmax(sum, report__frame_time(c)->median / 1e6));
-    }
-    if (!fitted)
-        nk = key_counters(run, shown, n, names);
+    const breakdown *b = &sc->breakdown;
+    if (b->kind == BREAKDOWN_NONE)
+        return;
+    int fitted = b->kind != BREAKDOWN_COUNTERS;
     size_t longest = 0;   /* the vertical bar labels need room below the frame */
-    for (size_t i = 0; i < n; i++) {
-        dm_str label = {0};
-        report__config_label(run, &run->configs[shown[i]], &label);
-        longest = label.len > longest ? label.len : longest;
-        dm_str_free(&label);
-    }
+    for (size_t i = 0; i < b->n_bars; i++)
+        if (strlen(m->rows[b->bars[i]].label) > longest)
+            longest = strlen(m->rows[b->bars[i]].label);
     double bottom = fmax(0.32, fmin(0.6, ((double)longest * 5.4 + 16) / 420.0));
-    char *file = (fitted || nk) && n ? chart_tmpname() : NULL;
-    if (file) {
-        char title[96];
-        if (measured)
-            snprintf(title, sizeof title, "Measured time per stage (timed isolation passes)");
-        else
-            snprintf(title, sizeof title, "Estimated time per stage (%s fit)", m ? m->model : "");
-        chart_frame f = {fitted ? title : "Key counters per configuration (relative to each maximum)",
-                         "", fitted ? "ms" : "fraction of the maximum", 0, (double)n, 0,
-                         fitted ? hi * 1.08 : 1.08, bottom, 1};
-        chart_open(file, &f);
-        if (measured)
-            draw_measured_stages(run, shown, n);
-        else if (fitted)
-            draw_stages(run, shown, n, m);
-        else
-            draw_counters(run, shown, n, names, nk);
-        chart_close(s, file, f.title);
-        if (!fitted && poor)
-            dm_str_printf(s, "<p class=\"const\">No per-stage breakdown: the %s fit "
-                             "explains too little of the time (R² %.2f, below %.1f), so its stage "
-                             "times would be invented; the key counters are shown instead.</p>\n",
-                          poor->model, poor_r2, CHART_MIN_STAGE_R2);
-        if (skip)
-            dm_str_printf(s, "<p class=\"const\">The %zu fastest configurations are left out of this "
-                             "chart (it shows the %d slowest); all are in the table.</p>\n",
-                          skip, CHART_MAX_BARS);
-        free(file);
-    }
-    free(rows);
+    char *file = chart_tmpname();
+    if (!file)
+        return;
+    char title[96];
+    if (b->kind == BREAKDOWN_MEASURED)
+        snprintf(title, sizeof title, "Measured time per stage (timed isolation passes)");
+    else
+        snprintf(title, sizeof title, "Estimated time per stage (%s fit)", b->fit ? b->fit->model : "");
+    chart_frame f = {fitted ? title : "Key counters per configuration (relative to each maximum)",
+                     "", fitted ? "ms" : "fraction of the maximum", 0, (double)b->n_bars, 0,
+                     fitted ? b->hi_ms * 1.08 : 1.08, bottom, 1};
+    chart_open(file, &f);
+    if (b->kind == BREAKDOWN_MEASURED)
+        draw_measured_stages(m, b);
+    else if (b->kind == BREAKDOWN_FIT)
+        draw_stages(m, b);
+    else
+        draw_counters(m, b);
+    chart_close(s, file, f.title);
+    if (!fitted && b->poor)
+        dm_str_printf(s, "<p class=\"const\">No per-stage breakdown: the %s fit "
+                         "explains too little of the time (R² %.2f, below %.1f), so its stage "
+                         "times would be invented; the key counters are shown instead.</p>\n",
+                      b->poor->model, b->poor_r2, BREAKDOWN_MIN_STAGE_R2);
+    if (b->skipped)
+        dm_str_printf(s, "<p class=\"const\">The %zu fastest configurations are left out of this "
+                         "chart (it shows the %d slowest); all are in the table.</p>\n",
+                      b->skipped, BREAKDOWN_MAX_BARS);
+    free(file);
 }
 
-void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *scene)
+void report__html_charts_scene(dm_str *s, const report_model *m, size_t si)
 {
-    if (tess_varies(run, scene))
-        chart_tess(s, run, scene);
-    chart_breakdown(s, run, scene);
+    if (tess_varies(m, si))
+        chart_tess(s, m, si);
+    chart_breakdown(s, m, &m->scenes[si]);
 }
 
 /* ---- model fits: predicted vs measured, residuals ------------------------- */

@@ -1,43 +1,12 @@
-/* counter_table.c — the counters of a scene as a table, and why a scene has
- * no answer when nothing timed it (see answer.h). */
+/* counter_table.c — the counters of a scene as a table (see answer.h),
+ * from the report model: the scene's rows and counter names are its. */
 #include "reports/answer.h"
-#include "reports/report.h"
-#include "reports/report_internal.h"
 
 #include "core/dm_table.h"
 
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
-
-const char *report_untimed_reason(const dm_run_result *run, const char *scene)
-{
-    size_t *rows, nr = report__scene_rows(run, scene, &rows), timed = 0, wall = 0;
-    for (size_t i = 0; i < nr; i++) {
-        const dm_config_result *c = &run->configs[rows[i]];
-        timed += report__frame_time(c) != NULL;
-        wall += dm_config_counter(c, "WallTime") != NULL;
-    }
-    free(rows);
-    if (timed)
-        return NULL;
-    if (!nr)
-        return "no configuration finished: no budget or pick";
-    if (wall)
-        return "WallTime unavailable on every configuration: no budget or pick";
-    return "no timing counter measured: no budget or pick";
-}
-
-int report_run_timed(const dm_run_result *run)
-{
-    const char **scenes;
-    size_t ns = report__scenes(run, &scenes);
-    int timed = 0;
-    for (size_t i = 0; i < ns && !timed; i++)
-        timed = report_untimed_reason(run, scenes[i]) == NULL;
-    free(scenes);
-    return timed;
-}
 
 /* A counter's value as shown: counts (items, bytes, or any value from 1 000
  * up) in plain grouped digits, ratios to four significant digits. */
@@ -59,33 +28,25 @@ static void table__value(const dm_counter_result *k, dm_str *out)
         dm_str_printf(out, "%.4g", k->value);
 }
 
-/* The table's cells: header (configuration, then each counter), a row per
- * ok configuration of the scene in run order. */
-static void table__build(const dm_run_result *run, const char *scene, dm_table *t)
+/* The table's cells: header (configuration, then each counter of the
+ * scene), a row per ok configuration of the scene, fastest first. */
+static void table__build(const report_model *m, const report_model_scene *sc, dm_table *t)
 {
-    const char **names;
-    size_t nn = report__counter_names(run, scene, REPORT__DETERMINISTIC, &names);
     dm_table_row(t);
     dm_table_cell(t, "configuration");
-    for (size_t k = 0; k < nn; k++)
-        dm_table_cell(t, names[k]);
-    size_t *rows, nr = report__scene_rows(run, scene, &rows);
-    for (size_t i = 0; i < nr; i++) {
-        const dm_config_result *c = &run->configs[rows[i]];
-        dm_str label = {0};
-        report__config_label(run, c, &label);
+    for (size_t k = 0; k < sc->n_det; k++)
+        dm_table_cell(t, sc->det[k]);
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const report_model_row *r = &m->rows[sc->rows[i]];
         dm_table_row(t);
-        dm_table_cell(t, dm_str_get(&label));
-        dm_str_free(&label);
-        for (size_t k = 0; k < nn; k++) {
+        dm_table_cell(t, r->label);
+        for (size_t k = 0; k < sc->n_det; k++) {
             dm_str v = {0};
-            table__value(dm_config_counter(c, names[k]), &v);
+            table__value(dm_config_counter(r->config, sc->det[k]), &v);
             dm_table_cell(t, dm_str_get(&v));
             dm_str_free(&v);
         }
     }
-    free(rows);
-    free(names);
 }
 
 /* Markdown: a pipe table, cells escaped. */
@@ -123,11 +84,10 @@ static void table__html(const dm_table *t, dm_str *out)
     dm_str_cat(out, "</tbody></table></div>\n");
 }
 
-void report_counter_table(const dm_run_result *run, const char *scene, report_answer_format f,
-                          dm_str *out)
+void report_counter_table(const report_model *m, size_t si, report_answer_format f, dm_str *out)
 {
     dm_table t = {0};
-    table__build(run, scene, &t);
+    table__build(m, &m->scenes[si], &t);
     if (t.n_cells[0] < 2) {   /* nothing but the label column */
         dm_table_free(&t);
         return;

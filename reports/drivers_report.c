@@ -1,8 +1,13 @@
 /* drivers_report.c — one sweep on several drivers, side by side
- * (drivers_report.h). */
+ * (drivers_report.h).  The labels of configurations and scenes are the
+ * reference run's report model's (report_model.h), built once; the times,
+ * instruction counts and SSIM each driver measured are read from its
+ * configurations, and the fronts here are the plain ones of WallTime
+ * against 1 − SSIM on each driver, not the run's metric with its tolerance. */
 #include "reports/drivers_report.h"
 #include "reports/recommend.h"
 #include "reports/report.h"
+#include "reports/report_model.h"
 #include "core/dm_error.h"
 
 #include <cjson/cJSON.h>
@@ -117,6 +122,7 @@ int drivers_drift(const double *start, const double *end, size_t n, double *move
  * the same key (-1 when absent or failed). */
 typedef struct drivers__table {
     const dm_run_result *ref;    /* the first side that ran */
+    report_model model;          /* its report model: the labels of rows and scenes */
     size_t n_rows;
     long *idx;                   /* n_rows x n_sides */
 } drivers__table;
@@ -128,6 +134,7 @@ static void drivers__match(const drivers_side *s, size_t ns, drivers__table *t)
         t->ref = s[k].run;
     if (!t->ref)
         return;
+    report_model_build(&t->model, t->ref, NULL);   /* 0: the run is not NULL */
     t->n_rows = t->ref->n_configs;
     t->idx = dm_xcalloc(t->n_rows * ns + 1, sizeof *t->idx);
     for (size_t i = 0; i < t->n_rows; i++)
@@ -169,13 +176,21 @@ static double drivers__ssim(const dm_config_result *c)
     return c && c->quality.present ? c->quality.ssim : NAN;
 }
 
-/* The configuration's one label (report_config_label), e.g.
- * "cube 160×90 · pom steps=8". */
-static char *drivers__label(const dm_run_result *ref, const dm_config_result *c)
+/* Row i's one label from the reference run's model (report_config_label),
+ * e.g. "cube 160×90 · pom steps=8"; a configuration of another driver with
+ * the same key has the same params and scene, so the same label. */
+static const char *drivers__label(const drivers__table *t, size_t i)
 {
-    dm_str s = {0};
-    report_config_label(ref, c, &s);
-    return dm_str_take(&s);
+    return t->model.rows[i].full_label;
+}
+
+/* The reference model's label of a scene (report_scene_label). */
+static const char *drivers__scene_label(const drivers__table *t, const char *scene)
+{
+    for (size_t k = 0; k < t->model.n_scenes; k++)
+        if (strcmp(t->model.scenes[k].name, scene) == 0)
+            return t->model.scenes[k].label;
+    return scene;
 }
 
 /* ---- agreement -------------------------------------------------------------- */
@@ -245,7 +260,7 @@ static void drivers__why_off(const drivers_side *s, size_t ns, const drivers__ta
                              size_t b, size_t i, dm_str *md, cJSON *jarr)
 {
     const dm_config_result *cb = drivers__cfg(s, ns, t, i, b);
-    char *label = drivers__label(t->ref, &t->ref->configs[i]);
+    const char *label = drivers__label(t, i);
     const char *dot = strstr(label, " · ");
     const char *name = dot ? dot + strlen(" · ") : label;
     cJSON *o = cJSON_CreateObject();
@@ -273,7 +288,7 @@ static void drivers__why_off(const drivers_side *s, size_t ns, const drivers__ta
         drivers__ci(d, "WallTime", cd);
         int clear = isfinite(cd[1]) && isfinite(ci[0]) && cd[1] < ci[0];
         int same_time = !(drivers__median(d, "WallTime") < ti);
-        char *dl = drivers__label(t->ref, d);
+        const char *dl = drivers__label(t, best);
         const char *ddot = strstr(dl, " · ");
         dm_str_printf(md, ": there %s is %s (%.3g ms [%.3g, %.3g] against %.3g ms [%.3g, %.3g], "
                       "1 − SSIM %.4f against %.4f)%s\n", ddot ? ddot + strlen(" · ") : dl,
@@ -285,10 +300,8 @@ static void drivers__why_off(const drivers_side *s, size_t ns, const drivers__ta
                                            "faster (within the noise)");
         cJSON_AddStringToObject(o, "dominated_by", d->key);
         cJSON_AddBoolToObject(o, "clear", same_time || clear);
-        free(dl);
     }
     cJSON_AddItemToArray(jarr, o);
-    free(label);
 }
 
 /* The distinct scenes of the reference run, in order. */
@@ -428,7 +441,7 @@ static void drivers__md_rows(const drivers_side *s, size_t ns, const drivers__ta
             dm_str_cat(md, "---|---|---|");
     dm_str_cat(md, "\n");
     for (size_t i = 0; i < t->n_rows; i++) {
-        char *label = drivers__label(t->ref, &t->ref->configs[i]);
+        const char *label = drivers__label(t, i);
         dm_str_printf(md, "| %s |", label);
         cJSON *o = cJSON_CreateObject(), *per = cJSON_CreateObject();
         cJSON_AddStringToObject(o, "key", t->ref->configs[i].key);
@@ -463,7 +476,6 @@ static void drivers__md_rows(const drivers_side *s, size_t ns, const drivers__ta
         dm_str_cat(md, "\n");
         cJSON_AddItemToObject(o, "drivers", per);
         cJSON_AddItemToArray(jrows, o);
-        free(label);
     }
 }
 
@@ -512,9 +524,8 @@ static void drivers__md_fronts(const drivers_side *s, size_t ns, const drivers__
     size_t nsc = drivers__scenes(t, scenes);
     size_t *f = dm_xcalloc(t->n_rows + 1, sizeof *f), *f0 = dm_xcalloc(t->n_rows + 1, sizeof *f0);
     for (size_t sc = 0; sc < nsc; sc++) {
-        dm_str sl = {0};
-        report_scene_label(t->ref, scenes[sc], &sl);
-        dm_str_printf(md, "**%s**\n\n", dm_str_get(&sl));
+        const char *sl = drivers__scene_label(t, scenes[sc]);
+        dm_str_printf(md, "**%s**\n\n", sl);
         cJSON *js = cJSON_CreateObject();
         size_t n0 = SIZE_MAX;
         int same = 1;
@@ -525,11 +536,10 @@ static void drivers__md_fronts(const drivers_side *s, size_t ns, const drivers__
             dm_str_printf(md, "- %s:", s[k].driver);
             cJSON *arr = cJSON_CreateArray();
             for (size_t i = 0; i < nf; i++) {
-                char *label = drivers__label(t->ref, &t->ref->configs[f[i]]);
+                const char *label = drivers__label(t, f[i]);
                 const char *dot = strstr(label, " · ");   /* the scene is the heading */
                 dm_str_printf(md, "%s %s", i ? " →" : "", dot ? dot + strlen(" · ") : label);
                 cJSON_AddItemToArray(arr, cJSON_CreateString(t->ref->configs[f[i]].key));
-                free(label);
             }
             dm_str_cat(md, "\n");
             cJSON_AddItemToObject(js, s[k].driver, arr);
@@ -564,8 +574,7 @@ static void drivers__md_fronts(const drivers_side *s, size_t ns, const drivers__
             dm_str_cat(md, "\n");
             free(fa);
         }
-        cJSON_AddStringToObject(js, "scene", dm_str_get(&sl));
-        dm_str_free(&sl);
+        cJSON_AddStringToObject(js, "scene", sl);
         cJSON_AddBoolToObject(js, "agree", same);
         cJSON_AddItemToObject(jfronts, scenes[sc], js);
     }
@@ -606,5 +615,6 @@ int drivers_report_write(const drivers_side *sides, size_t n, const char *dir, d
     cJSON_Delete(root);
     dm_str_free(&md);
     free(t.idx);
+    report_model_free(&t.model);
     return rc;
 }

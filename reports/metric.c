@@ -89,6 +89,13 @@ double report_metric_error(const dm_quality *q, report_metric m)
     return isinf(v) && v > 0 ? -DBL_MAX : -v;
 }
 
+const char *report_metric_format(report_metric m)
+{
+    /* PSNR to a hundredth of a dB; max error (a channel's range) to a
+     * thousandth; the others are small fractions read to four decimals */
+    return m == REPORT_METRIC_PSNR ? "%.2f" : m == REPORT_METRIC_MAX_ERROR ? "%.3f" : "%.4f";
+}
+
 void report_metric_text(const dm_quality *q, report_metric m, dm_str *out)
 {
     double v = report_metric_shown(q, m);

@@ -51,6 +51,9 @@ const char *report_metric_label(report_metric m);
 double report_metric_error(const dm_quality *q, report_metric m);
 /* The shown value (PSNR in dB, may be +∞; others = the error). */
 double report_metric_shown(const dm_quality *q, report_metric m);
+/* The printf format of the shown value in a table column: fixed decimals,
+ * so a column has one precision ("%.4f" for 1 − SSIM, "%.2f" for PSNR dB). */
+const char *report_metric_format(report_metric m);
 /* Appends the value for a sentence, e.g. "SSIM 0.950", "PSNR 38.2 dB", "RMSE 0.0122". */
 void report_metric_text(const dm_quality *q, report_metric m, dm_str *out);
 

@@ -267,6 +267,57 @@ size_t report__bimodal(const dm_counter_result *t, double *low, double *high)
     return two ? n - split : 0;
 }
 
+void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, dm_str *why)
+{
+    const dm_counter_result *t = report__frame_time(c);
+    double lo, hi;
+    size_t up = report__bimodal(t, &lo, &hi);
+    if (report__noisy(c)) {
+        dm_str_cat(mark, with_ci ? "⚠ noisy: " : "⚠ noisy");
+        if (with_ci && isfinite(report__ci_rel(t)))
+            dm_str_cat(mark, "CI ");
+        if (with_ci)
+            report__ci_text(t, mark);
+        dm_str_printf(why, "the 95%% CI of the median is wider than ±%.0f%% of it (or unknown)",
+                      REPORT__NOISY_CI_REL * 100);
+    }
+    size_t dl;
+    const char *drift = report__drift(c, &dl);
+    if (drift) {
+        dm_str_printf(mark, "%s⚠ drift %+.3g %%", mark->len ? "; " : "",
+                      strtod(drift + strlen("WallTime drifted"), NULL));
+        dm_str_cat(why, why->len ? "; " : "");
+        dm_str_catn(why, drift, dl);
+    }
+    if (up) {
+        dm_str_printf(mark, "%s⚠ bimodal: %zu of %zu samples near ", mark->len ? "; " : "", up,
+                      t->n_samples);
+        report__ms_text(hi, mark);
+        dm_str_cat(mark, " ms, the rest near ");
+        report__ms_text(lo, mark);
+        dm_str_printf(why, "%sthe samples form two groups: the machine was busy part of the time",
+                      why->len ? "; " : "");
+    }
+}
+
+/* The defects of a configuration's image as one mark ("⚠ 128 crack
+ * pixels; ⚠ 3 NaN pixels") and the reasons in words; nothing when the
+ * image has none. */
+void report__defects(const dm_config_result *c, dm_str *mark, dm_str *why)
+{
+    const dm_quality *q = &c->quality;
+    if (q->present && q->crack_pixels > 0) {
+        dm_str_printf(mark, "⚠ %ld crack pixel%s", q->crack_pixels, q->crack_pixels == 1 ? "" : "s");
+        dm_str_cat(why, "background shows through the surface inside its silhouette (cracks between "
+                        "patches or triangles)");
+    }
+    if (q->present && q->nonfinite_pixels > 0) {
+        dm_str_printf(mark, "%s⚠ %ld NaN pixel%s", mark->len ? "; " : "", q->nonfinite_pixels,
+                      q->nonfinite_pixels == 1 ? "" : "s");
+        dm_str_printf(why, "%sthe shader wrote NaN or infinite values", why->len ? "; " : "");
+    }
+}
+
 int report__noisy(const dm_config_result *c)
 {
     const dm_counter_result *t = report__frame_time(c);
@@ -626,4 +677,38 @@ int report__tied(const dm_counter_result *a, const dm_counter_result *b)
     if (!a || !b || isnan(a->ci_lo) || isnan(a->ci_hi) || isnan(b->ci_lo) || isnan(b->ci_hi))
         return 0;
     return a->ci_lo <= b->ci_hi && b->ci_lo <= a->ci_hi;
+}
+
+/* The unit of the response counter: the first unit the run records for it,
+ * else "units of <name>". */
+static void report__response_unit(const dm_run_result *run, const char *response, dm_str *out)
+{
+    for (size_t i = 0; response && i < run->n_configs; i++) {
+        const dm_counter_result *k = dm_config_counter(&run->configs[i], response);
+        if (k && k->unit && *k->unit) {
+            dm_str_cat(out, k->unit);
+            return;
+        }
+    }
+    dm_str_printf(out, "units of %s", response ? response : "the response");
+}
+
+void report__fit_unit(const dm_run_result *run, const dm_fit_result *f, const char *param, dm_str *out)
+{
+    const char *t = f->formula;
+    size_t len = strlen(param);
+    while (t && *t) {   /* each term of the sum: "param" or "param*rest" */
+        t += strspn(t, " ");
+        size_t n = strcspn(t, "+");
+        while (n && t[n - 1] == ' ')
+            n--;
+        if (strncmp(t, param, len) == 0 && (n == len || t[len] == '*') && !memchr(t, '(', n)) {
+            report__response_unit(run, f->response, out);
+            if (n > len)
+                dm_str_printf(out, " per %.*s", (int)(n - len - 1), t + len + 1);
+            return;
+        }
+        t = strchr(t, '+');
+        t = t ? t + 1 : NULL;
+    }
 }

@@ -14,5 +14,5 @@ var t=document.getElementById(b.dataset.table);t.classList.toggle('hide-more');
 b.textContent=t.classList.contains('hide-more')?'show all columns':'key columns only';};});
 document.querySelectorAll('img.flip').forEach(function(im){im.title='click: flip to the reference';
 im.onclick=function(){var r=document.getElementById(im.dataset.ref);if(!r)return;
-if(!im.dataset.own){im.dataset.own=im.src;im.src=r.src;im.title='reference; click: back';}
+if(!im.dataset.own){im.dataset.own=im.src;im.src=r.dataset.full||r.src;im.title='reference; click: back';}
 else{im.src=im.dataset.own;delete im.dataset.own;im.title='click: flip to the reference';}};});

@@ -1,8 +1,11 @@
 /* report_html.c — report.html: one self-contained file that opens offline.
  * A row of the writer table (report_write.c): labels, times, marks, rows,
- * fronts, picks, trends, warnings and the published section come from the
- * report model (report_model.h); the gallery, charts, fits and the answer's
- * sentences still read the run.
+ * fronts, picks, trends, warnings, the answer's sentences (answer.c), the
+ * charts (svg_chart.c, chart.c), the stage bars, the gallery and the
+ * published section come from the report model (report_model.h).  What is
+ * not derived is read from the run as stored: its header and environment,
+ * each configuration's params, counters and image paths, the failed and
+ * left-out configurations, the fits and the proxy section.
  *
  * Inline CSS, no external URL, no script needed to read it; the style
  * sheet and the script (sorting, filtering, image flips) are report.css and
@@ -43,15 +46,6 @@ static void html__tagged(dm_str *s, const char *tag, const char *text)
     dm_str_printf(s, "</%s>", tag);
 }
 
-/* The scene's label (report_scene_label), escaped. */
-static void html__scene_name(dm_str *s, const dm_run_result *run, const char *scene)
-{
-    dm_str l = {0};
-    report_scene_label(run, scene, &l);
-    html__esc(s, dm_str_get(&l));
-    dm_str_free(&l);
-}
-
 static void html__params_inline(dm_str *s, const dm_kv *kv, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
@@ -62,8 +56,9 @@ static void html__params_inline(dm_str *s, const dm_kv *kv, size_t n)
     }
 }
 
-static void html__header(dm_str *s, const dm_run_result *run)
+static void html__header(dm_str *s, const report_model *m)
 {
+    const dm_run_result *run = m->run;
     dm_str_cat(s, "<!DOCTYPE html>\n<html lang=\"en\"><head><meta charset=\"utf-8\">"
                   "<meta name=\"viewport\" content=\"width=device-width\"><title>dmbench: ");
     html__esc(s, run->sweep);
@@ -78,14 +73,11 @@ static void html__header(dm_str *s, const dm_run_result *run)
         html__esc(s, run->finished);
     }
     dm_str_cat(s, ".");
-    dm_str k = {0};
-    report_scene_constants(run, &k);
-    if (k.len) {
+    if (*m->constants) {
         dm_str_cat(s, " Every scene: ");
-        html__esc(s, dm_str_get(&k));
+        html__esc(s, m->constants);
         dm_str_cat(s, ".");
     }
-    dm_str_free(&k);
     dm_str_cat(s, "</p>\n");
 }
 
@@ -109,12 +101,13 @@ static void html__environment(dm_str *s, const dm_run_result *run)
 }
 
 /* Table of contents: the answer, each scene, gallery, failures, fits. */
-static void html__toc(dm_str *s, const dm_run_result *run, const char **scenes, size_t ns)
+static void html__toc(dm_str *s, const report_model *m)
 {
+    const dm_run_result *run = m->run;
     dm_str_cat(s, "<nav class=\"toc\"><b>Contents:</b> <a href=\"#answer\">Answer</a>");
-    for (size_t i = 0; i < ns; i++) {
+    for (size_t i = 0; i < m->n_scenes; i++) {
         dm_str_printf(s, "<a href=\"#scene-%zu\">", i);
-        html__scene_name(s, run, scenes[i]);
+        html__esc(s, m->scenes[i].label);
         dm_str_cat(s, "</a>");
     }
     dm_str_cat(s, "<a href=\"#gallery\">Gallery</a><a href=\"#warnings\">Warnings</a>"
@@ -207,8 +200,8 @@ typedef struct html_images {
 
 static void html__gallery_linked(dm_str *s, const html_images *im, const char *rel, const char *label,
                            const char *caption, long ref);
-static void html__scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
-                              const html_images *im);
+static void html__scene_pick_images(dm_str *s, const report_model *m, const report_model_scene *sc,
+                                    const html_images *im);
 
 /* Counters worth a column in the scene tables (the rest are in the CSV/JSON). */
 static const char *const html__key_counters[] = {
@@ -284,9 +277,10 @@ static void html__scene_row(dm_str *s, const report_model *m, const report_model
     if (trends)
         html__trend_cell(s, r->trend);
     const dm_quality *q = &c->quality;
-    html__num_cell(s, "%.4g", report_metric_shown(q, m->metric));
+    html__num_cell(s, report_metric_format(m->metric), r->shown);
     html__num_cell(s, "%.4f", q->present ? q->ssim : NAN);
-    html__num_cell(s, "%.2f", q->present ? q->psnr : NAN);
+    if (m->metric != REPORT_METRIC_PSNR)   /* else the metric's column is the PSNR */
+        html__num_cell(s, "%.2f", q->present ? q->psnr : NAN);
     dm_str_cat(s, front ? "<td>★ front</td>" : "<td></td>");
     for (size_t i = 0; i < nd; i++)
         html__more_cell(s, dm_config_counter(c, det[i]));
@@ -297,15 +291,6 @@ static void html__scene_row(dm_str *s, const report_model *m, const report_model
     dm_str_cat(s, "<td class=\"key more\">");
     html__esc(s, c->key);
     dm_str_cat(s, "</td></tr>\n");
-}
-
-/* 1 when name is one of the scene's varying axes. */
-static int html__varies(const report_model_scene *sc, const char *name)
-{
-    for (size_t i = 0; i < sc->n_varying; i++)
-        if (strcmp(sc->varying[i], name) == 0)
-            return 1;
-    return 0;
 }
 
 /* Filter box and column toggle above scene table si. */
@@ -319,39 +304,21 @@ static void html__table_tools(dm_str *s, size_t si)
 
 static void html__scene_table(dm_str *s, const report_model *m, size_t si, const html_images *im)
 {
-    const dm_run_result *run = m->run;
     const report_model_scene *sc = &m->scenes[si];
-    const char *scene = sc->name;
     int trends = html__scene_has_trends(m, sc);
-    const char **params;
-    size_t np = report__param_names(run, scene, &params), nv = 0, nd = 0;
-    const char **varying = dm_xcalloc(np + 1, sizeof *varying), *det[8];
+    size_t nv = 0, nd = 0;
+    const char **varying = dm_xcalloc(sc->n_varying + 1, sizeof *varying), *det[8];
+    for (size_t i = 0; i < sc->n_varying; i++)   /* the technique has its own column */
+        if (strcmp(sc->varying[i], "technique") != 0)
+            varying[nv++] = sc->varying[i];
     dm_str_printf(s, "<h2 id=\"scene-%zu\">Scene ", si);
     html__esc(s, sc->label);
     dm_str_cat(s, "</h2>\n<p class=\"const\">Same for every row: ");
-    for (size_t i = 0; i < np; i++) {
-        if (strcmp(params[i], "technique") == 0)
-            continue;
-        if (html__varies(sc, params[i])) {
-            varying[nv++] = params[i];
-            continue;
-        }
-        const char *v = NULL;
-        for (size_t k = 0; k < run->n_configs && !v; k++)
-            if (run->configs[k].ok && strcmp(run->configs[k].scene ? run->configs[k].scene : "", scene) == 0)
-                v = dm_kv_get(run->configs[k].params, run->configs[k].n_params, params[i]);
-        if (!v)
-            continue;
-        html__esc(s, params[i]);
-        dm_str_cat(s, "=");
-        html__esc(s, v);
-        dm_str_cat(s, " ");
-    }
+    html__esc(s, sc->same);
     dm_str_cat(s, "(where the technique reads it; a blank cell below: the technique does not read that axis)</p>\n");
     for (size_t k = 0; k < sizeof html__key_counters / sizeof *html__key_counters; k++)
-        for (size_t i = 0; i < run->n_configs; i++)
-            if (strcmp(run->configs[i].scene ? run->configs[i].scene : "", scene) == 0 &&
-                dm_config_counter(&run->configs[i], html__key_counters[k])) {
+        for (size_t i = 0; i < m->n_rows; i++)   /* failed configurations too: every row of the scene */
+            if (m->rows[i].scene == si && dm_config_counter(m->rows[i].config, html__key_counters[k])) {
                 det[nd++] = html__key_counters[k];
                 break;
             }
@@ -360,10 +327,10 @@ static void html__scene_table(dm_str *s, const report_model *m, size_t si, const
                      "<tr><th>technique</th>", si);
     for (size_t i = 0; i < nv; i++)
         html__tagged(s, "th", varying[i]);
-    dm_str_printf(s, "<th>median ms</th><th>95%% CI</th>%s<th>%s</th><th>SSIM</th><th>PSNR dB</th>"
+    dm_str_printf(s, "<th>median ms</th><th>95%% CI</th>%s<th>%s</th><th>SSIM</th>%s"
                      "<th>Pareto</th>", trends ? "<th title=\"median ms in the earlier runs of this "
                      "configuration on this machine, this run last\">trend</th>" : "",
-                  report_metric_label(m->metric));
+                  report_metric_label(m->metric), m->metric == REPORT_METRIC_PSNR ? "" : "<th>PSNR dB</th>");
     for (size_t i = 0; i < nd; i++) {
         dm_str_cat(s, "<th class=\"more\">");
         html__esc(s, det[i]);
@@ -374,12 +341,11 @@ static void html__scene_table(dm_str *s, const report_model *m, size_t si, const
         html__scene_row(s, m, &m->rows[sc->rows[i]], varying, nv, det, nd, trends);
     dm_str_cat(s, "</tbody></table></div>\n");
     dm_str_cat(s, "<div class=\"charts\">\n");   /* side by side where the window is wide enough */
-    html__scene_pick_images(s, run, scene, im);
-    report__svg_scene(s, run, scene);
-    report__html_charts_scene(s, run, scene);
+    html__scene_pick_images(s, m, sc, im);
+    report__svg_scene(s, m, si);
+    report__html_charts_scene(s, m, si);
     dm_str_cat(s, "</div>\n");
     free(varying);
-    free(params);
 }
 
 #define THUMB_MAX_DIM 240
@@ -430,19 +396,27 @@ static int html__gallery_usable(dm_str *s, const html_images *im, const char *re
     return 0;
 }
 
-/* A scene's reference, embedded once (id refs[k] = "ref-K"). */
+/* A scene's reference, embedded once as a thumbnail (id refs[k] = "ref-K")
+ * on a card of its own; data-full names the file, so a render flips to the
+ * reference at the render's own size, not to the thumbnail. */
 static void html__gallery_reference(dm_str *s, const html_images *im, const char *rel, size_t k)
 {
-    if (!html__gallery_usable(s, im, rel, "reference"))
-        return;
-    char *full = im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
-    dm_str_printf(s, "<figure><a href=\"");
-    html__esc(s, im->href);
-    html__esc(s, rel);
-    dm_str_printf(s, "\"><img id=\"ref-%zu\" src=\"", k);
-    html__image_src(s, im, full, rel);
-    dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b></figcaption></figure>");
-    free(full);
+    dm_str_cat(s, "<div class=\"pair ref\">");
+    if (html__gallery_usable(s, im, rel, "reference")) {
+        char *full = im->dir ? dm_xasprintf("%s/%s", im->dir, rel) : NULL;
+        dm_str_printf(s, "<figure><a href=\"");
+        html__esc(s, im->href);
+        html__esc(s, rel);
+        dm_str_printf(s, "\"><img id=\"ref-%zu\" data-full=\"", k);
+        html__esc(s, im->href);
+        html__esc(s, rel);
+        dm_str_cat(s, "\" src=\"");
+        html__image_src(s, im, full, rel);
+        dm_str_cat(s, "\" alt=\"reference\"></a><figcaption><b>reference</b></figcaption></figure>");
+        free(full);
+    }
+    dm_str_cat(s, "<p class=\"cap\">The reference the cards that follow are compared with; click a "
+                  "render to flip it with the reference, full size.</p></div>");
 }
 
 /* A render or heatmap, linked (loaded from img/ beside the report, lazily);
@@ -465,28 +439,24 @@ static void html__gallery_linked(dm_str *s, const html_images *im, const char *r
     dm_str_cat(s, "\">full size</a></figcaption></figure>");
 }
 
-/* The scene's pick (reports/answer.h) as its render and heatmap beside the
- * charts, so the answer's image is next to its numbers; nothing without a
- * pick. */
-static void html__scene_pick_images(dm_str *s, const dm_run_result *run, const char *scene,
-                              const html_images *im)
+/* The scene's pick (the model's recommendation) as its render and heatmap
+ * beside the charts, so the answer's image is next to its numbers; nothing
+ * without a pick. */
+static void html__scene_pick_images(dm_str *s, const report_model *m, const report_model_scene *sc,
+                                    const html_images *im)
 {
-    recommend_result r;
-    report_recommend(run, scene, &r);
-    if (r.pick == RECOMMEND_NONE)
+    if (sc->rec.pick == RECOMMEND_NONE)
         return;
-    const dm_config_result *c = &run->configs[r.pick];
-    dm_str label = {0}, cap = {0};
-    report__config_label(run, c, &label);
+    const report_model_row *r = &m->rows[sc->rec.pick];
+    const dm_config_result *c = r->config;
+    dm_str cap = {0};
     dm_str_cat(s, "<div class=\"pair pick-images\">");
-    html__gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), -1);
-    html__gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
-    dm_str_printf(&cap, "The pick: %s, ", dm_str_get(&label));
-    report_metric_text(&c->quality, report_metric_of_run(run), &cap);
+    html__gallery_linked(s, im, c->img_render, "render", r->label, -1);
+    html__gallery_linked(s, im, c->img_heatmap, "heatmap", r->label, -1);
+    dm_str_printf(&cap, "The pick: %s, %s", r->label, r->metric_text);
     dm_str_cat(s, "<p class=\"cap\">");
     html__esc(s, dm_str_get(&cap));
     dm_str_cat(s, "</p></div>\n");
-    dm_str_free(&label);
     dm_str_free(&cap);
 }
 
@@ -518,88 +488,95 @@ static size_t html__gallery_ref_index(const char ***refs, size_t *n, const char 
     return (*n)++;
 }
 
-/* One scene's grid: its reference(s) once, then render and heatmap of each
- * configuration, fastest first. */
-static void html__gallery_scene(dm_str *s, const dm_run_result *run, const html_images *im,
-                          const char *scene, const char ***refs, size_t *nrefs)
+/* The legends of a scene's maps, before its cards: the heatmap's one
+ * absolute scale, with what saturates it (a difference of a channel's whole
+ * range or more: lit values may pass 1), and FLIP's fixed scale. */
+static void html__gallery_legend(dm_str *s, const report_model_scene *sc)
 {
-    size_t *rows, nr = report__scene_rows(run, scene, &rows);
-    double top = 0, ppd = NAN;
-    int flips = 0;
+    dm_str_printf(s, "<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
+                     "channel) on one absolute scale for every map, so maps compare side by side: "
+                     "0 <span class=\"scale\"></span> 1, a channel's whole range; a larger "
+                     "difference shows as 1. The largest difference in this scene (MaxError) is "
+                     "%.3g%s. Click a render to flip it with the reference.</p>\n", sc->max_error,
+                  sc->max_error > 1 ? ": its hottest pixels saturate the map" : "");
+    if (sc->flips) {
+        dm_str_printf(s, "<p class=\"const\">FLIP map: LDR-FLIP error per pixel at %.3g pixels per "
+                         "degree, on one fixed scale for every map, so maps compare side by side: "
+                         "0 ", sc->flip_ppd);
+        html__flip_scale(s);
+        dm_str_cat(s, " 1 (docs/flip.md).</p>\n");
+    }
+}
+
+/* One scene's grid, its legends first: its reference(s) once, then render
+ * and heatmap of each configuration, fastest first, each a card of one
+ * width with its values below. */
+static void html__gallery_scene(dm_str *s, const report_model *m, const report_model_scene *sc,
+                                const html_images *im, const char ***refs, size_t *nrefs)
+{
     dm_str_cat(s, "<h3>");
-    html__scene_name(s, run, scene);
-    dm_str_cat(s, "</h3>\n<div class=\"grid\">");
-    for (size_t i = 0; i < nr; i++) {
-        const dm_config_result *c = &run->configs[rows[i]];
+    html__esc(s, sc->label);
+    dm_str_cat(s, "</h3>\n");
+    html__gallery_legend(s, sc);
+    dm_str_cat(s, "<div class=\"grid\">");
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const report_model_row *r = &m->rows[sc->rows[i]];
+        const dm_config_result *c = r->config;
         long ref = -1;
         int fresh = 0;
         if (c->img_reference && report__safe_relpath(c->img_reference)) {
             ref = (long)html__gallery_ref_index(refs, nrefs, c->img_reference, &fresh);
             if (fresh)
                 html__gallery_reference(s, im, c->img_reference, (size_t)ref);
-        } else if (c->img_reference) {
-            html__gallery_usable(s, im, c->img_reference, "reference");   /* says it is refused */
+        } else if (c->img_reference) {   /* a card that says it is refused */
+            dm_str_cat(s, "<div class=\"pair ref\">");
+            html__gallery_usable(s, im, c->img_reference, "reference");
+            dm_str_cat(s, "</div>");
         }
-        dm_str label = {0};
-        report__config_label(run, c, &label);
+        const char *label = r->label;
         dm_str_cat(s, "<div class=\"pair\">");
-        html__gallery_linked(s, im, c->img_render, "render", dm_str_get(&label), ref);
-        html__gallery_linked(s, im, c->img_heatmap, "heatmap", dm_str_get(&label), -1);
-        if (c->img_flip) {
-            html__gallery_linked(s, im, c->img_flip, "FLIP", dm_str_get(&label), -1);
-            flips = 1;
-            ppd = c->quality.flip_ppd;
-        }
-        /* the caption of the pair carries its values */
+        html__gallery_linked(s, im, c->img_render, "render", label, ref);
+        html__gallery_linked(s, im, c->img_heatmap, "heatmap", label, -1);
+        if (c->img_flip)
+            html__gallery_linked(s, im, c->img_flip, "FLIP", label, -1);
+        /* the caption of the pair carries its values, on the legend's scale */
         dm_str cap = {0};
-        dm_str_printf(&cap, "%s: ", dm_str_get(&label));
-        report_metric_text(&c->quality, report_metric_of_run(run), &cap);
-        dm_str_printf(&cap, ", MaxError %.3g", c->quality.max_error);
+        dm_str_printf(&cap, "%s: %s, MaxError %.3g%s", label, r->metric_text, c->quality.max_error,
+                      c->quality.max_error > 1 ? " (saturates the heatmap)" : "");
         if (c->img_flip)
             dm_str_printf(&cap, ", FLIP %.4f (max %.3f)", c->quality.flip, c->quality.flip_max);
         dm_str_cat(s, "<p class=\"cap\">");
         html__esc(s, dm_str_get(&cap));
         dm_str_cat(s, "</p></div>");
         dm_str_free(&cap);
-        if (c->quality.present && isfinite(c->quality.max_error))
-            top = fmax(top, c->quality.max_error);
-        dm_str_free(&label);
     }
-    dm_str_printf(s, "</div>\n<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
-                     "channel) on one absolute scale for every map, so maps compare side by side: "
-                     "0 <span class=\"scale\"></span> 1, a channel's whole range (the largest "
-                     "difference in this scene is %.3g). Click a render to flip it with the "
-                     "reference.</p>\n", top);
-    if (flips) {
-        dm_str_printf(s, "<p class=\"const\">FLIP map: LDR-FLIP error per pixel at %.3g pixels per "
-                         "degree, on one fixed scale for every map, so maps compare side by side: "
-                         "0 ", ppd);
-        html__flip_scale(s);
-        dm_str_cat(s, " 1 (docs/flip.md).</p>\n");
-    }
-    free(rows);
+    dm_str_cat(s, "</div>\n");
 }
 
-static void html__gallery(dm_str *s, const dm_run_result *run, const html_images *im)
+static void html__gallery(dm_str *s, const report_model *m, const html_images *im)
 {
-    const char **scenes, **refs = NULL;
-    size_t ns = report__scenes(run, &scenes), nrefs = 0;
+    const char **refs = NULL;
+    size_t nrefs = 0;
     dm_str_cat(s, "<h2 id=\"gallery\">Gallery</h2>\n<p>Per scene: the reference once (embedded), "
                   "then each configuration's render and heatmap side by side, fastest first, with "
                   "their values (files in img/ beside this report; \"full size\" opens one).</p>\n");
-    for (size_t i = 0; i < ns; i++)
-        html__gallery_scene(s, run, im, scenes[i], &refs, &nrefs);
+    for (size_t i = 0; i < m->n_scenes; i++)
+        html__gallery_scene(s, m, &m->scenes[i], im, &refs, &nrefs);
     free(refs);
-    free(scenes);
 }
 
+/* The failed configurations with their reasons and logs, then the
+ * combinations the planner left out; each says "None." when it has none
+ * (as summary.md does) instead of an empty heading or a header-only table. */
 static void html__failed_and_left_out(dm_str *s, const dm_run_result *run)
 {
+    size_t failed = 0;
     dm_str_cat(s, "<h2 id=\"failed\">Failed configurations</h2>\n");
     for (size_t i = 0; i < run->n_configs; i++) {
         const dm_config_result *c = &run->configs[i];
         if (c->ok)
             continue;
+        failed++;
         dm_str_cat(s, "<div class=\"fail\"><p><b>");
         html__esc(s, c->key);
         dm_str_cat(s, "</b> ");
@@ -611,7 +588,14 @@ static void html__failed_and_left_out(dm_str *s, const dm_run_result *run)
             html__tagged(s, "pre", c->log);
         dm_str_cat(s, "</div>\n");
     }
-    dm_str_cat(s, "<h2>Left out</h2>\n<table><tr><th>params</th><th>reason</th></tr>\n");
+    if (!failed)
+        dm_str_cat(s, "<p class=\"const\">None.</p>\n");
+    dm_str_cat(s, "<h2>Left out</h2>\n");
+    if (!run->n_left_out) {
+        dm_str_cat(s, "<p class=\"const\">None.</p>\n");
+        return;
+    }
+    dm_str_cat(s, "<table><tr><th>params</th><th>reason</th></tr>\n");
     for (size_t i = 0; i < run->n_left_out; i++) {
         dm_str_cat(s, "<tr><td>");
         html__params_inline(s, run->left_out[i].params, run->left_out[i].n_params);
@@ -640,7 +624,9 @@ static int html__fit_usable(const dm_fit_result *f)
     return isfinite(f->r2) && f->r2 >= FIT_USABLE_R2 && !isinf(f->condition) && f->n_params > 0;
 }
 
-static void html__fit_row(dm_str *s, const dm_fit_result *f)
+/* A usable fit's row: model, group, each parameter with its stderr and
+ * unit (the model's fit_units), R², CV MAPE, condition, points, warnings. */
+static void html__fit_row(dm_str *s, const dm_fit_result *f, char *const *units)
 {
     dm_str_cat(s, "<tr>");
     html__tagged(s, "td", f->model);
@@ -652,6 +638,10 @@ static void html__fit_row(dm_str *s, const dm_fit_result *f)
         dm_str_printf(s, " = %.3g", f->params[k].value);
         if (isfinite(f->params[k].stderr_))
             dm_str_printf(s, " ± %.2g", f->params[k].stderr_);
+        if (*units[k]) {
+            dm_str_cat(s, " ");
+            html__esc(s, units[k]);
+        }
         dm_str_cat(s, "<br>");
     }
     dm_str_cat(s, "</td>");
@@ -682,8 +672,9 @@ static void html__fit_line(dm_str *s, const dm_fit_result *f)
 }
 
 /* Usable fits with their table and plots; the others folded, one line each. */
-static void html__fits(dm_str *s, const dm_run_result *run)
+static void html__fits(dm_str *s, const report_model *m)
 {
+    const dm_run_result *run = m->run;
     if (!run->n_fits)
         return;
     size_t bad = 0;
@@ -691,13 +682,13 @@ static void html__fits(dm_str *s, const dm_run_result *run)
         bad += !html__fit_usable(&run->fits[i]);
     dm_str_cat(s, "<h2 id=\"fits\">Model fits</h2>\n");
     if (bad < run->n_fits) {
-        dm_str_cat(s, "<table><tr><th>model</th><th>group</th><th>parameters ± stderr</th>"
+        dm_str_cat(s, "<table><tr><th>model</th><th>group</th><th>parameters ± stderr, unit</th>"
                       "<th>R²</th><th>CV MAPE</th><th title=\"2-norm condition number of the scaled "
                       "Jacobian; large means the parameters are poorly determined\">condition</th>"
                       "<th>points</th><th>warnings</th></tr>\n");
         for (size_t i = 0; i < run->n_fits; i++)
             if (html__fit_usable(&run->fits[i]))
-                html__fit_row(s, &run->fits[i]);
+                html__fit_row(s, &run->fits[i], m->fit_units[i]);
         dm_str_cat(s, "</table>\n");
         for (size_t i = 0; i < run->n_fits; i++)   /* plots on demand: two per fit */
             if (html__fit_usable(&run->fits[i])) {
@@ -762,7 +753,6 @@ static const char *html__settings_text(const report_model_row *r)
  * fastest lit configuration). */
 static void html__answer_table(dm_str *s, const report_model *m, size_t si)
 {
-    const dm_run_result *run = m->run;
     const report_model_scene *sc = &m->scenes[si];
     const size_t *front = sc->front, nf = sc->n_front;
     const recommend_result *r = &sc->rec;
@@ -773,7 +763,7 @@ static void html__answer_table(dm_str *s, const report_model *m, size_t si)
     dm_str_printf(s, "<section class=\"scene-answer\" id=\"answer-%zu\"><h3>", si);
     html__esc(s, sc->label);
     dm_str_cat(s, "</h3>\n");
-    report_answer_scene(run, sc->name, REPORT_ANSWER_HTML, s);
+    report_answer_scene(m, si, REPORT_ANSWER_HTML, s);
     if (sc->untimed) {   /* counters only: no front, the counters instead */
         dm_str_cat(s, "</section>\n");
         return;
@@ -788,18 +778,17 @@ static void html__answer_table(dm_str *s, const report_model *m, size_t si)
                          "and a %s measurement</td></tr>\n", report_metric_label(m->metric));
     for (size_t i = 0; i < nf; i++) {
         const report_model_row *row = &m->rows[front[i]];
-        const dm_config_result *c = row->config;
         dm_str_printf(s, "<tr%s><td>", front[i] == r->pick ? " class=\"pick\"" : "");
-        html__esc(s, report__technique(c));
+        html__esc(s, row->technique);
         if (front[i] == r->pick)
             dm_str_cat(s, " <b>← pick</b>");
-        if (report_family(c) == RECOMMEND_UNLIT)
+        if (row->family == RECOMMEND_UNLIT)
             dm_str_cat(s, " <span class=\"const\">(unlit baseline)</span>");
         dm_str_cat(s, "</td>");
         if (with_settings)
             html__tagged(s, "td", html__settings_text(row));
         html__time_cells(s, row);
-        html__num_cell(s, "%.4g", report_metric_shown(&c->quality, m->metric));
+        html__num_cell(s, report_metric_format(m->metric), row->shown);
         dm_str_printf(s, "<td class=\"n\">×%.2f</td></tr>\n",
                       base ? row->frame_time->median / base->median : NAN);
     }
@@ -811,7 +800,7 @@ static void html__answer_table(dm_str *s, const report_model *m, size_t si)
 static void html__answer(dm_str *s, const report_model *model)
 {
     report_metric m = model->metric;
-    if (!report_run_timed(model->run)) {
+    if (!model->any_timed) {
         dm_str_cat(s, "<h2 id=\"answer\">Answer: what was measured</h2>\n<p class=\"const\">No timing "
                       "counter was measured (the sweep's <code>counters:</code> have no WallTime), so "
                       "there is no frame budget and no pick: each scene shows the counters it measured, "
@@ -843,22 +832,18 @@ int report__write_html(const report_model *m, const report_desc *d, const char *
     const dm_run_result *run = m->run;
     html_images im = { m->dir, d && d->href ? d->href : "" };
     dm_str s = {0};
-    const char **scenes = dm_xcalloc(m->n_scenes + 1, sizeof *scenes);
-    for (size_t i = 0; i < m->n_scenes; i++)
-        scenes[i] = m->scenes[i].name;
     /* by value: the answer, each scene's table and charts, the images, then
      * the diagnostics, and what only a maintainer reads at the end */
-    html__header(&s, run);
-    html__toc(&s, run, scenes, m->n_scenes);
+    html__header(&s, m);
+    html__toc(&s, m);
     html__answer(&s, m);
     for (size_t i = 0; i < m->n_scenes; i++)
         html__scene_table(&s, m, i, &im);
-    free(scenes);
-    html__gallery(&s, run, &im);
-    report_stage_bars(&s, run);   /* where each configuration's cost goes (stage_bar.c) */
+    html__gallery(&s, m, &im);
+    report_stage_bars(&s, m);   /* where each configuration's cost goes (stage_bar.c) */
     html__timer_and_warnings(&s, m);
     html__failed_and_left_out(&s, run);
-    html__fits(&s, run);
+    html__fits(&s, m);
     dm_str_cat(&s, m->published_html);
     html__proxy_section(&s, run);
     html__environment(&s, run);

@@ -1,6 +1,10 @@
-/* report_internal.h — helpers shared by the report writers (not public).
+/* report_internal.h — what reports/ shares inside itself (not public):
+ * the writers of the report table, and the helpers the report model
+ * (report_model.c) derives with: labels, CIs, marks, rows, fronts,
+ * warnings (report.c), the charts' drawing entry points.
  *
- * All names carry the report__ prefix; they read the results model only.
+ * All names carry the report__ prefix.  The derivations read the run
+ * (dm_results.h); the writers and charts read the report model.
  */
 #ifndef REPORTS_REPORT_INTERNAL_H
 #define REPORTS_REPORT_INTERNAL_H
@@ -59,6 +63,11 @@ size_t report__bimodal(const dm_counter_result *t, double *low, double *high);
  * unchanged when the timing is sound); without with_ci (a table that shows
  * the CI beside it) the noisy mark is just "⚠ noisy". */
 void report__timing_marks(const dm_config_result *c, int with_ci, dm_str *mark, dm_str *why);
+
+/* The defects of a configuration's image as one mark ("⚠ 128 crack
+ * pixels; ⚠ 3 NaN pixels") into mark and the reasons in words into why;
+ * both left unchanged when the image has none. */
+void report__defects(const dm_config_result *c, dm_str *mark, dm_str *why);
 
 /* A configuration's timing is "noisy" (too noisy to trust) when it is ok
  * and the 95 % CI of its median frame time is wider than ± this fraction of
@@ -124,21 +133,31 @@ size_t report__pareto_points(const dm_run_result *run, const char *scene, report
 size_t report__pareto(const dm_run_result *run, const char *scene, size_t **out);
 void report__pareto_text(const dm_run_result *run, const char *scene, dm_str *out);
 
+/* The unit of fit parameter param, from the fit's formula and the unit of
+ * its response counter in the run: "ns" for a term that is the parameter
+ * alone, "ns per VSInvocations" for "param*VSInvocations" (the rest of the
+ * term after the first '*', as written: "ns per tess_level^p").  Appends
+ * nothing when the parameter leads no term of a plain sum (an exponent, a
+ * parenthesis). */
+void report__fit_unit(const dm_run_result *run, const dm_fit_result *f, const char *param, dm_str *out);
+
 /* 1 when the 95 % CIs of the two timings' medians overlap (statistically
  * tied); 0 when either CI is unknown. */
 int report__tied(const dm_counter_result *a, const dm_counter_result *b);
 
-/* Hand-written SVG charts of one scene (svg_chart.c): error vs time with CI
- * whiskers and numbered points (legend below), and time per configuration
- * of this scene only.  Nothing when the scene has no timed configuration. */
-void report__svg_scene(dm_str *s, const dm_run_result *run, const char *scene);
+/* Hand-written SVG charts of scene si of the model (svg_chart.c): error vs
+ * time with CI whiskers, labelled points and the family legend, and time
+ * per configuration of this scene only.  Nothing when the scene has no
+ * timed configuration. */
+void report__svg_scene(dm_str *s, const report_model *m, size_t si);
 
 /* Charts (chart.c): inline SVG appended to an HTML document, each in a
- * <div class="chart" aria-label="title">.  The per-scene PLplot charts (time
- * vs tess_level per mesh, counter breakdown per configuration: per-stage
- * times only from a pipeline-linear fit with R² >= 0.8, else the key
- * counters with a note) and the fit plots.  Nothing is appended when there is nothing to plot. */
-void report__html_charts_scene(dm_str *s, const dm_run_result *run, const char *scene);
+ * <div class="chart" aria-label="title">.  Scene si's PLplot charts from the
+ * model: time vs tess_level per mesh and technique, and the counter
+ * breakdown the model chose (report_model_scene.breakdown: measured stage
+ * times, a fit's estimate, or the key counters, with their notes).
+ * Nothing is appended when there is nothing to plot. */
+void report__html_charts_scene(dm_str *s, const report_model *m, size_t si);
 /* The two plots of one fit (predicted vs measured with y = x; residuals in
  * percent of the measured value vs predicted), nothing without points. */
 void report__html_charts_fit(dm_str *s, const dm_run_result *run, const dm_fit_result *f);

@@ -2,7 +2,8 @@
  * failures and left-out configurations with their reasons.  A row of the
  * writer table (report_write.c): labels, times, fronts, warnings and the
  * published section come from the report model (report_model.h); the
- * answer, the counters and the proxy section still read the run. */
+ * answer and its counters read the model too (answer.c); failures, left-out
+ * configurations and the proxy section read the run. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
 #include "reports/published_report.h"
@@ -33,41 +34,47 @@ static void params_text(dm_str *s, const dm_kv *kv, size_t n)
     }
 }
 
-/* PSNR, SSIM and the Pareto metric's shown value. */
+/* PSNR (unless it is the Pareto metric, whose column says it), SSIM and
+ * the Pareto metric's shown value at its column's one precision. */
 static void quality_cells(dm_str *s, const dm_quality *q, report_metric m)
 {
+    int psnr = m != REPORT_METRIC_PSNR;
     if (!q->present) {
-        dm_str_cat(s, " – | – | – |");
+        dm_str_cat(s, psnr ? " – | – | – |" : " – | – |");
         return;
     }
-    if (isinf(q->psnr))
+    if (psnr && isinf(q->psnr))
         dm_str_cat(s, " ∞ |");
-    else
+    else if (psnr)
         dm_str_printf(s, " %.2f dB |", q->psnr);
     dm_str_printf(s, " %.4f |", q->ssim);
     double v = report_metric_shown(q, m);
-    if (isinf(v))
+    if (isinf(v)) {
         dm_str_cat(s, " ∞ |");
-    else
-        dm_str_printf(s, " %.4g |", v);
+        return;
+    }
+    dm_str_cat(s, " ");
+    dm_str_printf(s, report_metric_format(m), v);
+    dm_str_cat(s, " |");
 }
 
 static void scene_table(dm_str *s, const report_model *m, const report_model_scene *sc)
 {
-    const dm_run_result *run = m->run;
     dm_str_cat(s, "\n## ");
     cell(s, sc->label);
     dm_str_cat(s, "\n\n");
-    report_answer_scene(run, sc->name, REPORT_ANSWER_MD, s);
-    int timed = sc->untimed == NULL;
+    report_answer_scene(m, (size_t)(sc - m->scenes), REPORT_ANSWER_MD, s);
+    int timed = sc->untimed == NULL, psnr = m->metric != REPORT_METRIC_PSNR;   /* else one PSNR column */
     if (timed) {
         dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ", report_metric_label(m->metric));
         cell(s, sc->front_text);
-        dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI | PSNR | SSIM | %s | key |\n"
-                         "|---|---|---|---|---|---|---|\n", report_metric_label(m->metric));
+        dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI |%s SSIM | %s | key |\n"
+                         "|---|---|---|%s---|---|---|\n", psnr ? " PSNR |" : "", report_metric_label(m->metric),
+                      psnr ? "---|" : "");
     } else   /* counters only: the counters are above; quality and keys here */
-        dm_str_printf(s, "\nQuality against the reference:\n\n| configuration | PSNR | SSIM | %s | key |\n"
-                         "|---|---|---|---|---|\n", report_metric_label(m->metric));
+        dm_str_printf(s, "\nQuality against the reference:\n\n| configuration |%s SSIM | %s | key |\n"
+                         "|---|%s---|---|---|\n", psnr ? " PSNR |" : "", report_metric_label(m->metric),
+                      psnr ? "---|" : "");
     for (size_t i = 0; i < sc->n_rows; i++) {
         const report_model_row *r = &m->rows[sc->rows[i]];
         dm_str_cat(s, "| ");
@@ -170,11 +177,11 @@ int report__write_md(const report_model *m, const report_desc *d, const char *pa
     dm_str_printf(&s, "\n- Pareto metric: %s (%s)", report_metric_name(m->metric),
                   report_metric_label(m->metric));
     dm_str_cat(&s, "\n- budget: ");
-    if (!report_run_timed(run))
+    if (!m->any_timed)
         dm_str_cat(&s, "none: no timing counter measured, so no budget or pick (the counters are in "
                        "each scene's table)");
-    else if (report_budget_ms(run) > 0)
-        dm_str_printf(&s, "%g ms", report_budget_ms(run));
+    else if (m->budget_ms > 0)
+        dm_str_printf(&s, "%g ms", m->budget_ms);
     else
         dm_str_cat(&s, "default per scene, the round number (1, 2, 5 x 10^n ms) between its fastest and "
                        "slowest lit times farthest (log scale) from every lit time (set one with report --budget-ms or quality.budget_ms)");

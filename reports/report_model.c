@@ -1,9 +1,10 @@
 /* report_model.c — the report model of one run (report_model.h), derived
- * once with the helpers of report.c, answer.c and published_report.c; the
- * writers read it and call none of those derivations again. */
+ * once with the helpers of report.c, recommend_run.c, breakdown.c and
+ * published_report.c; the writers read it and call none of those
+ * derivations again. */
 #include "reports/report_model.h"
 #include "reports/report_internal.h"
-#include "reports/answer.h"
+#include "reports/recommend_run.h"
 #include "reports/published_report.h"
 
 #include <math.h>
@@ -47,13 +48,20 @@ static void report_model__row(report_model *m, report_model_row *r, const dm_con
     r->why = dm_str_take(&why);
     report__timing_marks(c, 0, &s, &why);
     r->marks_short = dm_str_take(&s);
-    dm_str_free(&why);
+    dm_str_free(&why);   /* the same reasons again */
     r->noisy = report__noisy(c);
     r->error = c->quality.present ? report_metric_error(&c->quality, m->metric) : NAN;
     r->shown = report_metric_shown(&c->quality, m->metric);
     r->trend = report_model__trend(m->trends, c->key);
     r->nonfinite_pixels = c->quality.present ? c->quality.nonfinite_pixels : 0;
     r->crack_pixels = c->quality.present ? c->quality.crack_pixels : 0;
+    r->technique = report__technique(c);
+    r->family = report_family(c);
+    report_metric_text(&c->quality, m->metric, &s);
+    r->metric_text = dm_str_take(&s);
+    report__defects(c, &s, &why);
+    r->defects = dm_str_take(&s);
+    r->defects_why = dm_str_take(&why);
 }
 
 static void report_model__scene(report_model *m, report_model_scene *sc, const char *name)
@@ -67,15 +75,48 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
     const char **params;
     size_t np = report__param_names(run, name, &params);
     sc->varying = dm_xcalloc(np + 1, sizeof *sc->varying);
-    for (size_t i = 0; i < np; i++)
-        if (report__param_varies(run, name, params[i]))
+    dm_str same = {0};
+    for (size_t i = 0; i < np; i++) {
+        if (report__param_varies(run, name, params[i])) {
             sc->varying[sc->n_varying++] = params[i];
+            continue;
+        }
+        const char *v = NULL;   /* one value over the ok rows that have it */
+        for (size_t k = 0; k < sc->n_rows && !v; k++) {
+            const dm_config_result *c = &run->configs[sc->rows[k]];
+            v = dm_kv_get(c->params, c->n_params, params[i]);
+        }
+        if (v && strcmp(params[i], "technique") != 0)
+            dm_str_printf(&same, "%s=%s ", params[i], v);
+    }
+    sc->same = dm_str_take(&same);
     free(params);
     sc->n_front = report__pareto(run, name, &sc->front);
     report__pareto_text(run, name, &s);
     sc->front_text = dm_str_take(&s);
     sc->untimed = report_untimed_reason(run, name);
     sc->n_points = report_recommend(run, name, &sc->rec);
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const dm_config_result *c = &run->configs[sc->rows[i]];
+        sc->n_timed += report__frame_time(c) != NULL;
+        sc->n_noisy += report__frame_time(c) && report__noisy(c);
+    }
+    sc->provisional = sc->n_timed >= 2 && 2 * sc->n_noisy > sc->n_timed;
+    sc->n_det = report__counter_names(run, name, REPORT__DETERMINISTIC, &sc->det);
+    size_t *timed = dm_xcalloc(sc->n_rows + 1, sizeof *timed), nt = 0;
+    for (size_t i = 0; i < sc->n_rows; i++)   /* still fastest first */
+        if (report__frame_time(&run->configs[sc->rows[i]]))
+            timed[nt++] = sc->rows[i];
+    breakdown_choose(run, timed, nt, &sc->breakdown);
+    free(timed);
+    sc->flip_ppd = NAN;
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const dm_config_result *c = &run->configs[sc->rows[i]];
+        if (c->quality.present && isfinite(c->quality.max_error))
+            sc->max_error = fmax(sc->max_error, c->quality.max_error);
+        if (c->img_flip)
+            sc->flips = 1, sc->flip_ppd = c->quality.flip_ppd;
+    }
 }
 
 int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d)
@@ -87,14 +128,17 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     m->dir = d ? d->dir : NULL;
     m->trends = d ? d->trends : NULL;
     m->metric = report_metric_of_run(run);
+    m->budget_ms = report_budget_ms(run);
     dm_str k = {0};
     report_scene_constants(run, &k);
     m->constants = dm_str_take(&k);
     const char **names;
     m->n_scenes = report__scenes(run, &names);
     m->scenes = dm_xcalloc(m->n_scenes + 1, sizeof *m->scenes);
-    for (size_t i = 0; i < m->n_scenes; i++)
+    for (size_t i = 0; i < m->n_scenes; i++) {
         report_model__scene(m, &m->scenes[i], names[i]);
+        m->any_timed |= m->scenes[i].untimed == NULL;
+    }
     m->n_rows = run->n_configs;
     m->rows = dm_xcalloc(m->n_rows + 1, sizeof *m->rows);
     for (size_t i = 0; i < m->n_rows; i++) {
@@ -111,6 +155,16 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     m->n_params = report__param_names(run, NULL, &m->params);
     m->n_timed = report__counter_names(run, NULL, REPORT__TIMED, &m->timed);
     m->n_det = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &m->det);
+    m->fit_units = dm_xcalloc(run->n_fits + 1, sizeof *m->fit_units);
+    for (size_t i = 0; i < run->n_fits; i++) {
+        const dm_fit_result *f = &run->fits[i];
+        m->fit_units[i] = dm_xcalloc(f->n_params + 1, sizeof **m->fit_units);
+        for (size_t k = 0; k < f->n_params; k++) {
+            dm_str u = {0};
+            report__fit_unit(run, f, f->params[k].name, &u);
+            m->fit_units[i][k] = dm_str_take(&u);
+        }
+    }
     m->n_warnings = report__warnings(run, &m->warnings);
     m->n_noisy = report__noisy_configs(run, &m->noisy);
     /* published.json, once: the run directory's, or beside the one file written */
@@ -138,6 +192,9 @@ void report_model_free(report_model *m)
         free(r->marks);
         free(r->marks_short);
         free(r->why);
+        free(r->metric_text);
+        free(r->defects);
+        free(r->defects_why);
     }
     free(m->rows);
     for (size_t i = 0; m->scenes && i < m->n_scenes; i++) {
@@ -145,8 +202,11 @@ void report_model_free(report_model *m)
         free(sc->label);
         free(sc->rows);
         free(sc->varying);
+        free(sc->same);
         free(sc->front);
         free(sc->front_text);
+        free(sc->det);
+        breakdown_free(&sc->breakdown);
     }
     free(m->scenes);
     free(m->params);
@@ -157,6 +217,12 @@ void report_model_free(report_model *m)
     free(m->constants);
     free(m->published_md);
     free(m->published_html);
+    for (size_t i = 0; m->fit_units && i < m->run->n_fits; i++) {
+        for (size_t k = 0; k < m->run->fits[i].n_params; k++)
+            free(m->fit_units[i][k]);
+        free(m->fit_units[i]);
+    }
+    free(m->fit_units);
     memset(m, 0, sizeof *m);
 }
 

@@ -3,27 +3,38 @@
  * Built from a dm_run_result (and the run directory, the trend lines of the
  * store) before any file is written; every writer of the report table
  * (report_write.c: results.json, results.csv, summary.md, report.html,
- * front.tex) reads it instead of deriving labels, frame times, fronts and
- * warnings again, so the files cannot disagree.  The model borrows the run,
- * the directory and the trends (they must outlive it) and owns everything
+ * front.tex), the answer in words (answer.c, also the terminal's), the
+ * charts (svg_chart.c, chart.c), the stage bars and the drivers report
+ * read it instead of deriving labels, frame times, fronts, picks and
+ * warnings again, so they cannot disagree.  The model borrows the run, the
+ * directory and the trends (they must outlive it) and owns everything
  * else; it is read-only once built.
  *
- * Per configuration (run order): its labels, frame time and the text of its
- * CI, the noise marks, whether it is on its scene's front, its trend line
- * and its image defects.  Per scene (first-appearance order): its label, the
- * ok configurations fastest first, the axes that vary, the front, the
- * recommendation (pick, knee, best per family) and whether the counter
- * breakdown or the untimed note is drawn.  Once for the run: the error
- * metric, the warnings list (results.json, summary.md and report.html say
- * the same words) and the published figures, read from published.json once.
+ * Per configuration (run order): its labels, technique and family, frame
+ * time and the text of its CI, the noise marks, whether it is on its
+ * scene's front, its quality as a sentence says it, its trend line and its
+ * image defects with their marks.  Per scene (first-appearance order): its
+ * label, the ok configurations fastest first, the axes that vary, the
+ * front, the recommendation (pick, knee, best per family), whether the
+ * pick is provisional, its counter table's counters, the counter breakdown
+ * its chart draws (breakdown.h) and the untimed note.  Once for the run:
+ * the error metric, the budget, whether any scene is timed, the units of
+ * each fit's parameters, the warnings
+ * list (results.json, summary.md and report.html say the same words) and
+ * the published figures, read from published.json once.
+ *
+ * Fields are grouped by who reads them; a group added for a new reader
+ * goes at the end of its struct.
  */
 #ifndef REPORTS_REPORT_MODEL_H
 #define REPORTS_REPORT_MODEL_H
 
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+#include "reports/breakdown.h"
 #include "reports/metric.h"
 #include "reports/recommend.h"
+#include "reports/recommend_run.h"
 #include "reports/report.h"
 
 /* One configuration as every file shows it. */
@@ -46,6 +57,12 @@ typedef struct report_model_row {
     double shown;         /* the metric as shown (SSIM: 1 − SSIM, PSNR in dB); NaN when none */
     const report_trend *trend;   /* this configuration's trend line, or NULL */
     long nonfinite_pixels, crack_pixels;   /* image defects (0 without quality) */
+    /* what the answer's sentences, the charts, the gallery and the stage bars read */
+    const char *technique;   /* its technique param, "?" without one */
+    recommend_family family; /* report_family */
+    char *metric_text;       /* its quality for a sentence: "SSIM 0.950" (report_metric_text) */
+    char *defects;           /* "⚠ 7 crack pixels; ⚠ 3 NaN pixels", "" when none */
+    char *defects_why;       /* the defects' reasons in words, "" when none */
 } report_model_row;
 
 /* One scene of the run. */
@@ -56,12 +73,25 @@ typedef struct report_model_scene {
     size_t n_rows;
     const char **varying; /* the param names that take two or more values */
     size_t n_varying;
+    char *same;           /* the others with their one value: "mesh=plane steps=8 " ("" when none) */
     size_t *front;        /* the Pareto front, fastest first (config indexes) */
     size_t n_front;
     char *front_text;     /* the front as one sentence */
     const char *untimed;  /* report_untimed_reason, or NULL when timed */
     recommend_result rec; /* pick, knee, best per family (config indexes) */
     size_t n_points;      /* points the recommendation considered */
+    /* what the answer's sentences and the counter table read */
+    size_t n_timed;       /* rows with a frame time */
+    size_t n_noisy;       /* of those, the noisy ones */
+    int provisional;      /* two or more timed and most of them noisy: the pick may move */
+    const char **det;     /* the scene's deterministic counters, first appearance */
+    size_t n_det;
+    /* what chart.c draws */
+    breakdown breakdown;  /* the counter breakdown chosen for its timed rows (breakdown.h) */
+    /* what the gallery's legends say */
+    double max_error;     /* the largest MaxError of its rows with quality (0 without) */
+    int flips;            /* some row has a FLIP map */
+    double flip_ppd;      /* the pixels per degree of its FLIP maps (the last row's); NaN without */
 } report_model_scene;
 
 typedef struct report_model {
@@ -86,6 +116,11 @@ typedef struct report_model {
     size_t n_noisy;
     char *published_md;           /* the published section, read once; "" when none */
     char *published_html;
+    /* what the answer's sentences and summary.md's header read */
+    double budget_ms;             /* report_budget_ms: 0 = each scene's default */
+    int any_timed;                /* some scene has a frame time (a budget and a pick) */
+    /* what the fits table reads */
+    char ***fit_units;            /* [fit][param]: "ns per VSInvocations"; "" when unknown */
 } report_model;
 
 /* Builds the model of run for the files d describes (report.h): d->dir

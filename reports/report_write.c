@@ -6,6 +6,7 @@
 #include "reports/report.h"
 #include "reports/report_internal.h"
 #include "reports/published_report.h"
+#include "reports/answer.h"
 #include "reports/report_model.h"
 
 #include <errno.h>
@@ -121,4 +122,14 @@ int report_write_run(const dm_run_result *run, const report_desc *d, char *err, 
     rc = report_write(&m, d, err, errlen);
     report_model_free(&m);
     return rc;
+}
+
+/* The terminal's answer is one more reader of the model: built here, as
+ * for the files, so answer.c calls nothing that derives it. */
+void report_answer_terminal(const dm_run_result *run, dm_str *out)
+{
+    report_model m;
+    if (report_model_build(&m, run, NULL) == 0)
+        report_answer_terminal_model(&m, out);
+    report_model_free(&m);
 }

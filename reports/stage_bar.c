@@ -1,7 +1,8 @@
-/* stage_bar.c — the report's stacked stage bars (see stage_bar.h). */
+/* stage_bar.c — the report's stacked stage bars (see stage_bar.h): the
+ * rows and their labels are the report model's, the stage counters each
+ * row's configuration's. */
 #include "reports/stage_bar.h"
 #include "counters/counters.h"
-#include "reports/report_internal.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -23,13 +24,13 @@ static void bar__cell(dm_str *s, double v)
 }
 
 /* One row: label, bar (three segments, widths = shares), verdict, costs. */
-static void bar__row(dm_str *s, const dm_run_result *run, const dm_config_result *c, const double part[3])
+static void bar__row(dm_str *s, const report_model_row *r, const double part[3])
 {
     static const char *const name[3] = {"geometry", "raster", "fragment"};
     static const char *const colour[3] = {"#4e79a7", "#f28e2b", "#59a14f"};
+    const dm_config_result *c = r->config;
     double total = part[0] + part[1] + part[2];
-    dm_str label = {0}, verdict = {0}, hover = {0};
-    report__config_label(run, c, &label);
+    dm_str verdict = {0}, hover = {0};
     counters_stage_verdict(part[0], part[1], part[2], &verdict);
     double pv = bar__value(c, "InstructionsPerVertex"), pe = bar__value(c, "InstructionsPerEvaluation"),
            pp = bar__value(c, "FragmentInstructionsPerPixel");
@@ -41,7 +42,7 @@ static void bar__row(dm_str *s, const dm_run_result *run, const dm_config_result
     if (isfinite(pp))
         dm_str_printf(&hover, "; %.1f fragment instructions per covered pixel", pp);
     dm_str_cat(s, "<tr><td>");
-    dm_str_cat_html(s, dm_str_get(&label));
+    dm_str_cat_html(s, r->label);
     dm_str_cat(s, "</td><td><div class=\"stagebar\" style=\"display:flex;width:240px;height:14px\" title=\"");
     dm_str_cat_html(s, dm_str_get(&hover));
     dm_str_cat(s, "\">");
@@ -55,16 +56,15 @@ static void bar__row(dm_str *s, const dm_run_result *run, const dm_config_result
     bar__cell(s, pe);
     bar__cell(s, pp);
     dm_str_cat(s, "</tr>\n");
-    dm_str_free(&label);
     dm_str_free(&verdict);
     dm_str_free(&hover);
 }
 
-void report_stage_bars(dm_str *s, const dm_run_result *run)
+void report_stage_bars(dm_str *s, const report_model *m)
 {
     size_t shown = 0;
-    for (size_t i = 0; i < run->n_configs; i++) {
-        const dm_config_result *c = &run->configs[i];
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const dm_config_result *c = m->rows[i].config;
         double part[3] = {bar__value(c, "GeometryInstructions"), bar__value(c, "RasterInstructions"),
                           bar__value(c, "FragmentInstructions")};
         dm_str probe = {0};
@@ -81,7 +81,7 @@ void report_stage_bars(dm_str *s, const dm_run_result *run)
                           "<span style=\"color:#59a14f\">■</span> fragment.</p>\n"
                           "<table><tr><th>configuration</th><th>stages</th><th>verdict</th>"
                           "<th>per vertex</th><th>per evaluation</th><th>fragment per pixel</th></tr>\n");
-        bar__row(s, run, c, part);
+        bar__row(s, &m->rows[i], part);
     }
     if (shown)
         dm_str_cat(s, "</table>\n");

@@ -7,9 +7,11 @@
 
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+#include "reports/report_model.h"
 
-/* Appends the section to s; nothing when no configuration of the run has
- * all three stage counters available. */
-void report_stage_bars(dm_str *s, const dm_run_result *run);
+/* Appends the section for the model's rows (run order, each labelled as in
+ * its scene's table) to s; nothing when no configuration of the run has all
+ * three stage counters available. */
+void report_stage_bars(dm_str *s, const report_model *m);
 
 #endif

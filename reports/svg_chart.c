@@ -11,10 +11,11 @@
  *    scene (never pooled across scenes), fastest first, with its CI whisker
  *    and its full label left of the bar (the SVG is as wide as the longest
  *    label needs).
+ * Both read the report model only: the scene's rows and front, each row's
+ * label, frame time, texts, error and family.
  */
-#include "reports/answer.h"
-#include "reports/report.h"
 #include "reports/report_internal.h"
+#include "reports/report_model.h"
 
 #include <math.h>
 #include <stdio.h>
@@ -104,52 +105,52 @@ static void svg_axes(dm_str *s, svg_axis ax, svg_axis ay, const char *xt, const 
     dm_str_cat(s, "</text>");
 }
 
-/* The hover title of configuration c: label, time with CI, error. */
-static void svg_title(dm_str *s, const dm_run_result *run, const dm_config_result *c, double err,
-                      report_metric m)
+/* The hover title of a row: label, time with CI, the metric's value. */
+static void svg_title(dm_str *s, const report_model_row *r, double shown, report_metric m)
 {
     dm_str text = {0};
-    report__config_label(run, c, &text);
-    dm_str_cat(&text, ": ");
-    report__time_ci_text(report__frame_time(c), &text);
-    dm_str_printf(&text, ", %s %.4g", report_metric_name(m), err);
+    dm_str_printf(&text, "%s: %s, %s %.4g", r->label, r->time_ci_text, report_metric_name(m), shown);
     dm_str_cat(s, "<title>");
     dm_str_cat_html(s, dm_str_get(&text));
     dm_str_cat(s, "</title>");
     dm_str_free(&text);
 }
 
-/* The points of one scene's scatter: config indexes, median ms, shown
- * error (an infinite PSNR at the top edge), the front, both axes and the
- * label boxes placed so far (x0, y0, x1, y1 each). */
+/* The points of one scene's scatter: rows with a frame time and a finite
+ * error, fastest first (their row indexes), median ms, shown error (an
+ * infinite PSNR at the top edge), both axes and the label boxes placed so
+ * far (x0, y0, x1, y1 each). */
 typedef struct svg_points {
-    size_t n, nf, *idx, *front, nbox;
+    size_t n, *idx, nbox;
     double *x, *y, *box;
     svg_axis ax, ay;
     report_metric m;
 } svg_points;
 
-static void svg_points_load(svg_points *p, const dm_run_result *run, const char *scene)
+static void svg_points_load(svg_points *p, const report_model *m, const report_model_scene *sc)
 {
-    size_t cap = run->n_configs + 1;
+    size_t cap = sc->n_rows + 1;
     p->idx = dm_xcalloc(cap, sizeof *p->idx);
     p->x = dm_xcalloc(cap, sizeof *p->x);
     p->y = dm_xcalloc(cap, sizeof *p->y);
     p->box = dm_xcalloc(cap * 2 * 4, sizeof *p->box);
-    p->nbox = 0;
-    p->m = report_metric_of_run(run);
-    p->n = report__pareto_points(run, scene, p->m, p->idx, p->x, p->y);
-    p->nf = report__pareto(run, scene, &p->front);
+    p->nbox = p->n = 0;
+    p->m = m->metric;
     p->ax = (svg_axis){INFINITY, 0, 0};
     p->ay = (svg_axis){INFINITY, -INFINITY, 0};
-    for (size_t i = 0; i < p->n; i++) {
-        const dm_counter_result *t = report__frame_time(&run->configs[p->idx[i]]);
-        p->x[i] /= 1e6;
-        p->ax.hi = fmax(p->ax.hi, isfinite(t->ci_hi) ? t->ci_hi / 1e6 : p->x[i]);
-        p->ax.lo = fmin(p->ax.lo, isfinite(t->ci_lo) && t->ci_lo > 0 ? t->ci_lo / 1e6 : p->x[i]);
-        p->y[i] = report_metric_shown(&run->configs[p->idx[i]].quality, p->m);
-        p->ay.lo = isfinite(p->y[i]) ? fmin(p->ay.lo, p->y[i]) : p->ay.lo;
-        p->ay.hi = isfinite(p->y[i]) ? fmax(p->ay.hi, p->y[i]) : p->ay.hi;
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const report_model_row *r = &m->rows[sc->rows[i]];
+        const dm_counter_result *t = r->frame_time;
+        if (!t || !isfinite(r->error))
+            continue;
+        size_t k = p->n++;
+        p->idx[k] = sc->rows[i];
+        p->x[k] = t->median / 1e6;
+        p->ax.hi = fmax(p->ax.hi, isfinite(t->ci_hi) ? t->ci_hi / 1e6 : p->x[k]);
+        p->ax.lo = fmin(p->ax.lo, isfinite(t->ci_lo) && t->ci_lo > 0 ? t->ci_lo / 1e6 : p->x[k]);
+        p->y[k] = r->shown;
+        p->ay.lo = isfinite(p->y[k]) ? fmin(p->ay.lo, p->y[k]) : p->ay.lo;
+        p->ay.hi = isfinite(p->y[k]) ? fmax(p->ay.hi, p->y[k]) : p->ay.hi;
     }
     p->ax.log = p->ax.lo > 0 && p->ax.hi > 10 * p->ax.lo;
     p->ax.lo = p->ax.log ? p->ax.lo / 1.15 : 0;
@@ -167,7 +168,6 @@ static void svg_points_free(svg_points *p)
     free(p->x);
     free(p->y);
     free(p->box);
-    free(p->front);
 }
 
 /* Colour and marker per family (recommend_family order: unlit, fragment,
@@ -223,20 +223,17 @@ static int svg_place(svg_points *p, double px, double py, double w, double *tx, 
 }
 
 /* Point i: hover title, CI whisker, the family's marker (filled on the front). */
-static void svg_point(dm_str *s, const dm_run_result *run, svg_points *p, size_t i)
+static void svg_point(dm_str *s, const report_model *m, svg_points *p, size_t i)
 {
-    const dm_config_result *c = &run->configs[p->idx[i]];
-    const dm_counter_result *t = report__frame_time(c);
-    int on = 0;
-    for (size_t k = 0; k < p->nf; k++)
-        on |= p->front[k] == p->idx[i];
+    const report_model_row *r = &m->rows[p->idx[i]];
+    const dm_counter_result *t = r->frame_time;
     double px = svg_x(p->ax, p->x[i]), py = svg_y(p->ay, p->y[i]);
     dm_str_cat(s, "<g>");
-    svg_title(s, run, c, p->y[i], p->m);
+    svg_title(s, r, p->y[i], p->m);
     if (isfinite(t->ci_lo) && isfinite(t->ci_hi) && t->ci_lo > 0)
         dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#999\"/>",
                       svg_x(p->ax, t->ci_lo / 1e6), svg_x(p->ax, t->ci_hi / 1e6), py, py);
-    svg_marker(s, report_family(c), px, py, on);
+    svg_marker(s, r->family, px, py, r->front);
     dm_str_cat(s, "</g>");
     double *b = &p->box[4 * p->nbox++];
     b[0] = px - 5, b[1] = py - 5, b[2] = px + 5, b[3] = py + 5;
@@ -244,28 +241,26 @@ static void svg_point(dm_str *s, const dm_run_result *run, svg_points *p, size_t
 
 /* The label beside point i, or none when no place is free (its hover
  * title still names it; the table below lists every configuration). */
-static void svg_point_label(dm_str *s, const dm_run_result *run, svg_points *p, size_t i)
+static void svg_point_label(dm_str *s, const report_model *m, svg_points *p, size_t i)
 {
-    dm_str label = {0};
-    report__config_label(run, &run->configs[p->idx[i]], &label);
+    const char *label = m->rows[p->idx[i]].label;
     double tx, ty;
     int end;
-    if (svg_place(p, svg_x(p->ax, p->x[i]), svg_y(p->ay, p->y[i]),
-                  (double)svg_chars(dm_str_get(&label)) * 6.4, &tx, &ty, &end) == 0) {
+    if (svg_place(p, svg_x(p->ax, p->x[i]), svg_y(p->ay, p->y[i]), (double)svg_chars(label) * 6.4, &tx,
+                  &ty, &end) == 0) {
         dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\"%s>", tx, ty,
                       end ? " text-anchor=\"end\"" : "");
-        dm_str_cat_html(s, dm_str_get(&label));
+        dm_str_cat_html(s, label);
         dm_str_cat(s, "</text>");
     }
-    dm_str_free(&label);
 }
 
 /* The family legend in the top right corner of the plot. */
-static void svg_legend(dm_str *s, const dm_run_result *run, const svg_points *p)
+static void svg_legend(dm_str *s, const report_model *m, const svg_points *p)
 {
     int present[RECOMMEND_FAMILY_COUNT] = {0};
     for (size_t i = 0; i < p->n; i++)
-        present[report_family(&run->configs[p->idx[i]])] = 1;
+        present[m->rows[p->idx[i]].family] = 1;
     double x = SVG_W - SVG_R - 6;
     for (int f = RECOMMEND_FAMILY_COUNT - 1; f >= 0; f--) {
         if (!present[f])
@@ -281,59 +276,50 @@ static void svg_legend(dm_str *s, const dm_run_result *run, const svg_points *p)
                      "front</text>", x, SVG_T - 8);
 }
 
-static void svg_scatter(dm_str *s, const dm_run_result *run, const char *scene)
+static void svg_scatter(dm_str *s, const report_model *m, const report_model_scene *sc)
 {
     svg_points p;
-    svg_points_load(&p, run, scene);
+    svg_points_load(&p, m, sc);
     if (p.n) {
-        dm_str title = {0}, l = {0};
-        report_scene_label(run, scene, &l);
-        dm_str_printf(&title, "%s vs time: %s", report_metric_label(p.m), dm_str_get(&l));
+        dm_str title = {0};
+        dm_str_printf(&title, "%s vs time: %s", report_metric_label(p.m), sc->label);
         svg_open(s, dm_str_get(&title), SVG_W, SVG_H);
         dm_str_free(&title);
-        dm_str_free(&l);
         svg_axes(s, p.ax, p.ay, p.ax.log ? "median frame time, ms, log scale (whisker: 95% CI)"
                                          : "median frame time, ms (whisker: 95% CI)",
                  report_metric_label(p.m));
         dm_str_printf(s, "<polyline fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"");
-        for (size_t k = 0; k < p.nf; k++)
+        for (size_t k = 0; k < sc->n_front; k++)
             for (size_t i = 0; i < p.n; i++)
-                if (p.idx[i] == p.front[k])
+                if (p.idx[i] == sc->front[k])
                     dm_str_printf(s, "%.1f,%.1f ", svg_x(p.ax, p.x[i]), svg_y(p.ay, p.y[i]));
         dm_str_cat(s, "\"/>");
         for (size_t i = 0; i < p.n; i++)
-            svg_point(s, run, &p, i);
-        for (size_t k = 0; k < p.nf; k++)   /* the front's labels first: they matter most */
+            svg_point(s, m, &p, i);
+        for (size_t k = 0; k < sc->n_front; k++)   /* the front's labels first: they matter most */
             for (size_t i = 0; i < p.n; i++)
-                if (p.idx[i] == p.front[k])
-                    svg_point_label(s, run, &p, i);
-        for (size_t i = 0; i < p.n; i++) {
-            int on = 0;
-            for (size_t k = 0; k < p.nf; k++)
-                on |= p.front[k] == p.idx[i];
-            if (!on)
-                svg_point_label(s, run, &p, i);
-        }
-        svg_legend(s, run, &p);
+                if (p.idx[i] == sc->front[k])
+                    svg_point_label(s, m, &p, i);
+        for (size_t i = 0; i < p.n; i++)
+            if (!m->rows[p.idx[i]].front)
+                svg_point_label(s, m, &p, i);
+        svg_legend(s, m, &p);
         dm_str_cat(s, "</svg></div>\n");
     }
     svg_points_free(&p);
 }
 
-static void svg_bars(dm_str *s, const dm_run_result *run, const char *scene)
+static void svg_bars(dm_str *s, const report_model *m, const report_model_scene *sc)
 {
-    size_t *rows, nr = report__scene_rows(run, scene, &rows), n = 0, longest = 0;
+    size_t *rows = dm_xcalloc(sc->n_rows + 1, sizeof *rows), n = 0, longest = 0;
     double hi = 0;
-    for (size_t i = 0; i < nr; i++) {
-        const dm_counter_result *t = report__frame_time(&run->configs[rows[i]]);
-        if (!t)
+    for (size_t i = 0; i < sc->n_rows; i++) {
+        const report_model_row *r = &m->rows[sc->rows[i]];
+        if (!r->frame_time)
             continue;
-        dm_str label = {0};
-        report__config_label(run, &run->configs[rows[i]], &label);
-        longest = strlen(dm_str_get(&label)) > longest ? strlen(dm_str_get(&label)) : longest;
-        dm_str_free(&label);
-        hi = fmax(hi, isfinite(t->ci_hi) ? t->ci_hi : t->median);
-        rows[n++] = rows[i];
+        longest = strlen(r->label) > longest ? strlen(r->label) : longest;
+        hi = fmax(hi, isfinite(r->frame_time->ci_hi) ? r->frame_time->ci_hi : r->frame_time->median);
+        rows[n++] = sc->rows[i];
     }
     if (!n) {
         free(rows);
@@ -341,40 +327,33 @@ static void svg_bars(dm_str *s, const dm_run_result *run, const char *scene)
     }
     double lw = longest * SVG_CHAR_W + 12, bw = 420, rowh = 18, w = lw + bw + 70, h = n * rowh + 48;
     hi = hi / 1e6 * 1.04;
-    dm_str title = {0}, l = {0};
-    report_scene_label(run, scene, &l);
-    dm_str_printf(&title, "Time per configuration: %s", dm_str_get(&l));
-    dm_str_free(&l);
+    dm_str title = {0};
+    dm_str_printf(&title, "Time per configuration: %s", sc->label);
     svg_open(s, dm_str_get(&title), fmax(w, (double)svg_chars(dm_str_get(&title)) * SVG_CHAR_W * 1.2 + 8), h);
     dm_str_free(&title);
     dm_str_printf(s, "<text x=\"%.1f\" y=\"28\">median frame time, ms, this scene only "
                      "(whisker: 95%% CI)</text>", lw);
     for (size_t i = 0; i < n; i++) {
-        const dm_config_result *c = &run->configs[rows[i]];
-        const dm_counter_result *t = report__frame_time(c);
+        const report_model_row *r = &m->rows[rows[i]];
+        const dm_counter_result *t = r->frame_time;
         double y = 36 + i * rowh, x1 = lw + t->median / 1e6 / hi * bw;
-        dm_str label = {0};
-        report__config_label(run, c, &label);
         dm_str_printf(s, "<g><title>%.3f ms [%.3f, %.3f]</title><text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">",
                       t->median / 1e6, t->ci_lo / 1e6, t->ci_hi / 1e6, lw - 6, y + 11);
-        dm_str_cat_html(s, dm_str_get(&label));
+        dm_str_cat_html(s, r->label);
         dm_str_printf(s, "</text><rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"12\" fill=\"#7aa6d8\"/>",
                       lw, y + 2, x1 - lw);
         if (isfinite(t->ci_lo) && isfinite(t->ci_hi))
             dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#333\"/>",
                           lw + t->ci_lo / 1e6 / hi * bw, lw + t->ci_hi / 1e6 / hi * bw, y + 8, y + 8);
-        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\">", lw + fmax(t->ci_hi / 1e6, t->median / 1e6) / hi * bw + 4,
-                      y + 11);
-        report__ms_text(t->median, s);
-        dm_str_cat(s, "</text></g>");
-        dm_str_free(&label);
+        dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\">%s</text></g>",
+                      lw + fmax(t->ci_hi / 1e6, t->median / 1e6) / hi * bw + 4, y + 11, r->ms_text);
     }
     dm_str_cat(s, "</svg></div>\n");
     free(rows);
 }
 
-void report__svg_scene(dm_str *s, const dm_run_result *run, const char *scene)
+void report__svg_scene(dm_str *s, const report_model *m, size_t si)
 {
-    svg_scatter(s, run, scene);
-    svg_bars(s, run, scene);
+    svg_scatter(s, m, &m->scenes[si]);
+    svg_bars(s, m, &m->scenes[si]);
 }

@@ -1,7 +1,10 @@
 /* test_reports_fixture.h — a synthetic run for the report tests and the
  * browser test generator: 2 ok configurations (one with refused image
  * paths), 1 failed with a shader log holding markup, a hostile sweep name,
- * a left-out configuration, a fit and a warning. */
+ * a left-out configuration, a fit and a warning; and its pieces (a timed or
+ * counted counter, a quality record), which test_reports_model.c builds its
+ * own run from.  Every function is static and marked unused, so a file may
+ * take only the pieces it needs. */
 #ifndef TEST_REPORTS_FIXTURE_H
 #define TEST_REPORTS_FIXTURE_H
 
@@ -23,10 +26,11 @@
 #define FIXTURE_REASON "shader link failed"
 #define FIXTURE_LEFT_REASON "needs GL_ARB_bindless_texture"
 
-static const char *fixture_img_files[] = {"img/c0_ref.png", "img/c0_render.png", "img/c0_heat.png",
-                                          "img/c1_render.png"};
+__attribute__((unused)) static const char *fixture_img_files[] = {
+    "img/c0_ref.png", "img/c0_render.png", "img/c0_heat.png",
+    "img/c1_render.png"};
 
-static void fixture_timed(dm_counter_result *c, const char *name, double lo, double med, double hi)
+__attribute__((unused)) static void fixture_timed(dm_counter_result *c, const char *name, double lo, double med, double hi)
 {
     memset(c, 0, sizeof *c);
     c->name = dm_xstrdup(name);
@@ -45,7 +49,7 @@ static void fixture_timed(dm_counter_result *c, const char *name, double lo, dou
     c->cv = c->stddev / med;
 }
 
-static void fixture_det(dm_counter_result *c, const char *name, double v)
+__attribute__((unused)) static void fixture_det(dm_counter_result *c, const char *name, double v)
 {
     memset(c, 0, sizeof *c);
     c->name = dm_xstrdup(name);
@@ -54,7 +58,7 @@ static void fixture_det(dm_counter_result *c, const char *name, double v)
     c->value = v;
 }
 
-static void fixture_unavailable(dm_counter_result *c, const char *name)
+__attribute__((unused)) static void fixture_unavailable(dm_counter_result *c, const char *name)
 {
     memset(c, 0, sizeof *c);
     c->name = dm_xstrdup(name);
@@ -62,7 +66,7 @@ static void fixture_unavailable(dm_counter_result *c, const char *name)
     c->unavailable_reason = dm_xstrdup("no timer query");
 }
 
-static void fixture_quality(dm_quality *q, double psnr, double ssim, double rmse)
+__attribute__((unused)) static void fixture_quality(dm_quality *q, double psnr, double ssim, double rmse)
 {
     q->present = 1;
     q->psnr = psnr;
@@ -74,7 +78,7 @@ static void fixture_quality(dm_quality *q, double psnr, double ssim, double rmse
 
 /* Names configuration c of the fixture's scene: key, technique and mesh,
  * with room for n_counters counters (ok when it has any). */
-static void fixture_config(dm_config_result *c, const char *key, const char *technique,
+__attribute__((unused)) static void fixture_config(dm_config_result *c, const char *key, const char *technique,
                            const char *mesh, size_t n_counters)
 {
     c->key = dm_xstrdup(key);
@@ -86,7 +90,7 @@ static void fixture_config(dm_config_result *c, const char *key, const char *tec
     c->counters = n_counters ? dm_xcalloc(n_counters, sizeof *c->counters) : NULL;
 }
 
-static void fixture_configs(dm_run_result *r)
+__attribute__((unused)) static void fixture_configs(dm_run_result *r)
 {
     r->n_configs = 3;
     r->configs = dm_xcalloc(3, sizeof *r->configs);
@@ -117,7 +121,7 @@ static void fixture_configs(dm_run_result *r)
     c[2].log = dm_xstrdup(FIXTURE_LOG);
 }
 
-static void fixture_fit(dm_run_result *r)
+__attribute__((unused)) static void fixture_fit(dm_run_result *r)
 {
     r->n_fits = 1;
     r->fits = dm_xcalloc(1, sizeof *r->fits);
@@ -152,7 +156,26 @@ static void fixture_fit(dm_run_result *r)
     f->warnings[0] = dm_xstrdup("only 2 points for 3 parameters");
 }
 
-static void fixture_run(dm_run_result *r)
+/* Makes a fit of model on WallTime with two parameters (p0 = v0, p1 = v1)
+ * and R² r2 the run's one fit (over no group: every configuration). */
+__attribute__((unused)) static void fixture_fit2(dm_run_result *r, const char *model, const char *p0, double v0,
+                                                 const char *p1, double v1, double r2)
+{
+    r->n_fits = 1;
+    r->fits = dm_xcalloc(1, sizeof *r->fits);
+    dm_fit_result *f = r->fits;
+    f->model = dm_xstrdup(model);
+    f->response = dm_xstrdup("WallTime");
+    f->n_params = 2;
+    f->params = dm_xcalloc(2, sizeof *f->params);
+    f->params[0].name = dm_xstrdup(p0);
+    f->params[0].value = v0;
+    f->params[1].name = dm_xstrdup(p1);
+    f->params[1].value = v1;
+    f->r2 = r2;
+}
+
+__attribute__((unused)) static void fixture_run(dm_run_result *r)
 {
     memset(r, 0, sizeof *r);
     r->id = dm_xstrdup("20261121T230424Z");

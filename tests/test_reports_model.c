@@ -20,27 +20,12 @@
 #include "reports/answer.h"
 #include "reports/report.h"
 #include "reports/report_model.h"
+#include "test_reports_fixture.h"
 #include "test_util.h"
 
 #define SCENE_A "plane@160x90,light=sun"
 #define SCENE_B "cube@160x90,light=sun"
 #define SCENE_C "sphere@160x90,light=sun"
-
-/* WallTime with three samples lo, med, hi (the CI is [lo, hi]). */
-static void model_wall(dm_counter_result *c, double lo, double med, double hi)
-{
-    c->name = dm_xstrdup("WallTime");
-    c->unit = dm_xstrdup("ns");
-    c->available = c->has_samples = 1;
-    c->n_samples = 3;
-    c->samples = dm_xcalloc(3, sizeof(double));
-    c->samples[0] = lo;
-    c->samples[1] = med;
-    c->samples[2] = hi;
-    c->value = c->median = c->mean = med;
-    c->min = c->ci_lo = lo;
-    c->max = c->ci_hi = hi;
-}
 
 /* Configuration i: key "k<i>", the scene, technique, lighting, and steps
  * when not NULL; ok with WallTime [lo, med, hi] and SSIM ssim when med > 0. */
@@ -63,7 +48,7 @@ static void model_config(dm_run_result *run, size_t i, const char *scene, const 
     }
     c->n_counters = 1;
     c->counters = dm_xcalloc(1, sizeof *c->counters);
-    model_wall(&c->counters[0], lo, med, hi);
+    fixture_timed(&c->counters[0], "WallTime", lo, med, hi);
     c->quality.present = 1;
     c->quality.ssim = ssim;
     c->quality.psnr = 30;
@@ -97,10 +82,7 @@ static void model_run(dm_run_result *run)
     c6->ok = 1;
     c6->n_counters = 1;
     c6->counters = dm_xcalloc(1, sizeof *c6->counters);
-    c6->counters[0].name = dm_xstrdup("VSInvocations");
-    c6->counters[0].unit = dm_xstrdup("items");
-    c6->counters[0].available = c6->counters[0].deterministic = 1;
-    c6->counters[0].value = 4;
+    fixture_det(&c6->counters[0], "VSInvocations", 4);
     run->configs[2].quality.nonfinite_pixels = 3;
     run->configs[2].quality.crack_pixels = 7;
     run->n_warnings = 1;
@@ -179,6 +161,21 @@ static void test_model_rows(void **state)
     assert_null(r[6].frame_time);
     assert_int_equal(r[6].scene, 2);
 
+    /* what the answer's sentences, the charts and the gallery read */
+    assert_string_equal(r[0].technique, "pom");
+    assert_int_equal(r[0].family, RECOMMEND_FRAGMENT);    /* lit, no tess_level or vertex_filter */
+    assert_string_equal(r[0].metric_text, "SSIM 0.950");
+    assert_string_equal(r[0].defects, "");
+    assert_string_equal(r[0].defects_why, "");
+    assert_string_equal(r[2].defects, "⚠ 7 crack pixels; ⚠ 3 NaN pixels");
+    assert_non_null(strstr(r[2].defects_why, "background shows through"));
+    assert_non_null(strstr(r[2].defects_why, "; the shader wrote NaN"));
+    assert_string_equal(r[5].technique, "parallax");
+    assert_string_equal(r[5].metric_text, "SSIM 0.900");
+    assert_int_equal(r[6].family, RECOMMEND_UNLIT);      /* no lighting axis: a baseline */
+    assert_near(m.budget_ms, 2.5);
+    assert_int_equal(m.any_timed, 1);
+
     assert_ptr_equal(report_model_find(&m, "k5"), &r[5]);
     assert_null(report_model_find(&m, "nope"));
     report_model_free(&m);
@@ -202,6 +199,7 @@ static void test_model_scenes(void **state)
     assert_int_equal(a->n_varying, 2);                    /* lighting is the same everywhere */
     assert_string_equal(a->varying[0], "technique");
     assert_string_equal(a->varying[1], "steps");
+    assert_string_equal(a->same, "lighting=blinn-phong ");   /* the technique has its own column */
     size_t front[] = {2, 0, 1};
     assert_int_equal(a->n_front, 3);
     assert_memory_equal(a->front, front, sizeof front);
@@ -219,10 +217,25 @@ static void test_model_scenes(void **state)
     assert_int_equal(b->n_front, 1);
     assert_int_equal(b->front[0], 4);
     assert_int_equal(b->n_varying, 0);
+    assert_string_equal(b->same, "lighting=blinn-phong steps=8 ");
+    assert_string_equal(c->same, "");
 
     assert_int_equal(c->n_rows, 1);
     assert_int_equal(c->n_front, 0);
     assert_string_equal(c->untimed, "no timing counter measured: no budget or pick");
+    /* the gallery's legend: no MaxError or FLIP map in this run */
+    assert_near(a->max_error, 0);
+    assert_int_equal(a->flips, 0);
+    assert_true(isnan(a->flip_ppd));
+    /* the provisional flag and the counter table's columns */
+    assert_int_equal(a->n_timed, 4);
+    assert_int_equal(a->n_noisy, 1);                      /* k1 */
+    assert_int_equal(a->provisional, 0);                  /* 1 of 4 is not most */
+    assert_int_equal(a->n_det, 0);
+    assert_int_equal(b->n_timed, 1);
+    assert_int_equal(c->n_timed, 0);
+    assert_int_equal(c->n_det, 1);
+    assert_string_equal(c->det[0], "VSInvocations");
 
     /* warnings: one noisy configuration, one failure, then the stored line last */
     assert_int_equal(m.n_noisy, 1);
@@ -243,6 +256,18 @@ static void test_model_scenes(void **state)
     assert_int_equal(m.n_det, 1);
     assert_string_equal(m.det[0], "VSInvocations");
     assert_string_equal(m.published_md, "");              /* no directory: none */
+    report_model_free(&m);
+    /* the largest MaxError over the scene's ok rows, and its FLIP maps' ppd */
+    run.configs[0].quality.max_error = 1.25;
+    run.configs[5].quality.max_error = 0.5;
+    run.configs[3].quality.max_error = 9;                 /* failed: not a row */
+    run.configs[5].img_flip = dm_xstrdup("img/k5_flip.png");
+    run.configs[5].quality.flip_ppd = 67;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_near(m.scenes[0].max_error, 1.25);
+    assert_int_equal(m.scenes[0].flips, 1);
+    assert_near(m.scenes[0].flip_ppd, 67);
+    assert_int_equal(m.scenes[1].flips, 0);
     report_model_free(&m);
     dm_run_free(&run);
 }
@@ -314,6 +339,157 @@ static void test_model_front_tex(void **state)
     test_rm_rf(dir);
 }
 
+/* The answer's sentences and the terminal's lines come from the model
+ * alone: a label changed in the model is the label they say, and a scene
+ * whose timings are mostly noisy is provisional in both. */
+static void test_model_answer(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    model_run(&run);
+    run.configs[5].counters[0].ci_lo = 1.0e6;             /* k5 noisy too: 2 of 4 is not most */
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_int_equal(m.scenes[0].n_noisy, 2);
+    assert_int_equal(m.scenes[0].provisional, 0);
+    free(m.rows[0].label);
+    m.rows[0].label = dm_xstrdup("THE PICK");
+    dm_str s = {0};
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &s);
+    assert_non_null(strstr(dm_str_get(&s), "pick **THE PICK** (2.00 ms [1.95, 2.05], SSIM 0.950)."));
+    assert_null(strstr(dm_str_get(&s), "Provisional"));
+    dm_str_free(&s);
+    m.scenes[0].provisional = 1;                          /* what the model says is what is written */
+    m.scenes[0].n_noisy = 3;
+    report_answer_terminal_model(&m, &s);
+    assert_non_null(strstr(dm_str_get(&s), "plane 160×90: Provisional: 3 of 4 timings are noisy"));
+    assert_non_null(strstr(dm_str_get(&s), "THE PICK"));
+    /* the untimed scene: its reason, then its counters from the scene's columns */
+    assert_non_null(strstr(dm_str_get(&s), "sphere 160×90: no timing counter measured: no budget or pick.\n"));
+    assert_non_null(strstr(dm_str_get(&s), "VSInvocations"));
+    dm_str_free(&s);
+    report_counter_table(&m, 2, REPORT_ANSWER_MD, &s);
+    assert_string_equal(dm_str_get(&s), "| configuration | VSInvocations |\n|---|---:|\n| pom | 4 |\n");
+    dm_str_free(&s);
+    report_model_free(&m);
+    dm_run_free(&run);
+}
+
+/* A run of n timed configurations of one scene, medians 1, 2, … ms, each
+ * with VSInvocations 100 × its rank. */
+static void breakdown_run(dm_run_result *run, size_t n)
+{
+    memset(run, 0, sizeof *run);
+    run->id = dm_xstrdup("b");
+    run->n_configs = n;
+    run->configs = dm_xcalloc(n, sizeof *run->configs);
+    for (size_t i = 0; i < n; i++) {
+        char key[16];
+        snprintf(key, sizeof key, "k%zu", i);
+        fixture_config(&run->configs[i], key, "pom", "plane", 4);
+        double ms = (double)(i + 1) * 1e6;
+        fixture_timed(&run->configs[i].counters[0], "WallTime", ms * 0.99, ms, ms * 1.01);
+        fixture_det(&run->configs[i].counters[1], "VSInvocations", 100.0 * (double)(i + 1));
+        run->configs[i].n_counters = 2;   /* room for the two timed passes */
+    }
+}
+
+/* The counter breakdown each scene's chart draws is chosen in the model:
+ * the key counters without a fit (naming a poor one), a good fit's stage
+ * estimate, the measured passes before any fit, at most 24 bars. */
+static void test_model_breakdown(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    breakdown_run(&run, 3);
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    const breakdown *b = &m.scenes[0].breakdown;
+    assert_int_equal(b->kind, BREAKDOWN_COUNTERS);
+    assert_int_equal(b->n_counters, 1);
+    assert_string_equal(b->counters[0], "VSInvocations");
+    size_t bars[] = {0, 1, 2};
+    assert_int_equal(b->n_bars, 3);
+    assert_memory_equal(b->bars, bars, sizeof bars);
+    assert_int_equal(b->skipped, 0);
+    assert_null(b->poor);
+    report_model_free(&m);
+
+    /* 0.1 ms + 20 µs per vertex shader invocation, too poor to draw: named */
+    fixture_fit2(&run, "pipeline-linear", "c0", 1e5, "c_vs", 2e4, 0.5);
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    b = &m.scenes[0].breakdown;
+    assert_int_equal(b->kind, BREAKDOWN_COUNTERS);
+    assert_string_equal(b->poor->model, "pipeline-linear");
+    assert_near(b->poor_r2, 0.5);
+    report_model_free(&m);
+
+    run.fits[0].r2 = 0.9;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    b = &m.scenes[0].breakdown;
+    assert_int_equal(b->kind, BREAKDOWN_FIT);
+    assert_string_equal(b->fit->model, "pipeline-linear");
+    assert_null(b->poor);
+    assert_near(b->hi_ms, 0.1 + 300 * 0.02);              /* k2's stack over its 3 ms median */
+    report_model_free(&m);
+
+    dm_config_result *c = &run.configs[0];                /* k0's timed passes: measured first */
+    c->n_counters = 4;
+    fixture_timed(&c->counters[2], "GeometryTime", 0.9e5, 1e5, 1.1e5);
+    fixture_timed(&c->counters[3], "MinimalShadingTime", 3.9e5, 4e5, 4.1e5);
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    b = &m.scenes[0].breakdown;
+    assert_int_equal(b->kind, BREAKDOWN_MEASURED);
+    assert_null(b->fit);
+    assert_near(b->hi_ms, 3.0);                           /* k2's median: no stack is taller */
+    assert_near(breakdown_measured_ms(c, 1), 0.3);        /* setup and raster: 0.4 − 0.1 ms */
+    report_model_free(&m);
+    dm_run_free(&run);
+
+    breakdown_run(&run, BREAKDOWN_MAX_BARS + 2);         /* the two fastest left out */
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    b = &m.scenes[0].breakdown;
+    assert_int_equal(b->skipped, 2);
+    assert_int_equal(b->n_bars, BREAKDOWN_MAX_BARS);
+    assert_int_equal(b->bars[0], 2);
+    report_model_free(&m);
+    dm_run_free(&run);
+}
+
+/* The units of fit parameters come from the formula and the response
+ * counter's unit: a constant term has the response's unit, a factor of a
+ * term the response's unit per the rest of the term; a parameter that leads
+ * no term (an exponent) has none. */
+static void test_model_fit_units(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    fixture_run(&run);                                    /* WallTime in ns; fit "a + b*tess_level^p" */
+    dm_fit_result *f = &run.fits[0];
+    f->n_params = 3;
+    f->params = dm_xrealloc(f->params, 3 * sizeof *f->params);
+    f->params[2] = (dm_fit_param){.name = dm_xstrdup("p"), .value = 1.5, .stderr_ = NAN};
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_string_equal(m.fit_units[0][0], "ns");
+    assert_string_equal(m.fit_units[0][1], "ns per tess_level^p");
+    assert_string_equal(m.fit_units[0][2], "");
+    report_model_free(&m);
+    free(f->formula);                                     /* a plain sum, a product, a name that only begins another */
+    f->formula = dm_xstrdup("c0 + c_vs*VSInvocations + c_tp*TESInvocations*ClippingOutputPrimitives");
+    free(f->params[0].name);
+    f->params[0].name = dm_xstrdup("c");
+    free(f->params[1].name);
+    f->params[1].name = dm_xstrdup("c_tp");
+    free(f->response);
+    f->response = dm_xstrdup("Instructions");             /* no such counter in the run */
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_string_equal(m.fit_units[0][0], "");
+    assert_string_equal(m.fit_units[0][1], "units of Instructions per TESInvocations*ClippingOutputPrimitives");
+    report_model_free(&m);
+    dm_run_free(&run);
+}
+
 static void test_model_no_run(void **state)
 {
     (void)state;
@@ -324,4 +500,7 @@ static void test_model_no_run(void **state)
 
 DM_TEST_MAIN(NULL, NULL, cmocka_unit_test(test_model_rows), cmocka_unit_test(test_model_scenes),
              cmocka_unit_test(test_model_published), cmocka_unit_test(test_model_front_tex),
+             cmocka_unit_test(test_model_answer),
+             cmocka_unit_test(test_model_breakdown),
+             cmocka_unit_test(test_model_fit_units),
              cmocka_unit_test(test_model_no_run))

@@ -3,6 +3,7 @@
 #include "reports/report_internal.h"
 #include "reports/metric.h"
 #include "reports/answer.h"
+#include "reports/report_model.h"
 #include "imaging/image.h"
 #include "core/dm_error.h"
 #include "core/dm_util.h"
@@ -178,13 +179,14 @@ static void test_markdown(void **state)
     char *t = test_slurp(p);
     assert_non_null(strstr(t, "## " FIXTURE_SCENE "\n"));
     /* rows sorted by time; CI as a relative half-width: 0.1/1.1 = 9.1 %, 0.05/2 = 2.5 % */
-    /* last quality column: the default Pareto metric, 1 − SSIM */
+    /* last quality column: the default Pareto metric, 1 − SSIM, at one
+     * precision for the column (0.0000 and 0.0500, not 0 and 0.05) */
     assert_non_null(strstr(t, "- Pareto metric: ssim (1 - SSIM)\n"));
     assert_non_null(strstr(t, "| PSNR | SSIM | 1 - SSIM | key |"));
     /* three significant digits; ±9.1 % is noisy (over ±5 %): marked in the row */
     /* the failed sphere configuration makes mesh an axis of the scene's labels */
-    assert_non_null(strstr(t, "| pom mesh=plane | 1.10 | ±9.1% ⚠ noisy | ∞ | 1.0000 | 0 | `" FIXTURE_KEY0 "` |"));
-    assert_non_null(strstr(t, "| normal mesh=plane | 2.00 | ±2.5% | 38.25 dB | 0.9500 | 0.05 | `" FIXTURE_KEY1 "` |"));
+    assert_non_null(strstr(t, "| pom mesh=plane | 1.10 | ±9.1% ⚠ noisy | ∞ | 1.0000 | 0.0000 | `" FIXTURE_KEY0 "` |"));
+    assert_non_null(strstr(t, "| normal mesh=plane | 2.00 | ±2.5% | 38.25 dB | 0.9500 | 0.0500 | `" FIXTURE_KEY1 "` |"));
     assert_true(strstr(t, "| pom mesh=plane |") < strstr(t, "| normal mesh=plane |"));
     /* pom is faster and exact (SSIM 1): it alone is the Pareto front */
     assert_non_null(strstr(t, "Front (best 1 - SSIM for its cost, fastest first): "
@@ -295,7 +297,9 @@ static void test_html_escaping_and_images(void **state)
      * link (c0 render and heatmap, c1 render twice) */
     assert_true(all_refs_exist(t, dir, " href=\"", &n));
     assert_int_equal(n, 5);
-    assert_non_null(strstr(t, "<a href=\"img/c0_ref.png\"><img id=\"ref-0\" src=\"data:image/png;base64,"));
+    /* the reference's card: its thumbnail, and its file for a full-size flip */
+    assert_non_null(strstr(t, "<div class=\"pair ref\"><figure><a href=\"img/c0_ref.png\"><img id=\"ref-0\" "
+                              "data-full=\"img/c0_ref.png\" src=\"data:image/png;base64,"));
     assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_render.png\" class=\"flip\" data-ref=\"ref-0\""));
     assert_non_null(strstr(t, "<img loading=\"lazy\" src=\"img/c0_heat.png\" alt=\"heatmap: "));
     assert_non_null(strstr(t, "heatmap · <a class=\"full\" href=\"img/c0_heat.png\">full size</a>"));
@@ -311,6 +315,29 @@ static void test_html_escaping_and_images(void **state)
     free(other);
     assert_non_null(strstr(t, "path refused: /etc/passwd"));
     assert_non_null(strstr(t, "path refused: ../outside.png"));
+    /* the fit's parameters with their units (ns: WallTime's) */
+    assert_non_null(strstr(t, "<th>parameters ± stderr, unit</th>"));
+    assert_non_null(strstr(t, "<td>a = 1 ± 0.5 ns<br>b = 2 ± 0.25 ns per tess_level^p<br></td>"));
+    /* the legend before the cards, its scale stated with the largest
+     * difference: c1's MaxError, 4 × RMSE 0.0122 */
+    assert_true(strstr(t, "Heatmap: |render − reference|") < strstr(t, "<div class=\"grid\">"));
+    assert_non_null(strstr(t, "The largest difference in this scene (MaxError) is 0.0488. Click"));
+    assert_null(strstr(t, "saturate"));
+    assert_non_null(strstr(t, "<h2 id=\"failed\">Failed configurations</h2>\n<div class=\"fail\">"));
+    assert_non_null(strstr(t, "<h2>Left out</h2>\n<table><tr><th>params</th>"));
+    free(t);
+    /* a difference past a channel's range saturates the map: the legend and
+     * the caption say so; no left-out configuration: "None.", no empty table */
+    run.configs[1].quality.max_error = 1.36;
+    size_t left = run.n_left_out;
+    run.n_left_out = 0;
+    assert_int_equal(write_report_file(&run, "report.html", dir, p, NULL), 0);
+    run.n_left_out = left;
+    t = test_slurp(p);
+    assert_non_null(strstr(t, "(MaxError) is 1.36: its hottest pixels saturate the map."));
+    assert_non_null(strstr(t, ", MaxError 1.36 (saturates the heatmap)</p>"));
+    assert_non_null(strstr(t, "<h2>Left out</h2>\n<p class=\"const\">None.</p>"));
+    assert_null(strstr(t, "<th>params</th>"));
     free(t);
     dm_run_free(&run);
     fixture_images_remove(dir);
@@ -548,9 +575,24 @@ static void test_metric_in_files(void **state)
     for (const char *q = strstr(t, "<td>★ front</td>"); q; q = strstr(q + 1, "<td>★ front</td>"))
         marks++;
     assert_int_equal(marks, 3);
-    assert_non_null(strstr(t, "<td class=\"n\">0.06</td><td class=\"n\">0.9000</td><td class=\"n\">35.00</td><td></td>"));
+    assert_non_null(strstr(t, "<td class=\"n\">0.0600</td><td class=\"n\">0.9000</td><td class=\"n\">35.00</td><td></td>"));
     assert_non_null(strstr(t, "Quality is <b>rmse</b> (RMSE) against the reference"));
     assert_non_null(strstr(t, "<th>RMSE</th><th>cost vs fastest lit</th>"));
+    free(t);
+    /* under psnr, one PSNR column: the metric's, at two decimals (35.00) */
+    assert_int_equal(report_metric_set(&run, "psnr"), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    assert_int_equal(write_report_file(&run, "report.html", NULL, html, NULL), 0);
+    t = test_slurp(md);
+    assert_non_null(strstr(t, "| configuration | median ms | 95% CI | SSIM | PSNR (dB, higher is better) | key |\n"
+                              "|---|---|---|---|---|---|\n"));
+    assert_null(strstr(t, "| PSNR |"));
+    assert_non_null(strstr(t, " | 0.9000 | 35.00 | `"));
+    free(t);
+    t = test_slurp(html);
+    assert_non_null(strstr(t, "<th>PSNR (dB, higher is better)</th><th>SSIM</th><th>Pareto</th>"));
+    assert_null(strstr(t, "PSNR dB"));
+    assert_non_null(strstr(t, "<td class=\"n\">35.00</td><td class=\"n\">0.9000</td><td>"));
     free(t);
     dm_run_free(&run);
     unlink(md);
@@ -812,18 +854,8 @@ static void test_html_breakdown_fit_and_cap(void **state)
         fixture_det(&c->counters[1], "SamplesPassed", 1000.0 * (double)(i + 1));
         c->n_counters = 2;
     }
-    run.n_fits = 1;
-    run.fits = dm_xcalloc(1, sizeof *run.fits);
+    fixture_fit2(&run, "pipeline-linear", "c0", 2e5, "c_px", 30, 0.95);
     dm_fit_result *f = run.fits;
-    f->model = dm_xstrdup("pipeline-linear");
-    f->response = dm_xstrdup("WallTime");
-    f->n_params = 2;
-    f->params = dm_xcalloc(2, sizeof *f->params);
-    f->params[0].name = dm_xstrdup("c0");
-    f->params[0].value = 2e5;
-    f->params[1].name = dm_xstrdup("c_px");
-    f->params[1].value = 30;
-    f->r2 = 0.95;
     char dir[] = "/tmp/dm_reports_bd_XXXXXX", titles[8][96];
     assert_non_null(mkdtemp(dir));
     char *p = dm_xasprintf("%s/report.html", dir);
@@ -1067,7 +1099,10 @@ static void test_busy_machine(void **state)
     assert_int_equal(found, 1);
     report__warnings_free(w, nw);
     dm_str t = {0};
-    report_answer_scene(&run, "s", REPORT_ANSWER_MD, &t);
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &t);
+    report_model_free(&m);
     assert_non_null(strstr(dm_str_get(&t), "Provisional: 3 of 4 timings are noisy"));
     dm_str_free(&t);
     dm_run_free(&run);
@@ -1076,7 +1111,9 @@ static void test_busy_machine(void **state)
     for (size_t i = 0; i < nw; i++)
         assert_null(strstr(w[i], "The machine was busy"));
     report__warnings_free(w, nw);
-    report_answer_scene(&run, "s", REPORT_ANSWER_MD, &t);
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &t);
+    report_model_free(&m);
     assert_null(strstr(dm_str_get(&t), "Provisional"));
     dm_str_free(&t);
     dm_run_free(&run);

@@ -51,7 +51,10 @@ static void test_bars(void **state)
     counter(c, "RasterInstructions", NAN, 0);
     counter(c, "FragmentInstructions", NAN, 0);
     dm_str s = {0};
-    report_stage_bars(&s, &run);
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    report_stage_bars(&s, &m);
+    report_model_free(&m);
     const char *h = dm_str_get(&s);
     assert_non_null(strstr(h, "<h2 id=\"stages\">Where the instructions go</h2>"));
     assert_non_null(strstr(h, "fragment 80 %, raster 15 %, geometry 5 %"));
@@ -62,7 +65,9 @@ static void test_bars(void **state)
     assert_null(strstr(h, "normal"));
     dm_str_free(&s);
     run.configs[0].ok = 0;                            /* a failed configuration is not drawn */
-    report_stage_bars(&s, &run);
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    report_stage_bars(&s, &m);
+    report_model_free(&m);
     assert_int_equal((int)s.len, 0);
     dm_str_free(&s);
     dm_run_free(&run);

@@ -4,7 +4,8 @@
 # first scene's recommendation (p.pick) lies entirely in the first screen
 # (DOM position), every front row whose CI half-width is over ±5 % (the mean
 # of −x %/+y %; 0.1 of slack for the printed rounding) carries its noisy mark, the page does not overflow horizontally, no SVG chart text is
-# clipped (every text box inside its SVG's box), and the file is under 2 MB.
+# clipped (every text box inside its SVG's box), no id is used twice, and the
+# file is under 2 MB.
 # The screenshots stay in ARTIFACTS (CI keeps them).  Then `report --out`
 # into a folder that is moved elsewhere: every full-size link is relative and
 # resolves inside it, and chromium loads every image of the moved copy.
@@ -35,6 +36,8 @@ probe="$probe"'if(q.width>0\&\&(q.left<b.left-1||q.right>b.right+1||q.top<b.top-
 probe="$probe"'bad.push(t.textContent.slice(0,40));});});'
 probe="$probe"'document.body.setAttribute("data-front",r?Math.round(r.top)+" "+Math.round(r.bottom)+" "+innerHeight:"none");'
 probe="$probe"'document.body.setAttribute("data-texts",n);'
+probe="$probe"'var ids={},dup=0;document.querySelectorAll("[id]").forEach(function(e){dup+=ids[e.id]?1:0;ids[e.id]=1;});'
+probe="$probe"'document.body.setAttribute("data-dupids",dup);'
 probe="$probe"'document.body.setAttribute("data-clipped",bad.length+(bad.length?": "+bad.slice(0,5).join(" | "):""));'
 probe="$probe"'});</script></body>'
 sed "s#</body>#$probe#" "$html" > "$work/res/latest/probe.html"
@@ -65,6 +68,8 @@ for win in 1280,800 1920,1080; do
     grep -Eq 'class="pick">(<b>Provisional: [^<]*</b>)?<b>Under [0-9.]* ms</b>' "$html" || fail "no 'Under N ms' recommendation in the page"
     [ "${texts:-0}" -gt 0 ] || fail "$name: no SVG text measured"
     [ "$clipped" = 0 ] || fail "$name: clipped chart text: $clipped"
+    dup=$(sed -n 's/.*data-dupids="\([0-9]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+    [ "${dup:-x}" = 0 ] || fail "$name: ${dup:-?} ids used twice (the charts' clip paths?)"
     echo "$name: recommendation at y $1..$2 of $3; noisy rows marked; no overflow; $texts chart texts, none clipped"
 done
 "$bin" report "$work/res/latest" --out "$work/pub" >/dev/null || fail "report --out"

@@ -1,7 +1,10 @@
 #!/bin/sh
 # report_in_chromium.sh GEN — opens a generated report.html in headless
 # chromium and checks that it renders (screenshot not a single colour), that
-# every image loaded, and that the console shows no error.
+# every image loaded, that the gallery's cards are one width with their
+# captions below the images, that a click on a render flips to the
+# reference's full-size file, that no id is used twice, and that the console
+# shows no error.
 # GEN is test_reports_browser_gen (writes the synthetic fixture run).
 set -eu
 gen=$1
@@ -12,9 +15,19 @@ fail() { echo "FAIL: $*" >&2; exit 1; }
 "$gen" "$work/run" || fail "generator failed"
 [ -s "$work/run/report.html" ] || fail "no report.html"
 
-# The report needs no script; a copy gets a probe that writes the image
-# counts into the DOM once everything has loaded.
-probe='<script>window.addEventListener("load",function(){var a=document.images,ok=0;for(var i=0;i<a.length;i++)if(a[i].complete\&\&a[i].naturalWidth>0)ok++;document.body.setAttribute("data-images",ok+"/"+a.length);});</script></body>'
+# The report needs no script; a copy gets a probe that writes into the DOM
+# once everything has loaded: the image counts; the gallery's layout (every
+# card of a grid one width, every caption below its card's images); what a
+# click on a render shows (the reference's file, full size, not its
+# thumbnail); and ids used twice.
+probe='<script>window.addEventListener("load",function(){var a=document.images,ok=0;for(var i=0;i<a.length;i++)if(a[i].complete\&\&a[i].naturalWidth>0)ok++;document.body.setAttribute("data-images",ok+"/"+a.length);'
+probe="$probe"'var w={},beside=0,cards=0;document.querySelectorAll(".grid>.pair").forEach(function(p){cards++;w[p.offsetWidth]=1;'
+probe="$probe"'var c=p.querySelector(".cap");if(!c)return;p.querySelectorAll("img").forEach(function(im){'
+probe="$probe"'if(c.getBoundingClientRect().top<im.getBoundingClientRect().bottom-1)beside++;});});'
+probe="$probe"'document.body.setAttribute("data-cards",cards+" "+Object.keys(w).length+" "+beside);'
+probe="$probe"'var f=document.querySelector("img.flip");if(f){f.click();document.body.setAttribute("data-flip",f.getAttribute("src"));}'
+probe="$probe"'var ids={},dup=0;document.querySelectorAll("[id]").forEach(function(e){dup+=ids[e.id]?1:0;ids[e.id]=1;});'
+probe="$probe"'document.body.setAttribute("data-dupids",dup);});</script></body>'
 sed "s#</body>#$probe#" "$work/run/report.html" > "$work/run/probe.html"
 
 chrome() {
@@ -37,7 +50,16 @@ loaded=${images%/*}
 total=${images#*/}
 [ "$total" -gt 0 ] || fail "no images in the report"
 [ "$loaded" = "$total" ] || fail "only $images images loaded"
+cards=$(sed -n 's/.*data-cards="\([0-9 ]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+set -- $cards
+[ "${1:-0}" -ge 2 ] || fail "gallery: ${1:-no} cards"
+[ "$2" = 1 ] || fail "gallery: cards of $2 different widths"
+[ "$3" = 0 ] || fail "gallery: $3 captions beside their images"
+flip=$(sed -n 's/.*data-flip="\([^"]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+[ "$flip" = "img/c0_ref.png" ] || fail "a click on a render shows '${flip:-nothing}', not the reference's file"
+dup=$(sed -n 's/.*data-dupids="\([0-9]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+[ "${dup:-x}" = 0 ] || fail "${dup:-?} ids used twice"
 if grep -E "Uncaught|ERROR:CONSOLE|CONSOLE\(" "$work/console.log" >&2; then
     fail "console errors"
 fi
-echo "report rendered; $images images loaded; no console errors"
+echo "report rendered; $images images loaded; $1 gallery cards of one width, captions below; a click flips to $flip; ids unique; no console errors"
