@@ -47,9 +47,11 @@ recommend_family report_family(const dm_config_result *c)
 }
 
 /* The scene's points (ok configurations with a frame time) and their
- * config indexes; returns the count.  *p and *idx are malloc'd. */
-static size_t answer__points(const dm_run_result *run, const char *scene, recommend_point **p,
-                             size_t **idx)
+ * config indexes; returns the count.  *p and *idx are malloc'd.  With
+ * corrected, a frame time with the drift removed gives its corrected
+ * median and CI (run/precision.h), the others their raw ones. */
+static size_t answer__points(const dm_run_result *run, const char *scene, int corrected,
+                             recommend_point **p, size_t **idx)
 {
     size_t nr = report__scene_rows(run, scene, idx), n = 0;
     report_metric m = report_metric_of_run(run);
@@ -59,7 +61,9 @@ static size_t answer__points(const dm_run_result *run, const char *scene, recomm
         const dm_counter_result *t = report__frame_time(c);
         if (!t)
             continue;
-        (*p)[n] = (recommend_point){t->median, t->ci_lo, t->ci_hi, report_metric_error(&c->quality, m),
+        int corr = corrected && t->corrected;
+        (*p)[n] = (recommend_point){corr ? t->corr_median : t->median, corr ? t->corr_ci_lo : t->ci_lo,
+                                    corr ? t->corr_ci_hi : t->ci_hi, report_metric_error(&c->quality, m),
                                     report_family(c)};
         (*idx)[n++] = (*idx)[i];
     }
@@ -71,12 +75,22 @@ static size_t answer__map(const size_t *idx, size_t i)
     return i == RECOMMEND_NONE ? RECOMMEND_NONE : idx[i];
 }
 
-size_t report_recommend(const dm_run_result *run, const char *scene, recommend_result *out)
+double report_resolvable(const dm_run_result *run)
+{
+    double floor, resolvable;
+    return dm_run_noise_floor(run, &floor, &resolvable) ? resolvable : NAN;
+}
+
+/* report_recommend on the raw or the corrected figures. */
+static size_t answer__recommend(const dm_run_result *run, const char *scene, int corrected,
+                                recommend_result *out)
 {
     recommend_point *p;
-    size_t *idx, n = answer__points(run, scene, &p, &idx);
+    size_t *idx, n = answer__points(run, scene, corrected, &p, &idx);
+    double res = report_resolvable(run);
     recommend_desc d = {.budget = report_budget_ms(run) * 1e6,
-                        .epsilon = report_metric_epsilon(report_metric_of_run(run))};
+                        .epsilon = report_metric_epsilon(report_metric_of_run(run)),
+                        .resolvable = isfinite(res) ? res : 0};
     recommend_scene(p, n, &d, out);
     out->pick = answer__map(idx, out->pick);
     out->pick_tie = answer__map(idx, out->pick_tie);
@@ -90,6 +104,73 @@ size_t report_recommend(const dm_run_result *run, const char *scene, recommend_r
     free(idx);
     return n;
 }
+
+size_t report_recommend(const dm_run_result *run, const char *scene, recommend_result *out)
+{
+    return answer__recommend(run, scene, 0, out);
+}
+
+/* 1 when some ok configuration of the scene has its frame time corrected. */
+static int answer__scene_corrected(const dm_run_result *run, const char *scene)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        const dm_counter_result *t = c->ok && c->scene && strcmp(c->scene, scene) == 0
+                                         ? report__frame_time(c) : NULL;
+        if (t && t->corrected)
+            return 1;
+    }
+    return 0;
+}
+
+int report_recommend_corrected(const dm_run_result *run, const char *scene, recommend_result *out)
+{
+    if (!answer__scene_corrected(run, scene))
+        return 0;
+    answer__recommend(run, scene, 1, out);
+    return 1;
+}
+
+int report_answer_disagree(const dm_run_result *run, const char *scene, dm_str *out)
+{
+    recommend_result r, c;
+    if (report_untimed_reason(run, scene) || !report_recommend_corrected(run, scene, &c))
+        return 0;
+    size_t had = out->len;
+    report_recommend(run, scene, &r);
+    dm_str a = {0}, b = {0};
+    if (r.pick != c.pick) {
+        if (r.pick != RECOMMEND_NONE)
+            report__config_label(run, &run->configs[r.pick], &a);
+        if (c.pick != RECOMMEND_NONE)
+            report__config_label(run, &run->configs[c.pick], &b);
+        if (c.pick == RECOMMEND_NONE)
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed nothing fits the budget; the answer reads the raw figures.");
+        else if (r.pick == RECOMMEND_NONE)
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed the pick is %s; the answer reads the raw figures, where nothing "
+                          "fits.", dm_str_get(&b));
+        else
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed the pick is %s, not %s; the answer reads the raw figures.",
+                          dm_str_get(&b), dm_str_get(&a));
+    } else if (r.pick_tie != c.pick_tie) {
+        size_t t = c.pick_tie != RECOMMEND_NONE ? c.pick_tie : r.pick_tie;
+        report__config_label(run, &run->configs[t], &b);
+        if (c.pick_tie != RECOMMEND_NONE)
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed the pick ties with %s%s.", dm_str_get(&b),
+                          r.pick_tie != RECOMMEND_NONE ? " instead" : "");
+        else
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed the pick does not tie with %s; its time is told apart.", dm_str_get(&b));
+    }
+    dm_str_free(&a);
+    dm_str_free(&b);
+    return out->len > had;
+}
+
 
 /* A writer of one format: text is escaped for it, strong is emphasised. */
 typedef struct answer__w {
@@ -282,12 +363,29 @@ static void w_pick(answer__w *w, const dm_run_result *run, const recommend_resul
     if (r->pick_tie != RECOMMEND_NONE) {
         dm_str t = {0};
         report__config_label(run, &run->configs[r->pick_tie], &t);
+        const dm_counter_result *a = report__frame_time(&run->configs[r->pick]);
+        const dm_counter_result *b = report__frame_time(&run->configs[r->pick_tie]);
+        int overlap = a && b && b->ci_lo <= a->ci_hi && a->ci_lo <= b->ci_hi;
         w_text(w, " It ties with ");
         w_text(w, dm_str_get(&t));
-        w_text(w, " (the same quality within the metric's tolerance, and the time CIs overlap), "
-                  "so either will do; the lower median is named.");
+        w_text(w, overlap ? " (the same quality within the metric's tolerance, and the time CIs overlap), "
+                            "so either will do; the lower median is named."
+                          : " (the same quality within the metric's tolerance, and the medians closer "
+                            "than the run's smallest resolvable difference), so either will do; the "
+                            "lower median is named.");
         dm_str_free(&t);
     }
+}
+
+/* The disagreement sentence (report_answer_disagree) after a pick, if any. */
+static void answer__disagree(answer__w *w, const dm_run_result *run, const char *scene)
+{
+    dm_str d = {0};
+    if (report_answer_disagree(run, scene, &d)) {
+        w_text(w, " ");
+        w_text(w, dm_str_get(&d));
+    }
+    dm_str_free(&d);
 }
 
 static void w_item(answer__w *w, int open)
@@ -354,6 +452,7 @@ void report_answer_scene(const dm_run_result *run, const char *scene, report_ans
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "<p class=\"pick\">" : "");
     answer__provisional(&w, run, scene);
     w_pick(&w, run, &r);
+    answer__disagree(&w, run, scene);
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "</p>\n<ul class=\"rec\">" : f == REPORT_ANSWER_MD ? "\n" : "");
     w_item(&w, 1);
     w_knee(&w, run, &r);
@@ -428,6 +527,7 @@ void report_answer_terminal(const dm_run_result *run, dm_str *out)
         }
         answer__provisional(&w, run, scenes[i]);
         w_pick(&w, run, &r);
+        answer__disagree(&w, run, scenes[i]);
         w_text(&w, "\n  ");
         w_knee(&w, run, &r);
         answer__wrap(dm_str_get(&one), out);

@@ -21,6 +21,46 @@ static const report_trend *report_model__trend(const report_trends *t, const cha
     return NULL;
 }
 
+/* The corrected figures of a row's frame time, in the raw ones' words. */
+static void report_model__row_corrected(report_model_row *r)
+{
+    const dm_counter_result *t = r->frame_time;
+    r->corrected = t && t->corrected;
+    if (!r->corrected)
+        return;
+    dm_counter_result c = *t;   /* the corrected figures where the texts read the raw ones */
+    c.median = c.value = t->corr_median;
+    c.ci_lo = t->corr_ci_lo;
+    c.ci_hi = t->corr_ci_hi;
+    dm_str s = {0};
+    report__ms_text(c.median, &s);
+    r->corr_ms_text = dm_str_take(&s);
+    report__ci_text(&c, &s);
+    r->corr_ci_text = dm_str_take(&s);
+    report__time_ci_text(&c, &s);
+    r->corr_time_ci_text = dm_str_take(&s);
+}
+
+/* The run's noise floor and drift removal in one sentence (model's
+ * precision_text): "" when no configuration has WallTime. */
+static void report_model__precision(report_model *m)
+{
+    const dm_run_result *run = m->run;
+    m->noise_floor = m->resolvable = NAN;
+    dm_str s = {0};
+    size_t used = dm_run_noise_floor(run, &m->noise_floor, &m->resolvable);
+    for (size_t i = 0; i < m->n_scenes; i++)
+        m->n_corrected_scenes += m->scenes[i].precision && m->scenes[i].precision->corrected;
+    if (used)
+        dm_str_printf(&s, "Noise floor ±%.1f %% (the median 95 %% CI half-width of WallTime over %zu "
+                      "configurations); the smallest difference between two configurations this "
+                      "run resolves is %.1f %%, and the answer calls closer ones a tie. The machine's "
+                      "drift was removed in %zu of %zu scenes (%s); the raw figures are kept beside "
+                      "the corrected ones.", 100 * m->noise_floor, used, 100 * m->resolvable,
+                      m->n_corrected_scenes, run->n_precision, REPORT_DRIFT_METHOD);
+    m->precision_text = dm_str_take(&s);
+}
+
 static void report_model__row(report_model *m, report_model_row *r, const dm_config_result *c)
 {
     const dm_run_result *run = m->run;
@@ -54,6 +94,7 @@ static void report_model__row(report_model *m, report_model_row *r, const dm_con
     r->trend = report_model__trend(m->trends, c->key);
     r->nonfinite_pixels = c->quality.present ? c->quality.nonfinite_pixels : 0;
     r->crack_pixels = c->quality.present ? c->quality.crack_pixels : 0;
+    report_model__row_corrected(r);
 }
 
 static void report_model__scene(report_model *m, report_model_scene *sc, const char *name)
@@ -76,6 +117,12 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
     sc->front_text = dm_str_take(&s);
     sc->untimed = report_untimed_reason(run, name);
     sc->n_points = report_recommend(run, name, &sc->rec);
+    for (size_t i = 0; i < run->n_precision; i++)
+        if (run->precision[i].scene && strcmp(run->precision[i].scene, name) == 0)
+            sc->precision = &run->precision[i];
+    sc->has_rec_corr = report_recommend_corrected(run, name, &sc->rec_corr);
+    if (report_answer_disagree(run, name, &s))
+        sc->disagree = dm_str_take(&s);
 }
 
 int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d)
@@ -113,6 +160,7 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     m->n_det = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &m->det);
     m->n_warnings = report__warnings(run, &m->warnings);
     m->n_noisy = report__noisy_configs(run, &m->noisy);
+    report_model__precision(m);
     /* published.json, once: the run directory's, or beside the one file written */
     dm_str md = {0}, html = {0};
     if (d && (d->dir || d->path)) {
@@ -138,6 +186,9 @@ void report_model_free(report_model *m)
         free(r->marks);
         free(r->marks_short);
         free(r->why);
+        free(r->corr_ms_text);
+        free(r->corr_ci_text);
+        free(r->corr_time_ci_text);
     }
     free(m->rows);
     for (size_t i = 0; m->scenes && i < m->n_scenes; i++) {
@@ -147,6 +198,7 @@ void report_model_free(report_model *m)
         free(sc->varying);
         free(sc->front);
         free(sc->front_text);
+        free(sc->disagree);
     }
     free(m->scenes);
     free(m->params);
@@ -157,6 +209,7 @@ void report_model_free(report_model *m)
     free(m->constants);
     free(m->published_md);
     free(m->published_html);
+    free(m->precision_text);
     memset(m, 0, sizeof *m);
 }
 
