@@ -8,8 +8,12 @@
 # before and after; then whether the runs name the same pick for every
 # scene (from each run's answer, which reads the raw figures), and for each
 # pair of consecutive runs how many configurations' medians agree within
-# their CIs (the CIs overlap), raw and corrected.  It measures; it asserts
-# only that every run finished and stored WallTime for every configuration.
+# their CIs (the CIs overlap), raw and corrected.  EXTRA=SEC in the
+# environment runs each with `--extra-time SEC` (extra rounds for the
+# configurations short of their target) and prints the run's account of
+# them; each run's answer lines that say the raw and drift-corrected
+# figures disagree are counted.  It measures; it asserts only that every
+# run finished and stored WallTime for every configuration.
 set -euo pipefail
 BIN=${1:?usage: bench/precision.sh BIN [RUNS] [OUT]}
 RUNS=${2:-4}
@@ -18,7 +22,7 @@ mkdir -p "$OUT"
 for k in $(seq 1 "$RUNS"); do
     load0=$(cut -d' ' -f1 /proc/loadavg)
     t0=$(date +%s)
-    "$BIN" run --out "$OUT/run-$k" > "$OUT/answer-$k.txt" 2> "$OUT/log-$k.txt"
+    "$BIN" run --out "$OUT/run-$k" ${EXTRA:+--extra-time "$EXTRA"} > "$OUT/answer-$k.txt" 2> "$OUT/log-$k.txt"
     t1=$(date +%s)
     load1=$(cut -d' ' -f1 /proc/loadavg)
     echo "$k $((t1 - t0)) $load0 $load1" >> "$OUT/times.txt"
@@ -42,7 +46,8 @@ for k in range(1, runs + 1):
         cor = (cm, clo, chi) if corr else raw
         cfg[key] = (scene, raw, cor)
     data.append(cfg)
-    answer = open(os.path.join(out, f"answer-{k}.txt")).read()
+    # the answer's lines wrap at 100 columns, continuations four columns in
+    answer = re.sub(r"\n    +", " ", open(os.path.join(out, f"answer-{k}.txt")).read())
     picks = dict(re.findall(r"^(\S.*?): .*?pick (\S+)", answer, re.M))
     prov = set(re.findall(r"^(\S.*?): Provisional", answer, re.M))
     data[-1] = (cfg, picks, prov)
@@ -68,6 +73,9 @@ for s in scenes:
     agree += same or provisional
     print(f"pick {s}: {' / '.join(names)}{'' if same else ' (differ' + (', all provisional)' if provisional else ')')}")
 print(f"picks: {agree} of {len(scenes)} scenes the same in every run or provisional in all (answer from raw figures)")
+for k in range(1, runs + 1):
+    joined = re.sub(r"\n    +", " ", open(os.path.join(out, f"answer-{k}.txt")).read())
+    print(f"run {k}: raw and drift-corrected figures disagree on {joined.count('figures disagree')} scene(s)")
 def overlap(a, b):
     return a[1] is not None and b[1] is not None and a[1] <= b[2] and b[1] <= a[2]
 for k in range(1, len(data)):
@@ -78,5 +86,5 @@ for k in range(1, len(data)):
     print(f"runs {k} and {k + 1}: medians agree within their CIs for {r} of {len(common)} raw, "
           f"{c} of {len(common)} corrected")
 PY
-grep -h "^dmbench: \(precision\|noise floor\|the machine\)" "$OUT"/log-*.txt
+grep -h "^dmbench: \(precision\|noise floor\|the machine\|extra rounds\)" "$OUT"/log-*.txt
 echo "output: $OUT"

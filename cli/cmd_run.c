@@ -32,18 +32,27 @@ static int run__seed(const cli_option *opt, const char *v, void *args, dm_str *e
     return runner_parse_seed(v, &((run_args *)args)->o.seed, err);
 }
 
-/* --budget SEC > 0 and finite ("inf" would plan as if there were no budget). */
-static int run__budget(const cli_option *opt, const char *v, void *args, dm_str *err)
+/* Seconds > 0 and finite into *b ("inf" would plan as if there were no
+ * budget); what names what they are for the message. */
+static int run__seconds(const cli_option *opt, const char *v, double *b, const char *what, dm_str *err)
 {
     char *end = NULL;
-    double *b = &((run_args *)args)->o.budget_s;
     *b = strtod(v, &end);
     if (!*v || *end || !(*b > 0) || !isfinite(*b)) {
-        dm_str_printf(err, "--%s '%s': expected seconds per configuration, > 0 and finite",
-                      opt->name, v);
+        dm_str_printf(err, "--%s '%s': expected %s, > 0 and finite", opt->name, v, what);
         return DM_ERR_ARG;
     }
     return 0;
+}
+
+static int run__budget(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    return run__seconds(opt, v, &((run_args *)args)->o.budget_s, "seconds per configuration", err);
+}
+
+static int run__extra_time(const cli_option *opt, const char *v, void *args, dm_str *err)
+{
+    return run__seconds(opt, v, &((run_args *)args)->o.extra_s, "seconds for the whole run", err);
 }
 
 const cli_option cli_run_options[] = {
@@ -56,6 +65,9 @@ const cli_option cli_run_options[] = {
       .help = "run the K-th of N deterministic shares of the configurations" },
     { .name = "budget", .kind = CLI_OPT_DOUBLE, .value_name = "SEC", .parse = run__budget,
       .help = "leave out configurations predicted to take longer than SEC seconds" },
+    { .name = "extra-time", .kind = CLI_OPT_DOUBLE, .value_name = "SEC", .parse = run__extra_time,
+      .help = "up to SEC seconds more for the configurations short of samples.target_ci: extra "
+              "rounds, the noisiest first (default: none)" },
     { .name = "seed", .kind = CLI_OPT_UINT64, .value_name = "N", .parse = run__seed,
       .help = "seed of the round order (0 = 1)" },
     { .name = "count-jobs", .kind = CLI_OPT_INT, .offset = offsetof(run_args, o.count_jobs),

@@ -163,7 +163,8 @@ typedef struct dm_run_result {
  * A parameter by one of these names would be a second column of that name,
  * so user techniques may not declare one (dm_result_column_reserved). */
 #define DM_RESULT_LEAD_COLUMNS "key", "scene", "status", "reason"
-#define DM_RESULT_TRAIL_COLUMNS "label", "pareto"
+#define DM_RESULT_TRAIL_COLUMNS "label", "pareto", "WallTime_corr_median_ms", \
+    "WallTime_corr_ci_lo_ms", "WallTime_corr_ci_hi_ms", "drift_correction"
 /* 1 when name is one of the columns above. */
 int dm_result_column_reserved(const char *name);
 

@@ -134,10 +134,25 @@ static void answer__pick(answer__w *w, const report_model *m, const recommend_re
     if (r->pick_ci_over)
         answer__text(w, " Its CI reaches past the budget: it may not fit on a busier run.");
     if (r->pick_tie != RECOMMEND_NONE) {
+        const dm_counter_result *a = m->rows[r->pick].frame_time, *b = m->rows[r->pick_tie].frame_time;
+        int overlap = a && b && b->ci_lo <= a->ci_hi && a->ci_lo <= b->ci_hi;
         answer__text(w, " It ties with ");
         answer__text(w, m->rows[r->pick_tie].label);
-        answer__text(w, " (the same quality within the metric's tolerance, and the time CIs overlap), "
-                  "so either will do; the lower median is named.");
+        answer__text(w, overlap ? " (the same quality within the metric's tolerance, and the time CIs overlap), "
+                                  "so either will do; the lower median is named."
+                                : " (the same quality within the metric's tolerance, and the medians closer "
+                                  "than the run's smallest resolvable difference), so either will do; the "
+                                  "lower median is named.");
+    }
+}
+
+/* The disagreement sentence of the scene (report_answer_disagree, in the
+ * model) after its pick, if any. */
+static void answer__disagree(answer__w *w, const report_model_scene *sc)
+{
+    if (sc->disagree) {
+        answer__text(w, " ");
+        answer__text(w, sc->disagree);
     }
 }
 
@@ -204,6 +219,7 @@ void report_answer_scene(const report_model *m, size_t si, report_answer_format 
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "<p class=\"pick\">" : "");
     answer__provisional(&w, sc);
     answer__pick(&w, m, r);
+    answer__disagree(&w, sc);
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "</p>\n<ul class=\"rec\">" : f == REPORT_ANSWER_MD ? "\n" : "");
     answer__item(&w, 1);
     answer__knee(&w, m, r);
@@ -268,6 +284,7 @@ void report_answer_terminal_model(const report_model *m, dm_str *out)
         }
         answer__provisional(&w, sc);
         answer__pick(&w, m, &sc->rec);
+        answer__disagree(&w, sc);
         answer__text(&w, "\n  ");
         answer__knee(&w, m, &sc->rec);
         answer__wrap(dm_str_get(&one), out);

@@ -167,10 +167,11 @@ static size_t best_within(const recommend_point *p, size_t n, unsigned mask, dou
 }
 
 /* A point of equal quality (within eps) to the pick, within the budget and
- * eligible, whose time CI overlaps the pick's: the data cannot tell which is
+ * eligible, whose time CI overlaps the pick's or whose median is within
+ * resolvable (relative) of the pick's: the data cannot tell which is
  * cheaper.  NONE when there is none. */
-static size_t tie_of(const recommend_point *p, size_t n, unsigned mask, double eps, double budget,
-                     size_t pick)
+static size_t tie_of(const recommend_point *p, size_t n, unsigned mask, double eps, double resolvable,
+                     double budget, size_t pick)
 {
     const recommend_point *a = &p[pick];
     for (size_t i = 0; i < n && ci_known(a); i++) {
@@ -178,7 +179,9 @@ static size_t tie_of(const recommend_point *p, size_t n, unsigned mask, double e
         if (i == pick || !usable(b) || !(mask & 1u << b->family) || b->time > budget ||
             !ci_known(b) || fabs(b->error - a->error) >= eps)
             continue;
-        if (before(p, pick, i) && b->ci_lo <= a->ci_hi && a->ci_lo <= b->ci_hi)
+        int overlap = b->ci_lo <= a->ci_hi && a->ci_lo <= b->ci_hi;
+        int unresolved = resolvable > 0 && fabs(b->time - a->time) <= resolvable * a->time;
+        if (before(p, pick, i) && (overlap || unresolved))
             return i;
     }
     return RECOMMEND_NONE;
@@ -238,7 +241,7 @@ void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *d
     out->pick_tie = RECOMMEND_NONE;
     out->pick_ci_over = 0;
     if (out->pick != RECOMMEND_NONE) {
-        out->pick_tie = tie_of(p, n, mask, d.epsilon, out->budget, out->pick);
+        out->pick_tie = tie_of(p, n, mask, d.epsilon, d.resolvable, out->budget, out->pick);
         out->pick_ci_over = p[out->pick].ci_hi > out->budget;
     }
     out->near_miss = near_miss_of(p, n, mask, d.epsilon, out->budget, out->pick);

@@ -13,8 +13,10 @@
  *    on the front and in the tables but are picked only when the scene has
  *    nothing else.
  *  - The budget pick is the best quality whose median fits the budget; when
- *    a configuration of equal quality has an overlapping time CI the two
- *    cost the same as far as the data can tell, and the pick says so.
+ *    a configuration of equal quality has an overlapping time CI, or a
+ *    median closer to the pick's than the run's smallest resolvable
+ *    difference, the two cost the same as far as the data can tell, and
+ *    the pick says so.
  *  - The knee is the front member farthest below the straight line from the
  *    fastest to the best member (log time, both axes scaled to [0, 1]);
  *    none with fewer than three members or a front without a bend.
@@ -53,6 +55,9 @@ typedef struct recommend_point {
 typedef struct recommend_desc {
     double budget;         /* frame budget, ns; 0 = recommend_default_budget() */
     double epsilon;        /* errors closer than this are equal; 0 = exact */
+    double resolvable;     /* relative: two medians that differ by no more than this fraction of
+                              the pick's also cost the same (the run's smallest resolvable
+                              difference, docs/measurement.md); 0 = by CI overlap only */
 } recommend_desc;
 
 typedef struct recommend_result {
@@ -60,7 +65,8 @@ typedef struct recommend_result {
     int budget_default;            /* 1 when desc->budget was 0 */
     int lit_only;                  /* 1 when unlit points were passed over */
     size_t pick;                   /* best quality within the budget; NONE: nothing fits */
-    size_t pick_tie;               /* equal quality, overlapping time CI, a higher median; NONE */
+    size_t pick_tie;               /* equal quality, a higher median, and an overlapping time CI
+                                      or a median within desc->resolvable of the pick's; NONE */
     int pick_ci_over;              /* 1 when the pick's CI reaches past the budget */
     size_t near_miss;              /* clearly better quality than the pick, median over the budget,
                                       CI reaching under it ("may also fit"); NONE */

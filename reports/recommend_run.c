@@ -45,9 +45,11 @@ recommend_family report_family(const dm_config_result *c)
 }
 
 /* The scene's points (ok configurations with a frame time) and their
- * config indexes; returns the count.  *p and *idx are malloc'd. */
-static size_t recommend_run__points(const dm_run_result *run, const char *scene, recommend_point **p,
-                             size_t **idx)
+ * config indexes; returns the count.  *p and *idx are malloc'd.  With
+ * corrected, a frame time with the drift removed gives its corrected
+ * median and CI (run/precision.h), the others their raw ones. */
+static size_t recommend_run__points(const dm_run_result *run, const char *scene, int corrected,
+                                    recommend_point **p, size_t **idx)
 {
     size_t nr = report__scene_rows(run, scene, idx), n = 0;
     report_metric m = report_metric_of_run(run);
@@ -57,7 +59,9 @@ static size_t recommend_run__points(const dm_run_result *run, const char *scene,
         const dm_counter_result *t = report__frame_time(c);
         if (!t)
             continue;
-        (*p)[n] = (recommend_point){t->median, t->ci_lo, t->ci_hi, report_metric_error(&c->quality, m),
+        int corr = corrected && t->corrected;
+        (*p)[n] = (recommend_point){corr ? t->corr_median : t->median, corr ? t->corr_ci_lo : t->ci_lo,
+                                    corr ? t->corr_ci_hi : t->ci_hi, report_metric_error(&c->quality, m),
                                     report_family(c)};
         (*idx)[n++] = (*idx)[i];
     }
@@ -69,12 +73,22 @@ static size_t recommend_run__map(const size_t *idx, size_t i)
     return i == RECOMMEND_NONE ? RECOMMEND_NONE : idx[i];
 }
 
-size_t report_recommend(const dm_run_result *run, const char *scene, recommend_result *out)
+double report_resolvable(const dm_run_result *run)
+{
+    double floor, resolvable;
+    return dm_run_noise_floor(run, &floor, &resolvable) ? resolvable : NAN;
+}
+
+/* report_recommend on the raw or the corrected figures. */
+static size_t recommend_run__recommend(const dm_run_result *run, const char *scene, int corrected,
+                                       recommend_result *out)
 {
     recommend_point *p;
-    size_t *idx, n = recommend_run__points(run, scene, &p, &idx);
+    size_t *idx, n = recommend_run__points(run, scene, corrected, &p, &idx);
+    double res = report_resolvable(run);
     recommend_desc d = {.budget = report_budget_ms(run) * 1e6,
-                        .epsilon = report_metric_epsilon(report_metric_of_run(run))};
+                        .epsilon = report_metric_epsilon(report_metric_of_run(run)),
+                        .resolvable = isfinite(res) ? res : 0};
     recommend_scene(p, n, &d, out);
     out->pick = recommend_run__map(idx, out->pick);
     out->pick_tie = recommend_run__map(idx, out->pick_tie);
@@ -87,6 +101,72 @@ size_t report_recommend(const dm_run_result *run, const char *scene, recommend_r
     free(p);
     free(idx);
     return n;
+}
+
+size_t report_recommend(const dm_run_result *run, const char *scene, recommend_result *out)
+{
+    return recommend_run__recommend(run, scene, 0, out);
+}
+
+/* 1 when some ok configuration of the scene has its frame time corrected. */
+static int recommend_run__scene_corrected(const dm_run_result *run, const char *scene)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        const dm_config_result *c = &run->configs[i];
+        const dm_counter_result *t = c->ok && c->scene && strcmp(c->scene, scene) == 0
+                                         ? report__frame_time(c) : NULL;
+        if (t && t->corrected)
+            return 1;
+    }
+    return 0;
+}
+
+int report_recommend_corrected(const dm_run_result *run, const char *scene, recommend_result *out)
+{
+    if (!recommend_run__scene_corrected(run, scene))
+        return 0;
+    recommend_run__recommend(run, scene, 1, out);
+    return 1;
+}
+
+int report_answer_disagree(const dm_run_result *run, const char *scene, dm_str *out)
+{
+    recommend_result r, c;
+    if (report_untimed_reason(run, scene) || !report_recommend_corrected(run, scene, &c))
+        return 0;
+    size_t had = out->len;
+    report_recommend(run, scene, &r);
+    dm_str a = {0}, b = {0};
+    if (r.pick != c.pick) {
+        if (r.pick != RECOMMEND_NONE)
+            report__config_label(run, &run->configs[r.pick], &a);
+        if (c.pick != RECOMMEND_NONE)
+            report__config_label(run, &run->configs[c.pick], &b);
+        if (c.pick == RECOMMEND_NONE)
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed nothing fits the budget; the answer reads the raw figures.");
+        else if (r.pick == RECOMMEND_NONE)
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed the pick is %s; the answer reads the raw figures, where nothing "
+                          "fits.", dm_str_get(&b));
+        else
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed the pick is %s, not %s; the answer reads the raw figures.",
+                          dm_str_get(&b), dm_str_get(&a));
+    } else if (r.pick_tie != c.pick_tie) {
+        size_t t = c.pick_tie != RECOMMEND_NONE ? c.pick_tie : r.pick_tie;
+        report__config_label(run, &run->configs[t], &b);
+        if (c.pick_tie != RECOMMEND_NONE)
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed the pick ties with %s%s.", dm_str_get(&b),
+                          r.pick_tie != RECOMMEND_NONE ? " instead" : "");
+        else
+            dm_str_printf(out, "Raw and drift-corrected figures disagree: with the machine's drift "
+                          "removed the pick does not tie with %s; its time is told apart.", dm_str_get(&b));
+    }
+    dm_str_free(&a);
+    dm_str_free(&b);
+    return out->len > had;
 }
 
 const char *report_untimed_reason(const dm_run_result *run, const char *scene)

@@ -65,8 +65,23 @@ static void quality_fields(dm_str *s, const dm_quality *q)
         num_field(s, v[i], q->present);
 }
 
-static void row(dm_str *s, const report_model_row *r, const char **params, size_t np,
-                const char **timed, size_t nt, const char **det, size_t nd)
+/* The frame time with the machine's drift removed (empty when its scene kept
+ * the raw figures) and how: the method, or why the figures are raw only
+ * (the scene's reason). */
+static void corrected_fields(dm_str *s, const report_model *m, const report_model_row *r)
+{
+    const dm_counter_result *t = r->frame_time;
+    num_field(s, r->corrected ? t->corr_median / 1e6 : 0, r->corrected);
+    num_field(s, r->corrected ? t->corr_ci_lo / 1e6 : 0, r->corrected);
+    num_field(s, r->corrected ? t->corr_ci_hi / 1e6 : 0, r->corrected);
+    const dm_scene_precision *p = m->n_scenes ? m->scenes[r->scene].precision : NULL;
+    const char *raw = !p ? "no drift record for its scene; raw figures only"
+                      : p->reason ? p->reason : "raw figures only";
+    field(s, r->corrected ? REPORT_DRIFT_METHOD : t ? raw : NULL, 0);
+}
+
+static void row(dm_str *s, const report_model *m, const report_model_row *r, const char **params,
+                size_t np, const char **timed, size_t nt, const char **det, size_t nd)
 {
     const dm_config_result *c = r->config;
     field(s, c->key, 1);
@@ -89,6 +104,7 @@ static void row(dm_str *s, const report_model_row *r, const char **params, size_
     quality_fields(s, &c->quality);
     field(s, r->name, 0);
     field(s, r->front ? "1" : "0", 0);
+    corrected_fields(s, m, r);
     dm_str_cat(s, "\r\n");
 }
 
@@ -123,7 +139,7 @@ int report__write_csv(const report_model *m, const report_desc *d, const char *p
     dm_str s = {0};
     header(&s, m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
     for (size_t i = 0; i < m->n_rows; i++)
-        row(&s, &m->rows[i], m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
+        row(&s, m, &m->rows[i], m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     return rc;

@@ -134,6 +134,11 @@ static void html__time_cells(dm_str *s, const report_model_row *r)
 {
     dm_str_printf(s, "<td class=\"n\">%s</td><td class=\"n\">%s", r->ms_text, r->ci_text);
     html__marks_html(s, r);
+    if (r->corrected) {   /* beside the raw figures, never instead (docs/measurement.md) */
+        dm_str_cat(s, "<br><span class=\"corr\" title=\"" REPORT_DRIFT_METHOD "\">drift removed: ");
+        html__esc(s, r->corr_time_ci_text);
+        dm_str_cat(s, "</span>");
+    }
     dm_str_cat(s, "</td>");
 }
 
@@ -170,6 +175,20 @@ static void html__timer_and_warnings(dm_str *s, const report_model *m)
     html__esc(s, v);
     dm_str_printf(s, "</b> (GPUTime covers %.1f%% of fenced wall time).</p>\n",
                   run->gpu_time_coverage * 100);
+    if (*m->precision_text) {   /* the noise floor and the drift removal */
+        dm_str_cat(s, "<p class=\"precision\">");
+        html__esc(s, m->precision_text);
+        for (size_t i = 0; i < m->n_scenes; i++) {
+            const dm_scene_precision *p = m->scenes[i].precision;
+            if (!p || p->corrected)
+                continue;
+            dm_str_cat(s, "<br>");
+            html__esc(s, m->scenes[i].label);
+            dm_str_cat(s, ": ");
+            html__esc(s, p->reason ? p->reason : "no reason recorded");
+        }
+        dm_str_cat(s, "</p>\n");
+    }
     for (size_t i = 0; i < m->n_warnings; i++) {
         dm_str_cat(s, "<div class=\"warn\">");
         html__esc(s, m->warnings[i]);

@@ -76,6 +76,21 @@ static cJSON *str_array(char *const *v, size_t n)
     return a;
 }
 
+/* The drift-corrected figures of a counter with samples: an object, or
+ * null when its scene kept the raw figures only (the run's "precision"
+ * says why). */
+static cJSON *corrected_json(const dm_counter_result *c)
+{
+    if (!c->corrected)
+        return cJSON_CreateNull();
+    cJSON *o = cJSON_CreateObject();
+    double ci[2] = {c->corr_ci_lo, c->corr_ci_hi};
+    cJSON_AddNumberToObject(o, "median", c->corr_median);
+    cJSON_AddItemToObject(o, "ci95", num_array(ci, 2));
+    cJSON_AddStringToObject(o, "method", REPORT_DRIFT_METHOD);
+    return o;
+}
+
 static cJSON *counter_json(const dm_counter_result *c)
 {
     cJSON *o = cJSON_CreateObject();
@@ -93,6 +108,7 @@ static cJSON *counter_json(const dm_counter_result *c)
     double ci[2] = {c->ci_lo, c->ci_hi};
     cJSON_AddNumberToObject(o, "median", c->median);
     cJSON_AddItemToObject(o, "ci95", num_array(ci, 2));
+    cJSON_AddItemToObject(o, "corrected", corrected_json(c));
     cJSON_AddItemToObject(o, "samples", c->samples ? num_array(c->samples, c->n_samples)
                                                    : cJSON_CreateArray());
     cJSON_AddNumberToObject(o, "mean", c->mean);
@@ -218,6 +234,40 @@ static void proxy_json(cJSON *root, const dm_run_result *r)
         }
 }
 
+/* "precision": the run's noise floor, the method, and per scene whether the
+ * drift was removed (or why not), how far the machine moved, what each
+ * predictor left, the smallest resolvable difference and where the raw and
+ * corrected verdicts disagree. */
+static cJSON *precision_json(const report_model *m)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "noise_floor", m->noise_floor);   /* NaN → null */
+    cJSON_AddNumberToObject(o, "resolvable", m->resolvable);
+    cJSON_AddStringToObject(o, "method", REPORT_DRIFT_METHOD);
+    add_str(o, "text", m->precision_text);
+    cJSON *a = cJSON_AddArrayToObject(o, "scenes");
+    for (size_t i = 0; i < m->n_scenes; i++) {
+        const report_model_scene *sc = &m->scenes[i];
+        const dm_scene_precision *p = sc->precision;
+        if (!p)   /* no record (a store from before drift removal): its figures are raw */
+            continue;
+        cJSON *s = cJSON_CreateObject();
+        add_str(s, "scene", sc->name);
+        cJSON_AddBoolToObject(s, "corrected", p->corrected);
+        add_str(s, "reason", p->reason);
+        add_str(s, "predictor", p->predictor);
+        cJSON_AddNumberToObject(s, "rounds", p->n_rounds);
+        cJSON_AddNumberToObject(s, "machine_spread", p->machine_spread);
+        cJSON_AddNumberToObject(s, "raw_noise", p->raw_noise);
+        cJSON_AddNumberToObject(s, "loo_noise", p->loo_noise);
+        cJSON_AddNumberToObject(s, "calib_noise", p->calib_noise);
+        cJSON_AddNumberToObject(s, "resolvable", p->resolvable);
+        add_str(s, "disagreement", sc->disagree);
+        cJSON_AddItemToArray(a, s);
+    }
+    return o;
+}
+
 static cJSON *run_json(const report_model *m)
 {
     const dm_run_result *r = m->run;
@@ -248,6 +298,7 @@ static cJSON *run_json(const report_model *m)
         cJSON_AddItemToArray(a, report_fit_to_json(&r->fits[i]));
     /* the report's list, word for word */
     cJSON_AddItemToObject(root, "warnings", str_array(m->warnings, m->n_warnings));
+    cJSON_AddItemToObject(root, "precision", precision_json(m));
     proxy_json(root, r);
     return root;
 }
@@ -403,6 +454,15 @@ static void read_counter(const cJSON *o, dm_counter_result *c)
     c->cv = get_num(o, "cv");
     c->n_outliers = get_count(o, "outliers");
     c->n_nonfinite = get_count(o, "nonfinite");
+    const cJSON *corr = cJSON_GetObjectItemCaseSensitive(o, "corrected");
+    if (cJSON_IsObject(corr)) {   /* the drift-corrected figures, when written */
+        double *cci = read_nums(cJSON_GetObjectItemCaseSensitive(corr, "ci95"), &nci);
+        c->corr_median = get_num(corr, "median");
+        c->corr_ci_lo = nci > 0 ? cci[0] : NAN;
+        c->corr_ci_hi = nci > 1 ? cci[1] : NAN;
+        c->corrected = isfinite(c->corr_median) && nci == 2;
+        free(cci);
+    }
 }
 
 static void read_quality(const cJSON *o, dm_quality *q)
@@ -484,6 +544,28 @@ static void read_fit(const cJSON *o, dm_fit_result *f)
     f->point_labels = read_strs(cJSON_GetObjectItemCaseSensitive(o, "point_labels"), &nl);
 }
 
+/* The scenes' drift records of "precision" (precision_json), when written. */
+static void read_precision(const cJSON *o, dm_run_result *r)
+{
+    const cJSON *a = cJSON_GetObjectItemCaseSensitive(o, "scenes"), *it;
+    if (!cJSON_IsArray(a))
+        return;
+    r->precision = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->precision);
+    cJSON_ArrayForEach(it, a) {
+        dm_scene_precision *p = &r->precision[r->n_precision++];
+        p->scene = get_str(it, "scene");
+        p->corrected = get_bool(it, "corrected");
+        p->reason = get_str(it, "reason");
+        p->predictor = get_str(it, "predictor");
+        p->n_rounds = get_count(it, "rounds");
+        p->machine_spread = get_num(it, "machine_spread");
+        p->raw_noise = get_num(it, "raw_noise");
+        p->loo_noise = get_num(it, "loo_noise");
+        p->calib_noise = get_num(it, "calib_noise");
+        p->resolvable = get_num(it, "resolvable");
+    }
+}
+
 static void read_run(const cJSON *root, dm_run_result *r)
 {
     const cJSON *run = cJSON_GetObjectItemCaseSensitive(root, "run"), *it;
@@ -499,6 +581,7 @@ static void read_run(const cJSON *root, dm_run_result *r)
     const cJSON *a = cJSON_GetObjectItemCaseSensitive(root, "configs");
     r->configs = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->configs);
     cJSON_ArrayForEach(it, a) read_config(it, &r->configs[r->n_configs++]);
+    read_precision(cJSON_GetObjectItemCaseSensitive(root, "precision"), r);
     a = cJSON_GetObjectItemCaseSensitive(root, "left_out");
     r->left_out = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->left_out);
     cJSON_ArrayForEach(it, a) {

@@ -68,9 +68,9 @@ static void scene_table(dm_str *s, const report_model *m, const report_model_sce
     if (timed) {
         dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ", report_metric_label(m->metric));
         cell(s, sc->front_text);
-        dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI |%s SSIM | %s | key |\n"
-                         "|---|---|---|%s---|---|---|\n", psnr ? " PSNR |" : "", report_metric_label(m->metric),
-                      psnr ? "---|" : "");
+        dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI | drift removed: ms [95%% CI] |%s SSIM | %s | "
+                         "key |\n|---|---|---|---|%s---|---|---|\n", psnr ? " PSNR |" : "",
+                      report_metric_label(m->metric), psnr ? "---|" : "");
     } else   /* counters only: the counters are above; quality and keys here */
         dm_str_printf(s, "\nQuality against the reference:\n\n| configuration |%s SSIM | %s | key |\n"
                          "|---|%s---|---|---|\n", psnr ? " PSNR |" : "", report_metric_label(m->metric),
@@ -87,9 +87,11 @@ static void scene_table(dm_str *s, const report_model *m, const report_model_sce
                 dm_str_cat(s, " ");
                 cell(s, r->marks_short);
             }
+            dm_str_cat(s, " | ");
+            cell(s, r->corrected ? r->corr_time_ci_text : "raw only");
             dm_str_cat(s, " |");
         } else
-            dm_str_cat(s, " | unavailable | |");
+            dm_str_cat(s, " | unavailable | | |");
         quality_cells(s, &r->config->quality, m->metric);
         dm_str_printf(s, " `%s` |\n", r->config->key);
     }
@@ -191,6 +193,21 @@ int report__write_md(const report_model *m, const report_desc *d, const char *pa
         dm_str_cat(&s, "- every scene: ");
         cell(&s, m->constants);
         dm_str_cat(&s, "\n");
+    }
+    if (*m->precision_text) {   /* noise floor and drift removal (docs/measurement.md) */
+        dm_str_cat(&s, "- precision: ");
+        cell(&s, m->precision_text);
+        dm_str_cat(&s, "\n");
+        for (size_t i = 0; i < m->n_scenes; i++) {
+            const dm_scene_precision *p = m->scenes[i].precision;
+            if (!p || p->corrected)
+                continue;
+            dm_str_cat(&s, "  - ");
+            cell(&s, m->scenes[i].label);
+            dm_str_cat(&s, ": ");
+            cell(&s, p->reason ? p->reason : "no reason recorded");
+            dm_str_cat(&s, "\n");
+        }
     }
     char *const *w = m->warnings;   /* the list of results.json */
     for (size_t i = 0; i < m->n_warnings; i++) {

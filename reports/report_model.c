@@ -22,6 +22,46 @@ static const report_trend *report_model__trend(const report_trends *t, const cha
     return NULL;
 }
 
+/* The corrected figures of a row's frame time, in the raw ones' words. */
+static void report_model__row_corrected(report_model_row *r)
+{
+    const dm_counter_result *t = r->frame_time;
+    r->corrected = t && t->corrected;
+    if (!r->corrected)
+        return;
+    dm_counter_result c = *t;   /* the corrected figures where the texts read the raw ones */
+    c.median = c.value = t->corr_median;
+    c.ci_lo = t->corr_ci_lo;
+    c.ci_hi = t->corr_ci_hi;
+    dm_str s = {0};
+    report__ms_text(c.median, &s);
+    r->corr_ms_text = dm_str_take(&s);
+    report__ci_text(&c, &s);
+    r->corr_ci_text = dm_str_take(&s);
+    report__time_ci_text(&c, &s);
+    r->corr_time_ci_text = dm_str_take(&s);
+}
+
+/* The run's noise floor and drift removal in one sentence (model's
+ * precision_text): "" when no configuration has WallTime. */
+static void report_model__precision(report_model *m)
+{
+    const dm_run_result *run = m->run;
+    m->noise_floor = m->resolvable = NAN;
+    dm_str s = {0};
+    size_t used = dm_run_noise_floor(run, &m->noise_floor, &m->resolvable);
+    for (size_t i = 0; i < m->n_scenes; i++)
+        m->n_corrected_scenes += m->scenes[i].precision && m->scenes[i].precision->corrected;
+    if (used)
+        dm_str_printf(&s, "Noise floor ±%.1f %% (the median 95 %% CI half-width of WallTime over %zu "
+                      "configurations); the smallest difference between two configurations this "
+                      "run resolves is %.1f %%, and the answer calls closer ones a tie. The machine's "
+                      "drift was removed in %zu of %zu scenes (%s); the raw figures are kept beside "
+                      "the corrected ones.", 100 * m->noise_floor, used, 100 * m->resolvable,
+                      m->n_corrected_scenes, run->n_precision, REPORT_DRIFT_METHOD);
+    m->precision_text = dm_str_take(&s);
+}
+
 static void report_model__row(report_model *m, report_model_row *r, const dm_config_result *c)
 {
     const dm_run_result *run = m->run;
@@ -62,6 +102,7 @@ static void report_model__row(report_model *m, report_model_row *r, const dm_con
     report__defects(c, &s, &why);
     r->defects = dm_str_take(&s);
     r->defects_why = dm_str_take(&why);
+    report_model__row_corrected(r);
 }
 
 static void report_model__scene(report_model *m, report_model_scene *sc, const char *name)
@@ -117,6 +158,12 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
         if (c->img_flip)
             sc->flips = 1, sc->flip_ppd = c->quality.flip_ppd;
     }
+    for (size_t i = 0; i < run->n_precision; i++)
+        if (run->precision[i].scene && strcmp(run->precision[i].scene, name) == 0)
+            sc->precision = &run->precision[i];
+    sc->has_rec_corr = report_recommend_corrected(run, name, &sc->rec_corr);
+    if (report_answer_disagree(run, name, &s))
+        sc->disagree = dm_str_take(&s);
 }
 
 int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d)
@@ -167,6 +214,7 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     }
     m->n_warnings = report__warnings(run, &m->warnings);
     m->n_noisy = report__noisy_configs(run, &m->noisy);
+    report_model__precision(m);
     /* published.json, once: the run directory's, or beside the one file written */
     dm_str md = {0}, html = {0};
     if (d && (d->dir || d->path)) {
@@ -195,6 +243,9 @@ void report_model_free(report_model *m)
         free(r->metric_text);
         free(r->defects);
         free(r->defects_why);
+        free(r->corr_ms_text);
+        free(r->corr_ci_text);
+        free(r->corr_time_ci_text);
     }
     free(m->rows);
     for (size_t i = 0; m->scenes && i < m->n_scenes; i++) {
@@ -207,6 +258,7 @@ void report_model_free(report_model *m)
         free(sc->front_text);
         free(sc->det);
         breakdown_free(&sc->breakdown);
+        free(sc->disagree);
     }
     free(m->scenes);
     free(m->params);
@@ -223,6 +275,7 @@ void report_model_free(report_model *m)
         free(m->fit_units[i]);
     }
     free(m->fit_units);
+    free(m->precision_text);
     memset(m, 0, sizeof *m);
 }
 

@@ -37,6 +37,11 @@
 #include "reports/recommend_run.h"
 #include "reports/report.h"
 
+/* How the corrected figures were made, as every file names it
+ * (docs/measurement.md, "Drift removed"). */
+#define REPORT_DRIFT_METHOD "each round's common mode divided out (median polish of log times, " \
+                            "leave-one-out), CI with the correction's own uncertainty (bootstrap over rounds)"
+
 /* One configuration as every file shows it. */
 typedef struct report_model_row {
     const dm_config_result *config;     /* borrowed from the run */
@@ -63,6 +68,12 @@ typedef struct report_model_row {
     char *metric_text;       /* its quality for a sentence: "SSIM 0.950" (report_metric_text) */
     char *defects;           /* "⚠ 7 crack pixels; ⚠ 3 NaN pixels", "" when none */
     char *defects_why;       /* the defects' reasons in words, "" when none */
+    /* Drift removed (docs/measurement.md, "Drift removed"): the frame time
+     * with the machine's drift divided out, beside the raw figures above */
+    int corrected;              /* frame_time carries corrected figures */
+    char *corr_ms_text;         /* corrected median in ms; NULL when not corrected */
+    char *corr_ci_text;         /* its CI as ci_text; NULL when not corrected */
+    char *corr_time_ci_text;    /* "4.40 ms [4.35, 4.45]"; NULL when not corrected */
 } report_model_row;
 
 /* One scene of the run. */
@@ -92,6 +103,11 @@ typedef struct report_model_scene {
     double max_error;     /* the largest MaxError of its rows with quality (0 without) */
     int flips;            /* some row has a FLIP map */
     double flip_ppd;      /* the pixels per degree of its FLIP maps (the last row's); NaN without */
+    /* Drift removed: the scene's record and the verdict on the corrected figures */
+    const dm_scene_precision *precision;   /* borrowed from the run; NULL: none recorded */
+    int has_rec_corr;     /* 1: rec_corr holds the recommendation on the corrected figures */
+    recommend_result rec_corr;
+    char *disagree;       /* report_answer_disagree's sentence; NULL when raw and corrected agree */
 } report_model_scene;
 
 typedef struct report_model {
@@ -121,6 +137,11 @@ typedef struct report_model {
     int any_timed;                /* some scene has a frame time (a budget and a pick) */
     /* what the fits table reads */
     char ***fit_units;            /* [fit][param]: "ns per VSInvocations"; "" when unknown */
+    /* Drift removed: the run's noise floor (dm_run_noise_floor) and its sentence */
+    double noise_floor;           /* median relative CI half-width; NaN without WallTime */
+    double resolvable;            /* smallest resolvable relative difference; NaN likewise */
+    size_t n_corrected_scenes;    /* scenes whose figures have the drift removed */
+    char *precision_text;         /* the sentence every file shows; "" without WallTime */
 } report_model;
 
 /* Builds the model of run for the files d describes (report.h): d->dir

@@ -105,6 +105,7 @@ static void measure__prepare(mscene *m, mconf *c)
     c->timing = dm_xcalloc(m->n_timing + 1, sizeof *c->timing);
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i] = dm_xcalloc((size_t)sm->samples_max, sizeof **c->timing);
+    c->cap = (size_t)sm->samples_max;
     c->active = 1;
     measure__restore(m, c);
 }
@@ -117,7 +118,7 @@ static int measure__checkpoint(mscene *m, mconf *cs, size_t n, dm_str *err)
     store_partial *items = dm_xcalloc(n + 1, sizeof *items);
     size_t k = 0;
     for (size_t i = 0; i < n; i++)
-        if (cs[i].active && !cs[i].failed && cs[i].n_samples)
+        if ((cs[i].active || cs[i].extra) && !cs[i].failed && cs[i].n_samples)
             items[k++] = (store_partial){ .key = cs[i].pc->key, .counters = m->timing,
                                           .n_counters = m->n_timing, .samples = cs[i].timing,
                                           .n_samples = cs[i].n_samples,
@@ -145,10 +146,54 @@ static int measure__round(mscene *m, const dm_str *keys, double calib_ns, dm_str
     return rc ? DM_ERR_STORE : 0;
 }
 
-/* Takes one timing sample of a configuration and asks the protocol whether
- * it stops; a drifting stop counter is noted in the configuration's log. */
-static void measure__timing_sample(mscene *m, mconf *c)
+/* Room for one more sample in every timing row of c (extra rounds go past
+ * samples.max). */
+static void measure__room(mscene *m, mconf *c)
 {
+    if (c->n_samples < c->cap)
+        return;
+    c->cap = c->cap ? 2 * c->cap : 8;
+    for (size_t i = 0; i < m->n_timing; i++)
+        c->timing[i] = dm_xrealloc(c->timing[i], c->cap * sizeof **c->timing);
+}
+
+/* Test hook for the extra rounds: DMBENCH_TEST_NOISY=<technique> scales
+ * the stop counter's samples of that technique by a factor in [0.4, 1.6]
+ * drawn from its key and the sample's index, so that one configuration
+ * stays far from any target however long it samples. */
+static void measure__test_noise(const mscene *m, const mconf *c, double *vals)
+{
+    const char *noisy = getenv("DMBENCH_TEST_NOISY");
+    if (!noisy || m->stop_index < 0 || strcmp(noisy, dm_kv_get(c->pc->params, c->pc->n_params, "technique")) != 0)
+        return;
+    uint64_t h = 1469598103934665603u ^ c->n_samples;
+    for (const char *p = c->pc->key; *p; p++)
+        h = (h ^ (unsigned char)*p) * 1099511628211u;
+    h ^= h >> 29;
+    vals[m->stop_index] *= 0.4 + 1.2 * (double)(h % 1000003) / 1000002.0;
+}
+
+/* The end of c's sampling in its log: a drifting stop counter, and the
+ * protocol's stop reason with --verbose. */
+static void measure__stopped(mscene *m, mconf *c)
+{
+    const protocol_decision *d = &c->last;
+    if (d->drifting && m->stop_index >= 0)
+        dm_str_printf(&c->log, "%s drifted %+.1f %% over its %zu samples (a trend, not noise: the "
+                      "machine's load or clock changed while sampling)\n", m->timing[m->stop_index],
+                      100 * d->drift, c->n_samples);
+    dm_log(DM_LOG_DEBUG, "sampling %s: %zu samples (%zu in extra rounds), stop: %s, CI ±%.2f %%",
+           c->pc->key, c->n_samples, c->n_extra, protocol_stop_name(d->stop), 100 * d->ci_rel);
+}
+
+/* Takes one timing sample of a configuration and asks the protocol whether
+ * it stops.  In the scene's rounds (extra == 0) a configuration that stops
+ * short of its target waits for extra rounds (c->extra) when the job has
+ * time for them; in an extra round (extra == 1) it stops waiting once its
+ * CI is within the target. */
+static void measure__timing_sample(mscene *m, mconf *c, int extra)
+{
+    measure__room(m, c);
     double *vals = dm_xcalloc(m->n_timing + 1, sizeof *vals);
     mscene_say(m->job, "B %s", c->pc->key);
     int64_t t0 = dm_now_ns();
@@ -166,6 +211,7 @@ static void measure__timing_sample(mscene *m, mconf *c)
         c->vt.pages_resident = v1.pages_resident;
         c->vt.committed_bytes = v1.committed_bytes;
     }
+    measure__test_noise(m, c, vals);
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i][c->n_samples] = vals[i];
     c->n_samples++;
@@ -174,15 +220,18 @@ static void measure__timing_sample(mscene *m, mconf *c)
     const double *x = m->stop_index >= 0 ? c->timing[m->stop_index] : NULL;
     double elapsed = (double)c->sampling_ns / 1e9;   /* its own samples only, not the round's */
     protocol_decision d = protocol_decide(&m->pd, x, c->n_samples, elapsed);
+    c->last = d;
+    c->ci_rel = d.ci_rel;
+    if (extra) {
+        c->n_extra++;
+        c->extra = d.stop != PROTOCOL_CONVERGED;
+        return;
+    }
     if (d.stop == PROTOCOL_CONTINUE)
         return;
     c->active = 0;
-    if (d.drifting)
-        dm_str_printf(&c->log, "%s drifted %+.1f %% over its %zu samples (a trend, not noise: the "
-                      "machine's load or clock changed while sampling)\n", m->timing[m->stop_index],
-                      100 * d.drift, c->n_samples);
-    dm_log(DM_LOG_DEBUG, "sampling %s: %zu samples, stop: %s, CI ±%.2f %%", c->pc->key, c->n_samples,
-           protocol_stop_name(d.stop), 100 * d.ci_rel);
+    c->extra = m->job->extra_s > 0 && x && d.stop != PROTOCOL_CONVERGED;
+    c->ci_rel_before = d.ci_rel;
 }
 
 static void measure__counter_timed(dm_counter_result *r, const double *x, size_t n, uint64_t seed)
@@ -412,6 +461,13 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
     out.scene = dm_xstrdup(c->pc->scene);
     for (size_t i = 0; i < c->pc->n_params; i++)
         dm_kv_push(&out.params, &out.n_params, c->pc->params[i].key, c->pc->params[i].value);
+    if (!c->failed && c->n_samples)
+        measure__stopped(m, c);
+    if (c->n_extra)
+        dm_str_printf(&c->log, "%zu samples in extra rounds (--extra-time): %s CI ±%.2f %% -> ±%.2f %%, "
+                      "target ±%.2f %% %s\n", c->n_extra, m->timing[m->stop_index],
+                      100 * c->ci_rel_before, 100 * c->ci_rel, 100 * m->pd.target_ci,
+                      c->ci_rel <= m->pd.target_ci ? "reached" : "not reached (the budget was spent)");
     if (!c->failed) {
         int64_t t0 = dm_now_ns();
         measure__collect(m, c, &out);
@@ -441,6 +497,8 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
         return DM_ERR_ARG;
     }
     int rc = store_config_put(m->st, m->job->run_id, &out);
+    if (rc == 0 && c->n_extra)
+        mscene_say(m->job, "A %s %zu %.4f %.4f", c->pc->key, c->n_extra, c->ci_rel_before, c->ci_rel);
     const dm_counter_result *wt = m->stop_index >= 0 ? dm_config_counter(&out, m->timing[m->stop_index]) : NULL;
     double ci = wt && wt->median > 0 ? (wt->ci_hi - wt->ci_lo) / 2 / wt->median : NAN;
     if (rc == 0)
@@ -485,6 +543,110 @@ int measure_pilot(const measure_job *job, dm_str *err)
     return rc;
 }
 
+/* What a round costs besides its samples: the calibration kernel around
+ * it, recording it and the checkpoint (not the commits, which each
+ * configuration pays once whatever the rounds). */
+typedef struct measure__overhead { int64_t ns; size_t rounds; } measure__overhead;
+
+/* The calibration kernel before a round (its time counted in o). */
+static double measure__round_begin(measure__overhead *o)
+{
+    int64_t t0 = dm_now_ns();
+    double cal = calibrate_cpu_once();   /* the machine's speed around the round */
+    o->ns += dm_now_ns() - t0;
+    return cal;
+}
+
+/* The end of a round: the kernel again, the round recorded with the
+ * kernel's mean time, and the samples of the configurations still
+ * sampling (or waiting for extra rounds) checkpointed; the time counted
+ * in o.  Returns 0 or DM_ERR_STORE (err). */
+static int measure__round_end(mscene *m, mconf *cs, size_t n, const dm_str *keys, double cal0,
+                              measure__overhead *o, dm_str *err)
+{
+    int64_t t0 = dm_now_ns();
+    int rc = measure__round(m, keys, (cal0 + calibrate_cpu_once()) / 2, err);
+    if (rc == 0)
+        rc = measure__checkpoint(m, cs, n, err);
+    o->ns += dm_now_ns() - t0;
+    o->rounds++;
+    return rc;
+}
+
+/* The mean cost of a round besides its samples so far (s), 0 before one. */
+static double measure__overhead_s(const measure__overhead *o)
+{
+    return o->rounds ? (double)o->ns / 1e9 / (double)o->rounds : 0;
+}
+
+/* The extra rounds after the scene's rounds: while the job's extra_s
+ * lasts, the configurations that stopped short of their target get one
+ * more sample per round, the noisiest first as far as the time left
+ * allows (protocol_extra_round), sampled in a fresh seeded order like
+ * every round and recorded as a round (the drift's model reads them as
+ * any other).  A configuration is committed once within its target, or
+ * when the rounds end; then one "R" line says how many rounds, the time
+ * they took, and why they ended.  Returns 0 or the first commit's or
+ * store's error (err). */
+static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *over, dm_str *err)
+{
+    const measure_job *job = m->job;
+    size_t *wait = dm_xcalloc(n + 1, sizeof *wait), *pick = dm_xcalloc(n + 1, sizeof *pick);
+    size_t *order = dm_xcalloc(n + 1, sizeof *order), rounds = 0;
+    double *ci = dm_xcalloc(n + 1, sizeof *ci), *sample_s = dm_xcalloc(n + 1, sizeof *sample_s);
+    int64_t t0 = dm_now_ns(), committing = 0;
+    protocol_extra_why why = PROTOCOL_EXTRA_REACHED;
+    int rc = 0;
+    size_t any = 0;
+    for (size_t i = 0; i < n; i++)
+        any += cs[i].extra != 0;
+    while (rc == 0 && any) {
+        size_t nw = 0;
+        for (size_t i = 0; i < n; i++)
+            if (cs[i].extra && !cs[i].failed) {
+                wait[nw] = i;
+                ci[nw] = cs[i].ci_rel;
+                sample_s[nw++] = (double)cs[i].sampling_ns / 1e9 / (double)cs[i].n_samples;
+            }
+        /* what is left once this round's own cost (the mean so far) is paid */
+        double left = job->extra_s - (double)(dm_now_ns() - t0 - committing) / 1e9 - measure__overhead_s(over);
+        size_t np = protocol_extra_round(ci, sample_s, nw, m->pd.target_ci, left, pick, &why);
+        if (np == 0)
+            break;
+        plan_shuffle(order, np, job->seed + 0x9e3779b97f4a7c15u * ++rounds);   /* blocks the drift */
+        dm_str keys = {0};
+        double cal0 = measure__round_begin(over);
+        for (size_t k = 0; rc == 0 && k < np; k++) {
+            mconf *c = &cs[wait[pick[order[k]]]];
+            dm_str_printf(&keys, "%s%s", keys.len ? " " : "", c->pc->key);
+            measure__timing_sample(m, c, 1);
+            if (!c->extra || c->failed) {
+                int64_t c0 = dm_now_ns();
+                c->extra = 0;
+                rc = measure__commit(m, c, err);
+                committing += dm_now_ns() - c0;   /* images and quality: not the rounds' time */
+            }
+        }
+        rc = rc ? rc : measure__round_end(m, cs, n, &keys, cal0, over, err);
+        dm_str_free(&keys);
+    }
+    int64_t spent = dm_now_ns() - t0 - committing;
+    for (size_t i = 0; rc == 0 && i < n; i++)
+        if (cs[i].extra) {   /* the budget ended them */
+            cs[i].extra = 0;
+            rc = measure__commit(m, &cs[i], err);
+        }
+    if (any)
+        mscene_say(job, "R %zu %lld %s %zu", rounds, (long long)spent,
+                   why == PROTOCOL_EXTRA_BUDGET ? "budget" : "reached", any);
+    free(wait);
+    free(pick);
+    free(order);
+    free(ci);
+    free(sample_s);
+    return rc;
+}
+
 int measure_scene(const measure_job *job, dm_str *err)
 {
     mscene m = { .job = job };
@@ -497,29 +659,28 @@ int measure_scene(const measure_job *job, dm_str *err)
             rc = measure__commit(&m, &cs[i], err);
     }
     size_t *order = dm_xcalloc(job->n_configs + 1, sizeof *order);
+    measure__overhead over = {0};
     for (uint64_t round = 0, active = 1; rc == 0 && active; round++) {
         active = 0;
         plan_shuffle(order, job->n_configs, job->seed + round);
         dm_str keys = {0};
-        double cal0 = calibrate_cpu_once();   /* the machine's speed around the round */
+        double cal0 = measure__round_begin(&over);
         for (size_t k = 0; k < job->n_configs; k++) {
             mconf *c = &cs[order[k]];
             if (!c->active)
                 continue;
             dm_str_printf(&keys, "%s%s", keys.len ? " " : "", c->pc->key);
-            measure__timing_sample(&m, c);
-            if (!c->active)
+            measure__timing_sample(&m, c, 0);
+            if (!c->active && !c->extra)
                 rc = measure__commit(&m, c, err);
-            else
-                active = 1;
+            active |= (uint64_t)c->active;
             if (rc != 0)
                 break;
         }
-        rc = rc ? rc : measure__round(&m, &keys, (cal0 + calibrate_cpu_once()) / 2, err);
+        rc = rc ? rc : measure__round_end(&m, cs, job->n_configs, &keys, cal0, &over, err);
         dm_str_free(&keys);
-        if (rc == 0 && active)
-            rc = measure__checkpoint(&m, cs, job->n_configs, err);
     }
+    rc = rc ? rc : measure__extra(&m, cs, job->n_configs, &over, err);
     free(order);
     mscene_teardown(&m, cs, set_up ? job->n_configs : 0);
     return rc;

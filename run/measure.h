@@ -38,6 +38,12 @@ typedef struct measure_job {
     const char *store_path;
     const char *cache_dir;        /* program-binary cache, NULL = off */
     uint64_t seed;
+    double extra_s;               /* seconds this scene may spend in extra rounds for the
+                                   * configurations short of samples.target_ci (--extra-time);
+                                   * 0: none.  Lines "A <key> <extra samples> <ci_rel before>
+                                   * <ci_rel after>" before such a configuration's "D", and one
+                                   * "R <rounds> <spent_ns> <why> <configurations short>"
+                                   * when the extra rounds end (none when none was short) */
     int timer_partial;            /* GPUTime covers only part of the work */
     int report_fd;                /* -1: no progress lines */
     const callgrind_count *instructions;   /* the Instructions pass (run/callgrind.h) */

@@ -47,6 +47,11 @@ typedef struct mconf {
     int frames;                 /* frames per timing sample (>= K, see min_sample_ms) */
     double **timing;            /* per timing counter: per-frame samples */
     size_t n_samples;
+    size_t cap;                 /* samples each timing[] row holds (samples.max, grown by extra rounds) */
+    int extra;                  /* stopped short of its target: waits for extra rounds (--extra-time) */
+    size_t n_extra;             /* samples taken in extra rounds */
+    double ci_rel, ci_rel_before;   /* the stop counter's CI now, and when the extra rounds began */
+    protocol_decision last;     /* the protocol's last decision (its drift goes to the log) */
     double *stats;              /* per statistics counter: per-frame value (NAN = unavailable) */
     char **stats_reason;
     int has_vt;                 /* virtual-textured: vt holds its samples' figures */

@@ -179,6 +179,55 @@ size_t protocol_resume_limit(const protocol_desc *d)
     return d->samples_max > 1 ? (size_t)d->samples_max - 1 : 0;
 }
 
+/* ---- extra rounds (--extra-time) ---------------------------------------------- */
+
+/* 1 when configuration a goes before b: the larger CI first, an unknown
+ * (NaN) one before every known one, equal ones by index. */
+static int protocol__noisier(const double *ci_rel, size_t a, size_t b)
+{
+    int na = isnan(ci_rel[a]), nb = isnan(ci_rel[b]);
+    if (na != nb)
+        return na;
+    if (!na && ci_rel[a] != ci_rel[b])
+        return ci_rel[a] > ci_rel[b];
+    return a < b;
+}
+
+size_t protocol_extra_round(const double *ci_rel, const double *sample_s, size_t n, double target_ci,
+                            double budget_s, size_t *pick, protocol_extra_why *why)
+{
+    size_t short_of = 0;
+    for (size_t i = 0; i < n; i++) {
+        if (ci_rel[i] <= target_ci)
+            continue;
+        size_t k = short_of++;   /* insertion: n is a scene's configurations */
+        for (; k > 0 && protocol__noisier(ci_rel, i, pick[k - 1]); k--)
+            pick[k] = pick[k - 1];
+        pick[k] = i;
+    }
+    size_t taken = 0;
+    double spent = 0;
+    for (size_t k = 0; k < short_of; k++) {
+        double s = sample_s[pick[k]];
+        if (!(s >= 0) || !isfinite(s) || !(spent + s <= budget_s))
+            continue;
+        spent += s;
+        pick[taken++] = pick[k];
+    }
+    *why = taken ? PROTOCOL_EXTRA_MORE : short_of ? PROTOCOL_EXTRA_BUDGET : PROTOCOL_EXTRA_REACHED;
+    return taken;
+}
+
+const char *protocol_extra_why_name(protocol_extra_why w)
+{
+    switch (w) {
+    case PROTOCOL_EXTRA_MORE: return "more rounds planned";
+    case PROTOCOL_EXTRA_REACHED: return "targets reached";
+    case PROTOCOL_EXTRA_BUDGET: return "budget spent";
+    }
+    return "?";
+}
+
 /* ---- --budget ------------------------------------------------------------------ */
 
 /* The image renders and the warm-up's agreement samples are counted as

@@ -132,6 +132,31 @@ const char *protocol_stop_name(protocol_stop s);
  * configuration measures at least one more. */
 size_t protocol_resume_limit(const protocol_desc *d);
 
+/* ---- extra rounds (--extra-time) ---------------------------------------------- */
+
+/* Why the extra rounds stop, or that they go on. */
+typedef enum protocol_extra_why {
+    PROTOCOL_EXTRA_MORE = 0,     /* a round is planned */
+    PROTOCOL_EXTRA_REACHED,      /* every configuration is within target_ci */
+    PROTOCOL_EXTRA_BUDGET        /* some are short of it, but no sample fits in the budget left */
+} protocol_extra_why;
+
+/* Plans one extra round over n configurations that stopped sampling short
+ * of their target: ci_rel[i] is configuration i's CI half-width / median
+ * now (NaN: unknown, the noisiest of all), sample_s[i] what one more of its
+ * samples takes (its mean sample so far).  The configurations with ci_rel
+ * not within target_ci are taken noisiest first (largest ci_rel; equal ones
+ * by index), each while the seconds taken so far plus its sample_s fit in
+ * budget_s (a sample that does not fit is skipped, not waited for; a
+ * sample_s that is not a finite non-negative figure never fits).  Writes
+ * their indices to pick[] in that order (pick holds n) and returns how many;
+ * *why says why none were taken (PROTOCOL_EXTRA_MORE when some were). */
+size_t protocol_extra_round(const double *ci_rel, const double *sample_s, size_t n, double target_ci,
+                            double budget_s, size_t *pick, protocol_extra_why *why);
+
+/* Words for a stop of the extra rounds ("targets reached", "budget spent"). */
+const char *protocol_extra_why_name(protocol_extra_why w);
+
 /* ---- --budget ------------------------------------------------------------------ */
 
 /* Seconds to measure a configuration whose frame takes frame_ns: warm-up

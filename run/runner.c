@@ -244,6 +244,11 @@ static int runner__begin(runner *r)
     char seed[32];   /* the rounds' order (run/measure.c): a run's order can be replayed */
     snprintf(seed, sizeof seed, "%llu", (unsigned long long)(r->o->seed ? r->o->seed : 1));
     dm_kv_push(&e->environment, &e->n_environment, "seed", seed);
+    if (r->o->extra_s > 0) {   /* the extra rounds' budget, as given */
+        char extra[32];
+        snprintf(extra, sizeof extra, "%g", r->o->extra_s);
+        dm_kv_push(&e->environment, &e->n_environment, "extra_time_s", extra);
+    }
     runner__calibrate(&e->environment, &e->n_environment, "start");
     char *pub = dm_xasprintf("%s/published.json", r->run_dir);   /* for the report's section */
     int rc = r->s->published ? published_write_json(r->s->published, pub) : 0;
@@ -343,6 +348,7 @@ static void runner__free(runner *r)
     if (r->lock_fd >= 0)
         close(r->lock_fd);
     dm_str_free(&r->stop);
+    dm_str_free(&r->extra_lines);
     inputs_clear();
     plan_free(&r->p);
     store_close(r->st);
@@ -488,6 +494,8 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
         free(name_buf);
         int changed = runner_child_instructions(&r, err);
         rc = changed ? changed : runner_child_scenes(&r);
+        if (rc == 0 && !o->quiet)
+            runner_child_extra_print(&r, stderr);
         if (rc == DM_ERR_ARG && !changed)   /* a measuring child found a user file changed */
             dm_str_printf(err, "%s; one run measures one version of each file: stopped the run "
                           "before it recorded anything for it; the %zu configurations committed "

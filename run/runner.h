@@ -28,6 +28,8 @@ typedef struct runner_opts {
     int shard_k, shard_n;      /* 0/0 = everything */
     uint64_t seed;             /* round order; 0 = 1 */
     double budget_s;           /* > 0: leave out configurations predicted to take longer */
+    double extra_s;            /* > 0: seconds for extra rounds of the configurations short of
+                                * samples.target_ci (--extra-time; docs/measurement.md) */
     const char *tag;           /* stored with the run */
     int dry_run;               /* print the plan (and estimates) to stdout; measure nothing */
     int count_jobs;            /* Instructions: children side by side; 0 = callgrind_jobs' default */

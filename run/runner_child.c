@@ -275,6 +275,47 @@ typedef struct runner_child__watched {
     dm_str line;
 } runner_child__watched;
 
+/* A configuration that had extra samples (an "A" line): counted, and its
+ * line kept for runner_child_extra_print. */
+static void runner_child__extra_config(runner *r, const plan_config *c, size_t samples,
+                                       double before, double after)
+{
+    r->extra_configs++;
+    r->extra_reached += after <= r->s->measure.target_ci;
+    dm_str label = {0};
+    if (c)
+        runner_child__label(r, c, &label);
+    dm_str_printf(&r->extra_lines, "  %s: +%zu samples, CI ±%.2f %% -> ±%.2f %%%s\n",
+                  c ? dm_str_get(&label) : "?", samples, 100 * before, 100 * after,
+                  after <= r->s->measure.target_ci ? " (target reached)" : "");
+    dm_str_free(&label);
+}
+
+void runner_child_extra_print(const runner *r, FILE *f)
+{
+    if (!(r->o->extra_s > 0))
+        return;
+    double target = 100 * r->s->measure.target_ci;
+    if (!r->extra_scenes) {
+        fprintf(f, "dmbench: extra rounds (--extra-time %g s): none needed, every configuration "
+                "stopped within ±%.1f %% or without a timing counter\n", r->o->extra_s, target);
+        return;
+    }
+    fprintf(f, "dmbench: extra rounds (--extra-time %g s): %zu configuration%s stopped short of "
+            "±%.1f %%; %zu rounds in %.1f s gave %zu of them more samples, noisiest first, and %zu "
+            "reached it; ended: %s\n", r->o->extra_s, r->extra_short, r->extra_short == 1 ? "" : "s",
+            target, r->extra_rounds, (double)r->extra_ns / 1e9, r->extra_configs, r->extra_reached,
+            r->extra_budget_scenes == 0 ? "targets reached in every scene"
+            : r->extra_budget_scenes == r->extra_scenes ? "budget spent in every scene"
+                                                        : "budget spent in some scenes");
+    if (r->extra_budget_scenes && r->extra_budget_scenes < r->extra_scenes)
+        fprintf(f, "dmbench: extra rounds: budget spent in %zu of %zu scenes, targets reached in "
+                "the others\n", r->extra_budget_scenes, r->extra_scenes);
+    char *b;
+    fputs(dm_term_safe(dm_str_get(&r->extra_lines), &b), f);
+    free(b);
+}
+
 /* Handles one line of child output; returns 1 when a config was finished. */
 static void runner_child__line(runner *r, runner_child__watched *w, const plan_config *cs, size_t n,
                                char *line, int *done_flags)
@@ -292,6 +333,16 @@ static void runner_child__line(runner *r, runner_child__watched *w, const plan_c
             runner_child__progress(r, c, status, med, ci);
         }
         w->current[0] = '\0';
+    } else if (line[0] == 'A' && sscanf(line, "A %16s %lld %lf %lf", key, &sampled, &med, &ci) == 4) {
+        runner_child__extra_config(r, runner_child__find(cs, n, key), (size_t)sampled, med, ci);
+    } else if (line[0] == 'R' && sscanf(line, "R %lf %lld %15s %lf", &med, &sampled, status, &ci) == 4) {
+        r->extra_rounds += (size_t)med;
+        r->extra_short += (size_t)ci;
+        r->extra_ns += sampled;
+        r->extra_scenes++;
+        r->extra_budget_scenes += strcmp(status, "budget") == 0;
+        r->extra_left_s -= (double)sampled / 1e9;
+        r->extra_scene_s -= (double)sampled / 1e9;
     }
 }
 
@@ -307,6 +358,7 @@ pid_t runner_child_spawn(runner *r, const plan_config *cs, size_t n, int *fd, in
                             .run_dir = r->run_dir, .store_path = r->store_path,
                             .cache_dir = r->cache_dir,
                             .seed = r->o->seed ? r->o->seed : 1,
+                            .extra_s = pilot || !(r->extra_scene_s > 0) ? 0 : r->extra_scene_s,
                             .timer_partial = strcmp(r->env.timer_verdict, "full") != 0,
                             .report_fd = fds[1], .instructions = r->instr,
                             .n_instructions = r->n_instr };
@@ -582,9 +634,18 @@ int runner_child_scenes(runner *r)
     plan_config *group = dm_xcalloc(n + 1, sizeof *group);
     int rc = 0;
     r->t_measure = r->t_last = dm_now_ns();
+    r->extra_left_s = r->o->extra_s;
+    size_t scenes_left = 0;
+    for (size_t i = 0; i < n; i++) {
+        size_t j = 0;
+        while (j < i && strcmp(cs[j].scene, cs[i].scene) != 0)
+            j++;
+        scenes_left += j == i;
+    }
     for (size_t i = 0; rc == 0 && i < n; i++) {
         if (taken[i])
             continue;
+        r->extra_scene_s = scenes_left ? r->extra_left_s / (double)scenes_left-- : 0;
         size_t ng = 0;
         for (size_t j = i; j < n; j++)
             if (!taken[j] && strcmp(cs[j].scene, cs[i].scene) == 0) {

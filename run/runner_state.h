@@ -17,6 +17,7 @@
 
 #include <stddef.h>
 #include <stdint.h>
+#include <stdio.h>
 #include <sys/types.h>
 
 #include "core/dm_results.h"
@@ -50,6 +51,12 @@ typedef struct runner {
     int lock_fd;               /* flock on <out>/dmbench.lock, -1 when none */
     int futile;                /* measuring processes in a row that finished nothing */
     dm_str stop;               /* why the run stopped before its end (store failure, ...) */
+    /* extra rounds (--extra-time): what is left, what the scene being measured may spend, and
+     * what they did (runner_child_extra_print) */
+    double extra_left_s, extra_scene_s;
+    size_t extra_rounds, extra_short, extra_configs, extra_reached, extra_scenes, extra_budget_scenes;
+    int64_t extra_ns;
+    dm_str extra_lines;        /* one line per configuration that had extra samples */
 } runner;
 
 /* ---- runner_child.c -------------------------------------------------------- */
@@ -72,8 +79,15 @@ pid_t runner_child_spawn(runner *r, const plan_config *cs, size_t n, int *fd, in
  * err when a source, map or mesh changed since the run started. */
 int runner_child_instructions(runner *r, dm_str *err);
 /* Measures every scene, a child at a time with its watchdog, until one
- * stops the run (0, or its code with the reason in r->stop). */
+ * stops the run (0, or its code with the reason in r->stop).  The
+ * --extra-time left is shared out scene by scene: a scene may spend what
+ * is left divided by the scenes still to measure (so what one leaves
+ * unspent goes to the next). */
 int runner_child_scenes(runner *r);
+/* The extra rounds' account to f: rounds, time, the configurations that
+ * had them (CI before and after) and why they ended; nothing without
+ * --extra-time. */
+void runner_child_extra_print(const runner *r, FILE *f);
 
 /* ---- runner_plan.c ---------------------------------------------------------- */
 

@@ -25,6 +25,8 @@ set_tests_properties(test_ci_gate PROPERTIES TIMEOUT 120 FIXTURES_REQUIRED ci_ga
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")
 dm_add_e2e(test_e2e_quick quick.sh LABELS quick)
 dm_add_e2e(test_e2e_precision precision.sh)
+dm_add_e2e(test_e2e_extra_rounds extra_rounds.sh)
+dm_add_e2e(test_e2e_precision_raw precision_raw.sh)
 dm_add_e2e(test_e2e_exchange exchange.sh)
 dm_add_e2e(test_e2e_faults faults.sh)
 dm_add_e2e(test_e2e_hostile hostile.sh)

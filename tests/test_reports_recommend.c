@@ -84,6 +84,33 @@ static void test_equal_quality_cheaper_wins(void **state)
     assert_int_equal(r.pick_tie, 1);
 }
 
+/* The run's smallest resolvable difference makes a tie of two equal-quality
+ * medians closer than it, even when their CIs do not overlap. */
+static void test_tie_within_resolvable_difference(void **state)
+{
+    (void)state;
+    recommend_point p[] = {
+        pt(2.0, 0.02, 0.20, F),      /* 0: fastest */
+        pt(5.3, 0.01, 0.1267, T),    /* 1: 5.247–5.353 ms, 6 % above 2's median */
+        pt(5.0, 0.01, 0.1267, V),    /* 2: 4.95–5.05 ms: the pick */
+    };
+    recommend_result r;
+    recommend_desc d = {.budget = 7 * MS, .epsilon = 1e-3};
+    recommend_scene(p, 3, &d, &r);   /* CIs apart, no resolvable difference: no tie */
+    assert_int_equal(r.pick, 2);
+    assert_int_equal(r.pick_tie, RECOMMEND_NONE);
+    d.resolvable = 0.05;             /* 0.3 ms > 5 % of 5 ms: still told apart */
+    recommend_scene(p, 3, &d, &r);
+    assert_int_equal(r.pick_tie, RECOMMEND_NONE);
+    d.resolvable = 0.07;             /* 0.3 ms < 7 % of 5 ms: the run cannot tell them apart */
+    recommend_scene(p, 3, &d, &r);
+    assert_int_equal(r.pick, 2);
+    assert_int_equal(r.pick_tie, 1);
+    d.resolvable = 0.5;              /* quality decides the rest: 0 is not equal quality */
+    recommend_scene(p, 3, &d, &r);
+    assert_int_equal(r.pick_tie, 1);
+}
+
 /* The budget is respected: the pick's median is within it, and it is the
  * best quality that is. */
 static void test_budget_respected(void **state)
@@ -303,6 +330,7 @@ static void test_default_budget_holds_still(void **state)
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_front_known_points),
              cmocka_unit_test(test_equal_quality_cheaper_wins),
+             cmocka_unit_test(test_tie_within_resolvable_difference),
              cmocka_unit_test(test_budget_respected),
              cmocka_unit_test(test_near_miss),
              cmocka_unit_test(test_family_bests),

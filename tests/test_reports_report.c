@@ -150,20 +150,140 @@ static void test_csv_shape(void **state)
     memset(cell, 0, sizeof cell);
     assert_int_equal(csv_shape(t, &cols, cell, 64), 4);   /* header + 3 configs */
     /* key scene status reason | technique mesh steps scale note tess_level |
-     * WallTime ×3 | TESInvocations | 11 quality (FLIP mean, median, max last) | label pareto */
-    assert_int_equal(cols, 4 + 6 + 3 + 1 + 11 + 2);
+     * WallTime ×3 | TESInvocations | 11 quality (FLIP mean, median, max last) | label pareto |
+     * WallTime drift-corrected ×3, drift_correction */
+    assert_int_equal(cols, 4 + 6 + 3 + 1 + 11 + 2 + 4);
     assert_string_equal(cell[0], FIXTURE_KEY0);
     assert_string_equal(cell[8], "a,b \"quoted\"");   /* note param round-trips through quoting */
     assert_string_equal(cell[10], "1.1");              /* WallTime median, ms */
     assert_string_equal(cell[14], "0");                /* RMSE */
     assert_string_equal(cell[15], "inf");              /* PSNR_dB */
     assert_non_null(strstr(t, ",PSNR_dB,"));
-    assert_non_null(strstr(t, ",label,pareto\r\n"));
+    assert_non_null(strstr(t, ",label,pareto,WallTime_corr_median_ms,WallTime_corr_ci_lo_ms,"
+                              "WallTime_corr_ci_hi_ms,drift_correction\r\n"));
+    assert_string_equal(cell[27], "");   /* no drift record: no corrected figures ... */
+    assert_string_equal(cell[30], "no drift record for its scene; raw figures only");   /* ... and why */
     assert_non_null(strstr(t, "WallTime_median_ms"));
     free(t);
     dm_run_free(&run);
     unlink(p);
     free(p);
+    rmdir(dir);
+}
+
+/* The fixture with WallTime drift-corrected: pom (unlit: never the pick
+ * while a lit one is there) to 1.0 ms [0.98, 1.02] (raw 1.1 [1.0, 1.2]),
+ * normal to 1.8 ms [1.75, 1.85] (raw 2.0 [1.95, 2.05]), and the scene's
+ * record, under a 1.9 ms budget: on the raw figures nothing fits, on the
+ * corrected ones normal does. */
+static void fixture_corrected(dm_run_result *run)
+{
+    fixture_run(run);
+    dm_counter_result *w = (dm_counter_result *)dm_config_counter(&run->configs[0], "WallTime");
+    w->corrected = 1;
+    w->corr_median = 1.0e6;
+    w->corr_ci_lo = 0.98e6;
+    w->corr_ci_hi = 1.02e6;
+    w = (dm_counter_result *)dm_config_counter(&run->configs[1], "WallTime");
+    w->corrected = 1;
+    w->corr_median = 1.8e6;
+    w->corr_ci_lo = 1.75e6;
+    w->corr_ci_hi = 1.85e6;
+    run->precision = dm_xcalloc(1, sizeof *run->precision);
+    run->n_precision = 1;
+    run->precision[0] = (dm_scene_precision){ .scene = dm_xstrdup(FIXTURE_SCENE), .corrected = 1,
+                                              .predictor = dm_xstrdup("common mode"), .n_rounds = 12,
+                                              .machine_spread = 0.08, .raw_noise = 0.1, .loo_noise = 0.04,
+                                              .calib_noise = NAN, .resolvable = 0.03 };
+    assert_int_equal(report_budget_set(run, 1.9), 0);
+}
+
+/* Raw and corrected figures side by side in every file, the noise floor
+ * and the verdict on which they disagree. */
+static void test_corrected_figures(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_corr_XXXXXX", err[512];
+    assert_non_null(mkdtemp(dir));
+    char *pc = dm_xasprintf("%s/r.csv", dir), *pm = dm_xasprintf("%s/s.md", dir);
+    char *pj = dm_xasprintf("%s/a.json", dir), *pj2 = dm_xasprintf("%s/b.json", dir);
+    char *ph = dm_xasprintf("%s/r.html", dir);
+    dm_run_result run, back;
+    fixture_corrected(&run);
+    /* the floor: the median of the corrected half-widths 0.02 and 0.05 / 1.8 */
+    double floor, res, want = (0.02 + 0.05 / 1.8) / 2;
+    assert_int_equal(dm_run_noise_floor(&run, &floor, &res), 2);
+    assert_float_equal(floor, want, 1e-15);
+    assert_float_equal(res, want * sqrt(2.0), 1e-15);   /* 3.378 % */
+    /* the verdicts: nothing fits raw, normal fits corrected */
+    recommend_result r, c;
+    report_recommend(&run, FIXTURE_SCENE, &r);
+    assert_int_equal(r.pick, RECOMMEND_NONE);
+    assert_int_equal(report_recommend_corrected(&run, FIXTURE_SCENE, &c), 1);
+    assert_int_equal(c.pick, 1);
+    dm_str d = {0};
+    assert_int_equal(report_answer_disagree(&run, FIXTURE_SCENE, &d), 1);
+    assert_string_equal(dm_str_get(&d), "Raw and drift-corrected figures disagree: with the machine's "
+                        "drift removed the pick is normal mesh=plane; the answer reads the raw figures, "
+                        "where nothing fits.");
+    dm_str_free(&d);
+    /* results.csv: the corrected columns and the method */
+    assert_int_equal(write_report_file(&run, "results.csv", NULL, pc, NULL), 0);
+    char *t = test_slurp(pc);
+    size_t cols;
+    char cell[64][64];
+    memset(cell, 0, sizeof cell);
+    assert_int_equal(csv_shape(t, &cols, cell, 64), 4);
+    assert_string_equal(cell[10], "1.1");
+    assert_string_equal(cell[27], "1");
+    assert_string_equal(cell[28], "0.98");
+    assert_string_equal(cell[29], "1.02");
+    assert_int_equal(strncmp(cell[30], REPORT_DRIFT_METHOD, 63), 0);
+    free(t);
+    /* summary.md: both times in the row, the precision line, the disagreement */
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, pm, NULL), 0);
+    t = test_slurp(pm);
+    assert_non_null(strstr(t, "| pom mesh=plane | 1.10 | ±9.1% ⚠ noisy | 1.00 ms [0.980, 1.02] | "));
+    assert_non_null(strstr(t, "| normal mesh=plane | 2.00 | ±2.5% | 1.80 ms [1.75, 1.85] | "));
+    assert_non_null(strstr(t, "- precision: Noise floor ±"));
+    assert_non_null(strstr(t, "over 2 configurations); the smallest difference between two configurations "
+                              "this run resolves is 3.4 %"));
+    assert_non_null(strstr(t, "removed in 1 of 1 scenes"));
+    assert_non_null(strstr(t, "with the machine's drift removed the pick is normal mesh=plane"));
+    free(t);
+    /* report.html: the corrected time under the raw CI, the precision paragraph */
+    assert_int_equal(write_report_file(&run, "report.html", NULL, ph, NULL), 0);
+    t = test_slurp(ph);
+    assert_non_null(strstr(t, "drift removed: 1.00 ms [0.980, 1.02]</span>"));
+    assert_non_null(strstr(t, "<p class=\"precision\">Noise floor"));
+    assert_non_null(strstr(t, "drift removed the pick is normal mesh=plane"));
+    free(t);
+    /* results.json: corrected beside raw, the precision record; it reads back the same */
+    assert_int_equal(write_report_file(&run, "results.json", NULL, pj, NULL), 0);
+    assert_int_equal(report_read_json(pj, &back, err, sizeof err), 0);
+    assert_int_equal(write_report_file(&back, "results.json", NULL, pj2, NULL), 0);
+    char *t2 = test_slurp(pj2);
+    t = test_slurp(pj);
+    assert_string_equal(t, t2);
+    assert_non_null(strstr(t, "\"corrected\":\t{\n"));
+    assert_non_null(strstr(t, "\"ci95\":\t[980000, 1020000]"));
+    assert_non_null(strstr(t, "\"predictor\":\t\"common mode\""));
+    assert_non_null(strstr(t, "\"disagreement\":\t\"Raw and drift-corrected figures disagree"));
+    const dm_counter_result *w = dm_config_counter(&back.configs[0], "WallTime");
+    assert_int_equal(w->corrected, 1);
+    assert_float_equal(w->corr_median, 1.0e6, 0);
+    assert_int_equal(back.n_precision, 1);
+    assert_float_equal(back.precision[0].loo_noise, 0.04, 0);
+    assert_true(isnan(back.precision[0].calib_noise));
+    free(t);
+    free(t2);
+    dm_run_free(&back);
+    dm_run_free(&run);
+    const char *files[] = {pc, pm, pj, pj2, ph};
+    for (size_t i = 0; i < 5; i++) {
+        unlink(files[i]);
+        free((char *)files[i]);
+    }
     rmdir(dir);
 }
 
@@ -182,11 +302,11 @@ static void test_markdown(void **state)
     /* last quality column: the default Pareto metric, 1 − SSIM, at one
      * precision for the column (0.0000 and 0.0500, not 0 and 0.05) */
     assert_non_null(strstr(t, "- Pareto metric: ssim (1 - SSIM)\n"));
-    assert_non_null(strstr(t, "| PSNR | SSIM | 1 - SSIM | key |"));
+    assert_non_null(strstr(t, "| drift removed: ms [95% CI] | PSNR | SSIM | 1 - SSIM | key |"));
     /* three significant digits; ±9.1 % is noisy (over ±5 %): marked in the row */
     /* the failed sphere configuration makes mesh an axis of the scene's labels */
-    assert_non_null(strstr(t, "| pom mesh=plane | 1.10 | ±9.1% ⚠ noisy | ∞ | 1.0000 | 0.0000 | `" FIXTURE_KEY0 "` |"));
-    assert_non_null(strstr(t, "| normal mesh=plane | 2.00 | ±2.5% | 38.25 dB | 0.9500 | 0.0500 | `" FIXTURE_KEY1 "` |"));
+    assert_non_null(strstr(t, "| pom mesh=plane | 1.10 | ±9.1% ⚠ noisy | raw only | ∞ | 1.0000 | 0.0000 | `" FIXTURE_KEY0 "` |"));
+    assert_non_null(strstr(t, "| normal mesh=plane | 2.00 | ±2.5% | raw only | 38.25 dB | 0.9500 | 0.0500 | `" FIXTURE_KEY1 "` |"));
     assert_true(strstr(t, "| pom mesh=plane |") < strstr(t, "| normal mesh=plane |"));
     /* pom is faster and exact (SSIM 1): it alone is the Pareto front */
     assert_non_null(strstr(t, "Front (best 1 - SSIM for its cost, fastest first): "
@@ -584,8 +704,8 @@ static void test_metric_in_files(void **state)
     assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
     assert_int_equal(write_report_file(&run, "report.html", NULL, html, NULL), 0);
     t = test_slurp(md);
-    assert_non_null(strstr(t, "| configuration | median ms | 95% CI | SSIM | PSNR (dB, higher is better) | key |\n"
-                              "|---|---|---|---|---|---|\n"));
+    assert_non_null(strstr(t, "| configuration | median ms | 95% CI | drift removed: ms [95% CI] | SSIM | "
+                              "PSNR (dB, higher is better) | key |\n|---|---|---|---|---|---|---|\n"));
     assert_null(strstr(t, "| PSNR |"));
     assert_non_null(strstr(t, " | 0.9000 | 35.00 | `"));
     free(t);
@@ -1127,6 +1247,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_json_read_errors),
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
+             cmocka_unit_test(test_corrected_figures),
              cmocka_unit_test(test_html_escaping_and_images),
              cmocka_unit_test(test_html_flip_maps),
              cmocka_unit_test(test_write_all),

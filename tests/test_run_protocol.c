@@ -346,6 +346,59 @@ static void eta_from_measured_progress(void **state)
     assert_true(fabs(protocol_eta_s(5, 90, 60, 10, 100) - 700.0 / 92) < 1e-12);
 }
 
+/* Extra rounds: the configurations short of the target, noisiest first
+ * (unknown CI first of all, equal CIs by index), each while its sample fits
+ * in what is left of the budget; why none are taken. */
+static void extra_round_noisiest_first_within_budget(void **state)
+{
+    (void)state;
+    size_t pick[6];
+    protocol_extra_why why = PROTOCOL_EXTRA_MORE;
+    /* 0: 4 %, 1: within (2 %), 2: 9 %, 3: unknown, 4: 4 % (ties 0), 5: exactly 3 % (within) */
+    const double ci[6] = { 0.04, 0.02, 0.09, NAN, 0.04, 0.03 };
+    const double s[6] = { 0.5, 0.1, 1.0, 0.25, 0.5, 0.1 };
+    /* all of them fit in 10 s: 3, 2, 0, 4 */
+    assert_int_equal(protocol_extra_round(ci, s, 6, 0.03, 10, pick, &why), 4);
+    assert_int_equal(why, PROTOCOL_EXTRA_MORE);
+    assert_int_equal(pick[0], 3);
+    assert_int_equal(pick[1], 2);
+    assert_int_equal(pick[2], 0);
+    assert_int_equal(pick[3], 4);
+    /* 1.3 s: 3 (0.25) + 2 (1.0) = 1.25; 0 and 4 (0.5 each) no longer fit */
+    assert_int_equal(protocol_extra_round(ci, s, 6, 0.03, 1.3, pick, &why), 2);
+    assert_int_equal(pick[0], 3);
+    assert_int_equal(pick[1], 2);
+    /* 0.8 s: 3 (0.25); 2 (1.0) is skipped, 0 (0.5) fits: 0.75; 4 does not */
+    assert_int_equal(protocol_extra_round(ci, s, 6, 0.03, 0.8, pick, &why), 2);
+    assert_int_equal(pick[0], 3);
+    assert_int_equal(pick[1], 0);
+    /* exactly the sum of all four fits (2.25 s) */
+    assert_int_equal(protocol_extra_round(ci, s, 6, 0.03, 2.25, pick, &why), 4);
+    /* no budget: some short, none taken */
+    assert_int_equal(protocol_extra_round(ci, s, 6, 0.03, 0, pick, &why), 0);
+    assert_int_equal(why, PROTOCOL_EXTRA_BUDGET);
+    /* 0.2 s: every short configuration's sample is longer */
+    assert_int_equal(protocol_extra_round(ci, s, 6, 0.03, 0.2, pick, &why), 0);
+    assert_int_equal(why, PROTOCOL_EXTRA_BUDGET);
+    /* a looser target: 0 and 4 are within 5 %, 2 and 3 are not */
+    assert_int_equal(protocol_extra_round(ci, s, 6, 0.05, 10, pick, &why), 2);
+    assert_int_equal(pick[0], 3);
+    assert_int_equal(pick[1], 2);
+    /* every one within the target: reached, whatever the budget */
+    const double all_in[3] = { 0.01, 0.03, 0.0 };
+    assert_int_equal(protocol_extra_round(all_in, s, 3, 0.03, 10, pick, &why), 0);
+    assert_int_equal(why, PROTOCOL_EXTRA_REACHED);
+    assert_int_equal(protocol_extra_round(all_in, s, 0, 0.03, 10, pick, &why), 0);
+    assert_int_equal(why, PROTOCOL_EXTRA_REACHED);
+    /* a sample time that is not a figure never fits */
+    const double bad_s[2] = { NAN, -1 };
+    const double wide[2] = { 0.2, 0.1 };
+    assert_int_equal(protocol_extra_round(wide, bad_s, 2, 0.03, 100, pick, &why), 0);
+    assert_int_equal(why, PROTOCOL_EXTRA_BUDGET);
+    assert_string_equal(protocol_extra_why_name(PROTOCOL_EXTRA_BUDGET), "budget spent");
+    assert_string_equal(protocol_extra_why_name(PROTOCOL_EXTRA_REACHED), "targets reached");
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
@@ -361,6 +414,7 @@ int main(void)
         cmocka_unit_test(budget_prediction),
         cmocka_unit_test(desc_from_measure),
         cmocka_unit_test(eta_from_measured_progress),
+        cmocka_unit_test(extra_round_noisiest_first_within_budget),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
 }

@@ -15,7 +15,7 @@ ok() { pass=$((pass+1)); }
 bad() { fail=$((fail+1)); echo "FAIL: $*"; }
 
 declare -A expected=(
-  [run]="--budget --count-jobs --dry-run --help --out --print-default --quick --quiet --resume --seed --shard --tag --verbose"
+  [run]="--budget --count-jobs --dry-run --extra-time --help --out --print-default --quick --quiet --resume --seed --shard --tag --verbose"
   [report]="--budget-ms --flip-ppd --help --metric --out"
   [fit]="--data --formula --group-by --help --json --loss --model --response"
   [predict]="--allow-env-mismatch --csv --from --help --json"
@@ -35,7 +35,7 @@ declare -A expected=(
 )
 # A valid value for options whose value is checked; others take "x".
 declare -A value=(
-  [--shard]=1/2 [--budget]=1 [--seed]=1 [--metric]=rmse [--loss]=huber [--passes]=WallTime
+  [--shard]=1/2 [--budget]=1 [--extra-time]=1 [--seed]=1 [--metric]=rmse [--loss]=huber [--passes]=WallTime
   [--time-threshold]=5% [--threshold]=1% [--alpha]=0.1 [--psnr-drop]=1 [--ssim-drop]=0.1 [--flip-rise]=0.01 [--tolerance]=FSInvocations=1 [--run-spread]=10%
   [--rounds]=1 [--interleave]=2 [--count-jobs]=1 [--supersample]=2 [--debug]=normals [--frames]=1 [--frame]=0 [--timed-seconds]=1
   [--paired]="a b c" [--budget-ms]=16 [--shards]=2 [--format]=gbench [--ppd]=30 [--flip-ppd]=30
