@@ -23,7 +23,7 @@ typedef struct diff_args {
 
 const cli_option cli_diff_options[] = {
     { .name = "heatmap", .short_name = 'o', .kind = CLI_OPT_STRING, .offset = offsetof(diff_args, map),
-      .value_name = "MAP.png", .help = "write the FLIP error map (fixed scale 0..1, docs/flip.md) to MAP.png "
+      .value_name = "MAP.png", .help = "write the FLIP map, on the report's FLIP scale 0..1 (docs/flip.md), to MAP.png "
       "[default: beside TEST, its name with .flip.png]" },
     { .name = "ppd", .kind = CLI_OPT_DOUBLE, .offset = offsetof(diff_args, ppd), .value_name = "N",
       .def = "67.0206", .min = 1, .max = 600,

@@ -37,14 +37,14 @@ static void tex__esc(dm_str *s, const char *text)
 }
 
 /* The metric as the report shows it: four significant digits, ∞, or "--". */
-static void tex__metric(dm_str *s, double v)
+static void tex__metric(dm_str *s, double v, report_metric m)
 {
     if (isnan(v))
         dm_str_cat(s, "--");
     else if (isinf(v))
         dm_str_cat(s, v > 0 ? "$\\infty$" : "$-\\infty$");
-    else
-        dm_str_printf(s, "%.4g", v);
+    else   /* one precision for the column, as in the report's tables */
+        dm_str_printf(s, report_metric_format(m), v);
 }
 
 static void tex__scene(dm_str *s, const report_model *m, const report_model_scene *sc)
@@ -74,7 +74,7 @@ static void tex__scene(dm_str *s, const report_model *m, const report_model_scen
         dm_str_cat(s, " & ");
         tex__esc(s, r->ci_text);
         dm_str_cat(s, " & ");
-        tex__metric(s, r->shown);
+        tex__metric(s, r->shown, m->metric);
         dm_str_cat(s, " \\\\\n");
     }
     dm_str_cat(s, "\\bottomrule\n\\end{tabular}\n\\end{table}\n\n");
