@@ -4,6 +4,7 @@
 #include "run/fitting.h"
 #include "run/predict.h"
 #include "run/protocol.h"
+#include "reports/report.h"
 
 #include <math.h>
 #include <stdlib.h>
@@ -298,14 +299,19 @@ static void runner_plan__dry_models(runner *r, runner_plan__known *b)
     free(path);
 }
 
-/* One planned configuration: key, scene, label, folded combinations and the
- * predicted measuring time (added to *total) where a stored model has one. */
-static int runner_plan__dry_config(runner *r, runner_plan__known *b, const plan_config *c, double *total)
+/* One planned configuration: key, its label (the one form of every file and
+ * the terminal: report_config_label over the planned configurations, lab),
+ * folded combinations and the predicted measuring time (added to *total)
+ * where a stored model has one. */
+static int runner_plan__dry_config(runner *r, runner_plan__known *b, const plan_config *c,
+                                   const dm_run_result *lab, size_t i, double *total)
 {
     const dm_fit_result *fit = NULL;
     double ns = b->n_fits ? runner_plan__model_frame(b, c, &fit) : NAN;
-    printf("  %s  %s  ", c->key, c->scene);
-    runner_plan__dry_label(r->s, c->params, c->n_params, stdout);
+    dm_str label = {0};
+    report_config_label(lab, &lab->configs[i], &label);
+    printf("  %s  %s", c->key, dm_str_get(&label));
+    dm_str_free(&label);
     if (c->folded > 1)
         printf("  (%zu combinations folded)", c->folded);
     if (!fit) {
@@ -335,8 +341,16 @@ void runner_plan_dry_run(runner *r)
     printf("planned configurations (%zu):\n", p->n_configs);
     double total = 0;
     size_t n_est = 0;
+    dm_run_result lab = {0};   /* the planned configurations as a run, for their labels (borrowed) */
+    lab.configs = dm_xcalloc(p->n_configs + 1, sizeof *lab.configs);
+    lab.n_configs = p->n_configs;
     for (size_t i = 0; i < p->n_configs; i++)
-        n_est += (size_t)runner_plan__dry_config(r, &b, &p->configs[i], &total);
+        lab.configs[i] = (dm_config_result){ .key = (char *)p->configs[i].key, .scene = p->configs[i].scene,
+                                             .params = p->configs[i].params,
+                                             .n_params = p->configs[i].n_params, .ok = 1 };
+    for (size_t i = 0; i < p->n_configs; i++)
+        n_est += (size_t)runner_plan__dry_config(r, &b, &p->configs[i], &lab, i, &total);
+    free(lab.configs);
     printf("left out (%zu):\n", p->n_left_out);
     for (size_t i = 0; i < p->n_left_out; i++) {
         printf("  ");

@@ -24,7 +24,8 @@ t = open(sys.argv[1]).read()
 print(t)
 assert "6 combinations -> 3 configurations (0 excluded by the sweep, 3 folded" in t, t
 assert "2 planned, 1 left out; nothing is measured" in t, t
-planned = re.findall(r"^  ([0-9a-f]{16})  plane@96x54  technique=texture virtual_texture=(\w+)  "
+# the one label form of every file: scene · technique and the axes that vary
+planned = re.findall(r"^  ([0-9a-f]{16})  plane 96×54 · texture virtual_texture=(\w+)  "
                      r"\(2 combinations folded\)  estimate: none", t, re.M)
 assert sorted(v for _, v in planned) == ["off", "software"], planned
 assert "tess_level" not in t.split("\nleft out (")[0].split("planned configurations")[1], t

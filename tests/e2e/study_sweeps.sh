@@ -43,11 +43,23 @@ assert labels, sys.argv[1]
 base = re.search(r"^  baseline: (.*)$", block, re.M).group(1).strip().strip('"')
 assert base in labels, (base, labels)
 # each label's words hold for one planned configuration line
-rows = [r for r in plan.splitlines() if re.match(r"^  [0-9a-f]{16}  ", r)]
+# (a planned line is "  KEY  SCENE · TECHNIQUE AXIS=VALUE...  estimate: ...",
+# the one label form: the mesh leads the scene part, and only the axes that
+# vary within the scene are shown)
+rows = [re.sub(r"  estimate: .*$|  \(\d+ combinations folded\).*$", "", r[20:])
+        for r in plan.splitlines() if re.match(r"^  [0-9a-f]{16}  ", r)]
+def holds(word, row, implicit):
+    scene, _, tech = row.partition(" · ")
+    if word.startswith("mesh="):
+        return scene.split(" ")[0] == word[5:]
+    if "=" in word:   # an axis its scene does not vary is not in the label (implicit: it holds)
+        key = word.split("=")[0] + "="
+        return (" %s " % word) in " " + tech + " " or (implicit and (" " + key) not in " " + tech)
+    return tech.split(" ")[0] == word
 for l in labels:
-    words = l.split()
-    hits = [r for r in rows if all((" technique=%s " % w) in r + " " if "=" not in w
-                                   else (" %s " % w) in r + " " for w in words)]
+    hits = [r for r in rows if all(holds(w, r, False) for w in l.split())]
+    if not hits:
+        hits = [r for r in rows if all(holds(w, r, True) for w in l.split())]
     assert len(hits) == 1, (sys.argv[1], l, hits)
 print("%s: %d published labels, each one planned configuration" % (sys.argv[1], len(labels)))
 PY

@@ -29,9 +29,9 @@ plan > "$OUT/plan1.txt"
 # 3 techniques x steps 2 x relief_linear 2 x texel_rate 2 = 24 combinations;
 # each technique reads one of the three axes: 2 configurations each
 grep -q '24 combinations -> 6 configurations' "$OUT/plan1.txt" || fail "folding: $(head -1 "$OUT/plan1.txt")"
-[ "$(grep -c 'technique=relief mesh=plane relief_linear=' "$OUT/plan1.txt")" = 2 ] || fail "relief configurations"
-grep -q 'technique=pom-texel mesh=plane texel_rate=4 ' "$OUT/plan1.txt" || fail "pom-texel label"
-keys() { grep -E "technique=$1 " "$2" | awk '{print $1}' | sort; }
+[ "$(grep -c ' · relief relief_linear=' "$OUT/plan1.txt")" = 2 ] || fail "relief configurations"
+grep -q 'plane 320×180 · pom-texel texel_rate=4 ' "$OUT/plan1.txt" || fail "pom-texel label"
+keys() { grep -E " · $1 " "$2" | awk '{print $1}' | sort; }
 printf '\n// an edit\n' >> "$OUT/ex/relief.glsl"
 plan > "$OUT/plan2.txt"
 [ "$(keys pom "$OUT/plan1.txt")" = "$(keys pom "$OUT/plan2.txt")" ] || fail "pom's keys moved"
