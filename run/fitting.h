@@ -1,8 +1,8 @@
 /* fitting.h — cost models over a run's results (used by `run` and `fit`).
  *
  * Variables a formula may use: every counter of the run (its median for
- * timed counters, its value otherwise), every numeric axis, and
- * `resolution` as the pixel count W×H.  A configuration missing a variable
+ * timed counters, its value otherwise), every numeric axis,
+ * `resolution` as the pixel count W×H, and FITTING_TESS_WALK (below).  A configuration missing a variable
  * or the response gets NaN there, which the fitter excludes and counts.
  * GPUTime is never used when the timer is partial (docs/counters.md).  Failed
  * configurations are not used.
