@@ -54,7 +54,7 @@ static const models_builtin catalog__models[] = {
      * TESInvocations*ClippingOutputPrimitives on planes of 2-98 patches
      * and the cube at levels 4-16 (docs/counters.md). */
     { "stage-instructions",
-      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*ClippingOutputPrimitives"
+      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TessWalk"
       " + c_prim*ClippingOutputPrimitives + c_px*FSInvocations"
       " + c_step*FSInvocations*steps + c_light*FSInvocations*light_count",
       "Instructions",
@@ -68,7 +68,7 @@ static const models_builtin catalog__models[] = {
      * a block, once per triangle that touches it); shading per block and
      * per covered pixel, both growing with steps. */
     { "geometry-instructions",
-      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TESInvocations*ClippingOutputPrimitives"
+      "c0 + c_vs*VSInvocations + c_tes*TESInvocations + c_tp*TessWalk"
       " + c_prim*ClippingOutputPrimitives",
       "GeometryInstructions",
       "instructions of the geometry stages of one shader variant: per vertex, evaluation and primitive, "
@@ -119,7 +119,7 @@ static const models_builtin catalog__models[] = {
      * caches; fitted without it on bench/extrapolate_fit.yaml, the
      * 98-patch plane at level 16, 93 % walk, came out -36 % in geometry
      * time (docs/models.md, "Frame time by stage"). */
-    { "geometry-time", "a + b*GeometryInstructions + b_walk*TESInvocations*ClippingOutputPrimitives",
+    { "geometry-time", "a + b*GeometryInstructions + b_walk*TessWalk",
       "GeometryTime",
       "time of the geometry stages (rasterizer discard pass) from their instructions, and per vertex "
       "the tessellated draw's vertex walk visits",

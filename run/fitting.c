@@ -7,6 +7,7 @@
 #include "models/formula.h"
 #include "sweep/sweep.h"
 #include "techniques/axes.h"
+#include "techniques/render.h"
 
 #include <ctype.h>
 #include <math.h>
@@ -14,7 +15,57 @@
 #include <stdlib.h>
 #include <string.h>
 
-/* Collects variable names: counters then params, each once. */
+/* The share of a frame's evaluations x primitives that llvmpipe's vertex
+ * walk covers when the frame's patches are drawn in calls of at most
+ * per_call: sum over calls of (call's patches / patches)^2, each call's
+ * evaluations and primitives taken in proportion to its patches. */
+double fitting_call_share(size_t patches, size_t per_call)
+{
+    if (!patches || !per_call || per_call >= patches)
+        return 1.0;
+    double q = (double)(patches / per_call), r = (double)(patches % per_call), c = (double)per_call,
+           n = (double)patches;
+    return (q * c * c + r * r) / (n * n);
+}
+
+/* FITTING_TESS_WALK of a configuration from its TESInvocations,
+ * ClippingOutputPrimitives and ClippingInputPrimitives (tes, prims, in;
+ * in NaN when not counted) and its axes: tes x prims x the share of its
+ * draw calls (render_patch_calls); 0 without evaluations or when the
+ * clipper passed every primitive unchanged (prims == in: no vertex outside
+ * the view, so llvmpipe's draw module emits the primitives without its
+ * pipeline stages and never walks); NaN when a count is missing or the
+ * calls cannot be told. */
+static double fitting__tess_walk(const dm_kv *params, size_t n, double tes, double prims, double in)
+{
+    if (!isfinite(tes) || !isfinite(prims))
+        return NAN;
+    if (tes == 0 || prims == 0 || (isfinite(in) && in == prims))
+        return 0;
+    size_t patches = 0, per_call = 0;
+    dm_str log = {0};
+    int rc = render_patch_calls(params, n, &patches, &per_call, &log);
+    dm_str_free(&log);
+    return rc ? NAN : tes * prims * fitting_call_share(patches, per_call);
+}
+
+/* 1 when a formula reads id as a variable wherever the run has it: a
+ * counter, an axis or FITTING_TESS_WALK. */
+static int fitting__is_variable(const char *id)
+{
+    return axes_find(id) || counters_find(id) || strcmp(id, FITTING_TESS_WALK) == 0;
+}
+
+static int fitting__has_name(const char *const *names, size_t n, const char *name)
+{
+    for (size_t i = 0; i < n; i++)
+        if (strcmp(names[i], name) == 0)
+            return 1;
+    return 0;
+}
+
+/* Collects variable names: counters then params, each once; then
+ * FITTING_TESS_WALK when the run has both counts it is made of. */
 static void fitting__names(const dm_run_result *run, const char ***names, size_t *n)
 {
     for (size_t i = 0; i < run->n_configs; i++) {
@@ -28,6 +79,10 @@ static void fitting__names(const dm_run_result *run, const char ***names, size_t
                 DM_VEC_PUSH(*names, *n, nm);
             }
         }
+    }
+    if (fitting__has_name(*names, *n, "TESInvocations") && fitting__has_name(*names, *n, "ClippingOutputPrimitives")
+        && !fitting__has_name(*names, *n, FITTING_TESS_WALK)) {
+        DM_VEC_PUSH(*names, *n, FITTING_TESS_WALK);
     }
 }
 
@@ -56,6 +111,10 @@ static double fitting__param_value(const dm_kv *params, size_t n, const char *na
 /* Numeric value of a variable in a configuration, NaN when absent. */
 static double fitting__value(const dm_run_result *run, const dm_config_result *c, const char *name)
 {
+    if (strcmp(name, FITTING_TESS_WALK) == 0)
+        return fitting__tess_walk(c->params, c->n_params, fitting__value(run, c, "TESInvocations"),
+                                  fitting__value(run, c, "ClippingOutputPrimitives"),
+                                  fitting__value(run, c, "ClippingInputPrimitives"));
     const dm_counter_result *r = dm_config_counter(c, name);
     return r ? fitting__counter_value(run, r) : fitting__param_value(c->params, c->n_params, name);
 }
@@ -112,7 +171,7 @@ static int fitting__missing_counter(const char *id, const void *user)
     for (size_t i = 0; i < c->nv; i++)
         if (strcmp(c->names[i], id) == 0)
             return 0;
-    return counters_find(id) != NULL;
+    return counters_find(id) != NULL || strcmp(id, FITTING_TESS_WALK) == 0;
 }
 
 /* Group level: a variable with no finite value in any point of the group
@@ -359,6 +418,9 @@ static int fitting__parse_fit(const dm_fit_result *fit, formula **f, formula **n
     return rc;
 }
 
+static double fitting__var_value(const char *id, const dm_kv *params, size_t n_params, const char *key,
+                                 const dm_run_result *runs, size_t n_runs);
+
 /* Values of the variables for the configuration: its axes, else counters
  * stored for its key.  DM_ERR_NOTFOUND naming the first one without. */
 static int fitting__variables(const char *const *vars, size_t nv, const dm_kv *params,
@@ -366,9 +428,7 @@ static int fitting__variables(const char *const *vars, size_t nv, const dm_kv *p
                               size_t n_runs, double *x, dm_str *why)
 {
     for (size_t v = 0; v < nv; v++) {
-        x[v] = fitting__param_value(params, n_params, vars[v]);
-        if (!isfinite(x[v]))
-            x[v] = fitting__stored_counter(runs, n_runs, key, vars[v]);
+        x[v] = fitting__var_value(vars[v], params, n_params, key, runs, n_runs);
         if (!isfinite(x[v])) {
             dm_str_printf(why, "'%s' is neither an axis of the configuration nor a counter "
                           "stored for it", vars[v]);
@@ -418,6 +478,10 @@ int fitting_predict(const dm_fit_result *fit, const dm_kv *params, size_t n_para
 static double fitting__var_value(const char *id, const dm_kv *params, size_t n_params, const char *key,
                                  const dm_run_result *runs, size_t n_runs)
 {
+    if (strcmp(id, FITTING_TESS_WALK) == 0)
+        return fitting__tess_walk(params, n_params, fitting__stored_counter(runs, n_runs, key, "TESInvocations"),
+                                  fitting__stored_counter(runs, n_runs, key, "ClippingOutputPrimitives"),
+                                  fitting__stored_counter(runs, n_runs, key, "ClippingInputPrimitives"));
     double v = fitting__param_value(params, n_params, id);
     return isfinite(v) ? v : fitting__stored_counter(runs, n_runs, key, id);
 }
@@ -437,7 +501,7 @@ static int fitting__dropped_ok(const dm_fit_result *fit, const dm_run_result *tr
         char id[64];
         snprintf(id, sizeof id, "%.*s", (int)(j - i), t + i);
         i = j > i ? j : i + 1;
-        if (!axes_find(id) && !counters_find(id))
+        if (!fitting__is_variable(id))
             continue;
         double lo = INFINITY, hi = -INFINITY;
         for (size_t k = 0; k < train->n_configs; k++) {
@@ -500,7 +564,7 @@ int fitting_predict_dropped(const dm_fit_result *fit, const dm_run_result *train
     for (size_t v = 0; rc == 0 && v < nv; v++) {
         const char *t = NULL;
         size_t len = 0;
-        if (axes_find(vars[v]) || counters_find(vars[v]) || !fitting__term_of(fit->formula, vars[v], &t, &len))
+        if (fitting__is_variable(vars[v]) || !fitting__term_of(fit->formula, vars[v], &t, &len))
             continue;
         rc = fitting__dropped_ok(fit, train, t, len, params, n_params, key, runs, n_runs, why);
         ext.params[ext.n_params++] = (dm_fit_param){ (char *)vars[v], 0.0, NAN };
@@ -516,8 +580,9 @@ int fitting_predict_dropped(const dm_fit_result *fit, const dm_run_result *train
 /* Every counter and axis name: the names a formula reads as variables. */
 static const char **fitting__known_names(size_t *n)
 {
-    *n = counters_count() + axes_count();
+    *n = counters_count() + axes_count() + 1;
     const char **names = dm_xcalloc(*n + 1, sizeof *names);
+    names[*n - 1] = FITTING_TESS_WALK;
     for (size_t i = 0; i < counters_count(); i++)
         names[i] = counters_info_at(i)->name;
     for (size_t i = 0; i < axes_count(); i++)
@@ -529,7 +594,7 @@ static const char **fitting__known_names(size_t *n)
  * counter or axis it is close to. */
 static const char *fitting__misspelled(const char *param, const char **known, size_t n)
 {
-    if (strlen(param) < 4 || counters_find(param) || axes_find(param))
+    if (strlen(param) < 4 || counters_find(param) || axes_find(param) || strcmp(param, FITTING_TESS_WALK) == 0)
         return NULL;
     return dm_closest(param, known, n);
 }

@@ -1,8 +1,8 @@
 /* fitting.h — cost models over a run's results (used by `run` and `fit`).
  *
  * Variables a formula may use: every counter of the run (its median for
- * timed counters, its value otherwise), every numeric axis, and
- * `resolution` as the pixel count W×H.  A configuration missing a variable
+ * timed counters, its value otherwise), every numeric axis,
+ * `resolution` as the pixel count W×H, and FITTING_TESS_WALK (below).  A configuration missing a variable
  * or the response gets NaN there, which the fitter excludes and counts.
  * GPUTime is never used when the timer is partial (docs/counters.md).  Failed
  * configurations are not used.
@@ -31,6 +31,23 @@ typedef struct fitting_spec {
  * uniforms (steps, tess_level, light_count) are not part of it: a variant's
  * model predicts across them. */
 #define FITTING_VARIANT "variant"
+
+/* The variable that is neither a counter nor an axis: llvmpipe's vertex
+ * walk of a tessellated frame, the sum over its draw calls of each call's
+ * evaluations x primitives (docs/models.md, "Tessellation across draw
+ * calls"), computed from TESInvocations x ClippingOutputPrimitives and the
+ * calls render_draw splits the frame's patches into (render_patch_calls),
+ * each call's counts in proportion to its patches; 0 when the clipper
+ * passed every primitive unchanged (ClippingInputPrimitives ==
+ * ClippingOutputPrimitives, when counted: the draw module then emits
+ * without walking).  A run has it when it has TESInvocations and
+ * ClippingOutputPrimitives. */
+#define FITTING_TESS_WALK "TessWalk"
+
+/* The share of evaluations x primitives that walk covers when `patches`
+ * are drawn in calls of at most per_call (0: one call): the sum over
+ * calls of (its patches / patches)^2; 1 for one call. */
+double fitting_call_share(size_t patches, size_t per_call);
 char *fitting_variant(const dm_kv *params, size_t n);
 
 /* Fits the spec to the run; appends one dm_fit_result per group to

@@ -44,6 +44,8 @@
 #include "techniques/technique.h"
 #include "techniques/render_internal.h"
 #include "techniques/render_meshes.h"
+#include "techniques/mesh.h"
+#include "techniques/user_mesh.h"
 #include "techniques/user_technique.h"
 #include "techniques/lod_cpu.h"
 #include "techniques/fs_minimal.h"
@@ -552,6 +554,36 @@ static size_t render__patch_chunk(const render__cfg *c, int quads, int edge_fact
     size_t v = quads ? (size_t)(L + 3) * (size_t)(L + 3)
                      : 3 * (size_t)half * (size_t)(half + 1) + 1;
     return 65535 / v;
+}
+
+int render_patch_calls(const dm_kv *params, size_t n_params, size_t *patches, size_t *per_call, dm_str *log)
+{
+    render__cfg c = {params, n_params};
+    const technique_desc *t = technique_find(render__get(&c, "technique"));
+    *patches = *per_call = 0;
+    if (!t) {
+        dm_str_printf(log, "unknown technique '%s'", render__get(&c, "technique"));
+        return DM_ERR_UNKNOWN;
+    }
+    if (!t->tcs && !t->tes)
+        return DM_ERR_ARG;
+    mesh_data md;
+    mesh_desc d = {.name = render__get(&c, "mesh"), .density = atoi(render__get(&c, "mesh_density"))};
+    int had_tangents = 0;
+    int rc = strncmp(d.name, USER_MESH_PREFIX, strlen(USER_MESH_PREFIX)) == 0
+             ? user_mesh_load(d.name + strlen(USER_MESH_PREFIX), &md, &had_tangents, log)
+             : mesh_build(&d, &md);
+    if (rc) {
+        dm_str_printf(log, "mesh '%s' with density %d: %s", d.name, d.density, dm_strerror(rc));
+        return rc;
+    }
+    float longest = 0;   /* as render__mesh_get: the long-edge rule is tessellation's */
+    float median = t->tcs ? mesh_edge_median(&md, &longest) : 0;
+    int quads = md.n_quad_indices && t->tcs;
+    *patches = quads ? md.n_quad_indices / 4 : md.n_indices / 3;
+    *per_call = render__patch_chunk(&c, quads, mesh_edge_factor(longest, median));
+    mesh_free(&md);
+    return 0;
 }
 
 /* visibility_test on: the item draws only the chunks of its triangle list

@@ -80,6 +80,15 @@ int render_set_frame(render_ctx *r, render_item item, uint64_t frame);
 int render_get_info(render_ctx *r, render_item item, render_item_info *out);
 void render_release(render_ctx *r, render_item item);
 
+/* The draw calls render_draw splits one frame of a tessellating
+ * configuration into (llvmpipe's 16-bit batch limit, docs/displacement.md),
+ * without GL: *patches the mesh's patches, *per_call the most one call
+ * draws (every call but the last draws that many).  The mesh is built on
+ * the CPU as render_prepare builds it.  Returns 0; DM_ERR_ARG when the
+ * technique does not tessellate; DM_ERR_UNKNOWN or the mesh's error with
+ * log saying why. */
+int render_patch_calls(const dm_kv *params, size_t n_params, size_t *patches, size_t *per_call, dm_str *log);
+
 /* Virtual-texture statistics of an item, cumulative since it was prepared
  * (render_textures.c).  DM_ERR_UNAVAILABLE when the item does not use a
  * virtual texture. */

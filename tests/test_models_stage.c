@@ -18,6 +18,7 @@
 #include "core/dm_error.h"
 #include "run/fitting.h"
 #include "run/predict.h"
+#include "techniques/render.h"
 
 /* Known per-invocation costs of two variants. */
 enum { POM_C0 = 80000, POM_VS = 60, POM_PRIM = 40, POM_PX = 150, POM_STEP = 25 };
@@ -218,6 +219,138 @@ static void test_recovers_per_variant(void **state)
     dm_run_free(&run);
 }
 
+/* The calls one frame of tess-displacement at equal level L is drawn in,
+ * by docs/displacement.md's rule, worked here apart from render.c: at most
+ * 65 535 / V patches a call, V = 3 g (g + 1) + 1 the vertices of a patch
+ * at the next even level above L + 1 (g = (L + 3) / 2 + 1 rings).  Each
+ * call's evaluations and primitives are its patches' (a patch at level L
+ * has 3 (L/2)(L/2 + 1) + 1 evaluations and 1.5 L^2 triangles), so the
+ * vertex walk of the frame is the sum over calls of their product. */
+static double walk_by_calls(double patches, int L, double *tes, double *prim)
+{
+    int g = (L + 3) / 2 + 1, h = L / 2;
+    double per_call = (double)(65535 / (3 * g * (g + 1) + 1));
+    double e = 3.0 * h * (h + 1) + 1, p = 1.5 * L * L, walk = 0;
+    *tes = patches * e;
+    *prim = patches * p;
+    for (double left = patches; left > 0; left -= per_call) {
+        double n = left < per_call ? left : per_call;
+        walk += (n * e) * (n * p);
+    }
+    return walk;
+}
+
+enum { WALK_C0 = 90000, WALK_TES = 250, WALK_PRIM = 40, WALK_PX = 80 };
+#define WALK_TP 0.5
+
+/* The share of the vertex walk a frame's calls cover: one call, all of it;
+ * the 320-patch sphere at level 12 in calls of 302, (302^2 + 18^2) / 320^2. */
+static void test_call_share(void **state)
+{
+    (void)state;
+    assert_true(fitting_call_share(320, 0) == 1.0);
+    assert_true(fitting_call_share(320, 516) == 1.0);
+    assert_close(fitting_call_share(320, 302), (302.0 * 302 + 18.0 * 18) / (320.0 * 320));
+    assert_close(fitting_call_share(5120, 302), (16 * 302.0 * 302 + 288.0 * 288) / (5120.0 * 5120));
+    /* the renderer's own split of the icosphere at density 2 (20 * 4^2
+     * triangles) and 3 at level 12 */
+    for (int d = 2; d <= 3; d++) {
+        dm_kv *kv = NULL;
+        size_t nk = 0, patches = 0, per_call = 0;
+        char v[8];
+        snprintf(v, sizeof v, "%d", d);
+        dm_kv_push(&kv, &nk, "technique", "tess-displacement");
+        dm_kv_push(&kv, &nk, "mesh", "sphere");
+        dm_kv_push(&kv, &nk, "mesh_density", v);
+        dm_kv_push(&kv, &nk, "tess_level", "12");
+        dm_str log = {0};
+        assert_int_equal(render_patch_calls(kv, nk, &patches, &per_call, &log), 0);
+        assert_int_equal((int)patches, d == 2 ? 320 : 1280);
+        assert_int_equal((int)per_call, 302);
+        dm_kv_free(kv, nk);
+        dm_str_free(&log);
+    }
+}
+
+/* stage-instructions on synthetic tess-displacement frames of the sphere at
+ * 320 and 1 280 patches whose walk is paid per draw call (walk_by_calls):
+ * fitted on levels 2 and 8 only, the known costs come back exactly (at
+ * level 8 the 1 280 patches are drawn in 3 calls: a fit over the frame's
+ * evaluations x primitives is not exact there), and level 12 -- 1.5x the
+ * highest fitted, 2 and 5 calls -- is predicted exactly, where the frame's
+ * product would overstate it by more than 5 %.  The 320-patch sphere seen
+ * whole (ClippingInputPrimitives == ClippingOutputPrimitives) pays no walk
+ * at any level, and is predicted so. */
+static void test_tess_walk_by_calls(void **state)
+{
+    (void)state;
+    static const int res[3][2] = {{96, 64}, {192, 128}, {288, 192}};
+    dm_run_result run = {0}, target = {0};
+    for (int t = 0; t < 2; t++)
+        for (int d = 1; d <= 3; d++)
+            for (int j = 0; j < (t ? 1 : 2); j++) {
+                int L = t ? 12 : j ? 8 : 2;
+                for (int k = 0; k < 3; k++) {
+                    dm_config_result *c = config(t ? &target : &run, "tess-displacement");
+                    char v[32];
+                    dm_kv_push(&c->params, &c->n_params, "mesh", "sphere");
+                    /* d = 1: the 320-patch sphere again, seen whole (the
+                     * clipper passes every primitive: no walk) */
+                    snprintf(v, sizeof v, "%d", d < 2 ? 2 : d);
+                    dm_kv_push(&c->params, &c->n_params, "mesh_density", v);
+                    dm_kv_push(&c->params, &c->n_params, "camera.distance", d < 2 ? "5" : "3");
+                    snprintf(v, sizeof v, "%d", L);
+                    dm_kv_push(&c->params, &c->n_params, "tess_level", v);
+                    snprintf(v, sizeof v, "%dx%d", res[k][0], res[k][1]);
+                    dm_kv_push(&c->params, &c->n_params, "resolution", v);
+                    double patches = d < 3 ? 320 : 1280, tes, prim;
+                    double walk = d < 2 ? 0 * walk_by_calls(patches, L, &tes, &prim)
+                                        : walk_by_calls(patches, L, &tes, &prim);
+                    double fs = res[k][0] * res[k][1] * 0.4 + 20 * L;
+                    counter(c, "VSInvocations", 500);   /* constant: its term drops out */
+                    counter(c, "TCSPatches", patches);
+                    counter(c, "TESInvocations", tes);
+                    counter(c, "ClippingOutputPrimitives", prim);
+                    counter(c, "ClippingInputPrimitives", d < 2 ? prim : prim + 100 * L);
+                    counter(c, "FSInvocations", fs);
+                    counter(c, "Instructions", WALK_C0 + WALK_TES * tes + WALK_TP * walk + WALK_PRIM * prim +
+                                               WALK_PX * fs);
+                    if (t && d >= 2) {
+                        double product = WALK_C0 + WALK_TES * tes + WALK_TP * tes * prim + WALK_PRIM * prim +
+                                         WALK_PX * fs;
+                        double instr = dm_config_counter(c, "Instructions")->value;
+                        fprintf(stderr, "sphere %d level %d %s: the frame's product would be %+.1f %%\n",
+                                d == 2 ? 320 : 1280, L, v, 100 * (product / instr - 1));
+                        assert_true(product / instr - 1 > 0.05);
+                    }
+                }
+            }
+    fitting_spec spec = { .name = "stage-instructions" };
+    dm_fit_result *fits = NULL;
+    size_t n = 0;
+    dm_str warn = {0}, err = {0};
+    assert_int_equal(fitting_run(&spec, &run, &fits, &n, &warn, &err), 0);
+    assert_int_equal((int)n, 1);
+    const dm_fit_result *f = &fits[0];
+    fprintf(stderr, "%s; CV-MAPE %.3g %%\n", f->formula, f->cv_mape);
+    assert_int_equal(f->n_points, 18);
+    assert_non_null(strstr(f->formula, "c_tp*TessWalk"));
+    assert_close(param(f, "c_tp"), WALK_TP);
+    assert_close(param(f, "c_tes"), WALK_TES);
+    assert_close(param(f, "c_prim"), WALK_PRIM);
+    assert_close(param(f, "c_px"), WALK_PX);
+    assert_int_equal((int)target.n_configs, 9);
+    for (size_t i = 0; i < target.n_configs; i++) {
+        const dm_config_result *c = &target.configs[i];
+        double v = NAN;
+        assert_int_equal(fitting_predict_dropped(f, &run, c->params, c->n_params, c->key, &target, 1, &v, &err), 0);
+        assert_close(v, dm_config_counter(c, "Instructions")->value);
+    }
+    free_fits(fits, n, &warn, &err);
+    dm_run_free(&run);
+    dm_run_free(&target);
+}
+
 /* The three per-stage models (geometry-, raster-, fragment-instructions)
  * recover pom's known stage costs, each from its own stage counter, and
  * time-from-stages its known time per instruction of each stage, as do
@@ -362,7 +495,8 @@ static void test_predict_stage_times(void **state)
     const double px = 150.0 * 120, d = 2, st = 24;
     const double vs = 400.0 * d + 100, prim = 300.0 * d * d, fs = px * 0.5 + 2.0 * sqrt(px) * d;
     const double sp = px * 0.4 - 200.0 * d;
-    const double counts[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, sp, (F_STEP * fs * st + F_PSTEP * sp * st) / F_TRIP};
+    const double counts[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, sp, (F_STEP * fs * st + F_PSTEP * sp * st) / F_TRIP,
+                                              prim};
     const double geo = G_C0 + G_VS * vs + G_PRIM * prim;
     const double raster = R_FB * px + R_FS * fs + R_EDGE * (fs - sp) + R_PRIM * prim;
     const double frag = F_C0 + F_FS * fs + F_PX * sp + F_STEP * fs * st + F_PSTEP * sp * st;
@@ -468,4 +602,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_heldout_stage_sum),
              cmocka_unit_test(test_heldout_bound), cmocka_unit_test(test_predict_stage_times),
              cmocka_unit_test(test_variant_names),
-             cmocka_unit_test(test_name_checks))
+             cmocka_unit_test(test_name_checks), cmocka_unit_test(test_call_share),
+             cmocka_unit_test(test_tess_walk_by_calls))
