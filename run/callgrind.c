@@ -220,6 +220,7 @@ static pid_t cg__spawn(cg_state *g, int *fd)
     argv[a++] = dm_xstrdup(d->valgrind);
     argv[a++] = dm_xstrdup("--tool=callgrind");
     argv[a++] = dm_xstrdup("--collect-atstart=no");    /* only the frames between the toggles */
+    argv[a++] = dm_xstrdup("--instr-atstart=no");      /* set-up, JIT and warm-up run uninstrumented */
     argv[a++] = dm_xstrdup("--smc-check=all-non-file"); /* llvmpipe writes JIT code to the heap */
     argv[a++] = dm_xasprintf("--callgrind-out-file=%s/cg.%%p.out", d->work_dir);
     argv[a++] = dm_xasprintf("--log-file=%s/valgrind.%%p.log", d->work_dir);

@@ -26,7 +26,9 @@
  * frames with GL_RASTERIZER_DISCARD), "KEY.r.S" (c->item is then the
  * minimal-fragment-shader item) or "KEY.m.S" (that item with discard).
  * Setup, JIT compilation and `warm` warm-up frames happen before, with
- * collection off.  Every sample is kept: the parent leaves the allocator's
+ * instrumentation and collection off: Valgrind runs them without
+ * callgrind's per-instruction calls, and only the samples' frames are
+ * instrumented.  Every sample is kept: the parent leaves the allocator's
  * instructions out, and what remains is equal from the first sample on
  * (docs/counters.md, "Repeatability").  Returns the nanoseconds of the
  * warm-up in *warm_ns and of the samples in *count_ns
@@ -41,6 +43,12 @@ static void count_child__counted_samples(mscene *m, mconf *c, callgrind_window w
     if (w == CALLGRIND_GEOMETRY || w == CALLGRIND_RESIDUAL)
         glEnable(GL_RASTERIZER_DISCARD);
     t1 = dm_now_ns();
+    /* Instrumented from here to the last dump only (Valgrind runs with
+     * --instr-atstart=no): starting discards every translation and resets
+     * callgrind's call stacks and its collection state to off, so the
+     * toggles pair inside, and the calls into the allocator made in the
+     * frames are seen from their callers as before. */
+    CALLGRIND_START_INSTRUMENTATION;
     for (int s = 0; s < samples; s++) {
         char name[40];
         snprintf(name, sizeof name, "%s%s.%d", c->pc->key, tag[w], s);
@@ -51,6 +59,7 @@ static void count_child__counted_samples(mscene *m, mconf *c, callgrind_window w
         CALLGRIND_TOGGLE_COLLECT;
         CALLGRIND_DUMP_STATS_AT(name);
     }
+    CALLGRIND_STOP_INSTRUMENTATION;
     glDisable(GL_RASTERIZER_DISCARD);
     *warm_ns = t1 - t0;
     *count_ns = dm_now_ns() - t1;
