@@ -283,6 +283,37 @@ static int drivers__merge(const char *driver, const char *root, int shards, char
     return rc != 0;
 }
 
+/* Marks the drivers that are not installed here (whys[i] = "left out:
+ * ..."), saying so on stderr; returns how many. */
+static size_t drivers__missing(char **names, size_t n, char **whys)
+{
+    size_t missing = 0;
+    for (size_t i = 0; i < n; i++) {
+        char *why = NULL;
+        const char *miss = drivers_missing(drivers_find(names[i]), &why);
+        if (miss) {
+            whys[i] = dm_xasprintf("left out: %s", miss);
+            fprintf(stderr, "dmbench: drivers: %s %s\n", names[i], whys[i]);
+            missing++;
+        }
+        free(why);
+    }
+    return missing;
+}
+
+/* Loads driver's run from root/driver into *run; 0, or 1 with *why_out. */
+static int drivers__load(const char *driver, const char *root, dm_run_result *run, char **why_out)
+{
+    char *dir = dm_xasprintf("%s/%s", root, driver);
+    dm_str err = {0};
+    int failed = compare_load_path(dir, run, &err) != 0;
+    if (failed)
+        *why_out = dm_xasprintf("failed: %s", dm_str_get(&err));
+    dm_str_free(&err);
+    free(dir);
+    return failed;
+}
+
 int cli_drivers_main(const char *sweep_path, const char *list, const char *out, const char *seed,
                      int quiet, int interleave)
 {
@@ -309,43 +340,22 @@ int cli_drivers_main(const char *sweep_path, const char *list, const char *out, 
     drivers_side *sides = dm_xcalloc(n + 1, sizeof *sides);
     dm_run_result *runs = dm_xcalloc(n + 1, sizeof *runs);
     char **whys = dm_xcalloc(n + 1, sizeof *whys);
-    size_t ran = 0, missing = 0, failed = 0, runnable = 0;
-    for (size_t i = 0; i < n; i++) {
-        sides[i].driver = names[i];
-        char *why = NULL;
-        const char *miss = drivers_missing(drivers_find(names[i]), &why);
-        if (miss) {
-            whys[i] = dm_xasprintf("left out: %s", miss);
-            fprintf(stderr, "dmbench: drivers: %s %s\n", names[i], whys[i]);
-            missing++;
-        } else {
-            runnable++;
-        }
-        free(why);
-    }
+    size_t missing = drivers__missing(names, n, whys), failed = 0, ran = 0;
     /* the turns: every driver still standing runs shard k before any runs k + 1 */
-    int shards = interleave > 0 ? interleave : runnable >= 2 ? DRIVERS__SHARDS : 1;
+    int shards = interleave > 0 ? interleave : n - missing >= 2 ? DRIVERS__SHARDS : 1;
     for (int k = 1; k <= shards; k++)
         for (size_t i = 0; i < n; i++)
             if (!whys[i] && drivers__turn(names[i], sweep_path, root, k, shards, &a, &whys[i]))
                 failed++;
     for (size_t i = 0; i < n; i++) {
+        sides[i].driver = names[i];
         if (!whys[i] && shards > 1 && drivers__merge(names[i], root, shards, &whys[i]))
             failed++;
-        if (!whys[i]) {
-            char *dir = dm_xasprintf("%s/%s", root, names[i]);
-            dm_str err = {0};
-            if (compare_load_path(dir, &runs[i], &err) == 0) {
-                sides[i].run = &runs[i];
-                ran++;
-            } else {
-                whys[i] = dm_xasprintf("failed: %s", dm_str_get(&err));
-                failed++;
-            }
-            dm_str_free(&err);
-            free(dir);
-        }
+        if (!whys[i] && drivers__load(names[i], root, &runs[i], &whys[i]))
+            failed++;
+        sides[i].run = whys[i] ? NULL : &runs[i];
         sides[i].why = whys[i];
+        ran += whys[i] == NULL;
     }
     dm_str err = {0};
     int we = 0;   /* drivers.md / drivers.json not written: 4 for the disk */

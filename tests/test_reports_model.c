@@ -33,7 +33,7 @@ static void model_config(dm_run_result *run, size_t i, const char *scene, const 
                          const char *steps, double lo, double med, double hi, double ssim)
 {
     dm_config_result *c = &run->configs[i];
-    char key[16];
+    char key[24];
     snprintf(key, sizeof key, "k%zu", i);
     c->key = dm_xstrdup(key);
     c->scene = dm_xstrdup(scene);
@@ -385,7 +385,7 @@ static void breakdown_run(dm_run_result *run, size_t n)
     run->n_configs = n;
     run->configs = dm_xcalloc(n, sizeof *run->configs);
     for (size_t i = 0; i < n; i++) {
-        char key[16];
+        char key[24];
         snprintf(key, sizeof key, "k%zu", i);
         fixture_config(&run->configs[i], key, "pom", "plane", 4);
         double ms = (double)(i + 1) * 1e6;
