@@ -43,20 +43,20 @@ static const double xyz2rgb[3][3] = {
     { -0.9692660, 1.8760108, 0.0415560 },
     { 0.0556434, -0.2040259, 1.0572252 } };
 
-static void mat3(const double m[3][3], const double v[3], double out[3])
+static void flip__mat3(const double m[3][3], const double v[3], double out[3])
 {
     for (int i = 0; i < 3; i++)
         out[i] = m[i][0] * v[0] + m[i][1] * v[1] + m[i][2] * v[2];
 }
 
 /* Reference white: XYZ of linear RGB (1,1,1). */
-static void white(double w[3])
+static void flip__white(double w[3])
 {
     const double one[3] = { 1, 1, 1 };
-    mat3(rgb2xyz, one, w);
+    flip__mat3(rgb2xyz, one, w);
 }
 
-static double clamp01(double v)
+static double flip__clamp01(double v)
 {
     return !(v > 0) ? 0 : v > 1 ? 1 : v;        /* NaN -> 0: said elsewhere, not spread */
 }
@@ -71,7 +71,7 @@ flip_desc flip_defaults(const flip_desc *d)
 
 double flip_srgb_to_linear(double v)
 {
-    v = clamp01(v);
+    v = flip__clamp01(v);
     return v <= 0.04045 ? v / 12.92 : pow((v + 0.055) / 1.055, 2.4);
 }
 
@@ -81,8 +81,8 @@ double flip_srgb_to_linear(double v)
 void flip_linear_to_ycxcz(const double rgb[3], double out[3])
 {
     double xyz[3], w[3];
-    mat3(rgb2xyz, rgb, xyz);
-    white(w);
+    flip__mat3(rgb2xyz, rgb, xyz);
+    flip__white(w);
     double x = xyz[0] / w[0], y = xyz[1] / w[1], z = xyz[2] / w[2];
     out[0] = 116 * y - 16;
     out[1] = 500 * (x - y);
@@ -92,13 +92,13 @@ void flip_linear_to_ycxcz(const double rgb[3], double out[3])
 void flip_ycxcz_to_linear(const double ycc[3], double rgb[3])
 {
     double w[3];
-    white(w);
+    flip__white(w);
     double y = (ycc[0] + 16) / 116;
     double xyz[3] = { (ycc[1] / 500 + y) * w[0], y * w[1], (y - ycc[2] / 200) * w[2] };
-    mat3(xyz2rgb, xyz, rgb);
+    flip__mat3(xyz2rgb, xyz, rgb);
 }
 
-static double lab_f(double t)
+static double flip__lab_f(double t)
 {
     const double d = 6.0 / 29.0;
     return t > d * d * d ? cbrt(t) : t / (3 * d * d) + 4.0 / 29.0;
@@ -109,10 +109,10 @@ static double lab_f(double t)
  * luminance. */
 void flip_linear_to_hunt_lab(const double rgb[3], double lab[3])
 {
-    double c[3] = { clamp01(rgb[0]), clamp01(rgb[1]), clamp01(rgb[2]) }, xyz[3], w[3];
-    mat3(rgb2xyz, c, xyz);
-    white(w);
-    double fx = lab_f(xyz[0] / w[0]), fy = lab_f(xyz[1] / w[1]), fz = lab_f(xyz[2] / w[2]);
+    double c[3] = { flip__clamp01(rgb[0]), flip__clamp01(rgb[1]), flip__clamp01(rgb[2]) }, xyz[3], w[3];
+    flip__mat3(rgb2xyz, c, xyz);
+    flip__white(w);
+    double fx = flip__lab_f(xyz[0] / w[0]), fy = flip__lab_f(xyz[1] / w[1]), fz = flip__lab_f(xyz[2] / w[2]);
     double L = 116 * fy - 16;
     lab[0] = L;
     lab[1] = HUNT_K * L * 500 * (fx - fy);
@@ -210,7 +210,7 @@ typedef struct flip__plane {
 /* acc[x] += sum_i k[i] l[x+i] over i in [0, 2r], where k is symmetric
  * (sym = 1: k[i] = k[2r-i]) or antisymmetric (sym = -1): the pairs share a
  * multiply, and the loop over x runs over contiguous memory (vectorises). */
-static void conv_line(double *acc, const double *l, int w, const double *k, int r, int sym)
+static void flip__conv_line(double *acc, const double *l, int w, const double *k, int r, int sym)
 {
     for (int i = 0; i < r; i++) {
         double kv = k[i];
@@ -228,10 +228,10 @@ static void conv_line(double *acc, const double *l, int w, const double *k, int 
 }
 
 /* dst = src convolved along x (dir 0) or y (dir 1) with k[-r..r] of
- * symmetry sym (see conv_line), borders extended.  The x pass copies each
+ * symmetry sym (see flip__conv_line), borders extended.  The x pass copies each
  * row into a padded line; the y pass adds whole rows, so both inner loops
  * run over contiguous memory. */
-static void conv1(const flip__plane *src, float *dst, const double *k, int r, int dir, int sym)
+static void flip__conv1(const flip__plane *src, float *dst, const double *k, int r, int dir, int sym)
 {
     int w = src->w, h = src->h;
     double *acc = dm_xmalloc((size_t)w * sizeof *acc);        /* rows: OOM aborts */
@@ -243,7 +243,7 @@ static void conv1(const flip__plane *src, float *dst, const double *k, int r, in
             const float *row = src->v + (size_t)y * w;
             for (int i = 0; i < w + 2 * r; i++)
                 line[i] = row[i < r ? 0 : i - r >= w ? w - 1 : i - r];
-            conv_line(acc, line, w, k, r, sym);
+            flip__conv_line(acc, line, w, k, r, sym);
         } else {
             /* vertical: accumulate rows y-r..y+r with their taps, pairing
              * row y-r+i with row y+r-i */
@@ -273,19 +273,19 @@ static void conv1(const flip__plane *src, float *dst, const double *k, int r, in
 
 /* out = src convolved with kx along x, then ky along y (symmetries sx, sy);
  * tmp holds w*h. */
-static void conv2(const flip__plane *src, float *tmp, float *out, const double *kx, int sx,
-                  const double *ky, int sy, int r)
+static void flip__conv2(const flip__plane *src, float *tmp, float *out, const double *kx, int sx,
+                        const double *ky, int sy, int r)
 {
-    conv1(src, tmp, kx, r, 0, sx);
+    flip__conv1(src, tmp, kx, r, 0, sx);
     flip__plane t = { src->w, src->h, tmp };
-    conv1(&t, out, ky, r, 1, sy);
+    flip__conv1(&t, out, ky, r, 1, sy);
 }
 
 /* Filters channel c of ycc (3 planes) in place with its CSF (Eq. 2),
  * normalised to sum 1 over the (2r+1)^2 kernel.  Each Gaussian term is
  * separable; the 2-D kernel's sum is the sum of the terms' sums, so the
  * separable result is the 2-D convolution exactly. */
-static void csf_filter(flip__plane *p, int c, double ppd, int r, float *tmp, float *acc, float *term)
+static void flip__csf_filter(flip__plane *p, int c, double ppd, int r, float *tmp, float *acc, float *term)
 {
     double g[2][2 * FLIP_MAX_RADIUS + 1], wt[2] = {0}, total = 0;
     const double a[2] = { csf_a1[c], csf_a2[c] }, b[2] = { csf_b1[c], csf_b2[c] };
@@ -304,7 +304,7 @@ static void csf_filter(flip__plane *p, int c, double ppd, int r, float *tmp, flo
     for (int k = 0; k < 2; k++) {
         if (wt[k] == 0)
             continue;
-        conv2(p, tmp, term, g[k], 1, g[k], 1, r);
+        flip__conv2(p, tmp, term, g[k], 1, g[k], 1, r);
         for (size_t i = 0; i < n; i++)
             acc[i] += (float)(wt[k] / total) * term[i];
     }
@@ -315,7 +315,7 @@ static void csf_filter(flip__plane *p, int c, double ppd, int r, float *tmp, flo
  * derivative, positive part sums to 1, negative to -1) and point (second
  * derivative, likewise).  With gauss along the other axis the 2-D kernels
  * keep those sums, as the paper normalises them. */
-static void feature_kernels(double ppd, int r, double *gauss, double *edge, double *point)
+static void flip__feature_kernels(double ppd, int r, double *gauss, double *edge, double *point)
 {
     double sd = flip_feature_sigma(ppd), gs = 0, ep = 0, pp = 0, pn = 0;
     for (int i = -r; i <= r; i++) {
@@ -341,22 +341,22 @@ static void feature_kernels(double ppd, int r, double *gauss, double *edge, doub
 /* Edge and point magnitudes of luminance plane lum (§4.2, Eq. 8):
  * |(lum * Ex, lum * Ey)| and |(lum * Pxx, lum * Pyy)|.  The horizontal
  * Gaussian pass is shared by Ey and Pyy.  t2, t3, t4 hold w*h each. */
-static void features(const flip__plane *lum, double ppd, int r, float *t2, float *t3, float *t4,
-                     float *edge_mag, float *point_mag)
+static void flip__features(const flip__plane *lum, double ppd, int r, float *t2, float *t3, float *t4,
+                           float *edge_mag, float *point_mag)
 {
     double g[2 * FLIP_MAX_RADIUS + 1], e[2 * FLIP_MAX_RADIUS + 1], p[2 * FLIP_MAX_RADIUS + 1];
-    feature_kernels(ppd, r, g, e, p);
+    flip__feature_kernels(ppd, r, g, e, p);
     size_t n = (size_t)lum->w * lum->h;
     flip__plane hg = { lum->w, lum->h, t2 }, h = { lum->w, lum->h, t3 };
-    conv1(lum, t2, g, r, 0, 1);                   /* lum * g along x */
-    conv1(lum, t3, e, r, 0, -1);
-    conv1(&h, edge_mag, g, r, 1, 1);              /* d/dx */
-    conv1(&hg, t4, e, r, 1, -1);                  /* d/dy */
+    flip__conv1(lum, t2, g, r, 0, 1);                   /* lum * g along x */
+    flip__conv1(lum, t3, e, r, 0, -1);
+    flip__conv1(&h, edge_mag, g, r, 1, 1);              /* d/dx */
+    flip__conv1(&hg, t4, e, r, 1, -1);                  /* d/dy */
     for (size_t i = 0; i < n; i++)
         edge_mag[i] = sqrtf(edge_mag[i] * edge_mag[i] + t4[i] * t4[i]);
-    conv1(lum, t3, p, r, 0, 1);
-    conv1(&h, point_mag, g, r, 1, 1);             /* d2/dx2 */
-    conv1(&hg, t4, p, r, 1, 1);                   /* d2/dy2 */
+    flip__conv1(lum, t3, p, r, 0, 1);
+    flip__conv1(&h, point_mag, g, r, 1, 1);             /* d2/dx2 */
+    flip__conv1(&hg, t4, p, r, 1, 1);                   /* d2/dy2 */
     for (size_t i = 0; i < n; i++)
         point_mag[i] = sqrtf(point_mag[i] * point_mag[i] + t4[i] * t4[i]);
 }
@@ -367,7 +367,7 @@ enum { P_TMP = 2 * P_PER_IMAGE, P_T2, P_T3, P_COUNT };
 /* flip_srgb_to_linear of float v, by table when v is an 8-bit level k/255
  * (renders read back from 8-bit framebuffers and PNGs are): the table holds
  * the same function of the same value, so the result is identical. */
-static double srgb_lin_fast(float v, const double lut[256])
+static double flip__srgb_lin_fast(float v, const double lut[256])
 {
     float k = v * 255.0f + 0.5f;
     if (k >= 0 && k < 256) {
@@ -380,7 +380,7 @@ static double srgb_lin_fast(float v, const double lut[256])
 
 /* Fills the three YCxCz planes and the luminance plane (Y/Yn, the
  * achromatic channel normalised to [0,1]) of im at planes[0..3]. */
-static void to_ycxcz(const img *im, float *planes[])
+static void flip__to_ycxcz(const img *im, float *planes[])
 {
     size_t n = (size_t)im->w * im->h;
     double lut[256];
@@ -388,8 +388,8 @@ static void to_ycxcz(const img *im, float *planes[])
         lut[k] = flip_srgb_to_linear((float)k / 255.0f);
     for (size_t i = 0; i < n; i++) {
         const float *px = im->px + i * 4;
-        double lin[3] = { srgb_lin_fast(px[0], lut), srgb_lin_fast(px[1], lut),
-                          srgb_lin_fast(px[2], lut) }, ycc[3];
+        double lin[3] = { flip__srgb_lin_fast(px[0], lut), flip__srgb_lin_fast(px[1], lut),
+                          flip__srgb_lin_fast(px[2], lut) }, ycc[3];
         flip_linear_to_ycxcz(lin, ycc);
         for (int c = 0; c < 3; c++)
             planes[c][i] = (float)ycc[c];
@@ -400,14 +400,14 @@ static void to_ycxcz(const img *im, float *planes[])
 /* Both pipelines for one image: filtered YCxCz and feature magnitudes. */
 static void flip__image(const img *im, double ppd, float *pl[], float *tmp, float *t2, float *t3)
 {
-    to_ycxcz(im, pl);
+    flip__to_ycxcz(im, pl);
     int rc = flip_csf_radius(ppd), rf = flip_feature_radius(ppd);
     for (int c = 0; c < 3; c++) {
         flip__plane p = { im->w, im->h, pl[c] };
-        csf_filter(&p, c, ppd, rc, tmp, t2, t3);
+        flip__csf_filter(&p, c, ppd, rc, tmp, t2, t3);
     }
     flip__plane lum = { im->w, im->h, pl[P_LUM] };
-    features(&lum, ppd, rf, tmp, t2, t3, pl[P_EDGE], pl[P_POINT]);
+    flip__features(&lum, ppd, rf, tmp, t2, t3, pl[P_EDGE], pl[P_POINT]);
 }
 
 static double flip__pixel(float *const pl[], size_t i, double cmax)
@@ -449,7 +449,7 @@ int flip_map(const img *ref, const img *test, const flip_desc *d, float *map)
 
 /* Sorts n non-negative floats ascending: their bit patterns order like
  * unsigned integers, so two 16-bit LSD radix passes do it in O(n). */
-static void sort_nonneg(float *v, float *tmp, size_t n)
+static void flip__sort_nonneg(float *v, float *tmp, size_t n)
 {
     for (int shift = 0; shift < 32; shift += 16) {
         size_t count[65537] = {0};
@@ -471,7 +471,7 @@ static void sort_nonneg(float *v, float *tmp, size_t n)
 
 /* Smallest value v of sorted s[0..n) whose cumulative sum reaches q of the
  * total (weights = the values themselves); 0 when all are 0. */
-static double weighted_quantile(const float *s, size_t n, double total, double q)
+static double flip__weighted_quantile(const float *s, size_t n, double total, double q)
 {
     double acc = 0;
     for (size_t i = 0; i < n; i++) {
@@ -495,11 +495,11 @@ int flip_pool(const float *map, size_t n, flip_stats *out)
     *out = (flip_stats){ .mean = sum / (double)n };
     for (size_t i = 0; i < n; i++)
         s[i] = map[i] > 0 ? map[i] : 0;          /* also turns -0 into +0 */
-    sort_nonneg(s, s + n, n);
+    flip__sort_nonneg(s, s + n, n);
     out->max = s[n - 1];
-    out->q1 = weighted_quantile(s, n, sum, 0.25);
-    out->median = weighted_quantile(s, n, sum, 0.5);
-    out->q3 = weighted_quantile(s, n, sum, 0.75);
+    out->q1 = flip__weighted_quantile(s, n, sum, 0.25);
+    out->median = flip__weighted_quantile(s, n, sum, 0.5);
+    out->q3 = flip__weighted_quantile(s, n, sum, 0.75);
     free(s);
     return 0;
 }
@@ -532,7 +532,7 @@ static const float flip__ramp[9][3] = {
 
 void flip_colormap(double v, float rgb[3])
 {
-    v = clamp01(v) * 8;
+    v = flip__clamp01(v) * 8;
     int i = v >= 8 ? 7 : (int)v;
     float t = (float)(v - i);
     for (int c = 0; c < 3; c++)

@@ -14,7 +14,7 @@
 
 enum { F_A, F_B, F_AA, F_BB, F_AB, F_COUNT };
 
-static double luma(const float *p)
+static double quality__luma(const float *p)
 {
     return 0.2126 * p[0] + 0.7152 * p[1] + 0.0722 * p[2];
 }
@@ -22,7 +22,7 @@ static double luma(const float *p)
 /* Normalised 1-D Gaussian of n taps (n <= SSIM_WIN), centred on (n-1)/2,
  * sigma SSIM_SIGMA; the 2-D window is the outer product of one such vector
  * per axis.  n = SSIM_WIN gives the standard window. */
-static void gauss_weights(int n, double w[SSIM_WIN])
+static void quality__gauss_weights(int n, double w[SSIM_WIN])
 {
     double sum = 0, c = (n - 1) / 2.0;
     for (int i = 0; i < n; i++) {
@@ -36,7 +36,7 @@ static void gauss_weights(int n, double w[SSIM_WIN])
 
 /* Horizontal "valid" pass of the five fields (a, b, a², b², ab) with the
  * nx-tap window gx into hp, which holds F_COUNT planes of (w-nx+1) × h. */
-static void ssim_hpass(const img *a, const img *b, const double *gx, int nx, double *hp)
+static void quality__ssim_hpass(const img *a, const img *b, const double *gx, int nx, double *hp)
 {
     int ow = a->w - nx + 1;
     size_t plane = (size_t)ow * a->h;
@@ -45,7 +45,7 @@ static void ssim_hpass(const img *a, const img *b, const double *gx, int nx, dou
             double s[F_COUNT] = {0};
             for (int k = 0; k < nx; k++) {
                 size_t i = ((size_t)y * a->w + (size_t)(x + k)) * 4;
-                double ya = luma(a->px + i), yb = luma(b->px + i);
+                double ya = quality__luma(a->px + i), yb = quality__luma(b->px + i);
                 s[F_A] += gx[k] * ya;
                 s[F_B] += gx[k] * yb;
                 s[F_AA] += gx[k] * ya * ya;
@@ -59,7 +59,7 @@ static void ssim_hpass(const img *a, const img *b, const double *gx, int nx, dou
 
 /* SSIM of one window from its weighted moments.  Written so that a == b
  * gives exactly 1 (2·μa·μb equals μa²+μb² bit for bit, σab equals σa²). */
-static double ssim_window(const double m[F_COUNT])
+static double quality__ssim_window(const double m[F_COUNT])
 {
     double va = m[F_AA] - m[F_A] * m[F_A];
     double vb = m[F_BB] - m[F_B] * m[F_B];
@@ -78,14 +78,14 @@ int quality_ssim(const img *a, const img *b, double *ssim)
      * or tall as the image along that axis (quality.h). */
     int nx = a->w < SSIM_WIN ? a->w : SSIM_WIN, ny = a->h < SSIM_WIN ? a->h : SSIM_WIN;
     double gx[SSIM_WIN], gy[SSIM_WIN];
-    gauss_weights(nx, gx);
-    gauss_weights(ny, gy);
+    quality__gauss_weights(nx, gx);
+    quality__gauss_weights(ny, gy);
     int ow = a->w - nx + 1, oh = a->h - ny + 1;
     size_t plane = (size_t)ow * a->h;
     double *hp = malloc(plane * F_COUNT * sizeof *hp);
     if (!hp)
         return DM_ERR_NOMEM;
-    ssim_hpass(a, b, gx, nx, hp);
+    quality__ssim_hpass(a, b, gx, nx, hp);
     double total = 0;
     for (int y = 0; y < oh; y++)
         for (int x = 0; x < ow; x++) {
@@ -93,7 +93,7 @@ int quality_ssim(const img *a, const img *b, double *ssim)
             for (int f = 0; f < F_COUNT; f++)
                 for (int k = 0; k < ny; k++)
                     m[f] += gy[k] * hp[f * plane + (size_t)(y + k) * ow + x];
-            total += ssim_window(m);
+            total += quality__ssim_window(m);
         }
     free(hp);
     *ssim = total / ((double)ow * oh);
@@ -147,8 +147,8 @@ long quality_nonfinite_pixels(const img *im)
 }
 
 /* Pushes background pixel i onto the stack unless seen or covered. */
-static void crack_push(const unsigned char *mask, unsigned char *seen, size_t *stack,
-                       size_t *top, size_t i)
+static void quality__crack_push(const unsigned char *mask, unsigned char *seen, size_t *stack,
+                                size_t *top, size_t i)
 {
     if (mask[i] || seen[i])
         return;
@@ -168,20 +168,20 @@ long quality_crack_pixels(const unsigned char *mask, int w, int h)
     }
     size_t top = 0;
     for (int x = 0; x < w; x++) {
-        crack_push(mask, seen, stack, &top, (size_t)x);
-        crack_push(mask, seen, stack, &top, (size_t)(h - 1) * w + x);
+        quality__crack_push(mask, seen, stack, &top, (size_t)x);
+        quality__crack_push(mask, seen, stack, &top, (size_t)(h - 1) * w + x);
     }
     for (int y = 0; y < h; y++) {
-        crack_push(mask, seen, stack, &top, (size_t)y * w);
-        crack_push(mask, seen, stack, &top, (size_t)y * w + (w - 1));
+        quality__crack_push(mask, seen, stack, &top, (size_t)y * w);
+        quality__crack_push(mask, seen, stack, &top, (size_t)y * w + (w - 1));
     }
     while (top) {   /* flood fill over 4-neighbours through background */
         size_t i = stack[--top];
         int x = (int)(i % (size_t)w), y = (int)(i / (size_t)w);
-        if (x > 0) crack_push(mask, seen, stack, &top, i - 1);
-        if (x < w - 1) crack_push(mask, seen, stack, &top, i + 1);
-        if (y > 0) crack_push(mask, seen, stack, &top, i - (size_t)w);
-        if (y < h - 1) crack_push(mask, seen, stack, &top, i + (size_t)w);
+        if (x > 0) quality__crack_push(mask, seen, stack, &top, i - 1);
+        if (x < w - 1) quality__crack_push(mask, seen, stack, &top, i + 1);
+        if (y > 0) quality__crack_push(mask, seen, stack, &top, i - (size_t)w);
+        if (y < h - 1) quality__crack_push(mask, seen, stack, &top, i + (size_t)w);
     }
     long cracks = 0;
     for (size_t i = 0; i < n; i++)

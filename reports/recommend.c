@@ -6,13 +6,13 @@
 #include <math.h>
 #include <stdlib.h>
 
-static int usable(const recommend_point *p)
+static int recommend__usable(const recommend_point *p)
 {
     return isfinite(p->time) && isfinite(p->error);
 }
 
 /* 1 when a comes before b: lower median, then lower error, then index. */
-static int before(const recommend_point *p, size_t a, size_t b)
+static int recommend__before(const recommend_point *p, size_t a, size_t b)
 {
     if (p[a].time != p[b].time)
         return p[a].time < p[b].time;
@@ -23,14 +23,14 @@ static int before(const recommend_point *p, size_t a, size_t b)
 
 /* Indices of the usable points with (family mask) fastest first into out;
  * returns how many.  Insertion sort: a scene has tens of points. */
-static size_t sorted(const recommend_point *p, size_t n, unsigned mask, size_t *out)
+static size_t recommend__sorted(const recommend_point *p, size_t n, unsigned mask, size_t *out)
 {
     size_t m = 0;
     for (size_t i = 0; i < n; i++) {
-        if (!usable(&p[i]) || !(mask & 1u << p[i].family))
+        if (!recommend__usable(&p[i]) || !(mask & 1u << p[i].family))
             continue;
         size_t b = m++;
-        while (b > 0 && before(p, i, out[b - 1])) {
+        while (b > 0 && recommend__before(p, i, out[b - 1])) {
             out[b] = out[b - 1];
             b--;
         }
@@ -40,9 +40,10 @@ static size_t sorted(const recommend_point *p, size_t n, unsigned mask, size_t *
 }
 
 /* The epsilon front of the points selected by mask (recommend_front). */
-static size_t front_of(const recommend_point *p, size_t n, unsigned mask, double eps, size_t *front)
+static size_t recommend__front_of(const recommend_point *p, size_t n, unsigned mask, double eps,
+                                  size_t *front)
 {
-    size_t m = sorted(p, n, mask, front), k = 0;
+    size_t m = recommend__sorted(p, n, mask, front), k = 0;
     double best = INFINITY;
     for (size_t i = 0; i < m; i++)
         if (p[front[i]].error < best - eps) {
@@ -54,15 +55,15 @@ static size_t front_of(const recommend_point *p, size_t n, unsigned mask, double
 
 size_t recommend_front(const recommend_point *p, size_t n, double epsilon, size_t *front)
 {
-    return front_of(p, n, ~0u, epsilon, front);
+    return recommend__front_of(p, n, ~0u, epsilon, front);
 }
 
 /* Families eligible for a pick: the lit ones, or all when no lit point is usable. */
-static unsigned eligible_mask(const recommend_point *p, size_t n, int *lit_only)
+static unsigned recommend__eligible_mask(const recommend_point *p, size_t n, int *lit_only)
 {
     unsigned lit = ~0u & ~(1u << RECOMMEND_UNLIT);
     for (size_t i = 0; i < n; i++)
-        if (usable(&p[i]) && p[i].family != RECOMMEND_UNLIT) {
+        if (recommend__usable(&p[i]) && p[i].family != RECOMMEND_UNLIT) {
             *lit_only = 1;
             return lit;
         }
@@ -96,7 +97,7 @@ typedef struct recommend__times {
 static int recommend__counts(const recommend__times *t, size_t i)
 {
     const recommend_point *q = &t->p[i];
-    return usable(q) && (t->mask & 1u << q->family) && q->time > 0;
+    return recommend__usable(q) && (t->mask & 1u << q->family) && q->time > 0;
 }
 
 /* Log distance from c to the nearest eligible time, and in *under how many
@@ -140,7 +141,7 @@ static double recommend__budget_of(const recommend__times *t, double lo, double 
 double recommend_default_budget(const recommend_point *p, size_t n)
 {
     int lit_only;
-    recommend__times t = {p, n, eligible_mask(p, n, &lit_only)};
+    recommend__times t = {p, n, recommend__eligible_mask(p, n, &lit_only)};
     double lo = INFINITY, hi = 0;
     size_t k = 0;
     for (size_t i = 0; i < n; i++)
@@ -151,16 +152,16 @@ double recommend_default_budget(const recommend_point *p, size_t n)
     return k > 0 ? recommend__budget_of(&t, lo, hi, k) : 0;
 }
 
-static int ci_known(const recommend_point *p)
+static int recommend__ci_known(const recommend_point *p)
 {
     return isfinite(p->ci_lo) && isfinite(p->ci_hi);
 }
 
 /* The best point within the budget on the epsilon front of mask (NONE). */
-static size_t best_within(const recommend_point *p, size_t n, unsigned mask, double eps,
-                          double budget, size_t *scratch)
+static size_t recommend__best_within(const recommend_point *p, size_t n, unsigned mask, double eps,
+                                     double budget, size_t *scratch)
 {
-    size_t m = front_of(p, n, mask, eps, scratch), best = RECOMMEND_NONE;
+    size_t m = recommend__front_of(p, n, mask, eps, scratch), best = RECOMMEND_NONE;
     for (size_t i = 0; i < m && p[scratch[i]].time <= budget; i++)
         best = scratch[i];
     return best;
@@ -170,25 +171,25 @@ static size_t best_within(const recommend_point *p, size_t n, unsigned mask, dou
  * eligible, whose time CI overlaps the pick's or whose median is within
  * resolvable (relative) of the pick's: the data cannot tell which is
  * cheaper.  NONE when there is none. */
-static size_t tie_of(const recommend_point *p, size_t n, unsigned mask, double eps, double resolvable,
-                     double budget, size_t pick)
+static size_t recommend__tie_of(const recommend_point *p, size_t n, unsigned mask, double eps,
+                                double resolvable, double budget, size_t pick)
 {
     const recommend_point *a = &p[pick];
-    for (size_t i = 0; i < n && ci_known(a); i++) {
+    for (size_t i = 0; i < n && recommend__ci_known(a); i++) {
         const recommend_point *b = &p[i];
-        if (i == pick || !usable(b) || !(mask & 1u << b->family) || b->time > budget ||
-            !ci_known(b) || fabs(b->error - a->error) >= eps)
+        if (i == pick || !recommend__usable(b) || !(mask & 1u << b->family) || b->time > budget ||
+            !recommend__ci_known(b) || fabs(b->error - a->error) >= eps)
             continue;
         int overlap = b->ci_lo <= a->ci_hi && a->ci_lo <= b->ci_hi;
         int unresolved = resolvable > 0 && fabs(b->time - a->time) <= resolvable * a->time;
-        if (before(p, pick, i) && (overlap || unresolved))
+        if (recommend__before(p, pick, i) && (overlap || unresolved))
             return i;
     }
     return RECOMMEND_NONE;
 }
 
 /* The knee of the eligible front (recommend.h); NONE without a bend. */
-static size_t knee_of(const recommend_point *p, const size_t *front, size_t m)
+static size_t recommend__knee_of(const recommend_point *p, const size_t *front, size_t m)
 {
     if (m < 3 || !(p[front[0]].time > 0))
         return RECOMMEND_NONE;
@@ -211,14 +212,14 @@ static size_t knee_of(const recommend_point *p, const size_t *front, size_t m)
 /* The near miss (recommend.h): eligible, median over the budget, CI low
  * end within it, error below the pick's by more than eps; the best error,
  * then the lower median.  NONE when there is none. */
-static size_t near_miss_of(const recommend_point *p, size_t n, unsigned mask, double eps, double budget,
-                           size_t pick)
+static size_t recommend__near_miss_of(const recommend_point *p, size_t n, unsigned mask, double eps,
+                                      double budget, size_t pick)
 {
     size_t best = RECOMMEND_NONE;
     for (size_t i = 0; i < n; i++) {
         const recommend_point *q = &p[i];
-        if (!usable(q) || !(mask & 1u << q->family) || !(q->time > budget) || !ci_known(q) ||
-            !(q->ci_lo <= budget))
+        if (!recommend__usable(q) || !(mask & 1u << q->family) || !(q->time > budget) ||
+            !recommend__ci_known(q) || !(q->ci_lo <= budget))
             continue;
         if (pick != RECOMMEND_NONE && !(q->error < p[pick].error - eps))
             continue;
@@ -234,25 +235,25 @@ void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *d
 {
     recommend_desc d = desc ? *desc : (recommend_desc){0};
     size_t *scratch = dm_xcalloc(n + 1, sizeof *scratch);
-    unsigned mask = eligible_mask(p, n, &out->lit_only);
+    unsigned mask = recommend__eligible_mask(p, n, &out->lit_only);
     out->budget_default = !(d.budget > 0);
     out->budget = out->budget_default ? recommend_default_budget(p, n) : d.budget;
-    out->pick = best_within(p, n, mask, d.epsilon, out->budget, scratch);
+    out->pick = recommend__best_within(p, n, mask, d.epsilon, out->budget, scratch);
     out->pick_tie = RECOMMEND_NONE;
     out->pick_ci_over = 0;
     if (out->pick != RECOMMEND_NONE) {
-        out->pick_tie = tie_of(p, n, mask, d.epsilon, d.resolvable, out->budget, out->pick);
+        out->pick_tie = recommend__tie_of(p, n, mask, d.epsilon, d.resolvable, out->budget, out->pick);
         out->pick_ci_over = p[out->pick].ci_hi > out->budget;
     }
-    out->near_miss = near_miss_of(p, n, mask, d.epsilon, out->budget, out->pick);
-    size_t m = front_of(p, n, mask, d.epsilon, scratch);
+    out->near_miss = recommend__near_miss_of(p, n, mask, d.epsilon, out->budget, out->pick);
+    size_t m = recommend__front_of(p, n, mask, d.epsilon, scratch);
     out->fastest = m ? scratch[0] : RECOMMEND_NONE;
-    out->knee = knee_of(p, scratch, m);
+    out->knee = recommend__knee_of(p, scratch, m);
     for (int f = 0; f < RECOMMEND_FAMILY_COUNT; f++) {
         unsigned one = 1u << f;
-        size_t k = sorted(p, n, one, scratch);
+        size_t k = recommend__sorted(p, n, one, scratch);
         out->family_fastest[f] = k ? scratch[0] : RECOMMEND_NONE;
-        out->family_best[f] = best_within(p, n, one, d.epsilon, out->budget, scratch);
+        out->family_best[f] = recommend__best_within(p, n, one, d.epsilon, out->budget, scratch);
     }
     free(scratch);
 }

@@ -463,7 +463,7 @@ void report__quality_warnings(const dm_run_result *run, dm_str *out)
 }
 
 /* Appends name to the set (array of borrowed pointers) unless present. */
-static void add_unique(const char ***set, size_t *n, const char *name)
+static void report__add_unique(const char ***set, size_t *n, const char *name)
 {
     for (size_t i = 0; i < *n; i++)
         if (strcmp((*set)[i], name) == 0)
@@ -477,11 +477,11 @@ size_t report__scenes(const dm_run_result *run, const char ***out)
     size_t n = 0;
     *out = NULL;
     for (size_t i = 0; i < run->n_configs; i++)
-        add_unique(out, &n, run->configs[i].scene ? run->configs[i].scene : "");
+        report__add_unique(out, &n, run->configs[i].scene ? run->configs[i].scene : "");
     return n;
 }
 
-static int in_scene(const dm_config_result *c, const char *scene)
+static int report__in_scene(const dm_config_result *c, const char *scene)
 {
     return !scene || strcmp(c->scene ? c->scene : "", scene) == 0;
 }
@@ -491,13 +491,13 @@ size_t report__param_names(const dm_run_result *run, const char *scene, const ch
     size_t n = 0;
     *out = NULL;
     for (size_t i = 0; i < run->n_configs; i++)
-        if (in_scene(&run->configs[i], scene))
+        if (report__in_scene(&run->configs[i], scene))
             for (size_t k = 0; k < run->configs[i].n_params; k++)
-                add_unique(out, &n, run->configs[i].params[k].key);
+                report__add_unique(out, &n, run->configs[i].params[k].key);
     return n;
 }
 
-static int counter_kind_matches(const dm_counter_result *c, enum report__counter_kind kind)
+static int report__counter_kind_matches(const dm_counter_result *c, enum report__counter_kind kind)
 {
     if (kind == REPORT__TIMED)
         return !c->deterministic && c->available && c->has_samples;
@@ -511,11 +511,11 @@ size_t report__counter_names(const dm_run_result *run, const char *scene,
     *out = NULL;
     for (size_t i = 0; i < run->n_configs; i++) {
         const dm_config_result *c = &run->configs[i];
-        if (!in_scene(c, scene))
+        if (!report__in_scene(c, scene))
             continue;
         for (size_t k = 0; k < c->n_counters; k++)
-            if (counter_kind_matches(&c->counters[k], kind))
-                add_unique(out, &n, c->counters[k].name);
+            if (report__counter_kind_matches(&c->counters[k], kind))
+                report__add_unique(out, &n, c->counters[k].name);
     }
     return n;
 }

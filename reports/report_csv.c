@@ -26,7 +26,7 @@ static const char *quality_cols[] = {"RMSE", "PSNR_dB", "SSIM", "MaxError", "Sil
                                      "FLIPMedian", "FLIPMax"};
 #define N_QUALITY (sizeof quality_cols / sizeof quality_cols[0])
 
-static void field(dm_str *s, const char *text, int first)
+static void report_csv__field(dm_str *s, const char *text, int first)
 {
     if (!first)
         dm_str_cat(s, ",");
@@ -42,94 +42,94 @@ static void field(dm_str *s, const char *text, int first)
     dm_str_cat(s, "\"");
 }
 
-static void num_field(dm_str *s, double v, int present)
+static void report_csv__num_field(dm_str *s, double v, int present)
 {
     char buf[32];
     if (!present || isnan(v)) {
-        field(s, NULL, 0);
+        report_csv__field(s, NULL, 0);
         return;
     }
     if (isinf(v))
         snprintf(buf, sizeof buf, "%s", v > 0 ? "inf" : "-inf");
     else
         snprintf(buf, sizeof buf, "%.9g", v);
-    field(s, buf, 0);
+    report_csv__field(s, buf, 0);
 }
 
-static void quality_fields(dm_str *s, const dm_quality *q)
+static void report_csv__quality_fields(dm_str *s, const dm_quality *q)
 {
     double v[N_QUALITY] = {q->rmse, q->psnr, q->ssim, q->max_error, q->silhouette_error,
                            q->depth_rmse, (double)q->crack_pixels, (double)q->nonfinite_pixels,
                            q->flip, q->flip_median, q->flip_max};
     for (size_t i = 0; i < N_QUALITY; i++)
-        num_field(s, v[i], q->present);
+        report_csv__num_field(s, v[i], q->present);
 }
 
 /* The frame time with the machine's drift removed (empty when its scene kept
  * the raw figures) and how: the method, or why the figures are raw only
  * (the scene's reason). */
-static void corrected_fields(dm_str *s, const report_model *m, const report_model_row *r)
+static void report_csv__corrected_fields(dm_str *s, const report_model *m, const report_model_row *r)
 {
     const dm_counter_result *t = r->frame_time;
-    num_field(s, r->corrected ? t->corr_median / 1e6 : 0, r->corrected);
-    num_field(s, r->corrected ? t->corr_ci_lo / 1e6 : 0, r->corrected);
-    num_field(s, r->corrected ? t->corr_ci_hi / 1e6 : 0, r->corrected);
+    report_csv__num_field(s, r->corrected ? t->corr_median / 1e6 : 0, r->corrected);
+    report_csv__num_field(s, r->corrected ? t->corr_ci_lo / 1e6 : 0, r->corrected);
+    report_csv__num_field(s, r->corrected ? t->corr_ci_hi / 1e6 : 0, r->corrected);
     const dm_scene_precision *p = m->n_scenes ? m->scenes[r->scene].precision : NULL;
     const char *raw = !p ? "no drift record for its scene; raw figures only"
                       : p->reason ? p->reason : "raw figures only";
-    field(s, r->corrected ? REPORT_DRIFT_METHOD : t ? raw : NULL, 0);
+    report_csv__field(s, r->corrected ? REPORT_DRIFT_METHOD : t ? raw : NULL, 0);
 }
 
-static void row(dm_str *s, const report_model *m, const report_model_row *r, const char **params,
-                size_t np, const char **timed, size_t nt, const char **det, size_t nd)
+static void report_csv__row(dm_str *s, const report_model *m, const report_model_row *r, const char **params,
+                            size_t np, const char **timed, size_t nt, const char **det, size_t nd)
 {
     const dm_config_result *c = r->config;
-    field(s, c->key, 1);
-    field(s, c->scene, 0);
-    field(s, c->ok ? "ok" : "failed", 0);
-    field(s, c->reason, 0);
+    report_csv__field(s, c->key, 1);
+    report_csv__field(s, c->scene, 0);
+    report_csv__field(s, c->ok ? "ok" : "failed", 0);
+    report_csv__field(s, c->reason, 0);
     for (size_t i = 0; i < np; i++)
-        field(s, dm_kv_get(c->params, c->n_params, params[i]), 0);
+        report_csv__field(s, dm_kv_get(c->params, c->n_params, params[i]), 0);
     for (size_t i = 0; i < nt; i++) {
         const dm_counter_result *t = dm_config_counter(c, timed[i]);
         int ok = t && t->available && t->has_samples;
-        num_field(s, ok ? t->median / 1e6 : 0, ok);
-        num_field(s, ok ? t->ci_lo / 1e6 : 0, ok);
-        num_field(s, ok ? t->ci_hi / 1e6 : 0, ok);
+        report_csv__num_field(s, ok ? t->median / 1e6 : 0, ok);
+        report_csv__num_field(s, ok ? t->ci_lo / 1e6 : 0, ok);
+        report_csv__num_field(s, ok ? t->ci_hi / 1e6 : 0, ok);
     }
     for (size_t i = 0; i < nd; i++) {
         const dm_counter_result *d = dm_config_counter(c, det[i]);
-        num_field(s, d ? d->value : 0, d && d->available);
+        report_csv__num_field(s, d ? d->value : 0, d && d->available);
     }
-    quality_fields(s, &c->quality);
-    field(s, r->name, 0);
-    field(s, r->front ? "1" : "0", 0);
-    corrected_fields(s, m, r);
+    report_csv__quality_fields(s, &c->quality);
+    report_csv__field(s, r->name, 0);
+    report_csv__field(s, r->front ? "1" : "0", 0);
+    report_csv__corrected_fields(s, m, r);
     dm_str_cat(s, "\r\n");
 }
 
-static void header(dm_str *s, const char **params, size_t np, const char **timed, size_t nt,
-                   const char **det, size_t nd)
+static void report_csv__header(dm_str *s, const char **params, size_t np, const char **timed, size_t nt,
+                               const char **det, size_t nd)
 {
     static const char *lead[] = {DM_RESULT_LEAD_COLUMNS}, *trail[] = {DM_RESULT_TRAIL_COLUMNS};
     for (size_t i = 0; i < sizeof lead / sizeof lead[0]; i++)
-        field(s, lead[i], i == 0);
+        report_csv__field(s, lead[i], i == 0);
     for (size_t i = 0; i < np; i++)
-        field(s, params[i], 0);
+        report_csv__field(s, params[i], 0);
     for (size_t i = 0; i < nt; i++) {
         static const char *suffix[] = {"_median_ms", "_ci_lo_ms", "_ci_hi_ms"};
         for (int k = 0; k < 3; k++) {
             char *name = dm_xasprintf("%s%s", timed[i], suffix[k]);
-            field(s, name, 0);
+            report_csv__field(s, name, 0);
             free(name);
         }
     }
     for (size_t i = 0; i < nd; i++)
-        field(s, det[i], 0);
+        report_csv__field(s, det[i], 0);
     for (size_t i = 0; i < N_QUALITY; i++)
-        field(s, quality_cols[i], 0);
+        report_csv__field(s, quality_cols[i], 0);
     for (size_t i = 0; i < sizeof trail / sizeof trail[0]; i++)
-        field(s, trail[i], 0);
+        report_csv__field(s, trail[i], 0);
     dm_str_cat(s, "\r\n");
 }
 
@@ -137,9 +137,9 @@ int report__write_csv(const report_model *m, const report_desc *d, const char *p
 {
     (void)d;
     dm_str s = {0};
-    header(&s, m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
+    report_csv__header(&s, m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
     for (size_t i = 0; i < m->n_rows; i++)
-        row(&s, m, &m->rows[i], m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
+        report_csv__row(&s, m, &m->rows[i], m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     return rc;

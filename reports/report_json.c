@@ -36,7 +36,7 @@
 
 /* ---- writing ------------------------------------------------------------ */
 
-static void add_str(cJSON *o, const char *name, const char *s)
+static void report_json__add_str(cJSON *o, const char *name, const char *s)
 {
     if (s)
         cJSON_AddStringToObject(o, name, s);
@@ -44,19 +44,19 @@ static void add_str(cJSON *o, const char *name, const char *s)
         cJSON_AddNullToObject(o, name);
 }
 
-static cJSON *kv_object(const dm_kv *kv, size_t n, int typed)
+static cJSON *report_json__kv_object(const dm_kv *kv, size_t n, int typed)
 {
     cJSON *o = cJSON_CreateObject();
     for (size_t i = 0; i < n; i++) {
         if (typed && report__is_canonical_num(kv[i].value))
             cJSON_AddNumberToObject(o, kv[i].key, strtod(kv[i].value, NULL));
         else
-            add_str(o, kv[i].key, kv[i].value);
+            report_json__add_str(o, kv[i].key, kv[i].value);
     }
     return o;
 }
 
-static cJSON *num_array(const double *v, size_t n)
+static cJSON *report_json__num_array(const double *v, size_t n)
 {
     if (!v)
         return cJSON_CreateNull();
@@ -66,7 +66,7 @@ static cJSON *num_array(const double *v, size_t n)
     return a;
 }
 
-static cJSON *str_array(char *const *v, size_t n)
+static cJSON *report_json__str_array(char *const *v, size_t n)
 {
     if (!v && n)
         return cJSON_CreateNull();
@@ -79,25 +79,25 @@ static cJSON *str_array(char *const *v, size_t n)
 /* The drift-corrected figures of a counter with samples: an object, or
  * null when its scene kept the raw figures only (the run's "precision"
  * says why). */
-static cJSON *corrected_json(const dm_counter_result *c)
+static cJSON *report_json__corrected_json(const dm_counter_result *c)
 {
     if (!c->corrected)
         return cJSON_CreateNull();
     cJSON *o = cJSON_CreateObject();
     double ci[2] = {c->corr_ci_lo, c->corr_ci_hi};
     cJSON_AddNumberToObject(o, "median", c->corr_median);
-    cJSON_AddItemToObject(o, "ci95", num_array(ci, 2));
+    cJSON_AddItemToObject(o, "ci95", report_json__num_array(ci, 2));
     cJSON_AddStringToObject(o, "method", REPORT_DRIFT_METHOD);
     return o;
 }
 
-static cJSON *counter_json(const dm_counter_result *c)
+static cJSON *report_json__counter_json(const dm_counter_result *c)
 {
     cJSON *o = cJSON_CreateObject();
-    add_str(o, "unit", c->unit);
+    report_json__add_str(o, "unit", c->unit);
     cJSON_AddBoolToObject(o, "deterministic", c->deterministic);
     if (!c->available) {
-        add_str(o, "unavailable", c->unavailable_reason ? c->unavailable_reason : "unavailable");
+        report_json__add_str(o, "unavailable", c->unavailable_reason ? c->unavailable_reason : "unavailable");
         return o;
     }
     cJSON_AddBoolToObject(o, "partial", c->partial);
@@ -107,9 +107,9 @@ static cJSON *counter_json(const dm_counter_result *c)
     }
     double ci[2] = {c->ci_lo, c->ci_hi};
     cJSON_AddNumberToObject(o, "median", c->median);
-    cJSON_AddItemToObject(o, "ci95", num_array(ci, 2));
-    cJSON_AddItemToObject(o, "corrected", corrected_json(c));
-    cJSON_AddItemToObject(o, "samples", c->samples ? num_array(c->samples, c->n_samples)
+    cJSON_AddItemToObject(o, "ci95", report_json__num_array(ci, 2));
+    cJSON_AddItemToObject(o, "corrected", report_json__corrected_json(c));
+    cJSON_AddItemToObject(o, "samples", c->samples ? report_json__num_array(c->samples, c->n_samples)
                                                    : cJSON_CreateArray());
     cJSON_AddNumberToObject(o, "mean", c->mean);
     cJSON_AddNumberToObject(o, "min", c->min);
@@ -122,7 +122,7 @@ static cJSON *counter_json(const dm_counter_result *c)
     return o;
 }
 
-static cJSON *quality_json(const dm_quality *q)
+static cJSON *report_json__quality_json(const dm_quality *q)
 {
     if (!q->present)
         return cJSON_CreateNull();
@@ -143,41 +143,41 @@ static cJSON *quality_json(const dm_quality *q)
     cJSON_AddNumberToObject(o, "FLIPQ3", q->flip_q3);
     cJSON_AddNumberToObject(o, "FLIPMax", q->flip_max);
     cJSON_AddNumberToObject(o, "FLIPPixelsPerDegree", q->flip_ppd);
-    add_str(o, "reference", q->reference);
+    report_json__add_str(o, "reference", q->reference);
     return o;
 }
 
-static cJSON *config_json(const report_model_row *row)
+static cJSON *report_json__config_json(const report_model_row *row)
 {
     const dm_config_result *c = row->config;
     cJSON *o = cJSON_CreateObject();
-    add_str(o, "key", c->key);
-    add_str(o, "label", row->name);
+    report_json__add_str(o, "key", c->key);
+    report_json__add_str(o, "label", row->name);
     cJSON_AddBoolToObject(o, "pareto", row->front);
-    add_str(o, "scene", c->scene);
-    cJSON_AddItemToObject(o, "params", kv_object(c->params, c->n_params, 1));
+    report_json__add_str(o, "scene", c->scene);
+    cJSON_AddItemToObject(o, "params", report_json__kv_object(c->params, c->n_params, 1));
     cJSON_AddStringToObject(o, "status", c->ok ? "ok" : "failed");
-    add_str(o, "reason", c->reason);
+    report_json__add_str(o, "reason", c->reason);
     cJSON *ctr = cJSON_AddObjectToObject(o, "counters");
     for (size_t i = 0; i < c->n_counters; i++)
-        cJSON_AddItemToObject(ctr, c->counters[i].name, counter_json(&c->counters[i]));
-    cJSON_AddItemToObject(o, "quality", quality_json(&c->quality));
+        cJSON_AddItemToObject(ctr, c->counters[i].name, report_json__counter_json(&c->counters[i]));
+    cJSON_AddItemToObject(o, "quality", report_json__quality_json(&c->quality));
     cJSON *im = cJSON_AddObjectToObject(o, "images");
-    add_str(im, "render", c->img_render);
-    add_str(im, "heatmap", c->img_heatmap);
-    add_str(im, "reference", c->img_reference);
-    add_str(im, "flip", c->img_flip);
-    add_str(o, "log", c->log);
+    report_json__add_str(im, "render", c->img_render);
+    report_json__add_str(im, "heatmap", c->img_heatmap);
+    report_json__add_str(im, "reference", c->img_reference);
+    report_json__add_str(im, "flip", c->img_flip);
+    report_json__add_str(o, "log", c->log);
     return o;
 }
 
 cJSON *report_fit_to_json(const dm_fit_result *f)
 {
     cJSON *o = cJSON_CreateObject();
-    add_str(o, "model", f->model);
-    add_str(o, "formula", f->formula);
-    add_str(o, "response", f->response);
-    cJSON_AddItemToObject(o, "group", kv_object(f->group, f->n_group, 1));
+    report_json__add_str(o, "model", f->model);
+    report_json__add_str(o, "formula", f->formula);
+    report_json__add_str(o, "response", f->response);
+    cJSON_AddItemToObject(o, "group", report_json__kv_object(f->group, f->n_group, 1));
     cJSON *p = cJSON_AddObjectToObject(o, "params");
     for (size_t i = 0; i < f->n_params; i++) {
         cJSON *v = cJSON_AddObjectToObject(p, f->params[i].name);
@@ -190,21 +190,21 @@ cJSON *report_fit_to_json(const dm_fit_result *f)
     cJSON_AddNumberToObject(o, "cv_mape", f->cv_mape);
     cJSON_AddNumberToObject(o, "n_points", f->n_points);
     cJSON_AddNumberToObject(o, "n_excluded", f->n_excluded);
-    add_str(o, "termination", f->termination);
+    report_json__add_str(o, "termination", f->termination);
     cJSON_AddNumberToObject(o, "condition", f->condition);   /* null when infinite */
     cJSON_AddBoolToObject(o, "condition_infinite", isinf(f->condition));
-    cJSON_AddItemToObject(o, "warnings", str_array(f->warnings, f->n_warnings));
+    cJSON_AddItemToObject(o, "warnings", report_json__str_array(f->warnings, f->n_warnings));
     size_t np = f->n_points > 0 ? (size_t)f->n_points : 0;
-    cJSON_AddItemToObject(o, "measured", num_array(f->measured, np));
-    cJSON_AddItemToObject(o, "predicted", num_array(f->predicted, np));
+    cJSON_AddItemToObject(o, "measured", report_json__num_array(f->measured, np));
+    cJSON_AddItemToObject(o, "predicted", report_json__num_array(f->predicted, np));
     cJSON_AddItemToObject(o, "point_labels",
-                          f->point_labels ? str_array(f->point_labels, np) : cJSON_CreateNull());
+                          f->point_labels ? report_json__str_array(f->point_labels, np) : cJSON_CreateNull());
     return o;
 }
 
 /* "instructions_proxy" (WallTime ≈ a + b·Instructions, reports/proxy.h)
  * when the run has both counters, and "passes": counter -> its pass. */
-static void proxy_json(cJSON *root, const dm_run_result *r)
+static void report_json__proxy_json(cJSON *root, const dm_run_result *r)
 {
     report_proxy p;
     if (report_proxy_fit(r, &p) == 0) {
@@ -217,8 +217,8 @@ static void proxy_json(cJSON *root, const dm_run_result *r)
         cJSON *a = cJSON_AddArrayToObject(o, "strays");
         for (size_t i = 0; i < p.n_strays; i++) {
             cJSON *s = cJSON_CreateObject();
-            add_str(s, "key", p.strays[i].key);
-            add_str(s, "configuration", p.strays[i].label);
+            report_json__add_str(s, "key", p.strays[i].key);
+            report_json__add_str(s, "configuration", p.strays[i].label);
             cJSON_AddNumberToObject(s, "walltime_ns", p.strays[i].wall_ns);
             cJSON_AddNumberToObject(s, "predicted_ns", p.strays[i].predicted_ns);
             cJSON_AddNumberToObject(s, "residual_rel", p.strays[i].residual_rel);
@@ -238,13 +238,13 @@ static void proxy_json(cJSON *root, const dm_run_result *r)
  * drift was removed (or why not), how far the machine moved, what each
  * predictor left, the smallest resolvable difference and where the raw and
  * corrected verdicts disagree. */
-static cJSON *precision_json(const report_model *m)
+static cJSON *report_json__precision_json(const report_model *m)
 {
     cJSON *o = cJSON_CreateObject();
     cJSON_AddNumberToObject(o, "noise_floor", m->noise_floor);   /* NaN → null */
     cJSON_AddNumberToObject(o, "resolvable", m->resolvable);
     cJSON_AddStringToObject(o, "method", REPORT_DRIFT_METHOD);
-    add_str(o, "text", m->precision_text);
+    report_json__add_str(o, "text", m->precision_text);
     cJSON *a = cJSON_AddArrayToObject(o, "scenes");
     for (size_t i = 0; i < m->n_scenes; i++) {
         const report_model_scene *sc = &m->scenes[i];
@@ -252,54 +252,55 @@ static cJSON *precision_json(const report_model *m)
         if (!p)   /* no record (a store from before drift removal): its figures are raw */
             continue;
         cJSON *s = cJSON_CreateObject();
-        add_str(s, "scene", sc->name);
+        report_json__add_str(s, "scene", sc->name);
         cJSON_AddBoolToObject(s, "corrected", p->corrected);
-        add_str(s, "reason", p->reason);
-        add_str(s, "predictor", p->predictor);
+        report_json__add_str(s, "reason", p->reason);
+        report_json__add_str(s, "predictor", p->predictor);
         cJSON_AddNumberToObject(s, "rounds", p->n_rounds);
         cJSON_AddNumberToObject(s, "machine_spread", p->machine_spread);
         cJSON_AddNumberToObject(s, "raw_noise", p->raw_noise);
         cJSON_AddNumberToObject(s, "loo_noise", p->loo_noise);
         cJSON_AddNumberToObject(s, "calib_noise", p->calib_noise);
         cJSON_AddNumberToObject(s, "resolvable", p->resolvable);
-        add_str(s, "disagreement", sc->disagree);
+        report_json__add_str(s, "disagreement", sc->disagree);
         cJSON_AddItemToArray(a, s);
     }
     return o;
 }
 
-static cJSON *run_json(const report_model *m)
+static cJSON *report_json__run_json(const report_model *m)
 {
     const dm_run_result *r = m->run;
     cJSON *root = cJSON_CreateObject();
     cJSON_AddNumberToObject(root, "schema_version", REPORT_SCHEMA_VERSION);
     cJSON *run = cJSON_AddObjectToObject(root, "run");
-    add_str(run, "id", r->id);
-    add_str(run, "sweep", r->sweep);
-    add_str(run, "started", r->started);
-    add_str(run, "finished", r->finished);
-    add_str(run, "sweep_hash", r->sweep_hash);
-    cJSON_AddItemToObject(run, "environment", kv_object(r->environment, r->n_environment, 0));
+    report_json__add_str(run, "id", r->id);
+    report_json__add_str(run, "sweep", r->sweep);
+    report_json__add_str(run, "started", r->started);
+    report_json__add_str(run, "finished", r->finished);
+    report_json__add_str(run, "sweep_hash", r->sweep_hash);
+    cJSON_AddItemToObject(run, "environment", report_json__kv_object(r->environment, r->n_environment, 0));
     cJSON *t = cJSON_AddObjectToObject(run, "timer");
     cJSON_AddNumberToObject(t, "gpu_time_coverage", r->gpu_time_coverage);
-    add_str(t, "verdict", r->timer_verdict);
+    report_json__add_str(t, "verdict", r->timer_verdict);
     cJSON *a = cJSON_AddArrayToObject(root, "configs");
     for (size_t i = 0; i < m->n_rows; i++)
-        cJSON_AddItemToArray(a, config_json(&m->rows[i]));
+        cJSON_AddItemToArray(a, report_json__config_json(&m->rows[i]));
     a = cJSON_AddArrayToObject(root, "left_out");
     for (size_t i = 0; i < r->n_left_out; i++) {
         cJSON *l = cJSON_CreateObject();
-        cJSON_AddItemToObject(l, "params", kv_object(r->left_out[i].params, r->left_out[i].n_params, 1));
-        add_str(l, "reason", r->left_out[i].reason);
+        cJSON_AddItemToObject(l, "params",
+                              report_json__kv_object(r->left_out[i].params, r->left_out[i].n_params, 1));
+        report_json__add_str(l, "reason", r->left_out[i].reason);
         cJSON_AddItemToArray(a, l);
     }
     a = cJSON_AddArrayToObject(root, "fits");
     for (size_t i = 0; i < r->n_fits; i++)
         cJSON_AddItemToArray(a, report_fit_to_json(&r->fits[i]));
     /* the report's list, word for word */
-    cJSON_AddItemToObject(root, "warnings", str_array(m->warnings, m->n_warnings));
-    cJSON_AddItemToObject(root, "precision", precision_json(m));
-    proxy_json(root, r);
+    cJSON_AddItemToObject(root, "warnings", report_json__str_array(m->warnings, m->n_warnings));
+    cJSON_AddItemToObject(root, "precision", report_json__precision_json(m));
+    report_json__proxy_json(root, r);
     return root;
 }
 
@@ -348,7 +349,7 @@ void report_json_exact_numbers(cJSON *node)
 int report__write_json(const report_model *m, const report_desc *d, const char *path)
 {
     (void)d;
-    cJSON *root = run_json(m);
+    cJSON *root = report_json__run_json(m);
     report_json_exact_numbers(root);
     int rc = report_write_cjson(root, path);
     cJSON_Delete(root);
@@ -357,25 +358,25 @@ int report__write_json(const report_model *m, const report_desc *d, const char *
 
 /* ---- reading ------------------------------------------------------------ */
 
-static char *get_str(const cJSON *o, const char *name)
+static char *report_json__get_str(const cJSON *o, const char *name)
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, name);
     return cJSON_IsString(v) ? dm_xstrdup(v->valuestring) : NULL;
 }
 
 /* Number, or NaN when null/missing (the writer's encoding of non-finite). */
-static double get_num(const cJSON *o, const char *name)
+static double report_json__get_num(const cJSON *o, const char *name)
 {
     const cJSON *v = cJSON_GetObjectItemCaseSensitive(o, name);
     return cJSON_IsNumber(v) ? v->valuedouble : NAN;
 }
 
-static int get_bool(const cJSON *o, const char *name)
+static int report_json__get_bool(const cJSON *o, const char *name)
 {
     return cJSON_IsTrue(cJSON_GetObjectItemCaseSensitive(o, name));
 }
 
-static void read_kv(const cJSON *o, dm_kv **kv, size_t *n)
+static void report_json__read_kv(const cJSON *o, dm_kv **kv, size_t *n)
 {
     const cJSON *it;
     cJSON_ArrayForEach(it, o) {
@@ -393,7 +394,7 @@ static void read_kv(const cJSON *o, dm_kv **kv, size_t *n)
     }
 }
 
-static double *read_nums(const cJSON *a, size_t *n)
+static double *report_json__read_nums(const cJSON *a, size_t *n)
 {
     *n = 0;
     if (!cJSON_IsArray(a))
@@ -405,7 +406,7 @@ static double *read_nums(const cJSON *a, size_t *n)
     return v;
 }
 
-static char **read_strs(const cJSON *a, size_t *n)
+static char **report_json__read_strs(const cJSON *a, size_t *n)
 {
     *n = 0;
     if (!cJSON_IsArray(a))
@@ -419,45 +420,45 @@ static char **read_strs(const cJSON *a, size_t *n)
 
 /* A count field: NaN, negative or beyond INT_MAX (a damaged file) reads as 0
  * rather than an undefined conversion. */
-static int get_count(const cJSON *o, const char *name)
+static int report_json__get_count(const cJSON *o, const char *name)
 {
-    double v = get_num(o, name);
+    double v = report_json__get_num(o, name);
     return v >= 0 && v <= INT_MAX ? (int)v : 0;
 }
 
-static void read_counter(const cJSON *o, dm_counter_result *c)
+static void report_json__read_counter(const cJSON *o, dm_counter_result *c)
 {
     c->name = dm_xstrdup(o->string);
-    c->unit = get_str(o, "unit");
-    c->deterministic = get_bool(o, "deterministic");
-    c->unavailable_reason = get_str(o, "unavailable");
+    c->unit = report_json__get_str(o, "unit");
+    c->deterministic = report_json__get_bool(o, "deterministic");
+    c->unavailable_reason = report_json__get_str(o, "unavailable");
     c->available = c->unavailable_reason == NULL;
-    c->partial = get_bool(o, "partial");
+    c->partial = report_json__get_bool(o, "partial");
     const cJSON *samples = cJSON_GetObjectItemCaseSensitive(o, "samples");
     if (!cJSON_IsArray(samples)) {
-        c->value = get_num(o, "value");
+        c->value = report_json__get_num(o, "value");
         return;
     }
     size_t nci;
-    double *ci = read_nums(cJSON_GetObjectItemCaseSensitive(o, "ci95"), &nci);
+    double *ci = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(o, "ci95"), &nci);
     c->ci_lo = nci > 0 ? ci[0] : NAN;
     c->ci_hi = nci > 1 ? ci[1] : NAN;
     free(ci);
     c->has_samples = 1;
-    c->samples = read_nums(samples, &c->n_samples);
-    c->value = c->median = get_num(o, "median");
-    c->mean = get_num(o, "mean");
-    c->min = get_num(o, "min");
-    c->max = get_num(o, "max");
-    c->stddev = get_num(o, "stddev");
-    c->mad = get_num(o, "mad");
-    c->cv = get_num(o, "cv");
-    c->n_outliers = get_count(o, "outliers");
-    c->n_nonfinite = get_count(o, "nonfinite");
+    c->samples = report_json__read_nums(samples, &c->n_samples);
+    c->value = c->median = report_json__get_num(o, "median");
+    c->mean = report_json__get_num(o, "mean");
+    c->min = report_json__get_num(o, "min");
+    c->max = report_json__get_num(o, "max");
+    c->stddev = report_json__get_num(o, "stddev");
+    c->mad = report_json__get_num(o, "mad");
+    c->cv = report_json__get_num(o, "cv");
+    c->n_outliers = report_json__get_count(o, "outliers");
+    c->n_nonfinite = report_json__get_count(o, "nonfinite");
     const cJSON *corr = cJSON_GetObjectItemCaseSensitive(o, "corrected");
     if (cJSON_IsObject(corr)) {   /* the drift-corrected figures, when written */
-        double *cci = read_nums(cJSON_GetObjectItemCaseSensitive(corr, "ci95"), &nci);
-        c->corr_median = get_num(corr, "median");
+        double *cci = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(corr, "ci95"), &nci);
+        c->corr_median = report_json__get_num(corr, "median");
         c->corr_ci_lo = nci > 0 ? cci[0] : NAN;
         c->corr_ci_hi = nci > 1 ? cci[1] : NAN;
         c->corrected = isfinite(c->corr_median) && nci == 2;
@@ -465,87 +466,87 @@ static void read_counter(const cJSON *o, dm_counter_result *c)
     }
 }
 
-static void read_quality(const cJSON *o, dm_quality *q)
+static void report_json__read_quality(const cJSON *o, dm_quality *q)
 {
     if (!cJSON_IsObject(o))
         return;
     q->present = 1;
-    q->rmse = get_num(o, "RMSE");
-    q->psnr = get_bool(o, "PSNR_infinite") ? INFINITY : get_num(o, "PSNR");
-    q->ssim = get_num(o, "SSIM");
-    q->silhouette_error = get_num(o, "SilhouetteError");
-    q->depth_rmse = get_num(o, "DepthRMSE");
-    q->crack_pixels = get_count(o, "CrackPixels");
-    q->nonfinite_pixels = get_count(o, "NonFinitePixels");
-    q->max_error = get_num(o, "MaxError");
-    q->pct_over_threshold = get_num(o, "PctOverThreshold");
-    q->flip = get_num(o, "FLIP");
-    q->flip_q1 = get_num(o, "FLIPQ1");
-    q->flip_median = get_num(o, "FLIPMedian");
-    q->flip_q3 = get_num(o, "FLIPQ3");
-    q->flip_max = get_num(o, "FLIPMax");
-    q->flip_ppd = get_num(o, "FLIPPixelsPerDegree");
-    q->reference = get_str(o, "reference");
+    q->rmse = report_json__get_num(o, "RMSE");
+    q->psnr = report_json__get_bool(o, "PSNR_infinite") ? INFINITY : report_json__get_num(o, "PSNR");
+    q->ssim = report_json__get_num(o, "SSIM");
+    q->silhouette_error = report_json__get_num(o, "SilhouetteError");
+    q->depth_rmse = report_json__get_num(o, "DepthRMSE");
+    q->crack_pixels = report_json__get_count(o, "CrackPixels");
+    q->nonfinite_pixels = report_json__get_count(o, "NonFinitePixels");
+    q->max_error = report_json__get_num(o, "MaxError");
+    q->pct_over_threshold = report_json__get_num(o, "PctOverThreshold");
+    q->flip = report_json__get_num(o, "FLIP");
+    q->flip_q1 = report_json__get_num(o, "FLIPQ1");
+    q->flip_median = report_json__get_num(o, "FLIPMedian");
+    q->flip_q3 = report_json__get_num(o, "FLIPQ3");
+    q->flip_max = report_json__get_num(o, "FLIPMax");
+    q->flip_ppd = report_json__get_num(o, "FLIPPixelsPerDegree");
+    q->reference = report_json__get_str(o, "reference");
 }
 
-static void read_config(const cJSON *o, dm_config_result *c)
+static void report_json__read_config(const cJSON *o, dm_config_result *c)
 {
-    c->key = get_str(o, "key");
-    c->scene = get_str(o, "scene");
-    read_kv(cJSON_GetObjectItemCaseSensitive(o, "params"), &c->params, &c->n_params);
+    c->key = report_json__get_str(o, "key");
+    c->scene = report_json__get_str(o, "scene");
+    report_json__read_kv(cJSON_GetObjectItemCaseSensitive(o, "params"), &c->params, &c->n_params);
     const cJSON *st = cJSON_GetObjectItemCaseSensitive(o, "status");
     c->ok = cJSON_IsString(st) && strcmp(st->valuestring, "ok") == 0;
-    c->reason = get_str(o, "reason");
-    c->log = get_str(o, "log");
+    c->reason = report_json__get_str(o, "reason");
+    c->log = report_json__get_str(o, "log");
     const cJSON *ctr = cJSON_GetObjectItemCaseSensitive(o, "counters");
     size_t n = (size_t)cJSON_GetArraySize(ctr);
     c->counters = dm_xcalloc(n ? n : 1, sizeof *c->counters);
     const cJSON *it;
     cJSON_ArrayForEach(it, ctr) {
-        read_counter(it, &c->counters[c->n_counters]);
+        report_json__read_counter(it, &c->counters[c->n_counters]);
         dm_counter_read_check(&c->counters[c->n_counters++], "results.json");
     }
-    read_quality(cJSON_GetObjectItemCaseSensitive(o, "quality"), &c->quality);
+    report_json__read_quality(cJSON_GetObjectItemCaseSensitive(o, "quality"), &c->quality);
     const cJSON *im = cJSON_GetObjectItemCaseSensitive(o, "images");
-    c->img_render = get_str(im, "render");
-    c->img_heatmap = get_str(im, "heatmap");
-    c->img_reference = get_str(im, "reference");
-    c->img_flip = get_str(im, "flip");
+    c->img_render = report_json__get_str(im, "render");
+    c->img_heatmap = report_json__get_str(im, "heatmap");
+    c->img_reference = report_json__get_str(im, "reference");
+    c->img_flip = report_json__get_str(im, "flip");
 }
 
-static void read_fit(const cJSON *o, dm_fit_result *f)
+static void report_json__read_fit(const cJSON *o, dm_fit_result *f)
 {
-    f->model = get_str(o, "model");
-    f->formula = get_str(o, "formula");
-    f->response = get_str(o, "response");
-    read_kv(cJSON_GetObjectItemCaseSensitive(o, "group"), &f->group, &f->n_group);
+    f->model = report_json__get_str(o, "model");
+    f->formula = report_json__get_str(o, "formula");
+    f->response = report_json__get_str(o, "response");
+    report_json__read_kv(cJSON_GetObjectItemCaseSensitive(o, "group"), &f->group, &f->n_group);
     const cJSON *p = cJSON_GetObjectItemCaseSensitive(o, "params"), *it;
     size_t n = (size_t)cJSON_GetArraySize(p);
     f->params = dm_xcalloc(n ? n : 1, sizeof *f->params);
     cJSON_ArrayForEach(it, p) {
         dm_fit_param *fp = &f->params[f->n_params++];
         fp->name = dm_xstrdup(it->string);
-        fp->value = get_num(it, "value");
-        fp->stderr_ = get_num(it, "stderr");
+        fp->value = report_json__get_num(it, "value");
+        fp->stderr_ = report_json__get_num(it, "stderr");
     }
-    f->r2 = get_num(o, "r2");
-    f->rmse = get_num(o, "rmse");
-    f->mape = get_num(o, "mape");
-    f->cv_mape = get_num(o, "cv_mape");
-    f->n_points = get_count(o, "n_points");
-    f->n_excluded = get_count(o, "n_excluded");
-    f->termination = get_str(o, "termination");
-    f->condition = get_bool(o, "condition_infinite") ? INFINITY
-                 : cJSON_HasObjectItem(o, "condition") ? get_num(o, "condition") : 0.0;
-    f->warnings = read_strs(cJSON_GetObjectItemCaseSensitive(o, "warnings"), &f->n_warnings);
+    f->r2 = report_json__get_num(o, "r2");
+    f->rmse = report_json__get_num(o, "rmse");
+    f->mape = report_json__get_num(o, "mape");
+    f->cv_mape = report_json__get_num(o, "cv_mape");
+    f->n_points = report_json__get_count(o, "n_points");
+    f->n_excluded = report_json__get_count(o, "n_excluded");
+    f->termination = report_json__get_str(o, "termination");
+    f->condition = report_json__get_bool(o, "condition_infinite") ? INFINITY
+                 : cJSON_HasObjectItem(o, "condition") ? report_json__get_num(o, "condition") : 0.0;
+    f->warnings = report_json__read_strs(cJSON_GetObjectItemCaseSensitive(o, "warnings"), &f->n_warnings);
     size_t nm, np, nl;
-    f->measured = read_nums(cJSON_GetObjectItemCaseSensitive(o, "measured"), &nm);
-    f->predicted = read_nums(cJSON_GetObjectItemCaseSensitive(o, "predicted"), &np);
-    f->point_labels = read_strs(cJSON_GetObjectItemCaseSensitive(o, "point_labels"), &nl);
+    f->measured = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(o, "measured"), &nm);
+    f->predicted = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(o, "predicted"), &np);
+    f->point_labels = report_json__read_strs(cJSON_GetObjectItemCaseSensitive(o, "point_labels"), &nl);
 }
 
-/* The scenes' drift records of "precision" (precision_json), when written. */
-static void read_precision(const cJSON *o, dm_run_result *r)
+/* The scenes' drift records of "precision" (report_json__precision_json), when written. */
+static void report_json__read_precision(const cJSON *o, dm_run_result *r)
 {
     const cJSON *a = cJSON_GetObjectItemCaseSensitive(o, "scenes"), *it;
     if (!cJSON_IsArray(a))
@@ -553,46 +554,47 @@ static void read_precision(const cJSON *o, dm_run_result *r)
     r->precision = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->precision);
     cJSON_ArrayForEach(it, a) {
         dm_scene_precision *p = &r->precision[r->n_precision++];
-        p->scene = get_str(it, "scene");
-        p->corrected = get_bool(it, "corrected");
-        p->reason = get_str(it, "reason");
-        p->predictor = get_str(it, "predictor");
-        p->n_rounds = get_count(it, "rounds");
-        p->machine_spread = get_num(it, "machine_spread");
-        p->raw_noise = get_num(it, "raw_noise");
-        p->loo_noise = get_num(it, "loo_noise");
-        p->calib_noise = get_num(it, "calib_noise");
-        p->resolvable = get_num(it, "resolvable");
+        p->scene = report_json__get_str(it, "scene");
+        p->corrected = report_json__get_bool(it, "corrected");
+        p->reason = report_json__get_str(it, "reason");
+        p->predictor = report_json__get_str(it, "predictor");
+        p->n_rounds = report_json__get_count(it, "rounds");
+        p->machine_spread = report_json__get_num(it, "machine_spread");
+        p->raw_noise = report_json__get_num(it, "raw_noise");
+        p->loo_noise = report_json__get_num(it, "loo_noise");
+        p->calib_noise = report_json__get_num(it, "calib_noise");
+        p->resolvable = report_json__get_num(it, "resolvable");
     }
 }
 
-static void read_run(const cJSON *root, dm_run_result *r)
+static void report_json__read_run(const cJSON *root, dm_run_result *r)
 {
     const cJSON *run = cJSON_GetObjectItemCaseSensitive(root, "run"), *it;
-    r->id = get_str(run, "id");
-    r->sweep = get_str(run, "sweep");
-    r->started = get_str(run, "started");
-    r->finished = get_str(run, "finished");
-    r->sweep_hash = get_str(run, "sweep_hash");
-    read_kv(cJSON_GetObjectItemCaseSensitive(run, "environment"), &r->environment, &r->n_environment);
+    r->id = report_json__get_str(run, "id");
+    r->sweep = report_json__get_str(run, "sweep");
+    r->started = report_json__get_str(run, "started");
+    r->finished = report_json__get_str(run, "finished");
+    r->sweep_hash = report_json__get_str(run, "sweep_hash");
+    report_json__read_kv(cJSON_GetObjectItemCaseSensitive(run, "environment"), &r->environment,
+                         &r->n_environment);
     const cJSON *t = cJSON_GetObjectItemCaseSensitive(run, "timer");
-    r->gpu_time_coverage = get_num(t, "gpu_time_coverage");
-    r->timer_verdict = get_str(t, "verdict");
+    r->gpu_time_coverage = report_json__get_num(t, "gpu_time_coverage");
+    r->timer_verdict = report_json__get_str(t, "verdict");
     const cJSON *a = cJSON_GetObjectItemCaseSensitive(root, "configs");
     r->configs = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->configs);
-    cJSON_ArrayForEach(it, a) read_config(it, &r->configs[r->n_configs++]);
-    read_precision(cJSON_GetObjectItemCaseSensitive(root, "precision"), r);
+    cJSON_ArrayForEach(it, a) report_json__read_config(it, &r->configs[r->n_configs++]);
+    report_json__read_precision(cJSON_GetObjectItemCaseSensitive(root, "precision"), r);
     a = cJSON_GetObjectItemCaseSensitive(root, "left_out");
     r->left_out = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->left_out);
     cJSON_ArrayForEach(it, a) {
         dm_left_out *l = &r->left_out[r->n_left_out++];
-        read_kv(cJSON_GetObjectItemCaseSensitive(it, "params"), &l->params, &l->n_params);
-        l->reason = get_str(it, "reason");
+        report_json__read_kv(cJSON_GetObjectItemCaseSensitive(it, "params"), &l->params, &l->n_params);
+        l->reason = report_json__get_str(it, "reason");
     }
     a = cJSON_GetObjectItemCaseSensitive(root, "fits");
     r->fits = dm_xcalloc((size_t)cJSON_GetArraySize(a) + 1, sizeof *r->fits);
-    cJSON_ArrayForEach(it, a) read_fit(it, &r->fits[r->n_fits++]);
-    r->warnings = read_strs(cJSON_GetObjectItemCaseSensitive(root, "warnings"), &r->n_warnings);
+    cJSON_ArrayForEach(it, a) report_json__read_fit(it, &r->fits[r->n_fits++]);
+    r->warnings = report_json__read_strs(cJSON_GetObjectItemCaseSensitive(root, "warnings"), &r->n_warnings);
 }
 
 /* 1 when field name of o is absent, null or of the type is_type checks. */
@@ -628,7 +630,7 @@ static const char *shape__counters(const cJSON *cfg)
 }
 
 /* Checks the skeleton the reader relies on; names the first missing part. */
-static const char *shape_error(const cJSON *root)
+static const char *report_json__shape_error(const cJSON *root)
 {
     if (!cJSON_IsObject(root))
         return "top level is not an object";
@@ -664,7 +666,7 @@ int report_read_json(const char *path, dm_run_result *out, char *err, size_t err
     }
     const char *end = NULL;
     cJSON *root = cJSON_ParseWithLengthOpts(text, len, &end, 0);
-    const char *why = root ? shape_error(root) : "malformed JSON";
+    const char *why = root ? report_json__shape_error(root) : "malformed JSON";
     if (why) {
         snprintf(err, errlen, "%s: %s (near byte %ld)", path, why,
                  root ? 0L : (long)((end ? end : text) - text));
@@ -673,7 +675,7 @@ int report_read_json(const char *path, dm_run_result *out, char *err, size_t err
         return DM_ERR_PARSE;
     }
     memset(out, 0, sizeof *out);
-    read_run(root, out);
+    report_json__read_run(root, out);
     cJSON_Delete(root);
     free(text);
     return 0;

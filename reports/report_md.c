@@ -18,25 +18,25 @@
 #include <string.h>
 
 /* Table-cell text: plain text only (dm_str_cat_md: '|', HTML, control bytes). */
-static void cell(dm_str *s, const char *text)
+static void report_md__cell(dm_str *s, const char *text)
 {
     dm_str_cat_md(s, text);
 }
 
-static void params_text(dm_str *s, const dm_kv *kv, size_t n)
+static void report_md__params_text(dm_str *s, const dm_kv *kv, size_t n)
 {
     for (size_t i = 0; i < n; i++) {
         if (i)
             dm_str_cat(s, " ");
-        cell(s, kv[i].key);
+        report_md__cell(s, kv[i].key);
         dm_str_cat(s, "=");
-        cell(s, kv[i].value);
+        report_md__cell(s, kv[i].value);
     }
 }
 
 /* PSNR (unless it is the Pareto metric, whose column says it), SSIM and
  * the Pareto metric's shown value at its column's one precision. */
-static void quality_cells(dm_str *s, const dm_quality *q, report_metric m)
+static void report_md__quality_cells(dm_str *s, const dm_quality *q, report_metric m)
 {
     int psnr = m != REPORT_METRIC_PSNR;
     if (!q->present) {
@@ -58,16 +58,16 @@ static void quality_cells(dm_str *s, const dm_quality *q, report_metric m)
     dm_str_cat(s, " |");
 }
 
-static void scene_table(dm_str *s, const report_model *m, const report_model_scene *sc)
+static void report_md__scene_table(dm_str *s, const report_model *m, const report_model_scene *sc)
 {
     dm_str_cat(s, "\n## ");
-    cell(s, sc->label);
+    report_md__cell(s, sc->label);
     dm_str_cat(s, "\n\n");
     report_answer_scene(m, (size_t)(sc - m->scenes), REPORT_ANSWER_MD, s);
     int timed = sc->untimed == NULL, psnr = m->metric != REPORT_METRIC_PSNR;   /* else one PSNR column */
     if (timed) {
         dm_str_printf(s, "\nFront (best %s for its cost, fastest first): ", report_metric_label(m->metric));
-        cell(s, sc->front_text);
+        report_md__cell(s, sc->front_text);
         dm_str_printf(s, ".\n\n| configuration | median ms | 95%% CI | drift removed: ms [95%% CI] |%s SSIM | %s | "
                          "key |\n|---|---|---|---|%s---|---|---|\n", psnr ? " PSNR |" : "",
                       report_metric_label(m->metric), psnr ? "---|" : "");
@@ -78,21 +78,21 @@ static void scene_table(dm_str *s, const report_model *m, const report_model_sce
     for (size_t i = 0; i < sc->n_rows; i++) {
         const report_model_row *r = &m->rows[sc->rows[i]];
         dm_str_cat(s, "| ");
-        cell(s, r->label);
+        report_md__cell(s, r->label);
         if (!timed) {
             dm_str_cat(s, " |");
         } else if (r->frame_time) {
             dm_str_printf(s, " | %s | %s", r->ms_text, r->ci_text);
             if (*r->marks_short) {
                 dm_str_cat(s, " ");
-                cell(s, r->marks_short);
+                report_md__cell(s, r->marks_short);
             }
             dm_str_cat(s, " | ");
-            cell(s, r->corrected ? r->corr_time_ci_text : "raw only");
+            report_md__cell(s, r->corrected ? r->corr_time_ci_text : "raw only");
             dm_str_cat(s, " |");
         } else
             dm_str_cat(s, " | unavailable | | |");
-        quality_cells(s, &r->config->quality, m->metric);
+        report_md__quality_cells(s, &r->config->quality, m->metric);
         dm_str_printf(s, " `%s` |\n", r->config->key);
     }
 }
@@ -102,20 +102,20 @@ static void scene_table(dm_str *s, const report_model *m, const report_model_sce
 
 /* The noisy configurations by label with their CI and marks, a few per
  * indented line (under their warning). */
-static void noisy_list(dm_str *s, const report_model *m)
+static void report_md__noisy_list(dm_str *s, const report_model *m)
 {
     for (size_t i = 0; i < m->n_noisy; i++) {
         const report_model_row *r = &m->rows[m->noisy[i]];
         dm_str_cat(s, i % NOISY_PER_LINE ? "; " : "  - ");
-        cell(s, r->full_label);
+        report_md__cell(s, r->full_label);
         dm_str_cat(s, " (");
-        cell(s, r->marks + strlen("⚠ noisy: "));
+        report_md__cell(s, r->marks + strlen("⚠ noisy: "));
         dm_str_cat(s, ")");
         dm_str_cat(s, i % NOISY_PER_LINE == NOISY_PER_LINE - 1 || i + 1 == m->n_noisy ? "\n" : "");
     }
 }
 
-static void failures(dm_str *s, const dm_run_result *run)
+static void report_md__failures(dm_str *s, const dm_run_result *run)
 {
     dm_str_cat(s, "\n## Failed configurations\n\n");
     size_t n = 0;
@@ -124,9 +124,9 @@ static void failures(dm_str *s, const dm_run_result *run)
         if (c->ok)
             continue;
         dm_str_printf(s, "- `%s` ", c->key);
-        params_text(s, c->params, c->n_params);
+        report_md__params_text(s, c->params, c->n_params);
         dm_str_cat(s, ": ");
-        cell(s, c->reason ? c->reason : "no reason recorded");
+        report_md__cell(s, c->reason ? c->reason : "no reason recorded");
         dm_str_cat(s, "\n");
         n++;
     }
@@ -135,9 +135,9 @@ static void failures(dm_str *s, const dm_run_result *run)
     dm_str_cat(s, "\n## Left out\n\n");
     for (size_t i = 0; i < run->n_left_out; i++) {
         dm_str_cat(s, "- ");
-        params_text(s, run->left_out[i].params, run->left_out[i].n_params);
+        report_md__params_text(s, run->left_out[i].params, run->left_out[i].n_params);
         dm_str_cat(s, ": ");
-        cell(s, run->left_out[i].reason);
+        report_md__cell(s, run->left_out[i].reason);
         dm_str_cat(s, "\n");
     }
     if (!run->n_left_out)
@@ -145,7 +145,7 @@ static void failures(dm_str *s, const dm_run_result *run)
 }
 
 /* Instructions as a proxy for frame time, and counters by pass. */
-static void proxy_section(dm_str *s, const dm_run_result *run)
+static void report_md__proxy_section(dm_str *s, const dm_run_result *run)
 {
     report_proxy p;
     if (report_proxy_fit(run, &p) == 0) {
@@ -154,7 +154,7 @@ static void proxy_section(dm_str *s, const dm_run_result *run)
                       p.a_ns, p.ns_per_instruction, p.n, p.r2);
         for (size_t i = 0; i < p.n_strays; i++) {
             dm_str_cat(s, "- ");
-            cell(s, p.strays[i].label);
+            report_md__cell(s, p.strays[i].label);
             dm_str_printf(s, ": %.3f ms measured, %.3f ms predicted (%+.1f%%)\n", p.strays[i].wall_ns / 1e6,
                           p.strays[i].predicted_ns / 1e6, p.strays[i].residual_rel * 100);
         }
@@ -169,13 +169,13 @@ int report__write_md(const report_model *m, const report_desc *d, const char *pa
     const dm_run_result *run = m->run;
     dm_str s = {0};
     dm_str_cat(&s, "# dmbench run ");
-    cell(&s, run->id);
+    report_md__cell(&s, run->id);
     dm_str_cat(&s, "\n\n- sweep: ");
-    cell(&s, run->sweep);
+    report_md__cell(&s, run->sweep);
     dm_str_cat(&s, "\n- started: ");
-    cell(&s, run->started);
+    report_md__cell(&s, run->started);
     dm_str_cat(&s, "\n- renderer: ");
-    cell(&s, dm_kv_get(run->environment, run->n_environment, "renderer"));
+    report_md__cell(&s, dm_kv_get(run->environment, run->n_environment, "renderer"));
     dm_str_printf(&s, "\n- Pareto metric: %s (%s)", report_metric_name(m->metric),
                   report_metric_label(m->metric));
     dm_str_cat(&s, "\n- budget: ");
@@ -191,37 +191,37 @@ int report__write_md(const report_model *m, const report_desc *d, const char *pa
                   run->timer_verdict ? run->timer_verdict : "unknown", run->gpu_time_coverage * 100);
     if (*m->constants) {
         dm_str_cat(&s, "- every scene: ");
-        cell(&s, m->constants);
+        report_md__cell(&s, m->constants);
         dm_str_cat(&s, "\n");
     }
     if (*m->precision_text) {   /* noise floor and drift removal (docs/measurement.md) */
         dm_str_cat(&s, "- precision: ");
-        cell(&s, m->precision_text);
+        report_md__cell(&s, m->precision_text);
         dm_str_cat(&s, "\n");
         for (size_t i = 0; i < m->n_scenes; i++) {
             const dm_scene_precision *p = m->scenes[i].precision;
             if (!p || p->corrected)
                 continue;
             dm_str_cat(&s, "  - ");
-            cell(&s, m->scenes[i].label);
+            report_md__cell(&s, m->scenes[i].label);
             dm_str_cat(&s, ": ");
-            cell(&s, p->reason ? p->reason : "no reason recorded");
+            report_md__cell(&s, p->reason ? p->reason : "no reason recorded");
             dm_str_cat(&s, "\n");
         }
     }
     char *const *w = m->warnings;   /* the list of results.json */
     for (size_t i = 0; i < m->n_warnings; i++) {
         dm_str_cat(&s, "- warning: ");
-        cell(&s, w[i]);
+        report_md__cell(&s, w[i]);
         dm_str_cat(&s, "\n");
         if (strstr(w[i], " noisy configuration") && strstr(w[i], "compare their times with care"))
-            noisy_list(&s, m);
+            report_md__noisy_list(&s, m);
     }
     for (size_t i = 0; i < m->n_scenes; i++)
-        scene_table(&s, m, &m->scenes[i]);
-    failures(&s, run);
+        report_md__scene_table(&s, m, &m->scenes[i]);
+    report_md__failures(&s, run);
     dm_str_cat(&s, m->published_md);
-    proxy_section(&s, run);
+    report_md__proxy_section(&s, run);
     int rc = report__save(&s, path);
     dm_str_free(&s);
     return rc;

@@ -31,7 +31,7 @@
 #define SVG_B 44.0
 
 /* Characters (not bytes) of UTF-8 text, for its drawn width. */
-static size_t svg_chars(const char *t)
+static size_t svg_chart__chars(const char *t)
 {
     size_t n = 0;
     for (; *t; t++)
@@ -42,16 +42,23 @@ static size_t svg_chars(const char *t)
 /* An axis: linear, or log10 when its values span more than a decade. */
 typedef struct svg_axis { double lo, hi; int log; } svg_axis;
 
-static double svg_t(svg_axis a, double v)
+static double svg_chart__t(svg_axis a, double v)
 {
     return a.log ? (log10(v) - log10(a.lo)) / (log10(a.hi) - log10(a.lo)) : (v - a.lo) / (a.hi - a.lo);
 }
-static double svg_x(svg_axis a, double v) { return SVG_L + svg_t(a, v) * (SVG_W - SVG_L - SVG_R); }
-static double svg_y(svg_axis a, double v) { return SVG_H - SVG_B - svg_t(a, v) * (SVG_H - SVG_T - SVG_B); }
+static double svg_chart__x(svg_axis a, double v)
+{
+    return SVG_L + svg_chart__t(a, v) * (SVG_W - SVG_L - SVG_R);
+}
+
+static double svg_chart__y(svg_axis a, double v)
+{
+    return SVG_H - SVG_B - svg_chart__t(a, v) * (SVG_H - SVG_T - SVG_B);
+}
 
 /* Opens <div class="chart" role="img" aria-label="title"><svg> of w × h
  * with the title drawn at the top. */
-static void svg_open(dm_str *s, const char *title, double w, double h)
+static void svg_chart__open(dm_str *s, const char *title, double w, double h)
 {
     dm_str_cat(s, "<div class=\"chart\" role=\"img\" aria-label=\"");
     dm_str_cat_html(s, title);
@@ -63,7 +70,7 @@ static void svg_open(dm_str *s, const char *title, double w, double h)
 
 /* Round tick values of an axis into v (room for 32): 1-2-5 per decade on a
  * log axis, else a 1, 2 or 5 × 10^k step giving four to eight ticks. */
-static size_t svg_ticks(svg_axis a, double *v)
+static size_t svg_chart__ticks(svg_axis a, double *v)
 {
     size_t n = 0;
     if (a.log) {
@@ -84,19 +91,19 @@ static size_t svg_ticks(svg_axis a, double *v)
 
 /* The ticks of both axes with their numbers (%g: round values print
  * short), and the axis titles. */
-static void svg_axes(dm_str *s, svg_axis ax, svg_axis ay, const char *xt, const char *yt)
+static void svg_chart__axes(dm_str *s, svg_axis ax, svg_axis ay, const char *xt, const char *yt)
 {
     double v[32];
     dm_str_printf(s, "<rect x=\"%.1f\" y=\"%.1f\" width=\"%.1f\" height=\"%.1f\" fill=\"none\" stroke=\"#888\"/>",
                   SVG_L, SVG_T, SVG_W - SVG_L - SVG_R, SVG_H - SVG_T - SVG_B);
-    for (size_t k = 0, n = svg_ticks(ax, v); k < n; k++)
+    for (size_t k = 0, n = svg_chart__ticks(ax, v); k < n; k++)
         dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#eee\"/>"
                          "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">%g</text>",
-                      svg_x(ax, v[k]), svg_x(ax, v[k]), SVG_T, SVG_H - SVG_B, svg_x(ax, v[k]),
-                      SVG_H - SVG_B + 14, v[k]);
-    for (size_t k = 0, n = svg_ticks(ay, v); k < n; k++)
+                      svg_chart__x(ax, v[k]), svg_chart__x(ax, v[k]), SVG_T, SVG_H - SVG_B,
+                      svg_chart__x(ax, v[k]), SVG_H - SVG_B + 14, v[k]);
+    for (size_t k = 0, n = svg_chart__ticks(ay, v); k < n; k++)
         dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\">%g</text>", SVG_L - 4,
-                      svg_y(ay, v[k]) + 4, v[k]);
+                      svg_chart__y(ay, v[k]) + 4, v[k]);
     dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"middle\">", (SVG_L + SVG_W - SVG_R) / 2, SVG_H - 8);
     dm_str_cat_html(s, xt);
     dm_str_printf(s, "</text><text x=\"12\" y=\"%.1f\" text-anchor=\"middle\" transform=\"rotate(-90 12 %.1f)\">",
@@ -106,7 +113,7 @@ static void svg_axes(dm_str *s, svg_axis ax, svg_axis ay, const char *xt, const 
 }
 
 /* The hover title of a row: label, time with CI, the metric's value. */
-static void svg_title(dm_str *s, const report_model_row *r, double shown, report_metric m)
+static void svg_chart__title(dm_str *s, const report_model_row *r, double shown, report_metric m)
 {
     dm_str text = {0};
     dm_str_printf(&text, "%s: %s, %s %.4g", r->label, r->time_ci_text, report_metric_name(m), shown);
@@ -127,7 +134,7 @@ typedef struct svg_points {
     report_metric m;
 } svg_points;
 
-static void svg_points_load(svg_points *p, const report_model *m, const report_model_scene *sc)
+static void svg_chart__points_load(svg_points *p, const report_model *m, const report_model_scene *sc)
 {
     size_t cap = sc->n_rows + 1;
     p->idx = dm_xcalloc(cap, sizeof *p->idx);
@@ -162,7 +169,7 @@ static void svg_points_load(svg_points *p, const report_model *m, const report_m
         p->y[i] = isfinite(p->y[i]) ? p->y[i] : p->ay.hi;
 }
 
-static void svg_points_free(svg_points *p)
+static void svg_chart__points_free(svg_points *p)
 {
     free(p->idx);
     free(p->x);
@@ -175,7 +182,7 @@ static void svg_points_free(svg_points *p)
  * families differ in grey print too. */
 static const char *const svg_family_colour[RECOMMEND_FAMILY_COUNT] = {"#777777", "#0072b2", "#d55e00", "#7b3294"};
 
-static void svg_marker(dm_str *s, recommend_family f, double x, double y, int filled)
+static void svg_chart__marker(dm_str *s, recommend_family f, double x, double y, int filled)
 {
     const char *c = svg_family_colour[f];
     const char *fill = filled ? c : "#fff";
@@ -191,7 +198,7 @@ static void svg_marker(dm_str *s, recommend_family f, double x, double y, int fi
 }
 
 /* 1 when the box (x0, y0)–(x1, y1) overlaps a placed label or leaves the plot. */
-static int svg_box_taken(const svg_points *p, double x0, double y0, double x1, double y1)
+static int svg_chart__box_taken(const svg_points *p, double x0, double y0, double x1, double y1)
 {
     if (x0 < SVG_L + 1 || x1 > SVG_W - 2 || y0 < SVG_T + 1 || y1 > SVG_H - SVG_B - 1)
         return 1;
@@ -206,13 +213,13 @@ static int svg_box_taken(const svg_points *p, double x0, double y0, double x1, d
 /* Places the label of a point at (px, py): beside it right or left, a line
  * up or down, farther out when taken; the markers are boxes too.  Returns
  * 0 and sets *tx, *ty, *end when a place is free. */
-static int svg_place(svg_points *p, double px, double py, double w, double *tx, double *ty, int *end)
+static int svg_chart__place(svg_points *p, double px, double py, double w, double *tx, double *ty, int *end)
 {
     static const double dy[] = {4, -6, 14, -16, 24, -26, 34, -36};
     for (size_t k = 0; k < sizeof dy / sizeof *dy; k++)
         for (int side = 0; side < 2; side++) {
             double x0 = side ? px - 8 - w : px + 8, y1 = py + dy[k], y0 = y1 - 10;
-            if (svg_box_taken(p, x0, y0, x0 + w, y1 + 1))
+            if (svg_chart__box_taken(p, x0, y0, x0 + w, y1 + 1))
                 continue;
             double *b = &p->box[4 * p->nbox++];
             b[0] = x0, b[1] = y0, b[2] = x0 + w, b[3] = y1 + 1;
@@ -223,17 +230,17 @@ static int svg_place(svg_points *p, double px, double py, double w, double *tx, 
 }
 
 /* Point i: hover title, CI whisker, the family's marker (filled on the front). */
-static void svg_point(dm_str *s, const report_model *m, svg_points *p, size_t i)
+static void svg_chart__point(dm_str *s, const report_model *m, svg_points *p, size_t i)
 {
     const report_model_row *r = &m->rows[p->idx[i]];
     const dm_counter_result *t = r->frame_time;
-    double px = svg_x(p->ax, p->x[i]), py = svg_y(p->ay, p->y[i]);
+    double px = svg_chart__x(p->ax, p->x[i]), py = svg_chart__y(p->ay, p->y[i]);
     dm_str_cat(s, "<g>");
-    svg_title(s, r, p->y[i], p->m);
+    svg_chart__title(s, r, p->y[i], p->m);
     if (isfinite(t->ci_lo) && isfinite(t->ci_hi) && t->ci_lo > 0)
         dm_str_printf(s, "<line x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" stroke=\"#999\"/>",
-                      svg_x(p->ax, t->ci_lo / 1e6), svg_x(p->ax, t->ci_hi / 1e6), py, py);
-    svg_marker(s, r->family, px, py, r->front);
+                      svg_chart__x(p->ax, t->ci_lo / 1e6), svg_chart__x(p->ax, t->ci_hi / 1e6), py, py);
+    svg_chart__marker(s, r->family, px, py, r->front);
     dm_str_cat(s, "</g>");
     double *b = &p->box[4 * p->nbox++];
     b[0] = px - 5, b[1] = py - 5, b[2] = px + 5, b[3] = py + 5;
@@ -241,13 +248,13 @@ static void svg_point(dm_str *s, const report_model *m, svg_points *p, size_t i)
 
 /* The label beside point i, or none when no place is free (its hover
  * title still names it; the table below lists every configuration). */
-static void svg_point_label(dm_str *s, const report_model *m, svg_points *p, size_t i)
+static void svg_chart__point_label(dm_str *s, const report_model *m, svg_points *p, size_t i)
 {
     const char *label = m->rows[p->idx[i]].label;
     double tx, ty;
     int end;
-    if (svg_place(p, svg_x(p->ax, p->x[i]), svg_y(p->ay, p->y[i]), (double)svg_chars(label) * 6.4, &tx,
-                  &ty, &end) == 0) {
+    if (svg_chart__place(p, svg_chart__x(p->ax, p->x[i]), svg_chart__y(p->ay, p->y[i]),
+                         (double)svg_chart__chars(label) * 6.4, &tx, &ty, &end) == 0) {
         dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" font-size=\"10\"%s>", tx, ty,
                       end ? " text-anchor=\"end\"" : "");
         dm_str_cat_html(s, label);
@@ -256,7 +263,7 @@ static void svg_point_label(dm_str *s, const report_model *m, svg_points *p, siz
 }
 
 /* The family legend in the top right corner of the plot. */
-static void svg_legend(dm_str *s, const report_model *m, const svg_points *p)
+static void svg_chart__legend(dm_str *s, const report_model *m, const svg_points *p)
 {
     int present[RECOMMEND_FAMILY_COUNT] = {0};
     for (size_t i = 0; i < p->n; i++)
@@ -269,47 +276,47 @@ static void svg_legend(dm_str *s, const report_model *m, const svg_points *p)
         dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"%s\">%s</text>", x,
                       SVG_T - 8, svg_family_colour[f], name);
         x -= strlen(name) * 6.2 + 4;
-        svg_marker(s, (recommend_family)f, x - 5, SVG_T - 12, 1);
+        svg_chart__marker(s, (recommend_family)f, x - 5, SVG_T - 12, 1);
         x -= 18;
     }
     dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#555\">filled: on the "
                      "front</text>", x, SVG_T - 8);
 }
 
-static void svg_scatter(dm_str *s, const report_model *m, const report_model_scene *sc)
+static void svg_chart__scatter(dm_str *s, const report_model *m, const report_model_scene *sc)
 {
     svg_points p;
-    svg_points_load(&p, m, sc);
+    svg_chart__points_load(&p, m, sc);
     if (p.n) {
         dm_str title = {0};
         dm_str_printf(&title, "%s vs time: %s", report_metric_label(p.m), sc->label);
-        svg_open(s, dm_str_get(&title), SVG_W, SVG_H);
+        svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
         dm_str_free(&title);
-        svg_axes(s, p.ax, p.ay, p.ax.log ? "median frame time, ms, log scale (whisker: 95% CI)"
+        svg_chart__axes(s, p.ax, p.ay, p.ax.log ? "median frame time, ms, log scale (whisker: 95% CI)"
                                          : "median frame time, ms (whisker: 95% CI)",
                  report_metric_label(p.m));
         dm_str_printf(s, "<polyline fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"");
         for (size_t k = 0; k < sc->n_front; k++)
             for (size_t i = 0; i < p.n; i++)
                 if (p.idx[i] == sc->front[k])
-                    dm_str_printf(s, "%.1f,%.1f ", svg_x(p.ax, p.x[i]), svg_y(p.ay, p.y[i]));
+                    dm_str_printf(s, "%.1f,%.1f ", svg_chart__x(p.ax, p.x[i]), svg_chart__y(p.ay, p.y[i]));
         dm_str_cat(s, "\"/>");
         for (size_t i = 0; i < p.n; i++)
-            svg_point(s, m, &p, i);
+            svg_chart__point(s, m, &p, i);
         for (size_t k = 0; k < sc->n_front; k++)   /* the front's labels first: they matter most */
             for (size_t i = 0; i < p.n; i++)
                 if (p.idx[i] == sc->front[k])
-                    svg_point_label(s, m, &p, i);
+                    svg_chart__point_label(s, m, &p, i);
         for (size_t i = 0; i < p.n; i++)
             if (!m->rows[p.idx[i]].front)
-                svg_point_label(s, m, &p, i);
-        svg_legend(s, m, &p);
+                svg_chart__point_label(s, m, &p, i);
+        svg_chart__legend(s, m, &p);
         dm_str_cat(s, "</svg></div>\n");
     }
-    svg_points_free(&p);
+    svg_chart__points_free(&p);
 }
 
-static void svg_bars(dm_str *s, const report_model *m, const report_model_scene *sc)
+static void svg_chart__bars(dm_str *s, const report_model *m, const report_model_scene *sc)
 {
     size_t *rows = dm_xcalloc(sc->n_rows + 1, sizeof *rows), n = 0, longest = 0;
     double hi = 0;
@@ -329,7 +336,8 @@ static void svg_bars(dm_str *s, const report_model *m, const report_model_scene 
     hi = hi / 1e6 * 1.04;
     dm_str title = {0};
     dm_str_printf(&title, "Time per configuration: %s", sc->label);
-    svg_open(s, dm_str_get(&title), fmax(w, (double)svg_chars(dm_str_get(&title)) * SVG_CHAR_W * 1.2 + 8), h);
+    double tw = (double)svg_chart__chars(dm_str_get(&title)) * SVG_CHAR_W * 1.2 + 8;
+    svg_chart__open(s, dm_str_get(&title), fmax(w, tw), h);
     dm_str_free(&title);
     dm_str_printf(s, "<text x=\"%.1f\" y=\"28\">median frame time, ms, this scene only "
                      "(whisker: 95%% CI)</text>", lw);
@@ -354,6 +362,6 @@ static void svg_bars(dm_str *s, const report_model *m, const report_model_scene 
 
 void report__svg_scene(dm_str *s, const report_model *m, size_t si)
 {
-    svg_scatter(s, m, &m->scenes[si]);
-    svg_bars(s, m, &m->scenes[si]);
+    svg_chart__scatter(s, m, &m->scenes[si]);
+    svg_chart__bars(s, m, &m->scenes[si]);
 }
