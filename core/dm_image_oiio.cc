@@ -90,7 +90,7 @@ extern "C" int dm_oiio_encode(const img *im, const char *path, unsigned char **b
 // RGBA: grey (1 channel) to RGB with alpha 1; grey+alpha (2 channels, the
 // second alpha) to RGB and A; two other channels to R, G with B 0, alpha 1;
 // RGB with alpha 1; four kept.
-static void expand_to_rgba(float *px, size_t npix, int n, bool grey_alpha)
+static void dm_image_oiio__expand_to_rgba(float *px, size_t npix, int n, bool grey_alpha)
 {
     for (size_t i = 0; i < npix; i++) {
         float *p = px + i * 4;
@@ -145,7 +145,7 @@ extern "C" int dm_oiio_load(const char *path, size_t max_pixels, img *out, int *
             std::free(px);
             return DM_ERR_IO;
         }
-        expand_to_rgba(px, (size_t)s.width * s.height, n, grey_alpha);
+        dm_image_oiio__expand_to_rgba(px, (size_t)s.width * s.height, n, grey_alpha);
         out->w = s.width;
         out->h = s.height;
         out->px = px;
