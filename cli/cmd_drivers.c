@@ -236,8 +236,9 @@ int cli_drivers_dry_run(const char *sweep_path, const sweep *s, const char *out)
     return rc;
 }
 
-/* Runs shard k of shards (0: the whole sweep) on driver i, unless it has
- * failed; a failure is recorded in whys[i].  Returns 1 when it failed now. */
+/* Runs driver's turn k of shards: `run --shard k/shards` into
+ * root/driver/shard-k-of-shards, or with one shard the whole sweep into
+ * root/driver.  Returns 1, with the reason in *why_out, when its run failed. */
 static int drivers__turn(const char *driver, const char *sweep_path, const char *root, int k, int shards,
                          drivers_args *a, char **why_out)
 {
