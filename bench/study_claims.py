@@ -86,14 +86,11 @@ def split_row(line):
 
 
 def sections(text):
-    """[(heading, body)] of the level-2 sections, the appendix left out (its
-    runs are history, kept as they were measured)."""
+    """[(heading, body)] of the level-2 sections."""
     parts = re.split(r"^## ", text, flags=re.M)
     out = []
     for p in parts[1:]:
         head, _, body = p.partition("\n")
-        if head.startswith("Appendix"):
-            break
         out.append((head.strip(), body))
     return out
 
