@@ -123,6 +123,9 @@ static void precision__set(dm_run_result *run, const precision__scene *s, const 
             k->corr_median = e->median;
             k->corr_ci_lo = e->lo;
             k->corr_ci_hi = e->hi;
+            k->corr_between = isfinite(e->between_lo) && isfinite(e->between_hi);
+            k->corr_between_lo = e->between_lo;
+            k->corr_between_hi = e->between_hi;
         }
     }
 }
@@ -182,7 +185,8 @@ static void precision__entry(const dm_run_result *run, const precision__scene *s
     *p = (dm_scene_precision){ .scene = dm_xstrdup(s->name), .corrected = keep,
                                .n_rounds = (int)d->n_rounds_used, .machine_spread = d->machine_spread,
                                .raw_noise = d->raw_noise, .loo_noise = d->loo_noise,
-                               .calib_noise = d->calib_noise };
+                               .calib_noise = d->calib_noise, .between_runs = keep,
+                               .reference_spread = keep ? d->reference_spread : NAN };
     if (!d->corrected)
         p->reason = dm_xasprintf("%s; raw figures only", d->why);
     else if (!keep)
@@ -244,6 +248,8 @@ size_t precision_apply(dm_run_result *run, uint64_t seed)
             dm_counter_result *c = &run->configs[i].counters[k];
             c->corrected = 0;
             c->corr_median = c->corr_ci_lo = c->corr_ci_hi = 0;
+            c->corr_between = 0;
+            c->corr_between_lo = c->corr_between_hi = 0;
         }
     size_t corrected = 0;
     for (size_t i = 0; i < run->n_configs; i++) {
