@@ -294,6 +294,32 @@ static void precision__say(FILE *f, const char *fmt, ...)
     dm_str_free(&wrapped);
 }
 
+/* The line on comparing with another run: how well each corrected scene
+ * knows its median machine speed, and the configurations within target_ci
+ * by the between-run CI (raw where not corrected); nothing when no scene
+ * has the figure. */
+static void precision__print_between(const dm_run_result *run, double target_ci, size_t n, FILE *f)
+{
+    double *ref = dm_xcalloc(run->n_precision + 1, sizeof *ref);
+    size_t m = 0, in = 0;
+    for (size_t i = 0; i < run->n_precision; i++)
+        if (run->precision[i].between_runs)
+            ref[m++] = run->precision[i].reference_spread;
+    for (size_t i = 0; m && i < run->n_configs; i++) {
+        const dm_counter_result *w = precision__wall(&run->configs[i]);
+        if (w)
+            in += w->corr_between ? (w->corr_between_hi - w->corr_between_lo) / 2 <= target_ci * w->corr_median
+                                  : (w->ci_hi - w->ci_lo) / 2 <= target_ci * w->median;
+    }
+    char b[32];
+    if (m)
+        precision__say(f, "dmbench: between runs: each corrected scene's median machine speed is known to "
+                "±%s (median over scenes, robust SD); with it, %zu of %zu within ±%g %% for comparing with "
+                "another run (results.json: corrected.ci95_between_runs)\n",
+                precision__pct(precision__median(ref, m), b), in, n, 100 * target_ci);
+    free(ref);
+}
+
 void precision_print(const dm_run_result *run, double target_ci, FILE *f)
 {
     size_t n = 0, raw_in = 0, corr_in = 0, n_corr_scenes = 0;
@@ -336,6 +362,7 @@ void precision_print(const dm_run_result *run, double target_ci, FILE *f)
             precision__pct(precision__median(v[2], run->n_precision), b[4]),
             any_calib ? precision__pct(precision__median(v[3], run->n_precision), b[0]) : "unavailable",
             any_calib ? "" : " (not timed in the rounds)");
+    precision__print_between(run, target_ci, n, f);
     for (size_t i = 0; i < run->n_precision; i++)
         if (run->precision[i].reason)
             precision__say(f, "dmbench: scene %s: %s\n", run->precision[i].scene, run->precision[i].reason);

@@ -121,6 +121,7 @@ static void test_scenes(void **state)
     precision_print(&run, 0.03, f);
     fclose(f);
     assert_non_null(strstr(text, "1 of 3 scenes corrected"));
+    assert_non_null(strstr(text, "dmbench: between runs: each corrected scene's median machine speed is known to ±"));
     assert_non_null(strstr(text, "dmbench: scene b: fewer than 3 configurations"));
     assert_non_null(strstr(text, "after the calibration workload (not timed"));
     free(text);
