@@ -581,6 +581,8 @@ static void report_json__read_precision(const cJSON *o, dm_run_result *r)
         p->loo_noise = report_json__get_num(it, "loo_noise");
         p->calib_noise = report_json__get_num(it, "calib_noise");
         p->resolvable = report_json__get_num(it, "resolvable");
+        p->reference_spread = report_json__get_num(it, "reference_spread");
+        p->between_runs = isfinite(p->reference_spread);
     }
 }
 
