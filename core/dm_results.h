@@ -39,9 +39,16 @@ typedef struct dm_counter_result {
     /* With the machine's drift removed (models/drift.h; docs/measurement.md,
      * "Drift removed"): corrected 1 when the figures below are set, 0 when
      * only the raw figures above exist (the scene's dm_scene_precision
-     * says why).  The raw median and CI above are never replaced. */
+     * says why).  The raw median and CI above are never replaced.
+     * corr_ci_* is the CI within the run (conditional on the run's median
+     * machine speed: for ties and picks inside the run); corr_between_* the
+     * CI for comparing with another run (that speed's own uncertainty in
+     * it), set when corr_between is 1 — at the end of a run or a merge,
+     * not kept in the store. */
     int corrected;
     double corr_median, corr_ci_lo, corr_ci_hi;
+    int corr_between;
+    double corr_between_lo, corr_between_hi;
 } dm_counter_result;
 
 typedef struct dm_quality {
@@ -130,6 +137,10 @@ typedef struct dm_scene_precision {
     double calib_noise;      /* after the calibration workload's ratio; NaN: not measured */
     double resolvable;       /* smallest relative difference between two of its configurations
                                 the run resolves: sqrt(2) x the median CI half-width used */
+    int between_runs;        /* 1: reference_spread is measured (at the end of a run or a merge;
+                                not kept in the store) */
+    double reference_spread; /* the uncertainty of the run's median machine speed that the
+                                corrected figures are relative to (robust SD, relative) */
 } dm_scene_precision;
 
 typedef struct dm_run_result {

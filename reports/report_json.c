@@ -78,15 +78,23 @@ static cJSON *report_json__str_array(char *const *v, size_t n)
 
 /* The drift-corrected figures of a counter with samples: an object, or
  * null when its scene kept the raw figures only (the run's "precision"
- * says why). */
+ * says why).  ci95 is the CI within the run (for ties and picks in it);
+ * ci95_between_runs the CI for comparing with another run, or null with
+ * the reason in between_runs_unavailable. */
 static cJSON *report_json__corrected_json(const dm_counter_result *c)
 {
     if (!c->corrected)
         return cJSON_CreateNull();
     cJSON *o = cJSON_CreateObject();
-    double ci[2] = {c->corr_ci_lo, c->corr_ci_hi};
+    double ci[2] = {c->corr_ci_lo, c->corr_ci_hi}, bci[2] = {c->corr_between_lo, c->corr_between_hi};
     cJSON_AddNumberToObject(o, "median", c->corr_median);
     cJSON_AddItemToObject(o, "ci95", report_json__num_array(ci, 2));
+    if (c->corr_between) {
+        cJSON_AddItemToObject(o, "ci95_between_runs", report_json__num_array(bci, 2));
+    } else {
+        cJSON_AddNullToObject(o, "ci95_between_runs");
+        cJSON_AddStringToObject(o, "between_runs_unavailable", REPORT_BETWEEN_UNAVAILABLE);
+    }
     cJSON_AddStringToObject(o, "method", REPORT_DRIFT_METHOD);
     return o;
 }
@@ -262,6 +270,10 @@ static cJSON *report_json__precision_json(const report_model *m)
         cJSON_AddNumberToObject(s, "loo_noise", p->loo_noise);
         cJSON_AddNumberToObject(s, "calib_noise", p->calib_noise);
         cJSON_AddNumberToObject(s, "resolvable", p->resolvable);
+        if (p->between_runs)
+            cJSON_AddNumberToObject(s, "reference_spread", p->reference_spread);
+        else
+            cJSON_AddNullToObject(s, "reference_spread");
         report_json__add_str(s, "disagreement", sc->disagree);
         cJSON_AddItemToArray(a, s);
     }
@@ -463,6 +475,11 @@ static void report_json__read_counter(const cJSON *o, dm_counter_result *c)
         c->corr_ci_hi = nci > 1 ? cci[1] : NAN;
         c->corrected = isfinite(c->corr_median) && nci == 2;
         free(cci);
+        double *bci = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(corr, "ci95_between_runs"), &nci);
+        c->corr_between = c->corrected && nci == 2 && isfinite(bci[0]) && isfinite(bci[1]);
+        c->corr_between_lo = c->corr_between ? bci[0] : 0;
+        c->corr_between_hi = c->corr_between ? bci[1] : 0;
+        free(bci);
     }
 }
 
@@ -564,6 +581,8 @@ static void report_json__read_precision(const cJSON *o, dm_run_result *r)
         p->loo_noise = report_json__get_num(it, "loo_noise");
         p->calib_noise = report_json__get_num(it, "calib_noise");
         p->resolvable = report_json__get_num(it, "resolvable");
+        p->reference_spread = report_json__get_num(it, "reference_spread");
+        p->between_runs = isfinite(p->reference_spread);
     }
 }
 

@@ -42,6 +42,11 @@
 #define REPORT_DRIFT_METHOD "each round's common mode divided out (median polish of log times, " \
                             "leave-one-out), CI with the correction's own uncertainty (bootstrap over rounds)"
 
+/* Why a corrected figure has no between-run CI (docs/measurement.md,
+ * "Between runs"). */
+#define REPORT_BETWEEN_UNAVAILABLE "computed at the end of a run or a merge and not kept in the store: " \
+                                   "this file was written from a stored run"
+
 /* One configuration as every file shows it. */
 typedef struct report_model_row {
     const dm_config_result *config;     /* borrowed from the run */

@@ -184,6 +184,9 @@ static void fixture_corrected(dm_run_result *run)
     w->corr_median = 1.0e6;
     w->corr_ci_lo = 0.98e6;
     w->corr_ci_hi = 1.02e6;
+    w->corr_between = 1;
+    w->corr_between_lo = 0.95e6;
+    w->corr_between_hi = 1.06e6;
     w = (dm_counter_result *)dm_config_counter(&run->configs[1], "WallTime");
     w->corrected = 1;
     w->corr_median = 1.8e6;
@@ -194,7 +197,8 @@ static void fixture_corrected(dm_run_result *run)
     run->precision[0] = (dm_scene_precision){ .scene = dm_xstrdup(FIXTURE_SCENE), .corrected = 1,
                                               .predictor = dm_xstrdup("common mode"), .n_rounds = 12,
                                               .machine_spread = 0.08, .raw_noise = 0.1, .loo_noise = 0.04,
-                                              .calib_noise = NAN, .resolvable = 0.03 };
+                                              .calib_noise = NAN, .resolvable = 0.03,
+                                              .between_runs = 1, .reference_spread = 0.0125 };
     assert_int_equal(report_budget_set(run, 1.9), 0);
 }
 
@@ -267,6 +271,11 @@ static void test_corrected_figures(void **state)
     assert_string_equal(t, t2);
     assert_non_null(strstr(t, "\"corrected\":\t{\n"));
     assert_non_null(strstr(t, "\"ci95\":\t[980000, 1020000]"));
+    /* the between-run CI where computed; null with the reason where not */
+    assert_non_null(strstr(t, "\"ci95_between_runs\":\t[950000, 1060000]"));
+    assert_non_null(strstr(t, "\"ci95_between_runs\":\tnull"));
+    assert_non_null(strstr(t, "\"between_runs_unavailable\":\t\"" REPORT_BETWEEN_UNAVAILABLE "\""));
+    assert_non_null(strstr(t, "\"reference_spread\":\t0.0125"));
     assert_non_null(strstr(t, "\"predictor\":\t\"common mode\""));
     assert_non_null(strstr(t, "\"disagreement\":\t\"Raw and drift-corrected figures disagree"));
     const dm_counter_result *w = dm_config_counter(&back.configs[0], "WallTime");
