@@ -126,6 +126,7 @@ void dm_config_result_free(dm_config_result *c)
     free(c->img_heatmap);
     free(c->img_reference);
     free(c->img_flip);
+    free(c->path.frame_ns);
     memset(c, 0, sizeof *c);
 }
 

@@ -56,6 +56,15 @@ typedef struct dm_quality {
     char *reference;         /* description of what the reference was */
 } dm_quality;
 
+/* The frame times of a configuration on a camera path (docs/motion.md):
+ * its path replayed `replays` times, each of its `frames` frames timed on
+ * its own; frame_ns[s * frames + f] is frame f of replay s, ns (NaN: not
+ * measured).  frames 0: a still configuration, nothing else is set. */
+typedef struct dm_path_series {
+    size_t frames, replays;
+    double *frame_ns;
+} dm_path_series;
+
 typedef struct dm_config_result {
     char *key;               /* stable hash of relevant params (16 hex) */
     char *scene;             /* scene id: mesh/camera/lights/material/resolution */
@@ -71,6 +80,7 @@ typedef struct dm_config_result {
     char *img_heatmap;
     char *img_reference;
     char *img_flip;          /* FLIP map on the fixed [0,1] scale, may be NULL */
+    dm_path_series path;     /* frame times along its camera path (frames 0: still) */
 } dm_config_result;
 
 typedef struct dm_left_out {
