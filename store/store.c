@@ -142,6 +142,9 @@ static int store__config_write(store *s, const char *run, const void *item)
         rc = store__kv_write(s, STORE_SQL_CPAR_INS, &o, c->params, c->n_params);
     for (size_t i = 0; i < c->n_counters && rc == 0; i++)
         rc = store__counter_write(s, &o, &c->counters[i]);
+    if (rc == 0 && c->path.frames && c->path.frame_ns)
+        rc = store_sql_exec(s, STORE_SQL_PATH_INS, &o, "llb", (long)c->path.frames,
+                            (long)c->path.replays, c->path.frame_ns, c->path.frames * c->path.replays);
     return rc;
 }
 
@@ -322,6 +325,27 @@ static int store__counters_read(store *s, const store_sql_owner *o, dm_config_re
     return rc;
 }
 
+/* The frame times of configuration o.key when it is on a camera path
+ * (nothing for a still one); a row whose data does not hold frames ×
+ * replays values is damaged: DM_ERR_STORE. */
+static int store__path_read(store *s, const store_sql_owner *o, dm_config_result *c)
+{
+    sqlite3_stmt *st = store_sql_query(s, STORE_SQL_PATH_SEL, o, "");
+    int rc = st ? store_sql_row(s, st) : DM_ERR_STORE;
+    if (rc != 1)
+        return rc;
+    size_t n = 0;
+    c->path.frames = (size_t)sqlite3_column_int64(st, 0);
+    c->path.replays = (size_t)sqlite3_column_int64(st, 1);
+    c->path.frame_ns = store_sql_col_doubles(st, 2, &n);
+    sqlite3_reset(st);
+    if (n != c->path.frames * c->path.replays || !c->path.frames)
+        return store_sql_failf(s, DM_ERR_STORE, "configuration %s: its path's frame times hold %zu "
+                               "values, not %zu frames x %zu replays", o->key, n, c->path.frames,
+                               c->path.replays);
+    return 0;
+}
+
 static void store__config_cols(sqlite3_stmt *st, dm_config_result *c)
 {
     dm_quality *q = &c->quality;
@@ -362,6 +386,8 @@ static int store__configs_read(store *s, dm_run_result *r)
         rc = store__kv_read(s, STORE_SQL_CPAR_SEL, &o, &c->params, &c->n_params);
         if (rc == 0)
             rc = store__counters_read(s, &o, c);
+        if (rc == 0)
+            rc = store__path_read(s, &o, c);
     }
     return rc;
 }

@@ -18,7 +18,7 @@
 
 #include <stddef.h>
 
-#define STORE_SCHEMA_VERSION 5
+#define STORE_SCHEMA_VERSION 6
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
     "q_ssim,q_max_error,q_pct_over,q_silhouette,q_depth_rmse,q_crack_pixels," \
@@ -83,6 +83,10 @@
     X(SMP_INS, "INSERT INTO samples(run,key,counter,data) VALUES(?1,?2,?4,?5)")\
     X(SMP_SEL, "SELECT data FROM samples WHERE run=?1 AND key=?2 AND"         \
       " counter=?4")                                                          \
+    X(PATH_INS, "INSERT INTO path_frames(run,key,frames,replays,data)"       \
+      " VALUES(?1,?2,?4,?5,?6)")                                              \
+    X(PATH_SEL, "SELECT frames,replays,data FROM path_frames WHERE run=?1"    \
+      " AND key=?2")                                                          \
     X(PART_DEL, "DELETE FROM partial_samples WHERE run=?1 AND key=?2")        \
     X(PART_INS, "INSERT INTO partial_samples(run,key,counter,data,"           \
       "sampling_ns) VALUES(?1,?2,?4,?5,?6)")                                  \
