@@ -59,10 +59,19 @@ typedef struct dm_quality {
 /* The frame times of a configuration on a camera path (docs/motion.md):
  * its path replayed `replays` times, each of its `frames` frames timed on
  * its own; frame_ns[s * frames + f] is frame f of replay s, ns (NaN: not
- * measured).  frames 0: a still configuration, nothing else is set. */
+ * measured).  frames 0: a still configuration, nothing else is set.  The
+ * summary is models/frame_series' over frame_ns, made when measured and
+ * kept beside the series (as a counter's statistics beside its samples);
+ * NaN where no frame time was finite. */
 typedef struct dm_path_series {
     size_t frames, replays;
     double *frame_ns;
+    double p50, p95, p99;         /* ns, type-7 quantiles of the per-frame medians */
+    double low1_ns, low1_fps;     /* the 1 % low, as a time and as a frame rate */
+    size_t n_stutters;
+    long *stutter_at;             /* the stutters' frame indices, in path order */
+    double replay_spread;         /* NaN with one replay */
+    int noisy;                    /* 1 noisy, 0 not, -1 unknown (one replay) */
 } dm_path_series;
 
 typedef struct dm_config_result {

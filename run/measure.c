@@ -510,7 +510,10 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
         mscene_say(m->job, "A %s %zu %.4f %.4f", c->pc->key, c->n_extra, c->ci_rel_before, c->ci_rel);
     const dm_counter_result *wt = m->stop_index >= 0 ? dm_config_counter(&out, m->timing[m->stop_index]) : NULL;
     double ci = wt && wt->median > 0 ? (wt->ci_hi - wt->ci_lo) / 2 / wt->median : NAN;
-    if (rc == 0)
+    if (rc == 0 && out.path.frames)   /* on a camera path: its p99 and stutters too */
+        mscene_say(m->job, "D %s %s %.0f %.4f %lld %.0f %zu", c->pc->key, out.ok ? "ok" : "failed",
+                   wt ? wt->median : NAN, ci, (long long)c->sampling_ns, out.path.p99, out.path.n_stutters);
+    else if (rc == 0)
         mscene_say(m->job, "D %s %s %.0f %.4f %lld", c->pc->key, out.ok ? "ok" : "failed",
                      wt ? wt->median : NAN, ci, (long long)c->sampling_ns);
     else

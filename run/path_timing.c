@@ -6,6 +6,7 @@
 #include <stdlib.h>
 #include <string.h>
 
+#include "models/frame_series.h"
 #include "techniques/axes.h"
 
 size_t path_timing_frames(const plan_config *pc)
@@ -58,6 +59,33 @@ void path_timing_record(const mscene *m, mconf *c, double *vals)
             vals[i] = n ? sum / (double)n : NAN;
 }
 
+/* models/frame_series' summary of p's series into p; NaN and "unknown"
+ * noise when no frame time is finite. */
+static void path_timing__summarize(dm_path_series *p)
+{
+    size_t *at = dm_xcalloc(p->frames, sizeof *at);
+    frame_series_stats fs;
+    if (frame_series_summarize(p->frame_ns, p->replays, p->frames, at, &fs) != 0) {
+        p->p50 = p->p95 = p->p99 = p->low1_ns = p->low1_fps = p->replay_spread = NAN;
+        p->noisy = -1;
+        p->stutter_at = dm_xcalloc(1, sizeof *p->stutter_at);
+        free(at);
+        return;
+    }
+    p->p50 = fs.p50;
+    p->p95 = fs.p95;
+    p->p99 = fs.p99;
+    p->low1_ns = fs.low1_ns;
+    p->low1_fps = fs.low1_fps;
+    p->replay_spread = fs.replay_spread;
+    p->noisy = fs.noisy;
+    p->n_stutters = fs.stutters;
+    p->stutter_at = dm_xcalloc(fs.stutters + 1, sizeof *p->stutter_at);
+    for (size_t i = 0; i < fs.stutters; i++)
+        p->stutter_at[i] = (long)at[i];
+    free(at);
+}
+
 void path_timing_collect(const mconf *c, dm_config_result *out)
 {
     if (!c->path_frames || !c->n_samples)
@@ -67,4 +95,5 @@ void path_timing_collect(const mconf *c, dm_config_result *out)
     out->path.replays = c->n_samples;
     out->path.frame_ns = dm_xmalloc(n * sizeof *out->path.frame_ns);
     memcpy(out->path.frame_ns, c->path_ns, n * sizeof *out->path.frame_ns);
+    path_timing__summarize(&out->path);
 }

@@ -42,7 +42,8 @@ void path_timing_room(mconf *c);
  * is finite. */
 void path_timing_record(const mscene *m, mconf *c, double *vals);
 
-/* The replays of c into out->path (a copy), nothing for a still one. */
+/* The replays of c into out->path (a copy) with their summary
+ * (models/frame_series.h), nothing for a still one. */
 void path_timing_collect(const mconf *c, dm_config_result *out);
 
 #endif

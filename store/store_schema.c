@@ -42,9 +42,12 @@
  *   scene_precision(run, scene, corrected, reason, predictor, n_rounds,
  *           machine_spread, raw_noise, loo_noise, calib_noise, resolvable)
  *           PK (run, scene): the drift removed per scene (version 5)
- *   path_frames(run, key, frames, replays, data BLOB) PK (run, key)
- *           → configs: the frame times of a configuration on a camera
- *           path, replays × frames doubles (ns, row = replay; version 6)
+ *   path_frames(run, key, frames, replays, data BLOB, p50, p95, p99,
+ *           low1_ns, low1_fps, stutter_at BLOB, replay_spread, noisy)
+ *           PK (run, key) → configs: the frame times of a configuration on
+ *           a camera path, replays × frames doubles (ns, row = replay), and
+ *           their summary (dm_path_series; the stutters' frame indices as
+ *           doubles; version 6)
  *   fit_group(run, seq, key, value), fit_params(run, seq, name, value,
  *        stderr), fit_warnings(run, seq, text), fit_labels(run, seq, idx,
  *        label)
@@ -150,6 +153,8 @@ static const char *const store_schema__migrations[STORE_SCHEMA_VERSION] = {
      * (run/path_timing.h); a still configuration has no row */
     "CREATE TABLE path_frames(run TEXT NOT NULL, key TEXT NOT NULL,"
     " frames INTEGER NOT NULL, replays INTEGER NOT NULL, data BLOB,"
+    " p50 REAL, p95 REAL, p99 REAL, low1_ns REAL, low1_fps REAL,"
+    " stutter_at BLOB, replay_spread REAL, noisy INTEGER,"
     " PRIMARY KEY(run, key), FOREIGN KEY(run, key) REFERENCES configs(run, key)"
     " ON DELETE CASCADE);",
 };

@@ -291,6 +291,17 @@ static void run_full(dm_run_result *r, const char *id)
     ps->replays = 3;
     ps->frame_ns = dv(12, 1.0e6, 2500.25);
     ps->frame_ns[5] = NAN;
+    ps->p50 = 1.0e6;
+    ps->p95 = 1.5e6;
+    ps->p99 = INFINITY;
+    ps->low1_ns = 2.0e6;
+    ps->low1_fps = 500;
+    ps->n_stutters = 2;
+    ps->stutter_at = dm_xcalloc(2, sizeof *ps->stutter_at);
+    ps->stutter_at[0] = 1;
+    ps->stutter_at[1] = 3;
+    ps->replay_spread = NAN;
+    ps->noisy = -1;
 }
 
 /* Writes run r through the public calls; the run is left not finished. */
@@ -411,6 +422,15 @@ static void eq_config(const dm_config_result *a, const dm_config_result *b)
     assert_true((a->path.frame_ns == NULL) == (b->path.frame_ns == NULL));
     if (a->path.frame_ns)
         eq_doubles(a->path.frame_ns, b->path.frame_ns, a->path.frames * a->path.replays, "path frame_ns");
+    const double pa[] = { a->path.p50, a->path.p95, a->path.p99, a->path.low1_ns, a->path.low1_fps,
+                          a->path.replay_spread };
+    const double pb[] = { b->path.p50, b->path.p95, b->path.p99, b->path.low1_ns, b->path.low1_fps,
+                          b->path.replay_spread };
+    eq_doubles(pa, pb, 6, "path summary");
+    assert_int_equal(a->path.n_stutters, b->path.n_stutters);
+    for (size_t i = 0; i < a->path.n_stutters; i++)
+        assert_int_equal(a->path.stutter_at[i], b->path.stutter_at[i]);
+    assert_int_equal(a->path.noisy, b->path.noisy);
     EQ_STR(a->img_render, b->img_render, "img_render");
     EQ_STR(a->img_heatmap, b->img_heatmap, "img_heatmap");
     EQ_STR(a->img_reference, b->img_reference, "img_reference");
@@ -783,6 +803,7 @@ static void path_not_stored(dm_run_result *run)
 {
     for (size_t i = 0; i < run->n_configs; i++) {
         free(run->configs[i].path.frame_ns);
+        free(run->configs[i].path.stutter_at);
         run->configs[i].path = (dm_path_series){0};
     }
 }
