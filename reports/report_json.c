@@ -530,7 +530,7 @@ static double report_json__ns_of_ms(double ms)
 }
 
 /* "path" of a configuration (report_json__path_json), when written; its
- * shape was checked (shape__path). */
+ * shape was checked (report_json__shape_path). */
 static void report_json__read_path(const cJSON *o, dm_path_series *p)
 {
     if (!cJSON_IsObject(o))
@@ -707,7 +707,7 @@ static const char *shape__counters(const cJSON *cfg)
  * (whole numbers), "frame_ns" one array of `frames` numbers or nulls per
  * replay, "stutter_frames" indices below frames, the figures numbers or
  * null, so the reader never reads a series short or past its end. */
-static const char *shape__path(const cJSON *cfg)
+static const char *report_json__shape_path(const cJSON *cfg)
 {
     static const char *const nums[] = { "p50_ms", "p95_ms", "p99_ms", "one_percent_low_ms",
                                         "one_percent_low_fps", "stutters", "replay_spread" };
@@ -758,8 +758,8 @@ static const char *report_json__shape_error(const cJSON *root)
         if (shape__counters(it))
             return shape__counters(it);
     cJSON_ArrayForEach(it, c)
-        if (shape__path(it))
-            return shape__path(it);
+        if (report_json__shape_path(it))
+            return report_json__shape_path(it);
     return NULL;
 }
 
