@@ -63,6 +63,24 @@ typedef struct dm_quality {
     char *reference;         /* description of what the reference was */
 } dm_quality;
 
+/* The frame times of a configuration on a camera path (docs/motion.md):
+ * its path replayed `replays` times, each of its `frames` frames timed on
+ * its own; frame_ns[s * frames + f] is frame f of replay s, ns (NaN: not
+ * measured).  frames 0: a still configuration, nothing else is set.  The
+ * summary is models/frame_series' over frame_ns, made when measured and
+ * kept beside the series (as a counter's statistics beside its samples);
+ * NaN where no frame time was finite. */
+typedef struct dm_path_series {
+    size_t frames, replays;
+    double *frame_ns;
+    double p50, p95, p99;         /* ns, type-7 quantiles of the per-frame medians */
+    double low1_ns, low1_fps;     /* the 1 % low, as a time and as a frame rate */
+    size_t n_stutters;
+    long *stutter_at;             /* the stutters' frame indices, in path order */
+    double replay_spread;         /* NaN with one replay */
+    int noisy;                    /* 1 noisy, 0 not, -1 unknown (one replay) */
+} dm_path_series;
+
 typedef struct dm_config_result {
     char *key;               /* stable hash of relevant params (16 hex) */
     char *scene;             /* scene id: mesh/camera/lights/material/resolution */
@@ -78,6 +96,7 @@ typedef struct dm_config_result {
     char *img_heatmap;
     char *img_reference;
     char *img_flip;          /* FLIP map on the fixed [0,1] scale, may be NULL */
+    dm_path_series path;     /* frame times along its camera path (frames 0: still) */
 } dm_config_result;
 
 typedef struct dm_left_out {

@@ -147,6 +147,10 @@ typedef struct report_model {
     double resolvable;            /* smallest resolvable relative difference; NaN likewise */
     size_t n_corrected_scenes;    /* scenes whose figures have the drift removed */
     char *precision_text;         /* the sentence every file shows; "" without WallTime */
+    /* Camera paths: configurations with frame times along a path (their
+     * dm_config_result.path); 0 in a still run, whose files then have no
+     * path column or table */
+    size_t n_path_rows;
 } report_model;
 
 /* Builds the model of run for the files d describes (report.h): d->dir

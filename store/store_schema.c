@@ -1,7 +1,7 @@
 /* store_schema.c — the results store's schema: the migrations that create
  * it and the check that a file has all of it (store_sql.h).
  *
- * Schema (version 5, kept in PRAGMA user_version; store_schema__migrations[i] takes a
+ * Schema (version 6, kept in PRAGMA user_version; store_schema__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -42,6 +42,12 @@
  *   scene_precision(run, scene, corrected, reason, predictor, n_rounds,
  *           machine_spread, raw_noise, loo_noise, calib_noise, resolvable)
  *           PK (run, scene): the drift removed per scene (version 5)
+ *   path_frames(run, key, frames, replays, data BLOB, p50, p95, p99,
+ *           low1_ns, low1_fps, stutter_at BLOB, replay_spread, noisy)
+ *           PK (run, key) → configs: the frame times of a configuration on
+ *           a camera path, replays × frames doubles (ns, row = replay), and
+ *           their summary (dm_path_series; the stutters' frame indices as
+ *           doubles; version 6)
  *   fit_group(run, seq, key, value), fit_params(run, seq, name, value,
  *        stderr), fit_warnings(run, seq, text), fit_labels(run, seq, idx,
  *        label)
@@ -143,6 +149,14 @@ static const char *const store_schema__migrations[STORE_SCHEMA_VERSION] = {
     " predictor TEXT, n_rounds INTEGER, machine_spread REAL, raw_noise REAL,"
     " loo_noise REAL, calib_noise REAL, resolvable REAL,"
     " PRIMARY KEY(run, scene));",
+    /* 5 -> 6: the frame times of configurations on a camera path
+     * (run/path_timing.h); a still configuration has no row */
+    "CREATE TABLE path_frames(run TEXT NOT NULL, key TEXT NOT NULL,"
+    " frames INTEGER NOT NULL, replays INTEGER NOT NULL, data BLOB,"
+    " p50 REAL, p95 REAL, p99 REAL, low1_ns REAL, low1_fps REAL,"
+    " stutter_at BLOB, replay_spread REAL, noisy INTEGER,"
+    " PRIMARY KEY(run, key), FOREIGN KEY(run, key) REFERENCES configs(run, key)"
+    " ON DELETE CASCADE);",
 };
 
 int store_schema_migrate(sqlite3 *db, long *found)

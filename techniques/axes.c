@@ -367,10 +367,6 @@ const char *axes_value_ext_at(size_t i)
 char *axes_value_refusal(const char *axis, const char *value,
                          int (*has_ext)(const char *ext, void *user), void *user)
 {
-    if (strcmp(axis, "camera.path") == 0 && strcmp(value, "still") != 0)
-        return dm_xasprintf("camera.path=%s: runs do not yet time or compare frames along a path "
-                            "(`dmbench render camera.path=%s --frame N` draws frame N; docs/motion.md)",
-                            value, value);
     for (size_t i = 0; i < sizeof axes__needs / sizeof axes__needs[0]; i++) {
         if (strcmp(axes__needs[i].axis, axis) != 0 || strcmp(axes__needs[i].value, value) != 0)
             continue;
