@@ -8,7 +8,8 @@
 
 int dm_result_column_reserved(const char *name)
 {
-    static const char *const cols[] = {DM_RESULT_LEAD_COLUMNS, DM_RESULT_TRAIL_COLUMNS};
+    static const char *const cols[] = {DM_RESULT_LEAD_COLUMNS, DM_RESULT_TRAIL_COLUMNS,
+                                        DM_RESULT_PATH_COLUMNS};
     for (size_t i = 0; name && i < sizeof cols / sizeof cols[0]; i++)
         if (strcmp(cols[i], name) == 0)
             return 1;

@@ -189,12 +189,16 @@ typedef struct dm_run_result {
 /* Lookup helpers; return NULL when absent. */
 /* The columns of a configuration's row in results.csv that are neither a
  * parameter nor a counter: DM_RESULT_LEAD_COLUMNS come first, then the
- * parameters and counters, then DM_RESULT_TRAIL_COLUMNS (reports/report_csv.c).
+ * parameters and counters, then DM_RESULT_TRAIL_COLUMNS and, in a run with a
+ * camera path, DM_RESULT_PATH_COLUMNS (reports/report_csv.c).
  * A parameter by one of these names would be a second column of that name,
  * so user techniques may not declare one (dm_result_column_reserved). */
 #define DM_RESULT_LEAD_COLUMNS "key", "scene", "status", "reason"
 #define DM_RESULT_TRAIL_COLUMNS "label", "pareto", "WallTime_corr_median_ms", \
     "WallTime_corr_ci_lo_ms", "WallTime_corr_ci_hi_ms", "drift_correction"
+/* Last, in a run with a configuration on a camera path (docs/motion.md). */
+#define DM_RESULT_PATH_COLUMNS "path_p50_ms", "path_p95_ms", "path_p99_ms", \
+    "path_one_percent_low_ms", "path_one_percent_low_fps", "path_stutters"
 /* 1 when name is one of the columns above. */
 int dm_result_column_reserved(const char *name);
 

@@ -84,9 +84,7 @@ static void report_csv__corrected_fields(dm_str *s, const report_model *m, const
     report_csv__field(s, r->corrected ? REPORT_DRIFT_METHOD : t ? raw : NULL, 0);
 }
 
-static const char *const report_csv__path_cols[] = {"path_p50_ms", "path_p95_ms", "path_p99_ms",
-                                                    "path_one_percent_low_ms", "path_one_percent_low_fps",
-                                                    "path_stutters"};
+static const char *const report_csv__path_cols[] = {DM_RESULT_PATH_COLUMNS};
 #define REPORT_CSV__N_PATH (sizeof report_csv__path_cols / sizeof report_csv__path_cols[0])
 
 /* The path figures of a configuration (report_csv__path_cols), empty for a still one. */

@@ -34,7 +34,7 @@ f=$(uglsl bigfloat "//@technique bigfloat" "//@param bigf float 0 1e300 1")
 hcase glsl/float-range 2 "bigfloat.glsl:2: parameter 'bigf': MAX 1e300 does not fit the GLSL type float" \
   -- "$BIN" run "$(usweep bigfloat "$f")" --out "$NEVER"
 # ---- names that would be a second results.csv column or a second uniform ----
-for n in key status scene label; do
+for n in key status scene label path_p99_ms; do
   f=$(uglsl "col-$n" "//@technique col-$n" "//@param $n int 0 4 1")
   hcase "glsl/param-$n" 2 "col-$n.glsl:2: parameter '$n' would be a second '$n' column of results.csv" \
     -- "$BIN" run "$(usweep "col-$n" "$f")" --out "$NEVER"
