@@ -186,13 +186,12 @@ void mquality_measure(mscene *m, mconf *c, dm_config_result *out)
         dm_str_free(&over);
         free(ma);
         free(mb);
-        snprintf(name, sizeof name, "%s-diff.png", c->pc->key);
-        path = mscene_img_path(m->job, name);
-        /* one absolute scale for every map: a channel difference of 1 (the
-         * whole range) is the colour map's top, so maps compare side by side */
-        if (img_heatmap(&ref, &test, 1.0, path, e, sizeof e) == 0)
-            out->img_heatmap = dm_xasprintf("img/%s", name);
-        free(path);
+        /* The heatmap is the FLIP map: FLIP's fixed [0,1] scale is bounded
+         * and perceptual, so no map saturates and a small difference is not
+         * black, and it is the map `dmbench diff --heatmap` writes.  Both
+         * keys name the one file, so older readers find a heatmap. */
+        if (out->img_flip)
+            out->img_heatmap = dm_xstrdup(out->img_flip);
         out->img_reference = dm_xasprintf("img/%s", m->ref_path);
     }
     free(rgba);
