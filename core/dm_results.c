@@ -126,6 +126,10 @@ void dm_config_result_free(dm_config_result *c)
     free(c->img_heatmap);
     free(c->img_reference);
     free(c->img_flip);
+    free(c->path_quality.flip);
+    free(c->path_quality.ssim);
+    free(c->path_quality.img_temporal);
+    free(c->path_quality.reason);
     memset(c, 0, sizeof *c);
 }
 

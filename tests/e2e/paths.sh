@@ -51,13 +51,20 @@ same still s3
 
 printf 'name: paths\nresolution: [80, 45]\nmeasure: { samples: { min: 3, max: 3 } }\nsweep:\n  mesh: [plane]\n  technique: [normal]\n  camera.path: [still, dolly, orbit]\n' > "$OUT/p.yaml"
 "$BIN" run "$OUT/p.yaml" --out "$OUT/r" --quiet > /dev/null
+# Paths run: the still configuration keeps its key and params (no path
+# key, no path quality); dolly and orbit get quality along the path with
+# the default K: a reference at the first and last frame (K = F - 1 = 59).
 python3 - "$OUT/r/latest/results.json" <<'PY'
 import json, sys
 d = json.load(open(sys.argv[1]))
-assert len(d["configs"]) == 1 and "camera.path" not in d["configs"][0]["params"], d["configs"]
-lo = d["left_out"]
-assert sorted(l["params"]["camera.path"] for l in lo) == ["dolly", "orbit"], lo
-assert all("runs do not yet time or compare frames along a path" in l["reason"] for l in lo), lo
+cs = {c["params"].get("camera.path", "still"): c for c in d["configs"]}
+assert sorted(cs) == ["dolly", "orbit", "still"], [c["params"] for c in d["configs"]]
+assert "camera.path_ref_every" not in cs["still"]["params"] and cs["still"]["path_quality"] is None, cs["still"]
+for p in ("dolly", "orbit"):
+    q = cs[p]["path_quality"]
+    assert q and q["frames"] == 60 and q["every"] == 59 and q["reference_frames"] == [0, 59], (p, q)
+    assert len(q["FLIP"]) == 2 and len(q["SSIM"]) == 2 and q["temporal_error_mean"] >= 0, (p, q)
+    assert q["images"]["temporal"].endswith("-temporal.png"), q
 PY
 pass=$((pass+1))
 expect_refused 2 "expected one of: still, orbit, dolly, flyover (did you mean 'dolly'?)" -- \
