@@ -102,17 +102,19 @@ static char *mpath__save_map(mscene *m, mconf *c, const img *map)
  * test and ref; FLIP mean and SSIM of the pair into *flip and *ssim (NaN
  * where not computed).  0, or the renderer's error (reason in c's log). */
 static int mpath__frame(mscene *m, mconf *c, const dm_kv *ref_p, size_t n_ref, uint64_t frame,
-                        img *test, img *ref, double *flip, double *ssim)
+                        img *test, img *ref, double *flip, double *ssim, size_t *cached)
 {
+    const char *source = NULL;
     int w = c->pc->width, h = c->pc->height;
     *test = (img){w, h, NULL};
     *ref = (img){w, h, NULL};
     int rc = mscene_render_frame(m->r, c->pc->params, c->pc->n_params, w, h, 1, frame, &test->px,
                                  NULL, &c->log);
     if (rc == 0)
-        rc = mpath_reference_frame(m, ref_p, n_ref, w, h, 1, frame, &ref->px, NULL, NULL, &c->log);
+        rc = mpath_reference_frame(m, ref_p, n_ref, w, h, 1, frame, &ref->px, NULL, &source, &c->log);
     if (rc != 0)
         return rc;
+    *cached += strcmp(source, "cache") == 0;
     flip_desc d = flip_defaults(&(flip_desc){ .ppd = m->job->sweep->flip_ppd });
     flip_stats st;
     *flip = flip_compare(ref, test, &d, &st, NULL) == 0 ? st.mean : NAN;
@@ -157,7 +159,7 @@ void mpath_quality_measure(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref,
                                   pq->frames - 1);
         return;
     }
-    size_t n = mpath_quality_count(pq->frames, pq->every), done = 0;
+    size_t n = mpath_quality_count(pq->frames, pq->every), done = 0, cached = 0;
     img *test = dm_xcalloc(n, sizeof *test), *refs = dm_xcalloc(n, sizeof *refs);
     pq->flip = dm_xcalloc(n, sizeof *pq->flip);
     pq->ssim = dm_xcalloc(n, sizeof *pq->ssim);
@@ -165,10 +167,12 @@ void mpath_quality_measure(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref,
     int rc = 0;
     for (; done < n && rc == 0; done++)
         rc = mpath__frame(m, c, ref, n_ref, (uint64_t)done * (uint64_t)pq->every, &test[done],
-                          &refs[done], &pq->flip[done], &pq->ssim[done]);
+                          &refs[done], &pq->flip[done], &pq->ssim[done], &cached);
     if (rc == 0) {
         mpath__summarise(m, c, test, refs, n, pq);
         pq->present = 1;
+        dm_str_printf(&c->log, "quality along the path: %zu reference frames (every %ld of %ld), %zu "
+                      "of them from the reference cache\n", n, pq->every, pq->frames, cached);
     } else {
         pq->reason = dm_xasprintf("frame %ld of the path cannot be rendered (%s; the log says why)",
                                   (long)(done - 1) * pq->every, dm_strerror(rc));
