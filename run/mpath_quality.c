@@ -112,8 +112,11 @@ static int mpath__frame(mscene *m, mconf *c, const dm_kv *ref_p, size_t n_ref, u
                                  NULL, &c->log);
     if (rc == 0)
         rc = mpath_reference_frame(m, ref_p, n_ref, w, h, 1, frame, &ref->px, NULL, &source, &c->log);
-    if (rc != 0)
+    if (rc != 0) {
+        img_free(test);
+        img_free(ref);
         return rc;
+    }
     *cached += strcmp(source, "cache") == 0;
     flip_desc d = flip_defaults(&(flip_desc){ .ppd = m->job->sweep->flip_ppd });
     flip_stats st;
@@ -123,23 +126,49 @@ static int mpath__frame(mscene *m, mconf *c, const dm_kv *ref_p, size_t n_ref, u
     return 0;
 }
 
-/* The temporal error, popping and map of the n frame pairs into pq. */
-static void mpath__summarise(mscene *m, mconf *c, const img *test, const img *ref, size_t n,
-                             dm_path_quality *pq)
+/* The temporal error and map of the steps in acc (released here), and the
+ * popping of the per-frame FLIP, into pq. */
+static void mpath__summarise(mscene *m, mconf *c, temporal_acc *acc, dm_path_quality *pq)
 {
-    if (n >= 2) {
-        temporal_stats ts;
-        img map = {0};
-        if (temporal_error(test, ref, n, &ts, &map) == 0) {
-            pq->temporal_mean = ts.mean;
-            pq->temporal_p99 = ts.p99;
-            pq->img_temporal = mpath__save_map(m, c, &map);
-        }
-        img_free(&map);
+    temporal_stats ts;
+    img map = {0};
+    if (temporal_acc_finish(acc, &ts, &map) == 0) {
+        pq->temporal_mean = ts.mean;
+        pq->temporal_p99 = ts.p99;
+        pq->img_temporal = mpath__save_map(m, c, &map);
     }
+    img_free(&map);
     size_t at = 0;
-    pq->popping = temporal_popping(pq->flip, n, &at);
+    pq->popping = temporal_popping(pq->flip, pq->n, &at);
     pq->popping_frame = isfinite(pq->popping) ? (long)at * pq->every : -1;
+}
+
+/* Frames 0, K, 2K, ... of the configuration and the reference, compared as
+ * they come: two frames of each are held at a time (the temporal error
+ * takes each step as it is made).  0, or the first error with *failed the
+ * frame it came at. */
+static int mpath__frames(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref, temporal_acc *acc,
+                         dm_path_quality *pq, size_t *cached, long *failed)
+{
+    img prev_t = {0}, prev_r = {0};
+    int rc = 0;
+    for (size_t i = 0; i < pq->n && rc == 0; i++) {
+        img t, r;
+        uint64_t frame = (uint64_t)i * (uint64_t)pq->every;
+        *failed = (long)frame;
+        rc = mpath__frame(m, c, ref, n_ref, frame, &t, &r, &pq->flip[i], &pq->ssim[i], cached);
+        if (rc != 0)
+            break;
+        if (i > 0)
+            rc = temporal_acc_step(acc, &prev_t, &t, &prev_r, &r);
+        img_free(&prev_t);
+        img_free(&prev_r);
+        prev_t = t;
+        prev_r = r;
+    }
+    img_free(&prev_t);
+    img_free(&prev_r);
+    return rc;
 }
 
 void mpath_quality_measure(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref,
@@ -159,28 +188,24 @@ void mpath_quality_measure(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref,
                                   pq->frames - 1);
         return;
     }
-    size_t n = mpath_quality_count(pq->frames, pq->every), done = 0, cached = 0;
-    img *test = dm_xcalloc(n, sizeof *test), *refs = dm_xcalloc(n, sizeof *refs);
+    size_t n = mpath_quality_count(pq->frames, pq->every), cached = 0;
     pq->flip = dm_xcalloc(n, sizeof *pq->flip);
     pq->ssim = dm_xcalloc(n, sizeof *pq->ssim);
     pq->n = n;
-    int rc = 0;
-    for (; done < n && rc == 0; done++)
-        rc = mpath__frame(m, c, ref, n_ref, (uint64_t)done * (uint64_t)pq->every, &test[done],
-                          &refs[done], &pq->flip[done], &pq->ssim[done], &cached);
+    temporal_acc acc;
+    long failed = 0;
+    int rc = temporal_acc_init(&acc, c->pc->width, c->pc->height);
+    if (rc == 0)
+        rc = mpath__frames(m, c, ref, n_ref, &acc, pq, &cached, &failed);
     if (rc == 0) {
-        mpath__summarise(m, c, test, refs, n, pq);
+        mpath__summarise(m, c, &acc, pq);
         pq->present = 1;
         dm_str_printf(&c->log, "quality along the path: %zu reference frames (every %ld of %ld), %zu "
                       "of them from the reference cache\n", n, pq->every, pq->frames, cached);
     } else {
-        pq->reason = dm_xasprintf("frame %ld of the path cannot be rendered (%s; the log says why)",
-                                  (long)(done - 1) * pq->every, dm_strerror(rc));
+        temporal_stats unused;
+        temporal_acc_finish(&acc, &unused, NULL);
+        pq->reason = dm_xasprintf("frame %ld of the path: %s (the log says why)", failed,
+                                  dm_strerror(rc));
     }
-    for (size_t i = 0; i < done; i++) {
-        img_free(&test[i]);
-        img_free(&refs[i]);
-    }
-    free(test);
-    free(refs);
 }

@@ -9,7 +9,9 @@
  * temporal error (imaging/temporal.h) over the steps from one reference
  * frame to the next, and popping, the largest jump of the per-frame FLIP
  * between consecutive reference frames.  Only the reference frames are
- * rendered: no figure reads the others.
+ * rendered (no figure reads the others), and they are compared as they
+ * come: two frames of each sequence are held at a time, plus one float per
+ * pixel and step for the temporal error's percentile.
  *
  * K = 0 (the default) is two references, the pass's first and last frames
  * (K = F − 1): a default 60-frame path's references cost two still
