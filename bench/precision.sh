@@ -8,7 +8,9 @@
 # before and after; then whether the runs name the same pick for every
 # scene (from each run's answer, which reads the raw figures), and for each
 # pair of consecutive runs how many configurations' medians agree within
-# their CIs (the CIs overlap), raw and corrected.  EXTRA=SEC in the
+# their CIs (the CIs overlap), raw, corrected with the within-run CI and
+# corrected with the between-run CI (from results.json: the store keeps
+# the within-run CI only).  EXTRA=SEC in the
 # environment runs each with `--extra-time SEC` (extra rounds for the
 # configurations short of their target) and prints the run's account of
 # them; each run's answer lines that say the raw and drift-corrected
@@ -29,7 +31,7 @@ for k in $(seq 1 "$RUNS"); do
     echo "run $k: $((t1 - t0)) s, load $load0 -> $load1" >&2
 done
 python3 - "$OUT" "$RUNS" <<'PY'
-import os, re, sqlite3, statistics, sys
+import json, os, re, sqlite3, statistics, sys
 out, runs = sys.argv[1], int(sys.argv[2])
 times = {int(l.split()[0]): l.split()[1:] for l in open(os.path.join(out, "times.txt"))}
 data = []
@@ -40,11 +42,19 @@ for k in range(1, runs + 1):
                       " k.corr_ci_lo, k.corr_ci_hi FROM configs c JOIN counters k ON k.run=c.run AND"
                       " k.key=c.key AND k.name='WallTime' WHERE c.run=? AND c.status='ok'", (run,)).fetchall()
     assert rows, f"run {k}: no WallTime stored"
+    # the between-run CI is in results.json only (the store keeps the within-run one)
+    between = {}
+    rj = os.path.join(out, f"run-{k}", "latest", "results.json")
+    for c in json.load(open(rj))["configs"] if os.path.exists(rj) else []:
+        w = (c.get("counters") or {}).get("WallTime") or {}
+        b = (w.get("corrected") or {}).get("ci95_between_runs")
+        if b:
+            between[c["key"]] = (w["corrected"]["median"], b[0], b[1])
     cfg = {}
     for key, scene, m, lo, hi, corr, cm, clo, chi in rows:
         raw = (m, lo, hi)
         cor = (cm, clo, chi) if corr else raw
-        cfg[key] = (scene, raw, cor)
+        cfg[key] = (scene, raw, cor, between.get(key, cor))
     data.append(cfg)
     # the answer's lines wrap at 100 columns, continuations four columns in
     answer = re.sub(r"\n    +", " ", open(os.path.join(out, f"answer-{k}.txt")).read())
@@ -83,8 +93,9 @@ for k in range(1, len(data)):
     common = [key for key in a if key in b]
     r = sum(overlap(a[x][1], b[x][1]) for x in common)
     c = sum(overlap(a[x][2], b[x][2]) for x in common)
+    bt = sum(overlap(a[x][3], b[x][3]) for x in common)
     print(f"runs {k} and {k + 1}: medians agree within their CIs for {r} of {len(common)} raw, "
-          f"{c} of {len(common)} corrected")
+          f"{c} of {len(common)} corrected (within-run CI), {bt} of {len(common)} corrected (between-run CI)")
 PY
 grep -h "^dmbench: \(precision\|noise floor\|the machine\|extra rounds\)" "$OUT"/log-*.txt
 echo "output: $OUT"

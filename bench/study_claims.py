@@ -60,10 +60,15 @@ def ok(cond, where, msg):
 
 # ---- reading the document ------------------------------------------------
 
+def row_name(r):
+    """A row's configuration without its marks (†, ‡: re-timed or to be)."""
+    return r[0].replace("†", "").replace("‡", "").strip()
+
+
 def number(cell):
     """The number in a table cell: '2 673.05 ms' -> 2673.05, '57 981' -> 57981;
     None when the cell holds no number."""
-    t = cell.replace("\u202f", "").replace("\u00a0", "").replace("†", "")
+    t = cell.replace("\u202f", "").replace("\u00a0", "").replace("†", "").replace("‡", "")
     m = re.search(r"-?\d[\d ]*(?:\.\d+)?", t)
     if not m:
         return None
@@ -81,14 +86,11 @@ def split_row(line):
 
 
 def sections(text):
-    """[(heading, body)] of the level-2 sections, the appendix left out (its
-    runs are history, kept as they were measured)."""
+    """[(heading, body)] of the level-2 sections."""
     parts = re.split(r"^## ", text, flags=re.M)
     out = []
     for p in parts[1:]:
         head, _, body = p.partition("\n")
-        if head.startswith("Appendix"):
-            break
         out.append((head.strip(), body))
     return out
 
@@ -219,7 +221,7 @@ def check_published(where, header, rows, prose):
     vals, unit = pub
     base = None
     for r in rows:
-        cfg = r[0].replace("†", "").strip()
+        cfg = row_name(r)
         if r[vcol].startswith("baseline"):
             base = cfg
         if base not in vals or cfg not in vals:
@@ -276,7 +278,7 @@ def nth_table(tabs, n, *want_cols):
 
 def cell(header, rows, config, column):
     for r in rows:
-        if r[0].replace("†", "").strip() == config:
+        if row_name(r) == config:
             return number(r[col(header, column)])
     raise ParseError(f"no row '{config}'")
 

@@ -207,6 +207,8 @@ static void predict__note(const predict_result *r, const predict__common *c, dm_
                       r->beyond, predict__stage_names[r->beyond_stage]);
     if (r->instr_why)
         dm_str_printf(note, "Instructions interval unavailable: %s. ", r->instr_why);
+    else if (r->instr_pooled)
+        dm_str_printf(note, "Instructions interval: %s. ", r->instr_pooled);
     if (r->wall_why)
         dm_str_printf(note, "WallTime %sunavailable: %s.", r->wall_by ? "interval " : "", r->wall_why);
     while (note->len && note->buf[note->len - 1] == ' ')
@@ -219,7 +221,7 @@ static void predict__print_table(const predict__row *rows, size_t n)
 {
     dm_table t = {0};
     dm_table_row(&t);
-    static const char *const head[] = {"key", "configuration", "Instructions", "±2 CV-MAPE",
+    static const char *const head[] = {"key", "configuration", "Instructions", "±interval",
                                        "WallTime ms [interval]"};
     for (size_t k = 0; k < sizeof head / sizeof *head; k++)
         dm_table_cell(&t, head[k]);
@@ -328,8 +330,10 @@ static cJSON *predict__json_row(const predict__row *w)
     }
     const predict_result *r = &w->r;
     cJSON *cs = cJSON_AddObjectToObject(o, "counters");
-    cJSON_AddItemToObject(cs, "Instructions", predict__json_value(r->instr, r->instr_lo, r->instr_hi, r->instr_why,
-                                                                  r->instr_by, "instructions"));
+    cJSON *ins = predict__json_value(r->instr, r->instr_lo, r->instr_hi, r->instr_why, r->instr_by, "instructions");
+    if (r->instr_pooled && !r->instr_why)
+        cJSON_AddStringToObject(ins, "interval_note", r->instr_pooled);
+    cJSON_AddItemToObject(cs, "Instructions", ins);
     for (int s = 0; s < 3; s++) {
         cJSON *p = cJSON_CreateObject();
         cJSON_AddStringToObject(p, "unit", "instructions");
@@ -369,8 +373,10 @@ static void predict__json_ways(const predict_model *m, cJSON *root)
         else if (isfinite(x->cv_mape))
             cJSON_AddNumberToObject(o, "heldout_mape", x->cv_mape);
         cJSON_AddNumberToObject(o, "heldout_n", x->n);
-        if (isfinite(x->q))
+        if (isfinite(x->q)) {
             cJSON_AddNumberToObject(o, "heldout_log_bound_90", x->q);
+            cJSON_AddStringToObject(o, "heldout_bound_rule", x->q_how);
+        }
         cJSON_AddBoolToObject(o, "used", m->way_used == w);
         cJSON_AddItemToArray(ways, o);
     }
@@ -487,6 +493,16 @@ static void predict__heldout_text(const predict_model *m, dm_str *out)
     }
 }
 
+/* Which rule bounds a way's held-out errors (models/stats.h
+ * stats_bound90), in words. */
+static const char *predict__bound_rule(const predict_way_score *w)
+{
+    if (!w->q_how)
+        return "no bound (fewer than 2)";
+    return strcmp(w->q_how, "conformal") == 0 ? "the split-conformal bound"
+                                              : "the normal-theory bound (fewer than 9)";
+}
+
 /* How well each way of predicting WallTime did on the runs' own
  * configurations held out of its fits, and which one is used: the lowest,
  * never one above PREDICT_MAX_HELDOUT (docs/models.md, "Prediction"). */
@@ -509,8 +525,8 @@ static void predict__time_heldout_text(const predict_model *m, dm_str *out)
     l.len = 0;
     if (m->way_used >= 0)
         dm_str_printf(&l, "used: %s, the lowest held-out error; an interval holds %.0f %% of held-out frames "
-                      "when at least %d were held out", predict_way_names[m->way_used], 100 * PREDICT_COVERAGE,
-                      PREDICT_MIN_HELDOUT);
+                      "by %s of its %d held out", predict_way_names[m->way_used], 100 * PREDICT_COVERAGE,
+                      predict__bound_rule(&m->way[m->way_used]), m->way[m->way_used].n);
     else if (m->way[0].why && m->way[1].why && m->way[2].why)
         dm_str_cat(&l, "WallTime not predicted: no way is available");
     else

@@ -39,9 +39,16 @@ typedef struct dm_counter_result {
     /* With the machine's drift removed (models/drift.h; docs/measurement.md,
      * "Drift removed"): corrected 1 when the figures below are set, 0 when
      * only the raw figures above exist (the scene's dm_scene_precision
-     * says why).  The raw median and CI above are never replaced. */
+     * says why).  The raw median and CI above are never replaced.
+     * corr_ci_* is the CI within the run (conditional on the run's median
+     * machine speed: for ties and picks inside the run); corr_between_* the
+     * CI for comparing with another run (that speed's own uncertainty in
+     * it), set when corr_between is 1 — at the end of a run or a merge,
+     * not kept in the store. */
     int corrected;
     double corr_median, corr_ci_lo, corr_ci_hi;
+    int corr_between;
+    double corr_between_lo, corr_between_hi;
 } dm_counter_result;
 
 typedef struct dm_quality {
@@ -56,6 +63,23 @@ typedef struct dm_quality {
     char *reference;         /* description of what the reference was */
 } dm_quality;
 
+/* The frame times of a configuration on a camera path (docs/motion.md):
+ * its path replayed `replays` times, each of its `frames` frames timed on
+ * its own; frame_ns[s * frames + f] is frame f of replay s, ns (NaN: not
+ * measured).  frames 0: a still configuration, nothing else is set.  The
+ * summary is models/frame_series' over frame_ns, made when measured and
+ * kept beside the series (as a counter's statistics beside its samples);
+ * NaN where no frame time was finite. */
+typedef struct dm_path_series {
+    size_t frames, replays;
+    double *frame_ns;
+    double p50, p95, p99;         /* ns, type-7 quantiles of the per-frame medians */
+    double low1_ns, low1_fps;     /* the 1 % low, as a time and as a frame rate */
+    size_t n_stutters;
+    long *stutter_at;             /* the stutters' frame indices, in path order */
+    double replay_spread;         /* NaN with one replay */
+    int noisy;                    /* 1 noisy, 0 not, -1 unknown (one replay) */
+} dm_path_series;
 /* Quality along a camera path (run/mpath_quality.h; docs/motion.md,
  * "Quality along a path"): a reference every K-th frame of one pass of F
  * frames (frames 0, K, 2K, ... <= F - 1), the configuration's FLIP mean and
@@ -91,6 +115,7 @@ typedef struct dm_config_result {
     char *img_heatmap;
     char *img_reference;
     char *img_flip;          /* FLIP map on the fixed [0,1] scale, may be NULL */
+    dm_path_series path;     /* frame times along its camera path (frames 0: still) */
     dm_path_quality path_quality;
 } dm_config_result;
 
@@ -151,6 +176,10 @@ typedef struct dm_scene_precision {
     double calib_noise;      /* after the calibration workload's ratio; NaN: not measured */
     double resolvable;       /* smallest relative difference between two of its configurations
                                 the run resolves: sqrt(2) x the median CI half-width used */
+    int between_runs;        /* 1: reference_spread is measured (at the end of a run or a merge;
+                                not kept in the store) */
+    double reference_spread; /* the uncertainty of the run's median machine speed that the
+                                corrected figures are relative to (robust SD, relative) */
 } dm_scene_precision;
 
 typedef struct dm_run_result {

@@ -218,19 +218,38 @@ static size_t drift__procedure(const double *lx, size_t nc, size_t nr, double *m
     return used;
 }
 
-/* Percentile interval (2.5 %, 97.5 %) of each configuration's bootstrap
- * corrected medians: replicates of the whole procedure on rounds drawn
- * with replacement.  Each replicate is first shifted by the median over
- * configurations of its change from the point estimates pm (log): where
- * the run's median speed lies moves every configuration of the scene
- * alike, cancels in every comparison within the run, and is the machine's
- * variation between runs (docs/measurement.md), not this configuration's
- * uncertainty.  lo/hi NaN for a configuration with fewer than half the
- * replicates finite. */
-static void drift__bootstrap(const drift_desc *d, const double *lx, const double *pm, double *lo, double *hi)
+/* A configuration's 95 % percentile intervals from the bootstrap (exp of
+ * log quantiles); NaN where fewer than half the replicates are finite. */
+typedef struct drift__ci {
+    double lo, hi;           /* within the run: each replicate shifted back to the run's median speed */
+    double blo, bhi;         /* between runs: the replicates as drawn */
+} drift__ci;
+
+/* 2.5 % and 97.5 % quantiles of the B log replicates v into *lo, *hi
+ * (exp); NaN when fewer than half are finite. */
+static void drift__percentiles(const double *v, size_t B, double *lo, double *hi)
+{
+    size_t m = 0;
+    for (size_t b = 0; b < B; b++)
+        m += isfinite(v[b]);
+    *lo = m * 2 >= B ? exp(stats_quantile(v, B, 0.025)) : NAN;
+    *hi = m * 2 >= B ? exp(stats_quantile(v, B, 0.975)) : NAN;
+}
+
+/* Percentile intervals of each configuration's bootstrap corrected
+ * medians: replicates of the whole procedure on rounds drawn with
+ * replacement.  Within the run, each replicate is first shifted by the
+ * median over configurations of its change from the point estimates pm
+ * (log): where the run's median speed lies moves every configuration of
+ * the scene alike and cancels in every comparison within the run.  Between
+ * runs it does not cancel, so the unshifted replicates give ci[c].blo/bhi.
+ * Returns the robust SD of the shifts (the uncertainty of the run's median
+ * speed, log). */
+static double drift__bootstrap(const drift_desc *d, const double *lx, const double *pm, drift__ci *ci)
 {
     size_t nc = d->n_configs, nr = d->n_rounds, B = d->bootstrap > 0 ? (size_t)d->bootstrap : DRIFT_BOOTSTRAP_B;
     double *xs = dm_xcalloc(nc * nr + 1, sizeof *xs), *rep = dm_xcalloc(nc * B + 1, sizeof *rep);
+    double *raw = dm_xcalloc(nc * B + 1, sizeof *raw), *shifts = dm_xcalloc(B + 1, sizeof *shifts);
     double *med = dm_xcalloc(nc + 1, sizeof *med), *y = dm_xcalloc(nr + nc + 1, sizeof *y);
     rng_state g = rng_seed(d->seed);
     for (size_t b = 0; b < B; b++) {
@@ -244,21 +263,24 @@ static void drift__bootstrap(const drift_desc *d, const double *lx, const double
         for (size_t c = 0; c < nc; c++)
             if (isfinite(med[c]) && isfinite(pm[c]))
                 y[m++] = med[c] - pm[c];
-        double shift = drift__median(y, m);
-        for (size_t c = 0; c < nc; c++)
-            rep[c * B + b] = med[c] - shift;
+        shifts[b] = drift__median(y, m);
+        for (size_t c = 0; c < nc; c++) {
+            rep[c * B + b] = med[c] - shifts[b];
+            raw[c * B + b] = med[c];
+        }
     }
     for (size_t c = 0; c < nc; c++) {
-        size_t m = 0;
-        for (size_t b = 0; b < B; b++)
-            m += isfinite(rep[c * B + b]);
-        lo[c] = m * 2 >= B ? exp(stats_quantile(rep + c * B, B, 0.025)) : NAN;
-        hi[c] = m * 2 >= B ? exp(stats_quantile(rep + c * B, B, 0.975)) : NAN;
+        drift__percentiles(rep + c * B, B, &ci[c].lo, &ci[c].hi);
+        drift__percentiles(raw + c * B, B, &ci[c].blo, &ci[c].bhi);
     }
+    double spread = drift_robust_sd(shifts, B);
     free(xs);
     free(rep);
+    free(raw);
+    free(shifts);
     free(med);
     free(y);
+    return spread;
 }
 
 /* The noise figures of drift_result on the cells whose round has a common
@@ -319,7 +341,7 @@ static void drift__raw(const drift_desc *d, drift_result *out, size_t *with_samp
         drift_config *k = &out->configs[c];
         stats_summary su;
         *k = (drift_config){ .raw_median = NAN, .raw_lo = NAN, .raw_hi = NAN,
-                             .median = NAN, .lo = NAN, .hi = NAN };
+                             .median = NAN, .lo = NAN, .hi = NAN, .between_lo = NAN, .between_hi = NAN };
         if (stats_summarize(d->x + c * d->n_rounds, d->n_rounds, d->seed + c, &su) == 0) {
             k->n = su.n;
             k->raw_median = su.median;
@@ -330,14 +352,17 @@ static void drift__raw(const drift_desc *d, drift_result *out, size_t *with_samp
     }
 }
 
-/* The corrected figures of every configuration from the point fit f. */
+/* The corrected figures of every configuration from the point fit f:
+ * within the run, the hull of the corrected samples' own CI and the
+ * shifted bootstrap interval; between runs, that hull and the unshifted
+ * interval.  Sets out->reference_spread. */
 static void drift__point(const drift_desc *d, const drift__fit *f, const double *lx, drift_result *out)
 {
     size_t nc = d->n_configs, nr = d->n_rounds;
-    double *lo = dm_xcalloc(nc + 1, sizeof *lo), *hi = dm_xcalloc(nc + 1, sizeof *hi);
+    drift__ci *ci = dm_xcalloc(nc + 1, sizeof *ci);
     double *y = dm_xcalloc(nr + 1, sizeof *y), *pm = dm_xcalloc(nc + 1, sizeof *pm);
     drift__procedure(lx, nc, nr, pm, y);
-    drift__bootstrap(d, lx, pm, lo, hi);
+    out->reference_spread = drift__bootstrap(d, lx, pm, ci);
     for (size_t c = 0; c < nc; c++) {
         drift_config *k = &out->configs[c];
         drift__corrected(f, c, y, &k->n_corrected);
@@ -347,11 +372,12 @@ static void drift__point(const drift_desc *d, const drift__fit *f, const double 
         if (k->n == 0 || stats_summarize(y, nr, d->seed + c, &su) != 0)
             continue;
         k->median = su.median;
-        k->lo = isfinite(lo[c]) ? fmin(su.ci_lo, lo[c]) : NAN;
-        k->hi = isfinite(hi[c]) ? fmax(su.ci_hi, hi[c]) : NAN;
+        k->lo = isfinite(ci[c].lo) ? fmin(su.ci_lo, ci[c].lo) : NAN;
+        k->hi = isfinite(ci[c].hi) ? fmax(su.ci_hi, ci[c].hi) : NAN;
+        k->between_lo = isfinite(k->lo) && isfinite(ci[c].blo) ? fmin(k->lo, ci[c].blo) : NAN;
+        k->between_hi = isfinite(k->hi) && isfinite(ci[c].bhi) ? fmax(k->hi, ci[c].bhi) : NAN;
     }
-    free(lo);
-    free(hi);
+    free(ci);
     free(y);
     free(pm);
 }
@@ -365,6 +391,7 @@ int drift_correct(const drift_desc *d, drift_result *out)
     out->configs = dm_xcalloc(nc + 1, sizeof *out->configs);
     out->round_factor = dm_xcalloc(nr + 1, sizeof *out->round_factor);
     out->machine_spread = out->raw_noise = out->loo_noise = out->calib_noise = out->calib_spread = NAN;
+    out->reference_spread = NAN;
     drift__raw(d, out, &with);
     double *lx = dm_xcalloc(nc * nr + 1, sizeof *lx);
     for (size_t i = 0; i < nc * nr; i++)

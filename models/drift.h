@@ -32,7 +32,21 @@
  * figure is the time at the run's median machine speed; each replicate is
  * shifted by the median change of all the scene's configurations, so the
  * CI is conditional on that reference (its uncertainty moves every
- * configuration alike and cancels in comparisons within the run).
+ * configuration alike and cancels in comparisons within the run).  That
+ * within-run CI is for ties and picks inside the run.
+ *
+ * Between two runs the reference itself moves: each run's median machine
+ * speed is an estimate from its own rounds, and two runs' corrected
+ * medians differ by that common factor (on the stored default runs it was
+ * most of their disagreement: docs/measurement.md, "Between runs").  The
+ * between-run CI is the hull of the within-run CI and the percentile
+ * interval of the same replicates NOT shifted, so the uncertainty of the
+ * run's median speed is in it; reference_spread is that uncertainty alone
+ * (the robust SD of the replicates' shifts).  It assumes the rounds of a
+ * run are draws from the same machine states another run would draw
+ * from; a machine that changes between runs beyond what its rounds showed
+ * (another load, another host) is not covered, which is compare's machine
+ * check.
  *
  * The calibration workload timed in every round (optional) is compared as
  * a predictor of the drift: the noise left after dividing by the
@@ -65,7 +79,10 @@ typedef struct drift_desc {
 typedef struct drift_config {
     size_t n;                         /* finite samples */
     double raw_median, raw_lo, raw_hi;  /* models/stats.h CI of the raw samples */
-    double median, lo, hi;            /* corrected; NaN when not corrected */
+    double median, lo, hi;            /* corrected, CI within the run (conditional on its median
+                                         speed); NaN when not corrected */
+    double between_lo, between_hi;    /* corrected, CI for comparing with another run (the run's
+                                         median speed's own uncertainty in it); NaN when not */
     size_t n_corrected;               /* samples whose round had a common mode without c */
 } drift_config;
 
@@ -85,6 +102,8 @@ typedef struct drift_result {
     double loo_noise;        /* after the leave-one-out common mode */
     double calib_noise;      /* after the calibration ratio; NaN without calibration */
     double calib_spread;     /* of the log calibration ratio; NaN without */
+    double reference_spread; /* the uncertainty of the run's median machine speed (robust SD of
+                                the bootstrap replicates' common shift); NaN when not corrected */
     double factor_noise;     /* the spread round factors would have from the configurations'
                                 own noise alone: sqrt(pi/2) loo_noise / sqrt(configurations
                                 per round, median) */

@@ -148,3 +148,36 @@ int stats_summarize(const double *x, size_t n, uint64_t seed, stats_summary *out
     free(s);
     return 0;
 }
+
+/* t(0.95, df), the 95th percentile of Student's t, df = 1 .. 8. */
+static const double stats__t95[] = { 6.313752, 2.919986, 2.353363, 2.131847, 2.015048,
+                                     1.943180, 1.894579, 1.859548 };
+
+double stats_bound90(const double *e, size_t n, const char **method)
+{
+    size_t m = 0;
+    double *a = dm_xcalloc(n + 1, sizeof *a), mean = 0, ss = 0, h = NAN;
+    for (size_t i = 0; i < n; i++)
+        if (isfinite(e[i])) {
+            a[m++] = e[i];
+            mean += e[i];
+        }
+    const char *how = NULL;
+    if (m >= STATS_BOUND90_CONFORMAL) {
+        for (size_t i = 0; i < m; i++)
+            a[i] = fabs(a[i]);
+        qsort(a, m, sizeof *a, stats__cmp);
+        h = a[(size_t)ceil((double)(m + 1) * 0.9) - 1];   /* rank <= m for m >= 9 */
+        how = "conformal";
+    } else if (m >= 2) {
+        mean /= (double)m;
+        for (size_t i = 0; i < m; i++)
+            ss += (a[i] - mean) * (a[i] - mean);
+        h = fabs(mean) + stats__t95[m - 2] * sqrt(ss / (double)(m - 1)) * sqrt(1 + 1 / (double)m);
+        how = "normal";
+    }
+    free(a);
+    if (method)
+        *method = how;
+    return h;
+}

@@ -53,6 +53,22 @@ int stats_summarize(const double *x, size_t n, uint64_t seed, stats_summary *out
  * exact coverage 1 - 2*P(B <= k-1). */
 size_t stats_median_ci_rank(size_t n, double level, double *coverage);
 
+/* A bound of prediction errors at 90 % coverage (docs/models.md,
+ * "Intervals"): given the signed errors e[0..n) of held-out predictions
+ * (non-finite skipped; m of them finite), an h such that a new error
+ * drawn like them has |e| <= h with probability >= 0.9.
+ *   m >= STATS_BOUND90_CONFORMAL (9): split conformal, distribution-free:
+ *     the ceil((m + 1) 0.9)-th smallest |e|;
+ *   2 <= m < 9: no order statistic reaches 0.9 (the largest of m bounds
+ *     a new one with probability m / (m + 1) only), so the normal-theory
+ *     prediction interval: h = |mean| + t(0.95, m - 1) s sqrt(1 + 1/m), s
+ *     the sample SD — exactly 0.9 for normal errors, and the symmetric
+ *     bound holds the interval mean ± t s sqrt(1 + 1/m);
+ *   m < 2: NaN (no spread to measure).
+ * *method (optional) gets "conformal", "normal" or NULL accordingly. */
+#define STATS_BOUND90_CONFORMAL 9
+double stats_bound90(const double *e, size_t n, const char **method);
+
 /* Copies the finite values of x into a new malloc'd array sorted ascending;
  * *m gets their count (the array may be NULL when m == 0).  Used by the
  * other statistics modules. */

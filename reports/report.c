@@ -16,6 +16,16 @@
 
 #include "reports/recommend.h"
 
+/* c's value of param `name`, NULL when it has none.  A still camera path
+ * is the one value the planner leaves out of a configuration's parameters
+ * (its key stays what it was before paths): it reads as "still", so a
+ * dolly beside it varies and its label says so. */
+static const char *report__param_value(const dm_config_result *c, const char *name)
+{
+    const char *v = dm_kv_get(c->params, c->n_params, name);
+    return !v && strcmp(name, "camera.path") == 0 ? "still" : v;
+}
+
 /* 1 when param `name` takes two or more distinct values over the scene's
  * configurations (techniques that do not read it have no value and do not
  * count: a blank cell is not a variation). */
@@ -26,7 +36,7 @@ int report__param_varies(const dm_run_result *run, const char *scene, const char
         const dm_config_result *c = &run->configs[i];
         if (!c->ok || strcmp(c->scene ? c->scene : "", scene) != 0)
             continue;
-        const char *v = dm_kv_get(c->params, c->n_params, name);
+        const char *v = report__param_value(c, name);
         if (v && first && strcmp(v, first) != 0)
             return 1;
         if (v)
@@ -45,7 +55,7 @@ static int report__param_varies_all(const dm_run_result *run, const char *scene,
         const dm_config_result *c = &run->configs[i];
         if (strcmp(c->scene ? c->scene : "", scene) != 0)
             continue;
-        const char *v = dm_kv_get(c->params, c->n_params, name);
+        const char *v = report__param_value(c, name);
         if (v && first && strcmp(v, first) != 0)
             return 1;
         first = v ? v : first;

@@ -5,7 +5,11 @@
  * first-appearance order), for each timing counter <name>_median_ms,
  * <name>_ci_lo_ms, <name>_ci_hi_ms, each deterministic counter by name, then
  * the quality metrics (PSNR_dB), then label (report_config_name) and pareto
- * (1 on its scene's front, else 0).  Units are in the names: _ms for times,
+ * (1 on its scene's front, else 0), the frame time with the drift removed;
+ * in a run with configurations on a camera path (only), last the path's
+ * figures (docs/motion.md): path_p50_ms, path_p95_ms, path_p99_ms,
+ * path_one_percent_low_ms, path_one_percent_low_fps, path_stutters, empty
+ * for a still configuration.  Units are in the names: _ms for times,
  * _dB; counters count items or bytes (their names say which; `dmbench list
  * counters` gives every unit).  An unavailable or absent value is an empty
  * field, never 0.  Records end with CRLF; fields with , " CR or LF are
@@ -80,6 +84,20 @@ static void report_csv__corrected_fields(dm_str *s, const report_model *m, const
     report_csv__field(s, r->corrected ? REPORT_DRIFT_METHOD : t ? raw : NULL, 0);
 }
 
+static const char *const report_csv__path_cols[] = {"path_p50_ms", "path_p95_ms", "path_p99_ms",
+                                                    "path_one_percent_low_ms", "path_one_percent_low_fps",
+                                                    "path_stutters"};
+#define REPORT_CSV__N_PATH (sizeof report_csv__path_cols / sizeof report_csv__path_cols[0])
+
+/* The path figures of a configuration (report_csv__path_cols), empty for a still one. */
+static void report_csv__path_fields(dm_str *s, const dm_path_series *p)
+{
+    double v[REPORT_CSV__N_PATH] = {p->p50 / 1e6, p->p95 / 1e6, p->p99 / 1e6, p->low1_ns / 1e6,
+                                    p->low1_fps, (double)p->n_stutters};
+    for (size_t i = 0; i < REPORT_CSV__N_PATH; i++)
+        report_csv__num_field(s, v[i], p->frames > 0);
+}
+
 static void report_csv__row(dm_str *s, const report_model *m, const report_model_row *r, const char **params,
                             size_t np, const char **timed, size_t nt, const char **det, size_t nd)
 {
@@ -105,11 +123,13 @@ static void report_csv__row(dm_str *s, const report_model *m, const report_model
     report_csv__field(s, r->name, 0);
     report_csv__field(s, r->front ? "1" : "0", 0);
     report_csv__corrected_fields(s, m, r);
+    if (m->n_path_rows)
+        report_csv__path_fields(s, &c->path);
     dm_str_cat(s, "\r\n");
 }
 
 static void report_csv__header(dm_str *s, const char **params, size_t np, const char **timed, size_t nt,
-                               const char **det, size_t nd)
+                               const char **det, size_t nd, int paths)
 {
     static const char *lead[] = {DM_RESULT_LEAD_COLUMNS}, *trail[] = {DM_RESULT_TRAIL_COLUMNS};
     for (size_t i = 0; i < sizeof lead / sizeof lead[0]; i++)
@@ -130,6 +150,8 @@ static void report_csv__header(dm_str *s, const char **params, size_t np, const 
         report_csv__field(s, quality_cols[i], 0);
     for (size_t i = 0; i < sizeof trail / sizeof trail[0]; i++)
         report_csv__field(s, trail[i], 0);
+    for (size_t i = 0; paths && i < REPORT_CSV__N_PATH; i++)
+        report_csv__field(s, report_csv__path_cols[i], 0);
     dm_str_cat(s, "\r\n");
 }
 
@@ -137,7 +159,7 @@ int report__write_csv(const report_model *m, const report_desc *d, const char *p
 {
     (void)d;
     dm_str s = {0};
-    report_csv__header(&s, m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
+    report_csv__header(&s, m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det, m->n_path_rows > 0);
     for (size_t i = 0; i < m->n_rows; i++)
         report_csv__row(&s, m, &m->rows[i], m->params, m->n_params, m->timed, m->n_timed, m->det, m->n_det);
     int rc = report__save(&s, path);

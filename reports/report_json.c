@@ -78,15 +78,23 @@ static cJSON *report_json__str_array(char *const *v, size_t n)
 
 /* The drift-corrected figures of a counter with samples: an object, or
  * null when its scene kept the raw figures only (the run's "precision"
- * says why). */
+ * says why).  ci95 is the CI within the run (for ties and picks in it);
+ * ci95_between_runs the CI for comparing with another run, or null with
+ * the reason in between_runs_unavailable. */
 static cJSON *report_json__corrected_json(const dm_counter_result *c)
 {
     if (!c->corrected)
         return cJSON_CreateNull();
     cJSON *o = cJSON_CreateObject();
-    double ci[2] = {c->corr_ci_lo, c->corr_ci_hi};
+    double ci[2] = {c->corr_ci_lo, c->corr_ci_hi}, bci[2] = {c->corr_between_lo, c->corr_between_hi};
     cJSON_AddNumberToObject(o, "median", c->corr_median);
     cJSON_AddItemToObject(o, "ci95", report_json__num_array(ci, 2));
+    if (c->corr_between) {
+        cJSON_AddItemToObject(o, "ci95_between_runs", report_json__num_array(bci, 2));
+    } else {
+        cJSON_AddNullToObject(o, "ci95_between_runs");
+        cJSON_AddStringToObject(o, "between_runs_unavailable", REPORT_BETWEEN_UNAVAILABLE);
+    }
     cJSON_AddStringToObject(o, "method", REPORT_DRIFT_METHOD);
     return o;
 }
@@ -147,6 +155,34 @@ static cJSON *report_json__quality_json(const dm_quality *q)
     return o;
 }
 
+/* A configuration's frame times along its camera path (docs/motion.md):
+ * the summary in ms and fps, the stutters' frame indices, the noise as
+ * true, false or "unknown", and the series as one array per replay (ns). */
+static cJSON *report_json__path_json(const dm_path_series *p)
+{
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddNumberToObject(o, "frames", (double)p->frames);
+    cJSON_AddNumberToObject(o, "replays", (double)p->replays);
+    cJSON_AddNumberToObject(o, "p50_ms", p->p50 / 1e6);
+    cJSON_AddNumberToObject(o, "p95_ms", p->p95 / 1e6);
+    cJSON_AddNumberToObject(o, "p99_ms", p->p99 / 1e6);
+    cJSON_AddNumberToObject(o, "one_percent_low_ms", p->low1_ns / 1e6);
+    cJSON_AddNumberToObject(o, "one_percent_low_fps", p->low1_fps);
+    cJSON_AddNumberToObject(o, "stutters", (double)p->n_stutters);
+    cJSON *at = cJSON_AddArrayToObject(o, "stutter_frames");
+    for (size_t i = 0; i < p->n_stutters; i++)
+        cJSON_AddItemToArray(at, cJSON_CreateNumber((double)p->stutter_at[i]));
+    cJSON_AddNumberToObject(o, "replay_spread", p->replay_spread);   /* one replay: null */
+    if (p->noisy < 0)
+        cJSON_AddStringToObject(o, "noisy", "unknown");
+    else
+        cJSON_AddBoolToObject(o, "noisy", p->noisy);
+    cJSON *rows = cJSON_AddArrayToObject(o, "frame_ns");
+    for (size_t s = 0; p->frame_ns && s < p->replays; s++)
+        cJSON_AddItemToArray(rows, report_json__num_array(p->frame_ns + s * p->frames, p->frames));
+    return o;
+}
+
 /* Quality along a camera path (dm_path_quality): null when none was asked;
  * "computed": false with the reason when it could not be computed. */
 static cJSON *report_json__path_quality_json(const dm_path_quality *pq)
@@ -195,6 +231,8 @@ static cJSON *report_json__config_json(const report_model_row *row)
     report_json__add_str(im, "heatmap", c->img_heatmap);
     report_json__add_str(im, "reference", c->img_reference);
     report_json__add_str(im, "flip", c->img_flip);
+    if (c->path.frames)   /* a still configuration has none */
+        cJSON_AddItemToObject(o, "path", report_json__path_json(&c->path));
     cJSON_AddItemToObject(o, "path_quality", report_json__path_quality_json(&c->path_quality));
     report_json__add_str(o, "log", c->log);
     return o;
@@ -291,6 +329,10 @@ static cJSON *report_json__precision_json(const report_model *m)
         cJSON_AddNumberToObject(s, "loo_noise", p->loo_noise);
         cJSON_AddNumberToObject(s, "calib_noise", p->calib_noise);
         cJSON_AddNumberToObject(s, "resolvable", p->resolvable);
+        if (p->between_runs)
+            cJSON_AddNumberToObject(s, "reference_spread", p->reference_spread);
+        else
+            cJSON_AddNullToObject(s, "reference_spread");
         report_json__add_str(s, "disagreement", sc->disagree);
         cJSON_AddItemToArray(a, s);
     }
@@ -492,6 +534,11 @@ static void report_json__read_counter(const cJSON *o, dm_counter_result *c)
         c->corr_ci_hi = nci > 1 ? cci[1] : NAN;
         c->corrected = isfinite(c->corr_median) && nci == 2;
         free(cci);
+        double *bci = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(corr, "ci95_between_runs"), &nci);
+        c->corr_between = c->corrected && nci == 2 && isfinite(bci[0]) && isfinite(bci[1]);
+        c->corr_between_lo = c->corr_between ? bci[0] : 0;
+        c->corr_between_hi = c->corr_between ? bci[1] : 0;
+        free(bci);
     }
 }
 
@@ -516,6 +563,49 @@ static void report_json__read_quality(const cJSON *o, dm_quality *q)
     q->flip_max = report_json__get_num(o, "FLIPMax");
     q->flip_ppd = report_json__get_num(o, "FLIPPixelsPerDegree");
     q->reference = report_json__get_str(o, "reference");
+}
+
+/* The ns a figure written in ms stood for: the double whose ms the writer
+ * prints as the same text (x / 1e6 of x = ms * 1e6 can be one ulp off). */
+static double report_json__ns_of_ms(double ms)
+{
+    double ns = ms * 1e6;
+    for (int i = 0; i < 4 && isfinite(ns) && ns / 1e6 != ms; i++)
+        ns = nextafter(ns, ns / 1e6 < ms ? INFINITY : -INFINITY);
+    return ns;
+}
+
+/* "path" of a configuration (report_json__path_json), when written; its
+ * shape was checked (report_json__shape_path). */
+static void report_json__read_path(const cJSON *o, dm_path_series *p)
+{
+    if (!cJSON_IsObject(o))
+        return;
+    p->frames = (size_t)report_json__get_count(o, "frames");
+    p->replays = (size_t)report_json__get_count(o, "replays");
+    p->frame_ns = dm_xcalloc(p->frames * p->replays + 1, sizeof *p->frame_ns);
+    const cJSON *row;
+    size_t s = 0, n;
+    cJSON_ArrayForEach(row, cJSON_GetObjectItemCaseSensitive(o, "frame_ns")) {
+        double *v = report_json__read_nums(row, &n);
+        memcpy(p->frame_ns + s++ * p->frames, v, n * sizeof *v);
+        free(v);
+    }
+    p->p50 = report_json__ns_of_ms(report_json__get_num(o, "p50_ms"));
+    p->p95 = report_json__ns_of_ms(report_json__get_num(o, "p95_ms"));
+    p->p99 = report_json__ns_of_ms(report_json__get_num(o, "p99_ms"));
+    p->low1_ns = report_json__ns_of_ms(report_json__get_num(o, "one_percent_low_ms"));
+    p->low1_fps = report_json__get_num(o, "one_percent_low_fps");
+    p->replay_spread = report_json__get_num(o, "replay_spread");
+    const cJSON *noisy = cJSON_GetObjectItemCaseSensitive(o, "noisy");
+    p->noisy = cJSON_IsBool(noisy) ? cJSON_IsTrue(noisy) : -1;
+    size_t na = 0;
+    double *at = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(o, "stutter_frames"), &na);
+    p->stutter_at = dm_xcalloc(na + 1, sizeof *p->stutter_at);
+    for (size_t i = 0; i < na; i++)
+        p->stutter_at[i] = (long)at[i];
+    p->n_stutters = na;
+    free(at);
 }
 
 static void report_json__read_path_quality(const cJSON *o, dm_path_quality *pq)
@@ -562,6 +652,7 @@ static void report_json__read_config(const cJSON *o, dm_config_result *c)
     c->img_heatmap = report_json__get_str(im, "heatmap");
     c->img_reference = report_json__get_str(im, "reference");
     c->img_flip = report_json__get_str(im, "flip");
+    report_json__read_path(cJSON_GetObjectItemCaseSensitive(o, "path"), &c->path);
     report_json__read_path_quality(cJSON_GetObjectItemCaseSensitive(o, "path_quality"), &c->path_quality);
 }
 
@@ -615,6 +706,8 @@ static void report_json__read_precision(const cJSON *o, dm_run_result *r)
         p->loo_noise = report_json__get_num(it, "loo_noise");
         p->calib_noise = report_json__get_num(it, "calib_noise");
         p->resolvable = report_json__get_num(it, "resolvable");
+        p->reference_spread = report_json__get_num(it, "reference_spread");
+        p->between_runs = isfinite(p->reference_spread);
     }
 }
 
@@ -680,6 +773,44 @@ static const char *shape__counters(const cJSON *cfg)
     return NULL;
 }
 
+/* A configuration's "path", when present: frames >= 2 and replays >= 1
+ * (whole numbers), "frame_ns" one array of `frames` numbers or nulls per
+ * replay, "stutter_frames" indices below frames, the figures numbers or
+ * null, so the reader never reads a series short or past its end. */
+static const char *report_json__shape_path(const cJSON *cfg)
+{
+    static const char *const nums[] = { "p50_ms", "p95_ms", "p99_ms", "one_percent_low_ms",
+                                        "one_percent_low_fps", "stutters", "replay_spread" };
+    const cJSON *p = cJSON_GetObjectItemCaseSensitive(cfg, "path"), *x, *row;
+    if (!p || cJSON_IsNull(p))
+        return NULL;
+    const cJSON *f = cJSON_GetObjectItemCaseSensitive(p, "frames"), *r = cJSON_GetObjectItemCaseSensitive(p, "replays");
+    if (!cJSON_IsObject(p) || !cJSON_IsNumber(f) || !cJSON_IsNumber(r) || f->valuedouble < 2 ||
+        f->valuedouble > 1e6 || r->valuedouble < 1 || r->valuedouble > 1e6 ||
+        f->valuedouble != floor(f->valuedouble) || r->valuedouble != floor(r->valuedouble))
+        return "a config's \"path\" needs whole numbers \"frames\" (2 or more) and \"replays\" (1 or more)";
+    for (size_t i = 0; i < sizeof nums / sizeof *nums; i++)
+        if (!shape__field_ok(p, nums[i], cJSON_IsNumber))
+            return "a path figure is not a number";
+    const cJSON *rows = cJSON_GetObjectItemCaseSensitive(p, "frame_ns");
+    if (!cJSON_IsArray(rows) || cJSON_GetArraySize(rows) != (int)r->valuedouble)
+        return "a path's \"frame_ns\" is not one array per replay";
+    cJSON_ArrayForEach(row, rows) {
+        if (!cJSON_IsArray(row) || cJSON_GetArraySize(row) != (int)f->valuedouble)
+            return "a path's \"frame_ns\" row does not hold one time per frame";
+        cJSON_ArrayForEach(x, row)
+            if (!cJSON_IsNumber(x) && !cJSON_IsNull(x))
+                return "a path frame time is not a number";
+    }
+    const cJSON *at = cJSON_GetObjectItemCaseSensitive(p, "stutter_frames");
+    if (at && !cJSON_IsArray(at))
+        return "a path's \"stutter_frames\" is not an array";
+    cJSON_ArrayForEach(x, at)
+        if (!cJSON_IsNumber(x) || x->valuedouble < 0 || x->valuedouble >= f->valuedouble)
+            return "a path's stutter frame is not a frame index of the path";
+    return NULL;
+}
+
 /* Checks the skeleton the reader relies on; names the first missing part. */
 static const char *report_json__shape_error(const cJSON *root)
 {
@@ -696,6 +827,9 @@ static const char *report_json__shape_error(const cJSON *root)
     cJSON_ArrayForEach(it, c)
         if (shape__counters(it))
             return shape__counters(it);
+    cJSON_ArrayForEach(it, c)
+        if (report_json__shape_path(it))
+            return report_json__shape_path(it);
     return NULL;
 }
 

@@ -2,7 +2,8 @@
  * failures and left-out configurations with their reasons.  A row of the
  * writer table (report_write.c): labels, times, fronts, warnings and the
  * published section come from the report model (report_model.h); the
- * answer and its counters read the model too (answer.c); failures, left-out
+ * answer and its counters read the model too (answer.c); "Along the path"
+ * reads each configuration's path series; failures, left-out
  * configurations and the proxy section read the run. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
@@ -95,6 +96,61 @@ static void report_md__scene_table(dm_str *s, const report_model *m, const repor
         report_md__quality_cells(s, &r->config->quality, m->metric);
         dm_str_printf(s, " `%s` |\n", r->config->key);
     }
+}
+
+/* Stutter frames listed in a cell before "…". */
+#define REPORT_MD__STUTTERS_SHOWN 8
+
+/* A time in ms at three decimals, or "unavailable" (no finite frame time). */
+static void report_md__ms(dm_str *s, double ns)
+{
+    if (isfinite(ns))
+        dm_str_printf(s, " %.3f |", ns / 1e6);
+    else
+        dm_str_cat(s, " unavailable |");
+}
+
+/* One configuration's row of "Along the path". */
+static void report_md__path_row(dm_str *s, const report_model_row *r)
+{
+    const dm_path_series *p = &r->config->path;
+    dm_str_cat(s, "| ");
+    report_md__cell(s, r->name);
+    dm_str_printf(s, " | %zu × %zu |", p->frames, p->replays);
+    report_md__ms(s, p->p50);
+    report_md__ms(s, p->p95);
+    report_md__ms(s, p->p99);
+    if (isfinite(p->low1_ns))
+        dm_str_printf(s, " %.3f (%.0f fps) |", p->low1_ns / 1e6, p->low1_fps);
+    else
+        dm_str_cat(s, " unavailable |");
+    dm_str_printf(s, " %zu", p->n_stutters);
+    for (size_t i = 0; i < p->n_stutters && i < REPORT_MD__STUTTERS_SHOWN; i++)
+        dm_str_printf(s, "%s%ld", i ? ", " : p->n_stutters == 1 ? " (frame " : " (frames ", p->stutter_at[i]);
+    if (p->n_stutters)
+        dm_str_cat(s, p->n_stutters > REPORT_MD__STUTTERS_SHOWN ? ", …)" : ")");
+    if (p->noisy < 0)
+        dm_str_cat(s, " | unknown (one replay) |");
+    else
+        dm_str_printf(s, " | %.1f %%%s |", 100 * p->replay_spread, p->noisy ? " ⚠ noisy" : "");
+    dm_str_printf(s, " `%s` |\n", r->config->key);
+}
+
+/* "Along the path": the frame times of the configurations on a camera path
+ * (docs/motion.md); nothing in a run without one. */
+static void report_md__path_section(dm_str *s, const report_model *m)
+{
+    if (!m->n_path_rows)
+        return;
+    dm_str_cat(s, "\n## Along the path\n\nEach frame's time is the median of its replays; p50/p95/p99 "
+                  "over the frames, the 1 % low the mean of the slowest ⌈F/100⌉, a stutter a frame over "
+                  "2 × p50 (frame indices along the path), the replay spread the median over frames of "
+                  "(max − min) / median of its replays (noisy over 10 %).\n\n"
+                  "| configuration | frames × replays | p50 ms | p95 ms | p99 ms | 1 % low ms | stutters | "
+                  "replay spread | key |\n|---|---|---|---|---|---|---|---|---|\n");
+    for (size_t i = 0; i < m->n_rows; i++)
+        if (m->rows[i].config->path.frames)
+            report_md__path_row(s, &m->rows[i]);
 }
 
 /* Noisy configurations listed this many to a line. */
@@ -219,6 +275,7 @@ int report__write_md(const report_model *m, const report_desc *d, const char *pa
     }
     for (size_t i = 0; i < m->n_scenes; i++)
         report_md__scene_table(&s, m, &m->scenes[i]);
+    report_md__path_section(&s, m);
     report_md__failures(&s, run);
     dm_str_cat(&s, m->published_md);
     report_md__proxy_section(&s, run);

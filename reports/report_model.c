@@ -195,6 +195,7 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     for (size_t i = 0; i < m->n_rows; i++) {
         const dm_config_result *c = &run->configs[i];
         report_model__row(m, &m->rows[i], c);
+        m->n_path_rows += c->path.frames > 0;
         for (size_t k = 0; k < m->n_scenes; k++)
             if (strcmp(c->scene ? c->scene : "", names[k]) == 0)
                 m->rows[i].scene = k;

@@ -42,6 +42,11 @@
 #define REPORT_DRIFT_METHOD "each round's common mode divided out (median polish of log times, " \
                             "leave-one-out), CI with the correction's own uncertainty (bootstrap over rounds)"
 
+/* Why a corrected figure has no between-run CI (docs/measurement.md,
+ * "Between runs"). */
+#define REPORT_BETWEEN_UNAVAILABLE "computed at the end of a run or a merge and not kept in the store: " \
+                                   "this file was written from a stored run"
+
 /* One configuration as every file shows it. */
 typedef struct report_model_row {
     const dm_config_result *config;     /* borrowed from the run */
@@ -144,6 +149,10 @@ typedef struct report_model {
     double resolvable;            /* smallest resolvable relative difference; NaN likewise */
     size_t n_corrected_scenes;    /* scenes whose figures have the drift removed */
     char *precision_text;         /* the sentence every file shows; "" without WallTime */
+    /* Camera paths: configurations with frame times along a path (their
+     * dm_config_result.path); 0 in a still run, whose files then have no
+     * path column or table */
+    size_t n_path_rows;
 } report_model;
 
 /* Builds the model of run for the files d describes (report.h): d->dir

@@ -6,6 +6,7 @@
 #include "run/callgrind.h"
 #include "run/inputs.h"
 #include "run/mquality.h"
+#include "run/path_timing.h"
 #include "run/predict.h"
 #include "models/stats.h"
 
@@ -44,11 +45,15 @@ static void measure__warmup(mscene *m, mconf *c)
 
 /* Continues from the samples a killed process checkpointed for this
  * configuration (same counters, same count for each); at most
- * samples_max - 1 are taken, so at least one more is measured here. */
+ * samples_max - 1 are taken, so at least one more is measured here.  A
+ * path configuration is measured from scratch: its frame times are not
+ * checkpointed, and its replays must be its samples. */
 static void measure__restore(mscene *m, mconf *c)
 {
     size_t cap = protocol_resume_limit(&m->pd), got = 0;
     long ns = 0;
+    if (c->path_frames)
+        return;
     for (size_t i = 0; i < m->n_timing; i++) {
         double *v = NULL;
         size_t n = 0;
@@ -106,6 +111,7 @@ static void measure__prepare(mscene *m, mconf *c)
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i] = dm_xcalloc((size_t)sm->samples_max, sizeof **c->timing);
     c->cap = (size_t)sm->samples_max;
+    path_timing_prepare(m, c);
     c->active = 1;
     measure__restore(m, c);
 }
@@ -155,6 +161,7 @@ static void measure__room(mscene *m, mconf *c)
     c->cap = c->cap ? 2 * c->cap : 8;
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i] = dm_xrealloc(c->timing[i], c->cap * sizeof **c->timing);
+    path_timing_room(c);
 }
 
 /* Test hook for the extra rounds: DMBENCH_TEST_NOISY=<technique> scales
@@ -211,6 +218,7 @@ static void measure__timing_sample(mscene *m, mconf *c, int extra)
         c->vt.pages_resident = v1.pages_resident;
         c->vt.committed_bytes = v1.committed_bytes;
     }
+    path_timing_record(m, c, vals);
     measure__test_noise(m, c, vals);
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i][c->n_samples] = vals[i];
@@ -471,6 +479,7 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
     if (!c->failed) {
         int64_t t0 = dm_now_ns();
         measure__collect(m, c, &out);
+        path_timing_collect(c, &out);
         mquality_measure(m, c, &out);
         c->quality_ns = dm_now_ns() - t0;
     }
@@ -501,7 +510,10 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
         mscene_say(m->job, "A %s %zu %.4f %.4f", c->pc->key, c->n_extra, c->ci_rel_before, c->ci_rel);
     const dm_counter_result *wt = m->stop_index >= 0 ? dm_config_counter(&out, m->timing[m->stop_index]) : NULL;
     double ci = wt && wt->median > 0 ? (wt->ci_hi - wt->ci_lo) / 2 / wt->median : NAN;
-    if (rc == 0)
+    if (rc == 0 && out.path.frames)   /* on a camera path: its p99 and stutters too */
+        mscene_say(m->job, "D %s %s %.0f %.4f %lld %.0f %zu", c->pc->key, out.ok ? "ok" : "failed",
+                   wt ? wt->median : NAN, ci, (long long)c->sampling_ns, out.path.p99, out.path.n_stutters);
+    else if (rc == 0)
         mscene_say(m->job, "D %s %s %.0f %.4f %lld", c->pc->key, out.ok ? "ok" : "failed",
                      wt ? wt->median : NAN, ci, (long long)c->sampling_ns);
     else

@@ -63,21 +63,46 @@ void mscene_fail(mconf *c, const char *reason)
     c->reason = dm_xstrdup(reason);
 }
 
-/* Draws `frames` frames of one item into the scene's target (made or
- * resized on first use; rebound because image renders use their own). */
-void mscene_frames(mscene *m, mconf *c, int frames)
+/* Binds the scene's target at c's size (made or resized on first use;
+ * rebound because image renders use their own).  Returns 0, or -1 with the
+ * reason in c's log. */
+static int mscene__bind_target(mscene *m, mconf *c)
 {
     if (m->rt.w != c->pc->width || m->rt.h != c->pc->height) {
         target_destroy(&m->rt);
         if (target_create(&m->rt, c->pc->width, c->pc->height) != 0) {
             dm_str_printf(&c->log, "cannot create a %dx%d render target\n", c->pc->width, c->pc->height);
-            return;
+            return -1;
         }
     }
     target_bind(&m->rt);
+    return 0;
+}
+
+/* Draws `frames` frames of one item into the scene's target. */
+void mscene_frames(mscene *m, mconf *c, int frames)
+{
+    if (mscene__bind_target(m, c) != 0)
+        return;
     for (int f = 0; f < frames; f++) {
         render_set_frame(m->r, c->item, (uint64_t)f);   /* orbits: frame f of every sample */
         render_draw(m->r, c->item, c->pc->width, c->pc->height);
+    }
+}
+
+/* Draws frames 0..frames-1 of c's item, each finished (glFinish) and timed
+ * on its own with the clock WallTime reads, into c->frame_ns: a path's
+ * frames are not spilled into one another. */
+static void mscene__frames_timed(mscene *m, mconf *c, int frames)
+{
+    if (mscene__bind_target(m, c) != 0)
+        return;
+    for (int f = 0; f < frames; f++) {
+        int64_t t0 = dm_now_ns();
+        render_set_frame(m->r, c->item, (uint64_t)f);
+        render_draw(m->r, c->item, c->pc->width, c->pc->height);
+        glFinish();
+        c->frame_ns[f] = (double)(dm_now_ns() - t0);
     }
 }
 
@@ -103,6 +128,8 @@ int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames
     int passes = 0;
     if (rc == 0)
         rc = counters_num_passes(s, &passes);
+    for (int f = 0; c->frame_ns && f < frames; f++)
+        c->frame_ns[f] = NAN;
     for (int p = 0; rc == 0 && p < passes; p++) {
         render_item full = c->item;
         if (counters_pass_minimal_fs(s, p))
@@ -113,8 +140,9 @@ int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames
         if (rc == 0 && c->item.id)   /* the stage passes' frames in their steady state */
             mscene_frames(m, c, counters_pass_warm_frames(s, p));
         rc = rc ? rc : counters_sample_begin(s, 0);
+        int timed = c->frame_ns && strcmp(counters_pass_name(s, p), "timing") == 0;
         if (rc == 0 && c->item.id)
-            mscene_frames(m, c, frames);
+            (timed ? mscene__frames_timed : mscene_frames)(m, c, frames);
         c->item = full;
         rc = rc ? rc : counters_sample_end(s);
         rc = rc ? rc : counters_pass_end(s);
@@ -311,6 +339,8 @@ void mscene_teardown(mscene *m, mconf *cs, size_t n)
         for (size_t k = 0; cs[i].stats_reason && k < m->n_statistic; k++)
             free(cs[i].stats_reason[k]);
         free(cs[i].stats_reason);
+        free(cs[i].frame_ns);
+        free(cs[i].path_ns);
     }
     free(cs);
     free(m->timing);

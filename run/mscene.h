@@ -56,6 +56,10 @@ typedef struct mconf {
     char **stats_reason;
     int has_vt;                 /* virtual-textured: vt holds its samples' figures */
     render_vt_stats vt;           /* misses and upload bytes summed over its samples, the rest at the last */
+    size_t path_frames;         /* F of its camera path (run/path_timing.h), 0: still */
+    double *frame_ns;           /* a path configuration: the timing pass of mscene_session times
+                                   each of its frames here (`frames` entries); NULL: still */
+    double *path_ns;            /* its replays so far, row = replay (cap × path_frames) */
 } mconf;
 
 typedef struct mscene {
@@ -93,7 +97,10 @@ void mscene_frames(mscene *m, mconf *c, int frames);
 /* One glFinish-fenced sample of `frames` frames without counters: ns/frame. */
 double mscene_plain_sample(mscene *m, mconf *c, int frames);
 /* One counter session over names[0..n), `frames` frames a pass: values[i]
- * per frame, NaN (and reasons[i], when given) where unavailable. */
+ * per frame, NaN (and reasons[i], when given) where unavailable.  With
+ * c->frame_ns set, the timing pass finishes the GL work of each frame and
+ * times it on its own into c->frame_ns[0..frames) (NaN when no timing pass
+ * ran). */
 int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames, double *values,
                    char **reasons);
 

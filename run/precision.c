@@ -123,6 +123,9 @@ static void precision__set(dm_run_result *run, const precision__scene *s, const 
             k->corr_median = e->median;
             k->corr_ci_lo = e->lo;
             k->corr_ci_hi = e->hi;
+            k->corr_between = isfinite(e->between_lo) && isfinite(e->between_hi);
+            k->corr_between_lo = e->between_lo;
+            k->corr_between_hi = e->between_hi;
         }
     }
 }
@@ -182,7 +185,8 @@ static void precision__entry(const dm_run_result *run, const precision__scene *s
     *p = (dm_scene_precision){ .scene = dm_xstrdup(s->name), .corrected = keep,
                                .n_rounds = (int)d->n_rounds_used, .machine_spread = d->machine_spread,
                                .raw_noise = d->raw_noise, .loo_noise = d->loo_noise,
-                               .calib_noise = d->calib_noise };
+                               .calib_noise = d->calib_noise, .between_runs = keep,
+                               .reference_spread = keep ? d->reference_spread : NAN };
     if (!d->corrected)
         p->reason = dm_xasprintf("%s; raw figures only", d->why);
     else if (!keep)
@@ -244,6 +248,8 @@ size_t precision_apply(dm_run_result *run, uint64_t seed)
             dm_counter_result *c = &run->configs[i].counters[k];
             c->corrected = 0;
             c->corr_median = c->corr_ci_lo = c->corr_ci_hi = 0;
+            c->corr_between = 0;
+            c->corr_between_lo = c->corr_between_hi = 0;
         }
     size_t corrected = 0;
     for (size_t i = 0; i < run->n_configs; i++) {
@@ -288,6 +294,32 @@ static void precision__say(FILE *f, const char *fmt, ...)
     dm_str_free(&wrapped);
 }
 
+/* The line on comparing with another run: how well each corrected scene
+ * knows its median machine speed, and the configurations within target_ci
+ * by the between-run CI (raw where not corrected); nothing when no scene
+ * has the figure. */
+static void precision__print_between(const dm_run_result *run, double target_ci, size_t n, FILE *f)
+{
+    double *ref = dm_xcalloc(run->n_precision + 1, sizeof *ref);
+    size_t m = 0, in = 0;
+    for (size_t i = 0; i < run->n_precision; i++)
+        if (run->precision[i].between_runs)
+            ref[m++] = run->precision[i].reference_spread;
+    for (size_t i = 0; m && i < run->n_configs; i++) {
+        const dm_counter_result *w = precision__wall(&run->configs[i]);
+        if (w)
+            in += w->corr_between ? (w->corr_between_hi - w->corr_between_lo) / 2 <= target_ci * w->corr_median
+                                  : (w->ci_hi - w->ci_lo) / 2 <= target_ci * w->median;
+    }
+    char b[32];
+    if (m)
+        precision__say(f, "dmbench: between runs: each corrected scene's median machine speed is known to "
+                "±%s (median over scenes, robust SD); with it, %zu of %zu within ±%g %% for comparing with "
+                "another run (results.json: corrected.ci95_between_runs)\n",
+                precision__pct(precision__median(ref, m), b), in, n, 100 * target_ci);
+    free(ref);
+}
+
 void precision_print(const dm_run_result *run, double target_ci, FILE *f)
 {
     size_t n = 0, raw_in = 0, corr_in = 0, n_corr_scenes = 0;
@@ -330,6 +362,7 @@ void precision_print(const dm_run_result *run, double target_ci, FILE *f)
             precision__pct(precision__median(v[2], run->n_precision), b[4]),
             any_calib ? precision__pct(precision__median(v[3], run->n_precision), b[0]) : "unavailable",
             any_calib ? "" : " (not timed in the rounds)");
+    precision__print_between(run, target_ci, n, f);
     for (size_t i = 0; i < run->n_precision; i++)
         if (run->precision[i].reason)
             precision__say(f, "dmbench: scene %s: %s\n", run->precision[i].scene, run->precision[i].reason);

@@ -39,8 +39,10 @@ size_t precision_apply(dm_run_result *run, uint64_t seed);
 /* Lines for the terminal: WallTime configurations within target_ci raw
  * and with the drift removed, the noise floor and the smallest difference
  * the run resolves, how far the machine moved and which predicted it
- * better (the rounds' common mode or the calibration workload), and each
- * scene left raw with the reason. */
+ * better (the rounds' common mode or the calibration workload), how well
+ * the corrected scenes know their median machine speed and the
+ * configurations within target_ci by the between-run CI, and each scene
+ * left raw with the reason. */
 void precision_print(const dm_run_result *run, double target_ci, FILE *f);
 
 #endif

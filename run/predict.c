@@ -89,25 +89,9 @@ static double predict__cv_of(const dm_fit_result *fit, const char *key)
     return NAN;
 }
 
-static int predict__dcmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
-/* The PREDICT_COVERAGE conformal bound of the n values e[] (sorted here):
- * the ceil((n + 1) * PREDICT_COVERAGE)-th smallest, NaN when n is too
- * small to have one. */
-static double predict__bound(double *e, size_t n)
-{
-    qsort(e, n, sizeof *e, predict__dcmp);
-    size_t rank = (size_t)ceil((double)(n + 1) * PREDICT_COVERAGE);   /* 1-based */
-    return n >= PREDICT_MIN_HELDOUT && rank <= n ? e[rank - 1] : NAN;
-}
-
 /* The held-out predictions of f[0], f[1] and f[2] of each configuration
  * f[0] was fitted to, summed, against its `counter`: their CV-MAPE; each
- * |ln(sum / measured)| appended to logs (n_logs) when logs. */
+ * ln(sum / measured) appended to logs (n_logs) when logs. */
 static predict_heldout predict__sum_heldout(const dm_fit_result *const f[3], const dm_run_result *train,
                                             const char *counter, const char *variant, double **logs,
                                             size_t *n_logs)
@@ -123,7 +107,7 @@ static predict_heldout predict__sum_heldout(const dm_fit_result *const f[3], con
             ape += fabs(sum - r->value) / r->value;
             n++;
             if (logs) {
-                double e = fabs(log(sum / r->value));
+                double e = log(sum / r->value);
                 DM_VEC_PUSH(*logs, *n_logs, e);
             }
         }
@@ -133,7 +117,7 @@ static predict_heldout predict__sum_heldout(const dm_fit_result *const f[3], con
 
 /* Per variant: the stage models' held-out predictions of each measured
  * configuration, summed, against its Instructions (predict_heldout); over
- * all variants, the conformal bound of their errors (m->instr_q). */
+ * all variants, the PREDICT_COVERAGE bound of their errors (m->instr_q). */
 static void predict__heldout(predict_model *m)
 {
     double *logs = NULL;
@@ -147,7 +131,7 @@ static void predict__heldout(predict_model *m)
         predict_heldout h = predict__sum_heldout(f, &m->train, "Instructions", g->group[0].value, &logs, &n_logs);
         DM_VEC_PUSH(m->heldout, m->n_heldout, h);
     }
-    m->instr_q = predict__bound(logs, n_logs);
+    m->instr_q = stats_bound90(logs, n_logs, NULL);
     free(logs);
 }
 
@@ -173,7 +157,7 @@ int predict_way_usable(const predict_model *m, predict_way way)
 
 /* Scores held-out predictions pred[i] of measured meas[i] (i < n; pairs
  * not both positive and finite are skipped): their MAPE and the
- * PREDICT_COVERAGE conformal bound of |ln(pred / meas)|. */
+ * PREDICT_COVERAGE bound of |ln(pred / meas)| (stats_bound90). */
 static void predict__score(const double *pred, const double *meas, size_t n, predict_way_score *w)
 {
     double *e = dm_xcalloc(n + 1, sizeof *e), ape = 0;
@@ -181,12 +165,21 @@ static void predict__score(const double *pred, const double *meas, size_t n, pre
     for (size_t i = 0; i < n; i++)
         if (isfinite(pred[i]) && pred[i] > 0 && isfinite(meas[i]) && meas[i] > 0) {
             ape += fabs(pred[i] - meas[i]) / meas[i];
-            e[k++] = fabs(log(pred[i] / meas[i]));
+            e[k++] = log(pred[i] / meas[i]);
         }
     w->n = (int)k;
     w->cv_mape = k ? 100 * ape / (double)k : NAN;
-    w->q = predict__bound(e, k);
+    w->q = stats_bound90(e, k, &w->q_how);
     free(e);
+}
+
+/* The PREDICT_COVERAGE bound of a one-formula fit's own k-fold held-out
+ * errors (log); NaN with fewer than PREDICT_MIN_HELDOUT. */
+static double predict__fit_bound(const dm_fit_result *f)
+{
+    predict_way_score w = {0};
+    predict__score(f->cv_predicted, f->measured, f->cv_predicted ? (size_t)f->n_points : 0, &w);
+    return w.q;
 }
 
 /* A one-formula time fit's score: its own k-fold held-out predictions. */
@@ -513,7 +506,7 @@ static int predict__wall_by(const predict_model *m, predict_way w, dm_config_res
 /* out's WallTime: by the way of the lowest held-out error on the runs
  * (m->way_used), unless a documented reason overrides it (out->
  * wall_override says which), else the next that prices it; its interval
- * from that way's held-out errors (the PREDICT_COVERAGE conformal bound),
+ * from that way's held-out errors (their PREDICT_COVERAGE bound),
  * the Instructions' relative half-width ei, the machine's speed between
  * runs and the parameters' standard errors beyond the runs, combined as
  * ratios (root of the sum of the squared logarithms): never below 0. */
@@ -564,9 +557,9 @@ static void predict__wall(const predict_model *m, dm_config_result *c, double ei
     double h = sqrt(pow(w->q, 2) + pow(log1p(ei), 2) + pow(log1p(PREDICT_RUN_SPREAD), 2) +
                     pow(log1p(2 * se_ns / out->wall_ns), 2));
     if (!isfinite(w->q))
-        out->wall_why = dm_xasprintf("%s held out %d configuration%s of the runs; a %.0f %% interval needs %d",
-                                     out->wall_by, w->n, w->n == 1 ? "" : "s", 100 * PREDICT_COVERAGE,
-                                     PREDICT_MIN_HELDOUT);
+        out->wall_why = dm_xasprintf("%s held out %d configuration%s of the runs; a %.0f %% interval needs %d "
+                                     "(the spread of their errors)", out->wall_by, w->n, w->n == 1 ? "" : "s",
+                                     100 * PREDICT_COVERAGE, PREDICT_MIN_HELDOUT);
     else if (!isfinite(ei))
         out->wall_why = dm_xstrdup("the Instructions have no interval");
     else if (!isfinite(h))
@@ -625,6 +618,15 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
         /* no narrower than the bound of every variant's held-out errors */
         if (isfinite(ei) && isfinite(m->instr_q))
             ei = fmax(ei, expm1(m->instr_q));
+    } else if (isfinite(ei) && isfinite(predict__fit_bound(fi))) {
+        /* the whole-frame fit: no narrower than the bound of its own held-out errors */
+        ei = fmax(ei, expm1(predict__fit_bound(fi)));
+    }
+    if (!isfinite(ei) && isfinite(m->instr_q)) {
+        /* the variant has no held-out error of its own: the other variants' pooled */
+        ei = expm1(m->instr_q);
+        out->instr_pooled = "the variant has too few configurations to hold one out; the interval is the "
+                            "90 % bound of the other variants' held-out errors pooled";
     }
     out->instr = instr;
     out->instr_lo = instr / (1 + ei);   /* a ratio either way: never below 0 */

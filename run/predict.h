@@ -19,6 +19,7 @@
 
 #include <stddef.h>
 #include "core/dm_results.h"
+#include "models/stats.h"
 #include "core/dm_util.h"
 #include "sweep/plan.h"
 
@@ -36,12 +37,16 @@ extern const char *const predict_counts[PREDICT_N_COUNTS];
 /* A way of predicting WallTime whose held-out error on the runs is above
  * this (percent) is never used for a value. */
 #define PREDICT_MAX_HELDOUT 50.0
-/* The coverage a WallTime interval aims at, and the configurations held
- * out it needs: the ceil((n + 1) * 0.9)-th smallest of n held-out errors
- * bounds a new one with probability >= 0.9 (split conformal), which needs
- * n >= 9. */
+/* The coverage an interval aims at, and the configurations held out it
+ * needs (models/stats.h stats_bound90): with at least
+ * PREDICT_CONFORMAL_HELDOUT (9) the ceil((n + 1) * 0.9)-th smallest of n
+ * held-out errors bounds a new one with probability >= 0.9 (split
+ * conformal); with PREDICT_MIN_HELDOUT (2) to 8 the normal-theory
+ * prediction bound of their log errors does (exactly, for normal errors);
+ * with fewer, no interval. */
 #define PREDICT_COVERAGE 0.9
-#define PREDICT_MIN_HELDOUT 9
+#define PREDICT_MIN_HELDOUT 2
+#define PREDICT_CONFORMAL_HELDOUT STATS_BOUND90_CONFORMAL
 
 /* The ways of predicting WallTime, in the order printed. */
 typedef enum predict_way {
@@ -56,8 +61,9 @@ extern const char *const predict_way_names[PREDICT_N_WAYS];
 typedef struct predict_way_score {
     double cv_mape;   /* percent; NaN: none held out */
     int n;            /* configurations held out */
-    double q;         /* the PREDICT_COVERAGE conformal bound of |ln(predicted / measured)|; NaN when
-                       * n < PREDICT_MIN_HELDOUT */
+    double q;         /* the PREDICT_COVERAGE bound of |ln(predicted / measured)| (stats_bound90); NaN
+                       * when n < PREDICT_MIN_HELDOUT */
+    const char *q_how;   /* "conformal" (n >= 9), "normal" (2-8), NULL */
     char *why;        /* NULL: available; else why the runs do not allow it */
 } predict_way_score;
 
@@ -83,7 +89,8 @@ typedef struct predict_model {
     double instr_max;      /* and of Instructions */
     predict_heldout *heldout;   /* per variant, when the runs have the stage counters */
     size_t n_heldout;
-    double instr_q;   /* their PREDICT_COVERAGE conformal bound of |ln(sum / Instructions)|, pooled; NaN: too few */
+    double instr_q;   /* their PREDICT_COVERAGE bound of |ln(sum / Instructions)|, pooled (stats_bound90);
+                         NaN: fewer than 2 */
     /* geometry-, raster- and fragment-time: each stage's time from its
      * instructions, when the runs have the timed passes (GeometryTime,
      * MinimalShadingTime) and the stage counters; summed, their constants
@@ -110,6 +117,8 @@ typedef struct predict_result {
      * summed" or "stage-instructions"), and in words why a value or an
      * interval is missing (NULL: it is there; owned, predict_result_free). */
     const char *instr_by;
+    const char *instr_pooled;   /* the interval is the other variants' pooled bound, and why (static
+                                   text); NULL: the variant's own */
     char *instr_why;         /* no Instructions interval */
     char *part_why;          /* no stage shares */
     char *wall_why;          /* no WallTime (wall_by NULL), or no interval around it */

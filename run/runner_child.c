@@ -180,6 +180,8 @@ static void runner_child__label(const runner *r, const plan_config *c, dm_str *o
         for (size_t i = 0; i < r->p.n_configs && !varies; i++) {
             const plan_config *o = &r->p.configs[i];
             const char *v = strcmp(o->scene, c->scene) == 0 ? dm_kv_get(o->params, o->n_params, c->params[k].key) : NULL;
+            if (!v && strcmp(o->scene, c->scene) == 0 && strcmp(c->params[k].key, "camera.path") == 0)
+                v = "still";   /* left out of a still configuration's parameters (as report.c reads it) */
             varies = v && strcmp(v, c->params[k].value) != 0;
         }
         if (varies)
@@ -208,8 +210,10 @@ static void runner_child__eta(runner *r, char *buf, size_t len)
         snprintf(buf, len, "  ETA %.0fs", left);
 }
 
+/* The progress line of a finished configuration; p99_ns and stutters are
+ * its path's (docs/motion.md), stutters < 0 for a still configuration. */
 static void runner_child__progress(runner *r, const plan_config *c, const char *status,
-                             double median_ns, double ci_rel)
+                             double median_ns, double ci_rel, double p99_ns, long stutters)
 {
     r->done++;
     r->failed += strcmp(status, "ok") != 0;
@@ -222,6 +226,10 @@ static void runner_child__progress(runner *r, const plan_config *c, const char *
     if (strcmp(status, "ok") == 0 && !isfinite(median_ns))   /* a counters-only sweep: nothing timed */
         dm_str_printf(&line, "[%zu/%zu] %-44s counted (no timing counter)%s", r->done, r->total,
                       dm_str_get(&label), eta);
+    else if (strcmp(status, "ok") == 0 && stutters >= 0)
+        dm_str_printf(&line, "[%zu/%zu] %-44s %9.3f ms ±%4.1f%% · path p99 %.3f ms, %ld stutter%s%s",
+                      r->done, r->total, dm_str_get(&label), median_ns / 1e6, ci_rel * 100, p99_ns / 1e6,
+                      stutters, stutters == 1 ? "" : "s", eta);
     else if (strcmp(status, "ok") == 0)
         dm_str_printf(&line, "[%zu/%zu] %-44s %9.3f ms ±%4.1f%%%s", r->done, r->total,
                       dm_str_get(&label), median_ns / 1e6, ci_rel * 100, eta);
@@ -263,7 +271,7 @@ static int runner_child__fail_config(runner *r, const plan_config *c, const char
                       store_last_error(r->st));
     dm_config_result_free(&out);
     if (rc == 0)
-        runner_child__progress(r, c, reason, NAN, NAN);
+        runner_child__progress(r, c, reason, NAN, NAN, NAN, -1);
     return rc;
 }
 
@@ -323,14 +331,17 @@ static void runner_child__line(runner *r, runner_child__watched *w, const plan_c
     char key[17] = "", status[16] = "";
     double med = NAN, ci = NAN;
     long long sampled = 0;
+    double p99 = NAN;
+    long stutters = -1;
     if (line[0] == 'B' && sscanf(line, "B %16s", key) == 1) {
         snprintf(w->current, sizeof w->current, "%s", key);
-    } else if (line[0] == 'D' && sscanf(line, "D %16s %15s %lf %lf %lld", key, status, &med, &ci, &sampled) >= 2) {
+    } else if (line[0] == 'D' && sscanf(line, "D %16s %15s %lf %lf %lld %lf %ld", key, status, &med, &ci, &sampled,
+                                         &p99, &stutters) >= 2) {
         const plan_config *c = runner_child__find(cs, n, key);
         r->measured_ns += sampled;
         if (c) {
             done_flags[c - cs] = 1;
-            runner_child__progress(r, c, status, med, ci);
+            runner_child__progress(r, c, status, med, ci, p99, stutters);
         }
         w->current[0] = '\0';
     } else if (line[0] == 'A' && sscanf(line, "A %16s %lld %lf %lf", key, &sampled, &med, &ci) == 4) {

@@ -123,6 +123,21 @@ static int store__config_row(store *s, const store_sql_owner *o,
         q->flip_max, q->flip_ppd, c->img_flip);
 }
 
+/* The frame times of a configuration on a camera path and their summary
+ * (the stutters' indices as a blob of doubles). */
+static int store__path_write(store *s, const store_sql_owner *o, const dm_path_series *p)
+{
+    double *at = dm_xmalloc((p->n_stutters + 1) * sizeof *at);
+    for (size_t i = 0; i < p->n_stutters; i++)
+        at[i] = (double)p->stutter_at[i];
+    int rc = store_sql_exec(s, STORE_SQL_PATH_INS, o, "llb" "ddddd" "bdi", (long)p->frames,
+                            (long)p->replays, p->frame_ns, p->frames * p->replays, p->p50, p->p95,
+                            p->p99, p->low1_ns, p->low1_fps, at, p->n_stutters, p->replay_spread,
+                            p->noisy);
+    free(at);
+    return rc;
+}
+
 /* Replaces configuration item (a dm_config_result) of run, keeping its
  * position when it existed. */
 static int store__config_write(store *s, const char *run, const void *item)
@@ -142,6 +157,8 @@ static int store__config_write(store *s, const char *run, const void *item)
         rc = store__kv_write(s, STORE_SQL_CPAR_INS, &o, c->params, c->n_params);
     for (size_t i = 0; i < c->n_counters && rc == 0; i++)
         rc = store__counter_write(s, &o, &c->counters[i]);
+    if (rc == 0 && c->path.frames && c->path.frame_ns)
+        rc = store__path_write(s, &o, &c->path);
     const dm_path_quality *pq = &c->path_quality;
     if (rc == 0 && (pq->present || pq->reason))
         rc = store_sql_exec(s, STORE_SQL_PQ_INS, &o, "itlldddltbb", pq->present, pq->reason,
@@ -328,6 +345,39 @@ static int store__counters_read(store *s, const store_sql_owner *o, dm_config_re
     return rc;
 }
 
+/* The frame times of configuration o.key when it is on a camera path
+ * (nothing for a still one); a row whose data does not hold frames ×
+ * replays values is damaged: DM_ERR_STORE. */
+static int store__path_read(store *s, const store_sql_owner *o, dm_config_result *c)
+{
+    sqlite3_stmt *st = store_sql_query(s, STORE_SQL_PATH_SEL, o, "");
+    int rc = st ? store_sql_row(s, st) : DM_ERR_STORE;
+    if (rc != 1)
+        return rc;
+    size_t n = 0, ns = 0;
+    dm_path_series *p = &c->path;
+    p->frames = (size_t)sqlite3_column_int64(st, 0);
+    p->replays = (size_t)sqlite3_column_int64(st, 1);
+    p->frame_ns = store_sql_col_doubles(st, 2, &n);
+    double *f[] = { &p->p50, &p->p95, &p->p99, &p->low1_ns, &p->low1_fps };
+    for (int i = 0; i < 5; i++)
+        *f[i] = store_sql_col_double(st, 3 + i);
+    double *at = store_sql_col_doubles(st, 8, &ns);
+    p->stutter_at = dm_xcalloc(ns + 1, sizeof *p->stutter_at);
+    for (size_t i = 0; at && i < ns; i++)
+        p->stutter_at[i] = (long)at[i];
+    p->n_stutters = at ? ns : 0;
+    free(at);
+    p->replay_spread = store_sql_col_double(st, 9);
+    p->noisy = sqlite3_column_int(st, 10);
+    sqlite3_reset(st);
+    if (n != c->path.frames * c->path.replays || !c->path.frames)
+        return store_sql_failf(s, DM_ERR_STORE, "configuration %s: its path's frame times hold %zu "
+                               "values, not %zu frames x %zu replays", o->key, n, c->path.frames,
+                               c->path.replays);
+    return 0;
+}
+
 static void store__config_cols(sqlite3_stmt *st, dm_config_result *c)
 {
     dm_quality *q = &c->quality;
@@ -393,6 +443,8 @@ static int store__configs_read(store *s, dm_run_result *r)
         rc = store__kv_read(s, STORE_SQL_CPAR_SEL, &o, &c->params, &c->n_params);
         if (rc == 0)
             rc = store__counters_read(s, &o, c);
+        if (rc == 0)
+            rc = store__path_read(s, &o, c);
         if (rc == 0)
             rc = store__path_quality_read(s, &o, &c->path_quality);
     }

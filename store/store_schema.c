@@ -1,7 +1,7 @@
 /* store_schema.c — the results store's schema: the migrations that create
  * it and the check that a file has all of it (store_sql.h).
  *
- * Schema (version 6, kept in PRAGMA user_version; store_schema__migrations[i] takes a
+ * Schema (version 7, kept in PRAGMA user_version; store_schema__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -42,10 +42,16 @@
  *   scene_precision(run, scene, corrected, reason, predictor, n_rounds,
  *           machine_spread, raw_noise, loo_noise, calib_noise, resolvable)
  *           PK (run, scene): the drift removed per scene (version 5)
+ *   path_frames(run, key, frames, replays, data BLOB, p50, p95, p99,
+ *           low1_ns, low1_fps, stutter_at BLOB, replay_spread, noisy)
+ *           PK (run, key) → configs: the frame times of a configuration on
+ *           a camera path, replays × frames doubles (ns, row = replay), and
+ *           their summary (dm_path_series; the stutters' frame indices as
+ *           doubles; version 6)
  *   path_quality(run, key, computed, reason, frames, every, temporal_mean,
  *           temporal_p99, popping, popping_frame, img_temporal, flip BLOB,
  *           ssim BLOB) PK (run, key) → configs: quality along a camera path
- *           (dm_path_quality; a row only where it was asked; version 6)
+ *           (dm_path_quality; a row only where it was asked; version 7)
  *   fit_group(run, seq, key, value), fit_params(run, seq, name, value,
  *        stderr), fit_warnings(run, seq, text), fit_labels(run, seq, idx,
  *        label)
@@ -147,7 +153,15 @@ static const char *const store_schema__migrations[STORE_SCHEMA_VERSION] = {
     " predictor TEXT, n_rounds INTEGER, machine_spread REAL, raw_noise REAL,"
     " loo_noise REAL, calib_noise REAL, resolvable REAL,"
     " PRIMARY KEY(run, scene));",
-    /* 5 -> 6: quality along a camera path (run/mpath_quality.h): a row per
+    /* 5 -> 6: the frame times of configurations on a camera path
+     * (run/path_timing.h); a still configuration has no row */
+    "CREATE TABLE path_frames(run TEXT NOT NULL, key TEXT NOT NULL,"
+    " frames INTEGER NOT NULL, replays INTEGER NOT NULL, data BLOB,"
+    " p50 REAL, p95 REAL, p99 REAL, low1_ns REAL, low1_fps REAL,"
+    " stutter_at BLOB, replay_spread REAL, noisy INTEGER,"
+    " PRIMARY KEY(run, key), FOREIGN KEY(run, key) REFERENCES configs(run, key)"
+    " ON DELETE CASCADE);",
+    /* 6 -> 7: quality along a camera path (run/mpath_quality.h): a row per
      * configuration that asked for it; older runs have none */
     "CREATE TABLE path_quality(run TEXT NOT NULL, key TEXT NOT NULL,"
     " computed INTEGER, reason TEXT, frames INTEGER, every INTEGER,"

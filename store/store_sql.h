@@ -18,7 +18,7 @@
 
 #include <stddef.h>
 
-#define STORE_SCHEMA_VERSION 6
+#define STORE_SCHEMA_VERSION 7
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
     "q_ssim,q_max_error,q_pct_over,q_silhouette,q_depth_rmse,q_crack_pixels," \
@@ -31,6 +31,8 @@
     "popping,popping_frame,img_temporal,flip,ssim"
 #define STORE__PREC_COLS "corrected,reason,predictor,n_rounds,machine_spread," \
     "raw_noise,loo_noise,calib_noise,resolvable"
+#define STORE__PATH_COLS "frames,replays,data,p50,p95,p99,low1_ns,low1_fps," \
+    "stutter_at,replay_spread,noisy"
 #define STORE__FIT_COLS "formula,response,r2,rmse,mape,cv_mape,n_points," \
     "n_excluded,termination,measured,predicted,condition"
 
@@ -89,6 +91,10 @@
     X(SMP_INS, "INSERT INTO samples(run,key,counter,data) VALUES(?1,?2,?4,?5)")\
     X(SMP_SEL, "SELECT data FROM samples WHERE run=?1 AND key=?2 AND"         \
       " counter=?4")                                                          \
+    X(PATH_INS, "INSERT INTO path_frames(run,key," STORE__PATH_COLS ")"       \
+      " VALUES(?1,?2,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14)")                 \
+    X(PATH_SEL, "SELECT " STORE__PATH_COLS " FROM path_frames WHERE run=?1"   \
+      " AND key=?2")                                                          \
     X(PART_DEL, "DELETE FROM partial_samples WHERE run=?1 AND key=?2")        \
     X(PART_INS, "INSERT INTO partial_samples(run,key,counter,data,"           \
       "sampling_ns) VALUES(?1,?2,?4,?5,?6)")                                  \

@@ -5,7 +5,10 @@
  * still cover the true value at least as often as the raw ones and are no
  * narrower (the correction's uncertainty is in them); the calibration
  * figure that follows the drift is the better predictor when the common
- * mode is absent; a scene too small is left raw with the reason. */
+ * mode is absent; between two runs whose machines differ by a known common
+ * factor the between-run CI covers the truth where the within-run one,
+ * conditional on the run's median speed, does not; a scene too small is
+ * left raw with the reason. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -173,6 +176,63 @@ static void test_calibration_predictor(void **state)
     drift_result_free(&out);
 }
 
+/* One run of a stationary machine: each round's speed drawn afresh,
+ * log-normal with median k and spread 8 %, 2 % noise per sample. */
+static void run_of(double *x, double k, rng_state *g)
+{
+    double d[NR];
+    for (size_t r = 0; r < NR; r++)
+        d[r] = k * exp(0.08 * gauss(g));
+    scene(x, d, 0.02, g);
+}
+
+/* 100 pairs of runs, the second on a machine 4 % slower throughout (the
+ * truth: t[c] in run A, 1.04 t[c] in run B, the machine's median speed
+ * being 1).  The between-run CI contains the configuration's true time in
+ * at least 90 % of (trial, configuration) cases, in both runs, and always
+ * contains the within-run CI; the within-run CI, conditional on each run's
+ * own median speed, contains it in under 80 % (it leaves that speed's
+ * uncertainty out, which is the point); and after dividing run B by the
+ * known 1.04 the two runs' between-run CIs overlap in at least 95 % of
+ * cases (the issue's agreement target). */
+static void test_between_runs_cover(void **state)
+{
+    (void)state;
+    rng_state g = rng_seed(21);
+    double xa[NC * NR], xb[NC * NR];
+    const double k = 1.04;
+    size_t cover_b = 0, cover_w = 0, agree = 0, n = 0;
+    for (int trial = 0; trial < 100; trial++) {
+        run_of(xa, 1, &g);
+        run_of(xb, k, &g);
+        drift_result a, b;
+        drift_correct(&(drift_desc){ .n_configs = NC, .n_rounds = NR, .x = xa, .seed = (uint64_t)trial,
+                                     .bootstrap = 200 }, &a);
+        drift_correct(&(drift_desc){ .n_configs = NC, .n_rounds = NR, .x = xb, .seed = (uint64_t)trial + 1000,
+                                     .bootstrap = 200 }, &b);
+        assert_true(a.corrected && b.corrected);
+        assert_true(isfinite(a.reference_spread) && a.reference_spread > 0);
+        for (size_t c = 0; c < NC; c++) {
+            const drift_config *p = &a.configs[c], *q = &b.configs[c];
+            double t = 1e6 * (double)(c + 1);
+            assert_true(p->between_lo <= p->lo && p->hi <= p->between_hi);
+            assert_true(q->between_lo <= q->lo && q->hi <= q->between_hi);
+            cover_b += (p->between_lo <= t && t <= p->between_hi) + (q->between_lo <= k * t && k * t <= q->between_hi);
+            cover_w += (p->lo <= t && t <= p->hi) + (q->lo <= k * t && k * t <= q->hi);
+            agree += p->between_lo <= q->between_hi / k && q->between_lo / k <= p->between_hi;
+            n++;
+        }
+        drift_result_free(&a);
+        drift_result_free(&b);
+    }
+    print_message("between runs: truth covered by the between-run CI %.3f, the within-run CI %.3f; "
+                  "runs agree after the known factor %.3f\n", (double)cover_b / (2.0 * (double)n),
+                  (double)cover_w / (2.0 * (double)n), (double)agree / (double)n);
+    assert_true((double)cover_b >= 0.90 * 2.0 * (double)n);
+    assert_true((double)cover_w < 0.80 * 2.0 * (double)n);
+    assert_true((double)agree >= 0.95 * (double)n);
+}
+
 /* Two configurations: raw figures only, with the reason; fewer than 3
  * rounds with 3 configurations: the same; no samples: DM_ERR_ARG. */
 static void test_too_small(void **state)
@@ -184,6 +244,8 @@ static void test_too_small(void **state)
     assert_false(out.corrected);
     assert_non_null(strstr(out.why, "fewer than 3 configurations"));
     assert_true(out.configs[1].raw_median == 5 && isnan(out.configs[1].median));
+    assert_true(isnan(out.configs[1].between_lo) && isnan(out.configs[1].between_hi));
+    assert_true(isnan(out.reference_spread));
     drift_result_free(&out);
     double y[3 * 4] = { 1, 2, NAN, NAN, 1, 2, NAN, NAN, 1, NAN, 3, 3 };
     assert_int_equal(drift_correct(&(drift_desc){ .n_configs = 3, .n_rounds = 4, .x = y }, &out), 0);
@@ -200,4 +262,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_no_drift_not_narrower),
              cmocka_unit_test(test_early_stop_rebased),
              cmocka_unit_test(test_calibration_predictor),
+             cmocka_unit_test(test_between_runs_cover),
              cmocka_unit_test(test_too_small))

@@ -8,6 +8,7 @@
 #include "test_util.h"
 
 #include "core/dm_error.h"
+#include "models/rng.h"
 #include "models/stats.h"
 
 static void quantile_type7(void **state)
@@ -108,10 +109,63 @@ static void summary_empty(void **state)
     assert_int_equal(s.n, 0);
 }
 
+/* The 90 % bound of held-out errors (stats_bound90), by hand: two errors
+ * ±0.1 give mean 0, s = 0.1 sqrt(2), h = t(0.95, 1) s sqrt(3/2) =
+ * 6.313752 × 0.1414214 × 1.2247449 = 1.0935744; ten errors of sizes 1..10
+ * (signs mixed) give the ceil(11 × 0.9) = 10th smallest, 10; nineteen
+ * give the 18th; one finite error (NaN skipped) gives none. */
+static void bound90_by_hand(void **state)
+{
+    (void)state;
+    const char *how = "x";
+    assert_float_equal(stats_bound90((double[]){ 0.1, -0.1 }, 2, &how), 1.0935744, 1e-6);
+    assert_string_equal(how, "normal");
+    /* a bias counts whole: errors 0.2 and 0.4: mean 0.3, s = 0.1 sqrt(2) */
+    assert_float_equal(stats_bound90((double[]){ 0.2, 0.4 }, 2, NULL), 0.3 + 1.0935744, 1e-6);
+    double e[19];
+    for (int i = 0; i < 19; i++)
+        e[i] = (i % 2 ? -1 : 1) * (double)(i + 1);
+    assert_true(stats_bound90(e, 10, &how) == 10);
+    assert_string_equal(how, "conformal");
+    assert_true(stats_bound90(e, 19, NULL) == 18);
+    assert_true(isnan(stats_bound90((double[]){ 0.3, NAN }, 2, &how)));
+    assert_null(how);
+}
+
+/* Normal errors (bias 0.05, SD 0.1), 2000 seeded draws of n = 2 .. 8 held
+ * out and a new one: the bound holds the new one at least 89 % of the
+ * time for every n (nominal 90 %), where the largest of the n held out
+ * holds it about n / (n + 1) of the time (under 89 % for n <= 7). */
+static void bound90_covers(void **state)
+{
+    (void)state;
+    rng_state g = rng_seed(4);
+    for (size_t n = 2; n <= 8; n++) {
+        int hold = 0, hold_max = 0;
+        for (int t = 0; t < 2000; t++) {
+            double e[9], mx = 0;
+            for (size_t i = 0; i <= n; i++) {
+                double u = rng_uniform(&g), v = rng_uniform(&g);
+                e[i] = 0.05 + 0.1 * sqrt(-2 * log(u > 1e-300 ? u : 1e-300)) * cos(2 * M_PI * v);
+            }
+            for (size_t i = 0; i < n; i++)
+                mx = fmax(mx, fabs(e[i]));
+            hold += fabs(e[n]) <= stats_bound90(e, n, NULL);
+            hold_max += fabs(e[n]) <= mx;
+        }
+        print_message("n %zu: bound holds %.3f, the largest held out %.3f\n", n, hold / 2000.0, hold_max / 2000.0);
+        assert_true(hold >= 0.89 * 2000);
+        if (n <= 7)
+            assert_true(hold_max < 0.89 * 2000);
+    }
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(quantile_type7),
              cmocka_unit_test(ci_rank_rule),
              cmocka_unit_test(summary_n10),
              cmocka_unit_test(summary_outliers),
              cmocka_unit_test(summary_small_bootstrap),
-             cmocka_unit_test(summary_empty))
+             cmocka_unit_test(summary_empty),
+             cmocka_unit_test(bound90_by_hand),
+             cmocka_unit_test(bound90_covers))

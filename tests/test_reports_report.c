@@ -85,6 +85,109 @@ static void test_json_round_trip(void **state)
     rmdir(dir);
 }
 
+/* A configuration on a camera path: results.json's "path" object reads back
+ * to the same text, its series bit for bit; a still run's files have no
+ * path object, column or table; a "path" whose series does not hold one
+ * time per frame for each replay is refused with what is wrong. */
+static void test_json_path(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_path_XXXXXX", err[512];
+    assert_non_null(mkdtemp(dir));
+    char *p1 = dm_xasprintf("%s/a.json", dir), *p2 = dm_xasprintf("%s/b.json", dir);
+    char *csv = dm_xasprintf("%s/r.csv", dir), *md = dm_xasprintf("%s/s.md", dir);
+    dm_run_result run, back;
+    fixture_run(&run);
+    assert_int_equal(write_report_file(&run, "results.json", NULL, p1, NULL), 0);
+    assert_int_equal(write_report_file(&run, "results.csv", NULL, csv, NULL), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    char *t = test_slurp(p1), *tc = test_slurp(csv), *tm = test_slurp(md);
+    assert_null(strstr(t, "\"path\""));
+    assert_null(strstr(tc, "path_p99_ms"));
+    assert_null(strstr(tm, "Along the path"));
+    free(t);
+    free(tc);
+    free(tm);
+    /* 3 frames x 2 replays, one time missing: figures as models/frame_series gives them */
+    dm_path_series *ps = &run.configs[0].path;
+    static const double ns[] = {1.0e6, 3.1e6, 1.1e6, 1.0e6 / 3, NAN, 1.3e6};
+    ps->frames = 3;
+    ps->replays = 2;
+    ps->frame_ns = dm_xmalloc(sizeof ns);
+    memcpy(ps->frame_ns, ns, sizeof ns);
+    ps->p50 = 1.2e6 / 7;   /* not a round number of ms */
+    ps->p95 = 2.9e6;
+    ps->p99 = 3.06e6;
+    ps->low1_ns = 3.1e6;
+    ps->low1_fps = 1e9 / 3.1e6;
+    ps->n_stutters = 1;
+    ps->stutter_at = dm_xcalloc(1, sizeof *ps->stutter_at);
+    ps->stutter_at[0] = 1;
+    ps->replay_spread = NAN;
+    ps->noisy = -1;
+    assert_int_equal(write_report_file(&run, "results.json", NULL, p1, NULL), 0);
+    assert_int_equal(report_read_json(p1, &back, err, sizeof err), 0);
+    assert_int_equal(write_report_file(&back, "results.json", NULL, p2, NULL), 0);
+    char *t1 = test_slurp(p1), *t2 = test_slurp(p2);
+    assert_string_equal(t1, t2);
+    assert_non_null(strstr(t1, "\"stutter_frames\":\t[1]"));
+    assert_non_null(strstr(t1, "\"noisy\":\t\"unknown\""));
+    assert_non_null(strstr(t1, "\"replay_spread\":\tnull"));
+    assert_non_null(strstr(t1, "\"one_percent_low_ms\":\t3.1,"));
+    const dm_path_series *b = &back.configs[0].path;
+    assert_int_equal(b->frames, 3);
+    assert_int_equal(b->replays, 2);
+    assert_memory_equal(b->frame_ns, ns, 4 * sizeof *ns);   /* bit for bit */
+    assert_true(isnan(b->frame_ns[4]));
+    assert_true(b->frame_ns[5] == 1.3e6);
+    assert_int_equal(b->n_stutters, 1);
+    assert_int_equal(b->stutter_at[0], 1);
+    assert_int_equal(b->noisy, -1);
+    assert_int_equal(back.configs[1].path.frames, 0);
+    assert_int_equal(write_report_file(&back, "results.csv", NULL, csv, NULL), 0);
+    assert_int_equal(write_report_file(&back, "summary.md", NULL, md, NULL), 0);
+    tc = test_slurp(csv);
+    tm = test_slurp(md);
+    assert_non_null(strstr(tc, ",path_p99_ms,"));
+    assert_non_null(strstr(tc, ",3.06,3.1,322.580645,1\r\n"));   /* p99, 1 % low ms and fps, stutters */
+    assert_non_null(strstr(tm, "## Along the path"));
+    assert_non_null(strstr(tm, "| 3 × 2 | 0.171 | 2.900 | 3.060 | 3.100 (323 fps) | 1 (frame 1) | "
+                               "unknown (one replay) |"));
+    free(tc);
+    free(tm);
+    dm_run_free(&back);
+    /* a row short of its frames, then one replay too many */
+    static const struct { const char *from, *to, *why; } bad[] = {
+        {"[1000000, 3100000, 1100000]", "[1000000, 3100000]", "does not hold one time per frame"},
+        {"\"replays\":\t2", "\"replays\":\t3", "not one array per replay"},
+        {"\"stutter_frames\":\t[1]", "\"stutter_frames\":\t[3]", "not a frame index of the path"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof *bad; i++) {
+        char *at = strstr(t1, bad[i].from);
+        assert_non_null(at);
+        dm_str e = {0};
+        dm_str_catn(&e, t1, (size_t)(at - t1));
+        dm_str_cat(&e, bad[i].to);
+        dm_str_cat(&e, at + strlen(bad[i].from));
+        assert_int_equal(dm_write_file(p2, e.buf, e.len), 0);
+        assert_int_equal(report_read_json(p2, &back, err, sizeof err), DM_ERR_PARSE);
+        assert_non_null(strstr(err, bad[i].why));
+        dm_str_free(&e);
+    }
+    free(t1);
+    free(t2);
+    dm_run_free(&run);
+    unlink(p1);
+    unlink(p2);
+    unlink(csv);
+    unlink(md);
+    free(p1);
+    free(p2);
+    free(csv);
+    free(md);
+    rmdir(dir);
+}
+
 static void test_json_read_errors(void **state)
 {
     (void)state;
@@ -185,6 +288,9 @@ static void fixture_corrected(dm_run_result *run)
     w->corr_median = 1.0e6;
     w->corr_ci_lo = 0.98e6;
     w->corr_ci_hi = 1.02e6;
+    w->corr_between = 1;
+    w->corr_between_lo = 0.95e6;
+    w->corr_between_hi = 1.06e6;
     w = (dm_counter_result *)dm_config_counter(&run->configs[1], "WallTime");
     w->corrected = 1;
     w->corr_median = 1.8e6;
@@ -195,7 +301,8 @@ static void fixture_corrected(dm_run_result *run)
     run->precision[0] = (dm_scene_precision){ .scene = dm_xstrdup(FIXTURE_SCENE), .corrected = 1,
                                               .predictor = dm_xstrdup("common mode"), .n_rounds = 12,
                                               .machine_spread = 0.08, .raw_noise = 0.1, .loo_noise = 0.04,
-                                              .calib_noise = NAN, .resolvable = 0.03 };
+                                              .calib_noise = NAN, .resolvable = 0.03,
+                                              .between_runs = 1, .reference_spread = 0.0125 };
     assert_int_equal(report_budget_set(run, 1.9), 0);
 }
 
@@ -268,6 +375,11 @@ static void test_corrected_figures(void **state)
     assert_string_equal(t, t2);
     assert_non_null(strstr(t, "\"corrected\":\t{\n"));
     assert_non_null(strstr(t, "\"ci95\":\t[980000, 1020000]"));
+    /* the between-run CI where computed; null with the reason where not */
+    assert_non_null(strstr(t, "\"ci95_between_runs\":\t[950000, 1060000]"));
+    assert_non_null(strstr(t, "\"ci95_between_runs\":\tnull"));
+    assert_non_null(strstr(t, "\"between_runs_unavailable\":\t\"" REPORT_BETWEEN_UNAVAILABLE "\""));
+    assert_non_null(strstr(t, "\"reference_spread\":\t0.0125"));
     assert_non_null(strstr(t, "\"predictor\":\t\"common mode\""));
     assert_non_null(strstr(t, "\"disagreement\":\t\"Raw and drift-corrected figures disagree"));
     const dm_counter_result *w = dm_config_counter(&back.configs[0], "WallTime");
@@ -1270,6 +1382,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_answer_without_quality),
              cmocka_unit_test(test_json_round_trip),
              cmocka_unit_test(test_json_read_errors),
+             cmocka_unit_test(test_json_path),
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
              cmocka_unit_test(test_corrected_figures),

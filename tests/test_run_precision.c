@@ -93,6 +93,7 @@ static void test_scenes(void **state)
     assert_true(a->corrected && !a->reason && a->n_rounds == NR);
     assert_string_equal(a->predictor, "common mode");
     assert_true(a->machine_spread > 0.05 && a->loo_noise < 0.01);
+    assert_true(a->between_runs && isfinite(a->reference_spread) && a->reference_spread > 0);
     for (size_t k = 0; k < 5; k++) {
         const dm_counter_result *w = &run.configs[k].counters[0];
         double truth = 1e6 * (double)(k + 1);
@@ -100,6 +101,8 @@ static void test_scenes(void **state)
         assert_true(fabs(w->corr_median / truth - 1) < 0.01);
         assert_true(w->corr_ci_lo <= w->corr_median && w->corr_median <= w->corr_ci_hi);
         assert_true((w->corr_ci_hi - w->corr_ci_lo) / 2 / w->corr_median < 0.02);
+        /* the between-run CI holds the within-run one and the median speed's uncertainty */
+        assert_true(w->corr_between && w->corr_between_lo <= w->corr_ci_lo && w->corr_ci_hi <= w->corr_between_hi);
     }
     /* the raw figures of the early-stopped configuration are kept: 25 % slow */
     assert_true(run.configs[3].counters[0].median == raw3 && run.configs[3].counters[0].ci_lo == lo3);
@@ -107,6 +110,8 @@ static void test_scenes(void **state)
     assert_false(b->corrected);
     assert_non_null(strstr(b->reason, "fewer than 3 configurations"));
     assert_false(run.configs[5].counters[0].corrected);
+    assert_false(run.configs[5].counters[0].corr_between);
+    assert_false(b->between_runs);
     assert_false(c->corrected);
     assert_non_null(strstr(c->reason, "no drift to remove"));
     assert_true(isfinite(c->resolvable) && c->resolvable > 0);
@@ -116,6 +121,7 @@ static void test_scenes(void **state)
     precision_print(&run, 0.03, f);
     fclose(f);
     assert_non_null(strstr(text, "1 of 3 scenes corrected"));
+    assert_non_null(strstr(text, "dmbench: between runs: each corrected scene's median machine speed is known to ±"));
     assert_non_null(strstr(text, "dmbench: scene b: fewer than 3 configurations"));
     assert_non_null(strstr(text, "after the calibration workload (not timed"));
     free(text);

@@ -293,6 +293,23 @@ static void run_full(dm_run_result *r, const char *id)
     k->corr_median = k->median * 1.01;
     k->corr_ci_lo = k->median * 0.99;
     k->corr_ci_hi = INFINITY;
+    /* its frame times along a camera path: 4 frames x 3 replays, one missing */
+    dm_path_series *ps = &r->configs[2].path;
+    ps->frames = 4;
+    ps->replays = 3;
+    ps->frame_ns = dv(12, 1.0e6, 2500.25);
+    ps->frame_ns[5] = NAN;
+    ps->p50 = 1.0e6;
+    ps->p95 = 1.5e6;
+    ps->p99 = INFINITY;
+    ps->low1_ns = 2.0e6;
+    ps->low1_fps = 500;
+    ps->n_stutters = 2;
+    ps->stutter_at = dm_xcalloc(2, sizeof *ps->stutter_at);
+    ps->stutter_at[0] = 1;
+    ps->stutter_at[1] = 3;
+    ps->replay_spread = NAN;
+    ps->noisy = -1;
 }
 
 /* Writes run r through the public calls; the run is left not finished. */
@@ -408,6 +425,20 @@ static void eq_config(const dm_config_result *a, const dm_config_result *b)
     for (size_t i = 0; i < a->n_counters; i++)
         eq_counter(&a->counters[i], &b->counters[i]);
     eq_quality(&a->quality, &b->quality);
+    assert_int_equal(a->path.frames, b->path.frames);
+    assert_int_equal(a->path.replays, b->path.replays);
+    assert_true((a->path.frame_ns == NULL) == (b->path.frame_ns == NULL));
+    if (a->path.frame_ns)
+        eq_doubles(a->path.frame_ns, b->path.frame_ns, a->path.frames * a->path.replays, "path frame_ns");
+    const double pa[] = { a->path.p50, a->path.p95, a->path.p99, a->path.low1_ns, a->path.low1_fps,
+                          a->path.replay_spread };
+    const double pb[] = { b->path.p50, b->path.p95, b->path.p99, b->path.low1_ns, b->path.low1_fps,
+                          b->path.replay_spread };
+    eq_doubles(pa, pb, 6, "path summary");
+    assert_int_equal(a->path.n_stutters, b->path.n_stutters);
+    for (size_t i = 0; i < a->path.n_stutters; i++)
+        assert_int_equal(a->path.stutter_at[i], b->path.stutter_at[i]);
+    assert_int_equal(a->path.noisy, b->path.noisy);
     EQ_STR(a->img_render, b->img_render, "img_render");
     EQ_STR(a->img_heatmap, b->img_heatmap, "img_heatmap");
     EQ_STR(a->img_reference, b->img_reference, "img_reference");
@@ -519,7 +550,7 @@ static void test_round_trip(void **state)
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
     assert_int_equal(sql_long(s, "SELECT length(data) FROM samples"), 400);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     dm_run_free(&got);
     store_close(s);
     /* ...and again from a fresh connection. */
@@ -761,10 +792,10 @@ static void test_missing_table_or_column(void **state)
  * migrated to the current version, its fits read back with condition 0 ("not
  * computed") and everything else intact; new fits keep their condition,
  * infinity included. */
-/* SQL that takes the store back to before version 6. */
+/* SQL that takes the store back to before version 7. */
 #define PATH_QUALITY_DROPPED "DROP TABLE path_quality;"
 
-/* What a store from before version 6 reads back: no quality along a path. */
+/* What a store from before version 7 reads back: no quality along a path. */
 static void path_quality_not_computed(dm_run_result *run)
 {
     for (size_t i = 0; i < run->n_configs; i++) {
@@ -777,8 +808,8 @@ static void path_quality_not_computed(dm_run_result *run)
     }
 }
 
-/* SQL that takes the store back to before version 5 (and 6). */
-#define PRECISION_DROPPED PATH_QUALITY_DROPPED                                 \
+/* SQL that takes the store back to before version 5. */
+#define PRECISION_DROPPED                                                      \
     "ALTER TABLE counters DROP COLUMN corrected; ALTER TABLE counters DROP COLUMN corr_median;" \
     "ALTER TABLE counters DROP COLUMN corr_ci_lo; ALTER TABLE counters DROP COLUMN corr_ci_hi;" \
     "DROP TABLE rounds; DROP TABLE scene_precision;"
@@ -802,6 +833,20 @@ static void precision_not_computed(dm_run_result *run)
     keep.warnings = NULL;
     keep.id = keep.sweep = keep.started = keep.finished = keep.sweep_hash = keep.timer_verdict = NULL;
     dm_run_free(&keep);   /* frees the rounds and precision only */
+}
+
+/* SQL that takes the store back to before version 6 (and 7), and what it
+ * reads back: no frame times along a path, no quality along it. */
+#define PATH_DROPPED PATH_QUALITY_DROPPED "DROP TABLE path_frames;"
+
+static void path_not_stored(dm_run_result *run)
+{
+    path_quality_not_computed(run);
+    for (size_t i = 0; i < run->n_configs; i++) {
+        free(run->configs[i].path.frame_ns);
+        free(run->configs[i].path.stutter_at);
+        run->configs[i].path = (dm_path_series){0};
+    }
 }
 
 /* SQL that takes the configs table back to before version 4. */
@@ -834,16 +879,17 @@ static void test_fit_condition_migration(void **state)
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
     assert_int_equal(sqlite3_exec(db, "ALTER TABLE fits DROP COLUMN condition;"
                                   "DROP TABLE partial_samples;"   /* came with version 3 */
-                                  FLIP_COLUMNS_DROPPED PRECISION_DROPPED
+                                  FLIP_COLUMNS_DROPPED PRECISION_DROPPED PATH_DROPPED
                                   "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_true(got.fits[0].condition == 0.0);
     run.fits[0].condition = 0.0;
     flip_not_computed(&run);
     precision_not_computed(&run);
+    path_not_stored(&run);
     eq_run(&run, &got);
     dm_run_free(&got);
     run.fits[0].condition = INFINITY;
@@ -869,14 +915,15 @@ static void test_flip_migration(void **state)
     store_close(s);
     sqlite3 *db;
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, FLIP_COLUMNS_DROPPED PRECISION_DROPPED "PRAGMA user_version=3",
+    assert_int_equal(sqlite3_exec(db, FLIP_COLUMNS_DROPPED PRECISION_DROPPED PATH_DROPPED "PRAGMA user_version=3",
                                   NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     flip_not_computed(&run);
     precision_not_computed(&run);
+    path_not_stored(&run);
     eq_run(&run, &got);
     assert_integrity_ok(s);
     dm_run_free(&got);
@@ -884,7 +931,7 @@ static void test_flip_migration(void **state)
     store_close(s);
 }
 
-/* A version-5 store (before quality along a path) opens migrated: its
+/* A version-6 store (before quality along a path) opens migrated: its
  * configurations read back without path quality, everything else intact;
  * a configuration stored afterwards keeps its series, NaN included. */
 static void test_path_quality_migration(void **state)
@@ -898,11 +945,11 @@ static void test_path_quality_migration(void **state)
     store_close(s);
     sqlite3 *db;
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, PATH_QUALITY_DROPPED "PRAGMA user_version=5", NULL, NULL, NULL),
+    assert_int_equal(sqlite3_exec(db, PATH_QUALITY_DROPPED "PRAGMA user_version=6", NULL, NULL, NULL),
                      SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     dm_run_result want;
     run_full(&want, "old");
@@ -923,6 +970,47 @@ static void test_path_quality_migration(void **state)
 /* A version-4 store (before the drift correction) opens migrated: its
  * counters read back uncorrected (their raw figures intact), without rounds
  * or precision; a correction written afterwards reads back. */
+/* A version-5 store (before path_frames) opens as version 7 and reads its
+ * configurations without frame times; a path series written then reads
+ * back whole, and one whose blob does not hold frames x replays values is
+ * refused as damaged. */
+static void test_path_migration(void **state)
+{
+    tmp *t = *state;
+    dm_run_result run, got, want;
+    run_full(&run, "old");
+    store *s = open_ok(t->db);
+    store_put_all(s, &run, NULL);
+    store_close(s);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, PATH_DROPPED "PRAGMA user_version=5", NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    s = open_ok(t->db);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    run_full(&want, "old");
+    path_not_stored(&want);
+    eq_run(&want, &got);
+    dm_run_free(&got);
+    assert_int_equal(store_config_put(s, "old", &run.configs[2]), 0);
+    assert_int_equal(sql_long(s, "SELECT length(data) FROM path_frames"), 12 * 8);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    eq_config(&run.configs[2], &got.configs[2]);
+    dm_run_free(&got);
+    store_close(s);
+    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, "UPDATE path_frames SET replays=4", NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    s = open_ok(t->db);
+    assert_int_equal(store_run_load(s, "old", &got), DM_ERR_STORE);
+    assert_non_null(strstr(store_last_error(s), "hold 12 values, not 4 frames x 4 replays"));
+    dm_run_free(&got);
+    dm_run_free(&want);
+    dm_run_free(&run);
+    store_close(s);
+}
+
 static void test_precision_migration(void **state)
 {
     tmp *t = *state;
@@ -933,14 +1021,15 @@ static void test_precision_migration(void **state)
     store_close(s);
     sqlite3 *db;
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, PRECISION_DROPPED "PRAGMA user_version=4", NULL, NULL, NULL), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, PRECISION_DROPPED PATH_DROPPED "PRAGMA user_version=4", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     dm_run_result want;
     run_full(&want, "old");
     precision_not_computed(&want);
+    path_not_stored(&want);
     eq_run(&want, &got);
     dm_run_free(&got);
     assert_int_equal(store_precision_put(s, "old", &run), 0);
@@ -1164,7 +1253,7 @@ static void test_open_alloc_faults(void **state)
         dm_str_free(&err);
         s = open_ok(t->db);
         assert_integrity_ok(s);
-        assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+        assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
         store_close(s);
         if (!reached)
             break;
@@ -1263,6 +1352,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_flip_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_path_quality_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_precision_migration, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_path_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_partial_samples, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_copy_run, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_latest_and_list, tmp_setup, tmp_teardown),

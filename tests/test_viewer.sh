@@ -10,7 +10,8 @@
 #   no-display   without DISPLAY: exit 2 and a message naming xvfb-run
 #   light-normals  L, N and right-drag pan run with no GL error; an N
 #                screenshot equals `dmbench render --debug normals`, and L for
-#                5 frames equals a batch render at light.azimuth 45 + 5*2
+#                5 frames equals a batch render at light.azimuth 45 + 5*2, and
+#                A (play camera.path) for 6 frames equals `render --frame 6`
 # Needs DMBENCH_BINARY; VIEWER_IMGCMP is the helper test_viewer_imgcmp.
 set -u
 BIN=${DMBENCH_BINARY:?DMBENCH_BINARY must point at dmbench}
@@ -129,7 +130,15 @@ light-normals)
     "${VIEWER_IMGCMP:?}" l-a.png l-b.png 50 || fail "L for 5 frames != light.azimuth=55"
     "$BIN" render technique=normal resolution=256x144 --png l-c.png >/dev/null
     "${VIEWER_IMGCMP:?}" l-a.png l-c.png 50 >/dev/null 2>&1 && fail "L did not move the light"
-    echo "ok: L, N and pan; N equals the batch normals view; L is deterministic"
+    # A plays camera.path from the frame it is typed: 6 frames -> frame index 6
+    P="technique=normal resolution=256x144 camera.path=dolly camera.path_frames=12 camera.dolly_to=1.2"
+    out=$(view $P --keys 'A' --frames 6 --screenshot p-a.png 2>&1) || fail "view with A exited $?"
+    echo "$out" | grep -q "dolly playing, frame 0 (1 of 12 along the path)" || fail "A did not play: $out"
+    "$BIN" render $P --frame 6 --png p-b.png >/dev/null || fail "render --frame 6 exited $?"
+    "${VIEWER_IMGCMP:?}" p-a.png p-b.png 50 || fail "A for 6 frames != render --frame 6"
+    "$BIN" render $P --frame 0 --png p-c.png >/dev/null
+    "${VIEWER_IMGCMP:?}" p-a.png p-c.png 50 >/dev/null 2>&1 && fail "A did not move the camera"
+    echo "ok: L, N and pan; N equals the batch normals view; L and A are deterministic"
     ;;
 *) fail "unknown mode $MODE" ;;
 esac

@@ -186,6 +186,52 @@ static void test_light_orbit_and_normals(void **s)
     viewer_state_free(&st);
 }
 
+/* A plays the frame index along camera.path (one per tick), > and < step it
+ * and pause; back from 0 goes to the path's last frame; on a still path
+ * with no orbit per frame nothing moves, and A says why and stays off.  The
+ * frame index never marks the state dirty (no re-prepare: render_set_frame). */
+static void test_path_play_and_step(void **s)
+{
+    (void)s;
+    viewer_state st;
+    state_with(&st, NULL, NULL, NULL, NULL);
+    type(&st, "A");
+    assert_int_equal(st.playing, 0);
+    assert_non_null(strstr(dm_str_get(&st.msg), "nothing moves with the frame"));
+    viewer_state_tick(&st);
+    assert_int_equal((int)st.frame, 0);
+    viewer_state_free(&st);
+
+    state_with(&st, "camera.path", "dolly", "camera.path_frames", "12");
+    assert_int_equal((int)viewer_state_path_frames(&st), 12);
+    type(&st, "<");                            /* back from 0: the last frame */
+    assert_int_equal((int)st.frame, 11);
+    assert_non_null(strstr(dm_str_get(&st.msg), "dolly paused, frame 11 (12 of 12 along the path)"));
+    type(&st, ">>");
+    assert_int_equal((int)st.frame, 13);       /* 13 mod 12: the path's second frame */
+    type(&st, "a");
+    assert_int_equal(st.playing, 1);
+    for (int k = 0; k < 5; k++)
+        viewer_state_tick(&st);
+    assert_int_equal((int)st.frame, 18);
+    type(&st, ">");                            /* a step pauses */
+    assert_int_equal(st.playing, 0);
+    assert_int_equal((int)st.frame, 19);
+    viewer_state_tick(&st);
+    assert_int_equal((int)st.frame, 19);
+    assert_int_equal(st.dirty, 0);
+    assert_non_null(strstr(viewer_state_help(), "play / pause camera.path"));
+    viewer_state_free(&st);
+
+    state_with(&st, "camera.orbit_deg_per_frame", "3", NULL, NULL);   /* still, but it turns */
+    assert_int_equal((int)viewer_state_path_frames(&st), 0);
+    type(&st, "A");
+    assert_int_equal(st.playing, 1);
+    viewer_state_tick(&st);
+    assert_int_equal((int)st.frame, 1);
+    viewer_state_free(&st);
+}
+
 /* Right-drag pan: target += distance·0.002·(−dx·right + dy·up).  At azimuth
  * 90, elevation 0, distance 5: right = (0, 0, −1), up = (0, 1, 0), so a pan
  * of (100, −50) px moves the target by 0.01·(0, −50, 100) = (0, −0.5, 1);
@@ -308,6 +354,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_mouse_orbit_zoom_and_reset),
              cmocka_unit_test(test_toggles_and_requests),
              cmocka_unit_test(test_light_orbit_and_normals),
+             cmocka_unit_test(test_path_play_and_step),
              cmocka_unit_test(test_pan_and_reset),
              cmocka_unit_test(test_restore_undoes_without_dirty),
              cmocka_unit_test(test_script_events),

@@ -151,11 +151,26 @@ static viewer_frame viewer__frame(viewer *v)
     return f;
 }
 
+/* "dolly frame 12 (13 of 60)" while something moves with the frame, else "". */
+static void viewer__where(const viewer *v, const char *sep, dm_str *out)
+{
+    if (!viewer_state_moves(&v->st))
+        return;
+    unsigned long long n = viewer_state_path_frames(&v->st);
+    if (n > 0)
+        dm_str_printf(out, "%s%s frame %llu (%llu of %llu)%s", sep, viewer_state_get(&v->st, "camera.path"),
+                      v->st.frame, v->st.frame % n + 1, n, v->st.playing ? " playing" : "");
+    else
+        dm_str_printf(out, "%sframe %llu%s", sep, v->st.frame, v->st.playing ? " playing" : "");
+}
+
 static void viewer__title(viewer *v, const viewer_frame *f)
 {
     dm_str t = {0};
-    dm_str_printf(&t, "dmbench view: %s on %s %dx%d | ", viewer_state_get(&v->st, "technique"),
+    dm_str_printf(&t, "dmbench view: %s on %s %dx%d", viewer_state_get(&v->st, "technique"),
                   viewer_state_get(&v->st, "mesh"), f->w, f->h);
+    viewer__where(v, ", ", &t);
+    dm_str_cat(&t, " | ");
     viewer_counters_format(&v->live, "  ", &t);
     glfwSetWindowTitle(gl_context_window(v->gl), dm_str_get(&t));
     dm_str_free(&t);
@@ -174,6 +189,7 @@ static void viewer__overlay(viewer *v, const viewer_frame *f)
     viewer_counters_format(&v->live, "\n", &text);
     dm_str_printf(&text, "\n%dx%d%s%s%s", f->w, f->h, v->st.wireframe ? "  wireframe" : "",
                   v->st.normals ? "  normals" : "", v->st.light_orbit ? "  light orbit" : "");
+    viewer__where(v, "\n", &text);
     viewer_overlay_draw(&v->ov, dm_str_get(&text), f->w, f->h);
     dm_str_free(&text);
 }
@@ -240,6 +256,7 @@ static int viewer__frame_step(viewer *v, int frame)
     int rc = viewer__prepare(v);
     if (rc != 0)
         return rc;
+    render_set_frame(v->r, v->item, v->st.frame);   /* A, >, <: the frame along camera.path */
     viewer_frame f = viewer__frame(v);
     if (changed)
         v->live_due = frame + 2;        /* after the first draw has JIT-compiled */
@@ -250,6 +267,8 @@ static int viewer__frame_step(viewer *v, int frame)
         dm_str_free(&log);
         viewer__title(v, &f);
         v->live_due = frame + VIEWER__LIVE_EVERY;
+    } else if (v->st.playing) {
+        viewer__title(v, &f);           /* the frame along the path, with the last counters */
     }
     viewer__requests(v, &f);
     viewer_draw(&f);

@@ -181,6 +181,51 @@ static void viewer__toggle(viewer_state *st, int *flag, const char *what)
     dm_str_printf(&st->msg, "%s %s\n", what, *flag ? "on" : "off");
 }
 
+int viewer_state_moves(const viewer_state *st)
+{
+    return strcmp(viewer_state_get(st, "camera.path"), "still") != 0 ||
+           atof(viewer_state_get(st, "camera.orbit_deg_per_frame")) != 0.0 ||
+           atof(viewer_state_get(st, "light.orbit_deg_per_frame")) != 0.0;
+}
+
+unsigned long long viewer_state_path_frames(const viewer_state *st)
+{
+    if (strcmp(viewer_state_get(st, "camera.path"), "still") == 0)
+        return 0;
+    return strtoull(viewer_state_get(st, "camera.path_frames"), NULL, 10);
+}
+
+/* A (play / pause), > and < (one frame on / back, pausing): the frame index
+ * along the path.  Back from frame 0 goes to the path's last frame. */
+static void viewer__path_key(viewer_state *st, unsigned c)
+{
+    if (!viewer_state_moves(st)) {
+        dm_str_printf(&st->msg, "%c: nothing moves with the frame: camera.path is still and no "
+                      "orbit per frame is set (start with camera.path=orbit, dolly or flyover, or "
+                      "camera.orbit_deg_per_frame=N; docs/motion.md)\n", c == 'a' ? 'A' : c);
+        return;
+    }
+    unsigned long long n = viewer_state_path_frames(st);
+    if (c == 'a' || c == 'A') {
+        st->playing = !st->playing;
+    } else {
+        st->playing = 0;
+        if (c == '>')
+            st->frame++;
+        else if (st->frame > 0)
+            st->frame--;
+        else if (n > 0)
+            st->frame = n - 1;
+    }
+    if (n > 0)
+        dm_str_printf(&st->msg, "%s %s, frame %llu (%llu of %llu along the path)\n",
+                      viewer_state_get(st, "camera.path"), st->playing ? "playing" : "paused",
+                      st->frame, st->frame % n + 1, n);
+    else
+        dm_str_printf(&st->msg, "orbit %s, frame %llu\n", st->playing ? "playing" : "paused",
+                      st->frame);
+}
+
 void viewer_state_char(viewer_state *st, unsigned c)
 {
     if (c >= '1' && c <= '9') {
@@ -206,6 +251,7 @@ void viewer_state_char(viewer_state *st, unsigned c)
         viewer__toggle(st, &st->normals, "normals view");
         st->dirty = 1;                  /* a different program variant */
         break;
+    case 'a': case 'A': case '>': case '<': viewer__path_key(st, c); break;
     case 't': case 'T': st->want_timed = 1; break;
     case 's': case 'S': st->want_screenshot = 1; break;
     case 'r': case 'R': viewer__reset_camera(st); break;
@@ -262,6 +308,8 @@ void viewer_state_pan(viewer_state *st, double dx, double dy)
 
 void viewer_state_tick(viewer_state *st)
 {
+    if (st->playing)
+        st->frame++;
     if (!st->light_orbit)
         return;
     double az = atof(viewer_state_get(st, "light.azimuth")) + VIEWER_LIGHT_ORBIT_DEG;
@@ -279,6 +327,7 @@ const char *viewer_state_help(void)
            "  T        timed test (median ns per frame + counters)\n"
            "  L        light orbit on/off         N  normals view on/off\n"
            "  S        screenshot PNG             R  reset camera (and pan)\n"
+           "  A        play / pause camera.path   > / <  one frame on / back\n"
            "  ?        this help                  Esc  quit\n"
            "mouse: left drag orbits, right drag pans, wheel zooms\n";
 }

@@ -36,6 +36,9 @@ typedef struct viewer_state {
     int dirty;                   /* params changed: re-prepare before the next frame */
     int wireframe, overlay;      /* W, C */
     int light_orbit, normals;    /* L, N (normals: the renderer's normals view) */
+    int playing;                 /* A: the frame index advances once per frame */
+    unsigned long long frame;    /* the frame drawn (render_set_frame): the position
+                                    along camera.path and the orbits' turn */
     int want_screenshot, want_timed, want_help, want_quit;
     dm_str msg;                  /* feedback for the user, drained by the loop */
 } viewer_state;
@@ -68,8 +71,17 @@ void viewer_state_zoom(viewer_state *st, double wheel);
 void viewer_state_pan(viewer_state *st, double dx, double dy);
 /* Once per frame, after input: advances light.azimuth by
  * VIEWER_LIGHT_ORBIT_DEG while the light orbit is on (wrapped to
- * [-180, 180)). */
+ * [-180, 180)), and the frame index by one while a path plays (A).  The
+ * frame index is what `dmbench render --frame N` draws: the position along
+ * camera.path (frame mod camera.path_frames) and the turn of
+ * camera.orbit_deg_per_frame / light.orbit_deg_per_frame. */
 void viewer_state_tick(viewer_state *st);
+/* 1 when the frame index changes the picture: a camera.path other than
+ * still, or a non-zero camera/light orbit per frame. */
+int viewer_state_moves(const viewer_state *st);
+/* Frames of one pass along camera.path (camera.path_frames), 0 on the still
+ * path (the frame index then only turns the orbits). */
+unsigned long long viewer_state_path_frames(const viewer_state *st);
 /* The key and mouse reference printed by `?`. */
 const char *viewer_state_help(void);
 

@@ -10,8 +10,10 @@
 # - a flyover's frames differ from one another;
 # - a still path's key and image are those of a configuration without the
 #   key (still scenes keep their keys);
-# - a run leaves path configurations out, with the reason, and measures the
-#   still ones; a bad value exits 2 with the valid choices.
+# - a run times path configurations beside the still ones (their keys and
+#   labels as without camera.path): every figure of results.json's "path"
+#   recomputed from the stored per-frame series; a bad value exits 2 with
+#   the valid choices.
 set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 R="mesh=plane technique=normal resolution=120x68"
@@ -49,22 +51,88 @@ differ f0 f30
 render still camera.path=still
 same still s3
 
-printf 'name: paths\nresolution: [80, 45]\nmeasure: { samples: { min: 3, max: 3 } }\nsweep:\n  mesh: [plane]\n  technique: [normal]\n  camera.path: [still, dolly, orbit]\n' > "$OUT/p.yaml"
-"$BIN" run "$OUT/p.yaml" --out "$OUT/r" --quiet > /dev/null
-# Paths run: the still configuration keeps its key and params (no path
-# key, no path quality); dolly and orbit get quality along the path with
-# the default K: a reference at the first and last frame (K = F - 1 = 59).
-python3 - "$OUT/r/latest/results.json" <<'PY'
-import json, sys
+# A run times the path configurations beside the still ones.  Every figure
+# of a path's "path" object is recomputed here from its per-frame series
+# (the store's and results.json's, which must agree), not copied.
+printf 'name: paths\nresolution: [64, 36]\nmeasure: { samples: { min: 3, max: 3 } }\nsweep:\n  mesh: [plane]\n  technique: [texture, normal]\n  camera.path: [still, dolly]\n  camera.path_frames: [12]\n' > "$OUT/p.yaml"
+printf 'name: still\nresolution: [64, 36]\nsweep:\n  mesh: [plane]\n  technique: [texture, normal]\n' > "$OUT/s.yaml"
+"$BIN" run "$OUT/s.yaml" --dry-run > "$OUT/still.txt" 2>&1
+"$BIN" run "$OUT/p.yaml" --out "$OUT/r" > "$OUT/run.txt" 2>&1
+python3 - "$OUT/r/latest/results.json" "$OUT/r/dmbench.sqlite" "$OUT/still.txt" "$OUT/r/latest/results.csv" \
+  "$OUT/r/latest/summary.md" "$OUT/run.txt" <<'PY'
+import csv, json, math, re, sqlite3, struct, sys
 d = json.load(open(sys.argv[1]))
-cs = {c["params"].get("camera.path", "still"): c for c in d["configs"]}
-assert sorted(cs) == ["dolly", "orbit", "still"], [c["params"] for c in d["configs"]]
-assert "camera.path_ref_every" not in cs["still"]["params"] and cs["still"]["path_quality"] is None, cs["still"]
-for p in ("dolly", "orbit"):
-    q = cs[p]["path_quality"]
-    assert q and q["frames"] == 60 and q["every"] == 59 and q["reference_frames"] == [0, 59], (p, q)
-    assert len(q["FLIP"]) == 2 and len(q["SSIM"]) == 2 and q["temporal_error_mean"] >= 0, (p, q)
-    assert q["images"]["temporal"].endswith("-temporal.png"), q
+cs = d["configs"]
+assert len(cs) == 4 and not d.get("left_out"), (len(cs), d.get("left_out"))
+assert all(c["status"] == "ok" for c in cs), [c["reason"] for c in cs]
+db = sqlite3.connect(sys.argv[2])
+# the still configurations: the keys and labels of a sweep without camera.path, no path object
+still = dict(re.findall(r"^  ([0-9a-f]{16})  (plane 64×36 · \w+)  ", open(sys.argv[3]).read(), re.M))
+assert len(still) == 2, still
+for c in cs:
+    if c["params"].get("camera.path", "still") == "still":
+        assert c["key"] in still and c["label"] == still[c["key"]], (c["key"], c["label"], still)
+        assert "path" not in c and "camera.path" not in c["params"], c.get("path")
+        assert db.execute("SELECT count(*) FROM path_frames WHERE key=?", (c["key"],)).fetchone()[0] == 0
+
+def q7(xs, p):  # type-7 quantile
+    xs = sorted(xs); h = (len(xs) - 1) * p; lo = math.floor(h)
+    return xs[lo] + (h - lo) * (xs[min(lo + 1, len(xs) - 1)] - xs[lo])
+
+def close(a, b, what, rel=1e-9):
+    assert abs(a - b) <= rel * max(abs(a), abs(b)), (what, a, b)
+
+paths = [c for c in cs if c["params"].get("camera.path") == "dolly"]
+assert len(paths) == 2, [c["params"].get("camera.path") for c in cs]
+csv_rows = {r["key"]: r for r in csv.DictReader(open(sys.argv[4], newline=""))}
+md, term = open(sys.argv[5]).read(), open(sys.argv[6]).read()
+for c in paths:
+    p, F = c["path"], 12
+    wall = c["counters"]["WallTime"]["samples"]
+    S = len(wall)
+    assert p["frames"] == F and p["replays"] == S == 3, (p["frames"], p["replays"], S)
+    assert c["label"].endswith("camera.path=dolly"), c["label"]
+    frames, replays, blob = db.execute("SELECT frames, replays, data FROM path_frames WHERE key=?",
+                                       (c["key"],)).fetchone()
+    stored = struct.unpack("<%dd" % (len(blob) // 8), blob)
+    assert (frames, replays, len(stored)) == (F, S, S * F), (frames, replays, len(stored))
+    assert all(math.isfinite(t) and t > 0 for t in stored), stored
+    rows = [stored[s * F:(s + 1) * F] for s in range(S)]
+    assert rows == [tuple(r) for r in p["frame_ns"]], "results.json's series is not the store's"
+    for s in range(S):   # each WallTime sample is its replay's mean frame time
+        close(wall[s], sum(rows[s]) / F, "WallTime sample %d" % s)
+    med = [sorted(rows[s][f] for s in range(S))[S // 2] for f in range(F)]
+    p50, p95, p99 = (q7(med, x) for x in (0.5, 0.95, 0.99))
+    close(p["p50_ms"], p50 / 1e6, "p50"); close(p["p95_ms"], p95 / 1e6, "p95"); close(p["p99_ms"], p99 / 1e6, "p99")
+    assert p["p50_ms"] <= p["p95_ms"] <= p["p99_ms"], p
+    close(p["one_percent_low_ms"], max(med) / 1e6, "1 % low (ceil(12/100) = 1 frame: the slowest)")
+    close(p["one_percent_low_fps"], 1000 / p["one_percent_low_ms"], "1 % low fps")
+    want = [f for f in range(F) if med[f] > 2 * p50]
+    assert p["stutter_frames"] == want and p["stutters"] == len(want), (p["stutter_frames"], want)
+    spread = sorted((max(r[f] for r in rows) - min(r[f] for r in rows)) / med[f] for f in range(F))
+    close(p["replay_spread"], q7(spread, 0.5), "replay spread")
+    assert p["noisy"] is (p["replay_spread"] > 0.10), (p["noisy"], p["replay_spread"])
+    r = csv_rows[c["key"]]
+    close(float(r["path_p99_ms"]), p["p99_ms"], "csv p99", 1e-8)   # 9 significant digits
+    assert int(r["path_stutters"]) == len(want), r
+    assert c["label"] in md, "summary.md lacks the path row of " + c["label"]
+    line = [l for l in term.splitlines() if c["label"].split(" · ")[1].split()[0] in l and "path p99" in l]
+    got = [re.search(r"path p99 ([0-9.]+) ms, (\d+) stutter", l).groups() for l in line]
+    assert any(abs(float(ms) - p99 / 1e6) <= 0.0011 and int(n) == len(want) for ms, n in got), (got, p99, want)
+assert "## Along the path" in md
+for c in cs:
+    if "path" not in c:
+        assert csv_rows[c["key"]]["path_p99_ms"] == "", csv_rows[c["key"]]
+# quality along the path: none for a still configuration; on the dolly the
+# default K, a reference at the first and last frame (K = F - 1 = 11)
+for c in cs:
+    q = c["path_quality"]
+    if c["params"].get("camera.path", "still") == "still":
+        assert q is None and "camera.path_ref_every" not in c["params"], (c["label"], q)
+        continue
+    assert q and q["computed"] and q["frames"] == 12 and q["every"] == 11, (c["label"], q)
+    assert q["reference_frames"] == [0, 11] and len(q["FLIP"]) == 2 and len(q["SSIM"]) == 2, q
+    assert q["temporal_error_mean"] >= 0 and q["images"]["temporal"].endswith("-temporal.png"), q
 PY
 pass=$((pass+1))
 expect_refused 2 "expected one of: still, orbit, dolly, flyover (did you mean 'dolly'?)" -- \
