@@ -151,6 +151,18 @@ int report__tied(const dm_counter_result *a, const dm_counter_result *b);
  * timed configuration. */
 void report__svg_scene(dm_str *s, const report_model *m, size_t si);
 
+/* The frame-time plot of row r on a camera path (svg_chart.c): x = frame
+ * 0…F−1, y = r->path_ms (the per-frame medians, also in the median line's
+ * data-ms attribute) with the replays' min–max band, p50 and p99 as lines,
+ * the stutters as marked points.  Nothing for a still row or one without a
+ * single frame time. */
+void report__svg_path(dm_str *s, const report_model_row *r);
+
+/* "Along the path" of scene si in report.html (path_html.c): per
+ * configuration on a camera path, its figures and its frame-time plot.
+ * Nothing for a scene without one, so a still run's page is unchanged. */
+void report__html_path_scene(dm_str *s, const report_model *m, size_t si);
+
 /* Charts (chart.c): inline SVG appended to an HTML document, each in a
  * <div class="chart" aria-label="title">.  Scene si's PLplot charts from the
  * model: time vs tess_level per mesh and technique, and the counter

@@ -22,6 +22,38 @@ static const report_trend *report_model__trend(const report_trends *t, const cha
     return NULL;
 }
 
+static int report_model__cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The per-frame median, min and max over the replays of r's camera path,
+ * in ms (report_model_row.path_ms); nothing for a still configuration. */
+static void report_model__path(report_model_row *r)
+{
+    const dm_path_series *p = &r->config->path;
+    if (!p->frames || !p->replays || !p->frame_ns)
+        return;
+    r->path_ms = dm_xcalloc(p->frames, sizeof *r->path_ms);
+    r->path_lo_ms = dm_xcalloc(p->frames, sizeof *r->path_lo_ms);
+    r->path_hi_ms = dm_xcalloc(p->frames, sizeof *r->path_hi_ms);
+    double *v = dm_xcalloc(p->replays, sizeof *v);
+    for (size_t f = 0; f < p->frames; f++) {
+        size_t n = 0;
+        for (size_t k = 0; k < p->replays; k++) {
+            double t = p->frame_ns[k * p->frames + f];
+            if (isfinite(t))
+                v[n++] = t / 1e6;
+        }
+        qsort(v, n, sizeof *v, report_model__cmp);
+        r->path_ms[f] = !n ? NAN : n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+        r->path_lo_ms[f] = n ? v[0] : NAN;
+        r->path_hi_ms[f] = n ? v[n - 1] : NAN;
+    }
+    free(v);
+}
+
 /* The corrected figures of a row's frame time, in the raw ones' words. */
 static void report_model__row_corrected(report_model_row *r)
 {
@@ -191,6 +223,7 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     for (size_t i = 0; i < m->n_rows; i++) {
         const dm_config_result *c = &run->configs[i];
         report_model__row(m, &m->rows[i], c);
+        report_model__path(&m->rows[i]);
         m->n_path_rows += c->path.frames > 0;
         for (size_t k = 0; k < m->n_scenes; k++)
             if (strcmp(c->scene ? c->scene : "", names[k]) == 0)
@@ -247,6 +280,9 @@ void report_model_free(report_model *m)
         free(r->corr_ms_text);
         free(r->corr_ci_text);
         free(r->corr_time_ci_text);
+        free(r->path_ms);
+        free(r->path_lo_ms);
+        free(r->path_hi_ms);
     }
     free(m->rows);
     for (size_t i = 0; m->scenes && i < m->n_scenes; i++) {

@@ -79,6 +79,12 @@ typedef struct report_model_row {
     char *corr_ms_text;         /* corrected median in ms; NULL when not corrected */
     char *corr_ci_text;         /* its CI as ci_text; NULL when not corrected */
     char *corr_time_ci_text;    /* "4.40 ms [4.35, 4.45]"; NULL when not corrected */
+    /* Camera path (docs/motion.md): per frame 0…F−1 along the path
+     * (F = config->path.frames), the median of its replays' finite times
+     * (as models/frame_series takes its percentiles over) and their min
+     * and max, in ms; NaN where no replay has a time.  NULL for a still
+     * configuration.  report.html's frame-time plot draws them. */
+    double *path_ms, *path_lo_ms, *path_hi_ms;
 } report_model_row;
 
 /* One scene of the run. */

@@ -1024,6 +1024,90 @@ static char *html_of(const dm_run_result *run, const char *path)
     return test_slurp(path);
 }
 
+/* The numbers of an attribute name="a b c" after at, into v (room for n);
+ * how many. */
+static size_t attr_numbers(const char *at, const char *name, double *v, size_t n)
+{
+    char *key = dm_xasprintf("%s=\"", name);
+    const char *q = strstr(at, key);
+    size_t k = 0;
+    assert_non_null(q);
+    q += strlen(key);
+    free(key);
+    while (*q != '"' && k < n) {
+        char *end;
+        v[k++] = strtod(q, &end);
+        assert_true(end > q);
+        q = end;
+    }
+    return k;
+}
+
+/* report.html along a camera path: a hand-made configuration of 3 frames ×
+ * 2 replays with one time missing gets the scene's "Along the path" table
+ * with its figures and a frame-time plot whose points are the per-frame
+ * medians of its replays (computed here: (1.0 + 1/3) / 2, 3.1 alone, (1.1 +
+ * 1.3) / 2 ms), the replays' min-max band, p50 and p99 lines and its stutter
+ * at frame 1; a still run's page has none of them. */
+static void test_html_path(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_hpath_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char *path = dm_xasprintf("%s/report.html", dir);
+    dm_run_result run;
+    fixture_run(&run);
+    char *still = html_of(&run, path);
+    assert_null(strstr(still, "Along the path"));
+    assert_null(strstr(still, "path-median"));
+    free(still);
+    dm_path_series *ps = &run.configs[0].path;
+    static const double ns[] = {1.0e6, 3.1e6, 1.1e6, 1.0e6 / 3, NAN, 1.3e6};
+    *ps = (dm_path_series){.frames = 3, .replays = 2, .p50 = 1.2e6, .p95 = 2.89e6, .p99 = 3.058e6,
+                           .low1_ns = 3.1e6, .low1_fps = 1e9 / 3.1e6, .n_stutters = 1,
+                           .replay_spread = 0.4, .noisy = 1};
+    ps->frame_ns = dm_xmalloc(sizeof ns);
+    memcpy(ps->frame_ns, ns, sizeof ns);
+    ps->stutter_at = dm_xcalloc(1, sizeof *ps->stutter_at);
+    ps->stutter_at[0] = 1;
+    char *html = html_of(&run, path);
+    const char *sec = strstr(html, "<section class=\"path-scene\" id=\"path-0\"><h3>Along the path: ");
+    assert_non_null(sec);
+    assert_non_null(strstr(sec, "<td class=\"n\">3 × 2</td><td class=\"n\">1.200</td><td class=\"n\">2.890</td>"
+                                "<td class=\"n\">3.058</td><td class=\"n\">3.100 ms (323 fps)</td>"
+                                "<td class=\"n\">1 (frame 1)</td><td class=\"n\" title="));
+    assert_non_null(strstr(sec, "40.0 % <span class=\"noisy\">⚠ noisy</span>"));
+    const char *plot = strstr(sec, "aria-label=\"Frame time along the path: ");
+    assert_non_null(plot);
+    double want[3] = {(1.0 + 1.0 / 3) / 2, 3.1, (1.1 + 1.3) / 2}, got[4], band[8];
+    assert_int_equal(attr_numbers(strstr(plot, "class=\"path-median\""), "data-ms", got, 4), 3);
+    for (size_t f = 0; f < 3; f++)
+        assert_true(fabs(got[f] - want[f]) < 1e-8);
+    /* the median line: one point per frame, the slowest (frame 1) highest */
+    const char *d = strstr(strstr(plot, "class=\"path-median\""), " d=\"");
+    double x[3], y[3];
+    assert_int_equal(sscanf(d, " d=\"M%lf,%lf L%lf,%lf L%lf,%lf \"", &x[0], &y[0], &x[1], &y[1], &x[2], &y[2]), 6);
+    assert_true(x[0] < x[1] && x[1] < x[2] && y[1] < y[2] && y[2] < y[0]);
+    /* the band: up along the max (1.0, 3.1, 1.3), back along the min (1.1, 3.1, 1/3) */
+    const char *b = strstr(plot, "class=\"path-band\"");
+    assert_non_null(b);
+    assert_int_equal(sscanf(strstr(b, " d=\""), " d=\"M%lf,%lf L%lf,%lf L%lf,%lf L%lf,%lf L%lf,%lf L%lf,%lf Z",
+                            &band[0], &band[1], &band[2], &band[3], &band[4], &band[5], &band[6], &band[7],
+                            &got[0], &got[1], &got[2], &got[3]), 12);
+    /* (y grows downward) frame 0's max 1.0 and frame 2's 1.3 over their
+     * medians, frame 1's one time on it, the mins 1.1 and 1/3 under them */
+    assert_true(band[1] < y[0] && fabs(band[3] - y[1]) < 1e-9 && band[5] < y[2]);
+    assert_true(band[7] > y[2] && fabs(got[1] - y[1]) < 1e-9 && got[3] > y[0]);
+    assert_non_null(strstr(plot, "class=\"path-p50\""));
+    assert_non_null(strstr(plot, ">p99 3.06</text>"));
+    assert_non_null(strstr(plot, "<circle class=\"path-stutter\" data-frame=\"1\""));
+    free(html);
+    dm_run_free(&run);
+    unlink(path);
+    rmdir(dir);
+    free(path);
+}
+
 /* The fixture: one fit (tess-power, 2 points), key counters, no pipeline
  * fit, one tess_level value: error vs time and time per configuration of
  * its one scene (never a chart pooling scenes), the key counter bars, and
@@ -1358,6 +1442,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_json_round_trip),
              cmocka_unit_test(test_json_read_errors),
              cmocka_unit_test(test_json_path),
+             cmocka_unit_test(test_html_path),
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
              cmocka_unit_test(test_corrected_figures),
