@@ -16,14 +16,14 @@
 #include <string.h>
 
 typedef struct diff_args {
-    const char *map;           /* -o / --heatmap: the FLIP map */
+    const char *map;           /* -o / --heatmap: the FLIP map, the report's heatmap */
     double ppd;
     int json;
 } diff_args;
 
 const cli_option cli_diff_options[] = {
     { .name = "heatmap", .short_name = 'o', .kind = CLI_OPT_STRING, .offset = offsetof(diff_args, map),
-      .value_name = "MAP.png", .help = "write the FLIP map, on the report's FLIP scale 0..1 (docs/flip.md), to MAP.png "
+      .value_name = "MAP.png", .help = "write the heatmap, the report's: " FLIP_SCALE_TEXT " (docs/flip.md), to MAP.png "
       "[default: beside TEST, its name with .flip.png]" },
     { .name = "ppd", .kind = CLI_OPT_DOUBLE, .offset = offsetof(diff_args, ppd), .value_name = "N",
       .def = "67.0206", .min = 1, .max = 600,

@@ -129,6 +129,10 @@ void dm_config_result_free(dm_config_result *c)
     free(c->img_flip);
     free(c->path.frame_ns);
     free(c->path.stutter_at);
+    free(c->path_quality.flip);
+    free(c->path_quality.ssim);
+    free(c->path_quality.img_temporal);
+    free(c->path_quality.reason);
     memset(c, 0, sizeof *c);
 }
 

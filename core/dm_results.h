@@ -80,6 +80,25 @@ typedef struct dm_path_series {
     double replay_spread;         /* NaN with one replay */
     int noisy;                    /* 1 noisy, 0 not, -1 unknown (one replay) */
 } dm_path_series;
+/* Quality along a camera path (run/mpath_quality.h; docs/motion.md,
+ * "Quality along a path"): a reference every K-th frame of one pass of F
+ * frames (frames 0, K, 2K, ... <= F - 1), the configuration's FLIP mean and
+ * SSIM against each, the temporal error over the steps between them, and
+ * popping.  present 0 and reason NULL: none asked (a still configuration,
+ * or a run from before paths); present 0 with reason: asked but not
+ * computed, reason says why.  results.json "path_quality". */
+typedef struct dm_path_quality {
+    int present;
+    long frames;             /* F */
+    long every;              /* K, as used (the default rule applied) */
+    size_t n;                /* reference frames; frame i of the series is i*K */
+    double *flip, *ssim;     /* n each; NaN where not computed */
+    double temporal_mean, temporal_p99;   /* NaN: fewer than two reference frames */
+    double popping;          /* largest |FLIP_i - FLIP_(i-1)|; NaN: none */
+    long popping_frame;      /* the frame (along the path) the largest jump lands on */
+    char *img_temporal;      /* the temporal error map, relative to the run directory */
+    char *reason;
+} dm_path_quality;
 
 typedef struct dm_config_result {
     char *key;               /* stable hash of relevant params (16 hex) */
@@ -97,6 +116,7 @@ typedef struct dm_config_result {
     char *img_reference;
     char *img_flip;          /* FLIP map on the fixed [0,1] scale, may be NULL */
     dm_path_series path;     /* frame times along its camera path (frames 0: still) */
+    dm_path_quality path_quality;
 } dm_config_result;
 
 typedef struct dm_left_out {

@@ -30,6 +30,11 @@
 /* FLIP's default viewing condition: a 0.7 m wide 3840-pixel monitor seen
  * from 0.7 m, 3840 * (0.7 / 0.7) * pi / 180 = 67.02 pixels per degree. */
 #define FLIP_DEFAULT_PPD 67.020643276582255
+/* How every FLIP map states its scale, word for word: the report's heatmap
+ * legend and `dmbench diff --heatmap`'s help both print it, so the two
+ * cannot say different things (flip_colormap draws the colours). */
+#define FLIP_SCALE_TEXT "LDR-FLIP error per pixel on FLIP's fixed scale, 0 (black: no visible " \
+                        "difference) to 1 (pale yellow: the largest)"
 /* Largest kernel radius accepted (pixels); ppd above ~700 would exceed it. */
 #define FLIP_MAX_RADIUS 128
 

@@ -20,6 +20,88 @@ static int temporal__cmp(const void *a, const void *b)
     return (x > y) - (x < y);
 }
 
+static int temporal__same_size(const img *im, int w, int h)
+{
+    return im && im->px && im->w == w && im->h == h;
+}
+
+int temporal_acc_init(temporal_acc *a, int w, int h)
+{
+    memset(a, 0, sizeof *a);
+    if (w <= 0 || h <= 0)
+        return DM_ERR_ARG;
+    size_t px = (size_t)w * (size_t)h;
+    a->w = w;
+    a->h = h;
+    a->sum = dm_xcalloc(px, sizeof *a->sum);
+    a->cnt = dm_xcalloc(px, sizeof *a->cnt);
+    return 0;
+}
+
+int temporal_acc_step(temporal_acc *a, const img *t0, const img *t1, const img *r0, const img *r1)
+{
+    int w = a->w, h = a->h;
+    if (!temporal__same_size(t0, w, h) || !temporal__same_size(t1, w, h) ||
+        !temporal__same_size(r0, w, h) || !temporal__same_size(r1, w, h))
+        return DM_ERR_ARG;
+    size_t px = (size_t)w * (size_t)h;
+    if (a->kept + px > a->cap) {
+        size_t cap = a->cap ? 2 * a->cap : px;
+        while (cap < a->kept + px)
+            cap *= 2;
+        float *e = realloc(a->e, cap * sizeof *e);
+        if (!e)
+            return DM_ERR_NOMEM;
+        a->e = e;
+        a->cap = cap;
+    }
+    for (size_t p = 0; p < px; p++) {
+        double dt = temporal__luma(t1->px + 4 * p) - temporal__luma(t0->px + 4 * p);
+        double dr = temporal__luma(r1->px + 4 * p) - temporal__luma(r0->px + 4 * p);
+        double v = fabs(dt - dr);
+        if (!isfinite(v)) {
+            a->nonfinite++;
+            continue;
+        }
+        a->e[a->kept++] = (float)v;
+        a->acc += v;
+        a->max = v > a->max ? v : a->max;
+        a->sum[p] += v;
+        a->cnt[p]++;
+    }
+    a->steps++;
+    return 0;
+}
+
+int temporal_acc_finish(temporal_acc *a, temporal_stats *out, img *map)
+{
+    memset(out, 0, sizeof *out);
+    out->mean = out->p99 = out->max = NAN;
+    out->steps = a->steps;
+    out->nonfinite = a->nonfinite;
+    int rc = a->steps ? 0 : DM_ERR_ARG;
+    if (a->kept > 0) {
+        out->mean = a->acc / (double)a->kept;
+        out->max = a->max;
+        qsort(a->e, a->kept, sizeof *a->e, temporal__cmp);
+        double pos = 0.99 * (double)(a->kept - 1);
+        size_t lo = (size_t)floor(pos), hi = lo + 1 < a->kept ? lo + 1 : lo;
+        out->p99 = a->e[lo] + (pos - (double)lo) * ((double)a->e[hi] - a->e[lo]);
+    }
+    size_t px = (size_t)a->w * (size_t)a->h;
+    if (rc == 0 && map && (rc = img_alloc(map, a->w, a->h)) == 0)
+        for (size_t p = 0; p < px; p++) {
+            float v = a->cnt[p] ? (float)(a->sum[p] / (double)a->cnt[p]) : NAN;
+            map->px[4 * p] = map->px[4 * p + 1] = map->px[4 * p + 2] = v;
+            map->px[4 * p + 3] = 1.0f;
+        }
+    free(a->e);
+    free(a->sum);
+    free(a->cnt);
+    memset(a, 0, sizeof *a);
+    return rc;
+}
+
 int temporal_error(const img *test, const img *ref, size_t n, temporal_stats *out, img *map)
 {
     memset(out, 0, sizeof *out);
@@ -28,53 +110,14 @@ int temporal_error(const img *test, const img *ref, size_t n, temporal_stats *ou
         return DM_ERR_ARG;
     int w = ref[0].w, h = ref[0].h;
     for (size_t t = 0; t < n; t++)
-        if (test[t].w != w || test[t].h != h || ref[t].w != w || ref[t].h != h || !test[t].px || !ref[t].px)
+        if (!temporal__same_size(&test[t], w, h) || !temporal__same_size(&ref[t], w, h))
             return DM_ERR_ARG;
-    size_t px = (size_t)w * (size_t)h, total = px * (n - 1), kept = 0;
-    float *e = malloc(total * sizeof *e);
-    double *sum = dm_xcalloc(px, sizeof *sum);
-    size_t *cnt = dm_xcalloc(px, sizeof *cnt);
-    if (!e) {
-        free(sum);
-        free(cnt);
-        return DM_ERR_NOMEM;
-    }
-    double acc = 0, mx = 0;
-    for (size_t t = 1; t < n; t++)
-        for (size_t p = 0; p < px; p++) {
-            double dt = temporal__luma(test[t].px + 4 * p) - temporal__luma(test[t - 1].px + 4 * p);
-            double dr = temporal__luma(ref[t].px + 4 * p) - temporal__luma(ref[t - 1].px + 4 * p);
-            double v = fabs(dt - dr);
-            if (!isfinite(v)) {
-                out->nonfinite++;
-                continue;
-            }
-            e[kept++] = (float)v;
-            acc += v;
-            mx = v > mx ? v : mx;
-            sum[p] += v;
-            cnt[p]++;
-        }
-    out->steps = n - 1;
-    int rc = 0;
-    if (kept > 0) {
-        out->mean = acc / (double)kept;
-        out->max = mx;
-        qsort(e, kept, sizeof *e, temporal__cmp);
-        double pos = 0.99 * (double)(kept - 1);
-        size_t lo = (size_t)floor(pos), hi = lo + 1 < kept ? lo + 1 : lo;
-        out->p99 = e[lo] + (pos - (double)lo) * ((double)e[hi] - e[lo]);
-    }
-    if (map && (rc = img_alloc(map, w, h)) == 0)
-        for (size_t p = 0; p < px; p++) {
-            float v = cnt[p] ? (float)(sum[p] / (double)cnt[p]) : NAN;
-            map->px[4 * p] = map->px[4 * p + 1] = map->px[4 * p + 2] = v;
-            map->px[4 * p + 3] = 1.0f;
-        }
-    free(e);
-    free(sum);
-    free(cnt);
-    return rc;
+    temporal_acc a;
+    int rc = temporal_acc_init(&a, w, h);
+    for (size_t t = 1; rc == 0 && t < n; t++)
+        rc = temporal_acc_step(&a, &test[t - 1], &test[t], &ref[t - 1], &ref[t]);
+    int frc = temporal_acc_finish(&a, out, map);
+    return rc ? rc : frc;
 }
 
 double temporal_popping(const double *e, size_t n, size_t *at)

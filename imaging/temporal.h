@@ -39,6 +39,31 @@ typedef struct temporal_stats {
  * at that size: R = G = B = the per-pixel mean of e, A = 1. */
 int temporal_error(const img *test, const img *ref, size_t n, temporal_stats *out, img *map);
 
+/* The same, one step at a time, so a caller holds two frames of each
+ * sequence instead of all of them (run/mpath_quality.c): init for w×h,
+ * one step per pair of consecutive frames, then finish, which fills out
+ * and map as temporal_error does and releases the accumulator (also after
+ * a failed step).  The e values of every pixel-step are kept for the 99th
+ * percentile: one float each. */
+typedef struct temporal_acc {
+    int w, h;
+    size_t steps, kept, cap;
+    float *e;                /* the finite e values so far */
+    double *sum;             /* per pixel: sum and count of finite e */
+    size_t *cnt;
+    double acc, max;
+    long nonfinite;
+} temporal_acc;
+
+/* 0, or DM_ERR_ARG (w or h < 1). */
+int temporal_acc_init(temporal_acc *a, int w, int h);
+/* Adds step (t0 -> t1 of the test, r0 -> r1 of the reference): 0,
+ * DM_ERR_ARG (a frame of another size or without pixels), DM_ERR_NOMEM. */
+int temporal_acc_step(temporal_acc *a, const img *t0, const img *t1, const img *r0, const img *r1);
+/* The summary of the steps added (DM_ERR_ARG, out NaN, when none was);
+ * map as temporal_error's.  Releases a. */
+int temporal_acc_finish(temporal_acc *a, temporal_stats *out, img *map);
+
 /* Popping of the per-frame errors e[0..n-1]: the largest |e[t] − e[t−1]|,
  * with t in *at (optional); NaN when n < 2 or no two consecutive values
  * are finite. */

@@ -507,24 +507,50 @@ static size_t html__gallery_ref_index(const char ***refs, size_t *n, const char 
     return (*n)++;
 }
 
-/* The legends of a scene's maps, before its cards: the heatmap's one
- * absolute scale, with what saturates it (a difference of a channel's whole
- * range or more: lit values may pass 1), and FLIP's fixed scale. */
+/* The legends of a scene's maps, before its cards.  A run's heatmap is its
+ * FLIP map: FLIP's fixed, bounded scale, stated as `dmbench diff --heatmap`
+ * states it (FLIP_SCALE_TEXT).  An older run's |render − reference|
+ * heatmap keeps its own legend: one absolute scale, with what saturates it
+ * (a difference of a channel's whole range or more: lit values may pass
+ * 1); its separate FLIP maps keep theirs. */
 static void html__gallery_legend(dm_str *s, const report_model_scene *sc)
 {
-    dm_str_printf(s, "<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
-                     "channel) on one absolute scale for every map, so maps compare side by side: "
-                     "0 <span class=\"scale\"></span> 1, a channel's whole range; a larger "
-                     "difference shows as 1. The largest difference in this scene (MaxError) is "
-                     "%.3g%s. Click a render to flip it with the reference.</p>\n", sc->max_error,
-                  sc->max_error > 1 ? ": its hottest pixels saturate the map" : "");
-    if (sc->flips) {
-        dm_str_printf(s, "<p class=\"const\">FLIP map: LDR-FLIP error per pixel at %.3g pixels per "
-                         "degree, on one fixed scale for every map, so maps compare side by side: "
-                         "0 ", sc->flip_ppd);
+    if (sc->heatmap_flip) {
+        dm_str_printf(s, "<p class=\"const\">Heatmap: " FLIP_SCALE_TEXT ", at %.3g pixels per "
+                         "degree, the scale of <code>dmbench diff --heatmap</code>: 0 ", sc->flip_ppd);
+        html__flip_scale(s);
+        dm_str_cat(s, " 1, the same colour for the same error in every map, so maps compare side by "
+                      "side; FLIP is bounded, so no map saturates (docs/flip.md). Click a render to "
+                      "flip it with the reference.</p>\n");
+    }
+    if (sc->heatmap_diff)
+        dm_str_printf(s, "<p class=\"const\">Heatmap: |render − reference| per pixel (largest "
+                         "channel) on one absolute scale for every map, so maps compare side by side: "
+                         "0 <span class=\"scale\"></span> 1, a channel's whole range; a larger "
+                         "difference shows as 1. The largest difference in this scene (MaxError) is "
+                         "%.3g%s. Click a render to flip it with the reference.</p>\n", sc->max_error,
+                      sc->max_error > 1 ? ": its hottest pixels saturate the map" : "");
+    if (sc->flips && sc->heatmap_diff) {
+        dm_str_printf(s, "<p class=\"const\">FLIP map: " FLIP_SCALE_TEXT ", at %.3g pixels per "
+                         "degree, one fixed scale for every map, so maps compare side by side: 0 ",
+                      sc->flip_ppd);
         html__flip_scale(s);
         dm_str_cat(s, " 1 (docs/flip.md).</p>\n");
     }
+}
+
+/* The caption of a configuration's card: its values, on its maps' scales
+ * (a FLIP heatmap's FLIP figures; an older heatmap's MaxError, marked
+ * where it saturates that map). */
+static void html__gallery_caption(dm_str *cap, const report_model_row *r)
+{
+    const dm_config_result *c = r->config;
+    dm_str_printf(cap, "%s: %s", r->label, r->metric_text);
+    if (!report_model_heatmap_is_flip(c))
+        dm_str_printf(cap, ", MaxError %.3g%s", c->quality.max_error,
+                      c->quality.max_error > 1 ? " (saturates the heatmap)" : "");
+    if (c->img_flip)
+        dm_str_printf(cap, ", FLIP %.4f (max %.3f)", c->quality.flip, c->quality.flip_max);
 }
 
 /* One scene's grid, its legends first: its reference(s) once, then render
@@ -555,15 +581,13 @@ static void html__gallery_scene(dm_str *s, const report_model *m, const report_m
         const char *label = r->label;
         dm_str_cat(s, "<div class=\"pair\">");
         html__gallery_linked(s, im, c->img_render, "render", label, ref);
-        html__gallery_linked(s, im, c->img_heatmap, "heatmap", label, -1);
-        if (c->img_flip)
+        int flip_heat = report_model_heatmap_is_flip(c);
+        html__gallery_linked(s, im, c->img_heatmap, flip_heat ? "heatmap (FLIP)" : "heatmap", label, -1);
+        if (c->img_flip && !flip_heat)
             html__gallery_linked(s, im, c->img_flip, "FLIP", label, -1);
         /* the caption of the pair carries its values, on the legend's scale */
         dm_str cap = {0};
-        dm_str_printf(&cap, "%s: %s, MaxError %.3g%s", label, r->metric_text, c->quality.max_error,
-                      c->quality.max_error > 1 ? " (saturates the heatmap)" : "");
-        if (c->img_flip)
-            dm_str_printf(&cap, ", FLIP %.4f (max %.3f)", c->quality.flip, c->quality.flip_max);
+        html__gallery_caption(&cap, r);
         dm_str_cat(s, "<p class=\"cap\">");
         html__esc(s, dm_str_get(&cap));
         dm_str_cat(s, "</p></div>");

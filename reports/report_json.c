@@ -183,6 +183,34 @@ static cJSON *report_json__path_json(const dm_path_series *p)
     return o;
 }
 
+/* Quality along a camera path (dm_path_quality): null when none was asked;
+ * "computed": false with the reason when it could not be computed. */
+static cJSON *report_json__path_quality_json(const dm_path_quality *pq)
+{
+    if (!pq->present && !pq->reason)
+        return cJSON_CreateNull();
+    cJSON *o = cJSON_CreateObject();
+    cJSON_AddBoolToObject(o, "computed", pq->present);
+    report_json__add_str(o, "reason", pq->reason);
+    cJSON_AddNumberToObject(o, "frames", (double)pq->frames);
+    cJSON_AddNumberToObject(o, "every", (double)pq->every);
+    cJSON *f = cJSON_AddArrayToObject(o, "reference_frames");
+    for (size_t i = 0; i < pq->n; i++)
+        cJSON_AddItemToArray(f, cJSON_CreateNumber((double)i * (double)pq->every));
+    cJSON_AddItemToObject(o, "FLIP", report_json__num_array(pq->flip, pq->n));
+    cJSON_AddItemToObject(o, "SSIM", report_json__num_array(pq->ssim, pq->n));
+    cJSON_AddNumberToObject(o, "temporal_error_mean", pq->temporal_mean);   /* NaN → null */
+    cJSON_AddNumberToObject(o, "temporal_error_p99", pq->temporal_p99);
+    cJSON_AddNumberToObject(o, "popping", pq->popping);
+    if (pq->popping_frame >= 0)
+        cJSON_AddNumberToObject(o, "popping_frame", (double)pq->popping_frame);
+    else
+        cJSON_AddNullToObject(o, "popping_frame");
+    cJSON *im = cJSON_AddObjectToObject(o, "images");
+    report_json__add_str(im, "temporal", pq->img_temporal);
+    return o;
+}
+
 static cJSON *report_json__config_json(const report_model_row *row)
 {
     const dm_config_result *c = row->config;
@@ -205,6 +233,7 @@ static cJSON *report_json__config_json(const report_model_row *row)
     report_json__add_str(im, "flip", c->img_flip);
     if (c->path.frames)   /* a still configuration has none */
         cJSON_AddItemToObject(o, "path", report_json__path_json(&c->path));
+    cJSON_AddItemToObject(o, "path_quality", report_json__path_quality_json(&c->path_quality));
     report_json__add_str(o, "log", c->log);
     return o;
 }
@@ -579,6 +608,27 @@ static void report_json__read_path(const cJSON *o, dm_path_series *p)
     free(at);
 }
 
+static void report_json__read_path_quality(const cJSON *o, dm_path_quality *pq)
+{
+    if (!cJSON_IsObject(o))
+        return;                  /* null or missing: none asked (or a run from before paths) */
+    pq->present = report_json__get_bool(o, "computed");
+    pq->reason = report_json__get_str(o, "reason");
+    pq->frames = (long)report_json__get_count(o, "frames");
+    pq->every = (long)report_json__get_count(o, "every");
+    size_t ns = 0;
+    pq->flip = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(o, "FLIP"), &pq->n);
+    pq->ssim = report_json__read_nums(cJSON_GetObjectItemCaseSensitive(o, "SSIM"), &ns);
+    if (ns < pq->n)              /* a damaged record: keep the shorter series */
+        pq->n = ns;
+    pq->temporal_mean = report_json__get_num(o, "temporal_error_mean");
+    pq->temporal_p99 = report_json__get_num(o, "temporal_error_p99");
+    pq->popping = report_json__get_num(o, "popping");
+    double at = report_json__get_num(o, "popping_frame");
+    pq->popping_frame = isfinite(at) ? (long)at : -1;
+    pq->img_temporal = report_json__get_str(cJSON_GetObjectItemCaseSensitive(o, "images"), "temporal");
+}
+
 static void report_json__read_config(const cJSON *o, dm_config_result *c)
 {
     c->key = report_json__get_str(o, "key");
@@ -603,6 +653,7 @@ static void report_json__read_config(const cJSON *o, dm_config_result *c)
     c->img_reference = report_json__get_str(im, "reference");
     c->img_flip = report_json__get_str(im, "flip");
     report_json__read_path(cJSON_GetObjectItemCaseSensitive(o, "path"), &c->path);
+    report_json__read_path_quality(cJSON_GetObjectItemCaseSensitive(o, "path_quality"), &c->path_quality);
 }
 
 static void report_json__read_fit(const cJSON *o, dm_fit_result *f)

@@ -189,6 +189,10 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
             sc->max_error = fmax(sc->max_error, c->quality.max_error);
         if (c->img_flip)
             sc->flips = 1, sc->flip_ppd = c->quality.flip_ppd;
+        if (c->img_heatmap && report_model_heatmap_is_flip(c))
+            sc->heatmap_flip = 1;
+        else if (c->img_heatmap)
+            sc->heatmap_diff = 1;
     }
     for (size_t i = 0; i < run->n_precision; i++)
         if (run->precision[i].scene && strcmp(run->precision[i].scene, name) == 0)
@@ -314,6 +318,11 @@ void report_model_free(report_model *m)
     free(m->fit_units);
     free(m->precision_text);
     memset(m, 0, sizeof *m);
+}
+
+int report_model_heatmap_is_flip(const dm_config_result *c)
+{
+    return c->img_heatmap && c->img_flip && strcmp(c->img_heatmap, c->img_flip) == 0;
 }
 
 const report_model_row *report_model_find(const report_model *m, const char *key)

@@ -113,6 +113,8 @@ typedef struct report_model_scene {
     /* what the gallery's legends say */
     double max_error;     /* the largest MaxError of its rows with quality (0 without) */
     int flips;            /* some row has a FLIP map */
+    int heatmap_flip;     /* some row's heatmap is its FLIP map (runs since 2026-11-29) */
+    int heatmap_diff;     /* some row's heatmap is |render − reference| (older runs) */
     double flip_ppd;      /* the pixels per degree of its FLIP maps (the last row's); NaN without */
     /* Drift removed: the scene's record and the verdict on the corrected figures */
     const dm_scene_precision *precision;   /* borrowed from the run; NULL: none recorded */
@@ -165,6 +167,11 @@ typedef struct report_model {
  * release with report_model_free.  0 or DM_ERR_ARG (no run). */
 int report_model_build(report_model *m, const dm_run_result *run, const report_desc *d);
 void report_model_free(report_model *m);
+
+/* 1 when c's heatmap is its FLIP map (runs since 2026-11-29 write one map,
+ * FLIP's, and name it both images.heatmap and images.flip); 0 for an older
+ * run's |render − reference| heatmap or none. */
+int report_model_heatmap_is_flip(const dm_config_result *c);
 
 /* The row of the configuration with this key, or NULL. */
 const report_model_row *report_model_find(const report_model *m, const char *key);

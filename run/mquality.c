@@ -2,7 +2,6 @@
  * the scene's reference (see mquality.h). */
 #include "run/mquality.h"
 
-#include <epoxy/gl.h>
 #include <math.h>
 #include <stdlib.h>
 #include <string.h>
@@ -10,35 +9,7 @@
 #include "imaging/flip.h"
 #include "imaging/image.h"
 #include "imaging/quality.h"
-#include "run/refcache.h"
-
-/* The reference image of parameters p at c's resolution into m->ref_*:
- * loaded from the reference cache (refcache.h) when an entry for exactly
- * these inputs exists, else rendered and stored there.  The cache is off
- * with the program cache (job->cache_dir NULL). */
-static int mquality__reference_image(mscene *m, const dm_kv *p, size_t n, mconf *c)
-{
-    const sweep *s = m->job->sweep;
-    int w = c->pc->width, h = c->pc->height;
-    const char *renderer = (const char *)glGetString(GL_RENDERER), *version = (const char *)glGetString(GL_VERSION);
-    char *driver = dm_xasprintf("%s | %s", renderer ? renderer : "?", version ? version : "?");
-    refcache_desc d = {.params = p, .n_params = n, .width = w, .height = h,
-                       .supersample = s->supersample, .driver = driver};
-    char *dir = m->job->cache_dir ? refcache_dir() : NULL;
-    dm_str key = {0};
-    int keyed = dir && refcache_key(&d, &key) == 0, rc = 0;
-    c->ref_source = "cache";
-    if (!keyed || refcache_load(dir, dm_str_get(&key), w, h, &m->ref_rgba, &m->ref_depth) != 0) {
-        c->ref_source = "rendered";
-        rc = mscene_render_image(m->r, p, n, w, h, s->supersample, &m->ref_rgba, &m->ref_depth, &c->log);
-        if (rc == 0 && keyed && refcache_store(dir, dm_str_get(&key), w, h, m->ref_rgba, m->ref_depth) != 0)
-            dm_log(DM_LOG_WARN, "cannot write the reference cache in %s", dir);
-    }
-    dm_str_free(&key);
-    free(dir);
-    free(driver);
-    return rc;
-}
+#include "run/mpath_quality.h"
 
 /* Sets the sweep's quality.reference axis values (e.g. normal_format) over
  * the reference's parameters *p, replacing the scene's or configuration's. */
@@ -58,8 +29,40 @@ static void mquality__reference_overrides(const sweep *s, dm_kv **p, size_t *n)
     }
 }
 
-/* Renders the scene reference once (per process) for configuration c. */
-static int mquality__reference(mscene *m, mconf *c)
+/* The parameters of c's reference into *p (caller frees with dm_kv_free). */
+static void mquality__reference_params(const mscene *m, const mconf *c, dm_kv **p, size_t *n)
+{
+    const sweep *s = m->job->sweep;
+    int per_config = !s->ref_technique || strcmp(s->ref_technique, "same") == 0;
+    /* The reference technique renders the scene as the sweep defines it
+     * (all scene axes, whether this configuration's technique reads them or
+     * not); "same" renders the configuration itself. */
+    if (per_config) {
+        for (size_t i = 0; i < c->pc->n_params; i++)
+            dm_kv_push(p, n, c->pc->params[i].key, c->pc->params[i].value);
+    } else {
+        for (size_t i = 0; i < c->pc->n_params; i++)
+            if (!dm_kv_get(c->pc->scene_params, c->pc->n_scene_params, c->pc->params[i].key) &&
+                strcmp(c->pc->params[i].key, "technique") != 0)
+                dm_kv_push(p, n, c->pc->params[i].key, c->pc->params[i].value);
+        for (size_t i = 0; i < c->pc->n_scene_params; i++)
+            dm_kv_push(p, n, c->pc->scene_params[i].key, c->pc->scene_params[i].value);
+        dm_kv_push(p, n, "technique", s->ref_technique);
+        /* The ground truth samples plain textures: a virtual-texture
+         * configuration is compared with the same maps unpaged, whichever
+         * configuration of the scene this process measures first. */
+        for (size_t i = 0; i < *n; i++)
+            if (strcmp((*p)[i].key, "virtual_texture") == 0) {
+                free((*p)[i].value);
+                (*p)[i].value = dm_xstrdup("off");
+            }
+    }
+    mquality__reference_overrides(s, p, n);
+}
+
+/* Renders the scene reference once (per process) for configuration c, of
+ * the reference parameters p[0..n). */
+static int mquality__reference(mscene *m, mconf *c, const dm_kv *p, size_t n)
 {
     const sweep *s = m->job->sweep;
     int per_config = !s->ref_technique || strcmp(s->ref_technique, "same") == 0;
@@ -70,34 +73,8 @@ static int mquality__reference(mscene *m, mconf *c)
     free(m->ref_path);
     m->ref_rgba = m->ref_depth = NULL;
     m->ref_path = NULL;
-    /* The reference technique renders the scene as the sweep defines it
-     * (all scene axes, whether this configuration's technique reads them or
-     * not); "same" renders the configuration itself. */
-    dm_kv *p = NULL;
-    size_t n = 0;
-    if (per_config) {
-        for (size_t i = 0; i < c->pc->n_params; i++)
-            dm_kv_push(&p, &n, c->pc->params[i].key, c->pc->params[i].value);
-    } else {
-        for (size_t i = 0; i < c->pc->n_params; i++)
-            if (!dm_kv_get(c->pc->scene_params, c->pc->n_scene_params, c->pc->params[i].key) &&
-                strcmp(c->pc->params[i].key, "technique") != 0)
-                dm_kv_push(&p, &n, c->pc->params[i].key, c->pc->params[i].value);
-        for (size_t i = 0; i < c->pc->n_scene_params; i++)
-            dm_kv_push(&p, &n, c->pc->scene_params[i].key, c->pc->scene_params[i].value);
-        dm_kv_push(&p, &n, "technique", s->ref_technique);
-        /* The ground truth samples plain textures: a virtual-texture
-         * configuration is compared with the same maps unpaged, whichever
-         * configuration of the scene this process measures first. */
-        for (size_t i = 0; i < n; i++)
-            if (strcmp(p[i].key, "virtual_texture") == 0) {
-                free(p[i].value);
-                p[i].value = dm_xstrdup("off");
-            }
-    }
-    mquality__reference_overrides(s, &p, &n);
-    int rc = mquality__reference_image(m, p, n, c);
-    dm_kv_free(p, n);
+    int rc = mpath_reference_frame(m, p, n, c->pc->width, c->pc->height, 0, 0, &m->ref_rgba,
+                                   &m->ref_depth, &c->ref_source, &c->log);
     if (rc == 0) {
         char name[64];
         const char *id = per_config ? c->pc->key : c->pc->scene;
@@ -154,7 +131,10 @@ void mquality_measure(mscene *m, mconf *c, dm_config_result *out)
     if (img_save(&test, path, e, sizeof e) == 0)
         out->img_render = dm_xasprintf("img/%s", name);
     free(path);
-    if (mquality__reference(m, c) == 0) {
+    dm_kv *rp = NULL;
+    size_t nrp = 0;
+    mquality__reference_params(m, c, &rp, &nrp);
+    if (mquality__reference(m, c, rp, nrp) == 0) {
         img ref = { w, h, m->ref_rgba };
         img_metrics mt;
         dm_quality *q = &out->quality;
@@ -186,15 +166,19 @@ void mquality_measure(mscene *m, mconf *c, dm_config_result *out)
         dm_str_free(&over);
         free(ma);
         free(mb);
-        snprintf(name, sizeof name, "%s-diff.png", c->pc->key);
-        path = mscene_img_path(m->job, name);
-        /* one absolute scale for every map: a channel difference of 1 (the
-         * whole range) is the colour map's top, so maps compare side by side */
-        if (img_heatmap(&ref, &test, 1.0, path, e, sizeof e) == 0)
-            out->img_heatmap = dm_xasprintf("img/%s", name);
-        free(path);
+        /* The heatmap is the FLIP map: FLIP's fixed [0,1] scale is bounded
+         * and perceptual, so no map saturates and a small difference is not
+         * black, and it is the map `dmbench diff --heatmap` writes.  Both
+         * keys name the one file, so older readers find a heatmap. */
+        if (out->img_flip)
+            out->img_heatmap = dm_xstrdup(out->img_flip);
         out->img_reference = dm_xasprintf("img/%s", m->ref_path);
     }
+    /* the still figures above are frame 0's, as before paths; along a path
+     * its frames against reference frames (mpath_quality.h) */
+    if (mpath_quality_wanted(c->pc->params, c->pc->n_params))
+        mpath_quality_measure(m, c, rp, nrp, out);
+    dm_kv_free(rp, nrp);
     free(rgba);
     free(depth);
 }

@@ -4,8 +4,8 @@
  * The reference is rendered once per scene (or per configuration with
  * `reference: same`), loaded from the reference cache (run/refcache.h)
  * when an entry for exactly its inputs exists.  The configuration's image,
- * the reference, the difference heatmap and the FLIP map are written to the
- * run's img/ folder; RMSE, PSNR, max error, SSIM, FLIP, silhouette, depth
+ * the reference and the FLIP map (which is also the heatmap: images.heatmap
+ * and images.flip name the one file) are written to the run's img/ folder; RMSE, PSNR, max error, SSIM, FLIP, silhouette, depth
  * RMSE, crack and non-finite pixel counts go into the result.
  */
 #ifndef RUN_MQUALITY_H

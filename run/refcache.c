@@ -65,7 +65,9 @@ static void refcache__params(const technique_desc *t, const dm_kv *p, size_t n, 
 {
     for (size_t i = 0; i < axes_count(); i++) {
         const axis_info *a = axes_at(i);
-        if (!technique_reads_axis(t, a->name))
+        /* which frames get a reference, not what one looks like: the frame
+         * line says which, and still keys stay as they were */
+        if (!technique_reads_axis(t, a->name) || strcmp(a->name, "camera.path_ref_every") == 0)
             continue;
         const char *v = dm_kv_get(p, n, a->name);
         char *canon = v ? axes_canonical(a->name, v) : NULL;
@@ -106,6 +108,8 @@ int refcache_key(const refcache_desc *desc, dm_str *key)
                   desc->height, desc->supersample > 1 ? desc->supersample : 1,
                   desc->driver ? desc->driver : "", (long long)st.st_size, (long long)st.st_mtim.tv_sec,
                   st.st_mtim.tv_nsec);
+    if (desc->on_path)
+        dm_str_printf(key, "frame %llu\n", desc->frame);
     refcache__params(t, desc->params, desc->n_params, key);
     return 0;
 }

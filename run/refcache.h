@@ -7,7 +7,9 @@
  * the text of everything that determines the image: the reference
  * technique's name, version and composed GLSL of every stage, every
  * parameter (sorted by name), the resolution, the supersampling factor and
- * the driver string (GL_RENDERER + GL_VERSION).  The file name is a hash of
+ * the driver string (GL_RENDERER + GL_VERSION), and for a frame along a
+ * camera path the frame (the path itself is among the parameters).  The
+ * file name is a hash of
  * that text and the full text is stored inside, so a hash collision or a
  * changed key never loads a wrong image.  The key also holds the size and
  * modification time of the running binary: code that changes a reference's
@@ -30,6 +32,9 @@ typedef struct refcache_desc {
     int width, height;           /* output size (after downsampling) */
     int supersample;             /* 0 = 1 */
     const char *driver;          /* GL_RENDERER + GL_VERSION; NULL = "" */
+    int on_path;                 /* 1: frame `frame` of the params' camera path (a "frame N"
+                                    line in the key); 0: the still image, keyed as before paths */
+    unsigned long long frame;
 } refcache_desc;
 
 /* Directory of the reference cache: DMBENCH_CACHE_DIR/references, else the

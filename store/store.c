@@ -159,6 +159,12 @@ static int store__config_write(store *s, const char *run, const void *item)
         rc = store__counter_write(s, &o, &c->counters[i]);
     if (rc == 0 && c->path.frames && c->path.frame_ns)
         rc = store__path_write(s, &o, &c->path);
+    const dm_path_quality *pq = &c->path_quality;
+    if (rc == 0 && (pq->present || pq->reason))
+        rc = store_sql_exec(s, STORE_SQL_PQ_INS, &o, "itlldddltbb", pq->present, pq->reason,
+                            pq->frames, pq->every, pq->temporal_mean, pq->temporal_p99,
+                            pq->popping, pq->popping_frame, pq->img_temporal, pq->flip, pq->n,
+                            pq->ssim, pq->n);
     return rc;
 }
 
@@ -398,6 +404,31 @@ static void store__config_cols(sqlite3_stmt *st, dm_config_result *c)
     c->img_flip = store_sql_col_str(st, 25);
 }
 
+/* The configuration's quality along its path, when it has a row. */
+static int store__path_quality_read(store *s, const store_sql_owner *o, dm_path_quality *pq)
+{
+    sqlite3_stmt *st = store_sql_query(s, STORE_SQL_PQ_SEL, o, "");
+    int rc = st ? store_sql_row(s, st) : DM_ERR_STORE;
+    if (rc != 1)
+        return rc;
+    pq->present = sqlite3_column_int(st, 0);
+    pq->reason = store_sql_col_str(st, 1);
+    pq->frames = (long)sqlite3_column_int64(st, 2);
+    pq->every = (long)sqlite3_column_int64(st, 3);
+    pq->temporal_mean = store_sql_col_double(st, 4);
+    pq->temporal_p99 = store_sql_col_double(st, 5);
+    pq->popping = store_sql_col_double(st, 6);
+    pq->popping_frame = sqlite3_column_type(st, 7) == SQLITE_NULL ? -1 : (long)sqlite3_column_int64(st, 7);
+    pq->img_temporal = store_sql_col_str(st, 8);
+    size_t ns = 0;
+    pq->flip = store_sql_col_doubles(st, 9, &pq->n);
+    pq->ssim = store_sql_col_doubles(st, 10, &ns);
+    if (ns < pq->n)
+        pq->n = ns;
+    sqlite3_reset(st);
+    return 0;
+}
+
 static int store__configs_read(store *s, dm_run_result *r)
 {
     store_sql_owner o = { r->id, NULL, 0 };
@@ -414,6 +445,8 @@ static int store__configs_read(store *s, dm_run_result *r)
             rc = store__counters_read(s, &o, c);
         if (rc == 0)
             rc = store__path_read(s, &o, c);
+        if (rc == 0)
+            rc = store__path_quality_read(s, &o, &c->path_quality);
     }
     return rc;
 }

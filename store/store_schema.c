@@ -1,7 +1,7 @@
 /* store_schema.c — the results store's schema: the migrations that create
  * it and the check that a file has all of it (store_sql.h).
  *
- * Schema (version 6, kept in PRAGMA user_version; store_schema__migrations[i] takes a
+ * Schema (version 7, kept in PRAGMA user_version; store_schema__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -48,6 +48,10 @@
  *           a camera path, replays × frames doubles (ns, row = replay), and
  *           their summary (dm_path_series; the stutters' frame indices as
  *           doubles; version 6)
+ *   path_quality(run, key, computed, reason, frames, every, temporal_mean,
+ *           temporal_p99, popping, popping_frame, img_temporal, flip BLOB,
+ *           ssim BLOB) PK (run, key) → configs: quality along a camera path
+ *           (dm_path_quality; a row only where it was asked; version 7)
  *   fit_group(run, seq, key, value), fit_params(run, seq, name, value,
  *        stderr), fit_warnings(run, seq, text), fit_labels(run, seq, idx,
  *        label)
@@ -157,6 +161,13 @@ static const char *const store_schema__migrations[STORE_SCHEMA_VERSION] = {
     " stutter_at BLOB, replay_spread REAL, noisy INTEGER,"
     " PRIMARY KEY(run, key), FOREIGN KEY(run, key) REFERENCES configs(run, key)"
     " ON DELETE CASCADE);",
+    /* 6 -> 7: quality along a camera path (run/mpath_quality.h): a row per
+     * configuration that asked for it; older runs have none */
+    "CREATE TABLE path_quality(run TEXT NOT NULL, key TEXT NOT NULL,"
+    " computed INTEGER, reason TEXT, frames INTEGER, every INTEGER,"
+    " temporal_mean REAL, temporal_p99 REAL, popping REAL, popping_frame"
+    " INTEGER, img_temporal TEXT, flip BLOB, ssim BLOB, PRIMARY KEY(run, key),"
+    " FOREIGN KEY(run, key) REFERENCES configs(run, key) ON DELETE CASCADE);",
 };
 
 int store_schema_migrate(sqlite3 *db, long *found)

@@ -18,7 +18,7 @@
 
 #include <stddef.h>
 
-#define STORE_SCHEMA_VERSION 6
+#define STORE_SCHEMA_VERSION 7
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
     "q_ssim,q_max_error,q_pct_over,q_silhouette,q_depth_rmse,q_crack_pixels," \
@@ -27,6 +27,8 @@
 #define STORE__CTR_COLS "unit,available,unavailable_reason,deterministic," \
     "partial,value,has_samples,median,mean,min,max,stddev,mad,cv,ci_lo," \
     "ci_hi,n_outliers,n_nonfinite,corrected,corr_median,corr_ci_lo,corr_ci_hi"
+#define STORE__PQ_COLS "computed,reason,frames,every,temporal_mean,temporal_p99," \
+    "popping,popping_frame,img_temporal,flip,ssim"
 #define STORE__PREC_COLS "corrected,reason,predictor,n_rounds,machine_spread," \
     "raw_noise,loo_noise,calib_noise,resolvable"
 #define STORE__PATH_COLS "frames,replays,data,p50,p95,p99,low1_ns,low1_fps," \
@@ -80,6 +82,10 @@
       STORE__PREC_COLS ") VALUES(?1,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13)")      \
     X(PREC_SEL, "SELECT scene," STORE__PREC_COLS " FROM scene_precision"      \
       " WHERE run=?1 ORDER BY rowid")                                         \
+    X(PQ_INS, "INSERT INTO path_quality(run,key," STORE__PQ_COLS ") VALUES"   \
+      "(?1,?2,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14)")                        \
+    X(PQ_SEL, "SELECT " STORE__PQ_COLS " FROM path_quality WHERE run=?1 AND"  \
+      " key=?2")                                                              \
     X(CTR_SEL, "SELECT name," STORE__CTR_COLS " FROM counters WHERE run=?1"   \
       " AND key=?2 ORDER BY rowid")                                           \
     X(SMP_INS, "INSERT INTO samples(run,key,counter,data) VALUES(?1,?2,?4,?5)")\

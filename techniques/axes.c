@@ -122,6 +122,9 @@ static const axis_info axes__table[] = {
     {"camera.dolly_to", F, NULL, 0.1, 100, "1.0", 1, "camera distance at the end of a dolly", NULL},
     {"camera.flyover_height", F, NULL, 0.01, 100, "0.5", 1,
      "height of a flyover's line above the camera target", NULL},
+    {"camera.path_ref_every", I, NULL, 0, 100000, "0", 1,
+     "quality along the path: a reference every K-th frame of one pass (0 = the first and last "
+     "frames only, two references; on a still path 0 = none; docs/motion.md)", NULL},
     {"maps", E, NULL, 0, 0, "bricks", 1,
      "procedural material maps, or user maps: height=PATH;normal=PATH;albedo=PATH", axes__check_maps},
 };
@@ -309,6 +312,7 @@ static const struct {
     {"camera.path_frames", "camera.path", "!still"},
     {"camera.dolly_to", "camera.path", "dolly"},
     {"camera.flyover_height", "camera.path", "flyover"},
+    {"camera.path_ref_every", "camera.path_ref_every", "!0"},
     {"specular_map", "specular_map", "!off"},
     {"displaced_normals", "displaced_normals", "!map"},
     {"light_radius", "attenuation", "s1"},

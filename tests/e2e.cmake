@@ -11,6 +11,7 @@ dm_add_e2e(test_e2e_bad_input bad_input.sh LABELS quick)
 dm_add_e2e(test_e2e_unavailable unavailable.sh)
 # Camera paths drawn frame by frame against still renders (docs/motion.md).
 dm_add_e2e(test_e2e_paths paths.sh LABELS quick)
+dm_add_e2e(test_e2e_motion_ladder motion_ladder.sh)
 dm_add_e2e(test_e2e_resume resume.sh)
 dm_add_e2e(test_e2e_watchdog watchdog.sh LABELS quick)
 # The project's own regression gate: the deterministic counters of

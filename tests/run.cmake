@@ -1,6 +1,8 @@
 # The runner (run/).  Reference cache: keys and files, then two dmbench runs
 # (needs GL via dmbench).
 dm_add_gl(test_run_refcache test_run_refcache.c LIBS dm_run)
+# Quality along a path (run/mpath_quality.c): K's rule and who asks for it.
+dm_add_unit(test_run_mpath_quality test_run_mpath_quality.c LIBS dm_run)
 add_dependencies(test_run_refcache dmbench)
 # The measuring decisions (run/protocol.c), pure: synthetic sample streams.
 dm_add_unit(test_run_protocol test_run_protocol.c LIBS dm_protocol)

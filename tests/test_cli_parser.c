@@ -15,6 +15,7 @@
 #include "cli/options.h"
 #include "core/dm_exit.h"
 #include "core/dm_util.h"
+#include "imaging/flip.h"
 
 typedef struct t_args {
     int flag, num, choice;
@@ -195,9 +196,28 @@ static void test_help(void **state)
     assert_non_null(strstr(text, "\n  -h, --help "));
 }
 
+/* `diff --heatmap` states its map's scale in the words of the report's
+ * heatmap legend (FLIP_SCALE_TEXT; test_reports_report checks the legend),
+ * and those words name FLIP's bounds. */
+static void test_diff_heatmap_scale(void **state)
+{
+    (void)state;
+    const cli_command *c = cli_commands_find("diff");
+    assert_non_null(c);
+    const cli_option *heat = NULL;
+    for (size_t k = 0; k < cli_options_count(c->options); k++)
+        if (strcmp(c->options[k].name, "heatmap") == 0)
+            heat = &c->options[k];
+    assert_non_null(heat);
+    assert_non_null(strstr(heat->help, "the report's: " FLIP_SCALE_TEXT));
+    assert_non_null(strstr(FLIP_SCALE_TEXT, "FLIP's fixed scale, 0 ("));
+    assert_non_null(strstr(FLIP_SCALE_TEXT, ") to 1 ("));
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_kinds_and_positionals),
              cmocka_unit_test(test_defaults),
              cmocka_unit_test(test_errors),
              cmocka_unit_test(test_command_table),
-             cmocka_unit_test(test_help))
+             cmocka_unit_test(test_help),
+             cmocka_unit_test(test_diff_heatmap_scale))

@@ -6,7 +6,8 @@
  * half and 0 on the other; a reference that moves while the test stays
  * still has the reference's change as its error; NaN pixels are counted
  * and left out; popping is the largest jump of the per-frame error, at its
- * frame. */
+ * frame; the step-by-step accumulator holds the same figures as the whole
+ * sequences, with two frames at a time. */
 #include <stdarg.h>
 #include <stddef.h>
 #include <setjmp.h>
@@ -130,6 +131,41 @@ static void test_bad_input_and_nonfinite(void **state)
     seq_free(b);
 }
 
+/* The half-flicker case step by step, frames dropped as they are passed:
+ * mean d/2, p99 d, the same map; a frame of another size is refused and a
+ * finish without a step is an error with NaN figures. */
+static void test_accumulator(void **state)
+{
+    (void)state;
+    double d = 0.1;
+    img h[N], r[N], map = {0};
+    seq(h, v_half, &d);
+    seq(r, v_still, NULL);
+    temporal_acc a;
+    temporal_stats st;
+    assert_int_equal(temporal_acc_init(&a, W, H), 0);
+    for (int t = 1; t < N; t++) {
+        assert_int_equal(temporal_acc_step(&a, &h[t - 1], &h[t], &r[t - 1], &r[t]), 0);
+        img_free(&h[t - 1]);
+        img_free(&r[t - 1]);
+    }
+    img small = {W - 1, H, h[N - 1].px};
+    assert_int_equal(temporal_acc_step(&a, &h[N - 1], &small, &r[N - 1], &r[N - 1]), DM_ERR_ARG);
+    assert_int_equal(temporal_acc_finish(&a, &st, &map), 0);
+    assert_int_equal(st.steps, N - 1);
+    assert_float_equal(st.mean, d / 2, 1e-6);
+    assert_float_equal(st.p99, d, 1e-6);
+    for (int x = 0; x < W; x++)
+        assert_float_equal(map.px[4 * (W + x)], x < W / 2 ? d : 0, 1e-6);
+    img_free(&map);
+    img_free(&h[N - 1]);
+    img_free(&r[N - 1]);
+    assert_int_equal(temporal_acc_init(&a, 0, H), DM_ERR_ARG);
+    assert_int_equal(temporal_acc_init(&a, W, H), 0);
+    assert_int_equal(temporal_acc_finish(&a, &st, NULL), DM_ERR_ARG);
+    assert_true(isnan(st.mean) && isnan(st.p99));
+}
+
 static void test_popping(void **state)
 {
     (void)state;
@@ -148,4 +184,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_still_and_bias),
              cmocka_unit_test(test_flicker),
              cmocka_unit_test(test_bad_input_and_nonfinite),
+             cmocka_unit_test(test_accumulator),
              cmocka_unit_test(test_popping))

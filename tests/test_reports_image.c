@@ -2,6 +2,7 @@
 #include "imaging/image.h"
 #include "core/dm_error.h"
 #include "imaging/quality.h"
+#include "imaging/flip.h"
 
 #include <math.h>
 #include <signal.h>
@@ -147,6 +148,66 @@ static void test_heatmap_inferno(void **state)
     img_free(&h);
 }
 
+/* The report's heatmap is the FLIP map on FLIP's fixed scale: a difference
+ * of 0.05 in one channel of a flat grey shows as a visible colour.  On a
+ * flat image the contrast-sensitivity filters (normalised) leave the
+ * colours as they are and the feature detectors see nothing, so the error
+ * is the colour pipeline's alone, computed here from the stages: linear ->
+ * Hunt L*a*b* -> HyAB -> colour error.  The pixel of the saved PNG is that
+ * error's colour on the ramp (8 bits), and that colour is over the
+ * visibility floor: its brightest channel at least 10 % of the range,
+ * where the old |render − reference| map on its 0..1 scale (inferno at
+ * 0.05) was under 4 %. */
+static void test_heatmap_flip_small_difference(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_fh_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char path[256], err[512];
+    snprintf(path, sizeof path, "%s/f.png", dir);
+    img a = {0}, b = {0}, h = {0};
+    assert_int_equal(img_alloc(&a, 32, 32), 0);
+    assert_int_equal(img_alloc(&b, 32, 32), 0);
+    test_img_fill(&a, 0.5f, 0.5f, 0.5f, 1);
+    test_img_fill(&b, 0.55f, 0.5f, 0.5f, 1);
+    double la[3], lb[3], ra[3], rb[3];
+    for (int i = 0; i < 3; i++) {
+        ra[i] = flip_srgb_to_linear(a.px[i]);
+        rb[i] = flip_srgb_to_linear(b.px[i]);
+    }
+    flip_linear_to_hunt_lab(ra, la);
+    flip_linear_to_hunt_lab(rb, lb);
+    double want = flip_color_error(flip_hyab(la, lb));
+    float *map = malloc(32 * 32 * sizeof *map);
+    flip_desc d = flip_defaults(NULL);
+    assert_int_equal(flip_map(&a, &b, &d, map), 0);
+    assert_float_equal(map[16 * 32 + 16], want, 1e-3);
+    assert_int_equal(flip_map_save(map, 32, 32, path, err, sizeof err), 0);
+    assert_int_equal(img_load(path, &h, err, sizeof err), 0);
+    float rgb[3];
+    flip_colormap(want, rgb);
+    const float *px = h.px + 4 * (16 * 32 + 16);
+    float bright = 0;
+    for (int i = 0; i < 3; i++) {
+        assert_float_equal(px[i], rgb[i], 1.5 / 255);
+        bright = px[i] > bright ? px[i] : bright;
+    }
+    print_message("0.05 in red on grey 0.5: FLIP %.4f, map pixel %.3f %.3f %.3f\n", want, px[0], px[1],
+                  px[2]);
+    assert_true(bright >= 0.10f);
+    img_free(&h);
+    assert_int_equal(img_heatmap(&a, &b, 1.0, path, err, sizeof err), 0);
+    assert_int_equal(img_load(path, &h, err, sizeof err), 0);
+    px = h.px + 4 * (16 * 32 + 16);
+    assert_true(px[0] < 0.04f && px[1] < 0.04f && px[2] < 0.04f);
+    free(map);
+    unlink(path);
+    rmdir(dir);
+    img_free(&a);
+    img_free(&b);
+    img_free(&h);
+}
+
 /* The same pixels in two channel layouts (tests/data/images, written by
  * oiiotool): grey+alpha and RGBA, 8 and 16 bits; grey, RGB and opaque RGBA.
  * Each pair loads to the same RGBA floats, so RMSE and the silhouette error
@@ -266,4 +327,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_downsample_block_means),
              cmocka_unit_test(test_compare_identical_and_offset),
              cmocka_unit_test(test_save_load_png_exr),
-             cmocka_unit_test(test_heatmap_inferno))
+             cmocka_unit_test(test_heatmap_inferno),
+             cmocka_unit_test(test_heatmap_flip_small_difference))

@@ -1,5 +1,6 @@
 /* test_reports_report.c — results.json / results.csv / summary.md / report.html. */
 #include "reports/report.h"
+#include "imaging/flip.h"
 #include "reports/report_internal.h"
 #include "reports/metric.h"
 #include "reports/answer.h"
@@ -479,13 +480,37 @@ static void test_html_flip_maps(void **state)
     c->quality.flip = 0.04521;
     c->quality.flip_max = 0.5192;
     c->quality.flip_ppd = 67.0206;
+    c->quality.max_error = 1.36;
     assert_int_equal(write_report_file(&run, "report.html", dir, p, NULL), 0);
     char *t = test_slurp(p);
-    assert_non_null(strstr(t, "src=\"img/c0_heat.png\" alt=\"FLIP: "));
-    assert_non_null(strstr(t, ", FLIP 0.0452 (max 0.519)</p>"));
-    assert_non_null(strstr(t, "at 67 pixels per degree, on one fixed scale"));
-    assert_non_null(strstr(t, "background:linear-gradient(90deg,#000004,"));
-    assert_non_null(strstr(t, ",#fcfcbf)\"></span> 1"));
+    /* c0's heatmap is its FLIP map (one file under both keys): one card,
+     * its legend FLIP's scale in the words of `diff --heatmap`'s help,
+     * before the cards, and no MaxError in its caption (no saturation) */
+    assert_non_null(strstr(t, "src=\"img/c0_heat.png\" alt=\"heatmap (FLIP): "));
+    assert_null(strstr(t, "alt=\"FLIP: "));
+    const char *cap = strstr(t, ", FLIP 0.0452 (max 0.519)</p>");
+    assert_non_null(cap);
+    while (cap > t && strncmp(cap, "<p class=\"cap\">", 15) != 0)
+        cap--;
+    assert_null(memmem(cap, (size_t)(strstr(cap, "</p>") - cap), "MaxError", 8));
+    const char *legend = strstr(t, "<p class=\"const\">Heatmap: " FLIP_SCALE_TEXT ", at 67 pixels per degree");
+    assert_non_null(legend);
+    assert_true(legend < strstr(t, "<div class=\"grid\">"));
+    assert_non_null(strstr(legend, "background:linear-gradient(90deg,#000004,"));
+    assert_non_null(strstr(legend, ",#fcfcbf)\"></span> 1, the same colour"));
+    assert_null(strstr(t, "saturates the heatmap"));
+    free(t);
+    /* an older run: the heatmap a |render − reference| map, the FLIP map a
+     * file of its own; both legends, both cards, MaxError marked */
+    free(c->img_flip);
+    c->img_flip = dm_xstrdup(fixture_img_files[3]);
+    assert_int_equal(write_report_file(&run, "report.html", dir, p, NULL), 0);
+    t = test_slurp(p);
+    assert_non_null(strstr(t, "src=\"img/c0_heat.png\" alt=\"heatmap: "));
+    assert_non_null(strstr(t, "alt=\"FLIP: "));
+    assert_non_null(strstr(t, "Heatmap: |render − reference|"));
+    assert_non_null(strstr(t, "FLIP map: " FLIP_SCALE_TEXT ", at 67 pixels per degree"));
+    assert_non_null(strstr(t, ", MaxError 1.36 (saturates the heatmap), FLIP 0.0452 (max 0.519)</p>"));
     free(t);
     dm_run_free(&run);
     fixture_images_remove(dir);

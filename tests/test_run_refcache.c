@@ -78,6 +78,45 @@ static void test_key_covers_inputs(void **state)
     free(base);
 }
 
+/* A frame along a camera path has its frame in the key; the still image
+ * has no frame line, and K (camera.path_ref_every: which frames get a
+ * reference, not how one looks) is in no key, so a still key is as it was
+ * before paths. */
+static void test_key_frames(void **state)
+{
+    (void)state;
+    dm_kv p[NP + 2];
+    memcpy(p, params, sizeof params);
+    p[NP] = (dm_kv){.key = "camera.path", .value = "dolly"};
+    p[NP + 1] = (dm_kv){.key = "camera.path_ref_every", .value = "3"};
+    refcache_desc d = {.params = p, .n_params = NP + 2, .width = W, .height = H, .supersample = 4,
+                       .driver = "llvmpipe | 4.5", .on_path = 1, .frame = 3};
+    dm_str k3 = {0}, k6 = {0}, k3b = {0}, still = {0};
+    assert_int_equal(refcache_key(&d, &k3), 0);
+    d.frame = 6;
+    assert_int_equal(refcache_key(&d, &k6), 0);
+    assert_string_not_equal(dm_str_get(&k3), dm_str_get(&k6));
+    assert_non_null(strstr(dm_str_get(&k3), "\nframe 3\n"));
+    assert_non_null(strstr(dm_str_get(&k3), "\ncamera.path=dolly\n"));
+    assert_null(strstr(dm_str_get(&k3), "path_ref_every"));
+    p[NP + 1].value = "1";                         /* another K: the same frame 3 */
+    d.frame = 3;
+    assert_int_equal(refcache_key(&d, &k3b), 0);
+    assert_string_equal(dm_str_get(&k3), dm_str_get(&k3b));
+    char *base = key_of(params, NP, W, H, 4, "llvmpipe | 4.5");
+    refcache_desc sd = {.params = params, .n_params = NP, .width = W, .height = H, .supersample = 4,
+                        .driver = "llvmpipe | 4.5", .on_path = 0, .frame = 7};
+    assert_int_equal(refcache_key(&sd, &still), 0);
+    assert_string_equal(dm_str_get(&still), base);
+    assert_null(strstr(base, "\nframe "));
+    assert_null(strstr(base, "path_ref_every"));
+    free(base);
+    dm_str_free(&k3);
+    dm_str_free(&k6);
+    dm_str_free(&k3b);
+    dm_str_free(&still);
+}
+
 static void test_key_refusals(void **state)
 {
     (void)state;
@@ -287,6 +326,7 @@ static void test_second_run_loads(void **state)
 
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_key_covers_inputs),
+             cmocka_unit_test(test_key_frames),
              cmocka_unit_test(test_key_refusals),
              cmocka_unit_test(test_dir_follows_env),
              cmocka_unit_test(test_store_load),

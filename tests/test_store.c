@@ -182,6 +182,14 @@ static void config_sampled(dm_config_result *c, const char *key, size_t n_sample
     c->img_heatmap = dm_xstrdup("img/c-heat.png");
     c->img_reference = dm_xstrdup("img/ref.png");
     c->img_flip = dm_xstrdup("img/c-flip.png");
+    /* quality along a path: a NaN in the series, no popping frame */
+    dm_path_quality *pq = &c->path_quality;
+    *pq = (dm_path_quality){ .present = 1, .frames = 12, .every = 4, .n = 3,
+        .temporal_mean = 0.03125, .temporal_p99 = 0.5, .popping = NAN, .popping_frame = -1 };
+    pq->flip = dv(3, 0.25, 0.125);
+    pq->ssim = dv(3, 0.75, -0.0625);
+    pq->flip[1] = NAN;
+    pq->img_temporal = dm_xstrdup("img/c-temporal.png");
 }
 
 /* Adds n sampled counters "C0".."C<n-1>" of n_samples each to c. */
@@ -435,6 +443,21 @@ static void eq_config(const dm_config_result *a, const dm_config_result *b)
     EQ_STR(a->img_heatmap, b->img_heatmap, "img_heatmap");
     EQ_STR(a->img_reference, b->img_reference, "img_reference");
     EQ_STR(a->img_flip, b->img_flip, "img_flip");
+    const dm_path_quality *p = &a->path_quality, *q = &b->path_quality;
+    assert_int_equal(p->present, q->present);
+    EQ_STR(p->reason, q->reason, "path_quality reason");
+    assert_int_equal(p->frames, q->frames);
+    assert_int_equal(p->every, q->every);
+    assert_int_equal(p->n, q->n);
+    for (size_t i = 0; i < p->n; i++) {
+        eq_dbl(p->flip[i], q->flip[i], "path FLIP");
+        eq_dbl(p->ssim[i], q->ssim[i], "path SSIM");
+    }
+    eq_dbl(p->temporal_mean, q->temporal_mean, "temporal_mean");
+    eq_dbl(p->temporal_p99, q->temporal_p99, "temporal_p99");
+    eq_dbl(p->popping, q->popping, "popping");
+    assert_int_equal(p->popping_frame, q->popping_frame);
+    EQ_STR(p->img_temporal, q->img_temporal, "img_temporal");
 }
 
 static void eq_fit(const dm_fit_result *a, const dm_fit_result *b)
@@ -527,7 +550,7 @@ static void test_round_trip(void **state)
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
     assert_int_equal(sql_long(s, "SELECT length(data) FROM samples"), 400);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     dm_run_free(&got);
     store_close(s);
     /* ...and again from a fresh connection. */
@@ -769,6 +792,22 @@ static void test_missing_table_or_column(void **state)
  * migrated to the current version, its fits read back with condition 0 ("not
  * computed") and everything else intact; new fits keep their condition,
  * infinity included. */
+/* SQL that takes the store back to before version 7. */
+#define PATH_QUALITY_DROPPED "DROP TABLE path_quality;"
+
+/* What a store from before version 7 reads back: no quality along a path. */
+static void path_quality_not_computed(dm_run_result *run)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        dm_path_quality *pq = &run->configs[i].path_quality;
+        free(pq->flip);
+        free(pq->ssim);
+        free(pq->img_temporal);
+        free(pq->reason);
+        memset(pq, 0, sizeof *pq);
+    }
+}
+
 /* SQL that takes the store back to before version 5. */
 #define PRECISION_DROPPED                                                      \
     "ALTER TABLE counters DROP COLUMN corrected; ALTER TABLE counters DROP COLUMN corr_median;" \
@@ -778,6 +817,7 @@ static void test_missing_table_or_column(void **state)
 /* What a store from before version 5 reads back: no correction, no rounds. */
 static void precision_not_computed(dm_run_result *run)
 {
+    path_quality_not_computed(run);
     for (size_t i = 0; i < run->n_configs; i++)
         for (size_t k = 0; k < run->configs[i].n_counters; k++)
             run->configs[i].counters[k].corrected = 0;
@@ -795,12 +835,13 @@ static void precision_not_computed(dm_run_result *run)
     dm_run_free(&keep);   /* frees the rounds and precision only */
 }
 
-/* SQL that takes the store back to before version 6, and what it reads
- * back: no frame times along a path. */
-#define PATH_DROPPED "DROP TABLE path_frames;"
+/* SQL that takes the store back to before version 6 (and 7), and what it
+ * reads back: no frame times along a path, no quality along it. */
+#define PATH_DROPPED PATH_QUALITY_DROPPED "DROP TABLE path_frames;"
 
 static void path_not_stored(dm_run_result *run)
 {
+    path_quality_not_computed(run);
     for (size_t i = 0; i < run->n_configs; i++) {
         free(run->configs[i].path.frame_ns);
         free(run->configs[i].path.stutter_at);
@@ -842,7 +883,7 @@ static void test_fit_condition_migration(void **state)
                                   "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_true(got.fits[0].condition == 0.0);
     run.fits[0].condition = 0.0;
@@ -878,7 +919,7 @@ static void test_flip_migration(void **state)
                                   NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     flip_not_computed(&run);
     precision_not_computed(&run);
@@ -890,10 +931,46 @@ static void test_flip_migration(void **state)
     store_close(s);
 }
 
+/* A version-6 store (before quality along a path) opens migrated: its
+ * configurations read back without path quality, everything else intact;
+ * a configuration stored afterwards keeps its series, NaN included. */
+static void test_path_quality_migration(void **state)
+{
+    tmp *t = *state;
+    dm_run_result run, got;
+    run_full(&run, "old");
+    store *s = open_ok(t->db);
+    store_put_all(s, &run, NULL);
+    assert_int_equal(sql_long(s, "SELECT count(*) FROM path_quality"), 1);
+    store_close(s);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, PATH_QUALITY_DROPPED "PRAGMA user_version=6", NULL, NULL, NULL),
+                     SQLITE_OK);
+    sqlite3_close(db);
+    s = open_ok(t->db);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    dm_run_result want;
+    run_full(&want, "old");
+    path_quality_not_computed(&want);
+    eq_run(&want, &got);
+    dm_run_free(&got);
+    dm_run_free(&want);
+    for (size_t i = 0; i < run.n_configs; i++)
+        assert_int_equal(store_config_put(s, "old", &run.configs[i]), 0);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    eq_run(&run, &got);
+    assert_integrity_ok(s);
+    dm_run_free(&got);
+    dm_run_free(&run);
+    store_close(s);
+}
+
 /* A version-4 store (before the drift correction) opens migrated: its
  * counters read back uncorrected (their raw figures intact), without rounds
  * or precision; a correction written afterwards reads back. */
-/* A version-5 store (before path_frames) opens as version 6 and reads its
+/* A version-5 store (before path_frames) opens as version 7 and reads its
  * configurations without frame times; a path series written then reads
  * back whole, and one whose blob does not hold frames x replays values is
  * refused as damaged. */
@@ -910,7 +987,7 @@ static void test_path_migration(void **state)
     assert_int_equal(sqlite3_exec(db, PATH_DROPPED "PRAGMA user_version=5", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     run_full(&want, "old");
     path_not_stored(&want);
@@ -947,7 +1024,7 @@ static void test_precision_migration(void **state)
     assert_int_equal(sqlite3_exec(db, PRECISION_DROPPED PATH_DROPPED "PRAGMA user_version=4", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     dm_run_result want;
     run_full(&want, "old");
@@ -1176,7 +1253,7 @@ static void test_open_alloc_faults(void **state)
         dm_str_free(&err);
         s = open_ok(t->db);
         assert_integrity_ok(s);
-        assert_int_equal(sql_long(s, "PRAGMA user_version"), 6);
+        assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
         store_close(s);
         if (!reached)
             break;
@@ -1273,6 +1350,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_fit_replace, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_fit_condition_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_flip_migration, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_path_quality_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_precision_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_path_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_partial_samples, tmp_setup, tmp_teardown),

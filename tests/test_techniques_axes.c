@@ -28,22 +28,23 @@ static void test_catalog(void **state)
         "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", "maps", "specular_map",
         "displaced_normals", "cull", "tess_inner", "tess_outer", "parallax_bias", "attenuation",
         "light_radius", "camera.path", "camera.path_frames", "camera.dolly_to",
-        "camera.flyover_height", NULL};
+        "camera.flyover_height", "camera.path_ref_every", NULL};
     for (size_t i = 0; spec[i]; i++)
         assert_non_null(axes_find(spec[i]));
-    assert_int_equal(axes_count(), 55);
+    assert_int_equal(axes_count(), 56);
     static const char *const scene[] = {"mesh", "mesh_density", "resolution", "camera.distance",
         "camera.azimuth", "camera.elevation", "camera.fov", "maps", "texture_size", "filter",
         "albedo_format", "virtual_texture", "vt_page_size", "vt_cache_pages", "camera.target_x",
         "camera.target_y", "camera.target_z", "light.azimuth", "light.elevation",
         "light.distance", "camera.orbit_deg_per_frame", "light.orbit_deg_per_frame", "cull",
-        "camera.path", "camera.path_frames", "camera.dolly_to", "camera.flyover_height", NULL};
+        "camera.path", "camera.path_frames", "camera.dolly_to", "camera.flyover_height",
+        "camera.path_ref_every", NULL};
     size_t n_scene = 0;
     for (size_t i = 0; i < axes_count(); i++)
         n_scene += axes_at(i)->scene;
     for (size_t i = 0; scene[i]; i++)
         assert_int_equal(axes_find(scene[i])->scene, 1);
-    assert_int_equal(n_scene, 28);   /* the 27 above + technique */
+    assert_int_equal(n_scene, 29);   /* the 28 above + technique */
     assert_string_equal(axes_find("roughness")->def, "0.35");
     assert_int_equal(axes_find("roughness")->scene, 0);
     assert_string_equal(axes_find("light.distance")->def, "1.2");

@@ -3,8 +3,10 @@
 # chromium and checks that it renders (screenshot not a single colour), that
 # every image loaded, that the gallery's cards are one width with their
 # captions below the images, that a click on a render flips to the
-# reference's full-size file, that no id is used twice, and that the console
-# shows no error.
+# reference's full-size file, that no id is used twice, that the heatmap's
+# legend stands before the cards with its colour scale drawn and states the
+# scale in the words of `dmbench diff --heatmap`'s help (scale.txt), and
+# that the console shows no error.
 # GEN is test_reports_browser_gen (writes the synthetic fixture run).
 set -eu
 gen=$1
@@ -27,6 +29,10 @@ probe="$probe"'if(c.getBoundingClientRect().top<im.getBoundingClientRect().botto
 probe="$probe"'document.body.setAttribute("data-cards",cards+" "+Object.keys(w).length+" "+beside);'
 probe="$probe"'var f=document.querySelector("img.flip");if(f){f.click();document.body.setAttribute("data-flip",f.getAttribute("src"));}'
 probe="$probe"'var ids={},dup=0;document.querySelectorAll("[id]").forEach(function(e){dup+=ids[e.id]?1:0;ids[e.id]=1;});'
+probe="$probe"'var lg=null;document.querySelectorAll("p.const").forEach(function(p){if(!lg\&\&p.textContent.indexOf("Heatmap: ")==0)lg=p;});'
+probe="$probe"'var card=document.querySelector(".grid>.pair"),sc=lg?lg.querySelector(".scale"):null;'
+probe="$probe"'document.body.setAttribute("data-legend",lg\&\&card\&\&sc\&\&lg.getBoundingClientRect().bottom<=card.getBoundingClientRect().top\&\&sc.offsetWidth>0\&\&getComputedStyle(sc).backgroundImage.indexOf("gradient")>=0?"before":"missing");'
+probe="$probe"'if(lg)document.body.setAttribute("data-legend-text",lg.textContent.replace(/"/g,"\x27"));'
 probe="$probe"'document.body.setAttribute("data-dupids",dup);});</script></body>'
 sed "s#</body>#$probe#" "$work/run/report.html" > "$work/run/probe.html"
 
@@ -59,7 +65,12 @@ flip=$(sed -n 's/.*data-flip="\([^"]*\)".*/\1/p' "$work/dom.html" | head -n 1)
 [ "$flip" = "img/c0_ref.png" ] || fail "a click on a render shows '${flip:-nothing}', not the reference's file"
 dup=$(sed -n 's/.*data-dupids="\([0-9]*\)".*/\1/p' "$work/dom.html" | head -n 1)
 [ "${dup:-x}" = 0 ] || fail "${dup:-?} ids used twice"
+legend=$(sed -n 's/.*data-legend="\([a-z]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+[ "$legend" = before ] || fail "heatmap legend: ${legend:-no probe}, not before the cards with its scale drawn"
+scale=$(cat "$work/run/scale.txt")
+grep -F "data-legend-text=\"Heatmap: $scale" "$work/dom.html" >/dev/null \
+    || fail "the heatmap legend does not state the scale as diff --heatmap does: $scale"
 if grep -E "Uncaught|ERROR:CONSOLE|CONSOLE\(" "$work/console.log" >&2; then
     fail "console errors"
 fi
-echo "report rendered; $images images loaded; $1 gallery cards of one width, captions below; a click flips to $flip; ids unique; no console errors"
+echo "report rendered; $images images loaded; $1 gallery cards of one width, captions below; a click flips to $flip; ids unique; the heatmap legend before the cards, in diff --heatmap's words; no console errors"

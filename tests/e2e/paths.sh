@@ -123,6 +123,16 @@ assert "## Along the path" in md
 for c in cs:
     if "path" not in c:
         assert csv_rows[c["key"]]["path_p99_ms"] == "", csv_rows[c["key"]]
+# quality along the path: none for a still configuration; on the dolly the
+# default K, a reference at the first and last frame (K = F - 1 = 11)
+for c in cs:
+    q = c["path_quality"]
+    if c["params"].get("camera.path", "still") == "still":
+        assert q is None and "camera.path_ref_every" not in c["params"], (c["label"], q)
+        continue
+    assert q and q["computed"] and q["frames"] == 12 and q["every"] == 11, (c["label"], q)
+    assert q["reference_frames"] == [0, 11] and len(q["FLIP"]) == 2 and len(q["SSIM"]) == 2, q
+    assert q["temporal_error_mean"] >= 0 and q["images"]["temporal"].endswith("-temporal.png"), q
 PY
 pass=$((pass+1))
 expect_refused 2 "expected one of: still, orbit, dolly, flyover (did you mean 'dolly'?)" -- \
