@@ -1,6 +1,7 @@
 /* gen_report.c — writes the synthetic fixture run (tests/test_reports_fixture.h)
  * with its images into DIR, for the browser test, its first configuration's
- * heatmap its FLIP map (as runs write it); and DIR/scale.txt, the words
+ * heatmap its FLIP map (as runs write it) and a camera path's frame
+ * times; and DIR/scale.txt, the words
  * every FLIP map's legend states its scale in (FLIP_SCALE_TEXT).  Usage:
  * gen_report DIR */
 #include "reports/report.h"
@@ -24,6 +25,24 @@ int main(int argc, char **argv)
     c->quality.flip = 0.0452;
     c->quality.flip_max = 0.519;
     c->quality.flip_ppd = FLIP_DEFAULT_PPD;
+    /* its camera path: 60 frames x 3 replays, a slow stretch and a stutter
+     * at frame 41 ("Along the path") */
+    dm_path_series *p = &c->path;
+    p->frames = 60;
+    p->replays = 3;
+    p->frame_ns = dm_xcalloc(p->frames * p->replays, sizeof *p->frame_ns);
+    for (size_t k = 0; k < p->replays; k++)
+        for (size_t f = 0; f < p->frames; f++)
+            p->frame_ns[k * p->frames + f] = (f == 41 ? 9e6 : 2e6 + 1e4 * (double)f) * (1 + 0.02 * (double)k);
+    p->p50 = 2.3e6;
+    p->p95 = 2.6e6;
+    p->p99 = 6.2e6;
+    p->low1_ns = 9.18e6;
+    p->low1_fps = 1e9 / p->low1_ns;
+    p->n_stutters = 1;
+    p->stutter_at = dm_xcalloc(1, sizeof *p->stutter_at);
+    p->stutter_at[0] = 41;
+    p->replay_spread = 0.04;
     int rc = fixture_images(argv[1], err, sizeof err);
     if (!rc) {
         char *path = dm_xasprintf("%s/scale.txt", argv[1]);
