@@ -158,10 +158,18 @@ void report__svg_scene(dm_str *s, const report_model *m, size_t si);
  * single frame time. */
 void report__svg_path(dm_str *s, const report_model_row *r);
 
+/* The quality plot of row r along its camera path (svg_chart.c): FLIP mean
+ * and 1 − SSIM at the reference frames 0, K, 2K, … (the values themselves,
+ * SSIM not subtracted, in the lines' data-flip and data-ssim attributes),
+ * popping marked at its frame.  Nothing without computed path quality. */
+void report__svg_path_quality(dm_str *s, const report_model_row *r);
+
 /* "Along the path" of scene si in report.html (path_html.c): per
- * configuration on a camera path, its figures and its frame-time plot.
+ * configuration on a camera path, its figures (with its quality along the
+ * path where computed: temporal error, popping, a link to the temporal
+ * error map prefixed by href) and its frame-time and quality plots.
  * Nothing for a scene without one, so a still run's page is unchanged. */
-void report__html_path_scene(dm_str *s, const report_model *m, size_t si);
+void report__html_path_scene(dm_str *s, const report_model *m, size_t si, const char *href);
 
 /* Charts (chart.c): inline SVG appended to an HTML document, each in a
  * <div class="chart" aria-label="title">.  Scene si's PLplot charts from the

@@ -440,6 +440,61 @@ void report__svg_path(dm_str *s, const report_model_row *r)
                   SVG_W - SVG_R, SVG_T - 8, p->replays, p->replays == 1 ? "" : "s");
 }
 
+/* One series of the quality plot: a line through the finite values of
+ * err(v[i]) at frames i × every, a dot on each; v itself as data (name). */
+static void svg_chart__quality_series(dm_str *s, svg_axis ax, svg_axis ay, const dm_path_quality *q,
+                                      const double *v, int one_minus, const char *name, const char *colour)
+{
+    dm_str_printf(s, "<path class=\"path-%s\" fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" data-%s=\"",
+                  name, colour, name);
+    for (size_t i = 0; i < q->n; i++)
+        dm_str_printf(s, i ? " %.9g" : "%.9g", v[i]);
+    dm_str_cat(s, "\" d=\"");
+    int pen = 0;
+    for (size_t i = 0; i < q->n; i++)
+        svg_chart__path_to(s, ax, ay, i * (size_t)q->every, one_minus ? 1 - v[i] : v[i], &pen);
+    dm_str_cat(s, "\"/>");
+    for (size_t i = 0; i < q->n; i++)
+        if (isfinite(v[i]))
+            dm_str_printf(s, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2.5\" fill=\"%s\"><title>frame %zu: %s "
+                             "%.4g</title></circle>", svg_chart__x(ax, (double)(i * (size_t)q->every)),
+                          svg_chart__y(ay, one_minus ? 1 - v[i] : v[i]), colour, i * (size_t)q->every,
+                          one_minus ? "SSIM" : "FLIP", v[i]);
+}
+
+void report__svg_path_quality(dm_str *s, const report_model_row *r)
+{
+    const dm_path_quality *q = &r->config->path_quality;
+    if (!q->present || !q->n || q->every < 1 || q->frames < 1)
+        return;
+    double hi = 0;
+    for (size_t i = 0; i < q->n; i++) {
+        if (isfinite(q->flip[i]) && q->flip[i] > hi)
+            hi = q->flip[i];
+        if (isfinite(q->ssim[i]) && 1 - q->ssim[i] > hi)
+            hi = 1 - q->ssim[i];
+    }
+    svg_axis ax = {0, q->frames > 1 ? (double)(q->frames - 1) : 1, 0}, ay = {0, hi > 0 ? hi * 1.1 : 1, 0};
+    dm_str title = {0};
+    dm_str_printf(&title, "Error at the reference frames: %s", r->label);
+    svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
+    dm_str_free(&title);
+    svg_chart__axes(s, ax, ay, "frame along the path", "error against the reference");
+    if (isfinite(q->popping) && q->popping_frame >= 0 && q->popping_frame < q->frames) {
+        double x = svg_chart__x(ax, (double)q->popping_frame);
+        dm_str_printf(s, "<line class=\"path-popping\" x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" "
+                         "stroke=\"#c0392b\" stroke-dasharray=\"4 3\"/><text x=\"%.1f\" y=\"%.1f\" "
+                         "text-anchor=\"%s\" fill=\"#c0392b\">popping %.3g (frame %ld)</text>",
+                      x, x, SVG_T, SVG_H - SVG_B, x + (x > SVG_W / 2 ? -4 : 4), SVG_T + 12,
+                      x > SVG_W / 2 ? "end" : "start", q->popping, q->popping_frame);
+    }
+    svg_chart__quality_series(s, ax, ay, q, q->flip, 0, "flip", "#1f4e8c");
+    svg_chart__quality_series(s, ax, ay, q, q->ssim, 1, "ssim", "#2a7a2a");
+    dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#555\"><tspan fill=\"#1f4e8c\">"
+                     "FLIP mean</tspan> and <tspan fill=\"#2a7a2a\">1 − SSIM</tspan> at the reference "
+                     "frames (every %ld)</text></svg></div>\n", SVG_W - SVG_R, SVG_T - 8, q->every);
+}
+
 void report__svg_scene(dm_str *s, const report_model *m, size_t si)
 {
     svg_chart__scatter(s, m, &m->scenes[si]);

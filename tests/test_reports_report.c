@@ -1126,6 +1126,36 @@ static void test_html_path(void **state)
     assert_non_null(strstr(plot, "class=\"path-p50\""));
     assert_non_null(strstr(plot, ">p99 3.06</text>"));
     assert_non_null(strstr(plot, "<circle class=\"path-stutter\" data-frame=\"1\""));
+    assert_null(strstr(html, "temporal error mean"));   /* no quality along the path asked */
+    assert_null(strstr(html, "path-flip"));
+    free(html);
+    /* quality along the path at every frame: FLIP 0.1, 0.5, 0.2; SSIM 0.9, 0.6, 0.85 */
+    dm_path_quality *q = &run.configs[0].path_quality;
+    static const double flip[] = {0.1, 0.5, 0.2}, ssim[] = {0.9, 0.6, 0.85};
+    *q = (dm_path_quality){.present = 1, .frames = 3, .every = 1, .n = 3, .temporal_mean = 0.0125,
+                           .temporal_p99 = 0.0625, .popping = 0.4, .popping_frame = 1};
+    q->flip = dm_xmalloc(sizeof flip);
+    q->ssim = dm_xmalloc(sizeof ssim);
+    memcpy(q->flip, flip, sizeof flip);
+    memcpy(q->ssim, ssim, sizeof ssim);
+    q->img_temporal = dm_xstrdup("img/c0-temporal.png");
+    html = html_of(&run, path);
+    sec = strstr(html, "<section class=\"path-scene\" id=\"path-0\">");
+    assert_non_null(sec);
+    assert_non_null(strstr(sec, "<td class=\"n\">0.0125</td><td class=\"n\">0.0625</td>"
+                                "<td class=\"n\">0.4 (frame 1)</td><td><a href=\"img/c0-temporal.png\">map</a></td>"));
+    plot = strstr(sec, "aria-label=\"Error at the reference frames: ");
+    assert_non_null(plot);
+    assert_int_equal(attr_numbers(strstr(plot, "class=\"path-flip\""), "data-flip", got, 4), 3);
+    assert_int_equal(attr_numbers(strstr(plot, "class=\"path-ssim\""), "data-ssim", got + 3, 1), 1);
+    for (size_t f = 0; f < 3; f++)
+        assert_true(got[f] == flip[f]);
+    assert_true(got[3] == ssim[0]);
+    /* 1 − SSIM drawn: frame 1's 0.4 above frame 0's 0.1 (y grows downward) */
+    d = strstr(strstr(plot, "class=\"path-ssim\""), " d=\"");
+    assert_int_equal(sscanf(d, " d=\"M%lf,%lf L%lf,%lf L%lf,%lf \"", &x[0], &y[0], &x[1], &y[1], &x[2], &y[2]), 6);
+    assert_true(y[1] < y[2] && y[2] < y[0]);
+    assert_non_null(strstr(plot, ">popping 0.4 (frame 1)</text>"));
     free(html);
     dm_run_free(&run);
     unlink(path);

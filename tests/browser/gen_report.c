@@ -10,6 +10,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int main(int argc, char **argv)
 {
@@ -43,6 +44,16 @@ int main(int argc, char **argv)
     p->stutter_at = dm_xcalloc(1, sizeof *p->stutter_at);
     p->stutter_at[0] = 41;
     p->replay_spread = 0.04;
+    /* and its quality at every 20th frame */
+    dm_path_quality *q = &c->path_quality;
+    static const double flip[] = {0.05, 0.21, 0.07}, ssim[] = {0.93, 0.71, 0.9};
+    *q = (dm_path_quality){.present = 1, .frames = 60, .every = 20, .n = 3, .temporal_mean = 0.012,
+                           .temporal_p99 = 0.08, .popping = 0.16, .popping_frame = 20};
+    q->flip = dm_xmalloc(sizeof flip);
+    q->ssim = dm_xmalloc(sizeof ssim);
+    memcpy(q->flip, flip, sizeof flip);
+    memcpy(q->ssim, ssim, sizeof ssim);
+    q->img_temporal = dm_xstrdup(c->img_heatmap);
     int rc = fixture_images(argv[1], err, sizeof err);
     if (!rc) {
         char *path = dm_xasprintf("%s/scale.txt", argv[1]);
