@@ -149,7 +149,10 @@ static void test_json_path(void **state)
     tc = test_slurp(csv);
     tm = test_slurp(md);
     assert_non_null(strstr(tc, ",path_p99_ms,"));
-    assert_non_null(strstr(tc, ",3.06,3.1,322.580645,1\r\n"));   /* p99, 1 % low ms and fps, stutters */
+    /* p99, 1 % low ms and fps, stutters; no quality along the path: empty */
+    assert_non_null(strstr(tc, ",3.06,3.1,322.580645,1,,,,\r\n"));
+    assert_non_null(strstr(tc, ",path_stutters,path_temporal_error_mean,path_temporal_error_p99,path_popping,"
+                               "path_popping_frame\r\n"));
     assert_non_null(strstr(tm, "## Along the path"));
     assert_non_null(strstr(tm, "| 3 × 2 | 0.171 | 2.900 | 3.060 | 3.100 (323 fps) | 1 (frame 1) | "
                                "unknown (one replay) |"));
@@ -1157,6 +1160,30 @@ static void test_html_path(void **state)
     assert_true(y[1] < y[2] && y[2] < y[0]);
     assert_non_null(strstr(plot, ">popping 0.4 (frame 1)</text>"));
     free(html);
+    /* the CSV's and summary.md's temporal figures */
+    char *csv = dm_xasprintf("%s/r.csv", dir), *md = dm_xasprintf("%s/s.md", dir);
+    assert_int_equal(write_report_file(&run, "results.csv", NULL, csv, NULL), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    char *tc = test_slurp(csv), *tm = test_slurp(md);
+    assert_non_null(strstr(tc, ",3.1,322.580645,1,0.0125,0.0625,0.4,1\r\n"));
+    assert_non_null(strstr(tm, "## Quality along the path"));
+    assert_non_null(strstr(tm, " | 3 (every 1 of 3) | 0.0125 | 0.0625 | 0.4 (frame 1) | img/c0-temporal.png | `"));
+    q->present = 0;   /* asked, not computed: the reason, no figure */
+    q->reason = dm_xstrdup("the reference frame 1 failed");
+    assert_int_equal(write_report_file(&run, "results.csv", NULL, csv, NULL), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    free(tc);
+    free(tm);
+    tc = test_slurp(csv);
+    tm = test_slurp(md);
+    assert_non_null(strstr(tc, ",3.1,322.580645,1,,,,\r\n"));
+    assert_non_null(strstr(tm, " | unavailable: the reference frame 1 failed | | | | | `"));
+    free(tc);
+    free(tm);
+    unlink(csv);
+    unlink(md);
+    free(csv);
+    free(md);
     dm_run_free(&run);
     unlink(path);
     rmdir(dir);
