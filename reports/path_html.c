@@ -130,6 +130,7 @@ void report__html_path_scene(dm_str *s, const report_model *m, size_t si, const 
         if (path_html__in(m, i, si))
             path_html__row(s, &m->rows[i], quality, href ? href : "");
     dm_str_cat(s, "</tbody></table></div>\n");
+    report__svg_motion_front(s, m, si);
     /* each configuration's two plots side by side, shrinking to fit: the
      * style is inline, so report.css (in every report) stays as it is */
     for (size_t i = 0; i < m->n_rows; i++)

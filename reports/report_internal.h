@@ -164,6 +164,12 @@ void report__svg_path(dm_str *s, const report_model_row *r);
  * popping marked at its frame.  Nothing without computed path quality. */
 void report__svg_path_quality(dm_str *s, const report_model_row *r);
 
+/* Scene si's second front (svg_chart.c): temporal error mean against p99
+ * frame time of its path configurations, the front's members filled and
+ * joined (report_model_scene.motion_front), each point's technique beside
+ * it.  Nothing with fewer than two such configurations. */
+void report__svg_motion_front(dm_str *s, const report_model *m, size_t si);
+
 /* "Along the path" of scene si in report.html (path_html.c): per
  * configuration on a camera path, its figures (with its quality along the
  * path where computed: temporal error, popping, a link to the temporal

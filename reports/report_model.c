@@ -54,6 +54,43 @@ static void report_model__path(report_model_row *r)
     free(v);
 }
 
+/* 1 when row r has both figures of the second front. */
+static int report_model__in_motion(const report_model_row *r)
+{
+    const dm_config_result *c = r->config;
+    return c->path.frames > 0 && isfinite(c->path.p99) && c->path_quality.present &&
+           isfinite(c->path_quality.temporal_mean);
+}
+
+/* Scene si's second front (report_model_scene.motion_front) and the
+ * steadiest member within its budget; after the rows. */
+static void report_model__motion(report_model *m, size_t si)
+{
+    report_model_scene *sc = &m->scenes[si];
+    sc->motion_pick = RECOMMEND_NONE;
+    size_t *idx = dm_xcalloc(m->n_rows + 1, sizeof *idx), *front = dm_xcalloc(m->n_rows + 1, sizeof *front);
+    recommend_point *p = dm_xcalloc(m->n_rows + 1, sizeof *p);
+    size_t n = 0;
+    for (size_t i = 0; i < m->n_rows; i++)
+        if (m->rows[i].scene == si && report_model__in_motion(&m->rows[i])) {
+            const dm_config_result *c = m->rows[i].config;
+            p[n] = (recommend_point){.time = c->path.p99, .ci_lo = NAN, .ci_hi = NAN,
+                                     .error = c->path_quality.temporal_mean, .family = m->rows[i].family};
+            idx[n++] = i;
+        }
+    sc->n_motion_points = n;
+    sc->n_motion_front = n ? recommend_front(p, n, 0, front) : 0;
+    sc->motion_front = dm_xcalloc(sc->n_motion_front + 1, sizeof *sc->motion_front);
+    for (size_t k = 0; k < sc->n_motion_front; k++) {
+        sc->motion_front[k] = idx[front[k]];
+        if (p[front[k]].time <= sc->rec.budget)   /* fastest first: the last within is the steadiest */
+            sc->motion_pick = idx[front[k]];
+    }
+    free(p);
+    free(front);
+    free(idx);
+}
+
 /* The corrected figures of a row's frame time, in the raw ones' words. */
 static void report_model__row_corrected(report_model_row *r)
 {
@@ -237,6 +274,8 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     for (size_t k = 0; k < m->n_scenes; k++)
         for (size_t f = 0; f < m->scenes[k].n_front; f++)
             m->rows[m->scenes[k].front[f]].front = 1;
+    for (size_t k = 0; k < m->n_scenes; k++)
+        report_model__motion(m, k);
     m->n_params = report__param_names(run, NULL, &m->params);
     m->n_timed = report__counter_names(run, NULL, REPORT__TIMED, &m->timed);
     m->n_det = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &m->det);
@@ -300,6 +339,7 @@ void report_model_free(report_model *m)
         free(sc->det);
         breakdown_free(&sc->breakdown);
         free(sc->disagree);
+        free(sc->motion_front);
     }
     free(m->scenes);
     free(m->params);

@@ -121,6 +121,15 @@ typedef struct report_model_scene {
     int has_rec_corr;     /* 1: rec_corr holds the recommendation on the corrected figures */
     recommend_result rec_corr;
     char *disagree;       /* report_answer_disagree's sentence; NULL when raw and corrected agree */
+    /* Camera paths (docs/motion.md, "In the report"): the second front,
+     * temporal error mean against p99 frame time, over the scene's path
+     * rows with both (n_motion_points); its members (config indexes,
+     * fastest p99 first, exact errors: no epsilon) and the steadiest of
+     * them whose p99 is within rec.budget (RECOMMEND_NONE: none fits) */
+    size_t n_motion_points;
+    size_t *motion_front;
+    size_t n_motion_front;
+    size_t motion_pick;
 } report_model_scene;
 
 typedef struct report_model {

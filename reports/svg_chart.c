@@ -495,6 +495,56 @@ void report__svg_path_quality(dm_str *s, const report_model_row *r)
                      "frames (every %ld)</text></svg></div>\n", SVG_W - SVG_R, SVG_T - 8, q->every);
 }
 
+void report__svg_motion_front(dm_str *s, const report_model *m, size_t si)
+{
+    const report_model_scene *sc = &m->scenes[si];
+    if (sc->n_motion_points < 2)
+        return;
+    double tlo = INFINITY, thi = 0, ehi = 0;
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const dm_config_result *c = m->rows[i].config;
+        if (m->rows[i].scene != si || !c->path.frames || !c->path_quality.present ||
+            !isfinite(c->path.p99) || !isfinite(c->path_quality.temporal_mean))
+            continue;
+        tlo = fmin(tlo, c->path.p99 / 1e6);
+        thi = fmax(thi, c->path.p99 / 1e6);
+        ehi = fmax(ehi, c->path_quality.temporal_mean);
+    }
+    double pad = (thi - tlo) * 0.08 + thi * 0.02;
+    svg_axis ax = {fmax(0, tlo - pad), thi + pad * 3, 0}, ay = {0, ehi > 0 ? ehi * 1.1 : 1, 0};
+    dm_str title = {0};
+    dm_str_printf(&title, "In motion: temporal error vs p99 frame time: %s", sc->label);
+    svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
+    dm_str_free(&title);
+    svg_chart__axes(s, ax, ay, "p99 frame time along the path, ms", "temporal error, mean");
+    dm_str_cat(s, "<polyline class=\"motion-front\" fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"");
+    for (size_t k = 0; k < sc->n_motion_front; k++) {
+        const dm_config_result *c = m->rows[sc->motion_front[k]].config;
+        dm_str_printf(s, "%.1f,%.1f ", svg_chart__x(ax, c->path.p99 / 1e6), svg_chart__y(ay, c->path_quality.temporal_mean));
+    }
+    dm_str_cat(s, "\"/>");
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const report_model_row *r = &m->rows[i];
+        const dm_config_result *c = r->config;
+        if (r->scene != si || !c->path.frames || !c->path_quality.present || !isfinite(c->path.p99) ||
+            !isfinite(c->path_quality.temporal_mean))
+            continue;
+        int on = 0;
+        for (size_t k = 0; k < sc->n_motion_front; k++)
+            on |= sc->motion_front[k] == i;
+        double x = svg_chart__x(ax, c->path.p99 / 1e6), y = svg_chart__y(ay, c->path_quality.temporal_mean);
+        dm_str_printf(s, "<g class=\"motion-point\"><title>");
+        dm_str_cat_html(s, r->label);
+        dm_str_printf(s, ": p99 %.3f ms, temporal error %.4g</title><circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" "
+                         "fill=\"%s\" stroke=\"#1f4e8c\"/><text x=\"%.1f\" y=\"%.1f\">",
+                      c->path.p99 / 1e6, c->path_quality.temporal_mean, x, y, on ? "#1f4e8c" : "#fff", x + 6, y - 5);
+        dm_str_cat_html(s, r->technique);
+        dm_str_cat(s, "</text></g>");
+    }
+    dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#555\">filled: on the "
+                     "front (lower and left is better)</text></svg></div>\n", SVG_W - SVG_R, SVG_T - 8);
+}
+
 void report__svg_scene(dm_str *s, const report_model *m, size_t si)
 {
     svg_chart__scatter(s, m, &m->scenes[si]);

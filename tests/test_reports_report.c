@@ -1190,6 +1190,70 @@ static void test_html_path(void **state)
     free(path);
 }
 
+/* Gives fixture configuration c a 2-frame path with p99 p99_ns and
+ * quality along it with temporal error mean te. */
+static void motion_config(dm_config_result *c, double p99_ns, double te)
+{
+    c->path = (dm_path_series){.frames = 2, .replays = 1, .p50 = p99_ns, .p95 = p99_ns, .p99 = p99_ns,
+                               .low1_ns = p99_ns, .low1_fps = 1e9 / p99_ns, .replay_spread = NAN, .noisy = -1};
+    c->path.frame_ns = dm_xcalloc(2, sizeof *c->path.frame_ns);
+    c->path.frame_ns[0] = c->path.frame_ns[1] = p99_ns;
+    c->path.stutter_at = dm_xcalloc(1, sizeof *c->path.stutter_at);
+    c->path_quality = (dm_path_quality){.present = 1, .frames = 2, .every = 1, .n = 2, .temporal_mean = te,
+                                        .temporal_p99 = te, .popping = 0, .popping_frame = 1};
+    c->path_quality.flip = dm_xcalloc(2, sizeof *c->path_quality.flip);
+    c->path_quality.ssim = dm_xcalloc(2, sizeof *c->path_quality.ssim);
+}
+
+/* The second front of a scene, temporal error against p99 frame time: pom
+ * (p99 3.058 ms, 0.0125) and normal (2.5 ms, 0.02) are both on it, normal
+ * first; the steadiest under the scene's budget is pom when its p99 fits,
+ * else normal when its does, else none; then normal made steadier as well
+ * as faster (0.01) leaves pom off the front.  The answer says it in words;
+ * a scene with one such configuration gets no sentence. */
+static void test_motion_front(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    fixture_run(&run);
+    motion_config(&run.configs[0], 3.058e6, 0.0125);
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_int_equal(m.scenes[0].n_motion_points, 1);
+    dm_str a = {0};
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &a);
+    assert_null(strstr(dm_str_get(&a), "In motion"));
+    dm_str_free(&a);
+    report_model_free(&m);
+    motion_config(&run.configs[1], 2.5e6, 0.02);
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    const report_model_scene *sc = &m.scenes[0];
+    assert_int_equal(sc->n_motion_points, 2);
+    assert_int_equal(sc->n_motion_front, 2);
+    assert_int_equal(sc->motion_front[0], 1);
+    assert_int_equal(sc->motion_front[1], 0);
+    double b = sc->rec.budget;
+    assert_true(b > 0);
+    size_t want = b >= 3.058e6 ? 0 : b >= 2.5e6 ? 1 : RECOMMEND_NONE;
+    assert_int_equal(sc->motion_pick, want);
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &a);
+    const char *t = dm_str_get(&a);
+    assert_non_null(strstr(t, "In motion (temporal error against p99 frame time along the path): "));
+    assert_non_null(strstr(t, "Front, fastest first: normal mesh=plane (p99 2.5 ms, temporal error 0.02), "
+                              "pom mesh=plane (p99 3.06 ms, temporal error 0.0125)."));
+    if (want == 0)   /* normal is the fixture scene's still pick */
+        assert_non_null(strstr(t, "is **pom mesh=plane** (p99 3.06 ms, temporal error 0.0125), not the "
+                                  "still pick's technique (normal)."));
+    dm_str_free(&a);
+    report_model_free(&m);
+    run.configs[1].path_quality.temporal_mean = 0.01;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_int_equal(m.scenes[0].n_motion_front, 1);
+    assert_int_equal(m.scenes[0].motion_front[0], 1);
+    report_model_free(&m);
+    dm_run_free(&run);
+}
+
 /* The fixture: one fit (tess-power, 2 points), key counters, no pipeline
  * fit, one tess_level value: error vs time and time per configuration of
  * its one scene (never a chart pooling scenes), the key counter bars, and
@@ -1525,6 +1589,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_json_read_errors),
              cmocka_unit_test(test_json_path),
              cmocka_unit_test(test_html_path),
+             cmocka_unit_test(test_motion_front),
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
              cmocka_unit_test(test_corrected_figures),
