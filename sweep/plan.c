@@ -6,6 +6,7 @@
 #include "techniques/technique.h"
 
 #include <stdio.h>
+#include <math.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -178,6 +179,23 @@ static int plan__excluded(const sweep *s, const size_t *idx)
     return 0;
 }
 
+/* "path:line: " for the axis: its line in the sweep block, else in scene:;
+ * "path: " when the catalog's default was used. */
+static void plan__where(const sweep *s, const char *axis, dm_str *err)
+{
+    for (size_t i = 0; i < s->n_axes; i++)
+        if (strcmp(s->axes[i].name, axis) == 0) {
+            dm_str_printf(err, "%s:%d: ", s->path, s->axes[i].line);
+            return;
+        }
+    for (size_t i = 0; i < s->n_scene; i++)
+        if (strcmp(s->scene[i].key, axis) == 0 && s->scene_lines && s->scene_lines[i] > 0) {
+            dm_str_printf(err, "%s:%d: ", s->path, s->scene_lines[i]);
+            return;
+        }
+    dm_str_printf(err, "%s: ", s->path);
+}
+
 /* 0 when the combination's mesh_density is one its mesh accepts (0, the
  * mesh's default, or its range; a user mesh file ignores it), else
  * DM_ERR_RANGE with "path:line: ..." naming the valid densities in err.
@@ -194,10 +212,7 @@ static int plan__check_density(const sweep *s, const size_t *idx, dm_str *err)
             line = s->axes[i].line;
         mesh_axis |= strcmp(s->axes[i].name, "mesh") == 0;
     }
-    if (line > 0)
-        dm_str_printf(err, "%s:%d: ", s->path, line);
-    else   /* set under scene: */
-        dm_str_printf(err, "%s: scene: ", s->path);
+    plan__where(s, "mesh_density", err);
     dm_str_printf(err, "mesh_density %d is out of range for mesh '%s': ", d, mesh);
     if (lo > hi)
         dm_str_printf(err, "it takes only 0 (the scene is fixed)");
@@ -207,6 +222,59 @@ static int plan__check_density(const sweep *s, const size_t *idx, dm_str *err)
         dm_str_printf(err, "; give each mesh its own sweep file or drop the pair with "
                       "`exclude: [{mesh: [%s], mesh_density: [%d]}]`", mesh, d);
     return DM_ERR_RANGE;
+}
+
+/* Meshes a flyover can fly over: a ground along y = 0 (docs/motion.md). */
+static int plan__is_ground(const char *mesh)
+{
+    static const char *const grounds[] = {"plane", "terrain", "terrain-tiles", "halfflat", "s2-scene1"};
+    if (strncmp(mesh, "file:", 5) == 0)   /* a user's mesh: dmbench cannot tell, so it trusts it */
+        return 1;
+    for (size_t i = 0; i < sizeof grounds / sizeof grounds[0]; i++)
+        if (strcmp(mesh, grounds[i]) == 0)
+            return 1;
+    return 0;
+}
+
+/* 0 when the combination's camera path can be drawn and compared: a dolly
+ * that moves, a flyover over a ground, reference frames within the path;
+ * else DM_ERR_RANGE with "path:line: ..." naming what is accepted. */
+static int plan__check_path(const sweep *s, const size_t *idx, dm_str *err)
+{
+    const char *path = plan__value(s, idx, "camera.path");
+    long frames = atol(plan__value(s, idx, "camera.path_frames"));
+    long every = atol(plan__value(s, idx, "camera.path_ref_every"));
+    if (every > frames - 1) {   /* on a still path too: its frames move with the orbits */
+        plan__where(s, "camera.path_ref_every", err);
+        dm_str_printf(err, "camera.path_ref_every %ld is past the path's last frame (camera.path_frames "
+                      "%ld: frames 0..%ld); valid are 0 (the first and last frames) and 1..%ld",
+                      every, frames, frames - 1, frames - 1);
+        return DM_ERR_RANGE;
+    }
+    if (!path || strcmp(path, "still") == 0)
+        return 0;
+    const char *mesh = plan__value(s, idx, "mesh");
+    if (strcmp(path, "flyover") == 0 && mesh && !plan__is_ground(mesh)) {
+        int mesh_varies = 0;   /* name the key the sweep block varies: that is where to exclude */
+        for (size_t i = 0; i < s->n_axes; i++)
+            mesh_varies |= strcmp(s->axes[i].name, "mesh") == 0;
+        plan__where(s, mesh_varies ? "mesh" : "camera.path", err);
+        dm_str_printf(err, "camera.path flyover flies at a height over a ground, and mesh '%s' is "
+                      "not one; a flyover takes plane, terrain, terrain-tiles, halfflat, s2-scene1 or a "
+                      "file: mesh (orbit or dolly go round any mesh)", mesh);
+        return DM_ERR_RANGE;
+    }
+    if (strcmp(path, "dolly") == 0) {
+        double from = atof(plan__value(s, idx, "camera.distance"));
+        double to = atof(plan__value(s, idx, "camera.dolly_to"));
+        if (fabs(to - from) <= 1e-6 * fmax(fabs(from), 1.0)) {
+            plan__where(s, "camera.dolly_to", err);
+            dm_str_printf(err, "camera.dolly_to %g equals camera.distance %g: the dolly would not move; "
+                          "give another end distance (0.1..100), or camera.path still", to, from);
+            return DM_ERR_RANGE;
+        }
+    }
+    return 0;
 }
 
 int plan_build(const sweep *s, const plan_build_desc *d, plan *out, dm_str *err)
@@ -235,7 +303,7 @@ int plan_build(const sweep *s, const plan_build_desc *d, plan *out, dm_str *err)
             progress(n, total, user);
         if (plan__excluded(s, idx)) {
             out->n_excluded++;
-        } else if (plan__check_density(s, idx, err) != 0) {
+        } else if (plan__check_density(s, idx, err) != 0 || plan__check_path(s, idx, err) != 0) {
             free(idx);
             free(ix.slot);
             plan_free(out);

@@ -127,17 +127,22 @@ static char *sweep__axis_value(pctx *c, const char *axis, yaml_node_t *n)
     return canon;
 }
 
-/* Sets scene default axis=v (canonical text, owned by the callee). */
-static int sweep__put_scene(pctx *c, const char *axis, char *v)
+/* Sets scene default axis=v (canonical text, owned by the callee), given at
+ * node at (its line is kept for later messages, sweep.scene_lines). */
+static int sweep__put_scene(pctx *c, const char *axis, char *v, const yaml_node_t *at)
 {
+    int line = at ? (int)at->start_mark.line + 1 : 0;
     for (size_t i = 0; i < c->s->n_scene; i++) {
         if (strcmp(c->s->scene[i].key, axis) == 0) {
             free(c->s->scene[i].value);
             c->s->scene[i].value = v;
+            c->s->scene_lines[i] = line;
             return 0;
         }
     }
     dm_kv_push(&c->s->scene, &c->s->n_scene, axis, v);
+    c->s->scene_lines = dm_xrealloc(c->s->scene_lines, c->s->n_scene * sizeof *c->s->scene_lines);
+    c->s->scene_lines[c->s->n_scene - 1] = line;
     free(v);
     return 0;
 }
@@ -152,7 +157,7 @@ static int sweep__set_scene(pctx *c, const char *axis, yaml_node_t *key, yaml_no
         return DM_ERR_PARSE;
     }
     char *v = sweep__axis_value(c, axis, val);
-    return v ? sweep__put_scene(c, axis, v) : DM_ERR_PARSE;
+    return v ? sweep__put_scene(c, axis, v, val) : DM_ERR_PARSE;
 }
 
 /* material: { height: P, normal: P, albedo: P } -> the maps axis value
@@ -183,7 +188,7 @@ static int sweep__user_maps(pctx *c, yaml_node_t *map)
         sweep__fail(c, first, "%s", dm_str_get(&msg));
         free(v);
     } else {
-        rc = sweep__put_scene(c, "maps", v);
+        rc = sweep__put_scene(c, "maps", v, first);
     }
     dm_str_free(&msg);
     return rc;
@@ -940,6 +945,7 @@ void sweep_free(sweep *s)
     free(s->path);
     free(s->name);
     dm_kv_free(s->scene, s->n_scene);
+    free(s->scene_lines);
     sweep__axes_free(s->axes, s->n_axes);
     for (size_t i = 0; i < s->n_excludes; i++)
         sweep__axes_free(s->excludes[i].axes, s->excludes[i].n_axes);

@@ -60,6 +60,7 @@ typedef struct sweep {
     char *name;
     dm_kv *scene;            /* scene defaults, axis name -> canonical value */
     size_t n_scene;
+    int *scene_lines;        /* the 1-based line of each scene default (0: none) */
     sweep_axis *axes;
     size_t n_axes;
     sweep_measure measure;

@@ -2,8 +2,9 @@
 # The unit and GL integration tests (ctest labels unit and gl, not slow),
 # built with AddressSanitizer + UndefinedBehaviorSanitizer in a tree of
 # their own ($SANITIZE_BUILD, kept between runs so a second run rebuilds
-# only what changed).  Any sanitizer report fails the test that triggered
-# it, and so the ctest test that ran it.
+# only what changed): a Debug tree, so assert() stays in, compiled at -O1
+# (DM_SANITIZE in the top-level CMakeLists.txt).  Any sanitizer report
+# fails the test that triggered it, and so the ctest test that ran it.
 #
 #   sanitize.sh build          configure the tree and build only the test
 #                              binaries the sanitizer run needs (and what
@@ -27,7 +28,11 @@ build)
   mapfile -t targets < <(cd "$BUILD" && ctest -N "${SELECT[@]}" | sed -n 's/^ *Test *#[0-9]*: //p')
   [ "${#targets[@]}" -ge 40 ] || { echo "only ${#targets[@]} unit and GL tests found in $BUILD"; exit 1; }
   echo "building ${#targets[@]} test binaries with ASan + UBSan in $BUILD"
-  cmake --build "$BUILD" -j "$(nproc)" --target "${targets[@]}" > "$BUILD.build.log" 2>&1 \
+  # One goal, dm_sanitize_tests (tests/CMakeLists.txt), so make builds them
+  # side by side; its list must be the tests ctest selects.
+  diff <(sort "$BUILD/sanitize-tests.txt") <(printf '%s\n' "${targets[@]}" | sort) ||
+    { echo "dm_sanitize_tests ($BUILD/sanitize-tests.txt, <) differs from ctest's selection (>)"; exit 1; }
+  cmake --build "$BUILD" -j "$(nproc)" --target dm_sanitize_tests > "$BUILD.build.log" 2>&1 \
     || { tail -40 "$BUILD.build.log"; exit 1; }
   ;;
 run)

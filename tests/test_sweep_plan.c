@@ -208,6 +208,62 @@ static void test_exclude_errors(void **state)
  * planning with the file, the axis' line and the mesh's valid densities;
  * the same density is fine for a mesh that takes it, 0 always is, and an
  * `exclude` of the pair plans the rest. */
+/* Camera paths that cannot be drawn or compared are refused at the key's
+ * line (scene: or sweep block), naming what is accepted: reference frames
+ * past the path, a dolly that does not move, a flyover over a mesh that is
+ * not a ground; the accepted neighbours plan. */
+static void test_path_refusals(void **state)
+{
+    (void)state;
+    static const struct { const char *text, *msg; } bad[] = {
+        {"name: t\nscene:\n  camera.path: dolly\n  camera.path_frames: 12\n  camera.path_ref_every: 12\n"
+         "sweep:\n  technique: [normal]\n",
+         "t.yaml:5: camera.path_ref_every 12 is past the path's last frame (camera.path_frames 12: frames "
+         "0..11); valid are 0 (the first and last frames) and 1..11"},
+        {"name: t\nscene:\n  camera.path: dolly\n  camera.distance: 2\nsweep:\n  technique: [normal]\n"
+         "  camera.dolly_to: [1, 2]\n",
+         "t.yaml:7: camera.dolly_to 2 equals camera.distance 2: the dolly would not move; give another end "
+         "distance (0.1..100), or camera.path still"},
+        {"name: t\nscene:\n  mesh: cube\nsweep:\n  technique: [normal]\n  camera.path: [orbit, flyover]\n",
+         "t.yaml:6: camera.path flyover flies at a height over a ground, and mesh 'cube' is not one; a "
+         "flyover takes plane, terrain, terrain-tiles, halfflat, s2-scene1 or a file: mesh"},
+        {"name: t\nscene:\n  camera.orbit_deg_per_frame: 2\n  camera.path_ref_every: 60\nsweep:\n"
+         "  technique: [normal]\n",
+         "t.yaml:4: camera.path_ref_every 60 is past the path's last frame (camera.path_frames 60: frames 0..59)"},
+    };
+    for (size_t i = 0; i < sizeof bad / sizeof bad[0]; i++) {
+        sweep s;
+        plan p;
+        dm_str err = {0};
+        assert_int_equal(sweep_parse(bad[i].text, "t.yaml", &s, &err), 0);
+        assert_int_equal(plan_build(&s, NULL, &p, &err), DM_ERR_RANGE);
+        if (!strstr(dm_str_get(&err), bad[i].msg))
+            fail_msg("case %zu: '%s' lacks '%s'", i, dm_str_get(&err), bad[i].msg);
+        dm_str_free(&err);
+        sweep_free(&s);
+    }
+    static const char *const good[] = {   /* the last frame, a moving dolly, a flyover over the terrain, a still path's last frame */
+        "name: t\nscene:\n  camera.path: dolly\n  camera.path_frames: 12\n  camera.path_ref_every: 11\n"
+        "sweep:\n  technique: [normal]\n",
+        "name: t\nscene:\n  camera.path: dolly\n  camera.distance: 2\n  camera.dolly_to: 1.9\n"
+        "sweep:\n  technique: [normal]\n",
+        "name: t\nscene:\n  mesh: terrain\n  camera.path: flyover\nsweep:\n  technique: [normal]\n",
+        "name: t\nscene:\n  mesh: cube\n  camera.path_ref_every: 59\nsweep:\n  technique: [normal]\n",
+    };
+    for (size_t i = 0; i < sizeof good / sizeof good[0]; i++) {
+        sweep s;
+        plan p;
+        dm_str err = {0};
+        assert_int_equal(sweep_parse(good[i], "t.yaml", &s, &err), 0);
+        if (plan_build(&s, NULL, &p, &err) != 0)
+            fail_msg("good case %zu refused: %s", i, dm_str_get(&err));
+        assert_int_equal(p.n_configs, 1);
+        plan_free(&p);
+        dm_str_free(&err);
+        sweep_free(&s);
+    }
+}
+
 static void test_density_out_of_mesh_range(void **state)
 {
     (void)state;
@@ -233,13 +289,13 @@ static void test_density_out_of_mesh_range(void **state)
         dm_str_free(&err);
         sweep_free(&s);
     }
-    sweep sc;   /* under scene: no line to name; the pair cannot be excluded */
+    sweep sc;   /* under scene: its line there; the pair cannot be excluded */
     plan pc;
     dm_str err = {0};
     assert_int_equal(sweep_parse("name: t\nscene:\n  mesh: sphere\n  mesh_density: 8\nsweep:\n  technique: [phong]\n",
                                  "t.yaml", &sc, &err), 0);
     assert_int_equal(plan_build(&sc, NULL, &pc, &err), DM_ERR_RANGE);
-    assert_string_equal(dm_str_get(&err), "t.yaml: scene: mesh_density 8 is out of range for mesh 'sphere': "
+    assert_string_equal(dm_str_get(&err), "t.yaml:4: mesh_density 8 is out of range for mesh 'sphere': "
                                           "valid are 1..7, and 0 for its default (4)");
     dm_str_free(&err);
     sweep_free(&sc);
@@ -355,6 +411,7 @@ int main(void)
         cmocka_unit_test(test_conditional_axis_folds),
         cmocka_unit_test(test_exclude_errors),
         cmocka_unit_test(test_density_out_of_mesh_range),
+        cmocka_unit_test(test_path_refusals),
         cmocka_unit_test(test_keys_stable),
         cmocka_unit_test(test_shards_partition),
         cmocka_unit_test(test_shuffle_is_seeded_permutation),

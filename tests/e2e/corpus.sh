@@ -170,6 +170,17 @@ hcase sweep/missing-mesh 2 "x.obj" -- "$BIN" run "$f" --out "$NEVER"
 f=$(sweep density "sweep:" "  technique: [normal]" "  mesh: [plane, sphere]" "  mesh_density: [9]")
 hcase sweep/density-range 2 "density.yaml:5: mesh_density 9 is out of range for mesh 'sphere': valid are 1..7" \
   -- "$BIN" run "$f" --out "$NEVER"
+f=$(sweep pathref "scene:" "  camera.path: dolly" "  camera.path_frames: 8" "  camera.path_ref_every: 9" \
+  "sweep:" "  technique: [normal]")
+hcase sweep/path-ref-past-end 2 "pathref.yaml:5: camera.path_ref_every 9 is past the path's last frame" \
+  -- "$BIN" run "$f" --out "$NEVER"
+f=$(sweep dollystill "scene:" "  camera.path: dolly" "  camera.distance: 3" "  camera.dolly_to: 3" \
+  "sweep:" "  technique: [normal]")
+hcase sweep/dolly-still 2 "dollystill.yaml:5: camera.dolly_to 3 equals camera.distance 3: the dolly would not move" \
+  -- "$BIN" run "$f" --out "$NEVER"
+f=$(sweep flysphere "scene:" "  camera.path: flyover" "sweep:" "  technique: [normal]" "  mesh: [plane, sphere]")
+hcase sweep/flyover-sphere 2 "flysphere.yaml:6: camera.path flyover flies at a height over a ground, and mesh 'sphere'" \
+  -- "$BIN" run "$f" --out "$NEVER"
 # ---- maps (plan time: every resource is read before anything is measured) ----
 for m in huge-png wide-png zero-png truncated-png empty-png text-png random-png truncated-exr; do
   hcase "map/$m" 2 "height map" -- "$BIN" run "$G/map-$m.yaml" --out "$NEVER"
