@@ -218,7 +218,8 @@ typedef struct dm_run_result {
     "WallTime_corr_ci_lo_ms", "WallTime_corr_ci_hi_ms", "drift_correction"
 /* Last, in a run with a configuration on a camera path (docs/motion.md). */
 #define DM_RESULT_PATH_COLUMNS "path_p50_ms", "path_p95_ms", "path_p99_ms", \
-    "path_one_percent_low_ms", "path_one_percent_low_fps", "path_stutters"
+    "path_one_percent_low_ms", "path_one_percent_low_fps", "path_stutters", \
+    "path_temporal_error_mean", "path_temporal_error_p99", "path_popping", "path_popping_frame"
 /* 1 when name is one of the columns above. */
 int dm_result_column_reserved(const char *name);
 

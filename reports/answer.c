@@ -207,6 +207,59 @@ static void answer__untimed(answer__w *w, const report_model *m, size_t si)
     report_counter_table(m, si, w->f, w->s);
 }
 
+/* "label (p99 6.20 ms, temporal error 0.012)": row ci on the second front. */
+static void answer__motion_config(answer__w *w, const report_model *m, size_t ci, int strong)
+{
+    const report_model_row *r = &m->rows[ci];
+    dm_str rest = {0};
+    (strong ? answer__strong : answer__text)(w, r->label);
+    dm_str_printf(&rest, " (p99 %.3g ms, temporal error %.3g)", r->config->path.p99 / 1e6,
+                  r->config->path_quality.temporal_mean);
+    answer__text(w, dm_str_get(&rest));
+    dm_str_free(&rest);
+}
+
+/* In motion (docs/motion.md, "In the report"): the second front, temporal
+ * error against p99 frame time, its steadiest member within the budget,
+ * and whether its technique is the still pick's.  Nothing in a scene with
+ * fewer than two configurations that have both figures. */
+static void answer__motion(answer__w *w, const report_model *m, const report_model_scene *sc)
+{
+    if (sc->n_motion_points < 2)
+        return;
+    answer__item(w, 1);
+    answer__text(w, "In motion (temporal error against p99 frame time along the path): ");
+    if (sc->motion_pick == RECOMMEND_NONE) {
+        dm_str t = {0};
+        dm_str_printf(&t, "no configuration's p99 is under %g ms; the front, fastest first: ", sc->rec.budget / 1e6);
+        answer__text(w, dm_str_get(&t));
+        dm_str_free(&t);
+    } else {
+        dm_str t = {0};
+        dm_str_printf(&t, "the steadiest with a p99 under %g ms is ", sc->rec.budget / 1e6);
+        answer__text(w, dm_str_get(&t));
+        dm_str_free(&t);
+        answer__motion_config(w, m, sc->motion_pick, 1);
+        const recommend_result *r = &sc->rec;
+        if (r->pick != RECOMMEND_NONE) {
+            int same = strcmp(m->rows[sc->motion_pick].technique, m->rows[r->pick].technique) == 0;
+            answer__text(w, same ? ", the still pick's technique too" : ", not the still pick's technique (");
+            if (!same) {
+                answer__text(w, m->rows[r->pick].technique);
+                answer__text(w, ")");
+            }
+        }
+        answer__text(w, ". Front, fastest first: ");
+    }
+    for (size_t k = 0; k < sc->n_motion_front; k++) {
+        if (k)
+            answer__text(w, ", ");
+        answer__motion_config(w, m, sc->motion_front[k], 0);
+    }
+    answer__text(w, ".");
+    answer__item(w, 0);
+}
+
 void report_answer_scene(const report_model *m, size_t si, report_answer_format f, dm_str *out)
 {
     answer__w w = {out, f};
@@ -227,6 +280,7 @@ void report_answer_scene(const report_model *m, size_t si, report_answer_format 
     answer__item(&w, 1);
     answer__families(&w, m, r);
     answer__item(&w, 0);
+    answer__motion(&w, m, sc);
     if (r->lit_only && r->family_fastest[RECOMMEND_UNLIT] != RECOMMEND_NONE) {
         answer__item(&w, 1);
         answer__text(&w, m->rows[r->family_fastest[RECOMMEND_UNLIT]].label);

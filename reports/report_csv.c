@@ -8,7 +8,9 @@
  * (1 on its scene's front, else 0), the frame time with the drift removed;
  * in a run with configurations on a camera path (only), last the path's
  * figures (docs/motion.md): path_p50_ms, path_p95_ms, path_p99_ms,
- * path_one_percent_low_ms, path_one_percent_low_fps, path_stutters, empty
+ * path_one_percent_low_ms, path_one_percent_low_fps, path_stutters, then
+ * its quality along the path: path_temporal_error_mean,
+ * path_temporal_error_p99, path_popping, path_popping_frame; empty
  * for a still configuration.  Units are in the names: _ms for times,
  * _dB; counters count items or bytes (their names say which; `dmbench list
  * counters` gives every unit).  An unavailable or absent value is an empty
@@ -86,14 +88,21 @@ static void report_csv__corrected_fields(dm_str *s, const report_model *m, const
 
 static const char *const report_csv__path_cols[] = {DM_RESULT_PATH_COLUMNS};
 #define REPORT_CSV__N_PATH (sizeof report_csv__path_cols / sizeof report_csv__path_cols[0])
+#define REPORT_CSV__N_PATH_TIMES 6   /* the first six: the frame times' */
 
-/* The path figures of a configuration (report_csv__path_cols), empty for a still one. */
-static void report_csv__path_fields(dm_str *s, const dm_path_series *p)
+/* The path figures of a configuration (report_csv__path_cols): its frame
+ * times, empty for a still one, then its quality along the path, empty
+ * where none was computed (and a NaN figure empty, as everywhere). */
+static void report_csv__path_fields(dm_str *s, const dm_path_series *p, const dm_path_quality *q)
 {
     double v[REPORT_CSV__N_PATH] = {p->p50 / 1e6, p->p95 / 1e6, p->p99 / 1e6, p->low1_ns / 1e6,
-                                    p->low1_fps, (double)p->n_stutters};
-    for (size_t i = 0; i < REPORT_CSV__N_PATH; i++)
-        report_csv__num_field(s, v[i], p->frames > 0);
+                                    p->low1_fps, (double)p->n_stutters, q->temporal_mean, q->temporal_p99,
+                                    q->popping, (double)q->popping_frame};
+    for (size_t i = 0; i < REPORT_CSV__N_PATH; i++) {
+        int set = i < REPORT_CSV__N_PATH_TIMES ? p->frames > 0
+                                               : q->present && (i + 1 < REPORT_CSV__N_PATH || q->popping_frame >= 0);
+        report_csv__num_field(s, v[i], set);
+    }
 }
 
 static void report_csv__row(dm_str *s, const report_model *m, const report_model_row *r, const char **params,
@@ -122,7 +131,7 @@ static void report_csv__row(dm_str *s, const report_model *m, const report_model
     report_csv__field(s, r->front ? "1" : "0", 0);
     report_csv__corrected_fields(s, m, r);
     if (m->n_path_rows)
-        report_csv__path_fields(s, &c->path);
+        report_csv__path_fields(s, &c->path, &c->path_quality);
     dm_str_cat(s, "\r\n");
 }
 

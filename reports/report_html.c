@@ -880,8 +880,10 @@ int report__write_html(const report_model *m, const report_desc *d, const char *
     html__header(&s, m);
     html__toc(&s, m);
     html__answer(&s, m);
-    for (size_t i = 0; i < m->n_scenes; i++)
+    for (size_t i = 0; i < m->n_scenes; i++) {
         html__scene_table(&s, m, i, &im);
+        report__html_path_scene(&s, m, i, im.href);   /* its camera paths (path_html.c) */
+    }
     html__gallery(&s, m, &im);
     report_stage_bars(&s, m);   /* where each configuration's cost goes (stage_bar.c) */
     html__timer_and_warnings(&s, m);

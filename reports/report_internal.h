@@ -151,6 +151,32 @@ int report__tied(const dm_counter_result *a, const dm_counter_result *b);
  * timed configuration. */
 void report__svg_scene(dm_str *s, const report_model *m, size_t si);
 
+/* The frame-time plot of row r on a camera path (svg_chart.c): x = frame
+ * 0…F−1, y = r->path_ms (the per-frame medians, also in the median line's
+ * data-ms attribute) with the replays' min–max band, p50 and p99 as lines,
+ * the stutters as marked points.  Nothing for a still row or one without a
+ * single frame time. */
+void report__svg_path(dm_str *s, const report_model_row *r);
+
+/* The quality plot of row r along its camera path (svg_chart.c): FLIP mean
+ * and 1 − SSIM at the reference frames 0, K, 2K, … (the values themselves,
+ * SSIM not subtracted, in the lines' data-flip and data-ssim attributes),
+ * popping marked at its frame.  Nothing without computed path quality. */
+void report__svg_path_quality(dm_str *s, const report_model_row *r);
+
+/* Scene si's second front (svg_chart.c): temporal error mean against p99
+ * frame time of its path configurations, the front's members filled and
+ * joined (report_model_scene.motion_front), each point's technique beside
+ * it.  Nothing with fewer than two such configurations. */
+void report__svg_motion_front(dm_str *s, const report_model *m, size_t si);
+
+/* "Along the path" of scene si in report.html (path_html.c): per
+ * configuration on a camera path, its figures (with its quality along the
+ * path where computed: temporal error, popping, a link to the temporal
+ * error map prefixed by href) and its frame-time and quality plots.
+ * Nothing for a scene without one, so a still run's page is unchanged. */
+void report__html_path_scene(dm_str *s, const report_model *m, size_t si, const char *href);
+
 /* Charts (chart.c): inline SVG appended to an HTML document, each in a
  * <div class="chart" aria-label="title">.  Scene si's PLplot charts from the
  * model: time vs tess_level per mesh and technique, and the counter

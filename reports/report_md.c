@@ -3,7 +3,8 @@
  * writer table (report_write.c): labels, times, fronts, warnings and the
  * published section come from the report model (report_model.h); the
  * answer and its counters read the model too (answer.c); "Along the path"
- * reads each configuration's path series; failures, left-out
+ * reads each configuration's path series, "Quality along the path" its
+ * path quality; failures, left-out
  * configurations and the proxy section read the run. */
 #include "reports/report.h"
 #include "reports/report_internal.h"
@@ -153,6 +154,58 @@ static void report_md__path_section(dm_str *s, const report_model *m)
             report_md__path_row(s, &m->rows[i]);
 }
 
+/* A figure of quality along the path at four significant digits, or
+ * "unavailable". */
+static void report_md__q(dm_str *s, double v)
+{
+    if (isfinite(v))
+        dm_str_printf(s, " %.4g |", v);
+    else
+        dm_str_cat(s, " unavailable |");
+}
+
+/* "Quality along the path": per configuration that asked for it, its
+ * temporal error, popping and map, or why they are missing
+ * (docs/motion.md); nothing in a run where none asked. */
+static void report_md__path_quality_section(dm_str *s, const report_model *m)
+{
+    size_t n = 0;
+    for (size_t i = 0; i < m->n_rows; i++)
+        n += m->rows[i].config->path_quality.present || m->rows[i].config->path_quality.reason;
+    if (!n)
+        return;
+    dm_str_cat(s, "\n## Quality along the path\n\nTemporal error: how much the frame-to-frame change of the "
+                  "technique differs from the reference's, per pixel and step between reference frames "
+                  "(mean and 99th percentile); popping: the largest jump of FLIP between consecutive "
+                  "reference frames, at the frame it lands on.\n\n"
+                  "| configuration | reference frames | temporal error mean | temporal error p99 | popping | "
+                  "temporal error map | key |\n|---|---|---|---|---|---|---|\n");
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const report_model_row *r = &m->rows[i];
+        const dm_path_quality *q = &r->config->path_quality;
+        if (!q->present && !q->reason)
+            continue;
+        dm_str_cat(s, "| ");
+        report_md__cell(s, r->name);
+        if (!q->present) {
+            dm_str_cat(s, " | unavailable: ");
+            report_md__cell(s, q->reason);
+            dm_str_printf(s, " | | | | | `%s` |\n", r->config->key);
+            continue;
+        }
+        dm_str_printf(s, " | %zu (every %ld of %ld) |", q->n, q->every, q->frames);
+        report_md__q(s, q->temporal_mean);
+        report_md__q(s, q->temporal_p99);
+        if (isfinite(q->popping) && q->popping_frame >= 0)
+            dm_str_printf(s, " %.4g (frame %ld) |", q->popping, q->popping_frame);
+        else
+            dm_str_cat(s, " unavailable |");
+        dm_str_cat(s, " ");
+        report_md__cell(s, q->img_temporal ? q->img_temporal : "none");
+        dm_str_printf(s, " | `%s` |\n", r->config->key);
+    }
+}
+
 /* Noisy configurations listed this many to a line. */
 #define NOISY_PER_LINE 4
 
@@ -276,6 +329,7 @@ int report__write_md(const report_model *m, const report_desc *d, const char *pa
     for (size_t i = 0; i < m->n_scenes; i++)
         report_md__scene_table(&s, m, &m->scenes[i]);
     report_md__path_section(&s, m);
+    report_md__path_quality_section(&s, m);
     report_md__failures(&s, run);
     dm_str_cat(&s, m->published_md);
     report_md__proxy_section(&s, run);

@@ -22,6 +22,75 @@ static const report_trend *report_model__trend(const report_trends *t, const cha
     return NULL;
 }
 
+static int report_model__cmp(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The per-frame median, min and max over the replays of r's camera path,
+ * in ms (report_model_row.path_ms); nothing for a still configuration. */
+static void report_model__path(report_model_row *r)
+{
+    const dm_path_series *p = &r->config->path;
+    if (!p->frames || !p->replays || !p->frame_ns)
+        return;
+    r->path_ms = dm_xcalloc(p->frames, sizeof *r->path_ms);
+    r->path_lo_ms = dm_xcalloc(p->frames, sizeof *r->path_lo_ms);
+    r->path_hi_ms = dm_xcalloc(p->frames, sizeof *r->path_hi_ms);
+    double *v = dm_xcalloc(p->replays, sizeof *v);
+    for (size_t f = 0; f < p->frames; f++) {
+        size_t n = 0;
+        for (size_t k = 0; k < p->replays; k++) {
+            double t = p->frame_ns[k * p->frames + f];
+            if (isfinite(t))
+                v[n++] = t / 1e6;
+        }
+        qsort(v, n, sizeof *v, report_model__cmp);
+        r->path_ms[f] = !n ? NAN : n % 2 ? v[n / 2] : (v[n / 2 - 1] + v[n / 2]) / 2;
+        r->path_lo_ms[f] = n ? v[0] : NAN;
+        r->path_hi_ms[f] = n ? v[n - 1] : NAN;
+    }
+    free(v);
+}
+
+/* 1 when row r has both figures of the second front. */
+static int report_model__in_motion(const report_model_row *r)
+{
+    const dm_config_result *c = r->config;
+    return c->path.frames > 0 && isfinite(c->path.p99) && c->path_quality.present &&
+           isfinite(c->path_quality.temporal_mean);
+}
+
+/* Scene si's second front (report_model_scene.motion_front) and the
+ * steadiest member within its budget; after the rows. */
+static void report_model__motion(report_model *m, size_t si)
+{
+    report_model_scene *sc = &m->scenes[si];
+    sc->motion_pick = RECOMMEND_NONE;
+    size_t *idx = dm_xcalloc(m->n_rows + 1, sizeof *idx), *front = dm_xcalloc(m->n_rows + 1, sizeof *front);
+    recommend_point *p = dm_xcalloc(m->n_rows + 1, sizeof *p);
+    size_t n = 0;
+    for (size_t i = 0; i < m->n_rows; i++)
+        if (m->rows[i].scene == si && report_model__in_motion(&m->rows[i])) {
+            const dm_config_result *c = m->rows[i].config;
+            p[n] = (recommend_point){.time = c->path.p99, .ci_lo = NAN, .ci_hi = NAN,
+                                     .error = c->path_quality.temporal_mean, .family = m->rows[i].family};
+            idx[n++] = i;
+        }
+    sc->n_motion_points = n;
+    sc->n_motion_front = n ? recommend_front(p, n, 0, front) : 0;
+    sc->motion_front = dm_xcalloc(sc->n_motion_front + 1, sizeof *sc->motion_front);
+    for (size_t k = 0; k < sc->n_motion_front; k++) {
+        sc->motion_front[k] = idx[front[k]];
+        if (p[front[k]].time <= sc->rec.budget)   /* fastest first: the last within is the steadiest */
+            sc->motion_pick = idx[front[k]];
+    }
+    free(p);
+    free(front);
+    free(idx);
+}
+
 /* The corrected figures of a row's frame time, in the raw ones' words. */
 static void report_model__row_corrected(report_model_row *r)
 {
@@ -195,6 +264,7 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     for (size_t i = 0; i < m->n_rows; i++) {
         const dm_config_result *c = &run->configs[i];
         report_model__row(m, &m->rows[i], c);
+        report_model__path(&m->rows[i]);
         m->n_path_rows += c->path.frames > 0;
         for (size_t k = 0; k < m->n_scenes; k++)
             if (strcmp(c->scene ? c->scene : "", names[k]) == 0)
@@ -204,6 +274,8 @@ int report_model_build(report_model *m, const dm_run_result *run, const report_d
     for (size_t k = 0; k < m->n_scenes; k++)
         for (size_t f = 0; f < m->scenes[k].n_front; f++)
             m->rows[m->scenes[k].front[f]].front = 1;
+    for (size_t k = 0; k < m->n_scenes; k++)
+        report_model__motion(m, k);
     m->n_params = report__param_names(run, NULL, &m->params);
     m->n_timed = report__counter_names(run, NULL, REPORT__TIMED, &m->timed);
     m->n_det = report__counter_names(run, NULL, REPORT__DETERMINISTIC, &m->det);
@@ -251,6 +323,9 @@ void report_model_free(report_model *m)
         free(r->corr_ms_text);
         free(r->corr_ci_text);
         free(r->corr_time_ci_text);
+        free(r->path_ms);
+        free(r->path_lo_ms);
+        free(r->path_hi_ms);
     }
     free(m->rows);
     for (size_t i = 0; m->scenes && i < m->n_scenes; i++) {
@@ -264,6 +339,7 @@ void report_model_free(report_model *m)
         free(sc->det);
         breakdown_free(&sc->breakdown);
         free(sc->disagree);
+        free(sc->motion_front);
     }
     free(m->scenes);
     free(m->params);

@@ -79,6 +79,12 @@ typedef struct report_model_row {
     char *corr_ms_text;         /* corrected median in ms; NULL when not corrected */
     char *corr_ci_text;         /* its CI as ci_text; NULL when not corrected */
     char *corr_time_ci_text;    /* "4.40 ms [4.35, 4.45]"; NULL when not corrected */
+    /* Camera path (docs/motion.md): per frame 0…F−1 along the path
+     * (F = config->path.frames), the median of its replays' finite times
+     * (as models/frame_series takes its percentiles over) and their min
+     * and max, in ms; NaN where no replay has a time.  NULL for a still
+     * configuration.  report.html's frame-time plot draws them. */
+    double *path_ms, *path_lo_ms, *path_hi_ms;
 } report_model_row;
 
 /* One scene of the run. */
@@ -115,6 +121,15 @@ typedef struct report_model_scene {
     int has_rec_corr;     /* 1: rec_corr holds the recommendation on the corrected figures */
     recommend_result rec_corr;
     char *disagree;       /* report_answer_disagree's sentence; NULL when raw and corrected agree */
+    /* Camera paths (docs/motion.md, "In the report"): the second front,
+     * temporal error mean against p99 frame time, over the scene's path
+     * rows with both (n_motion_points); its members (config indexes,
+     * fastest p99 first, exact errors: no epsilon) and the steadiest of
+     * them whose p99 is within rec.budget (RECOMMEND_NONE: none fits) */
+    size_t n_motion_points;
+    size_t *motion_front;
+    size_t n_motion_front;
+    size_t motion_pick;
 } report_model_scene;
 
 typedef struct report_model {

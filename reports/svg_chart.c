@@ -10,7 +10,10 @@
  *  - time per configuration: one horizontal bar per configuration of the
  *    scene (never pooled across scenes), fastest first, with its CI whisker
  *    and its full label left of the bar (the SVG is as wide as the longest
- *    label needs).
+ *    label needs);
+ *  - frame time along a camera path, per configuration on one: the
+ *    per-frame median of the replays against the frame index, the replays'
+ *    min–max as a band, p50 and p99 as dashed lines, the stutters marked.
  * Both read the report model only: the scene's rows and front, each row's
  * label, frame time, texts, error and family.
  */
@@ -358,6 +361,188 @@ static void svg_chart__bars(dm_str *s, const report_model *m, const report_model
     }
     dm_str_cat(s, "</svg></div>\n");
     free(rows);
+}
+
+/* A move (M) or line (L) to frame f's value v of a path plot, or nothing
+ * for a NaN (the next finite value starts a new segment: *pen 0). */
+static void svg_chart__path_to(dm_str *s, svg_axis ax, svg_axis ay, size_t f, double v, int *pen)
+{
+    if (!isfinite(v)) {
+        *pen = 0;
+        return;
+    }
+    dm_str_printf(s, "%s%.1f,%.1f ", *pen ? "L" : "M", svg_chart__x(ax, (double)f), svg_chart__y(ay, v));
+    *pen = 1;
+}
+
+/* A horizontal line across the plot at v ms with its name and value at
+ * the right end ("p99 3.06"). */
+static void svg_chart__path_level(dm_str *s, svg_axis ax, svg_axis ay, const char *name, double v,
+                                  const char *colour)
+{
+    if (!isfinite(v))
+        return;
+    double y = svg_chart__y(ay, v);
+    dm_str_printf(s, "<line class=\"path-%s\" x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" "
+                     "stroke=\"%s\" stroke-dasharray=\"5 3\"/><text x=\"%.1f\" y=\"%.1f\" "
+                     "text-anchor=\"end\" fill=\"%s\">%s %.3g</text>",
+                  name, svg_chart__x(ax, ax.lo), svg_chart__x(ax, ax.hi), y, y, colour,
+                  svg_chart__x(ax, ax.hi) - 3, y - 3, colour, name, v);
+}
+
+void report__svg_path(dm_str *s, const report_model_row *r)
+{
+    const dm_path_series *p = &r->config->path;
+    if (!r->path_ms || !p->frames)
+        return;
+    double hi = p->p99 / 1e6;
+    for (size_t f = 0; f < p->frames; f++)
+        if (isfinite(r->path_hi_ms[f]) && !(r->path_hi_ms[f] <= hi))
+            hi = r->path_hi_ms[f];
+    if (!(hi > 0))
+        return;   /* no frame has a time */
+    svg_axis ax = {0, p->frames > 1 ? (double)(p->frames - 1) : 1, 0}, ay = {0, hi * 1.08, 0};
+    dm_str title = {0};
+    dm_str_printf(&title, "Frame time along the path: %s", r->label);
+    svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
+    dm_str_free(&title);
+    svg_chart__axes(s, ax, ay, "frame along the path", "frame time, ms");
+    /* the replays' min–max band: up along the max, back along the min */
+    dm_str_cat(s, "<path class=\"path-band\" fill=\"#c9dcf0\" stroke=\"none\" d=\"");
+    int pen = 0;
+    for (size_t f = 0; f < p->frames; f++)
+        svg_chart__path_to(s, ax, ay, f, r->path_hi_ms[f], &pen);
+    for (size_t f = p->frames; f-- > 0;)
+        svg_chart__path_to(s, ax, ay, f, r->path_lo_ms[f], &pen);
+    dm_str_cat(s, "Z\"/>");
+    svg_chart__path_level(s, ax, ay, "p50", p->p50 / 1e6, "#2a7a2a");
+    svg_chart__path_level(s, ax, ay, "p99", p->p99 / 1e6, "#b85c00");
+    /* the per-frame medians, their values also as data (the tests read them) */
+    dm_str_cat(s, "<path class=\"path-median\" fill=\"none\" stroke=\"#1f4e8c\" stroke-width=\"1.5\" "
+                  "data-ms=\"");
+    for (size_t f = 0; f < p->frames; f++)
+        dm_str_printf(s, f ? " %.9g" : "%.9g", r->path_ms[f]);
+    dm_str_cat(s, "\" d=\"");
+    pen = 0;
+    for (size_t f = 0; f < p->frames; f++)
+        svg_chart__path_to(s, ax, ay, f, r->path_ms[f], &pen);
+    dm_str_cat(s, "\"/>");
+    for (size_t i = 0; i < p->n_stutters; i++) {
+        long f = p->stutter_at[i];
+        if (f < 0 || (size_t)f >= p->frames || !isfinite(r->path_ms[f]))
+            continue;
+        dm_str_printf(s, "<circle class=\"path-stutter\" data-frame=\"%ld\" cx=\"%.1f\" cy=\"%.1f\" r=\"4\" "
+                         "fill=\"#c0392b\"><title>frame %ld: %.3f ms, a stutter (over 2 × p50)</title></circle>",
+                      f, svg_chart__x(ax, (double)f), svg_chart__y(ay, r->path_ms[f]), f, r->path_ms[f]);
+    }
+    dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#555\">line: median of %zu "
+                     "replay%s; band: their min–max; red: stutters</text></svg></div>\n",
+                  SVG_W - SVG_R, SVG_T - 8, p->replays, p->replays == 1 ? "" : "s");
+}
+
+/* One series of the quality plot: a line through the finite values of
+ * err(v[i]) at frames i × every, a dot on each; v itself as data (name). */
+static void svg_chart__quality_series(dm_str *s, svg_axis ax, svg_axis ay, const dm_path_quality *q,
+                                      const double *v, int one_minus, const char *name, const char *colour)
+{
+    dm_str_printf(s, "<path class=\"path-%s\" fill=\"none\" stroke=\"%s\" stroke-width=\"1.5\" data-%s=\"",
+                  name, colour, name);
+    for (size_t i = 0; i < q->n; i++)
+        dm_str_printf(s, i ? " %.9g" : "%.9g", v[i]);
+    dm_str_cat(s, "\" d=\"");
+    int pen = 0;
+    for (size_t i = 0; i < q->n; i++)
+        svg_chart__path_to(s, ax, ay, i * (size_t)q->every, one_minus ? 1 - v[i] : v[i], &pen);
+    dm_str_cat(s, "\"/>");
+    for (size_t i = 0; i < q->n; i++)
+        if (isfinite(v[i]))
+            dm_str_printf(s, "<circle cx=\"%.1f\" cy=\"%.1f\" r=\"2.5\" fill=\"%s\"><title>frame %zu: %s "
+                             "%.4g</title></circle>", svg_chart__x(ax, (double)(i * (size_t)q->every)),
+                          svg_chart__y(ay, one_minus ? 1 - v[i] : v[i]), colour, i * (size_t)q->every,
+                          one_minus ? "SSIM" : "FLIP", v[i]);
+}
+
+void report__svg_path_quality(dm_str *s, const report_model_row *r)
+{
+    const dm_path_quality *q = &r->config->path_quality;
+    if (!q->present || !q->n || q->every < 1 || q->frames < 1)
+        return;
+    double hi = 0;
+    for (size_t i = 0; i < q->n; i++) {
+        if (isfinite(q->flip[i]) && q->flip[i] > hi)
+            hi = q->flip[i];
+        if (isfinite(q->ssim[i]) && 1 - q->ssim[i] > hi)
+            hi = 1 - q->ssim[i];
+    }
+    svg_axis ax = {0, q->frames > 1 ? (double)(q->frames - 1) : 1, 0}, ay = {0, hi > 0 ? hi * 1.1 : 1, 0};
+    dm_str title = {0};
+    dm_str_printf(&title, "Error at the reference frames: %s", r->label);
+    svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
+    dm_str_free(&title);
+    svg_chart__axes(s, ax, ay, "frame along the path", "error against the reference");
+    if (isfinite(q->popping) && q->popping_frame >= 0 && q->popping_frame < q->frames) {
+        double x = svg_chart__x(ax, (double)q->popping_frame);
+        dm_str_printf(s, "<line class=\"path-popping\" x1=\"%.1f\" x2=\"%.1f\" y1=\"%.1f\" y2=\"%.1f\" "
+                         "stroke=\"#c0392b\" stroke-dasharray=\"4 3\"/><text x=\"%.1f\" y=\"%.1f\" "
+                         "text-anchor=\"%s\" fill=\"#c0392b\">popping %.3g (frame %ld)</text>",
+                      x, x, SVG_T, SVG_H - SVG_B, x + (x > SVG_W / 2 ? -4 : 4), SVG_T + 12,
+                      x > SVG_W / 2 ? "end" : "start", q->popping, q->popping_frame);
+    }
+    svg_chart__quality_series(s, ax, ay, q, q->flip, 0, "flip", "#1f4e8c");
+    svg_chart__quality_series(s, ax, ay, q, q->ssim, 1, "ssim", "#2a7a2a");
+    dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#555\"><tspan fill=\"#1f4e8c\">"
+                     "FLIP mean</tspan> and <tspan fill=\"#2a7a2a\">1 − SSIM</tspan> at the reference "
+                     "frames (every %ld)</text></svg></div>\n", SVG_W - SVG_R, SVG_T - 8, q->every);
+}
+
+void report__svg_motion_front(dm_str *s, const report_model *m, size_t si)
+{
+    const report_model_scene *sc = &m->scenes[si];
+    if (sc->n_motion_points < 2)
+        return;
+    double tlo = INFINITY, thi = 0, ehi = 0;
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const dm_config_result *c = m->rows[i].config;
+        if (m->rows[i].scene != si || !c->path.frames || !c->path_quality.present ||
+            !isfinite(c->path.p99) || !isfinite(c->path_quality.temporal_mean))
+            continue;
+        tlo = fmin(tlo, c->path.p99 / 1e6);
+        thi = fmax(thi, c->path.p99 / 1e6);
+        ehi = fmax(ehi, c->path_quality.temporal_mean);
+    }
+    double pad = (thi - tlo) * 0.08 + thi * 0.02;
+    svg_axis ax = {fmax(0, tlo - pad), thi + pad * 3, 0}, ay = {0, ehi > 0 ? ehi * 1.1 : 1, 0};
+    dm_str title = {0};
+    dm_str_printf(&title, "In motion: temporal error vs p99 frame time: %s", sc->label);
+    svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
+    dm_str_free(&title);
+    svg_chart__axes(s, ax, ay, "p99 frame time along the path, ms", "temporal error, mean");
+    dm_str_cat(s, "<polyline class=\"motion-front\" fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"");
+    for (size_t k = 0; k < sc->n_motion_front; k++) {
+        const dm_config_result *c = m->rows[sc->motion_front[k]].config;
+        dm_str_printf(s, "%.1f,%.1f ", svg_chart__x(ax, c->path.p99 / 1e6), svg_chart__y(ay, c->path_quality.temporal_mean));
+    }
+    dm_str_cat(s, "\"/>");
+    for (size_t i = 0; i < m->n_rows; i++) {
+        const report_model_row *r = &m->rows[i];
+        const dm_config_result *c = r->config;
+        if (r->scene != si || !c->path.frames || !c->path_quality.present || !isfinite(c->path.p99) ||
+            !isfinite(c->path_quality.temporal_mean))
+            continue;
+        int on = 0;
+        for (size_t k = 0; k < sc->n_motion_front; k++)
+            on |= sc->motion_front[k] == i;
+        double x = svg_chart__x(ax, c->path.p99 / 1e6), y = svg_chart__y(ay, c->path_quality.temporal_mean);
+        dm_str_printf(s, "<g class=\"motion-point\"><title>");
+        dm_str_cat_html(s, r->label);
+        dm_str_printf(s, ": p99 %.3f ms, temporal error %.4g</title><circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" "
+                         "fill=\"%s\" stroke=\"#1f4e8c\"/><text x=\"%.1f\" y=\"%.1f\">",
+                      c->path.p99 / 1e6, c->path_quality.temporal_mean, x, y, on ? "#1f4e8c" : "#fff", x + 6, y - 5);
+        dm_str_cat_html(s, r->technique);
+        dm_str_cat(s, "</text></g>");
+    }
+    dm_str_printf(s, "<text x=\"%.1f\" y=\"%.1f\" text-anchor=\"end\" fill=\"#555\">filled: on the "
+                     "front (lower and left is better)</text></svg></div>\n", SVG_W - SVG_R, SVG_T - 8);
 }
 
 void report__svg_scene(dm_str *s, const report_model *m, size_t si)

@@ -4,6 +4,7 @@
 #include "core/dm_error.h"
 #include "core/dm_proc.h"
 #include "counters/counters.h"
+#include "run/path_timing.h"
 #include "techniques/user_technique.h"
 
 #include <dirent.h>
@@ -374,8 +375,22 @@ static void cg__fail(cg_state *g, int i, pid_t pid, int status)
     free(vg);
 }
 
-/* Reads every dump file of the work directory into out[].samples. */
-static void cg__read_dumps(cg_state *g, int frames)
+int callgrind_path_frames(const plan_config *c, int *step)
+{
+    size_t f = path_timing_frames(c);
+    if (!f) {
+        *step = 1;
+        return CALLGRIND_FRAMES;
+    }
+    size_t k = (f + CALLGRIND_PATH_FRAMES - 1) / CALLGRIND_PATH_FRAMES;
+    *step = (int)k;
+    return (int)((f + k - 1) / k);
+}
+
+/* Reads every dump file of the work directory into out[].samples, per
+ * frame: divided by the frames its configuration counted
+ * (callgrind_path_frames). */
+static void cg__read_dumps(cg_state *g)
 {
     DIR *dir = opendir(g->d->work_dir);
     struct dirent *e;
@@ -400,6 +415,7 @@ static void cg__read_dumps(cg_state *g, int frames)
                 i = w >= 0 ? cg__index(g, name) : -1;
             }
             if (i >= 0 && s >= 0 && s < CALLGRIND_SAMPLES) {
+                int step, frames = callgrind_path_frames(&g->cs[i], &step);
                 g->out[i].window[w][s] = (totals - alloc) / frames;   /* the allocator left out */
                 if (w == CALLGRIND_FULL) {
                     g->out[i].samples[s] = (totals - alloc) / frames;
@@ -661,7 +677,7 @@ int callgrind_run(const callgrind_desc *d, const plan_config *cs, size_t n, call
     free(gs);
     for (size_t i = 0; i < n; i++)
         snprintf(out[i].key, sizeof out[i].key, "%s", cs[i].key);
-    cg__read_dumps(&g, CALLGRIND_FRAMES);
+    cg__read_dumps(&g);
     cg__settle(&g);
     free(g.tried);
     free(g.done);

@@ -102,4 +102,12 @@ void callgrind_counts_free(callgrind_count *c, size_t n);
  * naming the key and both counts; NULL when they agree or c is not counted. */
 char *callgrind_disagreement(const callgrind_count *c);
 
+/* The frames the Instructions pass counts of configuration c, a sample:
+ * CALLGRIND_FRAMES for a still one; for one on a camera path of F frames
+ * (run/path_timing.h) frames 0, k, 2k, ... below F with
+ * k = ceil(F / CALLGRIND_PATH_FRAMES) (1 when F is at most that), so its
+ * Instructions is the mean frame of the path, or of every k-th frame.
+ * Returns how many frames, their step in *step. */
+int callgrind_path_frames(const plan_config *c, int *step);
+
 #endif

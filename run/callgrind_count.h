@@ -17,6 +17,12 @@
  * ~300x slower frames under Valgrind, every frame not counted is cost. */
 #define CALLGRIND_FRAMES 1
 #define CALLGRIND_WARMUP_FRAMES 1
+/* A configuration on a camera path counts one replay of its path instead
+ * (its frames differ: a dolly changes the view every frame), at most this
+ * many frames of it: every k-th frame, k = ceil(F / CALLGRIND_PATH_FRAMES),
+ * so a path costs at most this many still configurations under Valgrind
+ * (callgrind_path_frames; docs/counters.md, "On a camera path"). */
+#define CALLGRIND_PATH_FRAMES 16
 /* Samples whose counts differ by more than this relative amount are a
  * warning of the run (results.json, report) and in the configuration's log.
  * Within one child they agreed to <= 3.1e-5 everywhere measured; counts of

@@ -90,6 +90,14 @@ void mscene_frames(mscene *m, mconf *c, int frames)
     }
 }
 
+void mscene_frame_at(mscene *m, mconf *c, int frame)
+{
+    if (mscene__bind_target(m, c) != 0)
+        return;
+    render_set_frame(m->r, c->item, (uint64_t)frame);
+    render_draw(m->r, c->item, c->pc->width, c->pc->height);
+}
+
 /* Draws frames 0..frames-1 of c's item, each finished (glFinish) and timed
  * on its own with the clock WallTime reads, into c->frame_ns: a path's
  * frames are not spilled into one another. */

@@ -94,6 +94,10 @@ void mscene_teardown(mscene *m, mconf *cs, size_t n);
 void mscene_fail(mconf *c, const char *reason);
 /* Draws `frames` frames of c's item into the scene's target. */
 void mscene_frames(mscene *m, mconf *c, int frames);
+/* Draws frame `frame` of c's item (its camera path's view) into the
+ * scene's target, unfinished: the Instructions pass counts a path's frames
+ * one at a time, each with its glFinish (run/count_child.c). */
+void mscene_frame_at(mscene *m, mconf *c, int frame);
 /* One glFinish-fenced sample of `frames` frames without counters: ns/frame. */
 double mscene_plain_sample(mscene *m, mconf *c, int frames);
 /* One counter session over names[0..n), `frames` frames a pass: values[i]

@@ -2,6 +2,7 @@
 #include "protocol.h"
 #include "models/stats.h"
 
+#include <limits.h>
 #include <math.h>
 #include <stdlib.h>
 
@@ -234,13 +235,22 @@ const char *protocol_extra_why_name(protocol_extra_why w)
  * 12 samples of K frames plus 20 frames. */
 double protocol_predict_s(const protocol_desc *d, double frame_ns)
 {
-    double sample = frame_ns * d->frames_per_sample;
-    if (sample < d->min_sample_ms * 1e6)
+    int path = d->path_frames > 0;
+    double sample = frame_ns * (path ? d->path_frames : d->frames_per_sample);
+    if (!path && sample < d->min_sample_ms * 1e6)
         sample = d->min_sample_ms * 1e6;
-    double sampling = sample * d->samples_max / 1e9;
-    if (sampling > d->max_seconds)
-        sampling = d->max_seconds;
-    return sampling + frame_ns * (d->warmup_frames + 12.0 * d->frames_per_sample + 20) / 1e9;
+    /* the stop rule: after the sample that takes the sampling past
+     * max_seconds, but not before samples_min nor after samples_max */
+    double n = sample > 0 ? floor(d->max_seconds * 1e9 / sample) + 1 : d->samples_max;
+    n = n < d->samples_min ? d->samples_min : n > d->samples_max ? d->samples_max : n;
+    double sampling = n * sample;
+    double untimed = d->warmup_frames + 12.0 * d->frames_per_sample + 20 + (path ? d->path_frames : 0);
+    return (sampling + frame_ns * untimed) / 1e9;
+}
+
+void protocol_desc_on_path(protocol_desc *d, size_t frames)
+{
+    d->path_frames = frames > INT_MAX ? INT_MAX : (int)frames;   /* the axis stops at 100 000 */
 }
 
 double protocol_eta_s(double prior_s, size_t done, double elapsed_s, size_t left, size_t total)

@@ -41,6 +41,8 @@ typedef struct protocol_desc {
     int samples_min, samples_max;
     double target_ci;        /* stop when the median's 95 % CI half-width / median <= this */
     double max_seconds;      /* stop (after samples_min) when sampling took longer */
+    int path_frames;         /* F of a configuration on a camera path: a sample is one
+                                replay of exactly F frames (run/path_timing.h); 0 = still */
     uint64_t seed;           /* of the bootstrap CI for fewer than 6 samples */
     double warmup_agree;     /* 0 = PROTOCOL_WARMUP_AGREE */
     int warmup_tries;        /* 0 = PROTOCOL_WARMUP_TRIES */
@@ -160,9 +162,19 @@ const char *protocol_extra_why_name(protocol_extra_why w);
 /* ---- --budget ------------------------------------------------------------------ */
 
 /* Seconds to measure a configuration whose frame takes frame_ns: warm-up
- * plus samples_max samples, each at least K frames and min_sample_ms long,
- * the sampling capped at max_seconds, plus the image renders. */
+ * plus at most samples_max samples, each at least K frames and
+ * min_sample_ms long, plus the image renders.  The sampling stops after
+ * the sample that takes it past max_seconds, but not before samples_min
+ * samples (protocol_decide).  On a
+ * camera path (d->path_frames = F > 0) a sample is one replay of exactly F
+ * frames, whatever K and min_sample_ms, and the untimed replay before the
+ * first sample adds F frames. */
 double protocol_predict_s(const protocol_desc *d, double frame_ns);
+
+/* d for a configuration on a camera path of `frames` frames (F; 0 for a
+ * still configuration, run/path_timing.h: path_timing_frames).  Not capped
+ * at max_frames: a replay draws the whole path. */
+void protocol_desc_on_path(protocol_desc *d, size_t frames);
 
 /* ---- progress ------------------------------------------------------------------ */
 

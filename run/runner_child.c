@@ -10,6 +10,7 @@
 #include "run/gl_context.h"
 #include "run/inputs.h"
 #include "run/measure.h"
+#include "run/path_timing.h"
 #include "run/probe.h"
 #include "run/protocol.h"
 #include "run/trends.h"
@@ -189,6 +190,26 @@ static void runner_child__label(const runner *r, const plan_config *c, dm_str *o
     }
 }
 
+/* The ETA's prior: the mean over the planned configurations of what the
+ * protocol predicts before any frame time is known (protocol_predict_s at
+ * 0 ns: the min_sample_ms floor of the samples).  A path configuration's
+ * sample is one replay of its F frames with no such floor, so it adds 0,
+ * not a still configuration's floor: its cost is known only from the
+ * measured rate. */
+static double runner_child__eta_prior(const runner *r)
+{
+    if (!r->p.n_configs)
+        return 0;
+    double sum = 0;
+    for (size_t i = 0; i < r->p.n_configs; i++) {
+        protocol_desc d;
+        protocol_desc_from_measure(&d, &r->s->measure, 0);
+        protocol_desc_on_path(&d, path_timing_frames(&r->p.configs[i]));
+        sum += protocol_predict_s(&d, 0);
+    }
+    return sum / (double)r->p.n_configs;
+}
+
 /* "  ETA 42s" from the measured progress (run/protocol.h: protocol_eta_s).
  * A scene's configurations finish together after its rounds, so when its
  * first line comes the whole scene is done: the estimate counts the
@@ -202,9 +223,7 @@ static void runner_child__eta(runner *r, char *buf, size_t len)
     size_t done = r->scene_end > r->done ? r->scene_end : r->done;
     r->t_last = now;
     buf[0] = 0;
-    protocol_desc d;
-    protocol_desc_from_measure(&d, &r->s->measure, 0);
-    double left = protocol_eta_s(protocol_predict_s(&d, 0), done, (double)(now - from) / 1e9,
+    double left = protocol_eta_s(runner_child__eta_prior(r), done, (double)(now - from) / 1e9,
                                  r->total > done ? r->total - done : 0, r->total);
     if (isfinite(left))
         snprintf(buf, len, "  ETA %.0fs", left);

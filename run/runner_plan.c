@@ -2,6 +2,7 @@
  * stored cost model, else a pilot frame) and --dry-run (see runner_state.h). */
 #include "run/runner_state.h"
 #include "run/fitting.h"
+#include "run/path_timing.h"
 #include "run/predict.h"
 #include "run/protocol.h"
 #include "reports/report.h"
@@ -16,12 +17,15 @@
 /* Earlier runs searched for a cost model and counters (newest first). */
 #define RUNNER_PLAN__BUDGET_RUNS 16
 
-/* Predicted seconds to measure a configuration from its frame time, as the
- * protocol sees it (run/protocol.h: protocol_predict_s). */
-static double runner_plan__predict(const sweep_measure *m, double frame_ns)
+/* Predicted seconds to measure configuration c (NULL: a still one) from
+ * its frame time, as the protocol sees it (run/protocol.h:
+ * protocol_predict_s; a sample of a path configuration is one replay of
+ * its F frames). */
+static double runner_plan__predict(const sweep_measure *m, const plan_config *c, double frame_ns)
 {
     protocol_desc d;
     protocol_desc_from_measure(&d, m, 0);
+    protocol_desc_on_path(&d, c ? path_timing_frames(c) : 0);
     return protocol_predict_s(&d, frame_ns);
 }
 
@@ -168,7 +172,7 @@ static size_t runner_plan__budget_by_model(runner *r, runner_plan__known *b, pla
     for (size_t i = 0; i < r->p.n_configs; i++) {
         const plan_config *c = &r->p.configs[i];
         const dm_fit_result *fit;
-        double ns = runner_plan__model_frame(b, c, &fit), t = runner_plan__predict(&r->s->measure, ns);
+        double ns = runner_plan__model_frame(b, c, &fit), t = runner_plan__predict(&r->s->measure, c, ns);
         if (!fit) {
             pilot[n_pilot++] = *c;
             continue;
@@ -222,7 +226,7 @@ static void runner_plan__budget_pilot(runner *r, runner_plan__known *b, const pl
             dm_log(DM_LOG_DEBUG, "--budget %s: the instruction models cannot predict it: %s", key,
                    pwhy.len ? dm_str_get(&pwhy) : "no WallTime fit");
         dm_str_free(&pwhy);
-        double frame = by_instr ? pr.wall_ns : ns, t = runner_plan__predict(&r->s->measure, frame);
+        double frame = by_instr ? pr.wall_ns : ns, t = runner_plan__predict(&r->s->measure, pc, frame);
         b->by_instr += by_instr;
         b->by_pilot += !by_instr;
         if (isfinite(frame) && t > r->o->budget_s) {
@@ -318,7 +322,7 @@ static int runner_plan__dry_config(runner *r, runner_plan__known *b, const plan_
         printf("  estimate: none (no stored model predicts it)\n");
         return 0;
     }
-    double t = runner_plan__predict(&r->s->measure, ns);
+    double t = runner_plan__predict(&r->s->measure, c, ns);
     *total += t;
     printf("  estimate: %.3g ms/frame, %.2g s (model %s)\n", ns / 1e6, t, fit->model);
     return 1;

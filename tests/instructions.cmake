@@ -85,6 +85,13 @@ add_test(NAME test_instructions_uber
 set_tests_properties(test_instructions_uber PROPERTIES TIMEOUT 1800 FIXTURES_REQUIRED ci_gate_run
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
 
+# A path configuration's Instructions: the mean frame of its replay, not
+# its frame 0 (instructions/path.sh).
+add_test(NAME test_instructions_path
+  COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/path.sh)
+set_tests_properties(test_instructions_path PROPERTIES TIMEOUT 1800
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
+
 # Instructions repeat for every technique: three runs of a compact matrix
 # (tests/instructions/repeat.yaml), two from empty caches and one warm, in
 # other orders, agree within 0.01 % (docs/counters.md, "Repeatability"):

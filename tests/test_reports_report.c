@@ -149,7 +149,10 @@ static void test_json_path(void **state)
     tc = test_slurp(csv);
     tm = test_slurp(md);
     assert_non_null(strstr(tc, ",path_p99_ms,"));
-    assert_non_null(strstr(tc, ",3.06,3.1,322.580645,1\r\n"));   /* p99, 1 % low ms and fps, stutters */
+    /* p99, 1 % low ms and fps, stutters; no quality along the path: empty */
+    assert_non_null(strstr(tc, ",3.06,3.1,322.580645,1,,,,\r\n"));
+    assert_non_null(strstr(tc, ",path_stutters,path_temporal_error_mean,path_temporal_error_p99,path_popping,"
+                               "path_popping_frame\r\n"));
     assert_non_null(strstr(tm, "## Along the path"));
     assert_non_null(strstr(tm, "| 3 × 2 | 0.171 | 2.900 | 3.060 | 3.100 (323 fps) | 1 (frame 1) | "
                                "unknown (one replay) |"));
@@ -1049,6 +1052,208 @@ static char *html_of(const dm_run_result *run, const char *path)
     return test_slurp(path);
 }
 
+/* The numbers of an attribute name="a b c" after at, into v (room for n);
+ * how many. */
+static size_t attr_numbers(const char *at, const char *name, double *v, size_t n)
+{
+    char *key = dm_xasprintf("%s=\"", name);
+    const char *q = strstr(at, key);
+    size_t k = 0;
+    assert_non_null(q);
+    q += strlen(key);
+    free(key);
+    while (*q != '"' && k < n) {
+        char *end;
+        v[k++] = strtod(q, &end);
+        assert_true(end > q);
+        q = end;
+    }
+    return k;
+}
+
+/* report.html along a camera path: a hand-made configuration of 3 frames ×
+ * 2 replays with one time missing gets the scene's "Along the path" table
+ * with its figures and a frame-time plot whose points are the per-frame
+ * medians of its replays (computed here: (1.0 + 1/3) / 2, 3.1 alone, (1.1 +
+ * 1.3) / 2 ms), the replays' min-max band, p50 and p99 lines and its stutter
+ * at frame 1; a still run's page has none of them. */
+static void test_html_path(void **state)
+{
+    (void)state;
+    char dir[] = "/tmp/dm_reports_hpath_XXXXXX";
+    assert_non_null(mkdtemp(dir));
+    char *path = dm_xasprintf("%s/report.html", dir);
+    dm_run_result run;
+    fixture_run(&run);
+    char *still = html_of(&run, path);
+    assert_null(strstr(still, "Along the path"));
+    assert_null(strstr(still, "path-median"));
+    free(still);
+    dm_path_series *ps = &run.configs[0].path;
+    static const double ns[] = {1.0e6, 3.1e6, 1.1e6, 1.0e6 / 3, NAN, 1.3e6};
+    *ps = (dm_path_series){.frames = 3, .replays = 2, .p50 = 1.2e6, .p95 = 2.89e6, .p99 = 3.058e6,
+                           .low1_ns = 3.1e6, .low1_fps = 1e9 / 3.1e6, .n_stutters = 1,
+                           .replay_spread = 0.4, .noisy = 1};
+    ps->frame_ns = dm_xmalloc(sizeof ns);
+    memcpy(ps->frame_ns, ns, sizeof ns);
+    ps->stutter_at = dm_xcalloc(1, sizeof *ps->stutter_at);
+    ps->stutter_at[0] = 1;
+    char *html = html_of(&run, path);
+    const char *sec = strstr(html, "<section class=\"path-scene\" id=\"path-0\"><h3>Along the path: ");
+    assert_non_null(sec);
+    assert_non_null(strstr(sec, "<td class=\"n\">3 × 2</td><td class=\"n\">1.200</td><td class=\"n\">2.890</td>"
+                                "<td class=\"n\">3.058</td><td class=\"n\">3.100 ms (323 fps)</td>"
+                                "<td class=\"n\">1 (frame 1)</td><td class=\"n\" title="));
+    assert_non_null(strstr(sec, "40.0 % <span class=\"noisy\">⚠ noisy</span>"));
+    const char *plot = strstr(sec, "aria-label=\"Frame time along the path: ");
+    assert_non_null(plot);
+    double want[3] = {(1.0 + 1.0 / 3) / 2, 3.1, (1.1 + 1.3) / 2}, got[4], band[8];
+    assert_int_equal(attr_numbers(strstr(plot, "class=\"path-median\""), "data-ms", got, 4), 3);
+    for (size_t f = 0; f < 3; f++)
+        assert_true(fabs(got[f] - want[f]) < 1e-8);
+    /* the median line: one point per frame, the slowest (frame 1) highest */
+    const char *d = strstr(strstr(plot, "class=\"path-median\""), " d=\"");
+    double x[3], y[3];
+    assert_int_equal(sscanf(d, " d=\"M%lf,%lf L%lf,%lf L%lf,%lf \"", &x[0], &y[0], &x[1], &y[1], &x[2], &y[2]), 6);
+    assert_true(x[0] < x[1] && x[1] < x[2] && y[1] < y[2] && y[2] < y[0]);
+    /* the band: up along the max (1.0, 3.1, 1.3), back along the min (1.1, 3.1, 1/3) */
+    const char *b = strstr(plot, "class=\"path-band\"");
+    assert_non_null(b);
+    assert_int_equal(sscanf(strstr(b, " d=\""), " d=\"M%lf,%lf L%lf,%lf L%lf,%lf L%lf,%lf L%lf,%lf L%lf,%lf Z",
+                            &band[0], &band[1], &band[2], &band[3], &band[4], &band[5], &band[6], &band[7],
+                            &got[0], &got[1], &got[2], &got[3]), 12);
+    /* (y grows downward) frame 0's max 1.0 and frame 2's 1.3 over their
+     * medians, frame 1's one time on it, the mins 1.1 and 1/3 under them */
+    assert_true(band[1] < y[0] && fabs(band[3] - y[1]) < 1e-9 && band[5] < y[2]);
+    assert_true(band[7] > y[2] && fabs(got[1] - y[1]) < 1e-9 && got[3] > y[0]);
+    assert_non_null(strstr(plot, "class=\"path-p50\""));
+    assert_non_null(strstr(plot, ">p99 3.06</text>"));
+    assert_non_null(strstr(plot, "<circle class=\"path-stutter\" data-frame=\"1\""));
+    assert_null(strstr(html, "temporal error mean"));   /* no quality along the path asked */
+    assert_null(strstr(html, "path-flip"));
+    free(html);
+    /* quality along the path at every frame: FLIP 0.1, 0.5, 0.2; SSIM 0.9, 0.6, 0.85 */
+    dm_path_quality *q = &run.configs[0].path_quality;
+    static const double flip[] = {0.1, 0.5, 0.2}, ssim[] = {0.9, 0.6, 0.85};
+    *q = (dm_path_quality){.present = 1, .frames = 3, .every = 1, .n = 3, .temporal_mean = 0.0125,
+                           .temporal_p99 = 0.0625, .popping = 0.4, .popping_frame = 1};
+    q->flip = dm_xmalloc(sizeof flip);
+    q->ssim = dm_xmalloc(sizeof ssim);
+    memcpy(q->flip, flip, sizeof flip);
+    memcpy(q->ssim, ssim, sizeof ssim);
+    q->img_temporal = dm_xstrdup("img/c0-temporal.png");
+    html = html_of(&run, path);
+    sec = strstr(html, "<section class=\"path-scene\" id=\"path-0\">");
+    assert_non_null(sec);
+    assert_non_null(strstr(sec, "<td class=\"n\">0.0125</td><td class=\"n\">0.0625</td>"
+                                "<td class=\"n\">0.4 (frame 1)</td><td><a href=\"img/c0-temporal.png\">map</a></td>"));
+    plot = strstr(sec, "aria-label=\"Error at the reference frames: ");
+    assert_non_null(plot);
+    assert_int_equal(attr_numbers(strstr(plot, "class=\"path-flip\""), "data-flip", got, 4), 3);
+    assert_int_equal(attr_numbers(strstr(plot, "class=\"path-ssim\""), "data-ssim", got + 3, 1), 1);
+    for (size_t f = 0; f < 3; f++)
+        assert_true(got[f] == flip[f]);
+    assert_true(got[3] == ssim[0]);
+    /* 1 − SSIM drawn: frame 1's 0.4 above frame 0's 0.1 (y grows downward) */
+    d = strstr(strstr(plot, "class=\"path-ssim\""), " d=\"");
+    assert_int_equal(sscanf(d, " d=\"M%lf,%lf L%lf,%lf L%lf,%lf \"", &x[0], &y[0], &x[1], &y[1], &x[2], &y[2]), 6);
+    assert_true(y[1] < y[2] && y[2] < y[0]);
+    assert_non_null(strstr(plot, ">popping 0.4 (frame 1)</text>"));
+    free(html);
+    /* the CSV's and summary.md's temporal figures */
+    char *csv = dm_xasprintf("%s/r.csv", dir), *md = dm_xasprintf("%s/s.md", dir);
+    assert_int_equal(write_report_file(&run, "results.csv", NULL, csv, NULL), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    char *tc = test_slurp(csv), *tm = test_slurp(md);
+    assert_non_null(strstr(tc, ",3.1,322.580645,1,0.0125,0.0625,0.4,1\r\n"));
+    assert_non_null(strstr(tm, "## Quality along the path"));
+    assert_non_null(strstr(tm, " | 3 (every 1 of 3) | 0.0125 | 0.0625 | 0.4 (frame 1) | img/c0-temporal.png | `"));
+    q->present = 0;   /* asked, not computed: the reason, no figure */
+    q->reason = dm_xstrdup("the reference frame 1 failed");
+    assert_int_equal(write_report_file(&run, "results.csv", NULL, csv, NULL), 0);
+    assert_int_equal(write_report_file(&run, "summary.md", NULL, md, NULL), 0);
+    free(tc);
+    free(tm);
+    tc = test_slurp(csv);
+    tm = test_slurp(md);
+    assert_non_null(strstr(tc, ",3.1,322.580645,1,,,,\r\n"));
+    assert_non_null(strstr(tm, " | unavailable: the reference frame 1 failed | | | | | `"));
+    free(tc);
+    free(tm);
+    unlink(csv);
+    unlink(md);
+    free(csv);
+    free(md);
+    dm_run_free(&run);
+    unlink(path);
+    rmdir(dir);
+    free(path);
+}
+
+/* Gives fixture configuration c a 2-frame path with p99 p99_ns and
+ * quality along it with temporal error mean te. */
+static void motion_config(dm_config_result *c, double p99_ns, double te)
+{
+    c->path = (dm_path_series){.frames = 2, .replays = 1, .p50 = p99_ns, .p95 = p99_ns, .p99 = p99_ns,
+                               .low1_ns = p99_ns, .low1_fps = 1e9 / p99_ns, .replay_spread = NAN, .noisy = -1};
+    c->path.frame_ns = dm_xcalloc(2, sizeof *c->path.frame_ns);
+    c->path.frame_ns[0] = c->path.frame_ns[1] = p99_ns;
+    c->path.stutter_at = dm_xcalloc(1, sizeof *c->path.stutter_at);
+    c->path_quality = (dm_path_quality){.present = 1, .frames = 2, .every = 1, .n = 2, .temporal_mean = te,
+                                        .temporal_p99 = te, .popping = 0, .popping_frame = 1};
+    c->path_quality.flip = dm_xcalloc(2, sizeof *c->path_quality.flip);
+    c->path_quality.ssim = dm_xcalloc(2, sizeof *c->path_quality.ssim);
+}
+
+/* The second front of a scene, temporal error against p99 frame time: pom
+ * (p99 3.058 ms, 0.0125) and normal (2.5 ms, 0.02) are both on it, normal
+ * first; the steadiest under the scene's budget is pom when its p99 fits,
+ * else normal when its does, else none; then normal made steadier as well
+ * as faster (0.01) leaves pom off the front.  The answer says it in words;
+ * a scene with one such configuration gets no sentence. */
+static void test_motion_front(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    fixture_run(&run);
+    motion_config(&run.configs[0], 3.058e6, 0.0125);
+    report_model m;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_int_equal(m.scenes[0].n_motion_points, 1);
+    dm_str a = {0};
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &a);
+    assert_null(strstr(dm_str_get(&a), "In motion"));
+    dm_str_free(&a);
+    report_model_free(&m);
+    motion_config(&run.configs[1], 2.5e6, 0.02);
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    const report_model_scene *sc = &m.scenes[0];
+    assert_int_equal(sc->n_motion_points, 2);
+    assert_int_equal(sc->n_motion_front, 2);
+    assert_int_equal(sc->motion_front[0], 1);
+    assert_int_equal(sc->motion_front[1], 0);
+    double b = sc->rec.budget;
+    assert_true(b > 0);
+    size_t want = b >= 3.058e6 ? 0 : b >= 2.5e6 ? 1 : RECOMMEND_NONE;
+    assert_int_equal(sc->motion_pick, want);
+    report_answer_scene(&m, 0, REPORT_ANSWER_MD, &a);
+    const char *t = dm_str_get(&a);
+    assert_non_null(strstr(t, "In motion (temporal error against p99 frame time along the path): "));
+    assert_non_null(strstr(t, "Front, fastest first: normal mesh=plane (p99 2.5 ms, temporal error 0.02), "
+                              "pom mesh=plane (p99 3.06 ms, temporal error 0.0125)."));
+    if (want == 0)   /* normal is the fixture scene's still pick */
+        assert_non_null(strstr(t, "is **pom mesh=plane** (p99 3.06 ms, temporal error 0.0125), not the "
+                                  "still pick's technique (normal)."));
+    dm_str_free(&a);
+    report_model_free(&m);
+    run.configs[1].path_quality.temporal_mean = 0.01;
+    assert_int_equal(report_model_build(&m, &run, NULL), 0);
+    assert_int_equal(m.scenes[0].n_motion_front, 1);
+    assert_int_equal(m.scenes[0].motion_front[0], 1);
+    report_model_free(&m);
+    dm_run_free(&run);
+}
+
 /* The fixture: one fit (tess-power, 2 points), key counters, no pipeline
  * fit, one tess_level value: error vs time and time per configuration of
  * its one scene (never a chart pooling scenes), the key counter bars, and
@@ -1383,6 +1588,8 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_json_round_trip),
              cmocka_unit_test(test_json_read_errors),
              cmocka_unit_test(test_json_path),
+             cmocka_unit_test(test_html_path),
+             cmocka_unit_test(test_motion_front),
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
              cmocka_unit_test(test_corrected_figures),

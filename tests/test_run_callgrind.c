@@ -120,6 +120,35 @@ static void test_jobs(void **state)
     dm_str_free(&err);
 }
 
+/* The frames a path configuration counts: all F up to
+ * CALLGRIND_PATH_FRAMES (16), then every ceil(F/16)-th below F; a still
+ * one CALLGRIND_FRAMES. */
+static void test_path_frames(void **state)
+{
+    (void)state;
+    static const struct { const char *frames; int n, step; } cases[] = {
+        {"2", 2, 1}, {"16", 16, 1}, {"17", 9, 2}, {"32", 16, 2}, {"33", 11, 3}, {"60", 15, 4},
+        {"100000", 16, 6250},
+    };
+    for (size_t i = 0; i < sizeof cases / sizeof cases[0]; i++) {
+        dm_kv kv[2] = {{.key = "camera.path", .value = "dolly"},
+                       {.key = "camera.path_frames", .value = (char *)cases[i].frames}};
+        plan_config pc = {.params = kv, .n_params = 2};
+        int step = 0, n = callgrind_path_frames(&pc, &step);
+        assert_int_equal(n, cases[i].n);
+        assert_int_equal(step, cases[i].step);
+        /* the last counted frame is inside the path */
+        assert_true((n - 1) * step < atoi(cases[i].frames));
+    }
+    dm_kv still = {.key = "camera.path", .value = "still"};
+    plan_config pc = {.params = &still, .n_params = 1};
+    int step = 0;
+    assert_int_equal(callgrind_path_frames(&pc, &step), CALLGRIND_FRAMES);
+    assert_int_equal(step, 1);
+    pc.n_params = 0;
+    assert_int_equal(callgrind_path_frames(&pc, &step), CALLGRIND_FRAMES);
+}
+
 static void test_disagreement_not_counted(void **state)
 {
     (void)state;
@@ -135,4 +164,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_parse_dump_allocator),
              cmocka_unit_test(test_disagreement_boundary),
              cmocka_unit_test(test_disagreement_not_counted),
+             cmocka_unit_test(test_path_frames),
              cmocka_unit_test(test_jobs))

@@ -294,8 +294,9 @@ static void frames_per_sample(void **state)
     assert_int_equal(protocol_sample_frames(&d, 0.1e6), 50);
 }
 
-/* --budget: samples_max samples of max(K frames, min_sample_ms), capped at
- * max_seconds, plus (warmup_frames + 12 K + 20) frames. */
+/* --budget: samples of max(K frames, min_sample_ms), up to the one that
+ * takes the sampling past max_seconds (at least samples_min, at most
+ * samples_max), plus (warmup_frames + 12 K + 20) frames. */
 static void budget_prediction(void **state)
 {
     (void)state;
@@ -304,9 +305,45 @@ static void budget_prediction(void **state)
     assert_true(fabs(protocol_predict_s(&d, 1e6) - 0.82) < 1e-12);
     /* 5 ms: 30 x 80 ms = 2.4 s + 220 x 5 ms = 3.5 s */
     assert_true(fabs(protocol_predict_s(&d, 5e6) - 3.5) < 1e-12);
-    /* 50 ms: 30 x 800 ms = 24 s, capped at 10, + 11 s = 21 s */
-    assert_true(fabs(protocol_predict_s(&d, 50e6) - 21.0) < 1e-12);
+    /* 50 ms: samples of 800 ms; the 13th takes the sampling to 10.4 s,
+     * past 10 s: 10.4 s + 220 x 50 ms = 21.4 s */
+    assert_true(fabs(protocol_predict_s(&d, 50e6) - 21.4) < 1e-12);
+    /* 1 s: samples of 16 s; samples_min 5 = 80 s + 220 s = 300 s */
+    assert_true(fabs(protocol_predict_s(&d, 1e9) - 300.0) < 1e-9);
     assert_int_equal(protocol_resume_limit(&d), 29);
+}
+
+/* On a camera path a sample is one replay of F frames, whatever K and
+ * min_sample_ms, and the untimed replay adds F frames: the sample time
+ * scales with F. */
+static void budget_prediction_path(void **state)
+{
+    (void)state;
+    protocol_desc d = desc();
+    protocol_desc_on_path(&d, 60);
+    assert_int_equal(d.path_frames, 60);
+    /* 1 ms: 30 x 60 ms = 1.8 s + (220 + 60) x 1 ms = 2.08 s (still: 0.82) */
+    assert_true(fabs(protocol_predict_s(&d, 1e6) - 2.08) < 1e-12);
+    /* F = 4 at 1 ms: 4 ms is under min_sample_ms and stays 4 ms:
+     * 30 x 4 ms = 0.12 s + 224 x 1 ms = 0.344 s */
+    protocol_desc_on_path(&d, 4);
+    assert_true(fabs(protocol_predict_s(&d, 1e6) - 0.344) < 1e-12);
+    /* F = 600 at 10 ms: 6 s samples; the 2nd passes 10 s but samples_min
+     * is 5: 30 s + (220 + 600) x 10 ms = 38.2 s */
+    protocol_desc_on_path(&d, 600);
+    assert_true(fabs(protocol_predict_s(&d, 10e6) - 38.2) < 1e-9);
+    /* the sampling part doubles with F (samples_max reached both times) */
+    protocol_desc_on_path(&d, 10);
+    double s10 = protocol_predict_s(&d, 1e6) - (230 * 1e6) / 1e9;
+    protocol_desc_on_path(&d, 20);
+    double s20 = protocol_predict_s(&d, 1e6) - (240 * 1e6) / 1e9;
+    assert_true(fabs(s20 - 2 * s10) < 1e-12);
+    /* a still configuration again */
+    protocol_desc_on_path(&d, 0);
+    assert_true(fabs(protocol_predict_s(&d, 1e6) - 0.82) < 1e-12);
+    d.max_frames = 50;   /* a replay draws the whole path */
+    protocol_desc_on_path(&d, 60);
+    assert_int_equal(d.path_frames, 60);
 }
 
 /* The desc from a sweep's measure block carries its values. */
@@ -412,6 +449,7 @@ int main(void)
         cmocka_unit_test(warmup_gives_up_and_short_warmup),
         cmocka_unit_test(frames_per_sample),
         cmocka_unit_test(budget_prediction),
+        cmocka_unit_test(budget_prediction_path),
         cmocka_unit_test(desc_from_measure),
         cmocka_unit_test(eta_from_measured_progress),
         cmocka_unit_test(extra_round_noisiest_first_within_budget),

@@ -1,6 +1,7 @@
 /* gen_report.c — writes the synthetic fixture run (tests/test_reports_fixture.h)
  * with its images into DIR, for the browser test, its first configuration's
- * heatmap its FLIP map (as runs write it); and DIR/scale.txt, the words
+ * heatmap its FLIP map (as runs write it) and a camera path's frame
+ * times; and DIR/scale.txt, the words
  * every FLIP map's legend states its scale in (FLIP_SCALE_TEXT).  Usage:
  * gen_report DIR */
 #include "reports/report.h"
@@ -9,6 +10,7 @@
 
 #include <stdio.h>
 #include <stdlib.h>
+#include <string.h>
 
 int main(int argc, char **argv)
 {
@@ -24,6 +26,34 @@ int main(int argc, char **argv)
     c->quality.flip = 0.0452;
     c->quality.flip_max = 0.519;
     c->quality.flip_ppd = FLIP_DEFAULT_PPD;
+    /* its camera path: 60 frames x 3 replays, a slow stretch and a stutter
+     * at frame 41 ("Along the path") */
+    dm_path_series *p = &c->path;
+    p->frames = 60;
+    p->replays = 3;
+    p->frame_ns = dm_xcalloc(p->frames * p->replays, sizeof *p->frame_ns);
+    for (size_t k = 0; k < p->replays; k++)
+        for (size_t f = 0; f < p->frames; f++)
+            p->frame_ns[k * p->frames + f] = (f == 41 ? 9e6 : 2e6 + 1e4 * (double)f) * (1 + 0.02 * (double)k);
+    p->p50 = 2.3e6;
+    p->p95 = 2.6e6;
+    p->p99 = 6.2e6;
+    p->low1_ns = 9.18e6;
+    p->low1_fps = 1e9 / p->low1_ns;
+    p->n_stutters = 1;
+    p->stutter_at = dm_xcalloc(1, sizeof *p->stutter_at);
+    p->stutter_at[0] = 41;
+    p->replay_spread = 0.04;
+    /* and its quality at every 20th frame */
+    dm_path_quality *q = &c->path_quality;
+    static const double flip[] = {0.05, 0.21, 0.07}, ssim[] = {0.93, 0.71, 0.9};
+    *q = (dm_path_quality){.present = 1, .frames = 60, .every = 20, .n = 3, .temporal_mean = 0.012,
+                           .temporal_p99 = 0.08, .popping = 0.16, .popping_frame = 20};
+    q->flip = dm_xmalloc(sizeof flip);
+    q->ssim = dm_xmalloc(sizeof ssim);
+    memcpy(q->flip, flip, sizeof flip);
+    memcpy(q->ssim, ssim, sizeof ssim);
+    q->img_temporal = dm_xstrdup(c->img_heatmap);
     int rc = fixture_images(argv[1], err, sizeof err);
     if (!rc) {
         char *path = dm_xasprintf("%s/scale.txt", argv[1]);

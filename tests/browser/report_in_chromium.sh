@@ -5,8 +5,12 @@
 # captions below the images, that a click on a render flips to the
 # reference's full-size file, that no id is used twice, that the heatmap's
 # legend stands before the cards with its colour scale drawn and states the
-# scale in the words of `dmbench diff --heatmap`'s help (scale.txt), and
-# that the console shows no error.
+# scale in the words of `dmbench diff --heatmap`'s help (scale.txt), that
+# a camera path's section has its frame-time plot with the stutter marked
+# and its quality plot
+# and nothing past the right edge of a 1280×800 window (outside a
+# horizontal scroller) nor a page wider than it, and that the console
+# shows no error.
 # GEN is test_reports_browser_gen (writes the synthetic fixture run).
 set -eu
 gen=$1
@@ -33,13 +37,16 @@ probe="$probe"'var lg=null;document.querySelectorAll("p.const").forEach(function
 probe="$probe"'var card=document.querySelector(".grid>.pair"),sc=lg?lg.querySelector(".scale"):null;'
 probe="$probe"'document.body.setAttribute("data-legend",lg\&\&card\&\&sc\&\&lg.getBoundingClientRect().bottom<=card.getBoundingClientRect().top\&\&sc.offsetWidth>0\&\&getComputedStyle(sc).backgroundImage.indexOf("gradient")>=0?"before":"missing");'
 probe="$probe"'if(lg)document.body.setAttribute("data-legend-text",lg.textContent.replace(/"/g,"\x27"));'
+probe="$probe"'var ps=document.querySelector("section.path-scene"),pl=ps?ps.querySelectorAll(".chart path.path-median").length+" "+ps.querySelectorAll(".chart path.path-flip").length:0,over=0;'
+probe="$probe"'if(ps)ps.querySelectorAll("*").forEach(function(e){if(e.getBoundingClientRect().right>window.innerWidth+0.5\&\&!e.closest(".scroll"))over++;});'
+probe="$probe"'document.body.setAttribute("data-path",(ps?1:0)+" "+pl+" "+ps.querySelectorAll("circle.path-stutter").length+" "+over+" "+(document.documentElement.scrollWidth>window.innerWidth?1:0));'
 probe="$probe"'document.body.setAttribute("data-dupids",dup);});</script></body>'
 sed "s#</body>#$probe#" "$work/run/report.html" > "$work/run/probe.html"
 
 chrome() {
     timeout 25 chromium --headless --no-sandbox --disable-gpu --disable-quic --no-first-run \
         --disable-background-networking --disable-component-update --disable-sync \
-        --user-data-dir="$(mktemp -d "$work/profile_XXXXXX")" --window-size=1280,900 "$@"
+        --user-data-dir="$(mktemp -d "$work/profile_XXXXXX")" --window-size=1280,800 "$@"
 }
 
 chrome --screenshot="$work/shot.png" "file://$work/run/report.html" >/dev/null 2>"$work/shot.log" \
@@ -70,7 +77,9 @@ legend=$(sed -n 's/.*data-legend="\([a-z]*\)".*/\1/p' "$work/dom.html" | head -n
 scale=$(cat "$work/run/scale.txt")
 grep -F "data-legend-text=\"Heatmap: $scale" "$work/dom.html" >/dev/null \
     || fail "the heatmap legend does not state the scale as diff --heatmap does: $scale"
+path=$(sed -n 's/.*data-path="\([0-9 ]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+[ "$path" = "1 1 1 1 0 0" ] || fail "along the path (section, frame-time plots, quality plots, stutters, elements past the right edge outside a scroller, page wider than the window): '${path:-no probe}', not '1 1 1 1 0 0'"
 if grep -E "Uncaught|ERROR:CONSOLE|CONSOLE\(" "$work/console.log" >&2; then
     fail "console errors"
 fi
-echo "report rendered; $images images loaded; $1 gallery cards of one width, captions below; a click flips to $flip; ids unique; the heatmap legend before the cards, in diff --heatmap's words; no console errors"
+echo "report rendered; along the path: plot and stutter, no horizontal overflow at 1280x800; $images images loaded; $1 gallery cards of one width, captions below; a click flips to $flip; ids unique; the heatmap legend before the cards, in diff --heatmap's words; no console errors"
