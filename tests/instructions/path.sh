@@ -3,8 +3,12 @@
 # path, each frame finished on its own, per frame (run/callgrind.c:
 # callgrind_path_frames; docs/counters.md, "On a camera path"), not its
 # frame 0:
-# - a two-frame dolly from camera.distance 0.8 to 0.8 (two identical
-#   frames) counts what the still camera at 0.8 counts, within 1e-3 (the
+# - a two-frame path whose two frames are the still camera at 0.8 exactly
+#   (an orbit of 2 frames, 180° a frame, turned back by
+#   camera.orbit_deg_per_frame -180; a dolly that does not move is refused
+#   as bad input, and one that moves 10 micrometres already counts 1.4 %
+#   more, as the dolly below) counts what the still camera at 0.8 counts,
+#   within 1e-3 (the
 #   per-frame division and the per-frame glFinish; without the latter two
 #   frames counted 12 % less each);
 # - a two-frame dolly from 3 to 0.8 draws the still camera at 3 (frame 0)
@@ -27,7 +31,7 @@ scene:
 printf '%s\nname: path-near\nsweep:\n  mesh: [plane]\n  technique: [texture]\n  camera.distance: [0.8]\n  light.distance: [4.5]\n' "$head" > "$OUT/near.yaml"
 printf '%s\nname: path-dolly\nsweep:\n  mesh: [plane]\n  technique: [texture]\n  camera.distance: [3]\n  camera.path: [still, dolly]\n  camera.path_frames: [2]\n  camera.dolly_to: [0.8]\n' \
   "$head" > "$OUT/dolly.yaml"
-printf '%s\nname: path-same\nsweep:\n  mesh: [plane]\n  technique: [texture]\n  camera.distance: [0.8]\n  camera.path: [dolly]\n  camera.path_frames: [2]\n  camera.dolly_to: [0.8]\n' \
+printf '%s\nname: path-same\nsweep:\n  mesh: [plane]\n  technique: [texture]\n  camera.distance: [0.8]\n  light.distance: [4.5]\n  camera.path: [orbit]\n  camera.path_frames: [2]\n  camera.orbit_deg_per_frame: [-180]\n' \
   "$head" > "$OUT/same.yaml"
 "$BIN" run "$OUT/near.yaml" --out "$OUT/near" --quiet
 "$BIN" run "$OUT/dolly.yaml" --out "$OUT/dolly" --quiet
@@ -43,10 +47,10 @@ def counts(path):
         out[c["params"].get("camera.path", "still")] = i["median"]
     return out
 near, d, same = counts(sys.argv[1]), counts(sys.argv[2]), counts(sys.argv[3])
-f0, f1, dolly, still = d["still"], near["still"], d["dolly"], same["dolly"]
+f0, f1, dolly, still = d["still"], near["still"], d["dolly"], same["orbit"]
 mean = (f0 + f1) / 2
 print(f"frame 0 (still at 3): {f0:.0f}, frame 1 (still at 0.8): {f1:.0f}, mean {mean:.0f}; "
-      f"dolly 3 to 0.8: {dolly:.0f} ({(dolly - mean) / mean:+.2%} from the mean); dolly 0.8 to 0.8: {still:.0f}")
+      f"dolly 3 to 0.8: {dolly:.0f} ({(dolly - mean) / mean:+.2%} from the mean); orbit turned back at 0.8: {still:.0f}")
 assert abs(still - f1) / f1 < 1e-3, ("two identical frames should count as one still frame", still, f1)
 assert abs(f1 - f0) / f0 > 0.2, ("the two views should cost differently", f0, f1)
 assert abs(dolly - f0) / f0 > 0.1, ("the dolly counted only its frame 0", dolly, f0)
