@@ -78,6 +78,11 @@ void dm_wrap(const char *text, const char *first, const char *indent, size_t wid
         size_t n = strcspn(p, " ");
         if (!n)
             break;
+        const char *q = p + n;   /* a lone "%" stays with the number before it */
+        while (*q == ' ')
+            q++;
+        if (*q == '%')
+            n = (size_t)(q - p) + strcspn(q, " ");
         char *word = dm_xstrdup(p);
         word[n] = '\0';
         size_t ww = dm_text_width(word);

@@ -45,14 +45,14 @@ static void compare__summary(const compare_result *r, dm_str *s)
 }
 
 /* One side's machine figures: "load 0.70, WallTime/CPUTime 1.01, rounds
- * moved +-4.2 %". */
+ * moved ±4.2 %". */
 static void compare__side_text(const compare_side_state *st, dm_str *s)
 {
     if (isfinite(st->load))
         dm_str_printf(s, "load %.2f, ", st->load);
     if (isfinite(st->wall_per_cpu))
         dm_str_printf(s, "WallTime/CPUTime %.2f, ", st->wall_per_cpu);
-    dm_str_printf(s, "rounds moved +-%.1f%%", st->round_spread * 100);
+    dm_str_printf(s, "rounds moved ±%.1f%%", st->round_spread * 100);
     if (isfinite(st->cal_cpu_ns))
         dm_str_printf(s, ", calibration %.2f ms CPU", st->cal_cpu_ns / 1e6);
     if (isfinite(st->cal_draw_ns))
@@ -60,15 +60,15 @@ static void compare__side_text(const compare_side_state *st, dm_str *s)
 }
 
 /* The precision of one side, raw and blocked by round, against the target
- * (95 % CI within +-3 % for 90 % of the configurations). */
+ * (95 % CI within ±3 % for 90 % of the configurations). */
 static void compare__precision_text(const char *side, const compare_side_state *st, dm_str *s)
 {
     if (!st->n_timed)
         return;
     size_t best = st->n_precise_blocked > st->n_precise_raw ? st->n_precise_blocked
                                                              : st->n_precise_raw;
-    dm_str_printf(s, "precision %s: median CI +-%.1f%% raw, +-%.1f%% blocked by round; within "
-                  "+-3%%: %zu/%zu raw, %zu/%zu blocked (target 90%%: ", side,
+    dm_str_printf(s, "precision %s: median CI ±%.1f%% raw, ±%.1f%% blocked by round; within "
+                  "±3%%: %zu/%zu raw, %zu/%zu blocked (target 90%%: ", side,
                   st->ci_rel_raw * 100, st->ci_rel_blocked * 100, st->n_precise_raw, st->n_timed,
                   st->n_precise_blocked, st->n_timed);
     if ((double)best >= 0.9 * (double)st->n_timed)
@@ -77,7 +77,7 @@ static void compare__precision_text(const char *side, const compare_side_state *
         dm_str_printf(s, "missed: the run had 1/%.1f of a CPU, WallTime/CPUTime %.2f: other "
                       "processes shared the cores)\n", st->wall_per_cpu, st->wall_per_cpu);
     else if (st->round_spread > 0.05)
-        dm_str_printf(s, "missed: the machine's speed moved +-%.0f%% between rounds)\n",
+        dm_str_printf(s, "missed: the machine's speed moved ±%.0f%% between rounds)\n",
                       st->round_spread * 100);
     else
         dm_str_cat(s, "missed: noise within rounds; take more samples)\n");

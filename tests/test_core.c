@@ -338,6 +338,17 @@ static void test_table(void **state)
     assert_string_equal(dm_str_get(&s), "cfg  AAAA  BBBB\n---------------\np\u00d7      1    22\n");
     dm_str_free(&s);
     dm_table_free(&t);
+    /* dm_wrap: a lone "%" after a number stays on its line ("3.33 %" would
+     * otherwise leave "%" alone on the next one) */
+    dm_wrap("resolves: 3.33 % here", "", "  ", 14, &s);
+    assert_string_equal(dm_str_get(&s), "resolves:\n  3.33 % here\n");
+    dm_str_free(&s);
+    dm_wrap("it resolves 3.33 %", "", "    ", 16, &s);
+    assert_string_equal(dm_str_get(&s), "it resolves\n    3.33 %\n");
+    dm_str_free(&s);
+    dm_wrap("a  b", "> ", "  ", 80, &s);   /* runs of spaces still close up */
+    assert_string_equal(dm_str_get(&s), "> a b\n");
+    dm_str_free(&s);
 }
 
 DM_TEST_MAIN(NULL, NULL,
