@@ -24,6 +24,31 @@ const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key)
     return NULL;
 }
 
+/* name, default (dm_results.h); each default equals the axis row's in
+ * techniques/axes.c, which test_techniques_axes checks. */
+static const char *const dm_results__left_out[][2] = {
+    {"camera.orbit_deg_per_frame", "0"}, {"light.orbit_deg_per_frame", "0"},
+    {"camera.path", "still"},            {"camera.path_ref_every", "0"},
+    {"specular_map", "off"},             {"displaced_normals", "map"},
+    {"tess_inner", "auto"},              {"tess_outer", "auto"},
+    {"cull", "back"},                    {"attenuation", "inverse-quadratic"},
+    {"parallax_bias", "0.5"},
+};
+
+const char *dm_param_left_out_default(const char *name)
+{
+    for (size_t i = 0; i < sizeof dm_results__left_out / sizeof dm_results__left_out[0]; i++)
+        if (strcmp(dm_results__left_out[i][0], name) == 0)
+            return dm_results__left_out[i][1];
+    return NULL;
+}
+
+const char *dm_param_value(const dm_kv *params, size_t n, const char *name)
+{
+    const char *v = dm_kv_get(params, n, name);
+    return v ? v : dm_param_left_out_default(name);
+}
+
 const dm_counter_result *dm_config_counter(const dm_config_result *c, const char *name)
 {
     for (size_t i = 0; i < c->n_counters; i++)

@@ -224,6 +224,16 @@ typedef struct dm_run_result {
 int dm_result_column_reserved(const char *name);
 
 const char *dm_kv_get(const dm_kv *kv, size_t n, const char *key);
+/* Axes that stay out of a configuration's parameters at their default, so
+ * its key is the one it had before the axis existed (the planner drops them
+ * there: techniques/axes.c reads this list): that default, or NULL for any
+ * other name. */
+const char *dm_param_left_out_default(const char *name);
+/* A configuration's value of param `name`: its own; the default of an axis
+ * left out at its default (so a still camera path reads "still" beside a
+ * dolly, and cull "back" beside "none"); else NULL (the technique does not
+ * read it, or a condition dropped it). */
+const char *dm_param_value(const dm_kv *params, size_t n, const char *name);
 const dm_counter_result *dm_config_counter(const dm_config_result *c, const char *name);
 const dm_fit_param *dm_fit_param_find(const dm_fit_result *f, const char *name);
 /* The first configuration of run with that key. */

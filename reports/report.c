@@ -16,14 +16,12 @@
 
 #include "reports/recommend.h"
 
-/* c's value of param `name`, NULL when it has none.  A still camera path
- * is the one value the planner leaves out of a configuration's parameters
- * (its key stays what it was before paths): it reads as "still", so a
- * dolly beside it varies and its label says so. */
+/* c's value of param `name` (dm_param_value: an axis left out at its
+ * default reads as that default, so a dolly beside a still path varies and
+ * its label says so), NULL when it has none. */
 static const char *report__param_value(const dm_config_result *c, const char *name)
 {
-    const char *v = dm_kv_get(c->params, c->n_params, name);
-    return !v && strcmp(name, "camera.path") == 0 ? "still" : v;
+    return dm_param_value(c->params, c->n_params, name);
 }
 
 /* 1 when param `name` takes two or more distinct values over the scene's

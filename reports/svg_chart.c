@@ -59,15 +59,19 @@ static double svg_chart__y(svg_axis a, double v)
     return SVG_H - SVG_B - svg_chart__t(a, v) * (SVG_H - SVG_T - SVG_B);
 }
 
-/* Opens <div class="chart" role="img" aria-label="title"><svg> of w × h
- * with the title drawn at the top. */
-static void svg_chart__open(dm_str *s, const char *title, double w, double h)
+/* Opens <div class="chart" role="img" aria-label="what: label"><svg> of
+ * w × h with that title drawn at the top. */
+static void svg_chart__open(dm_str *s, const char *what, const char *label, double w, double h)
 {
     dm_str_cat(s, "<div class=\"chart\" role=\"img\" aria-label=\"");
-    dm_str_cat_html(s, title);
+    dm_str_cat_html(s, what);
+    dm_str_cat(s, ": ");
+    dm_str_cat_html(s, label);
     dm_str_printf(s, "\"><svg viewBox=\"0 0 %.0f %.0f\" width=\"%.0f\" font-family=\"sans-serif\" "
                      "font-size=\"11\"><text x=\"4\" y=\"12\" font-weight=\"bold\">", w, h, w);
-    dm_str_cat_html(s, title);
+    dm_str_cat_html(s, what);
+    dm_str_cat(s, ": ");
+    dm_str_cat_html(s, label);
     dm_str_cat(s, "</text>");
 }
 
@@ -291,10 +295,10 @@ static void svg_chart__scatter(dm_str *s, const report_model *m, const report_mo
     svg_points p;
     svg_chart__points_load(&p, m, sc);
     if (p.n) {
-        dm_str title = {0};
-        dm_str_printf(&title, "%s vs time: %s", report_metric_label(p.m), sc->label);
-        svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
-        dm_str_free(&title);
+        dm_str what = {0};
+        dm_str_printf(&what, "%s vs time", report_metric_label(p.m));
+        svg_chart__open(s, dm_str_get(&what), sc->label, SVG_W, SVG_H);
+        dm_str_free(&what);
         svg_chart__axes(s, p.ax, p.ay, p.ax.log ? "median frame time, ms, log scale (whisker: 95% CI)"
                                          : "median frame time, ms (whisker: 95% CI)",
                  report_metric_label(p.m));
@@ -337,11 +341,9 @@ static void svg_chart__bars(dm_str *s, const report_model *m, const report_model
     }
     double lw = longest * SVG_CHAR_W + 12, bw = 420, rowh = 18, w = lw + bw + 70, h = n * rowh + 48;
     hi = hi / 1e6 * 1.04;
-    dm_str title = {0};
-    dm_str_printf(&title, "Time per configuration: %s", sc->label);
-    double tw = (double)svg_chart__chars(dm_str_get(&title)) * SVG_CHAR_W * 1.2 + 8;
-    svg_chart__open(s, dm_str_get(&title), fmax(w, tw), h);
-    dm_str_free(&title);
+    const char *what = "Time per configuration";
+    double tw = (double)(svg_chart__chars(what) + 2 + svg_chart__chars(sc->label)) * SVG_CHAR_W * 1.2 + 8;
+    svg_chart__open(s, what, sc->label, fmax(w, tw), h);
     dm_str_printf(s, "<text x=\"%.1f\" y=\"28\">median frame time, ms, this scene only "
                      "(whisker: 95%% CI)</text>", lw);
     for (size_t i = 0; i < n; i++) {
@@ -402,10 +404,7 @@ void report__svg_path(dm_str *s, const report_model_row *r)
     if (!(hi > 0))
         return;   /* no frame has a time */
     svg_axis ax = {0, p->frames > 1 ? (double)(p->frames - 1) : 1, 0}, ay = {0, hi * 1.08, 0};
-    dm_str title = {0};
-    dm_str_printf(&title, "Frame time along the path: %s", r->label);
-    svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
-    dm_str_free(&title);
+    svg_chart__open(s, "Frame time along the path", r->label, SVG_W, SVG_H);
     svg_chart__axes(s, ax, ay, "frame along the path", "frame time, ms");
     /* the replays' min–max band: up along the max, back along the min */
     dm_str_cat(s, "<path class=\"path-band\" fill=\"#c9dcf0\" stroke=\"none\" d=\"");
@@ -475,10 +474,7 @@ void report__svg_path_quality(dm_str *s, const report_model_row *r)
             hi = 1 - q->ssim[i];
     }
     svg_axis ax = {0, q->frames > 1 ? (double)(q->frames - 1) : 1, 0}, ay = {0, hi > 0 ? hi * 1.1 : 1, 0};
-    dm_str title = {0};
-    dm_str_printf(&title, "Error at the reference frames: %s", r->label);
-    svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
-    dm_str_free(&title);
+    svg_chart__open(s, "Error at the reference frames", r->label, SVG_W, SVG_H);
     svg_chart__axes(s, ax, ay, "frame along the path", "error against the reference");
     if (isfinite(q->popping) && q->popping_frame >= 0 && q->popping_frame < q->frames) {
         double x = svg_chart__x(ax, (double)q->popping_frame);
@@ -512,10 +508,7 @@ void report__svg_motion_front(dm_str *s, const report_model *m, size_t si)
     }
     double pad = (thi - tlo) * 0.08 + thi * 0.02;
     svg_axis ax = {fmax(0, tlo - pad), thi + pad * 3, 0}, ay = {0, ehi > 0 ? ehi * 1.1 : 1, 0};
-    dm_str title = {0};
-    dm_str_printf(&title, "In motion: temporal error vs p99 frame time: %s", sc->label);
-    svg_chart__open(s, dm_str_get(&title), SVG_W, SVG_H);
-    dm_str_free(&title);
+    svg_chart__open(s, "In motion: temporal error vs p99 frame time", sc->label, SVG_W, SVG_H);
     svg_chart__axes(s, ax, ay, "p99 frame time along the path, ms", "temporal error, mean");
     dm_str_cat(s, "<polyline class=\"motion-front\" fill=\"none\" stroke=\"#999\" stroke-dasharray=\"4 3\" points=\"");
     for (size_t k = 0; k < sc->n_motion_front; k++) {

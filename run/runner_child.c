@@ -180,9 +180,8 @@ static void runner_child__label(const runner *r, const plan_config *c, dm_str *o
         int varies = 0;
         for (size_t i = 0; i < r->p.n_configs && !varies; i++) {
             const plan_config *o = &r->p.configs[i];
-            const char *v = strcmp(o->scene, c->scene) == 0 ? dm_kv_get(o->params, o->n_params, c->params[k].key) : NULL;
-            if (!v && strcmp(o->scene, c->scene) == 0 && strcmp(c->params[k].key, "camera.path") == 0)
-                v = "still";   /* left out of a still configuration's parameters (as report.c reads it) */
+            /* an axis left out at its default reads as it (as report.c reads it) */
+            const char *v = strcmp(o->scene, c->scene) == 0 ? dm_param_value(o->params, o->n_params, c->params[k].key) : NULL;
             varies = v && strcmp(v, c->params[k].value) != 0;
         }
         if (varies)

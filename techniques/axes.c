@@ -11,6 +11,7 @@
 #include <string.h>
 
 #include "core/dm_error.h"
+#include "core/dm_results.h"
 #include "techniques/maps.h"
 
 static const char *const axes__on_off[] = {"on", "off", NULL};
@@ -305,41 +306,25 @@ static const struct {
     const char *axis, *when_axis, *when_value;
 } axes__conditions[] = {
     {"roughness", "lighting", "cook-torrance"},
-    /* still scenes keep the keys they had before the orbit axes existed */
-    {"camera.orbit_deg_per_frame", "camera.orbit_deg_per_frame", "!0"},
-    {"light.orbit_deg_per_frame", "light.orbit_deg_per_frame", "!0"},
-    {"camera.path", "camera.path", "!still"},
     {"camera.path_frames", "camera.path", "!still"},
     {"camera.dolly_to", "camera.path", "dolly"},
     {"camera.flyover_height", "camera.path", "flyover"},
-    {"camera.path_ref_every", "camera.path_ref_every", "!0"},
-    {"specular_map", "specular_map", "!off"},
-    {"displaced_normals", "displaced_normals", "!map"},
     {"light_radius", "attenuation", "s1"},
     {"tess_inner", "lod", "uniform"},
     {"tess_outer", "lod", "uniform"},
-    /* at their defaults these axes render as before they existed and stay out
-     * of the configuration, so its key is the one it had then ("!X": any
-     * value but X) */
-    {"tess_inner", "tess_inner", "!auto"},
-    {"tess_outer", "tess_outer", "!auto"},
-    {"cull", "cull", "!back"},
-    {"attenuation", "attenuation", "!inverse-quadratic"},
-    {"parallax_bias", "parallax_bias", "!0.5"},
 };
 
-/* One condition row: the configuration's value of when_axis (canonical, so
- * "0.50" is "0.5") is when_value, or with "!X" is anything but X. */
-static int axes__condition_row(size_t i, const char *(*value)(const char *axis, void *ctx),
-                               void *ctx)
+/* One condition: the configuration's value of when_axis (canonical, so
+ * "0.50" is "0.5") is want, or with "!X" is anything but X. */
+static int axes__condition_row(const char *when_axis, const char *want,
+                               const char *(*value)(const char *axis, void *ctx), void *ctx)
 {
-    const axis_info *when = axes__builtin_find(axes__conditions[i].when_axis);
+    const axis_info *when = axes__builtin_find(when_axis);
     const char *v = value ? value(when->name, ctx) : NULL;
     v = v ? v : when->def;
     dm_str scratch = {0};
     char *cv = axes_value_check(when, v, &scratch) == 0 ? axes_value_canonical(when, v) : NULL;
     dm_str_free(&scratch);
-    const char *want = axes__conditions[i].when_value;
     int neg = want[0] == '!';
     int equal = strcmp(cv ? cv : v, want + neg) == 0;
     free(cv);
@@ -350,8 +335,20 @@ int axes_conditions_hold(const char *name, const char *(*value)(const char *axis
                          void *ctx)
 {
     for (size_t i = 0; i < sizeof axes__conditions / sizeof axes__conditions[0]; i++)
-        if (strcmp(axes__conditions[i].axis, name) == 0 && !axes__condition_row(i, value, ctx))
+        if (strcmp(axes__conditions[i].axis, name) == 0 &&
+            !axes__condition_row(axes__conditions[i].when_axis, axes__conditions[i].when_value, value, ctx))
             return 0;   /* every row of the axis must hold */
+    /* at its default an axis of dm_param_left_out_default's list renders as
+     * before it existed and stays out of the configuration, so its key is
+     * the one it had then */
+    const char *def = dm_param_left_out_default(name);
+    if (def) {
+        char *want = dm_xasprintf("!%s", def);
+        int holds = axes__condition_row(name, want, value, ctx);
+        free(want);
+        if (!holds)
+            return 0;
+    }
     return 1;
 }
 

@@ -78,10 +78,10 @@ char *axes_canonical(const char *name, const char *value);
 /* 1 when the condition of axis `name` holds or it has none; 0 when it fails
  * or the axis is unknown.  Conditions (axes.c): roughness needs
  * lighting=cook-torrance, light_radius attenuation=s1, tess_inner and
- * tess_outer lod=uniform; tess_inner, tess_outer, cull, attenuation,
- * parallax_bias, camera.orbit_deg_per_frame and light.orbit_deg_per_frame
- * count only away from their defaults (so configurations keep the keys they
- * had before these axes existed).  Every condition of an axis must hold.
+ * tess_outer lod=uniform; the axes of dm_param_left_out_default
+ * (core/dm_results.h: tess_inner, cull, camera.path, ...) count only away
+ * from their defaults (so configurations keep the keys they had before
+ * these axes existed).  Every condition of an axis must hold.
  * value(axis, ctx) gives the
  * configuration's value of an axis (NULL: the axis default).  The planner
  * drops an axis whose condition fails, as it drops axes a technique does not

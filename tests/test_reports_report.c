@@ -811,6 +811,44 @@ static void test_metric_names(void **state)
 }
 
 /* The chosen metric is named in summary.md, the HTML table, chart and front. */
+/* An axis left out of a configuration at its default reads as that default
+ * (dm_param_value): pom with cull off beside pom at the default cull varies
+ * in cull, so the first is labelled "pom cull=off" and the second "pom";
+ * without the second the axis does not vary and neither label names it. */
+static void test_label_default_left_out(void **state)
+{
+    (void)state;
+    dm_run_result r;
+    memset(&r, 0, sizeof r);
+    r.sweep = dm_xstrdup("cull");
+    r.n_configs = 2;
+    r.configs = dm_xcalloc(2, sizeof *r.configs);
+    for (int i = 0; i < 2; i++) {
+        dm_config_result *c = &r.configs[i];
+        c->key = dm_xasprintf("00000000000000d%d", i);
+        c->scene = dm_xstrdup("s");
+        c->ok = 1;
+        dm_kv_push(&c->params, &c->n_params, "technique", "pom");
+        if (i == 0)
+            dm_kv_push(&c->params, &c->n_params, "cull", "off");
+    }
+    dm_str l0 = {0}, l1 = {0};
+    report_config_label(&r, &r.configs[0], &l0);
+    report_config_label(&r, &r.configs[1], &l1);
+    assert_non_null(strstr(dm_str_get(&l0), "pom cull=off"));
+    assert_null(strstr(dm_str_get(&l1), "cull"));
+    assert_int_equal(report__param_varies(&r, "s", "cull"), 1);
+    r.n_configs = 1;   /* alone, the left-out default is not a variation */
+    assert_int_equal(report__param_varies(&r, "s", "cull"), 0);
+    dm_str_free(&l0);
+    report_config_label(&r, &r.configs[0], &l0);
+    assert_null(strstr(dm_str_get(&l0), "cull"));
+    r.n_configs = 2;
+    dm_str_free(&l0);
+    dm_str_free(&l1);
+    dm_run_free(&r);
+}
+
 static void test_metric_in_files(void **state)
 {
     (void)state;
@@ -1599,7 +1637,8 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_html_charts_and_front),
              cmocka_unit_test(test_metric_fronts),
              cmocka_unit_test(test_metric_names),
-             cmocka_unit_test(test_metric_in_files),
+             cmocka_unit_test(test_label_default_left_out),
+        cmocka_unit_test(test_metric_in_files),
              cmocka_unit_test(test_noisy_warning),
              cmocka_unit_test(test_warnings_everywhere),
              cmocka_unit_test(test_quality_warnings),

@@ -11,6 +11,7 @@
 
 #include "core/dm_error.h"
 #include "core/dm_util.h"
+#include "core/dm_results.h"
 #include "techniques/axes.h"
 #include "techniques/technique.h"
 
@@ -174,6 +175,33 @@ static void test_experiment_axes(void **state)
     }
     for (size_t i = 2; keyless[i]; i++)
         assert_true(axes_condition_holds(keyless[i], exp_value, (void *)moved));
+    /* core's list of axes left out at their default (dm_param_value reads a
+     * missing one as it) names each axis's own default, and the planner's
+     * condition drops exactly that value */
+    static const char *const left_out[] = {"camera.orbit_deg_per_frame", "light.orbit_deg_per_frame",
+        "camera.path", "camera.path_ref_every", "specular_map", "displaced_normals", "tess_inner",
+        "tess_outer", "cull", "attenuation", "parallax_bias", NULL};
+    for (size_t i = 0; left_out[i]; i++) {
+        const char *def = dm_param_left_out_default(left_out[i]);
+        assert_non_null(def);
+        assert_string_equal(def, axes_find(left_out[i])->def);
+        assert_false(axes_condition_holds(left_out[i], exp_value, NULL));
+        const char *at_def[] = {left_out[i], def, NULL};
+        assert_false(axes_condition_holds(left_out[i], exp_value, (void *)at_def));
+    }
+    size_t n_axes = 0;
+    const axis_info *rows = axes_builtin(&n_axes);
+    size_t listed = 0;
+    for (size_t i = 0; i < n_axes; i++)
+        listed += dm_param_left_out_default(rows[i].name) != NULL;
+    assert_int_equal(listed, 11);   /* no other axis is left out at its default */
+    const char *cam_moved[] = {"camera.path", "dolly", "specular_map", "on", NULL};
+    assert_true(axes_condition_holds("camera.path", exp_value, (void *)cam_moved));
+    assert_true(axes_condition_holds("specular_map", exp_value, (void *)cam_moved));
+    dm_kv kv[] = {{(char *)"cull", (char *)"off"}};
+    assert_string_equal(dm_param_value(kv, 1, "cull"), "off");
+    assert_string_equal(dm_param_value(kv, 1, "camera.path"), "still");
+    assert_null(dm_param_value(kv, 1, "roughness"));
     /* axis, value, then the message (NULL: the value is valid) */
     static const char *const check[][3] = {
         {"cull", "front", "invalid value 'front' for cull; expected one of: back, off"},
