@@ -101,6 +101,11 @@ int cli_error(int err, const char *fmt, ...) __attribute__((format(printf, 2, 3)
  * store) / DM_ERR_STORE (damaged or unreadable store) with the message in
  * err; dm_exit_from_error() gives the exit code. */
 struct dm_run_result;
+/* A run directory's store (the dmbench.sqlite in the directory above it)
+ * and run id (its name), both malloc'd.  Returns 0, or DM_ERR_ARG with the
+ * message in err: no such directory, no store beside it, or a results root
+ * given where one of its runs is meant (the message names DIR/latest). */
+int cli_run_locate(const char *dir, char **store_path, char **run_id, dm_str *err);
 int cli_load_run(const char *dir, struct dm_run_result *run, dm_str *err);
 
 #endif

@@ -30,28 +30,22 @@
  * on success or an exit code. */
 static int merge__load(const char *dir, dm_run_result *out)
 {
-    char real[PATH_MAX];
-    if (!realpath(dir, real))
-        return cli_usage_error("merge: %s: no such run directory", dir);
-    char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
-    char *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(a));
+    char *store_path = NULL, *run_id = NULL;
     store *st = NULL;
     dm_str err = {0};
     int rc = -1, e = 0;
-    if (!dm_file_exists(store_path))
-        rc = cli_usage_error("merge: %s is not a run directory: no results store beside it (%s); "
-                              "give e.g. results/s1/latest", dir, store_path);
+    if (cli_run_locate(dir, &store_path, &run_id, &err) != 0)
+        rc = cli_usage_error("merge: %s", dm_str_get(&err));
     else if ((e = store_open(store_path, &st, &err)) != 0 || (e = store_check(st, &err)) != 0)
         rc = cli_error(e, "merge: %s", dm_str_get(&err));
-    else if ((e = store_run_load(st, basename(b), out)) == DM_ERR_NOTFOUND)
-        rc = cli_usage_error("merge: %s: run %s is not in %s", dir, basename(b), store_path);
+    else if ((e = store_run_load(st, run_id, out)) == DM_ERR_NOTFOUND)
+        rc = cli_usage_error("merge: %s: run %s is not in %s", dir, run_id, store_path);
     else if (e != 0)
         rc = cli_error(DM_ERR_STORE, "merge: %s", store_last_error(st));
     store_close(st);
     dm_str_free(&err);
     free(store_path);
-    free(a);
-    free(b);
+    free(run_id);
     return rc;
 }
 

@@ -51,23 +51,6 @@ const cli_option cli_report_options[] = {
     CLI_OPT_END
 };
 
-/* Resolves a run directory to (store path, run id): the store lives in the
- * directory above the run, the run id is the directory's name. */
-static int report__locate_run(const char *dir, char **store_path, char **run_id)
-{
-    char real[PATH_MAX];
-    if (!realpath(dir, real))
-        return cli_usage_error("%s: no such run directory", dir);
-    char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
-    *run_id = dm_xstrdup(basename(a));
-    *store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(b));
-    free(a);
-    free(b);
-    if (!dm_file_exists(*store_path))
-        return cli_usage_error("%s: no results store beside the run directory (%s)", dir, *store_path);
-    return -1;
-}
-
 /* Rebuilds a run's report files from the store; --metric overrides the
  * Pareto metric the run recorded (for these files only; the store keeps it);
  * --flip-ppd recomputes FLIP at another viewing condition (likewise);
@@ -87,9 +70,10 @@ int cli_report(const cli_command *self, int argc, char **argv)
                                "directory, e.g. results/latest)");
     const char *dir = argv[0];
     char *store_path = NULL, *run_id = NULL;
-    rc = report__locate_run(dir, &store_path, &run_id);
     store *st = NULL;
     dm_str err = {0};
+    if (cli_run_locate(dir, &store_path, &run_id, &err) != 0)
+        rc = cli_usage_error("%s", dm_str_get(&err));
     dm_run_result run = {0};
     int se = 0;   /* a damaged or newer store is the machine's: exit 4 (cli_error) */
     if (rc < 0 && (se = store_open(store_path, &st, &err)) != 0)

@@ -9,24 +9,55 @@
 #include <libgen.h>
 #include <limits.h>
 #include <stdlib.h>
+#include <string.h>
 
-int cli_load_run(const char *dir, dm_run_result *run, dm_str *err)
+int cli_run_locate(const char *dir, char **store_path, char **run_id, dm_str *err)
 {
-    char *store_path = NULL, *run_id = NULL;
     char real[PATH_MAX];
-    int rc = 0;
+    *store_path = *run_id = NULL;
     if (!realpath(dir, real)) {
         dm_str_printf(err, "%s: no such run directory", dir);
         return DM_ERR_ARG;
     }
-    char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
-    run_id = dm_xstrdup(basename(a));
-    store_path = dm_xasprintf("%s/dmbench.sqlite", dirname(b));
-    store *st = NULL;
-    if (!dm_file_exists(store_path)) {
-        dm_str_printf(err, "%s: not a run directory: no results store beside it (%s)", dir, store_path);
-        rc = DM_ERR_ARG;
+    char *own = dm_xasprintf("%s/dmbench.sqlite", real);
+    int is_root = dm_file_exists(own);
+    free(own);
+    if (is_root) {   /* the --out of a run, not one of its runs */
+        char *latest = dm_xasprintf("%s/latest", dir), lreal[PATH_MAX];
+        dm_str_printf(err, "%s is a results root (it holds dmbench.sqlite), not a run directory: give "
+                           "one of its runs, ", dir);
+        if (realpath(latest, lreal)) {
+            char *l = dm_xstrdup(lreal);
+            dm_str_printf(err, "e.g. %s (the newest, %s)", latest, basename(l));
+            free(l);
+        } else {
+            dm_str_printf(err, "e.g. %s/<run-id>", dir);
+        }
+        free(latest);
+        return DM_ERR_ARG;
     }
+    char *a = dm_xstrdup(real), *b = dm_xstrdup(real);
+    *run_id = dm_xstrdup(basename(a));
+    const char *parent = dirname(b);
+    *store_path = dm_xasprintf("%s/dmbench.sqlite", strcmp(parent, "/") == 0 ? "" : parent);
+    free(a);
+    free(b);
+    if (!dm_file_exists(*store_path)) {
+        dm_str_printf(err, "%s: not a run directory: no results store beside it (%s); give a run "
+                           "directory, e.g. results/latest", dir, *store_path);
+        free(*store_path);
+        free(*run_id);
+        *store_path = *run_id = NULL;
+        return DM_ERR_ARG;
+    }
+    return 0;
+}
+
+int cli_load_run(const char *dir, dm_run_result *run, dm_str *err)
+{
+    char *store_path = NULL, *run_id = NULL;
+    int rc = cli_run_locate(dir, &store_path, &run_id, err);
+    store *st = NULL;
     rc = rc ? rc : store_open(store_path, &st, err);
     rc = rc ? rc : store_check(st, err);
     if (rc == 0 && (rc = store_run_load(st, run_id, run)) != 0) {
@@ -37,8 +68,6 @@ int cli_load_run(const char *dir, dm_run_result *run, dm_str *err)
         rc = rc == DM_ERR_NOTFOUND ? DM_ERR_ARG : DM_ERR_STORE;
     }
     store_close(st);
-    free(a);
-    free(b);
     free(store_path);
     free(run_id);
     return rc;

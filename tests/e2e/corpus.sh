@@ -277,6 +277,10 @@ S=$(copy empty); : > "$S/dmbench.sqlite"
 hcase store/empty-file 2 "is not in" -- "$BIN" report "$S/latest"
 S=$(copy gone); rm "$S/dmbench.sqlite"
 hcase store/missing 2 "not a run directory" -- "$BIN" fit "$S/latest"
+S=$(copy root)   # the --out of a run where one of its runs is meant: refused, naming DIR/latest
+hcase store/root-report 2 "is a results root" -- "$BIN" report "$S"
+hcase store/root-merge 2 "is a results root (it holds dmbench.sqlite)" -- "$BIN" merge "$OUT/root-merged" "$S"
+hcase store/root-fit 2 "is a results root" -- "$BIN" fit "$S"
 hcase store/resume-without 2 "--resume" -- "$BIN" run "$OUT/ok.yaml" --out "$OUT/nostore" --resume
 f=$(sweep other "resolution: [16, 16]" "sweep:" "  technique: [normal]" "  mesh: [cube]")
 S=$(copy othersweep); h=$(digest "$S/dmbench.sqlite")
