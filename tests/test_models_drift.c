@@ -7,7 +7,9 @@
  * figure that follows the drift is the better predictor when the common
  * mode is absent; between two runs whose machines differ by a known common
  * factor the between-run CI covers the truth where the within-run one,
- * conditional on the run's median speed, does not; a scene too small is
+ * conditional on the run's median speed, does not; the preview for extra
+ * rounds (point_only) is the corrected samples' own median and CI,
+ * checked against values computed here by hand; a scene too small is
  * left raw with the reason. */
 #include <stdarg.h>
 #include <stddef.h>

@@ -1,7 +1,9 @@
 /* test_run_protocol.c — the measuring decisions (run/protocol.h) driven by
  * made-up sample streams: the exact sample at which sampling stops and why,
- * the drift flag, the warm-up's sample sizes and end, frames per sample and
- * the --budget prediction.  The CI the stop rule is checked against is
+ * the drift flag, the warm-up's sample sizes and end, frames per sample,
+ * the --budget prediction, and the extra rounds: who goes first, when the
+ * drift-corrected CI ends them, and (simulated) that the CIs stored after
+ * such rounds still cover the truth.  The CI the stop rule is checked against is
  * computed here with exact integer binomials, not with models/stats.c. */
 #include <setjmp.h>
 #include <stdarg.h>
