@@ -10,10 +10,12 @@
 # pair of consecutive runs how many configurations' medians agree within
 # their CIs (the CIs overlap), raw, corrected with the within-run CI and
 # corrected with the between-run CI (from results.json: the store keeps
-# the within-run CI only).  EXTRA=SEC in the
-# environment runs each with `--extra-time SEC` (extra rounds for the
-# configurations short of their target) and prints the run's account of
-# them; each run's answer lines that say the raw and drift-corrected
+# the within-run CI only).  The default run spends 60 s of extra rounds
+# on the configurations short of their target (`dmbench run --help`);
+# EXTRA=SEC in the environment runs each with `--extra-time SEC` instead
+# (EXTRA=0: none); the runs' account of the extra rounds is printed, and
+# `bench/precision_offline.py OUT/run-K/dmbench.sqlite` says why the
+# configurations that missed did; each run's answer lines that say the raw and drift-corrected
 # figures disagree are counted.  It measures; it asserts only that every
 # run finished and stored WallTime for every configuration.
 set -euo pipefail

@@ -355,14 +355,18 @@ static void drift__raw(const drift_desc *d, drift_result *out, size_t *with_samp
 /* The corrected figures of every configuration from the point fit f:
  * within the run, the hull of the corrected samples' own CI and the
  * shifted bootstrap interval; between runs, that hull and the unshifted
- * interval.  Sets out->reference_spread. */
+ * interval.  Sets out->reference_spread.  With d->point_only the
+ * bootstrap is skipped: the CI is the samples' own, the between-run one
+ * NaN. */
 static void drift__point(const drift_desc *d, const drift__fit *f, const double *lx, drift_result *out)
 {
     size_t nc = d->n_configs, nr = d->n_rounds;
     drift__ci *ci = dm_xcalloc(nc + 1, sizeof *ci);
     double *y = dm_xcalloc(nr + 1, sizeof *y), *pm = dm_xcalloc(nc + 1, sizeof *pm);
-    drift__procedure(lx, nc, nr, pm, y);
-    out->reference_spread = drift__bootstrap(d, lx, pm, ci);
+    if (!d->point_only) {
+        drift__procedure(lx, nc, nr, pm, y);
+        out->reference_spread = drift__bootstrap(d, lx, pm, ci);
+    }
     for (size_t c = 0; c < nc; c++) {
         drift_config *k = &out->configs[c];
         drift__corrected(f, c, y, &k->n_corrected);
@@ -372,6 +376,11 @@ static void drift__point(const drift_desc *d, const drift__fit *f, const double 
         if (k->n == 0 || stats_summarize(y, nr, d->seed + c, &su) != 0)
             continue;
         k->median = su.median;
+        if (d->point_only) {
+            k->lo = su.ci_lo;
+            k->hi = su.ci_hi;
+            continue;
+        }
         k->lo = isfinite(ci[c].lo) ? fmin(su.ci_lo, ci[c].lo) : NAN;
         k->hi = isfinite(ci[c].hi) ? fmax(su.ci_hi, ci[c].hi) : NAN;
         k->between_lo = isfinite(k->lo) && isfinite(ci[c].blo) ? fmin(k->lo, ci[c].blo) : NAN;

@@ -74,6 +74,11 @@ typedef struct drift_desc {
     const double *calib;     /* n_rounds calibration times (ns), NULL = none; NaN allowed */
     uint64_t seed;           /* of the bootstrap */
     int bootstrap;           /* replicates; 0 = DRIFT_BOOTSTRAP_B */
+    int point_only;          /* 1: no bootstrap: lo/hi are the CI of the corrected samples alone
+                                (part (a) of the corrected CI), between_lo/hi and reference_spread
+                                NaN.  A preview for deciding where extra rounds go (run/protocol.h),
+                                never a figure to report: it leaves out the uncertainty of the
+                                correction's own estimate. */
 } drift_desc;
 
 typedef struct drift_config {

@@ -111,9 +111,13 @@ static void measure__prepare(mscene *m, mconf *c)
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i] = dm_xcalloc((size_t)sm->samples_max, sizeof **c->timing);
     c->cap = (size_t)sm->samples_max;
+    c->round_of = dm_xcalloc(c->cap + 1, sizeof *c->round_of);
+    c->corr_ci_rel = NAN;
     path_timing_prepare(m, c);
     c->active = 1;
     measure__restore(m, c);
+    for (size_t j = 0; j < c->n_samples; j++)
+        c->round_of[j] = SIZE_MAX;   /* taken by another process: not in this one's rounds */
 }
 
 /* Checkpoints the samples of every configuration still sampling, in one
@@ -161,6 +165,7 @@ static void measure__room(mscene *m, mconf *c)
     c->cap = c->cap ? 2 * c->cap : 8;
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i] = dm_xrealloc(c->timing[i], c->cap * sizeof **c->timing);
+    c->round_of = dm_xrealloc(c->round_of, c->cap * sizeof *c->round_of);
     path_timing_room(c);
 }
 
@@ -222,6 +227,7 @@ static void measure__timing_sample(mscene *m, mconf *c, int extra)
     measure__test_noise(m, c, vals);
     for (size_t i = 0; i < m->n_timing; i++)
         c->timing[i][c->n_samples] = vals[i];
+    c->round_of[c->n_samples] = m->n_rounds;
     c->n_samples++;
     c->sampling_ns += dm_now_ns() - t0;
     free(vals);
@@ -471,11 +477,17 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
         dm_kv_push(&out.params, &out.n_params, c->pc->params[i].key, c->pc->params[i].value);
     if (!c->failed && c->n_samples)
         measure__stopped(m, c);
-    if (c->n_extra)
-        dm_str_printf(&c->log, "%zu samples in extra rounds (--extra-time): %s CI ±%.2f %% -> ±%.2f %%, "
-                      "target ±%.2f %% %s\n", c->n_extra, m->timing[m->stop_index],
-                      100 * c->ci_rel_before, 100 * c->ci_rel, 100 * m->pd.target_ci,
-                      c->ci_rel <= m->pd.target_ci ? "reached" : "not reached (the budget was spent)");
+    if (c->n_extra || isfinite(c->corr_ci_rel)) {
+        int done = c->ci_rel <= m->pd.target_ci ||
+                   protocol_extra_clearly_within(c->corr_ci_rel, m->pd.target_ci);
+        dm_str_printf(&c->log, "%zu samples in extra rounds (--extra-time): %s CI ±%.2f %% -> ±%.2f %%",
+                      c->n_extra, m->timing[m->stop_index], 100 * c->ci_rel_before, 100 * c->ci_rel);
+        if (isfinite(c->corr_ci_rel))
+            dm_str_printf(&c->log, " (±%.2f %% with the machine's drift removed, before the correction's "
+                          "own uncertainty is added)", 100 * c->corr_ci_rel);
+        dm_str_printf(&c->log, ", target ±%.2f %% %s\n", 100 * m->pd.target_ci,
+                      done ? "reached" : "not reached (the budget was spent)");
+    }
     if (!c->failed) {
         int64_t t0 = dm_now_ns();
         measure__collect(m, c, &out);
@@ -506,8 +518,9 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
         return DM_ERR_ARG;
     }
     int rc = store_config_put(m->st, m->job->run_id, &out);
-    if (rc == 0 && c->n_extra)
-        mscene_say(m->job, "A %s %zu %.4f %.4f", c->pc->key, c->n_extra, c->ci_rel_before, c->ci_rel);
+    if (rc == 0 && (c->n_extra || isfinite(c->corr_ci_rel)))
+        mscene_say(m->job, "A %s %zu %.4f %.4f %.4f", c->pc->key, c->n_extra, c->ci_rel_before, c->ci_rel,
+                   c->corr_ci_rel);
     const dm_counter_result *wt = m->stop_index >= 0 ? dm_config_counter(&out, m->timing[m->stop_index]) : NULL;
     double ci = wt && wt->median > 0 ? (wt->ci_hi - wt->ci_lo) / 2 / wt->median : NAN;
     if (rc == 0 && out.path.frames)   /* on a camera path: its p99 and stutters too */
@@ -578,6 +591,7 @@ static int measure__round_end(mscene *m, mconf *cs, size_t n, const dm_str *keys
 {
     int64_t t0 = dm_now_ns();
     int rc = measure__round(m, keys, (cal0 + calibrate_cpu_once()) / 2, err);
+    m->n_rounds += keys->len > 0;   /* as measure__round records it */
     if (rc == 0)
         rc = measure__checkpoint(m, cs, n, err);
     o->ns += dm_now_ns() - t0;
@@ -589,6 +603,27 @@ static int measure__round_end(mscene *m, mconf *cs, size_t n, const dm_str *keys
 static double measure__overhead_s(const measure__overhead *o)
 {
     return o->rounds ? (double)o->ns / 1e9 / (double)o->rounds : 0;
+}
+
+/* Each configuration's stop-counter CI with the drift removed, from the
+ * samples of this process's rounds (protocol_extra_corrected), into
+ * ci[0..n) (NaN: decide by the raw CI).  Returns 1 when the drift was
+ * removed. */
+static int measure__corrected_ci(const mscene *m, const mconf *cs, size_t n, double *ci)
+{
+    size_t nr = m->n_rounds;
+    if (m->stop_index < 0 || nr == 0)
+        return 0;
+    double *x = dm_xcalloc(n * nr + 1, sizeof *x);
+    for (size_t i = 0; i < n * nr; i++)
+        x[i] = NAN;
+    for (size_t c = 0; c < n; c++)
+        for (size_t j = 0; !cs[c].failed && j < cs[c].n_samples; j++)
+            if (cs[c].round_of[j] < nr)
+                x[c * nr + cs[c].round_of[j]] = cs[c].timing[m->stop_index][j];
+    int removed = protocol_extra_corrected(x, n, nr, m->job->seed, ci);
+    free(x);
+    return removed;
 }
 
 /* The extra rounds after the scene's rounds: while the job's extra_s
@@ -606,6 +641,7 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
     size_t *wait = dm_xcalloc(n + 1, sizeof *wait), *pick = dm_xcalloc(n + 1, sizeof *pick);
     size_t *order = dm_xcalloc(n + 1, sizeof *order), rounds = 0;
     double *ci = dm_xcalloc(n + 1, sizeof *ci), *sample_s = dm_xcalloc(n + 1, sizeof *sample_s);
+    double *corr = dm_xcalloc(n + 1, sizeof *corr);
     int64_t t0 = dm_now_ns(), committing = 0;
     protocol_extra_why why = PROTOCOL_EXTRA_REACHED;
     int rc = 0;
@@ -614,12 +650,24 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
         any += cs[i].extra != 0;
     while (rc == 0 && any) {
         size_t nw = 0;
-        for (size_t i = 0; i < n; i++)
-            if (cs[i].extra && !cs[i].failed) {
-                wait[nw] = i;
-                ci[nw] = cs[i].ci_rel;
-                sample_s[nw++] = (double)cs[i].sampling_ns / 1e9 / (double)cs[i].n_samples;
+        int removed = measure__corrected_ci(m, cs, n, corr);
+        for (size_t i = 0; rc == 0 && i < n; i++) {
+            if (!cs[i].extra || cs[i].failed)
+                continue;
+            cs[i].corr_ci_rel = removed ? corr[i] : NAN;
+            if (protocol_extra_clearly_within(cs[i].corr_ci_rel, m->pd.target_ci)) {
+                int64_t c0 = dm_now_ns();
+                cs[i].extra = 0;
+                rc = measure__commit(m, &cs[i], err);
+                committing += dm_now_ns() - c0;
+                continue;
             }
+            wait[nw] = i;
+            ci[nw] = cs[i].ci_rel;
+            sample_s[nw++] = (double)cs[i].sampling_ns / 1e9 / (double)cs[i].n_samples;
+        }
+        if (rc != 0 || nw == 0)
+            break;
         /* what is left once this round's own cost (the mean so far) is paid */
         double left = job->extra_s - (double)(dm_now_ns() - t0 - committing) / 1e9 - measure__overhead_s(over);
         size_t np = protocol_extra_round(ci, sample_s, nw, m->pd.target_ci, left, pick, &why);
@@ -632,9 +680,10 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
             mconf *c = &cs[wait[pick[order[k]]]];
             dm_str_printf(&keys, "%s%s", keys.len ? " " : "", c->pc->key);
             measure__timing_sample(m, c, 1);
-            if (!c->extra || c->failed) {
+            if (!c->extra || c->failed) {   /* its raw CI within the target decided */
                 int64_t c0 = dm_now_ns();
                 c->extra = 0;
+                c->corr_ci_rel = NAN;
                 rc = measure__commit(m, c, err);
                 committing += dm_now_ns() - c0;   /* images and quality: not the rounds' time */
             }
@@ -643,9 +692,11 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
         dm_str_free(&keys);
     }
     int64_t spent = dm_now_ns() - t0 - committing;
+    int removed = rc == 0 && any && measure__corrected_ci(m, cs, n, corr);
     for (size_t i = 0; rc == 0 && i < n; i++)
         if (cs[i].extra) {   /* the budget ended them */
             cs[i].extra = 0;
+            cs[i].corr_ci_rel = removed ? corr[i] : NAN;
             rc = measure__commit(m, &cs[i], err);
         }
     if (any)
@@ -655,6 +706,7 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
     free(pick);
     free(order);
     free(ci);
+    free(corr);
     free(sample_s);
     return rc;
 }

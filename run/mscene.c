@@ -343,6 +343,7 @@ void mscene_teardown(mscene *m, mconf *cs, size_t n)
         for (size_t k = 0; cs[i].timing && k < m->n_timing; k++)
             free(cs[i].timing[k]);
         free(cs[i].timing);
+        free(cs[i].round_of);
         free(cs[i].stats);
         for (size_t k = 0; cs[i].stats_reason && k < m->n_statistic; k++)
             free(cs[i].stats_reason[k]);

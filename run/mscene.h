@@ -51,6 +51,10 @@ typedef struct mconf {
     int extra;                  /* stopped short of its target: waits for extra rounds (--extra-time) */
     size_t n_extra;             /* samples taken in extra rounds */
     double ci_rel, ci_rel_before;   /* the stop counter's CI now, and when the extra rounds began */
+    double corr_ci_rel;         /* its CI with the drift removed when that decided its extra rounds
+                                   (protocol_extra_corrected), NaN when the raw CI did */
+    size_t *round_of;           /* the round (of this process) of each sample; SIZE_MAX: restored
+                                   from a checkpoint (cap entries) */
     protocol_decision last;     /* the protocol's last decision (its drift goes to the log) */
     double *stats;              /* per statistics counter: per-frame value (NAN = unavailable) */
     char **stats_reason;
@@ -73,6 +77,7 @@ typedef struct mscene {
     const char **statistic;
     size_t n_statistic;
     int stop_index;             /* timing[] index of the counter that stops sampling, -1: none */
+    size_t n_rounds;            /* rounds recorded by this process (the index of the next) */
     protocol_desc pd;           /* the measuring decisions' settings (run/protocol.h) */
     target rt;                  /* the scene's render target (one resolution per scene) */
     float *ref_rgba, *ref_depth;   /* scene reference, rendered on first use */

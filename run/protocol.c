@@ -1,5 +1,6 @@
 /* protocol.c — the measuring decisions as pure functions (see protocol.h). */
 #include "protocol.h"
+#include "models/drift.h"
 #include "models/stats.h"
 
 #include <limits.h>
@@ -217,6 +218,30 @@ size_t protocol_extra_round(const double *ci_rel, const double *sample_s, size_t
     }
     *why = taken ? PROTOCOL_EXTRA_MORE : short_of ? PROTOCOL_EXTRA_BUDGET : PROTOCOL_EXTRA_REACHED;
     return taken;
+}
+
+int protocol_extra_corrected(const double *x, size_t n_configs, size_t n_rounds, uint64_t seed,
+                             double *ci_rel)
+{
+    for (size_t c = 0; c < n_configs; c++)
+        ci_rel[c] = NAN;
+    drift_result d;
+    if (drift_correct(&(drift_desc){ .n_configs = n_configs, .n_rounds = n_rounds, .x = x, .seed = seed,
+                                     .point_only = 1 }, &d) != 0)
+        return 0;
+    int removed = d.corrected && d.helps;   /* as run/precision.c keeps it */
+    for (size_t c = 0; removed && c < n_configs; c++) {
+        const drift_config *k = &d.configs[c];
+        if (isfinite(k->median) && k->median > 0 && isfinite(k->lo) && isfinite(k->hi))
+            ci_rel[c] = (k->hi - k->lo) / 2 / k->median;
+    }
+    drift_result_free(&d);
+    return removed;
+}
+
+int protocol_extra_clearly_within(double corrected_ci_rel, double target_ci)
+{
+    return corrected_ci_rel <= PROTOCOL_EXTRA_CLEAR * target_ci;   /* NaN: not known, not within */
 }
 
 const char *protocol_extra_why_name(protocol_extra_why w)

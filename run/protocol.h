@@ -31,6 +31,7 @@
 #define PROTOCOL_MAX_FRAMES      100000   /* frames per timing sample, at most */
 #define PROTOCOL_DRIFT_LIMIT     0.05     /* trend over the samples, relative to the median */
 #define PROTOCOL_DRIFT_T         3.0      /* |t| of the trend's slope that is not noise */
+#define PROTOCOL_EXTRA_CLEAR     0.5      /* extra rounds: corrected CI within this share of the target */
 
 /* The settings: the sweep's measure block plus the protocol's constants.
  * Zero means default for the constants (protocol_defaults fills them). */
@@ -155,6 +156,32 @@ typedef enum protocol_extra_why {
  * *why says why none were taken (PROTOCOL_EXTRA_MORE when some were). */
 size_t protocol_extra_round(const double *ci_rel, const double *sample_s, size_t n, double target_ci,
                             double budget_s, size_t *pick, protocol_extra_why *why);
+
+/* The CI half-width / median each configuration of a scene would have
+ * with the machine's drift removed, for deciding which configurations the
+ * extra rounds sample: x[c * n_rounds + r] is configuration c's sample of
+ * the stop counter in round r (NaN: none).  Where the scene's drift can be
+ * removed (models/drift.h: a common mode measured, and round factors
+ * spread beyond what noise gives them), ci_rel[c] is the half-width of the
+ * CI of c's corrected samples (drift_desc.point_only: without the
+ * bootstrap, which the figures stored at the end of the run add); else,
+ * and for a configuration without samples, NaN, and the caller keeps the
+ * raw CI.  Returns 1 when the drift was removed, 0 when not.  On a
+ * drifting host the raw CI of a configuration stays wide however many
+ * samples it gets, while its corrected CI (the one its figure is judged
+ * by) may be within the target long before: deciding by the raw CI spends
+ * the extra rounds where they are no longer needed (docs/measurement.md,
+ * "Extra rounds"). */
+int protocol_extra_corrected(const double *x, size_t n_configs, size_t n_rounds, uint64_t seed,
+                             double *ci_rel);
+
+/* 1 when a configuration waiting for extra rounds needs no more: its CI
+ * with the drift removed (protocol_extra_corrected) is within
+ * PROTOCOL_EXTRA_CLEAR of target_ci.  Half, not the whole target: that
+ * CI leaves out the bootstrap of the correction, which the stored figure
+ * adds, so a configuration stopped at the target itself would often end
+ * outside it (tests/test_models_drift.c simulates both). */
+int protocol_extra_clearly_within(double corrected_ci_rel, double target_ci);
 
 /* Words for a stop of the extra rounds ("targets reached", "budget spent"). */
 const char *protocol_extra_why_name(protocol_extra_why w);

@@ -304,17 +304,22 @@ typedef struct runner_child__watched {
 /* A configuration that had extra samples (an "A" line): counted, and its
  * line kept for runner_child_extra_print. */
 static void runner_child__extra_config(runner *r, const plan_config *c, size_t samples,
-                                       double before, double after)
+                                       double before, double after, double corrected)
 {
+    double target = r->s->measure.target_ci;
+    int reached = after <= target || protocol_extra_clearly_within(corrected, target);
     r->extra_configs++;
-    r->extra_reached += after <= r->s->measure.target_ci;
-    dm_str label = {0};
+    r->extra_reached += reached;
+    dm_str label = {0}, corr = {0};
     if (c)
         runner_child__label(r, c, &label);
-    dm_str_printf(&r->extra_lines, "  %s: +%zu samples, CI ±%.2f %% -> ±%.2f %%%s\n",
-                  c ? dm_str_get(&label) : "?", samples, 100 * before, 100 * after,
-                  after <= r->s->measure.target_ci ? " (target reached)" : "");
+    if (isfinite(corrected))
+        dm_str_printf(&corr, " (±%.2f %% with the drift removed)", 100 * corrected);
+    dm_str_printf(&r->extra_lines, "  %s: +%zu samples, CI ±%.2f %% -> ±%.2f %%%s%s\n",
+                  c ? dm_str_get(&label) : "?", samples, 100 * before, 100 * after, dm_str_get(&corr),
+                  reached ? " (target reached)" : "");
     dm_str_free(&label);
+    dm_str_free(&corr);
 }
 
 void runner_child_extra_print(const runner *r, FILE *f)
@@ -347,7 +352,7 @@ static void runner_child__line(runner *r, runner_child__watched *w, const plan_c
                                char *line, int *done_flags)
 {
     char key[17] = "", status[16] = "";
-    double med = NAN, ci = NAN;
+    double med = NAN, ci = NAN, corr = NAN;
     long long sampled = 0;
     double p99 = NAN;
     long stutters = -1;
@@ -362,8 +367,8 @@ static void runner_child__line(runner *r, runner_child__watched *w, const plan_c
             runner_child__progress(r, c, status, med, ci, p99, stutters);
         }
         w->current[0] = '\0';
-    } else if (line[0] == 'A' && sscanf(line, "A %16s %lld %lf %lf", key, &sampled, &med, &ci) == 4) {
-        runner_child__extra_config(r, runner_child__find(cs, n, key), (size_t)sampled, med, ci);
+    } else if (line[0] == 'A' && sscanf(line, "A %16s %lld %lf %lf %lf", key, &sampled, &med, &ci, &corr) >= 4) {
+        runner_child__extra_config(r, runner_child__find(cs, n, key), (size_t)sampled, med, ci, corr);
     } else if (line[0] == 'R' && sscanf(line, "R %lf %lld %15s %lf", &med, &sampled, status, &ci) == 4) {
         r->extra_rounds += (size_t)med;
         r->extra_short += (size_t)ci;

@@ -7,7 +7,9 @@
  * figure that follows the drift is the better predictor when the common
  * mode is absent; between two runs whose machines differ by a known common
  * factor the between-run CI covers the truth where the within-run one,
- * conditional on the run's median speed, does not; a scene too small is
+ * conditional on the run's median speed, does not; the preview for extra
+ * rounds (point_only) is the corrected samples' own median and CI,
+ * checked against values computed here by hand; a scene too small is
  * left raw with the reason. */
 #include <stdarg.h>
 #include <stddef.h>
@@ -233,6 +235,64 @@ static void test_between_runs_cover(void **state)
     assert_true((double)agree >= 0.95 * (double)n);
 }
 
+static int cmp_double(const void *a, const void *b)
+{
+    double x = *(const double *)a, y = *(const double *)b;
+    return (x > y) - (x < y);
+}
+
+/* The preview for extra rounds (point_only): five configurations follow
+ * the drift exactly and one has 3 % noise of its own, so the common mode
+ * without it is known: log d[r] less the median of log d.  Its corrected
+ * samples are therefore x[0][r] / (d[r] / exp(that median)), and the
+ * preview's median and CI are the median and the binomial order-statistic
+ * interval of those, computed here by sorting; no bootstrap: no between-run
+ * CI, no reference spread. */
+static void test_point_only_known_answer(void **state)
+{
+    (void)state;
+    rng_state g = rng_seed(17);
+    double d[NR], x[NC * NR], ld[NR], y[NR];
+    for (size_t r = 0; r < NR; r++) {
+        d[r] = 1 + 0.25 * sin(0.9 * (double)r);
+        ld[r] = log(d[r]);
+    }
+    scene(x, d, 0, &g);
+    for (size_t r = 0; r < NR; r++)
+        x[r] *= exp(0.03 * gauss(&g));
+    qsort(ld, NR, sizeof *ld, cmp_double);
+    double centre = (ld[NR / 2 - 1] + ld[NR / 2]) / 2;
+    for (size_t r = 0; r < NR; r++)
+        y[r] = x[r] / exp(log(d[r]) - centre);
+    qsort(y, NR, sizeof *y, cmp_double);
+    /* the largest k with P(k <= B <= n - k) >= 0.95 for B ~ Binomial(20, 1/2) */
+    size_t k = 0;
+    for (size_t j = 1; 2 * j <= NR; j++) {
+        double tail = 0;
+        for (size_t i = 0; i < j; i++)
+            tail += exp(lgamma(NR + 1.0) - lgamma((double)i + 1) - lgamma((double)(NR - i) + 1) - NR * log(2.0));
+        if (1 - 2 * tail < 0.95)
+            break;
+        k = j;
+    }
+    assert_int_equal(k, 6);
+    drift_result out;
+    drift_correct(&(drift_desc){ .n_configs = NC, .n_rounds = NR, .x = x, .seed = 2, .point_only = 1 }, &out);
+    assert_true(out.corrected);
+    const drift_config *c = &out.configs[0];
+    print_message("point only: median %.6g (by hand %.6g), CI [%.6g, %.6g] (by hand [%.6g, %.6g])\n",
+                  c->median, (y[NR / 2 - 1] + y[NR / 2]) / 2, c->lo, c->hi, y[k - 1], y[NR - k]);
+    assert_true(fabs(c->median / ((y[NR / 2 - 1] + y[NR / 2]) / 2) - 1) < 1e-9);
+    assert_true(fabs(c->lo / y[k - 1] - 1) < 1e-9 && fabs(c->hi / y[NR - k] - 1) < 1e-9);
+    assert_true(isnan(c->between_lo) && isnan(c->between_hi) && isnan(out.reference_spread));
+    drift_result full;
+    drift_correct(&(drift_desc){ .n_configs = NC, .n_rounds = NR, .x = x, .seed = 2, .bootstrap = 200 }, &full);
+    assert_true(full.configs[0].median == c->median);   /* the same point correction */
+    assert_true(full.configs[0].lo <= c->lo && c->hi <= full.configs[0].hi);   /* the hull is wider */
+    drift_result_free(&full);
+    drift_result_free(&out);
+}
+
 /* Two configurations: raw figures only, with the reason; fewer than 3
  * rounds with 3 configurations: the same; no samples: DM_ERR_ARG. */
 static void test_too_small(void **state)
@@ -263,4 +323,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_early_stop_rebased),
              cmocka_unit_test(test_calibration_predictor),
              cmocka_unit_test(test_between_runs_cover),
+             cmocka_unit_test(test_point_only_known_answer),
              cmocka_unit_test(test_too_small))

@@ -14,7 +14,8 @@ expect_refused 2 "unknown command 'rnu'; did you mean 'run'" -- "$BIN" rnu
 expect_refused 2 "invalid value 'cubee' for mesh" -- "$BIN" render mesh=cubee --png "$OUT/x.png"
 expect_refused 2 "no such run directory" -- "$BIN" report "$OUT/nope"
 expect_refused 2 "run: --budget '0': expected seconds per configuration" -- "$BIN" run --budget 0
-expect_refused 2 "run: --extra-time 'inf': expected seconds for the whole run, > 0 and finite" -- "$BIN" run --extra-time inf
+expect_refused 2 "run: --extra-time 'inf': expected seconds for the whole run, 0 (none) or more and finite" -- "$BIN" run --extra-time inf
+expect_refused 2 "run: --extra-time '-1': expected seconds for the whole run, 0 (none) or more and finite" -- "$BIN" run --extra-time -1
 expect_refused 2 "mesh file '/nonexistent/x.obj' cannot be used" -- "$BIN" render mesh=file:/nonexistent/x.obj --png "$OUT/x.png"
 expect_refused 2 "fit: --loss 'l2': expected one of: huber, cauchy, none" -- "$BIN" fit "$OUT" --loss l2
 expect_refused 2 "unknown counter 'VSInvocatons'; did you mean 'VSInvocations'" -- "$BIN" list counters --passes WallTime,VSInvocatons

@@ -8,7 +8,8 @@
 # record, each configuration's WallTime samples one per round naming it,
 # in orders that differ between rounds; a second run with the same --seed
 # visits the first round of every scene in the same order, another seed
-# in another.
+# in another.  --quick takes no extra rounds unless asked (the default
+# sweep's 60 s are the bench's to measure: bench/precision.sh).
 set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 
@@ -18,6 +19,9 @@ sed -i ':a;N;$!ba;s/\n    */ /g' "$OUT/a.log"
 grep -q "^dmbench: precision (WallTime, 95 % CI within ±5 %): [0-9]* of [0-9]* raw, [0-9]* of [0-9]* with the machine's drift removed" "$OUT/a.log"
 grep -q "^dmbench: noise floor ±[0-9.]* %" "$OUT/a.log"
 grep -q "^dmbench: the machine's speed moved ±" "$OUT/a.log"
+# the default sweep spends 60 s of extra rounds by default; --quick none
+if grep "extra rounds" "$OUT/a.log"; then echo "extra rounds in a --quick run without --extra-time"; exit 1; fi
+[ -z "$(sqlite3 "$OUT/a/dmbench.sqlite" "SELECT value FROM run_env WHERE key = 'extra_time_s'")" ]
 "$BIN" run --quick --seed 7 --out "$OUT/b" --quiet
 "$BIN" run --quick --seed 8 --out "$OUT/c" --quiet
 python3 - "$OUT" <<'PY'
