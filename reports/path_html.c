@@ -157,9 +157,9 @@ static void path_html__shot(dm_str *s, const dm_path_quality *q, const dm_path_s
     dm_str_cat(s, "</figcaption></figure>");
 }
 
-/* The configuration's filmstrip (docs/reports.md, "Filmstrip"): the large
- * view of its first written frame with the caption, the controls, then the
- * strip of every written frame (scrolling in its own box).  Without a
+/* The configuration's filmstrip (docs/reports.md, "Page order"): the
+ * controls, the large view of its first written frame with the caption,
+ * then the strip of every written frame (scrolling in its own box).  Without a
  * script the strip's links open every image; the controls need it.  When
  * quality along the path was computed but no frame was written, says why. */
 static void path_html__film(dm_str *s, const report_model_row *r, const char *href)
@@ -187,7 +187,10 @@ static void path_html__film(dm_str *s, const report_model_row *r, const char *hr
                      "evenly spread, the first and last always among them).  ← → or the buttons "
                      "step through them; F or the button flips the view between the frame, its "
                      "reference and the FLIP map.</p>\n", q->n_shots, q->n);
-    dm_str_cat(s, "<figure class=\"film-view\"><img class=\"film-big\" src=\"");
+    dm_str_cat(s, "<div class=\"film-tools\"><button type=\"button\" class=\"film-prev\">◀ previous"
+                  "</button> <button type=\"button\" class=\"film-next\">next ▶</button> <button "
+                  "type=\"button\" class=\"film-flip\">flip: frame → reference → FLIP (F)</button></div>\n"
+                  "<figure class=\"film-view\"><img class=\"film-big\" src=\"");
     if (first->img_test && report__safe_relpath(first->img_test)) {
         dm_str_cat_html(s, href);
         dm_str_cat_html(s, first->img_test);
@@ -198,10 +201,7 @@ static void path_html__film(dm_str *s, const report_model_row *r, const char *hr
     path_html__frame_figure(s, q, q->flip, first->frame);
     dm_str_cat(s, ", SSIM ");
     path_html__frame_figure(s, q, q->ssim, first->frame);
-    dm_str_cat(s, "</figcaption></figure>\n<div class=\"film-tools\"><button type=\"button\" "
-                  "class=\"film-prev\">◀ previous</button> <button type=\"button\" class=\"film-next\">"
-                  "next ▶</button> <button type=\"button\" class=\"film-flip\">flip: frame → "
-                  "reference → FLIP (F)</button></div>\n<div class=\"scroll film-strip\">");
+    dm_str_cat(s, "</figcaption></figure>\n<div class=\"scroll film-strip\">");
     for (size_t i = 0; i < q->n_shots; i++)
         path_html__shot(s, q, &q->shots[i], href);
     dm_str_cat(s, "</div></div>\n");

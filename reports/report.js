@@ -23,7 +23,8 @@ if(!shots.length||!big)return;
 function show(){var d=shots[i].dataset;if(!d[kinds[k]])k=0;big.src=d[kinds[k]];big.dataset.kind=kinds[k];
 big.alt='frame '+d.frame+', '+words[k];shots.forEach(function(x,j){x.classList.toggle('on',j===i);});
 cap.textContent=fm.dataset.label+' \u2014 frame '+d.frame+' of '+fm.dataset.frames+', '+words[k]+': FLIP '+d.flipv+', SSIM '+d.ssim;}
-function step(n){i=(i+n+shots.length)%shots.length;show();}
+function step(n){i=(i+n+shots.length)%shots.length;show();
+if(shots[i].scrollIntoView)shots[i].scrollIntoView({block:'nearest',inline:'nearest'});}
 function flip(){for(var t=0;t<3;t++){k=(k+1)%3;if(shots[i].dataset[kinds[k]])break;}show();}
 fm.querySelector('.film-prev').onclick=function(){step(-1);};
 fm.querySelector('.film-next').onclick=function(){step(1);};

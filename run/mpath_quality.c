@@ -119,7 +119,8 @@ static char *mpath__save_map(mscene *m, mconf *c, const img *map)
 
 /* Renders frame `frame` of the configuration and of the reference into
  * test and ref; FLIP mean and SSIM of the pair into *flip and *ssim (NaN
- * where not computed), FLIP's map into map (w*h) when given.  0, or the renderer's error (reason in c's log). */
+ * where not computed), FLIP's map into map (w*h) when given.  0, or the
+ * renderer's error (reason in c's log). */
 static int mpath__frame(mscene *m, mconf *c, const dm_kv *ref_p, size_t n_ref, uint64_t frame,
                         img *test, img *ref, double *flip, double *ssim, size_t *cached, float *map)
 {

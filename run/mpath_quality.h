@@ -11,7 +11,9 @@
  * between consecutive reference frames.  Only the reference frames are
  * rendered (no figure reads the others), and they are compared as they
  * come: two frames of each sequence are held at a time, plus one float per
- * pixel and step for the temporal error's percentile.
+ * pixel and step for the temporal error's percentile and one FLIP map.  Up
+ * to MPATH_SHOTS_MAX of them are written as images as they pass (the
+ * frame, the reference frame, their FLIP map) for the report's filmstrip.
  *
  * K = 0 (the default) is two references, the pass's first and last frames
  * (K = F − 1): a default 60-frame path's references cost two still
@@ -78,7 +80,10 @@ int mpath_reference_frame(mscene *m, const dm_kv *p, size_t n, int w, int h, int
 
 /* Quality along c's path against the reference parameters ref[0..n_ref):
  * fills out->path_quality (present, or its reason when it cannot be
- * computed) and writes img/<key>-temporal.png. */
+ * computed) and writes img/<key>-temporal.png and the frames chosen by
+ * mpath_quality_shown (img/<key>-path-fNNN.png, -fNNN-flip.png and
+ * img/ref-XXXXXXXX-fNNN.png, listed in path_quality.shots; an image that
+ * cannot be written is left out of its shot with the reason in c's log). */
 void mpath_quality_measure(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref,
                            dm_config_result *out);
 
