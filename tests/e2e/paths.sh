@@ -18,8 +18,10 @@
 #   the report's filmstrip (docs/motion.md, "In the report"): the first and
 #   last with the default K, every frame with K = 1 on 4 frames, 16 of 17
 #   spread by the rule (computed here) with K = 1 on 20; results.json lists
-#   them, the files exist, a written frame is `render --frame N`'s image and
-#   a reference frame shared by two configurations is one file.
+#   them, the files exist, a written frame is `render --frame N`'s image,
+#   the report shows a filmstrip per dolly configuration, and the same run
+#   stored before frames were written (schema 7) reports without them,
+#   saying why.
 set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 R="mesh=plane technique=normal resolution=120x68"
@@ -156,6 +158,17 @@ refs = {s["reference"] for c in paths for s in c["path_quality"]["frames_shown"]
 assert len(refs) == 4, refs
 PY
 pass=$((pass+1))
+# A run stored before the frames were written (schema 7: no path_shots)
+# still reports, its filmstrip saying why it is absent.
+cp -r "$OUT/r" "$OUT/old"
+python3 -c 'import sqlite3,sys; db=sqlite3.connect(sys.argv[1]); db.executescript("DROP TABLE path_shots; PRAGMA user_version=7;"); db.close()' "$OUT/old/dmbench.sqlite"
+"$BIN" report "$OUT/old/latest" > /dev/null
+n=$(grep -c 'class="missing film-none">No filmstrip for' "$OUT/old/latest/report.html" || true)
+f=$(grep -c 'class="film" tabindex' "$OUT/old/latest/report.html" || true)
+if [ "$n" = 2 ] && [ "$f" = 0 ]; then pass=$((pass+1)); else echo "FAIL: old run's report: $n filmstrips absent with the reason, $f shown (want 2, 0)"; fail=$((fail+1)); fi
+f=$(grep -o 'class="film" tabindex' "$OUT/r/latest/report.html" | wc -l)
+if [ "$f" = 2 ]; then pass=$((pass+1)); else echo "FAIL: the run's report shows $f filmstrips, not 2"; fail=$((fail+1)); fi
+
 # A written frame is the frame `render --frame` draws.
 nk=$(python3 -c 'import json,sys; print([c["key"] for c in json.load(open(sys.argv[1]))["configs"] if c["params"].get("camera.path")=="dolly" and c["params"]["technique"]=="normal"][0])' "$OUT/r/latest/results.json")
 "$BIN" render mesh=plane technique=normal resolution=64x36 camera.path=dolly camera.path_frames=12 --frame 11 \
