@@ -19,7 +19,8 @@
 #   last with the default K, every frame with K = 1 on 4 frames, 16 of 17
 #   spread by the rule (computed here) with K = 1 on 20; results.json lists
 #   them, the files exist, a written frame is `render --frame N`'s image,
-#   the report shows a filmstrip per dolly configuration, and the same run
+#   the report shows a filmstrip per dolly configuration (and `report
+#   --out` copies its images), and the same run
 #   stored before frames were written (schema 7) reports without them,
 #   saying why.
 set -euo pipefail
@@ -168,6 +169,22 @@ f=$(grep -c 'class="film" tabindex' "$OUT/old/latest/report.html" || true)
 if [ "$n" = 2 ] && [ "$f" = 0 ]; then pass=$((pass+1)); else echo "FAIL: old run's report: $n filmstrips absent with the reason, $f shown (want 2, 0)"; fail=$((fail+1)); fi
 f=$(grep -o 'class="film" tabindex' "$OUT/r/latest/report.html" | wc -l)
 if [ "$f" = 2 ]; then pass=$((pass+1)); else echo "FAIL: the run's report shows $f filmstrips, not 2"; fail=$((fail+1)); fi
+
+# `report --out` copies the filmstrip's images and the temporal maps with the rest.
+"$BIN" report "$OUT/r/latest" --out "$OUT/moved" > /dev/null
+python3 - "$OUT/r/latest/results.json" "$OUT/moved" <<'PY'
+import json, os, sys
+want = set()
+for c in json.load(open(sys.argv[1]))["configs"]:
+    q = c["path_quality"] or {}
+    want |= {s[k] for s in q.get("frames_shown", []) for k in ("test", "reference", "flip")}
+    if q.get("images", {}).get("temporal"):
+        want.add(q["images"]["temporal"])
+assert len(want) == 2 * (2 * 3 + 1), sorted(want)   # per configuration: 2 frames x (frame, reference, map), a temporal map
+missing = [w for w in want if not os.path.isfile(os.path.join(sys.argv[2], w))]
+assert not missing, missing
+PY
+pass=$((pass+1))
 
 # A written frame is the frame `render --frame` draws.
 nk=$(python3 -c 'import json,sys; print([c["key"] for c in json.load(open(sys.argv[1]))["configs"] if c["params"].get("camera.path")=="dolly" and c["params"]["technique"]=="normal"][0])' "$OUT/r/latest/results.json")
