@@ -158,6 +158,12 @@ void dm_config_result_free(dm_config_result *c)
     free(c->path_quality.ssim);
     free(c->path_quality.img_temporal);
     free(c->path_quality.reason);
+    for (size_t i = 0; i < c->path_quality.n_shots; i++) {
+        free(c->path_quality.shots[i].img_test);
+        free(c->path_quality.shots[i].img_ref);
+        free(c->path_quality.shots[i].img_flip);
+    }
+    free(c->path_quality.shots);
     memset(c, 0, sizeof *c);
 }
 

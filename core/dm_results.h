@@ -87,6 +87,16 @@ typedef struct dm_path_series {
  * popping.  present 0 and reason NULL: none asked (a still configuration,
  * or a run from before paths); present 0 with reason: asked but not
  * computed, reason says why.  results.json "path_quality". */
+
+/* One frame of the path written as images for the report's filmstrip
+ * (run/mpath_quality.h, MPATH_SHOTS_MAX): the configuration's frame, its
+ * reference frame and their FLIP map, paths relative to the run directory
+ * (NULL where that image could not be written). */
+typedef struct dm_path_shot {
+    long frame;              /* along the path: one of the reference frames */
+    char *img_test, *img_ref, *img_flip;
+} dm_path_shot;
+
 typedef struct dm_path_quality {
     int present;
     long frames;             /* F */
@@ -98,6 +108,9 @@ typedef struct dm_path_quality {
     long popping_frame;      /* the frame (along the path) the largest jump lands on */
     char *img_temporal;      /* the temporal error map, relative to the run directory */
     char *reason;
+    dm_path_shot *shots;     /* the frames written as images, in path order; none in a run
+                                from before they were written (store schema < 8) */
+    size_t n_shots;
 } dm_path_quality;
 
 typedef struct dm_config_result {

@@ -4,7 +4,10 @@
  * stutters with their frames, the replay spread and the noisy mark; where
  * quality along the path was asked, the temporal error, popping and the
  * temporal error map) in one table, then each one's frame-time plot and
- * quality plot side by side (svg_chart.c).
+ * quality plot side by side (svg_chart.c) and its filmstrip: the frames the
+ * run wrote as images (dm_path_shot), a large view of one, buttons and keys
+ * that step through them and flip the view between the frame, its
+ * reference and their FLIP map (report.js), every image also a link.
  * Reads the report model only; a scene without a path configuration, and
  * so a still run, gets nothing.
  */
@@ -92,6 +95,118 @@ static void path_html__row(dm_str *s, const report_model_row *r, int quality, co
     dm_str_printf(s, "<td class=\"key\">%s</td></tr>\n", r->config->key ? r->config->key : "");
 }
 
+/* FLIP or SSIM of reference frame `frame` of q as text (%.4g), or
+ * "unavailable". */
+static void path_html__frame_figure(dm_str *s, const dm_path_quality *q, const double *v, long frame)
+{
+    size_t i = q->every > 0 ? (size_t)(frame / q->every) : q->n;
+    if (i < q->n && isfinite(v[i]))
+        dm_str_printf(s, "%.4g", v[i]);
+    else
+        dm_str_cat(s, "unavailable");
+}
+
+/* A link to image rel under href, with its text; "not written" when rel is
+ * missing or not a path inside the run. */
+static void path_html__link(dm_str *s, const char *href, const char *rel, const char *text)
+{
+    if (!rel || !report__safe_relpath(rel)) {
+        dm_str_printf(s, "<span class=\"missing\">%s not written</span>", text);
+        return;
+    }
+    dm_str_cat(s, "<a href=\"");
+    dm_str_cat_html(s, href);
+    dm_str_cat_html(s, rel);
+    dm_str_printf(s, "\">%s</a>", text);
+}
+
+/* One thumbnail of the strip: the frame (linked to its file), links to the
+ * reference and FLIP map, and data-* the script reads: the three files and
+ * the frame's figures. */
+static void path_html__shot(dm_str *s, const dm_path_quality *q, const dm_path_shot *sh, const char *href)
+{
+    const char *kinds[3] = { sh->img_test, sh->img_ref, sh->img_flip };
+    const char *names[3] = { "test", "ref", "flip" };
+    dm_str_printf(s, "<figure class=\"film-shot\" data-frame=\"%ld\"", sh->frame);
+    for (int k = 0; k < 3; k++) {
+        dm_str_printf(s, " data-%s=\"", names[k]);
+        if (kinds[k] && report__safe_relpath(kinds[k])) {
+            dm_str_cat_html(s, href);
+            dm_str_cat_html(s, kinds[k]);
+        }
+        dm_str_cat(s, "\"");
+    }
+    dm_str_cat(s, " data-flipv=\"");
+    path_html__frame_figure(s, q, q->flip, sh->frame);
+    dm_str_cat(s, "\" data-ssim=\"");
+    path_html__frame_figure(s, q, q->ssim, sh->frame);
+    dm_str_cat(s, "\">");
+    if (sh->img_test && report__safe_relpath(sh->img_test)) {
+        dm_str_cat(s, "<a href=\"");
+        dm_str_cat_html(s, href);
+        dm_str_cat_html(s, sh->img_test);
+        dm_str_cat(s, "\"><img src=\"");
+        dm_str_cat_html(s, href);
+        dm_str_cat_html(s, sh->img_test);
+        dm_str_printf(s, "\" alt=\"frame %ld\"></a>", sh->frame);
+    }
+    dm_str_printf(s, "<figcaption>frame %ld: ", sh->frame);
+    path_html__link(s, href, sh->img_ref, "reference");
+    dm_str_cat(s, " · ");
+    path_html__link(s, href, sh->img_flip, "FLIP");
+    dm_str_cat(s, "</figcaption></figure>");
+}
+
+/* The configuration's filmstrip (docs/reports.md, "Page order"): the
+ * controls, the large view of its first written frame with the caption,
+ * then the strip of every written frame (scrolling in its own box).  Without a
+ * script the strip's links open every image; the controls need it.  When
+ * quality along the path was computed but no frame was written, says why. */
+static void path_html__film(dm_str *s, const report_model_row *r, const char *href)
+{
+    const dm_path_quality *q = &r->config->path_quality;
+    const char *key = r->config->key ? r->config->key : "";
+    if (!q->present)
+        return;
+    if (!q->n_shots) {
+        dm_str_cat(s, "<p class=\"missing film-none\">No filmstrip for ");
+        dm_str_cat_html(s, r->label);
+        dm_str_cat(s, ": the run wrote no frame images (runs before dmbench wrote them have none; "
+                      "otherwise the configuration's log says why)</p>\n");
+        return;
+    }
+    const dm_path_shot *first = &q->shots[0];
+    dm_str_cat(s, "<div class=\"film\" tabindex=\"0\" id=\"film-");
+    dm_str_cat_html(s, key);
+    dm_str_cat(s, "\" data-label=\"");
+    dm_str_cat_html(s, r->label);
+    dm_str_printf(s, "\" data-frames=\"%ld\"><h4>Filmstrip: ", q->frames);
+    dm_str_cat_html(s, r->label);
+    dm_str_printf(s, "</h4>\n<p class=\"const\">%zu of its %zu reference frames as the run wrote "
+                     "them, each with its reference frame and their FLIP map (a long path's are "
+                     "evenly spread, the first and last always among them).  ← → or the buttons "
+                     "step through them; F or the button flips the view between the frame, its "
+                     "reference and the FLIP map.</p>\n", q->n_shots, q->n);
+    dm_str_cat(s, "<div class=\"film-tools\"><button type=\"button\" class=\"film-prev\">◀ previous"
+                  "</button> <button type=\"button\" class=\"film-next\">next ▶</button> <button "
+                  "type=\"button\" class=\"film-flip\">flip: frame → reference → FLIP (F)</button></div>\n"
+                  "<figure class=\"film-view\"><img class=\"film-big\" src=\"");
+    if (first->img_test && report__safe_relpath(first->img_test)) {
+        dm_str_cat_html(s, href);
+        dm_str_cat_html(s, first->img_test);
+    }
+    dm_str_printf(s, "\" alt=\"frame %ld\" data-kind=\"test\"><figcaption class=\"film-cap\">", first->frame);
+    dm_str_cat_html(s, r->label);
+    dm_str_printf(s, " — frame %ld of %ld, the technique's frame: FLIP ", first->frame, q->frames);
+    path_html__frame_figure(s, q, q->flip, first->frame);
+    dm_str_cat(s, ", SSIM ");
+    path_html__frame_figure(s, q, q->ssim, first->frame);
+    dm_str_cat(s, "</figcaption></figure>\n<div class=\"scroll film-strip\">");
+    for (size_t i = 0; i < q->n_shots; i++)
+        path_html__shot(s, q, &q->shots[i], href);
+    dm_str_cat(s, "</div></div>\n");
+}
+
 /* 1 when row i is on a camera path in scene si. */
 static int path_html__in(const report_model *m, size_t i, size_t si)
 {
@@ -141,6 +256,7 @@ void report__html_path_scene(dm_str *s, const report_model *m, size_t si, const 
             dm_str_cat(s, "</div><div style=\"flex:1 1 320px;max-width:720px\">");
             report__svg_path_quality(s, &m->rows[i]);
             dm_str_cat(s, "</div></div>\n");
+            path_html__film(s, &m->rows[i], href ? href : "");
         }
     dm_str_cat(s, "</section>\n");
 }

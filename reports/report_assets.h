@@ -7,8 +7,9 @@
 
 extern const char report_assets_css[];
 /* Click a column header to sort by it (numbers numerically), filter rows,
- * show all columns, flip an image to its reference; the content is complete
- * without it. */
+ * show all columns, flip an image to its reference, step through a path's
+ * filmstrip and flip its view (← →, F); the content is complete without
+ * it (every image is also a link). */
 extern const char report_assets_js[];
 
 #endif

@@ -208,6 +208,16 @@ static cJSON *report_json__path_quality_json(const dm_path_quality *pq)
         cJSON_AddNullToObject(o, "popping_frame");
     cJSON *im = cJSON_AddObjectToObject(o, "images");
     report_json__add_str(im, "temporal", pq->img_temporal);
+    cJSON *fr = cJSON_AddArrayToObject(o, "frames_shown");
+    for (size_t i = 0; i < pq->n_shots; i++) {
+        const dm_path_shot *sh = &pq->shots[i];
+        cJSON *f1 = cJSON_CreateObject();
+        cJSON_AddNumberToObject(f1, "frame", (double)sh->frame);
+        report_json__add_str(f1, "test", sh->img_test);
+        report_json__add_str(f1, "reference", sh->img_ref);
+        report_json__add_str(f1, "flip", sh->img_flip);
+        cJSON_AddItemToArray(fr, f1);
+    }
     return o;
 }
 
@@ -627,6 +637,16 @@ static void report_json__read_path_quality(const cJSON *o, dm_path_quality *pq)
     double at = report_json__get_num(o, "popping_frame");
     pq->popping_frame = isfinite(at) ? (long)at : -1;
     pq->img_temporal = report_json__get_str(cJSON_GetObjectItemCaseSensitive(o, "images"), "temporal");
+    const cJSON *f1;   /* frames_shown: absent in a run from before the filmstrip */
+    cJSON_ArrayForEach(f1, cJSON_GetObjectItemCaseSensitive(o, "frames_shown")) {
+        if (!cJSON_IsObject(f1))
+            continue;
+        dm_path_shot *sh = dm_vec_push(&pq->shots, &pq->n_shots, NULL, sizeof *pq->shots);
+        sh->frame = (long)report_json__get_count(f1, "frame");
+        sh->img_test = report_json__get_str(f1, "test");
+        sh->img_ref = report_json__get_str(f1, "reference");
+        sh->img_flip = report_json__get_str(f1, "flip");
+    }
 }
 
 static void report_json__read_config(const cJSON *o, dm_config_result *c)

@@ -34,28 +34,44 @@ static const report_write__file report_write__files[] = {
 };
 #define REPORT_WRITE__N (sizeof report_write__files / sizeof *report_write__files)
 
+/* Copies image rel (skipped when NULL, unsafe, missing or already there)
+ * from dir to the same relative path under out.  0, or DM_ERR_IO with err
+ * naming the file. */
+static int report_write__copy_one(const char *rel, const char *dir, const char *out, char *err,
+                                  size_t errlen)
+{
+    if (!rel || !report__safe_relpath(rel))
+        return 0;
+    char *from = dm_xasprintf("%s/%s", dir, rel), *to = dm_xasprintf("%s/%s", out, rel);
+    int rc = dm_file_exists(from) && !dm_file_exists(to) ? report__copy_file(from, to, err, errlen) : 0;
+    free(from);
+    free(to);
+    return rc;
+}
+
 /* Copies every image the run names (safe relative paths that exist) from
- * dir to the same relative path under out, so out is self-contained.  0,
- * or DM_ERR_IO with err naming the file. */
+ * dir to the same relative path under out, so out is self-contained: the
+ * still images, and along a path the temporal error map and the
+ * filmstrip's frames.  0, or DM_ERR_IO with err naming the file. */
 static int report_write__copy_images(const dm_run_result *run, const char *dir, const char *out, char *err,
                                size_t errlen)
 {
-    for (size_t i = 0; i < run->n_configs; i++) {
+    int rc = 0;
+    for (size_t i = 0; i < run->n_configs && !rc; i++) {
         const dm_config_result *c = &run->configs[i];
-        const char *imgs[] = {c->img_reference, c->img_render, c->img_heatmap, c->img_flip};
-        for (size_t k = 0; k < sizeof imgs / sizeof *imgs; k++) {
-            if (!imgs[k] || !report__safe_relpath(imgs[k]))
-                continue;
-            char *from = dm_xasprintf("%s/%s", dir, imgs[k]), *to = dm_xasprintf("%s/%s", out, imgs[k]);
-            int rc = dm_file_exists(from) && !dm_file_exists(to)
-                         ? report__copy_file(from, to, err, errlen) : 0;
-            free(from);
-            free(to);
-            if (rc)
-                return rc;
+        const dm_path_quality *q = &c->path_quality;
+        const char *imgs[] = {c->img_reference, c->img_render, c->img_heatmap, c->img_flip, q->img_temporal};
+        for (size_t k = 0; k < sizeof imgs / sizeof *imgs && !rc; k++)
+            rc = report_write__copy_one(imgs[k], dir, out, err, errlen);
+        for (size_t k = 0; k < q->n_shots && !rc; k++) {
+            rc = report_write__copy_one(q->shots[k].img_test, dir, out, err, errlen);
+            if (!rc)
+                rc = report_write__copy_one(q->shots[k].img_ref, dir, out, err, errlen);
+            if (!rc)
+                rc = report_write__copy_one(q->shots[k].img_flip, dir, out, err, errlen);
         }
     }
-    return 0;
+    return rc;
 }
 
 /* Writes one row of the table to path; err names the file when it fails. */

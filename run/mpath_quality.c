@@ -9,6 +9,7 @@
 #include <string.h>
 
 #include "core/dm_error.h"
+#include "core/dm_image.h"
 #include "imaging/flip.h"
 #include "imaging/quality.h"
 #include "imaging/temporal.h"
@@ -25,6 +26,24 @@ long mpath_quality_every(long frames, long every)
 size_t mpath_quality_count(long frames, long k)
 {
     return k < 1 || frames < 1 ? 0 : (size_t)((frames - 1) / k) + 1;
+}
+
+size_t mpath_quality_shown(long frames, long k, size_t cap, long *out)
+{
+    size_t n = mpath_quality_count(frames, k);
+    if (n == 0 || cap == 0)
+        return 0;
+    if (n <= cap || cap == 1) {
+        size_t m = n <= cap ? n : 1;
+        for (size_t i = 0; i < m; i++)
+            out[i] = (long)i * k;
+        return m;
+    }
+    /* round(j (n-1) / (cap-1)) in integers; the step is over 1, so distinct */
+    uint64_t num = (uint64_t)(n - 1), den = (uint64_t)(cap - 1);
+    for (size_t j = 0; j < cap; j++)
+        out[j] = (long)((2 * (uint64_t)j * num + den) / (2 * den)) * k;
+    return cap;
 }
 
 /* The value of axis name in params, else the axis default, as a long. */
@@ -100,9 +119,10 @@ static char *mpath__save_map(mscene *m, mconf *c, const img *map)
 
 /* Renders frame `frame` of the configuration and of the reference into
  * test and ref; FLIP mean and SSIM of the pair into *flip and *ssim (NaN
- * where not computed).  0, or the renderer's error (reason in c's log). */
+ * where not computed), FLIP's map into map (w*h) when given.  0, or the
+ * renderer's error (reason in c's log). */
 static int mpath__frame(mscene *m, mconf *c, const dm_kv *ref_p, size_t n_ref, uint64_t frame,
-                        img *test, img *ref, double *flip, double *ssim, size_t *cached)
+                        img *test, img *ref, double *flip, double *ssim, size_t *cached, float *map)
 {
     const char *source = NULL;
     int w = c->pc->width, h = c->pc->height;
@@ -120,10 +140,51 @@ static int mpath__frame(mscene *m, mconf *c, const dm_kv *ref_p, size_t n_ref, u
     *cached += strcmp(source, "cache") == 0;
     flip_desc d = flip_defaults(&(flip_desc){ .ppd = m->job->sweep->flip_ppd });
     flip_stats st;
-    *flip = flip_compare(ref, test, &d, &st, NULL) == 0 ? st.mean : NAN;
+    *flip = flip_compare(ref, test, &d, &st, map) == 0 ? st.mean : NAN;
     if (quality_ssim(ref, test, ssim) != 0)
         *ssim = NAN;
     return 0;
+}
+
+/* Saves frame `frame`'s image im, or FLIP map map when given (im gives its
+ * size), as img/<stem>-fNNN<suffix>.png.  Its path relative to the run
+ * directory, or NULL with the reason in c's log.  With keep, a file the
+ * run already has is kept: a reference frame shared by configurations with
+ * the same reference is written once. */
+static char *mpath__save(mscene *m, mconf *c, const char *stem, long frame, const char *suffix,
+                         const img *im, const float *map, int keep)
+{
+    char name[128], err[256] = "";
+    snprintf(name, sizeof name, "%s-f%03ld%s.png", stem, frame, suffix);
+    char *path = mscene_img_path(m->job, name), *rel = NULL;
+    int rc = 0;
+    if (!keep || !dm_file_exists(path))
+        rc = map ? flip_map_save(map, im->w, im->h, path, err, sizeof err)
+                 : img_save(im, path, err, sizeof err);
+    if (rc == 0)
+        rel = dm_xasprintf("img/%s", name);
+    else
+        dm_str_printf(&c->log, "frame %ld of the path: image %s not written: %s\n", frame, name, err);
+    free(path);
+    return rel;
+}
+
+/* The filmstrip's images of frame `frame` (docs/motion.md, "In the
+ * report"): the configuration's frame as img/<key>-path-fNNN.png, the
+ * reference frame as img/<ref_stem>-fNNN.png and their FLIP map as
+ * img/<key>-path-fNNN-flip.png (map NULL: FLIP was not computed, no map),
+ * into a new shot of pq. */
+static void mpath__shoot(mscene *m, mconf *c, const char *ref_stem, long frame, const img *test,
+                         const img *ref, const float *map, dm_path_quality *pq)
+{
+    dm_path_shot *sh = dm_vec_push(&pq->shots, &pq->n_shots, NULL, sizeof *pq->shots);
+    char stem[96];
+    snprintf(stem, sizeof stem, "%s-path", c->pc->key);
+    sh->frame = frame;
+    sh->img_test = mpath__save(m, c, stem, frame, "", test, NULL, 0);
+    sh->img_ref = mpath__save(m, c, ref_stem, frame, "", ref, NULL, 1);
+    if (map)
+        sh->img_flip = mpath__save(m, c, stem, frame, "-flip", test, map, 0);
 }
 
 /* The temporal error and map of the steps in acc (released here), and the
@@ -143,22 +204,52 @@ static void mpath__summarise(mscene *m, mconf *c, temporal_acc *acc, dm_path_qua
     pq->popping_frame = isfinite(pq->popping) ? (long)at * pq->every : -1;
 }
 
+/* The stem of c's reference frames' images: "ref-" and 8 hex digits of a
+ * hash of the reference's parameters (ref[0..n)) and size, as the still
+ * reference is img/ref-XXXXXXXX.png.  The scene alone, the still rule's
+ * key for a shared reference technique, does not hold the path, so the
+ * parameters are hashed: configurations whose reference renders the same
+ * frames share the files (into stem, 16 bytes). */
+static void mpath__ref_stem(const mconf *c, const dm_kv *ref, size_t n, char stem[16])
+{
+    uint64_t h = DM_FNV_SEED;
+    for (size_t i = 0; i < n; i++) {
+        h = dm_fnv1a64(ref[i].key, strlen(ref[i].key) + 1, h);
+        h = dm_fnv1a64(ref[i].value, strlen(ref[i].value) + 1, h);
+    }
+    int wh[2] = { c->pc->width, c->pc->height };
+    h = dm_fnv1a64(wh, sizeof wh, h);
+    snprintf(stem, 16, "ref-%08llx", (unsigned long long)(h & 0xffffffffULL));
+}
+
 /* Frames 0, K, 2K, ... of the configuration and the reference, compared as
  * they come: two frames of each are held at a time (the temporal error
- * takes each step as it is made).  0, or the first error with *failed the
+ * takes each step as it is made), and the frames in shown[0..n_shown)
+ * written as images as they pass.  0, or the first error with *failed the
  * frame it came at. */
 static int mpath__frames(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref, temporal_acc *acc,
-                         dm_path_quality *pq, size_t *cached, long *failed)
+                         dm_path_quality *pq, const long *shown, size_t n_shown, size_t *cached,
+                         long *failed)
 {
     img prev_t = {0}, prev_r = {0};
+    char stem[16];
+    mpath__ref_stem(c, ref, n_ref, stem);
+    float *map = dm_xmalloc((size_t)c->pc->width * (size_t)c->pc->height * sizeof *map);
+    size_t next = 0;   /* the next of shown[] to write */
     int rc = 0;
     for (size_t i = 0; i < pq->n && rc == 0; i++) {
         img t, r;
         uint64_t frame = (uint64_t)i * (uint64_t)pq->every;
+        int shoot = next < n_shown && shown[next] == (long)frame;
         *failed = (long)frame;
-        rc = mpath__frame(m, c, ref, n_ref, frame, &t, &r, &pq->flip[i], &pq->ssim[i], cached);
+        rc = mpath__frame(m, c, ref, n_ref, frame, &t, &r, &pq->flip[i], &pq->ssim[i], cached,
+                          shoot ? map : NULL);
         if (rc != 0)
             break;
+        if (shoot) {
+            mpath__shoot(m, c, stem, (long)frame, &t, &r, isfinite(pq->flip[i]) ? map : NULL, pq);
+            next++;
+        }
         if (i > 0)
             rc = temporal_acc_step(acc, &prev_t, &t, &prev_r, &r);
         img_free(&prev_t);
@@ -168,6 +259,7 @@ static int mpath__frames(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref, te
     }
     img_free(&prev_t);
     img_free(&prev_r);
+    free(map);
     return rc;
 }
 
@@ -193,15 +285,17 @@ void mpath_quality_measure(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref,
     pq->ssim = dm_xcalloc(n, sizeof *pq->ssim);
     pq->n = n;
     temporal_acc acc;
-    long failed = 0;
+    long failed = 0, shown[MPATH_SHOTS_MAX];
+    size_t n_shown = mpath_quality_shown(pq->frames, pq->every, MPATH_SHOTS_MAX, shown);
     int rc = temporal_acc_init(&acc, c->pc->width, c->pc->height);
     if (rc == 0)
-        rc = mpath__frames(m, c, ref, n_ref, &acc, pq, &cached, &failed);
+        rc = mpath__frames(m, c, ref, n_ref, &acc, pq, shown, n_shown, &cached, &failed);
     if (rc == 0) {
         mpath__summarise(m, c, &acc, pq);
         pq->present = 1;
         dm_str_printf(&c->log, "quality along the path: %zu reference frames (every %ld of %ld), %zu "
-                      "of them from the reference cache\n", n, pq->every, pq->frames, cached);
+                      "of them from the reference cache; %zu written as images\n", n, pq->every,
+                      pq->frames, cached, pq->n_shots);
     } else {
         temporal_stats unused;
         temporal_acc_finish(&acc, &unused, NULL);

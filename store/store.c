@@ -165,6 +165,12 @@ static int store__config_write(store *s, const char *run, const void *item)
                             pq->frames, pq->every, pq->temporal_mean, pq->temporal_p99,
                             pq->popping, pq->popping_frame, pq->img_temporal, pq->flip, pq->n,
                             pq->ssim, pq->n);
+    for (size_t i = 0; i < pq->n_shots && rc == 0; i++) {
+        const dm_path_shot *sh = &pq->shots[i];
+        store_sql_owner so = { run, c->key, (long)i };
+        rc = store_sql_exec(s, STORE_SQL_SHOT_INS, &so, "lttt", sh->frame, sh->img_test,
+                            sh->img_ref, sh->img_flip);
+    }
     return rc;
 }
 
@@ -426,7 +432,16 @@ static int store__path_quality_read(store *s, const store_sql_owner *o, dm_path_
     if (ns < pq->n)
         pq->n = ns;
     sqlite3_reset(st);
-    return 0;
+    st = store_sql_query(s, STORE_SQL_SHOT_SEL, o, "");
+    rc = st ? 1 : DM_ERR_STORE;
+    while (rc == 1 && (rc = store_sql_row(s, st)) == 1) {
+        dm_path_shot *sh = dm_vec_push(&pq->shots, &pq->n_shots, NULL, sizeof *pq->shots);
+        sh->frame = (long)sqlite3_column_int64(st, 0);
+        sh->img_test = store_sql_col_str(st, 1);
+        sh->img_ref = store_sql_col_str(st, 2);
+        sh->img_flip = store_sql_col_str(st, 3);
+    }
+    return rc;
 }
 
 static int store__configs_read(store *s, dm_run_result *r)

@@ -1,7 +1,7 @@
 /* store_schema.c — the results store's schema: the migrations that create
  * it and the check that a file has all of it (store_sql.h).
  *
- * Schema (version 7, kept in PRAGMA user_version; store_schema__migrations[i] takes a
+ * Schema (version 8, kept in PRAGMA user_version; store_schema__migrations[i] takes a
  * database from version i to i+1).  Everything hangs off a run and is
  * deleted with it (ON DELETE CASCADE); order is kept by seq columns and by
  * rowid for lists:
@@ -52,6 +52,10 @@
  *           temporal_p99, popping, popping_frame, img_temporal, flip BLOB,
  *           ssim BLOB) PK (run, key) → configs: quality along a camera path
  *           (dm_path_quality; a row only where it was asked; version 7)
+ *   path_shots(run, key, seq, frame, img_test, img_ref, img_flip) PK (run,
+ *           key, seq) → configs: the frames of a path written as images
+ *           for the report's filmstrip, in path order (dm_path_shot;
+ *           version 8: older runs have none)
  *   fit_group(run, seq, key, value), fit_params(run, seq, name, value,
  *        stderr), fit_warnings(run, seq, text), fit_labels(run, seq, idx,
  *        label)
@@ -168,6 +172,12 @@ static const char *const store_schema__migrations[STORE_SCHEMA_VERSION] = {
     " temporal_mean REAL, temporal_p99 REAL, popping REAL, popping_frame"
     " INTEGER, img_temporal TEXT, flip BLOB, ssim BLOB, PRIMARY KEY(run, key),"
     " FOREIGN KEY(run, key) REFERENCES configs(run, key) ON DELETE CASCADE);",
+    /* 7 -> 8: the frames of a path written as images (the report's
+     * filmstrip); older runs have none and say so */
+    "CREATE TABLE path_shots(run TEXT NOT NULL, key TEXT NOT NULL,"
+    " seq INTEGER NOT NULL, frame INTEGER, img_test TEXT, img_ref TEXT,"
+    " img_flip TEXT, PRIMARY KEY(run, key, seq), FOREIGN KEY(run, key)"
+    " REFERENCES configs(run, key) ON DELETE CASCADE);",
 };
 
 int store_schema_migrate(sqlite3 *db, long *found)

@@ -18,7 +18,7 @@
 
 #include <stddef.h>
 
-#define STORE_SCHEMA_VERSION 7
+#define STORE_SCHEMA_VERSION 8
 
 #define STORE__CFG_COLS "scene,status,reason,log,q_present,q_rmse,q_psnr," \
     "q_ssim,q_max_error,q_pct_over,q_silhouette,q_depth_rmse,q_crack_pixels," \
@@ -86,6 +86,10 @@
       "(?1,?2,?4,?5,?6,?7,?8,?9,?10,?11,?12,?13,?14)")                        \
     X(PQ_SEL, "SELECT " STORE__PQ_COLS " FROM path_quality WHERE run=?1 AND"  \
       " key=?2")                                                              \
+    X(SHOT_INS, "INSERT INTO path_shots(run,key,seq,frame,img_test,img_ref,"  \
+      "img_flip) VALUES(?1,?2,?3,?4,?5,?6,?7)")                               \
+    X(SHOT_SEL, "SELECT frame,img_test,img_ref,img_flip FROM path_shots"      \
+      " WHERE run=?1 AND key=?2 ORDER BY seq")                                \
     X(CTR_SEL, "SELECT name," STORE__CTR_COLS " FROM counters WHERE run=?1"   \
       " AND key=?2 ORDER BY rowid")                                           \
     X(SMP_INS, "INSERT INTO samples(run,key,counter,data) VALUES(?1,?2,?4,?5)")\

@@ -1197,7 +1197,51 @@ static void test_html_path(void **state)
     assert_int_equal(sscanf(d, " d=\"M%lf,%lf L%lf,%lf L%lf,%lf \"", &x[0], &y[0], &x[1], &y[1], &x[2], &y[2]), 6);
     assert_true(y[1] < y[2] && y[2] < y[0]);
     assert_non_null(strstr(plot, ">popping 0.4 (frame 1)</text>"));
+    /* no frame written (a run from before the filmstrip): it says why */
+    assert_non_null(strstr(sec, "<p class=\"missing film-none\">No filmstrip for "));
+    assert_null(strstr(sec, "class=\"film\""));
     free(html);
+    /* frames 0 and 2 written, frame 2 without its FLIP map: the large view
+     * starts at frame 0's image, each thumbnail carries its three files and
+     * its reference frame's FLIP and SSIM (0.2 and 0.85 at frame 2) */
+    q->n_shots = 2;
+    q->shots = dm_xcalloc(2, sizeof *q->shots);
+    q->shots[0] = (dm_path_shot){0, dm_xstrdup("img/c0-path-f000.png"), dm_xstrdup("img/ref-1-f000.png"),
+                                 dm_xstrdup("img/c0-path-f000-flip.png")};
+    q->shots[1] = (dm_path_shot){2, dm_xstrdup("img/c0-path-f002.png"), dm_xstrdup("img/ref-1-f002.png"), NULL};
+    html = html_of(&run, path);
+    sec = strstr(html, "<section class=\"path-scene\" id=\"path-0\">");
+    assert_null(strstr(sec, "No filmstrip"));
+    const char *film = strstr(sec, "<div class=\"film\" tabindex=\"0\" id=\"film-");
+    assert_non_null(film);
+    assert_non_null(strstr(film, "<img class=\"film-big\" src=\"img/c0-path-f000.png\""));
+    assert_non_null(strstr(film, "frame 0 of 3, the technique's frame: FLIP 0.1, SSIM 0.9</figcaption>"));
+    assert_non_null(strstr(film, "<figure class=\"film-shot\" data-frame=\"2\" data-test=\"img/c0-path-f002.png\" "
+                                 "data-ref=\"img/ref-1-f002.png\" data-flip=\"\" data-flipv=\"0.2\" "
+                                 "data-ssim=\"0.85\"><a href=\"img/c0-path-f002.png\">"));
+    assert_non_null(strstr(film, "<a href=\"img/ref-1-f000.png\">reference</a> · "
+                                 "<a href=\"img/c0-path-f000-flip.png\">FLIP</a>"));
+    assert_non_null(strstr(film, "<span class=\"missing\">FLIP not written</span>"));
+    assert_non_null(strstr(film, "class=\"scroll film-strip\""));
+    free(html);
+    /* results.json lists them and reads them back */
+    char *js = dm_xasprintf("%s/r.json", dir);
+    assert_int_equal(write_report_file(&run, "results.json", NULL, js, NULL), 0);
+    char *tj = test_slurp(js);
+    assert_non_null(strstr(tj, "\"frames_shown\""));
+    dm_run_result back = {0};
+    char jerr[256] = "";
+    assert_int_equal(report_read_json(js, &back, jerr, sizeof jerr), 0);
+    const dm_path_quality *bq = &back.configs[0].path_quality;
+    assert_int_equal(bq->n_shots, 2);
+    assert_int_equal(bq->shots[1].frame, 2);
+    assert_string_equal(bq->shots[0].img_flip, "img/c0-path-f000-flip.png");
+    assert_string_equal(bq->shots[1].img_ref, "img/ref-1-f002.png");
+    assert_null(bq->shots[1].img_flip);
+    dm_run_free(&back);
+    free(tj);
+    unlink(js);
+    free(js);
     /* the CSV's and summary.md's temporal figures */
     char *csv = dm_xasprintf("%s/r.csv", dir), *md = dm_xasprintf("%s/s.md", dir);
     assert_int_equal(write_report_file(&run, "results.csv", NULL, csv, NULL), 0);

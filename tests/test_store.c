@@ -190,6 +190,13 @@ static void config_sampled(dm_config_result *c, const char *key, size_t n_sample
     pq->ssim = dv(3, 0.75, -0.0625);
     pq->flip[1] = NAN;
     pq->img_temporal = dm_xstrdup("img/c-temporal.png");
+    /* two frames written for the filmstrip, the second without its FLIP map */
+    pq->n_shots = 2;
+    pq->shots = dm_xcalloc(2, sizeof *pq->shots);
+    pq->shots[0] = (dm_path_shot){ 0, dm_xstrdup("img/c-path-f000.png"), dm_xstrdup("img/ref-1-f000.png"),
+                                   dm_xstrdup("img/c-path-f000-flip.png") };
+    pq->shots[1] = (dm_path_shot){ 8, dm_xstrdup("img/c-path-f008.png"), dm_xstrdup("img/ref-1-f008.png"),
+                                   NULL };
 }
 
 /* Adds n sampled counters "C0".."C<n-1>" of n_samples each to c. */
@@ -458,6 +465,13 @@ static void eq_config(const dm_config_result *a, const dm_config_result *b)
     eq_dbl(p->popping, q->popping, "popping");
     assert_int_equal(p->popping_frame, q->popping_frame);
     EQ_STR(p->img_temporal, q->img_temporal, "img_temporal");
+    assert_int_equal(p->n_shots, q->n_shots);
+    for (size_t i = 0; i < p->n_shots; i++) {
+        assert_int_equal(p->shots[i].frame, q->shots[i].frame);
+        EQ_STR(p->shots[i].img_test, q->shots[i].img_test, "shot img_test");
+        EQ_STR(p->shots[i].img_ref, q->shots[i].img_ref, "shot img_ref");
+        EQ_STR(p->shots[i].img_flip, q->shots[i].img_flip, "shot img_flip");
+    }
 }
 
 static void eq_fit(const dm_fit_result *a, const dm_fit_result *b)
@@ -550,7 +564,7 @@ static void test_round_trip(void **state)
     eq_run(&run, &got);
     /* The sampled counter's 50 samples are one blob of 400 bytes. */
     assert_int_equal(sql_long(s, "SELECT length(data) FROM samples"), 400);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
     dm_run_free(&got);
     store_close(s);
     /* ...and again from a fresh connection. */
@@ -792,12 +806,32 @@ static void test_missing_table_or_column(void **state)
  * migrated to the current version, its fits read back with condition 0 ("not
  * computed") and everything else intact; new fits keep their condition,
  * infinity included. */
+/* SQL that takes the store back to before version 8, and what such a
+ * store reads back: quality along a path without the frames written. */
+#define PATH_SHOTS_DROPPED "DROP TABLE path_shots;"
+
+static void path_shots_not_stored(dm_run_result *run)
+{
+    for (size_t i = 0; i < run->n_configs; i++) {
+        dm_path_quality *pq = &run->configs[i].path_quality;
+        for (size_t k = 0; k < pq->n_shots; k++) {
+            free(pq->shots[k].img_test);
+            free(pq->shots[k].img_ref);
+            free(pq->shots[k].img_flip);
+        }
+        free(pq->shots);
+        pq->shots = NULL;
+        pq->n_shots = 0;
+    }
+}
+
 /* SQL that takes the store back to before version 7. */
-#define PATH_QUALITY_DROPPED "DROP TABLE path_quality;"
+#define PATH_QUALITY_DROPPED PATH_SHOTS_DROPPED "DROP TABLE path_quality;"
 
 /* What a store from before version 7 reads back: no quality along a path. */
 static void path_quality_not_computed(dm_run_result *run)
 {
+    path_shots_not_stored(run);
     for (size_t i = 0; i < run->n_configs; i++) {
         dm_path_quality *pq = &run->configs[i].path_quality;
         free(pq->flip);
@@ -883,7 +917,7 @@ static void test_fit_condition_migration(void **state)
                                   "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_true(got.fits[0].condition == 0.0);
     run.fits[0].condition = 0.0;
@@ -919,7 +953,7 @@ static void test_flip_migration(void **state)
                                   NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     flip_not_computed(&run);
     precision_not_computed(&run);
@@ -949,7 +983,7 @@ static void test_path_quality_migration(void **state)
                      SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     dm_run_result want;
     run_full(&want, "old");
@@ -961,6 +995,49 @@ static void test_path_quality_migration(void **state)
         assert_int_equal(store_config_put(s, "old", &run.configs[i]), 0);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     eq_run(&run, &got);
+    assert_integrity_ok(s);
+    dm_run_free(&got);
+    dm_run_free(&run);
+    store_close(s);
+}
+
+/* A version-7 store (before the filmstrip's frames) opens migrated: its
+ * quality along a path reads back whole but with no frames written (the
+ * report says why the filmstrip is absent); a configuration stored
+ * afterwards keeps its frames, a missing FLIP map included. */
+static void test_path_shots_migration(void **state)
+{
+    tmp *t = *state;
+    dm_run_result run, got;
+    run_full(&run, "old");
+    store *s = open_ok(t->db);
+    store_put_all(s, &run, NULL);
+    assert_int_equal(sql_long(s, "SELECT count(*) FROM path_shots"), 2);
+    store_close(s);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, PATH_SHOTS_DROPPED "PRAGMA user_version=7", NULL, NULL, NULL),
+                     SQLITE_OK);
+    sqlite3_close(db);
+    s = open_ok(t->db);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    dm_run_result want;
+    run_full(&want, "old");
+    path_shots_not_stored(&want);
+    eq_run(&want, &got);
+    dm_run_free(&got);
+    dm_run_free(&want);
+    for (size_t i = 0; i < run.n_configs; i++)
+        assert_int_equal(store_config_put(s, "old", &run.configs[i]), 0);
+    assert_int_equal(store_run_load(s, "old", &got), 0);
+    eq_run(&run, &got);
+    size_t with = 0;   /* the configuration with quality along its path */
+    while (with < got.n_configs && !got.configs[with].path_quality.present)
+        with++;
+    assert_true(with < got.n_configs);
+    assert_int_equal(got.configs[with].path_quality.n_shots, 2);
+    assert_null(got.configs[with].path_quality.shots[1].img_flip);
     assert_integrity_ok(s);
     dm_run_free(&got);
     dm_run_free(&run);
@@ -987,7 +1064,7 @@ static void test_path_migration(void **state)
     assert_int_equal(sqlite3_exec(db, PATH_DROPPED "PRAGMA user_version=5", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     run_full(&want, "old");
     path_not_stored(&want);
@@ -1024,7 +1101,7 @@ static void test_precision_migration(void **state)
     assert_int_equal(sqlite3_exec(db, PRECISION_DROPPED PATH_DROPPED "PRAGMA user_version=4", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
     s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
     assert_int_equal(store_run_load(s, "old", &got), 0);
     dm_run_result want;
     run_full(&want, "old");
@@ -1253,7 +1330,7 @@ static void test_open_alloc_faults(void **state)
         dm_str_free(&err);
         s = open_ok(t->db);
         assert_integrity_ok(s);
-        assert_int_equal(sql_long(s, "PRAGMA user_version"), 7);
+        assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
         store_close(s);
         if (!reached)
             break;
@@ -1350,6 +1427,7 @@ int main(void)
         cmocka_unit_test_setup_teardown(test_fit_replace, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_fit_condition_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_flip_migration, tmp_setup, tmp_teardown),
+        cmocka_unit_test_setup_teardown(test_path_shots_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_path_quality_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_precision_migration, tmp_setup, tmp_teardown),
         cmocka_unit_test_setup_teardown(test_path_migration, tmp_setup, tmp_teardown),

@@ -1,7 +1,9 @@
 /* gen_report.c — writes the synthetic fixture run (tests/test_reports_fixture.h)
  * with its images into DIR, for the browser test, its first configuration's
  * heatmap its FLIP map (as runs write it) and a camera path's frame
- * times; and DIR/scale.txt, the words
+ * times, its quality along the path and a filmstrip of three frames (0, 20
+ * and 40, each with its reference and FLIP map: nine images of distinct
+ * colours); and DIR/scale.txt, the words
  * every FLIP map's legend states its scale in (FLIP_SCALE_TEXT).  Usage:
  * gen_report DIR */
 #include "reports/report.h"
@@ -11,6 +13,39 @@
 #include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
+
+/* The filmstrip's nine images: frames 0, 20, 40 of configuration 0 ×
+ * (frame, reference, FLIP map), as a run names them, into q's shots and
+ * written under dir, each an 8×8 image of its own colour. */
+static int gen__film(const char *dir, dm_path_quality *q, char *err, size_t errlen)
+{
+    static const char *const fmt[3] = {"img/" FIXTURE_KEY0 "-path-f%03ld.png",
+                                       "img/ref-0badf00d-f%03ld.png",
+                                       "img/" FIXTURE_KEY0 "-path-f%03ld-flip.png"};
+    img im = {0};
+    int rc = img_alloc(&im, 8, 8);
+    q->n_shots = 3;
+    q->shots = dm_xcalloc(3, sizeof *q->shots);
+    for (size_t i = 0; i < 3 && !rc; i++) {
+        dm_path_shot *sh = &q->shots[i];
+        sh->frame = 20 * (long)i;
+        char **names[3] = {&sh->img_test, &sh->img_ref, &sh->img_flip};
+        for (size_t k = 0; k < 3 && !rc; k++) {
+            *names[k] = dm_xasprintf(fmt[k], sh->frame);
+            for (int p = 0; p < 64; p++) {
+                im.px[p * 4 + 0] = (float)i / 2.0f;
+                im.px[p * 4 + 1] = (float)k / 2.0f;
+                im.px[p * 4 + 2] = 0.5f;
+                im.px[p * 4 + 3] = 1.0f;
+            }
+            char *path = dm_xasprintf("%s/%s", dir, *names[k]);
+            rc = img_save(&im, path, err, errlen);
+            free(path);
+        }
+    }
+    img_free(&im);
+    return rc;
+}
 
 int main(int argc, char **argv)
 {
@@ -55,6 +90,8 @@ int main(int argc, char **argv)
     memcpy(q->ssim, ssim, sizeof ssim);
     q->img_temporal = dm_xstrdup(c->img_heatmap);
     int rc = fixture_images(argv[1], err, sizeof err);
+    if (!rc)
+        rc = gen__film(argv[1], q, err, sizeof err);
     if (!rc) {
         char *path = dm_xasprintf("%s/scale.txt", argv[1]);
         rc = dm_write_file(path, FLIP_SCALE_TEXT, sizeof FLIP_SCALE_TEXT - 1);

@@ -7,7 +7,9 @@
 # legend stands before the cards with its colour scale drawn and states the
 # scale in the words of `dmbench diff --heatmap`'s help (scale.txt), that
 # a camera path's section has its frame-time plot with the stutter marked
-# and its quality plot
+# and its quality plot, that its filmstrip's buttons and keys step and flip
+# the large view to the expected files (frame 20's frame, reference and
+# FLIP map, then frame 40) with a caption naming the frame,
 # and nothing past the right edge of a 1280×800 window (outside a
 # horizontal scroller) nor a page wider than it, and that the console
 # shows no error.
@@ -40,6 +42,10 @@ probe="$probe"'if(lg)document.body.setAttribute("data-legend-text",lg.textConten
 probe="$probe"'var ps=document.querySelector("section.path-scene"),pl=ps?ps.querySelectorAll(".chart path.path-median").length+" "+ps.querySelectorAll(".chart path.path-flip").length:0,over=0;'
 probe="$probe"'if(ps)ps.querySelectorAll("*").forEach(function(e){if(e.getBoundingClientRect().right>window.innerWidth+0.5\&\&!e.closest(".scroll"))over++;});'
 probe="$probe"'document.body.setAttribute("data-path",(ps?1:0)+" "+pl+" "+ps.querySelectorAll("circle.path-stutter").length+" "+over+" "+(document.documentElement.scrollWidth>window.innerWidth?1:0));'
+probe="$probe"'var fm=document.querySelector(".film"),fr="none";if(fm){var b=fm.querySelector(".film-big"),r=[b.getAttribute("src")],kd=function(k){fm.dispatchEvent(new KeyboardEvent("keydown",{key:k,bubbles:true}));r.push(b.getAttribute("src"));};'
+probe="$probe"'fm.querySelector(".film-next").click();r.push(b.getAttribute("src"));fm.querySelector(".film-flip").click();r.push(b.getAttribute("src"));fm.querySelector(".film-flip").click();r.push(b.getAttribute("src"));'
+probe="$probe"'kd("f");kd("ArrowRight");r.push(fm.querySelector(".film-cap").textContent.indexOf("frame 40 of 60")>=0\&\&fm.querySelector(".film-cap").textContent.indexOf("FLIP 0.07, SSIM 0.9")>0?"caption":"no-caption");fr=r.join(" ");}'
+probe="$probe"'document.body.setAttribute("data-film",fr);'
 probe="$probe"'document.body.setAttribute("data-dupids",dup);});</script></body>'
 sed "s#</body>#$probe#" "$work/run/report.html" > "$work/run/probe.html"
 
@@ -79,7 +85,11 @@ grep -F "data-legend-text=\"Heatmap: $scale" "$work/dom.html" >/dev/null \
     || fail "the heatmap legend does not state the scale as diff --heatmap does: $scale"
 path=$(sed -n 's/.*data-path="\([0-9 ]*\)".*/\1/p' "$work/dom.html" | head -n 1)
 [ "$path" = "1 1 1 1 0 0" ] || fail "along the path (section, frame-time plots, quality plots, stutters, elements past the right edge outside a scroller, page wider than the window): '${path:-no probe}', not '1 1 1 1 0 0'"
+k=0123456789abcdef
+film=$(sed -n 's/.*data-film="\([^"]*\)".*/\1/p' "$work/dom.html" | head -n 1)
+want="img/$k-path-f000.png img/$k-path-f020.png img/ref-0badf00d-f020.png img/$k-path-f020-flip.png img/$k-path-f020.png img/$k-path-f040.png caption"
+[ "$film" = "$want" ] || fail "filmstrip (start, next, flip, flip, key F, key →, caption): '${film:-no probe}', not '$want'"
 if grep -E "Uncaught|ERROR:CONSOLE|CONSOLE\(" "$work/console.log" >&2; then
     fail "console errors"
 fi
-echo "report rendered; along the path: plot and stutter, no horizontal overflow at 1280x800; $images images loaded; $1 gallery cards of one width, captions below; a click flips to $flip; ids unique; the heatmap legend before the cards, in diff --heatmap's words; no console errors"
+echo "report rendered; along the path: plot and stutter, the filmstrip steps and flips, no horizontal overflow at 1280x800; $images images loaded; $1 gallery cards of one width, captions below; a click flips to $flip; ids unique; the heatmap legend before the cards, in diff --heatmap's words; no console errors"

@@ -10,7 +10,12 @@
 # - POM with 4 steps swims more than with 64 on an orbit at a grazing
 #   elevation (15 degrees, the camera at 1.2 so the plane fills the frame);
 # - the first run renders each shared reference frame once, a second run of
-#   the same path none (all from the cache).
+#   the same path none (all from the cache);
+# - the filmstrip's images (docs/motion.md, "In the report"): every frame of
+#   the 12-frame paths (K = 1), frames 0, 20, 40 of the still path (K = 20);
+#   the three filters, sharing one reference, name one set of reference
+#   frame files, and the second run's, loaded from the cache, are
+#   byte-identical to the first run's.
 # The tessellation rung (distance LOD: equal_spacing pops more than the
 # fractional spacings on a dolly) does not hold on this scene; its values
 # are printed, not asserted (docs/motion.md says why).
@@ -113,6 +118,24 @@ m = {k: q["temporal_error_mean"] for k, q in f.items()}
 check(m["nearest"] > m["trilinear"] > m["aniso16"], "dolly: nearest > trilinear > aniso16 (temporal error mean)")
 second = cached(load("filter2"))
 check(second == [12, 12, 12], f"second run of the same path: every reference frame from the cache {second}")
+
+import filecmp, os
+def shots(name):   # per configuration: its frames_shown, and the run directory
+    d = json.load(open(f"{out}/{name}/latest/results.json"))
+    return [c["path_quality"]["frames_shown"] for c in d["configs"]], os.path.realpath(f"{out}/{name}/latest")
+s1, run1 = shots("filter")
+s2, run2 = shots("filter2")
+check(all([x["frame"] for x in s] == list(range(12)) for s in s1 + s2), "K = 1 on 12 frames: every frame written")
+refs1 = {tuple(x["reference"] for x in s) for s in s1}
+check(len(refs1) == 1, f"the three filters share one set of reference frame files ({len(refs1)} sets)")
+files = [(os.path.join(run, x[k])) for run, ss in ((run1, s1), (run2, s2)) for s in ss for x in s
+         for k in ("test", "reference", "flip")]
+check(all(os.path.getsize(f) > 0 for f in files), f"all {len(files)} listed images exist")
+same = [filecmp.cmp(os.path.join(run1, a["reference"]), os.path.join(run2, b["reference"]), shallow=False)
+        for a, b in zip(s1[0], s2[0])]
+check(len(same) == 12 and all(same), "second run: its reference frames (from the cache) byte-identical to the first run's")
+st, _ = shots("still")
+check(all([x["frame"] for x in s] == [0, 20, 40] for s in st), "still path, K = 20 of 60: frames 0, 20, 40 written")
 
 t = {k.split("tess_spacing=")[-1] if "tess_spacing=" in k else "equal": q for k, (q, _) in load("tess").items()}
 for k in ("equal", "fractional_odd", "fractional_even"):

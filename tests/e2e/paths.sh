@@ -13,7 +13,16 @@
 # - a run times path configurations beside the still ones (their keys and
 #   labels as without camera.path): every figure of results.json's "path"
 #   recomputed from the stored per-frame series; a bad value exits 2 with
-#   the valid choices.
+#   the valid choices;
+# - the frames quality along the path compares are written as images for
+#   the report's filmstrip (docs/motion.md, "In the report"): the first and
+#   last with the default K, every frame with K = 1 on 4 frames, 16 of 17
+#   spread by the rule (computed here) with K = 1 on 20; results.json lists
+#   them, the files exist, a written frame is `render --frame N`'s image,
+#   the report shows a filmstrip per dolly configuration (and `report
+#   --out` copies its images), and the same run
+#   stored before frames were written (schema 7) reports without them,
+#   saying why.
 set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 R="mesh=plane technique=normal resolution=120x68"
@@ -60,7 +69,7 @@ printf 'name: still\nresolution: [64, 36]\nsweep:\n  mesh: [plane]\n  technique:
 "$BIN" run "$OUT/p.yaml" --out "$OUT/r" > "$OUT/run.txt" 2>&1
 python3 - "$OUT/r/latest/results.json" "$OUT/r/dmbench.sqlite" "$OUT/still.txt" "$OUT/r/latest/results.csv" \
   "$OUT/r/latest/summary.md" "$OUT/run.txt" <<'PY'
-import csv, json, math, re, sqlite3, struct, sys
+import csv, json, math, os, re, sqlite3, struct, sys
 d = json.load(open(sys.argv[1]))
 cs = d["configs"]
 assert len(cs) == 4 and not d.get("left_out"), (len(cs), d.get("left_out"))
@@ -133,6 +142,82 @@ for c in cs:
     assert q and q["computed"] and q["frames"] == 12 and q["every"] == 11, (c["label"], q)
     assert q["reference_frames"] == [0, 11] and len(q["FLIP"]) == 2 and len(q["SSIM"]) == 2, q
     assert q["temporal_error_mean"] >= 0 and q["images"]["temporal"].endswith("-temporal.png"), q
+    # the filmstrip's frames: both reference frames, each with its reference and FLIP map
+    run = os.path.dirname(sys.argv[1])
+    shots = q["frames_shown"]
+    assert [s["frame"] for s in shots] == [0, 11], shots
+    for s in shots:
+        assert s["test"] == "img/%s-path-f%03d.png" % (c["key"], s["frame"]), s
+        assert s["flip"] == "img/%s-path-f%03d-flip.png" % (c["key"], s["frame"]), s
+        assert re.fullmatch(r"img/ref-[0-9a-f]{8}-f%03d\.png" % s["frame"], s["reference"]), s
+        for k in ("test", "reference", "flip"):
+            assert os.path.getsize(os.path.join(run, s[k])) > 0, s[k]
+    n = db.execute("SELECT count(*) FROM path_shots WHERE key=?", (c["key"],)).fetchone()[0]
+    assert n == 2, n
+# texture and normal mapping on the dolly have their own reference ("same")
+refs = {s["reference"] for c in paths for s in c["path_quality"]["frames_shown"]}
+assert len(refs) == 4, refs
+PY
+pass=$((pass+1))
+# A run stored before the frames were written (schema 7: no path_shots)
+# still reports, its filmstrip saying why it is absent.
+cp -r "$OUT/r" "$OUT/old"
+python3 -c 'import sqlite3,sys; db=sqlite3.connect(sys.argv[1]); db.executescript("DROP TABLE path_shots; PRAGMA user_version=7;"); db.close()' "$OUT/old/dmbench.sqlite"
+"$BIN" report "$OUT/old/latest" > /dev/null
+n=$(grep -c 'class="missing film-none">No filmstrip for' "$OUT/old/latest/report.html" || true)
+f=$(grep -c 'class="film" tabindex' "$OUT/old/latest/report.html" || true)
+if [ "$n" = 2 ] && [ "$f" = 0 ]; then pass=$((pass+1)); else echo "FAIL: old run's report: $n filmstrips absent with the reason, $f shown (want 2, 0)"; fail=$((fail+1)); fi
+f=$(grep -o 'class="film" tabindex' "$OUT/r/latest/report.html" | wc -l)
+if [ "$f" = 2 ]; then pass=$((pass+1)); else echo "FAIL: the run's report shows $f filmstrips, not 2"; fail=$((fail+1)); fi
+
+# `report --out` copies the filmstrip's images and the temporal maps with the rest.
+"$BIN" report "$OUT/r/latest" --out "$OUT/moved" > /dev/null
+python3 - "$OUT/r/latest/results.json" "$OUT/moved" <<'PY'
+import json, os, sys
+want = set()
+for c in json.load(open(sys.argv[1]))["configs"]:
+    q = c["path_quality"] or {}
+    want |= {s[k] for s in q.get("frames_shown", []) for k in ("test", "reference", "flip")}
+    if q.get("images", {}).get("temporal"):
+        want.add(q["images"]["temporal"])
+assert len(want) == 2 * (2 * 3 + 1), sorted(want)   # per configuration: 2 frames x (frame, reference, map), a temporal map
+missing = [w for w in want if not os.path.isfile(os.path.join(sys.argv[2], w))]
+assert not missing, missing
+PY
+pass=$((pass+1))
+
+# A written frame is the frame `render --frame` draws.
+nk=$(python3 -c 'import json,sys; print([c["key"] for c in json.load(open(sys.argv[1]))["configs"] if c["params"].get("camera.path")=="dolly" and c["params"]["technique"]=="normal"][0])' "$OUT/r/latest/results.json")
+"$BIN" render mesh=plane technique=normal resolution=64x36 camera.path=dolly camera.path_frames=12 --frame 11 \
+  --png "$OUT/n11.png" > /dev/null
+cp "$OUT/r/latest/img/$nk-path-f011.png" "$OUT/w11.png"
+same n11 w11
+
+# K = 1: every frame of 4 written; of 17, 16 by the rule (round half up of
+# j (n - 1) / 15, computed here: all but frame 8), the first and last always.
+printf 'name: film\nresolution: [32, 18]\nmeasure: { warmup_frames: 1, samples: { min: 2, max: 2 }, max_seconds: 1, counters: [WallTime] }\nscene:\n  mesh: plane\n  technique: normal\n  camera.path: dolly\n  camera.path_ref_every: 1\nsweep:\n  camera.path_frames: [4, 17]\n' > "$OUT/k1.yaml"
+"$BIN" run "$OUT/k1.yaml" --out "$OUT/k1" --quiet > "$OUT/k1.txt" 2>&1 || { cat "$OUT/k1.txt"; exit 1; }
+python3 - "$OUT/k1/latest/results.json" <<'PY'
+import json, os, sys
+from fractions import Fraction
+d = json.load(open(sys.argv[1]))
+run = os.path.dirname(sys.argv[1])
+got = {}
+for c in d["configs"]:
+    q = c["path_quality"]
+    F = q["frames"]
+    assert q["computed"] and q["every"] == 1 and len(q["FLIP"]) == F, q
+    shots = q["frames_shown"]
+    got[F] = [s["frame"] for s in shots]
+    for s in shots:
+        for k in ("test", "reference", "flip"):
+            assert os.path.getsize(os.path.join(run, s[k])) > 0, s[k]
+spread = [int(Fraction(j * 16, 15) + Fraction(1, 2)) for j in range(16)]
+assert got[4] == [0, 1, 2, 3], got[4]
+assert got[17] == spread and len(set(spread)) == 16 and spread[0] == 0 and spread[-1] == 16, (got[17], spread)
+assert 8 not in got[17]
+imgs = os.listdir(os.path.join(run, "img"))
+assert sum(n.count("-path-f") and not n.endswith("-flip.png") for n in imgs) == 4 + 16, sorted(imgs)
 PY
 pass=$((pass+1))
 expect_refused 2 "expected one of: still, orbit, dolly, flyover (did you mean 'dolly'?)" -- \
