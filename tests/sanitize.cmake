@@ -1,10 +1,13 @@
 # ASan + UBSan build of the unit and GL integration tests (tests/sanitize.sh),
 # unless this build is itself the sanitizer build: one test builds the tree
-# (build/asan, reused by the next run) and four run its tests in shares that
-# ctest can run side by side.  The shares: the unit tests, the quality
-# truth (test_techniques_quality, the longest), the other GL tests of the
-# techniques layer, the other GL tests; together every unit and GL test that
-# is not `slow`, each once.
+# (build/asan, reused by the next run) and six run its tests in shares that
+# ctest can run side by side, each one well under 120 s on two cores.  The
+# shares: the store's unit tests (test_store's allocation-fault loops are
+# the longest unit test), the other unit tests, the quality truth
+# (test_techniques_quality, the longest), test_techniques_geometry_gl, the
+# other GL tests of the techniques layer, the other GL tests; each selects
+# by name and the next excludes it, so together they run every unit and GL
+# test that is not `slow`, each once.
 if(NOT DM_SANITIZE)
   set(san_env "DMBENCH_SOURCE_DIR=${CMAKE_SOURCE_DIR}" "SANITIZE_BUILD=${CMAKE_BINARY_DIR}/asan"
       "SANITIZE_LAUNCHER=${CMAKE_C_COMPILER_LAUNCHER}")
@@ -16,8 +19,10 @@ if(NOT DM_SANITIZE)
     set_tests_properties(test_sanitize_${share} PROPERTIES TIMEOUT 900 LABELS "sanitize"
       ENVIRONMENT "${san_env}" FIXTURES_REQUIRED dm_asan_tree)
   endfunction()
-  dm_sanitize_share(unit -L ^unit$)
+  dm_sanitize_share(unit_store -L ^unit$ -R ^test_store)
+  dm_sanitize_share(unit -L ^unit$ -E ^test_store)
   dm_sanitize_share(gl_quality -L ^gl$ -R ^test_techniques_quality$)
-  dm_sanitize_share(gl_techniques -L ^gl$ -R ^test_techniques_ -E ^test_techniques_quality$)
+  dm_sanitize_share(gl_geometry -L ^gl$ -R ^test_techniques_geometry_gl$)
+  dm_sanitize_share(gl_techniques -L ^gl$ -R ^test_techniques_ -E "^test_techniques_(quality|geometry_gl)$")
   dm_sanitize_share(gl_other -L ^gl$ -E ^test_techniques_)
 endif()
