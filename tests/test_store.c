@@ -901,23 +901,40 @@ static void flip_not_computed(dm_run_result *run)
     }
 }
 
+/* A store of run_full("old") taken back to an older version by `undo`
+ * (SQL ending in that version's PRAGMA user_version; `table`, when not
+ * NULL, is checked to hold n rows first, so the undo drops something), then
+ * opened again, which migrates it to the current version: the open store,
+ * *run the full run. */
+static store *open_downgraded(tmp *t, dm_run_result *run, const char *table, long n, const char *undo)
+{
+    run_full(run, "old");
+    store *s = open_ok(t->db);
+    store_put_all(s, run, NULL);
+    if (table) {
+        char q[96];
+        snprintf(q, sizeof q, "SELECT count(*) FROM %s", table);
+        assert_int_equal(sql_long(s, q), n);
+    }
+    store_close(s);
+    sqlite3 *db;
+    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
+    assert_int_equal(sqlite3_exec(db, undo, NULL, NULL, NULL), SQLITE_OK);
+    sqlite3_close(db);
+    s = open_ok(t->db);
+    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
+    return s;
+}
+
 static void test_fit_condition_migration(void **state)
 {
     tmp *t = *state;
     dm_run_result run, got;
-    run_full(&run, "old");
-    store *s = open_ok(t->db);
-    store_put_all(s, &run, NULL);
-    store_close(s);
-    sqlite3 *db;
-    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, "ALTER TABLE fits DROP COLUMN condition;"
-                                  "DROP TABLE partial_samples;"   /* came with version 3 */
-                                  FLIP_COLUMNS_DROPPED PRECISION_DROPPED PATH_DROPPED
-                                  "PRAGMA user_version=1", NULL, NULL, NULL), SQLITE_OK);
-    sqlite3_close(db);
-    s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
+    store *s = open_downgraded(t, &run, NULL, 0,
+                               "ALTER TABLE fits DROP COLUMN condition;"
+                               "DROP TABLE partial_samples;"   /* came with version 3 */
+                               FLIP_COLUMNS_DROPPED PRECISION_DROPPED PATH_DROPPED
+                               "PRAGMA user_version=1");
     assert_int_equal(store_run_load(s, "old", &got), 0);
     assert_true(got.fits[0].condition == 0.0);
     run.fits[0].condition = 0.0;
@@ -943,17 +960,8 @@ static void test_flip_migration(void **state)
 {
     tmp *t = *state;
     dm_run_result run, got;
-    run_full(&run, "old");
-    store *s = open_ok(t->db);
-    store_put_all(s, &run, NULL);
-    store_close(s);
-    sqlite3 *db;
-    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, FLIP_COLUMNS_DROPPED PRECISION_DROPPED PATH_DROPPED "PRAGMA user_version=3",
-                                  NULL, NULL, NULL), SQLITE_OK);
-    sqlite3_close(db);
-    s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
+    store *s = open_downgraded(t, &run, NULL, 0,
+                               FLIP_COLUMNS_DROPPED PRECISION_DROPPED PATH_DROPPED "PRAGMA user_version=3");
     assert_int_equal(store_run_load(s, "old", &got), 0);
     flip_not_computed(&run);
     precision_not_computed(&run);
@@ -972,18 +980,8 @@ static void test_path_quality_migration(void **state)
 {
     tmp *t = *state;
     dm_run_result run, got;
-    run_full(&run, "old");
-    store *s = open_ok(t->db);
-    store_put_all(s, &run, NULL);
-    assert_int_equal(sql_long(s, "SELECT count(*) FROM path_quality"), 1);
-    store_close(s);
-    sqlite3 *db;
-    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, PATH_QUALITY_DROPPED "PRAGMA user_version=6", NULL, NULL, NULL),
-                     SQLITE_OK);
-    sqlite3_close(db);
-    s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
+    store *s = open_downgraded(t, &run, "path_quality", 1,
+                               PATH_QUALITY_DROPPED "PRAGMA user_version=6");
     assert_int_equal(store_run_load(s, "old", &got), 0);
     dm_run_result want;
     run_full(&want, "old");
@@ -1009,18 +1007,8 @@ static void test_path_shots_migration(void **state)
 {
     tmp *t = *state;
     dm_run_result run, got;
-    run_full(&run, "old");
-    store *s = open_ok(t->db);
-    store_put_all(s, &run, NULL);
-    assert_int_equal(sql_long(s, "SELECT count(*) FROM path_shots"), 2);
-    store_close(s);
-    sqlite3 *db;
-    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, PATH_SHOTS_DROPPED "PRAGMA user_version=7", NULL, NULL, NULL),
-                     SQLITE_OK);
-    sqlite3_close(db);
-    s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
+    store *s = open_downgraded(t, &run, "path_shots", 2,
+                               PATH_SHOTS_DROPPED "PRAGMA user_version=7");
     assert_int_equal(store_run_load(s, "old", &got), 0);
     dm_run_result want;
     run_full(&want, "old");
@@ -1055,16 +1043,8 @@ static void test_path_migration(void **state)
 {
     tmp *t = *state;
     dm_run_result run, got, want;
-    run_full(&run, "old");
-    store *s = open_ok(t->db);
-    store_put_all(s, &run, NULL);
-    store_close(s);
-    sqlite3 *db;
-    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, PATH_DROPPED "PRAGMA user_version=5", NULL, NULL, NULL), SQLITE_OK);
-    sqlite3_close(db);
-    s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
+    store *s = open_downgraded(t, &run, NULL, 0,
+                               PATH_DROPPED "PRAGMA user_version=5");
     assert_int_equal(store_run_load(s, "old", &got), 0);
     run_full(&want, "old");
     path_not_stored(&want);
@@ -1076,6 +1056,7 @@ static void test_path_migration(void **state)
     eq_config(&run.configs[2], &got.configs[2]);
     dm_run_free(&got);
     store_close(s);
+    sqlite3 *db;
     assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
     assert_int_equal(sqlite3_exec(db, "UPDATE path_frames SET replays=4", NULL, NULL, NULL), SQLITE_OK);
     sqlite3_close(db);
@@ -1092,16 +1073,8 @@ static void test_precision_migration(void **state)
 {
     tmp *t = *state;
     dm_run_result run, got;
-    run_full(&run, "old");
-    store *s = open_ok(t->db);
-    store_put_all(s, &run, NULL);
-    store_close(s);
-    sqlite3 *db;
-    assert_int_equal(sqlite3_open(t->db, &db), SQLITE_OK);
-    assert_int_equal(sqlite3_exec(db, PRECISION_DROPPED PATH_DROPPED "PRAGMA user_version=4", NULL, NULL, NULL), SQLITE_OK);
-    sqlite3_close(db);
-    s = open_ok(t->db);
-    assert_int_equal(sql_long(s, "PRAGMA user_version"), 8);
+    store *s = open_downgraded(t, &run, NULL, 0,
+                               PRECISION_DROPPED PATH_DROPPED "PRAGMA user_version=4");
     assert_int_equal(store_run_load(s, "old", &got), 0);
     dm_run_result want;
     run_full(&want, "old");
