@@ -973,6 +973,25 @@ static void test_flip_migration(void **state)
     store_close(s);
 }
 
+/* The run "old" of a migrated store reads back as run_full with what the
+ * old version lacked taken out by strip; its configurations stored again
+ * read back whole, into *got. */
+static void migrated_then_whole(store *s, void (*strip)(dm_run_result *), dm_run_result *run,
+                                dm_run_result *got)
+{
+    assert_int_equal(store_run_load(s, "old", got), 0);
+    dm_run_result want;
+    run_full(&want, "old");
+    strip(&want);
+    eq_run(&want, got);
+    dm_run_free(got);
+    dm_run_free(&want);
+    for (size_t i = 0; i < run->n_configs; i++)
+        assert_int_equal(store_config_put(s, "old", &run->configs[i]), 0);
+    assert_int_equal(store_run_load(s, "old", got), 0);
+    eq_run(run, got);
+}
+
 /* A version-6 store (before quality along a path) opens migrated: its
  * configurations read back without path quality, everything else intact;
  * a configuration stored afterwards keeps its series, NaN included. */
@@ -982,17 +1001,7 @@ static void test_path_quality_migration(void **state)
     dm_run_result run, got;
     store *s = open_downgraded(t, &run, "path_quality", 1,
                                PATH_QUALITY_DROPPED "PRAGMA user_version=6");
-    assert_int_equal(store_run_load(s, "old", &got), 0);
-    dm_run_result want;
-    run_full(&want, "old");
-    path_quality_not_computed(&want);
-    eq_run(&want, &got);
-    dm_run_free(&got);
-    dm_run_free(&want);
-    for (size_t i = 0; i < run.n_configs; i++)
-        assert_int_equal(store_config_put(s, "old", &run.configs[i]), 0);
-    assert_int_equal(store_run_load(s, "old", &got), 0);
-    eq_run(&run, &got);
+    migrated_then_whole(s, path_quality_not_computed, &run, &got);
     assert_integrity_ok(s);
     dm_run_free(&got);
     dm_run_free(&run);
@@ -1009,17 +1018,7 @@ static void test_path_shots_migration(void **state)
     dm_run_result run, got;
     store *s = open_downgraded(t, &run, "path_shots", 2,
                                PATH_SHOTS_DROPPED "PRAGMA user_version=7");
-    assert_int_equal(store_run_load(s, "old", &got), 0);
-    dm_run_result want;
-    run_full(&want, "old");
-    path_shots_not_stored(&want);
-    eq_run(&want, &got);
-    dm_run_free(&got);
-    dm_run_free(&want);
-    for (size_t i = 0; i < run.n_configs; i++)
-        assert_int_equal(store_config_put(s, "old", &run.configs[i]), 0);
-    assert_int_equal(store_run_load(s, "old", &got), 0);
-    eq_run(&run, &got);
+    migrated_then_whole(s, path_shots_not_stored, &run, &got);
     size_t with = 0;   /* the configuration with quality along its path */
     while (with < got.n_configs && !got.configs[with].path_quality.present)
         with++;
