@@ -8,6 +8,8 @@
 # was done: each run measured its one configuration, the dolly with 60
 # frames per replay and as many replays as WallTime samples.  The times are
 # only as good as the machine was quiet (the load average is printed).
+# Also prints each run's peak resident set (the memory target:
+# today's run plus the path's frames at the run's resolution).
 # Usage: bench/path_cost.sh BIN [OUT]
 set -euo pipefail
 BIN=${1:?usage: bench/path_cost.sh path/to/dmbench [OUT]}
@@ -16,11 +18,13 @@ mkdir -p "$OUT"
 common='resolution: [240, 135]\nsweep:\n  mesh: [plane]\n  technique: [normal]\n'
 printf "name: path_cost_still\n$common" > "$OUT/still.yaml"
 printf "name: path_cost_dolly\n${common}  camera.path: [dolly]\n  camera.path_frames: [60]\n" > "$OUT/dolly.yaml"
-# wall seconds of one run of sweep $1 into $OUT/$1
+# wall seconds of one run of sweep $1 into $OUT/$1; its peak resident set
+# (the largest of the run and the children it waited for, in KB, from
+# GNU time) goes to $OUT/$1.rss
 run() {
   local t0 t1
   t0=$(date +%s.%N)
-  "$BIN" run "$OUT/$1.yaml" --out "$OUT/$1" --seed 1 --quiet > /dev/null
+  /usr/bin/time -f %M -o "$OUT/$1.rss" "$BIN" run "$OUT/$1.yaml" --out "$OUT/$1" --seed 1 --quiet > /dev/null
   t1=$(date +%s.%N)
   python3 -c "print($t1 - $t0)"
 }
@@ -43,4 +47,9 @@ for name in ("still", "dolly"):
         samples, p99 = n, p["p99_ms"]
 print(f"still run {still:.1f} s, dolly run {dolly:.1f} s ({samples} replays of 60 frames, "
       f"p99 {p99:.3f} ms): {dolly / still:.2f}x (target <= 3x)")
+rss = {n: int(open(f"{out}/{n}.rss").read().split()[-1]) for n in ("still", "dolly")}
+frame_mb = 240 * 135 * 16 / 2**20   # one RGBA float frame at the run's resolution
+print(f"peak resident set: still {rss['still'] / 1024:.1f} MB, dolly {rss['dolly'] / 1024:.1f} MB "
+      f"(+{(rss['dolly'] - rss['still']) / 1024:.1f} MB; the path's 60 frames at 240x135 "
+      f"would be {60 * frame_mb:.1f} MB)")
 PY
