@@ -23,7 +23,10 @@ int cli_run_locate(const char *dir, char **store_path, char **run_id, dm_str *er
     int is_root = dm_file_exists(own);
     free(own);
     if (is_root) {   /* the --out of a run, not one of its runs */
-        char *latest = dm_xasprintf("%s/latest", dir), lreal[PATH_MAX];
+        size_t len = strlen(dir);
+        while (len > 1 && dir[len - 1] == '/')
+            len--;   /* "out/" names out/latest, not out//latest */
+        char *latest = dm_xasprintf("%.*s/latest", (int)len, dir), lreal[PATH_MAX];
         dm_str_printf(err, "%s is a results root (it holds dmbench.sqlite), not a run directory: give "
                            "one of its runs, ", dir);
         if (realpath(latest, lreal)) {

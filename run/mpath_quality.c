@@ -206,7 +206,7 @@ static void mpath__summarise(mscene *m, mconf *c, temporal_acc *acc, dm_path_qua
 
 /* The stem of c's reference frames' images: "ref-" and 8 hex digits of a
  * hash of the reference's parameters (ref[0..n)) and size, as the still
- * reference is img/ref-XXXXXXXX.png.  The scene alone, the still rule's
+ * reference is img/ref-<hash>.png.  The scene alone, the still rule's
  * key for a shared reference technique, does not hold the path, so the
  * parameters are hashed: configurations whose reference renders the same
  * frames share the files (into stem, 16 bytes). */

@@ -82,7 +82,7 @@ int mpath_reference_frame(mscene *m, const dm_kv *p, size_t n, int w, int h, int
  * fills out->path_quality (present, or its reason when it cannot be
  * computed) and writes img/<key>-temporal.png and the frames chosen by
  * mpath_quality_shown (img/<key>-path-fNNN.png, -fNNN-flip.png and
- * img/ref-XXXXXXXX-fNNN.png, listed in path_quality.shots; an image that
+ * img/ref-<hash>-fNNN.png, listed in path_quality.shots; an image that
  * cannot be written is left out of its shot with the reason in c's log). */
 void mpath_quality_measure(mscene *m, mconf *c, const dm_kv *ref, size_t n_ref,
                            dm_config_result *out);
