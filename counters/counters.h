@@ -46,8 +46,10 @@ typedef enum counters_backend {
     COUNTERS_BACKEND_CPU_SIDE,     /* set by the caller (bytes, VT counters) */
     COUNTERS_BACKEND_DERIVED,      /* formula over other counters */
     COUNTERS_BACKEND_CALLGRIND,    /* instructions counted under Valgrind, own child (run/callgrind.h) */
-    COUNTERS_BACKEND_SHADER_COUNT  /* an instrumented variant of the caller's shader adds to a buffer
+    COUNTERS_BACKEND_SHADER_COUNT, /* an instrumented variant of the caller's shader adds to a buffer
                                       (counters_pass_loop_trips) */
+    COUNTERS_BACKEND_PER_CALL      /* pipeline statistics around each draw call of one frame, in a
+                                      session of the caller's own (counters_tess_walk) */
 } counters_backend;
 
 /* Who supplies the value of a caller-fed (COUNTERS_BACKEND_CPU_SIDE)
@@ -159,6 +161,22 @@ typedef int (*counters_value_fn)(const char *name, void *user, double *value);
 int counters_derive(const char *name, counters_value_fn value, void *user, double *out, dm_str *why);
 /* 1 when every input of derived counter `name` satisfies has(input, user). */
 int counters_derive_inputs(const char *name, int (*has)(const char *input, void *user), void *user);
+
+/* ---- per draw call ----------------------------------------------------------
+ * TessWalkCalls (backend COUNTERS_BACKEND_PER_CALL, docs/counters.md
+ * "TessWalkCalls"): the caller runs one statistics session over
+ * counters_tess_walk_inputs, draws one frame and brackets each of its
+ * draw calls of patches in a sample of its own (sample k = call k), then
+ * reads the calls' counts into calls[k * COUNTERS_TESS_WALK_N + j], j in
+ * the order of counters_tess_walk_inputs.  counters_tess_walk sums, over
+ * the calls the clipper changed (ClippingInputPrimitives !=
+ * ClippingOutputPrimitives: llvmpipe's draw module walks a call's vertices
+ * only when it clips), the call's TESInvocations x ClippingOutputPrimitives.
+ * Returns the sum, 0 when no call was clipped, NaN when n_calls is 0 or a
+ * count is not finite. */
+#define COUNTERS_TESS_WALK_N 3
+extern const char *const counters_tess_walk_inputs[COUNTERS_TESS_WALK_N];
+double counters_tess_walk(const double *calls, size_t n_calls);
 
 /* ---- stage costs ------------------------------------------------------------
  * The bottleneck verdict of a configuration from its stage counters

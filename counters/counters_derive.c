@@ -68,6 +68,22 @@ int counters_derive_inputs(const char *name, int (*has)(const char *input, void 
     return d.all;
 }
 
+const char *const counters_tess_walk_inputs[COUNTERS_TESS_WALK_N] = {
+    "TESInvocations", "ClippingInputPrimitives", "ClippingOutputPrimitives"};
+
+double counters_tess_walk(const double *calls, size_t n_calls)
+{
+    double walk = n_calls ? 0 : NAN;
+    for (size_t k = 0; k < n_calls; k++) {
+        const double *c = calls + k * COUNTERS_TESS_WALK_N;   /* TES, clipper in, clipper out */
+        if (!(isfinite(c[0]) && isfinite(c[1]) && isfinite(c[2])))
+            return NAN;
+        if (c[1] != c[2])
+            walk += c[0] * c[2];
+    }
+    return walk;
+}
+
 /* Share of part in total, as a rounded percentage. */
 static int derive__pct(double part, double total)
 {

@@ -62,6 +62,11 @@ static const counters__def counters__table[] = {
       ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_TESS_CONTROL_SHADER_PATCHES_ARB, R_PS},
     {{"TESInvocations", "Tessellation", "Tessellation evaluation shader invocations",
       ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_TESS_EVALUATION_SHADER_INVOCATIONS_ARB, R_PS},
+    {{"TessWalkCalls", "Tessellation", "Sum over the frame's draw calls of patches that the clipper changed "
+      "(ClippingInputPrimitives != ClippingOutputPrimitives) of the call's TESInvocations x "
+      "ClippingOutputPrimitives: the steps of llvmpipe's vertex walk (pipeline statistics around each call, "
+      "own pass of one frame; unavailable without tessellation; docs/counters.md, TessWalkCalls)",
+      ITEMS, U64, COUNTERS_BACKEND_PER_CALL, 1, NULL, F_NO}, P_NO, 0, R_PS},
     /* ---- Geometry ---- */
     {{"GSInvocations", "Geometry", "Geometry shader invocations",
       ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_GEOMETRY_SHADER_INVOCATIONS, R_PS},

@@ -568,6 +568,9 @@ int counters_plan_describe(counters_context *ctx, const char *const *names, size
     const counters_backend cg = COUNTERS_BACKEND_CALLGRIND;
     sess__list(s, out, "callgrind child (own process under Valgrind, frames not timed): ",
                sess__is_backend, &cg);
+    const counters_backend pc = COUNTERS_BACKEND_PER_CALL;
+    sess__list(s, out, "per draw call (own pass of one frame, statistics around each call): ",
+               sess__is_backend, &pc);
     sess__list(s, out, "unavailable: ", sess__is_unavailable, NULL);
     counters_session_destroy(s);
     return 0;

@@ -28,16 +28,20 @@ double fitting_call_share(size_t patches, size_t per_call)
     return (q * c * c + r * r) / (n * n);
 }
 
-/* FITTING_TESS_WALK of a configuration from its TESInvocations,
- * ClippingOutputPrimitives and ClippingInputPrimitives (tes, prims, in;
- * in NaN when not counted) and its axes: tes x prims x the share of its
- * draw calls (render_patch_calls); 0 without evaluations or when the
- * clipper passed every primitive unchanged (prims == in: no vertex outside
- * the view, so llvmpipe's draw module emits the primitives without its
+/* FITTING_TESS_WALK of a configuration: its TessWalkCalls (`calls`, the
+ * sum measured per draw call) when it has one; else from its
+ * TESInvocations, ClippingOutputPrimitives and ClippingInputPrimitives
+ * (tes, prims, in; in NaN when not counted) and its axes: tes x prims x
+ * the share of its draw calls (render_patch_calls), each call's counts in
+ * proportion to its patches; 0 without evaluations or when the clipper
+ * passed every primitive unchanged (prims == in: no vertex outside the
+ * view, so llvmpipe's draw module emits the primitives without its
  * pipeline stages and never walks); NaN when a count is missing or the
  * calls cannot be told. */
-static double fitting__tess_walk(const dm_kv *params, size_t n, double tes, double prims, double in)
+static double fitting__tess_walk(const dm_kv *params, size_t n, double calls, double tes, double prims, double in)
 {
+    if (isfinite(calls))
+        return calls;
     if (!isfinite(tes) || !isfinite(prims))
         return NAN;
     if (tes == 0 || prims == 0 || (isfinite(in) && in == prims))
@@ -112,7 +116,8 @@ static double fitting__param_value(const dm_kv *params, size_t n, const char *na
 static double fitting__value(const dm_run_result *run, const dm_config_result *c, const char *name)
 {
     if (strcmp(name, FITTING_TESS_WALK) == 0)
-        return fitting__tess_walk(c->params, c->n_params, fitting__value(run, c, "TESInvocations"),
+        return fitting__tess_walk(c->params, c->n_params, fitting__value(run, c, FITTING_TESS_WALK_CALLS),
+                                  fitting__value(run, c, "TESInvocations"),
                                   fitting__value(run, c, "ClippingOutputPrimitives"),
                                   fitting__value(run, c, "ClippingInputPrimitives"));
     const dm_counter_result *r = dm_config_counter(c, name);
@@ -479,7 +484,8 @@ static double fitting__var_value(const char *id, const dm_kv *params, size_t n_p
                                  const dm_run_result *runs, size_t n_runs)
 {
     if (strcmp(id, FITTING_TESS_WALK) == 0)
-        return fitting__tess_walk(params, n_params, fitting__stored_counter(runs, n_runs, key, "TESInvocations"),
+        return fitting__tess_walk(params, n_params, fitting__stored_counter(runs, n_runs, key, FITTING_TESS_WALK_CALLS),
+                                  fitting__stored_counter(runs, n_runs, key, "TESInvocations"),
                                   fitting__stored_counter(runs, n_runs, key, "ClippingOutputPrimitives"),
                                   fitting__stored_counter(runs, n_runs, key, "ClippingInputPrimitives"));
     double v = fitting__param_value(params, n_params, id);

@@ -35,14 +35,18 @@ typedef struct fitting_spec {
 /* The variable that is neither a counter nor an axis: llvmpipe's vertex
  * walk of a tessellated frame, the sum over its draw calls of each call's
  * evaluations x primitives (docs/models.md, "Tessellation across draw
- * calls"), computed from TESInvocations x ClippingOutputPrimitives and the
- * calls render_draw splits the frame's patches into (render_patch_calls),
- * each call's counts in proportion to its patches; 0 when the clipper
- * passed every primitive unchanged (ClippingInputPrimitives ==
- * ClippingOutputPrimitives, when counted: the draw module then emits
- * without walking).  A run has it when it has TESInvocations and
- * ClippingOutputPrimitives. */
+ * calls").  Measured: the configuration's FITTING_TESS_WALK_CALLS when it
+ * has one (the counts taken around each call, only the calls the clipper
+ * changed).  Otherwise approximated from the frame's TESInvocations x
+ * ClippingOutputPrimitives and the calls render_draw splits the frame's
+ * patches into (render_patch_calls), each call's counts in proportion to
+ * its patches; 0 when the clipper passed every primitive unchanged
+ * (ClippingInputPrimitives == ClippingOutputPrimitives, when counted: the
+ * draw module then emits without walking).  A run has it when it has
+ * TESInvocations and ClippingOutputPrimitives. */
 #define FITTING_TESS_WALK "TessWalk"
+/* The counter that measures it per draw call (counters.h, counters_tess_walk). */
+#define FITTING_TESS_WALK_CALLS "TessWalkCalls"
 
 /* The share of evaluations x primitives that walk covers when `patches`
  * are drawn in calls of at most per_call (0: one call): the sum over

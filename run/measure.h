@@ -4,7 +4,8 @@
  * Per configuration: prepare (SetupTime), warm up until the JIT is done and
  * two consecutive samples agree (WarmupTime; warm-up samples are K frames, or
  * fewer when K frames would outlast min_sample_ms), one statistics pass of one
- * frame (deterministic counters), then timing samples of K frames fenced by
+ * frame (deterministic counters; with TessWalkCalls, for a frame of several
+ * draw calls of patches, one more frame with each call counted apart), then timing samples of K frames fenced by
  * glFinish taken in rounds over the scene's configurations in a seeded
  * shuffled order, until the 95% CI of the median is within the target or the
  * limits are reached.  Then the image, its quality against the scene's

@@ -44,7 +44,7 @@ static void mscene__classify(mscene *m)
         if (!ci)
             continue;
         if (ci->backend == COUNTERS_BACKEND_PIPELINE_STATS || ci->backend == COUNTERS_BACKEND_OCCLUSION ||
-            ci->backend == COUNTERS_BACKEND_SHADER_COUNT)
+            ci->backend == COUNTERS_BACKEND_SHADER_COUNT || ci->backend == COUNTERS_BACKEND_PER_CALL)
             m->statistic[m->n_statistic++] = ci->name;
         else if (ci->backend == COUNTERS_BACKEND_CLOCK || ci->backend == COUNTERS_BACKEND_TIMER_QUERY) {
             if (ci->stops_sampling && m->stop_index < 0)
@@ -124,15 +124,128 @@ double mscene_plain_sample(mscene *m, mconf *c, int frames)
     return (double)(dm_now_ns() - t0) / frames;
 }
 
+/* 1 when counter `name` is counted around each draw call in a pass of
+ * its own (TessWalkCalls), not by a session over the frame. */
+static int mscene__per_call(const char *name)
+{
+    const counters_info *ci = counters_find(name);
+    return ci && ci->backend == COUNTERS_BACKEND_PER_CALL;
+}
+
+/* The per-call session of mscene__call_counts: each draw call of patches
+ * one sample, numbered by the call; the first error is kept. */
+typedef struct mscene__calls { counters_session *s; int rc; size_t n; } mscene__calls;
+
+static void mscene__call_hook(void *user, size_t call, int begin)
+{
+    mscene__calls *k = user;
+    if (k->rc)
+        return;
+    k->rc = begin ? counters_sample_begin(k->s, (uint32_t)call) : counters_sample_end(k->s);
+    k->n = call + 1;
+}
+
+/* Counts counters_tess_walk_inputs around each draw call of one frame of
+ * c's item (a statistics session of its own, render_set_call_hook) into
+ * *calls (malloc'd, COUNTERS_TESS_WALK_N per call, *n calls).  Returns 0,
+ * or nonzero with the reason in *why (malloc'd). */
+static int mscene__call_counts(mscene *m, mconf *c, double **calls, size_t *n, char **why)
+{
+    mscene__calls k = {0};
+    int passes = 0, rc = counters_session_create(m->cc, &k.s);
+    for (size_t j = 0; rc == 0 && j < COUNTERS_TESS_WALK_N; j++)
+        rc = counters_enable(k.s, counters_tess_walk_inputs[j]);
+    rc = rc ? rc : counters_num_passes(k.s, &passes);
+    rc = rc ? rc : passes == 1 ? counters_pass_begin(k.s, 0) : DM_ERR_UNAVAILABLE;
+    if (rc == 0) {
+        render_set_call_hook(m->r, mscene__call_hook, &k);
+        mscene_frames(m, c, 1);
+        render_set_call_hook(m->r, NULL, NULL);
+        rc = k.rc ? k.rc : counters_pass_end(k.s);
+    }
+    rc = rc ? rc : counters_session_end(k.s);
+    *n = rc == 0 ? k.n : 0;
+    *calls = dm_xcalloc(*n * COUNTERS_TESS_WALK_N + 1, sizeof **calls);
+    for (size_t i = 0; rc == 0 && i < *n * COUNTERS_TESS_WALK_N; i++)
+        rc = counters_result(k.s, (uint32_t)(i / COUNTERS_TESS_WALK_N),
+                             counters_tess_walk_inputs[i % COUNTERS_TESS_WALK_N], &(*calls)[i]);
+    if (rc == 0 && *n == 0)
+        *why = dm_xstrdup("the frame drew no patches");
+    else if (rc)
+        *why = dm_xasprintf("the per-call statistics pass failed: %s",
+                            k.s && counters_last_error(k.s)[0] ? counters_last_error(k.s) : dm_strerror(rc));
+    counters_session_destroy(k.s);
+    return rc ? rc : *n ? 0 : DM_ERR_UNAVAILABLE;
+}
+
+/* Why c's frame cannot have TessWalkCalls (malloc'd), or NULL; *one is
+ * set when the frame is one draw call of patches (render_patch_calls;
+ * lod: object-* draws each object apart). */
+static char *mscene__walk_problem(mscene *m, const mconf *c, int *one)
+{
+    size_t patches = 0, per_call = 0;
+    dm_str log = {0};
+    int rc = render_patch_calls(c->pc->params, c->pc->n_params, &patches, &per_call, &log);
+    char *why = rc == DM_ERR_ARG ? dm_xstrdup("the technique does not tessellate: no draw call of patches")
+                : rc ? dm_xasprintf("its draw calls cannot be told: %s", dm_str_get(&log)) : NULL;
+    dm_str_free(&log);
+    for (size_t j = 0; !why && j < COUNTERS_TESS_WALK_N; j++) {
+        const char *r = NULL;
+        if (!counters_available(m->cc, counters_tess_walk_inputs[j], &r))
+            why = dm_xasprintf("%s unavailable: %s", counters_tess_walk_inputs[j], r ? r : "on this driver");
+    }
+    const char *lod = dm_kv_get(c->pc->params, c->pc->n_params, "lod");
+    *one = per_call >= patches && !(lod && strncmp(lod, "object-", 7) == 0);
+    return why;
+}
+
+/* TessWalkCalls of c's frame (counters.h, counters_tess_walk), NaN with
+ * *why (malloc'd) when unavailable.  A frame drawn in one call takes the
+ * frame's own counts when names[0..n) counted them into values, with no
+ * extra pass; otherwise one frame is drawn with each call counted apart
+ * (its per-call counts go to c's log). */
+static double mscene__tess_walk(mscene *m, mconf *c, const char **names, size_t n, const double *values,
+                                char **why)
+{
+    int one = 0;
+    if ((*why = mscene__walk_problem(m, c, &one)) != NULL)
+        return NAN;
+    double frame[COUNTERS_TESS_WALK_N];
+    size_t found = 0;
+    for (size_t j = 0; one && j < COUNTERS_TESS_WALK_N; j++)
+        for (size_t i = 0; i < n; i++)
+            if (strcmp(names[i], counters_tess_walk_inputs[j]) == 0 && isfinite(values[i])) {
+                frame[j] = values[i];
+                found++;
+                break;
+            }
+    if (found == COUNTERS_TESS_WALK_N)
+        return counters_tess_walk(frame, 1);
+    double *calls = NULL;
+    size_t nc = 0;
+    double walk = mscene__call_counts(m, c, &calls, &nc, why) == 0 ? counters_tess_walk(calls, nc) : NAN;
+    if (isfinite(walk)) {
+        dm_str_printf(&c->log, "TessWalkCalls: %zu draw calls (TESInvocations, ClippingInputPrimitives, "
+                      "ClippingOutputPrimitives):", nc);
+        for (size_t k = 0; k < nc; k++)
+            dm_str_printf(&c->log, " (%.0f, %.0f, %.0f)", calls[3 * k], calls[3 * k + 1], calls[3 * k + 2]);
+        dm_str_cat(&c->log, "\n");
+    }
+    free(calls);
+    return walk;
+}
+
 /* Runs one session over the given counters, K frames per pass; fills
- * values[i] (per frame) or NAN with reasons[i] set when unavailable. */
+ * values[i] (per frame) or NAN with reasons[i] set when unavailable.  A
+ * per-call counter (TessWalkCalls) is counted after the session, in a
+ * pass of its own (mscene__tess_walk). */
 int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames,
                             double *values, char **reasons)
 {
     counters_session *s = NULL;
     int rc = counters_session_create(m->cc, &s);
     for (size_t i = 0; rc == 0 && i < n; i++)
-        rc = counters_enable(s, names[i]);
+        rc = mscene__per_call(names[i]) ? 0 : counters_enable(s, names[i]);
     int passes = 0;
     if (rc == 0)
         rc = counters_num_passes(s, &passes);
@@ -158,6 +271,8 @@ int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames
     rc = rc ? rc : counters_session_end(s);
     for (size_t i = 0; rc == 0 && i < n; i++) {
         double v = NAN;
+        if (mscene__per_call(names[i]))
+            continue;
         int r = counters_result(s, 0, names[i], &v);
         values[i] = r == 0 ? v / frames : NAN;
         if (r != 0 && reasons && !reasons[i])
@@ -171,6 +286,16 @@ int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames
     if (rc != 0)
         dm_str_printf(&c->log, "counters: %s\n", s ? counters_last_error(s) : dm_strerror(rc));
     counters_session_destroy(s);
+    for (size_t i = 0; rc == 0 && i < n; i++) {
+        char *why = NULL;
+        if (!mscene__per_call(names[i]))
+            continue;
+        values[i] = mscene__tess_walk(m, c, names, n, values, &why);
+        if (why && reasons && !reasons[i])
+            reasons[i] = why;
+        else
+            free(why);
+    }
     return rc;
 }
 

@@ -12,7 +12,7 @@
 const char *const predict_counts[PREDICT_N_COUNTS] = {"VSInvocations", "TESInvocations",
                                                       "ClippingOutputPrimitives", "FSInvocations", "TCSPatches",
                                                       "SamplesPassed", "LoopTrips",
-                                                      "ClippingInputPrimitives"};
+                                                      "ClippingInputPrimitives", "TessWalkCalls"};
 const char *const predict_needed[PREDICT_N_NEEDED] = {"Instructions", "VSInvocations", "TESInvocations",
                                                       "ClippingOutputPrimitives", "FSInvocations"};
 static const char *const predict__stages[3] = {"GeometryInstructions", "RasterInstructions",

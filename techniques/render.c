@@ -840,7 +840,8 @@ static void render__lod_upload(render_ctx *r, const render__item *it, const floa
 }
 
 /* Patches first .. first + n − 1 (indices, from base) in calls of at most
- * it->patch_chunk patches; u_lod_base = the first patch of each call. */
+ * it->patch_chunk patches; u_lod_base = the first patch of each call.
+ * Each call is bracketed by the call hook, when one is set. */
 static void render__draw_patches(render_ctx *r, const render__item *it, size_t base,
                                  size_t first, size_t n)
 {
@@ -848,8 +849,13 @@ static void render__draw_patches(render_ctx *r, const render__item *it, size_t b
     for (size_t i = first; i < first + n; i += step) {
         size_t k = first + n - i < step ? first + n - i : step;
         glUniform1i(r->progs[it->prog].loc[RU_LOD_BASE], (GLint)(i / pv));
+        if (r->call_hook)
+            r->call_hook(r->call_user, r->n_calls, 1);
         glDrawElements(GL_PATCHES, (GLsizei)k, GL_UNSIGNED_INT,
                        (const void *)((base + i) * sizeof(uint32_t)));
+        if (r->call_hook)
+            r->call_hook(r->call_user, r->n_calls, 0);
+        r->n_calls++;
     }
 }
 
@@ -899,6 +905,12 @@ static void render__draw_triangles(render_ctx *r, const render__item *it, int wi
     free(first);
 }
 
+void render_set_call_hook(render_ctx *r, render_call_hook hook, void *user)
+{
+    r->call_hook = hook;
+    r->call_user = hook ? user : NULL;
+}
+
 int render_set_frame(render_ctx *r, render_item item, uint64_t frame)
 {
     render__item *it = render__item_of(r, item);
@@ -932,6 +944,7 @@ int render_draw(render_ctx *r, render_item item, int width, int height)
     render__uniforms(r, it, (float[2]){(float)width, (float)height});
     render__maps_bind(r, it);
     glBindVertexArray(m->vao);
+    r->n_calls = 0;
     if (it->patch_chunk) {
         /* quad patches are stored after the triangles (mesh.h) */
         size_t pv = (size_t)it->patch_vertices;

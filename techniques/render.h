@@ -89,6 +89,16 @@ void render_release(render_ctx *r, render_item item);
  * log saying why. */
 int render_patch_calls(const dm_kv *params, size_t n_params, size_t *patches, size_t *per_call, dm_str *log);
 
+/* A hook around each draw call of patches that render_draw makes: called
+ * with begin 1 just before call `call` (0 for a frame's first call of
+ * patches) and with begin 0 just after it, the frame's clear and state
+ * already set.  Every patch draw is bracketed (the calls of
+ * render_patch_calls, and with lod: object-* each object's); triangle
+ * draws are not.  The caller brackets each call with its queries there
+ * (TessWalkCalls, run/mscene.c).  hook NULL removes it. */
+typedef void (*render_call_hook)(void *user, size_t call, int begin);
+void render_set_call_hook(render_ctx *r, render_call_hook hook, void *user);
+
 /* Virtual-texture statistics of an item, cumulative since it was prepared
  * (render_textures.c).  DM_ERR_UNAVAILABLE when the item does not use a
  * virtual texture. */

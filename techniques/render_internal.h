@@ -105,6 +105,9 @@ struct render_ctx {
     size_t n_samplers;
     render__item *items;
     size_t n_items;
+    render_call_hook call_hook;  /* around each patch draw call (render_set_call_hook), NULL = none */
+    void *call_user;
+    size_t n_calls;              /* patch draw calls made so far in the frame being drawn */
 };
 
 typedef struct render__cfg {

@@ -13,3 +13,7 @@ dm_add_unit(test_run_callgrind test_run_callgrind.c LIBS dm_run)
 # The user's map and mesh files held to one version a run (run/inputs.c):
 # collected once, touched passes, edited or removed named, --resume.
 dm_add_unit(test_run_inputs test_run_inputs.c LIBS dm_run)
+# TessWalkCalls (run/mscene.c): a two-call frame's per-call counts, taken
+# through the renderer's call hook with raw queries, add up to the frame's
+# own, and the figure predict counts is their sum by hand.
+dm_add_gl(test_run_tess_calls test_run_tess_calls.c LIBS dm_run)

@@ -21,7 +21,7 @@ static const char *const spec_counters[][2] = {
     {"SubmitTime", "Timing"}, {"GeometryTime", "Timing"}, {"SetupTime", "Timing"},
     {"WarmupTime", "Timing"}, {"VerticesSubmitted", "Vertex"},
     {"PrimitivesSubmitted", "Vertex"}, {"VSInvocations", "Vertex"},
-    {"TCSPatches", "Tessellation"}, {"TESInvocations", "Tessellation"},
+    {"TCSPatches", "Tessellation"}, {"TESInvocations", "Tessellation"}, {"TessWalkCalls", "Tessellation"},
     {"GSInvocations", "Geometry"}, {"GSPrimitivesEmitted", "Geometry"},
     {"ClippingInputPrimitives", "PrimitiveAssembly"},
     {"ClippingOutputPrimitives", "PrimitiveAssembly"},
@@ -64,9 +64,17 @@ static void test_registry_names_unique_and_typed(void **state)
         /* Timing from clocks is never deterministic; pipeline counts are. */
         if (c->backend == COUNTERS_BACKEND_CLOCK || c->backend == COUNTERS_BACKEND_TIMER_QUERY)
             assert_int_equal(c->deterministic, 0);
-        if (c->backend == COUNTERS_BACKEND_PIPELINE_STATS || c->backend == COUNTERS_BACKEND_OCCLUSION)
+        if (c->backend == COUNTERS_BACKEND_PIPELINE_STATS || c->backend == COUNTERS_BACKEND_OCCLUSION ||
+            c->backend == COUNTERS_BACKEND_PER_CALL)
             assert_int_equal(c->deterministic, 1);
     }
+    /* a per-call counter is summed from pipeline statistics read around each call */
+    for (size_t j = 0; j < COUNTERS_TESS_WALK_N; j++) {
+        const counters_info *c = counters_find(counters_tess_walk_inputs[j]);
+        assert_non_null(c);
+        assert_int_equal(c->backend, COUNTERS_BACKEND_PIPELINE_STATS);
+    }
+    assert_int_equal(counters_find("TessWalkCalls")->backend, COUNTERS_BACKEND_PER_CALL);
 }
 
 /* Lookup over a fixed table: A=6, B=3, Z=0; "Bad" is unavailable. */

@@ -3,7 +3,8 @@
  * shader variant by default, terms over variables a variant lacks dropped,
  * the coefficients recovered, and a new step count, level and resolution
  * of a measured variant predicted exactly; the three per-stage models
- * recover known stage costs. */
+ * recover known stage costs; the vertex walk measured per draw call
+ * (TessWalkCalls) is used where a configuration has it. */
 #include <math.h>
 #include <setjmp.h>
 #include <stdarg.h>
@@ -16,6 +17,7 @@
 #include "test_util.h"
 
 #include "core/dm_error.h"
+#include "counters/counters.h"
 #include "run/fitting.h"
 #include "run/predict.h"
 #include "techniques/render.h"
@@ -351,6 +353,108 @@ static void test_tess_walk_by_calls(void **state)
     dm_run_free(&target);
 }
 
+/* TessWalk measured per draw call (TessWalkCalls) where the calls' shares
+ * of the clipped primitives are not their shares of the patches: the
+ * plane at 242 patches and level 16, two calls of 197 and 45 patches
+ * (render_patch_calls), the 45-patch call holding a tenth of the clipped
+ * primitives.  Fitted on one-call frames (levels 4, 8 and 11, 98 and 242
+ * patches), the two-call frame is predicted exactly from its
+ * TessWalkCalls; without it, from the patch shares, its walk is
+ * tes x prim x (197^2 + 45^2) / 242^2 and the prediction is off by
+ * exactly that difference.  counters_tess_walk leaves out a call the
+ * clipper passed unchanged. */
+static double plane_evals(int L)   /* evaluations of a triangle patch at level L, by its rings */
+{
+    int h = (L + 1) / 2;
+    return 3.0 * h * (h + 1) + 1;
+}
+
+static void walk_config(dm_run_result *run, int density, int L, const char *res, double walk_calls, double *instr)
+{
+    dm_config_result *c = config(run, "tess-displacement");
+    char v[32];
+    dm_kv_push(&c->params, &c->n_params, "mesh", "plane");
+    snprintf(v, sizeof v, "%d", density);
+    dm_kv_push(&c->params, &c->n_params, "mesh_density", v);
+    snprintf(v, sizeof v, "%d", L);
+    dm_kv_push(&c->params, &c->n_params, "tess_level", v);
+    dm_kv_push(&c->params, &c->n_params, "resolution", res);
+    int w = 0, h = 0;
+    sscanf(res, "%dx%d", &w, &h);
+    double patches = density == 8 ? 98 : 242, tes = patches * plane_evals(L), in = patches * 1.5 * L * L;
+    double out = in + 100.0 * L, fs = w * h * 0.4 + 20 * L;
+    double walk = isnan(walk_calls) ? tes * out : walk_calls;   /* one call: the frame's own counts */
+    counter(c, "VSInvocations", 500);
+    counter(c, "TCSPatches", patches);
+    counter(c, "TESInvocations", tes);
+    counter(c, "ClippingInputPrimitives", in);
+    counter(c, "ClippingOutputPrimitives", out);
+    counter(c, "FSInvocations", fs);
+    counter(c, "TessWalkCalls", walk);
+    *instr = WALK_C0 + WALK_TES * tes + WALK_TP * walk + WALK_PRIM * out + WALK_PX * fs;
+    counter(c, "Instructions", *instr);
+}
+
+static void test_tess_walk_measured(void **state)
+{
+    (void)state;
+    /* the two calls' counts: the frame's evaluations and primitives split */
+    const double tes = 242 * plane_evals(16), in = 242 * 1.5 * 16 * 16, out = in + 1600;
+    const double calls[6] = {tes * 197 / 242, in * 0.9, out * 0.9, tes * 45 / 242, in * 0.1, out * 0.1};
+    const double walk = calls[0] * calls[2] + calls[3] * calls[5];
+    assert_close(counters_tess_walk(calls, 2), walk);
+    assert_close(counters_tess_walk(calls, 1), calls[0] * calls[2]);
+    const double unclipped[6] = {calls[0], calls[1], calls[2], calls[3], calls[5], calls[5]};
+    assert_close(counters_tess_walk(unclipped, 2), calls[0] * calls[2]);   /* the second call not walked */
+    assert_true(isnan(counters_tess_walk(calls, 0)));
+    const double missing[3] = {calls[0], NAN, calls[2]};
+    assert_true(isnan(counters_tess_walk(missing, 1)));
+
+    dm_kv *kv = NULL;
+    size_t nk = 0, patches = 0, per_call = 0;
+    dm_kv_push(&kv, &nk, "technique", "tess-displacement");
+    dm_kv_push(&kv, &nk, "mesh", "plane");
+    dm_kv_push(&kv, &nk, "mesh_density", "12");
+    dm_kv_push(&kv, &nk, "tess_level", "16");
+    dm_str log = {0};
+    assert_int_equal(render_patch_calls(kv, nk, &patches, &per_call, &log), 0);
+    assert_int_equal((int)patches, 242);
+    assert_int_equal((int)per_call, 197);
+    dm_kv_free(kv, nk);
+    dm_str_free(&log);
+
+    dm_run_result run = {0}, target = {0};
+    static const char *const res[3] = {"96x64", "128x96", "192x128"};
+    double instr;
+    static const int levels[3] = {4, 8, 11};   /* one call each (at most 302 patches a call at 11) */
+    for (int d = 8; d <= 12; d += 4)
+        for (int j = 0; j < 3; j++)
+            for (int k = 0; k < 3; k++)
+                walk_config(&run, d, levels[j], res[k], NAN, &instr);
+    walk_config(&target, 12, 16, "128x96", walk, &instr);
+    fitting_spec spec = { .name = "stage-instructions" };
+    dm_fit_result *fits = NULL;
+    size_t n = 0;
+    dm_str warn = {0}, err = {0};
+    assert_int_equal(fitting_run(&spec, &run, &fits, &n, &warn, &err), 0);
+    assert_int_equal((int)n, 1);
+    assert_close(param(&fits[0], "c_tp"), WALK_TP);
+    const dm_config_result *c = &target.configs[0];
+    double v = NAN;
+    assert_int_equal(fitting_predict_dropped(&fits[0], &run, c->params, c->n_params, c->key, &target, 1, &v, &err), 0);
+    assert_close(v, instr);
+    /* without the measured figure: the patch shares */
+    ((dm_counter_result *)dm_config_counter(c, "TessWalkCalls"))->available = 0;
+    assert_int_equal(fitting_predict_dropped(&fits[0], &run, c->params, c->n_params, c->key, &target, 1, &v, &err), 0);
+    const double share = (197.0 * 197 + 45.0 * 45) / (242.0 * 242);
+    fprintf(stderr, "two calls by patch shares: %+.2f %%\n", 100 * (v / instr - 1));
+    assert_close(v, instr + WALK_TP * (tes * out * share - walk));
+    assert_true(fabs(v / instr - 1) > 0.05);
+    free_fits(fits, n, &warn, &err);
+    dm_run_free(&run);
+    dm_run_free(&target);
+}
+
 /* The three per-stage models (geometry-, raster-, fragment-instructions)
  * recover pom's known stage costs, each from its own stage counter, and
  * time-from-stages its known time per instruction of each stage, as do
@@ -496,7 +600,7 @@ static void test_predict_stage_times(void **state)
     const double vs = 400.0 * d + 100, prim = 300.0 * d * d, fs = px * 0.5 + 2.0 * sqrt(px) * d;
     const double sp = px * 0.4 - 200.0 * d;
     const double counts[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, sp, (F_STEP * fs * st + F_PSTEP * sp * st) / F_TRIP,
-                                              prim};
+                                              prim, NAN};
     const double geo = G_C0 + G_VS * vs + G_PRIM * prim;
     const double raster = R_FB * px + R_FS * fs + R_EDGE * (fs - sp) + R_PRIM * prim;
     const double frag = F_C0 + F_FS * fs + F_PX * sp + F_STEP * fs * st + F_PSTEP * sp * st;
@@ -603,4 +707,4 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_heldout_bound), cmocka_unit_test(test_predict_stage_times),
              cmocka_unit_test(test_variant_names),
              cmocka_unit_test(test_name_checks), cmocka_unit_test(test_call_share),
-             cmocka_unit_test(test_tess_walk_by_calls))
+             cmocka_unit_test(test_tess_walk_by_calls), cmocka_unit_test(test_tess_walk_measured))
