@@ -82,9 +82,9 @@ const cli_option cli_run_options[] = {
     { .name = "budget", .kind = CLI_OPT_DOUBLE, .value_name = "SEC", .parse = run__budget,
       .help = "leave out configurations predicted to take longer than SEC seconds" },
     { .name = "extra-time", .kind = CLI_OPT_DOUBLE, .value_name = "SEC", .parse = run__extra_time,
-      .help = "up to SEC seconds more for the configurations short of samples.target_ci: extra "
-              "rounds, the noisiest first; 0: none (default: 60 for the default sweep, none for "
-              "--quick or a sweep file)" },
+      .help = "up to SEC seconds more for the configurations short of samples.target_ci (judged "
+              "with the machine's drift removed where it is): extra rounds, the noisiest first; 0: "
+              "none (default: 60 for the default sweep, none for --quick or a sweep file)" },
     { .name = "seed", .kind = CLI_OPT_UINT64, .value_name = "N", .parse = run__seed,
       .help = "seed of the round order (0 = 1)" },
     { .name = "count-jobs", .kind = CLI_OPT_INT, .offset = offsetof(run_args, o.count_jobs),

@@ -139,10 +139,12 @@ static void answer__pick(answer__w *w, const report_model *m, const recommend_re
         answer__text(w, " It ties with ");
         answer__text(w, m->rows[r->pick_tie].label);
         answer__text(w, overlap ? " (the same quality within the metric's tolerance, and the time CIs overlap), "
-                                  "so either will do; the lower median is named."
+                                  "so either will do; "
                                 : " (the same quality within the metric's tolerance, and the medians closer "
-                                  "than the run's smallest resolvable difference), so either will do; the "
-                                  "lower median is named.");
+                                  "than the run's smallest resolvable difference), so either will do; ");
+        answer__text(w, m->rows[r->pick].family != m->rows[r->pick_tie].family
+                        ? "the simpler pipeline is named."
+                        : "the first by configuration key is named (a choice the noise cannot move).");
     }
 }
 

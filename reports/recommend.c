@@ -188,6 +188,13 @@ static size_t recommend__tie_of(const recommend_point *p, size_t n, unsigned mas
     return RECOMMEND_NONE;
 }
 
+/* 1 when a is named before b of a tie (recommend.h): the simpler pipeline
+ * (fragment, vertex, tessellation), then the points' order. */
+static int recommend__named_first(const recommend_point *p, size_t a, size_t b)
+{
+    return p[a].family != p[b].family ? p[a].family < p[b].family : a < b;
+}
+
 /* The knee of the eligible front (recommend.h); NONE without a bend. */
 static size_t recommend__knee_of(const recommend_point *p, const size_t *front, size_t m)
 {
@@ -243,6 +250,13 @@ void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *d
     out->pick_ci_over = 0;
     if (out->pick != RECOMMEND_NONE) {
         out->pick_tie = recommend__tie_of(p, n, mask, d.epsilon, d.resolvable, out->budget, out->pick);
+        if (out->pick_tie != RECOMMEND_NONE && recommend__named_first(p, out->pick_tie, out->pick)) {
+            /* the data cannot tell them apart: name the one a rule that
+             * noise does not move puts first, not the lower median */
+            size_t t = out->pick;
+            out->pick = out->pick_tie;
+            out->pick_tie = t;
+        }
         out->pick_ci_over = p[out->pick].ci_hi > out->budget;
     }
     out->near_miss = recommend__near_miss_of(p, n, mask, d.epsilon, out->budget, out->pick);

@@ -16,7 +16,9 @@
  *    a configuration of equal quality has an overlapping time CI, or a
  *    median closer to the pick's than the run's smallest resolvable
  *    difference, the two cost the same as far as the data can tell, and
- *    the pick says so.
+ *    the pick says so; of the two it names the simpler pipeline
+ *    (fragment, vertex, tessellation), then the one first in the points'
+ *    order: rules that noise does not move.
  *  - The knee is the front member farthest below the straight line from the
  *    fastest to the best member (log time, both axes scaled to [0, 1]);
  *    none with fewer than three members or a front without a bend.
@@ -64,9 +66,13 @@ typedef struct recommend_result {
     double budget;                 /* the budget used, ns */
     int budget_default;            /* 1 when desc->budget was 0 */
     int lit_only;                  /* 1 when unlit points were passed over */
-    size_t pick;                   /* best quality within the budget; NONE: nothing fits */
-    size_t pick_tie;               /* equal quality, a higher median, and an overlapping time CI
-                                      or a median within desc->resolvable of the pick's; NONE */
+    size_t pick;                   /* best quality within the budget; NONE: nothing fits.  When it
+                                      ties (pick_tie), the one of the two with the simpler pipeline
+                                      (family: fragment, vertex, tessellation), then the one first in
+                                      the points' order, so that two runs whose medians trade places
+                                      within their CIs name the same pick */
+    size_t pick_tie;               /* the other of a tie: equal quality, and an overlapping time CI
+                                      or a median within desc->resolvable of the best one's; NONE */
     int pick_ci_over;              /* 1 when the pick's CI reaches past the budget */
     size_t near_miss;              /* clearly better quality than the pick, median over the budget,
                                       CI reaching under it ("may also fit"); NONE */

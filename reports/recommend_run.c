@@ -44,14 +44,41 @@ recommend_family report_family(const dm_config_result *c)
     return RECOMMEND_FRAGMENT;
 }
 
+/* A configuration index with its key, for sorting by key. */
+typedef struct recommend_run__keyed {
+    const char *key;
+    size_t i;
+} recommend_run__keyed;
+
+static int recommend_run__by_key(const void *a, const void *b)
+{
+    return strcmp(((const recommend_run__keyed *)a)->key, ((const recommend_run__keyed *)b)->key);
+}
+
+/* idx[0..n) in the order of their configurations' keys: an order the
+ * measuring does not move (a run stores configurations in the order they
+ * were measured). */
+static void recommend_run__sort_by_key(const dm_run_result *run, size_t *idx, size_t n)
+{
+    recommend_run__keyed *k = dm_xcalloc(n + 1, sizeof *k);
+    for (size_t i = 0; i < n; i++)
+        k[i] = (recommend_run__keyed){ run->configs[idx[i]].key, idx[i] };
+    qsort(k, n, sizeof *k, recommend_run__by_key);
+    for (size_t i = 0; i < n; i++)
+        idx[i] = k[i].i;
+    free(k);
+}
+
 /* The scene's points (ok configurations with a frame time) and their
- * config indexes; returns the count.  *p and *idx are malloc'd.  With
- * corrected, a frame time with the drift removed gives its corrected
- * median and CI (run/precision.h), the others their raw ones. */
+ * config indexes, in the order of their keys; returns the count.  *p and
+ * *idx are malloc'd.  With corrected, a frame time with the drift removed
+ * gives its corrected median and CI (run/precision.h), the others their
+ * raw ones. */
 static size_t recommend_run__points(const dm_run_result *run, const char *scene, int corrected,
                                     recommend_point **p, size_t **idx)
 {
     size_t nr = report__scene_rows(run, scene, idx), n = 0;
+    recommend_run__sort_by_key(run, *idx, nr);
     report_metric m = report_metric_of_run(run);
     *p = dm_xcalloc(nr + 1, sizeof **p);
     for (size_t i = 0; i < nr; i++) {

@@ -236,15 +236,18 @@ static void measure__timing_sample(mscene *m, mconf *c, int extra)
     protocol_decision d = protocol_decide(&m->pd, x, c->n_samples, elapsed);
     c->last = d;
     c->ci_rel = d.ci_rel;
-    if (extra) {
+    if (extra) {   /* measure__extra decides, on the CI the figure will be judged by */
         c->n_extra++;
-        c->extra = d.stop != PROTOCOL_CONVERGED;
         return;
     }
     if (d.stop == PROTOCOL_CONTINUE)
         return;
     c->active = 0;
-    c->extra = m->job->extra_s > 0 && x && d.stop != PROTOCOL_CONVERGED;
+    /* With extra time every timed configuration waits for the scene's
+     * rounds to end, even one whose raw CI converged: on few samples the
+     * drift's removal can widen its CI past the target (docs/measurement.md,
+     * "Extra rounds"), and measure__extra judges it by that CI. */
+    c->extra = m->job->extra_s > 0 && x;
     c->ci_rel_before = d.ci_rel;
 }
 
@@ -478,13 +481,11 @@ static int measure__commit(mscene *m, mconf *c, dm_str *err)
     if (!c->failed && c->n_samples)
         measure__stopped(m, c);
     if (c->n_extra || isfinite(c->corr_ci_rel)) {
-        int done = c->ci_rel <= m->pd.target_ci ||
-                   protocol_extra_clearly_within(c->corr_ci_rel, m->pd.target_ci);
+        int done = protocol_extra_done(c->ci_rel, c->corr_ci_rel, m->pd.target_ci);
         dm_str_printf(&c->log, "%zu samples in extra rounds (--extra-time): %s CI ±%.2f %% -> ±%.2f %%",
                       c->n_extra, m->timing[m->stop_index], 100 * c->ci_rel_before, 100 * c->ci_rel);
         if (isfinite(c->corr_ci_rel))
-            dm_str_printf(&c->log, " (±%.2f %% with the machine's drift removed, before the correction's "
-                          "own uncertainty is added)", 100 * c->corr_ci_rel);
+            dm_str_printf(&c->log, " (±%.2f %% with the machine's drift removed)", 100 * c->corr_ci_rel);
         dm_str_printf(&c->log, ", target ±%.2f %% %s\n", 100 * m->pd.target_ci,
                       done ? "reached" : "not reached (the budget was spent)");
     }
@@ -626,15 +627,34 @@ static int measure__corrected_ci(const mscene *m, const mconf *cs, size_t n, dou
     return removed;
 }
 
+/* Commits a configuration the extra rounds are done with: corr is its CI
+ * with the drift removed (NaN: raw figures decide).  One whose raw CI had
+ * converged in the scene's rounds and that took no extra sample commits
+ * as the scene's rounds left it. */
+static int measure__extra_commit(mscene *m, mconf *c, double corr, int64_t *committing, dm_str *err)
+{
+    int64_t c0 = dm_now_ns();
+    c->extra = 0;
+    int untouched = c->n_extra == 0 && c->ci_rel_before <= m->pd.target_ci &&
+                    protocol_extra_done(c->ci_rel, corr, m->pd.target_ci);
+    c->corr_ci_rel = untouched ? NAN : corr;
+    int rc = measure__commit(m, c, err);
+    *committing += dm_now_ns() - c0;   /* images and quality: not the rounds' time */
+    return rc;
+}
+
 /* The extra rounds after the scene's rounds: while the job's extra_s
- * lasts, the configurations that stopped short of their target get one
- * more sample per round, the noisiest first as far as the time left
- * allows (protocol_extra_round), sampled in a fresh seeded order like
- * every round and recorded as a round (the drift's model reads them as
- * any other).  A configuration is committed once within its target, or
- * when the rounds end; then one "R" line says how many rounds, the time
- * they took, and why they ended.  Returns 0 or the first commit's or
- * store's error (err). */
+ * lasts, every timed configuration that is short of its target -- judged
+ * by the figure it will be stored with (protocol_extra_done): its CI with
+ * the scene's drift removed where that is removed, whatever its raw CI,
+ * else its raw CI -- gets one more sample per round, the widest first as
+ * far as the time left allows (protocol_extra_round), sampled in a fresh
+ * seeded order like every round and recorded as a round (the drift's
+ * model reads them as any other).  Before each round the scene's drift is
+ * removed again from all its samples so far; a configuration is committed
+ * once done, or when the rounds end; then one "R" line says how many
+ * rounds, the time they took, and why they ended.  Returns 0 or the first
+ * commit's or store's error (err). */
 static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *over, dm_str *err)
 {
     const measure_job *job = m->job;
@@ -645,32 +665,31 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
     int64_t t0 = dm_now_ns(), committing = 0;
     protocol_extra_why why = PROTOCOL_EXTRA_REACHED;
     int rc = 0;
-    size_t any = 0;
+    size_t any = 0, short_of = 0;
     for (size_t i = 0; i < n; i++)
         any += cs[i].extra != 0;
     while (rc == 0 && any) {
         size_t nw = 0;
         int removed = measure__corrected_ci(m, cs, n, corr);
         for (size_t i = 0; rc == 0 && i < n; i++) {
-            if (!cs[i].extra || cs[i].failed)
+            if (!cs[i].extra)
                 continue;
-            cs[i].corr_ci_rel = removed ? corr[i] : NAN;
-            if (protocol_extra_clearly_within(cs[i].corr_ci_rel, m->pd.target_ci)) {
-                int64_t c0 = dm_now_ns();
-                cs[i].extra = 0;
-                rc = measure__commit(m, &cs[i], err);
-                committing += dm_now_ns() - c0;
+            double k = removed ? corr[i] : NAN;
+            if (cs[i].failed || protocol_extra_done(cs[i].ci_rel, k, m->pd.target_ci)) {
+                rc = measure__extra_commit(m, &cs[i], k, &committing, err);
                 continue;
             }
             wait[nw] = i;
-            ci[nw] = cs[i].ci_rel;
+            ci[nw] = isfinite(k) ? k : cs[i].ci_rel;   /* as protocol_extra_done judges it */
             sample_s[nw++] = (double)cs[i].sampling_ns / 1e9 / (double)cs[i].n_samples;
         }
+        short_of += rounds == 0 ? nw : 0;
         if (rc != 0 || nw == 0)
             break;
         /* what is left once this round's own cost (the mean so far) is paid */
         double left = job->extra_s - (double)(dm_now_ns() - t0 - committing) / 1e9 - measure__overhead_s(over);
-        size_t np = protocol_extra_round(ci, sample_s, nw, m->pd.target_ci, left, pick, &why);
+        double bar = removed ? PROTOCOL_EXTRA_CLEAR * m->pd.target_ci : m->pd.target_ci;
+        size_t np = protocol_extra_round(ci, sample_s, nw, bar, left, pick, &why);
         if (np == 0)
             break;
         plan_shuffle(order, np, job->seed + 0x9e3779b97f4a7c15u * ++rounds);   /* blocks the drift */
@@ -680,13 +699,6 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
             mconf *c = &cs[wait[pick[order[k]]]];
             dm_str_printf(&keys, "%s%s", keys.len ? " " : "", c->pc->key);
             measure__timing_sample(m, c, 1);
-            if (!c->extra || c->failed) {   /* its raw CI within the target decided */
-                int64_t c0 = dm_now_ns();
-                c->extra = 0;
-                c->corr_ci_rel = NAN;
-                rc = measure__commit(m, c, err);
-                committing += dm_now_ns() - c0;   /* images and quality: not the rounds' time */
-            }
         }
         rc = rc ? rc : measure__round_end(m, cs, n, &keys, cal0, over, err);
         dm_str_free(&keys);
@@ -694,14 +706,11 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
     int64_t spent = dm_now_ns() - t0 - committing;
     int removed = rc == 0 && any && measure__corrected_ci(m, cs, n, corr);
     for (size_t i = 0; rc == 0 && i < n; i++)
-        if (cs[i].extra) {   /* the budget ended them */
-            cs[i].extra = 0;
-            cs[i].corr_ci_rel = removed ? corr[i] : NAN;
-            rc = measure__commit(m, &cs[i], err);
-        }
-    if (any)
+        if (cs[i].extra)   /* the budget ended them */
+            rc = measure__extra_commit(m, &cs[i], removed ? corr[i] : NAN, &committing, err);
+    if (short_of)
         mscene_say(job, "R %zu %lld %s %zu", rounds, (long long)spent,
-                   why == PROTOCOL_EXTRA_BUDGET ? "budget" : "reached", any);
+                   why == PROTOCOL_EXTRA_BUDGET ? "budget" : "reached", short_of);
     free(wait);
     free(pick);
     free(order);

@@ -244,6 +244,12 @@ int protocol_extra_clearly_within(double corrected_ci_rel, double target_ci)
     return corrected_ci_rel <= PROTOCOL_EXTRA_CLEAR * target_ci;   /* NaN: not known, not within */
 }
 
+int protocol_extra_done(double raw_ci_rel, double corrected_ci_rel, double target_ci)
+{
+    return isfinite(corrected_ci_rel) ? protocol_extra_clearly_within(corrected_ci_rel, target_ci)
+                                      : raw_ci_rel <= target_ci;
+}
+
 const char *protocol_extra_why_name(protocol_extra_why w)
 {
     switch (w) {

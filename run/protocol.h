@@ -180,8 +180,15 @@ int protocol_extra_corrected(const double *x, size_t n_configs, size_t n_rounds,
  * PROTOCOL_EXTRA_CLEAR of target_ci.  Half, not the whole target: that
  * CI leaves out the bootstrap of the correction, which the stored figure
  * adds, so a configuration stopped at the target itself would often end
- * outside it (tests/test_models_drift.c simulates both). */
+ * outside it (tests/test_run_protocol.c simulates both). */
 int protocol_extra_clearly_within(double corrected_ci_rel, double target_ci);
+
+/* 1 when a timed configuration needs no extra rounds, judged by the figure
+ * it will be stored with: where the scene's drift is removed (corrected
+ * finite), protocol_extra_clearly_within -- whatever its raw CI, which on
+ * few samples may converge while the corrected CI ends outside the target
+ * -- else its raw CI within target_ci.  NaN is never within. */
+int protocol_extra_done(double raw_ci_rel, double corrected_ci_rel, double target_ci);
 
 /* Words for a stop of the extra rounds ("targets reached", "budget spent"). */
 const char *protocol_extra_why_name(protocol_extra_why w);

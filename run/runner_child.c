@@ -307,7 +307,7 @@ static void runner_child__extra_config(runner *r, const plan_config *c, size_t s
                                        double before, double after, double corrected)
 {
     double target = r->s->measure.target_ci;
-    int reached = after <= target || protocol_extra_clearly_within(corrected, target);
+    int reached = protocol_extra_done(after, corrected, target);
     r->extra_configs++;
     r->extra_reached += reached;
     dm_str label = {0}, corr = {0};
@@ -329,10 +329,10 @@ void runner_child_extra_print(const runner *r, FILE *f)
     double target = 100 * r->s->measure.target_ci;
     if (!r->extra_scenes) {
         fprintf(f, "dmbench: extra rounds (--extra-time %g s): none needed, every configuration "
-                "stopped within ±%.1f %% or without a timing counter\n", r->o->extra_s, target);
+                "within ±%.1f %% or without a timing counter\n", r->o->extra_s, target);
         return;
     }
-    fprintf(f, "dmbench: extra rounds (--extra-time %g s): %zu configuration%s stopped short of "
+    fprintf(f, "dmbench: extra rounds (--extra-time %g s): %zu configuration%s short of "
             "±%.1f %%; %zu rounds in %.1f s gave %zu of them more samples, noisiest first, and %zu "
             "reached it; ended: %s\n", r->o->extra_s, r->extra_short, r->extra_short == 1 ? "" : "s",
             target, r->extra_rounds, (double)r->extra_ns / 1e9, r->extra_configs, r->extra_reached,

@@ -7,6 +7,7 @@
 #include <stdarg.h>
 #include <stddef.h>
 #include <stdint.h>
+#include <string.h>
 #include <cmocka.h>
 #include "test_util.h"
 
@@ -82,6 +83,24 @@ static void test_equal_quality_cheaper_wins(void **state)
     recommend_scene(p, 4, &d, &r);
     assert_int_equal(r.pick, 2);
     assert_int_equal(r.pick_tie, 1);
+    /* the medians trade places within their CIs (another run's noise): the same pick,
+     * the simpler pipeline (vertex before tessellation), not the lower median */
+    recommend_point q[4];
+    memcpy(q, p, sizeof q);
+    q[1].time = 5.0 * MS, q[1].ci_lo = 4.9 * MS, q[1].ci_hi = 5.1 * MS;
+    q[2].time = 5.2 * MS, q[2].ci_lo = 5.05 * MS, q[2].ci_hi = 5.35 * MS;
+    recommend_scene(q, 4, &d, &r);
+    assert_int_equal(r.pick, 2);
+    assert_int_equal(r.pick_tie, 1);
+    /* of one family, the one first in the points' order, whichever median is lower */
+    q[1].family = q[2].family = F;
+    recommend_scene(q, 4, &d, &r);
+    assert_int_equal(r.pick, 1);
+    assert_int_equal(r.pick_tie, 2);
+    q[1].time = 5.3 * MS, q[2].time = 5.0 * MS;
+    recommend_scene(q, 4, &d, &r);
+    assert_int_equal(r.pick, 1);
+    assert_int_equal(r.pick_tie, 2);
 }
 
 /* The run's smallest resolvable difference makes a tie of two equal-quality

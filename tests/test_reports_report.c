@@ -309,6 +309,53 @@ static void fixture_corrected(dm_run_result *run)
     assert_int_equal(report_budget_set(run, 1.9), 0);
 }
 
+/* Two lit configurations of one family, of equal quality, whose time CIs
+ * overlap: the pick is the one whose key sorts first, whatever order the
+ * run stored them in (the order they were measured) and whichever median
+ * is lower (another run's noise), so two runs name the same pick. */
+static void test_tie_named_by_key(void **state)
+{
+    (void)state;
+    static const double med[2][2] = { { 1.00e6, 1.04e6 }, { 1.04e6, 1.00e6 } };
+    for (int order = 0; order < 2; order++)
+        for (int m = 0; m < 2; m++) {
+            dm_run_result run;
+            memset(&run, 0, sizeof run);
+            run.n_configs = 2;
+            run.configs = dm_xcalloc(2, sizeof *run.configs);
+            static const char *const key[2] = { "bbbb000000000000", "aaaa000000000000" };
+            for (int i = 0; i < 2; i++) {
+                dm_config_result *c = &run.configs[order ? 1 - i : i];
+                fixture_config(c, key[i], i ? "normal" : "bump", "plane", 1);
+                dm_kv_push(&c->params, &c->n_params, "lighting", "blinn-phong");
+                fixture_timed(&c->counters[0], "WallTime", med[m][i] * 0.95, med[m][i], med[m][i] * 1.05);
+                fixture_quality(&c->quality, 40, 0.95, 0.01);
+            }
+            recommend_result r;
+            report_recommend(&run, FIXTURE_SCENE, &r);
+            assert_int_not_equal(r.pick, RECOMMEND_NONE);
+            assert_int_not_equal(r.pick_tie, RECOMMEND_NONE);
+            assert_string_equal(run.configs[r.pick].key, "aaaa000000000000");
+            assert_string_equal(run.configs[r.pick_tie].key, "bbbb000000000000");
+            dm_str t = {0};   /* the terminal's answer names it, and says why */
+            report_answer_terminal(&run, &t);
+            char *a = dm_xstrdup(dm_str_get(&t)), *o = a;
+            for (const char *q = a; *q; q++) {   /* the wrapped lines joined */
+                if (*q == '\n' && q[1] == ' ')
+                    while (q[1] == ' ')
+                        q++;
+                *o++ = *q == '\n' ? ' ' : *q;
+            }
+            *o = '\0';
+            assert_non_null(strstr(a, "pick normal ("));
+            assert_non_null(strstr(a, "It ties with bump"));
+            assert_non_null(strstr(a, "the first by configuration key is named"));
+            free(a);
+            dm_str_free(&t);
+            dm_run_free(&run);
+        }
+}
+
 /* Raw and corrected figures side by side in every file, the noise floor
  * and the verdict on which they disagree. */
 static void test_corrected_figures(void **state)
@@ -1674,6 +1721,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_motion_front),
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
+             cmocka_unit_test(test_tie_named_by_key),
              cmocka_unit_test(test_corrected_figures),
              cmocka_unit_test(test_html_escaping_and_images),
              cmocka_unit_test(test_html_flip_maps),

@@ -444,10 +444,16 @@ static void extra_round_noisiest_first_within_budget(void **state)
 /* protocol_extra_corrected on a scene whose six configurations share a
  * ±20 % drift, each with 1 % noise of its own: the raw CIs stay wide
  * (over ±5 %), the corrected ones are within ±1.5 % (clearly within a
- * ±3 % target); without drift (the same noise alone) the drift is not
- * removed and every answer is NaN (the raw CI decides); a scene of two
- * configurations has no common mode. */
-static void extra_corrected_preview(void **state)
+ * ±3 % target), and each is the CI of the configuration's corrected
+ * samples alone as drift_correct gives it without the bootstrap; without
+ * drift (the same noise alone) the drift is not removed and every answer
+ * is NaN (the raw CI decides); a scene of two configurations has no
+ * common mode.  protocol_extra_done judges by the corrected CI where
+ * there is one, against half the target: a raw CI within the target does
+ * not end a configuration whose corrected CI is not clearly within it
+ * (few samples), and a wide raw CI does not keep one whose corrected CI
+ * is. */
+static void extra_corrected_decides(void **state)
 {
     (void)state;
     enum { NCF = 6, NRD = 30 };
@@ -460,18 +466,33 @@ static void extra_corrected_preview(void **state)
             flat[c * NRD + r] = 1e6 * (double)(c + 1) * noise;
         }
     assert_int_equal(protocol_extra_corrected(x, NCF, NRD, 1, ci), 1);
+    drift_result d;
+    assert_int_equal(drift_correct(&(drift_desc){ .n_configs = NCF, .n_rounds = NRD, .x = x, .seed = 1,
+                                                  .point_only = 1 }, &d), 0);
     for (size_t c = 0; c < NCF; c++) {
+        const drift_config *k = &d.configs[c];
+        assert_true((k->raw_hi - k->raw_lo) / 2 / k->raw_median > 0.05);
         assert_true(ci[c] > 0 && ci[c] < 0.015);
+        assert_true(ci[c] == (k->hi - k->lo) / 2 / k->median);
         assert_true(protocol_extra_clearly_within(ci[c], 0.03));
+        assert_true(protocol_extra_done((k->raw_hi - k->raw_lo) / 2 / k->raw_median, ci[c], 0.03));
     }
+    drift_result_free(&d);
     assert_int_equal(protocol_extra_corrected(flat, NCF, NRD, 1, ci), 0);
     for (size_t c = 0; c < NCF; c++)
         assert_true(isnan(ci[c]));
     assert_int_equal(protocol_extra_corrected(x, 2, NRD, 1, ci), 0);
-    /* the threshold: half the target, NaN never */
+    /* the threshold of a corrected CI: half the target, NaN never */
     assert_true(protocol_extra_clearly_within(0.015, 0.03));
     assert_false(protocol_extra_clearly_within(0.0151, 0.03));
     assert_false(protocol_extra_clearly_within(NAN, 0.03));
+    /* the judged CI: corrected where known (against half the target), else raw (the target) */
+    assert_true(protocol_extra_done(0.02, NAN, 0.03));
+    assert_true(protocol_extra_done(0.03, NAN, 0.03));
+    assert_false(protocol_extra_done(0.0301, NAN, 0.03));
+    assert_false(protocol_extra_done(0.02, 0.016, 0.03));
+    assert_true(protocol_extra_done(0.05, 0.015, 0.03));
+    assert_false(protocol_extra_done(NAN, NAN, 0.03));
 }
 
 /* A standard normal by Box-Muller from the seeded generator. */
@@ -496,7 +517,9 @@ static int cmp_double(const void *a, const void *b)
  * waits while its raw CI is short of ±3 % (before this change); 1: while
  * its drift-corrected preview is (stopping at the target itself); 2: the
  * raw CI decides, but a preview clearly within the target
- * (protocol_extra_clearly_within) stops it (what measure.c does).  Then
+ * (protocol_extra_clearly_within) stops it (before 29 Nov 2026, evening);
+ * 3: the preview alone decides where the drift is removed, a raw CI within
+ * the target does not (protocol_extra_done: what measure.c does).  Then
  * the stored figures (drift_correct with its bootstrap) are checked: the
  * within-run CI against the truth placed at the run's median speed as the
  * correction found it (the median over configurations of the log ratio of
@@ -537,7 +560,8 @@ static size_t sim_scene(int rule, uint64_t seed, size_t *cover_w, size_t *cover_
             drift_result_free(&d);
             int done = rule == 0 ? raw <= 0.03
                      : rule == 1 ? (removed ? pre[c] <= 0.03 : raw <= 0.03)
-                                 : raw <= 0.03 || protocol_extra_clearly_within(pre[c], 0.03);
+                     : rule == 2 ? raw <= 0.03 || protocol_extra_clearly_within(pre[c], 0.03)
+                                 : protocol_extra_done(raw, removed ? pre[c] : NAN, 0.03);
             waiting[c] = waiting[c] && !done && taken + any < SBUDGET;
             any += (size_t)waiting[c];
         }
@@ -572,29 +596,31 @@ static size_t sim_scene(int rule, uint64_t seed, size_t *cover_w, size_t *cover_
     return taken;
 }
 
-/* 30 seeded scenes per rule (sim_scene): the rule measure.c follows (2)
+/* 30 seeded scenes per rule (sim_scene): the rule measure.c follows (3)
  * ends with at least as many configurations within ±3 % as the raw rule
  * (0) for the same budget, and its stored CIs still cover the truth at
  * least 93 % of the time (nominal 95 %) within the run and between runs;
  * stopping at the target itself (1) is printed for comparison: its preview
  * leaves out the correction's own uncertainty, so configurations stopped
- * at ±3 % by it end outside ±3 % once the stored figure adds it. */
+ * at ±3 % by it end outside ±3 % once the stored figure adds it; so is the
+ * rule before (2), where a raw CI within the target also stopped one. */
 static void extra_rounds_by_corrected_cover(void **state)
 {
     (void)state;
-    size_t cw[3] = { 0 }, cb[3] = { 0 }, in[3] = { 0 }, taken[3] = { 0 };
+    size_t cw[4] = { 0 }, cb[4] = { 0 }, in[4] = { 0 }, taken[4] = { 0 };
     const size_t scenes = 30, n = scenes * SNC;
-    static const char *name[3] = { "raw CI decides", "corrected preview at the target",
-                                   "raw, or corrected preview clearly within" };
-    for (int rule = 0; rule < 3; rule++) {
+    static const char *name[4] = { "raw CI decides", "corrected preview at the target",
+                                   "raw, or corrected preview clearly within",
+                                   "corrected preview clearly within, raw where not corrected" };
+    for (int rule = 0; rule < 4; rule++) {
         for (uint64_t s = 0; s < scenes; s++)
             taken[rule] += sim_scene(rule, 100 + s, &cw[rule], &cb[rule], &in[rule]);
         print_message("extra rounds, %s: %zu extra samples, within ±3 %%: %zu of %zu; coverage within the "
                       "run %.3f, between runs %.3f\n", name[rule], taken[rule], in[rule], n,
                       (double)cw[rule] / (double)n, (double)cb[rule] / (double)n);
     }
-    assert_true(in[2] >= in[0]);
-    assert_true((double)cw[2] >= 0.93 * (double)n && (double)cb[2] >= 0.93 * (double)n);
+    assert_true(in[3] >= in[0]);
+    assert_true((double)cw[3] >= 0.93 * (double)n && (double)cb[3] >= 0.93 * (double)n);
     assert_true((double)cw[0] >= 0.93 * (double)n && (double)cb[0] >= 0.93 * (double)n);
 }
 
@@ -615,7 +641,7 @@ int main(void)
         cmocka_unit_test(desc_from_measure),
         cmocka_unit_test(eta_from_measured_progress),
         cmocka_unit_test(extra_round_noisiest_first_within_budget),
-        cmocka_unit_test(extra_corrected_preview),
+        cmocka_unit_test(extra_corrected_decides),
         cmocka_unit_test(extra_rounds_by_corrected_cover),
     };
     return cmocka_run_group_tests(tests, NULL, NULL);
