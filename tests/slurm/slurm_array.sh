@@ -46,9 +46,8 @@ fi
 grep -qi "invalid partition" "$T/rej.err" || fail "Slurm's message missing: $(cat "$T/rej.err")"
 [ ! -e "$OUT/slurm" ] || fail "a rejected submission left $OUT/slurm behind"
 
-# The plan's keys, independently: the same sweep unsharded.
-# the plan's keys: an unsharded run (the suite's, fixture resume_full, or one
-# made here: tests/e2e/resume_full.sh)
+# The plan's keys, independently: the same sweep unsharded (the suite's run,
+# fixture resume_full, or one made here: tests/e2e/resume_full.sh).
 FULL=$(bash "$SRC/tests/e2e/resume_full.sh" --use "$T/full")
 q "$FULL/dmbench.sqlite" "select key from configs order by key" > "$T/plan.keys"
 n_plan=$(wc -l < "$T/plan.keys")
