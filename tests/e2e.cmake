@@ -12,6 +12,13 @@ dm_add_e2e(test_e2e_unavailable unavailable.sh)
 # Camera paths drawn frame by frame against still renders (docs/motion.md).
 dm_add_e2e(test_e2e_paths paths.sh LABELS quick)
 dm_add_e2e(test_e2e_motion_ladder motion_ladder.sh)
+# An uninterrupted run of tests/e2e/resume.yaml made once (fixture
+# resume_full, build/test-runs/resume-full) for the three tests that each
+# made it before: test_e2e_resume, test_merge_machines (tests/slurm.cmake)
+# and test_slurm_array read it through RESUME_FULL (tests/e2e/resume_full.sh).
+set(DM_RESUME_FULL ${CMAKE_BINARY_DIR}/test-runs/resume-full)
+dm_add_e2e(test_e2e_resume_full resume_full.sh ARGS ${DM_RESUME_FULL})
+set_tests_properties(test_e2e_resume_full PROPERTIES FIXTURES_SETUP resume_full)
 dm_add_e2e(test_e2e_resume resume.sh)
 dm_add_e2e(test_e2e_watchdog watchdog.sh LABELS quick)
 # The project's own regression gate: the deterministic counters of
@@ -93,3 +100,11 @@ set_tests_properties(test_user_technique_gate PROPERTIES TIMEOUT 1800 ENVIRONMEN
 # leave nothing running 5 s later (~1 min).
 dm_add_e2e(test_e2e_kill kill.sh)
 dm_add_e2e(test_e2e_counters_only counters_only.sh)
+
+# The readers of the fixture resume_full (above); test_merge_machines and
+# test_slurm_array are declared in tests/slurm.cmake, which comes later.
+function(dm_reads_resume_full name)
+  set_property(TEST ${name} APPEND PROPERTY ENVIRONMENT "RESUME_FULL=${DM_RESUME_FULL}")
+  set_property(TEST ${name} APPEND PROPERTY FIXTURES_REQUIRED resume_full)
+endfunction()
+dm_reads_resume_full(test_e2e_resume)

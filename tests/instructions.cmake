@@ -47,17 +47,21 @@ dm_glsl_variant(slowtess ${CMAKE_CURRENT_SOURCE_DIR}/instructions/slow_glsl.cmak
 #                   side: gate-techniques.yaml's configurations with VT off)
 #   stage_run_cube  tests/stages/techniques.yaml: test_stage_instructions,
 #                   test_instructions_families (dmbench's side)
+#   stage_run_reference  tests/stages/reference.yaml (the cube's
+#                   reference-mesh, as long to count as the other nine
+#                   techniques together, so in a run of its own beside
+#                   theirs): test_stage_instructions
 #   stage_run_fullscreen  tests/stages/fullscreen.yaml: test_stage_instructions
 set(DM_TEST_RUNS ${CMAKE_BINARY_DIR}/test-runs)
 add_test(NAME test_ci_gate_run
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/gate_run.sh ${DM_TEST_RUNS}/ci-gate)
 set_tests_properties(test_ci_gate_run PROPERTIES TIMEOUT 1800 FIXTURES_SETUP ci_gate_run
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate;valgrind")
-foreach(part cube fullscreen)
+foreach(part cube reference fullscreen)
   if(part STREQUAL cube)
     set(sweep ${CMAKE_CURRENT_SOURCE_DIR}/stages/techniques.yaml)
   else()
-    set(sweep ${CMAKE_CURRENT_SOURCE_DIR}/stages/fullscreen.yaml)
+    set(sweep ${CMAKE_CURRENT_SOURCE_DIR}/stages/${part}.yaml)
   endif()
   add_test(NAME test_stage_run_${part}
     COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/fixture_run.sh ${DM_TEST_RUNS}/stages-${part} ${sweep})
@@ -125,11 +129,12 @@ set_tests_properties(test_instructions_families PROPERTIES TIMEOUT 1800 FIXTURES
 # geometry + raster + fragment instructions add up to Instructions with a
 # residual under 1 %, and on the full-screen quad fragment instructions are
 # linear in the covered pixels (tests/stages/stages.sh, on the runs of the
-# fixtures stage_run_cube and stage_run_fullscreen).
+# fixtures stage_run_cube, stage_run_reference and stage_run_fullscreen).
 add_test(NAME test_stage_instructions
-  COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/stages.sh ${DM_TEST_RUNS}/stages-cube ${DM_TEST_RUNS}/stages-fullscreen)
+  COMMAND bash ${CMAKE_SOURCE_DIR}/tests/stages/stages.sh ${DM_TEST_RUNS}/stages-fullscreen
+          ${DM_TEST_RUNS}/stages-cube ${DM_TEST_RUNS}/stages-reference)
 set_tests_properties(test_stage_instructions PROPERTIES TIMEOUT 300
-  FIXTURES_REQUIRED "stage_run_cube;stage_run_fullscreen"
+  FIXTURES_REQUIRED "stage_run_cube;stage_run_reference;stage_run_fullscreen"
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
 
 # dmbench predict: a held-out resolution and step count within 5 % of the

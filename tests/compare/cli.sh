@@ -121,5 +121,5 @@ expect_compare 2 "$A,$B" "$B"
 grep -q "BASE has 2 runs and NEW 1: give both sides several runs" "$OUT/stderr" || { cat "$OUT/stderr"; exit 1; }
 expect_compare "0 3" "$A,$B" "$B,$A"
 sed -e ':a;N;$!ba;s/\n    / /g' "$OUT/stdout" | grep -q "several separate runs per side, each one sample" || { cat "$OUT/stdout"; exit 1; }
-expect_compare 0 --paired "$BIN" "$BIN" "$SRC/tests/e2e/tiny.yaml" --rounds 2 --counters-only --quiet
+expect_compare 0 --paired "$BIN" "$BIN" "$SRC/tests/compare/paired.yaml" --rounds 2 --counters-only --quiet
 echo "compare cli: all passed"

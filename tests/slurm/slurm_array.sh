@@ -46,9 +46,10 @@ fi
 grep -qi "invalid partition" "$T/rej.err" || fail "Slurm's message missing: $(cat "$T/rej.err")"
 [ ! -e "$OUT/slurm" ] || fail "a rejected submission left $OUT/slurm behind"
 
-# The plan's keys, independently: the same sweep unsharded.
-"$BIN" run "$SWEEP" --out "$T/full" --quiet
-q "$T/full/dmbench.sqlite" "select key from configs order by key" > "$T/plan.keys"
+# The plan's keys, independently: the same sweep unsharded (the suite's run,
+# fixture resume_full, or one made here: tests/e2e/resume_full.sh).
+FULL=$(bash "$SRC/tests/e2e/resume_full.sh" --use "$T/full")
+q "$FULL/dmbench.sqlite" "select key from configs order by key" > "$T/plan.keys"
 n_plan=$(wc -l < "$T/plan.keys")
 [ "$n_plan" -eq 12 ] || fail "the plan has $n_plan keys, expected 12"
 

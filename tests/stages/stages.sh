@@ -1,9 +1,11 @@
 #!/usr/bin/env bash
 # test_stage_instructions: the stage counters of the Instructions pass
-# (docs/counters.md, "Stage costs") on tests/stages/techniques.yaml (the
-# cube) and tests/stages/fullscreen.yaml, each run once for the suite by
-# test_stage_run_cube and test_stage_run_fullscreen (CUBE and FULL, their
-# output roots; the cube's run is also test_instructions_families').
+# (docs/counters.md, "Stage costs") on tests/stages/fullscreen.yaml and on
+# the cube, tests/stages/techniques.yaml and tests/stages/reference.yaml
+# (reference-mesh, in a run of its own: it takes as long to count as the
+# nine others), each run once for the suite by test_stage_run_fullscreen,
+# test_stage_run_cube and test_stage_run_reference (FULL and CUBE..., their
+# output roots; the cube's nine are also test_instructions_families').
 #  - every technique: geometry, raster and fragment are positive, they add
 #    up to Instructions within 1 %, and the residual (geometry work the
 #    minimal fragment shader changed, which does not enter the parts) is
@@ -15,16 +17,20 @@
 #    and fragment instructions are F0 + f x pixels: the cost per added
 #    pixel is equal between the sizes within 2 % and F0 (per-draw state of
 #    the fragment stage) is under 5 % of the 64x64 fragment count.
-# Usage: stages.sh CUBE FULL  (DMBENCH_SOURCE_DIR set by ctest)
+# Usage: stages.sh FULL CUBE...  (DMBENCH_SOURCE_DIR set by ctest)
 set -euo pipefail
-CUBE=${1:?usage: stages.sh CUBE FULL}
-FULL=${2:?usage: stages.sh CUBE FULL}
-for d in "$CUBE" "$FULL"; do
+[ $# -ge 2 ] || { echo "usage: stages.sh FULL CUBE..."; exit 2; }
+runs=()
+for d in "$@"; do
   [ -f "$d/latest/results.json" ] || { echo "no stage run in $d (fixtures test_stage_run_*)"; exit 1; }
+  runs+=("$d/latest/results.json")
 done
-python3 - "$CUBE/latest/results.json" "$FULL/latest/results.json" <<'PY'
+python3 - "${runs[@]}" <<'PY'
 import json, sys
 j = {"configs": [c for p in sys.argv[1:] for c in json.load(open(p))["configs"]]}
+# a technique counted twice (in two of the runs) would hide a missing one
+keys = [c["key"] for c in j["configs"]]
+assert len(keys) == len(set(keys)), "a configuration is in two of the runs"
 fails = []
 def val(c, n):
     x = c["counters"].get(n)
