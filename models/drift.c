@@ -218,6 +218,12 @@ static size_t drift__procedure(const double *lx, size_t nc, size_t nr, double *m
     return used;
 }
 
+size_t drift_block_rounds(size_t n_rounds)
+{
+    long L = lround(cbrt((double)n_rounds));
+    return L > 1 ? (size_t)L : 1;
+}
+
 /* A configuration's 95 % percentile intervals from the bootstrap (exp of
  * log quantiles); NaN where fewer than half the replicates are finite. */
 typedef struct drift__ci {
@@ -237,7 +243,8 @@ static void drift__percentiles(const double *v, size_t B, double *lo, double *hi
 }
 
 /* Percentile intervals of each configuration's bootstrap corrected
- * medians: replicates of the whole procedure on rounds drawn with
+ * medians: replicates of the whole procedure on rounds drawn in blocks
+ * (drift_block_rounds) with
  * replacement.  Within the run, each replicate is first shifted by the
  * median over configurations of its change from the point estimates pm
  * (log): where the run's median speed lies moves every configuration of
@@ -252,11 +259,13 @@ static double drift__bootstrap(const drift_desc *d, const double *lx, const doub
     double *raw = dm_xcalloc(nc * B + 1, sizeof *raw), *shifts = dm_xcalloc(B + 1, sizeof *shifts);
     double *med = dm_xcalloc(nc + 1, sizeof *med), *y = dm_xcalloc(nr + nc + 1, sizeof *y);
     rng_state g = rng_seed(d->seed);
+    size_t L = d->block ? d->block : drift_block_rounds(nr);
     for (size_t b = 0; b < B; b++) {
-        for (size_t j = 0; j < nr; j++) {
+        for (size_t j = 0; j < nr;) {   /* blocks of L consecutive rounds, circular */
             size_t r = rng_below(&g, nr);
-            for (size_t c = 0; c < nc; c++)
-                xs[c * nr + j] = lx[c * nr + r];
+            for (size_t k = 0; k < L && j < nr; k++, j++)
+                for (size_t c = 0; c < nc; c++)
+                    xs[c * nr + j] = lx[c * nr + (r + k) % nr];
         }
         drift__procedure(xs, nc, nr, med, y);
         size_t m = 0;

@@ -27,7 +27,10 @@
  * Corrected CI: the hull of (a) the 95 % CI of the median of the corrected
  * samples (models/stats.h) and (b) a percentile interval of B bootstrap
  * replicates of the WHOLE procedure (polish, leave-one-out common mode,
- * median), each on n_rounds rounds drawn with replacement — the round is
+ * median), each on n_rounds rounds drawn with replacement in blocks of
+ * drift_block_rounds(n_rounds) consecutive rounds (a moving-block
+ * bootstrap, circular: the host's speed in one round depends on the last
+ * round's, so independent draws understate how far its median moves) — the round is
  * the unit, so the uncertainty of a[k] and b[r] is in (b).  The corrected
  * figure is the time at the run's median machine speed; each replicate is
  * shifted by the median change of all the scene's configurations, so the
@@ -74,6 +77,7 @@ typedef struct drift_desc {
     const double *calib;     /* n_rounds calibration times (ns), NULL = none; NaN allowed */
     uint64_t seed;           /* of the bootstrap */
     int bootstrap;           /* replicates; 0 = DRIFT_BOOTSTRAP_B */
+    size_t block;            /* rounds per block of the bootstrap; 0 = drift_block_rounds(n_rounds) */
     int point_only;          /* 1: no bootstrap: lo/hi are the CI of the corrected samples alone
                                 (part (a) of the corrected CI), between_lo/hi and reference_spread
                                 NaN.  A preview for deciding where extra rounds go (run/protocol.h),
@@ -122,6 +126,9 @@ typedef struct drift_result {
  * for a desc without samples (n_configs or n_rounds 0, x NULL). */
 int drift_correct(const drift_desc *d, drift_result *out);
 void drift_result_free(drift_result *r);
+/* Rounds per block of the bootstrap over rounds: n^(1/3), rounded, at
+ * least 1 (the textbook order for estimating a variance). */
+size_t drift_block_rounds(size_t n_rounds);
 
 /* Robust SD of the finite values: 1.4826 × median |v - median|; NaN when
  * fewer than 2. */

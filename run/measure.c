@@ -677,6 +677,7 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
             double k = removed ? corr[i] : NAN;
             if (cs[i].failed || protocol_extra_done(cs[i].ci_rel, k, m->pd.target_ci)) {
                 rc = measure__extra_commit(m, &cs[i], k, &committing, err);
+                short_of += rounds == 0 && isfinite(cs[i].corr_ci_rel);   /* short raw, done corrected */
                 continue;
             }
             wait[nw] = i;
