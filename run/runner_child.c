@@ -308,8 +308,8 @@ static void runner_child__extra_config(runner *r, const plan_config *c, size_t s
 {
     double target = r->s->measure.target_ci;
     int reached = protocol_extra_done(after, corrected, target);
-    r->extra_configs++;
-    r->extra_reached += reached;
+    r->extra_configs += samples > 0;   /* "gave N of them more samples, and M reached it" */
+    r->extra_reached += samples > 0 && reached;
     dm_str label = {0}, corr = {0};
     if (c)
         runner_child__label(r, c, &label);
