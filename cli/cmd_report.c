@@ -44,8 +44,8 @@ const cli_option cli_report_options[] = {
       .help = "FLIP again at N pixels per degree from the stored images (for these files; docs/flip.md)" },
     { .name = "budget-ms", .kind = CLI_OPT_DOUBLE, .offset = offsetof(report_args, budget_ms),
       .value_name = "MS", .min = 0.001, .max = 1e6,
-      .help = "the frame budget the recommendation picks under (default: per scene, midway between "
-              "its fastest and slowest lit times)" },
+      .help = "the frame budget the recommendation picks under (default: per scene, a round value in "
+              "the widest gap of its lit times; docs/reports.md)" },
     CLI_STRING("out", report_args, out, "DIR",
                "write the files into DIR (created) instead of the run directory"),
     CLI_OPT_END

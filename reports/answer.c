@@ -54,16 +54,31 @@ static void answer__mark(answer__w *w, const char *mark, const char *why)
 }
 
 /* "Provisional: 17 of 18 timings are noisy. " before a scene's pick when
- * more than half of its timed configurations are noisy (the model's
- * provisional flag): the pick may change on a quieter run. */
-static void answer__provisional(answer__w *w, const report_model_scene *sc)
+ * more than half of its timed configurations are noisy, and "Provisional:
+ * with the times anywhere in their CIs the default budget could as well
+ * be ..." when the times' CIs allow the
+ * default budget another gap of the scene's times and so another pick (the
+ * model's provisional flag): the pick may change on another run. */
+static void answer__provisional(answer__w *w, const report_model *m, const report_model_scene *sc)
 {
     if (!sc->provisional)
         return;
     dm_str t = {0};
-    dm_str_printf(&t, "Provisional: %zu of %zu timings are noisy (the machine was busy); ", sc->n_noisy,
-                  sc->n_timed);
+    if (sc->noisy_majority)
+        dm_str_printf(&t, "Provisional: %zu of %zu timings are noisy (the machine was busy)", sc->n_noisy,
+                      sc->n_timed);
+    const recommend_result *r = &sc->rec;
+    if (r->budget_moves) {
+        dm_str_printf(&t, "%s with the times anywhere in their CIs the default budget could as well be "
+                      "%g ms, ", sc->noisy_majority ? ", and" : "Provisional:", r->moved_budget / 1e6);
+        if (r->moved_pick == RECOMMEND_NONE)
+            dm_str_cat(&t, "where nothing fits");
+        else
+            dm_str_printf(&t, "where the pick is %s", m->rows[r->moved_pick].label);
+        dm_str_cat(&t, " (set a budget with report --budget-ms)");
+    }
     answer__strong(w, dm_str_get(&t));
+    answer__text(w, "; ");
     dm_str_free(&t);
 }
 
@@ -272,7 +287,7 @@ void report_answer_scene(const report_model *m, size_t si, report_answer_format 
     }
     const recommend_result *r = &sc->rec;
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "<p class=\"pick\">" : "");
-    answer__provisional(&w, sc);
+    answer__provisional(&w, m, sc);
     answer__pick(&w, m, r);
     answer__disagree(&w, sc);
     dm_str_cat(out, f == REPORT_ANSWER_HTML ? "</p>\n<ul class=\"rec\">" : f == REPORT_ANSWER_MD ? "\n" : "");
@@ -338,7 +353,7 @@ void report_answer_terminal_model(const report_model *m, dm_str *out)
             dm_str_free(&one);
             continue;
         }
-        answer__provisional(&w, sc);
+        answer__provisional(&w, m, sc);
         answer__pick(&w, m, &sc->rec);
         answer__disagree(&w, sc);
         answer__text(&w, "\n  ");

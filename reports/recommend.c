@@ -100,38 +100,59 @@ static int recommend__counts(const recommend__times *t, size_t i)
     return recommend__usable(q) && (t->mask & 1u << q->family) && q->time > 0;
 }
 
-/* Log distance from c to the nearest eligible time, and in *under how many
- * eligible times are at or under c. */
-static double recommend__margin(const recommend__times *t, double c, size_t *under)
+/* The eligible times fastest first: indices into s (capacity n); count. */
+static size_t recommend__times_sorted(const recommend__times *t, size_t *s)
 {
-    double m = INFINITY;
-    *under = 0;
-    for (size_t i = 0; i < t->n; i++)
-        if (recommend__counts(t, i)) {
-            m = fmin(m, fabs(log(t->p[i].time / c)));
-            *under += t->p[i].time <= c;
-        }
-    return m;
+    size_t m = recommend__sorted(t->p, t->n, t->mask, s), k = 0;
+    for (size_t i = 0; i < m; i++)
+        if (recommend__counts(t, s[i]))
+            s[k++] = s[i];
+    return k;
 }
 
-/* The default budget from the eligible times, fastest lo, slowest hi, count
- * k (recommend.h states the rule): of the round values between lo and hi,
- * the one that stands farthest (log scale) from every time, so that noise
- * moves no time across it; equal margins go to the value whose count under
- * it is nearest half, then to the lower.  Admitting every time competes with
- * the margin log RECOMMEND_NOISE and wins when no value between stands
- * farther than that (or there is none between). */
-static double recommend__budget_of(const recommend__times *t, double lo, double hi, size_t k)
+/* The roundest value in [a, b], nearest √(a b) on a log scale: a 1, 2 or
+ * 5 × 10^k first, then one significant digit, then two, then three, else
+ * √(a b) itself. */
+static double recommend__roundest(double a, double b)
 {
-    double best = recommend__round_up(hi * RECOMMEND_NOISE), best_m = log(RECOMMEND_NOISE);
-    double best_split = INFINITY, half = (double)k / 2;
-    for (double c = recommend__round_up(lo); c < hi; c = recommend__next_round(c)) {
-        size_t under;
-        double m = recommend__margin(t, c, &under);
-        double split = fabs((double)under - half);
-        if (m > best_m + 1e-9 || (fabs(m - best_m) <= 1e-9 && split < best_split)) {
+    double mid = sqrt(a * b), best = NAN;
+    for (double c = recommend__round_up(a); c <= b * (1 + 1e-12); c = recommend__next_round(c))
+        if (isnan(best) || fabs(log(c / mid)) < fabs(log(best / mid)))
             best = c;
-            best_m = m;
+    for (int digits = 1; digits <= 3 && isnan(best); digits++) {
+        double step = pow(10, floor(log10(b)) - digits + 1);
+        for (double c = ceil(a / step * (1 - 1e-12)) * step; c <= b * (1 + 1e-12); c += step)
+            if (isnan(best) || fabs(log(c / mid)) < fabs(log(best / mid)))
+                best = c;
+    }
+    return isnan(best) ? mid : best;
+}
+
+/* The budget of gap g of the k sorted times s (between s[g] and s[g + 1]):
+ * the roundest value in its middle half on a log scale, so that it stands
+ * at least a quarter of the gap from both; g = k - 1: every time admitted,
+ * the round value at or above the slowest × RECOMMEND_NOISE. */
+static double recommend__gap_budget(const recommend_point *p, const size_t *s, size_t k, size_t g)
+{
+    if (g + 1 >= k)
+        return recommend__round_up(p[s[k - 1]].time * RECOMMEND_NOISE);
+    double lo = p[s[g]].time, hi = p[s[g + 1]].time, q = pow(hi / lo, 0.25);
+    return recommend__roundest(lo * q, hi / q);
+}
+
+/* The gap the default budget sits in (recommend.h): the widest on a log
+ * scale, wider than 2 log RECOMMEND_NOISE; equal widths to the one whose
+ * count under it is nearest half, then to the lower; k - 1 (every time
+ * admitted) when no gap is that wide. */
+static size_t recommend__gap_of(const recommend_point *p, const size_t *s, size_t k)
+{
+    size_t best = k - 1;
+    double best_w = 2 * log(RECOMMEND_NOISE), best_split = INFINITY, half = (double)k / 2;
+    for (size_t g = 0; g + 1 < k; g++) {
+        double w = log(p[s[g + 1]].time / p[s[g]].time), split = fabs((double)(g + 1) - half);
+        if (w > best_w + 1e-9 || (best + 1 < k && fabs(w - best_w) <= 1e-9 && split < best_split)) {
+            best = g;
+            best_w = w;
             best_split = split;
         }
     }
@@ -142,14 +163,10 @@ double recommend_default_budget(const recommend_point *p, size_t n)
 {
     int lit_only;
     recommend__times t = {p, n, recommend__eligible_mask(p, n, &lit_only)};
-    double lo = INFINITY, hi = 0;
-    size_t k = 0;
-    for (size_t i = 0; i < n; i++)
-        if (recommend__counts(&t, i)) {
-            lo = fmin(lo, p[i].time), hi = fmax(hi, p[i].time);
-            k++;
-        }
-    return k > 0 ? recommend__budget_of(&t, lo, hi, k) : 0;
+    size_t *s = dm_xcalloc(n + 1, sizeof *s), k = recommend__times_sorted(&t, s);
+    double b = k > 0 ? recommend__gap_budget(p, s, k, recommend__gap_of(p, s, k)) : 0;
+    free(s);
+    return b;
 }
 
 static int recommend__ci_known(const recommend_point *p)
@@ -237,6 +254,52 @@ static size_t recommend__near_miss_of(const recommend_point *p, size_t n, unsign
     return best;
 }
 
+/* The low and high ends of a point's time CI (its median when unknown). */
+static double recommend__lo(const recommend_point *p)
+{
+    return isfinite(p->ci_lo) && p->ci_lo > 0 ? fmin(p->ci_lo, p->time) : p->time;
+}
+
+static double recommend__hi(const recommend_point *p)
+{
+    return isfinite(p->ci_hi) ? fmax(p->ci_hi, p->time) : p->time;
+}
+
+/* Whether the default budget could sit elsewhere with the times anywhere in
+ * their CIs (recommend_result.budget_moves): the chosen gap at its
+ * narrowest (its lower time at its CI's high end, its upper at its low
+ * end) against each other gap at its widest, and against admitting every
+ * time (2 log RECOMMEND_NOISE); the widest such rival whose budget changes
+ * the pick is the one reported. */
+static void recommend__budget_check(const recommend_point *p, size_t n, const recommend_desc *d,
+                                    recommend_result *out)
+{
+    int lit_only;
+    recommend__times t = {p, n, recommend__eligible_mask(p, n, &lit_only)};
+    size_t *s = dm_xcalloc(n + 1, sizeof *s), k = recommend__times_sorted(&t, s);
+    size_t g = k > 0 ? recommend__gap_of(p, s, k) : 0;
+    double floor_w = 2 * log(RECOMMEND_NOISE);
+    double narrowest = g + 1 < k ? log(recommend__lo(&p[s[g + 1]]) / recommend__hi(&p[s[g]])) : floor_w;
+    double rival_w = -INFINITY;
+    for (size_t j = 0; j < k; j++) {   /* j = k - 1: every time admitted */
+        double w = j + 1 < k ? log(recommend__hi(&p[s[j + 1]]) / recommend__lo(&p[s[j]])) : floor_w;
+        if (j == g || (j + 1 < k && !(w > floor_w)) || w < narrowest || w <= rival_w)
+            continue;
+        recommend_desc e = *d;
+        e.budget = recommend__gap_budget(p, s, k, j);
+        e.check_budget = 0;
+        recommend_result r;
+        recommend_scene(p, n, &e, &r);
+        if (r.pick != out->pick) {
+            rival_w = w;
+            out->budget_moves = 1;
+            out->moved_budget = e.budget;
+            out->moved_pick = r.pick;
+        }
+    }
+    free(s);
+}
+
 void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *desc,
                      recommend_result *out)
 {
@@ -270,6 +333,11 @@ void recommend_scene(const recommend_point *p, size_t n, const recommend_desc *d
         out->family_best[f] = recommend__best_within(p, n, one, d.epsilon, out->budget, scratch);
     }
     free(scratch);
+    out->budget_moves = 0;
+    out->moved_budget = NAN;
+    out->moved_pick = RECOMMEND_NONE;
+    if (out->budget_default && d.check_budget && out->budget > 0)
+        recommend__budget_check(p, n, &d, out);
 }
 
 const char *recommend_family_name(recommend_family f)

@@ -60,6 +60,9 @@ typedef struct recommend_desc {
     double resolvable;     /* relative: two medians that differ by no more than this fraction of
                               the pick's also cost the same (the run's smallest resolvable
                               difference, docs/measurement.md); 0 = by CI overlap only */
+    int check_budget;      /* with the default budget: whether it could sit in another gap of the
+                              times with each time anywhere in its CI, so far that the pick changes
+                              (recommend_result.budget_moves); 0 = not checked */
 } recommend_desc;
 
 typedef struct recommend_result {
@@ -80,6 +83,13 @@ typedef struct recommend_result {
     size_t knee;                   /* NONE when the front has no bend */
     size_t family_best[RECOMMEND_FAMILY_COUNT];   /* within the budget; NONE */
     size_t family_fastest[RECOMMEND_FAMILY_COUNT];/* NONE when the family is absent */
+    /* desc->check_budget: 1 when, with the times anywhere in their CIs, the
+     * default budget could be moved_budget (ns) and the pick there would be
+     * moved_pick (NONE: nothing fits); of several, the widest gap.  0, NaN
+     * and NONE when not checked or when no such budget changes the pick */
+    int budget_moves;
+    double moved_budget;
+    size_t moved_pick;
 } recommend_result;
 
 /* The epsilon-collapsed front of all n points (unlit included): indices into
@@ -90,21 +100,25 @@ size_t recommend_front(const recommend_point *p, size_t n, double epsilon, size_
 /* The noise the default budget is built to stand still under: a factor
  * 1.1 (±10 %) on any median. */
 #define RECOMMEND_NOISE 1.1
-/* The default budget: a round value (1, 2 or 5 × 10^k ns) chosen so that
- * the noise of a run does not move it.  Of the round values between the
- * fastest and the slowest eligible time (the lit points, or all when none is
- * lit), the one whose log distance to the nearest time (its margin) is
- * largest: it sits in the widest gap of the scene's times.  Equal margins go
- * to the value whose count of times at or under it is nearest half, then to
- * the lower.  When no value between has a margin above log RECOMMEND_NOISE
- * (or there is none), the budget admits every point: the round value at or
- * above the slowest × RECOMMEND_NOISE.
- * Why it holds still: a change of each median by a factor within
- * 1/RECOMMEND_NOISE .. RECOMMEND_NOISE moves each margin by at most
- * log RECOMMEND_NOISE, so the budget is unchanged whenever the chosen margin
- * beats every other candidate's (the admitting-all one's is fixed) by more
- * than twice that.  No rule that reads the times can hold for every scene:
- * scale every time up and the budget must step somewhere.
+/* The default budget: it splits the scene's eligible times (the lit
+ * points, or all when none is lit) at their widest gap.  Sorted fastest
+ * first, the gap between two consecutive times that is widest on a log
+ * scale and wider than 2 log RECOMMEND_NOISE; equal widths go to the gap
+ * whose count of times under it is nearest half, then to the lower.  The
+ * budget is the roundest value in the middle half of that gap (log scale):
+ * a 1, 2 or 5 × 10^k ns first, then one significant digit, then two,
+ * nearest the gap's geometric middle.  When no gap is that wide (or there
+ * is one time), the budget admits every point: the round value at or above
+ * the slowest × RECOMMEND_NOISE.
+ * Why it holds still: which times fit depends only on the times' ratios,
+ * so the host running every configuration faster or slower by one factor
+ * between two runs (±8-11 % on a quiet VM, docs/measurement.md) moves no
+ * time across the budget: the budget's value moves with the times, the
+ * pick does not.  A change of each median by its own factor within
+ * 1/RECOMMEND_NOISE .. RECOMMEND_NOISE moves each gap's width by at most
+ * 2 log RECOMMEND_NOISE, so the gap is unchanged whenever it is wider than
+ * every other by more than twice that; recommend_desc.check_budget says
+ * where the times' own CIs allow another gap.
  * 0 when there is no finite positive time. */
 double recommend_default_budget(const recommend_point *p, size_t n);
 

@@ -115,12 +115,14 @@ static size_t recommend_run__recommend(const dm_run_result *run, const char *sce
     double res = report_resolvable(run);
     recommend_desc d = {.budget = report_budget_ms(run) * 1e6,
                         .epsilon = report_metric_epsilon(report_metric_of_run(run)),
-                        .resolvable = isfinite(res) ? res : 0};
+                        .resolvable = isfinite(res) ? res : 0, .check_budget = 1};
     recommend_scene(p, n, &d, out);
     out->pick = recommend_run__map(idx, out->pick);
     out->pick_tie = recommend_run__map(idx, out->pick_tie);
     out->fastest = recommend_run__map(idx, out->fastest);
     out->knee = recommend_run__map(idx, out->knee);
+    out->near_miss = recommend_run__map(idx, out->near_miss);
+    out->moved_pick = recommend_run__map(idx, out->moved_pick);
     for (int f = 0; f < RECOMMEND_FAMILY_COUNT; f++) {
         out->family_best[f] = recommend_run__map(idx, out->family_best[f]);
         out->family_fastest[f] = recommend_run__map(idx, out->family_fastest[f]);

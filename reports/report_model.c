@@ -211,7 +211,8 @@ static void report_model__scene(report_model *m, report_model_scene *sc, const c
         sc->n_timed += report__frame_time(c) != NULL;
         sc->n_noisy += report__frame_time(c) && report__noisy(c);
     }
-    sc->provisional = sc->n_timed >= 2 && 2 * sc->n_noisy > sc->n_timed;
+    sc->noisy_majority = sc->n_timed >= 2 && 2 * sc->n_noisy > sc->n_timed;
+    sc->provisional = sc->noisy_majority || sc->rec.budget_moves;
     sc->n_det = report__counter_names(run, name, REPORT__DETERMINISTIC, &sc->det);
     size_t *timed = dm_xcalloc(sc->n_rows + 1, sizeof *timed), nt = 0;
     for (size_t i = 0; i < sc->n_rows; i++)   /* still fastest first */

@@ -105,7 +105,10 @@ typedef struct report_model_scene {
     /* what the answer's sentences and the counter table read */
     size_t n_timed;       /* rows with a frame time */
     size_t n_noisy;       /* of those, the noisy ones */
-    int provisional;      /* two or more timed and most of them noisy: the pick may move */
+    int provisional;      /* the pick may move: two or more timed and most of them noisy
+                             (noisy_majority), or the times' CIs allow the default budget
+                             another gap and another pick (rec.budget_moves, recommend.h) */
+    int noisy_majority;
     const char **det;     /* the scene's deterministic counters, first appearance */
     size_t n_det;
     /* what chart.c draws */

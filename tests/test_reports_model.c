@@ -361,6 +361,7 @@ static void test_model_answer(void **state)
     assert_null(strstr(dm_str_get(&s), "Provisional"));
     dm_str_free(&s);
     m.scenes[0].provisional = 1;                          /* what the model says is what is written */
+    m.scenes[0].noisy_majority = 1;
     m.scenes[0].n_noisy = 3;
     report_answer_terminal_model(&m, &s);
     assert_non_null(strstr(dm_str_get(&s), "plane 160×90: Provisional: 3 of 4 timings are noisy"));

@@ -250,35 +250,42 @@ static void test_knee(void **state)
     assert_int_equal(r.knee, RECOMMEND_NONE);
 }
 
-/* The default budget: of the round values (1-2-5) between the fastest and
- * the slowest eligible time, the one farthest (log scale) from every time. */
+/* The default budget: the roundest value in the middle half of the widest
+ * gap (log scale) between consecutive eligible times. */
 static void test_default_budget(void **state)
 {
     (void)state;
-    /* 2.3 and 206 ms (the unlit 0.1 ms point is not counted): candidates 5,
-     * 10, 20, 50, 100, 200 ms; 20 ms stands 8.7× above 2.3 and 10.3× below
-     * 206, the largest margin */
+    /* 2.3 and 206 ms (the unlit 0.1 ms point is not counted): one gap, its
+     * middle half 2.3 × (206 / 2.3)^(1/4) = 7.07 to 67.1 ms; of 10, 20 and
+     * 50 ms, 20 is nearest √(2.3 × 206) = 21.8 */
     recommend_point p[] = {pt(2.3, 0.01, 0.2, F), pt(206, 0.01, 0.1, T), pt(0.1, 0.01, 0.5, U)};
     assert_true(fabs(recommend_default_budget(p, 3) - 20 * MS) < 1);
     recommend_result r;
     recommend_scene(p, 3, NULL, &r);
     assert_int_equal(r.budget_default, 1);
     assert_int_equal(r.pick, 0);
-    /* one point at 2.3 ms: no round value between, so all are admitted: the
-     * round value at or above 2.3 × 1.1 = 2.53 ms is 5 ms */
+    /* one point at 2.3 ms: no gap, so all are admitted: the round value at
+     * or above 2.3 × 1.1 = 2.53 ms is 5 ms */
     assert_true(fabs(recommend_default_budget(p, 1) - 5 * MS) < 1);
-    /* 30 and 80 ms: 50 ms is the one candidate (margin log 1.6) */
+    /* 30 and 80 ms: middle half 38.3-62.6 ms, 50 ms */
     recommend_point q[] = {pt(30, 0.01, 0.2, F), pt(80, 0.01, 0.1, F)};
     assert_true(fabs(recommend_default_budget(q, 2) - 50 * MS) < 1);
     assert_true(recommend_default_budget(q, 0) == 0);
-    /* every candidate within 10 % of a time: 0.5 (0.54 is 1.08× it), 1 (0.95,
-     * 1.05), 2 (1.9, 2.1): all admitted, round up of 2.1 × 1.1 = 2.31 → 5 ms */
+    /* the widest gap is 1.05 → 1.9 ms (a factor 1.81); its middle half,
+     * 1.218-1.638 ms, holds no 1-2-5 value and no one-digit value: of the
+     * two-digit ones 1.4 ms is nearest √(1.05 × 1.9) = 1.412 */
     recommend_point a[] = {pt(0.45, 0.01, 0.6, F), pt(0.54, 0.01, 0.5, F), pt(0.95, 0.01, 0.4, F),
                            pt(1.05, 0.01, 0.3, F), pt(1.9, 0.01, 0.2, F), pt(2.1, 0.01, 0.1, F)};
-    assert_true(fabs(recommend_default_budget(a, 6) - 5 * MS) < 1);
-    /* equal margins (each a factor 2 exactly): 2.5, 10, 40 ms give 5 and 20
-     * ms with 1 and 2 times under them, both 0.5 from half of 3: the lower,
-     * 5 ms; with an 80 ms point half is 2 and 20 ms splits it exactly */
+    assert_true(fabs(recommend_default_budget(a, 6) - 1.4 * MS) < 1);
+    /* no gap wider than a factor 1.1² = 1.21: all admitted, the round value
+     * at or above 1.3 × 1.1 = 1.43 ms is 2 ms */
+    recommend_point c[] = {pt(1.0, 0.01, 0.4, F), pt(1.1, 0.01, 0.3, F), pt(1.2, 0.01, 0.2, F),
+                           pt(1.3, 0.01, 0.1, F)};
+    assert_true(fabs(recommend_default_budget(c, 4) - 2 * MS) < 1);
+    /* equal gaps (each a factor 4): 2.5, 10, 40 ms; the gaps after 2.5 and
+     * after 10 have 1 and 2 times under them, both 0.5 from half of 3: the
+     * lower, middle half 3.54-7.07 ms, 5 ms; with an 80 ms point half is 2
+     * and the gap after 10 splits it exactly: 14.1-28.3 ms, 20 ms */
     recommend_point e[] = {pt(2.5, 0.01, 0.3, F), pt(10, 0.01, 0.2, F), pt(40, 0.01, 0.1, F),
                            pt(80, 0.01, 0.05, F)};
     assert_true(fabs(recommend_default_budget(e, 3) - 5 * MS) < 1);
@@ -292,58 +299,126 @@ static double next_unit(uint64_t *s)
     return (double)(*s >> 11) / 9007199254740992.0;
 }
 
-/* The budget of the n lit times (ms) t, each times its factor f. */
-static double budget_scaled(const double *t, const double *f, size_t n)
+/* Which of the n lit times (ms) t, each times its factor f, the default
+ * budget admits: bit i for t[i]. */
+static unsigned admitted_scaled(const double *t, const double *f, size_t n)
 {
     recommend_point p[16];
     for (size_t i = 0; i < n; i++)
         p[i] = pt(t[i] * f[i], 0.1, 0.1 * (double)i, F);
-    return recommend_default_budget(p, n);
+    double b = recommend_default_budget(p, n);
+    unsigned in = 0;
+    for (size_t i = 0; i < n; i++)
+        in |= (unsigned)(p[i].time <= b) << i;
+    return in;
 }
 
-/* The budget of t under every corner of ±10 % (each median ×0.9 or ×1.1)
- * and under 2000 random factors in [0.9, 1.1] must be want (ms). */
-static void assert_budget_holds(const double *t, size_t n, double want)
+/* Under every corner of ±10 % (each median ×0.9 or ×1.1), 2000 random
+ * factors in [0.9, 1.1] and every common factor 0.5-2 (the host's speed
+ * between runs), the budget of t admits the same times as unperturbed;
+ * returns that set. */
+static unsigned assert_budget_holds(const double *t, size_t n)
 {
     double f[16] = {0}; /* all set below; -O1 with ASan cannot see n <= 16 */
     for (size_t i = 0; i < n; i++)
         f[i] = 1;
-    assert_true(fabs(budget_scaled(t, f, n) - want * MS) < 1);
+    unsigned want = admitted_scaled(t, f, n);
     for (unsigned corner = 0; corner < 1u << n; corner++) {
         for (size_t i = 0; i < n; i++)
             f[i] = corner >> i & 1 ? 1.1 : 0.9;
-        assert_true(fabs(budget_scaled(t, f, n) - want * MS) < 1);
+        assert_int_equal(admitted_scaled(t, f, n), want);
     }
     uint64_t seed = 46;
     for (int k = 0; k < 2000; k++) {
         for (size_t i = 0; i < n; i++)
             f[i] = 0.9 + 0.2 * next_unit(&seed);
-        assert_true(fabs(budget_scaled(t, f, n) - want * MS) < 1);
+        assert_int_equal(admitted_scaled(t, f, n), want);
+        double common = pow(2, 2 * next_unit(&seed) - 1);
+        for (size_t i = 0; i < n; i++)
+            f[i] = common;
+        assert_int_equal(admitted_scaled(t, f, n), want);
     }
+    return want;
 }
 
 /* Issue 46, item 3: two identical --quick runs chose 0.5 ms, then 1 ms, for
- * one scene.  The old rule rounded √(fastest × slowest), which steps at
- * 0.707 ms; the scenes below are perturbed by ±10 % and keep one budget. */
+ * one scene; issue 50: two quiet default runs, the second 10.3 % faster
+ * throughout one scene, chose 5 ms, then 20 ms, and named two picks.  The
+ * budget now splits the times at their widest gap, which the host's common
+ * speed does not move. */
 static void test_default_budget_holds_still(void **state)
 {
     (void)state;
     /* The lit medians (ms) of `run --quick` on 2026-11-29 (llvmpipe, load
-     * average 11.7 from other builds), plane 80×45: 0.5 ms is the only round
-     * value between 0.205 and 0.718 and stands 1.53× above 0.327, 1.42×
-     * below 0.711 */
+     * average 11.7 from other builds), plane 80×45: the widest gap is
+     * 0.327 → 0.711 (a factor 2.17; the next is 1.14), 0.5 ms, and it
+     * admits the six fastest */
     const double q80[] = {0.242, 0.327, 0.718, 0.237, 0.269, 0.711, 0.205, 0.326};
-    assert_budget_holds(q80, 8, 0.5);
-    /* plane 160×90: 1 ms sits 1.04× from 0.965; 2 ms stands 1.77× above 1.130
-     * and 1.32× below 2.647 */
+    assert_int_equal(assert_budget_holds(q80, 8), 0xdb);
+    recommend_point p[8];
+    for (size_t i = 0; i < 8; i++)
+        p[i] = pt(q80[i], 0.1, 0.1 * (double)i, F);
+    assert_true(fabs(recommend_default_budget(p, 8) - 0.5 * MS) < 1);
+    /* plane 160×90: 1.130 → 2.647 (a factor 2.34), 2 ms, the six fastest */
     const double q160[] = {0.965, 1.130, 3.151, 0.781, 0.796, 2.647, 0.749, 1.064};
-    assert_budget_holds(q160, 8, 2);
-    /* √(0.22 × 2.3) = 0.711 ms: the old rule gave 1 ms here and 0.5 ms with
-     * the fastest 10 % faster.  Now 0.5 ms (margin log(0.5 / 0.36) = 0.33)
-     * beats 1 ms (log(1 / 0.9) = 0.105) and 2 ms (log(2.2 / 2) = 0.095) by
-     * more than 2 log 1.1 = 0.19 */
-    const double edge[] = {0.22, 0.25, 0.30, 0.33, 0.36, 0.9, 2.2, 2.3};
-    assert_budget_holds(edge, 8, 0.5);
+    assert_int_equal(assert_budget_holds(q160, 8), 0xdb);
+    /* Issue 50's scene, cube 240×135 of the default sweep (29 Nov 2026
+     * 15:53 UTC, llvmpipe, load 1.1): its lit medians, then the same
+     * scene's in the next run, every one 5-11 % lower.  The widest gap,
+     * 5.87 → 10.07 ms, then 5.38 → 9.03, is the same gap in both: 8 ms
+     * (nearest √(5.87 × 10.07) = 7.69 of the one-digit values in its middle
+     * half, 6.72-8.80 ms), then 7 ms (6.97; 6.12-7.93 ms), the eight
+     * fastest in each */
+    const double run3[] = {2.28, 2.89, 2.90, 2.92, 3.84, 4.12, 5.76, 5.87, 10.07, 10.19, 10.23};
+    const double run4[] = {2.13, 2.73, 2.73, 2.84, 3.51, 3.64, 5.30, 5.38, 9.03, 9.17, 9.26};
+    recommend_point a[11], b[11];
+    for (size_t i = 0; i < 11; i++)
+        a[i] = pt(run3[i], 0.03, 0.1 * (double)(11 - i), F), b[i] = pt(run4[i], 0.03, 0.1 * (double)(11 - i), F);
+    recommend_result ra, rb;
+    recommend_desc d = {.epsilon = 1e-3, .check_budget = 1};
+    recommend_scene(a, 11, &d, &ra);
+    recommend_scene(b, 11, &d, &rb);
+    assert_int_equal(ra.pick, 7);
+    assert_int_equal(rb.pick, 7);
+    assert_true(fabs(ra.budget - 8 * MS) < 1 && fabs(rb.budget - 7 * MS) < 1);
+    assert_int_equal(ra.budget_moves, 0);   /* ±3 % CIs: 5.87 → 10.07 stays the widest */
+    assert_int_equal(rb.budget_moves, 0);
+}
+
+/* Where the times' CIs allow the budget another gap and another pick, the
+ * pick is said to move (the answer marks it provisional). */
+static void test_default_budget_moves(void **state)
+{
+    (void)state;
+    /* 0.36 → 0.9 (a factor 2.5) and 0.9 → 2.2 (2.44): nearly as wide; the
+     * first wins, 0.5 ms, and admits 0.36 (the best of the five fastest) */
+    const double t[] = {0.22, 0.25, 0.30, 0.33, 0.36, 0.9, 2.2, 2.3};
+    recommend_point p[8];
+    for (size_t i = 0; i < 8; i++)
+        p[i] = pt(t[i], 0.001, 0.1 * (double)(8 - i), F);
+    recommend_desc d = {.epsilon = 1e-3, .check_budget = 1};
+    recommend_result r;
+    recommend_scene(p, 8, &d, &r);
+    assert_true(fabs(r.budget - 0.5 * MS) < 1);
+    assert_int_equal(r.pick, 4);
+    assert_int_equal(r.budget_moves, 0);   /* ±0.1 % CIs: 2.5 / 1.002² > 2.44 × 1.002² */
+    for (size_t i = 0; i < 8; i++)         /* ±3 % CIs: 2.5 / 1.03² = 2.36 < 2.44 × 1.03² = 2.59 */
+        p[i] = pt(t[i], 0.03, 0.1 * (double)(8 - i), F);
+    recommend_scene(p, 8, &d, &r);
+    assert_int_equal(r.pick, 4);
+    assert_int_equal(r.budget_moves, 1);
+    /* the rival gap 0.9 → 2.2: its middle half 1.13-1.76 ms, 1.4 ms (two
+     * digits, nearest √(0.9 × 2.2) = 1.41), where 0.9 ms is the pick */
+    assert_true(fabs(r.moved_budget - 1.4 * MS) < 1);
+    assert_int_equal(r.moved_pick, 5);
+    d.check_budget = 0;                    /* not asked: not checked */
+    recommend_scene(p, 8, &d, &r);
+    assert_int_equal(r.budget_moves, 0);
+    assert_int_equal(r.moved_pick, RECOMMEND_NONE);
+    d.budget = 0.5 * MS;                   /* a budget given is never checked */
+    d.check_budget = 1;
+    recommend_scene(p, 8, &d, &r);
+    assert_int_equal(r.budget_moves, 0);
 }
 
 DM_TEST_MAIN(NULL, NULL,
@@ -356,4 +431,5 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_unlit_only_when_alone),
              cmocka_unit_test(test_knee),
              cmocka_unit_test(test_default_budget),
-             cmocka_unit_test(test_default_budget_holds_still))
+             cmocka_unit_test(test_default_budget_holds_still),
+             cmocka_unit_test(test_default_budget_moves))

@@ -731,8 +731,21 @@ static void test_html_charts_and_front(void **state)
     const char *end = strstr(ol, "</table>");
     /* ms ± CI and the cost relative to the fastest; L=2 and L=4 CIs (±10 %)
      * do not overlap their predecessor's, so nothing is marked tied.  The
-     * default budget is 5 ms (the round value farthest from 1, 2, 4 and 8
-     * ms), so L=4 is the pick and L=2 a plain row */
+     * default budget is 3 ms (1, 2, 4 and 8 ms: three gaps of a factor 2,
+     * and the one between 2 and 4 ms splits the four in half; 3 ms is the
+     * roundest value in its middle half, 2.38-3.36 ms); with a budget of 5
+     * ms set, L=4 is the pick and L=2 a plain row */
+    recommend_result rec;
+    report_recommend(&run, "s", &rec);
+    assert_int_equal(rec.budget_default, 1);
+    assert_true(fabs(rec.budget - 3e6) < 1);
+    assert_string_equal(dm_kv_get(run.configs[rec.pick].params, run.configs[rec.pick].n_params, "tess_level"), "2");
+    assert_int_equal(report_budget_set(&run, 5), 0);
+    assert_int_equal(write_report_file(&run, "report.html", NULL, p, NULL), 0);
+    free(t);
+    t = test_slurp(p);
+    ol = strstr(t, "<table class=\"answer front\" id=\"front-0\">");
+    end = strstr(ol, "</table>");
     assert_non_null(strstr(ol, "<td>tessdisp</td><td>tess_level=2</td><td class=\"n\">2.00</td><td class=\"n\">±10%"));
     assert_non_null(strstr(ol, "<tr class=\"pick\"><td>tessdisp <b>← pick</b></td><td>tess_level=4</td>"));
     assert_non_null(strstr(ol, "×4.00</td>"));

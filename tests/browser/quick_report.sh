@@ -65,7 +65,7 @@ for win in 1280,800 1920,1080; do
     [ "$1" -ge 0 ] && [ "$2" -le "$3" ] || fail "$name: recommendation at y $1..$2, the first screen ends at $3"
     [ "${unmarked:-x}" = 0 ] || fail "$name: $unmarked front rows wider than ±5 % without a noisy mark"
     [ "${overflow:-1}" -le 0 ] || fail "$name: the page is $overflow px wider than the window"
-    grep -Eq 'class="pick">(<b>Provisional: [^<]*</b>)?<b>Under [0-9.]* ms</b>' "$html" || fail "no 'Under N ms' recommendation in the page"
+    grep -Eq 'class="pick">(<b>Provisional: [^<]*</b>; )?<b>Under [0-9.]* ms</b>' "$html" || fail "no 'Under N ms' recommendation in the page"
     [ "${texts:-0}" -gt 0 ] || fail "$name: no SVG text measured"
     [ "$clipped" = 0 ] || fail "$name: clipped chart text: $clipped"
     dup=$(sed -n 's/.*data-dupids="\([0-9]*\)".*/\1/p' "$work/dom.html" | head -n 1)
