@@ -356,6 +356,51 @@ static void test_tie_named_by_key(void **state)
         }
 }
 
+/* The near miss names its own configuration when the run stores the
+ * scene's configurations in another order than their keys (the points are
+ * sorted by key; the near miss was once left as a point index). */
+static void test_near_miss_named(void **state)
+{
+    (void)state;
+    dm_run_result run;
+    memset(&run, 0, sizeof run);
+    run.n_configs = 3;
+    run.configs = dm_xcalloc(3, sizeof *run.configs);
+    static const char *const key[3] = { "cccc000000000000", "aaaa000000000000", "bbbb000000000000" };
+    static const char *const tech[3] = { "bump", "pom", "normal" };
+    static const double med[3] = { 1.0e6, 2.1e6, 1.5e6 }, lo[3] = { 0.98e6, 1.9e6, 1.47e6 };
+    static const double ssim[3] = { 0.90, 0.99, 0.96 };
+    for (int i = 0; i < 3; i++) {
+        dm_config_result *c = &run.configs[i];
+        fixture_config(c, key[i], tech[i], "plane", 1);
+        dm_kv_push(&c->params, &c->n_params, "lighting", "blinn-phong");
+        fixture_timed(&c->counters[0], "WallTime", lo[i], med[i], 2 * med[i] - lo[i]);
+        fixture_quality(&c->quality, 40, ssim[i], 0.01);
+    }
+    assert_int_equal(report_budget_set(&run, 2), 0);
+    recommend_result r;
+    report_recommend(&run, FIXTURE_SCENE, &r);
+    /* normal (1.5 ms) is the best within 2 ms; pom (2.1 ms, CI from 1.9)
+     * is clearly better and may also fit */
+    assert_int_equal(r.pick, 2);
+    assert_int_equal(r.near_miss, 1);
+    dm_str t = {0};
+    report_answer_terminal(&run, &t);
+    char *a = dm_xstrdup(dm_str_get(&t)), *o = a;
+    for (const char *q = a; *q; q++) {   /* the wrapped lines joined */
+        if (*q == '\n' && q[1] == ' ')
+            while (q[1] == ' ')
+                q++;
+        *o++ = *q == '\n' ? ' ' : *q;
+    }
+    *o = '\0';
+    assert_non_null(strstr(a, "pick normal ("));
+    assert_non_null(strstr(a, "May also fit: pom ("));
+    free(a);
+    dm_str_free(&t);
+    dm_run_free(&run);
+}
+
 /* Raw and corrected figures side by side in every file, the noise floor
  * and the verdict on which they disagree. */
 static void test_corrected_figures(void **state)
@@ -1735,6 +1780,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_csv_shape),
              cmocka_unit_test(test_markdown),
              cmocka_unit_test(test_tie_named_by_key),
+             cmocka_unit_test(test_near_miss_named),
              cmocka_unit_test(test_corrected_figures),
              cmocka_unit_test(test_html_escaping_and_images),
              cmocka_unit_test(test_html_flip_maps),
