@@ -192,7 +192,11 @@ typedef struct dm_scene_precision {
     int between_runs;        /* 1: reference_spread is measured (at the end of a run or a merge;
                                 not kept in the store) */
     double reference_spread; /* the uncertainty of the run's median machine speed that the
-                                corrected figures are relative to (robust SD, relative) */
+                                corrected figures are relative to (robust SD, relative): the
+                                bootstrap's spread of it and the run's slow drift (run/precision.h)
+                                together */
+    double half_shift;       /* how far the machine's speed moved between the halves of the
+                                scene's rounds (log ratio, models/drift.h); NaN: not measured */
 } dm_scene_precision;
 
 typedef struct dm_run_result {

@@ -409,7 +409,7 @@ int drift_correct(const drift_desc *d, drift_result *out)
     out->configs = dm_xcalloc(nc + 1, sizeof *out->configs);
     out->round_factor = dm_xcalloc(nr + 1, sizeof *out->round_factor);
     out->machine_spread = out->raw_noise = out->loo_noise = out->calib_noise = out->calib_spread = NAN;
-    out->reference_spread = NAN;
+    out->reference_spread = out->half_shift = NAN;
     drift__raw(d, out, &with);
     double *lx = dm_xcalloc(nc * nr + 1, sizeof *lx);
     for (size_t i = 0; i < nc * nr; i++)
@@ -427,11 +427,29 @@ int drift_correct(const drift_desc *d, drift_result *out)
         out->machine_spread = drift__rms(f.b, nr);
         drift__noise(d, &f, out);
         drift__point(d, &f, lx, out);
+        out->half_shift = drift_half_shift(out->round_factor, nr);
         out->corrected = 1;
     }
     drift__fit_free(&f);
     free(lx);
     return 0;
+}
+
+double drift_half_shift(const double *round_factor, size_t n_rounds)
+{
+    double *v = dm_xcalloc(n_rounds + 1, sizeof *v);
+    size_t m = 0;
+    for (size_t r = 0; r < n_rounds; r++)
+        if (isfinite(round_factor[r]) && round_factor[r] > 0)
+            v[m++] = log(round_factor[r]);
+    double h = NAN;
+    if (m >= 2 * DRIFT_MIN_ROUNDS) {
+        size_t half = m / 2;
+        double late = drift__median(v + m - half, half);   /* before the earlier half is reordered */
+        h = late - drift__median(v, half);
+    }
+    free(v);
+    return h;
 }
 
 void drift_result_free(drift_result *r)

@@ -113,6 +113,9 @@ typedef struct drift_result {
     double calib_spread;     /* of the log calibration ratio; NaN without */
     double reference_spread; /* the uncertainty of the run's median machine speed (robust SD of
                                 the bootstrap replicates' common shift); NaN when not corrected */
+    double half_shift;       /* drift_half_shift of round_factor: how far the machine's speed
+                                moved between the first and second half of the scene's rounds
+                                (log ratio); NaN when not corrected or too few rounds */
     double factor_noise;     /* the spread round factors would have from the configurations'
                                 own noise alone: sqrt(pi/2) loo_noise / sqrt(configurations
                                 per round, median) */
@@ -129,6 +132,15 @@ void drift_result_free(drift_result *r);
 /* Rounds per block of the bootstrap over rounds: n^(1/3), rounded, at
  * least 1 (the textbook order for estimating a variance). */
 size_t drift_block_rounds(size_t n_rounds);
+/* The log ratio of the median of the later half of the finite round
+ * factors to the median of the earlier half (a round count that is odd
+ * leaves the middle one out): 0.05 when the machine ran 5 % slower in the
+ * later half of the scene.  How far the host's speed moves on the time
+ * scale of a whole scene, which is what differs between two runs and what
+ * the bootstrap over blocks of a few rounds does not see
+ * (run/precision.h: the run's slow drift).  NaN with fewer than
+ * 2 x DRIFT_MIN_ROUNDS finite factors. */
+double drift_half_shift(const double *round_factor, size_t n_rounds);
 
 /* Robust SD of the finite values: 1.4826 × median |v - median|; NaN when
  * fewer than 2. */

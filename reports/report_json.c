@@ -343,6 +343,7 @@ static cJSON *report_json__precision_json(const report_model *m)
             cJSON_AddNumberToObject(s, "reference_spread", p->reference_spread);
         else
             cJSON_AddNullToObject(s, "reference_spread");
+        cJSON_AddNumberToObject(s, "half_shift", p->half_shift);   /* NaN → null */
         report_json__add_str(s, "disagreement", sc->disagree);
         cJSON_AddItemToArray(a, s);
     }
@@ -728,6 +729,7 @@ static void report_json__read_precision(const cJSON *o, dm_run_result *r)
         p->resolvable = report_json__get_num(it, "resolvable");
         p->reference_spread = report_json__get_num(it, "reference_spread");
         p->between_runs = isfinite(p->reference_spread);
+        p->half_shift = report_json__get_num(it, "half_shift");
     }
 }
 

@@ -186,7 +186,8 @@ static void precision__entry(const dm_run_result *run, const precision__scene *s
                                .n_rounds = (int)d->n_rounds_used, .machine_spread = d->machine_spread,
                                .raw_noise = d->raw_noise, .loo_noise = d->loo_noise,
                                .calib_noise = d->calib_noise, .between_runs = keep,
-                               .reference_spread = keep ? d->reference_spread : NAN };
+                               .reference_spread = keep ? d->reference_spread : NAN,
+                               .half_shift = keep ? d->half_shift : NAN };
     if (!d->corrected)
         p->reason = dm_xasprintf("%s; raw figures only", d->why);
     else if (!keep)
@@ -233,6 +234,57 @@ static int precision__scene_apply(dm_run_result *run, size_t first, uint64_t see
     return keep;
 }
 
+/* The run's slow drift: the root mean square over its corrected scenes of
+ * their half shifts, divided by √2 (the two halves of a scene taken as two
+ * independent draws of the host's level, as two runs are); NaN when no
+ * corrected scene measured one. */
+static double precision__slow_drift(const dm_run_result *run)
+{
+    double ss = 0;
+    size_t m = 0;
+    for (size_t i = 0; i < run->n_precision; i++)
+        if (run->precision[i].between_runs && isfinite(run->precision[i].half_shift)) {
+            ss += run->precision[i].half_shift * run->precision[i].half_shift;
+            m++;
+        }
+    return m ? sqrt(ss / (double)m / 2) : NAN;
+}
+
+/* One end of a between-run CI around median m widened on a log scale by a
+ * normal term of SD sd: its log distance from m and 1.96 sd in quadrature. */
+static double precision__widen(double m, double end, double sd)
+{
+    double d = fabs(log(end / m)), w = sqrt(d * d + 1.96 * sd * 1.96 * sd);
+    return end < m ? m * exp(-w) : m * exp(w);
+}
+
+/* The run's slow drift into every between-run figure of its corrected
+ * scenes (run/precision.h): the CIs widened, the reference spread with it. */
+static void precision__add_slow(dm_run_result *run)
+{
+    double sd = precision__slow_drift(run);
+    if (!isfinite(sd))
+        return;
+    for (size_t i = 0; i < run->n_precision; i++) {
+        dm_scene_precision *p = &run->precision[i];
+        if (!p->between_runs)
+            continue;
+        p->reference_spread = hypot(p->reference_spread, sd);
+        for (size_t c = 0; c < run->n_configs; c++) {
+            dm_config_result *cf = &run->configs[c];
+            if (!cf->scene || strcmp(cf->scene, p->scene) != 0)
+                continue;
+            for (size_t k = 0; k < cf->n_counters; k++) {
+                dm_counter_result *w = &cf->counters[k];
+                if (!w->corr_between || !(w->corr_median > 0) || !(w->corr_between_lo > 0))
+                    continue;
+                w->corr_between_lo = precision__widen(w->corr_median, w->corr_between_lo, sd);
+                w->corr_between_hi = precision__widen(w->corr_median, w->corr_between_hi, sd);
+            }
+        }
+    }
+}
+
 size_t precision_apply(dm_run_result *run, uint64_t seed)
 {
     for (size_t i = 0; i < run->n_precision; i++) {
@@ -263,6 +315,7 @@ size_t precision_apply(dm_run_result *run, uint64_t seed)
         dm_scene_precision *p = dm_vec_push(&run->precision, &run->n_precision, NULL, sizeof *p);
         corrected += (size_t)precision__scene_apply(run, i, seed + i, p);
     }
+    precision__add_slow(run);
     return corrected;
 }
 

@@ -15,6 +15,19 @@
  * configurations keep their raw figures only, and the scene's
  * dm_scene_precision says why.  The raw figures are never changed.
  *
+ * The between-run CIs then take the run's slow drift: the host's speed
+ * moves between runs by more than the bootstrap over blocks of a few
+ * rounds sees (on quiet runs a scene's every configuration moved together
+ * by ±2-11 % from one run to the next).  How far it moves on the scale of
+ * a scene is measured by each corrected scene's half shift (models/drift.h:
+ * its later rounds' median speed against its earlier rounds'); the run's
+ * slow drift is their root mean square over the corrected scenes, /√2 (the
+ * two halves as two independent draws of the host's level, as two runs
+ * are).  Every between-run CI of those scenes is widened by 1.96 times it
+ * (in quadrature, log scale) and each scene's reference_spread takes it in
+ * quadrature too.  The within-run CIs are untouched: the slow drift moves
+ * every configuration of a scene alike and cancels inside the run.
+ *
  * Pure: no GL, no clock; precision_print writes to the FILE it is given.
  *
  *   precision_apply(&run, seed);

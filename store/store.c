@@ -629,6 +629,7 @@ static int store__precision_read(store *s, dm_run_result *r)
         double *f[] = { &p->machine_spread, &p->raw_noise, &p->loo_noise, &p->calib_noise, &p->resolvable };
         for (int i = 0; i < 5; i++)
             *f[i] = store_sql_col_double(st, 5 + i);
+        p->reference_spread = p->half_shift = NAN;   /* between-run figures: not kept in the store */
     }
     return rc;
 }

@@ -248,6 +248,24 @@ static void test_block_rounds(void **state)
     assert_int_equal(drift_block_rounds(92), 5);
 }
 
+/* The half shift: the later half's median round factor against the
+ * earlier half's, the middle round of an odd count left out, NaN rounds
+ * skipped, NaN with fewer than six. */
+static void test_half_shift(void **state)
+{
+    (void)state;
+    const double even[] = { 1.1, 1.1, 1.1, 1.0, 1.0, 1.0 };
+    assert_float_equal(drift_half_shift(even, 6), -log(1.1), 1e-12);
+    /* halves {1.0, 1.2, 1.1} and {1.3, 1.5, 1.4}: medians 1.1 and 1.4; 9.9 the middle */
+    const double odd[] = { 1.0, 1.2, 1.1, 9.9, 1.3, 1.5, 1.4 };
+    assert_float_equal(drift_half_shift(odd, 7), log(1.4 / 1.1), 1e-12);
+    const double gaps[] = { 1.0, NAN, 1.0, 1.0, NAN, 1.2, 1.2, 1.2 };
+    assert_float_equal(drift_half_shift(gaps, 8), log(1.2), 1e-12);
+    assert_true(isnan(drift_half_shift(gaps, 7)));   /* five finite */
+    const double flat[] = { 1, 1, 1, 1, 1, 1, 1, 1 };
+    assert_float_equal(drift_half_shift(flat, 8), 0, 0);
+}
+
 /* A host whose speed in a round depends on the last round's (log speed an
  * AR(1) series, correlation 0.4 from round to round, spread 8 %; 60
  * rounds, 2 % noise per sample), as the quiet default runs' rounds do:
@@ -381,6 +399,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_calibration_predictor),
              cmocka_unit_test(test_between_runs_cover),
              cmocka_unit_test(test_block_rounds),
+             cmocka_unit_test(test_half_shift),
              cmocka_unit_test(test_between_runs_correlated_rounds),
              cmocka_unit_test(test_point_only_known_answer),
              cmocka_unit_test(test_too_small))

@@ -103,7 +103,22 @@ static void test_scenes(void **state)
         assert_true((w->corr_ci_hi - w->corr_ci_lo) / 2 / w->corr_median < 0.02);
         /* the between-run CI holds the within-run one and the median speed's uncertainty */
         assert_true(w->corr_between && w->corr_between_lo <= w->corr_ci_lo && w->corr_ci_hi <= w->corr_between_hi);
+        /* and the run's slow drift: rounds 0-3 of 16 ran 25 % slow, so the
+         * earlier half's median factor is √1.25 of the later's, the half
+         * shift -log 1.25 / 2 = -0.112; the only corrected scene's, so the
+         * slow drift is 0.112 / √2 = 0.079 and both ends of the CI stand
+         * at least 1.96 × 0.079 = 0.155 from the median (log scale); the
+         * upper end was already ~log 1.25 out (replicates drawing the slow
+         * rounds), and the two add in quadrature */
+        double slow = log(1.25) / 2 / sqrt(2.0);
+        assert_true(log(w->corr_median / w->corr_between_lo) >= 1.96 * slow * 0.97);
+        assert_true(log(w->corr_between_hi / w->corr_median) >= 1.96 * slow * 0.97);
+        /* the lower end was within 0.3 % of the median before: now the slow term alone */
+        assert_true(fabs(log(w->corr_median / w->corr_between_lo) - 1.96 * slow) < 0.003);
     }
+    assert_true(fabs(a->half_shift + log(1.25) / 2) < 0.005);
+    assert_true(a->reference_spread >= log(1.25) / 2 / sqrt(2.0) * 0.97);
+    assert_true(isnan(b->half_shift) && isnan(c->half_shift));
     /* the raw figures of the early-stopped configuration are kept: 25 % slow */
     assert_true(run.configs[3].counters[0].median == raw3 && run.configs[3].counters[0].ci_lo == lo3);
     assert_true(fabs(raw3 / 4e6 - 1.25) < 0.01);
