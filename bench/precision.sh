@@ -60,7 +60,7 @@ for k in range(1, runs + 1):
     data.append(cfg)
     # the answer's lines wrap at 100 columns, continuations four columns in
     answer = re.sub(r"\n    +", " ", open(os.path.join(out, f"answer-{k}.txt")).read())
-    picks = dict(re.findall(r"^(\S.*?): .*?pick (\S+)", answer, re.M))
+    picks = dict(re.findall(r"^(\S.*?): .*?: pick (\S+)", answer, re.M))   # "…(default budget…): pick X"; a provisional budget says "where the pick is"
     prov = set(re.findall(r"^(\S.*?): Provisional", answer, re.M))
     data[-1] = (cfg, picks, prov)
 hw = lambda t: (t[2] - t[1]) / 2 / t[0] if t[0] and t[1] is not None and t[2] is not None else float("inf")
