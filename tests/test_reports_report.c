@@ -309,6 +309,39 @@ static void fixture_corrected(dm_run_result *run)
     assert_int_equal(report_budget_set(run, 1.9), 0);
 }
 
+/* The terminal answer joined back into one line per paragraph: a wrapped
+ * line goes on four or more columns deeper (answer.c), and the join puts
+ * back the one space the wrap took.  Also asserts every line fits 100
+ * columns (code points: the answer uses no wide characters). */
+static char *answer_joined(const char *text)
+{
+    dm_str out = {0};
+    size_t col = 0;
+    for (const char *p = text; *p; p++) {
+        if (*p == '\n' && strncmp(p + 1, "    ", 4) == 0) {
+            while (p[1] == ' ')
+                p++;
+            dm_str_cat(&out, " ");
+            col = 0;
+            continue;
+        }
+        col = *p == '\n' ? 0 : col + ((*p & 0xC0) != 0x80);
+        assert_true(col <= 100);
+        dm_str_catn(&out, p, 1);
+    }
+    return dm_str_take(&out);
+}
+
+/* The terminal's answer for run, joined (answer_joined). */
+static char *run_answer_joined(const dm_run_result *run)
+{
+    dm_str t = {0};
+    report_answer_terminal(run, &t);
+    char *a = answer_joined(dm_str_get(&t));
+    dm_str_free(&t);
+    return a;
+}
+
 /* Two lit configurations of one family, of equal quality, whose time CIs
  * overlap: the pick is the one whose key sorts first, whatever order the
  * run stored them in (the order they were measured) and whichever median
@@ -337,21 +370,11 @@ static void test_tie_named_by_key(void **state)
             assert_int_not_equal(r.pick_tie, RECOMMEND_NONE);
             assert_string_equal(run.configs[r.pick].key, "aaaa000000000000");
             assert_string_equal(run.configs[r.pick_tie].key, "bbbb000000000000");
-            dm_str t = {0};   /* the terminal's answer names it, and says why */
-            report_answer_terminal(&run, &t);
-            char *a = dm_xstrdup(dm_str_get(&t)), *o = a;
-            for (const char *q = a; *q; q++) {   /* the wrapped lines joined */
-                if (*q == '\n' && q[1] == ' ')
-                    while (q[1] == ' ')
-                        q++;
-                *o++ = *q == '\n' ? ' ' : *q;
-            }
-            *o = '\0';
+            char *a = run_answer_joined(&run);   /* the terminal's answer names it, and says why */
             assert_non_null(strstr(a, "pick normal ("));
             assert_non_null(strstr(a, "It ties with bump"));
             assert_non_null(strstr(a, "the first by configuration key is named"));
             free(a);
-            dm_str_free(&t);
             dm_run_free(&run);
         }
 }
@@ -384,20 +407,10 @@ static void test_near_miss_named(void **state)
      * is clearly better and may also fit */
     assert_int_equal(r.pick, 2);
     assert_int_equal(r.near_miss, 1);
-    dm_str t = {0};
-    report_answer_terminal(&run, &t);
-    char *a = dm_xstrdup(dm_str_get(&t)), *o = a;
-    for (const char *q = a; *q; q++) {   /* the wrapped lines joined */
-        if (*q == '\n' && q[1] == ' ')
-            while (q[1] == ' ')
-                q++;
-        *o++ = *q == '\n' ? ' ' : *q;
-    }
-    *o = '\0';
+    char *a = run_answer_joined(&run);
     assert_non_null(strstr(a, "pick normal ("));
     assert_non_null(strstr(a, "May also fit: pom ("));
     free(a);
-    dm_str_free(&t);
     dm_run_free(&run);
 }
 
@@ -1659,29 +1672,6 @@ static void test_warnings_everywhere(void **state)
     free(jp);
     free(md);
     free(html);
-}
-
-/* The terminal answer joined back into one line per paragraph: a wrapped
- * line goes on four or more columns deeper (answer.c), and the join puts
- * back the one space the wrap took.  Also asserts every line fits 100
- * columns (code points: the answer uses no wide characters). */
-static char *answer_joined(const char *text)
-{
-    dm_str out = {0};
-    size_t col = 0;
-    for (const char *p = text; *p; p++) {
-        if (*p == '\n' && strncmp(p + 1, "    ", 4) == 0) {
-            while (p[1] == ' ')
-                p++;
-            dm_str_cat(&out, " ");
-            col = 0;
-            continue;
-        }
-        col = *p == '\n' ? 0 : col + ((*p & 0xC0) != 0x80);
-        assert_true(col <= 100);
-        dm_str_catn(&out, p, 1);
-    }
-    return dm_str_take(&out);
 }
 
 /* A timed run whose configurations have no quality (no reference could be
