@@ -472,7 +472,8 @@ static void predict__print_csv(const predict__row *rows, size_t n)
     dm_str_cat(&s, "key,label,predicted,reason,Instructions,Instructions_lo,Instructions_hi,Instructions_model,"
                    "Instructions_unavailable,GeometryInstructions,RasterInstructions,FragmentInstructions,"
                    "stages_unavailable,WallTime_ns,WallTime_lo_ns,WallTime_hi_ns,WallTime_model,"
-                   "WallTime_unavailable,extrapolates,extrapolated_stage,extrapolated_factor\n");
+                   "WallTime_unavailable,extrapolates,extrapolated_stage,extrapolated_factor,"
+                   "interval_calibration,calibration_reason\n");
     for (size_t i = 0; i < n; i++) {
         const predict__row *w = &rows[i];
         const predict_result *r = &w->r;
@@ -498,6 +499,8 @@ static void predict__print_csv(const predict__row *rows, size_t n)
         predict__csv_field(&s, !w->ok ? "" : !known ? "unknown" : r->beyond_stage >= 0 ? "yes" : "no", 0);
         predict__csv_field(&s, w->ok && r->beyond_stage >= 0 ? predict__stage_names[r->beyond_stage] : "", 0);
         predict__csv_num(&s, w->ok && r->beyond_stage >= 0 ? r->beyond : NAN);
+        predict__csv_field(&s, w->ok && r->calibration ? r->calibration : "", 0);
+        predict__csv_field(&s, w->ok && r->calibration_why ? r->calibration_why : "", 0);
         dm_str_cat(&s, "\n");
     }
     fputs(dm_str_get(&s), stdout);

@@ -115,6 +115,13 @@ for p, r in zip(P, rows):
     check(r["Instructions_model"] == i["model"] and i["model"] in ("stage-instructions", "stage models summed"),
           "model of %s: %s" % (p["label"], i.get("model")))
     check(c["WallTime"]["model"] == r["WallTime_model"], "WallTime model of %s" % p["label"])
+    # the intervals' calibration: leave-one-out at values the runs measured,
+    # else held-out groups or why not (docs/models.md, "Intervals")
+    check(p["interval_calibration"] == r["interval_calibration"] and
+          p.get("calibration_reason", "") == r["calibration_reason"] and
+          p["interval_calibration"] in ("leave-one-out", "held-out groups", "leave-one-out, groups unavailable") and
+          (p["interval_calibration"] == "leave-one-out") == ("calibration_reason" not in p),
+          "calibration of %s: %s / %s" % (p["label"], p.get("interval_calibration"), r["interval_calibration"]))
     check(p["extrapolates"] is None and r["extrapolates"] == "unknown",
           "extrapolation is unknown without stage parts: %s / %s" % (p["extrapolates"], r["extrapolates"]))
     if isinstance(i["interval"], list):
