@@ -56,6 +56,7 @@ for j in news:
         if c.get("status", "ok") == "ok":
             meas.setdefault(c["key"], []).append(c)
 rows, worst_i, worst_w, cov, tot, ratios, ivs = [], 0.0, 0.0, [0, 0], [0, 0], [], []
+unav, calib = [0, 0], {}
 print(f"| configuration | Instructions error | in | WallTime predicted / measured ms | error | in | way |")
 print("|---|---|---|---|---|---|---|")
 for p in pred:
@@ -79,18 +80,24 @@ for p in pred:
         iw = inside(wt, mw)
         if isinstance(wt.get("interval"), list):
             ivs.append((wt["interval"], mw))
-        wtext = f"{wt['value'] / 1e6:.2f} / {mw / 1e6:.2f} | {ew:+.1f} % | {iw}"
+        wid = f" ×/÷{wt['interval'][1] / wt['value']:.2f}" if isinstance(wt.get("interval"), list) else ""
+        wtext = f"{wt['value'] / 1e6:.2f} / {mw / 1e6:.2f} | {ew:+.1f} % | {iw}{wid}"
         way = wt.get("model", "") + (" (override)" if wt.get("model_override") else "")
     else:
         iw, wtext, way = "-", f"unavailable / {mw / 1e6:.2f} | - | -", "unavailable: " + wt.get("unavailable", "")
     for k, x in enumerate((ii, iw)):
         tot[k] += x != "-"
         cov[k] += x == "in"
+        unav[k] += x == "-"
+    calib[p.get("interval_calibration", "?")] = calib.get(p.get("interval_calibration", "?"), 0) + 1
     ex = p.get("extrapolation")
     label = p["label"] + (f" (extrapolated {ex['factor']:.1f}x {ex['stage']})" if ex else "")
-    print(f"| {label} | {ei:+.2f} % | {ii} | {wtext} | {way} |")
+    iwid = f" ±{100 * (ins['interval'][1] / ins['value'] - 1):.1f} %" if isinstance(ins.get("interval"), list) else ""
+    print(f"| {label} | {ei:+.2f} % | {ii}{iwid} | {wtext} | {way} |")
 print(f"pair {pair}: worst Instructions {worst_i:.2f} %, worst WallTime {worst_w:.1f} %, "
-      f"intervals holding the measured value: Instructions {cov[0]}/{tot[0]}, WallTime {cov[1]}/{tot[1]}")
+      f"intervals holding the measured value: Instructions {cov[0]}/{tot[0]}, WallTime {cov[1]}/{tot[1]}"
+      f" (unavailable: Instructions {unav[0]}, WallTime {unav[1]}); calibration: "
+      + ", ".join(f"{k} {v}" for k, v in sorted(calib.items())))
 # The common mode: the median configuration's measured over predicted
 # WallTime.  A whole run moves against another with the machine's load
 # (every configuration alike); the errors with it divided out are the

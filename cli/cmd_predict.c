@@ -158,6 +158,8 @@ static void predict__models(const predict_result *r, dm_str *out)
     dm_str_printf(out, "Instructions by %s", r->instr_by);
     if (r->wall_by)
         dm_str_printf(out, ", WallTime by %s", r->wall_by);
+    if (r->calibration)
+        dm_str_printf(out, "; intervals by %s", r->calibration);
 }
 
 static void predict__common_of(const predict__row *rows, size_t n, predict__common *c)
@@ -205,6 +207,8 @@ static void predict__note(const predict_result *r, const predict__common *c, dm_
     if (r->beyond_stage >= 0)
         dm_str_printf(note, "Extrapolated %.2f×: the %s part beyond the largest the runs measured. ",
                       r->beyond, predict__stage_names[r->beyond_stage]);
+    if (r->calibration_why && !r->instr_why)
+        dm_str_printf(note, "New axis value: %s. ", r->calibration_why);
     if (r->instr_why)
         dm_str_printf(note, "Instructions interval unavailable: %s. ", r->instr_why);
     else if (r->instr_pooled)
@@ -351,6 +355,10 @@ static cJSON *predict__json_row(const predict__row *w)
         cJSON_AddBoolToObject(o, "extrapolates", r->beyond_stage >= 0);
     else   /* how far beyond the runs is known from the stage parts alone */
         cJSON_AddNullToObject(o, "extrapolates");
+    if (r->calibration)
+        cJSON_AddStringToObject(o, "interval_calibration", r->calibration);
+    if (r->calibration_why)
+        cJSON_AddStringToObject(o, "calibration_reason", r->calibration_why);
     if (r->beyond_stage >= 0) {
         cJSON *e = cJSON_AddObjectToObject(o, "extrapolation");
         cJSON_AddStringToObject(e, "stage", predict__stage_names[r->beyond_stage]);
@@ -382,14 +390,43 @@ static void predict__json_ways(const predict_model *m, cJSON *root)
     }
 }
 
+/* How the intervals are calibrated: the held-out groups (axes, groups,
+ * each response's bound or null) and the machine between runs. */
+static void predict__json_calibration(const predict_model *m, cJSON *root)
+{
+    const predict_groups *g = &m->groups;
+    cJSON *o = cJSON_AddObjectToObject(root, "interval_calibration");
+    cJSON *ax = cJSON_AddObjectToObject(o, "axes");
+    for (size_t a = 0; a < g->n_axes; a++)
+        cJSON_AddNumberToObject(ax, g->axes[a].key, g->axes[a].n_values);
+    cJSON_AddNumberToObject(o, "group_min_values", PREDICT_GROUP_VALUES);
+    cJSON_AddNumberToObject(o, "groups_held_out", g->n_groups);
+    const double q[2] = {g->instr_q, g->wall_q};
+    const int nq[2] = {g->instr_n, g->wall_n};
+    static const char *const name[2] = {"groups_instructions", "groups_wall_time"};
+    for (int k = 0; k < 2; k++) {
+        cJSON *x = cJSON_AddObjectToObject(o, name[k]);
+        cJSON_AddNumberToObject(x, "n", nq[k]);
+        if (isfinite(q[k]))
+            cJSON_AddNumberToObject(x, "log_bound_90", q[k]);
+        else
+            cJSON_AddNullToObject(x, "log_bound_90");
+    }
+    cJSON *b = cJSON_AddObjectToObject(o, "between_runs");
+    cJSON_AddNumberToObject(b, "log_bound_90", m->between.q);
+    cJSON_AddNumberToObject(b, "configurations", m->between.n);
+    cJSON_AddStringToObject(b, "source", m->between.n ? "configurations measured in two runs" : "PREDICT_RUN_SPREAD");
+}
+
 /* The JSON document on stdout: {"predictions": [...], "left_out": [...],
- * "wall_time_ways": [...]}. */
+ * "wall_time_ways": [...], "interval_calibration": {...}}. */
 static void predict__print_json(const predict_model *m, const predict__row *rows, size_t n, const char *left)
 {
     cJSON *root = cJSON_CreateObject(), *a = cJSON_AddArrayToObject(root, "predictions");
     for (size_t i = 0; i < n; i++)
         cJSON_AddItemToArray(a, predict__json_row(&rows[i]));
     predict__json_ways(m, root);
+    predict__json_calibration(m, root);
     cJSON *lo = cJSON_AddArrayToObject(root, "left_out");
     for (const char *p = left; p && *p;) {
         size_t len = strcspn(p, "\n");
@@ -435,7 +472,8 @@ static void predict__print_csv(const predict__row *rows, size_t n)
     dm_str_cat(&s, "key,label,predicted,reason,Instructions,Instructions_lo,Instructions_hi,Instructions_model,"
                    "Instructions_unavailable,GeometryInstructions,RasterInstructions,FragmentInstructions,"
                    "stages_unavailable,WallTime_ns,WallTime_lo_ns,WallTime_hi_ns,WallTime_model,"
-                   "WallTime_unavailable,extrapolates,extrapolated_stage,extrapolated_factor\n");
+                   "WallTime_unavailable,extrapolates,extrapolated_stage,extrapolated_factor,"
+                   "interval_calibration,calibration_reason\n");
     for (size_t i = 0; i < n; i++) {
         const predict__row *w = &rows[i];
         const predict_result *r = &w->r;
@@ -461,6 +499,8 @@ static void predict__print_csv(const predict__row *rows, size_t n)
         predict__csv_field(&s, !w->ok ? "" : !known ? "unknown" : r->beyond_stage >= 0 ? "yes" : "no", 0);
         predict__csv_field(&s, w->ok && r->beyond_stage >= 0 ? predict__stage_names[r->beyond_stage] : "", 0);
         predict__csv_num(&s, w->ok && r->beyond_stage >= 0 ? r->beyond : NAN);
+        predict__csv_field(&s, w->ok && r->calibration ? r->calibration : "", 0);
+        predict__csv_field(&s, w->ok && r->calibration_why ? r->calibration_why : "", 0);
         dm_str_cat(&s, "\n");
     }
     fputs(dm_str_get(&s), stdout);
@@ -531,6 +571,42 @@ static void predict__time_heldout_text(const predict_model *m, dm_str *out)
         dm_str_cat(&l, "WallTime not predicted: no way is available");
     else
         dm_str_printf(&l, "WallTime not predicted: no way held out within %.0f %%", PREDICT_MAX_HELDOUT);
+    dm_wrap(dm_str_get(&l), "  ", "    ", REPORT_TERMINAL_WIDTH, out);
+    dm_str_free(&l);
+}
+
+/* How the intervals are calibrated (docs/models.md, "Intervals"): at an
+ * axis value the runs measured, by leave-one-out; at one they never did,
+ * by held-out groups too (the wider), or without an Instructions interval
+ * where the axis cannot be held out; and the machine between runs. */
+static void predict__calibration_text(const predict_model *m, dm_str *out)
+{
+    const predict_groups *g = &m->groups;
+    dm_str l = {0};
+    dm_str_cat(out, "interval calibration (at a value the runs measured: leave-one-out; at a new one:\n"
+                    "  the wider of that and held-out groups):\n");
+    dm_str_cat(&l, "numeric axes the runs vary, and their values:");
+    int swept = 0;
+    for (size_t a = 0; a < g->n_axes; a++)
+        if (g->axes[a].n_values > 1)
+            dm_str_printf(&l, "%s %s %d", swept++ ? "," : "", g->axes[a].key, g->axes[a].n_values);
+    if (!swept)
+        dm_str_cat(&l, " none");
+    dm_str_printf(&l, "; an axis of %d values or more is held out a value at a time", PREDICT_GROUP_VALUES);
+    if (g->n_groups >= 2)
+        dm_str_printf(&l, ": %d groups, Instructions ±%.1f %% (of %d), WallTime ±%.1f %% (of %d)", g->n_groups,
+                      100 * expm1(g->instr_q), g->instr_n, 100 * expm1(g->wall_q), g->wall_n);
+    else
+        dm_str_printf(&l, ": %d group%s held out, too few for a bound", g->n_groups, g->n_groups == 1 ? "" : "s");
+    dm_wrap(dm_str_get(&l), "  ", "    ", REPORT_TERMINAL_WIDTH, out);
+    l.len = 0;
+    if (m->between.n)
+        dm_str_printf(&l, "the machine between runs: ±%.1f %% in every WallTime interval (%d configurations "
+                      "measured in two runs, a new run against their mean)", 100 * expm1(m->between.q),
+                      m->between.n);
+    else
+        dm_str_printf(&l, "the machine between runs: ±%.0f %% in every WallTime interval (the runs share no "
+                      "configuration; compare's --run-spread default)", 100 * PREDICT_RUN_SPREAD);
     dm_wrap(dm_str_get(&l), "  ", "    ", REPORT_TERMINAL_WIDTH, out);
     dm_str_free(&l);
 }
@@ -609,6 +685,7 @@ int cli_predict(const cli_command *self, int argc, char **argv)
             }
             predict__heldout_text(&m, &tail);
             predict__time_heldout_text(&m, &tail);
+            predict__calibration_text(&m, &tail);
             char *b;
             fputs(dm_term_safe(dm_str_get(&tail), &b), stdout);
             free(b);

@@ -5,7 +5,9 @@
 #include "run/fitting.h"
 #include "reports/report.h"
 
+#include <ctype.h>
 #include <math.h>
+#include <stdio.h>
 #include <stdlib.h>
 #include <string.h>
 
@@ -319,16 +321,12 @@ static void predict__choose_way(predict_model *m)
             m->way_used = w;
 }
 
-void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
+/* Fits every model to m->train (its configurations m's own array, freed
+ * by predict_free); the intervals' calibration is left to predict_fit. */
+static void predict__fit_core(predict_model *m)
 {
-    memset(m, 0, sizeof *m);
-    m->train = runs[0];
-    m->train.configs = NULL;
-    m->train.n_configs = 0;
-    for (size_t k = 0; k < n; k++)
-        for (size_t i = 0; i < runs[k].n_configs; i++)
-            DM_VEC_PUSH(m->train.configs, m->train.n_configs, runs[k].configs[i]);
     const dm_run_result *u = &m->train;
+    m->between.q = log1p(PREDICT_RUN_SPREAD);
     predict__fit(u, "stage-instructions", "Instructions", NULL, 0, &m->instr, &m->n_instr);
     for (int st = 0; st < 3; st++)
         if (dm_run_has_counter(u, predict__stages[st]) && dm_run_has_counter(u, "SamplesPassed"))
@@ -358,6 +356,223 @@ void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
             if (r && r->available && isfinite(r->value) && r->value > m->stage_max[st])
                 m->stage_max[st] = r->value;
         }
+}
+
+/* 1 when text is a number, or a resolution "WxH" (*x its pixel count). */
+static int predict__axis_number(const char *text, double *x)
+{
+    char *end;
+    *x = strtod(text, &end);
+    if (end != text && *end == 'x' && isdigit((unsigned char)end[1]))
+        *x *= strtod(end + 1, &end);
+    return end != text && *end == '\0' && isfinite(*x);
+}
+
+/* A swept axis: a numeric axis of the runs' ok configurations with two
+ * values or more (values point into the configurations' params). */
+typedef struct predict__axis {
+    const char *key;
+    const char **values;
+    size_t n_values;
+} predict__axis;
+
+/* The numeric axes of u's ok configurations and their distinct values
+ * (*n of them; those with one value too: the caller skips them). */
+static predict__axis *predict__axes(const dm_run_result *u, size_t *n)
+{
+    predict__axis *ax = NULL;
+    *n = 0;
+    for (size_t i = 0; i < u->n_configs; i++)
+        for (size_t k = 0; u->configs[i].ok && k < u->configs[i].n_params; k++) {
+            const dm_kv *p = &u->configs[i].params[k];
+            double x;
+            if (!p->value || !predict__axis_number(p->value, &x))
+                continue;
+            size_t a = 0;
+            while (a < *n && strcmp(ax[a].key, p->key) != 0)
+                a++;
+            if (a == *n)
+                DM_VEC_PUSH(ax, *n, ((predict__axis){ .key = p->key }));
+            size_t v = 0;
+            while (v < ax[a].n_values && strcmp(ax[a].values[v], p->value) != 0)
+                v++;
+            if (v == ax[a].n_values) {
+                const char *val = p->value;
+                DM_VEC_PUSH(ax[a].values, ax[a].n_values, val);
+            }
+        }
+    return ax;
+}
+
+static void predict__axes_free(predict__axis *ax, size_t n)
+{
+    for (size_t a = 0; a < n; a++)
+        free(ax[a].values);
+    free(ax);
+}
+
+/* g's held-out predictions of c (a measured configuration g never saw):
+ * ln(predicted / measured) of Instructions and WallTime, NaN where either
+ * is missing. */
+static void predict__group_errors(const predict_model *g, const dm_config_result *c, double *ei, double *ew)
+{
+    plan_config pc = { .params = c->params, .n_params = c->n_params };
+    snprintf(pc.key, sizeof pc.key, "%s", c->key);
+    double counts[PREDICT_N_COUNTS];
+    for (size_t k = 0; k < PREDICT_N_COUNTS; k++) {
+        const dm_counter_result *r = dm_config_counter(c, predict_counts[k]);
+        counts[k] = r && r->available ? r->value : NAN;
+    }
+    predict_result r;
+    dm_str why = {0};
+    *ei = *ew = NAN;
+    if (predict_config(g, &pc, counts, &r, &why) == 0) {
+        const dm_counter_result *mi = dm_config_counter(c, "Instructions"), *mw = dm_config_counter(c, "WallTime");
+        if (mi && mi->available && mi->value > 0 && r.instr > 0)
+            *ei = log(r.instr / mi->value);
+        if (mw && mw->available && mw->value > 0 && r.wall_ns > 0)
+            *ew = log(r.wall_ns / mw->value);
+    }
+    predict_result_free(&r);
+    dm_str_free(&why);
+}
+
+/* Holds out of m->train the configurations whose axis `key` is `value`,
+ * fits the models to the rest and appends the held-out log errors to
+ * ei / ew; 1 when it predicted one of them. */
+static int predict__hold_group(const predict_model *m, const char *key, const char *value, double **ei, size_t *nei,
+                               double **ew, size_t *nw)
+{
+    const dm_run_result *u = &m->train;
+    predict_model g;
+    memset(&g, 0, sizeof g);
+    g.train = *u;
+    g.train.configs = dm_xcalloc(u->n_configs + 1, sizeof *g.train.configs);
+    g.train.n_configs = 0;
+    for (size_t i = 0; i < u->n_configs; i++) {
+        const char *x = dm_kv_get(u->configs[i].params, u->configs[i].n_params, key);
+        if (!x || strcmp(x, value) != 0)
+            g.train.configs[g.train.n_configs++] = u->configs[i];
+    }
+    predict__fit_core(&g);
+    int any = 0;
+    for (size_t i = 0; i < u->n_configs; i++) {
+        const dm_config_result *c = &u->configs[i];
+        const char *x = c->ok ? dm_kv_get(c->params, c->n_params, key) : NULL;
+        double a, b;
+        if (!x || strcmp(x, value) != 0)
+            continue;
+        predict__group_errors(&g, c, &a, &b);
+        if (isfinite(a))
+            DM_VEC_PUSH(*ei, *nei, a);
+        if (isfinite(b))
+            DM_VEC_PUSH(*ew, *nw, b);
+        any = any || isfinite(a) || isfinite(b);
+    }
+    predict_free(&g);
+    return any;
+}
+
+/* Held-out groups (predict_groups): one refit per value of each axis of
+ * PREDICT_GROUP_VALUES values or more; the bounds of their errors. */
+static void predict__groups(predict_model *m)
+{
+    predict_groups *gr = &m->groups;
+    size_t na, nei = 0, nw = 0;
+    predict__axis *ax = predict__axes(&m->train, &na);
+    double *ei = NULL, *ew = NULL;
+    gr->axes = dm_xcalloc(na + 1, sizeof *gr->axes);
+    gr->n_axes = na;
+    for (size_t a = 0; a < na; a++) {
+        gr->axes[a] = (predict_axis_count){ dm_xstrdup(ax[a].key), (int)ax[a].n_values };
+        for (size_t v = 0; ax[a].n_values >= PREDICT_GROUP_VALUES && v < ax[a].n_values; v++)
+            gr->n_groups += predict__hold_group(m, ax[a].key, ax[a].values[v], &ei, &nei, &ew, &nw);
+    }
+    gr->instr_n = (int)nei;
+    gr->wall_n = (int)nw;
+    gr->instr_q = gr->n_groups >= 2 ? stats_bound90(ei, nei, NULL) : NAN;
+    gr->wall_q = gr->n_groups >= 2 ? stats_bound90(ew, nw, NULL) : NAN;
+    predict__axes_free(ax, na);
+    free(ei);
+    free(ew);
+}
+
+/* The machine between runs (predict_between): each configuration measured
+ * by two of the n runs (its first two), ln(W_a / W_b) scaled to a new run
+ * against the runs' mean. */
+static void predict__between(predict_model *m, size_t n_runs)
+{
+    const dm_run_result *u = &m->train;
+    double *e = NULL, scale = sqrt((1 + 1.0 / (double)n_runs) / 2);
+    size_t ne = 0;
+    for (size_t i = 0; i < u->n_configs; i++) {
+        size_t first = i, earlier = 0;
+        for (size_t j = 0; j < i; j++)
+            if (strcmp(u->configs[j].key, u->configs[i].key) == 0 && earlier++ == 0)
+                first = j;
+        const dm_counter_result *a = u->configs[i].ok ? dm_config_counter(&u->configs[i], "WallTime") : NULL;
+        const dm_counter_result *b = u->configs[first].ok ? dm_config_counter(&u->configs[first], "WallTime") : NULL;
+        if (earlier == 1 && a && b && a->available && b->available && a->value > 0 && b->value > 0) {
+            double x = scale * log(a->value / b->value);
+            DM_VEC_PUSH(e, ne, x);
+        }
+    }
+    double q = ne >= 2 ? stats_bound90(e, ne, NULL) : NAN;
+    m->between = isfinite(q) ? (predict_between){ q, (int)ne } : (predict_between){ log1p(PREDICT_RUN_SPREAD), 0 };
+    free(e);
+}
+
+void predict_fit(const dm_run_result *runs, size_t n, predict_model *m)
+{
+    memset(m, 0, sizeof *m);
+    m->train = runs[0];
+    m->train.configs = NULL;
+    m->train.n_configs = 0;
+    for (size_t k = 0; k < n; k++)
+        for (size_t i = 0; i < runs[k].n_configs; i++)
+            DM_VEC_PUSH(m->train.configs, m->train.n_configs, runs[k].configs[i]);
+    predict__fit_core(m);
+    predict__groups(m);
+    predict__between(m, n);
+    m->calibrated = 1;
+}
+
+/* "resolution=288x192 never measured by the runs": the numeric axes of
+ * pc whose value no ok configuration of the runs has; NULL when the runs
+ * measured them all.  *blocked: why held-out groups cannot calibrate it
+ * (an axis of fewer than PREDICT_GROUP_VALUES values, too few groups),
+ * NULL when they can (owned, both). */
+static char *predict__unmeasured(const predict_model *m, const plan_config *pc, char **blocked)
+{
+    dm_str s = {0}, b = {0};
+    for (size_t k = 0; k < pc->n_params; k++) {
+        double x, y;
+        const dm_kv *p = &pc->params[k];
+        if (!p->value || !predict__axis_number(p->value, &x))
+            continue;
+        int seen = 0, nv = 0;
+        for (size_t i = 0; i < m->train.n_configs && !seen; i++) {
+            const dm_config_result *c = &m->train.configs[i];
+            const char *v = c->ok ? dm_kv_get(c->params, c->n_params, p->key) : NULL;
+            seen = v && predict__axis_number(v, &y) && y == x;
+        }
+        if (seen)
+            continue;
+        dm_str_printf(&s, "%s%s=%s", s.len ? ", " : "", p->key, p->value);
+        for (size_t a = 0; a < m->groups.n_axes; a++)
+            if (strcmp(m->groups.axes[a].key, p->key) == 0)
+                nv = m->groups.axes[a].n_values;
+        if (nv < PREDICT_GROUP_VALUES && !b.len)
+            dm_str_printf(&b, "the runs measured %d value%s of %s, and a group of them is held out only when "
+                          "the rest still vary it (%d values)", nv, nv == 1 ? "" : "s", p->key,
+                          PREDICT_GROUP_VALUES);
+    }
+    if (s.len && !b.len && m->groups.n_groups < 2)
+        dm_str_printf(&b, "%d group held out gave a prediction; a bound needs 2", m->groups.n_groups);
+    if (s.len)
+        dm_str_cat(&s, " never measured by the runs");
+    *blocked = b.len ? dm_str_take(&b) : NULL;
+    return s.len ? dm_str_take(&s) : NULL;
 }
 
 /* fit's parameter `name` (its standard error in *se when se), NaN when
@@ -512,6 +727,8 @@ static int predict__wall_by(const predict_model *m, predict_way w, dm_config_res
  * ratios (root of the sum of the squared logarithms): never below 0. */
 static void predict__wall(const predict_model *m, dm_config_result *c, double ei, predict_result *out)
 {
+    const predict_groups *gr = &m->groups;
+    int by_groups = out->calibration && strcmp(out->calibration, "held-out groups") == 0;
     int order[PREDICT_N_WAYS], n = 0;
     if (m->way_used >= 0)
         order[n++] = m->way_used;
@@ -554,14 +771,19 @@ static void predict__wall(const predict_model *m, dm_config_result *c, double ei
         out->wall_override = "the way of the lowest held-out error needs stage parts this configuration lacks";
     out->wall_by = predict_way_names[used];
     const predict_way_score *w = &m->way[used];
-    double h = sqrt(pow(w->q, 2) + pow(log1p(ei), 2) + pow(log1p(PREDICT_RUN_SPREAD), 2) +
-                    pow(log1p(2 * se_ns / out->wall_ns), 2));
+    double beyond = log1p(2 * se_ns / out->wall_ns);
+    double h = sqrt(pow(w->q, 2) + pow(log1p(ei), 2) + pow(m->between.q, 2) + pow(beyond, 2));
+    if (by_groups)   /* the wider of leave-one-out and held-out groups (docs/models.md, "Intervals") */
+        h = fmax(h, sqrt(pow(gr->wall_q, 2) + pow(m->between.q, 2) + pow(beyond, 2)));
     if (!isfinite(w->q))
         out->wall_why = dm_xasprintf("%s held out %d configuration%s of the runs; a %.0f %% interval needs %d "
                                      "(the spread of their errors)", out->wall_by, w->n, w->n == 1 ? "" : "s",
                                      100 * PREDICT_COVERAGE, PREDICT_MIN_HELDOUT);
     else if (!isfinite(ei))
         out->wall_why = dm_xstrdup("the Instructions have no interval");
+    else if (by_groups && !isfinite(gr->wall_q))
+        out->wall_why = dm_xasprintf("%s, and the held-out groups gave %d frame times, too few for a bound",
+                                     out->calibration_why, gr->wall_n);
     else if (!isfinite(h))
         out->wall_why = dm_xstrdup("a stage beyond the runs has a cost without a standard error");
     else {
@@ -628,18 +850,40 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
         out->instr_pooled = "the variant has too few configurations to hold one out; the interval is the "
                             "90 % bound of the other variants' held-out errors pooled";
     }
+    /* at an axis value the runs never measured the target is an
+     * extrapolation, which leaving one configuration out does not mimic:
+     * the wider of that bound and the held-out groups' */
+    out->calibration = "leave-one-out";
+    char *blocked = NULL;
+    out->calibration_why = m->calibrated ? predict__unmeasured(m, pc, &blocked) : NULL;
+    double ei_loo = ei;
+    if (out->calibration_why && blocked)
+        out->calibration = "leave-one-out, groups unavailable";
+    else if (out->calibration_why) {
+        out->calibration = "held-out groups";
+        ei = isfinite(ei) && isfinite(m->groups.instr_q) ? fmax(ei, expm1(m->groups.instr_q)) : NAN;
+    }
     out->instr = instr;
+    if (!isfinite(ei_loo))
+        out->instr_why = predict__too_few(m, out->variant, "hold one out for an interval");
+    else if (blocked) {
+        /* leave-one-out bounds held 6 of 12 such targets on the 14:30
+         * bench runs: not an interval (docs/models.md, "Intervals") */
+        out->instr_why = dm_xasprintf("%s, and %s", out->calibration_why, blocked);
+        ei = NAN;
+    } else if (!isfinite(ei))
+        out->instr_why = dm_xasprintf("%s, and the held-out groups gave %d Instructions errors, too few for a bound",
+                                      out->calibration_why, m->groups.instr_n);
+    free(blocked);
     out->instr_lo = instr / (1 + ei);   /* a ratio either way: never below 0 */
     out->instr_hi = instr * (1 + ei);
-    if (!isfinite(ei))
-        out->instr_why = predict__too_few(m, out->variant, "hold one out for an interval");
     if (!(isfinite(sum) && sum > 0))
         out->part_why = predict__part_why(m, out->variant);
     for (int s = 0; s < 3; s++)   /* the stage parts, for the stage-time fits */
         cr[PREDICT_N_COUNTS + s] = (dm_counter_result){ .name = (char *)predict__stages[s],
                                                         .available = isfinite(out->part[s]), .value = out->part[s] };
     c.n_counters = PREDICT_N_COUNTS + 3;
-    predict__wall(m, &c, ei, out);
+    predict__wall(m, &c, ei_loo, out);
     return 0;
 }
 
@@ -649,7 +893,8 @@ void predict_result_free(predict_result *r)
     free(r->instr_why);
     free(r->part_why);
     free(r->wall_why);
-    r->variant = r->instr_why = r->part_why = r->wall_why = NULL;
+    free(r->calibration_why);
+    r->variant = r->instr_why = r->part_why = r->wall_why = r->calibration_why = NULL;
 }
 
 static void predict__free_fits(dm_fit_result *f, size_t n)
@@ -673,6 +918,9 @@ void predict_free(predict_model *m)
     for (size_t i = 0; i < m->n_heldout; i++)
         free(m->heldout[i].variant);
     free(m->heldout);
+    for (size_t a = 0; a < m->groups.n_axes; a++)
+        free(m->groups.axes[a].key);
+    free(m->groups.axes);
     free(m->train.configs);
     memset(m, 0, sizeof *m);
 }

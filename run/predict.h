@@ -81,6 +81,43 @@ typedef struct predict_heldout {
     int n;            /* configurations it covers */
 } predict_heldout;
 
+/* The interval's calibration for configurations at an axis value the runs
+ * never measured (docs/models.md, "Intervals"): held-out groups.  A group
+ * is the configurations that share one value of a numeric axis (the
+ * resolution's pixel count, steps, tess_level, mesh_density ...); the
+ * models are fitted again without it and predict it, as they predict a
+ * target at a new value.  Only an axis the runs measured at
+ * PREDICT_GROUP_VALUES values or more is held out: with two, the rest has
+ * one, and a model loses every term in it (a constant column) -- on the
+ * 14:30 bench runs that gave errors up to +96 %, not what a target that
+ * the fit saw at two values meets.  The PREDICT_COVERAGE bound
+ * (stats_bound90) of the held-out log errors, per response, pooled over
+ * the axes held out. */
+#define PREDICT_GROUP_VALUES 3
+typedef struct predict_axis_count {
+    char *key;
+    int n_values;        /* distinct values the runs' ok configurations have */
+} predict_axis_count;
+typedef struct predict_groups {
+    predict_axis_count *axes;   /* every numeric axis of the runs */
+    size_t n_axes;
+    int n_groups;        /* groups held out that gave a held-out prediction */
+    double instr_q;      /* bound of |ln(predicted / measured)| Instructions; NaN: unavailable */
+    int instr_n;
+    double wall_q;       /* the same of WallTime (the way each refit chose) */
+    int wall_n;
+} predict_groups;
+
+/* A frame time predicted from runs is a time of another run: the
+ * machine's speed between runs, measured where the runs share a
+ * configuration (the PREDICT_COVERAGE bound of |ln(W_a / W_b)| of a
+ * configuration measured in two runs, scaled by sqrt((1 + 1/R) / 2) for a
+ * new run against the mean of R), else PREDICT_RUN_SPREAD. */
+typedef struct predict_between {
+    double q;        /* log bound used in every WallTime interval */
+    int n;           /* configurations measured in two runs or more; 0: PREDICT_RUN_SPREAD */
+} predict_between;
+
 typedef struct predict_model {
     dm_run_result train;   /* the pooled runs (shallow: the caller's runs own the configurations) */
     dm_fit_result *instr, *stage[3], *time, *time_st;   /* time_st: time-from-stages */
@@ -102,6 +139,9 @@ typedef struct predict_model {
     double shared_a;
     predict_way_score way[PREDICT_N_WAYS];
     int way_used;      /* the way of the lowest held-out error at most PREDICT_MAX_HELDOUT, -1: none */
+    int calibrated;    /* groups and between are computed (predict_fit; not its refits) */
+    predict_groups groups;
+    predict_between between;
 } predict_model;
 
 typedef struct predict_result {
@@ -122,6 +162,15 @@ typedef struct predict_result {
     char *instr_why;         /* no Instructions interval */
     char *part_why;          /* no stage shares */
     char *wall_why;          /* no WallTime (wall_by NULL), or no interval around it */
+    /* Which calibration the intervals are: "leave-one-out" (every numeric
+     * axis value of the configuration was measured by the runs),
+     * "held-out groups" (one was not: the wider of the two bounds), or
+     * "leave-one-out, groups unavailable" (one was not, along an axis the
+     * runs measured at fewer than PREDICT_GROUP_VALUES values: no
+     * Instructions interval, the WallTime's from leave-one-out and the
+     * machine between runs). */
+    const char *calibration;
+    char *calibration_why;   /* "resolution=288x192 never measured by the runs" (owned); NULL: leave-one-out */
 } predict_result;
 
 /* Appends to out one line ("  KEY  SCENE: COUNTER unavailable (reason)")
@@ -133,7 +182,9 @@ size_t predict_left_out(const dm_run_result *runs, size_t n, dm_str *out);
 /* The first of predict_needed that run lacks, or NULL when it has them all. */
 const char *predict_run_missing(const dm_run_result *run);
 
-/* Fits the models to runs[0..n) (kept by the caller until predict_free). */
+/* Fits the models to runs[0..n) (kept by the caller until predict_free),
+ * and calibrates the intervals: held-out groups (predict_groups) and the
+ * machine between runs (predict_between). */
 void predict_fit(const dm_run_result *runs, size_t n, predict_model *m);
 
 /* The fit of `variant` (a one-group fit per variant) among fits, or NULL. */

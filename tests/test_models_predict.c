@@ -12,7 +12,10 @@
 #include "test_util.h"
 
 #include "core/dm_error.h"
+#include "models/rng.h"
+#include "models/stats.h"
 #include "run/fitting.h"
+#include "run/predict.h"
 
 /* A fit as the store gives it back: formula, named parameters, a group. */
 static dm_fit_result make_fit(const char *formula, const char *const *names, const double *values,
@@ -215,9 +218,205 @@ static void missing_counter_term_dropped(void **state)
     dm_run_free(&run);
 }
 
+/* A synthetic pom frame: counts of one configuration and its Instructions
+ * before the error law (the stage-instructions model's own terms). */
+#define SYN_C0 2e5
+#define SYN_PX 60.0
+#define SYN_STEP 9.0
+static void syn_counts(int w, int h, int d, int steps, double *vs, double *prim, double *fs, double *instr)
+{
+    double px = (double)w * h;
+    *vs = 400.0 * d + 100;
+    *prim = 300.0 * d * d;
+    *fs = px * 0.5 + 2.0 * sqrt(px) * d;
+    *instr = SYN_C0 + SYN_PX * *fs + SYN_STEP * *fs * steps;
+}
+
+static void syn_counter(dm_config_result *c, const char *name, double v)
+{
+    dm_counter_result *r = dm_vec_push(&c->counters, &c->n_counters, NULL, sizeof *r);
+    memset(r, 0, sizeof *r);
+    r->name = dm_xstrdup(name);
+    r->unit = dm_xstrdup("items");
+    r->available = r->deterministic = 1;
+    r->value = r->median = v;
+}
+
+/* One configuration of pom at WxH, density d, `steps`, its Instructions
+ * the model's times exp(err) and, when wall > 0, a WallTime. */
+static void syn_config(dm_run_result *run, int w, int h, int d, int steps, double err, double wall)
+{
+    dm_config_result *c = dm_vec_push(&run->configs, &run->n_configs, NULL, sizeof *c);
+    memset(c, 0, sizeof *c);
+    c->key = dm_xasprintf("%016zx", (size_t)(w * 7 + h * 13 + d * 1000 + steps * 100000));
+    c->ok = 1;
+    char v[32];
+    dm_kv_push(&c->params, &c->n_params, "technique", "pom");
+    snprintf(v, sizeof v, "%d", steps);
+    dm_kv_push(&c->params, &c->n_params, "steps", v);
+    snprintf(v, sizeof v, "%d", d);
+    dm_kv_push(&c->params, &c->n_params, "mesh_density", v);
+    snprintf(v, sizeof v, "%dx%d", w, h);
+    dm_kv_push(&c->params, &c->n_params, "resolution", v);
+    double vs, prim, fs, instr;
+    syn_counts(w, h, d, steps, &vs, &prim, &fs, &instr);
+    syn_counter(c, "VSInvocations", vs);
+    syn_counter(c, "TESInvocations", 0);
+    syn_counter(c, "ClippingOutputPrimitives", prim);
+    syn_counter(c, "FSInvocations", fs);
+    syn_counter(c, "Instructions", instr * exp(err));
+    if (wall > 0)
+        syn_counter(c, "WallTime", wall);
+}
+
+/* A standard normal variate (Box-Muller). */
+static double syn_normal(rng_state *r)
+{
+    double u = rng_uniform(r), v = rng_uniform(r);
+    return sqrt(-2 * log(1 - u)) * cos(2 * M_PI * v);
+}
+
+/* Held-out groups' intervals cover a target at a step count never
+ * measured.  The error law: ln(measured / model) = u_s + e, u_s ~ N(0,
+ * SU) shared by the configurations of one step count (what a new value
+ * of an axis brings), e ~ N(0, SE) each.  Fitted on steps 4, 8, 12, 16 x
+ * three resolutions x two densities, the target at steps 20 (its own
+ * u and e) lies in the Instructions interval in at least 90 % of the
+ * trials, less 3 binomial SDs for T trials; and the bound is no wider
+ * than twice the error law's own 90 % bound (1.645 sqrt(SU^2 + SE^2)),
+ * so an interval too wide to mean anything fails too. */
+#define SU 0.04
+#define SE 0.01
+#define TRIALS 60
+static void group_coverage(void **state)
+{
+    (void)state;
+    static const int res[3][2] = {{64, 64}, {96, 64}, {128, 96}};
+    rng_state rng = rng_seed(49);
+    int covered = 0;
+    double *q = dm_xcalloc(TRIALS, sizeof *q);
+    for (int t = 0; t < TRIALS; t++) {
+        dm_run_result run = {0};
+        for (int s = 4; s <= 16; s += 4) {
+            double u = SU * syn_normal(&rng);
+            for (int k = 0; k < 3; k++)
+                for (int d = 1; d <= 2; d++)
+                    syn_config(&run, res[k][0], res[k][1], d, s, u + SE * syn_normal(&rng), 0);
+        }
+        predict_model m;
+        predict_fit(&run, 1, &m);
+        plan_config pc = { .key = "00000000000000ff" };
+        dm_kv_push(&pc.params, &pc.n_params, "mesh_density", "1");
+        dm_kv_push(&pc.params, &pc.n_params, "resolution", "96x64");
+        dm_kv_push(&pc.params, &pc.n_params, "steps", "20");
+        dm_kv_push(&pc.params, &pc.n_params, "technique", "pom");
+        double vs, prim, fs, instr;
+        syn_counts(96, 64, 1, 20, &vs, &prim, &fs, &instr);
+        const double counts[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, NAN, NAN, NAN, NAN};
+        double meas = instr * exp(SU * syn_normal(&rng) + SE * syn_normal(&rng));
+        predict_result r;
+        dm_str why = {0};
+        assert_int_equal(predict_config(&m, &pc, counts, &r, &why), 0);
+        assert_string_equal(r.calibration, "held-out groups");
+        assert_non_null(strstr(r.calibration_why, "steps=20 never measured"));
+        /* 4 step counts, 3 resolutions: a refit that predicts none of its
+         * group (its fit refused) is not counted */
+        assert_true(m.groups.n_groups >= 2 && m.groups.n_groups <= 7);
+        assert_true(r.instr_lo > 0 && r.instr_lo < r.instr && r.instr < r.instr_hi);
+        covered += r.instr_lo <= meas && meas <= r.instr_hi;
+        q[t] = m.groups.instr_q;
+        predict_result_free(&r);
+        dm_str_free(&why);
+        dm_kv_free(pc.params, pc.n_params);
+        predict_free(&m);
+        dm_run_free(&run);
+    }
+    double cov = (double)covered / TRIALS, tol = 3 * sqrt(0.9 * 0.1 / TRIALS);
+    double law = 1.645 * sqrt(SU * SU + SE * SE), qmed = stats_median(q, TRIALS);
+    fprintf(stderr, "held-out groups: %d of %d targets covered (%.3f, at least %.3f); median bound %.4f, "
+            "the law's %.4f\n", covered, TRIALS, cov, 0.9 - tol, qmed, law);
+    assert_true(cov >= 0.9 - tol);
+    assert_true(qmed <= 2 * law);
+    free(q);
+}
+
+/* An axis of two values is never held out (the rest would not vary it):
+ * a target at a third resolution has no Instructions interval, and the
+ * reason names the axis, its values and the rule. */
+static void group_two_values(void **state)
+{
+    (void)state;
+    dm_run_result run = {0};
+    for (int s = 4; s <= 16; s += 4)
+        for (int k = 0; k < 2; k++)
+            syn_config(&run, k ? 128 : 64, k ? 96 : 64, 1, s, 0.001 * s * (k + 1), 0);
+    predict_model m;
+    predict_fit(&run, 1, &m);
+    plan_config pc = { .key = "00000000000000ff" };
+    dm_kv_push(&pc.params, &pc.n_params, "mesh_density", "1");
+    dm_kv_push(&pc.params, &pc.n_params, "resolution", "160x120");
+    dm_kv_push(&pc.params, &pc.n_params, "steps", "8");
+    dm_kv_push(&pc.params, &pc.n_params, "technique", "pom");
+    double vs, prim, fs, instr;
+    syn_counts(160, 120, 1, 8, &vs, &prim, &fs, &instr);
+    const double counts[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, NAN, NAN, NAN, NAN};
+    predict_result r;
+    dm_str why = {0};
+    assert_int_equal(predict_config(&m, &pc, counts, &r, &why), 0);
+    assert_int_equal(m.groups.n_groups, 4);   /* the step counts only */
+    assert_string_equal(r.calibration, "leave-one-out, groups unavailable");
+    assert_true(isnan(r.instr_lo) && isnan(r.instr_hi));
+    assert_string_equal(r.instr_why, "resolution=160x120 never measured by the runs, and the runs measured 2 "
+                                     "values of resolution, and a group of them is held out only when the rest "
+                                     "still vary it (3 values)");
+    /* a step count measured, at a resolution measured: leave-one-out */
+    predict_result_free(&r);
+    free(pc.params[1].value);
+    pc.params[1].value = dm_xstrdup("128x96");
+    syn_counts(128, 96, 1, 8, &vs, &prim, &fs, &instr);
+    const double c2[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, NAN, NAN, NAN, NAN};
+    assert_int_equal(predict_config(&m, &pc, c2, &r, &why), 0);
+    assert_string_equal(r.calibration, "leave-one-out");
+    assert_null(r.calibration_why);
+    predict_result_free(&r);
+    dm_str_free(&why);
+    dm_kv_free(pc.params, pc.n_params);
+    predict_free(&m);
+    dm_run_free(&run);
+}
+
+/* The machine between runs: ten configurations measured by two runs, the
+ * second's WallTime exp(0.01 i) times the first's (i = 1..10).  Each gives
+ * 0.01 i sqrt((1 + 1/2) / 2), and the split-conformal bound of ten is the
+ * ceil(11 x 0.9) = 10th smallest: 0.1 sqrt(0.75).  One run: 10 % (the
+ * documented PREDICT_RUN_SPREAD), counted as 0 configurations. */
+static void between_runs(void **state)
+{
+    (void)state;
+    dm_run_result runs[2] = {{0}, {0}};
+    for (int k = 0; k < 2; k++)
+        for (int i = 1; i <= 10; i++)
+            syn_config(&runs[k], 64 + 8 * i, 64, 1, 4 * (1 + i % 3), 0, 1e6 * exp(k * 0.01 * i));
+    predict_model m;
+    predict_fit(runs, 2, &m);
+    fprintf(stderr, "between runs: %.9g over %d, want %.9g\n", m.between.q, m.between.n, 0.1 * sqrt(0.75));
+    assert_int_equal(m.between.n, 10);
+    assert_float_equal(m.between.q, 0.1 * sqrt(0.75), 1e-12);
+    predict_free(&m);
+    predict_fit(runs, 1, &m);
+    assert_int_equal(m.between.n, 0);
+    assert_float_equal(m.between.q, log1p(PREDICT_RUN_SPREAD), 1e-15);
+    predict_free(&m);
+    dm_run_free(&runs[0]);
+    dm_run_free(&runs[1]);
+}
+
 DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(axes_only),
              cmocka_unit_test(resolution_pixels),
              cmocka_unit_test(stored_counters),
              cmocka_unit_test(refusals),
-             cmocka_unit_test(missing_counter_term_dropped))
+             cmocka_unit_test(missing_counter_term_dropped),
+             cmocka_unit_test(group_coverage),
+             cmocka_unit_test(group_two_values),
+             cmocka_unit_test(between_runs))

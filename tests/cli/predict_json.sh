@@ -95,7 +95,8 @@ check(ph["predicted"] and ins["interval"] == "unavailable" and
       "phong's Instructions interval: %s" % ins)
 check(ph["counters"]["WallTime"]["interval"] == "unavailable" and ph["counters"]["WallTime"]["interval_reason"],
       "phong's WallTime interval: %s" % ph["counters"]["WallTime"])
-check(re.search(r"Instructions interval unavailable: the runs measured 2 configurations of variant\s+'phong", table),
+check(re.search(r"Instructions\s+interval\s+unavailable:\s+the\s+runs\s+measured\s+2\s+configurations\s+of\s+"
+                r"variant\s+'phong", table),
       "the table does not say why phong has no interval")
 # stage counters the runs lack: named once, not on every row
 check(table.count("the runs lack the stage counters") == 2,   # under the table, and the WallTime held-out line
@@ -114,6 +115,13 @@ for p, r in zip(P, rows):
     check(r["Instructions_model"] == i["model"] and i["model"] in ("stage-instructions", "stage models summed"),
           "model of %s: %s" % (p["label"], i.get("model")))
     check(c["WallTime"]["model"] == r["WallTime_model"], "WallTime model of %s" % p["label"])
+    # the intervals' calibration: leave-one-out at values the runs measured,
+    # else held-out groups or why not (docs/models.md, "Intervals")
+    check(p["interval_calibration"] == r["interval_calibration"] and
+          p.get("calibration_reason", "") == r["calibration_reason"] and
+          p["interval_calibration"] in ("leave-one-out", "held-out groups", "leave-one-out, groups unavailable") and
+          (p["interval_calibration"] == "leave-one-out") == ("calibration_reason" not in p),
+          "calibration of %s: %s / %s" % (p["label"], p.get("interval_calibration"), r["interval_calibration"]))
     check(p["extrapolates"] is None and r["extrapolates"] == "unknown",
           "extrapolation is unknown without stage parts: %s / %s" % (p["extrapolates"], r["extrapolates"]))
     if isinstance(i["interval"], list):
