@@ -146,45 +146,65 @@ static int predict__has_interval(double lo, double hi)
     return isfinite(lo) && isfinite(hi);
 }
 
-/* What every predicted row shares, said once under the table. */
+/* What every predicted row shares, said once under the table (NULL: the
+ * rows differ, and each says its own). */
 typedef struct predict__common {
-    const char *part_why;   /* the same reason for no stage shares, or NULL */
-    dm_str models;          /* "Instructions by X, WallTime by Y" */
-    int same_models;
+    const char *part_why;   /* the reason for no stage shares */
+    const char *instr_by;   /* where the Instructions come from */
+    const char *wall_by;    /* WallTime's way, over the rows that do not override it */
+    const char *calibration;/* the intervals' calibration */
+    const char *blocked;    /* why held-out groups cannot calibrate a new value */
 } predict__common;
 
-static void predict__models(const predict_result *r, dm_str *out)
+/* a when b is the same text, else NULL (both may be NULL) */
+static const char *predict__same(const char *a, const char *b)
 {
-    dm_str_printf(out, "Instructions by %s", r->instr_by);
-    if (r->wall_by)
-        dm_str_printf(out, ", WallTime by %s", r->wall_by);
-    if (r->calibration)
-        dm_str_printf(out, "; intervals by %s", r->calibration);
+    return a && b && strcmp(a, b) == 0 ? a : NULL;
+}
+
+/* "Instructions by X, WallTime by Y; intervals by Z", each part only where
+ * the rows differ on it (a row whose WallTime way is overridden says so
+ * in its own words). */
+static void predict__models(const predict_result *r, const predict__common *c, dm_str *out)
+{
+    size_t had = out->len;
+    if (!c->instr_by)
+        dm_str_printf(out, "Instructions by %s", r->instr_by);
+    if (r->wall_by && !r->wall_override && !c->wall_by)
+        dm_str_printf(out, "%sWallTime by %s", out->len > had ? ", " : "", r->wall_by);
+    if (r->calibration && !c->calibration)
+        dm_str_printf(out, "%sintervals by %s", out->len > had ? "; " : "", r->calibration);
+    if (out->len > had)
+        dm_str_cat(out, ". ");
+}
+
+/* 1 when some predicted row's WallTime way is overridden */
+static int predict__overridden(const predict__row *rows, size_t n)
+{
+    for (size_t i = 0; i < n; i++)
+        if (rows[i].ok && rows[i].r.wall_override)
+            return 1;
+    return 0;
 }
 
 static void predict__common_of(const predict__row *rows, size_t n, predict__common *c)
 {
     memset(c, 0, sizeof *c);
-    int first = 1, same_part = 1;
-    c->same_models = 1;
+    int first = 1, first_wall = 1;
     for (size_t i = 0; i < n; i++) {
         if (!rows[i].ok)
             continue;
         const predict_result *r = &rows[i].r;
-        dm_str m = {0};
-        predict__models(r, &m);
-        if (first) {
-            c->part_why = r->part_why;
-            dm_str_cat(&c->models, dm_str_get(&m));
-        } else {
-            same_part = same_part && c->part_why && r->part_why && strcmp(c->part_why, r->part_why) == 0;
-            c->same_models = c->same_models && strcmp(dm_str_get(&c->models), dm_str_get(&m)) == 0;
-        }
+        c->part_why = first ? r->part_why : predict__same(c->part_why, r->part_why);
+        c->instr_by = first ? r->instr_by : predict__same(c->instr_by, r->instr_by);
+        c->calibration = first ? r->calibration : predict__same(c->calibration, r->calibration);
+        c->blocked = first ? r->instr_blocked : predict__same(c->blocked, r->instr_blocked);
         first = 0;
-        dm_str_free(&m);
+        if (r->wall_by && !r->wall_override) {
+            c->wall_by = first_wall ? r->wall_by : predict__same(c->wall_by, r->wall_by);
+            first_wall = 0;
+        }
     }
-    if (!same_part)
-        c->part_why = NULL;
 }
 
 /* The note under a row: stage shares, the models used, how far beyond the
@@ -198,10 +218,7 @@ static void predict__note(const predict_result *r, const predict__common *c, dm_
                       100 * r->part[1] / sum, 100 * r->part[2] / sum);
     else if (!c->part_why)
         dm_str_printf(note, "Stages unavailable: %s. ", r->part_why ? r->part_why : "no reason recorded");
-    if (!c->same_models) {
-        predict__models(r, note);
-        dm_str_cat(note, ". ");
-    }
+    predict__models(r, c, note);
     if (r->wall_override)
         dm_str_printf(note, "WallTime by %s: %s. ", r->wall_by, r->wall_override);
     if (r->beyond_stage >= 0)
@@ -209,7 +226,9 @@ static void predict__note(const predict_result *r, const predict__common *c, dm_
                       r->beyond, predict__stage_names[r->beyond_stage]);
     if (r->calibration_why && !r->instr_why)
         dm_str_printf(note, "New axis value: %s. ", r->calibration_why);
-    if (r->instr_why)
+    if (r->instr_why && c->blocked)   /* the reason is said once, under the table */
+        dm_str_printf(note, "Instructions interval unavailable: %s. ", r->calibration_why);
+    else if (r->instr_why)
         dm_str_printf(note, "Instructions interval unavailable: %s. ", r->instr_why);
     else if (r->instr_pooled)
         dm_str_printf(note, "Instructions interval: %s. ", r->instr_pooled);
@@ -272,11 +291,22 @@ static void predict__print_table(const predict__row *rows, size_t n)
     if (t.n_rows > 1) {   /* what every row shares */
         dm_str all = {0};
         dm_str_cat(&all, "Every configuration: ");
-        if (common.same_models)
-            dm_str_printf(&all, "%s%s", dm_str_get(&common.models), common.part_why ? "; " : ".");
+        size_t empty = all.len;
+        if (common.instr_by)
+            dm_str_printf(&all, "Instructions by %s", common.instr_by);
+        if (common.wall_by)
+            dm_str_printf(&all, "%sWallTime by %s%s", all.len > empty ? ", " : "", common.wall_by,
+                          predict__overridden(rows, n) ? " (unless its row says otherwise)" : "");
+        if (common.calibration)
+            dm_str_printf(&all, "%sintervals by %s", all.len > empty ? "; " : "", common.calibration);
         if (common.part_why)
-            dm_str_printf(&all, "stage shares unavailable: %s.", common.part_why);
-        if (common.same_models || common.part_why)
+            dm_str_printf(&all, "%sstage shares unavailable: %s", all.len > empty ? "; " : "", common.part_why);
+        if (all.len > empty)
+            dm_str_cat(&all, ".");
+        if (common.blocked)
+            dm_str_printf(&all, "%sNo Instructions interval at a value the runs never measured: %s.",
+                          all.len > empty ? " " : "", common.blocked);
+        if (all.len > empty)
             dm_wrap(dm_str_get(&all), "", "  ", REPORT_TERMINAL_WIDTH, &out);
         dm_str_free(&all);
     }
@@ -289,7 +319,6 @@ static void predict__print_table(const predict__row *rows, size_t n)
     free(b);
     dm_str_free(&out);
     dm_str_free(&unpred);
-    dm_str_free(&common.models);
     dm_table_free(&t);
 }
 

@@ -870,6 +870,7 @@ int predict_config(const predict_model *m, const plan_config *pc, const double *
         /* leave-one-out bounds held 6 of 12 such targets on the 14:30
          * bench runs: not an interval (docs/models.md, "Intervals") */
         out->instr_why = dm_xasprintf("%s, and %s", out->calibration_why, blocked);
+        out->instr_blocked = dm_xstrdup(blocked);
         ei = NAN;
     } else if (!isfinite(ei))
         out->instr_why = dm_xasprintf("%s, and the held-out groups gave %d Instructions errors, too few for a bound",
@@ -894,7 +895,8 @@ void predict_result_free(predict_result *r)
     free(r->part_why);
     free(r->wall_why);
     free(r->calibration_why);
-    r->variant = r->instr_why = r->part_why = r->wall_why = r->calibration_why = NULL;
+    free(r->instr_blocked);
+    r->variant = r->instr_why = r->part_why = r->wall_why = r->calibration_why = r->instr_blocked = NULL;
 }
 
 static void predict__free_fits(dm_fit_result *f, size_t n)

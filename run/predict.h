@@ -171,6 +171,8 @@ typedef struct predict_result {
      * machine between runs). */
     const char *calibration;
     char *calibration_why;   /* "resolution=288x192 never measured by the runs" (owned); NULL: leave-one-out */
+    char *instr_blocked;     /* why held-out groups cannot calibrate it, the second half of
+                                instr_why when that is the reason (owned); NULL otherwise */
 } predict_result;
 
 /* Appends to out one line ("  KEY  SCENE: COUNTER unavailable (reason)")
