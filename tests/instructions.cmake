@@ -123,7 +123,8 @@ set_tests_properties(test_instructions_repeat PROPERTIES TIMEOUT 300
 # The fragment techniques repeat.yaml leaves out (one configuration of each
 # program family is counted from empty caches there) repeat between two
 # processes: the gate's run and the stage run share eight configurations
-# key for key, every count within the same 1e-4 (instructions/repeat_across.py).
+# key for key: each run's samples within 1e-4, the two runs within 1e-4 or
+# 200 instructions a frame (instructions/repeat_across.py).
 add_test(NAME test_instructions_repeat_across
   COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/instructions/repeat_across.py
           ${DM_TEST_RUNS}/ci-gate/baseline-techniques ${DM_TEST_RUNS}/stages-cube)
