@@ -96,8 +96,9 @@ add_test(NAME test_instructions_path
 set_tests_properties(test_instructions_path PROPERTIES TIMEOUT 1800
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
 
-# Instructions repeat for every technique: three runs of a compact matrix
-# (tests/instructions/repeat.yaml), two from empty caches and one warm, in
+# Instructions repeat for each program family: three runs of a compact
+# matrix (tests/instructions/repeat.yaml: normal, pom, vertex- and
+# tess-displacement, reference-mesh), two from empty caches and one warm, in
 # other orders, agree within 0.01 % (docs/counters.md, "Repeatability"):
 # every count within 1e-4 (measured 2.5e-6 at worst).  One ctest test per
 # run, so the two cold runs (which JIT every shader under Valgrind) go side
@@ -118,6 +119,17 @@ add_test(NAME test_instructions_repeat
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/repeat.sh --check ${repeat_dir})
 set_tests_properties(test_instructions_repeat PROPERTIES TIMEOUT 300
   FIXTURES_REQUIRED "repeat_cold1;repeat_runs" ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;valgrind")
+
+# The fragment techniques repeat.yaml leaves out (one configuration of each
+# program family is counted from empty caches there) repeat between two
+# processes: the gate's run and the stage run share eight configurations
+# key for key: each run's samples within 1e-4, the two runs within 1e-4 or
+# 200 instructions a frame (instructions/repeat_across.py).
+add_test(NAME test_instructions_repeat_across
+  COMMAND python3 ${CMAKE_CURRENT_SOURCE_DIR}/instructions/repeat_across.py
+          ${DM_TEST_RUNS}/ci-gate/baseline-techniques ${DM_TEST_RUNS}/stages-cube)
+set_tests_properties(test_instructions_repeat_across PROPERTIES TIMEOUT 120
+  FIXTURES_REQUIRED "ci_gate_run;stage_run_cube" LABELS "e2e;valgrind")
 
 add_test(NAME test_instructions_families
   COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions/families.sh

@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # Instructions repeat across processes, caches and orders: SWEEP (default
-# repeat.yaml: every technique, tessellation at two levels) counted by
-# three separate runs: two from empty caches (shader, map, reference and
+# repeat.yaml: one configuration of each program family, tessellation at
+# two levels) counted by three separate runs: two from empty caches (shader, map, reference and
 # program caches in fresh directories) and one from the first run's warm
 # caches, each with another --seed, so its Valgrind children count the
 # configurations in another order.  The cold runs deal the configurations
