@@ -7,8 +7,8 @@
 #   run.sh build     configure and build every target in $FUZZ_WORK/build
 #                    (kept between runs: a second run rebuilds what changed)
 #   run.sh TARGET    replay TARGET's stored corpus (tests/fuzz/corpus/TARGET),
-#                    then fuzz new inputs for FUZZ_SECONDS (default 20) on a
-#                    fresh copy of it
+#                    then fuzz new inputs for FUZZ_SECONDS (default 5, a
+#                    whole number of seconds from 1) on a fresh copy of it
 #
 # A crash, leak, sanitizer report or broken invariant fails the test; the
 # input that triggered it is kept in $FUZZ_WORK and printed.  Each target is
@@ -16,13 +16,26 @@
 set -euo pipefail
 SRC=${DMBENCH_SOURCE_DIR:?}
 WORK=${FUZZ_WORK:?}
-SECS=${FUZZ_SECONDS:-20}
+# 5 s of new inputs a target in `make test`: the stored corpus, replayed in
+# full first, is the regression check; longer runs explore
+# (FUZZ_SECONDS=600 ctest -L fuzz, docs/testing.md).
+SECS=${FUZZ_SECONDS:-5}
+[[ $SECS =~ ^[1-9][0-9]*$ ]] ||
+  { echo "FUZZ_SECONDS=$SECS: not a whole number of seconds from 1 (libFuzzer reads 0 as no limit)"; exit 2; }
 mkdir -p "$WORK"
 if [ "${1:-}" = build ]; then
   launcher=()
   [ -n "${FUZZ_LAUNCHER:-}" ] &&
     launcher=(-DCMAKE_C_COMPILER_LAUNCHER="$FUZZ_LAUNCHER" -DCMAKE_CXX_COMPILER_LAUNCHER="$FUZZ_LAUNCHER")
-  cmake -S "$SRC/tests/fuzz" -B "$WORK/build" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
+  # Ninja when it is installed (less CPU than make's dependency scans); a
+  # tree kept from a run with the other generator is removed.
+  gen="Unix Makefiles"
+  command -v ninja > /dev/null && gen=Ninja
+  if [ -f "$WORK/build/CMakeCache.txt" ] && ! grep -qx "CMAKE_GENERATOR:INTERNAL=$gen" "$WORK/build/CMakeCache.txt"; then
+    echo "removing $WORK/build: configured with another generator than $gen"
+    rm -rf "$WORK/build"
+  fi
+  cmake -S "$SRC/tests/fuzz" -B "$WORK/build" -G "$gen" -DCMAKE_C_COMPILER=clang -DCMAKE_CXX_COMPILER=clang++ \
     "${launcher[@]}" > "$WORK/cmake.log" 2>&1 || { cat "$WORK/cmake.log"; exit 1; }
   cmake --build "$WORK/build" -j "$(nproc)" > "$WORK/build.log" 2>&1 || { tail -30 "$WORK/build.log"; exit 1; }
   exit 0
