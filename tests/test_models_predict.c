@@ -232,6 +232,24 @@ static void syn_counts(int w, int h, int d, int steps, double *vs, double *prim,
     *instr = SYN_C0 + SYN_PX * *fs + SYN_STEP * *fs * steps;
 }
 
+/* A pom target never measured: its plan (density 1, WxH, `steps`; free
+ * its params with dm_kv_free), its counts and its true Instructions. */
+static void syn_target(int w, int h, int steps, plan_config *pc, double counts[PREDICT_N_COUNTS], double *instr)
+{
+    char res[32], st[16];
+    snprintf(res, sizeof res, "%dx%d", w, h);
+    snprintf(st, sizeof st, "%d", steps);
+    *pc = (plan_config){ .key = "00000000000000ff" };
+    dm_kv_push(&pc->params, &pc->n_params, "mesh_density", "1");
+    dm_kv_push(&pc->params, &pc->n_params, "resolution", res);
+    dm_kv_push(&pc->params, &pc->n_params, "steps", st);
+    dm_kv_push(&pc->params, &pc->n_params, "technique", "pom");
+    double vs, prim, fs;
+    syn_counts(w, h, 1, steps, &vs, &prim, &fs, instr);
+    const double c[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, NAN, NAN, NAN, NAN};
+    memcpy(counts, c, sizeof c);
+}
+
 static void syn_counter(dm_config_result *c, const char *name, double v)
 {
     dm_counter_result *r = dm_vec_push(&c->counters, &c->n_counters, NULL, sizeof *r);
@@ -305,14 +323,9 @@ static void group_coverage(void **state)
         }
         predict_model m;
         predict_fit(&run, 1, &m);
-        plan_config pc = { .key = "00000000000000ff" };
-        dm_kv_push(&pc.params, &pc.n_params, "mesh_density", "1");
-        dm_kv_push(&pc.params, &pc.n_params, "resolution", "96x64");
-        dm_kv_push(&pc.params, &pc.n_params, "steps", "20");
-        dm_kv_push(&pc.params, &pc.n_params, "technique", "pom");
-        double vs, prim, fs, instr;
-        syn_counts(96, 64, 1, 20, &vs, &prim, &fs, &instr);
-        const double counts[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, NAN, NAN, NAN, NAN};
+        plan_config pc;
+        double counts[PREDICT_N_COUNTS], instr;
+        syn_target(96, 64, 20, &pc, counts, &instr);
         double meas = instr * exp(SU * syn_normal(&rng) + SE * syn_normal(&rng));
         predict_result r;
         dm_str why = {0};
@@ -352,14 +365,9 @@ static void group_two_values(void **state)
             syn_config(&run, k ? 128 : 64, k ? 96 : 64, 1, s, 0.001 * s * (k + 1), 0);
     predict_model m;
     predict_fit(&run, 1, &m);
-    plan_config pc = { .key = "00000000000000ff" };
-    dm_kv_push(&pc.params, &pc.n_params, "mesh_density", "1");
-    dm_kv_push(&pc.params, &pc.n_params, "resolution", "160x120");
-    dm_kv_push(&pc.params, &pc.n_params, "steps", "8");
-    dm_kv_push(&pc.params, &pc.n_params, "technique", "pom");
-    double vs, prim, fs, instr;
-    syn_counts(160, 120, 1, 8, &vs, &prim, &fs, &instr);
-    const double counts[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, NAN, NAN, NAN, NAN};
+    plan_config pc;
+    double counts[PREDICT_N_COUNTS], instr;
+    syn_target(160, 120, 8, &pc, counts, &instr);
     predict_result r;
     dm_str why = {0};
     assert_int_equal(predict_config(&m, &pc, counts, &r, &why), 0);
@@ -371,11 +379,9 @@ static void group_two_values(void **state)
                                      "still vary it (3 values)");
     /* a step count measured, at a resolution measured: leave-one-out */
     predict_result_free(&r);
-    free(pc.params[1].value);
-    pc.params[1].value = dm_xstrdup("128x96");
-    syn_counts(128, 96, 1, 8, &vs, &prim, &fs, &instr);
-    const double c2[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, NAN, NAN, NAN, NAN};
-    assert_int_equal(predict_config(&m, &pc, c2, &r, &why), 0);
+    dm_kv_free(pc.params, pc.n_params);
+    syn_target(128, 96, 8, &pc, counts, &instr);
+    assert_int_equal(predict_config(&m, &pc, counts, &r, &why), 0);
     assert_string_equal(r.calibration, "leave-one-out");
     assert_null(r.calibration_why);
     predict_result_free(&r);
