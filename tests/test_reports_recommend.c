@@ -411,6 +411,16 @@ static void test_default_budget_moves(void **state)
      * digits, nearest √(0.9 × 2.2) = 1.41), where 0.9 ms is the pick */
     assert_true(fabs(r.moved_budget - 1.4 * MS) < 1);
     assert_int_equal(r.moved_pick, 5);
+    recommend_point q[8];                  /* CIs unknown (NaN) or nonsense (a low end of 0, past
+                                              the median): the medians stand for them, no move */
+    for (size_t i = 0; i < 8; i++) {
+        q[i] = p[i];
+        q[i].ci_lo = i % 2 ? NAN : 0;
+        q[i].ci_hi = i % 2 ? NAN : q[i].time * 0.5;
+    }
+    recommend_scene(q, 8, &d, &r);
+    assert_int_equal(r.pick, 4);
+    assert_int_equal(r.budget_moves, 0);
     d.check_budget = 0;                    /* not asked: not checked */
     recommend_scene(p, 8, &d, &r);
     assert_int_equal(r.budget_moves, 0);
