@@ -1,9 +1,10 @@
 # ASan + UBSan build of the unit and GL integration tests (tests/sanitize.sh),
 # unless this build is itself the sanitizer build: one test builds the tree
-# (build/asan, reused by the next run) and six run its tests in shares that
+# (build/asan, reused by the next run) and seven run its tests in shares that
 # ctest can run side by side, each one well under 120 s on two cores.  The
 # shares: the store's unit tests (test_store's allocation-fault loops are
-# the longest unit test), the other unit tests, the quality truth
+# the longest unit test), the models' unit tests (their simulations), the
+# other unit tests, the quality truth
 # (test_techniques_quality, the longest), test_techniques_geometry_gl, the
 # other GL tests of the techniques layer, the other GL tests; each selects
 # by name and the next excludes it, so together they run every unit and GL
@@ -20,7 +21,8 @@ if(NOT DM_SANITIZE)
       ENVIRONMENT "${san_env}" FIXTURES_REQUIRED dm_asan_tree)
   endfunction()
   dm_sanitize_share(unit_store -L ^unit$ -R ^test_store)
-  dm_sanitize_share(unit -L ^unit$ -E ^test_store)
+  dm_sanitize_share(unit_models -L ^unit$ -R ^test_models_)
+  dm_sanitize_share(unit -L ^unit$ -E "^test_(store|models_)")
   dm_sanitize_share(gl_quality -L ^gl$ -R ^test_techniques_quality$)
   dm_sanitize_share(gl_geometry -L ^gl$ -R ^test_techniques_geometry_gl$)
   dm_sanitize_share(gl_techniques -L ^gl$ -R ^test_techniques_ -E "^test_techniques_(quality|geometry_gl)$")
