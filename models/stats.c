@@ -53,6 +53,53 @@ double stats_median(const double *x, size_t n)
     return stats_quantile(x, n, 0.5);
 }
 
+/* Reorders v[0..m) so that v[k] is its k-th smallest value (0-based), no
+ * greater one before it and no smaller one after (Hoare's selection,
+ * median-of-three pivot); returns v[k]. */
+static double stats__select(double *v, size_t m, size_t k)
+{
+    size_t lo = 0, hi = m - 1;
+    while (lo < hi) {
+        double a = v[lo], b = v[lo + (hi - lo) / 2], c = v[hi];
+        double p = a < b ? (b < c ? b : a < c ? c : a) : (a < c ? a : b < c ? c : b);
+        size_t i = lo, j = hi;
+        for (;;) {   /* v[lo..i) <= p, v(j..hi] >= p */
+            while (v[i] < p)
+                i++;
+            while (p < v[j])
+                j--;
+            if (i >= j)
+                break;
+            double t = v[i];
+            v[i++] = v[j];
+            v[j--] = t;
+        }
+        /* v[lo..j] <= p <= v[j+1..hi] (i >= j: the scans met) */
+        if (i == j && k == j)
+            return v[k];
+        if (k <= j && j < hi)
+            hi = j;
+        else if (k > j && j >= lo)
+            lo = j + 1;
+        else
+            break;   /* no progress (not reached with finite values) */
+    }
+    return v[k];
+}
+
+double stats_median_inplace(double *v, size_t m)
+{
+    if (m == 0)
+        return NAN;
+    double hi = stats__select(v, m, m / 2);
+    if (m % 2)
+        return hi;
+    double lo = v[0];   /* the largest of the lower half: v[0..m/2) <= hi */
+    for (size_t i = 1; i < m / 2; i++)
+        lo = v[i] > lo ? v[i] : lo;
+    return (lo + hi) / 2;
+}
+
 /* P(B <= j) for B ~ Binomial(n, 1/2), summed in log space so that large n
  * neither overflows the binomial coefficient nor underflows 2^-n. */
 static double stats__binom_half_cdf(size_t n, size_t j)

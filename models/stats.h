@@ -73,6 +73,12 @@ double stats_bound90(const double *e, size_t n, const char **method);
  * *m gets their count (the array may be NULL when m == 0).  Used by the
  * other statistics modules. */
 double *stats_sorted_finite(const double *x, size_t n, size_t *m);
+/* Median of v[0..m) in place (v is reordered), m > 0 finite values; NaN
+ * when m is 0.  Equal to stats_median of the same values (the middle
+ * value, or the mean of the two middle ones), found by selection in O(m)
+ * rather than by sorting: the drift model takes millions of medians of a
+ * few dozen values (models/drift.c). */
+double stats_median_inplace(double *v, size_t m);
 /* Type-7 quantile of an already sorted array of m > 0 finite values. */
 double stats_quantile_sorted(const double *s, size_t m, double q);
 
