@@ -32,14 +32,6 @@ static int drift__cmp_item(const void *pa, const void *pb)
     return (a > b) - (a < b);
 }
 
-/* Median of the finite v[0..m) (reorders v); NaN when m is 0.  By
- * selection, not sorting: a run's drift fit and its bootstrap take
- * millions of these medians. */
-static double drift__median(double *v, size_t m)
-{
-    return stats_median_inplace(v, m);
-}
-
 double drift_robust_sd(const double *v, size_t n)
 {
     double *t = dm_xcalloc(n + 1, sizeof *t);
@@ -47,10 +39,10 @@ double drift_robust_sd(const double *v, size_t n)
     for (size_t i = 0; i < n; i++)
         if (isfinite(v[i]))
             t[m++] = v[i];
-    double med = drift__median(t, m);
+    double med = stats_median_inplace(t, m);
     for (size_t i = 0; i < m; i++)
         t[i] = fabs(t[i] - med);
-    double sd = m >= 2 ? 1.4826 * drift__median(t, m) : NAN;
+    double sd = m >= 2 ? 1.4826 * stats_median_inplace(t, m) : NAN;
     free(t);
     return sd;
 }
@@ -83,7 +75,7 @@ static double drift__round(const drift__fit *f, size_t r, size_t skip, size_t ne
     for (size_t c = 0; c < f->nc; c++)
         if (c != skip && isfinite(drift__cell(f, c, r)) && isfinite(f->a[c]))
             f->tmp[m++] = drift__cell(f, c, r) - f->a[c];
-    return m >= need ? drift__median(f->tmp, m) : NAN;
+    return m >= need ? stats_median_inplace(f->tmp, m) : NAN;
 }
 
 /* Row level a[c]: the median over rounds of log x - b (0 for a round
@@ -94,7 +86,7 @@ static double drift__level(const drift__fit *f, size_t c)
     for (size_t r = 0; r < f->nr; r++)
         if (isfinite(drift__cell(f, c, r)))
             f->tmp[m++] = drift__cell(f, c, r) - (isfinite(f->b[r]) ? f->b[r] : 0);
-    return drift__median(f->tmp, m);
+    return stats_median_inplace(f->tmp, m);
 }
 
 /* Every configuration's leave-one-out common mode of round r into
@@ -139,7 +131,7 @@ static size_t drift__polish(drift__fit *f)
                 f->tmp[f->nc + used++] = nb;   /* tmp is large enough: see drift__fit_init */
             f->b[r] = nb;
         }
-        double centre = drift__median(f->tmp + f->nc, used);
+        double centre = stats_median_inplace(f->tmp + f->nc, used);
         for (size_t r = 0; r < f->nr; r++)
             if (isfinite(f->b[r]))
                 f->b[r] -= centre;
@@ -205,7 +197,7 @@ static size_t drift__procedure(const double *lx, size_t nc, size_t nr, double *m
         for (size_t r = 0; r < nr; r++)
             if (isfinite(y[r]))
                 y[m++] = y[r];
-        med[c] = drift__median(y, m);
+        med[c] = stats_median_inplace(y, m);
     }
     drift__fit_free(&f);
     return used;
@@ -265,7 +257,7 @@ static double drift__bootstrap(const drift_desc *d, const double *lx, const doub
         for (size_t c = 0; c < nc; c++)
             if (isfinite(med[c]) && isfinite(pm[c]))
                 y[m++] = med[c] - pm[c];
-        shifts[b] = drift__median(y, m);
+        shifts[b] = stats_median_inplace(y, m);
         for (size_t c = 0; c < nc; c++) {
             rep[c * B + b] = med[c] - shifts[b];
             raw[c * B + b] = med[c];
@@ -297,7 +289,7 @@ static void drift__noise(const drift_desc *d, const drift__fit *f, drift_result 
     for (size_t r = 0; d->calib && r < nr; r++)
         if (isfinite(d->calib[r]) && d->calib[r] > 0)
             cal[nlc++] = log(d->calib[r]);
-    double centre = drift__median(cal, nlc);
+    double centre = stats_median_inplace(cal, nlc);
     for (size_t r = 0; r < nr; r++)
         lc[r] = d->calib && isfinite(d->calib[r]) && d->calib[r] > 0 ? log(d->calib[r]) - centre : NAN;
     for (size_t c = 0; c < nc; c++)
@@ -324,7 +316,7 @@ static void drift__noise(const drift_desc *d, const drift__fit *f, drift_result 
         if (isfinite(f->b[r]))
             per[np++] = (double)k;
     }
-    double per_round = drift__median(per, np);
+    double per_round = stats_median_inplace(per, np);
     /* a median of k values of SD s has SD about sqrt(pi/2) s / sqrt(k) */
     out->factor_noise = per_round > 0 ? sqrt(M_PI / 2) * out->loo_noise / sqrt(per_round) : NAN;
     out->helps = out->machine_spread > DRIFT_HELPS * out->factor_noise;
@@ -438,8 +430,8 @@ double drift_half_shift(const double *round_factor, size_t n_rounds)
     double h = NAN;
     if (m >= 2 * DRIFT_MIN_ROUNDS) {
         size_t half = m / 2;
-        double late = drift__median(v + m - half, half);   /* before the earlier half is reordered */
-        h = late - drift__median(v, half);
+        double late = stats_median_inplace(v + m - half, half);   /* before the earlier half is reordered */
+        h = late - stats_median_inplace(v, half);
     }
     free(v);
     return h;

@@ -10,6 +10,7 @@
 #include "core/dm_table.h"
 #include "core/dm_util.h"
 #include "models/drift.h"
+#include "models/stats.h"
 
 /* One scene laid out by round: its configurations (indices into the run)
  * and, for each, the round of each of its WallTime samples. */
@@ -149,12 +150,6 @@ static void precision__counter(const dm_run_result *run, const precision__scene 
     free(x);
 }
 
-static int precision__cmp(const void *a, const void *b)
-{
-    double x = *(const double *)a, y = *(const double *)b;
-    return (x > y) - (x < y);
-}
-
 /* Median of the finite v[0..n) (reorders v); NaN when none. */
 static double precision__median(double *v, size_t n)
 {
@@ -162,10 +157,7 @@ static double precision__median(double *v, size_t n)
     for (size_t i = 0; i < n; i++)
         if (isfinite(v[i]))
             v[m++] = v[i];
-    if (!m)
-        return NAN;
-    qsort(v, m, sizeof *v, precision__cmp);
-    return m % 2 ? v[m / 2] : (v[m / 2 - 1] + v[m / 2]) / 2;
+    return stats_median_inplace(v, m);
 }
 
 /* Which figure predicted the drift better: the one that leaves the least

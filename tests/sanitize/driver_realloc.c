@@ -41,9 +41,10 @@ static int in_driver(uintptr_t ret)
 {
     size_t h = (ret >> 4) % SITES;
     for (size_t k = 0; k < SITES; k++, h = (h + 1) % SITES) {
-        if (sites[h].ret == ret)
+        uintptr_t seen = __atomic_load_n(&sites[h].ret, __ATOMIC_ACQUIRE);   /* after its driver flag */
+        if (seen == ret)
             return sites[h].driver;
-        if (sites[h].ret == 0) {
+        if (seen == 0) {   /* two threads may both fill it: with the same answer */
             Dl_info info;
             const char *f = dladdr((void *)ret, &info) && info.dli_fname ? info.dli_fname : "";
             const char *base = strrchr(f, '/') ? strrchr(f, '/') + 1 : f;
