@@ -172,7 +172,8 @@ static void measure__room(mscene *m, mconf *c)
 /* Test hook for the extra rounds: DMBENCH_TEST_NOISY=<technique> scales
  * the stop counter's samples of that technique by a factor in [0.4, 1.6]
  * drawn from its key and the sample's index, so that one configuration
- * stays far from any target however long it samples. */
+ * stays short of a ±15 % target for tens of samples (it reaches it after
+ * some 30 to 60, depending on the machine's own spread). */
 static void measure__test_noise(const mscene *m, const mconf *c, double *vals)
 {
     const char *noisy = getenv("DMBENCH_TEST_NOISY");
