@@ -179,11 +179,14 @@ static int fit__from_dir(const fit_args *a, dm_fit_result **fits, size_t *n, dm_
     const models_builtin *b = a->formula ? NULL : models_builtin_find(spec.name);
     /* a counter the model is about (fragment-trips: LoopTrips) is not
      * dropped like an axis a technique does not read: refused */
-    if (rc == 0 && b && b->requires && !dm_run_has_counter(&run, b->requires)) {
-        dm_str_printf(err, "%s has no counter '%s', which model %s is about: add %s to measure.counters of "
-                      "its sweep and run it again (docs/counters.md)", a->dir, b->requires, spec.name, b->requires);
-        rc = DM_ERR_NOTFOUND;
-    }
+    char *req = b && b->requires ? dm_xstrdup(b->requires) : NULL, *save = NULL;
+    for (char *t = req ? strtok_r(req, " ", &save) : NULL; rc == 0 && t; t = strtok_r(NULL, " ", &save))
+        if (!dm_run_has_counter(&run, t)) {
+            dm_str_printf(err, "%s has no counter '%s', which model %s is about: add %s to measure.counters of "
+                          "its sweep and run it again (docs/counters.md)", a->dir, t, spec.name, t);
+            rc = DM_ERR_NOTFOUND;
+        }
+    free(req);
     /* a response the run never recorded: nothing to fit, and the sweep
      * option that adds it (a response that is an axis is checked by
      * fitting_run) */

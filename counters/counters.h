@@ -120,11 +120,12 @@ const char *counters_pass_name(counters_session *s, int pass);
  * pass of MinimalShadingTime, docs/counters.md "Stage costs"). */
 int counters_pass_minimal_fs(const counters_session *s, int pass);
 /* The shader storage binding the loop-trips pass binds its counter buffer
- * to (one uint; the instrumented shader adds 1 to it per SIMD group per
- * iteration of the parallax search loop, docs/counters.md "Loop trips"). */
+ * to (two uints; the instrumented shader adds 1 to the first per SIMD
+ * group per iteration of the parallax search loop, docs/counters.md "Loop
+ * trips", and 1 to the second per SIMD group it runs, "Fragment groups"). */
 #define COUNTERS_LOOP_TRIPS_BINDING 7
 /* 1 when, in pass p, the caller must draw the same work with its loop-trip
- * instrumented shader (LoopTrips). */
+ * instrumented shader (LoopTrips, FragmentGroups). */
 int counters_pass_loop_trips(const counters_session *s, int pass);
 /* Untimed frames the caller draws in pass p after counters_pass_begin and
  * before the pass's sample: 1 in the geometry and raster passes, whose

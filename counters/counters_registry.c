@@ -88,6 +88,10 @@ static const counters__def counters__table[] = {
       "run them: per group (subgroup) as many as its slowest active fragment needs (own pass with an "
       "instrumented shader; 0 without the loop; docs/counters.md, Loop trips)",
       ITEMS, U64, COUNTERS_BACKEND_SHADER_COUNT, 1, NULL, F_NO}, COUNTERS__PASS_LOOPS, 0, COUNTERS__REQ_BALLOT},
+    {{"FragmentGroups", "Fragment", "SIMD groups of fragments the fragment shader runs: per triangle, each "
+      "group of a 4x4 block (llvmpipe: 4x2 fragments at 256 bits) that holds a covered fragment (own pass "
+      "with an instrumented shader, the LoopTrips pass; docs/counters.md, Fragment groups)",
+      ITEMS, U64, COUNTERS_BACKEND_SHADER_COUNT, 1, NULL, F_NO}, COUNTERS__PASS_LOOPS, 0, COUNTERS__REQ_BALLOT},
     /* ---- Compute ---- */
     {{"ComputeInvocations", "Compute", "Compute shader invocations",
       ITEMS, U64, B_PS, 1, NULL, F_NO}, P_ST, GL_COMPUTE_SHADER_INVOCATIONS_ARB, COUNTERS__REQ_COMPUTE},

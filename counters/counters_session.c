@@ -4,8 +4,9 @@
  * the same sample ids -> ENDED (queries read, results available).  The plan
  * has at most one pass per kind (timing, geometry, statistics), in that
  * order, and only kinds with an available enabled counter.  The loop-trips
- * pass binds a one-uint buffer at COUNTERS_LOOP_TRIPS_BINDING around each
- * sample, zeroed at its start and read at its end.
+ * pass binds a two-uint buffer (LoopTrips, FragmentGroups) at
+ * COUNTERS_LOOP_TRIPS_BINDING around each sample, zeroed at its start and
+ * read at its end.
  */
 #include "counters_internal.h"
 #include "counters_expr.h"
@@ -314,11 +315,11 @@ int counters_sample_begin(counters_session *s, uint32_t sample_id)
         return rc;
     s->state = S_IN_SAMPLE;
     if (s->plan[s->pass] == COUNTERS__PASS_LOOPS) {
-        static const GLuint zero = 0;
+        static const GLuint zero[2] = {0, 0};
         if (!s->trips_buf)
             glGenBuffers(1, &s->trips_buf);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->trips_buf);
-        glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, &zero, GL_DYNAMIC_READ);
+        glBufferData(GL_SHADER_STORAGE_BUFFER, sizeof zero, zero, GL_DYNAMIC_READ);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, COUNTERS_LOOP_TRIPS_BINDING, s->trips_buf);
     }
@@ -360,13 +361,14 @@ int counters_sample_end(counters_session *s)
     } else if (s->plan[s->pass] == COUNTERS__PASS_RASTER) {
         sess__store(s, smp, "MinimalShadingTime", (double)wall);
     } else if (s->plan[s->pass] == COUNTERS__PASS_LOOPS) {
-        GLuint trips = 0;
+        GLuint trips[2] = {0, 0};
         glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, s->trips_buf);
-        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof trips, &trips);
+        glGetBufferSubData(GL_SHADER_STORAGE_BUFFER, 0, sizeof trips, trips);
         glBindBuffer(GL_SHADER_STORAGE_BUFFER, 0);
         glBindBufferBase(GL_SHADER_STORAGE_BUFFER, COUNTERS_LOOP_TRIPS_BINDING, 0);
-        sess__store(s, smp, "LoopTrips", (double)trips);
+        sess__store(s, smp, "LoopTrips", (double)trips[0]);
+        sess__store(s, smp, "FragmentGroups", (double)trips[1]);
     }
     s->cursor++;
     s->state = S_IN_PASS;

@@ -18,9 +18,10 @@ typedef struct models_builtin {
     const fit_bound *bounds;
     size_t n_bounds;
     const char *group_by;          /* default --group-by (one key), NULL: one fit */
-    const char *requires;          /* a counter the model is about, which a run must have
-                                      (its terms are not dropped as a technique's unread
-                                      axis would be); NULL: none beyond the response */
+    const char *requires;          /* the counters the model is about, separated by spaces,
+                                      which a run must have (their terms are not dropped as
+                                      a technique's unread axis would be); NULL: none beyond
+                                      the response */
 } models_builtin;
 
 size_t models_builtin_count(void);

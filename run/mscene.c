@@ -54,6 +54,14 @@ static void mscene__classify(mscene *m)
     }
 }
 
+/* 1 when counter `name` is counted by the instrumented shader of the
+ * loop-trips pass (LoopTrips, FragmentGroups). */
+static int mscene__shader_counted(const char *name)
+{
+    const counters_info *ci = counters_find(name);
+    return ci && ci->backend == COUNTERS_BACKEND_SHADER_COUNT;
+}
+
 void mscene_fail(mconf *c, const char *reason)
 {
     if (c->failed)
@@ -277,7 +285,7 @@ int mscene_session(mscene *m, mconf *c, const char **names, size_t n, int frames
         values[i] = r == 0 ? v / frames : NAN;
         if (r != 0 && reasons && !reasons[i])
             reasons[i] = dm_xstrdup(counters_last_error(s));
-        if (r == 0 && strcmp(names[i], "LoopTrips") == 0 && !c->item_trips.id) {
+        if (r == 0 && mscene__shader_counted(names[i]) && !c->item_trips.id) {
             values[i] = NAN;   /* the pass drew nothing: no count, not 0 */
             if (reasons && !reasons[i])
                 reasons[i] = dm_xstrdup("the loop-counting variant of the program could not be built (see log)");
@@ -351,19 +359,20 @@ void mscene_prepare_minimal(mscene *m, mconf *c)
 _Static_assert(RENDER_LOOP_TRIPS_BINDING == COUNTERS_LOOP_TRIPS_BINDING,
                "the loop-trips shader and the counters library use one binding");
 
-/* The LoopTrips pass's item, when names[0..n) ask for LoopTrips: the
- * configuration with its search loop counting trips, its first frame (the
- * JIT) drawn.  Left 0 when it cannot be built (the log says why): the pass
- * then draws nothing and mscene_session makes LoopTrips unavailable. */
+/* The LoopTrips pass's item, when names[0..n) ask for LoopTrips or
+ * FragmentGroups: the configuration with its shader counting its SIMD
+ * groups and their trips of the search loop, its first frame (the JIT)
+ * drawn.  Left 0 when it cannot be built (the log says why): the pass then
+ * draws nothing and mscene_session makes both unavailable. */
 void mscene_prepare_trips(mscene *m, mconf *c, const char *const *names, size_t n)
 {
     int wanted = 0;
     for (size_t i = 0; i < n; i++)
-        wanted |= strcmp(names[i], "LoopTrips") == 0;
+        wanted |= mscene__shader_counted(names[i]);
     if (!wanted)
         return;
     if (mscene__prepare_view(m, c, RENDER_DEBUG_LOOP_TRIPS, 1, &c->item_trips) != 0)
-        dm_str_cat(&c->log, "LoopTrips: the counting shader cannot be built (above)\n");
+        dm_str_cat(&c->log, "LoopTrips, FragmentGroups: the counting shader cannot be built (above)\n");
 }
 
 char *mscene_img_path(const measure_job *job, const char *name)

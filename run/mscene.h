@@ -118,7 +118,7 @@ const char *mscene_isolation_problem(const render_item_info *info);
 /* The raster pass's item (MinimalShadingTime) when the sweep asks for it;
  * else c->min_why says why there is none. */
 void mscene_prepare_minimal(mscene *m, mconf *c);
-/* The LoopTrips pass's item when names[0..n) ask for LoopTrips. */
+/* The LoopTrips pass's item when names[0..n) ask for LoopTrips or FragmentGroups. */
 void mscene_prepare_trips(mscene *m, mconf *c, const char *const *names, size_t n);
 
 /* The path of image `name` of the job's run (run_dir/img/NAME; caller frees). */

@@ -14,15 +14,28 @@
 const char *const predict_counts[PREDICT_N_COUNTS] = {"VSInvocations", "TESInvocations",
                                                       "ClippingOutputPrimitives", "FSInvocations", "TCSPatches",
                                                       "SamplesPassed", "LoopTrips",
-                                                      "ClippingInputPrimitives", "TessWalkCalls"};
+                                                      "ClippingInputPrimitives", "TessWalkCalls", "FragmentGroups"};
 const char *const predict_needed[PREDICT_N_NEEDED] = {"Instructions", "VSInvocations", "TESInvocations",
                                                       "ClippingOutputPrimitives", "FSInvocations"};
 static const char *const predict__stages[3] = {"GeometryInstructions", "RasterInstructions",
                                                "FragmentInstructions"};
 /* each stage counter's own model (models/catalog.c); fragment shading
- * from the search loop's trips when the runs counted them */
+ * from the SIMD groups and the search loop's trips when the runs counted
+ * both, else from the trips when they counted those (predict__fragment_model) */
 static const char *const predict__stage_models[3] = {"geometry-instructions", "raster-instructions",
                                                      "fragment-instructions"};
+
+/* The model of stage st for runs u: fragment shading is priced by
+ * fragment-groups when u has FragmentGroups and LoopTrips (per SIMD group
+ * run, as llvmpipe runs the shader, not per block a triangle touches:
+ * docs/models.md, "Fragment groups"), by fragment-trips when it has
+ * LoopTrips only. */
+static const char *predict__stage_model(const dm_run_result *u, int st)
+{
+    if (st != 2 || !dm_run_has_counter(u, "LoopTrips"))
+        return predict__stage_models[st];
+    return dm_run_has_counter(u, "FragmentGroups") ? "fragment-groups" : "fragment-trips";
+}
 
 /* each stage's time from its instructions (models/catalog.c) */
 static const char *const predict__time_models[3] = {"geometry-time", "raster-time", "fragment-time"};
@@ -330,7 +343,7 @@ static void predict__fit_core(predict_model *m)
     predict__fit(u, "stage-instructions", "Instructions", NULL, 0, &m->instr, &m->n_instr);
     for (int st = 0; st < 3; st++)
         if (dm_run_has_counter(u, predict__stages[st]) && dm_run_has_counter(u, "SamplesPassed"))
-            predict__fit(u, st == 2 && dm_run_has_counter(u, "LoopTrips") ? "fragment-trips" : predict__stage_models[st],
+            predict__fit(u, predict__stage_model(u, st),
                          predict__stages[st], NULL, 0, &m->stage[st], &m->n_stage[st]);
     predict__heldout(m);
     if (dm_run_has_counter(u, "WallTime"))

@@ -25,7 +25,7 @@
 
 /* The invocation counts a prediction reads, in this order (inproc_counts
  * or the pilot frame measure them for the configurations to predict). */
-#define PREDICT_N_COUNTS 9
+#define PREDICT_N_COUNTS 10
 extern const char *const predict_counts[PREDICT_N_COUNTS];
 
 /* How far the machine's own speed may move a frame time between two runs

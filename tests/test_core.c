@@ -118,7 +118,7 @@ static void test_write_file_disk(void **state)
     assert_int_equal(dm_write_file("/nonexistent/dir/x", "a", 1), DM_ERR_IO);
     assert_int_equal(errno, ENOENT);
     unlink(f);
-    rmdir(dir);
+    test_rm_rf(dir);
     free(buf);
     free(f);
 }
@@ -153,7 +153,7 @@ static void test_input_file(void **state)
     unlink(ln);
     unlink(zero);
     unlink(fifo);
-    rmdir(dir);
+    test_rm_rf(dir);
     free(f);
     free(ln);
     free(zero);

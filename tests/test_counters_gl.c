@@ -395,20 +395,22 @@ static void test_plan_describe(void **state)
         "unavailable: VSInvocations (driver lacks GL_ARB_pipeline_statistics_query)\n");
     dm_str_free(&out);
     counters_context_destroy(ctx);
-    /* LoopTrips: a pass of its own after the statistics, unavailable
+    /* LoopTrips and FragmentGroups: one pass of their own after the
+     * statistics (one instrumented shader counts both), unavailable
      * without subgroup election */
-    const char *t[] = {"WallTime", "FSInvocations", "LoopTrips"};
-    assert_int_equal(counters_plan_describe(F.ctx, t, 3, &out), 0);
+    const char *t[] = {"WallTime", "FSInvocations", "LoopTrips", "FragmentGroups"};
+    assert_int_equal(counters_plan_describe(F.ctx, t, 4, &out), 0);
     assert_string_equal(dm_str_get(&out),
         "3 passes\n"
         "pass 0 timing: WallTime\n"
         "pass 1 statistics: FSInvocations\n"
-        "pass 2 loop trips: LoopTrips\n");
+        "pass 2 loop trips: LoopTrips, FragmentGroups\n");
     dm_str_free(&out);
     counters_context_create(&ctx);
     counters_context_hide_extension(ctx, "GL_ARB_shader_ballot");
-    assert_int_equal(counters_plan_describe(ctx, t, 3, &out), 0);
+    assert_int_equal(counters_plan_describe(ctx, t, 4, &out), 0);
     assert_non_null(strstr(dm_str_get(&out), "unavailable: LoopTrips (driver lacks GL_ARB_shader_ballot"));
+    assert_non_null(strstr(dm_str_get(&out), ", FragmentGroups (driver lacks GL_ARB_shader_ballot"));
     dm_str_free(&out);
     counters_context_destroy(ctx);
 }

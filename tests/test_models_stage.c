@@ -31,6 +31,10 @@ enum { F_C0 = 5000, F_FS = 100, F_PX = 60, F_STEP = 12, F_PSTEP = 8 };
 /* instructions per trip of the search loop: the loop's part of the
  * fragment counter above is F_TRIP * LoopTrips */
 enum { F_TRIP = 4 };
+/* instructions per SIMD group run: the covered pixels' part of the
+ * fragment counter above is F_GRP * FragmentGroups (a group per 8 covered
+ * pixels) */
+enum { F_GRP = 480 };
 #define T_A 20000.0
 #define T_GEO 0.3
 #define T_RASTER 0.07
@@ -95,6 +99,7 @@ static void synthetic_run(dm_run_result *run)
                 counter(c, "RasterInstructions", raster);
                 counter(c, "FragmentInstructions", F_C0 + F_FS * fs + F_PX * sp + F_STEP * fs * s + F_PSTEP * sp * s);
                 counter(c, "LoopTrips", (F_STEP * fs * s + F_PSTEP * sp * s) / F_TRIP);
+                counter(c, "FragmentGroups", F_PX * sp / F_GRP);
                 /* ns: a time per instruction of each stage, and the timed
                  * isolation passes (geometry, then with the minimal shader)
                  * with the two stage times derived from them */
@@ -455,8 +460,9 @@ static void test_tess_walk_measured(void **state)
     dm_run_free(&target);
 }
 
-/* The three per-stage models (geometry-, raster-, fragment-instructions)
- * recover pom's known stage costs, each from its own stage counter, and
+/* The three per-stage models (geometry-, raster-, fragment-instructions,
+ * and fragment-trips and fragment-groups for the fragment stage) recover
+ * pom's known stage costs, each from its own stage counter, and
  * time-from-stages its known time per instruction of each stage, as do
  * geometry-, raster- and fragment-time from each stage's timed pass. */
 static void test_stage_models_recover(void **state)
@@ -475,6 +481,8 @@ static void test_stage_models_recover(void **state)
         { "fragment-instructions", "FragmentInstructions", {"c0", "c_fs", "c_px", "c_step", "c_pstep"},
           {F_C0, F_FS, F_PX, F_STEP, F_PSTEP} },
         { "fragment-trips", "FragmentInstructions", {"c0", "c_fs", "c_px", "c_trip"}, {F_C0, F_FS, F_PX, F_TRIP} },
+        { "fragment-groups", "FragmentInstructions", {"c0", "c_grp", "c_fs", "c_trip"},
+          {F_C0, F_GRP, F_FS, F_TRIP} },
         { "time-from-stages", "WallTime", {"a", "b_geo", "b_raster", "b_frag"}, {T_A, T_GEO, T_RASTER, T_FRAG} },
         { "geometry-time", "GeometryTime", {"a", "b"}, {T_GA, T_GEO} },
         { "raster-time", "SetupRasterTime", {"b"}, {T_RASTER} },
@@ -540,6 +548,10 @@ static void test_heldout_stage_sum(void **state)
             assert_true(m.instr_q < 1e-9);
         }
         assert_null(predict_heldout_of(&m, "tess-displacement lod=uniform"));   /* no stage counters */
+        /* the runs have FragmentGroups and LoopTrips: fragment shading by
+         * fragment-groups */
+        assert_true(m.n_stage[2] > 0);
+        assert_string_equal(m.stage[2][0].model, "fragment-groups");
         predict_free(&m);
         odd->value *= 1.1;
     }
@@ -600,7 +612,7 @@ static void test_predict_stage_times(void **state)
     const double vs = 400.0 * d + 100, prim = 300.0 * d * d, fs = px * 0.5 + 2.0 * sqrt(px) * d;
     const double sp = px * 0.4 - 200.0 * d;
     const double counts[PREDICT_N_COUNTS] = {vs, 0, prim, fs, NAN, sp, (F_STEP * fs * st + F_PSTEP * sp * st) / F_TRIP,
-                                              prim, NAN};
+                                              prim, NAN, F_PX * sp / F_GRP};
     const double geo = G_C0 + G_VS * vs + G_PRIM * prim;
     const double raster = R_FB * px + R_FS * fs + R_EDGE * (fs - sp) + R_PRIM * prim;
     const double frag = F_C0 + F_FS * fs + F_PX * sp + F_STEP * fs * st + F_PSTEP * sp * st;

@@ -82,7 +82,7 @@ static void test_json_round_trip(void **state)
     unlink(p2);
     free(p1);
     free(p2);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* A configuration on a camera path: results.json's "path" object reads back
@@ -188,7 +188,7 @@ static void test_json_path(void **state)
     free(p2);
     free(csv);
     free(md);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 static void test_json_read_errors(void **state)
@@ -207,7 +207,7 @@ static void test_json_read_errors(void **state)
     unlink(p);
     assert_int_equal(report_read_json(p, &r, err, sizeof err), DM_ERR_IO);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* Minimal RFC 4180 reader: returns the number of records, and checks every
@@ -275,7 +275,7 @@ static void test_csv_shape(void **state)
     dm_run_free(&run);
     unlink(p);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* The fixture with WallTime drift-corrected: pom (unlit: never the pick
@@ -505,7 +505,7 @@ static void test_corrected_figures(void **state)
         unlink(files[i]);
         free((char *)files[i]);
     }
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 static void test_markdown(void **state)
@@ -538,7 +538,7 @@ static void test_markdown(void **state)
     dm_run_free(&run);
     unlink(p);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* Every src="..." and href="..." in the page is an embedded PNG
@@ -624,7 +624,7 @@ static void test_html_flip_maps(void **state)
     fixture_images_remove(dir);
     unlink(p);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 static void test_html_escaping_and_images(void **state)
@@ -708,7 +708,7 @@ static void test_html_escaping_and_images(void **state)
     fixture_images_remove(dir);
     unlink(p);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 static void test_write_all(void **state)
@@ -731,7 +731,7 @@ static void test_write_all(void **state)
     assert_non_null(strstr(err, "results.json"));
     free(missing);
     dm_run_free(&run);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* A tessellation sweep: L = 1, 2, 4, 8 at 1, 2, 4, 8 ms with errors
@@ -829,7 +829,7 @@ static void test_html_charts_and_front(void **state)
     dm_run_free(&run);
     unlink(p);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* Four configurations at 1, 2, 3, 4 ms whose fronts differ by metric:
@@ -1015,7 +1015,7 @@ static void test_metric_in_files(void **state)
     unlink(html);
     free(md);
     free(html);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* n configurations "pom steps=i", key 00000000000000eI (I in hex), whose
@@ -1121,7 +1121,7 @@ static void test_noisy_warning(void **state)
     unlink(html);
     free(md);
     free(html);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* Header warnings about images and failures: exactly the failed one, the
@@ -1167,7 +1167,7 @@ static void test_quality_warnings(void **state)
     unlink(html);
     free(md);
     free(html);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* The chart titles of an HTML page in order: every chart is one
@@ -1386,7 +1386,7 @@ static void test_html_path(void **state)
     free(md);
     dm_run_free(&run);
     unlink(path);
-    rmdir(dir);
+    test_rm_rf(dir);
     free(path);
 }
 
@@ -1497,7 +1497,7 @@ static void test_html_chart_set(void **state)
     dm_run_free(&run);
     unlink(p);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* 30 configurations with a pipeline-linear fit: the breakdown shows the
@@ -1547,7 +1547,7 @@ static void test_html_breakdown_fit_and_cap(void **state)
     dm_run_free(&run);
     unlink(p);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* With the stage counters and a time-from-stages fit, the breakdown is that
@@ -1613,7 +1613,7 @@ static void test_html_breakdown_time_from_stages(void **state)
     dm_run_free(&run);
     unlink(p);
     free(p);
-    rmdir(dir);
+    test_rm_rf(dir);
 }
 
 /* results.json "warnings" is the report's list word for word (summary.md's

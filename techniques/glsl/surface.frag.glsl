@@ -63,6 +63,15 @@ vec2 g_dx, g_dy;   // UV derivatives taken once in uniform control flow
 
 float height_at(vec2 uv) { return map_sample(t_height, uv, g_dx, g_dy).r; }
 
+#ifdef COUNT_LOOP_TRIPS
+// LoopTrips (docs/counters.md): the first active fragment of each SIMD
+// group adds one per iteration, so a group counts as many trips as its
+// slowest fragment runs; FragmentGroups: it adds one as main() starts, so
+// each group the driver runs counts once.  Only in the counting variant of
+// the program.
+layout(std430, binding = COUNT_LOOP_TRIPS) buffer LoopTrips { uint loop_trips; uint frag_groups; };
+#endif
+
 #if SURF_PARALLAX >= 2
 int search_steps(vec3 v)
 {
@@ -81,12 +90,6 @@ int search_steps(vec3 v)
 // uv + (1 - SURFACE_H0)·span and leaves its bottom at uv - SURFACE_H0·span,
 // span = V.xy/V.z·scale.  The search starts at the entry and walks layers
 // of depth 1/n toward the exit; returns the UV where the ray meets the field.
-#ifdef COUNT_LOOP_TRIPS
-// LoopTrips (docs/counters.md): the first active fragment of each SIMD
-// group adds one per iteration, so a group counts as many trips as its
-// slowest fragment runs.  Only in the counting variant of the program.
-layout(std430, binding = COUNT_LOOP_TRIPS) buffer LoopTrips { uint loop_trips; };
-#endif
 vec2 parallax_search(vec2 uv, vec3 v)
 {
     int n = search_steps(v);
@@ -233,6 +236,10 @@ vec3 debug_world_normal(vec3 n)
 
 void main()
 {
+#ifdef COUNT_LOOP_TRIPS
+    if (readFirstInvocationARB(gl_SubGroupInvocationARB) == gl_SubGroupInvocationARB)
+        atomicAdd(frag_groups, 1u);
+#endif
     g_dx = dFdx(vi.uv);
     g_dy = dFdy(vi.uv);
     vec3 v = normalize(vi.view_ts);

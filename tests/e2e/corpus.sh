@@ -225,6 +225,8 @@ hcase results/fit-no-response 2 "has no counter 'FragmentInstructions' (the resp
   "$BIN" fit "$OUT/ok/latest" --model fragment-instructions
 hcase results/fit-no-required 2 "has no counter 'LoopTrips', which model fragment-trips is about: add LoopTrips to measure.counters" -- \
   "$BIN" fit "$OUT/ok/latest" --model fragment-trips
+hcase results/fit-no-groups 2 "has no counter 'FragmentGroups', which model fragment-groups is about: add FragmentGroups to measure.counters" -- \
+  "$BIN" fit "$OUT/ok/latest" --model fragment-groups
 
 # ---- CSV tables (fit --data) ----
 hcase csv/wide 0 "" -- "$BIN" fit --data "$G/wide.csv" --formula "a*c1"

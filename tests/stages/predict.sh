@@ -183,7 +183,7 @@ expect_refused 2 "runs of another machine fingerprint: .*: cpu (run Another CPU"
 if "$BIN" predict "$SRC/tests/stages/predict_new.yaml" --from "$OUT/fit/latest" --allow-env-mismatch >/dev/null 2>&1
 then pass=$((pass+1)); else fail=$((fail+1)); echo "FAIL: --allow-env-mismatch was refused"; fi
 # a run without the stage model's counters (one configuration, no Valgrind)
-sed -e 's/counters: \[.*/counters: [WallTime]/' -e '/^             SamplesPassed, LoopTrips, Instructions/d' \
+sed -e 's/counters: \[.*/counters: [WallTime]/' -e '/^             SamplesPassed, LoopTrips, FragmentGroups, Instructions/d' \
     -e 's/technique: \[normal, pom\]/technique: [normal]/' -e 's/resolution: \[.*/resolution: ["64x64"]/' \
     "$SRC/tests/stages/predict_fit.yaml" > "$OUT/nocount.yaml"
 "$BIN" run "$OUT/nocount.yaml" --out "$OUT/nocount" --seed 1 --quiet || exit 1
