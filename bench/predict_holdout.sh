@@ -12,7 +12,9 @@
 # value lies in the prediction interval, the way predict chose, and per
 # pair and over all: the worst errors and the interval coverage (as
 # measured, and with each pair's common mode -- the whole target run
-# against the fit run -- divided out).
+# against the fit run -- divided out), and the WallTime targets in the
+# fitted range within 15 %, over it, or too noisy to judge (the measured
+# value's own CI wider than that).
 # Usage: bench/predict_holdout.sh [PAIR...]   (default: every pair; DMBENCH: the binary)
 set -euo pipefail
 here=$(cd "$(dirname "$0")/.." && pwd)
@@ -57,7 +59,23 @@ for j in news:
             meas.setdefault(c["key"], []).append(c)
 rows, worst_i, worst_w, cov, tot, ratios, ivs = [], 0.0, 0.0, [0, 0], [0, 0], [], []
 unav, calib = [0, 0], {}
-print(f"| configuration | Instructions error | in | WallTime predicted / measured ms | error | in | way |")
+# The 15 % target on WallTime (issue 49) is judged where the target's
+# stage parts lie in the fitted range, and only where the measured value
+# can tell: a target whose own 95 % CI, in any of its runs, is wider than
+# +-15 % (llvmpipe's small frames on two cores can be bimodal: 3.5 and 5.2
+# ms in one run) is "noisy", said so, and counted apart.
+TARGET = 15.0
+judged = {"within": 0, "over": 0, "noisy": 0}
+def meas_ci(cs):
+    """The widest relative half-width of the measured WallTime's 95 % CI over the runs."""
+    w = 0.0
+    for c in cs:
+        x = c["counters"].get("WallTime", {})
+        ci, m = x.get("ci95"), x.get("median")
+        if isinstance(ci, list) and m:
+            w = max(w, 100 * (ci[1] - ci[0]) / 2 / m)
+    return w
+print(f"| configuration | Instructions error | in | WallTime predicted / measured ms (CI) | error | in | way |")
 print("|---|---|---|---|---|---|---|")
 for p in pred:
     cs = meas.get(p["key"])
@@ -81,7 +99,13 @@ for p in pred:
         if isinstance(wt.get("interval"), list):
             ivs.append((wt["interval"], mw))
         wid = f" ×/÷{wt['interval'][1] / wt['value']:.2f}" if isinstance(wt.get("interval"), list) else ""
-        wtext = f"{wt['value'] / 1e6:.2f} / {mw / 1e6:.2f} | {ew:+.1f} % | {iw}{wid}"
+        mci = meas_ci(cs)
+        verdict = ""
+        if not p.get("extrapolation"):
+            v = "noisy" if mci > TARGET else "within" if abs(ew) <= TARGET else "over"
+            judged[v] += 1
+            verdict = {"within": "", "over": " (over 15 %)", "noisy": " (too noisy to judge)"}[v]
+        wtext = f"{wt['value'] / 1e6:.2f} / {mw / 1e6:.2f} (±{mci:.0f} %) | {ew:+.1f} %{verdict} | {iw}{wid}"
         way = wt.get("model", "") + (" (override)" if wt.get("model_override") else "")
     else:
         iw, wtext, way = "-", f"unavailable / {mw / 1e6:.2f} | - | -", "unavailable: " + wt.get("unavailable", "")
@@ -98,6 +122,9 @@ print(f"pair {pair}: worst Instructions {worst_i:.2f} %, worst WallTime {worst_w
       f"intervals holding the measured value: Instructions {cov[0]}/{tot[0]}, WallTime {cov[1]}/{tot[1]}"
       f" (unavailable: Instructions {unav[0]}, WallTime {unav[1]}); calibration: "
       + ", ".join(f"{k} {v}" for k, v in sorted(calib.items())))
+print(f"pair {pair}: WallTime in the fitted range: {judged['within']} within {TARGET:.0f} %, "
+      f"{judged['over']} over, {judged['noisy']} too noisy to judge (a measured 95 % CI wider than "
+      f"±{TARGET:.0f} %)")
 # The common mode: the median configuration's measured over predicted
 # WallTime.  A whole run moves against another with the machine's load
 # (every configuration alike); the errors with it divided out are the
@@ -114,7 +141,8 @@ if ratios:
           f"with it divided out the worst WallTime error is {rest:.1f} % and the intervals hold "
           f"{cov_cm}/{len(ivs)}")
 with open(summary, "a") as f:
-    f.write(f"{pair} {worst_i} {worst_w} {cov[0]} {tot[0]} {cov[1]} {tot[1]} {cov_cm} {tot[1]}\n")
+    f.write(f"{pair} {worst_i} {worst_w} {cov[0]} {tot[0]} {cov[1]} {tot[1]} {cov_cm} {tot[1]} "
+            f"{judged['within']} {judged['over']} {judged['noisy']}\n")
 PY
 done
 python3 - "$summary" <<'PY'
@@ -132,5 +160,7 @@ print(f"\nall pairs: worst Instructions {max(float(r[1]) for r in rows):.2f} %, 
       f"WallTime with each pair's common mode divided out {cov(7)}")
 print(f"interval coverage over all target configurations of the bench: {cov_all(3, 4, 5, 6)}; "
       f"with the common mode divided out {cov_all(3, 4, 7, 8)}")
+w, o, n = (sum(int(r[i]) for r in rows) for i in (9, 10, 11))
+print(f"WallTime in the fitted range (target: within 15 %): {w} within, {o} over, {n} too noisy to judge")
 PY
 rm -f "$summary"

@@ -21,7 +21,7 @@ static const char *const predict__stages[3] = {"GeometryInstructions", "RasterIn
                                                "FragmentInstructions"};
 /* each stage counter's own model (models/catalog.c); fragment shading
  * from the SIMD groups and the search loop's trips when the runs counted
- * both, else from the trips when they counted those (predict__fragment_model) */
+ * both, else from the trips when they counted those (predict__stage_model) */
 static const char *const predict__stage_models[3] = {"geometry-instructions", "raster-instructions",
                                                      "fragment-instructions"};
 
