@@ -322,6 +322,10 @@ static void cg__line(cg_state *g, char *line)
     if (sscanf(line, "B %16s", key) == 1 && cg__index(g, key) >= 0) {
         snprintf(g->current, sizeof g->current, "%s", key);
         g->tried[cg__index(g, key)] = 1;
+    } else if (sscanf(line, "W %16s", key) == 1 && cg__index(g, key) >= 0) {
+        /* preparing it for its batch (run/count_child.c): a crash now fails
+         * it alone, and a new child takes the batch's others, not counted yet */
+        snprintf(g->current, sizeof g->current, "%s", key);
     } else if (sscanf(line, "S %16s %15s %n", key, status, &off) >= 2 && cg__index(g, key) >= 0) {
         int i = cg__index(g, key);
         if (strcmp(status, "ok") != 0 && !g->out[i].stage_reason)

@@ -8,11 +8,11 @@
  * dmbench __instructions SWEEP HASH [--source PATH HASH]... KEY...` with
  * LP_NUM_THREADS=0 (the rasteriser runs on the calling thread, so its work
  * is inside the counted window).  The child (run/count_child.h) prepares
- * and warms up each configuration uninstrumented (Valgrind runs that code
- * without callgrind's per-instruction calls: the shaders' JIT compilation
- * from empty caches was 90-95 % of a child's time when it was
- * instrumented), then switches instrumentation on for the counted window
- * only and collection on around CALLGRIND_SAMPLES samples of
+ * and warms up a batch of configurations uninstrumented (Valgrind runs
+ * that code without callgrind's per-instruction calls: the shaders' JIT
+ * compilation from empty caches was 90-95 % of a child's time when it was
+ * instrumented), then switches instrumentation on for the batch's counted
+ * windows and collection on around CALLGRIND_SAMPLES samples of
  * CALLGRIND_FRAMES frames ended by glFinish, and dumps each sample under
  * the name "KEY.S"; it gets the configurations in the --seed's order.  The parent parses the dump files ("desc: Trigger: Client
  * Request: KEY.S", "totals: N") and leaves out the instructions of the C

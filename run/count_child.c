@@ -18,54 +18,98 @@
 #include "run/path_timing.h"
 #include "techniques/user_technique.h"
 
-/* ---- counting one configuration ------------------------------------------ */
+/* ---- counting a batch of configurations ----------------------------------- */
 
-/* The counted window of one configuration: collection switched on around
- * its counted frames (callgrind_path_frames: CALLGRIND_FRAMES from frame
- * 0, or a camera path's frames, every k-th), each ended by a glFinish (so
- * the rasteriser's work, on the calling thread with LP_NUM_THREADS=0, is
- * inside), then one dump per sample named "KEY.S" (window CALLGRIND_FULL),
- * "KEY.g.S" (the same frames with GL_RASTERIZER_DISCARD), "KEY.r.S"
- * (c->item is then the minimal-fragment-shader item) or "KEY.m.S" (that
- * item with discard).  Setup, JIT compilation and the warm-up (`warm`
- * frames, or each counted frame of a path once) happen before, with
- * instrumentation and collection off: Valgrind runs them without
- * callgrind's per-instruction calls, and only the samples' frames are
- * instrumented.  Every sample is kept: the parent leaves the allocator's
- * instructions out, and what remains is equal from the first sample on
- * (docs/counters.md, "Repeatability").  Returns the nanoseconds of the
- * warm-up in *warm_ns and of the samples in *count_ns
- * (bench/instructions_split.sh). */
-static void count_child__counted_samples(mscene *m, mconf *c, callgrind_window w, int warm, int samples,
-                                         int64_t *warm_ns, int64_t *count_ns)
+/* The child counts its configurations in batches of at most
+ * COUNT_CHILD__BATCH, in two phases.  Phase one prepares each
+ * configuration of the batch in a GL context of its own (fresh, so no
+ * configuration sees what another left in a context) and draws its warm-up
+ * frames for every window it will count, with callgrind's instrumentation
+ * off: the maps, meshes, programs and llvmpipe's JIT of every shader
+ * variant happen here.  Phase two switches instrumentation on once, counts
+ * every window of every configuration of the batch (each context made
+ * current again), and switches it off.  Each switch discards every
+ * translation Valgrind has made, so the driver's and LLVM's code is
+ * translated again after it: switching once per batch instead of around
+ * each window of each configuration made a child's warm-ups 2-10x shorter
+ * (docs/counters.md, "In batches"). */
+#define COUNT_CHILD__BATCH 8
+/* A configuration whose mesh has at least this many triangles is heavy:
+ * its frame is long (the reference mesh's, about 2^20 triangles, took
+ * 2.3 s uninstrumented under Valgrind and 5.4 s instrumented), so it is
+ * counted as soon as it is prepared, with instrumentation switched on
+ * around each window's samples only, after that window's warm-up: an
+ * instrumented frame to settle each window would cost more than
+ * translating the rest again after the switches (docs/counters.md).  A
+ * count, unlike a time, decides it the same way in every run. */
+#define COUNT_CHILD__HEAVY_TRIANGLES (1u << 18)
+
+/* One configuration of a batch: its context, scene, items and split. */
+typedef struct cslot {
+    mscene m;                   /* gl shared by the batch; r and rt its own */
+    mconf c;
+    int ctx;                    /* its context's index (gl_context_use) */
+    int done;                   /* counted, or failed (said so) */
+    int stages;                 /* its stage windows are counted */
+    int heavy;                  /* COUNT_CHILD__HEAVY_TRIANGLES: counted at once, window by window */
+    render_item full;           /* its item, while c.item follows the window counted */
+    render_item minimal;        /* the minimal-fragment-shader item of the stage windows */
+    int64_t prep_ns, warm_ns, stage_ns, count_ns;
+} cslot;
+
+static const char *const count_child__tag[CALLGRIND_WINDOWS] = {"", ".g", ".r", ".m"};
+
+/* Makes window w's item and discard state current on slot k. */
+static void count_child__window_state(cslot *k, callgrind_window w)
 {
-    static const char *const tag[CALLGRIND_WINDOWS] = {"", ".g", ".r", ".m"};
+    k->c.item = w == CALLGRIND_RASTER || w == CALLGRIND_RESIDUAL ? k->minimal : k->full;
+    if (w == CALLGRIND_GEOMETRY || w == CALLGRIND_RESIDUAL)
+        glEnable(GL_RASTERIZER_DISCARD);
+    else
+        glDisable(GL_RASTERIZER_DISCARD);
+}
+
+/* The warm-up of the window whose state is current: `warm` frames of a
+ * still configuration, or each counted view of a path once, and the
+ * virtual texture's pages converged, so no first use of a view (a mip
+ * level, a tessellation level, a page) and no JIT compilation falls in the
+ * counted frames, as the timed run's untimed replay keeps them out. */
+static void count_child__warm_frames(cslot *k, int warm)
+{
+    mscene *m = &k->m;
+    mconf *c = &k->c;
     int step, frames = callgrind_path_frames(c->pc, &step);
-    int64_t t0 = dm_now_ns(), t1 = t0;
     if (path_timing_frames(c->pc)) {
-        /* every counted view drawn once and its pages converged: the
-         * first use of a view (a mip level, a tessellation level, a page)
-         * is not counted, as the timed run's untimed replay keeps it out */
         for (int i = 0; i < frames; i++) {
             mscene_frame_at(m, c, i * step);
             mscene_vt_converge(m->r, c->item, c->pc->width, c->pc->height);
         }
     } else {
         mscene_frames(m, c, warm > 0 ? warm : 1);
-        mscene_vt_converge(m->r, c->item, c->pc->width, c->pc->height);   /* no page generation counted */
+        mscene_vt_converge(m->r, c->item, c->pc->width, c->pc->height);
     }
-    if (w == CALLGRIND_GEOMETRY || w == CALLGRIND_RESIDUAL)
-        glEnable(GL_RASTERIZER_DISCARD);
-    t1 = dm_now_ns();
-    /* Instrumented from here to the last dump only (Valgrind runs with
-     * --instr-atstart=no): starting discards every translation and resets
-     * callgrind's call stacks and its collection state to off, so the
-     * toggles pair inside, and the calls into the allocator made in the
-     * frames are seen from their callers as before. */
-    CALLGRIND_START_INSTRUMENTATION;
+    glFinish();
+}
+
+/* `samples` samples of window w's counted frames, its state current and
+ * warmed up, instrumentation on, collection off: the counted frames
+ * (callgrind_path_frames: CALLGRIND_FRAMES from frame 0, or a camera
+ * path's frames, every k-th), each ended by a glFinish (so the
+ * rasteriser's work, on the calling thread with LP_NUM_THREADS=0, is
+ * inside), collection on around each sample only, and one dump per sample
+ * named "KEY.S" (window CALLGRIND_FULL), "KEY.g.S" (the same frames with
+ * GL_RASTERIZER_DISCARD), "KEY.r.S" (the minimal-fragment-shader item) or
+ * "KEY.m.S" (that item with discard).  Every sample is kept: the parent
+ * leaves the allocator's instructions out, and what remains is equal from
+ * the first sample on (docs/counters.md, "Repeatability"). */
+static void count_child__samples(cslot *k, callgrind_window w, int samples)
+{
+    mscene *m = &k->m;
+    mconf *c = &k->c;
+    int step, frames = callgrind_path_frames(c->pc, &step);
     for (int s = 0; s < samples; s++) {
         char name[40];
-        snprintf(name, sizeof name, "%s%s.%d", c->pc->key, tag[w], s);
+        snprintf(name, sizeof name, "%s%s.%d", c->pc->key, count_child__tag[w], s);
         glFinish();
         CALLGRIND_TOGGLE_COLLECT;
         /* each frame finished on its own, as the timed replay does: frames
@@ -78,114 +122,208 @@ static void count_child__counted_samples(mscene *m, mconf *c, callgrind_window w
         CALLGRIND_TOGGLE_COLLECT;
         CALLGRIND_DUMP_STATS_AT(name);
     }
-    CALLGRIND_STOP_INSTRUMENTATION;
-    glDisable(GL_RASTERIZER_DISCARD);
-    *warm_ns = t1 - t0;
-    *count_ns = dm_now_ns() - t1;
 }
 
-/* The stage windows of a prepared, counted configuration (geometry with
- * rasterizer discard, raster with the minimal fragment shader, and the
- * minimal shader with discard for the residual), reported
- * as "S KEY ok" or "S KEY unavailable REASON". */
-static void count_child__stage_windows(mscene *m, mconf *c, int samples)
+/* Counts slot k's windows (its context current) and says "S KEY ok" and
+ * "I KEY ok|failed REASON".  A light slot is counted in phase two, with
+ * instrumentation on: before each window's samples it draws one frame
+ * uncounted, the last view a sample draws, so the first sample follows
+ * the same state as every later one (the context made current again, the
+ * discard and the item switched since its warm-up).  A heavy one is
+ * counted in phase one as soon as it is prepared, with instrumentation
+ * switched on around each window's samples only, after that window's
+ * warm-up (the full frame's is the one it was just prepared with). */
+static void count_child__count_slot(cslot *k, int samples)
 {
-    render_item_info info = {0};
-    render_get_info(m->r, c->item, &info);
-    const char *why = mscene_isolation_problem(&info);
-    if (why) {
-        mscene_say(m->job, "S %s unavailable %s", c->pc->key, why);
+    mconf *c = &k->c;
+    int64_t t0 = dm_now_ns();
+    mscene_say(k->m.job, "B %s", c->pc->key);
+    int step, frames = callgrind_path_frames(c->pc, &step);
+    for (int w = CALLGRIND_FULL; w < (k->stages ? CALLGRIND_WINDOWS : CALLGRIND_FULL + 1); w++) {
+        count_child__window_state(k, (callgrind_window)w);
+        if (!k->heavy)
+            mscene_frame_at(&k->m, c, (frames - 1) * step);
+        else if (w != CALLGRIND_FULL)
+            count_child__warm_frames(k, 1);
+        if (k->heavy)
+            CALLGRIND_START_INSTRUMENTATION;
+        count_child__samples(k, (callgrind_window)w, samples);
+        if (k->heavy)
+            CALLGRIND_STOP_INSTRUMENTATION;
+        if (w == CALLGRIND_FULL) {
+            k->count_ns = dm_now_ns() - t0;
+            t0 = dm_now_ns();
+        }
+    }
+    count_child__window_state(k, CALLGRIND_FULL);
+    if (k->heavy)
+        fprintf(stderr, "instructions split: %s is heavy: counted as soon as prepared\n", c->pc->key);
+    fprintf(stderr, "instructions split: %s prepare %.1f ms, warm-up %.1f ms, counted %.1f ms\n", c->pc->key,
+            (double)k->prep_ns / 1e6, (double)k->warm_ns / 1e6, (double)k->count_ns / 1e6);
+    if (k->stages) {
+        k->stage_ns += dm_now_ns() - t0;
+        fprintf(stderr, "instructions split: %s stage windows %.1f ms\n", c->pc->key, (double)k->stage_ns / 1e6);
+        mscene_say(k->m.job, "S %s ok", c->pc->key);
+    }
+    int bad = gl_context_check_errors(&c->log) > 0;
+    mscene_say(k->m.job, "I %s %s", c->pc->key, bad ? "failed GL error in the counted frames" : "ok");
+    k->done = 1;
+}
+
+/* Phase one of slot k (its context current): prepare, warm up the full
+ * frame (heavy: COUNT_CHILD__HEAVY_TRIANGLES), and, with stages asked for, build the minimal fragment shader's item of
+ * the stage windows (geometry with rasterizer discard, raster with the
+ * minimal fragment shader, and the minimal shader with discard for the
+ * residual) and warm them up (a light slot; a heavy one warms each up
+ * just before its samples).  Says "I KEY failed REASON" when it cannot be
+ * prepared, "S KEY unavailable REASON" when its stages cannot be
+ * isolated. */
+static void count_child__prepare(cslot *k, int stages)
+{
+    mscene *m = &k->m;
+    mconf *c = &k->c;
+    const measure_job *job = m->job;
+    int64_t t0 = dm_now_ns();
+    int prc = render_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
+    k->prep_ns = dm_now_ns() - t0;
+    if (gl_context_take_messages(m->gl, &c->log) > 0 || prc != 0) {
+        mscene_say(job, "I %s failed %s", c->pc->key, prc == 0 ? "GL error while preparing" : dm_strerror(prc));
+        k->done = 1;
         return;
     }
-    int64_t warm_ns = 0, count_ns = 0;
-    count_child__counted_samples(m, c, CALLGRIND_GEOMETRY, 1, samples, &warm_ns, &count_ns);
-    render_item full = c->item, minimal = {0};
+    k->full = c->item;
+    int64_t t1 = dm_now_ns();
+    count_child__warm_frames(k, CALLGRIND_WARMUP_FRAMES);
+    k->warm_ns = dm_now_ns() - t1;
+    render_item_info info = {0};
+    render_get_info(m->r, c->item, &info);
+    k->heavy = info.mesh_triangles >= COUNT_CHILD__HEAVY_TRIANGLES;
+    if (!stages)
+        return;
+    int64_t ts = dm_now_ns();
+    const char *why = mscene_isolation_problem(&info);
+    if (why) {
+        mscene_say(job, "S %s unavailable %s", c->pc->key, why);
+        return;
+    }
     dm_str log = {0};
     render_set_debug_view(m->r, RENDER_DEBUG_MINIMAL_FS);
-    int rc = render_prepare(m->r, c->pc->params, c->pc->n_params, &minimal, &log);
+    int rc = render_prepare(m->r, c->pc->params, c->pc->n_params, &k->minimal, &log);
     render_set_debug_view(m->r, RENDER_DEBUG_NONE);
     if (gl_context_take_messages(m->gl, &log) > 0 || rc != 0) {
         for (char *nl = strchr(log.buf ? log.buf : "", '\n'); nl; nl = strchr(nl, '\n'))
             *nl = ' ';   /* one protocol line */
-        mscene_say(m->job, "S %s unavailable the minimal fragment shader cannot be built: %s", c->pc->key,
-                     log.len ? dm_str_get(&log) : dm_strerror(rc));
+        mscene_say(job, "S %s unavailable the minimal fragment shader cannot be built: %s", c->pc->key,
+                   log.len ? dm_str_get(&log) : dm_strerror(rc));
         dm_str_free(&log);
         return;
     }
     dm_str_free(&log);
-    c->item = minimal;
-    count_child__counted_samples(m, c, CALLGRIND_RASTER, 1, samples, &warm_ns, &count_ns);
-    count_child__counted_samples(m, c, CALLGRIND_RESIDUAL, 1, samples, &warm_ns, &count_ns);
-    c->item = full;
-    render_release(m->r, minimal);
-    mscene_say(m->job, "S %s ok", c->pc->key);
+    k->stages = 1;
+    if (!k->heavy) {
+        for (int w = CALLGRIND_GEOMETRY; w < CALLGRIND_WINDOWS; w++) {
+            count_child__window_state(k, (callgrind_window)w);
+            count_child__warm_frames(k, 1);
+        }
+        count_child__window_state(k, CALLGRIND_FULL);
+    }
+    k->stage_ns = dm_now_ns() - ts;
 }
 
-/* Counts configuration c (prepare, warm-up, samples, stage windows) and
- * says "I KEY ok" or "I KEY failed REASON". */
-static void count_child__count_one(mscene *m, mconf *c, int samples, int stages)
+/* Frees slot k's scene (its context current) and its log. */
+static void count_child__free_slot(cslot *k)
 {
-    const measure_job *job = m->job;
-    int64_t tp = dm_now_ns(), warm_ns = 0, count_ns = 0;
-    int prc = render_prepare(m->r, c->pc->params, c->pc->n_params, &c->item, &c->log);
-    int64_t prep_ns = dm_now_ns() - tp;
-    if (gl_context_take_messages(m->gl, &c->log) > 0 || prc != 0) {
-        mscene_say(job, "I %s failed %s", c->pc->key, prc == 0 ? "GL error while preparing" : dm_strerror(prc));
-        return;
+    if (k->m.r && gl_context_use(k->m.gl, k->ctx) == 0) {
+        if (k->minimal.id)
+            render_release(k->m.r, k->minimal);
+        target_destroy(&k->m.rt);
+        render_destroy(k->m.r);
+        if (k->ctx > 0)
+            gl_context_drop(k->m.gl, k->ctx);
     }
-    count_child__counted_samples(m, c, CALLGRIND_FULL, CALLGRIND_WARMUP_FRAMES, samples, &warm_ns, &count_ns);
-    fprintf(stderr, "instructions split: %s prepare %.1f ms, warm-up %.1f ms, counted %.1f ms\n", c->pc->key,
-            (double)prep_ns / 1e6, (double)warm_ns / 1e6, (double)count_ns / 1e6);
-    if (stages) {
-        int64_t ts = dm_now_ns();
-        count_child__stage_windows(m, c, samples);
-        fprintf(stderr, "instructions split: %s stage windows %.1f ms\n", c->pc->key,
-                (double)(dm_now_ns() - ts) / 1e6);
+    k->m.r = NULL;
+    dm_str_free(&k->c.log);
+}
+
+/* Counts configurations [first, first + n) of the job, one batch; the
+ * first slot uses context 0 (made by the caller), the others get contexts
+ * of their own.  Returns 0, or DM_ERR_GL when a context cannot be made. */
+static int count_child__batch(const measure_job *job, gl_context *gl, size_t first, size_t n, int samples,
+                              int stages)
+{
+    cslot *ks = dm_xcalloc(n, sizeof *ks);
+    int rc = 0;
+    size_t made = 0;
+    /* phase one: every configuration prepared and warmed up, uninstrumented
+     * (a heavy one counted at once) */
+    for (; made < n; made++) {
+        cslot *k = &ks[made];
+        k->m = (mscene){ .job = job, .gl = gl };
+        k->c.pc = &job->configs[first + made];
+        /* "W KEY": the child is on this key (a crash now fails it alone,
+         * and a new child takes the batch's others); "B KEY" when counted */
+        mscene_say(job, "W %s", k->c.pc->key);
+        k->ctx = made == 0 ? 0 : gl_context_add(gl);
+        if (k->ctx < 0 || gl_context_use(gl, k->ctx) != 0 || render_create(&k->m.r) != 0) {
+            mscene_say(job, "B %s", k->c.pc->key);
+            mscene_say(job, "I %s failed cannot create a fresh GL context", k->c.pc->key);
+            rc = DM_ERR_GL;
+            break;
+        }
+        count_child__prepare(k, stages);
+        if (!k->done && k->heavy)
+            count_child__count_slot(k, samples);
     }
-    int bad = gl_context_check_errors(&c->log) > 0;
-    mscene_say(job, "I %s %s", c->pc->key, bad ? "failed GL error in the counted frames" : "ok");
+    /* phase two: instrumentation switched on and off once for the light
+     * ones.  Starting it resets callgrind's call stacks and its collection
+     * state to off, so the toggles pair inside, and the calls into the
+     * allocator made in the frames are seen from their callers. */
+    CALLGRIND_START_INSTRUMENTATION;
+    for (size_t i = 0; i < made; i++) {
+        cslot *k = &ks[i];
+        if (k->done)
+            continue;
+        if (gl_context_use(gl, k->ctx) != 0) {
+            mscene_say(job, "B %s", k->c.pc->key);
+            mscene_say(job, "I %s failed cannot make its GL context current again", k->c.pc->key);
+            continue;
+        }
+        count_child__count_slot(k, samples);
+    }
+    CALLGRIND_STOP_INSTRUMENTATION;
+    for (size_t i = made < n ? made + 1 : n; i-- > 0;)
+        count_child__free_slot(&ks[i]);
+    free(ks);
+    return rc;
 }
 
 static int count_child__instructions(const measure_job *job, int samples, dm_str *err)
 {
-    mscene m = { .job = job };
+    gl_context *gl = NULL;
     int64_t t0 = dm_now_ns();
     int stages = callgrind_wants_stages(&job->sweep->measure);
-    int rc = gl_context_create(NULL, &m.gl, err);
-    rc = rc ? rc : render_create(&m.r);
+    int rc = gl_context_create(NULL, &gl, err);
     /* where the child's time goes, in its log (bench/instructions_split.sh) */
     fprintf(stderr, "instructions split: context %.1f ms\n", (double)(dm_now_ns() - t0) / 1e6);
     if (rc == 0 && !RUNNING_ON_VALGRIND)
         dm_log(DM_LOG_WARN, "count_child__instructions: not running under Valgrind; nothing is counted");
-    mconf *cs = dm_xcalloc(job->n_configs + 1, sizeof *cs);
-    for (size_t i = 0; rc == 0 && i < job->n_configs; i++) {
-        mconf *c = &cs[i];
-        c->pc = &job->configs[i];
-        mscene_say(job, "B %s", c->pc->key);
-        if (i > 0) {
-            /* Every configuration in a fresh GL context: what the driver
-             * keeps per context (state caches, sampler views, upload
-             * buffers, the hash tables of GL names) would otherwise carry
-             * what earlier configurations left, and a count would depend on
-             * which ones ran before it (docs/counters.md, "Repeatability"). */
-            target_destroy(&m.rt);
-            render_destroy(m.r);
-            m.r = NULL;
-            if (gl_context_renew(m.gl) != 0 || render_create(&m.r) != 0) {
-                mscene_say(job, "I %s failed cannot create a fresh GL context", c->pc->key);
-                rc = DM_ERR_GL;
-                break;
-            }
+    for (size_t first = 0; rc == 0 && first < job->n_configs; first += COUNT_CHILD__BATCH) {
+        size_t n = job->n_configs - first;
+        /* every configuration in a fresh GL context: what the driver keeps
+         * per context (state caches, sampler views, upload buffers, the
+         * hash tables of GL names) would otherwise carry what earlier
+         * configurations left, and a count would depend on which ones ran
+         * before it (docs/counters.md, "Repeatability") */
+        if (first > 0 && (gl_context_use(gl, 0) != 0 || gl_context_renew(gl) != 0)) {
+            mscene_say(job, "B %s", job->configs[first].key);
+            mscene_say(job, "I %s failed cannot create a fresh GL context", job->configs[first].key);
+            rc = DM_ERR_GL;
+            break;
         }
-        count_child__count_one(&m, c, samples, stages);
+        rc = count_child__batch(job, gl, first, n < COUNT_CHILD__BATCH ? n : COUNT_CHILD__BATCH, samples,
+                                stages);
     }
-    for (size_t i = 0; i < job->n_configs; i++)
-        dm_str_free(&cs[i].log);
-    free(cs);
-    if (m.gl)
-        target_destroy(&m.rt);
-    render_destroy(m.r);
-    gl_context_destroy(m.gl);
+    gl_context_destroy(gl);
     return rc;
 }
 

@@ -5,16 +5,19 @@
  * `dmbench __instructions SWEEP HASH [--source PATH HASH]... KEY...`
  * (argv[0] is "__instructions") loads the sweep named by SWEEP, checks its
  * hash and that of each user technique's file (the text it loaded, or the
- * file on disk when loading failed), then per configuration, each in a
- * fresh GL context: prepare, warm up (CALLGRIND_WARMUP_FRAMES), both
- * uninstrumented, then CALLGRIND_SAMPLES samples of CALLGRIND_FRAMES
- * frames with instrumentation on around the samples and collection on
- * only around each sample and its closing glFinish, one dump "KEY.S" per
- * sample; with stage counters asked for, the stage windows too, each
- * instrumented the same way.  It writes
- * "B KEY" / "S KEY ok|unavailable REASON" / "I KEY ok|failed REASON"
- * lines to stdout, or one "C WHAT CHANGED" line and nothing else when a
- * file changed.  No store, no timing, no images.
+ * file on disk when loading failed), then counts the configurations in
+ * batches of up to 8: each prepared in a fresh GL context of its own and
+ * warmed up (CALLGRIND_WARMUP_FRAMES, and one frame of each stage window
+ * when stage counters are asked for) uninstrumented, then the batch's
+ * CALLGRIND_SAMPLES samples of CALLGRIND_FRAMES frames per window with
+ * instrumentation switched on once for the batch, each window after one
+ * settling frame, collection on only around each sample and its closing
+ * glFinish, one dump "KEY.S" per sample (a mesh of 2^18 triangles or more
+ * is counted as soon as it is prepared, instrumentation on around each
+ * window's samples only).  It writes "W KEY" (preparing it) / "B KEY"
+ * (counting it) / "S KEY ok|unavailable REASON" / "I KEY ok|failed
+ * REASON" lines to stdout, or one "C WHAT CHANGED" line and nothing else
+ * when a file changed.  No store, no timing, no images.
  *
  * The process is made repeatable first: a fixed malloc mode, a fixed
  * arc4random_buf stream and a page-aligned stack (docs/counters.md,

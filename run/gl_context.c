@@ -12,7 +12,10 @@
 struct gl_context {
     gl_backend backend;
     EGLDisplay dpy;
-    EGLContext egl;
+    EGLContext egl;             /* the current one: all[cur] */
+    EGLContext *all;            /* every EGL context of the display made here, [0] the first */
+    int n_all, cur;             /* cur -1: none current (gl_context_drop) */
+    int debug;                  /* KHR_debug capture on every context */
     GLFWwindow *win;
     dm_str messages;
     int n_messages;
@@ -102,6 +105,9 @@ static int gl__create_egl(gl_context *ctx, dm_str *err)
                       (unsigned)eglGetError());
         return DM_ERR_GL;
     }
+    ctx->all = dm_xcalloc(1, sizeof *ctx->all);
+    ctx->all[0] = ctx->egl;
+    ctx->n_all = 1;
     return 0;
 }
 
@@ -151,24 +157,78 @@ int gl_context_create(const gl_context_desc *desc, gl_context **out, dm_str *err
         gl_context_destroy(ctx);
         return DM_ERR_UNSUPPORTED;
     }
-    if (d.debug == 0)
+    ctx->debug = d.debug == 0;
+    if (ctx->debug)
         gl__debug_output(ctx);
     *out = ctx;
     return 0;
+}
+
+/* A fresh EGL context on ctx's display, made current, with KHR_debug
+ * capture when `debug`; EGL_NO_CONTEXT when it cannot be made. */
+static EGLContext gl__fresh_egl(gl_context *ctx, int debug)
+{
+    EGLContext e = eglCreateContext(ctx->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, gl__egl_attrs);
+    if (e == EGL_NO_CONTEXT)
+        return e;
+    if (!eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, e)) {
+        eglDestroyContext(ctx->dpy, e);
+        return EGL_NO_CONTEXT;
+    }
+    if (debug)
+        gl__debug_output(ctx);
+    return e;
 }
 
 int gl_context_renew(gl_context *ctx)
 {
     if (ctx->backend != GL_BACKEND_EGL)
         return DM_ERR_UNSUPPORTED;
-    int debug = glIsEnabled(GL_DEBUG_OUTPUT);
+    if (ctx->cur < 0)
+        return DM_ERR_GL;
     eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
     eglDestroyContext(ctx->dpy, ctx->egl);
-    ctx->egl = eglCreateContext(ctx->dpy, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, gl__egl_attrs);
-    if (ctx->egl == EGL_NO_CONTEXT || !eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->egl))
+    ctx->egl = ctx->all[ctx->cur] = gl__fresh_egl(ctx, ctx->debug);
+    return ctx->egl == EGL_NO_CONTEXT ? DM_ERR_GL : 0;
+}
+
+int gl_context_add(gl_context *ctx)
+{
+    if (ctx->backend != GL_BACKEND_EGL)
+        return -1;
+    EGLContext e = gl__fresh_egl(ctx, ctx->debug);
+    if (e == EGL_NO_CONTEXT) {
+        if (ctx->egl != EGL_NO_CONTEXT)   /* the old one stays current */
+            eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->egl);
+        return -1;
+    }
+    ctx->all = dm_xrealloc(ctx->all, (size_t)(ctx->n_all + 1) * sizeof *ctx->all);
+    ctx->cur = ctx->n_all++;
+    ctx->all[ctx->cur] = ctx->egl = e;
+    return ctx->cur;
+}
+
+void gl_context_drop(gl_context *ctx, int index)
+{
+    if (ctx->backend != GL_BACKEND_EGL || index <= 0 || index >= ctx->n_all || ctx->all[index] == EGL_NO_CONTEXT)
+        return;
+    if (index == ctx->cur) {
+        eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
+        ctx->egl = EGL_NO_CONTEXT;
+        ctx->cur = -1;
+    }
+    eglDestroyContext(ctx->dpy, ctx->all[index]);
+    ctx->all[index] = EGL_NO_CONTEXT;
+}
+
+int gl_context_use(gl_context *ctx, int index)
+{
+    if (ctx->backend != GL_BACKEND_EGL || index < 0 || index >= ctx->n_all || ctx->all[index] == EGL_NO_CONTEXT)
+        return DM_ERR_UNSUPPORTED;
+    if (index != ctx->cur && !eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, ctx->all[index]))
         return DM_ERR_GL;
-    if (debug)
-        gl__debug_output(ctx);
+    ctx->cur = index;
+    ctx->egl = ctx->all[index];
     return 0;
 }
 
@@ -178,8 +238,10 @@ void gl_context_destroy(gl_context *ctx)
         return;
     if (ctx->backend == GL_BACKEND_EGL) {
         eglMakeCurrent(ctx->dpy, EGL_NO_SURFACE, EGL_NO_SURFACE, EGL_NO_CONTEXT);
-        if (ctx->egl != EGL_NO_CONTEXT)
-            eglDestroyContext(ctx->dpy, ctx->egl);
+        for (int i = 0; i < ctx->n_all; i++)
+            if (ctx->all[i] != EGL_NO_CONTEXT)
+                eglDestroyContext(ctx->dpy, ctx->all[i]);
+        free(ctx->all);
         eglTerminate(ctx->dpy);
     } else if (ctx->win) {
         glfwDestroyWindow(ctx->win);

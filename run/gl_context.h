@@ -35,6 +35,19 @@ void gl_context_destroy(gl_context *ctx);
  * per-context state of the old one is gone) and makes it current.
  * Returns 0, DM_ERR_UNSUPPORTED for a GLFW context, or DM_ERR_GL. */
 int gl_context_renew(gl_context *ctx);
+/* Creates one more EGL context on the same display (fresh, as
+ * gl_context_renew makes) and makes it current; the others stay alive, each
+ * to be made current again by gl_context_use with its index (the first
+ * context is 0; gl_context_renew replaces the current one in place).
+ * Returns the new index, or -1 (a GLFW context, or EGL failed: the old
+ * context stays current). */
+int gl_context_add(gl_context *ctx);
+/* Makes context `index` (0, or one gl_context_add returned) current.
+ * Returns 0, DM_ERR_UNSUPPORTED (no such context) or DM_ERR_GL. */
+int gl_context_use(gl_context *ctx, int index);
+/* Destroys context `index` (> 0, from gl_context_add); when it was
+ * current, no context is current until gl_context_use. */
+void gl_context_drop(gl_context *ctx, int index);
 /* GLFW window handle (GLFWwindow*) or NULL for EGL. */
 void *gl_context_window(gl_context *ctx);
 /* Number of KHR_debug errors (type error or undefined behaviour) seen since

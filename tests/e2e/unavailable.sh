@@ -90,4 +90,44 @@ print(sys.argv[2], "ok: every configuration failed with Valgrind's message")
 PY
 done
 pgrep -f "sleep $nap" >/dev/null && { echo "FAIL: the hung Valgrind child was left running"; exit 1; }
-echo "3 passed, 0 failed"
+# A counting child killed while it prepares the second configuration of
+# its batch (run/count_child.c prepares a whole batch, then counts it):
+# that configuration alone fails, with the signal; the first, prepared but
+# not counted yet, and the rest are counted by one new child, under the
+# real Valgrind.
+cat > "$OUT/kill-valgrind" <<'PY'
+#!/usr/bin/env python3
+import os, signal, subprocess, sys
+log = os.environ["FAKE_VG_LOG"]
+with open(log, "a") as f:
+    f.write("started\n")
+first = sum(1 for _ in open(log)) == 1
+child = subprocess.Popen([os.environ["REAL_VG"]] + sys.argv[1:], stdout=subprocess.PIPE)
+preparing = 0
+for line in child.stdout:
+    sys.stdout.buffer.write(line)
+    sys.stdout.flush()
+    preparing += line.startswith(b"W ")
+    if first and preparing == 2:
+        child.kill()
+        child.wait()
+        os.kill(os.getpid(), signal.SIGKILL)
+sys.exit(child.wait())
+PY
+chmod +x "$OUT/kill-valgrind"
+sed 's/^  timeout_s: .*/  timeout_s: 120/' "$OUT/instr.yaml" > "$OUT/instr-kill.yaml"
+FAKE_VG_LOG=$OUT/kill.log REAL_VG=$(command -v valgrind) DMBENCH_VALGRIND=$OUT/kill-valgrind \
+  timeout 600 "$BIN" run "$OUT/instr-kill.yaml" --out "$OUT/kill" --quiet --count-jobs 1 --seed 1
+[ "$(wc -l < "$OUT/kill.log")" -eq 2 ] || { echo "FAIL: kill: Valgrind started $(wc -l < "$OUT/kill.log") times, not twice"; exit 1; }
+python3 - "$OUT/kill/latest" <<'PY'
+import json, os, sys
+j = json.load(open(os.path.join(sys.argv[1], "results.json")))
+failed = [c for c in j["configs"] if c["status"] != "ok"]
+counted = [c for c in j["configs"] if c["status"] == "ok"]
+assert len(failed) == 1 and "died of signal 9" in failed[0]["reason"], [c.get("reason") for c in failed]
+assert len(counted) >= 2, len(counted)
+for c in counted:
+    assert c["counters"]["Instructions"]["median"] > 0, c["counters"]["Instructions"]
+print(f"kill ok: the configuration being prepared failed; {len(counted)} others counted by the new child")
+PY
+echo "4 passed, 0 failed"
