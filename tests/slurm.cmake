@@ -3,7 +3,7 @@
 # where Slurm or MUNGE is not installed.
 add_test(NAME test_slurm_array COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/slurm/slurm_array.sh)
 set_tests_properties(test_slurm_array PROPERTIES TIMEOUT 300 SKIP_RETURN_CODE 77
-  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;slurm" RUN_SERIAL TRUE)
+  ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;slurm")
 dm_reads_resume_full(test_slurm_array)   # the plan's keys (tests/e2e.cmake)
 # merge/shard rules end to end without a scheduler: two machines kept apart
 # (report, compare), duplicate and missing shards, non-run directories,
