@@ -132,7 +132,8 @@ static void count_child__samples(cslot *k, callgrind_window w, int samples)
  * discard and the item switched since its warm-up).  A heavy one is
  * counted in phase one as soon as it is prepared, with instrumentation
  * switched on around each window's samples only, after that window's
- * warm-up (the full frame's is the one it was just prepared with). */
+ * warm-up (without stage windows, the full frame's is the one it was just
+ * prepared with). */
 static void count_child__count_slot(cslot *k, int samples)
 {
     mconf *c = &k->c;
@@ -143,7 +144,7 @@ static void count_child__count_slot(cslot *k, int samples)
         count_child__window_state(k, (callgrind_window)w);
         if (!k->heavy)
             mscene_frame_at(&k->m, c, (frames - 1) * step);
-        else if (w != CALLGRIND_FULL)
+        else if (w != CALLGRIND_FULL || k->stages)   /* the full frame's state changed by the minimal item */
             count_child__warm_frames(k, 1);
         if (k->heavy)
             CALLGRIND_START_INSTRUMENTATION;
