@@ -156,7 +156,6 @@ static void count_child__count_slot(cslot *k, int samples)
             t0 = dm_now_ns();
         }
     }
-    count_child__window_state(k, CALLGRIND_FULL);
     if (k->heavy)
         fprintf(stderr, "instructions split: %s is heavy: counted as soon as prepared\n", c->pc->key);
     fprintf(stderr, "instructions split: %s prepare %.1f ms, warm-up %.1f ms, counted %.1f ms\n", c->pc->key,
