@@ -61,9 +61,11 @@ typedef struct runner {
 
 /* ---- runner_child.c -------------------------------------------------------- */
 
-/* Runs the driver probe in a child: the environment record, the timer's
- * calibration and the extensions techniques need, into r.  Returns 0, or
- * DM_ERR_* with the reason in err. */
+/* Loads the OpenImageIO modules into the run's process (not for a dry run:
+ * every child forked later inherits them), then runs the driver probe in a
+ * child: the environment record, the timer's calibration and the
+ * extensions techniques need, into r.  Returns 0, or DM_ERR_* with the
+ * reason in err. */
 int runner_child_probe(runner *r, dm_str *err);
 /* plan_filter_capabilities' callback: 1 when the probe found extension ext. */
 int runner_child_has_ext(const char *ext, void *user);

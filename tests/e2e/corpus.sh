@@ -342,6 +342,9 @@ fi
 
 # ---- environment ----
 hcase env/ulimit-v-run 4 "address-space limit" -- "${LIMIT[@]}" "-v 600000" "$BIN" run "$OUT/ok.yaml" --out "$OUT/ulv" --quiet
+# a limit below what the OpenImageIO modules need: the run loads them in its
+# own process, before the driver probe, and stops there
+hcase env/ulimit-v-modules 4 "OpenImageIO bridge unavailable" -- "${LIMIT[@]}" "-v 250000" "$BIN" run "$OUT/ok.yaml" --out "$OUT/ulm" --quiet
 hcase env/ulimit-v-render 4 "address-space limit" -- "${LIMIT[@]}" "-v 600000" "$BIN" render resolution=16x16 --png "$OUT/x.png"
 hcase env/lp-text 2 "LP_NUM_THREADS='abc'" -- env LP_NUM_THREADS=abc "$BIN" run "$OUT/ok.yaml" --out "$NEVER"
 hcase env/lp-huge 2 "from 0 to 32" -- env LP_NUM_THREADS=100000 "$BIN" run "$OUT/ok.yaml" --out "$NEVER"
