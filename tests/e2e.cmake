@@ -59,6 +59,12 @@ set(corpus_shares
   env      "env/ signal/"
   children "children/ glsl/"
   images   "images/")
+# The small real run the cases damage (stores, results), made once for the
+# suite (fixture dm_corpus_fixture) and copied by each share that needs it;
+# the sweep/ share needs none, so the quick tier runs no fixture.
+set(corpus_fixture ${CMAKE_BINARY_DIR}/test-runs/corpus-fixture)
+dm_add_e2e(test_e2e_corpus_fixture corpus.sh ARGS fixture ${corpus_fixture})
+set_tests_properties(test_e2e_corpus_fixture PROPERTIES FIXTURES_SETUP dm_corpus_fixture)
 set(corpus_named "")
 set(corpus_files "")
 while(corpus_shares)
@@ -69,13 +75,21 @@ while(corpus_shares)
   set_property(TEST test_e2e_corpus_${share} APPEND PROPERTY ENVIRONMENT
     "CORPUS_CLASSES=${classes}" "CORPUS_RAN=${CMAKE_BINARY_DIR}/corpus-ran/${share}")
   set_tests_properties(test_e2e_corpus_${share} PROPERTIES FIXTURES_SETUP dm_corpus_ran)
+  if(share STREQUAL "sweep")
+    set_property(TEST test_e2e_corpus_${share} APPEND PROPERTY ENVIRONMENT "CORPUS_FIXTURE=none")
+  else()
+    set_property(TEST test_e2e_corpus_${share} APPEND PROPERTY ENVIRONMENT "CORPUS_FIXTURE=${corpus_fixture}")
+    set_property(TEST test_e2e_corpus_${share} APPEND PROPERTY FIXTURES_REQUIRED dm_corpus_fixture)
+  endif()
 endwhile()
 set_property(TEST test_e2e_corpus_sweep APPEND PROPERTY LABELS quick)
 dm_add_e2e(test_e2e_corpus_numbers corpus.sh ARGS numbers)   # gate/ predict/ compare/ drivers/ baseline/ and any new class
 list(APPEND corpus_files "${CMAKE_BINARY_DIR}/corpus-ran/numbers")
 set_property(TEST test_e2e_corpus_numbers APPEND PROPERTY ENVIRONMENT
   "CORPUS_EXCEPT=${corpus_named}" "CORPUS_RAN=${CMAKE_BINARY_DIR}/corpus-ran/numbers")
-set_tests_properties(test_e2e_corpus_numbers PROPERTIES FIXTURES_SETUP dm_corpus_ran)
+set_tests_properties(test_e2e_corpus_numbers PROPERTIES FIXTURES_SETUP dm_corpus_ran
+  FIXTURES_REQUIRED dm_corpus_fixture)
+set_property(TEST test_e2e_corpus_numbers APPEND PROPERTY ENVIRONMENT "CORPUS_FIXTURE=${corpus_fixture}")
 string(REPLACE ";" " " corpus_files "${corpus_files}")
 dm_add_e2e(test_e2e_corpus_table corpus.sh ARGS table)
 set_property(TEST test_e2e_corpus_table APPEND PROPERTY ENVIRONMENT "CORPUS_TABLE=${corpus_files}")

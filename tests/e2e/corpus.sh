@@ -24,6 +24,13 @@
 #                                     and exit code
 #   CORPUS_TABLE='FILE...'            no cases: the table check, on the
 #                                     cases the shares' FILEs say ran
+#   CORPUS_FIXTURE=DIR                the small real run the cases damage,
+#                                     made once for the suite in DIR/ok by
+#                                     `corpus.sh fixture DIR` (test
+#                                     test_e2e_corpus_fixture) and copied,
+#                                     where the script otherwise makes it;
+#                                     `none` for a share whose cases need
+#                                     no run (sweep/: refused at parse time)
 # The share's name is the script's argument (for its output only).
 set -uo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
@@ -131,8 +138,18 @@ sweep:
   mesh: [plane, cube]
   technique: [normal]
 EOF
-"$BIN" run "$OUT/ok.yaml" --out "$OUT/ok" --quiet >/dev/null 2>&1 || { echo "FAIL: the fixture run failed"; exit 1; }
-RUNID=$(basename "$(readlink -f "$OUT/ok/latest")")
+if [ "${1:-}" = fixture ]; then   # corpus.sh fixture DIR: the run alone, into DIR/ok
+  DIR=${2:?usage: corpus.sh fixture DIR}
+  rm -rf "$DIR"; mkdir -p "$DIR"
+  "$BIN" run "$OUT/ok.yaml" --out "$DIR/ok" --quiet || { echo "FAIL: the fixture run failed"; exit 1; }
+  echo "the fixture run: $DIR/ok"; exit 0
+fi
+case ${CORPUS_FIXTURE:-} in
+  none) ;;
+  "") "$BIN" run "$OUT/ok.yaml" --out "$OUT/ok" --quiet >/dev/null 2>&1 || { echo "FAIL: the fixture run failed"; exit 1; } ;;
+  *) cp -a "$CORPUS_FIXTURE/ok" "$OUT/ok" || { echo "FAIL: no fixture run in $CORPUS_FIXTURE (test_e2e_corpus_fixture)"; exit 1; } ;;
+esac
+RUNID=$( [ -e "$OUT/ok/latest" ] && basename "$(readlink -f "$OUT/ok/latest")")
 # copy NAME: a copy of the fixture's output root (store and run directory)
 copy() { rm -rf "$OUT/$1"; cp -a "$OUT/ok" "$OUT/$1"; echo "$OUT/$1"; }
 sql() { python3 -c "import sqlite3,sys; c=sqlite3.connect(sys.argv[1]); c.executescript(sys.argv[2]); c.commit()" "$@"; }
