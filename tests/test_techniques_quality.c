@@ -228,9 +228,12 @@ static void psnr_ladder(const char *tag, const char *scene, const rung *r, size_
  * PSNR does not fall as steps go 8, 32, 128, 512 (PSNR_SLACK_DB of slack:
  * once converged, the layers' sample positions move the result by a few
  * hundredths of a dB either way), 512 steps gain over 1 dB on 8, and at 512 steps POM is within
- * POM_VS_TESS_DB of tessellation displacement at level 64 on a dense plane
- * (64 patches a side, so ~1 pixel per evaluated vertex) — the two ways of
- * drawing the same surface agree. */
+ * POM_VS_TESS_DB of tessellation displacement at level 32 on a dense plane
+ * (33 patches a side, about 1 000 evaluated vertices across a 320-pixel
+ * view) — the two ways of drawing the same surface agree.  Measured
+ * (2026-11-30, Mesa 22.3.6 llvmpipe): 44.46 dB, and 44.44 dB at level 64 on
+ * 65 patches a side, which drew 16 times the vertices (38 s of the file's
+ * 48 s against 2.9 s). */
 #define POM_VS_TESS_DB 3.0
 #define PSNR_SLACK_DB 0.1
 static void test_pom_converges_to_reference(void **state)
@@ -241,7 +244,7 @@ static void test_pom_converges_to_reference(void **state)
         {"pom32", "technique=pom steps=32"},
         {"pom128", "technique=pom steps=128"},
         {"pom512", "technique=pom steps=512"},
-        {"tess64", "technique=tess-displacement tess_level=64 mesh_density=65"},
+        {"tess32", "technique=tess-displacement tess_level=32 mesh_density=33"},
     };
     /* Close and narrow (fov 20°) so that the view holds only relief: no
      * plane edge, whose displaced silhouette no parallax method can draw. */
@@ -249,14 +252,14 @@ static void test_pom_converges_to_reference(void **state)
                         "camera.fov=20";
     double p[5];
     psnr_ladder("converge", scene, r, 5, p, 0);
-    printf("pom on sine: steps 8 %.2f dB, 32 %.2f, 128 %.2f, 512 %.2f; tess 64 %.2f dB\n", p[0], p[1],
+    printf("pom on sine: steps 8 %.2f dB, 32 %.2f, 128 %.2f, 512 %.2f; tess 32 %.2f dB\n", p[0], p[1],
            p[2], p[3], p[4]);
     int ok = p[1] >= p[0] - PSNR_SLACK_DB && p[2] >= p[1] - PSNR_SLACK_DB && p[3] >= p[2] - PSNR_SLACK_DB &&
              p[3] > p[0] + 1.0 && fabs(p[3] - p[4]) <= POM_VS_TESS_DB;
     if (!ok) {
         psnr_ladder("converge", scene, r, 5, p, 1);
         fail_msg("pom does not converge to the reference: 8 %.2f, 32 %.2f, 128 %.2f, 512 %.2f dB, "
-                 "tess 64 %.2f dB (images in %s)", p[0], p[1], p[2], p[3], p[4], TECHQ_IMG_DIR);
+                 "tess 32 %.2f dB (images in %s)", p[0], p[1], p[2], p[3], p[4], TECHQ_IMG_DIR);
     }
 }
 
