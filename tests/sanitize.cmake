@@ -5,7 +5,7 @@
 # shares: the store's unit tests (test_store's allocation-fault loops are
 # the longest unit test), the models' unit tests (their simulations), the
 # other unit tests, the quality truth
-# (test_techniques_quality, the longest), test_techniques_geometry_gl, the
+# (test_techniques_quality), test_techniques_geometry_gl, the
 # other GL tests of the techniques layer, the other GL tests; each selects
 # by name and the next excludes it, so together they run every unit and GL
 # test that is not `slow`, each once.

@@ -35,13 +35,32 @@
 
 static int setup(void **state) { return techfix_setup(state, CAPS_W, CAPS_H); }
 
+/* The images rendered so far, by spec: both tests draw level 16, level 64
+ * and the reference of the same view, and a draw of the cylinder at level
+ * 64 or of the reference's million triangles costs seconds; the second
+ * test reads the first one's (the renderer is deterministic). */
+#define CAPS_MEMO 8
+static struct { char spec[256]; float *px; } memo[CAPS_MEMO];
+
 /* Renders spec into im (row 0 = GL's bottom row; every image here alike). */
 static void render_img(const char *spec, img *im)
 {
-    float *px = render(spec);
     assert_int_equal(img_alloc(im, F.w, F.h), 0);
-    memcpy(im->px, px, npix() * 4 * sizeof(float));
-    free(px);
+    size_t bytes = npix() * 4 * sizeof(float), i = 0;
+    while (i < CAPS_MEMO && memo[i].px && strcmp(memo[i].spec, spec) != 0)
+        i++;
+    if (i < CAPS_MEMO && memo[i].px) {
+        memcpy(im->px, memo[i].px, bytes);
+        return;
+    }
+    float *px = render(spec);
+    memcpy(im->px, px, bytes);
+    if (i < CAPS_MEMO && strlen(spec) < sizeof memo[i].spec) {
+        snprintf(memo[i].spec, sizeof memo[i].spec, "%s", spec);
+        memo[i].px = px;
+    } else {
+        free(px);
+    }
 }
 
 /* Pixels of the undisplaced cylinder (debug view of `normal` on the flat
@@ -178,11 +197,18 @@ static void test_rim_closed(void **state)
     free(inside);
 }
 
+static int caps_teardown(void **state)
+{
+    for (size_t i = 0; i < CAPS_MEMO; i++)
+        free(memo[i].px);
+    return teardown(state);
+}
+
 int main(void)
 {
     const struct CMUnitTest tests[] = {
         cmocka_unit_test(test_cap_against_reference),
         cmocka_unit_test(test_rim_closed),
     };
-    return cmocka_run_group_tests(tests, setup, teardown);
+    return cmocka_run_group_tests(tests, setup, caps_teardown);
 }
