@@ -15,13 +15,15 @@
 #             wrappers that log the test that started them (a few ms a
 #             start; leave it off for the timing figures of the docs)
 #   CTEST_ARGS are passed to ctest, e.g. -L gate or -R test_store
-#   JOBS (default nproc) is ctest's -j and the build's; KEEP=1 keeps the
-#   scratch directory (its path is printed).
+#   JOBS (default nproc) is the build's -j, TEST_JOBS (default nproc + 1,
+#   as `make test`) ctest's; KEEP=1 keeps the scratch directory (its path
+#   is printed).
 # Stop other work on the machine first: every figure is only as good as the
 # machine was quiet, which is why the load averages are printed.
 set -uo pipefail
 SRC=$(git -C "$(dirname "$0")/.." rev-parse --show-toplevel) || exit 1
 JOBS=${JOBS:-$(nproc)}
+TEST_JOBS=${TEST_JOBS:-$(( $(nproc) + 1 ))}
 quick=0; count=0; args=()
 for a in "$@"; do
   case $a in
@@ -36,7 +38,7 @@ W=$(mktemp -d "${TMPDIR:-/tmp}/dmbench-suite-XXXXXX")
 load() { cut -d' ' -f1-3 /proc/loadavg; }
 
 git clone -q "$SRC" "$W/src" || exit 1
-echo "commit $(git -C "$W/src" rev-parse --short HEAD), $(nproc) cores, JOBS=$JOBS, $(date -u +%FT%TZ)"
+echo "commit $(git -C "$W/src" rev-parse --short HEAD), $(nproc) cores, JOBS=$JOBS, TEST_JOBS=$TEST_JOBS, $(date -u +%FT%TZ)"
 [ "$quick" = 1 ] && echo "the quick tier (ctest -L quick)"
 echo "load before the build: $(load)"
 t0=$(date +%s.%N)
@@ -68,7 +70,7 @@ fi
 
 echo "load before the tests: $(load)"
 t2=$(date +%s.%N)
-ctest -j "$JOBS" --output-junit "$W/junit.xml" "${args[@]}" > "$W/ctest.log" 2>&1
+ctest -j "$TEST_JOBS" --output-junit "$W/junit.xml" "${args[@]}" > "$W/ctest.log" 2>&1
 rc=$?
 t3=$(date +%s.%N)
 echo "test phase: $(awk "BEGIN{printf \"%.0f\", $t3 - $t2}") s (ctest exit $rc); load after it: $(load)"
