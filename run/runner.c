@@ -32,6 +32,33 @@ static size_t runner__committed(runner *r)
     return n;
 }
 
+/* How long a run waits for the lock of a run that has ended (its process
+ * is gone) while that run's children, killed with it, are still exiting. */
+#define RUNNER__LOCK_ORPHAN_WAIT_S 5.0
+
+/* The lock of fd, waiting while the run recorded in it has ended: a run
+ * killed by a signal dies at once, and its children (killed by
+ * PR_SET_PDEATHSIG, core/dm_proc.c) hold the lock they inherited until
+ * they have exited, which on a loaded machine takes a moment; so `kill`
+ * then `--resume` does not find the directory busy.  pid is the recorded
+ * holder's.  Returns flock's result. */
+static int runner__lock_take(int fd, const char *pid)
+{
+    int rc = flock(fd, LOCK_EX | LOCK_NB);
+    char *end = NULL;
+    long holder = strtol(pid, &end, 10);
+    if (rc == 0 || end == pid || holder <= 0 || holder == (long)getpid())
+        return rc;
+    for (int64_t t0 = dm_now_ns(); rc != 0 && (dm_now_ns() - t0) / 1e9 < RUNNER__LOCK_ORPHAN_WAIT_S;) {
+        if (kill((pid_t)holder, 0) == 0 || errno != ESRCH)
+            break;   /* the run itself is alive: busy */
+        struct timespec nap = { 0, 50 * 1000 * 1000 };
+        nanosleep(&nap, NULL);
+        rc = flock(fd, LOCK_EX | LOCK_NB);
+    }
+    return rc;
+}
+
 /* Takes the lock of the output directory (flock on <root>/dmbench.lock,
  * held until the process and its children end, so a kill -9 never leaves
  * a stale lock).  DM_ERR_BUSY with the holder's pid when another process
@@ -42,14 +69,16 @@ static int runner__lock(runner *r, dm_str *err)
     char *path = dm_xasprintf("%s/dmbench.lock", r->root);
     r->lock_fd = open(path, O_RDWR | O_CREAT | O_CLOEXEC, 0644);
     int rc = 0;
-    if (r->lock_fd < 0) {
-        dm_str_printf(err, "%s: cannot create the lock file: %s", path, strerror(errno));
-        rc = DM_ERR_IO;
-    } else if (flock(r->lock_fd, LOCK_EX | LOCK_NB) != 0) {
-        char pid[32] = "";
+    char pid[32] = "";
+    if (r->lock_fd >= 0) {
         ssize_t got = pread(r->lock_fd, pid, sizeof pid - 1, 0);
         pid[got > 0 ? got : 0] = '\0';
         pid[strcspn(pid, "\n")] = '\0';
+    }
+    if (r->lock_fd < 0) {
+        dm_str_printf(err, "%s: cannot create the lock file: %s", path, strerror(errno));
+        rc = DM_ERR_IO;
+    } else if (runner__lock_take(r->lock_fd, pid) != 0) {
         dm_str_printf(err, "%s is in use by another dmbench run (pid %s); wait for it to end "
                       "or give another --out", r->root, pid[0] ? pid : "unknown");
         rc = DM_ERR_BUSY;

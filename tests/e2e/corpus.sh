@@ -305,8 +305,18 @@ f=$(sweep other "resolution: [16, 16]" "sweep:" "  technique: [normal]" "  mesh:
 S=$(copy othersweep); h=$(digest "$S/dmbench.sqlite")
 hcase store/resume-other-sweep 2 "different sweep" -- "$BIN" run "$f" --out "$S" --resume --quiet
 unchanged "$S/dmbench.sqlite" "$h"
-S=$(copy locked)
-hcase store/locked 4 "is in use by another dmbench run" -- flock "$S/dmbench.lock" "$BIN" run "$OUT/ok.yaml" --out "$S" --quiet
+S=$(copy locked)   # the holder the lock file names is alive: refused at once
+hcase store/locked 4 "is in use by another dmbench run" -- flock "$S/dmbench.lock" \
+  sh -c 'echo $PPID > "$0/dmbench.lock"; exec "$1" run "$2" --out "$0" --quiet' "$S" "$BIN" "$OUT/ok.yaml"
+# the run the lock file names has ended, and a process it left (a child
+# killed with it, still exiting) holds the lock 1.5 s more: the run waits
+S=$(copy locked-orphan)
+flock "$S/dmbench.lock" sleep 1.5 &
+holder=$!
+for _ in $(seq 50); do flock -n "$S/dmbench.lock" true 2>/dev/null || break; sleep 0.02; done
+true & gone=$!; wait "$gone"; echo "$gone" > "$S/dmbench.lock"
+hcase store/locked-orphan 0 "" -- "$BIN" run "$OUT/ok.yaml" --out "$S" --quiet
+wait "$holder"
 hcase store/history-none 2 "no such store" -- "$BIN" history --store "$OUT/none.sqlite"
 
 # ---- command-line values ----
