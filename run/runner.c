@@ -17,6 +17,7 @@
 #include "techniques/user_technique.h"
 
 #include <errno.h>
+#include <limits.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <time.h>
@@ -47,8 +48,8 @@ static int runner__lock_take(int fd, const char *pid)
     int rc = flock(fd, LOCK_EX | LOCK_NB);
     char *end = NULL;
     long holder = strtol(pid, &end, 10);
-    if (rc == 0 || end == pid || holder <= 0 || holder == (long)getpid())
-        return rc;
+    if (rc == 0 || end == pid || *end || holder <= 0 || holder > INT_MAX || holder == (long)getpid())
+        return rc;   /* no pid recorded that kill(2) could ask about: busy */
     for (int64_t t0 = dm_now_ns(); rc != 0 && (dm_now_ns() - t0) / 1e9 < RUNNER__LOCK_ORPHAN_WAIT_S;) {
         if (kill((pid_t)holder, 0) == 0 || errno != ESRCH)
             break;   /* the run itself is alive: busy */
