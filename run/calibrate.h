@@ -26,10 +26,12 @@ typedef struct calibrate_result {
  * (gl_current != 0).  Never fails: what cannot be timed is NaN. */
 void calibrate_measure(int gl_current, calibrate_result *out);
 
-/* One run of the CPU kernel, timed (ns): the machine's speed at that
- * moment, not its best (no repetition, no minimum).  The measuring
- * process takes one before and one after every round of timing samples
- * (run/measure.c), so the drift of a run can be predicted from it. */
+/* One short run of the CPU kernel (2^20 rounds, a quarter of the
+ * workload's), timed (ns): the machine's speed at that moment, not its
+ * best (no repetition, no minimum).  The measuring process takes one
+ * before and one after every round of timing samples (run/measure.c), so
+ * the drift of a run can be predicted from it; its times are compared with
+ * each other within a run only. */
 double calibrate_cpu_once(void);
 
 /* Forks a child that creates a GL context and runs calibrate_measure;

@@ -575,9 +575,13 @@ int measure_pilot(const measure_job *job, dm_str *err)
  * configuration pays once whatever the rounds). */
 typedef struct measure__overhead { int64_t ns; size_t rounds; } measure__overhead;
 
-/* The calibration kernel before a round (its time counted in o). */
-static double measure__round_begin(measure__overhead *o)
+/* The calibration kernel before a round (its time counted in o); NaN,
+ * and no kernel, in a scene that times nothing (its counters are all
+ * deterministic: there is no drift to predict). */
+static double measure__round_begin(const mscene *m, measure__overhead *o)
 {
+    if (m->n_timing == 0)
+        return NAN;
     int64_t t0 = dm_now_ns();
     double cal = calibrate_cpu_once();   /* the machine's speed around the round */
     o->ns += dm_now_ns() - t0;
@@ -592,7 +596,7 @@ static int measure__round_end(mscene *m, mconf *cs, size_t n, const dm_str *keys
                               measure__overhead *o, dm_str *err)
 {
     int64_t t0 = dm_now_ns();
-    int rc = measure__round(m, keys, (cal0 + calibrate_cpu_once()) / 2, err);
+    int rc = measure__round(m, keys, isfinite(cal0) ? (cal0 + calibrate_cpu_once()) / 2 : NAN, err);
     m->n_rounds += keys->len > 0;   /* as measure__round records it */
     if (rc == 0)
         rc = measure__checkpoint(m, cs, n, err);
@@ -696,7 +700,7 @@ static int measure__extra(mscene *m, mconf *cs, size_t n, measure__overhead *ove
             break;
         plan_shuffle(order, np, job->seed + 0x9e3779b97f4a7c15u * ++rounds);   /* blocks the drift */
         dm_str keys = {0};
-        double cal0 = measure__round_begin(over);
+        double cal0 = measure__round_begin(m, over);
         for (size_t k = 0; rc == 0 && k < np; k++) {
             mconf *c = &cs[wait[pick[order[k]]]];
             dm_str_printf(&keys, "%s%s", keys.len ? " " : "", c->pc->key);
@@ -739,7 +743,7 @@ int measure_scene(const measure_job *job, dm_str *err)
         active = 0;
         plan_shuffle(order, job->n_configs, job->seed + round);
         dm_str keys = {0};
-        double cal0 = measure__round_begin(&over);
+        double cal0 = measure__round_begin(&m, &over);
         for (size_t k = 0; k < job->n_configs; k++) {
             mconf *c = &cs[order[k]];
             if (!c->active)

@@ -5,6 +5,7 @@
 #include "run/runner_state.h"
 #include "core/dm_error.h"
 #include "core/dm_table.h"
+#include "counters/counters.h"
 #include "run/calibrate.h"
 #include "run/env.h"
 #include "run/fitting.h"
@@ -14,10 +15,13 @@
 #include "sweep/published.h"
 #include "reports/answer.h"
 #include "reports/metric.h"
+#include "techniques/maps.h"
+#include "techniques/render.h"
 #include "techniques/user_technique.h"
 
 #include <errno.h>
 #include <limits.h>
+#include <math.h>
 #include <signal.h>
 #include <sys/file.h>
 #include <time.h>
@@ -222,12 +226,56 @@ static int runner__open(runner *r, dm_str *err)
     return rc;
 }
 
-/* Times the calibration workload (run/calibrate.h) in a child and adds
- * its two figures to the environment as "calibration_*_ns_<which>". */
-static void runner__calibrate(dm_kv **env, size_t *n_env, const char *which)
+/* The procedural map sets of the configurations, made once here before
+ * any measuring child is forked (render_maps_preload): each child, one a
+ * scene, copies them instead of generating them again, and the first
+ * configuration of a scene no longer pays the generation in its
+ * SetupTime where the others did not.  At most MAPS_MEMO_SETS sets (what
+ * the process keeps). */
+static void runner__maps_preload(const runner *r)
 {
-    calibrate_result c;
-    if (calibrate_in_child(&c) != 0)
+    char *seen[MAPS_MEMO_SETS];
+    size_t n_seen = 0;
+    for (size_t i = 0; i < r->p.n_configs && n_seen < MAPS_MEMO_SETS; i++) {
+        const plan_config *c = &r->p.configs[i];
+        const char *m = dm_param_value(c->params, c->n_params, "maps");
+        const char *z = dm_param_value(c->params, c->n_params, "texture_size");
+        char *key = dm_xasprintf("%s/%s", m ? m : "", z ? z : "");
+        int known = 0;
+        for (size_t k = 0; k < n_seen && !known; k++)
+            known = strcmp(seen[k], key) == 0;
+        if (!known && render_maps_preload(c->params, c->n_params))
+            seen[n_seen++] = key;
+        else
+            free(key);
+    }
+    for (size_t k = 0; k < n_seen; k++)
+        free(seen[k]);
+}
+
+/* 1 when the sweep asks for a counter that is not deterministic (a time):
+ * only then do the calibration workload and the kernel around each round
+ * mean anything, and a run of deterministic counters alone (a counting
+ * gate) leaves them out. */
+static int runner__times(const sweep *s)
+{
+    for (size_t i = 0; i < s->measure.n_counters; i++) {
+        const counters_info *ci = counters_find(s->measure.counters[i]);
+        if (ci && !ci->deterministic)
+            return 1;
+    }
+    return 0;
+}
+
+/* Adds the calibration workload's two figures (run/calibrate.h) to the
+ * environment as "calibration_*_ns_<which>": those of *given when it has
+ * them (the start's, timed in the driver probe), else timed now in a
+ * child. */
+static void runner__calibrate(dm_kv **env, size_t *n_env, const char *which,
+                              const calibrate_result *given)
+{
+    calibrate_result c = given ? *given : (calibrate_result){ NAN, NAN };
+    if (!isfinite(c.cpu_ns) && calibrate_in_child(&c) != 0)
         dm_log(DM_LOG_WARN, "the %s calibration gave no answer; compare cannot use it", which);
     char buf[32];
     snprintf(buf, sizeof buf, "%.0f", c.cpu_ns);
@@ -279,7 +327,8 @@ static int runner__begin(runner *r)
         snprintf(extra, sizeof extra, "%g", r->o->extra_s);
         dm_kv_push(&e->environment, &e->n_environment, "extra_time_s", extra);
     }
-    runner__calibrate(&e->environment, &e->n_environment, "start");
+    if (r->times)
+        runner__calibrate(&e->environment, &e->n_environment, "start", &r->cal_start);
     char *pub = dm_xasprintf("%s/published.json", r->run_dir);   /* for the report's section */
     int rc = r->s->published ? published_write_json(r->s->published, pub) : 0;
     free(pub);
@@ -342,9 +391,9 @@ static int runner__finish(runner *r, dm_str *err)
     store_run_finish(r->st, r->run_id, now);
     dm_run_result run = {0};
     int rc = store_run_load(r->st, r->run_id, &run);
-    if (rc == 0 && !dm_kv_get(run.environment, run.n_environment, calibrate_key("cpu", "end"))) {
+    if (rc == 0 && r->times && !dm_kv_get(run.environment, run.n_environment, calibrate_key("cpu", "end"))) {
         size_t had = run.n_environment;
-        runner__calibrate(&run.environment, &run.n_environment, "end");
+        runner__calibrate(&run.environment, &run.n_environment, "end", NULL);
         for (size_t i = had; i < run.n_environment; i++)
             store_run_env_put(r->st, r->run_id, run.environment[i].key, run.environment[i].value);
     }
@@ -480,7 +529,8 @@ static void runner__say(const char *text)
 
 int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err)
 {
-    runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns(), .lock_fd = -1 };
+    runner r = { .s = s, .o = o, .tty = isatty(2), .t_start = dm_now_ns(), .lock_fd = -1,
+                 .times = runner__times(s) };
     /* llvmpipe rasterizes on one thread per core; on shared machines that
      * makes fenced timings several times noisier (docs/llvmpipe-findings.md), so measuring
      * processes use one rasterizer thread unless the user chose otherwise.
@@ -522,6 +572,7 @@ int runner_run(const sweep *s, const runner_opts *o, char **run_dir, dm_str *err
             dm_str_free(&line);
         }
         free(name_buf);
+        runner__maps_preload(&r);
         int changed = runner_child_instructions(&r, err);
         rc = changed ? changed : runner_child_scenes(&r);
         if (rc == 0 && !o->quiet)

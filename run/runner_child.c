@@ -54,9 +54,11 @@ static int runner_child__images_load(dm_str *err)
 #endif
 }
 
+/* arg: non-zero int when the probe also times the run's start
+ * calibration (run/calibrate.h), in the GL context it made anyway. */
 static void runner_child__probe_child(int fd, void *arg)
 {
-    (void)arg;
+    int calibrate = *(const int *)arg;
     gl_context *gl = NULL;
     dm_str err = {0}, out = {0};
     if (gl_context_create(NULL, &gl, &err) != 0) {
@@ -84,6 +86,11 @@ static void runner_child__probe_child(int fd, void *arg)
             if (epoxy_has_gl_extension(axes_value_ext_at(i)))
                 dm_str_printf(&out, "X\t%s\n", axes_value_ext_at(i));
         counters_context_destroy(cc);
+        if (calibrate) {
+            calibrate_result start;
+            calibrate_measure(1, &start);
+            dm_str_printf(&out, "K\t%.0f\t%.0f\n", start.cpu_ns, start.draw_ns);
+        }
         dm_kv_free(kv, n);
         gl_context_destroy(gl);
     }
@@ -111,7 +118,9 @@ char *runner_child_read_all(int fd, int timeout_ms)
 /* The driver probe: unless the run only plans (--dry-run), the OpenImageIO
  * modules loaded here first (runner_child__images_load); then environment,
  * timer calibration and extensions from a child (run/probe.h: it may hang
- * or crash, and the run must not); then every user technique compiled in a
+ * or crash, and the run must not), which also times the start calibration
+ * (r->cal_start) of a new run that times something (r->times), in the GL
+ * context it made anyway; then every user technique compiled in a
  * child of its own.  Returns 0, DM_ERR_GL (no usable driver, message in
  * err), DM_ERR_NOMEM / DM_ERR_IO (the modules do not load: past an
  * address-space limit, or missing) or the user check's code. */
@@ -120,8 +129,12 @@ int runner_child_probe(runner *r, dm_str *err)
     int loaded = r->o->dry_run ? 0 : runner_child__images_load(err);   /* a plan writes no image */
     if (loaded != 0)
         return loaded;
+    /* the start calibration in the probe's own context: a run that starts
+     * one (not --resume, not --dry-run) and times something */
+    int calibrate = r->times && !r->o->resume && !r->o->dry_run;
+    r->cal_start.cpu_ns = r->cal_start.draw_ns = NAN;
     dm_proc_result res;
-    dm_proc_collect(runner_child__probe_child, NULL, probe_timeout_s(), &res);
+    dm_proc_collect(runner_child__probe_child, &calibrate, probe_timeout_s(), &res);
     char *text = res.text;
     int rc = 0;
     r->env.timer_verdict = dm_xstrdup("unavailable");
@@ -141,6 +154,9 @@ int runner_child_probe(runner *r, dm_str *err)
             r->env.gpu_time_coverage = strtod(f1, NULL);
             free(r->env.timer_verdict);
             r->env.timer_verdict = dm_xstrdup(f2);
+        } else if (line[0] == 'K' && f2) {
+            r->cal_start.cpu_ns = strtod(f1, NULL);
+            r->cal_start.draw_ns = strtod(f2, NULL);
         } else if (line[0] == 'C' && f1) {
             r->instr_why = dm_xstrdup(f1);
         } else if (line[0] == 'X' && f1) {

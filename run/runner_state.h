@@ -22,6 +22,7 @@
 
 #include "core/dm_results.h"
 #include "core/dm_util.h"
+#include "run/calibrate.h"
 #include "run/callgrind.h"
 #include "run/runner.h"
 #include "store/store.h"
@@ -35,6 +36,8 @@ typedef struct runner {
     store *st;
     char *root, *run_id, *run_dir, *store_path, *cache_dir;
     dm_run_result env;         /* environment + timer of the run */
+    int times;                 /* the sweep asks for a timed counter (runner_times) */
+    calibrate_result cal_start;   /* the start calibration, timed in the probe child (NaN: none) */
     char **exts;               /* extensions the driver has (of those techniques need) */
     size_t n_exts;
     size_t done, total, failed;
@@ -63,9 +66,9 @@ typedef struct runner {
 
 /* Loads the OpenImageIO modules into the run's process (not for a dry run:
  * every child forked later inherits them), then runs the driver probe in a
- * child: the environment record, the timer's calibration and the
- * extensions techniques need, into r.  Returns 0, or DM_ERR_* with the
- * reason in err. */
+ * child: the environment record, the timer's calibration, the extensions
+ * techniques need and (a new run that times something) the start
+ * calibration, into r.  Returns 0, or DM_ERR_* with the reason in err. */
 int runner_child_probe(runner *r, dm_str *err);
 /* plan_filter_capabilities' callback: 1 when the probe found extension ext. */
 int runner_child_has_ext(const char *ext, void *user);

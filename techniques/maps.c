@@ -264,23 +264,12 @@ void maps_normal_from_height(const float *height, int size, float strength, floa
     maps_normal_rows(height, size, strength, 0, size, normal);
 }
 
-/* 8-bit sRGB code of a linear value by binary search over the linear
- * thresholds decode((k + 0.5)/255) in t[0..254] — no pow per texel. */
-static uint8_t maps__srgb8(float x, const float t[255])
-{
-    int lo = 0, hi = 255;   /* answer in [lo, hi] */
-    while (lo < hi) {
-        int mid = (lo + hi) / 2;
-        if (x >= t[mid])
-            lo = mid + 1;
-        else
-            hi = mid;
-    }
-    return (uint8_t)lo;
-}
-
-/* The 8-bit sRGB tables: thresholds for encoding and decoded values. */
+/* The 8-bit sRGB tables: thresholds for encoding, decoded values, and for
+ * each of MAPS__SRGB_BUCKETS equal buckets of [0, 1) the count of
+ * thresholds at or below its lower end. */
+#define MAPS__SRGB_BUCKETS 4096
 static float maps__thresh[255], maps__decoded[256];
+static uint8_t maps__bucket_start[MAPS__SRGB_BUCKETS];
 static pthread_once_t maps__tables_once = PTHREAD_ONCE_INIT;
 
 static void maps__tables(void)
@@ -289,6 +278,37 @@ static void maps__tables(void)
         maps__thresh[k] = maps_srgb_decode(((float)k + 0.5f) / 255.0f);
     for (int k = 0; k < 256; k++)
         maps__decoded[k] = maps_srgb_decode((float)k / 255.0f);
+    int n = 0;
+    for (int b = 0; b < MAPS__SRGB_BUCKETS; b++) {
+        float lo = (float)b / MAPS__SRGB_BUCKETS;
+        while (n < 255 && maps__thresh[n] <= lo)
+            n++;
+        maps__bucket_start[b] = (uint8_t)n;
+    }
+}
+
+/* 8-bit sRGB code of a linear value: the count of the linear thresholds
+ * decode((k + 0.5)/255) at or below x — no pow per texel.  The count at
+ * the lower end of x's bucket, then the threshold inside the bucket, if
+ * any (thresholds are 1/3295 apart at the closest, near 0; a bucket is
+ * 1/4096 wide).  NaN and x <= 0 give 0, x >= 1 gives 255.  The tables
+ * must be made (maps__tables). */
+static inline uint8_t maps__srgb8(float x)
+{
+    if (!(x > 0.0f))
+        return 0;
+    if (x >= 1.0f)
+        return 255;
+    int k = maps__bucket_start[(int)(x * MAPS__SRGB_BUCKETS)];
+    while (k < 255 && x >= maps__thresh[k])
+        k++;
+    return (uint8_t)k;
+}
+
+uint8_t maps_srgb8(float x)
+{
+    pthread_once(&maps__tables_once, maps__tables);
+    return maps__srgb8(x);
 }
 
 void maps_texel(int kind, long size, long x, long y, float *h, float rgba[4])
@@ -299,7 +319,7 @@ void maps_texel(int kind, long size, long x, long y, float *h, float rgba[4])
     float rgb[3], spec;
     maps__fns[kind](((float)x + 0.5f) / (float)size, ((float)y + 0.5f) / (float)size, h, rgb, &spec);
     for (int c = 0; c < 3; c++)
-        rgba[c] = maps__decoded[maps__srgb8(rgb[c], maps__thresh)];
+        rgba[c] = maps__decoded[maps__srgb8(rgb[c])];
     rgba[3] = (float)maps__unorm8(spec) / 255.0f;
 }
 
@@ -307,7 +327,6 @@ void maps_texel(int kind, long size, long x, long y, float *h, float rgba[4])
 static void maps__fill(maps_set *m, maps__texel_fn fn, int compact)
 {
     pthread_once(&maps__tables_once, maps__tables);
-    const float *t = maps__thresh;
     size_t n = (size_t)m->size;
     for (size_t y = 0; y < n; y++)
         for (size_t x = 0; x < n; x++) {
@@ -315,7 +334,7 @@ static void maps__fill(maps_set *m, maps__texel_fn fn, int compact)
             float rgb[3], spec;
             fn(((float)x + 0.5f) / (float)n, ((float)y + 0.5f) / (float)n, &m->height[i], rgb, &spec);
             for (int c = 0; c < 3 && compact; c++)
-                m->albedo8[4 * i + (size_t)c] = maps__srgb8(rgb[c], t);
+                m->albedo8[4 * i + (size_t)c] = maps__srgb8(rgb[c]);
             for (int c = 0; c < 3 && !compact; c++)
                 m->albedo[4 * i + (size_t)c] = rgb[c];
             if (compact) {
@@ -443,17 +462,16 @@ static int maps__get_cached(const maps_desc *desc, const char *dir, maps_set *ou
 /* Sets this process made or loaded, so a renderer created again (the
  * Instructions child makes one per configuration, in a fresh GL context)
  * does not generate them again: sets smaller than MAPS_CACHE_MIN_SIZE
- * (larger ones have the disk cache), up to MAPS__MEMO_SETS of them, the
+ * (larger ones have the disk cache), up to MAPS_MEMO_SETS of them, the
  * oldest replaced first.  Prepare runs on the GL
  * thread only, so no lock. */
-#define MAPS__MEMO_SETS 8
 #define MAPS__MEMO_BYTES ((size_t)64 << 20)
 static struct {
     char name[64];
     int size;
     float normal_strength;
     maps_set set;
-} maps__memo[MAPS__MEMO_SETS];
+} maps__memo[MAPS_MEMO_SETS];
 static unsigned maps__memo_next;
 
 static void *maps__dup(const void *p, size_t n)
@@ -484,7 +502,7 @@ static size_t maps__bytes(const maps_set *m)
 
 static int maps__memo_find(const maps_desc *d)
 {
-    for (int i = 0; i < MAPS__MEMO_SETS; i++)
+    for (int i = 0; i < MAPS_MEMO_SETS; i++)
         if (maps__memo[i].set.size == d->size && maps__memo[i].normal_strength == d->normal_strength &&
             strcmp(maps__memo[i].name, d->name) == 0)
             return i;
@@ -495,7 +513,7 @@ static void maps__memo_put(const maps_desc *d, const maps_set *m)
 {
     if (strlen(d->name) >= sizeof maps__memo[0].name || maps__bytes(m) > MAPS__MEMO_BYTES || d->size <= 0)
         return;
-    unsigned i = maps__memo_next++ % MAPS__MEMO_SETS;
+    unsigned i = maps__memo_next++ % MAPS_MEMO_SETS;
     maps_free(&maps__memo[i].set);
     snprintf(maps__memo[i].name, sizeof maps__memo[i].name, "%s", d->name);
     maps__memo[i].normal_strength = d->normal_strength;

@@ -49,6 +49,9 @@ typedef struct maps_set {
 #define MAPS_MAX_SIZE 16384
 /* Compact sets this large or larger go through the disk cache. */
 #define MAPS_CACHE_MIN_SIZE 1024
+/* Smaller sets a process made or loaded: the last MAPS_MEMO_SETS are kept
+ * in memory (maps_get_cached copies them). */
+#define MAPS_MEMO_SETS 8
 /* Gradient scale at normal_strength 1: the default height_scale 0.06 spread
  * over the 2 world units that the UV range 0..1 spans on the built-in plane,
  * so the normal map matches the displaced surface of the default scene. */
@@ -113,5 +116,10 @@ int maps_material_load(const char *value, maps_set *out, dm_str *err);
 /* sRGB transfer functions on [0,1]. */
 float maps_srgb_encode(float linear);
 float maps_srgb_decode(float encoded);
+/* The 8-bit sRGB code of a linear value (what the compact sets store):
+ * the number of thresholds maps_srgb_decode((k + 0.5) / 255), k = 0..254,
+ * at or below it, i.e. the code nearest to 255 * maps_srgb_encode(x)
+ * without a pow; NaN and values <= 0 give 0, values >= 1 give 255. */
+uint8_t maps_srgb8(float linear);
 
 #endif

@@ -68,6 +68,15 @@ int render_set_debug_view(render_ctx *r, render_debug_view view);
  * appended to `log`; DM_ERR_UNSUPPORTED when the driver lacks a feature. */
 int render_prepare(render_ctx *r, const dm_kv *params, size_t n_params,
                  render_item *out, dm_str *log);
+/* Makes, in this process and without GL, the procedural map set that
+ * render_prepare of params would make (not a user's material, not a
+ * virtual texture, smaller than MAPS_CACHE_MIN_SIZE): processes forked
+ * afterwards copy it from the process's memo (techniques/maps.h) instead
+ * of generating it, so a run whose scenes each measure in a child of
+ * their own generates each set once.  Returns 1 when it made or found the
+ * set, 0 when params read none of that kind (or it cannot be made: prepare
+ * then says why). */
+int render_maps_preload(const dm_kv *params, size_t n_params);
 /* Draws one frame of the item into the bound framebuffer (viewport w×h,
  * clears colour to 0 and depth to 1 first).  Does not glFinish. */
 int render_draw(render_ctx *r, render_item item, int width, int height);

@@ -368,6 +368,22 @@ static int render__maps_make(render__maps *m, const char *name, int size,
     return rc;
 }
 
+int render_maps_preload(const dm_kv *params, size_t n_params)
+{
+    render__cfg c = {params, n_params};
+    const char *name = render__get(&c, "maps"), *vt = render__get(&c, "virtual_texture");
+    int size = atoi(render__get(&c, "texture_size"));
+    if (!name || maps_is_material(name) || maps_kind(name) < 0 || !vt || strcmp(vt, "off") != 0 || size <= 0 ||
+        size >= MAPS_CACHE_MIN_SIZE)
+        return 0;
+    maps_set s;
+    maps_desc d = {.name = name, .size = size, .compact = 1};
+    if (maps_get_cached(&d, NULL, &s) != 0)
+        return 0;
+    maps_free(&s);
+    return 1;
+}
+
 int render__maps_get(render_ctx *r, const render__cfg *c, size_t *idx, dm_str *log)
 {
     const char *name = render__get(c, "maps");

@@ -31,8 +31,18 @@ add_test(NAME test_ci_gate COMMAND bash ${CMAKE_CURRENT_SOURCE_DIR}/instructions
   ${CMAKE_BINARY_DIR}/test-runs/ci-gate)
 set_tests_properties(test_ci_gate PROPERTIES TIMEOUT 120 FIXTURES_REQUIRED ci_gate_run
   ENVIRONMENT "${DM_TEST_ENV}" LABELS "e2e;gate")
+# Three runs of the embedded --quick sweep made once (fixture quick_runs,
+# DM_QUICK_RUNS, tests/e2e/quick_runs.sh) for the three tests that
+# made six between them before: test_e2e_quick, test_e2e_precision and
+# test_reports_quick_browser (tests/reports.cmake) read them.
+dm_add_e2e(test_e2e_quick_runs quick_runs.sh ARGS ${DM_QUICK_RUNS} LABELS quick)
+set_tests_properties(test_e2e_quick_runs PROPERTIES FIXTURES_SETUP quick_runs)
 dm_add_e2e(test_e2e_quick quick.sh LABELS quick)
 dm_add_e2e(test_e2e_precision precision.sh)
+foreach(t test_e2e_quick test_e2e_precision)
+  set_tests_properties(${t} PROPERTIES FIXTURES_REQUIRED quick_runs)
+  set_property(TEST ${t} APPEND PROPERTY ENVIRONMENT "QUICK_RUNS=${DM_QUICK_RUNS}")
+endforeach()
 dm_add_e2e(test_e2e_extra_rounds extra_rounds.sh)
 dm_add_e2e(test_e2e_precision_raw precision_raw.sh)
 dm_add_e2e(test_e2e_exchange exchange.sh)

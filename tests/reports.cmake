@@ -20,10 +20,11 @@ set_tests_properties(test_reports_browser PROPERTIES TIMEOUT 60 LABELS "browser"
 # The default quick run's report in chromium: the front table in the first
 # screen at 1280x800 and 1920x1080, no clipped chart text, under 2 MB; the
 # screenshots stay in build/artifacts/report-screenshots (CI artefacts).
+# The run is a copy of the suite's (fixture quick_runs, tests/e2e.cmake).
 add_test(NAME test_reports_quick_browser
   COMMAND sh ${CMAKE_CURRENT_SOURCE_DIR}/browser/quick_report.sh $<TARGET_FILE:dmbench>
-          ${CMAKE_BINARY_DIR}/artifacts/report-screenshots)
+          ${CMAKE_BINARY_DIR}/artifacts/report-screenshots ${DM_QUICK_RUNS})
 set_tests_properties(test_reports_quick_browser PROPERTIES TIMEOUT 300 LABELS "browser;e2e"
-  ENVIRONMENT "${DM_TEST_ENV}")
+  ENVIRONMENT "${DM_TEST_ENV}" FIXTURES_REQUIRED quick_runs)
 dm_add_unit(test_reports_published test_reports_published.c LIBS dm_reports)
 dm_add_unit(test_reports_model test_reports_model.c LIBS dm_reports)

@@ -153,6 +153,44 @@ static void test_srgb(void **state)
         assert_float_equal(maps_srgb_decode(maps_srgb_encode(x)), x, 1e-5);
 }
 
+/* The 8-bit code the compact sets store: the count of the thresholds
+ * decode((k + 0.5)/255) at or below x, counted here one by one, at every
+ * threshold, its neighbouring floats and 200 001 values of [0, 1]; and
+ * the ends (NaN, negative, 1 and above). */
+static float srgb8_thresh[255];
+
+static int srgb8_by_count(float x)
+{
+    int n = 0;
+    for (int k = 0; k < 255; k++)
+        n += srgb8_thresh[k] <= x;
+    return n;
+}
+
+static void test_srgb8(void **state)
+{
+    (void)state;
+    for (int k = 0; k < 255; k++)
+        srgb8_thresh[k] = maps_srgb_decode(((float)k + 0.5f) / 255.0f);
+    for (int k = 0; k < 255; k++) {
+        float t = srgb8_thresh[k];
+        float xs[3] = {nextafterf(t, 0.0f), t, nextafterf(t, 2.0f)};
+        for (int i = 0; i < 3; i++)
+            assert_int_equal(maps_srgb8(xs[i]), srgb8_by_count(xs[i]));
+    }
+    for (int i = 0; i <= 200000; i++) {
+        float x = (float)i / 200000.0f;
+        if (maps_srgb8(x) != srgb8_by_count(x))
+            fail_msg("maps_srgb8(%.9g) = %d, the thresholds say %d", (double)x, maps_srgb8(x), srgb8_by_count(x));
+    }
+    assert_int_equal(maps_srgb8(NAN), 0);
+    assert_int_equal(maps_srgb8(-0.5f), 0);
+    assert_int_equal(maps_srgb8(0.0f), 0);
+    assert_int_equal(maps_srgb8(1.0f), 255);
+    assert_int_equal(maps_srgb8(7.0f), 255);
+    assert_int_equal(maps_srgb8(0.5f), 188);   /* 255 * 0.735357 = 187.5 + 0.019 */
+}
+
 /* The disk cache: the first call generates and writes, the second loads
  * the same bytes; a corrupt file is regenerated; sizes below
  * MAPS_CACHE_MIN_SIZE never touch the directory. */
@@ -311,6 +349,7 @@ DM_TEST_MAIN(NULL, NULL,
              cmocka_unit_test(test_compact),
              cmocka_unit_test(test_normal_rows),
              cmocka_unit_test(test_srgb),
+             cmocka_unit_test(test_srgb8),
              cmocka_unit_test(test_cache),
              cmocka_unit_test(test_bad_input),
              cmocka_unit_test(test_cache_dir),

@@ -1,5 +1,5 @@
 #!/bin/sh
-# quick_report.sh DMBENCH ARTIFACTS — the default quick run's report.html in
+# quick_report.sh DMBENCH ARTIFACTS [RUNS] — the default quick run's report.html in
 # headless chromium, as a new user sees it: at 1280x800 and 1920x1080 the
 # first scene's recommendation (p.pick) lies entirely in the first screen
 # (DOM position), every front row whose CI half-width is over ±5 % (the mean
@@ -9,15 +9,23 @@
 # The screenshots stay in ARTIFACTS (CI keeps them).  Then `report --out`
 # into a folder that is moved elsewhere: every full-size link is relative and
 # resolves inside it, and chromium loads every image of the moved copy.
+# The run is a copy of the suite's third --quick run (RUNS/c, made once by
+# tests/e2e/quick_runs.sh; without RUNS the script makes its own).
 set -eu
 bin=$1
 art=$2
+runs=${3:-}
 work=$(mktemp -d /tmp/dm_quick_report_XXXXXX)
 trap 'rm -rf "$work"' EXIT INT TERM
 fail() { echo "FAIL: $*" >&2; exit 1; }
 mkdir -p "$art"
 
-"$bin" run --quick --out "$work/res" --quiet 2>"$work/run.log" || { cat "$work/run.log" >&2; fail "run --quick"; }
+if [ -n "$runs" ]; then
+    [ -f "$runs/c/latest/report.html" ] || fail "no run in $runs/c (fixture test_e2e_quick_runs)"
+    cp -a "$runs/c" "$work/res"
+else
+    "$bin" run --quick --out "$work/res" --quiet 2>"$work/run.log" || { cat "$work/run.log" >&2; fail "run --quick"; }
+fi
 html="$work/res/latest/report.html"
 size=$(wc -c < "$html")
 [ "$size" -lt 2000000 ] || fail "report.html is $size bytes, the limit is 2 MB"

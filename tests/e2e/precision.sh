@@ -10,21 +10,21 @@
 # visits the first round of every scene in the same order, another seed
 # in another.  --quick takes no extra rounds unless asked (the default
 # sweep's 60 s are the bench's to measure: bench/precision.sh).
+# The three runs are the suite's (tests/e2e/quick_runs.sh: a and b with
+# --seed 7, c with --seed 8; a's progress in a.log).
 set -euo pipefail
 . "${DMBENCH_SOURCE_DIR:?}/tests/lib.sh"
 
-"$BIN" run --quick --seed 7 --out "$OUT/a" 2> "$OUT/a.log" > /dev/null
+RUNS=$(bash "$SRC/tests/e2e/quick_runs.sh" --use "$OUT/runs")
 # lines wrap at 100 columns with continuations four columns in: join them
-sed -i ':a;N;$!ba;s/\n    */ /g' "$OUT/a.log"
+sed ':a;N;$!ba;s/\n    */ /g' "$RUNS/a.log" > "$OUT/a.log"
 grep -q "^dmbench: precision (WallTime, 95 % CI within ±5 %): [0-9]* of [0-9]* raw, [0-9]* of [0-9]* with the machine's drift removed" "$OUT/a.log"
 grep -q "^dmbench: noise floor ±[0-9.]* %" "$OUT/a.log"
 grep -q "^dmbench: the machine's speed moved ±" "$OUT/a.log"
 # the default sweep spends 60 s of extra rounds by default; --quick none
 if grep "extra rounds" "$OUT/a.log"; then echo "extra rounds in a --quick run without --extra-time"; exit 1; fi
-[ -z "$(sqlite3 "$OUT/a/dmbench.sqlite" "SELECT value FROM run_env WHERE key = 'extra_time_s'")" ]
-"$BIN" run --quick --seed 7 --out "$OUT/b" --quiet
-"$BIN" run --quick --seed 8 --out "$OUT/c" --quiet
-python3 - "$OUT" <<'PY'
+[ -z "$(sqlite3 "$RUNS/a/dmbench.sqlite" "SELECT value FROM run_env WHERE key = 'extra_time_s'")" ]
+python3 - "$RUNS" <<'PY'
 import math, os, sqlite3, sys
 def load(d):
     db = sqlite3.connect(os.path.join(sys.argv[1], d, "dmbench.sqlite"))

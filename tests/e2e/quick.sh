@@ -3,16 +3,16 @@
 # version): no file, every technique, results and report written, nothing
 # failed; every configuration's FLIP in [0, 1] with its map, and the same
 # to 1e-6 in a second run.  Prints its wall time; the time bound only
-# catches a run-away.
+# catches a run-away.  The runs are the suite's (tests/e2e/quick_runs.sh:
+# a, with progress, and b, the same seed).
 set -euo pipefail
 BIN=${DMBENCH_BINARY:?}
 OUT=$(mktemp -d)
 trap 'rm -rf "$OUT"' EXIT
-start=$(date +%s)
-"$BIN" run --quick --out "$OUT" 2> "$OUT/log"
-took=$(( $(date +%s) - start ))
-tail -1 "$OUT/log"
-python3 - "$OUT/latest/results.json" "$BIN" <<'PY'
+RUNS=$(bash "${DMBENCH_SOURCE_DIR:?}/tests/e2e/quick_runs.sh" --use "$OUT/runs")
+took=$(cat "$RUNS/a.seconds")
+tail -1 "$RUNS/a.log"
+python3 - "$RUNS/a/latest/results.json" "$BIN" <<'PY'
 import json, subprocess, sys
 j = json.load(open(sys.argv[1]))
 techs = [l.split()[0] for l in subprocess.run([sys.argv[2], "list", "techniques"], capture_output=True,
@@ -27,9 +27,7 @@ print("quick:", len(j["configs"]), "configurations, every technique")
 PY
 echo "quick sweep: ${took} s"
 [ "$took" -lt 300 ]
-first=$(readlink -f "$OUT/latest")
-"$BIN" run --quick --out "$OUT" --quiet 2> "$OUT/log2"
-python3 - "$first" "$(readlink -f "$OUT/latest")" <<'PY'
+python3 - "$(readlink -f "$RUNS/a/latest")" "$(readlink -f "$RUNS/b/latest")" <<'PY'
 import json, os, sys
 runs = [json.load(open(os.path.join(d, "results.json"))) for d in sys.argv[1:]]
 flip = [{c["key"]: c["quality"]["FLIP"] for c in r["configs"] if c.get("quality")} for r in runs]
