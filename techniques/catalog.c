@@ -30,9 +30,12 @@ static pthread_mutex_t catalog__lock = PTHREAD_MUTEX_INITIALIZER;
 static const char *catalog__names[CATALOG__MAX_TECHNIQUES + 1];
 static pthread_once_t catalog__names_once = PTHREAD_ONCE_INIT;
 
-/* The built-in axis rows with the registries' choices filled in. */
+/* The built-in axis rows with the registries' choices filled in, and
+ * their indices in the order of their names (axes_find's binary search:
+ * planning asks for an axis by name for every axis of every combination). */
 static axis_info catalog__axes[CATALOG__MAX_AXES];
 static size_t catalog__n_axes;
+static unsigned char catalog__by_name[CATALOG__MAX_AXES];
 static pthread_once_t catalog__axes_once = PTHREAD_ONCE_INIT;
 
 /* ---- techniques ------------------------------------------------------------ */
@@ -99,6 +102,12 @@ static void catalog__init_axes(void)
     catalog__axes[0].check = catalog__check_technique;
     catalog__axes[1].choices = mesh_names();
     catalog__axes[catalog__n_axes - 1].choices = maps_names();
+    for (size_t i = 0; i < catalog__n_axes; i++) {   /* insertion sort by name */
+        size_t j = i;
+        for (; j > 0 && strcmp(catalog__axes[catalog__by_name[j - 1]].name, catalog__axes[i].name) > 0; j--)
+            catalog__by_name[j] = catalog__by_name[j - 1];
+        catalog__by_name[j] = (unsigned char)i;
+    }
 }
 
 size_t axes_count(void)
@@ -115,9 +124,24 @@ const axis_info *axes_at(size_t i)
 
 const axis_info *axes_find(const char *name)
 {
-    for (size_t i = 0; name && i < axes_count(); i++)
-        if (strcmp(axes_at(i)->name, name) == 0)
-            return axes_at(i);
+    if (!name)
+        return NULL;
+    pthread_once(&catalog__axes_once, catalog__init_axes);
+    size_t lo = 0, hi = catalog__n_axes;   /* the built-in rows, by name */
+    while (lo < hi) {
+        size_t mid = (lo + hi) / 2;
+        const axis_info *a = &catalog__axes[catalog__by_name[mid]];
+        int c = strcmp(a->name, name);
+        if (c == 0)
+            return a;
+        if (c < 0)
+            lo = mid + 1;
+        else
+            hi = mid;
+    }
+    for (size_t i = 0; i < catalog__n_user_axes; i++)   /* then the users' parameters */
+        if (strcmp(catalog__user_axes[i]->name, name) == 0)
+            return catalog__user_axes[i];
     return NULL;
 }
 
