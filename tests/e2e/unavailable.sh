@@ -94,7 +94,8 @@ pgrep -f "sleep $nap" >/dev/null && { echo "FAIL: the hung Valgrind child was le
 # its batch (run/count_child.c prepares a whole batch, then counts it):
 # that configuration alone fails, with the signal; the first, prepared but
 # not counted yet, and the rest are counted by one new child, under the
-# real Valgrind.
+# real Valgrind; the killed one leaves no file in TMPDIR (Valgrind's
+# gdbserver FIFOs: the counting children run without it).
 cat > "$OUT/kill-valgrind" <<'PY'
 #!/usr/bin/env python3
 import os, signal, subprocess, sys
@@ -116,9 +117,12 @@ sys.exit(child.wait())
 PY
 chmod +x "$OUT/kill-valgrind"
 sed 's/^  timeout_s: .*/  timeout_s: 120/' "$OUT/instr.yaml" > "$OUT/instr-kill.yaml"
-FAKE_VG_LOG=$OUT/kill.log REAL_VG=$(command -v valgrind) DMBENCH_VALGRIND=$OUT/kill-valgrind \
+mkdir -p "$OUT/tmp-kill"   # the children's TMPDIR: the killed Valgrind leaves no gdbserver FIFO there
+FAKE_VG_LOG=$OUT/kill.log REAL_VG=$(command -v valgrind) DMBENCH_VALGRIND=$OUT/kill-valgrind TMPDIR=$OUT/tmp-kill \
   timeout 600 "$BIN" run "$OUT/instr-kill.yaml" --out "$OUT/kill" --quiet --count-jobs 1 --seed 1
 [ "$(wc -l < "$OUT/kill.log")" -eq 2 ] || { echo "FAIL: kill: Valgrind started $(wc -l < "$OUT/kill.log") times, not twice"; exit 1; }
+fifos=$(ls "$OUT/tmp-kill" | grep -c '^vgdb-pipe') || true
+[ "$fifos" -eq 0 ] || { echo "FAIL: kill: the killed Valgrind child left $fifos vgdb FIFOs in TMPDIR"; exit 1; }
 python3 - "$OUT/kill/latest" <<'PY'
 import json, os, sys
 j = json.load(open(os.path.join(sys.argv[1], "results.json")))
