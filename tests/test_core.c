@@ -81,6 +81,7 @@ static void test_files(void **state)
     free(buf);
     free(f);
     free(sub);
+    test_rm_rf(dir);
 }
 
 /* dm_write_file past a file-size limit (ulimit -f; SIGXFSZ ignored, as

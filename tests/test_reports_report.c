@@ -1672,6 +1672,7 @@ static void test_warnings_everywhere(void **state)
     free(jp);
     free(md);
     free(html);
+    test_rm_rf(dir);
 }
 
 /* A timed run whose configurations have no quality (no reference could be
