@@ -231,26 +231,12 @@ static int runner__open(runner *r, dm_str *err)
  * scene, copies them instead of generating them again, and the first
  * configuration of a scene no longer pays the generation in its
  * SetupTime where the others did not.  At most MAPS_MEMO_SETS sets (what
- * the process keeps). */
+ * the process keeps: more would push out the first). */
 static void runner__maps_preload(const runner *r)
 {
-    char *seen[MAPS_MEMO_SETS];
-    size_t n_seen = 0;
-    for (size_t i = 0; i < r->p.n_configs && n_seen < MAPS_MEMO_SETS; i++) {
-        const plan_config *c = &r->p.configs[i];
-        const char *m = dm_param_value(c->params, c->n_params, "maps");
-        const char *z = dm_param_value(c->params, c->n_params, "texture_size");
-        char *key = dm_xasprintf("%s/%s", m ? m : "", z ? z : "");
-        int known = 0;
-        for (size_t k = 0; k < n_seen && !known; k++)
-            known = strcmp(seen[k], key) == 0;
-        if (!known && render_maps_preload(c->params, c->n_params))
-            seen[n_seen++] = key;
-        else
-            free(key);
-    }
-    for (size_t k = 0; k < n_seen; k++)
-        free(seen[k]);
+    size_t made = 0;
+    for (size_t i = 0; i < r->p.n_configs && made < MAPS_MEMO_SETS; i++)
+        made += (size_t)render_maps_preload(r->p.configs[i].params, r->p.configs[i].n_params);
 }
 
 /* 1 when the sweep asks for a counter that is not deterministic (a time):

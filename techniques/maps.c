@@ -520,6 +520,14 @@ static void maps__memo_put(const maps_desc *d, const maps_set *m)
     maps__copy(m, &maps__memo[i].set);
 }
 
+int maps_in_memory(const maps_desc *desc)
+{
+    maps_desc d = *desc;
+    d.name = d.name ? d.name : "bricks";
+    d.size = d.size ? d.size : 512;
+    return d.size < MAPS_CACHE_MIN_SIZE && maps__memo_find(&d) >= 0;
+}
+
 int maps_get_cached(const maps_desc *desc, const char *dir, maps_set *out)
 {
     maps_desc d = desc ? *desc : (maps_desc){0};

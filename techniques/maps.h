@@ -83,6 +83,8 @@ int maps_generate(const maps_desc *desc, maps_set *out);
  * generated and written there (a write failure is only logged).  Same
  * return codes as maps_generate. */
 int maps_get_cached(const maps_desc *desc, const char *dir, maps_set *out);
+/* 1 when maps_get_cached would copy the set from this process's memory. */
+int maps_in_memory(const maps_desc *desc);
 /* The cache directory: $DMBENCH_CACHE_DIR/maps, else
  * $XDG_CACHE_HOME/dmbench/maps, else $HOME/.cache/dmbench/maps (malloc'd). */
 char *maps_cache_dir(void);

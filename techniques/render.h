@@ -73,9 +73,9 @@ int render_prepare(render_ctx *r, const dm_kv *params, size_t n_params,
  * virtual texture, smaller than MAPS_CACHE_MIN_SIZE): processes forked
  * afterwards copy it from the process's memo (techniques/maps.h) instead
  * of generating it, so a run whose scenes each measure in a child of
- * their own generates each set once.  Returns 1 when it made or found the
- * set, 0 when params read none of that kind (or it cannot be made: prepare
- * then says why). */
+ * their own generates each set once.  Returns 1 when it made the set, 0
+ * when the process has it already or params read none of that kind (or it
+ * cannot be made: prepare then says why). */
 int render_maps_preload(const dm_kv *params, size_t n_params);
 /* Draws one frame of the item into the bound framebuffer (viewport w×h,
  * clears colour to 0 and depth to 1 first).  Does not glFinish. */

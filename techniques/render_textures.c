@@ -378,7 +378,7 @@ int render_maps_preload(const dm_kv *params, size_t n_params)
         return 0;
     maps_set s;
     maps_desc d = {.name = name, .size = size, .compact = 1};
-    if (maps_get_cached(&d, NULL, &s) != 0)
+    if (maps_in_memory(&d) || maps_get_cached(&d, NULL, &s) != 0)
         return 0;
     maps_free(&s);
     return 1;

@@ -229,10 +229,14 @@ static void test_cache(void **state)
     assert_int_equal(maps_get_cached(&d, dir, &c), 0);
     assert_int_equal(c.from_cache, 0);
     assert_memory_equal(a.height, c.height, n * sizeof(float));
-    maps_desc small = {.name = "checker", .size = 64};
+    maps_desc small = {.name = "checker", .size = 64}, other = {.name = "checker", .size = 32};
     maps_set s;
+    assert_false(maps_in_memory(&other));
     assert_int_equal(maps_get_cached(&small, dir, &s), 0);
     assert_int_equal(s.from_cache, 0);
+    assert_true(maps_in_memory(&small));   /* the next one copies it */
+    assert_false(maps_in_memory(&other));
+    assert_false(maps_in_memory(&d));      /* the disk cache's size: never in memory */
     char *spath = dm_xasprintf("%s/checker-64.dmmaps", dir);
     assert_false(dm_file_exists(spath));
     remove(path);
